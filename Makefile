@@ -1,0 +1,35 @@
+# rg2 top-level Makefile: thin wrapper over CMake.
+#   make run    build and run the main job on the bundled example design (outputs in out/)
+#   make test   install what is missing, build under ASan+UBSan, run every test
+#   make bench  build optimised and run the benchmark against SISL and OpenCASCADE
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+DESIGN ?= examples/torus_sphere.json
+
+.PHONY: all build run test bench clean
+
+all: build
+
+build:
+	@scripts/deps.sh base
+	@cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DRG2_BUILD_TESTS=OFF >/dev/null
+	@cmake --build build -j$(JOBS)
+
+run: build
+	@mkdir -p out
+	@scripts/run.sh build/rg2 $(DESIGN) out
+
+test:
+	@scripts/deps.sh test
+	@cmake -S . -B build-test -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRG2_SANITIZE=ON -DRG2_BUILD_TESTS=ON >/dev/null
+	@cmake --build build-test -j$(JOBS)
+	@cd build-test && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j$(JOBS)
+
+bench:
+	@scripts/deps.sh bench
+	@cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release -DRG2_BUILD_TESTS=OFF -DRG2_BUILD_BENCH=ON >/dev/null
+	@cmake --build build-bench -j$(JOBS)
+	@mkdir -p out
+	@build-bench/bench/rg2_bench out/bench.json
+
+clean:
+	rm -rf build build-test build-bench out

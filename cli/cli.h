@@ -1,0 +1,28 @@
+/* cli.h -- the rg2 command's subcommands and shared argument helpers. */
+#ifndef RG2_CLI_H
+#define RG2_CLI_H
+
+#include "rg2.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+typedef struct {
+    const char *name;
+    const char *help;
+    int (*run)(int argc, char **argv); /* argv[0] is the command name */
+} rg2_cli_command;
+
+/* Exit codes of the rg2 command. */
+enum { RG2_EXIT_OK = 0, RG2_EXIT_FAIL = 1, RG2_EXIT_USAGE = 2, RG2_EXIT_CHECK = 3 };
+
+int rg2_cmd_curve(int argc, char **argv);
+int rg2_cmd_demo(int argc, char **argv);
+
+/* Parse "a,b,c" into at most max doubles; returns the count or -1 (message printed). */
+int rg2_cli_parse_list(const char *opt, const char *s, double *out, int max);
+/* Print "rg2 <cmd>: <status text>: <message>" to stderr; returns RG2_EXIT_FAIL. */
+int rg2_cli_report(const char *cmd, const rg2_error *err);
+
+#endif

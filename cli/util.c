@@ -1,0 +1,43 @@
+/* util.c -- argument helpers shared by the subcommands. */
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+int rg2_cli_parse_list(const char *opt, const char *s, double *out, int max)
+{
+    int n = 0;
+    const char *p = s;
+    while (*p) {
+        char *end;
+        errno = 0;
+        double x = strtod(p, &end);
+        if (end == p || errno == ERANGE || !isfinite(x)) {
+            fprintf(stderr, "rg2: %s: item %d of '%s' is not a finite number\n", opt, n, s);
+            return -1;
+        }
+        if (n == max) {
+            fprintf(stderr, "rg2: %s: more than %d values\n", opt, max);
+            return -1;
+        }
+        out[n++] = x;
+        p = end;
+        while (*p == ' ')
+            p++;
+        if (*p == ',' || *p == ';')
+            p++;
+        else if (*p) {
+            fprintf(stderr, "rg2: %s: unexpected '%c' after item %d of '%s'\n", opt, *p, n - 1, s);
+            return -1;
+        }
+    }
+    return n;
+}
+
+int rg2_cli_report(const char *cmd, const rg2_error *err)
+{
+    fprintf(stderr, "rg2 %s: %s: %s\n", cmd, rg2_status_str(err->code), err->msg);
+    return RG2_EXIT_FAIL;
+}

@@ -1,0 +1,358 @@
+/*
+ * rg2.h -- rational bi-cubic G2 splines (Karciauskas & Peters 2011).
+ *
+ * The one public header of the rg2 library.
+ *
+ * Index (groups in the order they appear below):
+ *   Status and errors ....... rg2_status, rg2_error, rg2_status_str, rg2_version
+ *   Direction scalars ....... rg2_scalars: leg weights w, junction scalars b, g
+ *                             rg2_scalars_init/free/copy/check, _from_knots, _from_angles
+ *   Scalar building blocks .. rg2_circle_coeffs, rg2_blossom_monomials
+ *   Curves .................. rg2_curve: rational cubic G2 spline curves in R^d
+ *                             rg2_curve_build/free/eval/curvature
+ *   Control meshes .......... rg2_mesh: grid of homogeneous 4-tuples + u/v scalars
+ *   Patches and surfaces .... rg2_patch (rational bi-3 Bezier), rg2_surface (grid of patches)
+ *                             rg2_surface_build (the Bi-cubic Construction)
+ *   Evaluation .............. rg2_patch_eval (position, derivatives, normal, curvatures)
+ *   Shapes .................. (exact basic shapes; see the shapes section)
+ *   Design .................. (JSON design files; see the design section)
+ *   Export .................. (STEP, IGES, BezierView, meshes; see the export section)
+ *   Pictures and checks ..... (render, check; see that section)
+ *
+ * Conventions
+ *   - Every function that can fail returns rg2_status (RG2_OK = 0) and takes a nullable
+ *     rg2_error *err as its last argument; on failure err->msg names the offending item.
+ *   - The library never prints and never exits.
+ *   - Objects that own memory are plain structs released by their *_free function, which
+ *     accepts a zeroed struct (or NULL) and leaves the struct zeroed.
+ *   - Homogeneous 4-tuples are (w x, w y, w z, w).
+ */
+#ifndef RG2_H
+#define RG2_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(RG2_BUILDING_LIBRARY) && defined(__GNUC__)
+#define RG2_API __attribute__((visibility("default")))
+#else
+#define RG2_API
+#endif
+
+#define RG2_VERSION_STRING "0.1.0"
+
+/* ===================================================================================== */
+/** @name Status and errors */
+/* ===================================================================================== */
+
+typedef enum {
+    RG2_OK = 0,
+    RG2_ENOMEM,        /**< allocation failed */
+    RG2_EINVAL,        /**< invalid argument (count, index, structure) */
+    RG2_ENONFINITE,    /**< NaN or infinity in the input */
+    RG2_EWEIGHT,       /**< weight or scalar b not > 0, or K_i <= 0 */
+    RG2_EDOMAIN,       /**< value outside its allowed range (angle, knot interval, ...) */
+    RG2_EINCOMPATIBLE, /**< meshes cannot be combined (merge, morph) */
+    RG2_EPARSE,        /**< malformed input file */
+    RG2_EIO,           /**< file could not be read or written */
+    RG2_ELIMIT         /**< request exceeds a documented size limit */
+} rg2_status;
+
+/** An error report: the status code and a message naming the offending item. */
+typedef struct {
+    rg2_status code;
+    char msg[512];
+} rg2_error;
+
+/** Text for a status code; never NULL. */
+RG2_API const char *rg2_status_str(rg2_status code);
+/** The library version, e.g. "0.1.0". */
+RG2_API const char *rg2_version(void);
+
+/* ===================================================================================== */
+/** @name Direction scalars (MATH.md section 1)
+ *
+ * One direction of a curve or mesh: n control points, closed or open.
+ *
+ * Closed: n legs (leg i joins p^i and p^{i+1 mod n}), n segments, n junctions.
+ *   w[i] = w_i (leg i), b[i] = b_i, g[i] = g_i (junction i at p^i).
+ * Open (unclamped, like a cubic B-spline; n >= 4): the segments are those of legs 1..n-3.
+ *   The construction needs weights w_{-1}..w_{n-1}: stored w[i+1] = w_i (n+1 values);
+ *   junction scalars b_i, g_i for i = 0..n-1: stored b[i], g[i] (n values).
+ *   Legs -1 and n-1 are virtual (beyond the end points): they carry data only.
+ *
+ * G2 at junction i requires K_i = 2 b_i (3 w_i - 2) + 2 b_i^2 (3 w_{i-1} - 2) + g_i > 0.
+ */
+/* ===================================================================================== */
+
+typedef struct {
+    int n;      /**< number of control points in this direction */
+    int closed; /**< 1 closed (periodic), 0 open */
+    double *w;  /**< leg weights: n values (closed) or n+1 values (open, w[i+1] = w_i) */
+    double *b;  /**< junction scalar b_i > 0, n values */
+    double *g;  /**< junction scalar g_i, n values */
+} rg2_scalars;
+
+/** Allocate scalars for n points with the uniform cubic B-spline values w = 1, b = 1, g = 0.
+ *  @return RG2_EINVAL if n < 3 (closed) or n < 4 (open); RG2_ELIMIT past RG2_MAX_POINTS. */
+RG2_API rg2_status rg2_scalars_init(rg2_scalars *s, int n, int closed, rg2_error *err);
+RG2_API void rg2_scalars_free(rg2_scalars *s);
+RG2_API rg2_status rg2_scalars_copy(const rg2_scalars *src, rg2_scalars *dst, rg2_error *err);
+/** Number of stored weights: n (closed) or n + 1 (open). */
+RG2_API int rg2_scalars_num_w(const rg2_scalars *s);
+/** Number of curve segments (patches in this direction): n (closed) or n - 3 (open). */
+RG2_API int rg2_scalars_num_segments(const rg2_scalars *s);
+/** Leg weight w_i for leg index i (closed: i mod n; open: -1 <= i <= n-1). */
+RG2_API double rg2_scalars_leg_w(const rg2_scalars *s, int i);
+/** K_i of junction i (MATH.md eq. 4). */
+RG2_API double rg2_scalars_K(const rg2_scalars *s, int i);
+/** Check finiteness, w > 0, b > 0, K > 0. `what` prefixes the message ("u", "mesh 2 v"...).
+ *  @return RG2_ENONFINITE, RG2_EWEIGHT or RG2_EINVAL, naming the index. */
+RG2_API rg2_status rg2_scalars_check(const rg2_scalars *s, const char *what, rg2_error *err);
+
+/** Scalars of the polynomial special case (non-uniform C2 cubic B-spline): w = 1, g = 0,
+ *  b_i = d_i / d_{i-1} with d_i = v_{i+1} - v_i.
+ *  Open: n_knots = n + 2 knots v_{-1}..v_n (stored knots[i+1] = v_i); segment i (1..n-3)
+ *        spans [v_i, v_{i+1}], so the domain is [v_1, v_{n-2}].
+ *  Closed: n_knots = n + 1 knots v_0..v_n, period v_n - v_0.
+ *  @return RG2_EDOMAIN for a non-increasing knot (zero-length interval), naming it. */
+RG2_API rg2_status rg2_scalars_from_knots(rg2_scalars *s, const double *knots, int n_knots,
+                                          int closed, rg2_error *err);
+
+/** Scalars of a circle partitioned into arcs with opening angles alpha (MATH.md section 2),
+ *  0 < alpha < pi each.
+ *  Closed: n_alpha = n arcs (arc i spans junction i to i+1); they need not sum to 2 pi for
+ *          the scalars, but a closed circle needs sum = 2 pi (see rg2_circle_coeffs).
+ *  Open: n_alpha = n + 1 arcs alpha_{-1}..alpha_{n-1} (stored alpha[i+1] = alpha_i); the
+ *        produced segments 1..n-3 are exactly arcs 1..n-3.
+ *  @return RG2_EDOMAIN for an angle outside (0, pi), naming it. */
+RG2_API rg2_status rg2_scalars_from_angles(rg2_scalars *s, const double *alpha, int n_alpha,
+                                           int closed, rg2_error *err);
+
+/* ===================================================================================== */
+/** @name Scalar building blocks (MATH.md section 3) */
+/* ===================================================================================== */
+
+/** Control coefficients (C_i, S_i) of (cos t, sin t) for a circle partition: the corners
+ *  p^i of the conic arcs. theta0 is the angle of junction 0 (start of arc 0); arc i spans
+ *  [theta_i, theta_i + alpha_i]. Layout of alpha as in rg2_scalars_from_angles.
+ *  cs receives n pairs: cs[2i] = C_i, cs[2i+1] = S_i (n = n_alpha closed, n_alpha - 1 open).
+ *  Closed partitions must sum to 2 pi (to 1e-12 relative). */
+RG2_API rg2_status rg2_circle_coeffs(const double *alpha, int n_alpha, int closed, double theta0,
+                                     double *cs, rg2_error *err);
+
+/** Blossom (polar form) of the monomials 1, v, v^2, v^3 at (a, b, c): out = {1, (a+b+c)/3,
+ *  (ab+ac+bc)/3, abc}. Control coefficient of junction i is the blossom at (v_{i-1}, v_i, v_{i+1}). */
+RG2_API void rg2_blossom_monomials(double a, double b, double c, double out[4]);
+
+/* ===================================================================================== */
+/** @name Curves (MATH.md section 1): rational cubic G2 splines in R^d */
+/* ===================================================================================== */
+
+#define RG2_MAX_DIM 8
+#define RG2_MAX_POINTS 4000000 /**< per direction and in total per mesh */
+
+typedef struct {
+    int dim;        /**< dimension d of the points, 1..RG2_MAX_DIM */
+    int n_segments; /**< number of Bezier segments */
+    int closed;
+    double *bez;    /**< n_segments * 4 * dim affine Bezier coefficients, segment-major */
+    double *w;      /**< n_segments middle weights: segment i has weights (1, w[i], w[i], 1) */
+} rg2_curve;
+
+/** The G2 construction (eq. 3-4) on a control polygon of s->n points in R^dim.
+ *  Segment k of the result is segment k (closed) or k + 1 (open) of MATH.md. */
+RG2_API rg2_status rg2_curve_build(int dim, const double *points, const rg2_scalars *s,
+                                   rg2_curve *out, rg2_error *err);
+RG2_API void rg2_curve_free(rg2_curve *c);
+/** Position and first/second derivatives (each dim values, NULL to skip) of segment seg at
+ *  t in [0, 1] (exact quotient rule). */
+RG2_API void rg2_curve_eval(const rg2_curve *c, int seg, double t, double *pos, double *d1,
+                            double *d2);
+/** Curvature |f' x f''| / |f'|^3 (dim 2 or 3; 1-d curves return 0). */
+RG2_API double rg2_curve_curvature(const rg2_curve *c, int seg, double t);
+
+/* ===================================================================================== */
+/** @name Control meshes (MATH.md sections 4 and 6) */
+/* ===================================================================================== */
+
+typedef struct {
+    int nu, nv;     /**< control points in u and v */
+    double *p;      /**< nu * nv homogeneous 4-tuples: p[(i * nv + j) * 4 + k], i along u */
+    rg2_scalars su; /**< u-direction scalars (su.n == nu) */
+    rg2_scalars sv; /**< v-direction scalars (sv.n == nv) */
+} rg2_mesh;
+
+/** Allocate a mesh with zero points and uniform scalars. */
+RG2_API rg2_status rg2_mesh_init(rg2_mesh *m, int nu, int nv, int closed_u, int closed_v,
+                                 rg2_error *err);
+RG2_API void rg2_mesh_free(rg2_mesh *m);
+RG2_API rg2_status rg2_mesh_copy(const rg2_mesh *src, rg2_mesh *dst, rg2_error *err);
+/** Check counts, scalars of both directions, and finiteness of every 4-tuple (naming [i][j]). */
+RG2_API rg2_status rg2_mesh_check(const rg2_mesh *m, rg2_error *err);
+/** Pointer to 4-tuple (i, j). */
+static inline double *rg2_mesh_at(const rg2_mesh *m, int i, int j)
+{
+    return m->p + ((size_t)i * (size_t)m->nv + (size_t)j) * 4;
+}
+
+/* ===================================================================================== */
+/** @name Patches and surfaces (MATH.md section 4) */
+/* ===================================================================================== */
+
+/** A rational bi-cubic Bezier patch: h[r][s] is the homogeneous control point
+ *  (w x, w y, w z, w) for Bernstein index r in u and s in v. Domain [0,1]^2. */
+typedef struct {
+    double h[4][4][4];
+} rg2_patch;
+
+/** A grid of patches: patch (i, j) = patch[i * nv + j]; its u = 1 edge meets patch (i+1, j)'s
+ *  u = 0 edge, with scalars (b, g) of the u-direction junction between them. */
+typedef struct {
+    int nu, nv;          /**< patches in u and v */
+    int closed_u, closed_v;
+    rg2_patch *patch;    /**< nu * nv patches */
+    double *bu, *gu;     /**< u junction scalars: bu[i] joins patch column i-1 to i (nu values;
+                              for open u, bu[0] is unused) */
+    double *bv, *gv;     /**< v junction scalars likewise (nv values) */
+    int *tag;            /**< nu * nv provenance tags (shape index, -1 transition); may be NULL */
+} rg2_surface;
+
+/** The Bi-cubic Construction: rows then columns of the curve construction on 4-tuples.
+ *  Patch (i, j) comes from segment i in u and j in v (open directions: segments 1..n-3). */
+RG2_API rg2_status rg2_surface_build(const rg2_mesh *m, rg2_surface *out, rg2_error *err);
+RG2_API void rg2_surface_free(rg2_surface *s);
+RG2_API rg2_status rg2_surface_copy(const rg2_surface *src, rg2_surface *dst, rg2_error *err);
+static inline rg2_patch *rg2_surface_patch(const rg2_surface *s, int i, int j)
+{
+    return s->patch + (size_t)i * (size_t)s->nv + (size_t)j;
+}
+/** Smallest homogeneous weight over all control points of all patches. */
+RG2_API double rg2_surface_min_weight(const rg2_surface *s);
+
+/* ===================================================================================== */
+/** @name Evaluation */
+/* ===================================================================================== */
+
+enum {
+    RG2_EVAL_NORMAL_UNDEFINED = 1u << 0,    /**< Su x Sv vanishes (collapsed edge, pole) */
+    RG2_EVAL_CURVATURE_UNDEFINED = 1u << 1, /**< normal undefined: K, H, k1, k2 are 0 */
+    RG2_EVAL_WEIGHT_NONPOSITIVE = 1u << 2   /**< denominator <= 0 at this point */
+};
+
+/** Point data of a surface evaluation. Curvature sign: n = Su x Sv / |Su x Sv|, second
+ *  fundamental form against n; H = (k1 + k2) / 2 (a sphere with outward n has H = -1/R),
+ *  k1 >= k2. */
+typedef struct {
+    double p[3];
+    double su[3], sv[3];
+    double suu[3], suv[3], svv[3];
+    double n[3];
+    double K, H, k1, k2;
+    unsigned flags;
+} rg2_eval;
+
+/** Evaluate a patch at (u, v): order 0 position; 1 adds su, sv and n; 2 adds suu, suv, svv,
+ *  K, H, k1, k2. Fields beyond the order are zero. */
+RG2_API void rg2_patch_eval(const rg2_patch *P, double u, double v, int order, rg2_eval *out);
+/** Homogeneous values: out[d][k] for d = 0 value, 1 d/du, 2 d/dv, 3 d2/du2, 4 d2/dudv, 5 d2/dv2. */
+RG2_API void rg2_patch_eval_h(const rg2_patch *P, double u, double v, double out[6][4]);
+/** Normal curvature in the tangent direction t = a su + c sv of an order-2 evaluation. */
+RG2_API double rg2_eval_normal_curvature(const rg2_eval *e, double a, double c);
+
+/* ===================================================================================== */
+/** @name Shapes (exact basic shapes, paper section 3.1, MATH.md section 5) */
+/* ===================================================================================== */
+
+/* A partition of one direction of a shape.
+ * Circle directions (angles): the arcs the surface covers, in radians, each in (0, pi),
+ *   starting at angle `start`. Closed: they must sum to 2 pi. Open: the mesh gets two extra
+ *   control points at each end whose arcs (copies of the end arcs) carry data only, so the
+ *   produced patches cover exactly the given arcs.
+ * Polynomial directions (knots): the knot values v_0 < v_1 < ... < v_m bounding the m
+ *   segments the surface covers; open only; the mesh gets extra knots at each end (mirrored
+ *   end intervals) that carry data only. */
+typedef enum { RG2_PART_ANGLES = 0, RG2_PART_KNOTS = 1 } rg2_partition_kind;
+typedef struct {
+    rg2_partition_kind kind;
+    int closed;           /**< angles only */
+    int n;                /**< number of arcs (angles) or of knots (knots, n >= 2) */
+    const double *values; /**< n angles (radians) or n increasing knots */
+    double start;         /**< angle of the start of the first arc (angles only) */
+} rg2_partition;
+
+typedef enum {
+    RG2_SHAPE_TORUS,          /**< R, r: ((R + r cv) cu, (R + r cv) su, r sv); u, v circles */
+    RG2_SHAPE_CYCLIDE,        /**< a, c, mu (Dupin cyclide, b^2 = a^2 - c^2 > 0); u, v circles */
+    RG2_SHAPE_SPHERE,         /**< radius: family-2 band, v knots in (0, 1): 0 south, 1 north */
+    RG2_SHAPE_CYLINDER,       /**< radius: (R cu, R su, v); v knots = heights */
+    RG2_SHAPE_CONE,           /**< slope k: (v cu, v su, k v); v knots = radii */
+    RG2_SHAPE_HYPERBOLOID1_RULED, /**< (cu - v su, su + v cu, v); x^2 + y^2 - z^2 = 1 */
+    RG2_SHAPE_HYPERBOLOID1,   /**< ((1+v^2) cu, (1+v^2) su, 1 - v^2, 2v), v > 0 */
+    RG2_SHAPE_HYPERBOLOID2,   /**< (2v cu, 2v su, 1 + v^2, 1 - v^2), |v| < 1 */
+    RG2_SHAPE_PARABOLOID,     /**< A, B: elliptic paraboloid (A v cu, B v su, v^2) */
+    RG2_SHAPE_HYPAR,          /**< hyperbolic paraboloid (u, v, u^2 - v^2); u, v knots */
+    RG2_SHAPE_COUNT
+} rg2_shape_kind;
+
+/** A named shape with its parameters and placement. */
+typedef struct {
+    rg2_shape_kind kind;
+    double param[4];   /**< shape parameters in the order documented per kind */
+    double xform[16];  /**< row-major 4x4 matrix applied to every homogeneous 4-tuple */
+} rg2_shape;
+
+/** Name ("torus", ...), parameter names and count of a shape kind; NULL for an unknown kind. */
+RG2_API const char *rg2_shape_name(rg2_shape_kind kind);
+RG2_API rg2_status rg2_shape_from_name(const char *name, rg2_shape_kind *kind, rg2_error *err);
+/** Initialise a shape with default parameters and the identity placement. */
+RG2_API void rg2_shape_init(rg2_shape *s, rg2_shape_kind kind);
+/** Build the control mesh of the shape over the partitions (u, v). */
+RG2_API rg2_status rg2_shape_mesh(const rg2_shape *s, const rg2_partition *pu,
+                                  const rg2_partition *pv, rg2_mesh *out, rg2_error *err);
+/** Implicit function of the placed shape at x (0 on the surface); gradient into grad (nullable). */
+RG2_API double rg2_shape_implicit(const rg2_shape *s, const double x[3], double grad[3]);
+/** The shape's own homogeneous parameterization h(u, v) (placed). */
+RG2_API void rg2_shape_param(const rg2_shape *s, double u, double v, double h[4]);
+/** Apply a row-major 4x4 matrix to every 4-tuple of a mesh (exact transform). */
+RG2_API void rg2_mesh_transform(rg2_mesh *m, const double M[16]);
+
+
+/* ===================================================================================== */
+/** @name Design (JSON design files and operations, paper section 4) */
+/* ===================================================================================== */
+
+/* (design API) */
+
+/* ===================================================================================== */
+/** @name Poles (polar configurations, caps, Moebius, paper section 5) */
+/* ===================================================================================== */
+
+/* (poles API) */
+
+/* ===================================================================================== */
+/** @name Grid evaluation and tessellation */
+/* ===================================================================================== */
+
+/* (grid API) */
+
+/* ===================================================================================== */
+/** @name Export (STEP, IGES, BezierView, OBJ, STL, PLY, glTF) */
+/* ===================================================================================== */
+
+/* (export API) */
+
+/* ===================================================================================== */
+/** @name Pictures and checks */
+/* ===================================================================================== */
+
+/* (render and check API) */
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* RG2_H */

@@ -1,0 +1,104 @@
+/* eval.c -- exact evaluation of rational bi-3 patches: position, first and second partial
+ * derivatives by the quotient rule on Bernstein polynomials, unit normal, curvatures. */
+#include "internal.h"
+
+#include <string.h>
+
+void rg2_patch_eval_h(const rg2_patch *P, double u, double v, double out[6][4])
+{
+    double Bu[4], Du[4], DDu[4], Bv[4], Dv[4], DDv[4];
+    rg2__bern3(u, Bu, Du, DDu);
+    rg2__bern3(v, Bv, Dv, DDv);
+    memset(out, 0, sizeof(double[6][4]));
+    for (int r = 0; r < 4; r++) {
+        /* column sums over s first: value, d/dv, d2/dv2 */
+        double c0[4] = {0}, c1[4] = {0}, c2[4] = {0};
+        for (int s = 0; s < 4; s++)
+            for (int k = 0; k < 4; k++) {
+                double h = P->h[r][s][k];
+                c0[k] += h * Bv[s];
+                c1[k] += h * Dv[s];
+                c2[k] += h * DDv[s];
+            }
+        for (int k = 0; k < 4; k++) {
+            out[0][k] += Bu[r] * c0[k];
+            out[1][k] += Du[r] * c0[k];
+            out[2][k] += Bu[r] * c1[k];
+            out[3][k] += DDu[r] * c0[k];
+            out[4][k] += Du[r] * c1[k];
+            out[5][k] += Bu[r] * c2[k];
+        }
+    }
+}
+
+static void cross3(const double a[3], const double b[3], double c[3])
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+void rg2_patch_eval(const rg2_patch *P, double u, double v, int order, rg2_eval *e)
+{
+    memset(e, 0, sizeof *e);
+    double H[6][4];
+    rg2_patch_eval_h(P, u, v, H);
+    double W = H[0][3];
+    if (!(W > 0.0))
+        e->flags |= RG2_EVAL_WEIGHT_NONPOSITIVE;
+    double iW = 1.0 / W;
+    for (int k = 0; k < 3; k++)
+        e->p[k] = H[0][k] * iW;
+    if (order < 1)
+        return;
+    for (int k = 0; k < 3; k++) {
+        e->su[k] = (H[1][k] - H[1][3] * e->p[k]) * iW;
+        e->sv[k] = (H[2][k] - H[2][3] * e->p[k]) * iW;
+    }
+    double c[3];
+    cross3(e->su, e->sv, c);
+    double len = sqrt(dot3(c, c));
+    double scale = sqrt(dot3(e->su, e->su) * dot3(e->sv, e->sv));
+    if (!(len > 1e-15 * scale) || len == 0.0) {
+        e->flags |= RG2_EVAL_NORMAL_UNDEFINED | RG2_EVAL_CURVATURE_UNDEFINED;
+    } else {
+        for (int k = 0; k < 3; k++)
+            e->n[k] = c[k] / len;
+    }
+    if (order < 2)
+        return;
+    for (int k = 0; k < 3; k++) {
+        e->suu[k] = (H[3][k] - 2.0 * H[1][3] * e->su[k] - H[3][3] * e->p[k]) * iW;
+        e->suv[k] = (H[4][k] - H[1][3] * e->sv[k] - H[2][3] * e->su[k] - H[4][3] * e->p[k]) * iW;
+        e->svv[k] = (H[5][k] - 2.0 * H[2][3] * e->sv[k] - H[5][3] * e->p[k]) * iW;
+    }
+    if (e->flags & RG2_EVAL_NORMAL_UNDEFINED)
+        return;
+    double E = dot3(e->su, e->su), F = dot3(e->su, e->sv), G = dot3(e->sv, e->sv);
+    double L = dot3(e->suu, e->n), M = dot3(e->suv, e->n), N = dot3(e->svv, e->n);
+    double det = E * G - F * F;
+    e->K = (L * N - M * M) / det;
+    e->H = (E * N - 2.0 * F * M + G * L) / (2.0 * det);
+    double disc = e->H * e->H - e->K;
+    double sq = disc > 0.0 ? sqrt(disc) : 0.0;
+    e->k1 = e->H + sq;
+    e->k2 = e->H - sq;
+}
+
+double rg2_eval_normal_curvature(const rg2_eval *e, double a, double c)
+{
+    double t[3], d2[3];
+    for (int k = 0; k < 3; k++) {
+        t[k] = a * e->su[k] + c * e->sv[k];
+        d2[k] = a * a * e->suu[k] + 2.0 * a * c * e->suv[k] + c * c * e->svv[k];
+    }
+    double tt = dot3(t, t);
+    if (tt == 0.0)
+        return 0.0;
+    return dot3(d2, e->n) / tt;
+}

@@ -1,0 +1,75 @@
+/* internal.h -- private helpers shared by the rg2 modules; never installed. */
+#ifndef RG2_INTERNAL_H
+#define RG2_INTERNAL_H
+
+#include "rg2.h"
+
+#include <math.h>
+#include <stdarg.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* Fill err (if not NULL) with code and a printf-style message; returns code. */
+rg2_status rg2__fail(rg2_error *err, rg2_status code, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+/* Set err to RG2_OK with an empty message. */
+void rg2__ok(rg2_error *err);
+
+/* Overflow-checked allocation of n * size bytes (zeroed); NULL on failure or overflow. */
+void *rg2__calloc(size_t n, size_t size);
+
+/* The curve construction of MATH.md eq. 3-4 as a linear stencil: Bezier coefficient r
+ * (0..3) of output segment k is sum_a c[k][r][a] * p^{first[k] + a}, a = 0..3 (indices
+ * mod n for closed directions). w[k] is the segment's middle weight. */
+typedef struct {
+    int n_segments;
+    int n, closed;
+    int *first;             /* n_segments: index of p^{i-1} (may be -1..n-1 before wrapping) */
+    double (*c)[4][4];      /* n_segments x 4 x 4 */
+    double *w;              /* n_segments */
+    double *bj, *gj;        /* n_segments: scalars of the junction at the segment's start */
+} rg2__stencil;
+
+rg2_status rg2__stencil_make(const rg2_scalars *s, rg2__stencil *st, rg2_error *err);
+void rg2__stencil_free(rg2__stencil *st);
+/* Wrap control point index a into 0..n-1 (closed) or assert range (open). */
+static inline int rg2__wrap(int a, int n, int closed)
+{
+    if (closed) {
+        a %= n;
+        if (a < 0)
+            a += n;
+    }
+    return a;
+}
+
+static inline int rg2__finite(double x) { return isfinite(x); }
+
+/* Bernstein cubic basis and derivatives at t. */
+static inline void rg2__bern3(double t, double B[4], double D[4], double DD[4])
+{
+    double s = 1.0 - t;
+    B[0] = s * s * s;
+    B[1] = 3.0 * t * s * s;
+    B[2] = 3.0 * t * t * s;
+    B[3] = t * t * t;
+    if (D) {
+        D[0] = -3.0 * s * s;
+        D[1] = 3.0 * s * s - 6.0 * t * s;
+        D[2] = 6.0 * t * s - 3.0 * t * t;
+        D[3] = 3.0 * t * t;
+    }
+    if (DD) {
+        DD[0] = 6.0 * s;
+        DD[1] = 18.0 * t - 12.0;
+        DD[2] = 6.0 - 18.0 * t;
+        DD[3] = 6.0 * t;
+    }
+}
+
+#endif

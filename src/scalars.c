@@ -1,0 +1,251 @@
+/* scalars.c -- direction scalars (w, b, g): storage, validation, and the two standard
+ * sources: knot vectors (polynomial mode) and circle partitions (MATH.md sections 1-2). */
+#include "internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+int rg2_scalars_num_w(const rg2_scalars *s) { return s->closed ? s->n : s->n + 1; }
+
+int rg2_scalars_num_segments(const rg2_scalars *s) { return s->closed ? s->n : s->n - 3; }
+
+static rg2_status check_count(int n, int closed, const char *what, rg2_error *err)
+{
+    int min = closed ? 3 : 4;
+    if (n < min)
+        return rg2__fail(err, RG2_EINVAL, "%s: %d control points, an %s direction needs at least %d",
+                         what, n, closed ? "closed" : "open", min);
+    if (n > RG2_MAX_POINTS)
+        return rg2__fail(err, RG2_ELIMIT, "%s: %d control points exceeds the limit %d", what, n,
+                         RG2_MAX_POINTS);
+    return RG2_OK;
+}
+
+rg2_status rg2_scalars_init(rg2_scalars *s, int n, int closed, rg2_error *err)
+{
+    memset(s, 0, sizeof *s);
+    rg2_status st = check_count(n, closed, "scalars", err);
+    if (st)
+        return st;
+    s->n = n;
+    s->closed = closed ? 1 : 0;
+    int nw = rg2_scalars_num_w(s);
+    s->w = rg2__calloc((size_t)nw, sizeof(double));
+    s->b = rg2__calloc((size_t)n, sizeof(double));
+    s->g = rg2__calloc((size_t)n, sizeof(double));
+    if (!s->w || !s->b || !s->g) {
+        rg2_scalars_free(s);
+        return rg2__fail(err, RG2_ENOMEM, "scalars: out of memory for %d points", n);
+    }
+    for (int i = 0; i < nw; i++)
+        s->w[i] = 1.0;
+    for (int i = 0; i < n; i++)
+        s->b[i] = 1.0;
+    rg2__ok(err);
+    return RG2_OK;
+}
+
+void rg2_scalars_free(rg2_scalars *s)
+{
+    if (!s)
+        return;
+    free(s->w);
+    free(s->b);
+    free(s->g);
+    memset(s, 0, sizeof *s);
+}
+
+rg2_status rg2_scalars_copy(const rg2_scalars *src, rg2_scalars *dst, rg2_error *err)
+{
+    rg2_status st = rg2_scalars_init(dst, src->n, src->closed, err);
+    if (st)
+        return st;
+    memcpy(dst->w, src->w, sizeof(double) * (size_t)rg2_scalars_num_w(src));
+    memcpy(dst->b, src->b, sizeof(double) * (size_t)src->n);
+    memcpy(dst->g, src->g, sizeof(double) * (size_t)src->n);
+    return RG2_OK;
+}
+
+double rg2_scalars_leg_w(const rg2_scalars *s, int i)
+{
+    if (s->closed)
+        return s->w[rg2__wrap(i, s->n, 1)];
+    return s->w[i + 1];
+}
+
+double rg2_scalars_K(const rg2_scalars *s, int i)
+{
+    int j = rg2__wrap(i, s->n, s->closed);
+    double b = s->b[j], g = s->g[j];
+    double wi = rg2_scalars_leg_w(s, j), wm = rg2_scalars_leg_w(s, j - 1);
+    return 2.0 * b * (3.0 * wi - 2.0) + 2.0 * b * b * (3.0 * wm - 2.0) + g;
+}
+
+rg2_status rg2_scalars_check(const rg2_scalars *s, const char *what, rg2_error *err)
+{
+    if (!what)
+        what = "scalars";
+    rg2_status st = check_count(s->n, s->closed, what, err);
+    if (st)
+        return st;
+    if (!s->w || !s->b || !s->g)
+        return rg2__fail(err, RG2_EINVAL, "%s: scalars not allocated", what);
+    int nw = rg2_scalars_num_w(s), off = s->closed ? 0 : 1;
+    for (int k = 0; k < nw; k++) {
+        if (!rg2__finite(s->w[k]))
+            return rg2__fail(err, RG2_ENONFINITE, "%s: weight w[%d] is not finite", what, k - off);
+        if (!(s->w[k] > 0.0))
+            return rg2__fail(err, RG2_EWEIGHT, "%s: weight w[%d] = %g, must be > 0", what, k - off,
+                             s->w[k]);
+    }
+    for (int i = 0; i < s->n; i++) {
+        if (!rg2__finite(s->b[i]))
+            return rg2__fail(err, RG2_ENONFINITE, "%s: scalar b[%d] is not finite", what, i);
+        if (!rg2__finite(s->g[i]))
+            return rg2__fail(err, RG2_ENONFINITE, "%s: scalar g[%d] is not finite", what, i);
+        if (!(s->b[i] > 0.0))
+            return rg2__fail(err, RG2_EWEIGHT, "%s: scalar b[%d] = %g, must be > 0", what, i,
+                             s->b[i]);
+    }
+    for (int i = 0; i < s->n; i++) {
+        double K = rg2_scalars_K(s, i);
+        if (!(K > 0.0) || !rg2__finite(K))
+            return rg2__fail(err, RG2_EWEIGHT,
+                             "%s: junction %d has K = %g (from w[%d] = %g, w[%d] = %g, b = %g, g = %g);"
+                             " K must be > 0",
+                             what, i, K, i - 1, rg2_scalars_leg_w(s, i - 1), i,
+                             rg2_scalars_leg_w(s, i), s->b[i], s->g[i]);
+    }
+    rg2__ok(err);
+    return RG2_OK;
+}
+
+rg2_status rg2_scalars_from_knots(rg2_scalars *s, const double *knots, int n_knots, int closed,
+                                  rg2_error *err)
+{
+    memset(s, 0, sizeof *s);
+    int n = closed ? n_knots - 1 : n_knots - 2;
+    rg2_status st = check_count(n, closed, "knots", err);
+    if (st)
+        return st;
+    for (int k = 0; k < n_knots; k++)
+        if (!rg2__finite(knots[k]))
+            return rg2__fail(err, RG2_ENONFINITE, "knots: knot %d is not finite", k);
+    for (int k = 0; k + 1 < n_knots; k++)
+        if (!(knots[k + 1] > knots[k]))
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "knots: interval %d [%.17g, %.17g] has zero or negative length "
+                             "(repeated knots are not supported: split the spline there)",
+                             k, knots[k], knots[k + 1]);
+    st = rg2_scalars_init(s, n, closed, err);
+    if (st)
+        return st;
+    for (int i = 0; i < n; i++) {
+        double d, dm;
+        if (closed) {
+            d = knots[i + 1] - knots[i];
+            int im = (i + n - 1) % n;
+            dm = knots[im + 1] - knots[im];
+        } else {
+            /* knots[k] = v_{k-1}: d_i = v_{i+1} - v_i = knots[i+2] - knots[i+1] */
+            d = knots[i + 2] - knots[i + 1];
+            dm = knots[i + 1] - knots[i];
+        }
+        s->b[i] = d / dm;
+        s->g[i] = 0.0;
+    }
+    return RG2_OK;
+}
+
+rg2_status rg2_scalars_from_angles(rg2_scalars *s, const double *alpha, int n_alpha, int closed,
+                                   rg2_error *err)
+{
+    memset(s, 0, sizeof *s);
+    int n = closed ? n_alpha : n_alpha - 1;
+    rg2_status st = check_count(n, closed, "arcs", err);
+    if (st)
+        return st;
+    int off = closed ? 0 : 1;
+    for (int k = 0; k < n_alpha; k++) {
+        if (!rg2__finite(alpha[k]))
+            return rg2__fail(err, RG2_ENONFINITE, "arcs: angle of arc %d is not finite", k - off);
+        if (!(alpha[k] > 0.0 && alpha[k] < M_PI))
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "arcs: arc %d has opening angle %.17g rad; it must lie in (0, pi)",
+                             k - off, alpha[k]);
+    }
+    st = rg2_scalars_init(s, n, closed, err);
+    if (st)
+        return st;
+    for (int k = 0; k < n_alpha; k++)
+        s->w[k] = (1.0 + 2.0 * cos(0.5 * alpha[k])) / 3.0;
+    for (int i = 0; i < n; i++) {
+        /* junction i joins arc i-1 and arc i */
+        double ai = closed ? alpha[i] : alpha[i + 1];
+        double am = closed ? alpha[(i + n - 1) % n] : alpha[i];
+        double bi = 0.5 * ai, bm = 0.5 * am;
+        double b = sin(bi) / sin(bm);
+        s->b[i] = b;
+        s->g[i] = 2.0 * b * sin(bi) * (tan(0.5 * bi) + tan(0.5 * bm));
+    }
+    return RG2_OK;
+}
+
+void rg2_blossom_monomials(double a, double b, double c, double out[4])
+{
+    out[0] = 1.0;
+    out[1] = (a + b + c) / 3.0;
+    out[2] = (a * b + a * c + b * c) / 3.0;
+    out[3] = a * b * c;
+}
+
+rg2_status rg2_circle_coeffs(const double *alpha, int n_alpha, int closed, double theta0,
+                             double *cs, rg2_error *err)
+{
+    int n = closed ? n_alpha : n_alpha - 1;
+    rg2_status st = check_count(n, closed, "arcs", err);
+    if (st)
+        return st;
+    int off = closed ? 0 : 1;
+    double sum = 0.0;
+    for (int k = 0; k < n_alpha; k++) {
+        if (!rg2__finite(alpha[k]) || !(alpha[k] > 0.0 && alpha[k] < M_PI))
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "arcs: arc %d has opening angle %.17g rad; it must lie in (0, pi)",
+                             k - off, alpha[k]);
+        sum += alpha[k];
+    }
+    if (!rg2__finite(theta0))
+        return rg2__fail(err, RG2_ENONFINITE, "arcs: start angle is not finite");
+    if (closed && fabs(sum - 2.0 * M_PI) > 1e-12 * 2.0 * M_PI)
+        return rg2__fail(err, RG2_EDOMAIN,
+                         "arcs: a closed circle needs opening angles summing to 2 pi; they sum to "
+                         "%.17g",
+                         sum);
+    /* Junction i sits at theta_i (start of arc i). Its control point is the intersection of
+     * the lines through (b1, b2) of arcs i-1 and i; in a frame rotated by theta_i the line of
+     * arc i is {x : x . m_i = c_i}, m_i = (cos beta_i, sin beta_i),
+     * c_i = (cos beta_i + 2) / (1 + 2 cos beta_i), and arc i-1 has m = (cos bm, -sin bm). */
+    double theta = theta0, comp = 0.0; /* Kahan-compensated running angle */
+    for (int i = 0; i < n; i++) {
+        double ai = closed ? alpha[i] : alpha[i + 1];
+        double am = closed ? alpha[(i + n - 1) % n] : alpha[i];
+        double bi = 0.5 * ai, bm = 0.5 * am;
+        double ci = (cos(bi) + 2.0) / (1.0 + 2.0 * cos(bi));
+        double cm = (cos(bm) + 2.0) / (1.0 + 2.0 * cos(bm));
+        /* [cos bm, -sin bm; cos bi, sin bi] x = [cm; ci] */
+        double det = cos(bm) * sin(bi) + sin(bm) * cos(bi); /* = sin(bm + bi) > 0 */
+        double x = (cm * sin(bi) + sin(bm) * ci) / det;
+        double y = (cos(bm) * ci - cos(bi) * cm) / det;
+        double ct = cos(theta), stt = sin(theta);
+        cs[2 * i] = ct * x - stt * y;
+        cs[2 * i + 1] = stt * x + ct * y;
+        /* advance theta by arc i */
+        double yk = ai - comp;
+        double tk = theta + yk;
+        comp = (tk - theta) - yk;
+        theta = tk;
+    }
+    rg2__ok(err);
+    return RG2_OK;
+}

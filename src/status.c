@@ -1,0 +1,55 @@
+/* status.c -- status codes and error messages. */
+#include "internal.h"
+
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *rg2_status_str(rg2_status code)
+{
+    switch (code) {
+    case RG2_OK: return "ok";
+    case RG2_ENOMEM: return "out of memory";
+    case RG2_EINVAL: return "invalid argument";
+    case RG2_ENONFINITE: return "non-finite value";
+    case RG2_EWEIGHT: return "non-positive weight or scalar";
+    case RG2_EDOMAIN: return "value out of range";
+    case RG2_EINCOMPATIBLE: return "incompatible meshes";
+    case RG2_EPARSE: return "malformed input";
+    case RG2_EIO: return "input/output error";
+    case RG2_ELIMIT: return "size limit exceeded";
+    }
+    return "unknown status";
+}
+
+const char *rg2_version(void) { return RG2_VERSION_STRING; }
+
+rg2_status rg2__fail(rg2_error *err, rg2_status code, const char *fmt, ...)
+{
+    if (err) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+        va_end(ap);
+        err->code = code;
+    }
+    return code;
+}
+
+void rg2__ok(rg2_error *err)
+{
+    if (err) {
+        err->code = RG2_OK;
+        err->msg[0] = '\0';
+    }
+}
+
+void *rg2__calloc(size_t n, size_t size)
+{
+    if (n == 0)
+        n = 1;
+    if (size != 0 && n > SIZE_MAX / size)
+        return NULL;
+    return calloc(n, size);
+}

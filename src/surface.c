@@ -1,0 +1,161 @@
+/* surface.c -- the Bi-cubic Construction (paper section 3, MATH.md section 4): a control
+ * mesh of 4-tuples becomes a grid of rational bi-3 Bezier patches. */
+#include "internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+void rg2_surface_free(rg2_surface *s)
+{
+    if (!s)
+        return;
+    free(s->patch);
+    free(s->bu);
+    free(s->gu);
+    free(s->bv);
+    free(s->gv);
+    free(s->tag);
+    memset(s, 0, sizeof *s);
+}
+
+static rg2_status surface_alloc(rg2_surface *s, int nu, int nv, int with_tag, rg2_error *err)
+{
+    memset(s, 0, sizeof *s);
+    s->patch = rg2__calloc((size_t)nu * (size_t)nv, sizeof(rg2_patch));
+    s->bu = rg2__calloc((size_t)nu, sizeof(double));
+    s->gu = rg2__calloc((size_t)nu, sizeof(double));
+    s->bv = rg2__calloc((size_t)nv, sizeof(double));
+    s->gv = rg2__calloc((size_t)nv, sizeof(double));
+    if (with_tag)
+        s->tag = rg2__calloc((size_t)nu * (size_t)nv, sizeof(int));
+    if (!s->patch || !s->bu || !s->gu || !s->bv || !s->gv || (with_tag && !s->tag)) {
+        rg2_surface_free(s);
+        return rg2__fail(err, RG2_ENOMEM, "surface: out of memory for %d x %d patches", nu, nv);
+    }
+    s->nu = nu;
+    s->nv = nv;
+    return RG2_OK;
+}
+
+rg2_status rg2_surface_copy(const rg2_surface *src, rg2_surface *dst, rg2_error *err)
+{
+    rg2_status st = surface_alloc(dst, src->nu, src->nv, src->tag != NULL, err);
+    if (st)
+        return st;
+    size_t np = (size_t)src->nu * (size_t)src->nv;
+    dst->closed_u = src->closed_u;
+    dst->closed_v = src->closed_v;
+    memcpy(dst->patch, src->patch, np * sizeof(rg2_patch));
+    memcpy(dst->bu, src->bu, (size_t)src->nu * sizeof(double));
+    memcpy(dst->gu, src->gu, (size_t)src->nu * sizeof(double));
+    memcpy(dst->bv, src->bv, (size_t)src->nv * sizeof(double));
+    memcpy(dst->gv, src->gv, (size_t)src->nv * sizeof(double));
+    if (src->tag)
+        memcpy(dst->tag, src->tag, np * sizeof(int));
+    return RG2_OK;
+}
+
+/*
+ * METHOD: the curve construction is linear in the points, so it is a stencil per direction
+ * (rg2__stencil_make). Rows first: for u-segment k, R[r][j] = sum_a cu[k][r][a] p^{iu+a, j}
+ * for every mesh column j; then columns: b_rs = sum_c cv[l][s][c] R[r][jv+c]. Homogeneous
+ * control points H_rs = omega_r omega'_s b_rs with omega = (1, w, w, 1).
+ */
+rg2_status rg2_surface_build(const rg2_mesh *m, rg2_surface *out, rg2_error *err)
+{
+    memset(out, 0, sizeof *out);
+    rg2_status st = rg2_mesh_check(m, err);
+    if (st)
+        return st;
+    rg2__stencil su, sv;
+    st = rg2__stencil_make(&m->su, &su, err);
+    if (st)
+        return st;
+    st = rg2__stencil_make(&m->sv, &sv, err);
+    if (st) {
+        rg2__stencil_free(&su);
+        return st;
+    }
+    int nsu = su.n_segments, nsv = sv.n_segments;
+    st = surface_alloc(out, nsu, nsv, 0, err);
+    if (st)
+        goto done;
+    out->closed_u = m->su.closed;
+    out->closed_v = m->sv.closed;
+    for (int k = 0; k < nsu; k++) {
+        out->bu[k] = su.bj[k];
+        out->gu[k] = su.gj[k];
+    }
+    for (int l = 0; l < nsv; l++) {
+        out->bv[l] = sv.bj[l];
+        out->gv[l] = sv.gj[l];
+    }
+    int nv = m->nv, failed = 0;
+#ifdef RG2_HAVE_OPENMP
+#pragma omp parallel for schedule(static) if (nsu * nsv > 256)
+#endif
+    for (int k = 0; k < nsu; k++) {
+        double(*R)[4] = malloc(sizeof(double[4]) * 4 * (size_t)nv); /* R[r * nv + j][comp] */
+        if (!R) {
+#ifdef RG2_HAVE_OPENMP
+#pragma omp atomic write
+#endif
+            failed = 1;
+            continue;
+        }
+        for (int r = 0; r < 4; r++)
+            for (int j = 0; j < nv; j++) {
+                double acc[4] = {0, 0, 0, 0};
+                for (int a = 0; a < 4; a++) {
+                    double c = su.c[k][r][a];
+                    if (c == 0.0)
+                        continue;
+                    const double *p = rg2_mesh_at(m, rg2__wrap(su.first[k] + a, m->nu, su.closed), j);
+                    for (int q = 0; q < 4; q++)
+                        acc[q] += c * p[q];
+                }
+                memcpy(R[r * nv + j], acc, sizeof acc);
+            }
+        double omu[4] = {1.0, su.w[k], su.w[k], 1.0};
+        for (int l = 0; l < nsv; l++) {
+            rg2_patch *P = rg2_surface_patch(out, k, l);
+            double omv[4] = {1.0, sv.w[l], sv.w[l], 1.0};
+            for (int r = 0; r < 4; r++)
+                for (int s = 0; s < 4; s++) {
+                    double acc[4] = {0, 0, 0, 0};
+                    for (int c = 0; c < 4; c++) {
+                        double cc = sv.c[l][s][c];
+                        if (cc == 0.0)
+                            continue;
+                        const double *q = R[r * nv + rg2__wrap(sv.first[l] + c, nv, sv.closed)];
+                        for (int d = 0; d < 4; d++)
+                            acc[d] += cc * q[d];
+                    }
+                    double om = omu[r] * omv[s];
+                    for (int d = 0; d < 4; d++)
+                        P->h[r][s][d] = om * acc[d];
+                }
+        }
+        free(R);
+    }
+    if (failed) {
+        rg2_surface_free(out);
+        st = rg2__fail(err, RG2_ENOMEM, "surface: out of memory during construction");
+    }
+done:
+    rg2__stencil_free(&su);
+    rg2__stencil_free(&sv);
+    return st;
+}
+
+double rg2_surface_min_weight(const rg2_surface *s)
+{
+    double mn = INFINITY;
+    size_t np = (size_t)s->nu * (size_t)s->nv;
+    for (size_t k = 0; k < np; k++)
+        for (int r = 0; r < 4; r++)
+            for (int t = 0; t < 4; t++)
+                if (s->patch[k].h[r][t][3] < mn)
+                    mn = s->patch[k].h[r][t][3];
+    return mn;
+}

@@ -1,0 +1,177 @@
+/* test_surface.c -- the Bi-cubic Construction on random meshes: G2 across every seam,
+ * measured geometrically and parametrically, for all closed/open combinations. */
+#include "harness.h"
+
+#include <math.h>
+#include <string.h>
+
+static void random_scalars(rg2t_rng *r, rg2_scalars *s)
+{
+    int nw = rg2_scalars_num_w(s);
+    for (int k = 0; k < nw; k++)
+        s->w[k] = rg2t_uniform(r, 0.7, 1.4);
+    for (int i = 0; i < s->n; i++) {
+        s->b[i] = rg2t_uniform(r, 0.5, 2.0);
+        s->g[i] = rg2t_uniform(r, -0.8, 0.8);
+    }
+}
+
+static void random_surfaces(void)
+{
+    rg2t_rng r;
+    uint64_t seed = 20261122;
+    rg2t_seed(&r, seed);
+    printf("random surfaces, seed %llu\n", (unsigned long long)seed);
+    rg2t_seams worst = {0};
+    for (int trial = 0; trial < 24; trial++) {
+        int cu = trial & 1, cv = (trial >> 1) & 1;
+        int nu = rg2t_int(&r, cu ? 3 : 4, 8), nv = rg2t_int(&r, cv ? 3 : 4, 8);
+        rg2_mesh m;
+        rg2_error err;
+        CHECK_OK(rg2_mesh_init(&m, nu, nv, cu, cv, &err), &err);
+        random_scalars(&r, &m.su);
+        random_scalars(&r, &m.sv);
+        for (int i = 0; i < nu; i++)
+            for (int j = 0; j < nv; j++) {
+                double *p = rg2_mesh_at(&m, i, j);
+                double W = rg2t_uniform(&r, 0.6, 1.6);
+                for (int k = 0; k < 3; k++)
+                    p[k] = W * rg2t_uniform(&r, -1, 1);
+                p[3] = W;
+            }
+        rg2_surface s;
+        rg2_status st = rg2_surface_build(&m, &s, &err);
+        CHECK(st == RG2_OK, "build trial %d: %s", trial, err.msg);
+        if (st == RG2_OK) {
+            CHECK(s.nu == (cu ? nu : nu - 3) && s.nv == (cv ? nv : nv - 3), "patch counts %d x %d", s.nu,
+                  s.nv);
+            rg2t_seams g;
+            rg2t_surface_seams(&s, 16, &g);
+            CHECK(g.pos <= 1e-14, "trial %d position gap %.3g", trial, g.pos);
+            CHECK(g.angle <= 1e-12, "trial %d normal angle %.3g", trial, g.angle);
+            CHECK(g.curv <= 1e-10, "trial %d curvature jump %.3g at %s", trial, g.curv, g.where);
+            CHECK(g.param1 <= 1e-12, "trial %d parametric G1 %.3g", trial, g.param1);
+            CHECK(g.param2 <= 1e-12, "trial %d parametric G2 %.3g", trial, g.param2);
+            if (g.pos > worst.pos) worst.pos = g.pos;
+            if (g.angle > worst.angle) worst.angle = g.angle;
+            if (g.curv > worst.curv) worst.curv = g.curv;
+            if (g.param1 > worst.param1) worst.param1 = g.param1;
+            if (g.param2 > worst.param2) worst.param2 = g.param2;
+            worst.seams += g.seams;
+            worst.skipped += g.skipped;
+            rg2_surface_free(&s);
+        }
+        rg2_mesh_free(&m);
+    }
+    printf("  %d seams: position %.2e, normal angle %.2e rad, normal curvature %.2e rel, "
+           "parametric %.2e / %.2e, skipped %d\n",
+           worst.seams, worst.pos, worst.angle, worst.curv, worst.param1, worst.param2, worst.skipped);
+}
+
+/* A deliberately broken surface must be measured as broken (the measurement can fail). */
+static void broken_is_detected(void)
+{
+    rg2_mesh m;
+    rg2_error err;
+    CHECK_OK(rg2_mesh_init(&m, 6, 6, 0, 0, &err), &err);
+    for (int i = 0; i < 6; i++)
+        for (int j = 0; j < 6; j++) {
+            double *p = rg2_mesh_at(&m, i, j);
+            p[0] = i;
+            p[1] = j;
+            p[2] = 0.3 * sin(i + 2.0 * j);
+            p[3] = 1;
+        }
+    rg2_surface s;
+    CHECK_OK(rg2_surface_build(&m, &s, &err), &err);
+    s.gu[1] += 0.5; /* claim a different g than the construction used */
+    /* move one interior control point of patch (1,1) off the G2 structure */
+    s.patch[1 * s.nv + 1].h[1][1][2] += 0.05;
+    rg2t_seams g;
+    rg2t_surface_seams(&s, 8, &g);
+    CHECK(g.param2 > 1e-3, "a broken g is detected: %.3g", g.param2);
+    CHECK(g.curv > 1e-3, "a moved control point is detected: %.3g", g.curv);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
+/* Construction order: rows then columns equals columns then rows (transpose the mesh). */
+static void transpose_symmetry(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 7);
+    rg2_mesh m, t;
+    rg2_error err;
+    CHECK_OK(rg2_mesh_init(&m, 5, 7, 1, 0, &err), &err);
+    CHECK_OK(rg2_mesh_init(&t, 7, 5, 0, 1, &err), &err);
+    random_scalars(&r, &m.su);
+    random_scalars(&r, &m.sv);
+    rg2_scalars_free(&t.su);
+    rg2_scalars_free(&t.sv);
+    rg2_scalars_copy(&m.sv, &t.su, &err);
+    rg2_scalars_copy(&m.su, &t.sv, &err);
+    for (int i = 0; i < 5; i++)
+        for (int j = 0; j < 7; j++) {
+            double *p = rg2_mesh_at(&m, i, j), *q = rg2_mesh_at(&t, j, i);
+            for (int k = 0; k < 4; k++)
+                p[k] = q[k] = (k == 3) ? rg2t_uniform(&r, 0.8, 1.2) : rg2t_uniform(&r, -1, 1);
+            q[3] = p[3];
+        }
+    rg2_surface a, b;
+    CHECK_OK(rg2_surface_build(&m, &a, &err), &err);
+    CHECK_OK(rg2_surface_build(&t, &b, &err), &err);
+    double worst = 0;
+    for (int i = 0; i < a.nu; i++)
+        for (int j = 0; j < a.nv; j++)
+            for (int r2 = 0; r2 < 4; r2++)
+                for (int s2 = 0; s2 < 4; s2++)
+                    for (int k = 0; k < 4; k++) {
+                        double d = fabs(rg2_surface_patch(&a, i, j)->h[r2][s2][k] -
+                                        rg2_surface_patch(&b, j, i)->h[s2][r2][k]);
+                        if (d > worst) worst = d;
+                    }
+    CHECK(worst <= 1e-14, "rows-then-columns equals columns-then-rows: %.3g", worst);
+    rg2_surface_free(&a);
+    rg2_surface_free(&b);
+    rg2_mesh_free(&m);
+    rg2_mesh_free(&t);
+}
+
+static void mesh_errors(void)
+{
+    rg2_mesh m;
+    rg2_error err;
+    CHECK(rg2_mesh_init(&m, 3, 5, 0, 0, &err) == RG2_EINVAL && strstr(err.msg, "at least 4"),
+          "open direction with 3 points: %s", err.msg);
+    CHECK_OK(rg2_mesh_init(&m, 4, 4, 0, 0, &err), &err);
+    for (int k = 0; k < 64; k++)
+        m.p[k] = 1.0;
+    rg2_mesh_at(&m, 2, 3)[1] = NAN;
+    rg2_surface s;
+    CHECK(rg2_surface_build(&m, &s, &err) == RG2_ENONFINITE && strstr(err.msg, "[2][3]"),
+          "NaN point named: %s", err.msg);
+    rg2_mesh_at(&m, 2, 3)[1] = 1.0;
+    m.sv.w[2] = -0.5;
+    CHECK(rg2_surface_build(&m, &s, &err) == RG2_EWEIGHT && strstr(err.msg, "w[1]") && strstr(err.msg, "mesh v"),
+          "negative weight named: %s", err.msg);
+    m.sv.w[2] = 1.0;
+    m.su.g[1] = -10.0;
+    CHECK(rg2_surface_build(&m, &s, &err) == RG2_EWEIGHT && strstr(err.msg, "junction 1") &&
+              strstr(err.msg, "K ="),
+          "K <= 0 named: %s", err.msg);
+    m.su.g[1] = 0.0;
+    m.su.b[3] = INFINITY;
+    CHECK(rg2_surface_build(&m, &s, &err) == RG2_ENONFINITE && strstr(err.msg, "b[3]"), "inf b named: %s",
+          err.msg);
+    rg2_mesh_free(&m);
+    CHECK(rg2_mesh_init(&m, 5000, 5000, 0, 0, &err) == RG2_ELIMIT, "huge mesh refused: %s", err.msg);
+}
+
+int main(void)
+{
+    random_surfaces();
+    broken_is_detected();
+    transpose_symmetry();
+    mesh_errors();
+    return rg2t_done("test_surface");
+}
