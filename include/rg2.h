@@ -325,7 +325,29 @@ RG2_API void rg2_mesh_transform(rg2_mesh *m, const double M[16]);
 /** @name Design (JSON design files and operations, paper section 4) */
 /* ===================================================================================== */
 
-/* (design API) */
+/* A design: shape meshes and operations (cut, merge, edit, transform, morph) read from a
+ * JSON design file (docs/design-format.md), built into one or more patch surfaces. Every patch
+ * carries a provenance tag: the index of the shape it reproduces exactly, or -1 for a
+ * transition patch. */
+typedef struct rg2_design rg2_design;
+
+/** Read and build a design file. On failure *out is NULL and err names the offending item
+ *  (file, line and column for syntax errors, JSON path for semantic ones). */
+RG2_API rg2_status rg2_design_load(const char *path, rg2_design **out, rg2_error *err);
+/** The same from a JSON text in memory; `name` is used in messages. */
+RG2_API rg2_status rg2_design_parse(const char *json, size_t len, const char *name,
+                                    rg2_design **out, rg2_error *err);
+RG2_API void rg2_design_free(rg2_design *d);
+/** Built surfaces (one per output mesh of the design), with tags set. */
+RG2_API int rg2_design_num_surfaces(const rg2_design *d);
+RG2_API const rg2_surface *rg2_design_surface(const rg2_design *d, int k);
+/** The control mesh surface k was built from. */
+RG2_API const rg2_mesh *rg2_design_mesh(const rg2_design *d, int k);
+/** The shapes the design uses; surface tags index this list. */
+RG2_API int rg2_design_num_shapes(const rg2_design *d);
+RG2_API const rg2_shape *rg2_design_shape(const rg2_design *d, int k);
+RG2_API const char *rg2_design_shape_label(const rg2_design *d, int k);
+
 
 /* ===================================================================================== */
 /** @name Poles (polar configurations, caps, Moebius, paper section 5) */
@@ -343,7 +365,26 @@ RG2_API void rg2_mesh_transform(rg2_mesh *m, const double M[16]);
 /** @name Export (STEP, IGES, BezierView, OBJ, STL, PLY, glTF) */
 /* ===================================================================================== */
 
-/* (export API) */
+typedef enum {
+    RG2_STEP_FACE_PER_PATCH = 0, /**< one ADVANCED_FACE per Bezier patch, shared edges */
+    RG2_STEP_FACE_PER_MESH = 1   /**< one B-spline surface per mesh, interior knots mult. 3 */
+} rg2_step_layout;
+
+typedef struct {
+    rg2_step_layout layout; /**< STEP/IGES: faces per patch or per mesh */
+    int ap242;              /**< STEP: write AP242 instead of AP214 */
+    int density;            /**< meshes: samples per patch edge (default 16) */
+    const char *name;       /**< product / object name (default "rg2") */
+} rg2_export_opts;
+
+RG2_API void rg2_export_opts_default(rg2_export_opts *o);
+/** Write surfaces to path; the format follows the extension: .step/.stp, .igs/.iges, .bv,
+ *  .obj, .stl, .ply, .glb, .json. Writes path.tmp then renames: a failed export leaves no file.
+ *  @return RG2_EIO (unwritable), RG2_EWEIGHT (non-positive weight for STEP/IGES, naming the
+ *  patch), RG2_EINVAL (unknown extension, empty input). */
+RG2_API rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *path,
+                                   const rg2_export_opts *opts, rg2_error *err);
+
 
 /* ===================================================================================== */
 /** @name Pictures and checks */
