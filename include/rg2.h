@@ -472,6 +472,15 @@ RG2_API const rg2_mesh *rg2_design_mesh(const rg2_design *d, int k);
 RG2_API int rg2_design_num_shapes(const rg2_design *d);
 RG2_API const rg2_shape *rg2_design_shape(const rg2_design *d, int k);
 RG2_API const char *rg2_design_shape_label(const rg2_design *d, int k);
+/** Name (in the design file) of the mesh surface k was built from. */
+RG2_API const char *rg2_design_mesh_name(const rg2_design *d, int k);
+/** Shape control point (i, j) of output mesh k came from (unchanged), or -1 if it was edited,
+ *  blended or is out of range. */
+RG2_API int rg2_design_point_shape(const rg2_design *d, int k, int i, int j);
+/** Write the output control meshes as JSON (design coordinates d = p_{1..3} / p_4, weights
+ *  W = p_4, scalars w, b, g, provenance and patch tags; docs/design-format.md). Writes
+ *  path.tmp, then renames. @return RG2_EIO if the file cannot be written. */
+RG2_API rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, rg2_error *err);
 
 
 /* ===================================================================================== */
