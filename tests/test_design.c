@@ -345,6 +345,27 @@ static void morph_ends(void)
 
 /* ------------------------------------------------------------------------------------- */
 
+/* Largest |k1|, |k2| (times the surface size) and |H| over samples of the transition patches. */
+static void transition_curvature(const rg2_surface *s, int samples, double *kmax, double *hmax)
+{
+    double size = rg2t_surface_scale(s);
+    *kmax = *hmax = 0.0;
+    for (int k = 0; k < s->nu * s->nv; k++) {
+        if (s->tag[k] >= 0)
+            continue;
+        for (int a = 0; a <= samples; a++)
+            for (int b = 0; b <= samples; b++) {
+                rg2_eval e;
+                rg2_patch_eval(&s->patch[k], (double)a / samples, (double)b / samples, 2, &e);
+                double km = fmax(fabs(e.k1), fabs(e.k2)) * size;
+                if (km > *kmax)
+                    *kmax = km;
+                if (fabs(e.H) * size > *hmax)
+                    *hmax = fabs(e.H) * size;
+            }
+    }
+}
+
 /* The seam rule: "preserve" keeps every patch of both parts exact; "plain" loses the end
  * patches next to each seam whose data-only weights differ. Both are G2. */
 static void seam_rules(void)
@@ -379,8 +400,11 @@ static void seam_rules(void)
             double res = exact_residual(d, s, 8, &counts[rule]);
             rg2t_seams g;
             rg2t_surface_seams(s, 8, &g);
-            printf("  seam rule %-8s: %d exact patches (residual %.1e), seams %.1e rad / %.1e\n",
-                   rule ? "plain" : "preserve", counts[rule], res, g.angle, g.curv);
+            double kmax, hmax;
+            transition_curvature(s, 16, &kmax, &hmax);
+            printf("  seam rule %-8s: %d exact patches (residual %.1e), seams %.1e rad / %.1e; "
+                   "transition patches: max |k| size %.2f, max |H| size %.2f\n",
+                   rule ? "plain" : "preserve", counts[rule], res, g.angle, g.curv, kmax, hmax);
             CHECK(res <= 1e-13 && g.angle <= 1e-11 && g.curv <= 1e-9, "seam rule %d: %.3g %.3g %.3g", rule,
                   res, g.angle, g.curv);
             rg2_design_free(d);
