@@ -340,11 +340,13 @@ static rg2_status parse_shape(pctx *c, const cJSON *obj, const char *label, cons
     int any;
     if ((st = parse_placement(c, obj, path, s.xform, &any)))
         return st;
-    /* let the shape module validate the parameters */
-    double coef[4][4][4];
+    /* let the shape module validate the parameters and the placement */
+    double coef[4][4][4], inv[16];
     rg2_error e;
     if ((st = rg2_shape_coeffs(&s, coef, &e)))
         return fail(c, st, path, "%s", e.msg);
+    if (any && (st = rg2_xform_invert(s.xform, inv, &e)))
+        return fail(c, st, path, "placement: %s", e.msg);
     return rg2__design_add_shape(c->d, &s, label, c->err) < 0 ? c->err->code : RG2_OK;
 }
 
@@ -452,7 +454,7 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
             if (!(span > 0.0))
                 return fail(c, RG2_EDOMAIN, path, "arc range from %g to %g degrees is empty", lo, hi);
             for (int k = 0; k < nseg; k++)
-                pb->values[k] = span / nseg * M_PI / 180.0;
+                pb->values[k] = closed ? 2.0 * M_PI / nseg : span * (M_PI / 180.0) / nseg;
             n = nseg;
         } else {
             if (!(hi > lo))
