@@ -486,6 +486,24 @@ static void transforms(void)
     CHECK(st.resid <= 1e-13 && st.repro <= 1e-13, "projective torus residual %.3g repro %.3g",
           st.resid, st.repro);
     CHECK(st.K <= 1e-9 && st.H <= 1e-9, "projective torus curvatures %.3g %.3g", st.K, st.H);
+    /* non-uniform scale: the unit sphere scaled by (2, 1.5, 0.5) is the ellipsoid (2, 1.5, 0.5) */
+    rg2_shape sp, el;
+    rg2_shape_init(&sp, RG2_SHAPE_SPHERE);
+    rg2_shape_init(&el, RG2_SHAPE_ELLIPSOID);
+    el.param[0] = 2.0, el.param[1] = 1.5, el.param[2] = 0.5;
+    rg2_xform_scale(sp.xform, 2.0, 1.5, 0.5);
+    double kv[4] = {0.1, 0.3, 0.7, 0.9};
+    rg2_partition pk = {RG2_PART_KNOTS, 0, 4, kv, 0};
+    rg2_surface se, ss;
+    CHECK_OK(rg2_shape_surface(&sp, &pu, &pk, &ss, NULL, &err), &err);
+    CHECK_OK(rg2_shape_surface(&el, &pu, &pk, &se, NULL, &err), &err);
+    double de = 0.0;
+    for (int k = 0; k < se.nu * se.nv; k++)
+        for (int q = 0; q < 64; q++)
+            de = fmax(de, fabs((&se.patch[k].h[0][0][0])[q] - (&ss.patch[k].h[0][0][0])[q]));
+    CHECK(de <= 1e-15, "scaled sphere equals the ellipsoid: %.3g", de);
+    rg2_surface_free(&se);
+    rg2_surface_free(&ss);
     /* placement helpers: place() maps z to the axis and the origin to the centre */
     double P[16], c[3] = {1, -2, 3}, ax[3] = {0.3, -0.4, 0.5}, z[4] = {0, 0, 1, 0}, o[4] = {0, 0, 0, 1};
     rg2_xform_place(P, c, ax);
