@@ -2,10 +2,13 @@
 #   make run    build and run the main job on the bundled example design (outputs in out/)
 #   make test   install what is missing, build under ASan+UBSan, run every test
 #   make bench  build optimised and run the benchmark against SISL and OpenCASCADE
+#   make check-memory  the rg2 command under valgrind on every example and bad input (make test runs it)
+#   make fuzz   build the libFuzzer harnesses (clang) into build-fuzz/ and run each FUZZ_SECONDS
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 DESIGN ?= examples/torus_sphere.json
+FUZZ_SECONDS ?= 60
 
-.PHONY: all build run test bench clean
+.PHONY: all build run test bench clean check-memory fuzz
 
 all: build
 
@@ -23,6 +26,18 @@ test:
 	@cmake -S . -B build-test -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRG2_SANITIZE=ON -DRG2_BUILD_TESTS=ON >/dev/null
 	@cmake --build build-test -j$(JOBS)
 	@cd build-test && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j$(JOBS)
+	@$(MAKE) --no-print-directory check-memory
+
+# valgrind needs a build without sanitizers: build/ (Release, with debug info for the reports)
+check-memory:
+	@scripts/deps.sh test
+	@cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_FLAGS=-g -DRG2_BUILD_TESTS=OFF >/dev/null
+	@cmake --build build -j$(JOBS)
+	@scripts/check_memory.sh build/rg2 .
+
+fuzz:
+	@scripts/deps.sh fuzz
+	@scripts/fuzz.sh $(FUZZ_SECONDS)
 
 bench:
 	@scripts/deps.sh bench
@@ -32,4 +47,4 @@ bench:
 	@build-bench/bench/rg2_bench out/bench.json
 
 clean:
-	rm -rf build build-test build-bench out
+	rm -rf build build-test build-bench build-fuzz out

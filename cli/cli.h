@@ -29,5 +29,7 @@ int rg2_cmd_shape(int argc, char **argv);
 int rg2_cli_parse_list(const char *opt, const char *s, double *out, int max);
 /* Print "rg2 <cmd>: <status text>: <message>" to stderr; returns RG2_EXIT_FAIL. */
 int rg2_cli_report(const char *cmd, const rg2_error *err);
+/* 1 if the paths name the same existing file (an output that would overwrite an input). */
+int rg2_cli_same_file(const char *a, const char *b);
 
 #endif

@@ -84,6 +84,11 @@ int rg2_cmd_build(int argc, char **argv)
         usage(stderr);
         return RG2_EXIT_USAGE;
     }
+    for (int k = 0; k < n_out; k++)
+        if (rg2_cli_same_file(path, out[k])) {
+            fprintf(stderr, "rg2 build: output '%s' is the design file itself; choose another name\n", out[k]);
+            return RG2_EXIT_USAGE;
+        }
     int tty = !quiet && isatty(2);
     progress(tty, "rg2 build: reading and building %s", path);
     rg2_design *d;

@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <sys/stat.h>
 
 int rg2_cli_parse_list(const char *opt, const char *s, double *out, int max)
 {
@@ -40,4 +41,12 @@ int rg2_cli_report(const char *cmd, const rg2_error *err)
 {
     fprintf(stderr, "rg2 %s: %s: %s\n", cmd, rg2_status_str(err->code), err->msg);
     return RG2_EXIT_FAIL;
+}
+
+int rg2_cli_same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    if (stat(a, &sa) || stat(b, &sb))
+        return 0;
+    return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }

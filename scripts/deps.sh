@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
 # Install the Debian packages a make target needs, only those missing (idempotent).
-# Usage: scripts/deps.sh base|test|bench
+# Usage: scripts/deps.sh base|test|bench|fuzz
 set -eu
 base="cmake make gcc g++ pkg-config libcjson-dev libpng-dev"
 test="$base valgrind libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev libtbb-dev"
 bench="$test libsisl-dev"
+fuzz="$base clang libclang-rt-14-dev"
 case "${1:-base}" in
   base) want=$base ;;
   test) want=$test ;;
   bench) want=$bench ;;
+  fuzz) want=$fuzz ;;
   *) echo "deps.sh: unknown set '$1'" >&2; exit 2 ;;
 esac
 missing=""

@@ -188,15 +188,49 @@ int rg2__patch_tag(const rg2_design *d, const rg2__dmesh *dm, const rg2__stencil
     return -1;
 }
 
+/* The supported numeric range (internal.h): coordinates and size of a mesh's design points. */
+static rg2_status mesh_range(const rg2_mesh *m, const char *file, const char *name, rg2_error *err)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t k = 0; k < (size_t)m->nu * (size_t)m->nv; k++)
+        for (int q = 0; q < 3; q++) {
+            double x = m->p[4 * k + q] / m->p[4 * k + 3];
+            lo[q] = fmin(lo[q], x);
+            hi[q] = fmax(hi[q], x);
+        }
+    double big = 0.0, diag = 0.0;
+    for (int q = 0; q < 3; q++) {
+        big = fmax(big, fmax(fabs(lo[q]), fabs(hi[q])));
+        diag = hypot(diag, hi[q] - lo[q]);
+    }
+    if (!(big <= RG2_DESIGN_MAX_ABS) || !(diag >= RG2_DESIGN_MIN_ABS))
+        return rg2__fail(err, RG2_EDOMAIN,
+                         "%s: mesh '%s': coordinates up to %g, size %g: outside the supported range "
+                         "(coordinates up to %g, size at least %g)",
+                         file, name, big, diag, RG2_DESIGN_MAX_ABS, RG2_DESIGN_MIN_ABS);
+    return RG2_OK;
+}
+
 rg2_status rg2__design_build(rg2_design *d, rg2_error *err)
 {
+    size_t patches = 0;
+    for (int o = 0; o < d->n_out; o++) {
+        const rg2_mesh *m = &d->mesh[d->out[o]].m;
+        patches += (size_t)rg2_scalars_num_segments(&m->su) * (size_t)rg2_scalars_num_segments(&m->sv);
+    }
+    if (patches > RG2_DESIGN_MAX_PATCHES)
+        return rg2__fail(err, RG2_ELIMIT, "%s: the outputs have %zu patches, more than the limit of %d",
+                         d->name, patches, RG2_DESIGN_MAX_PATCHES);
     d->surf = rg2__calloc((size_t)d->n_out, sizeof *d->surf);
     if (!d->surf)
         return rg2__fail(err, RG2_ENOMEM, "design: out of memory");
     for (int o = 0; o < d->n_out; o++) {
         const rg2__dmesh *dm = &d->mesh[d->out[o]];
         rg2_surface *s = &d->surf[o];
-        rg2_status st = rg2_surface_build(&dm->m, s, err);
+        rg2_status st = mesh_range(&dm->m, d->name, dm->name, err);
+        if (st)
+            return st;
+        st = rg2_surface_build(&dm->m, s, err);
         if (st) {
             rg2_error e = *err;
             return rg2__fail(err, st, "mesh '%s': %s", dm->name, e.msg);

@@ -274,6 +274,9 @@ rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int clo
                              "%s: mesh '%s' is closed in %s; cut it open before merging along %s",
                              what, in[t]->name, dir_name(dir), dir_name(dir));
         n += s->n;
+        if (n > RG2_MAX_POINTS)
+            return rg2__fail(err, RG2_ELIMIT, "%s: %d or more points along %s exceed the limit", what, n,
+                             dir_name(dir));
         if (t > 0) {
             char msg[200];
             if (scalars_differ(dir_scalars(&in[0]->m, other), dir_scalars(&in[t]->m, other), msg,

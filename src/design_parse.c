@@ -137,6 +137,11 @@ static rg2_status as_num(pctx *c, const cJSON *x, const char *path, double *out)
     if (!rg2__finite(x->valuedouble))
         return fail(c, RG2_ENONFINITE, path,
                     "number is not finite (it overflows a double; JSON has no NaN or infinity)");
+    double a = fabs(x->valuedouble);
+    if (a > RG2_DESIGN_MAX_ABS || (a > 0.0 && a < RG2_DESIGN_MIN_ABS))
+        return fail(c, RG2_EDOMAIN, path,
+                    "number %g is outside the supported range (0 or a magnitude from %g to %g)",
+                    x->valuedouble, RG2_DESIGN_MIN_ABS, RG2_DESIGN_MAX_ABS);
     *out = x->valuedouble;
     return RG2_OK;
 }
@@ -895,6 +900,14 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
             rg2__fail(c->err, st, "%s: %s", c->file, e.msg);
         }
         return st;
+    }
+    size_t total = (size_t)tmp.m.nu * (size_t)tmp.m.nv;
+    for (int k = 0; k < c->d->n_mesh; k++)
+        total += (size_t)c->d->mesh[k].m.nu * (size_t)c->d->mesh[k].m.nv;
+    if (total > RG2_DESIGN_MAX_POINTS) {
+        rg2__dmesh_free(&tmp);
+        return fail(c, RG2_ELIMIT, path, "the design's meshes reach %zu control points, more than the "
+                    "limit of %d", total, RG2_DESIGN_MAX_POINTS);
     }
     rg2__dmesh *slot = rg2__design_new_mesh(c->d, c->err);
     if (!slot) {

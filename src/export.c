@@ -465,6 +465,14 @@ void rg2__tess_all_free(rg2_tess *t, int n)
 rg2_status rg2__tess_all(const rg2_surface *surfs, int n_surfs, int density, int curvature,
                          rg2_tess **out, rg2_error *err)
 {
+    /* all surfaces together stay within the per-surface vertex limit of rg2_tessellate */
+    double total = 0.0;
+    for (int k = 0; k < n_surfs; k++)
+        total += ((double)surfs[k].nu * density + 1.0) * ((double)surfs[k].nv * density + 1.0);
+    if (total > RG2_MAX_POINTS)
+        return rg2__fail(err, RG2_ELIMIT,
+                         "export: %d surfaces at density %d need %.0f vertices, more than the limit %d",
+                         n_surfs, density, total, RG2_MAX_POINTS);
     *out = rg2__calloc((size_t)n_surfs, sizeof(rg2_tess));
     if (!*out)
         return rg2__fail(err, RG2_ENOMEM, "export: out of memory");

@@ -11,6 +11,22 @@
 #define M_PI 3.14159265358979323846
 #endif
 
+/* Size limits of a design (README "Limits and errors"): control points of all its meshes
+ * together, and patches of all its output surfaces together. Past them a design is refused
+ * with RG2_ELIMIT before memory runs out. The fuzz build (scripts/fuzz.sh) lowers them. */
+#ifndef RG2_DESIGN_MAX_POINTS
+#define RG2_DESIGN_MAX_POINTS 4000000
+#endif
+#ifndef RG2_DESIGN_MAX_PATCHES
+#define RG2_DESIGN_MAX_PATCHES 1000000
+#endif
+
+/* Supported numeric range of design files: every number is 0 or has a magnitude in
+ * [RG2_DESIGN_MIN_ABS, RG2_DESIGN_MAX_ABS], and so must every output mesh's coordinates and
+ * size (bounding-box diagonal). Beyond it squares and curvatures leave the double range. */
+#define RG2_DESIGN_MAX_ABS 1e100
+#define RG2_DESIGN_MIN_ABS 1e-100
+
 /* Fill err (if not NULL) with code and a printf-style message; returns code. */
 rg2_status rg2__fail(rg2_error *err, rg2_status code, const char *fmt, ...)
 #if defined(__GNUC__)

@@ -958,20 +958,43 @@ void rg2_xform_place(double M[16], const double centre[3], const double axis[3])
 
 /* Gauss-Jordan elimination with partial pivoting. Rows whose pivot columns hold exact
  * zeros (the (0, 0, 0, 1) row of an affine matrix) stay exact. */
+/* METHOD: Gauss-Jordan with partial pivoting on the equilibrated matrix B = Dr M Dc (row and
+ * column scales are powers of 2, so exact): the singularity test is then relative to each
+ * row's and column's own size, and a placement such as scale 1e-60 (tiny linear part next
+ * to the 1 of the homogeneous row) or a far translation is not mistaken for a singular one.
+ * M^-1 = Dc B^-1 Dr. */
 rg2_status rg2_xform_invert(const double M[16], double inv[16], rg2_error *err)
 {
     double a[4][8];
-    double mx = 0.0;
+    double mx = 1.0;
+    int ec[4], er[4];
     for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++) {
+        for (int j = 0; j < 4; j++)
             if (!rg2__finite(M[4 * i + j]))
                 return rg2__fail(err, RG2_ENONFINITE, "placement matrix entry [%d][%d] is not finite",
                                  i, j);
-            a[i][j] = M[4 * i + j];
+    for (int j = 0; j < 4; j++) {
+        double m = 0.0;
+        for (int i = 0; i < 4; i++)
+            m = fmax(m, fabs(M[4 * i + j]));
+        if (m == 0.0)
+            return rg2__fail(err, RG2_EDOMAIN, "placement matrix is singular (column %d is zero)", j);
+        frexp(m, &ec[j]);
+        ec[j] = -ec[j];
+    }
+    for (int i = 0; i < 4; i++) {
+        double m = 0.0;
+        for (int j = 0; j < 4; j++)
+            m = fmax(m, fabs(ldexp(M[4 * i + j], ec[j])));
+        if (m == 0.0)
+            return rg2__fail(err, RG2_EDOMAIN, "placement matrix is singular (row %d is zero)", i);
+        frexp(m, &er[i]);
+        er[i] = -er[i];
+        for (int j = 0; j < 4; j++) {
+            a[i][j] = ldexp(M[4 * i + j], ec[j] + er[i]);
             a[i][4 + j] = i == j ? 1.0 : 0.0;
-            if (fabs(a[i][j]) > mx)
-                mx = fabs(a[i][j]);
         }
+    }
     for (int c = 0; c < 4; c++) {
         int piv = c;
         for (int r = c + 1; r < 4; r++)
@@ -998,7 +1021,7 @@ rg2_status rg2_xform_invert(const double M[16], double inv[16], rg2_error *err)
     }
     for (int i = 0; i < 4; i++)
         for (int j = 0; j < 4; j++)
-            inv[4 * i + j] = a[i][4 + j];
+            inv[4 * i + j] = ldexp(a[i][4 + j], ec[i] + er[j]);
     rg2__ok(err);
     return RG2_OK;
 }

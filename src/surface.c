@@ -141,6 +141,21 @@ rg2_status rg2_surface_build(const rg2_mesh *m, rg2_surface *out, rg2_error *err
     if (failed) {
         rg2_surface_free(out);
         st = rg2__fail(err, RG2_ENOMEM, "surface: out of memory during construction");
+        goto done;
+    }
+    /* finite control points in, but the construction may overflow: refuse such a surface */
+    for (size_t k = 0; k < (size_t)nsu * (size_t)nsv; k++) {
+        const double *h = &out->patch[k].h[0][0][0];
+        for (int q = 0; q < 64; q++)
+            if (!rg2__finite(h[q])) {
+                int pi = (int)(k / (size_t)nsv), pj = (int)(k % (size_t)nsv);
+                rg2_surface_free(out);
+                st = rg2__fail(err, RG2_ENONFINITE,
+                               "surface: patch (%d, %d) overflows (a control value is not finite); "
+                               "the mesh coordinates or scalars are too large",
+                               pi, pj);
+                goto done;
+            }
     }
 done:
     rg2__stencil_free(&su);

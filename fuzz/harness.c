@@ -1,0 +1,309 @@
+/* harness.c -- the fuzz harnesses (see harness.h): the design path and the NURBS import.
+ * Compiled into the libFuzzer programs (fuzz/fuzz_*.c) and included by the replay test. */
+#include "harness.h"
+
+#include "rg2.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *rg2f_input_name = NULL;
+
+/* A broken library contract: print it and abort, so the fuzzer keeps the input. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 1, 2), noreturn))
+#endif
+static void rg2f_violation(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "rg2 fuzz: contract violated%s%s: ", rg2f_input_name ? " by " : "",
+            rg2f_input_name ? rg2f_input_name : "");
+    vfprintf(stderr, fmt, ap);
+    fprintf(stderr, "\n");
+    va_end(ap);
+    abort();
+}
+
+/* A failed call must report its own status and a non-empty, terminated message. */
+static void rg2f_check_error(const char *call, rg2_status st, const rg2_error *err)
+{
+    if (st == RG2_OK)
+        return;
+    if ((int)st < 0 || st > RG2_ELIMIT)
+        rg2f_violation("%s returned unknown status %d", call, (int)st);
+    if (err->code != st)
+        rg2f_violation("%s returned %s but err->code is %s", call, rg2_status_str(st),
+                       rg2_status_str(err->code));
+    if (!memchr(err->msg, 0, sizeof err->msg) || !err->msg[0])
+        rg2f_violation("%s failed (%s) without a message", call, rg2_status_str(st));
+}
+
+static volatile double rg2f_sink;
+
+/* Checks of a built surface: counts, finite control points, evaluation everywhere (for the
+ * sanitizers), and a coarse tessellation of small surfaces. */
+static void rg2f_check_surface(const rg2_surface *s, const char *what)
+{
+    if (s->nu < 1 || s->nv < 1 || !s->patch)
+        rg2f_violation("%s: %d x %d patches", what, s->nu, s->nv);
+    size_t np = (size_t)s->nu * (size_t)s->nv;
+    for (size_t k = 0; k < np; k++) {
+        const double *h = &s->patch[k].h[0][0][0];
+        for (int q = 0; q < 64; q++)
+            if (!isfinite(h[q]))
+                rg2f_violation("%s: patch %zu control value %d is %g", what, k, q, h[q]);
+    }
+    double acc = rg2_surface_min_weight(s);
+    static const double uv[5][2] = {{0, 0}, {1, 1}, {0.5, 0.5}, {0.25, 0.75}, {1, 0}};
+    size_t step = np > 2048 ? np / 2048 : 1;
+    for (size_t k = 0; k < np; k += step)
+        for (int q = 0; q < 5; q++) {
+            rg2_eval e;
+            rg2_patch_eval(&s->patch[k], uv[q][0], uv[q][1], 2, &e);
+            acc += e.p[0] + e.K + e.H + e.k1;
+        }
+    if (np <= 64) {
+        rg2_tess t;
+        rg2_error err;
+        rg2_status st = rg2_tessellate(s, 2, 1, &t, &err);
+        rg2f_check_error("rg2_tessellate", st, &err);
+        if (!st) {
+            if (t.n_vertices < 1 || t.n_triangles < 0)
+                rg2f_violation("%s: tessellation with %d vertices, %d triangles", what, t.n_vertices,
+                               t.n_triangles);
+            for (int k = 0; k < 3 * t.n_triangles; k++)
+                if (t.tri[k] < 0 || t.tri[k] >= t.n_vertices)
+                    rg2f_violation("%s: triangle vertex %d out of range", what, t.tri[k]);
+            for (int k = 0; k < t.n_vertices; k++)
+                if (t.patch[k] < 0 || (size_t)t.patch[k] >= np)
+                    rg2f_violation("%s: tessellation vertex %d on patch %d", what, k, t.patch[k]);
+            acc += t.pos[0];
+        }
+        rg2_tess_free(&t);
+    }
+    rg2f_sink = acc;
+}
+
+int rg2f_design(const uint8_t *data, size_t size)
+{
+    if (size > RG2F_MAX_INPUT)
+        return 0;
+    rg2_design *d = (rg2_design *)&rg2f_sink; /* must be replaced by NULL on failure */
+    rg2_error err;
+    rg2_status st = rg2_design_parse((const char *)data, size, "fuzz.json", &d, &err);
+    rg2f_check_error("rg2_design_parse", st, &err);
+    if (st) {
+        if (d)
+            rg2f_violation("rg2_design_parse failed but left *out set");
+        return 0;
+    }
+    if (!d)
+        rg2f_violation("rg2_design_parse succeeded without a design");
+    int ns = rg2_design_num_surfaces(d), nsh = rg2_design_num_shapes(d);
+    if (ns < 1)
+        rg2f_violation("a built design has %d surfaces", ns);
+    if (rg2_design_surface(d, ns) || rg2_design_surface(d, -1) || rg2_design_mesh(d, ns) ||
+        rg2_design_shape(d, nsh) || rg2_design_shape_label(d, -1))
+        rg2f_violation("accessor out of range returned an object");
+    for (int k = 0; k < nsh; k++)
+        if (!rg2_design_shape(d, k) || !rg2_design_shape_label(d, k) ||
+            !rg2_shape_describe(rg2_design_shape(d, k)->kind))
+            rg2f_violation("shape %d of %d missing", k, nsh);
+    for (int o = 0; o < ns; o++) {
+        const rg2_surface *s = rg2_design_surface(d, o);
+        const rg2_mesh *m = rg2_design_mesh(d, o);
+        if (!s || !m || !rg2_design_mesh_name(d, o))
+            rg2f_violation("output %d missing", o);
+        st = rg2_mesh_check(m, &err);
+        if (st)
+            rg2f_violation("output mesh %d fails its check: %s", o, err.msg);
+        if (s->nu != rg2_scalars_num_segments(&m->su) || s->nv != rg2_scalars_num_segments(&m->sv) ||
+            s->closed_u != m->su.closed || s->closed_v != m->sv.closed)
+            rg2f_violation("surface %d: %d x %d patches from a %d x %d mesh", o, s->nu, s->nv, m->nu,
+                           m->nv);
+        if (!s->tag)
+            rg2f_violation("surface %d has no tags", o);
+        for (size_t k = 0; k < (size_t)s->nu * (size_t)s->nv; k++)
+            if (s->tag[k] < -1 || s->tag[k] >= nsh)
+                rg2f_violation("surface %d: patch %zu tag %d outside -1..%d", o, k, s->tag[k], nsh - 1);
+        if ((size_t)m->nu * (size_t)m->nv <= 4096)
+            for (int i = 0; i < m->nu; i++)
+                for (int j = 0; j < m->nv; j++) {
+                    int t = rg2_design_point_shape(d, o, i, j);
+                    if (t < -1 || t >= nsh)
+                        rg2f_violation("surface %d: point [%d][%d] shape %d", o, i, j, t);
+                }
+        rg2f_check_surface(s, "design surface");
+    }
+    rg2_design_free(d);
+    return 0;
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* NURBS */
+
+typedef struct {
+    const uint8_t *p;
+    size_t n, at;
+    int raw;      /* values are raw 8-byte doubles (else 16-bit fixed point / 256) */
+    unsigned fill; /* counter for the values after the end of the input */
+} rg2f_reader;
+
+/* Next value from the input; past its end a fixed pattern (so short inputs still build). */
+static double rg2f_next(rg2f_reader *r, double dflt)
+{
+    if (r->raw) {
+        if (r->at + 8 <= r->n) {
+            double x;
+            memcpy(&x, r->p + r->at, 8);
+            r->at += 8;
+            return x;
+        }
+    } else if (r->at + 2 <= r->n) {
+        int16_t q;
+        memcpy(&q, r->p + r->at, 2);
+        r->at += 2;
+        return q / 256.0;
+    }
+    r->fill++;
+    return dflt;
+}
+
+/* One level of de Boor for the span [U_l, U_{l+1}] at t on 4 homogeneous points. */
+static void rg2f_deboor(const double *U, int l, double P[4][4], double t, double out[4])
+{
+    double d[4][4];
+    memcpy(d, P, sizeof d);
+    for (int r = 1; r <= 3; r++)
+        for (int i = 3; i >= r; i--) {
+            int gi = l - 3 + i;
+            double al = (t - U[gi]) / (U[gi + 4 - r] - U[gi]);
+            for (int k = 0; k < 4; k++)
+                d[i][k] = (1.0 - al) * d[i - 1][k] + al * d[i][k];
+        }
+    memcpy(out, d[3], sizeof d[3]);
+}
+
+/* The NURBS at (u, v) in spans lu, lv (independent of the library's construction). */
+static void rg2f_nurbs_eval(const rg2_nurbs *nb, int lu, int lv, double u, double v, double x[3])
+{
+    double rows[4][4];
+    for (int a = 0; a < 4; a++) {
+        double P[4][4];
+        for (int b = 0; b < 4; b++) {
+            size_t k = (size_t)(lu - 3 + a) * (size_t)nb->nv + (size_t)(lv - 3 + b);
+            double w = nb->weights ? nb->weights[k] : 1.0;
+            for (int q = 0; q < 3; q++)
+                P[b][q] = w * nb->points[3 * k + q];
+            P[b][3] = w;
+        }
+        rg2f_deboor(nb->knots_v, lv, P, v, rows[a]);
+    }
+    double h[4];
+    rg2f_deboor(nb->knots_u, lu, rows, u, h);
+    for (int q = 0; q < 3; q++)
+        x[q] = h[q] / h[3];
+}
+
+/* Knots: clamped ends (4 equal knots) or free ones; increments from the input (>= 0, so
+ * zero intervals occur) or raw values. Returns the ratio of the longest to the shortest
+ * non-zero interval, or inf if an interior interval is zero or the knots decrease. */
+static double rg2f_knots(rg2f_reader *r, double *U, int n, int clamp, int incr)
+{
+    int nk = n + 4;
+    U[0] = rg2f_next(r, 0.0);
+    for (int k = 1; k < nk; k++)
+        U[k] = incr ? U[k - 1] + fabs(rg2f_next(r, 1.0)) : rg2f_next(r, (double)k);
+    if (clamp)
+        for (int k = 0; k < 3; k++) {
+            U[k] = U[3];
+            U[nk - 1 - k] = U[n];
+        }
+    double lo = INFINITY, hi = 0.0;
+    for (int k = 1; k < nk; k++) {
+        double dd = U[k] - U[k - 1];
+        if (!(dd >= 0.0) || (dd == 0.0 && k > 3 && k < nk - 3))
+            return INFINITY;
+        if (dd > 0.0) {
+            lo = fmin(lo, dd);
+            hi = fmax(hi, dd);
+        }
+    }
+    return hi / lo;
+}
+
+int rg2f_nurbs(const uint8_t *data, size_t size)
+{
+    if (size > RG2F_MAX_INPUT)
+        return 0;
+    if (size < 3)
+        return 0;
+    rg2f_reader r = {data, size, 3, (data[2] >> 1) & 1, 0};
+    int nu = 4 + (data[0] & 7), nv = 4 + (data[1] & 7);
+    int weights = data[2] & 1, clu = (data[2] >> 2) & 1, clv = (data[2] >> 3) & 1,
+        incr = !((data[2] >> 4) & 1);
+    size_t np = (size_t)nu * (size_t)nv;
+    double U[16], V[16], *P = malloc(sizeof(double) * np * 4), *W = P + 3 * np;
+    if (!P)
+        return 0;
+    double ru = rg2f_knots(&r, U, nu, clu, incr), rv = rg2f_knots(&r, V, nv, clv, incr);
+    double pmax = 0.0, wlo = INFINITY, whi = 0.0;
+    for (size_t k = 0; k < np; k++)
+        for (int q = 0; q < 3; q++) {
+            P[3 * k + q] = rg2f_next(&r, (double)((k * 7 + (size_t)q * 3) % 5));
+            pmax = fmax(pmax, fabs(P[3 * k + q]));
+        }
+    for (size_t k = 0; k < np; k++) {
+        W[k] = weights ? rg2f_next(&r, 1.0) : 1.0;
+        wlo = fmin(wlo, W[k]);
+        whi = fmax(whi, W[k]);
+    }
+    rg2_nurbs nb = {nu, nv, P, weights ? W : NULL, U, V};
+    rg2_mesh m;
+    rg2_error err;
+    rg2_status st = rg2_nurbs_mesh(&nb, &m, &err);
+    rg2f_check_error("rg2_nurbs_mesh", st, &err);
+    if (!st) {
+        if (m.nu != nu || m.nv != nv)
+            rg2f_violation("nurbs: %d x %d points became a %d x %d mesh", nu, nv, m.nu, m.nv);
+        rg2_surface s;
+        st = rg2_surface_build(&m, &s, &err);
+        rg2f_check_error("rg2_surface_build", st, &err);
+        if (!st) {
+            if (s.nu != nu - 3 || s.nv != nv - 3)
+                rg2f_violation("nurbs: %d x %d patches from %d x %d points", s.nu, s.nv, nu, nv);
+            rg2f_check_surface(&s, "nurbs surface");
+            /* well-conditioned input: the patches are the NURBS (an independent de Boor) */
+            if (ru <= 16.0 && rv <= 16.0 && wlo >= 0.25 && whi <= 4.0 && pmax <= 1e3) {
+                double tol = 1e-9 * (pmax + 1.0);
+                static const double t[3] = {0.0, 0.5, 1.0};
+                for (int i = 0; i < s.nu; i++)
+                    for (int j = 0; j < s.nv; j++)
+                        for (int a = 0; a < 3; a++)
+                            for (int b = 0; b < 3; b++) {
+                                int lu = i + 3, lv = j + 3;
+                                double u = U[lu] + t[a] * (U[lu + 1] - U[lu]);
+                                double v = V[lv] + t[b] * (V[lv + 1] - V[lv]);
+                                double x[3];
+                                rg2f_nurbs_eval(&nb, lu, lv, u, v, x);
+                                rg2_eval e;
+                                rg2_patch_eval(rg2_surface_patch(&s, i, j), t[a], t[b], 0, &e);
+                                double dd = fmax(fabs(x[0] - e.p[0]),
+                                                 fmax(fabs(x[1] - e.p[1]), fabs(x[2] - e.p[2])));
+                                if (!(dd <= tol))
+                                    rg2f_violation("nurbs: patch (%d,%d) at (%g,%g) is %.3g from the "
+                                                   "NURBS (tolerance %.3g)",
+                                                   i, j, t[a], t[b], dd, tol);
+                            }
+            }
+            rg2_surface_free(&s);
+        }
+        rg2_mesh_free(&m);
+    }
+    free(P);
+    return 0;
+}

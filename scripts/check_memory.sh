@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# make check-memory: the rg2 command under valgrind memcheck on every example design and on
+# every row of the bad-input table (tests/bad/table.tsv). Any memory error or leak (of any
+# kind) fails the run. Needs a non-sanitized build (valgrind and ASan do not mix).
+# Usage: scripts/check_memory.sh <path-to-rg2> <source-dir>
+set -u
+rg2=$1 src=$2
+command -v valgrind >/dev/null || { echo "check-memory: valgrind is not installed (scripts/deps.sh test)" >&2; exit 1; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+vg="valgrind -q --leak-check=full --show-leak-kinds=all --errors-for-leak-kinds=all --error-exitcode=99
+    --suppressions=$src/tests/valgrind/rg2.supp --log-file=$tmp/vg.%p.log"
+runs=0 fails=0
+# run EXPECTED-EXIT command...: valgrind must report nothing, the command must exit as expected
+run() {
+  local want=$1; shift
+  rm -f "$tmp"/vg.*.log
+  OMP_NUM_THREADS=2 $vg "$@" >"$tmp/out" 2>&1
+  local rc=$?
+  runs=$((runs + 1))
+  if [ "$rc" = 99 ] || [ -s "$(ls "$tmp"/vg.*.log 2>/dev/null | head -1)" ]; then
+    fails=$((fails + 1)); echo "MEMCHECK FAIL: $*" >&2; cat "$tmp"/vg.*.log >&2
+  elif [ "$rc" != "$want" ]; then
+    fails=$((fails + 1)); echo "EXIT $rc (expected $want): $*" >&2; head -5 "$tmp/out" >&2
+  fi
+}
+has() { "$rg2" --help | grep -q "^  $1 "; }
+for f in "$src"/examples/*.json; do
+  b=$(basename "$f" .json)
+  run 0 "$rg2" info --map "$f"
+  run 0 "$rg2" build -q "$f" -o "$tmp/$b.step" -o "$tmp/$b.igs" -o "$tmp/$b.bv" -o "$tmp/$b.stl" \
+    -o "$tmp/$b.glb" -o "$tmp/$b.json" --density 3
+  run 0 "$rg2" build -q "$f" --face-per-mesh -o "$tmp/$b.m.step"
+  run 0 "$rg2" mesh "$f" -o "$tmp/$b.mesh.json"
+  has check && run 0 "$rg2" check "$f"
+  has render && run 0 "$rg2" render "$f" -o "$tmp/$b.png" --size 64x64
+done
+run 0 "$rg2" demo
+run 0 "$rg2" shapes
+# the error paths: every row of the bad-input table
+if [ -f "$src/tests/bad/table.tsv" ]; then
+  while IFS=$'\t' read -r file code msg cmd; do
+    case "$file" in ''|'#'*) continue ;; esac
+    [ "$cmd" = "" ] && cmd=build
+    in="$src/tests/bad/$file"
+    case "$cmd" in
+      build) run "$code" "$rg2" build -q "$in" -o "$tmp/bad.step" ;;
+      *) continue ;;
+    esac
+  done <"$src/tests/bad/table.tsv"
+fi
+echo "check-memory: $runs valgrind runs, $fails failed"
+[ "$fails" = 0 ]
