@@ -281,6 +281,49 @@ static void edits_are_local(void)
     rg2_design_free(d0);
 }
 
+static int same_mesh(const rg2_mesh *a, const rg2_mesh *b);
+
+/* Operations that must keep every patch exact: cuts (ranges, wrap, open_at), transpose,
+ * transform, and cutting a closed torus in two and merging it back (the seam data agree, so
+ * the result is the torus again, every patch exact). */
+static void ops_keep_exactness(void)
+{
+    const char *json =
+        "{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": 3, \"r\": 1}},"
+        " \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": [20, 25, 30, 35, 40, 30, 25, 35, 30, 25, 35, 30]},"
+        "                       \"v\": {\"arcs\": 6}},"
+        "  \"wrap\": {\"cut\": \"T\", \"u\": [9, 15], \"v\": [1, 5]},"
+        "  \"open\": {\"cut\": \"T\", \"u\": {\"open_at\": 3}},"
+        "  \"turned\": {\"transpose\": \"wrap\"},"
+        "  \"moved\": {\"transform\": \"turned\", \"scale\": 0.5, \"rotate\": {\"axis\": [1, 2, 3], \"degrees\": 33},"
+        "             \"translate\": [1, -2, 0.5]},"
+        "  \"A\": {\"cut\": \"T\", \"u\": [0, 5]}, \"B\": {\"cut\": \"T\", \"u\": [6, 11]},"
+        "  \"again\": {\"merge\": [\"A\", \"B\"], \"along\": \"u\", \"closed\": true}},"
+        " \"output\": [\"wrap\", \"open\", \"turned\", \"moved\", \"again\", \"T\"]}";
+    rg2_error err;
+    rg2_design *d = parse(json, &err);
+    if (!d)
+        return;
+    const int want[6][2] = {{4, 2}, {9, 6}, {2, 4}, {2, 4}, {12, 6}, {12, 6}};
+    for (int o = 0; o < rg2_design_num_surfaces(d); o++) {
+        const rg2_surface *s = rg2_design_surface(d, o);
+        int n_exact;
+        double res = exact_residual(d, s, 6, &n_exact);
+        CHECK(s->nu == want[o][0] && s->nv == want[o][1], "ops surface %d: %d x %d patches, expected %d x %d", o,
+              s->nu, s->nv, want[o][0], want[o][1]);
+        CHECK(n_exact == s->nu * s->nv, "ops surface %d (%s): %d of %d patches exact", o,
+              rg2_design_mesh_name(d, o), n_exact, s->nu * s->nv);
+        CHECK(res <= 1e-13, "ops surface %d: residual %.3g", o, res);
+        printf("  %-7s %2d x %d patches, all exact (residual %.1e)%s\n", rg2_design_mesh_name(d, o), s->nu, s->nv,
+               res, o == 3 ? ", on the transformed torus" : "");
+    }
+    CHECK(same_mesh(rg2_design_mesh(d, 4), rg2_design_mesh(d, 5)), "cut in two and merged back differs from T");
+    const rg2_surface *mv = rg2_design_surface(d, 3);
+    CHECK(mv->tag[0] >= 1 && strstr(rg2_design_shape_label(d, mv->tag[0]), "t@meshes.moved"),
+          "transformed patches tagged %d", mv->tag[0]);
+    rg2_design_free(d);
+}
+
 /* ------------------------------------------------------------------------------------- */
 
 static int same_mesh(const rg2_mesh *a, const rg2_mesh *b)
@@ -513,6 +556,8 @@ int main(void)
     examples();
     printf("edit locality:\n");
     edits_are_local();
+    printf("operations that keep exactness:\n");
+    ops_keep_exactness();
     printf("morph:\n");
     morph_ends();
     printf("merge seam rules on examples/torus_sphere.json:\n");
