@@ -273,6 +273,11 @@ static void edits_are_local(void)
                 tag_ok = 0;
         }
         CHECK(tag_ok, "edit %zu: tags do not follow the changed patches", c);
+        if (c < 3) {
+            int ps = rg2_design_point_shape(d1, 0, cases[c].i, cases[c].j);
+            int other = rg2_design_point_shape(d1, 0, (cases[c].i + 5) % m0->nu, (cases[c].j + 5) % m0->nv);
+            CHECK(ps == -1 && other == 0, "edit %zu: point provenance %d (edited), %d (untouched)", c, ps, other);
+        }
         rg2t_seams g;
         rg2t_surface_seams(s1, 6, &g);
         CHECK(g.angle <= 1e-11 && g.curv <= 1e-9, "edit %zu: seams %.3g rad, %.3g", c, g.angle, g.curv);
