@@ -889,6 +889,7 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
     default: st = op_morph(c, obj, path, &tmp); break;
     }
     if (st) {
+        rg2__dmesh_free(&tmp); /* whatever the operation had allocated */
         /* operation messages from the ops module lack the file name: add it */
         if (c->err && strncmp(c->err->msg, c->file, strlen(c->file))) {
             rg2_error e = *c->err;

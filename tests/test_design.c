@@ -329,6 +329,82 @@ static void ops_keep_exactness(void)
     rg2_design_free(d);
 }
 
+/* Random operation chains (fixed seed): cuts of two random tori-like shapes, random edits,
+ * transposes, transforms and merges. Whatever the chain, every tagged patch must lie on its
+ * shape and every seam must be G2; the count of exact patches is reported. */
+static void random_arcs(rg2t_rng *r, int n, char *out, size_t cap)
+{
+    double a[16], sum = 0, acc = 0;
+    for (int k = 0; k < n; k++)
+        sum += a[k] = rg2t_uniform(r, 0.6, 1.4);
+    for (int k = 0; k < n - 1; k++)
+        acc += a[k] = 360.0 * a[k] / sum;
+    a[n - 1] = 360.0 - acc; /* closes the circle exactly */
+    size_t len = 0;
+    for (int k = 0; k < n && len < cap; k++)
+        len += (size_t)snprintf(out + len, cap - len, "%s%.17g%s", k ? ", " : "[", a[k], k == n - 1 ? "]" : "");
+}
+
+static void random_designs(void)
+{
+    rg2t_rng r;
+    uint64_t seed = 4242;
+    rg2t_seed(&r, seed);
+    double worst_res = 0, worst_ang = 0, worst_curv = 0;
+    int n_designs = 0, n_patches = 0, n_exact = 0;
+    for (int trial = 0; trial < 40; trial++) {
+        int nu = rg2t_int(&r, 8, 12), nv = rg2t_int(&r, 5, 7);
+        char au[400], av[400], bu[400], json[4096];
+        random_arcs(&r, nu, au, sizeof au);
+        random_arcs(&r, nv, av, sizeof av);
+        random_arcs(&r, nu, bu, sizeof bu);
+        int c0 = rg2t_int(&r, 0, nu - 1), len0 = rg2t_int(&r, 4, nu);
+        int c1 = rg2t_int(&r, 0, nu - 1), len1 = rg2t_int(&r, 4, nu);
+        int ei = rg2t_int(&r, 0, len0 - 1), ej = rg2t_int(&r, 0, nv - 1);
+        double mv = rg2t_int(&r, 0, 1) ? rg2t_uniform(&r, -0.3, 0.3) : 0.0;
+        int closed = rg2t_int(&r, 0, 1), transpose = rg2t_int(&r, 0, 1);
+        snprintf(json, sizeof json,
+                 "{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": %.6f, \"r\": %.6f},"
+                 "  \"c\": {\"kind\": \"cyclide\", \"a\": %.6f, \"c\": %.6f, \"mu\": %.6f,"
+                 "        \"rotate\": {\"axis\": [0, 0, 1], \"degrees\": %.3f}}},"
+                 " \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": %s}, \"v\": {\"arcs\": %s}},"
+                 "  \"C\": {\"shape\": \"c\", \"u\": {\"arcs\": %s}, \"v\": {\"arcs\": %s, \"from\": 180}},"
+                 "  \"A\": {\"cut\": \"T\", \"u\": [%d, %d]}, \"B\": {\"cut\": \"C\", \"u\": [%d, %d]},"
+                 "  \"E\": {\"edit\": \"A\", \"points\": [{\"at\": [%d, %d], \"move\": [%.3f, 0, %.3f]}]},"
+                 "  \"M\": {\"merge\": [\"E\", \"B\"], \"along\": \"u\", \"closed\": %s},"
+                 "  \"P\": {\"transpose\": \"M\"},"
+                 "  \"X\": {\"transform\": \"%s\", \"rotate\": {\"axis\": [1, 1, 0], \"degrees\": %.3f},"
+                 "         \"translate\": [%.3f, 0, 1]}}}",
+                 rg2t_uniform(&r, 2.5, 4), rg2t_uniform(&r, 0.5, 1), 3.0, rg2t_uniform(&r, 0.2, 0.8),
+                 rg2t_uniform(&r, 0.9, 1.2), rg2t_uniform(&r, 0, 360), au, av, bu, av, c0, c0 + len0 - 1, c1,
+                 c1 + len1 - 1, ei, ej, mv, mv, closed ? "true" : "false", transpose ? "P" : "M",
+                 rg2t_uniform(&r, 0, 90), rg2t_uniform(&r, -2, 2));
+        rg2_design *d = NULL;
+        rg2_error err;
+        rg2_status st = rg2_design_parse(json, strlen(json), "random", &d, &err);
+        CHECK(st == RG2_OK, "random design %d: %s", trial, err.msg);
+        if (st)
+            continue;
+        const rg2_surface *s = rg2_design_surface(d, 0);
+        int ne;
+        double res = exact_residual(d, s, 4, &ne);
+        rg2t_seams g;
+        rg2t_surface_seams(s, 4, &g);
+        CHECK(res <= 1e-13, "random design %d: tagged patches off their shapes by %.3g", trial, res);
+        CHECK(g.angle <= 1e-11 && g.curv <= 1e-9, "random design %d: seams %.3g rad, %.3g", trial, g.angle, g.curv);
+        worst_res = fmax(worst_res, res);
+        worst_ang = fmax(worst_ang, g.angle);
+        worst_curv = fmax(worst_curv, g.curv);
+        n_designs++;
+        n_patches += s->nu * s->nv;
+        n_exact += ne;
+        rg2_design_free(d);
+    }
+    printf("  seed %llu: %d random designs, %d patches, %d tagged exact (residual %.1e), seams %.1e rad / %.1e\n",
+           (unsigned long long)seed, n_designs, n_patches, n_exact, worst_res, worst_ang, worst_curv);
+    CHECK(n_exact > n_patches / 4, "random designs: only %d of %d patches exact", n_exact, n_patches);
+}
+
 /* ------------------------------------------------------------------------------------- */
 
 static int same_mesh(const rg2_mesh *a, const rg2_mesh *b)
@@ -563,6 +639,8 @@ int main(void)
     edits_are_local();
     printf("operations that keep exactness:\n");
     ops_keep_exactness();
+    printf("random operation chains:\n");
+    random_designs();
     printf("morph:\n");
     morph_ends();
     printf("merge seam rules on examples/torus_sphere.json:\n");
