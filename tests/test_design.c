@@ -289,7 +289,7 @@ static void edits_are_local(void)
 static int same_mesh(const rg2_mesh *a, const rg2_mesh *b);
 
 /* Operations that must keep every patch exact: cuts (ranges, wrap, open_at), transpose,
- * transform, and cutting a closed torus in two and merging it back (the seam data agree, so
+ * reverse (the same patches traversed backwards), transform, and cutting a closed torus in two and merging it back (the seam data agree, so
  * the result is the torus again, every patch exact). */
 static void ops_keep_exactness(void)
 {
@@ -303,13 +303,15 @@ static void ops_keep_exactness(void)
         "  \"moved\": {\"transform\": \"turned\", \"scale\": 0.5, \"rotate\": {\"axis\": [1, 2, 3], \"degrees\": 33},"
         "             \"translate\": [1, -2, 0.5]},"
         "  \"A\": {\"cut\": \"T\", \"u\": [0, 5]}, \"B\": {\"cut\": \"T\", \"u\": [6, 11]},"
-        "  \"again\": {\"merge\": [\"A\", \"B\"], \"along\": \"u\", \"closed\": true}},"
-        " \"output\": [\"wrap\", \"open\", \"turned\", \"moved\", \"again\", \"T\"]}";
+        "  \"again\": {\"merge\": [\"A\", \"B\"], \"along\": \"u\", \"closed\": true},"
+        "  \"back\": {\"reverse\": \"wrap\", \"dir\": \"v\"}, \"backT\": {\"reverse\": \"T\", \"dir\": \"u\"},"
+        "  \"both\": {\"reverse\": \"backT\", \"dir\": \"v\"}},"
+        " \"output\": [\"wrap\", \"open\", \"turned\", \"moved\", \"again\", \"T\", \"back\", \"backT\", \"both\"]}";
     rg2_error err;
     rg2_design *d = parse(json, &err);
     if (!d)
         return;
-    const int want[6][2] = {{4, 2}, {9, 6}, {2, 4}, {2, 4}, {12, 6}, {12, 6}};
+    const int want[9][2] = {{4, 2}, {9, 6}, {2, 4}, {2, 4}, {12, 6}, {12, 6}, {4, 2}, {12, 6}, {12, 6}};
     for (int o = 0; o < rg2_design_num_surfaces(d); o++) {
         const rg2_surface *s = rg2_design_surface(d, o);
         int n_exact;
@@ -323,6 +325,20 @@ static void ops_keep_exactness(void)
                res, o == 3 ? ", on the transformed torus" : "");
     }
     CHECK(same_mesh(rg2_design_mesh(d, 4), rg2_design_mesh(d, 5)), "cut in two and merged back differs from T");
+    /* leg i of backT is leg n - 2 - i of T: its patch is T's patch run backwards */
+    const rg2_surface *T = rg2_design_surface(d, 5), *R = rg2_design_surface(d, 7);
+    double dev = 0;
+    for (int i = 0; i < T->nu; i++)
+        for (int j = 0; j < T->nv; j++)
+            for (int a = 0; a <= 4; a++) {
+                rg2_eval e1, e2;
+                rg2_patch_eval(rg2_surface_patch(T, i, j), a / 4.0, 0.3, 0, &e1);
+                rg2_patch_eval(rg2_surface_patch(R, (2 * T->nu - 2 - i) % T->nu, j), 1.0 - a / 4.0, 0.3, 0, &e2);
+                for (int q = 0; q < 3; q++)
+                    dev = fmax(dev, fabs(e1.p[q] - e2.p[q]));
+            }
+    CHECK(dev <= 1e-14 * rg2t_surface_scale(T), "reversed torus differs from the torus run backwards by %.3g", dev);
+    printf("  reverse: the reversed torus is the torus run backwards to %.1e\n", dev);
     const rg2_surface *mv = rg2_design_surface(d, 3);
     CHECK(mv->tag[0] >= 1 && strstr(rg2_design_shape_label(d, mv->tag[0]), "t@meshes.moved"),
           "transformed patches tagged %d", mv->tag[0]);
@@ -330,7 +346,7 @@ static void ops_keep_exactness(void)
 }
 
 /* Random operation chains (fixed seed): cuts of two random tori-like shapes, random edits,
- * transposes, transforms and merges. Whatever the chain, every tagged patch must lie on its
+ * reversals, transposes, transforms and merges. Whatever the chain, every tagged patch must lie on its
  * shape and every seam must be G2; the count of exact patches is reported. */
 static void random_arcs(rg2t_rng *r, int n, char *out, size_t cap)
 {
@@ -363,6 +379,7 @@ static void random_designs(void)
         int ei = rg2t_int(&r, 0, len0 - 1), ej = rg2t_int(&r, 0, nv - 1);
         double mv = rg2t_int(&r, 0, 1) ? rg2t_uniform(&r, -0.3, 0.3) : 0.0;
         int closed = rg2t_int(&r, 0, 1), transpose = rg2t_int(&r, 0, 1);
+        int rev = rg2t_int(&r, 0, 1);
         snprintf(json, sizeof json,
                  "{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": %.6f, \"r\": %.6f},"
                  "  \"c\": {\"kind\": \"cyclide\", \"a\": %.6f, \"c\": %.6f, \"mu\": %.6f,"
@@ -371,13 +388,14 @@ static void random_designs(void)
                  "  \"C\": {\"shape\": \"c\", \"u\": {\"arcs\": %s}, \"v\": {\"arcs\": %s, \"from\": 180}},"
                  "  \"A\": {\"cut\": \"T\", \"u\": [%d, %d]}, \"B\": {\"cut\": \"C\", \"u\": [%d, %d]},"
                  "  \"E\": {\"edit\": \"A\", \"points\": [{\"at\": [%d, %d], \"move\": [%.3f, 0, %.3f]}]},"
-                 "  \"M\": {\"merge\": [\"E\", \"B\"], \"along\": \"u\", \"closed\": %s},"
+                 "  \"BR\": {\"reverse\": \"B\", \"dir\": \"u\"},"
+                 "  \"M\": {\"merge\": [\"E\", \"%s\"], \"along\": \"u\", \"closed\": %s},"
                  "  \"P\": {\"transpose\": \"M\"},"
                  "  \"X\": {\"transform\": \"%s\", \"rotate\": {\"axis\": [1, 1, 0], \"degrees\": %.3f},"
                  "         \"translate\": [%.3f, 0, 1]}}}",
                  rg2t_uniform(&r, 2.5, 4), rg2t_uniform(&r, 0.5, 1), 3.0, rg2t_uniform(&r, 0.2, 0.8),
                  rg2t_uniform(&r, 0.9, 1.2), rg2t_uniform(&r, 0, 360), au, av, bu, av, c0, c0 + len0 - 1, c1,
-                 c1 + len1 - 1, ei, ej, mv, mv, closed ? "true" : "false", transpose ? "P" : "M",
+                 c1 + len1 - 1, ei, ej, mv, mv, rev ? "BR" : "B", closed ? "true" : "false", transpose ? "P" : "M",
                  rg2t_uniform(&r, 0, 90), rg2t_uniform(&r, -2, 2));
         rg2_design *d = NULL;
         rg2_error err;
@@ -610,6 +628,8 @@ static void bad_inputs(void)
          RG2_EPARSE, "exactly one operation"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH "}, \"output\": \"Y\"}", RG2_EPARSE, "output: no mesh named 'Y'"},
         {"[1, 2]", RG2_EPARSE, "expected an object"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"R\": {\"reverse\": \"T\"}}}", RG2_EPARSE,
+         "meshes.R: missing key 'dir'"},
     };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         rg2_design *d = (rg2_design *)1;
