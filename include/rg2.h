@@ -459,10 +459,10 @@ RG2_API rg2_status rg2_nurbs_mesh(const rg2_nurbs *nb, rg2_mesh *out, rg2_error 
  * more patch surfaces. Every patch carries a provenance tag (rg2_surface.tag): the index of the
  * shape it reproduces exactly, or -1 for a transition patch. A patch is tagged when its 4 x 4
  * control block is a consecutive block of a shape's own mesh (in any orientation: transposed,
- * reversed) and its construction stencils equal
- * that mesh's (to 1e-14), i.e. it is the shape's own patch. The shape list holds the shapes of
- * the file followed by the transformed copies that `transform` operations create
- * ("label@meshes.name"). The design owns everything the accessors return. */
+ * reversed) and its construction stencils equal that mesh's (to 1e-14), i.e. it is the shape's
+ * own patch. The shape list holds the shapes of the file followed by the transformed copies
+ * that `transform` operations create ("label@meshes.name"). The design owns everything the
+ * accessors return. */
 typedef struct rg2_design rg2_design;
 
 /** Read and build a design file. On failure *out is NULL and err names the offending item
