@@ -507,8 +507,32 @@ typedef struct {
 } rg2_export_opts;
 
 RG2_API void rg2_export_opts_default(rg2_export_opts *o);
+
+/** A triangle mesh sampled from a surface (rg2_tessellate). Vertices on seams between
+ *  patches, including the closing seams of closed directions, are stored once and shared by
+ *  the triangles on both sides (a watertight mesh: shared vertices are bit-identical). */
+typedef struct {
+    int n_vertices, n_triangles;
+    double *pos;    /**< 3 per vertex: a point of the exact surface */
+    double *normal; /**< 3 per vertex: exact unit normal Su x Sv / |Su x Sv| (at a collapsed
+                         edge, its limit) */
+    double *K, *H;  /**< per vertex Gaussian and mean curvature (rg2_eval sign), or NULL */
+    int *patch;     /**< per vertex: index i * nv + j of the patch it was evaluated on */
+    double *uv;     /**< 2 per vertex: the (u, v) in [0,1]^2 of that patch */
+    int *tri;       /**< 3 per triangle: vertex indices, counter-clockwise about the normal */
+} rg2_tess;
+
+/** Tessellate a surface with `density` samples per patch edge (density >= 1; quads split
+ *  along the shorter diagonal). curvature != 0 fills K and H. Collapsed patch edges (all four
+ *  control points of a side equal, e.g. a pole) give one vertex and no degenerate triangles.
+ *  Release with rg2_tess_free.
+ *  @return RG2_EINVAL (no patches, density < 1), RG2_ELIMIT (over RG2_MAX_POINTS vertices
+ *  per direction), RG2_ENOMEM. */
+RG2_API rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_tess *out,
+                                  rg2_error *err);
+RG2_API void rg2_tess_free(rg2_tess *t);
 /** Write surfaces to path; the format follows the extension: .step/.stp, .igs/.iges, .bv,
- *  .obj, .stl, .ply, .glb, .json. Writes path.tmp then renames: a failed export leaves no file.
+ *  .bez (geomview BEZ334), .obj, .stl, .ply, .glb, .json (docs/export.md). Writes path.tmp then renames: a failed export leaves no file.
  *  @return RG2_EIO (unwritable), RG2_EWEIGHT (non-positive weight for STEP/IGES, naming the
  *  patch), RG2_EINVAL (unknown extension, empty input). */
 RG2_API rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *path,
