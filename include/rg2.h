@@ -43,6 +43,7 @@ extern "C" {
 #endif
 
 #define RG2_VERSION_STRING "0.1.0"
+#define RG2_PI 3.14159265358979323846
 
 /* ===================================================================================== */
 /** @name Status and errors */
@@ -289,8 +290,8 @@ typedef enum {
 typedef struct {
     rg2_partition_kind kind;
     int closed;           /**< angles only */
-    int n;                /**< number of arcs (angles) or of knots (knots, n >= 2) */
-    const double *values; /**< n angles (radians) or n increasing knots */
+    int n;                /**< number of values: arcs (angles) or knots (knots, n >= 2) */
+    const double *values; /**< n angles (radians, each in (0, pi)) or n increasing knots */
     double start;         /**< angle of the start of the first arc (angles only) */
 } rg2_partition;
 
