@@ -43,6 +43,7 @@ extern "C" {
 #endif
 
 #define RG2_VERSION_STRING "0.1.0"
+#define RG2_PI 3.14159265358979323846
 
 /* ===================================================================================== */
 /** @name Status and errors */
@@ -289,8 +290,8 @@ typedef enum {
 typedef struct {
     rg2_partition_kind kind;
     int closed;           /**< angles only */
-    int n;                /**< number of arcs (angles) or of knots (knots, n >= 2) */
-    const double *values; /**< n angles (radians) or n increasing knots */
+    int n;                /**< number of values: arcs (angles) or knots (knots, n >= 2) */
+    const double *values; /**< n angles (radians, each in (0, pi)) or n increasing knots */
     double start;         /**< angle of the start of the first arc (angles only) */
 } rg2_partition;
 
@@ -454,10 +455,15 @@ RG2_API rg2_status rg2_nurbs_mesh(const rg2_nurbs *nb, rg2_mesh *out, rg2_error 
 /** @name Design (JSON design files and operations, paper section 4) */
 /* ===================================================================================== */
 
-/* A design: shape meshes and operations (cut, merge, edit, transform, morph) read from a
- * JSON design file (docs/design-format.md), built into one or more patch surfaces. Every patch
- * carries a provenance tag: the index of the shape it reproduces exactly, or -1 for a
- * transition patch. */
+/* A design: shape meshes and operations on them (shape, cut, transpose, reverse, merge, edit,
+ * transform, morph) read from a JSON design file (docs/design-format.md), built into one or
+ * more patch surfaces. Every patch carries a provenance tag (rg2_surface.tag): the index of the
+ * shape it reproduces exactly, or -1 for a transition patch. A patch is tagged when its 4 x 4
+ * control block is a consecutive block of a shape's own mesh (in any orientation: transposed,
+ * reversed) and its construction stencils equal that mesh's (to 1e-14), i.e. it is the shape's
+ * own patch. The shape list holds the shapes of the file followed by the transformed copies
+ * that `transform` operations create ("label@meshes.name"). The design owns everything the
+ * accessors return. */
 typedef struct rg2_design rg2_design;
 
 /** Read and build a design file. On failure *out is NULL and err names the offending item

@@ -483,8 +483,8 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
 /* ------------------------------------------------------------------------------------- */
 /* meshes */
 
-static const char *const ops[] = {"shape", "cut", "merge", "transpose", "edit", "transform", "morph"};
-#define N_OPS 7
+static const char *const ops[] = {"shape", "cut", "merge", "transpose", "reverse", "edit", "transform", "morph"};
+#define N_OPS 8
 
 static rg2_status mesh_ref(pctx *c, const cJSON *x, const char *path, int *idx)
 {
@@ -679,6 +679,21 @@ static rg2_status op_transpose(pctx *c, const cJSON *obj, const char *path, rg2_
     if (st)
         return st;
     return rg2__op_transpose(&c->d->mesh[src], out, path, c->err);
+}
+
+static rg2_status op_reverse(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
+{
+    static const char *const keys[] = {"reverse", "dir"};
+    int src, dir;
+    rg2_status st = op_begin(c, obj, path, keys, 2, &src);
+    if (st)
+        return st;
+    const cJSON *x;
+    char p[300];
+    subpath(p, sizeof p, path, "dir");
+    if ((st = need(c, obj, "dir", path, &x)) || (st = parse_dir(c, x, p, &dir)))
+        return st;
+    return rg2__op_reverse(&c->d->mesh[src], dir, out, path, c->err);
 }
 
 static rg2_status op_transform(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
@@ -879,7 +894,7 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
         }
     if (op < 0)
         return fail(c, RG2_EPARSE, path,
-                    "no operation: give one of shape, cut, merge, transpose, edit, transform, morph");
+                    "no operation: give one of shape, cut, merge, transpose, reverse, edit, transform, morph");
     if (rg2__design_find_mesh(c->d, name) >= 0)
         return fail(c, RG2_EPARSE, path, "a mesh named '%s' already exists", name);
     rg2__dmesh tmp;
@@ -889,11 +904,13 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
     case 1: st = op_cut(c, obj, path, &tmp); break;
     case 2: st = op_merge(c, obj, path, &tmp); break;
     case 3: st = op_transpose(c, obj, path, &tmp); break;
-    case 4: st = op_edit(c, obj, path, &tmp); break;
-    case 5: st = op_transform(c, obj, path, &tmp); break;
+    case 4: st = op_reverse(c, obj, path, &tmp); break;
+    case 5: st = op_edit(c, obj, path, &tmp); break;
+    case 6: st = op_transform(c, obj, path, &tmp); break;
     default: st = op_morph(c, obj, path, &tmp); break;
     }
     if (st) {
+        rg2__dmesh_free(&tmp); /* whatever the operation had allocated */
         /* operation messages from the ops module lack the file name: add it */
         if (c->err && strncmp(c->err->msg, c->file, strlen(c->file))) {
             rg2_error e = *c->err;
