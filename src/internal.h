@@ -27,6 +27,11 @@
 #define RG2_DESIGN_MAX_ABS 1e100
 #define RG2_DESIGN_MIN_ABS 1e-100
 
+/* Smallest circle arc a shape partition accepts (radians; docs/robustness.md): below it the
+ * seam curvature of the tiny patches agrees only to about 2e-15 / alpha^2 (measured), worse
+ * than the 1e-10 the library states. Arcs up to pi (exclusive) are exact to the last double. */
+#define RG2_MIN_ARC 5e-3
+
 /* Fill err (if not NULL) with code and a printf-style message; returns code. */
 rg2_status rg2__fail(rg2_error *err, rg2_status code, const char *fmt, ...)
 #if defined(__GNUC__)

@@ -165,6 +165,12 @@ rg2_status rg2_partition_check(const rg2_partition *p, const char *what, rg2_err
                                  "%s partition: arc %d has opening angle %.17g rad (%.6g deg); it "
                                  "must lie in (0, pi)",
                                  what, k - off, a, a * 180.0 / M_PI);
+            if (a < RG2_MIN_ARC)
+                return rg2__fail(err, RG2_EDOMAIN,
+                                 "%s partition: arc %d has opening angle %.6g rad (%.6g deg), below the "
+                                 "smallest supported arc of %g rad (%g deg): the seams of smaller "
+                                 "patches lose G2 accuracy in double precision",
+                                 what, k - off, a, a * 180.0 / M_PI, RG2_MIN_ARC, RG2_MIN_ARC * 180.0 / M_PI);
         }
         int lo, hi;
         visible_range(p, &lo, &hi);
