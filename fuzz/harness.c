@@ -64,6 +64,10 @@ static void rg2f_check_surface(const rg2_surface *s, const char *what)
         for (int q = 0; q < 5; q++) {
             rg2_eval e;
             rg2_patch_eval(&s->patch[k], uv[q][0], uv[q][1], 2, &e);
+            if (!(e.flags & RG2_EVAL_WEIGHT_NONPOSITIVE) &&
+                !(isfinite(e.p[0]) && isfinite(e.p[1]) && isfinite(e.p[2])))
+                rg2f_violation("%s: patch %zu at (%g, %g) evaluates to (%g, %g, %g)", what, k, uv[q][0],
+                               uv[q][1], e.p[0], e.p[1], e.p[2]);
             acc += e.p[0] + e.K + e.H + e.k1;
         }
     if (np <= 64) {
