@@ -177,7 +177,9 @@ static double rg2f_next(rg2f_reader *r, double dflt)
     return dflt;
 }
 
-/* One level of de Boor for the span [U_l, U_{l+1}] at t on 4 homogeneous points. */
+/* De Boor for the span [U_l, U_{l+1}] at local parameter t in [0, 1] on 4 homogeneous
+ * points. The knot differences are formed before t enters, so knots that are close in
+ * relative terms (a span of a few ulps of large knot values) still give the exact t. */
 static void rg2f_deboor(const double *U, int l, double P[4][4], double t, double out[4])
 {
     double d[4][4];
@@ -185,14 +187,14 @@ static void rg2f_deboor(const double *U, int l, double P[4][4], double t, double
     for (int r = 1; r <= 3; r++)
         for (int i = 3; i >= r; i--) {
             int gi = l - 3 + i;
-            double al = (t - U[gi]) / (U[gi + 4 - r] - U[gi]);
+            double al = ((U[l] - U[gi]) + t * (U[l + 1] - U[l])) / (U[gi + 4 - r] - U[gi]);
             for (int k = 0; k < 4; k++)
                 d[i][k] = (1.0 - al) * d[i - 1][k] + al * d[i][k];
         }
     memcpy(out, d[3], sizeof d[3]);
 }
 
-/* The NURBS at (u, v) in spans lu, lv (independent of the library's construction). */
+/* The NURBS at local (u, v) of spans lu, lv (independent of the library's construction). */
 static void rg2f_nurbs_eval(const rg2_nurbs *nb, int lu, int lv, double u, double v, double x[3])
 {
     double rows[4][4];
@@ -289,11 +291,8 @@ int rg2f_nurbs(const uint8_t *data, size_t size)
                     for (int j = 0; j < s.nv; j++)
                         for (int a = 0; a < 3; a++)
                             for (int b = 0; b < 3; b++) {
-                                int lu = i + 3, lv = j + 3;
-                                double u = U[lu] + t[a] * (U[lu + 1] - U[lu]);
-                                double v = V[lv] + t[b] * (V[lv + 1] - V[lv]);
                                 double x[3];
-                                rg2f_nurbs_eval(&nb, lu, lv, u, v, x);
+                                rg2f_nurbs_eval(&nb, i + 3, j + 3, t[a], t[b], x);
                                 rg2_eval e;
                                 rg2_patch_eval(rg2_surface_patch(&s, i, j), t[a], t[b], 0, &e);
                                 double dd = fmax(fabs(x[0] - e.p[0]),
