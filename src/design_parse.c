@@ -1006,6 +1006,8 @@ rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, c
     if ((st = need(&c, root, "shapes", "(top level)", &shapes)) || (st = as_obj(&c, shapes, "shapes")))
         goto done;
     for (const cJSON *it = shapes->child; it; it = it->next) {
+        if (!strcmp(it->string, "comment") && cJSON_IsString(it))
+            continue;
         char p[300];
         fmtpath(p, sizeof p, "shapes.%s", it->string);
         for (const cJSON *o = shapes->child; o != it; o = o->next)
@@ -1018,15 +1020,17 @@ rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, c
     }
     if ((st = need(&c, root, "meshes", "(top level)", &meshes)) || (st = as_obj(&c, meshes, "meshes")))
         goto done;
-    if (!meshes->child) {
-        st = fail(&c, RG2_EPARSE, "meshes", "no meshes");
-        goto done;
-    }
     for (const cJSON *it = meshes->child; it; it = it->next) {
+        if (!strcmp(it->string, "comment") && cJSON_IsString(it))
+            continue;
         char p[300];
         fmtpath(p, sizeof p, "meshes.%s", it->string);
         if ((st = parse_mesh(&c, it, it->string, p)))
             goto done;
+    }
+    if (!d->n_mesh) {
+        st = fail(&c, RG2_EPARSE, "meshes", "no meshes");
+        goto done;
     }
     /* outputs: a name, a list of names, or (default) the last mesh */
     x = get(root, "output");
