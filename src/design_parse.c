@@ -418,6 +418,10 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
             list = get(obj, "knots");
         } else if (x) {
             subpath(p, sizeof p, path, ck);
+            if (angles && !cJSON_IsArray(x) && !cJSON_IsNumber(x))
+                return fail(c, RG2_EPARSE, p,
+                            "expected a number of arcs or an array of opening angles (degrees), "
+                            "found %s", type_name(x));
             if (angles && cJSON_IsArray(x)) {
                 if (have_to)
                     return fail(c, RG2_EPARSE, path,
