@@ -131,18 +131,66 @@ static void basis_at(double vc, double t, double phi0[3], double psi[3], double 
     phi3[2] = 2.0;
 }
 
-/*
- * METHOD: weighted linear least squares, one 4-column problem per homogeneous coordinate
- * (same matrix, four right-hand sides), solved by Householder QR. Row (sample, order k):
- * weight jw[k] / k! times [phi0^(k), cos psi^(k), sin psi^(k), phi3^(k)] at t = 1 against the
- * body's k-th derivative in t (= L^k d^k/ds^k). The 1/k! makes each order count by the size
- * of its Taylor term over the cap (t-length 1). Returns the relative residual, or -1 when the
- * matrix is rank deficient.
- */
-static double fit_solve(const fitdata *fd, double L, double vc, double g[4][4])
+/* Least squares min |A x - b| by Householder QR; A is rows x nc (row-major), overwritten.
+ * Returns the residual norm, or -1 if a column is dependent (relative 1e-12). */
+static double lsq_qr(double *A, double *b, int rows, int nc, double *x)
 {
-    int rows = 3 * fd->n;
-    double *A = malloc(sizeof(double) * 4 * (size_t)rows), *B = malloc(sizeof(double) * 4 * (size_t)rows);
+    double Rd[32], amax = 0.0;
+    for (int c = 0; c < nc; c++) {
+        double nrm = 0.0;
+        for (int r = c; r < rows; r++)
+            nrm += A[(size_t)r * nc + c] * A[(size_t)r * nc + c];
+        nrm = sqrt(nrm);
+        amax = fmax(amax, nrm);
+        if (!(nrm > 1e-12 * amax))
+            return -1.0;
+        double alpha = A[(size_t)c * nc + c] > 0 ? -nrm : nrm;
+        A[(size_t)c * nc + c] -= alpha;
+        double vv = 0.0;
+        for (int r = c; r < rows; r++)
+            vv += A[(size_t)r * nc + c] * A[(size_t)r * nc + c];
+        for (int cc = c + 1; cc <= nc; cc++) { /* cc == nc is the right-hand side */
+            double s = 0.0;
+            for (int r = c; r < rows; r++)
+                s += A[(size_t)r * nc + c] * (cc < nc ? A[(size_t)r * nc + cc] : b[r]);
+            s *= 2.0 / vv;
+            for (int r = c; r < rows; r++) {
+                if (cc < nc)
+                    A[(size_t)r * nc + cc] -= s * A[(size_t)r * nc + c];
+                else
+                    b[r] -= s * A[(size_t)r * nc + c];
+            }
+        }
+        Rd[c] = alpha;
+    }
+    for (int c = nc - 1; c >= 0; c--) {
+        double s = b[c];
+        for (int cc = c + 1; cc < nc; cc++)
+            s -= A[(size_t)c * nc + cc] * x[cc];
+        x[c] = s / Rd[c];
+    }
+    double rr = 0.0;
+    for (int r = nc; r < rows; r++)
+        rr += b[r] * b[r];
+    return sqrt(rr);
+}
+
+/*
+ * METHOD: weighted linear least squares (Householder QR) for the 16 coefficients g[c][d]
+ * (c: basis function, d: homogeneous coordinate) and the two derivatives lambda1, lambda2 of a
+ * scalar factor lambda(s) = 1 + lambda1 s + lambda2 s^2 / 2 on the body's 4-tuples (4-tuples
+ * are defined only up to a scalar function; lambda(0) = 1 keeps the boundary values). Row
+ * (sample, order k, coordinate d): weight jw[k] / k! times
+ *   sum_c basis_c^(k)(t = 1) g[c][d] - L^k (d^k/ds^k of lambda H - H) = L^k d^k H/ds^k,
+ * with d/dt = L d/ds. The 1/k! makes each order count by the size of its Taylor term over the
+ * cap (t-length 1). Sphere data are matched exactly with lambda = 1. Returns the relative
+ * residual, -1 when rank deficient, -2 when out of memory.
+ */
+static double fit_solve(const fitdata *fd, double L, double vc, double g[4][4], double lam[2])
+{
+    const int nc = 18;
+    int rows = 12 * fd->n;
+    double *A = calloc((size_t)rows * nc, sizeof(double)), *B = calloc((size_t)rows, sizeof(double));
     if (!A || !B) {
         free(A);
         free(B);
@@ -157,70 +205,34 @@ static double fit_solve(const fitdata *fd, double L, double vc, double g[4][4])
         double Lk = 1.0;
         for (int k = 0; k < 3; k++) {
             double W = fd->jw[k] * fact[k];
-            double *a = A + 4 * (3 * q + k), *b = B + 4 * (3 * q + k);
-            a[0] = W * phi0[k];
-            a[1] = W * sm->c * psi[k];
-            a[2] = W * sm->s * psi[k];
-            a[3] = W * phi3[k];
             for (int d = 0; d < 4; d++) {
-                b[d] = W * Lk * sm->J[k][d];
-                bnorm += b[d] * b[d];
+                int row = 12 * q + 4 * k + d;
+                double *a = A + (size_t)row * nc;
+                a[4 * 0 + d] = W * phi0[k];
+                a[4 * 1 + d] = W * sm->c * psi[k];
+                a[4 * 2 + d] = W * sm->s * psi[k];
+                a[4 * 3 + d] = W * phi3[k];
+                if (k == 1)
+                    a[16] = -W * Lk * sm->J[0][d];
+                if (k == 2) {
+                    a[16] = -W * Lk * 2.0 * sm->J[1][d];
+                    a[17] = -W * Lk * sm->J[0][d];
+                }
+                B[row] = W * Lk * sm->J[k][d];
+                bnorm += B[row] * B[row];
             }
             Lk *= L;
         }
     }
-    /* Householder QR, applied to B as well */
-    double Rd[4], amax = 0.0;
-    int ok = 1;
-    for (int c = 0; c < 4; c++) {
-        double nrm = 0.0;
-        for (int r = c; r < rows; r++)
-            nrm += A[4 * r + c] * A[4 * r + c];
-        nrm = sqrt(nrm);
-        if (c == 0)
-            amax = nrm;
-        if (!(nrm > 1e-12 * amax)) {
-            ok = 0;
-            break;
-        }
-        double alpha = A[4 * c + c] > 0 ? -nrm : nrm;
-        /* v = x - alpha e1, stored in place in column c (rows c..) */
-        A[4 * c + c] -= alpha;
-        double vv = 0.0;
-        for (int r = c; r < rows; r++)
-            vv += A[4 * r + c] * A[4 * r + c];
-        for (int cc = c + 1; cc < 4; cc++) {
-            double s = 0.0;
-            for (int r = c; r < rows; r++)
-                s += A[4 * r + c] * A[4 * r + cc];
-            s *= 2.0 / vv;
-            for (int r = c; r < rows; r++)
-                A[4 * r + cc] -= s * A[4 * r + c];
-        }
-        for (int d = 0; d < 4; d++) {
-            double s = 0.0;
-            for (int r = c; r < rows; r++)
-                s += A[4 * r + c] * B[4 * r + d];
-            s *= 2.0 / vv;
-            for (int r = c; r < rows; r++)
-                B[4 * r + d] -= s * A[4 * r + c];
-        }
-        Rd[c] = alpha;
-    }
-    double res = -1.0;
-    if (ok) {
-        for (int d = 0; d < 4; d++)
-            for (int c = 3; c >= 0; c--) {
-                double s = B[4 * c + d];
-                for (int cc = c + 1; cc < 4; cc++)
-                    s -= A[4 * c + cc] * g[cc][d];
-                g[c][d] = s / Rd[c];
-            }
-        double rr = 0.0;
-        for (int r = 4; r < rows; r++)
+    double x[18];
+    double res = lsq_qr(A, B, rows, nc, x);
+    if (res >= 0.0) {
+        for (int c = 0; c < 4; c++)
             for (int d = 0; d < 4; d++)
-                rr += B[4 * r + d] * B[4 * r + d];
-        res = bnorm > 0.0 ? sqrt(rr / bnorm) : 0.0;
+                g[c][d] = x[4 * c + d];
+        lam[0] = x[16];
+        lam[1] = x[17];
+        res = bnorm > 0.0 ? res / sqrt(bnorm) : 0.0;
     }
     free(A);
     free(B);
@@ -293,8 +305,11 @@ static void ring_extent(const fitdata *fd, double *extent, double *center_w)
  * from the pole (north: reciprocals of the last two), the polar knots give v_1 = 1 - b~0 and
  * cap length v_1 / (v_2 - v_1) = 1 / b~1. So L = 1 / b~1, vc = 1 - b~0; this makes the sphere
  * (b~0 = 1 - v_1) and the paraboloid/two-sheeted hyperboloid polar configurations (symmetric
- * knots, b~0 = 1) exact. Otherwise vc = 1/2 (hemisphere-like) and L minimizes the fit residual
- * (log-spaced scan of [1/64, 64], then golden section).
+ * knots, b~0 = 1) exact. Otherwise (an open ring) vc = 1/2, the seam at the equator of a
+ * hemisphere-like cap, and L = 2 rho / sigma with rho the RMS radius of the boundary ring and
+ * sigma the RMS speed |dX/ds| of the body across it: the length at which a hemisphere of
+ * radius rho (speed 2 rho per unit of its chart) meets the body with matching speed; on a
+ * circular cylinder the fitted cap is then tangent to a hemisphere.
  */
 static rg2_status choose_params(const rg2_mesh *body, const fitdata *fd, int e, const rg2_cap_opts *o,
                                 double *L, double *vc, int *polar, rg2_error *err)
@@ -315,36 +330,28 @@ static rg2_status choose_params(const rg2_mesh *body, const fitdata *fd, int e, 
         return RG2_OK;
     }
     *vc = 0.5;
-    double g[4][4], best = INFINITY, bestx = 0.0;
-    const int nscan = 25;
-    const double lo = log(1.0 / 64.0), hi = log(64.0), step = (hi - lo) / (nscan - 1);
-    for (int k = 0; k < nscan; k++) {
-        double x = lo + step * k, r = fit_solve(fd, exp(x), *vc, g);
-        if (r >= 0.0 && r < best)
-            best = r, bestx = x;
+    double c[3] = {0, 0, 0}, rho = 0.0, sigma = 0.0;
+    for (int q = 0; q < fd->n; q++) {
+        const double *J0 = fd->smp[q].J[0];
+        for (int k = 0; k < 3; k++)
+            c[k] += J0[k] / J0[3] / fd->n;
     }
-    if (!isfinite(best))
-        return rg2__fail(err, RG2_EDOMAIN,
-                         "cap: %s boundary ring does not determine the cap map (rank-deficient fit)",
-                         end_name(e));
-    double a = fmax(lo, bestx - step), b = fmin(hi, bestx + step);
-    const double gr = 0.5 * (sqrt(5.0) - 1.0);
-    double x1 = b - gr * (b - a), x2 = a + gr * (b - a);
-    double f1 = fit_solve(fd, exp(x1), *vc, g), f2 = fit_solve(fd, exp(x2), *vc, g);
-    for (int it = 0; it < 40; it++) {
-        if (f1 < 0) f1 = INFINITY;
-        if (f2 < 0) f2 = INFINITY;
-        if (f1 < f2) {
-            b = x2, x2 = x1, f2 = f1;
-            x1 = b - gr * (b - a);
-            f1 = fit_solve(fd, exp(x1), *vc, g);
-        } else {
-            a = x1, x1 = x2, f1 = f2;
-            x2 = a + gr * (b - a);
-            f2 = fit_solve(fd, exp(x2), *vc, g);
+    for (int q = 0; q < fd->n; q++) {
+        const double *J0 = fd->smp[q].J[0], *J1 = fd->smp[q].J[1];
+        for (int k = 0; k < 3; k++) {
+            double x = J0[k] / J0[3], dx = (J1[k] - J1[3] * x) / J0[3];
+            rho += (x - c[k]) * (x - c[k]) / fd->n;
+            sigma += dx * dx / fd->n;
         }
     }
-    *L = exp(0.5 * (a + b));
+    rho = sqrt(rho);
+    sigma = sqrt(sigma);
+    if (!(sigma > 0.0) || !(rho > 0.0))
+        return rg2__fail(err, RG2_EDOMAIN,
+                         "cap: the body does not move away from its %s boundary ring (speed %g); "
+                         "give the cap length in the options",
+                         end_name(e), sigma);
+    *L = 2.0 * rho / sigma;
     return RG2_OK;
 }
 
@@ -352,14 +359,15 @@ static rg2_status choose_params(const rg2_mesh *body, const fitdata *fd, int e, 
  * METHOD (trisection): per patch column i and u-Bernstein index r, the homogeneous v-curve of
  * the cap is a uniform C2 cubic spline of 3 pieces (6 de Boor points d0..d5). Its 2-jet at the
  * pole is that of G's column-r coefficient (fixes d0, d1, d2); its 2-jet at the seam is the
- * body's (fixes d3, d4, d5), converted with the seam scalars b = 3 / L, g = 0 (a piece has
- * length L/3 in body-ring units). The end Bezier points are taken from the jets directly so the
+ * body's (fixes d3, d4, d5), taken from lambda H (lambda from the fit; lambda H and H have
+ * the same 3D jets) and converted with the seam scalars b = 3 / L, g = 0 (a piece has length
+ * L/3 in body-ring units). The end Bezier points are taken from the jets directly so the
  * pole and the seam row are exact. Every coefficient is the same linear combination for all
  * r and i, so the u-direction G2 structure of the body and of G carries over to the cap.
  * Piece k (k = 0 at the pole) is returned in P[k] oriented from the pole.
  */
 static void cap_column(const rg2_surface *S, const ucircle *uc, int e, int i, double L, double vc,
-                       double g[4][4], rg2_patch P[3])
+                       double g[4][4], const double lam[2], rg2_patch P[3])
 {
     double phi0[3], psi[3], phi3[3];
     basis_at(vc, 0.0, phi0, psi, phi3);
@@ -383,7 +391,9 @@ static void cap_column(const rg2_surface *S, const ucircle *uc, int e, int i, do
             double h1 = e ? Bp->h[r][2][d] : Bp->h[r][1][d];
             double h2 = e ? Bp->h[r][1][d] : Bp->h[r][2][d];
             double sc = L / 3.0;
-            double Q1 = sc * 3.0 * (h1 - h0), Q2 = sc * sc * 6.0 * (h2 - 2.0 * h1 + h0);
+            double J1 = 3.0 * (h1 - h0), J2 = 6.0 * (h2 - 2.0 * h1 + h0);
+            /* jets of lambda H (lambda(0) = 1): the same 3D jets, scaled like the fit */
+            double Q1 = sc * (J1 + lam[0] * h0), Q2 = sc * sc * (J2 + 2.0 * lam[0] * J1 + lam[1] * h0);
             /* the piece parameter runs from the pole into the body: C'(1) = Q1, C''(1) = Q2 */
             C[3][d] = h0;
             C[2][d] = h0 - Q1 / 3.0;
@@ -472,7 +482,7 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
     ucircle uc;
     fitdata fd[2];
     memset(fd, 0, sizeof fd);
-    double L[2] = {0, 0}, vc[2] = {0, 0}, g[2][4][4];
+    double L[2] = {0, 0}, vc[2] = {0, 0}, g[2][4][4], lam[2][2] = {{0, 0}, {0, 0}};
     if ((st = ucircle_make(&body->su, &uc, err)))
         goto done;
     double scale = 0.0;
@@ -514,7 +524,7 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
                            end_name(e), L[e], vc[e]);
             goto done;
         }
-        double res = fit_solve(&fd[e], L[e], vc[e], g[e]);
+        double res = fit_solve(&fd[e], L[e], vc[e], g[e], lam[e]);
         if (res < -1.5) {
             st = rg2__fail(err, RG2_ENOMEM, "cap: out of memory in the fit");
             goto done;
@@ -583,7 +593,7 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
             if (!inf.capped[e])
                 continue;
             rg2_patch P[3];
-            cap_column(&S, &uc, e, i, L[e], vc[e], g[e], P);
+            cap_column(&S, &uc, e, i, L[e], vc[e], g[e], lam[e], P);
             for (int k = 0; k < 3; k++) {
                 if (e == 0) {
                     out->patch[(size_t)i * nv + k] = P[k];

@@ -221,8 +221,288 @@ static void sphere_caps(void)
     printf("  6 spheres: distance %.2e, coefficients %.2e\n", worst_d, worst_q);
 }
 
+/* A family-2 mesh (u circle, v polynomial): 4-tuple from the circle coefficients (C, S) and the
+ * blossoms B1 = blossom(v), B2 = blossom(v^2) at each row. */
+typedef void (*family2_fn)(double C, double S, double B1, double B2, const double *prm, double p[4]);
+
+static void family2_mesh(const double *alpha, int n, const double *knots, int nk, family2_fn fn,
+                         const double *prm, rg2_mesh *m)
+{
+    rg2_error err;
+    double cs[64];
+    int nv = nk - 2;
+    CHECK_OK(rg2_mesh_init(m, n, nv, 1, 0, &err), &err);
+    rg2_scalars_free(&m->su);
+    rg2_scalars_free(&m->sv);
+    CHECK_OK(rg2_scalars_from_angles(&m->su, alpha, n, 1, &err), &err);
+    CHECK_OK(rg2_scalars_from_knots(&m->sv, knots, nk, 0, &err), &err);
+    CHECK_OK(rg2_circle_coeffs(alpha, n, 1, 0.0, cs, &err), &err);
+    for (int j = 0; j < nv; j++) {
+        double bl[4];
+        rg2_blossom_monomials(knots[j], knots[j + 1], knots[j + 2], bl);
+        for (int i = 0; i < n; i++)
+            fn(cs[2 * i], cs[2 * i + 1], bl[1], bl[2], prm, rg2_mesh_at(m, i, j));
+    }
+}
+
+/* elliptic paraboloid (A v cu, B v su, v^2, 1): z = x^2 / A^2 + y^2 / B^2 */
+static void paraboloid_fn(double C, double S, double B1, double B2, const double *prm, double p[4])
+{
+    p[0] = prm[0] * B1 * C;
+    p[1] = prm[1] * B1 * S;
+    p[2] = B2;
+    p[3] = 1;
+}
+
+/* two-sheeted hyperboloid (2v cu, 2v su, 1 + v^2, 1 - v^2): z^2 - x^2 - y^2 = 1 */
+static void hyperboloid2_fn(double C, double S, double B1, double B2, const double *prm, double p[4])
+{
+    (void)prm;
+    p[0] = 2 * B1 * C;
+    p[1] = 2 * B1 * S;
+    p[2] = 1 + B2;
+    p[3] = 1 - B2;
+}
+
+/* Worst implicit residual |f| / |grad f| / scale over dense samples. */
+static double implicit_dist(const rg2_surface *s, int kind, const double *prm, double scale)
+{
+    double worst = 0;
+    for (int i = 0; i < s->nu; i++)
+        for (int j = 0; j < s->nv; j++)
+            for (int a = 0; a <= 8; a++)
+                for (int b = 0; b <= 8; b++) {
+                    rg2_eval e;
+                    rg2_patch_eval(rg2_surface_patch(s, i, j), a / 8.0, b / 8.0, 0, &e);
+                    double x = e.p[0], y = e.p[1], z = e.p[2], f, gx, gy, gz;
+                    if (kind == 0) {
+                        f = z - x * x / (prm[0] * prm[0]) - y * y / (prm[1] * prm[1]);
+                        gx = -2 * x / (prm[0] * prm[0]), gy = -2 * y / (prm[1] * prm[1]), gz = 1;
+                    } else {
+                        f = z * z - x * x - y * y - 1;
+                        gx = -2 * x, gy = -2 * y, gz = 2 * z;
+                    }
+                    worst = fmax(worst, fabs(f) / sqrt(gx * gx + gy * gy + gz * gz) / scale);
+                }
+    return worst;
+}
+
+/* Polar configurations of the paraboloid and the two-sheeted hyperboloid: symmetric knots
+ * t_{-1} = -t_1, t_0 = 0 collapse row 0 (blossom of v vanishes); the cap parameters read from
+ * the scalars (v_c = 0, the polynomial chart) make band + cap exact. The open far end gets a
+ * free-form cap. */
+static void quadric_caps(void)
+{
+    rg2t_rng r;
+    uint64_t seed = 1212;
+    rg2t_seed(&r, seed);
+    printf("paraboloid and two-sheeted hyperboloid polar configurations, seed %llu\n", (unsigned long long)seed);
+    for (int kind = 0; kind < 2; kind++) {
+        int n = rg2t_int(&r, 3, 7), m = rg2t_int(&r, 2, 5);
+        double alpha[16], t[16], knots[20];
+        random_arcs(&r, n, alpha);
+        random_knots(&r, m + 2, 0.0, kind ? 0.95 : 1.5, t);
+        knots[0] = -t[0];
+        knots[1] = 0;
+        for (int k = 0; k < m + 2; k++)
+            knots[k + 2] = t[k];
+        double prm[2] = {rg2t_uniform(&r, 0.7, 1.5), rg2t_uniform(&r, 0.7, 1.5)};
+        rg2_mesh mesh;
+        family2_mesh(alpha, n, knots, m + 4, kind ? hyperboloid2_fn : paraboloid_fn, prm, &mesh);
+        /* row 0 collapses to rounding; make it exact like a designer's polar point */
+        double pole[4];
+        memcpy(pole, rg2_mesh_at(&mesh, 0, 0), sizeof pole);
+        pole[0] = pole[1] = 0;
+        rg2_error err;
+        CHECK_OK(rg2_polar_set_point(&mesh, 0, pole, &err), &err);
+        CHECK(rg2_mesh_row_collapsed(&mesh, 0) && !rg2_mesh_row_collapsed(&mesh, m + 1), "row 0 is polar");
+        rg2_surface s;
+        rg2_cap_info info;
+        rg2_cap_opts o;
+        rg2_cap_opts_default(&o);
+        o.ends = RG2_CAP_SOUTH;
+        CHECK_OK(rg2_cap_build(&mesh, &o, &s, &info, &err), &err);
+        double scale = rg2t_surface_scale(&s);
+        double d = implicit_dist(&s, kind, prm, scale);
+        CHECK(info.polar[0] && info.vc[0] == 0.0, "%s: polar with v_c = %g", kind ? "hyperboloid" : "paraboloid",
+              info.vc[0]);
+        CHECK(d <= 1e-13, "%s: capped surface off by %.3g", kind ? "hyperboloid" : "paraboloid", d);
+        rg2t_seams g;
+        check_seams(&s, kind ? "hyperboloid cap seams" : "paraboloid cap seams", 1e-12, 1e-10, &g);
+        pole_meas pm;
+        measure_pole(&s, 0, scale, &pm);
+        CHECK(pm.point <= 1e-15 && pm.normal <= 1e-10, "pole point %.3g normal %.3g", pm.point, pm.normal);
+        printf("  %s: distance %.2e, fit residual %.2e\n", kind ? "hyperboloid" : "paraboloid", d, info.residual[0]);
+        rg2_surface_free(&s);
+        /* both ends: the far end is an open ring, capped free-form */
+        o.ends = RG2_CAP_SOUTH | RG2_CAP_NORTH;
+        CHECK_OK(rg2_cap_build(&mesh, &o, &s, &info, &err), &err);
+        CHECK(!info.polar[1], "far end is not polar");
+        check_seams(&s, kind ? "hyperboloid both caps" : "paraboloid both caps", 1e-11, 1e-8, &g);
+        measure_pole(&s, 1, rg2t_surface_scale(&s), &pm);
+        CHECK(pm.point <= 1e-14 && pm.normal <= 1e-10, "free-form pole point %.3g normal %.3g", pm.point,
+              pm.normal);
+        printf("  far free-form cap: L = %.4g, v_c = %.2g, fit residual %.2e\n", info.length[1], info.vc[1],
+               info.residual[1]);
+        print_pole("far", &pm);
+        rg2_surface_free(&s);
+        rg2_mesh_free(&mesh);
+    }
+}
+
+/* Free-form caps: perturbed polar sphere meshes (interior rows and polar points moved) and
+ * tubes from random closed rings; G2 seams (angle <= 1e-11, curvature <= 1e-8) and a smooth
+ * pole (one point, one limit normal; curvature spread shrinking towards the pole). */
+static void freeform_caps(void)
+{
+    rg2t_rng r;
+    uint64_t seed = 4242;
+    rg2t_seed(&r, seed);
+    printf("free-form caps, seed %llu\n", (unsigned long long)seed);
+    rg2t_seams worst = {0};
+    double wpn = 0, wpp = 0;
+    for (int trial = 0; trial < 6; trial++) {
+        int tube = trial >= 3;
+        int n = rg2t_int(&r, 4, 8), m = rg2t_int(&r, 3, 6);
+        double alpha[16], v[16];
+        random_arcs(&r, n, alpha);
+        rg2_mesh mesh;
+        rg2_error err;
+        if (!tube) {
+            random_knots(&r, m, 0.0, 1.0, v);
+            CHECK_OK(rg2_polar_sphere_mesh(alpha, n, 0.0, v, m, NULL, &mesh, &err), &err);
+            for (int i = 0; i < n; i++)
+                for (int j = 1; j <= m; j++) {
+                    double *p = rg2_mesh_at(&mesh, i, j);
+                    for (int k = 0; k < 3; k++)
+                        p[k] += p[3] * rg2t_uniform(&r, -0.15, 0.15);
+                }
+            for (int e = 0; e < 2; e++) {
+                double p[4];
+                memcpy(p, rg2_mesh_at(&mesh, 0, e ? m + 1 : 0), sizeof p);
+                for (int k = 0; k < 3; k++)
+                    p[k] += rg2t_uniform(&r, -0.2, 0.2);
+                CHECK_OK(rg2_polar_set_point(&mesh, e, p, &err), &err);
+            }
+        } else {
+            double knots[20], cs[32];
+            random_knots(&r, m + 4, 0.0, 4.0, knots);
+            CHECK_OK(rg2_mesh_init(&mesh, n, m + 2, 1, 0, &err), &err);
+            rg2_scalars_free(&mesh.su);
+            rg2_scalars_free(&mesh.sv);
+            CHECK_OK(rg2_scalars_from_angles(&mesh.su, alpha, n, 1, &err), &err);
+            CHECK_OK(rg2_scalars_from_knots(&mesh.sv, knots, m + 4, 0, &err), &err);
+            CHECK_OK(rg2_circle_coeffs(alpha, n, 1, 0.0, cs, &err), &err);
+            for (int i = 0; i < n; i++)
+                for (int j = 0; j < m + 2; j++) {
+                    double *p = rg2_mesh_at(&mesh, i, j), rad = rg2t_uniform(&r, 0.7, 1.3);
+                    double W = rg2t_uniform(&r, 0.9, 1.1);
+                    p[0] = W * (rad * cs[2 * i] + rg2t_uniform(&r, -0.1, 0.1));
+                    p[1] = W * (rad * cs[2 * i + 1] + rg2t_uniform(&r, -0.1, 0.1));
+                    p[2] = W * (knots[j + 1] + rg2t_uniform(&r, -0.2, 0.2));
+                    p[3] = W;
+                }
+        }
+        rg2_surface s;
+        rg2_cap_info info;
+        CHECK_OK(rg2_cap_build(&mesh, NULL, &s, &info, &err), &err);
+        rg2t_seams g;
+        char what[64];
+        snprintf(what, sizeof what, "%s %d", tube ? "tube" : "perturbed sphere", trial);
+        check_seams(&s, what, 1e-11, 1e-8, &g);
+        worst.angle = fmax(worst.angle, g.angle);
+        worst.curv = fmax(worst.curv, g.curv);
+        worst.pos = fmax(worst.pos, g.pos);
+        double scale = rg2t_surface_scale(&s);
+        for (int e = 0; e < 2; e++) {
+            pole_meas pm;
+            measure_pole(&s, e, scale, &pm);
+            CHECK(pm.point <= 1e-14, "%s: pole is one point (%.3g)", what, pm.point);
+            CHECK(pm.normal <= 1e-10, "%s: fan limit normals agree to %.3g rad", what, pm.normal);
+            CHECK(pm.flagged == pm.samples, "%s: pole flagged %d/%d", what, pm.flagged, pm.samples);
+            /* C2 at the pole: the curvature spread over the fan shrinks like eps */
+            CHECK(pm.kspread[2] < 0.2 * pm.kspread[0] + 1e-6, "%s: curvature spread %.3g -> %.3g", what,
+                  pm.kspread[0], pm.kspread[2]);
+            CHECK(pm.nconv[2] < 0.2 * pm.nconv[0], "%s: normal converges %.3g -> %.3g", what, pm.nconv[0],
+                  pm.nconv[2]);
+            wpn = fmax(wpn, pm.normal);
+            wpp = fmax(wpp, pm.point);
+            if (trial == 0 || trial == 3)
+                print_pole(e ? "north" : "south", &pm);
+        }
+        printf("    L = %.4g / %.4g, v_c = %.3g / %.3g, fit residual %.2e / %.2e\n", info.length[0],
+               info.length[1], info.vc[0], info.vc[1], info.residual[0], info.residual[1]);
+        rg2_surface_free(&s);
+        rg2_mesh_free(&mesh);
+    }
+    printf("  free-form worst: position %.2e, normal angle %.2e rad, curvature %.2e rel; pole point %.2e, "
+           "pole normals %.2e rad\n",
+           worst.pos, worst.angle, worst.curv, wpp, wpn);
+}
+
+static void cap_errors(void)
+{
+    rg2_error err;
+    rg2_mesh m;
+    rg2_surface s;
+    double alpha[4] = {M_PI / 2, M_PI / 2, M_PI / 2, M_PI / 2}, v[3] = {0.2, 0.5, 0.8};
+    CHECK_OK(rg2_polar_sphere_mesh(alpha, 4, 0.0, v, 3, NULL, &m, &err), &err);
+    /* non-circle u scalars */
+    rg2_mesh b;
+    rg2_mesh_copy(&m, &b, &err);
+    for (int i = 0; i < 4; i++)
+        b.su.w[i] = 1.0, b.su.b[i] = 1.0, b.su.g[i] = 0.0;
+    CHECK(rg2_cap_build(&b, NULL, &s, NULL, &err) == RG2_EINCOMPATIBLE && strstr(err.msg, "circle"),
+          "non-circle u refused: %s", err.msg);
+    rg2_mesh_free(&b);
+    /* collapsed body: every row one point */
+    rg2_mesh_copy(&m, &b, &err);
+    for (int j = 0; j < b.nv; j++)
+        for (int i = 1; i < b.nu; i++)
+            memcpy(rg2_mesh_at(&b, i, j), rg2_mesh_at(&b, 0, j), 4 * sizeof(double));
+    CHECK(rg2_cap_build(&b, NULL, &s, NULL, &err) == RG2_EDOMAIN && strstr(err.msg, "collapsed"),
+          "collapsed body refused: %s", err.msg);
+    /* tiny ring: scale the body's x, y to 1e-13 of its height */
+    rg2_mesh_free(&b);
+    rg2_mesh_copy(&m, &b, &err);
+    for (int j = 0; j < b.nv; j++)
+        for (int i = 0; i < b.nu; i++)
+            rg2_mesh_at(&b, i, j)[0] *= 1e-13, rg2_mesh_at(&b, i, j)[1] *= 1e-13;
+    CHECK(rg2_cap_build(&b, NULL, &s, NULL, &err) == RG2_EDOMAIN && strstr(err.msg, "south"),
+          "too small ring refused: %s", err.msg);
+    rg2_mesh_free(&b);
+    /* open u (non-closed end) and closed v */
+    CHECK_OK(rg2_mesh_init(&b, 5, 5, 0, 0, &err), &err);
+    for (int k = 0; k < 25; k++)
+        b.p[4 * k + 3] = 1, b.p[4 * k] = k % 5, b.p[4 * k + 1] = k / 5;
+    CHECK(rg2_cap_build(&b, NULL, &s, NULL, &err) == RG2_EINVAL && strstr(err.msg, "open"),
+          "open ring refused: %s", err.msg);
+    rg2_mesh_free(&b);
+    CHECK_OK(rg2_mesh_init(&b, 4, 4, 1, 1, &err), &err);
+    CHECK(rg2_cap_build(&b, NULL, &s, NULL, &err) == RG2_EINVAL && strstr(err.msg, "closed"),
+          "closed v refused: %s", err.msg);
+    rg2_mesh_free(&b);
+    /* bad options */
+    rg2_cap_opts o;
+    rg2_cap_opts_default(&o);
+    o.samples = 1;
+    CHECK(rg2_cap_build(&m, &o, &s, NULL, &err) == RG2_EDOMAIN && strstr(err.msg, "samples"), "samples: %s",
+          err.msg);
+    rg2_cap_opts_default(&o);
+    o.length[1] = 1.0, o.vc[1] = 1.0;
+    CHECK(rg2_cap_build(&m, &o, &s, NULL, &err) == RG2_EDOMAIN && strstr(err.msg, "north"), "v_c: %s", err.msg);
+    rg2_cap_opts_default(&o);
+    o.ends = 0;
+    CHECK(rg2_cap_build(&m, &o, &s, NULL, &err) == RG2_EINVAL, "no ends: %s", err.msg);
+    CHECK(s.patch == NULL, "failed builds leave an empty surface");
+    rg2_mesh_free(&m);
+}
+
 int main(void)
 {
     sphere_caps();
+    quadric_caps();
+    freeform_caps();
+    cap_errors();
     return rg2t_done("test_cap");
 }
