@@ -2,40 +2,11 @@
  * point with one limit normal), exact recovery of the cap coefficients on sphere data, exact
  * paraboloid and two-sheeted hyperboloid caps, free-form caps (perturbed spheres, random
  * tubes) with G2 seams and a smooth pole, and the errors for degenerate input. */
-#include "harness.h"
+#include "poles_testutil.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* Random closed arc partition of n arcs. */
-static void random_arcs(rg2t_rng *r, int n, double *alpha)
-{
-    double s = 0;
-    for (int i = 0; i < n; i++)
-        s += (alpha[i] = rg2t_uniform(r, 0.6, 1.0));
-    for (int i = 0; i < n; i++)
-        alpha[i] *= 2 * M_PI / s;
-}
-
-/* m increasing knots in (lo, hi). */
-static void random_knots(rg2t_rng *r, int m, double lo, double hi, double *v)
-{
-    double s = 0, d[64];
-    for (int k = 0; k <= m; k++)
-        s += (d[k] = rg2t_uniform(r, 0.5, 1.0));
-    double acc = 0;
-    for (int k = 0; k < m; k++) {
-        acc += d[k];
-        v[k] = lo + (hi - lo) * acc / s;
-    }
-}
-
-static double angle3(const double a[3], const double b[3])
-{
-    double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-    return atan2(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
-}
 
 static void unit(double a[3])
 {
@@ -93,7 +64,7 @@ static void measure_pole(const rg2_surface *s, int e, double scale, pole_meas *p
             }
             double d = hypot(hypot(e0.p[0] - pm->pole[0], e0.p[1] - pm->pole[1]), e0.p[2] - pm->pole[2]);
             pm->point = fmax(pm->point, d / scale);
-            pm->normal = fmax(pm->normal, angle3(n, pm->n));
+            pm->normal = fmax(pm->normal, pt_angle3(n, pm->n));
         }
     for (int q = 0; q < 4; q++) {
         double eps = pow(10.0, -(q + 1)), Kmin = INFINITY, Kmax = -INFINITY, Hmin = INFINITY,
@@ -102,7 +73,7 @@ static void measure_pole(const rg2_surface *s, int e, double scale, pole_meas *p
             for (int k = 0; k < 8; k++) {
                 rg2_eval ev;
                 rg2_patch_eval(rg2_surface_patch(s, i, j), (k + 0.5) / 8.0, e ? 1.0 - eps : eps, 2, &ev);
-                pm->nconv[q] = fmax(pm->nconv[q], angle3(ev.n, pm->n));
+                pm->nconv[q] = fmax(pm->nconv[q], pt_angle3(ev.n, pm->n));
                 Kmin = fmin(Kmin, ev.K), Kmax = fmax(Kmax, ev.K);
                 Hmin = fmin(Hmin, ev.H), Hmax = fmax(Hmax, ev.H);
                 kmax = fmax(kmax, fmax(fabs(ev.k1), fabs(ev.k2)));
@@ -162,8 +133,8 @@ static void sphere_caps(void)
     for (int trial = 0; trial < 6; trial++) {
         int n = rg2t_int(&r, 3, 9), m = rg2t_int(&r, 2, 7);
         double alpha[16], v[16];
-        random_arcs(&r, n, alpha);
-        random_knots(&r, m, 0.0, 1.0, v);
+        pt_random_arcs(&r, n, alpha);
+        pt_random_knots(&r, m, 0.0, 1.0, v);
         double R = trial ? rg2t_uniform(&r, 0.5, 3.0) : 1.0;
         double c[3] = {0, 0, 0};
         if (trial)
@@ -210,7 +181,7 @@ static void sphere_caps(void)
                 CHECK(pm.normal <= 1e-10, "fan limit normals agree: %.3g rad", pm.normal);
                 CHECK(pm.flagged == pm.samples, "pole flagged normal-undefined %d/%d", pm.flagged, pm.samples);
                 double expect[3] = {0, 0, e ? 1.0 : -1.0};
-                CHECK(angle3(pm.n, expect) <= 1e-12 || angle3(pm.n, expect) >= M_PI - 1e-12,
+                CHECK(pt_angle3(pm.n, expect) <= 1e-12 || pt_angle3(pm.n, expect) >= M_PI - 1e-12,
                       "limit normal is the axis");
                 print_pole(e ? "north" : "south", &pm);
             }
@@ -300,8 +271,8 @@ static void quadric_caps(void)
     for (int kind = 0; kind < 2; kind++) {
         int n = rg2t_int(&r, 3, 7), m = rg2t_int(&r, 2, 5);
         double alpha[16], t[16], knots[20];
-        random_arcs(&r, n, alpha);
-        random_knots(&r, m + 2, 0.0, kind ? 0.95 : 1.5, t);
+        pt_random_arcs(&r, n, alpha);
+        pt_random_knots(&r, m + 2, 0.0, kind ? 0.95 : 1.5, t);
         knots[0] = -t[0];
         knots[1] = 0;
         for (int k = 0; k < m + 2; k++)
@@ -365,11 +336,11 @@ static void freeform_caps(void)
         int tube = trial >= 3;
         int n = rg2t_int(&r, 4, 8), m = rg2t_int(&r, 3, 6);
         double alpha[16], v[16];
-        random_arcs(&r, n, alpha);
+        pt_random_arcs(&r, n, alpha);
         rg2_mesh mesh;
         rg2_error err;
         if (!tube) {
-            random_knots(&r, m, 0.0, 1.0, v);
+            pt_random_knots(&r, m, 0.0, 1.0, v);
             CHECK_OK(rg2_polar_sphere_mesh(alpha, n, 0.0, v, m, NULL, &mesh, &err), &err);
             for (int i = 0; i < n; i++)
                 for (int j = 1; j <= m; j++) {
@@ -386,7 +357,7 @@ static void freeform_caps(void)
             }
         } else {
             double knots[20], cs[32];
-            random_knots(&r, m + 4, 0.0, 4.0, knots);
+            pt_random_knots(&r, m + 4, 0.0, 4.0, knots);
             CHECK_OK(rg2_mesh_init(&mesh, n, m + 2, 1, 0, &err), &err);
             rg2_scalars_free(&mesh.su);
             rg2_scalars_free(&mesh.sv);
