@@ -2,11 +2,13 @@
  * point with one limit normal), exact recovery of the cap coefficients on sphere data, exact
  * paraboloid and two-sheeted hyperboloid caps, free-form caps (perturbed spheres, random
  * tubes) with G2 seams and a smooth pole, and the errors for degenerate input. */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp, rmdir */
 #include "poles_testutil.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 static void unit(double a[3])
 {
@@ -469,11 +471,161 @@ static void cap_errors(void)
     rg2_mesh_free(&m);
 }
 
+/* The pole of end e of a surface whose end row is a collapsed edge (a cap), or NULL. */
+static int surface_pole(const rg2_surface *s, int e, double p[3])
+{
+    rg2_eval a, b;
+    int j = e ? s->nv - 1 : 0;
+    rg2_patch_eval(rg2_surface_patch(s, 0, j), 0.2, e ? 1.0 : 0.0, 0, &a);
+    rg2_patch_eval(rg2_surface_patch(s, s->nu / 2, j), 0.7, e ? 1.0 : 0.0, 0, &b);
+    memcpy(p, a.p, sizeof a.p);
+    return pt_dist3(a.p, b.p) <= 1e-14 * (1 + fabs(a.p[0]) + fabs(a.p[1]) + fabs(a.p[2]));
+}
+
+/* The example designs of Figs. 9-12 and 14: they build, every seam is G2, every cap has one
+ * pole point with one limit normal, they export (STEP, IGES, OBJ), and the figure-specific
+ * facts hold (exact spheres with poles where eq. 16 says, exact quadric caps at the vertices). */
+static void design_examples(void)
+{
+    static const char *const files[] = {"examples/fig9_polar_sphere.json", "examples/fig10_sphere_cylinder.json",
+                                        "examples/fig11_cube_tube.json",
+                                        "examples/fig12_paraboloid_hyperboloid.json", "examples/fig14_mobius.json"};
+    char dir[] = "/tmp/rg2_poles_XXXXXX";
+    CHECK(mkdtemp(dir) != NULL, "temporary directory");
+    printf("pole example designs:\n");
+    for (size_t f = 0; f < sizeof files / sizeof *files; f++) {
+        rg2_design *d = NULL;
+        rg2_error err;
+        CHECK_OK(rg2_design_load(files[f], &d, &err), &err);
+        if (!d)
+            continue;
+        for (int o = 0; o < rg2_design_num_surfaces(d); o++) {
+            const rg2_surface *s = rg2_design_surface(d, o);
+            double scale = rg2t_surface_scale(s);
+            rg2t_seams g;
+            rg2t_surface_seams(s, 10, &g);
+            CHECK(g.pos <= 1e-13 && g.angle <= 1e-11 && g.curv <= 1e-8, "%s %d: seams %.3g %.3g %.3g at %s",
+                  files[f], o, g.pos, g.angle, g.curv, g.where);
+            int poles = 0;
+            double pn = 0, pp = 0;
+            for (int e = 0; e < 2; e++) {
+                double p[3];
+                if (!surface_pole(s, e, p))
+                    continue;
+                poles++;
+                pole_meas pm;
+                measure_pole(s, e, scale, &pm);
+                CHECK(pm.point <= 1e-14 && pm.normal <= 1e-10, "%s %d: pole %.3g, normals %.3g", files[f], o,
+                      pm.point, pm.normal);
+                pn = fmax(pn, pm.normal);
+                pp = fmax(pp, pm.point);
+            }
+            char path[256];
+            static const char *const ext[] = {"step", "igs", "obj"};
+            for (int x = 0; x < 3; x++) {
+                snprintf(path, sizeof path, "%s/f%zu_%d.%s", dir, f, o, ext[x]);
+                rg2_export_opts eo;
+                rg2_export_opts_default(&eo);
+                CHECK_OK(rg2_export_file(s, 1, path, &eo, &err), &err);
+                FILE *fp = fopen(path, "rb");
+                long len = 0;
+                if (fp) {
+                    fseek(fp, 0, SEEK_END);
+                    len = ftell(fp);
+                    fclose(fp);
+                }
+                CHECK(len > 100, "%s written (%ld bytes)", path, len);
+                remove(path);
+            }
+            printf("  %-44s %d: %4d patches, %d pole(s): point %.1e, normals %.1e rad; seams: normal %.1e rad, "
+                   "curvature %.1e rel\n",
+                   files[f], o, s->nu * s->nv, poles, pp, pn, g.angle, g.curv);
+        }
+        /* figure-specific facts */
+        if (f == 0) {
+            double c[3] = {0, 0, 0};
+            double dd = sphere_dist(rg2_design_surface(d, 1), c, 1.0);
+            CHECK(dd <= 1e-13, "Fig. 9 capped sphere: %.3g", dd);
+        }
+        if (f == 3) {
+            double p[3], v0[3] = {0, 0, 0}, v1[3] = {0, 0, 2.7};
+            CHECK(surface_pole(rg2_design_surface(d, 0), 0, p) && pt_dist3(p, v0) <= 1e-14,
+                  "Fig. 12 bowl pole at the vertex");
+            CHECK(surface_pole(rg2_design_surface(d, 0), 1, p) && pt_dist3(p, v1) <= 1e-14,
+                  "Fig. 12 lid pole at the vertex (%g %g %g)", p[0], p[1], p[2]);
+        }
+        if (f == 4) {
+            double c[3] = {0, 0, 1}, R = 1.5, b = 0.5, B = 1 + b * b;
+            double ex[3][2][3] = {{{c[0] + R * 2 * b / B, 0, c[2] + R * (b * b - 1) / B},
+                                   {c[0] - R * 2 * b / B, 0, c[2] + R * (1 - b * b) / B}},
+                                  {{0}},
+                                  {{1.2, 0, 0.1}, {0, 0, 2.5}}};
+            for (int o = 0; o < 3; o += 2) {
+                const rg2_surface *s = rg2_design_surface(d, o);
+                double dd = sphere_dist(s, c, R);
+                CHECK(dd <= 1e-13, "Fig. 14 surface %d on the sphere: %.3g", o, dd);
+                for (int e = 0; e < 2; e++) {
+                    double p[3];
+                    CHECK(surface_pole(s, e, p) && pt_dist3(p, ex[o][e]) <= 1e-13,
+                          "Fig. 14 surface %d pole %d at (%g %g %g), found (%g %g %g)", o, e, ex[o][e][0],
+                          ex[o][e][1], ex[o][e][2], p[0], p[1], p[2]);
+                }
+            }
+        }
+        rg2_design_free(d);
+    }
+    rmdir(dir);
+}
+
+/* Design-file errors of the poles operations name the item. */
+static void design_errors(void)
+{
+    static const struct {
+        const char *json;
+        rg2_status code;
+        const char *msg;
+    } cases[] = {
+        {"{\"shapes\": {\"t\": {\"kind\": \"torus\"}}, \"meshes\": {\"P\": {\"polar\": \"t\", \"u\": {\"arcs\": 8},"
+         " \"v\": {\"knots\": [0.2, 0.5]}}}}",
+         RG2_EINVAL, "no polar configuration"},
+        {"{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 8},"
+         " \"v\": {\"knots\": [0.5, 0.2]}}}}",
+         RG2_EDOMAIN, "meshes.P"},
+        {"{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\", \"v\": {\"knots\": "
+         "[0.2, 0.5]}}, \"M\": {\"mobius\": \"P\", \"b\": 1, \"poles\": {}}}}",
+         RG2_EPARSE, "exactly one of 'b'"},
+        {"{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\", \"v\": {\"knots\": "
+         "[0.2, 0.5]}}, \"C\": {\"cap\": \"P\", \"ends\": \"top\"}}}",
+         RG2_EPARSE, "meshes.C.ends"},
+        {"{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {\"A\": {\"shape\": \"c\"}, \"E\": {\"edit\": "
+         "\"A\", \"points\": [{\"pole\": \"south\", \"move\": [0, 0, 1]}]}}}",
+         RG2_EINVAL, "not a polar point"},
+        {"{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {\"A\": {\"shape\": \"c\", \"u\": {\"arcs\": 4, "
+         "\"to\": 90}}, \"C\": {\"cap\": \"A\"}}}",
+         RG2_EINVAL, "closed ring"},
+        {"{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 3}, "
+         "\"v\": {\"knots\": [0.2, 0.5, 0.8]}}, \"M\": {\"mobius\": \"P\", \"poles\": {\"south\": [0, 0.999, "
+         "-0.0447101778], \"north\": [0, 1, 0]}}}}",
+         RG2_EWEIGHT, "through infinity"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+        rg2_design *d = NULL;
+        rg2_error err = {0};
+        rg2_status st = rg2_design_parse(cases[k].json, strlen(cases[k].json), "poles", &d, &err);
+        CHECK(st == cases[k].code && strstr(err.msg, cases[k].msg) && d == NULL,
+              "design error %zu: got %s '%s', expected %s with '%s'", k, rg2_status_str(st), err.msg,
+              rg2_status_str(cases[k].code), cases[k].msg);
+        rg2_design_free(d);
+    }
+}
+
 int main(void)
 {
     sphere_caps();
     quadric_caps();
     freeform_caps();
     cap_errors();
+    design_examples();
+    design_errors();
     return rg2t_done("test_cap");
 }
