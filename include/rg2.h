@@ -555,7 +555,7 @@ typedef struct {
                                is v in [0, v_c] (0: polynomial chart, pole at r = 0); used only
                                when length > 0 */
     double jet_weight[3]; /**< multipliers of the value, first and second derivative rows of the
-                               least-squares fit (default 1, 1, 1) */
+                               least-squares fit (default 1, 1, 0.25) */
     int samples;          /**< boundary samples per patch column (default 8) */
 } rg2_cap_opts;
 

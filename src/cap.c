@@ -10,7 +10,8 @@ void rg2_cap_opts_default(rg2_cap_opts *o)
 {
     memset(o, 0, sizeof *o);
     o->ends = RG2_CAP_SOUTH | RG2_CAP_NORTH;
-    o->jet_weight[0] = o->jet_weight[1] = o->jet_weight[2] = 1.0;
+    o->jet_weight[0] = o->jet_weight[1] = 1.0;
+    o->jet_weight[2] = 0.25; /* docs/poles.md: a dome, not a bullet, on a cylinder */
     o->samples = 8;
 }
 

@@ -489,7 +489,8 @@ static void design_examples(void)
 {
     static const char *const files[] = {"examples/fig9_polar_sphere.json", "examples/fig10_sphere_cylinder.json",
                                         "examples/fig11_cube_tube.json",
-                                        "examples/fig12_paraboloid_hyperboloid.json", "examples/fig14_mobius.json"};
+                                        "examples/fig12_paraboloid_hyperboloid.json", "examples/fig14_mobius.json",
+                                        "examples/fig15_saddle_caps.json"};
     char dir[] = "/tmp/rg2_poles_XXXXXX";
     CHECK(mkdtemp(dir) != NULL, "temporary directory");
     printf("pole example designs:\n");
@@ -572,6 +573,33 @@ static void design_examples(void)
                 }
             }
         }
+        if (f == 5) /* Fig. 15: report the meridian curvature of the saddle caps (oscillation) */
+            for (int o = 0; o < 2; o++) {
+                const rg2_surface *s = rg2_design_surface(d, o);
+                int worst = 0;
+                double kmin = 0;
+                for (int i = 0; i < s->nu; i++) {
+                    int ch = 0;
+                    double prev = 0;
+                    for (int j = s->nv - 4; j < s->nv; j++)
+                        for (int t = 0; t <= 16; t++) {
+                            rg2_eval e;
+                            rg2_patch_eval(rg2_surface_patch(s, i, j), 0.0, t / 16.0, 2, &e);
+                            if (e.flags & RG2_EVAL_NORMAL_UNDEFINED)
+                                continue;
+                            double k = rg2_eval_normal_curvature(&e, 0, 1);
+                            kmin = fmin(kmin, k);
+                            if (fabs(k) > 1e-3) {
+                                ch += prev * k < 0;
+                                prev = k;
+                            }
+                        }
+                    worst = ch > worst ? ch : worst;
+                }
+                printf("  Fig. 15 %s: most sign changes of the meridian curvature along one meridian of the cap "
+                       "%d, strongest meridian curvature %.2f\n",
+                       o ? "4-saddle" : "saddle", worst, kmin);
+            }
         rg2_design_free(d);
     }
     rmdir(dir);
