@@ -124,6 +124,38 @@ static void check_seams(const rg2_surface *s, const char *what, double angle_tol
            what, g->seams, g->pos, g->angle, g->curv, g->param1, g->param2, g->skipped);
 }
 
+/* Seams between the cap and the body only: rows (r, r + 1) of a capped surface copied into a
+ * 2-row surface whose one v seam is the cap/body seam (bv, gv of row r + 1). */
+static void cap_body_seams(const rg2_surface *s, const rg2_cap_info *info, rg2t_seams *worst)
+{
+    for (int e = 0; e < 2; e++) {
+        if (!info->capped[e])
+            continue;
+        int r = e ? s->nv - 4 : 2; /* south: cap row 2 | body row 3; north: body | cap */
+        rg2_surface t = *s;
+        rg2_patch *pp = malloc(sizeof(rg2_patch) * 2 * (size_t)s->nu);
+        double bv[2] = {1, s->bv[r + 1]}, gv[2] = {0, s->gv[r + 1]};
+        for (int i = 0; i < s->nu; i++)
+            for (int q = 0; q < 2; q++)
+                pp[i * 2 + q] = *rg2_surface_patch(s, i, r + q);
+        t.patch = pp;
+        t.nv = 2;
+        t.closed_v = 0;
+        t.bv = bv;
+        t.gv = gv;
+        t.tag = NULL;
+        rg2t_seams g;
+        rg2t_surface_seams(&t, 16, &g);
+        worst->pos = fmax(worst->pos, g.pos);
+        worst->angle = fmax(worst->angle, g.angle);
+        worst->curv = fmax(worst->curv, g.curv);
+        worst->param1 = fmax(worst->param1, g.param1);
+        worst->param2 = fmax(worst->param2, g.param2);
+        worst->seams++;
+        free(pp);
+    }
+}
+
 /* The complete sphere from polar meshes with random partitions, knots and placement. */
 static void sphere_caps(void)
 {
@@ -332,7 +364,7 @@ static void freeform_caps(void)
     uint64_t seed = 4242;
     rg2t_seed(&r, seed);
     printf("free-form caps, seed %llu\n", (unsigned long long)seed);
-    rg2t_seams worst = {0};
+    rg2t_seams worst = {0}, cb = {0};
     double wpn = 0, wpp = 0;
     for (int trial = 0; trial < 6; trial++) {
         int tube = trial >= 3;
@@ -383,6 +415,7 @@ static void freeform_caps(void)
         char what[64];
         snprintf(what, sizeof what, "%s %d", tube ? "tube" : "perturbed sphere", trial);
         check_seams(&s, what, 1e-11, 1e-8, &g);
+        cap_body_seams(&s, &info, &cb);
         worst.angle = fmax(worst.angle, g.angle);
         worst.curv = fmax(worst.curv, g.curv);
         worst.pos = fmax(worst.pos, g.pos);
@@ -411,6 +444,11 @@ static void freeform_caps(void)
     printf("  free-form worst: position %.2e, normal angle %.2e rad, curvature %.2e rel; pole point %.2e, "
            "pole normals %.2e rad\n",
            worst.pos, worst.angle, worst.curv, wpp, wpn);
+    CHECK(cb.seams == 12 && cb.angle <= 1e-11 && cb.curv <= 1e-8 && cb.pos <= 1e-14,
+          "cap/body seams: %d, angle %.3g, curvature %.3g", cb.seams, cb.angle, cb.curv);
+    printf("  the 12 cap/body seams alone: position %.2e, normal angle %.2e rad, curvature %.2e rel, "
+           "parametric %.2e / %.2e\n",
+           cb.pos, cb.angle, cb.curv, cb.param1, cb.param2);
 }
 
 static void cap_errors(void)
