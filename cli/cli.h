@@ -22,6 +22,8 @@ int rg2_cmd_demo(int argc, char **argv);
 int rg2_cmd_build(int argc, char **argv);
 int rg2_cmd_info(int argc, char **argv);
 int rg2_cmd_mesh(int argc, char **argv);
+int rg2_cmd_shapes(int argc, char **argv);
+int rg2_cmd_shape(int argc, char **argv);
 
 /* Parse "a,b,c" into at most max doubles; returns the count or -1 (message printed). */
 int rg2_cli_parse_list(const char *opt, const char *s, double *out, int max);

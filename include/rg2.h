@@ -43,6 +43,7 @@ extern "C" {
 #endif
 
 #define RG2_VERSION_STRING "0.1.0"
+#define RG2_PI 3.14159265358979323846
 
 /* ===================================================================================== */
 /** @name Status and errors */
@@ -289,20 +290,20 @@ typedef enum {
 typedef struct {
     rg2_partition_kind kind;
     int closed;           /**< angles only */
-    int n;                /**< number of arcs (angles) or of knots (knots, n >= 2) */
-    const double *values; /**< n angles (radians) or n increasing knots */
+    int n;                /**< number of values: arcs (angles) or knots (knots, n >= 2) */
+    const double *values; /**< n angles (radians, each in (0, pi)) or n increasing knots */
     double start;         /**< angle of the start of the first arc (angles only) */
 } rg2_partition;
 
 typedef enum {
     RG2_SHAPE_TORUS,          /**< R, r: ((R + r cv) cu, (R + r cv) su, r sv); u, v circles */
     RG2_SHAPE_CYCLIDE,        /**< a, c, mu (Dupin cyclide, b^2 = a^2 - c^2 > 0); u, v circles */
-    RG2_SHAPE_SPHERE,         /**< radius: family-2 band, v knots in (0, 1): 0 south, 1 north */
+    RG2_SHAPE_SPHERE,         /**< radius: family-2 band, v in (0, 1): 0 south, 1 north pole */
     RG2_SHAPE_CYLINDER,       /**< radius: (R cu, R su, v); v knots = heights */
     RG2_SHAPE_CONE,           /**< slope k: (v cu, v su, k v); v knots = radii */
-    RG2_SHAPE_HYPERBOLOID1_RULED, /**< (cu - v su, su + v cu, v); x^2 + y^2 - z^2 = 1 */
-    RG2_SHAPE_HYPERBOLOID1,   /**< ((1+v^2) cu, (1+v^2) su, 1 - v^2, 2v), v > 0 */
-    RG2_SHAPE_HYPERBOLOID2,   /**< (2v cu, 2v su, 1 + v^2, 1 - v^2), |v| < 1 */
+    RG2_SHAPE_HYPERBOLOID1_RULED, /**< a, c: (cu - v su, su + v cu, v); x^2 + y^2 - z^2 = 1 */
+    RG2_SHAPE_HYPERBOLOID1,   /**< a, c: ((1+v^2) cu, (1+v^2) su, 1 - v^2, 2v), v > 0 */
+    RG2_SHAPE_HYPERBOLOID2,   /**< a, c: (2v cu, 2v su, 1 + v^2, 1 - v^2), |v| < 1 */
     RG2_SHAPE_PARABOLOID,     /**< A, B: elliptic paraboloid (A v cu, B v su, v^2) */
     RG2_SHAPE_HYPAR,          /**< A, B: hyperbolic paraboloid (A u, B v, u^2 - v^2); u, v knots */
     RG2_SHAPE_ELLIPSOID,      /**< a, b, c: the sphere band scaled by (a, b, c); v as sphere */
@@ -316,12 +317,16 @@ typedef struct {
     double xform[16];  /**< row-major 4x4 matrix applied to every homogeneous 4-tuple */
 } rg2_shape;
 
-/** Name ("torus", ...), parameter names and count of a shape kind; NULL for an unknown kind. */
+/** Name ("torus", ...) of a shape kind; NULL for an unknown kind. Parameter names, count and
+ *  defaults: rg2_shape_describe. */
 RG2_API const char *rg2_shape_name(rg2_shape_kind kind);
 RG2_API rg2_status rg2_shape_from_name(const char *name, rg2_shape_kind *kind, rg2_error *err);
 /** Initialise a shape with default parameters and the identity placement. */
 RG2_API void rg2_shape_init(rg2_shape *s, rg2_shape_kind kind);
-/** Build the control mesh of the shape over the partitions (u, v). */
+/** Build the placed control mesh of the shape over the partitions (u, v) (docs/shapes.md).
+ *  @return RG2_EDOMAIN / RG2_ENONFINITE for a bad parameter (naming it), RG2_EINVAL for a
+ *  partition of the wrong kind or an empty one, the rg2_partition_check codes, RG2_EDOMAIN for
+ *  a singular placement or a knot outside the shape's range (hyperboloids). */
 RG2_API rg2_status rg2_shape_mesh(const rg2_shape *s, const rg2_partition *pu,
                                   const rg2_partition *pv, rg2_mesh *out, rg2_error *err);
 /** Implicit function of the placed shape at x (0 on the surface); gradient into grad (nullable). */
@@ -348,7 +353,7 @@ typedef struct {
     int n_params;                  /**< used entries of rg2_shape.param */
     const char *param_names[4];
     double param_defaults[4];
-    rg2_partition_kind dir_kind[2];/**< u, v: RG2_PART_ANGLES (circle) or RG2_PART_KNOTS */
+    rg2_partition_kind dir_kind[2]; /**< u, v: RG2_PART_ANGLES (circle) or RG2_PART_KNOTS */
     double default_range[2][2];    /**< u, v: default angle range (radians) or knot range */
     int default_closed[2];         /**< u, v: closed by default (full circles) */
     int default_segments[2];       /**< u, v: default number of arcs / knot intervals */
@@ -450,10 +455,15 @@ RG2_API rg2_status rg2_nurbs_mesh(const rg2_nurbs *nb, rg2_mesh *out, rg2_error 
 /** @name Design (JSON design files and operations, paper section 4) */
 /* ===================================================================================== */
 
-/* A design: shape meshes and operations (cut, merge, edit, transform, morph) read from a
- * JSON design file (docs/design-format.md), built into one or more patch surfaces. Every patch
- * carries a provenance tag: the index of the shape it reproduces exactly, or -1 for a
- * transition patch. */
+/* A design: shape meshes and operations on them (shape, cut, transpose, reverse, merge, edit,
+ * transform, morph) read from a JSON design file (docs/design-format.md), built into one or
+ * more patch surfaces. Every patch carries a provenance tag (rg2_surface.tag): the index of the
+ * shape it reproduces exactly, or -1 for a transition patch. A patch is tagged when its 4 x 4
+ * control block is a consecutive block of a shape's own mesh (in any orientation: transposed,
+ * reversed) and its construction stencils equal that mesh's (to 1e-14), i.e. it is the shape's
+ * own patch. The shape list holds the shapes of the file followed by the transformed copies
+ * that `transform` operations create ("label@meshes.name"). The design owns everything the
+ * accessors return. */
 typedef struct rg2_design rg2_design;
 
 /** Read and build a design file. On failure *out is NULL and err names the offending item

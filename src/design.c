@@ -127,14 +127,16 @@ static int source_segment(const rg2__stencil *st, int L)
     return (L >= 1 && L <= st->n - 3) ? L - 1 : -1;
 }
 
-static int stencil_equal(const rg2__stencil *a, int ka, const rg2__stencil *b, int kb)
+/* Stencil segment ka of a equals segment kb of b (to 1e-14); flip: b runs the other way, so
+ * coefficient r over point a corresponds to b's coefficient 3 - r over point 3 - a. */
+static int stencil_equal(const rg2__stencil *a, int ka, const rg2__stencil *b, int kb, int flip)
 {
     const double tol = 1e-14;
     if (fabs(a->w[ka] - b->w[kb]) > tol * fabs(b->w[kb]))
         return 0;
     for (int r = 0; r < 4; r++)
         for (int c = 0; c < 4; c++)
-            if (fabs(a->c[ka][r][c] - b->c[kb][r][c]) > tol)
+            if (fabs(a->c[ka][r][c] - b->c[kb][flip ? 3 - r : r][flip ? 3 - c : c]) > tol)
                 return 0;
     return 1;
 }
@@ -142,12 +144,13 @@ static int stencil_equal(const rg2__stencil *a, int ka, const rg2__stencil *b, i
 /*
  * METHOD: patch (k, l) is the image of the 4x4 control block starting at p^{i-1, j-1}
  * (i, j its legs) under the u and v stencils of the mesh. It is a piece of shape s exactly
- * when (1) the 16 points are, bit for bit, a consecutive 4x4 block (i0 + a, j0 + b) of one
- * source mesh of s (or its transpose), and (2) the u and v stencils of the patch agree
- * (to 1e-14) with the source's stencils of the corresponding segments, which must be
- * segments the source itself produces. Then the patch equals the source's own patch up to
- * rounding. This is the dependency rule of MATH.md section 6 (points p^{i-1..i+2}, the
- * scalars of junctions i-1..i+2 and legs i-2..i+2 enter only through the stencil), checked
+ * when (1) the 16 points are, bit for bit, a consecutive 4x4 block of one source mesh of s,
+ * in any of the 8 orientations (transposed or not, each direction forwards or reversed), and
+ * (2) the u and v stencils of the patch agree (to 1e-14) with the source's stencils of the
+ * corresponding segments (read backwards for a reversed direction), which must be segments the
+ * source itself produces. Then the patch equals the source's own patch up to rounding and
+ * reparameterization. This is the dependency rule of MATH.md section 6 (points p^{i-1..i+2},
+ * the scalars of junctions i-1..i+2 and legs i-2..i+2 enter only through the stencil), checked
  * on values, so it also accepts seams whose scalars were re-solved to keep the stencils.
  */
 int rg2__patch_tag(const rg2_design *d, const rg2__dmesh *dm, const rg2__stencil st[2], int k, int l)
@@ -160,29 +163,32 @@ int rg2__patch_tag(const rg2_design *d, const rg2__dmesh *dm, const rg2__stencil
         return -1;
     const rg2__source *S = &d->src[p0->src];
     const rg2_mesh *B = &S->base;
-    for (int tr = 0; tr < 2; tr++) {
-        int ok = 1;
+    for (int o = 0; o < 8; o++) {
+        int tr = o & 1, ru = (o >> 1) & 1, rv = (o >> 2) & 1, ok = 1;
         for (int a = 0; a < 4 && ok; a++)
             for (int b = 0; b < 4 && ok; b++) {
                 int mi = rg2__wrap(iu + a, m->nu, m->su.closed), mj = rg2__wrap(jv + b, m->nv, m->sv.closed);
                 const rg2__pprov *q = rg2__dmesh_pp(dm, mi, mj);
-                int ei = p0->i + (tr ? b : a), ej = p0->j + (tr ? a : b);
+                int du = ru ? -a : a, dv = rv ? -b : b;
+                int ei = p0->i + (tr ? dv : du), ej = p0->j + (tr ? du : dv);
                 if (B->su.closed)
                     ei = rg2__wrap(ei, B->nu, 1);
                 if (B->sv.closed)
                     ej = rg2__wrap(ej, B->nv, 1);
-                if (ei >= B->nu || ej >= B->nv || q->src != p0->src || q->i != ei || q->j != ej ||
-                    memcmp(rg2_mesh_at(m, mi, mj), rg2_mesh_at(B, ei, ej), 4 * sizeof(double)))
+                if (ei < 0 || ej < 0 || ei >= B->nu || ej >= B->nv || q->src != p0->src || q->i != ei ||
+                    q->j != ej || memcmp(rg2_mesh_at(m, mi, mj), rg2_mesh_at(B, ei, ej), 4 * sizeof(double)))
                     ok = 0;
             }
         if (!ok)
             continue;
-        /* mesh u follows source u (tr = 0) or source v (tr = 1) */
-        int su = source_segment(&S->st[tr], (tr ? p0->j : p0->i) + 1);
-        int sv = source_segment(&S->st[1 - tr], (tr ? p0->i : p0->j) + 1);
+        /* mesh u follows source u (tr = 0) or source v (tr = 1); a reversed direction's first
+         * point is the source's last of the four, so the source leg is 2 before it */
+        int bu = tr ? p0->j : p0->i, bv = tr ? p0->i : p0->j;
+        int su = source_segment(&S->st[tr], ru ? bu - 2 : bu + 1);
+        int sv = source_segment(&S->st[1 - tr], rv ? bv - 2 : bv + 1);
         if (su < 0 || sv < 0)
             continue;
-        if (stencil_equal(&st[0], k, &S->st[tr], su) && stencil_equal(&st[1], l, &S->st[1 - tr], sv))
+        if (stencil_equal(&st[0], k, &S->st[tr], su, ru) && stencil_equal(&st[1], l, &S->st[1 - tr], sv, rv))
             return S->shape;
     }
     return -1;

@@ -74,6 +74,10 @@ rg2_status rg2__op_cut(const rg2__dmesh *in, const int first[2], const int last[
                        rg2__dmesh *out, const char *what, rg2_error *err);
 rg2_status rg2__op_transpose(const rg2__dmesh *in, rg2__dmesh *out, const char *what,
                              rg2_error *err);
+/* Reverse direction dir: points in reverse order, legs reversed, junction scalars
+ * b' = 1 / b, g' = g / b^3 (the same curves traversed backwards). */
+rg2_status rg2__op_reverse(const rg2__dmesh *in, int dir, rg2__dmesh *out, const char *what,
+                           rg2_error *err);
 rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int closed,
                          rg2__seam_rule rule, rg2__dmesh *out, const char *what, rg2_error *err);
 rg2_status rg2__op_transform(rg2_design *d, const rg2__dmesh *in, const double M[16],

@@ -211,6 +211,48 @@ rg2_status rg2__op_transpose(const rg2__dmesh *in, rg2__dmesh *out, const char *
 }
 
 /* ------------------------------------------------------------------------------------- */
+/* reverse */
+
+/*
+ * METHOD: with L(t) = f_i(1 - t), R(t) = f_{i-1}(1 - t), Definition 1 at the junction gives
+ * R'(0) = (1 / b) L'(1) and R''(0) = (1 / b^2) L''(1) + (g / b^3) L'(1): the reversed junction
+ * has b' = 1 / b, g' = g / b^3 (so K' = K / b^3 > 0), and leg l of the reversed direction is
+ * leg n - 2 - l. The construction is symmetric under this relabelling, so every patch is the
+ * same patch traversed backwards (the provenance tags check it on the stencils).
+ */
+rg2_status rg2__op_reverse(const rg2__dmesh *in, int dir, rg2__dmesh *out, const char *what,
+                           rg2_error *err)
+{
+    rg2_status st = rg2__dmesh_copy(in, out, err);
+    if (st)
+        return st;
+    const rg2_scalars *a = dir_scalars(&in->m, dir);
+    rg2_scalars *b = dir_scalars_mut(&out->m, dir);
+    int n = a->n;
+    for (int i = 0; i < in->m.nu; i++)
+        for (int j = 0; j < in->m.nv; j++) {
+            int si = dir == 0 ? n - 1 - i : i, sj = dir == 0 ? j : n - 1 - j;
+            memcpy(rg2_mesh_at(&out->m, i, j), rg2_mesh_at(&in->m, si, sj), 4 * sizeof(double));
+            *rg2__dmesh_pp(out, i, j) = *rg2__dmesh_pp(in, si, sj);
+        }
+    for (int j = 0; j < n; j++) {
+        double bb = a->b[n - 1 - j];
+        b->b[j] = 1.0 / bb;
+        b->g[j] = a->g[n - 1 - j] / (bb * bb * bb);
+        out->jun[dir][j] = in->jun[dir][n - 1 - j];
+    }
+    for (int s = 0; s < rg2_scalars_num_w(a); s++) {
+        int from = a->closed ? rg2__wrap(n - 2 - s, n, 1) : n - s;
+        b->w[s] = a->w[from];
+        out->leg[dir][s] = in->leg[dir][from];
+    }
+    st = rg2_scalars_check(b, what, err);
+    if (st)
+        rg2__dmesh_free(out);
+    return st;
+}
+
+/* ------------------------------------------------------------------------------------- */
 /* merge */
 
 static int close_rel(double a, double b, double tol)

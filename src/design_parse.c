@@ -340,11 +340,13 @@ static rg2_status parse_shape(pctx *c, const cJSON *obj, const char *label, cons
     int any;
     if ((st = parse_placement(c, obj, path, s.xform, &any)))
         return st;
-    /* let the shape module validate the parameters */
-    double coef[4][4][4];
+    /* let the shape module validate the parameters and the placement */
+    double coef[4][4][4], inv[16];
     rg2_error e;
     if ((st = rg2_shape_coeffs(&s, coef, &e)))
         return fail(c, st, path, "%s", e.msg);
+    if (any && (st = rg2_xform_invert(s.xform, inv, &e)))
+        return fail(c, st, path, "placement: %s", e.msg);
     return rg2__design_add_shape(c->d, &s, label, c->err) < 0 ? c->err->code : RG2_OK;
 }
 
@@ -452,7 +454,7 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
             if (!(span > 0.0))
                 return fail(c, RG2_EDOMAIN, path, "arc range from %g to %g degrees is empty", lo, hi);
             for (int k = 0; k < nseg; k++)
-                pb->values[k] = span / nseg * M_PI / 180.0;
+                pb->values[k] = closed ? 2.0 * M_PI / nseg : span * (M_PI / 180.0) / nseg;
             n = nseg;
         } else {
             if (!(hi > lo))
@@ -476,9 +478,9 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
 /* ------------------------------------------------------------------------------------- */
 /* meshes */
 
-static const char *const ops[] = {"shape", "cut", "merge", "transpose", "edit", "transform", "morph",
+static const char *const ops[] = {"shape", "cut", "merge", "transpose", "reverse", "edit", "transform", "morph",
                                   "polar", "mobius", "cap"};
-#define N_OPS 10
+#define N_OPS 11
 
 static rg2_status mesh_ref(pctx *c, const cJSON *x, const char *path, int *idx)
 {
@@ -673,6 +675,21 @@ static rg2_status op_transpose(pctx *c, const cJSON *obj, const char *path, rg2_
     if (st)
         return st;
     return rg2__op_transpose(&c->d->mesh[src], out, path, c->err);
+}
+
+static rg2_status op_reverse(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
+{
+    static const char *const keys[] = {"reverse", "dir"};
+    int src, dir;
+    rg2_status st = op_begin(c, obj, path, keys, 2, &src);
+    if (st)
+        return st;
+    const cJSON *x;
+    char p[300];
+    subpath(p, sizeof p, path, "dir");
+    if ((st = need(c, obj, "dir", path, &x)) || (st = parse_dir(c, x, p, &dir)))
+        return st;
+    return rg2__op_reverse(&c->d->mesh[src], dir, out, path, c->err);
 }
 
 static rg2_status op_transform(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
@@ -893,7 +910,7 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
         }
     if (op < 0)
         return fail(c, RG2_EPARSE, path,
-                    "no operation: give one of shape, cut, merge, transpose, edit, transform, morph, "
+                    "no operation: give one of shape, cut, merge, transpose, reverse, edit, transform, morph, "
                     "polar, mobius, cap");
     if (rg2__design_find_mesh(c->d, name) >= 0)
         return fail(c, RG2_EPARSE, path, "a mesh named '%s' already exists", name);
@@ -904,14 +921,16 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
     case 1: st = op_cut(c, obj, path, &tmp); break;
     case 2: st = op_merge(c, obj, path, &tmp); break;
     case 3: st = op_transpose(c, obj, path, &tmp); break;
-    case 4: st = op_edit(c, obj, path, &tmp); break;
-    case 5: st = op_transform(c, obj, path, &tmp); break;
-    case 6: st = op_morph(c, obj, path, &tmp); break;
-    case 7: st = op_polar(c, obj, path, &tmp); break;
-    case 8: st = op_mobius(c, obj, path, &tmp); break;
+    case 4: st = op_reverse(c, obj, path, &tmp); break;
+    case 5: st = op_edit(c, obj, path, &tmp); break;
+    case 6: st = op_transform(c, obj, path, &tmp); break;
+    case 7: st = op_morph(c, obj, path, &tmp); break;
+    case 8: st = op_polar(c, obj, path, &tmp); break;
+    case 9: st = op_mobius(c, obj, path, &tmp); break;
     default: st = op_cap(c, obj, path, &tmp); break;
     }
     if (st) {
+        rg2__dmesh_free(&tmp); /* whatever the operation had allocated */
         /* operation messages from the ops module lack the file name: add it */
         if (c->err && strncmp(c->err->msg, c->file, strlen(c->file))) {
             rg2_error e = *c->err;

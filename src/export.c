@@ -1,6 +1,7 @@
 /* export.c -- the export dispatcher (format by file extension), the JSON patch dump, and
  * helpers shared by the writers: temporary-file output, STEP/IGES reals, weight checks,
  * collapsed patch sides and the corner/edge topology of a patch grid. */
+#define _POSIX_C_SOURCE 200809L
 #include "export_internal.h"
 
 #include <cjson/cJSON.h>
@@ -378,6 +379,25 @@ double (*rg2__merged_net(const rg2_surface *s, int *NU, int *NV))[4]
 
 /* ---------------------------------------------------------------- JSON patch dump */
 
+/* A JSON array of doubles printed with 17 significant digits (cJSON's own printing may
+ * drop to 15 digits, which does not round-trip exactly). */
+static cJSON *exact_array(const double *x, int n)
+{
+    size_t cap = (size_t)n * 26 + 3;
+    char *buf = malloc(cap);
+    if (!buf)
+        return NULL;
+    size_t len = 0;
+    buf[len++] = '[';
+    for (int k = 0; k < n; k++)
+        len += (size_t)snprintf(buf + len, cap - len, "%s%.17g", k ? "," : "", x[k]);
+    buf[len++] = ']';
+    buf[len] = '\0';
+    cJSON *a = cJSON_CreateRaw(buf);
+    free(buf);
+    return a;
+}
+
 static rg2_status write_json(const rg2_surface *surfs, int n, const rg2_export_opts *o, rg2__out *out,
                              rg2_error *err)
 {
@@ -392,10 +412,10 @@ static rg2_status write_json(const rg2_surface *surfs, int n, const rg2_export_o
         ok = ok && cJSON_AddNumberToObject(js, "nu", s->nu) && cJSON_AddNumberToObject(js, "nv", s->nv) &&
              cJSON_AddBoolToObject(js, "closed_u", s->closed_u) &&
              cJSON_AddBoolToObject(js, "closed_v", s->closed_v);
-        cJSON *bu = ok ? cJSON_CreateDoubleArray(s->bu, s->nu) : NULL;
-        cJSON *gu = ok ? cJSON_CreateDoubleArray(s->gu, s->nu) : NULL;
-        cJSON *bv = ok ? cJSON_CreateDoubleArray(s->bv, s->nv) : NULL;
-        cJSON *gv = ok ? cJSON_CreateDoubleArray(s->gv, s->nv) : NULL;
+        cJSON *bu = ok ? exact_array(s->bu, s->nu) : NULL;
+        cJSON *gu = ok ? exact_array(s->gu, s->nu) : NULL;
+        cJSON *bv = ok ? exact_array(s->bv, s->nv) : NULL;
+        cJSON *gv = ok ? exact_array(s->gv, s->nv) : NULL;
         ok = ok && bu && cJSON_AddItemToObject(js, "bu", bu);
         ok = ok && gu && cJSON_AddItemToObject(js, "gu", gu);
         ok = ok && bv && cJSON_AddItemToObject(js, "bv", bv);
@@ -408,7 +428,7 @@ static rg2_status write_json(const rg2_surface *surfs, int n, const rg2_export_o
         ok = ok && pa;
         for (int p = 0; ok && p < s->nu * s->nv; p++) {
             /* one patch: 16 homogeneous points h[r][s], r (u) outer */
-            cJSON *jp = cJSON_CreateDoubleArray(&s->patch[p].h[0][0][0], 64);
+            cJSON *jp = exact_array(&s->patch[p].h[0][0][0], 64);
             ok = jp && cJSON_AddItemToArray(pa, jp);
         }
     }

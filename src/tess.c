@@ -40,24 +40,23 @@ static void cross3(const double a[3], const double b[3], double c[3])
 }
 
 /*
- * Normal and curvatures where Su x Sv vanishes (a collapsed side). METHOD: on a side v = 0
+ * Normal and curvatures on a collapsed side (0 v=0, 1 u=1, 2 v=1, 3 u=0), where Su x Sv
+ * vanishes (up to rounding noise, so the evaluator's flag cannot be trusted). METHOD: on a side v = 0
  * that collapses, Su(u, v) = v Suv(u, 0) + O(v^2), so Su x Sv / v -> Suv x Sv: the limit normal
  * is Suv x Sv normalised (the sign flips on v = 1, and u = 0 / 1 use Su x Suv likewise). The
  * curvatures there are taken 1e-6 inside the patch (they have no value on a collapsed side).
  */
-static void degenerate_point(const rg2_patch *P, double u, double v, int curvature, rg2_eval *e)
+static void degenerate_point(const rg2_patch *P, double u, double v, int side, int curvature, rg2_eval *e)
 {
-    double lu = sqrt(e->su[0] * e->su[0] + e->su[1] * e->su[1] + e->su[2] * e->su[2]);
-    double lv = sqrt(e->sv[0] * e->sv[0] + e->sv[1] * e->sv[1] + e->sv[2] * e->sv[2]);
     double n[3] = {0, 0, 0};
-    if (lu < lv && (v == 0.0 || v == 1.0)) {
+    if (side == 0 || side == 2) {
         cross3(e->suv, e->sv, n);
-        if (v == 1.0)
+        if (side == 2)
             for (int k = 0; k < 3; k++)
                 n[k] = -n[k];
-    } else if (lv < lu && (u == 0.0 || u == 1.0)) {
+    } else {
         cross3(e->su, e->suv, n);
-        if (u == 1.0)
+        if (side == 1)
             for (int k = 0; k < 3; k++)
                 n[k] = -n[k];
     }
@@ -77,21 +76,28 @@ static void degenerate_point(const rg2_patch *P, double u, double v, int curvatu
 
 /*
  * Per-patch sampling: (d + 1)^2 points at u = a / d, v = b / d, stored at a * (d + 1) + b.
+ * `collapsed` has bit k set when side k (0 v=0, 1 u=1, 2 v=1, 3 u=0) is collapsed.
  * This is the only place that evaluates the surface (the grid evaluator replaces it).
  */
-static void sample_patch(const rg2_patch *P, int d, int curvature, tess_sample *out)
+static void sample_patch(const rg2_patch *P, int d, int curvature, unsigned collapsed, tess_sample *out)
 {
     for (int a = 0; a <= d; a++) {
         double u = a == d ? 1.0 : (double)a / d;
         for (int b = 0; b <= d; b++) {
             double v = b == d ? 1.0 : (double)b / d;
+            int side = -1;
+            if (b == 0 && (collapsed & 1u))
+                side = 0;
+            else if (a == d && (collapsed & 2u))
+                side = 1;
+            else if (b == d && (collapsed & 4u))
+                side = 2;
+            else if (a == 0 && (collapsed & 8u))
+                side = 3;
             rg2_eval e;
-            rg2_patch_eval(P, u, v, curvature ? 2 : 1, &e);
-            if (e.flags & RG2_EVAL_NORMAL_UNDEFINED) {
-                if (!curvature)
-                    rg2_patch_eval(P, u, v, 2, &e);
-                degenerate_point(P, u, v, curvature, &e);
-            }
+            rg2_patch_eval(P, u, v, (curvature || side >= 0) ? 2 : 1, &e);
+            if (side >= 0)
+                degenerate_point(P, u, v, side, curvature, &e);
             tess_sample *o = &out[a * (d + 1) + b];
             memcpy(o->p, e.p, sizeof e.p);
             memcpy(o->n, e.n, sizeof e.n);
@@ -151,6 +157,7 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
         failed = 1;
         goto done;
     }
+    double tol = rg2__collapse_tol(s);
 #ifdef RG2_HAVE_OPENMP
 #pragma omp parallel for schedule(dynamic) if (nu * nv > 16)
 #endif
@@ -164,7 +171,12 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
             failed = 1;
             continue;
         }
-        sample_patch(rg2_surface_patch(s, i, j), d, curvature, buf);
+        const rg2_patch *P = rg2_surface_patch(s, i, j);
+        unsigned collapsed = 0;
+        for (int side = 0; side < 4; side++)
+            if (rg2__patch_side_collapsed(P, side, tol))
+                collapsed |= 1u << side;
+        sample_patch(P, d, curvature, collapsed, buf);
         int a1 = (i == nu - 1 && !cu) ? d : d - 1, b1 = (j == nv - 1 && !cv) ? d : d - 1;
         for (int a = 0; a <= a1; a++)
             for (int b = 0; b <= b1; b++) {
@@ -178,7 +190,6 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
         goto done;
     for (size_t k = 0; k < ng; k++)
         parent[k] = (int)k;
-    double tol = rg2__collapse_tol(s);
     for (int i = 0; i < nu; i++)
         for (int j = 0; j < nv; j++)
             for (int side = 0; side < 4; side++) {

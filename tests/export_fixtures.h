@@ -10,7 +10,7 @@
 #include <string.h>
 
 /* Torus (R + r cos v)(cos u, sin u), r sin v from nu x nv arcs (the demo's construction). */
-static rg2_status fx_torus(double R, double r, int nu, int nv, rg2_surface *out, rg2_error *err)
+static inline rg2_status fx_torus(double R, double r, int nu, int nv, rg2_surface *out, rg2_error *err)
 {
     double au[32], av[32], csu[64], csv[64];
     rg2_mesh m;
@@ -47,14 +47,14 @@ static rg2_status fx_torus(double R, double r, int nu, int nv, rg2_surface *out,
 }
 
 /* Torus implicit distance estimate: | |(hypot(x,y) - R, z)| - r |. */
-static double fx_torus_dist(double R, double r, const double p[3])
+static inline double fx_torus_dist(double R, double r, const double p[3])
 {
     double q = hypot(p[0], p[1]) - R;
     return fabs(hypot(q, p[2]) - r);
 }
 
 /* Open nu x nv mesh with random points, weights in [0.6, 1.6] and random scalars. */
-static rg2_status fx_random(uint64_t seed, int nu, int nv, rg2_surface *out, rg2_error *err)
+static inline rg2_status fx_random(uint64_t seed, int nu, int nv, rg2_surface *out, rg2_error *err)
 {
     rg2t_rng r;
     rg2t_seed(&r, seed);
@@ -90,7 +90,7 @@ static rg2_status fx_random(uint64_t seed, int nu, int nv, rg2_surface *out, rg2
 /* Surface of revolution about z: u a circle of nu arcs, v an open uniform cubic profile with
  * radii -1, 0, 1, 2, ... (mirrored through the axis) so that the v = 0 side of the first patch
  * row collapses to the point on the axis: a pole. */
-static rg2_status fx_pole(int nu, int nv, rg2_surface *out, rg2_error *err)
+static inline rg2_status fx_pole(int nu, int nv, rg2_surface *out, rg2_error *err)
 {
     double au[32], csu[64], knots[40];
     rg2_mesh m;

@@ -275,12 +275,154 @@ static void edits_are_local(void)
                 tag_ok = 0;
         }
         CHECK(tag_ok, "edit %zu: tags do not follow the changed patches", c);
+        if (c < 3) {
+            int ps = rg2_design_point_shape(d1, 0, cases[c].i, cases[c].j);
+            int other = rg2_design_point_shape(d1, 0, (cases[c].i + 5) % m0->nu, (cases[c].j + 5) % m0->nv);
+            CHECK(ps == -1 && other == 0, "edit %zu: point provenance %d (edited), %d (untouched)", c, ps, other);
+        }
         rg2t_seams g;
         rg2t_surface_seams(s1, 6, &g);
         CHECK(g.angle <= 1e-11 && g.curv <= 1e-9, "edit %zu: seams %.3g rad, %.3g", c, g.angle, g.curv);
         rg2_design_free(d1);
     }
     rg2_design_free(d0);
+}
+
+static int same_mesh(const rg2_mesh *a, const rg2_mesh *b);
+
+/* Operations that must keep every patch exact: cuts (ranges, wrap, open_at), transpose,
+ * reverse (the same patches traversed backwards), transform, and cutting a closed torus in two and merging it back (the seam data agree, so
+ * the result is the torus again, every patch exact). */
+static void ops_keep_exactness(void)
+{
+    const char *json =
+        "{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": 3, \"r\": 1}},"
+        " \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": [20, 25, 30, 35, 40, 30, 25, 35, 30, 25, 35, 30]},"
+        "                       \"v\": {\"arcs\": 6}},"
+        "  \"wrap\": {\"cut\": \"T\", \"u\": [9, 15], \"v\": [1, 5]},"
+        "  \"open\": {\"cut\": \"T\", \"u\": {\"open_at\": 3}},"
+        "  \"turned\": {\"transpose\": \"wrap\"},"
+        "  \"moved\": {\"transform\": \"turned\", \"scale\": 0.5, \"rotate\": {\"axis\": [1, 2, 3], \"degrees\": 33},"
+        "             \"translate\": [1, -2, 0.5]},"
+        "  \"A\": {\"cut\": \"T\", \"u\": [0, 5]}, \"B\": {\"cut\": \"T\", \"u\": [6, 11]},"
+        "  \"again\": {\"merge\": [\"A\", \"B\"], \"along\": \"u\", \"closed\": true},"
+        "  \"back\": {\"reverse\": \"wrap\", \"dir\": \"v\"}, \"backT\": {\"reverse\": \"T\", \"dir\": \"u\"},"
+        "  \"both\": {\"reverse\": \"backT\", \"dir\": \"v\"}},"
+        " \"output\": [\"wrap\", \"open\", \"turned\", \"moved\", \"again\", \"T\", \"back\", \"backT\", \"both\"]}";
+    rg2_error err;
+    rg2_design *d = parse(json, &err);
+    if (!d)
+        return;
+    const int want[9][2] = {{4, 2}, {9, 6}, {2, 4}, {2, 4}, {12, 6}, {12, 6}, {4, 2}, {12, 6}, {12, 6}};
+    for (int o = 0; o < rg2_design_num_surfaces(d); o++) {
+        const rg2_surface *s = rg2_design_surface(d, o);
+        int n_exact;
+        double res = exact_residual(d, s, 6, &n_exact);
+        CHECK(s->nu == want[o][0] && s->nv == want[o][1], "ops surface %d: %d x %d patches, expected %d x %d", o,
+              s->nu, s->nv, want[o][0], want[o][1]);
+        CHECK(n_exact == s->nu * s->nv, "ops surface %d (%s): %d of %d patches exact", o,
+              rg2_design_mesh_name(d, o), n_exact, s->nu * s->nv);
+        CHECK(res <= 1e-13, "ops surface %d: residual %.3g", o, res);
+        printf("  %-7s %2d x %d patches, all exact (residual %.1e)%s\n", rg2_design_mesh_name(d, o), s->nu, s->nv,
+               res, o == 3 ? ", on the transformed torus" : "");
+    }
+    CHECK(same_mesh(rg2_design_mesh(d, 4), rg2_design_mesh(d, 5)), "cut in two and merged back differs from T");
+    /* leg i of backT is leg n - 2 - i of T: its patch is T's patch run backwards */
+    const rg2_surface *T = rg2_design_surface(d, 5), *R = rg2_design_surface(d, 7);
+    double dev = 0;
+    for (int i = 0; i < T->nu; i++)
+        for (int j = 0; j < T->nv; j++)
+            for (int a = 0; a <= 4; a++) {
+                rg2_eval e1, e2;
+                rg2_patch_eval(rg2_surface_patch(T, i, j), a / 4.0, 0.3, 0, &e1);
+                rg2_patch_eval(rg2_surface_patch(R, (2 * T->nu - 2 - i) % T->nu, j), 1.0 - a / 4.0, 0.3, 0, &e2);
+                for (int q = 0; q < 3; q++)
+                    dev = fmax(dev, fabs(e1.p[q] - e2.p[q]));
+            }
+    CHECK(dev <= 1e-14 * rg2t_surface_scale(T), "reversed torus differs from the torus run backwards by %.3g", dev);
+    printf("  reverse: the reversed torus is the torus run backwards to %.1e\n", dev);
+    const rg2_surface *mv = rg2_design_surface(d, 3);
+    CHECK(mv->tag[0] >= 1 && strstr(rg2_design_shape_label(d, mv->tag[0]), "t@meshes.moved"),
+          "transformed patches tagged %d", mv->tag[0]);
+    rg2_design_free(d);
+}
+
+/* Random operation chains (fixed seed): cuts of two random tori-like shapes, random edits,
+ * reversals, transposes, transforms and merges. Whatever the chain, every tagged patch must lie on its
+ * shape and every seam must be G2; the count of exact patches is reported. */
+static void random_arcs(rg2t_rng *r, int n, char *out, size_t cap)
+{
+    double a[16], sum = 0, acc = 0;
+    for (int k = 0; k < n; k++)
+        sum += a[k] = rg2t_uniform(r, 0.6, 1.4);
+    for (int k = 0; k < n - 1; k++)
+        acc += a[k] = 360.0 * a[k] / sum;
+    a[n - 1] = 360.0 - acc; /* closes the circle exactly */
+    size_t len = 0;
+    for (int k = 0; k < n && len < cap; k++)
+        len += (size_t)snprintf(out + len, cap - len, "%s%.17g%s", k ? ", " : "[", a[k], k == n - 1 ? "]" : "");
+}
+
+static void random_designs(void)
+{
+    rg2t_rng r;
+    uint64_t seed = 4242;
+    rg2t_seed(&r, seed);
+    double worst_res = 0, worst_ang = 0, worst_curv = 0;
+    int n_designs = 0, n_patches = 0, n_exact = 0;
+    for (int trial = 0; trial < 40; trial++) {
+        int nu = rg2t_int(&r, 8, 12), nv = rg2t_int(&r, 5, 7);
+        char au[400], av[400], bu[400], json[4096];
+        random_arcs(&r, nu, au, sizeof au);
+        random_arcs(&r, nv, av, sizeof av);
+        random_arcs(&r, nu, bu, sizeof bu);
+        int c0 = rg2t_int(&r, 0, nu - 1), len0 = rg2t_int(&r, 4, nu);
+        int c1 = rg2t_int(&r, 0, nu - 1), len1 = rg2t_int(&r, 4, nu);
+        int ei = rg2t_int(&r, 0, len0 - 1), ej = rg2t_int(&r, 0, nv - 1);
+        double mv = rg2t_int(&r, 0, 1) ? rg2t_uniform(&r, -0.3, 0.3) : 0.0;
+        int closed = rg2t_int(&r, 0, 1), transpose = rg2t_int(&r, 0, 1);
+        int rev = rg2t_int(&r, 0, 1);
+        snprintf(json, sizeof json,
+                 "{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": %.6f, \"r\": %.6f},"
+                 "  \"c\": {\"kind\": \"cyclide\", \"a\": %.6f, \"c\": %.6f, \"mu\": %.6f,"
+                 "        \"rotate\": {\"axis\": [0, 0, 1], \"degrees\": %.3f}}},"
+                 " \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": %s}, \"v\": {\"arcs\": %s}},"
+                 "  \"C\": {\"shape\": \"c\", \"u\": {\"arcs\": %s}, \"v\": {\"arcs\": %s, \"from\": 180}},"
+                 "  \"A\": {\"cut\": \"T\", \"u\": [%d, %d]}, \"B\": {\"cut\": \"C\", \"u\": [%d, %d]},"
+                 "  \"E\": {\"edit\": \"A\", \"points\": [{\"at\": [%d, %d], \"move\": [%.3f, 0, %.3f]}]},"
+                 "  \"BR\": {\"reverse\": \"B\", \"dir\": \"u\"},"
+                 "  \"M\": {\"merge\": [\"E\", \"%s\"], \"along\": \"u\", \"closed\": %s},"
+                 "  \"P\": {\"transpose\": \"M\"},"
+                 "  \"X\": {\"transform\": \"%s\", \"rotate\": {\"axis\": [1, 1, 0], \"degrees\": %.3f},"
+                 "         \"translate\": [%.3f, 0, 1]}}}",
+                 rg2t_uniform(&r, 2.5, 4), rg2t_uniform(&r, 0.5, 1), 3.0, rg2t_uniform(&r, 0.2, 0.8),
+                 rg2t_uniform(&r, 0.9, 1.2), rg2t_uniform(&r, 0, 360), au, av, bu, av, c0, c0 + len0 - 1, c1,
+                 c1 + len1 - 1, ei, ej, mv, mv, rev ? "BR" : "B", closed ? "true" : "false", transpose ? "P" : "M",
+                 rg2t_uniform(&r, 0, 90), rg2t_uniform(&r, -2, 2));
+        rg2_design *d = NULL;
+        rg2_error err;
+        rg2_status st = rg2_design_parse(json, strlen(json), "random", &d, &err);
+        CHECK(st == RG2_OK, "random design %d: %s", trial, err.msg);
+        if (st)
+            continue;
+        const rg2_surface *s = rg2_design_surface(d, 0);
+        int ne;
+        double res = exact_residual(d, s, 4, &ne);
+        rg2t_seams g;
+        rg2t_surface_seams(s, 4, &g);
+        CHECK(res <= 1e-13, "random design %d: tagged patches off their shapes by %.3g", trial, res);
+        CHECK(g.angle <= 1e-11 && g.curv <= 1e-9, "random design %d: seams %.3g rad, %.3g", trial, g.angle, g.curv);
+        worst_res = fmax(worst_res, res);
+        worst_ang = fmax(worst_ang, g.angle);
+        worst_curv = fmax(worst_curv, g.curv);
+        n_designs++;
+        n_patches += s->nu * s->nv;
+        n_exact += ne;
+        rg2_design_free(d);
+    }
+    printf("  seed %llu: %d random designs, %d patches, %d tagged exact (residual %.1e), seams %.1e rad / %.1e\n",
+           (unsigned long long)seed, n_designs, n_patches, n_exact, worst_res, worst_ang, worst_curv);
+    CHECK(n_exact > n_patches / 4, "random designs: only %d of %d patches exact", n_exact, n_patches);
 }
 
 /* ------------------------------------------------------------------------------------- */
@@ -488,6 +630,8 @@ static void bad_inputs(void)
          RG2_EPARSE, "exactly one operation"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH "}, \"output\": \"Y\"}", RG2_EPARSE, "output: no mesh named 'Y'"},
         {"[1, 2]", RG2_EPARSE, "expected an object"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"R\": {\"reverse\": \"T\"}}}", RG2_EPARSE,
+         "meshes.R: missing key 'dir'"},
     };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         rg2_design *d = (rg2_design *)1;
@@ -515,6 +659,10 @@ int main(void)
     examples();
     printf("edit locality:\n");
     edits_are_local();
+    printf("operations that keep exactness:\n");
+    ops_keep_exactness();
+    printf("random operation chains:\n");
+    random_designs();
     printf("morph:\n");
     morph_ends();
     printf("merge seam rules on examples/torus_sphere.json:\n");

@@ -42,6 +42,10 @@ grep -q '"rg2 control mesh 1"' "$tmp/mesh.json" && grep -q '"patch_shape"' "$tmp
 expect 1 "unknown export format" "$rg2" build -q "$src/examples/fig5_workflow.json" -o "$tmp/w.step" -o "$tmp/w.xyz"
 [ -e "$tmp/w.step" ] && bad "w.step left behind after a failed build" || ok
 
+# an unwritable output: exit 1 naming the path
+expect 1 "$tmp/no/such/dir/x.step" "$rg2" build -q "$src/examples/fig5_workflow.json" -o "$tmp/no/such/dir/x.step"
+expect 1 "$tmp/no/such/dir/m.json" "$rg2" mesh "$src/examples/fig5_workflow.json" -o "$tmp/no/such/dir/m.json"
+
 # bad designs: exit 1, the message, no output file
 check_bad() {
   local file=$1 sub=$2

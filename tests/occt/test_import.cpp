@@ -37,6 +37,7 @@ extern "C" {
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -483,6 +484,47 @@ int main()
                     {"random", &random, rg2t_surface_scale(&random)},
                     {"pole", &pole, rg2t_surface_scale(&pole)},
                     {"capped sphere", &capped, rg2t_surface_scale(&capped)}};
+    // every named shape with its default partition (rg2_shape_surface); shapes whose patches
+    // have a weight <= 0 must be refused for STEP, naming the patch
+    std::vector<rg2_surface> shapes;
+    std::vector<std::string> shape_names;
+    for (int k = 0; k < RG2_SHAPE_COUNT; k++) {
+        const rg2_shape_desc *d = rg2_shape_describe((rg2_shape_kind)k);
+        if (!d)
+            continue;
+        rg2_shape sh;
+        rg2_shape_init(&sh, (rg2_shape_kind)k);
+        rg2_partition pp[2];
+        double vals[2][64];
+        bool ok = true;
+        for (int dir = 0; dir < 2 && ok; dir++)
+            ok = rg2_partition_equal(&pp[dir], d->dir_kind[dir], d->default_closed[dir], d->default_range[dir][0],
+                                     d->default_range[dir][1], d->default_segments[dir], vals[dir], 64, &err) == RG2_OK;
+        rg2_surface surf;
+        memset(&surf, 0, sizeof surf);
+        rg2_weight_report rep;
+        ok = ok && rg2_shape_surface(&sh, &pp[0], &pp[1], &surf, &rep, &err) == RG2_OK;
+        CHECK(ok, "shape %s: %s", d->name, err.msg);
+        if (!ok)
+            continue;
+        if (rep.n_nonpositive) {
+            std::string path = std::string(dir) + "/" + d->name + ".step";
+            rg2_status st = rg2_export_file(&surf, 1, path.c_str(), nullptr, &err);
+            CHECK(st == RG2_EWEIGHT && strstr(err.msg, "patch ("), "shape %s with weight %g: %s", d->name,
+                  rep.min_weight, err.msg);
+            printf("  %-34s refused: %s\n", d->name, err.msg);
+            rg2_surface_free(&surf);
+            continue;
+        }
+        shapes.push_back(surf);
+        shape_names.push_back(d->name);
+    }
+    for (size_t k = 0; k < shapes.size(); k++) {
+        Case c = {shape_names[k].c_str(), &shapes[k], rg2t_surface_scale(&shapes[k])};
+        check_file(c, dir, "step", RG2_STEP_FACE_PER_PATCH, 0);
+        check_file(c, dir, "step", RG2_STEP_FACE_PER_MESH, 0);
+        check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0);
+    }
     for (const Case &c : cases) {
         check_file(c, dir, "step", RG2_STEP_FACE_PER_PATCH, 0);
         check_file(c, dir, "step", RG2_STEP_FACE_PER_PATCH, 1);
@@ -493,6 +535,8 @@ int main()
     printf("worst through OpenCASCADE: point %.2e relative, normal angle %.2e rad, normal curvature %.2e rel "
            "(%d shared edges, %d samples), max tolerance %.2e\n",
            g_worst.point, g_worst.angle, g_worst.curv, g_worst.edges, g_worst.samples, g_worst.tol);
+    for (rg2_surface &x : shapes)
+        rg2_surface_free(&x);
     rg2_surface_free(&torus);
     rg2_surface_free(&random);
     rg2_surface_free(&pole);
