@@ -191,7 +191,7 @@ static double fit_solve(const fitdata *fd, double L, double vc, double g[4][4], 
 {
     const int nc = 18;
     int rows = 12 * fd->n;
-    double *A = calloc((size_t)rows * nc, sizeof(double)), *B = calloc((size_t)rows, sizeof(double));
+    double *A = rg2__calloc((size_t)rows * nc, sizeof(double)), *B = rg2__calloc((size_t)rows, sizeof(double));
     if (!A || !B) {
         free(A);
         free(B);

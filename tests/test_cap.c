@@ -576,9 +576,20 @@ static void design_examples(void)
                 CHECK(len > 100, "%s written (%ld bytes)", path, len);
                 remove(path);
             }
+            /* fairness guard: no crease anywhere (curvature relative to the size) */
+            double kmax = 0;
+            for (int q = 0; q < s->nu * s->nv; q++)
+                for (int a = 0; a <= 8; a++)
+                    for (int b = 0; b <= 8; b++) {
+                        rg2_eval ev;
+                        rg2_patch_eval(&s->patch[q], a / 8.0, b / 8.0, 2, &ev);
+                        if (!(ev.flags & RG2_EVAL_CURVATURE_UNDEFINED))
+                            kmax = fmax(kmax, fmax(fabs(ev.k1), fabs(ev.k2)));
+                    }
+            CHECK(kmax * scale <= 40, "%s %d: max |k| x size %.3g (a crease?)", files[f], o, kmax * scale);
             printf("  %-44s %d: %4d patches, %d pole(s): point %.1e, normals %.1e rad; seams: normal %.1e rad, "
-                   "curvature %.1e rel\n",
-                   files[f], o, s->nu * s->nv, poles, pp, pn, g.angle, g.curv);
+                   "curvature %.1e rel; max |k| x size %.1f\n",
+                   files[f], o, s->nu * s->nv, poles, pp, pn, g.angle, g.curv, kmax * scale);
         }
         /* figure-specific facts */
         if (f == 0) {
@@ -587,7 +598,7 @@ static void design_examples(void)
             CHECK(dd <= 1e-13, "Fig. 9 capped sphere: %.3g", dd);
         }
         if (f == 3) {
-            double p[3], v0[3] = {0, 0, 0}, v1[3] = {0, 0, 2.7};
+            double p[3], v0[3] = {0, 0, 0}, v1[3] = {0, 0, 2.0};
             CHECK(surface_pole(rg2_design_surface(d, 0), 0, p) && pt_dist3(p, v0) <= 1e-14,
                   "Fig. 12 bowl pole at the vertex");
             CHECK(surface_pole(rg2_design_surface(d, 0), 1, p) && pt_dist3(p, v1) <= 1e-14,
