@@ -3,6 +3,7 @@
 #include "cli.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -93,11 +94,11 @@ int rg2_cmd_build(int argc, char **argv)
         return rg2_cli_report("build", &err);
     }
     int ns = rg2_design_num_surfaces(d);
-    rg2_surface surfs[64];
-    if (ns > 64) {
+    rg2_surface *surfs = calloc((size_t)ns, sizeof *surfs);
+    if (!surfs) {
         rg2_design_free(d);
         progress(tty, NULL, NULL);
-        fprintf(stderr, "rg2 build: %s: more than 64 output meshes\n", path);
+        fprintf(stderr, "rg2 build: out of memory\n");
         return RG2_EXIT_FAIL;
     }
     for (int k = 0; k < ns; k++)
@@ -115,6 +116,7 @@ int rg2_cmd_build(int argc, char **argv)
         for (int k = 0; k < written; k++)
             remove(out[k]);
     progress(tty, NULL, NULL);
+    free(surfs);
     rg2_design_free(d);
     return rc;
 }
