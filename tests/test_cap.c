@@ -654,6 +654,42 @@ static void design_examples(void)
     rmdir(dir);
 }
 
+/* A body with rational v-scalars (w != 1, g != 0): a half torus, transposed so that the tube
+ * circle is u and the open ring arc is v, capped at both ends (a bent sausage). */
+static void rational_body_caps(void)
+{
+    const char *json = "{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": 3, \"r\": 1}}, \"meshes\": {"
+                       "\"half\": {\"shape\": \"t\", \"u\": {\"arcs\": 6, \"from\": 0, \"to\": 180}, "
+                       "\"v\": {\"arcs\": 8}}, \"tube\": {\"transpose\": \"half\"}, \"capped\": {\"cap\": \"tube\"}}}";
+    rg2_design *d = NULL;
+    rg2_error err;
+    CHECK_OK(rg2_design_parse(json, strlen(json), "sausage", &d, &err), &err);
+    if (!d)
+        return;
+    const rg2_surface *s = rg2_design_surface(d, 0);
+    const rg2_mesh *m = rg2_design_mesh(d, 0);
+    double wmin = INFINITY, wmax = 0, gmax = 0;
+    for (int k = 0; k < rg2_scalars_num_w(&m->sv); k++)
+        wmin = fmin(wmin, m->sv.w[k]), wmax = fmax(wmax, m->sv.w[k]);
+    for (int k = 0; k < m->sv.n; k++)
+        gmax = fmax(gmax, fabs(m->sv.g[k]));
+    CHECK(wmax < 1 && gmax > 0.1, "the body's v is rational (w %.3g..%.3g, g up to %.3g)", wmin, wmax, gmax);
+    rg2t_seams g;
+    check_seams(s, "half torus capped", 1e-11, 1e-8, &g);
+    double scale = rg2t_surface_scale(s);
+    for (int e = 0; e < 2; e++) {
+        pole_meas pm;
+        measure_pole(s, e, scale, &pm);
+        CHECK(pm.point <= 1e-14 && pm.normal <= 1e-10 && pm.kspread[2] < 0.2 * pm.kspread[0],
+              "half torus pole %d: point %.3g, normals %.3g, curvature spread %.3g -> %.3g", e, pm.point, pm.normal,
+              pm.kspread[0], pm.kspread[2]);
+        if (!e)
+            print_pole("half torus south", &pm);
+    }
+    CHECK(rg2_surface_min_weight(s) > 0, "positive weights: %.3g", rg2_surface_min_weight(s));
+    rg2_design_free(d);
+}
+
 /* Design-file errors of the poles operations name the item. */
 static void design_errors(void)
 {
@@ -703,6 +739,7 @@ int main(void)
     freeform_caps();
     cap_errors();
     design_examples();
+    rational_body_caps();
     design_errors();
     return rg2t_done("test_cap");
 }
