@@ -759,7 +759,7 @@ static rg2_status edit_points(pctx *c, const cJSON *arr, const char *path, rg2__
         static const char *const keys[] = {"at", "move", "to", "W", "pole"};
         if ((st = as_obj(c, e, p)) || (st = check_keys(c, e, p, keys, 5)))
             return st;
-        const cJSON *at, *mv = get(e, "move"), *to = get(e, "to"), *W = get(e, "W"), *pole = get(e, "pole");
+        const cJSON *at = NULL, *mv = get(e, "move"), *to = get(e, "to"), *W = get(e, "W"), *pole = get(e, "pole");
         if (pole && get(e, "at"))
             return fail(c, RG2_EPARSE, p, "give 'at' (points) or 'pole' (a polar point), not both");
         if (!pole && (st = need(c, e, "at", p, &at)))
@@ -782,7 +782,7 @@ static rg2_status edit_points(pctx *c, const cJSON *arr, const char *path, rg2__
                 return fail(c, RG2_EWEIGHT, q, "weight W = %g, must be > 0", w);
         }
         if (pole) { /* a polar point: the whole collapsed row moves (docs/poles.md) */
-            const char *pn;
+            const char *pn = NULL;
             subpath(q, sizeof q, p, "pole");
             if ((st = as_str(c, pole, q, &pn)))
                 return st;
@@ -1101,7 +1101,7 @@ static rg2_status op_polar(pctx *c, const cJSON *obj, const char *path, rg2__dme
     if (st)
         return st;
     char p[300], q[320];
-    const char *label;
+    const char *label = NULL;
     subpath(p, sizeof p, path, "polar");
     if ((st = as_str(c, get(obj, "polar"), p, &label)))
         return st;
@@ -1149,7 +1149,7 @@ static rg2_status op_mobius(pctx *c, const cJSON *obj, const char *path, rg2__dm
         return st;
     const cJSON *x;
     if ((x = get(obj, "sphere"))) {
-        const char *label;
+        const char *label = NULL;
         subpath(p, sizeof p, path, "sphere");
         if ((st = as_str(c, x, p, &label)))
             return st;
@@ -1195,7 +1195,7 @@ static rg2_status op_cap(pctx *c, const cJSON *obj, const char *path, rg2__dmesh
     rg2_cap_opts_default(&o);
     const cJSON *x;
     if ((x = get(obj, "ends"))) {
-        const char *e;
+        const char *e = NULL;
         subpath(p, sizeof p, path, "ends");
         if ((st = as_str(c, x, p, &e)))
             return st;
