@@ -19,6 +19,8 @@ enum { RG2_EXIT_OK = 0, RG2_EXIT_FAIL = 1, RG2_EXIT_USAGE = 2, RG2_EXIT_CHECK = 
 
 int rg2_cmd_curve(int argc, char **argv);
 int rg2_cmd_demo(int argc, char **argv);
+int rg2_cmd_shapes(int argc, char **argv);
+int rg2_cmd_shape(int argc, char **argv);
 
 /* Parse "a,b,c" into at most max doubles; returns the count or -1 (message printed). */
 int rg2_cli_parse_list(const char *opt, const char *s, double *out, int max);

@@ -7,6 +7,8 @@
 static const rg2_cli_command commands[] = {
     {"curve", "print the exact Bezier segments of a circle or a control polygon", rg2_cmd_curve},
     {"demo", "print a circle's Bezier form and a torus surface summary", rg2_cmd_demo},
+    {"shapes", "list the exact basic shapes with their parameters", rg2_cmd_shapes},
+    {"shape", "build an exact shape or a bi-cubic NURBS into patches", rg2_cmd_shape},
 };
 
 static void usage(FILE *f)
