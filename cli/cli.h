@@ -19,6 +19,9 @@ enum { RG2_EXIT_OK = 0, RG2_EXIT_FAIL = 1, RG2_EXIT_USAGE = 2, RG2_EXIT_CHECK = 
 
 int rg2_cmd_curve(int argc, char **argv);
 int rg2_cmd_demo(int argc, char **argv);
+int rg2_cmd_build(int argc, char **argv);
+int rg2_cmd_info(int argc, char **argv);
+int rg2_cmd_mesh(int argc, char **argv);
 int rg2_cmd_shapes(int argc, char **argv);
 int rg2_cmd_shape(int argc, char **argv);
 

@@ -455,10 +455,15 @@ RG2_API rg2_status rg2_nurbs_mesh(const rg2_nurbs *nb, rg2_mesh *out, rg2_error 
 /** @name Design (JSON design files and operations, paper section 4) */
 /* ===================================================================================== */
 
-/* A design: shape meshes and operations (cut, merge, edit, transform, morph) read from a
- * JSON design file (docs/design-format.md), built into one or more patch surfaces. Every patch
- * carries a provenance tag: the index of the shape it reproduces exactly, or -1 for a
- * transition patch. */
+/* A design: shape meshes and operations on them (shape, cut, transpose, reverse, merge, edit,
+ * transform, morph) read from a JSON design file (docs/design-format.md), built into one or
+ * more patch surfaces. Every patch carries a provenance tag (rg2_surface.tag): the index of the
+ * shape it reproduces exactly, or -1 for a transition patch. A patch is tagged when its 4 x 4
+ * control block is a consecutive block of a shape's own mesh (in any orientation: transposed,
+ * reversed) and its construction stencils equal that mesh's (to 1e-14), i.e. it is the shape's
+ * own patch. The shape list holds the shapes of the file followed by the transformed copies
+ * that `transform` operations create ("label@meshes.name"). The design owns everything the
+ * accessors return. */
 typedef struct rg2_design rg2_design;
 
 /** Read and build a design file. On failure *out is NULL and err names the offending item
@@ -477,6 +482,15 @@ RG2_API const rg2_mesh *rg2_design_mesh(const rg2_design *d, int k);
 RG2_API int rg2_design_num_shapes(const rg2_design *d);
 RG2_API const rg2_shape *rg2_design_shape(const rg2_design *d, int k);
 RG2_API const char *rg2_design_shape_label(const rg2_design *d, int k);
+/** Name (in the design file) of the mesh surface k was built from. */
+RG2_API const char *rg2_design_mesh_name(const rg2_design *d, int k);
+/** Shape control point (i, j) of output mesh k came from (unchanged), or -1 if it was edited,
+ *  blended or is out of range. */
+RG2_API int rg2_design_point_shape(const rg2_design *d, int k, int i, int j);
+/** Write the output control meshes as JSON (design coordinates d = p_{1..3} / p_4, weights
+ *  W = p_4, scalars w, b, g, provenance and patch tags; docs/design-format.md). Writes
+ *  path.tmp, then renames. @return RG2_EIO if the file cannot be written. */
+RG2_API rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, rg2_error *err);
 
 
 /* ===================================================================================== */
