@@ -271,21 +271,46 @@ static void raster_tri(zcell *zb, int W, int y0, int y1, int xmax, const vtx *a,
         }
 }
 
+/* Per-surface grid densities without T-junctions: patch (i, j) gets du[i] x dv[j] cells, the
+ * maxima of patch_density over its patch column / row, so neighbouring patches sample their
+ * common edge at the same parameters (no cracks for the far side to show through). dens holds
+ * for each surface nu values du then nv values dv, at offsets doff[s]. */
+static int *grid_densities(const rg2_surface *surfs, int n, const camera *c, size_t *doff)
+{
+    size_t tot = 0;
+    for (int s = 0; s < n; s++) {
+        doff[s] = tot;
+        tot += (size_t)surfs[s].nu + (size_t)surfs[s].nv;
+    }
+    int *dens = rg2__calloc(tot, sizeof *dens);
+    if (!dens)
+        return NULL;
+    for (int s = 0; s < n; s++) {
+        int *du = dens + doff[s], *dv = du + surfs[s].nu;
+        for (int i = 0; i < surfs[s].nu; i++)
+            for (int j = 0; j < surfs[s].nv; j++) {
+                int N = patch_density(c, rg2_surface_patch(&surfs[s], i, j));
+                if (N > du[i]) du[i] = N;
+                if (N > dv[j]) dv[j] = N;
+            }
+    }
+    return dens;
+}
+
 /* Rasterise every patch of every surface into the z-buffer (rows 0..h-1, columns 0..vw-1). */
 static rg2_status rasterise(const rg2_surface *surfs, int n, const camera *c, zcell *zb, int W, int nt,
                             rg2_error *err)
 {
-    size_t total = 0;
-    for (int s = 0; s < n; s++)
-        total += (size_t)surfs[s].nu * (size_t)surfs[s].nv;
     enum { CHUNK = 64 };
-    int *dens = rg2__calloc(CHUNK, sizeof *dens);
+    size_t *doff = rg2__calloc((size_t)n, sizeof *doff);
+    int *dens = doff ? grid_densities(surfs, n, c, doff) : NULL;
+    int *Nu = rg2__calloc(CHUNK, sizeof *Nu), *Nv = rg2__calloc(CHUNK, sizeof *Nv);
     size_t *off = rg2__calloc(CHUNK + 1, sizeof *off);
     int *ps = rg2__calloc(CHUNK, sizeof *ps), *pk = rg2__calloc(CHUNK, sizeof *pk);
     vtx *verts = NULL;
     size_t cap = 0;
     rg2_status st = RG2_OK;
-    if (!dens || !off || !ps || !pk) {
+    if (!doff || !dens || !Nu || !Nv || !off || !ps || !pk) {
         st = rg2__fail(err, RG2_ENOMEM, "render: out of memory for the rasteriser");
         goto out;
     }
@@ -303,8 +328,9 @@ static rg2_status rasterise(const rg2_surface *surfs, int n, const camera *c, zc
             }
             ps[m] = s;
             pk[m] = (int)k;
-            dens[m] = patch_density(c, &surfs[s].patch[k]);
-            off[m + 1] = off[m] + (size_t)(dens[m] + 1) * (size_t)(dens[m] + 1);
+            Nu[m] = dens[doff[s] + k / (size_t)surfs[s].nv];
+            Nv[m] = dens[doff[s] + (size_t)surfs[s].nu + k % (size_t)surfs[s].nv];
+            off[m + 1] = off[m] + (size_t)(Nu[m] + 1) * (size_t)(Nv[m] + 1);
             m++;
             k++;
         }
@@ -321,13 +347,13 @@ static rg2_status rasterise(const rg2_surface *surfs, int n, const camera *c, zc
         }
         RG2_PARALLEL_FOR
         for (int q = 0; q < m; q++) {
-            int N = dens[q];
+            int A = Nu[q], B = Nv[q];
             const rg2_patch *P = &surfs[ps[q]].patch[pk[q]];
-            for (int a = 0; a <= N; a++)
-                for (int b = 0; b <= N; b++) {
+            for (int a = 0; a <= A; a++)
+                for (int b = 0; b <= B; b++) {
                     rg2_eval e;
-                    rg2_patch_eval(P, (double)a / N, (double)b / N, 0, &e);
-                    vtx *t = &verts[off[q] + (size_t)a * (N + 1) + b];
+                    rg2_patch_eval(P, (double)a / A, (double)b / B, 0, &e);
+                    vtx *t = &verts[off[q] + (size_t)a * (B + 1) + b];
                     double sx = 0, sy = 0;
                     t->z = (isfinite(e.p[0]) && isfinite(e.p[1]) && isfinite(e.p[2])) ? project(c, e.p, &sx, &sy)
                                                                                       : -1.0;
@@ -342,15 +368,15 @@ static rg2_status rasterise(const rg2_surface *surfs, int n, const camera *c, zc
         for (int band = 0; band < bands; band++) {
             int y0 = (int)((long)h * band / bands), y1 = (int)((long)h * (band + 1) / bands);
             for (int q = 0; q < m; q++) {
-                int N = dens[q];
+                int A = Nu[q], B = Nv[q];
                 const vtx *g = &verts[off[q]];
-                for (int a = 0; a < N; a++)
-                    for (int b = 0; b < N; b++) {
-                        const vtx *v00 = &g[a * (N + 1) + b], *v10 = &g[(a + 1) * (N + 1) + b];
-                        const vtx *v01 = &g[a * (N + 1) + b + 1], *v11 = &g[(a + 1) * (N + 1) + b + 1];
+                for (int a = 0; a < A; a++)
+                    for (int b = 0; b < B; b++) {
+                        const vtx *v00 = &g[a * (B + 1) + b], *v10 = &g[(a + 1) * (B + 1) + b];
+                        const vtx *v01 = &g[a * (B + 1) + b + 1], *v11 = &g[(a + 1) * (B + 1) + b + 1];
                         if (v00->z <= znear || v10->z <= znear || v01->z <= znear || v11->z <= znear)
                             continue;
-                        float u0 = (float)a / N, u1 = (float)(a + 1) / N, w0 = (float)b / N, w1 = (float)(b + 1) / N;
+                        float u0 = (float)a / A, u1 = (float)(a + 1) / A, w0 = (float)b / B, w1 = (float)(b + 1) / B;
                         float t1[3][2] = {{u0, w0}, {u1, w0}, {u1, w1}};
                         float t2[3][2] = {{u0, w0}, {u1, w1}, {u0, w1}};
                         raster_tri(zb, W, y0, y1, c->vw, v00, v10, v11, t1, ps[q], pk[q]);
@@ -362,7 +388,10 @@ static rg2_status rasterise(const rg2_surface *surfs, int n, const camera *c, zc
     }
 out:
     free(verts);
+    free(doff);
     free(dens);
+    free(Nu);
+    free(Nv);
     free(off);
     free(ps);
     free(pk);
