@@ -176,7 +176,7 @@ static void zebra_kinks(void)
     o.mode = RG2_RENDER_ZEBRA;
     o.azimuth = -90;
     o.elevation = 55;
-    o.stripes = 10;
+    o.stripes = 24;
     o.keep_pixels = 1;
     rg2_image a, b;
     CHECK_OK(rg2_render(&g1, 1, NULL, &o, &a, &err), &err);
