@@ -575,7 +575,8 @@ typedef struct {
     rg2_render_mode mode;
     double azimuth;        /**< degrees about +z, 0 looks from +x towards the centre (default 35) */
     double elevation;      /**< degrees above the xy plane (default 25) */
-    double distance;       /**< eye distance from the bounding-sphere centre; <= 0 fits the view */
+    double distance;       /**< eye distance from the view centre (middle of the scene's extent
+                                across the view); <= 0 fits the view to the scene */
     double fov;            /**< vertical field of view in degrees (default 30) */
     int boundaries;        /**< draw patch boundaries (seams) as thin dark lines */
     int mesh;              /**< overlay the control meshes (needs meshes != NULL) */
@@ -623,10 +624,11 @@ RG2_API rg2_status rg2_render_png(const rg2_surface *surfs, int n, const rg2_mes
                                   const rg2_render_opts *o, const char *path, rg2_error *err);
 
 /* Checks: a continuity and exactness report. Seams are the interior (and closing) patch
- * seams of each surface; gaps are measured at samples along each seam: position gap relative
- * to the model size, angle between unit normals, and the jump of normal curvature in six
- * tangent directions relative to max(|k1|, |k2|, 1 / size). Exact pieces (tag >= 0) are
- * sampled against their shape's implicit equation: |f| / |grad f| relative to the size. */
+ * seams of each surface; seams between different surfaces are not measured. Gaps are taken at
+ * samples along each seam: position gap relative to the surface size, angle between the unit
+ * normals, and the jump of normal curvature in six tangent directions relative to
+ * max(|k1|, |k2|, 1 / size). Exact pieces (tag >= 0) are sampled against their shape's
+ * implicit equation: |f| / |grad f| relative to the size of that shape's patches. */
 enum {
     RG2_REQUIRE_G0 = 1u << 0,
     RG2_REQUIRE_G1 = 1u << 1,
@@ -638,7 +640,7 @@ enum {
 typedef struct {
     int seam_samples;      /**< samples per seam (default 16) */
     int patch_samples;     /**< samples per patch direction for residuals/curvature (default 12) */
-    double tol_g0, tol_g1, tol_g2, tol_exact; /**< pass limits (defaults 1e-12, 1e-10, 1e-8, 1e-12) */
+    double tol_g0, tol_g1, tol_g2, tol_exact; /**< pass limits (defaults 1e-12, 1e-10, 1e-8, 1e-11) */
 } rg2_check_opts;
 
 typedef struct {

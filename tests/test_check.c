@@ -5,6 +5,7 @@
 #include "scenes.h"
 
 #include <cjson/cJSON.h>
+#include <dirent.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -178,10 +179,120 @@ static void g1_join(void)
     rg2_surface_free(&s);
 }
 
+static char *read_text(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *t = n >= 0 ? malloc((size_t)n + 1) : NULL;
+    if (t && fread(t, 1, (size_t)n, f) != (size_t)n) {
+        free(t);
+        t = NULL;
+    }
+    if (t)
+        t[n] = '\0';
+    fclose(f);
+    return t;
+}
+
+/* Every example design: per output surface, the check's patch, exact-per-shape and transition
+ * counts equal the design file's own "expect" block, and every surface is G2, exact and has
+ * positive weights. */
+static void check_example(const char *path)
+{
+    rg2_design *d = NULL;
+    rg2_error err;
+    CHECK_OK(rg2_design_load(path, &d, &err), &err);
+    char *txt = read_text(path);
+    cJSON *j = txt ? cJSON_Parse(txt) : NULL;
+    cJSON *exp = cJSON_GetObjectItem(cJSON_GetObjectItem(j, "expect"), "surfaces");
+    if (!d || !exp) {
+        CHECK(d && exp, "%s: loads and has an expect block", path);
+        goto out;
+    }
+    int ns = rg2_design_num_shapes(d), n = rg2_design_num_surfaces(d);
+    rg2_shape *shapes = calloc((size_t)ns + 1, sizeof *shapes);
+    const char **labels = calloc((size_t)ns + 1, sizeof *labels);
+    for (int k = 0; k < ns; k++) {
+        shapes[k] = *rg2_design_shape(d, k);
+        labels[k] = rg2_design_shape_label(d, k);
+    }
+    CHECK(cJSON_GetArraySize(exp) == n, "%s: %d surfaces, expect lists %d", path, n, cJSON_GetArraySize(exp));
+    double worst_res = 0, worst_g2 = 0;
+    for (int s = 0; s < n && s < cJSON_GetArraySize(exp); s++) {
+        cJSON *e = cJSON_GetArrayItem(exp, s);
+        rg2_check_report r;
+        CHECK_OK(rg2_check(rg2_design_surface(d, s), 1, shapes, labels, ns, NULL, &r, &err), &err);
+        CHECK(r.patches == cJSON_GetObjectItem(e, "patches")->valueint &&
+                  r.transitions == cJSON_GetObjectItem(e, "transition")->valueint,
+              "%s surface %d: %d patches, %d transitions", path, s, r.patches, r.transitions);
+        int listed = 0;
+        cJSON *ex;
+        cJSON_ArrayForEach(ex, cJSON_GetObjectItem(e, "exact"))
+        {
+            int found = 0;
+            for (int k = 0; k < ns; k++)
+                if (!strcmp(r.shapes[k].label, ex->string)) {
+                    found = 1;
+                    listed += r.shapes[k].patches;
+                    CHECK(r.shapes[k].patches == ex->valueint, "%s surface %d: %s has %d exact patches, expected %d",
+                          path, s, ex->string, r.shapes[k].patches, ex->valueint);
+                }
+            CHECK(found, "%s: shape %s in the report", path, ex->string);
+        }
+        CHECK(listed == r.exact_patches, "%s surface %d: %d exact patches, %d listed", path, s, r.exact_patches, listed);
+        CHECK(!rg2_check_failures(&r, RG2_REQUIRE_G2 | RG2_REQUIRE_EXACT | RG2_REQUIRE_WEIGHTS),
+              "%s surface %d: residual %.3g, G2 %.3g at %s seam (%d,%d)|(%d,%d)", path, s, r.worst_residual,
+              r.g2.value, r.g2.seam_dir ? "v" : "u", r.g2.pi, r.g2.pj, r.g2.qi, r.g2.qj);
+        worst_res = fmax(worst_res, r.worst_residual);
+        worst_g2 = fmax(worst_g2, r.g2.value);
+        rg2_check_report_free(&r);
+    }
+    printf("%s: %d surfaces match their expect block; residual %.2e, G2 %.2e\n", path, n, worst_res, worst_g2);
+    free(shapes);
+    free(labels);
+out:
+    cJSON_Delete(j);
+    free(txt);
+    rg2_design_free(d);
+}
+
+static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+static void examples(void)
+{
+    DIR *dir = opendir("examples");
+    CHECK(dir != NULL, "examples/ directory (tests run in the source tree)");
+    if (!dir)
+        return;
+    char *names[64];
+    int n = 0;
+    struct dirent *de;
+    while ((de = readdir(dir)) && n < 64) {
+        size_t len = strlen(de->d_name);
+        if (len > 5 && !strcmp(de->d_name + len - 5, ".json")) {
+            names[n] = malloc(len + 10);
+            snprintf(names[n], len + 10, "examples/%s", de->d_name);
+            n++;
+        }
+    }
+    closedir(dir);
+    qsort(names, (size_t)n, sizeof *names, cmp_str);
+    CHECK(n >= 1, "%d example designs", n);
+    for (int k = 0; k < n; k++) {
+        check_example(names[k]);
+        free(names[k]);
+    }
+}
+
 int main(void)
 {
     harness_agreement();
     exact_and_broken();
     g1_join();
+    examples();
     return rg2t_done("test_check");
 }
