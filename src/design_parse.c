@@ -184,9 +184,12 @@ static rg2_status as_nums(pctx *c, const cJSON *x, const char *path, double *out
         return fail(c, RG2_EPARSE, path, "expected an array of %s numbers, found %s",
                     n ? (n == 3 ? "3" : n == 16 ? "16" : "2") : "", type_name(x));
     int len = cJSON_GetArraySize(x);
-    if (n ? len != n : (len < 1 || len > max))
-        return n ? fail(c, RG2_EPARSE, path, "expected %d numbers, found %d", n, len)
-                 : fail(c, RG2_ELIMIT, path, "expected 1 to %d numbers, found %d", max, len);
+    if (n && len != n)
+        return fail(c, RG2_EPARSE, path, "expected %d numbers, found %d", n, len);
+    if (!n && len < 1)
+        return fail(c, RG2_EPARSE, path, "expected at least one number, found an empty array");
+    if (!n && len > max)
+        return fail(c, RG2_ELIMIT, path, "expected at most %d numbers, found %d", max, len);
     int k = 0;
     for (const cJSON *it = x->child; it; it = it->next, k++) {
         char p[300];
@@ -415,8 +418,17 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
             list = get(obj, "knots");
         } else if (x) {
             subpath(p, sizeof p, path, ck);
-            if (angles && cJSON_IsArray(x))
+            if (angles && !cJSON_IsArray(x) && !cJSON_IsNumber(x))
+                return fail(c, RG2_EPARSE, p,
+                            "expected a number of arcs or an array of opening angles (degrees), "
+                            "found %s", type_name(x));
+            if (angles && cJSON_IsArray(x)) {
+                if (have_to)
+                    return fail(c, RG2_EPARSE, path,
+                                "'to' goes with a number of arcs; a list of arcs starts at 'from' "
+                                "and ends where its angles add up");
                 list = x;
+            }
             else if ((st = as_int(c, x, p, &nseg)))
                 return st;
             else if (nseg < 1 || nseg > MAX_PART)
@@ -998,6 +1010,8 @@ rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, c
     if ((st = need(&c, root, "shapes", "(top level)", &shapes)) || (st = as_obj(&c, shapes, "shapes")))
         goto done;
     for (const cJSON *it = shapes->child; it; it = it->next) {
+        if (!strcmp(it->string, "comment") && cJSON_IsString(it))
+            continue;
         char p[300];
         fmtpath(p, sizeof p, "shapes.%s", it->string);
         for (const cJSON *o = shapes->child; o != it; o = o->next)
@@ -1010,15 +1024,17 @@ rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, c
     }
     if ((st = need(&c, root, "meshes", "(top level)", &meshes)) || (st = as_obj(&c, meshes, "meshes")))
         goto done;
-    if (!meshes->child) {
-        st = fail(&c, RG2_EPARSE, "meshes", "no meshes");
-        goto done;
-    }
     for (const cJSON *it = meshes->child; it; it = it->next) {
+        if (!strcmp(it->string, "comment") && cJSON_IsString(it))
+            continue;
         char p[300];
         fmtpath(p, sizeof p, "meshes.%s", it->string);
         if ((st = parse_mesh(&c, it, it->string, p)))
             goto done;
+    }
+    if (!d->n_mesh) {
+        st = fail(&c, RG2_EPARSE, "meshes", "no meshes");
+        goto done;
     }
     /* outputs: a name, a list of names, or (default) the last mesh */
     x = get(root, "output");

@@ -624,6 +624,11 @@ static void bad_inputs(void)
          RG2_EPARSE, "exactly one operation"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH "}, \"output\": \"Y\"}", RG2_EPARSE, "output: no mesh named 'Y'"},
         {"[1, 2]", RG2_EPARSE, "expected an object"},
+        {"{" TORUS_SHAPES ", \"meshes\": {\"comment\": \"only a comment\"}}", RG2_EPARSE, "meshes: no meshes"},
+        {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": []}}}}", RG2_EPARSE,
+         "meshes.T.u.arcs: expected at least one number"},
+        {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": [30, 30], \"to\": 90}}}}",
+         RG2_EPARSE, "'to' goes with a number of arcs"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"R\": {\"reverse\": \"T\"}}}", RG2_EPARSE,
          "meshes.R: missing key 'dir'"},
     };
