@@ -592,7 +592,7 @@ static rg2_status robust_range(const rg2_pixel *px, size_t np, int gauss, double
     }
     free(v);
     double mid = 0.5 * (range[0] + range[1]), span = range[1] - range[0];
-    double minspan = fmax(1e-3 * fabs(mid), 1e-9 / 1.0);
+    double minspan = fmax(1e-3 * fabs(mid), 1e-9); /* a constant map (sphere) sits mid-bar */
     if (span < minspan) {
         range[0] = mid - 0.5 * minspan;
         range[1] = mid + 0.5 * minspan;
@@ -797,6 +797,7 @@ static void shade_pixels(const rg2_surface *surfs, const camera *c, const rg2_re
                          const double range[2], rg2_image *img, int nt)
 {
     int W = img->width, vw = c->vw;
+    (void)nt; /* used by the OpenMP pragma only */
     lights L;
     lights_setup(c, &L);
     int N = (int)lround(o->stripes);

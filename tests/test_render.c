@@ -109,6 +109,48 @@ static void sphere_pixels(void)
     rg2_mesh_free(&m);
 }
 
+/* A whole sphere from a closed v circle (patch edges collapse to the poles, where the normal
+ * is undefined): the picture still resolves every pixel to a finite point on the sphere. */
+static void sphere_poles(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_revolve(0.0, 1.0, 4, 4, 1, 0, 0, &m, &s, &err), &err);
+    rg2_render_opts o;
+    rg2_render_opts_default(&o);
+    o.width = 96;
+    o.height = 96;
+    o.elevation = 80; /* look almost down onto a pole */
+    o.mode = RG2_RENDER_GAUSS;
+    o.keep_pixels = 1;
+    rg2_image img;
+    CHECK_OK(rg2_render(&s, 1, NULL, &o, &img, &err), &err);
+    int fg = 0, bad = 0;
+    double worstR = 0, worstK = 0;
+    for (int k = 0; k < img.width * img.height; k++) {
+        const rg2_pixel *p = &img.pixels[k];
+        if (p->surf < 0)
+            continue;
+        fg++;
+        if (!isfinite(p->K) || !isfinite(p->phase) || !isfinite(p->p[0]))
+            bad++;
+        worstR = fmax(worstR, fabs(sqrt(p->p[0] * p->p[0] + p->p[1] * p->p[1] + p->p[2] * p->p[2]) - 1.0));
+        if (p->n[0] != 0 || p->n[1] != 0 || p->n[2] != 0)
+            worstK = fmax(worstK, fabs(p->K - 1.0));
+    }
+    printf("sphere with poles: %d pixels, %d non-finite, |p| - 1 %.2e, K - 1 %.2e\n", fg, bad, worstR, worstK);
+    CHECK(fg > 2000 && bad == 0, "%d pixels, %d non-finite", fg, bad);
+    CHECK(worstR <= 1e-13, "points on the sphere to %.3g", worstR);
+    CHECK(worstK <= 1e-9, "Gaussian curvature 1 to %.3g where the normal is defined", worstK);
+    char path[512];
+    if (keep_dir())
+        rg2_image_write_png(&img, png_path("sphere_poles", path, sizeof path), &err);
+    rg2_image_free(&img);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 /* Wrap a phase difference into (-pi, pi]. */
 static double wrap(double a)
 {
@@ -295,6 +337,7 @@ static void errors(void)
 int main(void)
 {
     sphere_pixels();
+    sphere_poles();
     zebra_kinks();
     png_valid_and_deterministic();
     errors();
