@@ -662,7 +662,136 @@ RG2_API rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const 
 /** @name Pictures and checks */
 /* ===================================================================================== */
 
-/* (render and check API) */
+/* Pictures: per-pixel exact rendering. Every foreground pixel is resolved to the (surface,
+ * patch, u, v) whose exact point lies on the pixel's centre ray (a tessellation z-buffer gives
+ * the start, Newton on the exact patch refines it); shading, curvature and stripe phase come
+ * from rg2_patch_eval there, never from interpolation. Output is deterministic: the same input
+ * gives the same bytes for any number of threads. */
+typedef enum {
+    RG2_RENDER_SHADED = 0, /**< lit surface; exact pieces tinted by their shape tag */
+    RG2_RENDER_MEAN,       /**< mean curvature H colour map (sign as rg2_eval) + colour bar */
+    RG2_RENDER_GAUSS,      /**< Gaussian curvature K colour map (diverging, symmetric) + bar */
+    RG2_RENDER_ZEBRA       /**< reflection of parallel light lines (stripes from the normal) */
+} rg2_render_mode;
+
+typedef struct {
+    int width, height;     /**< image size in pixels (default 800 x 600), each 16..8192 */
+    rg2_render_mode mode;
+    double azimuth;        /**< degrees about +z, 0 looks from +x towards the centre (default 35) */
+    double elevation;      /**< degrees above the xy plane (default 25) */
+    double distance;       /**< eye distance from the view centre (middle of the scene's extent
+                                across the view); <= 0 fits the view to the scene */
+    double fov;            /**< vertical field of view in degrees (default 30) */
+    int boundaries;        /**< draw patch boundaries (seams) as thin dark lines */
+    int mesh;              /**< overlay the control meshes (needs meshes != NULL) */
+    int tint;              /**< shaded: tint patches by shape tag (default 1) */
+    int colorbar;          /**< curvature modes: draw the colour bar and its range (default 1) */
+    int range_set;         /**< 1: use range[] as the colour range; 0: robust range */
+    double range[2];       /**< user colour range lo < hi (curvature modes) */
+    double percentile;     /**< robust range: clip this fraction at each end (default 0.02) */
+    double stripes;        /**< zebra: stripe pairs per half turn (default 12) */
+    int keep_pixels;       /**< fill rg2_image.pixels with the per-pixel exact data */
+    int threads;           /**< OpenMP threads; 0 = the OpenMP default */
+} rg2_render_opts;
+
+/** Exact data of one pixel (rg2_render_opts.keep_pixels). surf < 0 marks background. */
+typedef struct {
+    int surf, patch;       /**< surface index and patch index (i * nv + j) in it */
+    double u, v;           /**< patch parameters where the exact point projects to the centre */
+    double p[3], n[3];     /**< exact point and unit normal (oriented as rg2_eval) */
+    double H, K;           /**< exact mean and Gaussian curvature there */
+    double phase;          /**< zebra stripe phase (radians about the light-line axis) */
+    double resid;          /**< distance of the exact point from the pixel's ray */
+} rg2_pixel;
+
+typedef struct {
+    int width, height;
+    unsigned char *rgb;    /**< width * height * 3 bytes, row-major, top row first */
+    rg2_pixel *pixels;     /**< width * height, or NULL unless keep_pixels */
+    double range[2];       /**< colour range used (curvature modes), else 0 */
+    int foreground;        /**< number of surface pixels */
+    int refined;           /**< pixels whose Newton refinement converged */
+} rg2_image;
+
+RG2_API void rg2_render_opts_default(rg2_render_opts *o);
+/** Render n surfaces (meshes: nullable, n control meshes for the overlay) into out.
+ *  Release with rg2_image_free.
+ *  @return RG2_EINVAL (no surfaces, bad size/range/mode, mesh overlay without meshes),
+ *  RG2_ENONFINITE (non-finite control point, naming it), RG2_ENOMEM. */
+RG2_API rg2_status rg2_render(const rg2_surface *surfs, int n, const rg2_mesh *meshes,
+                              const rg2_render_opts *o, rg2_image *out, rg2_error *err);
+RG2_API void rg2_image_free(rg2_image *img);
+/** Write an RGB image as 8-bit PNG (libpng): path.tmp, then rename. @return RG2_EIO. */
+RG2_API rg2_status rg2_image_write_png(const rg2_image *img, const char *path, rg2_error *err);
+/** rg2_render followed by rg2_image_write_png. */
+RG2_API rg2_status rg2_render_png(const rg2_surface *surfs, int n, const rg2_mesh *meshes,
+                                  const rg2_render_opts *o, const char *path, rg2_error *err);
+
+/* Checks: a continuity and exactness report. Seams are the interior (and closing) patch
+ * seams of each surface; seams between different surfaces are not measured. Gaps are taken at
+ * samples along each seam: position gap relative to the surface size, angle between the unit
+ * normals, and the jump of normal curvature in six tangent directions relative to
+ * max(|k1|, |k2|, 1 / size). Exact pieces (tag >= 0) are sampled against their shape's
+ * implicit equation: |f| / |grad f| relative to the size of that shape's patches. */
+enum {
+    RG2_REQUIRE_G0 = 1u << 0,
+    RG2_REQUIRE_G1 = 1u << 1,
+    RG2_REQUIRE_G2 = 1u << 2,    /**< implies G0 and G1 */
+    RG2_REQUIRE_EXACT = 1u << 3, /**< every tagged patch on its shape */
+    RG2_REQUIRE_WEIGHTS = 1u << 4 /**< every homogeneous weight > 0 */
+};
+
+typedef struct {
+    int seam_samples;      /**< samples per seam (default 16) */
+    int patch_samples;     /**< samples per patch direction for residuals/curvature (default 12) */
+    double tol_g0, tol_g1, tol_g2, tol_exact; /**< pass limits (defaults 1e-12, 1e-10, 1e-8, 1e-11) */
+} rg2_check_opts;
+
+typedef struct {
+    int shape;             /**< index in the shape list */
+    char label[64];        /**< label or shape kind name */
+    int patches;           /**< patches tagged with it */
+    double residual;       /**< worst relative implicit residual */
+    char where[96];        /**< patch and (u, v) of the worst residual */
+} rg2_check_shape;
+
+typedef struct {
+    double value;          /**< the worst gap */
+    int surf, seam_dir;    /**< surface, 0 = u seam, 1 = v seam */
+    int pi, pj, qi, qj;    /**< the two patches (i, j) */
+    double t;              /**< parameter along the seam */
+    double p[3];           /**< the point */
+} rg2_check_gap;
+
+typedef struct {
+    int surfaces, patches, transitions, exact_patches, untagged_bad; /**< untagged_bad: tags
+                              outside the shape list */
+    int n_shapes;
+    rg2_check_shape *shapes; /**< n_shapes entries (allocated) */
+    double worst_residual;
+    int seams, seam_samples, skipped; /**< skipped: samples with an undefined normal */
+    rg2_check_gap g0, g1, g2; /**< position (relative), normal angle (rad), curvature (relative) */
+    double wmin, wmax;     /**< homogeneous weights of all control points */
+    double eval_wmin;      /**< smallest weight met at the samples */
+    double kmin, kmax;     /**< principal curvatures (k2 min, k1 max) over the samples */
+    double Hmin, Hmax, Kmin, Kmax;
+    double size;           /**< bounding-box diagonal used to scale gaps */
+    rg2_check_opts opts;   /**< the options (tolerances) the report was made with */
+} rg2_check_report;
+
+RG2_API void rg2_check_opts_default(rg2_check_opts *o);
+/** Measure surfaces against shapes (nullable if n_shapes == 0; labels nullable). Release the
+ *  report with rg2_check_report_free. @return RG2_EINVAL (no surfaces), RG2_ENOMEM. */
+RG2_API rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes,
+                             const char *const *labels, int n_shapes, const rg2_check_opts *o,
+                             rg2_check_report *out, rg2_error *err);
+RG2_API void rg2_check_report_free(rg2_check_report *r);
+/** The RG2_REQUIRE_* bits of `require` that the report fails (0: every promise holds). */
+RG2_API unsigned rg2_check_failures(const rg2_check_report *r, unsigned require);
+/** Format the report as a text table (json = 0) or JSON (json = 1) into a malloc'd string
+ *  the caller frees with free(). @return RG2_ENOMEM. */
+RG2_API rg2_status rg2_check_format(const rg2_check_report *r, int json, char **text,
+                                    rg2_error *err);
 
 #ifdef __cplusplus
 }
