@@ -593,7 +593,7 @@ static void design_examples(void)
         }
         /* figure-specific facts */
         if (f == 0) {
-            double c[3] = {0, 0, 0};
+            double c[3] = {2.5, 0, 0}; /* the capped sphere is shown beside the band */
             double dd = sphere_dist(rg2_design_surface(d, 1), c, 1.0);
             CHECK(dd <= 1e-13, "Fig. 9 capped sphere: %.3g", dd);
         }
@@ -606,13 +606,15 @@ static void design_examples(void)
         }
         if (f == 4) {
             double c[3] = {0, 0, 1}, R = 1.5, b = 0.5, B = 1 + b * b;
+            /* surface 2 is shown 8 to the right: poles requested at (1.2, 0, 0.1), (0, 0, 2.5) */
             double ex[3][2][3] = {{{c[0] + R * 2 * b / B, 0, c[2] + R * (b * b - 1) / B},
                                    {c[0] - R * 2 * b / B, 0, c[2] + R * (1 - b * b) / B}},
                                   {{0}},
-                                  {{1.2, 0, 0.1}, {0, 0, 2.5}}};
+                                  {{9.2, 0, 0.1}, {8, 0, 2.5}}};
             for (int o = 0; o < 3; o += 2) {
                 const rg2_surface *s = rg2_design_surface(d, o);
-                double dd = sphere_dist(s, c, R);
+                double co[3] = {o ? 8.0 : 0.0, 0, 1};
+                double dd = sphere_dist(s, co, R);
                 CHECK(dd <= 1e-13, "Fig. 14 surface %d on the sphere: %.3g", o, dd);
                 for (int e = 0; e < 2; e++) {
                     double p[3];
