@@ -12,6 +12,8 @@ static const rg2_cli_command commands[] = {
     {"mesh", "write a design's control mesh (d, W, scalars) as JSON", rg2_cmd_mesh},
     {"shapes", "list the exact basic shapes with their parameters", rg2_cmd_shapes},
     {"shape", "build an exact shape or a bi-cubic NURBS into patches", rg2_cmd_shape},
+    {"render", "render a design as a PNG: shaded, curvature maps, zebra stripes", rg2_cmd_render},
+    {"check", "report exactness and G0/G1/G2 gaps of a design; fail on a broken promise", rg2_cmd_check},
 };
 
 static void usage(FILE *f)

@@ -494,10 +494,114 @@ RG2_API rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, 
 
 
 /* ===================================================================================== */
-/** @name Poles (polar configurations, caps, Moebius, paper section 5) */
+/** @name Poles (polar configurations, caps, Moebius, paper section 5)
+ *
+ * A polar configuration (MATH.md section 7) is an open-v mesh whose first and/or last row is
+ * collapsed to a single polar point (a triangle fan); the construction on it yields the band
+ * between the two rings next to the poles, and the caps close the band at the poles.
+ * See docs/poles.md for the choices made where the paper is silent.
+ */
 /* ===================================================================================== */
 
-/* (poles API) */
+/** Knots of a polar configuration from the interior knots v_1 < ... < v_m in (0, 1), m >= 2:
+ *  writes the m + 4 knots v_{-1} = v_1 / (v_1 - 1), v_0 = 0, v_1, ..., v_m, v_{m+1} = 1,
+ *  v_{m+2} = 1 / v_m (the layout of rg2_scalars_from_knots, open, for m + 2 points).
+ *  @return RG2_EDOMAIN for a knot outside (0, 1) or not increasing, naming it. */
+RG2_API rg2_status rg2_polar_knots(const double *v, int m, double *knots, rg2_error *err);
+
+/** Polar control mesh of the unit sphere (family 2, MATH.md eq. 13): u a closed circle
+ *  partition (n_alpha arcs summing to 2 pi, junction 0 at angle theta0), v the polar knots of
+ *  rg2_polar_knots(v, m). The mesh has n_alpha x (m + 2) points; row 0 is the south polar
+ *  point (0, 0, Zs, 1), row m + 1 the north polar point (0, 0, Zn, 1) (exactly collapsed).
+ *  The surface built from it is the band v in [v_1, v_m] of the sphere, exactly.
+ *  M (nullable): row-major 4x4 placement applied to every 4-tuple (exact; rows stay collapsed).
+ *  Free out with rg2_mesh_free. */
+RG2_API rg2_status rg2_polar_sphere_mesh(const double *alpha, int n_alpha, double theta0,
+                                         const double *v, int m, const double *M, rg2_mesh *out,
+                                         rg2_error *err);
+
+/** 1 if row j (all i) of the mesh is one point: every 4-tuple projectively equal to the first
+ *  one to 1e-12 relative to the mesh size; 0 otherwise (or for a bad j). */
+RG2_API int rg2_mesh_row_collapsed(const rg2_mesh *m, int j);
+
+/** Move a polar point: end 0 sets every 4-tuple of row 0, end 1 of row nv - 1, to p
+ *  (a homogeneous 4-tuple, p[3] > 0). Moving a polar point moves the whole collapsed row.
+ *  @return RG2_EINVAL (bad end, closed v), RG2_ENONFINITE, RG2_EWEIGHT (p[3] <= 0). */
+RG2_API rg2_status rg2_polar_set_point(rg2_mesh *m, int end, const double p[4], rg2_error *err);
+
+/** Moebius pole placement of eq. (16), M(z) = (z - b) / (b z + 1), as the linear map of the
+ *  sphere's 4-tuples it induces (divided by 1 + b^2): a rotation about the y-axis taking the
+ *  south pole (0,0,-1) to (2b, 0, b^2 - 1) / (1 + b^2) and the north pole to
+ *  (-2b, 0, 1 - b^2) / (1 + b^2). R (nullable, row-major 3x3 rotation) is applied after it.
+ *  Writes the row-major 4x4 matrix to M. */
+RG2_API void rg2_mobius_matrix(double b, const double *R, double M[16]);
+
+/** The general Moebius transformation of the unit sphere (a Lorentz map of its 4-tuples,
+ *  rotation composed with a boost) that takes the south pole (0,0,-1) to `south` and the north
+ *  pole (0,0,1) to `north`: any two distinct points of the unit sphere (need not be antipodal).
+ *  Writes the row-major 4x4 matrix to M.
+ *  @return RG2_EDOMAIN if a point is not on the unit sphere (1e-9) or the two coincide. */
+RG2_API rg2_status rg2_mobius_poles_matrix(const double south[3], const double north[3],
+                                           double M[16], rg2_error *err);
+
+/** Apply a Moebius matrix (of the unit sphere) to a sphere-like mesh whose reference sphere
+ *  has the given center and radius: every 4-tuple p becomes T M T^-1 p, T = translate(center)
+ *  scale(radius). An exact sphere mesh stays exact (same sphere, poles moved); a free-form
+ *  sphere-like mesh moves with its poles.
+ *  @return RG2_EWEIGHT if a resulting weight is not > 0 (naming the control point), then the
+ *  mesh is unchanged; RG2_EDOMAIN for radius <= 0. */
+RG2_API rg2_status rg2_mesh_mobius(rg2_mesh *m, const double center[3], double radius,
+                                   const double M[16], rg2_error *err);
+
+/** Cap ends. */
+enum { RG2_CAP_SOUTH = 1, RG2_CAP_NORTH = 2 };
+
+/** Options of the bi-3 polar cap (paper section 5.1, docs/poles.md). Index 0 south, 1 north. */
+typedef struct {
+    int ends;             /**< RG2_CAP_SOUTH | RG2_CAP_NORTH (default both) */
+    double length[2];     /**< cap parameter length in units of the adjacent body ring;
+                               0 = automatic (default) */
+    double vc[2];         /**< seam position v_c in [0, 1) in the cap chart F = v^2 q(r): the cap
+                               is v in [0, v_c] (0: polynomial chart, pole at r = 0); used only
+                               when length > 0 */
+    double jet_weight[3]; /**< multipliers of the value, first and second derivative rows of the
+                               least-squares fit (default 1, 1, 0.25) */
+    int samples;          /**< boundary samples per patch column (default 8) */
+} rg2_cap_opts;
+
+/** What the cap construction chose and measured, per end (0 south, 1 north). */
+typedef struct {
+    int capped[2];        /**< 1 if that end was capped */
+    int polar[2];         /**< 1 if the end was a polar configuration (parameters from scalars) */
+    double length[2];     /**< cap length L used (body ring units) */
+    double vc[2];         /**< v_c used */
+    double q[2][4][4];    /**< fitted eq. (14) coefficients q[end][k][c]: q_k = q_k0 + q_k1 x +
+                               q_k2 y + q_k3 (x^2 + y^2), k = x, y, z, w; cap map
+                               F = v^2 q(r(u, v)), r = ((1 - v) / v)(cos u, sin u), v = 0 at the
+                               pole, u measured from junction 0; all zero when vc = 0 */
+    double g[2][4][4];    /**< the same fit in the normalized chart t = v / v_c in [0, 1]:
+                               G = g0 (1 - v_c t)^2 + (g1 cos u + g2 sin u) t (1 - v_c t) + g3 t^2 */
+    double residual[2];   /**< relative weighted RMS residual of the fit (0 for sphere data) */
+    double pole[2][3];    /**< the pole points */
+    int rows_before;      /**< cap patch rows before the body rows in the output (0 or 3) */
+    int rows_after;       /**< cap patch rows after the body rows (0 or 3) */
+} rg2_cap_info;
+
+RG2_API void rg2_cap_opts_default(rg2_cap_opts *o);
+
+/** Build the body surface of `body` (rg2_surface_build) and close its ends with bi-3 polar
+ *  caps: least-squares fit of the 16 coefficients of eq. (14)-(15) to the body's boundary
+ *  2-jet, trisection of the cap, each u-row a C2 cubic spline of 3 pieces with the pole 2-jet
+ *  of the fitted map and the body's 2-jet at the seam. The result is one surface: 3 cap patch
+ *  rows before the body rows (south) and/or 3 after (north), with bv/gv set so that every seam
+ *  is G2; the pole is a collapsed patch edge (normal undefined exactly there, its limit is
+ *  unique). The body needs a closed u-direction with circle scalars (arc partition) and an
+ *  open v-direction. opts and info are nullable. Free out with rg2_surface_free.
+ *  @return RG2_EINVAL (u open, v closed, no body patch row), RG2_EINCOMPATIBLE (u scalars are
+ *  not a circle partition), RG2_EDOMAIN (boundary ring collapsed or too small, rank-deficient
+ *  fit, bad option), or the errors of rg2_surface_build. */
+RG2_API rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts,
+                                 rg2_surface *out, rg2_cap_info *info, rg2_error *err);
 
 /* ===================================================================================== */
 /** @name Grid evaluation and tessellation */
@@ -558,7 +662,136 @@ RG2_API rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const 
 /** @name Pictures and checks */
 /* ===================================================================================== */
 
-/* (render and check API) */
+/* Pictures: per-pixel exact rendering. Every foreground pixel is resolved to the (surface,
+ * patch, u, v) whose exact point lies on the pixel's centre ray (a tessellation z-buffer gives
+ * the start, Newton on the exact patch refines it); shading, curvature and stripe phase come
+ * from rg2_patch_eval there, never from interpolation. Output is deterministic: the same input
+ * gives the same bytes for any number of threads. */
+typedef enum {
+    RG2_RENDER_SHADED = 0, /**< lit surface; exact pieces tinted by their shape tag */
+    RG2_RENDER_MEAN,       /**< mean curvature H colour map (sign as rg2_eval) + colour bar */
+    RG2_RENDER_GAUSS,      /**< Gaussian curvature K colour map (diverging, symmetric) + bar */
+    RG2_RENDER_ZEBRA       /**< reflection of parallel light lines (stripes from the normal) */
+} rg2_render_mode;
+
+typedef struct {
+    int width, height;     /**< image size in pixels (default 800 x 600), each 16..8192 */
+    rg2_render_mode mode;
+    double azimuth;        /**< degrees about +z, 0 looks from +x towards the centre (default 35) */
+    double elevation;      /**< degrees above the xy plane (default 25) */
+    double distance;       /**< eye distance from the view centre (middle of the scene's extent
+                                across the view); <= 0 fits the view to the scene */
+    double fov;            /**< vertical field of view in degrees (default 30) */
+    int boundaries;        /**< draw patch boundaries (seams) as thin dark lines */
+    int mesh;              /**< overlay the control meshes (needs meshes != NULL) */
+    int tint;              /**< shaded: tint patches by shape tag (default 1) */
+    int colorbar;          /**< curvature modes: draw the colour bar and its range (default 1) */
+    int range_set;         /**< 1: use range[] as the colour range; 0: robust range */
+    double range[2];       /**< user colour range lo < hi (curvature modes) */
+    double percentile;     /**< robust range: clip this fraction at each end (default 0.02) */
+    double stripes;        /**< zebra: stripe pairs per half turn (default 12) */
+    int keep_pixels;       /**< fill rg2_image.pixels with the per-pixel exact data */
+    int threads;           /**< OpenMP threads; 0 = the OpenMP default */
+} rg2_render_opts;
+
+/** Exact data of one pixel (rg2_render_opts.keep_pixels). surf < 0 marks background. */
+typedef struct {
+    int surf, patch;       /**< surface index and patch index (i * nv + j) in it */
+    double u, v;           /**< patch parameters where the exact point projects to the centre */
+    double p[3], n[3];     /**< exact point and unit normal (oriented as rg2_eval) */
+    double H, K;           /**< exact mean and Gaussian curvature there */
+    double phase;          /**< zebra stripe phase (radians about the light-line axis) */
+    double resid;          /**< distance of the exact point from the pixel's ray */
+} rg2_pixel;
+
+typedef struct {
+    int width, height;
+    unsigned char *rgb;    /**< width * height * 3 bytes, row-major, top row first */
+    rg2_pixel *pixels;     /**< width * height, or NULL unless keep_pixels */
+    double range[2];       /**< colour range used (curvature modes), else 0 */
+    int foreground;        /**< number of surface pixels */
+    int refined;           /**< pixels whose Newton refinement converged */
+} rg2_image;
+
+RG2_API void rg2_render_opts_default(rg2_render_opts *o);
+/** Render n surfaces (meshes: nullable, n control meshes for the overlay) into out.
+ *  Release with rg2_image_free.
+ *  @return RG2_EINVAL (no surfaces, bad size/range/mode, mesh overlay without meshes),
+ *  RG2_ENONFINITE (non-finite control point, naming it), RG2_ENOMEM. */
+RG2_API rg2_status rg2_render(const rg2_surface *surfs, int n, const rg2_mesh *meshes,
+                              const rg2_render_opts *o, rg2_image *out, rg2_error *err);
+RG2_API void rg2_image_free(rg2_image *img);
+/** Write an RGB image as 8-bit PNG (libpng): path.tmp, then rename. @return RG2_EIO. */
+RG2_API rg2_status rg2_image_write_png(const rg2_image *img, const char *path, rg2_error *err);
+/** rg2_render followed by rg2_image_write_png. */
+RG2_API rg2_status rg2_render_png(const rg2_surface *surfs, int n, const rg2_mesh *meshes,
+                                  const rg2_render_opts *o, const char *path, rg2_error *err);
+
+/* Checks: a continuity and exactness report. Seams are the interior (and closing) patch
+ * seams of each surface; seams between different surfaces are not measured. Gaps are taken at
+ * samples along each seam: position gap relative to the surface size, angle between the unit
+ * normals, and the jump of normal curvature in six tangent directions relative to
+ * max(|k1|, |k2|, 1 / size). Exact pieces (tag >= 0) are sampled against their shape's
+ * implicit equation: |f| / |grad f| relative to the size of that shape's patches. */
+enum {
+    RG2_REQUIRE_G0 = 1u << 0,
+    RG2_REQUIRE_G1 = 1u << 1,
+    RG2_REQUIRE_G2 = 1u << 2,    /**< implies G0 and G1 */
+    RG2_REQUIRE_EXACT = 1u << 3, /**< every tagged patch on its shape */
+    RG2_REQUIRE_WEIGHTS = 1u << 4 /**< every homogeneous weight > 0 */
+};
+
+typedef struct {
+    int seam_samples;      /**< samples per seam (default 16) */
+    int patch_samples;     /**< samples per patch direction for residuals/curvature (default 12) */
+    double tol_g0, tol_g1, tol_g2, tol_exact; /**< pass limits (defaults 1e-12, 1e-10, 1e-8, 1e-11) */
+} rg2_check_opts;
+
+typedef struct {
+    int shape;             /**< index in the shape list */
+    char label[64];        /**< label or shape kind name */
+    int patches;           /**< patches tagged with it */
+    double residual;       /**< worst relative implicit residual */
+    char where[96];        /**< patch and (u, v) of the worst residual */
+} rg2_check_shape;
+
+typedef struct {
+    double value;          /**< the worst gap */
+    int surf, seam_dir;    /**< surface, 0 = u seam, 1 = v seam */
+    int pi, pj, qi, qj;    /**< the two patches (i, j) */
+    double t;              /**< parameter along the seam */
+    double p[3];           /**< the point */
+} rg2_check_gap;
+
+typedef struct {
+    int surfaces, patches, transitions, exact_patches, untagged_bad; /**< untagged_bad: tags
+                              outside the shape list */
+    int n_shapes;
+    rg2_check_shape *shapes; /**< n_shapes entries (allocated) */
+    double worst_residual;
+    int seams, seam_samples, skipped; /**< skipped: samples with an undefined normal */
+    rg2_check_gap g0, g1, g2; /**< position (relative), normal angle (rad), curvature (relative) */
+    double wmin, wmax;     /**< homogeneous weights of all control points */
+    double eval_wmin;      /**< smallest weight met at the samples */
+    double kmin, kmax;     /**< principal curvatures (k2 min, k1 max) over the samples */
+    double Hmin, Hmax, Kmin, Kmax;
+    double size;           /**< bounding-box diagonal used to scale gaps */
+    rg2_check_opts opts;   /**< the options (tolerances) the report was made with */
+} rg2_check_report;
+
+RG2_API void rg2_check_opts_default(rg2_check_opts *o);
+/** Measure surfaces against shapes (nullable if n_shapes == 0; labels nullable). Release the
+ *  report with rg2_check_report_free. @return RG2_EINVAL (no surfaces), RG2_ENOMEM. */
+RG2_API rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes,
+                             const char *const *labels, int n_shapes, const rg2_check_opts *o,
+                             rg2_check_report *out, rg2_error *err);
+RG2_API void rg2_check_report_free(rg2_check_report *r);
+/** The RG2_REQUIRE_* bits of `require` that the report fails (0: every promise holds). */
+RG2_API unsigned rg2_check_failures(const rg2_check_report *r, unsigned require);
+/** Format the report as a text table (json = 0) or JSON (json = 1) into a malloc'd string
+ *  the caller frees with free(). @return RG2_ENOMEM. */
+RG2_API rg2_status rg2_check_format(const rg2_check_report *r, int json, char **text,
+                                    rg2_error *err);
 
 #ifdef __cplusplus
 }

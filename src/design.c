@@ -236,7 +236,9 @@ rg2_status rg2__design_build(rg2_design *d, rg2_error *err)
         rg2_status st = mesh_range(&dm->m, d->name, dm->name, err);
         if (st)
             return st;
-        st = rg2_surface_build(&dm->m, s, err);
+        st = dm->capped ? rg2__design_build_capped(d, dm, s, err) : rg2_surface_build(&dm->m, s, err);
+        if (dm->capped && !st)
+            continue; /* tagged by the caps module */
         if (st) {
             rg2_error e = *err;
             return rg2__fail(err, st, "mesh '%s': %s", dm->name, e.msg);

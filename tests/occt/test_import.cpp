@@ -61,19 +61,20 @@ struct Expect {
     int faces, shared, free_edges;
 };
 
-// Patches of the first row whose v = 0 side collapses to a point (the fixture's pole).
-int collapsed_sides(const rg2_surface *s)
+// Patches of the first row whose v = 0 side (end 0), or of the last row whose v = 1 side
+// (end 1), collapses to a point (a pole).
+int collapsed_sides(const rg2_surface *s, int end)
 {
     if (s->closed_v)
         return 0;
     double tol = 1e-11 * rg2t_surface_scale(s);
-    int n = 0;
+    int n = 0, c0 = end ? 3 : 0;
     for (int i = 0; i < s->nu; i++) {
-        const rg2_patch *P = rg2_surface_patch(s, i, 0);
+        const rg2_patch *P = rg2_surface_patch(s, i, end ? s->nv - 1 : 0);
         bool c = true;
         for (int a = 1; a < 4; a++)
             for (int d = 0; d < 3; d++)
-                if (std::fabs(P->h[a][0][d] / P->h[a][0][3] - P->h[0][0][d] / P->h[0][0][3]) > tol)
+                if (std::fabs(P->h[a][c0][d] / P->h[a][c0][3] - P->h[0][c0][d] / P->h[0][c0][3]) > tol)
                     c = false;
         n += c;
     }
@@ -82,16 +83,17 @@ int collapsed_sides(const rg2_surface *s)
 
 Expect expect_of(const rg2_surface *s, bool per_mesh)
 {
-    int cb = collapsed_sides(s);
+    int cb0 = collapsed_sides(s, 0), cb1 = collapsed_sides(s, 1);
     Expect e;
     if (per_mesh) {
         e.faces = 1;
         e.shared = (s->closed_u ? 1 : 0) + (s->closed_v ? 1 : 0);
-        e.free_edges = (s->closed_u ? 0 : 2) + (s->closed_v ? 0 : 2) - (cb == s->nu ? 1 : 0);
+        e.free_edges = (s->closed_u ? 0 : 2) + (s->closed_v ? 0 : 2) - (cb0 == s->nu ? 1 : 0) -
+                       (cb1 == s->nu ? 1 : 0);
     } else {
         e.faces = s->nu * s->nv;
         e.shared = (s->nu - 1 + s->closed_u) * s->nv + (s->nv - 1 + s->closed_v) * s->nu;
-        e.free_edges = (s->closed_u ? 0 : 2 * s->nv) + (s->closed_v ? 0 : 2 * s->nu) - cb;
+        e.free_edges = (s->closed_u ? 0 : 2 * s->nv) + (s->closed_v ? 0 : 2 * s->nu) - cb0 - cb1;
     }
     return e;
 }
@@ -466,10 +468,22 @@ int main()
     CHECK_OK(fx_torus(13.0, 4.0, 8, 6, &torus, &err), &err);
     CHECK_OK(fx_random(20261122, 7, 6, &random, &err), &err);
     CHECK_OK(fx_pole(6, 7, &pole, &err), &err);
+    /* a complete sphere: polar mesh + bi-3 caps (both ends collapsed, docs/poles.md) */
+    rg2_surface capped;
+    memset(&capped, 0, sizeof capped);
+    {
+        double alpha[6] = {M_PI / 3, M_PI / 3, M_PI / 3, M_PI / 3, M_PI / 3, M_PI / 3}, v[4] = {0.2, 0.4, 0.6, 0.8};
+        rg2_mesh m;
+        memset(&m, 0, sizeof m);
+        CHECK_OK(rg2_polar_sphere_mesh(alpha, 6, 0.0, v, 4, NULL, &m, &err), &err);
+        CHECK_OK(rg2_cap_build(&m, NULL, &capped, NULL, &err), &err);
+        rg2_mesh_free(&m);
+    }
     printf("seed 20261122\n");
     Case cases[] = {{"torus", &torus, rg2t_surface_scale(&torus)},
                     {"random", &random, rg2t_surface_scale(&random)},
-                    {"pole", &pole, rg2t_surface_scale(&pole)}};
+                    {"pole", &pole, rg2t_surface_scale(&pole)},
+                    {"capped sphere", &capped, rg2t_surface_scale(&capped)}};
     // every named shape with its default partition (rg2_shape_surface); shapes whose patches
     // have a weight <= 0 must be refused for STEP, naming the patch
     std::vector<rg2_surface> shapes;
@@ -526,6 +540,7 @@ int main()
     rg2_surface_free(&torus);
     rg2_surface_free(&random);
     rg2_surface_free(&pole);
+    rg2_surface_free(&capped);
     if (!getenv("RG2_OCCT_KEEP"))
         rmdir(dir);
     else
