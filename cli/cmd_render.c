@@ -138,6 +138,10 @@ int rg2_cmd_render(int argc, char **argv)
         usage(stderr);
         return RG2_EXIT_USAGE;
     }
+    if (rg2_cli_same_file(path, out)) {
+        fprintf(stderr, "rg2 render: output '%s' is the design file itself; choose another name\n", out);
+        return RG2_EXIT_USAGE;
+    }
     rg2_design *d = NULL;
     rg2_surface *surfs = NULL;
     rg2_mesh *meshes = NULL;

@@ -125,8 +125,10 @@ int rg2f_design(const uint8_t *data, size_t size)
         st = rg2_mesh_check(m, &err);
         if (st)
             rg2f_violation("output mesh %d fails its check: %s", o, err.msg);
-        if (s->nu != rg2_scalars_num_segments(&m->su) || s->nv != rg2_scalars_num_segments(&m->sv) ||
-            s->closed_u != m->su.closed || s->closed_v != m->sv.closed)
+        /* caps (paper section 5) add patch rows at the ends of an open v direction */
+        int segv = rg2_scalars_num_segments(&m->sv);
+        if (s->nu != rg2_scalars_num_segments(&m->su) || s->nv < segv ||
+            (s->nv != segv && m->sv.closed) || s->closed_u != m->su.closed || s->closed_v != m->sv.closed)
             rg2f_violation("surface %d: %d x %d patches from a %d x %d mesh", o, s->nu, s->nv, m->nu,
                            m->nv);
         if (!s->tag)

@@ -25,16 +25,20 @@ run() {
   fi
 }
 has() { "$rg2" --help | grep -q "^  $1 "; }
+# every example through build (all writers), check and render; info, mesh and the
+# face-per-mesh layout once (each valgrind start costs about a second)
 for f in "$src"/examples/*.json; do
   b=$(basename "$f" .json)
-  run 0 "$rg2" info --map "$f"
   run 0 "$rg2" build -q "$f" -o "$tmp/$b.step" -o "$tmp/$b.igs" -o "$tmp/$b.bv" -o "$tmp/$b.stl" \
     -o "$tmp/$b.glb" -o "$tmp/$b.json" --density 3
-  run 0 "$rg2" build -q "$f" --face-per-mesh -o "$tmp/$b.m.step"
-  run 0 "$rg2" mesh "$f" -o "$tmp/$b.mesh.json"
-  if has check; then run 0 "$rg2" check "$f"; fi
-  if has render; then run 0 "$rg2" render "$f" -o "$tmp/$b.png" --size 64x64; fi
+  if has check; then run 0 "$rg2" check "$f" --samples 4; fi
+  if has render; then run 0 "$rg2" render "$f" -o "$tmp/$b.png" --size 64x48 --mode mean --boundaries; fi
+  rm -f "$tmp/$b".*
 done
+ex="$src/examples/torus_sphere.json"
+run 0 "$rg2" info --map "$ex"
+run 0 "$rg2" mesh "$ex" -o "$tmp/mesh.json"
+run 0 "$rg2" build -q "$ex" --face-per-mesh --ap242 -o "$tmp/m.step" -o "$tmp/m.igs" -o "$tmp/m.obj" -o "$tmp/m.ply" -o "$tmp/m.bez"
 run 0 "$rg2" demo
 run 0 "$rg2" shapes
 # the error paths: every row of the bad-input table (tests/bad/table.tsv, see its header)
