@@ -1,0 +1,393 @@
+/* grid.c -- fast evaluation of rational bi-3 patches on regular parameter grids (positions,
+ * unit normals, derivatives, curvatures) and a fast per-point evaluator.
+ *
+ * METHOD: separable evaluation. The Bernstein values (and derivatives) at the grid
+ * parameters are tabulated once per call: per u index as 4-vectors, per v index as four
+ * structure-of-arrays columns. For grid row a, the u-sums Q_s = sum_r B_r(u_a) h_rs (16
+ * numbers, and the same with B' and B'' when derivatives are wanted) are formed once; every
+ * point of the row is then sum_s B_s(v_b) Q_s: 16 multiply-adds per homogeneous value, a
+ * branch-free loop over b that the compiler vectorises (x86-64: AVX-512 / AVX2 / baseline
+ * clones chosen at load time). The quotient rule and the curvature formulas are those of
+ * rg2_patch_eval (eval.c), which stays the independent reference.
+ */
+#include "internal.h"
+
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef RG2_HAVE_OPENMP
+#include <omp.h>
+#endif
+
+/* Function multi-versioning on x86-64 ELF with GCC: the hot kernels get AVX-512, AVX2 and
+ * baseline clones; the loader picks one per machine, so the library stays portable. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__ELF__) &&     \
+    !defined(RG2_NO_CLONES) && !defined(__AVX2__)
+#define RG2_HOT __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define RG2_HOT
+#endif
+
+#define BLK 64 /* points per block in the full kernel (structure-of-arrays temporaries) */
+
+/* Bernstein tables of one call: u as rows of 4, v as 4 columns of m values. */
+typedef struct {
+    int n, m, order;
+    double *bu, *du, *ddu;             /* n * 4 each */
+    double *bv[4], *dv[4], *ddv[4];    /* m each */
+    double *mem;
+} tables;
+
+static void tables_free(tables *t)
+{
+    free(t->mem);
+    memset(t, 0, sizeof *t);
+}
+
+static rg2_status tables_make(tables *t, int n, int m, int order, rg2_error *err)
+{
+    memset(t, 0, sizeof *t);
+    size_t per = (size_t)n * 4 * 3 + (size_t)m * 12;
+    t->mem = rg2__calloc(per, sizeof(double));
+    if (!t->mem)
+        return rg2__fail(err, RG2_ENOMEM, "grid: out of memory for %d x %d tables", n, m);
+    t->n = n;
+    t->m = m;
+    t->order = order;
+    double *q = t->mem;
+    t->bu = q, q += (size_t)n * 4;
+    t->du = q, q += (size_t)n * 4;
+    t->ddu = q, q += (size_t)n * 4;
+    for (int s = 0; s < 4; s++) {
+        t->bv[s] = q, q += m;
+        t->dv[s] = q, q += m;
+        t->ddv[s] = q, q += m;
+    }
+    for (int a = 0; a < n; a++) {
+        double u = a == n - 1 ? 1.0 : (double)a / (double)(n - 1);
+        rg2__bern3(u, t->bu + 4 * a, t->du + 4 * a, t->ddu + 4 * a);
+    }
+    for (int b = 0; b < m; b++) {
+        double v = b == m - 1 ? 1.0 : (double)b / (double)(m - 1);
+        double B[4], D[4], DD[4];
+        rg2__bern3(v, B, D, DD);
+        for (int s = 0; s < 4; s++) {
+            t->bv[s][b] = B[s];
+            t->dv[s][b] = D[s];
+            t->ddv[s][b] = DD[s];
+        }
+    }
+    return RG2_OK;
+}
+
+/* Column sums of one block of columns, in the order of rg2_patch_eval (v first):
+ * c[r][k][i] = sum_s h[r][s][k] bv[s][b0 + i]. */
+static inline void vsum(const rg2_patch *P, double *const bv[4], int b0, int cnt, double c[4][4][BLK])
+{
+    const double *restrict v0 = bv[0] + b0, *restrict v1 = bv[1] + b0, *restrict v2 = bv[2] + b0,
+                           *restrict v3 = bv[3] + b0;
+    for (int r = 0; r < 4; r++)
+        for (int k = 0; k < 4; k++) {
+            double h0 = P->h[r][0][k], h1 = P->h[r][1][k], h2 = P->h[r][2][k], h3 = P->h[r][3][k];
+            double *restrict dst = c[r][k];
+            for (int i = 0; i < cnt; i++)
+                dst[i] = h0 * v0[i] + h1 * v1[i] + h2 * v2[i] + h3 * v3[i];
+        }
+}
+
+/* sum_r U[r] c[r][k][i], the u-sum of a point (U: row constants). */
+#define USUM(U, c, k) (U[0] * c[0][k][i] + U[1] * c[1][k][i] + U[2] * c[2][k][i] + U[3] * c[3][k][i])
+
+/* Positions of one row segment of cnt points. */
+static inline void seg_pos(const double *restrict U, double c[4][4][BLK], int cnt, double *restrict pos)
+{
+    for (int i = 0; i < cnt; i++) {
+        double X = USUM(U, c, 0), Y = USUM(U, c, 1), Z = USUM(U, c, 2), W = USUM(U, c, 3);
+        double iw = 1.0 / W;
+        pos[3 * i] = X * iw;
+        pos[3 * i + 1] = Y * iw;
+        pos[3 * i + 2] = Z * iw;
+    }
+}
+
+/* Positions and unit normals of one row segment. The normal is the direction of
+ * (Hu - Wu p) x (Hv - Wv p) = W^2 Su x Sv, so no further division is needed. */
+static inline void seg_pos_normal(const double *restrict U, const double *restrict DU, double c0[4][4][BLK],
+                                  double c1[4][4][BLK], int cnt, double *restrict pos, double *restrict nrm)
+{
+    for (int i = 0; i < cnt; i++) {
+        double h[4], hu[4], hv[4];
+#pragma GCC unroll 4
+        for (int k = 0; k < 4; k++) {
+            h[k] = USUM(U, c0, k);
+            hu[k] = USUM(DU, c0, k);
+            hv[k] = USUM(U, c1, k);
+        }
+        double iw = 1.0 / h[3];
+        double p[3], su[3], sv[3];
+#pragma GCC unroll 3
+        for (int k = 0; k < 3; k++) {
+            p[k] = h[k] * iw;
+            su[k] = hu[k] - hu[3] * p[k];
+            sv[k] = hv[k] - hv[3] * p[k];
+        }
+        double cx = su[1] * sv[2] - su[2] * sv[1];
+        double cy = su[2] * sv[0] - su[0] * sv[2];
+        double cz = su[0] * sv[1] - su[1] * sv[0];
+        double l2 = cx * cx + cy * cy + cz * cz;
+        double s2 = (su[0] * su[0] + su[1] * su[1] + su[2] * su[2]) *
+                    (sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2]);
+        double ok = (double)(l2 > 1e-30 * s2); /* branch-free: 0 where undefined */
+        double il = ok / sqrt(l2 + (1.0 - ok));
+        pos[3 * i] = p[0];
+        pos[3 * i + 1] = p[1];
+        pos[3 * i + 2] = p[2];
+        nrm[3 * i] = cx * il;
+        nrm[3 * i + 1] = cy * il;
+        nrm[3 * i + 2] = cz * il;
+    }
+}
+
+static inline void put3(double *restrict dst, const double *restrict x, const double *restrict y,
+                        const double *restrict z, int cnt)
+{
+    for (int i = 0; i < cnt; i++) {
+        dst[3 * i] = x[i];
+        dst[3 * i + 1] = y[i];
+        dst[3 * i + 2] = z[i];
+    }
+}
+
+/* Everything (second order) for one row segment: computed into structure-of-arrays
+ * temporaries with the formulas of rg2_patch_eval, then copied to the requested outputs. */
+RG2_HOT static void seg_full(const double *restrict U, const double *restrict DU, const double *restrict DDU,
+                            double c0[4][4][BLK], double c1[4][4][BLK], double c2[4][4][BLK], int cnt,
+                            const rg2_grid_out *o, size_t at)
+{
+    double p[3][BLK], su[3][BLK], sv[3][BLK], suu[3][BLK], suv[3][BLK], svv[3][BLK], nn[3][BLK];
+    double KK[BLK], HH[BLK];
+    for (int i = 0; i < cnt; i++) {
+        double h[4], hu[4], hv[4], huu[4], huv[4], hvv[4];
+#pragma GCC unroll 4
+        for (int k = 0; k < 4; k++) {
+            h[k] = USUM(U, c0, k);
+            hu[k] = USUM(DU, c0, k);
+            hv[k] = USUM(U, c1, k);
+            huu[k] = USUM(DDU, c0, k);
+            huv[k] = USUM(DU, c1, k);
+            hvv[k] = USUM(U, c2, k);
+        }
+        double iw = 1.0 / h[3];
+        double P[3], Su[3], Sv[3], Suu[3], Suv[3], Svv[3];
+#pragma GCC unroll 3
+        for (int k = 0; k < 3; k++) {
+            P[k] = h[k] * iw;
+            Su[k] = (hu[k] - hu[3] * P[k]) * iw;
+            Sv[k] = (hv[k] - hv[3] * P[k]) * iw;
+            Suu[k] = (huu[k] - 2.0 * hu[3] * Su[k] - huu[3] * P[k]) * iw;
+            Suv[k] = (huv[k] - hu[3] * Sv[k] - hv[3] * Su[k] - huv[3] * P[k]) * iw;
+            Svv[k] = (hvv[k] - 2.0 * hv[3] * Sv[k] - hvv[3] * P[k]) * iw;
+        }
+        double c0x = Su[1] * Sv[2] - Su[2] * Sv[1];
+        double c1x = Su[2] * Sv[0] - Su[0] * Sv[2];
+        double c2x = Su[0] * Sv[1] - Su[1] * Sv[0];
+        double l2 = c0x * c0x + c1x * c1x + c2x * c2x;
+        double E = Su[0] * Su[0] + Su[1] * Su[1] + Su[2] * Su[2];
+        double F = Su[0] * Sv[0] + Su[1] * Sv[1] + Su[2] * Sv[2];
+        double G = Sv[0] * Sv[0] + Sv[1] * Sv[1] + Sv[2] * Sv[2];
+        /* branch-free: ok is 1 where the normal is defined, else 0 (then n = 0,
+         * L = M = N = 0 and K = H = 0 over a denominator >= 1) */
+        double ok = (double)(l2 > 1e-30 * (E * G));
+        double len = sqrt(l2 + (1.0 - ok));
+        double n0 = ok * c0x / len, n1 = ok * c1x / len, n2 = ok * c2x / len;
+        double L = Suu[0] * n0 + Suu[1] * n1 + Suu[2] * n2;
+        double M = Suv[0] * n0 + Suv[1] * n1 + Suv[2] * n2;
+        double N = Svv[0] * n0 + Svv[1] * n1 + Svv[2] * n2;
+        double det = E * G - F * F + (1.0 - ok);
+#pragma GCC unroll 3
+        for (int k = 0; k < 3; k++) {
+            p[k][i] = P[k];
+            su[k][i] = Su[k];
+            sv[k][i] = Sv[k];
+            suu[k][i] = Suu[k];
+            suv[k][i] = Suv[k];
+            svv[k][i] = Svv[k];
+        }
+        nn[0][i] = n0;
+        nn[1][i] = n1;
+        nn[2][i] = n2;
+        KK[i] = (L * N - M * M) / det;
+        HH[i] = (E * N - 2.0 * F * M + G * L) / (2.0 * det);
+    }
+    size_t o3 = 3 * at;
+    put3(o->pos + o3, p[0], p[1], p[2], cnt);
+    struct {
+        double *dst;
+        double(*src)[BLK];
+    } vec[] = {{o->normal, nn}, {o->du, su}, {o->dv, sv}, {o->duu, suu}, {o->duv, suv}, {o->dvv, svv}};
+    for (int q = 0; q < 6; q++)
+        if (vec[q].dst)
+            put3(vec[q].dst + o3, vec[q].src[0], vec[q].src[1], vec[q].src[2], cnt);
+    if (o->K)
+        memcpy(o->K + at, KK, sizeof(double) * (size_t)cnt);
+    if (o->H)
+        memcpy(o->H + at, HH, sizeof(double) * (size_t)cnt);
+}
+#undef USUM
+
+/* Order needed by an output set: 0 positions, 1 adds normals, 2 everything else. */
+static int out_order(const rg2_grid_out *o)
+{
+    if (o->du || o->dv || o->duu || o->duv || o->dvv || o->K || o->H)
+        return 2;
+    return o->normal ? 1 : 0;
+}
+
+/* All n x m points of one patch, written at point index `first` of the outputs: blocks of
+ * BLK columns, their column sums once, then every row of the block. */
+RG2_HOT static void grid_patch(const rg2_patch *P, const tables *t, const rg2_grid_out *o, size_t first)
+{
+    double c0[4][4][BLK], c1[4][4][BLK], c2[4][4][BLK];
+    for (int b0 = 0; b0 < t->m; b0 += BLK) {
+        int cnt = t->m - b0 < BLK ? t->m - b0 : BLK;
+        vsum(P, t->bv, b0, cnt, c0);
+        if (t->order >= 1)
+            vsum(P, t->dv, b0, cnt, c1);
+        if (t->order >= 2)
+            vsum(P, t->ddv, b0, cnt, c2);
+        for (int a = 0; a < t->n; a++) {
+            size_t at = first + (size_t)a * (size_t)t->m + (size_t)b0;
+            const double *U = t->bu + 4 * a, *DU = t->du + 4 * a, *DDU = t->ddu + 4 * a;
+            if (t->order == 0)
+                seg_pos(U, c0, cnt, o->pos + 3 * at);
+            else if (t->order == 1)
+                seg_pos_normal(U, DU, c0, c1, cnt, o->pos + 3 * at, o->normal + 3 * at);
+            else
+                seg_full(U, DU, DDU, c0, c1, c2, cnt, o, at);
+        }
+    }
+}
+
+static rg2_status check_args(int n, int m, const rg2_grid_out *out, rg2_error *err)
+{
+    if (!out || !out->pos)
+        return rg2__fail(err, RG2_EINVAL, "grid: the position array (out->pos) is NULL");
+    if (n < 2 || m < 2)
+        return rg2__fail(err, RG2_EINVAL, "grid: %d x %d points per patch; need at least 2 x 2", n, m);
+    if (n > RG2_GRID_MAX || m > RG2_GRID_MAX)
+        return rg2__fail(err, RG2_ELIMIT, "grid: %d x %d points per patch exceeds the limit %d per direction",
+                         n, m, RG2_GRID_MAX);
+    return RG2_OK;
+}
+
+rg2_status rg2_patch_grid(const rg2_patch *P, int n, int m, const rg2_grid_out *out, rg2_error *err)
+{
+    rg2_status st = check_args(n, m, out, err);
+    if (st)
+        return st;
+    if (!P)
+        return rg2__fail(err, RG2_EINVAL, "grid: the patch is NULL");
+    tables t;
+    st = tables_make(&t, n, m, out_order(out), err);
+    if (st)
+        return st;
+    grid_patch(P, &t, out, 0);
+    tables_free(&t);
+    rg2__ok(err);
+    return RG2_OK;
+}
+
+rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads, const rg2_grid_out *out,
+                            rg2_error *err)
+{
+    rg2_status st = check_args(n, m, out, err);
+    if (st)
+        return st;
+    if (!s || !s->patch || s->nu < 1 || s->nv < 1)
+        return rg2__fail(err, RG2_EINVAL, "grid: the surface is empty (no patches)");
+    if (threads < 0)
+        return rg2__fail(err, RG2_EINVAL, "grid: thread count %d is negative", threads);
+    size_t np = (size_t)s->nu * (size_t)s->nv, per = (size_t)n * (size_t)m;
+    if (np > SIZE_MAX / 3 / sizeof(double) / per)
+        return rg2__fail(err, RG2_ELIMIT, "grid: %zu patches x %d x %d points exceed the addressable size", np,
+                         n, m);
+    tables t;
+    st = tables_make(&t, n, m, out_order(out), err);
+    if (st)
+        return st;
+    long long cnt = (long long)np;
+#ifdef RG2_HAVE_OPENMP
+    int nt = threads > 0 ? threads : omp_get_max_threads();
+    if (nt > cnt)
+        nt = (int)cnt;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt) if (nt > 1)
+#endif
+    for (long long k = 0; k < cnt; k++)
+        grid_patch(&s->patch[k], &t, out, (size_t)k * per);
+    tables_free(&t);
+    rg2__ok(err);
+    return RG2_OK;
+}
+
+/* ---- per point ---------------------------------------------------------------------- */
+
+/* Column sums at one v (c[r][k] = sum_s h[r][s][k] B[s]), as in rg2_patch_eval. */
+static inline void vsum1(const rg2_patch *P, const double B[4], double c[4][4])
+{
+    for (int r = 0; r < 4; r++)
+        for (int k = 0; k < 4; k++)
+            c[r][k] = P->h[r][0][k] * B[0] + P->h[r][1][k] * B[1] + P->h[r][2][k] * B[2] +
+                      P->h[r][3][k] * B[3];
+}
+
+static inline double usum1(const double U[4], double c[4][4], int k)
+{
+    return U[0] * c[0][k] + U[1] * c[1][k] + U[2] * c[2][k] + U[3] * c[3][k];
+}
+
+void rg2_patch_point(const rg2_patch *P, double u, double v, double p[3])
+{
+    double Bu[4], Bv[4], c[4][4];
+    rg2__bern3(u, Bu, NULL, NULL);
+    rg2__bern3(v, Bv, NULL, NULL);
+    vsum1(P, Bv, c);
+    double iw = 1.0 / usum1(Bu, c, 3);
+    for (int k = 0; k < 3; k++)
+        p[k] = usum1(Bu, c, k) * iw;
+}
+
+unsigned rg2_patch_point_normal(const rg2_patch *P, double u, double v, double p[3], double nrm[3])
+{
+    double Bu[4], Du[4], Bv[4], Dv[4], c0[4][4], c1[4][4];
+    rg2__bern3(u, Bu, Du, NULL);
+    rg2__bern3(v, Bv, Dv, NULL);
+    vsum1(P, Bv, c0);
+    vsum1(P, Dv, c1);
+    double h[4], hu[4], hv[4];
+    for (int k = 0; k < 4; k++) {
+        h[k] = usum1(Bu, c0, k);
+        hu[k] = usum1(Du, c0, k);
+        hv[k] = usum1(Bu, c1, k);
+    }
+    unsigned flags = h[3] > 0.0 ? 0u : (unsigned)RG2_EVAL_WEIGHT_NONPOSITIVE;
+    double iw = 1.0 / h[3], su[3], sv[3];
+    for (int k = 0; k < 3; k++) {
+        p[k] = h[k] * iw;
+        su[k] = hu[k] - hu[3] * p[k];
+        sv[k] = hv[k] - hv[3] * p[k];
+    }
+    double c[3] = {su[1] * sv[2] - su[2] * sv[1], su[2] * sv[0] - su[0] * sv[2],
+                   su[0] * sv[1] - su[1] * sv[0]};
+    double l2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    double s2 = (su[0] * su[0] + su[1] * su[1] + su[2] * su[2]) *
+                (sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2]);
+    if (!(l2 > 1e-30 * s2)) {
+        nrm[0] = nrm[1] = nrm[2] = 0.0;
+        return flags | RG2_EVAL_NORMAL_UNDEFINED | RG2_EVAL_CURVATURE_UNDEFINED;
+    }
+    double len = sqrt(l2);
+    for (int k = 0; k < 3; k++)
+        nrm[k] = c[k] / len;
+    return flags;
+}
