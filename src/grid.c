@@ -29,11 +29,26 @@
 #define RG2_HOT
 #endif
 
+/* Hand-written AVX-512 kernels for positions and normals (reciprocals by rcp14/rsqrt14 and
+ * two Newton steps instead of divisions, interleaving permutes, optional streaming stores),
+ * chosen at run time when the CPU has AVX-512F/DQ. */
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(RG2_NO_CLONES)
+#define RG2_AVX512 1
+#include <immintrin.h>
+#else
+#define RG2_AVX512 0
+#endif
+
+/* Outputs larger than this (bytes) are written with streaming stores on the AVX-512 path. */
+#define RG2_STREAM_BYTES ((size_t)32 << 20)
+
 #define BLK 64 /* points per block in the full kernel (structure-of-arrays temporaries) */
 
 /* Bernstein tables of one call: u as rows of 4, v as 4 columns of m values. */
 typedef struct {
     int n, m, order;
+    int avx512; /* use the AVX-512 kernels (this CPU has them) */
+    int stream; /* large output: non-temporal stores (bypass the caches) */
     double *bu, *du, *ddu;             /* n * 4 each */
     double *bv[4], *dv[4], *ddv[4];    /* m each */
     double *mem;
@@ -55,6 +70,9 @@ static rg2_status tables_make(tables *t, int n, int m, int order, rg2_error *err
     t->n = n;
     t->m = m;
     t->order = order;
+#if RG2_AVX512
+    t->avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+#endif
     double *q = t->mem;
     t->bu = q, q += (size_t)n * 4;
     t->du = q, q += (size_t)n * 4;
@@ -236,6 +254,122 @@ RG2_HOT static void seg_full(const double *restrict U, const double *restrict DU
 }
 #undef USUM
 
+#if RG2_AVX512
+#define RG2_AVX512_FN __attribute__((target("avx512f,avx512dq,fma")))
+
+/* 1 / x to ~1 ulp: rcp14 then two Newton steps (relative error 2^-14 -> 2^-28 -> 2^-56). */
+RG2_AVX512_FN static inline __m512d recip8(__m512d x)
+{
+    const __m512d one = _mm512_set1_pd(1.0);
+    __m512d y = _mm512_rcp14_pd(x);
+    y = _mm512_fmadd_pd(y, _mm512_fnmadd_pd(x, y, one), y);
+    return _mm512_fmadd_pd(y, _mm512_fnmadd_pd(x, y, one), y);
+}
+
+/* 1 / sqrt(x) to ~1 ulp: rsqrt14 then two Newton steps y (3 - x y^2) / 2. */
+RG2_AVX512_FN static inline __m512d rsqrt8(__m512d x)
+{
+    const __m512d half = _mm512_set1_pd(0.5), three = _mm512_set1_pd(3.0);
+    __m512d y = _mm512_rsqrt14_pd(x);
+    for (int it = 0; it < 2; it++) {
+        __m512d xyy = _mm512_mul_pd(_mm512_mul_pd(x, y), y);
+        y = _mm512_mul_pd(_mm512_mul_pd(half, y), _mm512_sub_pd(three, xyy));
+    }
+    return y;
+}
+
+/* sum_r U[r] c[r][k][i..i+7] */
+RG2_AVX512_FN static inline __m512d usum8(const __m512d U[4], double c[4][4][BLK], int k, int i)
+{
+    __m512d acc = _mm512_mul_pd(U[0], _mm512_load_pd(&c[0][k][i]));
+    acc = _mm512_fmadd_pd(U[1], _mm512_load_pd(&c[1][k][i]), acc);
+    acc = _mm512_fmadd_pd(U[2], _mm512_load_pd(&c[2][k][i]), acc);
+    return _mm512_fmadd_pd(U[3], _mm512_load_pd(&c[3][k][i]), acc);
+}
+
+/* Store 8 points (x, y, z) interleaved as 24 doubles at dst. */
+RG2_AVX512_FN static inline void store_xyz8(double *dst, __m512d x, __m512d y, __m512d z, int stream)
+{
+    const __m512i i0 = _mm512_set_epi64(10, 2, 0, 9, 1, 0, 8, 0), z0 = _mm512_set_epi64(0, 0, 1, 0, 0, 0, 0, 0);
+    const __m512i i1 = _mm512_set_epi64(5, 0, 12, 4, 0, 11, 3, 0), z1 = _mm512_set_epi64(0, 4, 0, 0, 3, 0, 0, 2);
+    const __m512i i2 = _mm512_set_epi64(0, 15, 7, 0, 14, 6, 0, 13), z2 = _mm512_set_epi64(7, 0, 0, 6, 0, 0, 5, 0);
+    __m512d o0 = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(x, i0, y), 0x24, z0, z);
+    __m512d o1 = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(x, i1, y), 0x49, z1, z);
+    __m512d o2 = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(x, i2, y), 0x92, z2, z);
+    if (stream && ((uintptr_t)dst & 63) == 0) {
+        _mm512_stream_pd(dst, o0);
+        _mm512_stream_pd(dst + 8, o1);
+        _mm512_stream_pd(dst + 16, o2);
+    } else {
+        _mm512_storeu_pd(dst, o0);
+        _mm512_storeu_pd(dst + 8, o1);
+        _mm512_storeu_pd(dst + 16, o2);
+    }
+}
+
+RG2_AVX512_FN static void seg_pos_avx512(const double *U, double c[4][4][BLK], int cnt, double *pos,
+                                         int stream)
+{
+    __m512d u[4] = {_mm512_set1_pd(U[0]), _mm512_set1_pd(U[1]), _mm512_set1_pd(U[2]), _mm512_set1_pd(U[3])};
+    int i = 0;
+    for (; i + 8 <= cnt; i += 8) {
+        __m512d iw = recip8(usum8(u, c, 3, i));
+        store_xyz8(pos + 3 * i, _mm512_mul_pd(usum8(u, c, 0, i), iw), _mm512_mul_pd(usum8(u, c, 1, i), iw),
+                   _mm512_mul_pd(usum8(u, c, 2, i), iw), stream);
+    }
+    if (i < cnt) { /* the remaining < 8 points: the portable kernel (c is indexed from i) */
+        double tail[4][4][BLK];
+        for (int r = 0; r < 4; r++)
+            for (int k = 0; k < 4; k++)
+                memcpy(tail[r][k], &c[r][k][i], sizeof(double) * (size_t)(cnt - i));
+        seg_pos(U, tail, cnt - i, pos + 3 * i);
+    }
+    if (stream)
+        _mm_sfence();
+}
+
+RG2_AVX512_FN static void seg_pos_normal_avx512(const double *U, const double *DU, double c0[4][4][BLK],
+                                                double c1[4][4][BLK], int cnt, double *pos, double *nrm,
+                                                int stream)
+{
+    __m512d u[4] = {_mm512_set1_pd(U[0]), _mm512_set1_pd(U[1]), _mm512_set1_pd(U[2]), _mm512_set1_pd(U[3])};
+    __m512d du[4] = {_mm512_set1_pd(DU[0]), _mm512_set1_pd(DU[1]), _mm512_set1_pd(DU[2]), _mm512_set1_pd(DU[3])};
+    const __m512d thr = _mm512_set1_pd(1e-30);
+    int i = 0;
+    for (; i + 8 <= cnt; i += 8) {
+        __m512d iw = recip8(usum8(u, c0, 3, i));
+        __m512d hu3 = usum8(du, c0, 3, i), hv3 = usum8(u, c1, 3, i);
+        __m512d p[3], su[3], sv[3];
+        for (int k = 0; k < 3; k++) {
+            p[k] = _mm512_mul_pd(usum8(u, c0, k, i), iw);
+            su[k] = _mm512_fnmadd_pd(hu3, p[k], usum8(du, c0, k, i));
+            sv[k] = _mm512_fnmadd_pd(hv3, p[k], usum8(u, c1, k, i));
+        }
+        __m512d cx = _mm512_fmsub_pd(su[1], sv[2], _mm512_mul_pd(su[2], sv[1]));
+        __m512d cy = _mm512_fmsub_pd(su[2], sv[0], _mm512_mul_pd(su[0], sv[2]));
+        __m512d cz = _mm512_fmsub_pd(su[0], sv[1], _mm512_mul_pd(su[1], sv[0]));
+        __m512d l2 = _mm512_fmadd_pd(cz, cz, _mm512_fmadd_pd(cy, cy, _mm512_mul_pd(cx, cx)));
+        __m512d e = _mm512_fmadd_pd(su[2], su[2], _mm512_fmadd_pd(su[1], su[1], _mm512_mul_pd(su[0], su[0])));
+        __m512d g = _mm512_fmadd_pd(sv[2], sv[2], _mm512_fmadd_pd(sv[1], sv[1], _mm512_mul_pd(sv[0], sv[0])));
+        __mmask8 ok = _mm512_cmp_pd_mask(l2, _mm512_mul_pd(thr, _mm512_mul_pd(e, g)), _CMP_GT_OQ);
+        __m512d il = _mm512_maskz_mov_pd(ok, rsqrt8(_mm512_mask_blend_pd(ok, _mm512_set1_pd(1.0), l2)));
+        store_xyz8(pos + 3 * i, p[0], p[1], p[2], stream);
+        store_xyz8(nrm + 3 * i, _mm512_mul_pd(cx, il), _mm512_mul_pd(cy, il), _mm512_mul_pd(cz, il), stream);
+    }
+    if (i < cnt) {
+        double t0[4][4][BLK], t1[4][4][BLK];
+        for (int r = 0; r < 4; r++)
+            for (int k = 0; k < 4; k++) {
+                memcpy(t0[r][k], &c0[r][k][i], sizeof(double) * (size_t)(cnt - i));
+                memcpy(t1[r][k], &c1[r][k][i], sizeof(double) * (size_t)(cnt - i));
+            }
+        seg_pos_normal(U, DU, t0, t1, cnt - i, pos + 3 * i, nrm + 3 * i);
+    }
+    if (stream)
+        _mm_sfence();
+}
+#endif
+
 /* Order needed by an output set: 0 positions, 1 adds normals, 2 everything else. */
 static int out_order(const rg2_grid_out *o)
 {
@@ -248,7 +382,9 @@ static int out_order(const rg2_grid_out *o)
  * BLK columns, their column sums once, then every row of the block. */
 RG2_HOT static void grid_patch(const rg2_patch *P, const tables *t, const rg2_grid_out *o, size_t first)
 {
-    double c0[4][4][BLK], c1[4][4][BLK], c2[4][4][BLK];
+    _Alignas(64) double c0[4][4][BLK];
+    _Alignas(64) double c1[4][4][BLK];
+    _Alignas(64) double c2[4][4][BLK];
     for (int b0 = 0; b0 < t->m; b0 += BLK) {
         int cnt = t->m - b0 < BLK ? t->m - b0 : BLK;
         vsum(P, t->bv, b0, cnt, c0);
@@ -259,6 +395,13 @@ RG2_HOT static void grid_patch(const rg2_patch *P, const tables *t, const rg2_gr
         for (int a = 0; a < t->n; a++) {
             size_t at = first + (size_t)a * (size_t)t->m + (size_t)b0;
             const double *U = t->bu + 4 * a, *DU = t->du + 4 * a, *DDU = t->ddu + 4 * a;
+#if RG2_AVX512
+            if (t->avx512 && t->order == 0)
+                seg_pos_avx512(U, c0, cnt, o->pos + 3 * at, t->stream);
+            else if (t->avx512 && t->order == 1)
+                seg_pos_normal_avx512(U, DU, c0, c1, cnt, o->pos + 3 * at, o->normal + 3 * at, t->stream);
+            else
+#endif
             if (t->order == 0)
                 seg_pos(U, c0, cnt, o->pos + 3 * at);
             else if (t->order == 1)
@@ -292,6 +435,7 @@ rg2_status rg2_patch_grid(const rg2_patch *P, int n, int m, const rg2_grid_out *
     st = tables_make(&t, n, m, out_order(out), err);
     if (st)
         return st;
+    t.stream = (size_t)n * (size_t)m * (t.order ? 48 : 24) > RG2_STREAM_BYTES;
     grid_patch(P, &t, out, 0);
     tables_free(&t);
     rg2__ok(err);
@@ -316,6 +460,7 @@ rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads, con
     st = tables_make(&t, n, m, out_order(out), err);
     if (st)
         return st;
+    t.stream = np * per * (t.order ? 48 : 24) > RG2_STREAM_BYTES;
     long long cnt = (long long)np;
 #ifdef RG2_HAVE_OPENMP
     int nt = threads > 0 ? threads : omp_get_max_threads();

@@ -229,9 +229,21 @@ static void torus(void)
     size_t bytes = per * np * 23 * sizeof(double);
     CHECK(memcmp(g1.mem, g2.mem, bytes) == 0 && memcmp(g1.mem, g.mem, bytes) == 0,
           "1, 2 and default threads give identical bits");
-    rg2_grid_out pos_only = {.pos = g2.o.pos};
-    CHECK_OK(rg2_surface_grid(&s, n, m, 3, &pos_only, &err), &err);
-    CHECK(memcmp(g1.o.pos, g2.o.pos, per * np * 3 * sizeof(double)) == 0, "3 threads, positions: identical");
+    /* the position-only and position+normal kernels (other code paths): 1 vs 3 threads */
+    for (int level = 0; level < 2; level++) {
+        rg2_grid_out a = {.pos = g1.o.pos, .normal = level ? g1.o.normal : NULL};
+        rg2_grid_out b = {.pos = g2.o.pos, .normal = level ? g2.o.normal : NULL};
+        CHECK_OK(rg2_surface_grid(&s, n, m, 1, &a, &err), &err);
+        CHECK_OK(rg2_surface_grid(&s, n, m, 3, &b, &err), &err);
+        CHECK(memcmp(a.pos, b.pos, per * np * 3 * sizeof(double)) == 0 &&
+                  (!level || memcmp(a.normal, b.normal, per * np * 3 * sizeof(double)) == 0),
+              "level %d: 1 and 3 threads give identical bits", level);
+        diffs dd = {0};
+        for (size_t k = 0; k < np; k++)
+            compare_patch(&s.patch[k], n, m, &b, k * per, R + r, &dd);
+        CHECK(dd.pos <= 1e-14 && dd.normal <= 1e-14, "level %d kernel vs rg2_patch_eval: pos %.3g normal %.3g",
+              level, dd.pos, dd.normal);
+    }
     free(g.mem);
     free(g1.mem);
     free(g2.mem);
