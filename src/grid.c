@@ -217,8 +217,8 @@ RG2_HOT static void seg_full(const double *restrict U, const double *restrict DU
         /* branch-free: ok is 1 where the normal is defined, else 0 (then n = 0,
          * L = M = N = 0 and K = H = 0 over a denominator >= 1) */
         double ok = (double)(l2 > 1e-30 * (E * G));
-        double len = sqrt(l2 + (1.0 - ok));
-        double n0 = ok * c0x / len, n1 = ok * c1x / len, n2 = ok * c2x / len;
+        double il = ok / sqrt(l2 + (1.0 - ok));
+        double n0 = c0x * il, n1 = c1x * il, n2 = c2x * il;
         double L = Suu[0] * n0 + Suu[1] * n1 + Suu[2] * n2;
         double M = Suv[0] * n0 + Suv[1] * n1 + Suv[2] * n2;
         double N = Svv[0] * n0 + Svv[1] * n1 + Svv[2] * n2;
@@ -235,8 +235,9 @@ RG2_HOT static void seg_full(const double *restrict U, const double *restrict DU
         nn[0][i] = n0;
         nn[1][i] = n1;
         nn[2][i] = n2;
-        KK[i] = (L * N - M * M) / det;
-        HH[i] = (E * N - 2.0 * F * M + G * L) / (2.0 * det);
+        double idet = 1.0 / det;
+        KK[i] = (L * N - M * M) * idet;
+        HH[i] = (E * N - 2.0 * F * M + G * L) * (0.5 * idet);
     }
     size_t o3 = 3 * at;
     put3(o->pos + o3, p[0], p[1], p[2], cnt);
