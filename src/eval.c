@@ -77,8 +77,10 @@ void rg2_patch_eval(const rg2_patch *P, double u, double v, int order, rg2_eval 
     double c[3];
     cross3(e->su, e->sv, c);
     double len = sqrt(dot3(c, c));
-    double scale = sqrt(dot3(e->su, e->su) * dot3(e->sv, e->sv));
-    if (!(len > 1e-15 * scale) || len == 0.0) {
+    /* Relative to |su|^2 + |sv|^2, not |su||sv|: on a collapsed edge one derivative is
+     * rounding noise and |su x sv| ~ |su||sv| would not be small. */
+    double scale = dot3(e->su, e->su) + dot3(e->sv, e->sv);
+    if (!(len > 1e-14 * scale)) {
         e->flags |= RG2_EVAL_NORMAL_UNDEFINED | RG2_EVAL_CURVATURE_UNDEFINED;
     } else {
         for (int k = 0; k < 3; k++)

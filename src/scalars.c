@@ -219,7 +219,7 @@ rg2_status rg2_circle_coeffs(const double *alpha, int n_alpha, int closed, doubl
         return rg2__fail(err, RG2_ENONFINITE, "arcs: start angle is not finite");
     if (closed && fabs(sum - 2.0 * M_PI) > 1e-12 * 2.0 * M_PI)
         return rg2__fail(err, RG2_EDOMAIN,
-                         "arcs: a closed circle needs opening angles summing to 2 pi; they sum to "
+                         "arcs: a closed circle needs opening angles that sum to 2 pi; these sum to "
                          "%.17g",
                          sum);
     /* Junction i sits at theta_i (start of arc i). Its control point is the intersection of

@@ -10,10 +10,11 @@ static void random_scalars(rg2t_rng *r, rg2_scalars *s)
     int nw = rg2_scalars_num_w(s);
     for (int k = 0; k < nw; k++)
         s->w[k] = rg2t_uniform(r, 0.7, 1.4);
-    for (int i = 0; i < s->n; i++) {
-        s->b[i] = rg2t_uniform(r, 0.5, 2.0);
-        s->g[i] = rg2t_uniform(r, -0.8, 0.8);
-    }
+    for (int i = 0; i < s->n; i++)
+        do { /* resample until K_i > 0, the construction's precondition */
+            s->b[i] = rg2t_uniform(r, 0.5, 2.0);
+            s->g[i] = rg2t_uniform(r, -0.8, 0.8);
+        } while (!(rg2_scalars_K(s, i) > 0.0));
 }
 
 static void random_surfaces(void)
@@ -167,8 +168,112 @@ static void mesh_errors(void)
     CHECK(rg2_mesh_init(&m, 5000, 5000, 0, 0, &err) == RG2_ELIMIT, "huge mesh refused: %s", err.msg);
 }
 
+/* Torus from circle products: exact point, normal and curvatures against the implicit
+ * geometry (K = cos v / (r (R + r cos v)), H from the principal curvatures 1/r and
+ * cos v / (R + r cos v), with cos v = (rho - R) / r read off the point). */
+static void torus_curvatures(void)
+{
+    const double R = 2.5, rr = 0.75;
+    double au[7], av[5], cu[14], cv[10];
+    rg2t_rng rng;
+    rg2t_seed(&rng, 5);
+    double su = 0, sv = 0;
+    for (int i = 0; i < 7; i++) su += (au[i] = rg2t_uniform(&rng, 0.5, 1.0));
+    for (int i = 0; i < 5; i++) sv += (av[i] = rg2t_uniform(&rng, 0.5, 1.0));
+    for (int i = 0; i < 7; i++) au[i] *= 2 * M_PI / su;
+    for (int i = 0; i < 5; i++) av[i] *= 2 * M_PI / sv;
+    rg2_mesh m;
+    rg2_error err;
+    CHECK_OK(rg2_mesh_init(&m, 7, 5, 1, 1, &err), &err);
+    rg2_scalars_free(&m.su);
+    rg2_scalars_free(&m.sv);
+    CHECK_OK(rg2_scalars_from_angles(&m.su, au, 7, 1, &err), &err);
+    CHECK_OK(rg2_scalars_from_angles(&m.sv, av, 5, 1, &err), &err);
+    CHECK_OK(rg2_circle_coeffs(au, 7, 1, 0.3, cu, &err), &err);
+    CHECK_OK(rg2_circle_coeffs(av, 5, 1, -1.0, cv, &err), &err);
+    for (int i = 0; i < 7; i++)
+        for (int j = 0; j < 5; j++) {
+            double *p = rg2_mesh_at(&m, i, j);
+            p[0] = (R + rr * cv[2 * j]) * cu[2 * i];
+            p[1] = (R + rr * cv[2 * j]) * cu[2 * i + 1];
+            p[2] = rr * cv[2 * j + 1];
+            p[3] = 1;
+        }
+    rg2_surface s;
+    CHECK_OK(rg2_surface_build(&m, &s, &err), &err);
+    double wpos = 0, wn = 0, wK = 0, wH = 0, wk = 0;
+    for (int i = 0; i < s.nu; i++)
+        for (int j = 0; j < s.nv; j++)
+            for (int a = 0; a <= 10; a++)
+                for (int b = 0; b <= 10; b++) {
+                    rg2_eval e;
+                    rg2_patch_eval(rg2_surface_patch(&s, i, j), a / 10.0, b / 10.0, 2, &e);
+                    double rho = hypot(e.p[0], e.p[1]);
+                    double cosv = (rho - R) / rr, sinv = e.p[2] / rr;
+                    wpos = fmax(wpos, fabs(hypot(rho - R, e.p[2]) - rr) / R);
+                    /* outward normal of the tube */
+                    double no[3] = {cosv * e.p[0] / rho, cosv * e.p[1] / rho, sinv};
+                    double sgn = e.n[0] * no[0] + e.n[1] * no[1] + e.n[2] * no[2] > 0 ? 1.0 : -1.0;
+                    wn = fmax(wn, hypot(hypot(e.n[0] - sgn * no[0], e.n[1] - sgn * no[1]), e.n[2] - sgn * no[2]));
+                    double k_a = -sgn / rr, k_b = -sgn * cosv / (R + rr * cosv);
+                    double K = k_a * k_b, H = 0.5 * (k_a + k_b);
+                    wK = fmax(wK, fabs(e.K - K) / (1 / (rr * rr)));
+                    wH = fmax(wH, fabs(e.H - H) / (1 / rr));
+                    double k1 = fmax(k_a, k_b), k2 = fmin(k_a, k_b);
+                    wk = fmax(wk, fmax(fabs(e.k1 - k1), fabs(e.k2 - k2)) * rr);
+                    CHECK(e.flags == 0, "flags %u at patch (%d,%d)", e.flags, i, j);
+                }
+    CHECK(wpos <= 1e-14, "torus position %.3g", wpos);
+    CHECK(wn <= 1e-13, "torus normal %.3g", wn);
+    CHECK(wK <= 1e-12 && wH <= 1e-12 && wk <= 1e-12, "torus curvature K %.3g H %.3g k1/k2 %.3g", wK, wH, wk);
+    printf("torus (random arcs): position %.2e, normal %.2e, K %.2e, H %.2e, k1/k2 %.2e (relative)\n", wpos,
+           wn, wK, wH, wk);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
+/* A collapsed edge (all u = 0 control points equal) flags the normal as undefined there,
+ * and derivatives agree with central differences of positions elsewhere. */
+static void degenerate_and_derivatives(void)
+{
+    rg2_patch P;
+    rg2t_rng r;
+    rg2t_seed(&r, 11);
+    for (int a = 0; a < 4; a++)
+        for (int b = 0; b < 4; b++) {
+            double W = rg2t_uniform(&r, 0.7, 1.3);
+            for (int k = 0; k < 3; k++)
+                P.h[a][b][k] = W * (a == 0 ? (k == 2 ? 1.0 : 0.0) : rg2t_uniform(&r, -1, 1));
+            P.h[a][b][3] = W;
+        }
+    rg2_eval e;
+    rg2_patch_eval(&P, 0.0, 0.4, 2, &e);
+    CHECK(e.flags & RG2_EVAL_NORMAL_UNDEFINED, "collapsed edge flagged: %u", e.flags);
+    CHECK(e.K == 0 && e.H == 0, "no curvature where the normal is undefined");
+    double h = 1e-5, worst = 0;
+    for (int q = 0; q < 20; q++) {
+        double u = rg2t_uniform(&r, 0.2, 0.8), v = rg2t_uniform(&r, 0.2, 0.8);
+        rg2_eval c, pu, mu, pv, mv;
+        rg2_patch_eval(&P, u, v, 2, &c);
+        rg2_patch_eval(&P, u + h, v, 1, &pu);
+        rg2_patch_eval(&P, u - h, v, 1, &mu);
+        rg2_patch_eval(&P, u, v + h, 1, &pv);
+        rg2_patch_eval(&P, u, v - h, 1, &mv);
+        for (int k = 0; k < 3; k++) {
+            worst = fmax(worst, fabs((pu.p[k] - mu.p[k]) / (2 * h) - c.su[k]));
+            worst = fmax(worst, fabs((pv.p[k] - mv.p[k]) / (2 * h) - c.sv[k]));
+            worst = fmax(worst, fabs((pu.su[k] - mu.su[k]) / (2 * h) - c.suu[k]));
+            worst = fmax(worst, fabs((pv.sv[k] - mv.sv[k]) / (2 * h) - c.svv[k]));
+            worst = fmax(worst, fabs((pv.su[k] - mv.su[k]) / (2 * h) - c.suv[k]));
+        }
+    }
+    CHECK(worst <= 1e-6, "derivatives vs central differences: %.3g", worst);
+}
+
 int main(void)
 {
+    torus_curvatures();
+    degenerate_and_derivatives();
     random_surfaces();
     broken_is_detected();
     transpose_symmetry();

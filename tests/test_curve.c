@@ -1,0 +1,284 @@
+/* test_curve.c -- rational cubic G2 spline curves: the G1/G2 relations of Definition 1 at
+ * every junction, the polynomial special case against Cox-de Boor, exact circles and arcs,
+ * and the error cases. */
+#include "harness.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static double vnorm(const double *a, int d)
+{
+    double s = 0;
+    for (int k = 0; k < d; k++)
+        s += a[k] * a[k];
+    return sqrt(s);
+}
+
+/* curvature in any dimension: |f' ^ f''| / |f'|^3, the wedge summed over coordinate planes
+ * (no cancellation, unlike |f'|^2 |f''|^2 - (f'.f'')^2) */
+static double curvature(const double *d1, const double *d2, int d)
+{
+    double a = 0, q = 0;
+    for (int k = 0; k < d; k++) {
+        a += d1[k] * d1[k];
+        for (int l = k + 1; l < d; l++) {
+            double x = d1[k] * d2[l] - d1[l] * d2[k];
+            q += x * x;
+        }
+    }
+    return sqrt(q) / pow(a, 1.5);
+}
+
+static void random_curves(void)
+{
+    rg2t_rng r;
+    uint64_t seed = 1122;
+    rg2t_seed(&r, seed);
+    printf("random curves, seed %llu\n", (unsigned long long)seed);
+    double w1 = 0, w2 = 0, wk = 0;
+    int junctions = 0;
+    for (int trial = 0; trial < 60; trial++) {
+        int dim = 2 + trial % 3, closed = (trial / 3) % 2;
+        int n = rg2t_int(&r, closed ? 3 : 4, 14);
+        rg2_scalars s;
+        rg2_error err;
+        CHECK_OK(rg2_scalars_init(&s, n, closed, &err), &err);
+        for (int k = 0; k < rg2_scalars_num_w(&s); k++)
+            s.w[k] = rg2t_uniform(&r, 0.7, 1.4);
+        for (int i = 0; i < n; i++)
+            do { /* resample the junction until K_i > 0 (the construction's precondition) */
+                s.b[i] = rg2t_uniform(&r, 0.5, 2.0);
+                s.g[i] = rg2t_uniform(&r, -0.8, 0.8);
+            } while (!(rg2_scalars_K(&s, i) > 0.0));
+        double *p = malloc(sizeof(double) * (size_t)(n * dim));
+        for (int k = 0; k < n * dim; k++)
+            p[k] = rg2t_uniform(&r, -1, 1);
+        rg2_curve c;
+        rg2_status st = rg2_curve_build(dim, p, &s, &c, &err);
+        CHECK(st == RG2_OK, "trial %d: %s", trial, err.msg);
+        if (st == RG2_OK) {
+            CHECK(c.n_segments == (closed ? n : n - 3), "segments %d", c.n_segments);
+            for (int k = closed ? 0 : 1; k < c.n_segments; k++) {
+                int km = (k + c.n_segments - 1) % c.n_segments;
+                int j = closed ? k : k + 1; /* junction index */
+                double b = s.b[j], g = s.g[j];
+                double pL[RG2_MAX_DIM], dL[RG2_MAX_DIM], ddL[RG2_MAX_DIM];
+                double pR[RG2_MAX_DIM], dR[RG2_MAX_DIM], ddR[RG2_MAX_DIM];
+                rg2_curve_eval(&c, km, 1.0, pL, dL, ddL);
+                rg2_curve_eval(&c, k, 0.0, pR, dR, ddR);
+                double e0[RG2_MAX_DIM], e1[RG2_MAX_DIM], e2[RG2_MAX_DIM];
+                for (int d = 0; d < dim; d++) {
+                    e0[d] = pR[d] - pL[d];
+                    e1[d] = dR[d] - b * dL[d];
+                    e2[d] = ddR[d] - b * b * ddL[d] - g * dL[d];
+                }
+                double r0 = vnorm(e0, dim);
+                double r1 = vnorm(e1, dim) / vnorm(dR, dim);
+                double r2 = vnorm(e2, dim) / (vnorm(ddR, dim) + vnorm(dR, dim));
+                double kL = curvature(dL, ddL, dim), kR = curvature(dR, ddR, dim);
+                double rk = fabs(kL - kR) / fmax(kL, kR);
+                CHECK(r0 <= 1e-15, "trial %d junction %d: G0 gap %.3g", trial, j, r0);
+                CHECK(r1 <= 1e-12, "trial %d junction %d: G1 relation %.3g", trial, j, r1);
+                CHECK(r2 <= 1e-12, "trial %d junction %d: G2 relation %.3g", trial, j, r2);
+                CHECK(rk <= 1e-11, "trial %d junction %d: curvature jump %.3g", trial, j, rk);
+                w1 = fmax(w1, r1);
+                w2 = fmax(w2, r2);
+                wk = fmax(wk, rk);
+                junctions++;
+            }
+            rg2_curve_free(&c);
+        }
+        free(p);
+        rg2_scalars_free(&s);
+    }
+    printf("  %d junctions: G1 relation %.2e, G2 relation %.2e, curvature jump %.2e (relative)\n",
+           junctions, w1, w2, wk);
+}
+
+/* Cox-de Boor / de Boor evaluation of a cubic B-spline with knot vector U (n + 4 values). */
+static void de_boor(const double *U, const double *P, int n, int dim, double x, double *out)
+{
+    int l = 3;
+    while (l < n - 1 && x >= U[l + 1])
+        l++;
+    double d[4][RG2_MAX_DIM];
+    for (int j = 0; j < 4; j++)
+        memcpy(d[j], P + (l - 3 + j) * dim, sizeof(double) * (size_t)dim);
+    for (int rr = 1; rr <= 3; rr++)
+        for (int j = 3; j >= rr; j--) {
+            int i = l - 3 + j;
+            double a = (x - U[i]) / (U[i + 4 - rr] - U[i]);
+            for (int k = 0; k < dim; k++)
+                d[j][k] = (1 - a) * d[j - 1][k] + a * d[j][k];
+        }
+    memcpy(out, d[3], sizeof(double) * (size_t)dim);
+}
+
+static void polynomial_mode(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 99);
+    double worst = 0;
+    for (int trial = 0; trial < 20; trial++) {
+        int n = rg2t_int(&r, 4, 16), dim = 3;
+        double knots[32], U[32], P[16 * 3];
+        knots[0] = rg2t_uniform(&r, -2, 2);
+        for (int k = 1; k < n + 2; k++)
+            knots[k] = knots[k - 1] + rg2t_uniform(&r, 0.05, 2.0);
+        U[0] = knots[0] - 1;
+        for (int k = 0; k < n + 2; k++)
+            U[k + 1] = knots[k];
+        U[n + 3] = knots[n + 1] + 1;
+        for (int k = 0; k < n * dim; k++)
+            P[k] = rg2t_uniform(&r, -1, 1);
+        rg2_scalars s;
+        rg2_error err;
+        rg2_curve c;
+        CHECK_OK(rg2_scalars_from_knots(&s, knots, n + 2, 0, &err), &err);
+        CHECK_OK(rg2_curve_build(dim, P, &s, &c, &err), &err);
+        for (int k = 0; k < c.n_segments; k++) {
+            double v0 = knots[k + 2], v1 = knots[k + 3]; /* segment k+1 spans [v_{k+1}, v_{k+2}] */
+            for (int q = 0; q <= 20; q++) {
+                double t = q / 20.0, a[3], b[3];
+                rg2_curve_eval(&c, k, t, a, NULL, NULL);
+                de_boor(U, P, n, dim, v0 + t * (v1 - v0), b);
+                for (int d = 0; d < dim; d++)
+                    worst = fmax(worst, fabs(a[d] - b[d]));
+            }
+        }
+        rg2_curve_free(&c);
+        rg2_scalars_free(&s);
+    }
+    CHECK(worst <= 1e-14, "polynomial mode vs Cox-de Boor: %.3g", worst);
+    printf("polynomial mode vs Cox-de Boor: max difference %.2e\n", worst);
+}
+
+/* Random partition of total into n arcs each in [lo, pi). */
+static void partition(rg2t_rng *r, int n, double total, double lo, double *a)
+{
+    for (;;) {
+        double s = 0;
+        for (int k = 0; k < n; k++)
+            s += (a[k] = rg2t_uniform(r, 0.02, 1.0));
+        int ok = 1;
+        for (int k = 0; k < n; k++) {
+            a[k] *= total / s;
+            if (a[k] < lo || a[k] > M_PI - 1e-3)
+                ok = 0;
+        }
+        if (ok)
+            return;
+    }
+}
+
+static void circles(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 31415);
+    double wr = 0, wm = 0;
+    for (int trial = 0; trial < 60; trial++) {
+        int closed = trial % 2;
+        int m = rg2t_int(&r, 3, 12);          /* arcs covered by segments */
+        int n = closed ? m : m + 3;           /* control points */
+        int na = closed ? m : n + 1;          /* angles given */
+        double alpha[16], cs[32];
+        double R = pow(10.0, rg2t_uniform(&r, -3, 3));
+        double cx = rg2t_uniform(&r, -5, 5) * R, cy = rg2t_uniform(&r, -5, 5) * R;
+        double th0 = rg2t_uniform(&r, -M_PI, M_PI);
+        if (closed)
+            partition(&r, na, 2 * M_PI, trial < 20 ? 0.05 : 0.2, alpha);
+        else
+            for (int k = 0; k < na; k++)
+                alpha[k] = rg2t_uniform(&r, 0.05, 0.9 * 2 * M_PI / na + 0.05);
+        rg2_scalars s;
+        rg2_error err;
+        rg2_curve c;
+        CHECK_OK(rg2_scalars_from_angles(&s, alpha, na, closed, &err), &err);
+        CHECK_OK(rg2_circle_coeffs(alpha, na, closed, th0, cs, &err), &err);
+        for (int i = 0; i < n; i++) {
+            cs[2 * i] = cx + R * cs[2 * i];
+            cs[2 * i + 1] = cy + R * cs[2 * i + 1];
+        }
+        CHECK_OK(rg2_curve_build(2, cs, &s, &c, &err), &err);
+        double theta = th0 + (closed ? 0.0 : alpha[1]); /* open: segment 0 is arc 1 */
+        for (int k = 0; k < c.n_segments; k++) {
+            double a = closed ? alpha[k] : alpha[k + 2], be = 0.5 * a;
+            for (int q = 0; q <= 64; q++) {
+                double t = q / 64.0, p[2];
+                rg2_curve_eval(&c, k, t, p, NULL, NULL);
+                double dr = fabs(hypot(p[0] - cx, p[1] - cy) - R) / R;
+                double th = theta + be + 2 * atan(tan(0.5 * be) * (2 * t - 1));
+                double dm = hypot(p[0] - cx - R * cos(th), p[1] - cy - R * sin(th)) / R;
+                wr = fmax(wr, dr);
+                wm = fmax(wm, dm);
+            }
+            theta += a;
+        }
+        CHECK(wr <= 1e-13, "trial %d (%s, %d arcs, R %.3g): radius error %.3g", trial,
+              closed ? "closed" : "open", m, R, wr);
+        CHECK(wm <= 1e-13, "trial %d: arc-map error %.3g", trial, wm);
+        rg2_curve_free(&c);
+        rg2_scalars_free(&s);
+    }
+    printf("circles: radius error %.2e, arc-map error %.2e (relative to R)\n", wr, wm);
+}
+
+static void errors(void)
+{
+    rg2_scalars s;
+    rg2_error err;
+    rg2_curve c;
+    double pts[20] = {0, 0, 1, 0, 1, 1, 0, 1, 0.5, 2};
+    CHECK(rg2_scalars_init(&s, 3, 0, &err) == RG2_EINVAL && strstr(err.msg, "at least 4"),
+          "too few open points: %s", err.msg);
+    CHECK(rg2_scalars_init(&s, 2, 1, &err) == RG2_EINVAL && strstr(err.msg, "at least 3"),
+          "too few closed points: %s", err.msg);
+    CHECK_OK(rg2_scalars_init(&s, 5, 0, &err), &err);
+    s.w[3] = 0.0;
+    CHECK(rg2_curve_build(2, pts, &s, &c, &err) == RG2_EWEIGHT && strstr(err.msg, "w[2]"),
+          "zero weight named: %s", err.msg);
+    s.w[3] = NAN;
+    CHECK(rg2_curve_build(2, pts, &s, &c, &err) == RG2_ENONFINITE && strstr(err.msg, "w[2]"),
+          "NaN weight named: %s", err.msg);
+    s.w[3] = 1.0;
+    s.b[4] = -1.0;
+    CHECK(rg2_curve_build(2, pts, &s, &c, &err) == RG2_EWEIGHT && strstr(err.msg, "b[4]"),
+          "negative b named: %s", err.msg);
+    s.b[4] = 1.0;
+    s.g[2] = -4.5; /* K = 2 + 2 - 4.5 < 0 */
+    CHECK(rg2_curve_build(2, pts, &s, &c, &err) == RG2_EWEIGHT && strstr(err.msg, "junction 2"),
+          "K <= 0 named: %s", err.msg);
+    s.g[2] = 0.0;
+    pts[7] = INFINITY;
+    CHECK(rg2_curve_build(2, pts, &s, &c, &err) == RG2_ENONFINITE && strstr(err.msg, "point 3"),
+          "infinite point named: %s", err.msg);
+    pts[7] = 1.0;
+    CHECK(rg2_curve_build(0, pts, &s, &c, &err) == RG2_EINVAL, "dimension 0: %s", err.msg);
+    rg2_scalars_free(&s);
+
+    double bad[4] = {1.0, 2.0, M_PI, 0.5};
+    CHECK(rg2_scalars_from_angles(&s, bad, 4, 1, &err) == RG2_EDOMAIN && strstr(err.msg, "arc 2"),
+          "angle pi refused: %s", err.msg);
+    bad[2] = -0.1;
+    CHECK(rg2_scalars_from_angles(&s, bad, 4, 1, &err) == RG2_EDOMAIN && strstr(err.msg, "arc 2"),
+          "negative angle refused: %s", err.msg);
+    double cs[8], q[4] = {1.5, 1.5, 1.5, 1.5};
+    CHECK(rg2_circle_coeffs(q, 4, 1, 0.0, cs, &err) == RG2_EDOMAIN && strstr(err.msg, "2 pi"),
+          "closed circle not summing to 2 pi: %s", err.msg);
+    double knots[7] = {0, 1, 2, 2, 3, 4, 5};
+    CHECK(rg2_scalars_from_knots(&s, knots, 7, 0, &err) == RG2_EDOMAIN && strstr(err.msg, "interval 2"),
+          "zero-length knot interval named: %s", err.msg);
+    knots[3] = NAN;
+    CHECK(rg2_scalars_from_knots(&s, knots, 7, 0, &err) == RG2_ENONFINITE && strstr(err.msg, "knot 3"),
+          "NaN knot named: %s", err.msg);
+}
+
+int main(void)
+{
+    random_curves();
+    polynomial_mode();
+    circles();
+    errors();
+    return rg2t_done("test_curve");
+}
