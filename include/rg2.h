@@ -275,7 +275,17 @@ RG2_API double rg2_eval_normal_curvature(const rg2_eval *e, double a, double c);
  * Polynomial directions (knots): the knot values v_0 < v_1 < ... < v_m bounding the m
  *   segments the surface covers; open only; the mesh gets extra knots at each end (mirrored
  *   end intervals) that carry data only. */
-typedef enum { RG2_PART_ANGLES = 0, RG2_PART_KNOTS = 1 } rg2_partition_kind;
+typedef enum {
+    RG2_PART_ANGLES = 0,      /**< arcs of a circle direction (see above) */
+    RG2_PART_KNOTS = 1,       /**< knots of a polynomial direction (see above) */
+    RG2_PART_ANGLES_FULL = 2, /**< open circle direction given with its data-only arcs: n + 1
+                                   arcs alpha_{-1}..alpha_{n-1} for n control points (layout of
+                                   rg2_scalars_from_angles); `start` is the start angle of arc 1,
+                                   the first produced arc; the surface covers arcs 1..n-3 */
+    RG2_PART_KNOTS_FULL = 3   /**< polynomial direction given with its data-only knots: n + 2
+                                   knots v_{-1}..v_n for n control points (layout of
+                                   rg2_scalars_from_knots); the surface covers [v_1, v_{n-2}] */
+} rg2_partition_kind;
 typedef struct {
     rg2_partition_kind kind;
     int closed;           /**< angles only */
@@ -294,7 +304,8 @@ typedef enum {
     RG2_SHAPE_HYPERBOLOID1,   /**< ((1+v^2) cu, (1+v^2) su, 1 - v^2, 2v), v > 0 */
     RG2_SHAPE_HYPERBOLOID2,   /**< (2v cu, 2v su, 1 + v^2, 1 - v^2), |v| < 1 */
     RG2_SHAPE_PARABOLOID,     /**< A, B: elliptic paraboloid (A v cu, B v su, v^2) */
-    RG2_SHAPE_HYPAR,          /**< hyperbolic paraboloid (u, v, u^2 - v^2); u, v knots */
+    RG2_SHAPE_HYPAR,          /**< A, B: hyperbolic paraboloid (A u, B v, u^2 - v^2); u, v knots */
+    RG2_SHAPE_ELLIPSOID,      /**< a, b, c: the sphere band scaled by (a, b, c); v as sphere */
     RG2_SHAPE_COUNT
 } rg2_shape_kind;
 
@@ -319,6 +330,120 @@ RG2_API double rg2_shape_implicit(const rg2_shape *s, const double x[3], double 
 RG2_API void rg2_shape_param(const rg2_shape *s, double u, double v, double h[4]);
 /** Apply a row-major 4x4 matrix to every 4-tuple of a mesh (exact transform). */
 RG2_API void rg2_mesh_transform(rg2_mesh *m, const double M[16]);
+
+/* Parameters per kind (param[0..3], defaults in rg2_shape_describe):
+ *   torus R, r (0 < r < R)            cyclide a, c, mu (0 <= c < a, mu > 0)
+ *   sphere radius                     cylinder radius          cone slope k (!= 0)
+ *   hyperboloid1_ruled a, c: (a (cu - v su), a (su + v cu), c v); (x^2+y^2)/a^2 - z^2/c^2 = 1
+ *   hyperboloid1 a, c: (a (1+v^2) cu, a (1+v^2) su, c (1 - v^2), 2v), knots v > 0
+ *   hyperboloid2 a, c: (2 a v cu, 2 a v su, c (1 + v^2), 1 - v^2), knots |v| < 1;
+ *                      z^2/c^2 - (x^2+y^2)/a^2 = 1
+ *   paraboloid A, B                   hypar A, B: z = x^2/A^2 - y^2/B^2
+ *   ellipsoid a, b, c: x^2/a^2 + y^2/b^2 + z^2/c^2 = 1
+ * With the default parameters (all 1) the quadrics are the ones listed in the enum. */
+
+/** Static description of a shape kind (for listings, the CLI and design files). */
+typedef struct {
+    const char *name;              /**< "torus", ... (rg2_shape_name) */
+    int n_params;                  /**< used entries of rg2_shape.param */
+    const char *param_names[4];
+    double param_defaults[4];
+    rg2_partition_kind dir_kind[2];/**< u, v: RG2_PART_ANGLES (circle) or RG2_PART_KNOTS */
+    double default_range[2][2];    /**< u, v: default angle range (radians) or knot range */
+    int default_closed[2];         /**< u, v: closed by default (full circles) */
+    int default_segments[2];       /**< u, v: default number of arcs / knot intervals */
+    const char *param_text;        /**< the homogeneous parameterization h(u, v) as text */
+    const char *implicit_text;     /**< the implicit equation as text */
+} rg2_shape_desc;
+
+/** Description of a kind; NULL for an unknown kind. */
+RG2_API const rg2_shape_desc *rg2_shape_describe(rg2_shape_kind kind);
+
+/** Implicit function with gradient and row-major 3x3 Hessian (each nullable). */
+RG2_API double rg2_shape_implicit2(const rg2_shape *s, const double x[3], double grad[3],
+                                   double hess[9]);
+
+/** Number of segments (patches) a partition produces in its direction; 0 if invalid. */
+RG2_API int rg2_partition_num_segments(const rg2_partition *p);
+/** Check a partition (counts, angles in (0, pi), closed sums = 2 pi, open sums <= 2 pi,
+ *  increasing knots); `what` prefixes the message ("u", "v"). */
+RG2_API rg2_status rg2_partition_check(const rg2_partition *p, const char *what, rg2_error *err);
+/** Shape parameter at local parameter t in [0, 1] of produced segment seg: the arc map
+ *  theta(t) = theta_a + beta + 2 atan(tan(beta/2) (2t - 1)) (beta = alpha/2) of MATH.md
+ *  section 2 for circle directions, v_seg + t (v_{seg+1} - v_seg) for knot directions. */
+RG2_API double rg2_partition_map(const rg2_partition *p, int seg, double t);
+/** A partition of [lo, hi] into n equal arcs (angles, radians) or knot intervals, written to
+ *  values (capacity cap >= n + 1). Closed angle partitions ignore hi (full circle from lo). */
+RG2_API rg2_status rg2_partition_equal(rg2_partition *p, rg2_partition_kind kind, int closed,
+                                       double lo, double hi, int n, double *values, int cap,
+                                       rg2_error *err);
+
+/* Generic family constructors (paper section 3.1, MATH.md sections 3 and 5): the control
+ * 4-tuple of mesh point (i, j) is the same linear combination of products of per-direction
+ * control coefficients as h(u, v) is of the basis functions. A circle direction (angle
+ * partition) has the basis (1, cos, sin), a polynomial direction (knot partition) the basis
+ * (1, t, t^2, t^3). The meshes are not placed (no transform). */
+
+/** General product form: h_k(u, v) = sum_{a, b} coef[k][a][b] f_a(u) g_b(v) with f, g the
+ *  basis of the partition's kind; for circle directions indices 3 must have zero coefficients. */
+RG2_API rg2_status rg2_product_mesh(const double coef[4][4][4], const rg2_partition *pu,
+                                    const rg2_partition *pv, rg2_mesh *out, rg2_error *err);
+/** Family 1: h_k = a[k] . (1, cu, su, cv, sv, cu cv, su cv, cu sv, su sv); pu, pv angles. */
+RG2_API rg2_status rg2_family1_mesh(const double a[4][9], const rg2_partition *pu,
+                                    const rg2_partition *pv, rg2_mesh *out, rg2_error *err);
+/** Family 2: h_k = sum_{s=0..3} (c[k][0][s] + c[k][1][s] cu + c[k][2][s] su) v^s;
+ *  pu angles, pv knots. */
+RG2_API rg2_status rg2_family2_mesh(const double c[4][3][4], const rg2_partition *pu,
+                                    const rg2_partition *pv, rg2_mesh *out, rg2_error *err);
+/** Family 3: h_k = sum_{r, s = 0..3} A[k][r][s] u^r v^s; pu, pv knots. */
+RG2_API rg2_status rg2_family3_mesh(const double A[4][4][4], const rg2_partition *pu,
+                                    const rg2_partition *pv, rg2_mesh *out, rg2_error *err);
+/** The coefficient tensor of a named shape's (unplaced) parameterization in the layout of
+ *  rg2_product_mesh; validates the parameters. */
+RG2_API rg2_status rg2_shape_coeffs(const rg2_shape *s, double coef[4][4][4], rg2_error *err);
+
+/* Homogeneous weights of the built patches: CAD export needs H_rs,4 > 0. */
+enum { RG2_SHAPE_WARN_WEIGHT = 1u << 0 /**< some patch weight H_rs,4 <= 0 */ };
+typedef struct {
+    double min_weight;  /**< smallest H_rs,4 over all patches */
+    int n_nonpositive;  /**< patches with some H_rs,4 <= 0 */
+    int patch_i, patch_j; /**< the patch holding min_weight */
+    unsigned flags;     /**< RG2_SHAPE_WARN_* */
+} rg2_weight_report;
+RG2_API void rg2_surface_weight_report(const rg2_surface *s, rg2_weight_report *rep);
+/** Mesh + Bi-cubic Construction in one call; rep (nullable) gets the weight report. */
+RG2_API rg2_status rg2_shape_surface(const rg2_shape *s, const rg2_partition *pu,
+                                     const rg2_partition *pv, rg2_surface *out,
+                                     rg2_weight_report *rep, rg2_error *err);
+
+/* Placement matrices (row-major 4x4, applied to column 4-tuples: p' = M p). */
+RG2_API void rg2_xform_identity(double M[16]);
+/** out = A B (apply B first); out may alias A or B. */
+RG2_API void rg2_xform_mul(const double A[16], const double B[16], double out[16]);
+RG2_API void rg2_xform_translate(double M[16], double x, double y, double z);
+RG2_API void rg2_xform_scale(double M[16], double sx, double sy, double sz);
+/** Rotation by angle (radians) about the axis (ax, ay, az) through the origin. */
+RG2_API void rg2_xform_rotate(double M[16], double ax, double ay, double az, double angle);
+/** Frame placement: the shape's z axis goes to `axis` (normalised) and its origin to `centre`
+ *  (the rotation taking z to axis about z x axis). */
+RG2_API void rg2_xform_place(double M[16], const double centre[3], const double axis[3]);
+/** Inverse of a 4x4 matrix; RG2_EDOMAIN if singular, RG2_ENONFINITE for NaN/inf. */
+RG2_API rg2_status rg2_xform_invert(const double M[16], double inv[16], rg2_error *err);
+
+/* Bi-cubic NURBS import: control points P_ij, weights w_ij, knot vectors U (nu + 4 values)
+ * and V (nv + 4), non-decreasing. The domain [U_3, U_nu] x [V_3, V_nv] must have strictly
+ * increasing knots (a repeated interior knot is refused with RG2_EDOMAIN naming it); the end
+ * knots may be clamped (repeated) or not: clamped ends are unclamped exactly by blossoming the
+ * end pieces at virtual knots continuing the end intervals. Patch (i, j) of the built surface
+ * is the NURBS over [U_{i+3}, U_{i+4}] x [V_{j+3}, V_{j+4}] with linear parameter maps. */
+typedef struct {
+    int nu, nv;             /**< control points (>= 4 each) */
+    const double *points;   /**< nu * nv * 3: points[(i * nv + j) * 3 + d] */
+    const double *weights;  /**< nu * nv weights > 0, or NULL for all 1 */
+    const double *knots_u;  /**< nu + 4 */
+    const double *knots_v;  /**< nv + 4 */
+} rg2_nurbs;
+RG2_API rg2_status rg2_nurbs_mesh(const rg2_nurbs *nb, rg2_mesh *out, rg2_error *err);
 
 
 /* ===================================================================================== */
@@ -414,8 +539,32 @@ typedef struct {
 } rg2_export_opts;
 
 RG2_API void rg2_export_opts_default(rg2_export_opts *o);
+
+/** A triangle mesh sampled from a surface (rg2_tessellate). Vertices on seams between
+ *  patches, including the closing seams of closed directions, are stored once and shared by
+ *  the triangles on both sides (a watertight mesh: shared vertices are bit-identical). */
+typedef struct {
+    int n_vertices, n_triangles;
+    double *pos;    /**< 3 per vertex: a point of the exact surface */
+    double *normal; /**< 3 per vertex: exact unit normal Su x Sv / |Su x Sv| (at a collapsed
+                         edge, its limit) */
+    double *K, *H;  /**< per vertex Gaussian and mean curvature (rg2_eval sign), or NULL */
+    int *patch;     /**< per vertex: index i * nv + j of the patch it was evaluated on */
+    double *uv;     /**< 2 per vertex: the (u, v) in [0,1]^2 of that patch */
+    int *tri;       /**< 3 per triangle: vertex indices, counter-clockwise about the normal */
+} rg2_tess;
+
+/** Tessellate a surface with `density` samples per patch edge (density >= 1; quads split
+ *  along the shorter diagonal). curvature != 0 fills K and H. Collapsed patch edges (all four
+ *  control points of a side equal, e.g. a pole) give one vertex and no degenerate triangles.
+ *  Release with rg2_tess_free.
+ *  @return RG2_EINVAL (no patches, density < 1), RG2_ELIMIT (over RG2_MAX_POINTS vertices
+ *  per direction), RG2_ENOMEM. */
+RG2_API rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_tess *out,
+                                  rg2_error *err);
+RG2_API void rg2_tess_free(rg2_tess *t);
 /** Write surfaces to path; the format follows the extension: .step/.stp, .igs/.iges, .bv,
- *  .obj, .stl, .ply, .glb, .json. Writes path.tmp then renames: a failed export leaves no file.
+ *  .bez (geomview BEZ334), .obj, .stl, .ply, .glb, .json (docs/export.md). Writes path.tmp then renames: a failed export leaves no file.
  *  @return RG2_EIO (unwritable), RG2_EWEIGHT (non-positive weight for STEP/IGES, naming the
  *  patch), RG2_EINVAL (unknown extension, empty input). */
 RG2_API rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *path,

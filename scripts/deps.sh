@@ -3,7 +3,7 @@
 # Usage: scripts/deps.sh base|test|bench
 set -eu
 base="cmake make gcc g++ pkg-config libcjson-dev libpng-dev"
-test="$base valgrind libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev"
+test="$base valgrind libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev libtbb-dev"
 bench="$test libsisl-dev"
 case "${1:-base}" in
   base) want=$base ;;

@@ -1,0 +1,561 @@
+/* export.c -- the export dispatcher (format by file extension), the JSON patch dump, and
+ * helpers shared by the writers: temporary-file output, STEP/IGES reals, weight checks,
+ * collapsed patch sides and the corner/edge topology of a patch grid. */
+#define _POSIX_C_SOURCE 200809L
+#include "export_internal.h"
+
+#include <cjson/cJSON.h>
+#include <ctype.h>
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <time.h>
+
+void rg2_export_opts_default(rg2_export_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->layout = RG2_STEP_FACE_PER_PATCH;
+    o->ap242 = 0;
+    o->density = 16;
+    o->name = "rg2";
+}
+
+/* ---------------------------------------------------------------- output files */
+
+rg2_status rg2__out_open(rg2__out *o, const char *path, rg2_error *err)
+{
+    memset(o, 0, sizeof *o);
+    size_t n = strlen(path);
+    o->tmp = malloc(n + 5);
+    if (!o->tmp)
+        return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", path);
+    memcpy(o->tmp, path, n);
+    memcpy(o->tmp + n, ".tmp", 5);
+    o->path = path;
+    o->f = fopen(o->tmp, "wb");
+    if (!o->f) {
+        rg2_status st = rg2__fail(err, RG2_EIO, "%s: cannot write: %s", path, strerror(errno));
+        free(o->tmp);
+        o->tmp = NULL;
+        return st;
+    }
+    return RG2_OK;
+}
+
+rg2_status rg2__out_close(rg2__out *o, rg2_status st, rg2_error *err)
+{
+    if (!o->f)
+        return st;
+    if (st == RG2_OK) {
+        int bad = fflush(o->f) != 0 || ferror(o->f);
+        int saved = errno;
+        if (fclose(o->f) != 0 && !bad) {
+            bad = 1;
+            saved = errno;
+        }
+        o->f = NULL;
+        if (bad)
+            st = rg2__fail(err, RG2_EIO, "%s: write failed: %s", o->path, strerror(saved));
+        else if (rename(o->tmp, o->path) != 0)
+            st = rg2__fail(err, RG2_EIO, "%s: cannot rename from %s: %s", o->path, o->tmp,
+                           strerror(errno));
+    } else {
+        fclose(o->f);
+        o->f = NULL;
+    }
+    if (st != RG2_OK)
+        remove(o->tmp);
+    free(o->tmp);
+    o->tmp = NULL;
+    return st;
+}
+
+/* ---------------------------------------------------------------- numbers and checks */
+
+void rg2__utc_stamp(char *buf, size_t cap, const char *fmt)
+{
+    time_t now = time(NULL);
+    struct tm tmv;
+    if (!gmtime_r(&now, &tmv) || strftime(buf, cap, fmt, &tmv) == 0) {
+        memset(&tmv, 0, sizeof tmv);
+        tmv.tm_year = 100;
+        tmv.tm_mday = 1;
+        strftime(buf, cap, fmt, &tmv);
+    }
+}
+
+void rg2__real(char buf[40], double x)
+{
+    if (x == 0.0)
+        x = 0.0; /* no "-0." */
+    char tmp[32];
+    snprintf(tmp, sizeof tmp, "%.17G", x);
+    char *e = strchr(tmp, 'E');
+    if (strchr(tmp, '.')) {
+        memcpy(buf, tmp, strlen(tmp) + 1);
+    } else if (e) {
+        size_t k = (size_t)(e - tmp);
+        memcpy(buf, tmp, k);
+        buf[k] = '.';
+        memcpy(buf + k + 1, e, strlen(e) + 1);
+    } else {
+        snprintf(buf, 40, "%s.", tmp);
+    }
+}
+
+rg2_status rg2__check_nonempty(const rg2_surface *surfs, int n_surfs, rg2_error *err)
+{
+    if (!surfs || n_surfs < 1)
+        return rg2__fail(err, RG2_EINVAL, "export: no surfaces to write (empty design)");
+    for (int k = 0; k < n_surfs; k++)
+        if (surfs[k].nu < 1 || surfs[k].nv < 1 || !surfs[k].patch)
+            return rg2__fail(err, RG2_EINVAL, "export: surface %d has no patches (%d x %d)", k,
+                             surfs[k].nu, surfs[k].nv);
+    return RG2_OK;
+}
+
+rg2_status rg2__check_weights(const rg2_surface *surfs, int n_surfs, const char *format,
+                              rg2_error *err)
+{
+    for (int k = 0; k < n_surfs; k++) {
+        const rg2_surface *s = &surfs[k];
+        for (int i = 0; i < s->nu; i++)
+            for (int j = 0; j < s->nv; j++) {
+                const rg2_patch *P = rg2_surface_patch(s, i, j);
+                for (int r = 0; r < 4; r++)
+                    for (int t = 0; t < 4; t++) {
+                        const double *h = P->h[r][t];
+                        if (!(rg2__finite(h[0]) && rg2__finite(h[1]) && rg2__finite(h[2]) &&
+                              rg2__finite(h[3])))
+                            return rg2__fail(err, RG2_ENONFINITE,
+                                             "%s: surface %d patch (%d, %d) control point [%d][%d] "
+                                             "is not finite",
+                                             format, k, i, j, r, t);
+                        if (!(h[3] > 0.0))
+                            return rg2__fail(err, RG2_EWEIGHT,
+                                             "%s: surface %d patch (%d, %d) control point [%d][%d] has "
+                                             "weight %g; %s needs every weight > 0 (importers drop "
+                                             "the face or ignore the weights)",
+                                             format, k, i, j, r, t, h[3], format);
+                    }
+            }
+    }
+    return RG2_OK;
+}
+
+/* ---------------------------------------------------------------- patch sides */
+
+void rg2__patch_side(const rg2_patch *P, int side, double out[4][4])
+{
+    for (int a = 0; a < 4; a++) {
+        const double *h;
+        switch (side) {
+        case 0: h = P->h[a][0]; break;
+        case 1: h = P->h[3][a]; break;
+        case 2: h = P->h[a][3]; break;
+        default: h = P->h[0][a]; break;
+        }
+        memcpy(out[a], h, sizeof(double[4]));
+    }
+}
+
+int rg2__patch_side_collapsed(const rg2_patch *P, int side, double tol)
+{
+    double c[4][4];
+    rg2__patch_side(P, side, c);
+    for (int a = 1; a < 4; a++)
+        for (int d = 0; d < 3; d++)
+            if (!(fabs(c[a][d] / c[a][3] - c[0][d] / c[0][3]) <= tol))
+                return 0;
+    return 1;
+}
+
+double rg2__collapse_tol(const rg2_surface *s)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    size_t np = (size_t)s->nu * (size_t)s->nv;
+    for (size_t k = 0; k < np; k++)
+        for (int r = 0; r < 4; r++)
+            for (int t = 0; t < 4; t++) {
+                const double *h = s->patch[k].h[r][t];
+                for (int d = 0; d < 3; d++) {
+                    double x = h[d] / h[3];
+                    lo[d] = x < lo[d] ? x : lo[d];
+                    hi[d] = x > hi[d] ? x : hi[d];
+                }
+            }
+    double diag = 0.0;
+    for (int d = 0; d < 3; d++)
+        diag += (hi[d] - lo[d]) * (hi[d] - lo[d]);
+    return 1e-11 * sqrt(diag);
+}
+
+/* ---------------------------------------------------------------- topology */
+
+int rg2__uf_find(int *parent, int a)
+{
+    while (parent[a] != a) {
+        parent[a] = parent[parent[a]];
+        a = parent[a];
+    }
+    return a;
+}
+
+void rg2__uf_union(int *parent, int a, int b)
+{
+    a = rg2__uf_find(parent, a);
+    b = rg2__uf_find(parent, b);
+    if (a < b)
+        parent[b] = a;
+    else if (b < a)
+        parent[a] = b;
+}
+
+void rg2__topo_free(rg2__topo *t)
+{
+    free(t->vert);
+    free(t->ue);
+    free(t->ve);
+    free(t->vcorner);
+    free(t->edef);
+    free(t->uses);
+    memset(t, 0, sizeof *t);
+}
+
+/* Side `side` of patch (i, j) as a grid edge: array (0 ue, 1 ve) and index, before (raw)
+ * or after (folded) identifying the closing line of a closed direction with line 0. */
+static void side_slot(int nu, int nv, int closed_u, int closed_v, int i, int j, int side, int *which,
+                      int *idx)
+{
+    switch (side) {
+    case 0: *which = 1; *idx = j * nu + i; break;
+    case 1: *which = 0; *idx = (i + 1) * nv + j; break;
+    case 2: *which = 1; *idx = (j + 1) * nu + i; break;
+    default: *which = 0; *idx = i * nv + j; break;
+    }
+    if (*which == 0 && closed_u && *idx >= nu * nv)
+        *idx -= nu * nv;
+    if (*which == 1 && closed_v && *idx >= nv * nu)
+        *idx -= nv * nu;
+}
+
+/*
+ * METHOD: corners (I, J) of the patch grid are vertices, with I = nu identified with I = 0
+ * for closed u (likewise v). Every patch side is a grid edge; the two patches meeting at a
+ * seam use the same edge. A side whose control points coincide (collapsed, a pole) is no edge:
+ * its two corners are merged (union-find), so the patches around a pole share one vertex.
+ */
+rg2_status rg2__topo_build(const rg2_surface *s, rg2__topo *t, rg2_error *err)
+{
+    memset(t, 0, sizeof *t);
+    int nu = s->nu, nv = s->nv;
+    size_t nc = (size_t)(nu + 1) * (size_t)(nv + 1);
+    size_t nue = (size_t)(nu + 1) * (size_t)nv, nve = (size_t)(nv + 1) * (size_t)nu;
+    t->nu = nu;
+    t->nv = nv;
+    t->vert = rg2__calloc(nc, sizeof(int));
+    t->ue = rg2__calloc(nue, sizeof(int));
+    t->ve = rg2__calloc(nve, sizeof(int));
+    t->vcorner = rg2__calloc(nc, sizeof(int));
+    t->edef = rg2__calloc(2 * (nue + nve), sizeof(int));
+    t->uses = rg2__calloc(nue + nve, sizeof(int));
+    int *parent = rg2__calloc(nc, sizeof(int));
+    int *root_id = rg2__calloc(nc, sizeof(int));
+    if (!t->vert || !t->ue || !t->ve || !t->vcorner || !t->edef || !t->uses || !parent || !root_id) {
+        free(parent);
+        free(root_id);
+        rg2__topo_free(t);
+        return rg2__fail(err, RG2_ENOMEM, "export: out of memory for the topology of %d x %d patches",
+                         nu, nv);
+    }
+    for (size_t c = 0; c < nc; c++)
+        parent[c] = (int)c;
+    /* closing seams: corner (nu, J) is (0, J); (I, nv) is (I, 0) */
+    for (int I = 0; I <= nu; I++)
+        for (int J = 0; J <= nv; J++) {
+            int I2 = (s->closed_u && I == nu) ? 0 : I, J2 = (s->closed_v && J == nv) ? 0 : J;
+            rg2__uf_union(parent, I * (nv + 1) + J, I2 * (nv + 1) + J2);
+        }
+    double tol = rg2__collapse_tol(s);
+    /* pass 1: a grid edge is collapsed if either patch using it sees its side collapsed */
+    for (int i = 0; i < nu; i++)
+        for (int j = 0; j < nv; j++)
+            for (int side = 0; side < 4; side++) {
+                if (!rg2__patch_side_collapsed(rg2_surface_patch(s, i, j), side, tol))
+                    continue;
+                int which, idx;
+                side_slot(nu, nv, s->closed_u, s->closed_v, i, j, side, &which, &idx);
+                (which == 0 ? t->ue : t->ve)[idx] = -1;
+                int a, b;
+                if (which == 0) {
+                    int I = side == 1 ? i + 1 : i;
+                    a = I * (nv + 1) + j;
+                    b = I * (nv + 1) + j + 1;
+                } else {
+                    int J = side == 2 ? j + 1 : j;
+                    a = i * (nv + 1) + J;
+                    b = (i + 1) * (nv + 1) + J;
+                }
+                rg2__uf_union(parent, a, b);
+            }
+    /* pass 2: ids for the others, in patch order; the first patch using an edge defines it */
+    for (size_t k = 0; k < nue; k++)
+        t->ue[k] = t->ue[k] == -1 ? -1 : -2;
+    for (size_t k = 0; k < nve; k++)
+        t->ve[k] = t->ve[k] == -1 ? -1 : -2;
+    for (int i = 0; i < nu; i++)
+        for (int j = 0; j < nv; j++)
+            for (int side = 0; side < 4; side++) {
+                int which, idx;
+                side_slot(nu, nv, s->closed_u, s->closed_v, i, j, side, &which, &idx);
+                int *slot = which == 0 ? &t->ue[idx] : &t->ve[idx];
+                if (*slot == -1)
+                    continue;
+                if (*slot == -2) {
+                    *slot = t->n_edges++;
+                    t->edef[2 * *slot] = i * nv + j;
+                    t->edef[2 * *slot + 1] = side;
+                }
+                t->uses[*slot]++;
+            }
+    /* the closing lines of closed directions share line 0's ids */
+    if (s->closed_u)
+        for (int j = 0; j < nv; j++)
+            t->ue[nu * nv + j] = t->ue[j];
+    if (s->closed_v)
+        for (int i = 0; i < nu; i++)
+            t->ve[nv * nu + i] = t->ve[i];
+    /* compact vertex ids */
+    for (size_t c = 0; c < nc; c++)
+        root_id[c] = -1;
+    for (size_t c = 0; c < nc; c++) {
+        int r = rg2__uf_find(parent, (int)c);
+        if (root_id[r] < 0) {
+            root_id[r] = t->n_vertices;
+            t->vcorner[t->n_vertices++] = r;
+        }
+        t->vert[c] = root_id[r];
+    }
+    free(root_id);
+    free(parent);
+    return RG2_OK;
+}
+
+void rg2__topo_side(const rg2__topo *t, int i, int j, int side, int *edge, int *forward)
+{
+    int which, idx;
+    side_slot(t->nu, t->nv, 0, 0, i, j, side, &which, &idx);
+    *edge = which == 0 ? t->ue[idx] : t->ve[idx];
+    *forward = side < 2;
+}
+
+/* The whole surface as one net of (3 nu + 1) x (3 nv + 1) poles: patch boundary rows are
+ * shared (taken from the first patch holding them; the closing row of a closed direction is
+ * row 0). Caller frees. */
+double (*rg2__merged_net(const rg2_surface *s, int *NU, int *NV))[4]
+{
+    int nu = s->nu, nv = s->nv;
+    *NU = 3 * nu + 1;
+    *NV = 3 * nv + 1;
+    double(*h)[4] = rg2__calloc((size_t)*NU * (size_t)*NV, sizeof(double[4]));
+    if (!h)
+        return NULL;
+    for (int i = nu - 1; i >= 0; i--)
+        for (int j = nv - 1; j >= 0; j--) {
+            const rg2_patch *P = rg2_surface_patch(s, i, j);
+            for (int r = 3; r >= 0; r--)
+                for (int t = 3; t >= 0; t--)
+                    memcpy(h[(size_t)(3 * i + r) * (size_t)*NV + (size_t)(3 * j + t)], P->h[r][t],
+                           sizeof(double[4]));
+        }
+    if (s->closed_u)
+        memcpy(h[(size_t)(*NU - 1) * (size_t)*NV], h[0], sizeof(double[4]) * (size_t)*NV);
+    if (s->closed_v)
+        for (int a = 0; a < *NU; a++)
+            memcpy(h[(size_t)a * (size_t)*NV + (size_t)(*NV - 1)], h[(size_t)a * (size_t)*NV], sizeof(double[4]));
+    return h;
+}
+
+/* ---------------------------------------------------------------- JSON patch dump */
+
+/* A JSON array of doubles printed with 17 significant digits (cJSON's own printing may
+ * drop to 15 digits, which does not round-trip exactly). */
+static cJSON *exact_array(const double *x, int n)
+{
+    size_t cap = (size_t)n * 26 + 3;
+    char *buf = malloc(cap);
+    if (!buf)
+        return NULL;
+    size_t len = 0;
+    buf[len++] = '[';
+    for (int k = 0; k < n; k++)
+        len += (size_t)snprintf(buf + len, cap - len, "%s%.17g", k ? "," : "", x[k]);
+    buf[len++] = ']';
+    buf[len] = '\0';
+    cJSON *a = cJSON_CreateRaw(buf);
+    free(buf);
+    return a;
+}
+
+static rg2_status write_json(const rg2_surface *surfs, int n, const rg2_export_opts *o, rg2__out *out,
+                             rg2_error *err)
+{
+    cJSON *root = cJSON_CreateObject();
+    cJSON *arr = root ? cJSON_AddArrayToObject(root, "surfaces") : NULL;
+    int ok = root && arr && cJSON_AddStringToObject(root, "format", "rg2-patches") &&
+             cJSON_AddNumberToObject(root, "version", 1) && cJSON_AddStringToObject(root, "name", o->name);
+    for (int k = 0; ok && k < n; k++) {
+        const rg2_surface *s = &surfs[k];
+        cJSON *js = cJSON_CreateObject();
+        ok = js && cJSON_AddItemToArray(arr, js);
+        ok = ok && cJSON_AddNumberToObject(js, "nu", s->nu) && cJSON_AddNumberToObject(js, "nv", s->nv) &&
+             cJSON_AddBoolToObject(js, "closed_u", s->closed_u) &&
+             cJSON_AddBoolToObject(js, "closed_v", s->closed_v);
+        cJSON *bu = ok ? exact_array(s->bu, s->nu) : NULL;
+        cJSON *gu = ok ? exact_array(s->gu, s->nu) : NULL;
+        cJSON *bv = ok ? exact_array(s->bv, s->nv) : NULL;
+        cJSON *gv = ok ? exact_array(s->gv, s->nv) : NULL;
+        ok = ok && bu && cJSON_AddItemToObject(js, "bu", bu);
+        ok = ok && gu && cJSON_AddItemToObject(js, "gu", gu);
+        ok = ok && bv && cJSON_AddItemToObject(js, "bv", bv);
+        ok = ok && gv && cJSON_AddItemToObject(js, "gv", gv);
+        if (ok && s->tag) {
+            cJSON *tg = cJSON_CreateIntArray(s->tag, s->nu * s->nv);
+            ok = tg && cJSON_AddItemToObject(js, "tag", tg);
+        }
+        cJSON *pa = ok ? cJSON_AddArrayToObject(js, "patches") : NULL;
+        ok = ok && pa;
+        for (int p = 0; ok && p < s->nu * s->nv; p++) {
+            /* one patch: 16 homogeneous points h[r][s], r (u) outer */
+            cJSON *jp = exact_array(&s->patch[p].h[0][0][0], 64);
+            ok = jp && cJSON_AddItemToArray(pa, jp);
+        }
+    }
+    char *text = ok ? cJSON_Print(root) : NULL;
+    cJSON_Delete(root);
+    if (!text)
+        return rg2__fail(err, RG2_ENOMEM, "%s: out of memory building JSON", out->path);
+    fputs(text, out->f);
+    fputc('\n', out->f);
+    free(text);
+    return RG2_OK;
+}
+
+/* ---------------------------------------------------------------- dispatcher */
+
+static const char *extension(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    const char *dot = strrchr(path, '.');
+    if (!dot || (slash && dot < slash))
+        return "";
+    return dot + 1;
+}
+
+void rg2__tess_all_free(rg2_tess *t, int n)
+{
+    if (!t)
+        return;
+    for (int k = 0; k < n; k++)
+        rg2_tess_free(&t[k]);
+    free(t);
+}
+
+rg2_status rg2__tess_all(const rg2_surface *surfs, int n_surfs, int density, int curvature,
+                         rg2_tess **out, rg2_error *err)
+{
+    *out = rg2__calloc((size_t)n_surfs, sizeof(rg2_tess));
+    if (!*out)
+        return rg2__fail(err, RG2_ENOMEM, "export: out of memory");
+    for (int k = 0; k < n_surfs; k++) {
+        rg2_status st = rg2_tessellate(&surfs[k], density, curvature, &(*out)[k], err);
+        if (st) {
+            rg2__tess_all_free(*out, n_surfs);
+            *out = NULL;
+            return st;
+        }
+    }
+    return RG2_OK;
+}
+
+rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *path,
+                           const rg2_export_opts *opts, rg2_error *err)
+{
+    rg2_export_opts def;
+    if (!opts) {
+        rg2_export_opts_default(&def);
+        opts = &def;
+    } else if (!opts->name || opts->density < 1) {
+        def = *opts;
+        if (!def.name)
+            def.name = "rg2";
+        if (def.density < 1)
+            def.density = 16;
+        opts = &def;
+    }
+    if (!path || !*path)
+        return rg2__fail(err, RG2_EINVAL, "export: no output path");
+    const char *ext = extension(path);
+    enum { F_STEP, F_IGES, F_BV, F_BEZ, F_OBJ, F_STL, F_PLY, F_GLB, F_JSON } fmt;
+    if (!strcasecmp(ext, "step") || !strcasecmp(ext, "stp"))
+        fmt = F_STEP;
+    else if (!strcasecmp(ext, "igs") || !strcasecmp(ext, "iges"))
+        fmt = F_IGES;
+    else if (!strcasecmp(ext, "bv"))
+        fmt = F_BV;
+    else if (!strcasecmp(ext, "bez"))
+        fmt = F_BEZ;
+    else if (!strcasecmp(ext, "obj"))
+        fmt = F_OBJ;
+    else if (!strcasecmp(ext, "stl"))
+        fmt = F_STL;
+    else if (!strcasecmp(ext, "ply"))
+        fmt = F_PLY;
+    else if (!strcasecmp(ext, "glb"))
+        fmt = F_GLB;
+    else if (!strcasecmp(ext, "json"))
+        fmt = F_JSON;
+    else
+        return rg2__fail(err, RG2_EINVAL,
+                         "%s: unknown export format '.%s' (use .step .stp .igs .iges .bv .bez .obj "
+                         ".stl .ply .glb .json)",
+                         path, ext);
+    rg2_status st = rg2__check_nonempty(surfs, n_surfs, err);
+    if (st)
+        return st;
+    if (fmt == F_STEP || fmt == F_IGES)
+        st = rg2__check_weights(surfs, n_surfs, fmt == F_STEP ? "STEP" : "IGES", err);
+    else
+        st = rg2__check_weights(surfs, n_surfs, "export", err) == RG2_ENONFINITE ? RG2_ENONFINITE : RG2_OK;
+    if (st)
+        return st;
+    rg2_tess *tess = NULL;
+    if (fmt == F_OBJ || fmt == F_STL || fmt == F_PLY || fmt == F_GLB) {
+        st = rg2__tess_all(surfs, n_surfs, opts->density, fmt == F_PLY, &tess, err);
+        if (st)
+            return st;
+    }
+    rg2__out out;
+    st = rg2__out_open(&out, path, err);
+    if (st) {
+        rg2__tess_all_free(tess, n_surfs);
+        return st;
+    }
+    switch (fmt) {
+    case F_STEP: st = rg2__write_step(surfs, n_surfs, opts, &out, err); break;
+    case F_IGES: st = rg2__write_iges(surfs, n_surfs, opts, &out, err); break;
+    case F_BV: st = rg2__write_bv(surfs, n_surfs, &out, err); break;
+    case F_BEZ: st = rg2__write_bez(surfs, n_surfs, &out, err); break;
+    case F_OBJ: st = rg2__write_obj(tess, n_surfs, opts, &out, err); break;
+    case F_STL: st = rg2__write_stl(tess, n_surfs, opts, &out, err); break;
+    case F_PLY: st = rg2__write_ply(tess, n_surfs, opts, &out, err); break;
+    case F_GLB: st = rg2__write_glb(tess, n_surfs, opts, &out, err); break;
+    case F_JSON: st = write_json(surfs, n_surfs, opts, &out, err); break;
+    }
+    rg2__tess_all_free(tess, n_surfs);
+    st = rg2__out_close(&out, st, err);
+    if (st == RG2_OK)
+        rg2__ok(err);
+    return st;
+}

@@ -1,0 +1,98 @@
+/* export_internal.h -- private helpers shared by the export writers (export.c, step.c,
+ * iges.c, bezierview.c, meshio.c) and the tessellator (tess.c); never installed. */
+#ifndef RG2_EXPORT_INTERNAL_H
+#define RG2_EXPORT_INTERNAL_H
+
+#include "internal.h"
+
+#include <stdio.h>
+
+/* An output file being written: data goes to path.tmp, which rg2__out_close renames to
+ * path on success and removes on failure, so a failed export leaves no file. */
+typedef struct {
+    FILE *f;
+    const char *path;
+    char *tmp;
+} rg2__out;
+
+rg2_status rg2__out_open(rg2__out *o, const char *path, rg2_error *err);
+/* Finish: if st == RG2_OK, flush, check for write errors and rename; otherwise (or on a
+ * write error) close and remove the temporary file. Returns the final status. */
+rg2_status rg2__out_close(rg2__out *o, rg2_status st, rg2_error *err);
+
+/* Union-find over int arrays (parent[a] == a for roots); the smaller index becomes the root. */
+int rg2__uf_find(int *parent, int a);
+void rg2__uf_union(int *parent, int a, int b);
+
+/* The current UTC time formatted with strftime's fmt (2000-01-01 if the clock fails). */
+void rg2__utc_stamp(char *buf, size_t cap, const char *fmt);
+
+/* A real for STEP and IGES: 17 significant digits (round-trips exactly), always with a
+ * '.' and an upper-case 'E' when there is an exponent ("13.", "1.E-07", "-0.25"). */
+void rg2__real(char buf[40], double x);
+
+/* Check that every homogeneous weight is > 0 and every coordinate finite; the message
+ * names the surface, patch and control point ("surface 0 patch (2, 3) point [1][0]"). */
+rg2_status rg2__check_weights(const rg2_surface *surfs, int n_surfs, const char *format,
+                              rg2_error *err);
+/* Check surfs != NULL, n_surfs >= 1 and every surface has at least one patch. */
+rg2_status rg2__check_nonempty(const rg2_surface *surfs, int n_surfs, rg2_error *err);
+
+/* Sides of a patch, counter-clockwise in (u, v): 0 v=0, 1 u=1, 2 v=1, 3 u=0. */
+/* Homogeneous control points of side `side` of P in increasing parameter order. */
+void rg2__patch_side(const rg2_patch *P, int side, double out[4][4]);
+/* Whether side `side` of P collapses to a point (all four affine points within tol). */
+int rg2__patch_side_collapsed(const rg2_patch *P, int side, double tol);
+/* Collapse tolerance of a surface: 1e-11 times the bounding-box diagonal of its control points. */
+double rg2__collapse_tol(const rg2_surface *s);
+
+/* Topology of one surface as a grid of corners and edges (shared by the STEP writer).
+ * Corner (I, J), I = 0..nu, J = 0..nv; closed directions wrap (I = nu is I = 0).
+ * Edges along u-line I (constant u, running in +v) over span j: ue[I * nv + j];
+ * edges along v-line J (constant v, running in +u) over span i: ve[J * nu + i].
+ * Collapsed edges have id -1 and merge their end corners into one vertex. */
+typedef struct {
+    int nu, nv;
+    int n_vertices, n_edges;
+    int *vert;   /* (nu + 1) * (nv + 1): vertex id of corner (I, J) */
+    int *ue;     /* (nu + 1) * nv edge ids, -1 collapsed */
+    int *ve;     /* (nv + 1) * nu edge ids, -1 collapsed */
+    int *vcorner; /* n_vertices: a corner index I * (nv + 1) + J holding each vertex */
+    int *edef;   /* n_edges * 2: defining patch index and side of each edge */
+    int *uses;   /* n_edges: how many patch sides use each edge (1 boundary, 2 shared) */
+} rg2__topo;
+
+rg2_status rg2__topo_build(const rg2_surface *s, rg2__topo *t, rg2_error *err);
+void rg2__topo_free(rg2__topo *t);
+/* The edge id on side `side` of patch (i, j) (-1 collapsed) and whether the patch's
+ * counter-clockwise loop runs along the edge (1: sides 0, 1) or against it (0: sides 2, 3). */
+void rg2__topo_side(const rg2__topo *t, int i, int j, int side, int *edge, int *forward);
+
+/* The whole surface as one net of (3 nu + 1) x (3 nv + 1) homogeneous poles h[a * NV + b],
+ * a along u (MATH.md section 4): patch boundary rows are shared, taken from the first patch
+ * holding them; the closing row of a closed direction is a copy of row 0. Caller frees;
+ * NULL when out of memory. */
+double (*rg2__merged_net(const rg2_surface *s, int *NU, int *NV))[4];
+
+/* The tessellation of several surfaces concatenated (meshio writers). */
+rg2_status rg2__tess_all(const rg2_surface *surfs, int n_surfs, int density, int curvature,
+                         rg2_tess **out, rg2_error *err);
+void rg2__tess_all_free(rg2_tess *t, int n);
+
+/* Writers, called by rg2_export_file after the common checks. */
+rg2_status rg2__write_step(const rg2_surface *surfs, int n, const rg2_export_opts *o, rg2__out *out,
+                           rg2_error *err);
+rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opts *o, rg2__out *out,
+                           rg2_error *err);
+rg2_status rg2__write_bv(const rg2_surface *surfs, int n, rg2__out *out, rg2_error *err);
+rg2_status rg2__write_bez(const rg2_surface *surfs, int n, rg2__out *out, rg2_error *err);
+rg2_status rg2__write_obj(const rg2_tess *t, int n, const rg2_export_opts *o, rg2__out *out,
+                          rg2_error *err);
+rg2_status rg2__write_stl(const rg2_tess *t, int n, const rg2_export_opts *o, rg2__out *out,
+                          rg2_error *err);
+rg2_status rg2__write_ply(const rg2_tess *t, int n, const rg2_export_opts *o, rg2__out *out,
+                          rg2_error *err);
+rg2_status rg2__write_glb(const rg2_tess *t, int n, const rg2_export_opts *o, rg2__out *out,
+                          rg2_error *err);
+
+#endif

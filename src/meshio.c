@@ -1,0 +1,282 @@
+/* meshio.c -- triangle mesh files from tessellations: OBJ (positions and normals, 17
+ * digits), binary STL, binary PLY (normals, Gaussian and mean curvature per vertex) and
+ * glTF 2.0 binary (.glb). Several surfaces are written as separate objects / primitives. */
+#include "export_internal.h"
+
+#include <cjson/cJSON.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---------------------------------------------------------------- little-endian output */
+
+static void le_u32(FILE *f, uint32_t x)
+{
+    unsigned char b[4] = {(unsigned char)x, (unsigned char)(x >> 8), (unsigned char)(x >> 16),
+                          (unsigned char)(x >> 24)};
+    fwrite(b, 1, 4, f);
+}
+
+static void le_u16(FILE *f, unsigned x)
+{
+    unsigned char b[2] = {(unsigned char)x, (unsigned char)(x >> 8)};
+    fwrite(b, 1, 2, f);
+}
+
+static void le_f32(FILE *f, double x)
+{
+    float v = (float)x;
+    uint32_t u;
+    memcpy(&u, &v, 4);
+    le_u32(f, u);
+}
+
+static void le_i32(FILE *f, int x) { le_u32(f, (uint32_t)x); }
+
+static size_t total_triangles(const rg2_tess *t, int n)
+{
+    size_t s = 0;
+    for (int k = 0; k < n; k++)
+        s += (size_t)t[k].n_triangles;
+    return s;
+}
+
+static size_t total_vertices(const rg2_tess *t, int n)
+{
+    size_t s = 0;
+    for (int k = 0; k < n; k++)
+        s += (size_t)t[k].n_vertices;
+    return s;
+}
+
+/* ---------------------------------------------------------------- OBJ */
+
+rg2_status rg2__write_obj(const rg2_tess *t, int n, const rg2_export_opts *o, rg2__out *out,
+                          rg2_error *err)
+{
+    (void)err;
+    FILE *f = out->f;
+    fprintf(f, "# rg2 %s: %s, %zu vertices, %zu triangles (exact points and normals)\n", rg2_version(),
+            o->name, total_vertices(t, n), total_triangles(t, n));
+    size_t base = 1;
+    for (int k = 0; k < n; k++) {
+        fprintf(f, "o surface_%d\n", k);
+        for (int v = 0; v < t[k].n_vertices; v++) {
+            const double *p = t[k].pos + 3 * v;
+            fprintf(f, "v %.17g %.17g %.17g\n", p[0], p[1], p[2]);
+        }
+        for (int v = 0; v < t[k].n_vertices; v++) {
+            const double *q = t[k].normal + 3 * v;
+            fprintf(f, "vn %.17g %.17g %.17g\n", q[0], q[1], q[2]);
+        }
+        for (int q = 0; q < t[k].n_triangles; q++) {
+            const int *c = t[k].tri + 3 * q;
+            size_t a = base + (size_t)c[0], b = base + (size_t)c[1], d = base + (size_t)c[2];
+            fprintf(f, "f %zu//%zu %zu//%zu %zu//%zu\n", a, a, b, b, d, d);
+        }
+        base += (size_t)t[k].n_vertices;
+    }
+    return RG2_OK;
+}
+
+/* ---------------------------------------------------------------- STL */
+
+rg2_status rg2__write_stl(const rg2_tess *t, int n, const rg2_export_opts *o, rg2__out *out,
+                          rg2_error *err)
+{
+    size_t nt = total_triangles(t, n);
+    if (nt > UINT32_MAX)
+        return rg2__fail(err, RG2_ELIMIT, "%s: %zu triangles exceed binary STL's 32-bit count", out->path,
+                         nt);
+    FILE *f = out->f;
+    char header[80];
+    memset(header, ' ', sizeof header);
+    char text[80];
+    int len = snprintf(text, sizeof text, "rg2 %s binary STL: %s", rg2_version(), o->name);
+    memcpy(header, text, (size_t)(len < 80 ? len : 79));
+    fwrite(header, 1, 80, f);
+    le_u32(f, (uint32_t)nt);
+    for (int k = 0; k < n; k++)
+        for (int q = 0; q < t[k].n_triangles; q++) {
+            const int *c = t[k].tri + 3 * q;
+            const double *a = t[k].pos + 3 * c[0], *b = t[k].pos + 3 * c[1], *d = t[k].pos + 3 * c[2];
+            double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+            double e2[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+            double nn[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                            e1[0] * e2[1] - e1[1] * e2[0]};
+            double l = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+            if (!(l > 0.0)) { /* degenerate facet: the mean of the exact vertex normals */
+                for (int m = 0; m < 3; m++)
+                    nn[m] = t[k].normal[3 * c[0] + m] + t[k].normal[3 * c[1] + m] + t[k].normal[3 * c[2] + m];
+                l = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+            }
+            for (int m = 0; m < 3; m++)
+                le_f32(f, l > 0.0 ? nn[m] / l : 0.0);
+            for (int v = 0; v < 3; v++)
+                for (int m = 0; m < 3; m++)
+                    le_f32(f, t[k].pos[3 * c[v] + m]);
+            le_u16(f, 0);
+        }
+    return RG2_OK;
+}
+
+/* ---------------------------------------------------------------- PLY */
+
+rg2_status rg2__write_ply(const rg2_tess *t, int n, const rg2_export_opts *o, rg2__out *out,
+                          rg2_error *err)
+{
+    size_t nv = total_vertices(t, n), nt = total_triangles(t, n);
+    if (nv > INT32_MAX)
+        return rg2__fail(err, RG2_ELIMIT, "%s: %zu vertices exceed PLY's int indices", out->path, nv);
+    FILE *f = out->f;
+    fprintf(f, "ply\nformat binary_little_endian 1.0\ncomment rg2 %s: %s\n"
+               "comment exact points, unit normals, Gaussian and mean curvature of the surface\n"
+               "element vertex %zu\nproperty float x\nproperty float y\nproperty float z\n"
+               "property float nx\nproperty float ny\nproperty float nz\n"
+               "property float gaussian_curvature\nproperty float mean_curvature\n"
+               "element face %zu\nproperty list uchar int vertex_indices\nend_header\n",
+            rg2_version(), o->name, nv, nt);
+    for (int k = 0; k < n; k++)
+        for (int v = 0; v < t[k].n_vertices; v++) {
+            for (int m = 0; m < 3; m++)
+                le_f32(f, t[k].pos[3 * v + m]);
+            for (int m = 0; m < 3; m++)
+                le_f32(f, t[k].normal[3 * v + m]);
+            le_f32(f, t[k].K ? t[k].K[v] : 0.0);
+            le_f32(f, t[k].H ? t[k].H[v] : 0.0);
+        }
+    size_t base = 0;
+    for (int k = 0; k < n; k++) {
+        for (int q = 0; q < t[k].n_triangles; q++) {
+            fputc(3, f);
+            for (int m = 0; m < 3; m++)
+                le_i32(f, (int)(base + (size_t)t[k].tri[3 * q + m]));
+        }
+        base += (size_t)t[k].n_vertices;
+    }
+    return RG2_OK;
+}
+
+/* ---------------------------------------------------------------- glTF 2.0 binary */
+
+static cJSON *vec3_array(const double v[3])
+{
+    return cJSON_CreateDoubleArray(v, 3);
+}
+
+/* Accessor object; min/max for POSITION (required by glTF), NULL otherwise. */
+static int add_accessor(cJSON *accessors, int view, int ctype, size_t count, const char *type,
+                        const double *mn, const double *mx)
+{
+    cJSON *a = cJSON_CreateObject();
+    if (!a || !cJSON_AddItemToArray(accessors, a))
+        return 0;
+    int ok = cJSON_AddNumberToObject(a, "bufferView", view) && cJSON_AddNumberToObject(a, "componentType", ctype) &&
+             cJSON_AddNumberToObject(a, "count", (double)count) && cJSON_AddStringToObject(a, "type", type);
+    if (ok && mn) {
+        cJSON *jmn = vec3_array(mn), *jmx = vec3_array(mx);
+        ok = jmn && jmx && cJSON_AddItemToObject(a, "min", jmn) && cJSON_AddItemToObject(a, "max", jmx);
+    }
+    return ok;
+}
+
+static int add_view(cJSON *views, size_t offset, size_t length, int target)
+{
+    cJSON *v = cJSON_CreateObject();
+    if (!v || !cJSON_AddItemToArray(views, v))
+        return 0;
+    return cJSON_AddNumberToObject(v, "buffer", 0) && cJSON_AddNumberToObject(v, "byteOffset", (double)offset) &&
+           cJSON_AddNumberToObject(v, "byteLength", (double)length) &&
+           cJSON_AddNumberToObject(v, "target", target);
+}
+
+/*
+ * Layout: one mesh with one triangle primitive per surface. The binary chunk holds, per
+ * surface, float32 positions, float32 normals, uint32 indices (all 4-byte aligned); each has
+ * its bufferView and accessor (POSITION with min/max as required by the specification).
+ */
+rg2_status rg2__write_glb(const rg2_tess *t, int n, const rg2_export_opts *o, rg2__out *out,
+                          rg2_error *err)
+{
+    cJSON *root = cJSON_CreateObject();
+    cJSON *asset = root ? cJSON_AddObjectToObject(root, "asset") : NULL;
+    cJSON *scenes = root ? cJSON_AddArrayToObject(root, "scenes") : NULL;
+    cJSON *nodes = root ? cJSON_AddArrayToObject(root, "nodes") : NULL;
+    cJSON *meshes = root ? cJSON_AddArrayToObject(root, "meshes") : NULL;
+    cJSON *accessors = root ? cJSON_AddArrayToObject(root, "accessors") : NULL;
+    cJSON *views = root ? cJSON_AddArrayToObject(root, "bufferViews") : NULL;
+    cJSON *buffers = root ? cJSON_AddArrayToObject(root, "buffers") : NULL;
+    int ok = root && asset && scenes && nodes && meshes && accessors && views && buffers &&
+             cJSON_AddStringToObject(asset, "version", "2.0") &&
+             cJSON_AddStringToObject(asset, "generator", "rg2") && cJSON_AddNumberToObject(root, "scene", 0);
+    cJSON *scene = ok ? cJSON_CreateObject() : NULL;
+    cJSON *node = ok ? cJSON_CreateObject() : NULL;
+    cJSON *mesh = ok ? cJSON_CreateObject() : NULL;
+    ok = ok && scene && cJSON_AddItemToArray(scenes, scene);
+    ok = ok && node && cJSON_AddItemToArray(nodes, node);
+    ok = ok && mesh && cJSON_AddItemToArray(meshes, mesh);
+    int zero = 0;
+    cJSON *snodes = ok ? cJSON_CreateIntArray(&zero, 1) : NULL;
+    ok = ok && snodes && cJSON_AddItemToObject(scene, "nodes", snodes);
+    ok = ok && cJSON_AddNumberToObject(node, "mesh", 0) && cJSON_AddStringToObject(node, "name", o->name) &&
+         cJSON_AddStringToObject(mesh, "name", o->name);
+    cJSON *prims = ok ? cJSON_AddArrayToObject(mesh, "primitives") : NULL;
+    ok = ok && prims;
+    size_t offset = 0;
+    for (int k = 0; ok && k < n; k++) {
+        size_t nv = (size_t)t[k].n_vertices, nt = (size_t)t[k].n_triangles;
+        double mn[3] = {INFINITY, INFINITY, INFINITY}, mx[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (size_t v = 0; v < nv; v++)
+            for (int m = 0; m < 3; m++) {
+                double x = (float)t[k].pos[3 * v + m];
+                mn[m] = x < mn[m] ? x : mn[m];
+                mx[m] = x > mx[m] ? x : mx[m];
+            }
+        int base = 3 * k;
+        ok = add_view(views, offset, 12 * nv, 34962) && add_view(views, offset + 12 * nv, 12 * nv, 34962) &&
+             add_view(views, offset + 24 * nv, 12 * nt, 34963) &&
+             add_accessor(accessors, base, 5126, nv, "VEC3", mn, mx) &&
+             add_accessor(accessors, base + 1, 5126, nv, "VEC3", NULL, NULL) &&
+             add_accessor(accessors, base + 2, 5125, 3 * nt, "SCALAR", NULL, NULL);
+        offset += 24 * nv + 12 * nt;
+        cJSON *prim = ok ? cJSON_CreateObject() : NULL;
+        ok = ok && prim && cJSON_AddItemToArray(prims, prim);
+        cJSON *attr = ok ? cJSON_AddObjectToObject(prim, "attributes") : NULL;
+        ok = ok && attr && cJSON_AddNumberToObject(attr, "POSITION", base) &&
+             cJSON_AddNumberToObject(attr, "NORMAL", base + 1) && cJSON_AddNumberToObject(prim, "indices", base + 2) &&
+             cJSON_AddNumberToObject(prim, "mode", 4);
+    }
+    cJSON *buf = ok ? cJSON_CreateObject() : NULL;
+    ok = ok && buf && cJSON_AddItemToArray(buffers, buf) && cJSON_AddNumberToObject(buf, "byteLength", (double)offset);
+    char *json = ok ? cJSON_PrintUnformatted(root) : NULL;
+    cJSON_Delete(root);
+    if (!json)
+        return rg2__fail(err, RG2_ENOMEM, "%s: out of memory building the glTF JSON", out->path);
+    size_t jlen = strlen(json), jpad = (4 - jlen % 4) % 4;
+    size_t total = 12 + 8 + jlen + jpad + 8 + offset;
+    if (total > UINT32_MAX) {
+        free(json);
+        return rg2__fail(err, RG2_ELIMIT, "%s: %zu bytes exceed the 4 GiB glb limit", out->path, total);
+    }
+    FILE *f = out->f;
+    fwrite("glTF", 1, 4, f);
+    le_u32(f, 2);
+    le_u32(f, (uint32_t)total);
+    le_u32(f, (uint32_t)(jlen + jpad));
+    fwrite("JSON", 1, 4, f);
+    fwrite(json, 1, jlen, f);
+    for (size_t q = 0; q < jpad; q++)
+        fputc(' ', f);
+    free(json);
+    le_u32(f, (uint32_t)offset);
+    fwrite("BIN\0", 1, 4, f);
+    for (int k = 0; k < n; k++) {
+        for (int v = 0; v < 3 * t[k].n_vertices; v++)
+            le_f32(f, t[k].pos[v]);
+        for (int v = 0; v < 3 * t[k].n_vertices; v++)
+            le_f32(f, t[k].normal[v]);
+        for (int q = 0; q < 3 * t[k].n_triangles; q++)
+            le_u32(f, (uint32_t)t[k].tri[q]);
+    }
+    return RG2_OK;
+}

@@ -1,0 +1,1060 @@
+/* shapes.c -- exact basic shapes (paper section 3.1, MATH.md sections 3 and 5): partitions of
+ * the circle and polynomial directions, the generic product (family) constructors, the named
+ * shapes with their implicit equations and own parameterizations, and placement matrices. */
+#include "internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* ------------------------------------------------------------------------------------- */
+/* Shape descriptions                                                                     */
+/* ------------------------------------------------------------------------------------- */
+
+#define A_ RG2_PART_ANGLES
+#define K_ RG2_PART_KNOTS
+#define TWO_PI (2.0 * M_PI)
+
+static const rg2_shape_desc shape_table[RG2_SHAPE_COUNT] = {
+    [RG2_SHAPE_TORUS] = {"torus", 2, {"R", "r"}, {3.0, 1.0}, {A_, A_}, {{0, TWO_PI}, {0, TWO_PI}},
+                         {1, 1}, {8, 6},
+                         "((R + r cos v) cos u, (R + r cos v) sin u, r sin v, 1)",
+                         "(x^2 + y^2 + z^2 + R^2 - r^2)^2 = 4 R^2 (x^2 + y^2)"},
+    [RG2_SHAPE_CYCLIDE] = {"cyclide", 3, {"a", "c", "mu"}, {2.0, 1.0, 1.5}, {A_, A_},
+                           {{0, TWO_PI}, {0, TWO_PI}}, {1, 1}, {8, 6},
+                           "(mu (c - a cu cv) + b^2 cu, b su (a - mu cv), b sv (c cu - mu), "
+                           "a - c cu cv), b^2 = a^2 - c^2",
+                           "(x^2 + y^2 + z^2 + b^2 - mu^2)^2 = 4 (a x - c mu)^2 + 4 b^2 y^2"},
+    [RG2_SHAPE_SPHERE] = {"sphere", 1, {"radius"}, {1.0}, {A_, K_}, {{0, TWO_PI}, {0.2, 0.8}},
+                          {1, 0}, {6, 4},
+                          "(2 rho v(1-v) cu, 2 rho v(1-v) su, rho (2v - 1), 2v^2 - 2v + 1); "
+                          "v = 0 south pole, v = 1 north pole",
+                          "x^2 + y^2 + z^2 = rho^2"},
+    [RG2_SHAPE_CYLINDER] = {"cylinder", 1, {"radius"}, {1.0}, {A_, K_}, {{0, TWO_PI}, {0, 1}},
+                            {1, 0}, {6, 3}, "(R cu, R su, v, 1); v = height",
+                            "x^2 + y^2 = R^2"},
+    [RG2_SHAPE_CONE] = {"cone", 1, {"k"}, {1.0}, {A_, K_}, {{0, TWO_PI}, {0.5, 1.5}}, {1, 0},
+                        {6, 3}, "(v cu, v su, k v, 1); v = radius", "k^2 (x^2 + y^2) = z^2"},
+    [RG2_SHAPE_HYPERBOLOID1_RULED] = {"hyperboloid1_ruled", 2, {"a", "c"}, {1.0, 1.0}, {A_, K_},
+                                      {{0, TWO_PI}, {-1, 1}}, {1, 0}, {6, 4},
+                                      "(a (cu - v su), a (su + v cu), c v, 1)",
+                                      "(x^2 + y^2) / a^2 - z^2 / c^2 = 1"},
+    [RG2_SHAPE_HYPERBOLOID1] = {"hyperboloid1", 2, {"a", "c"}, {1.0, 1.0}, {A_, K_},
+                                {{0, TWO_PI}, {0.5, 2.0}}, {1, 0}, {6, 4},
+                                "(a (1 + v^2) cu, a (1 + v^2) su, c (1 - v^2), 2v), v > 0",
+                                "(x^2 + y^2) / a^2 - z^2 / c^2 = 1"},
+    [RG2_SHAPE_HYPERBOLOID2] = {"hyperboloid2", 2, {"a", "c"}, {1.0, 1.0}, {A_, K_},
+                                {{0, TWO_PI}, {0.2, 0.6}}, {1, 0}, {6, 4},
+                                "(2 a v cu, 2 a v su, c (1 + v^2), 1 - v^2), |v| < 1",
+                                "z^2 / c^2 - (x^2 + y^2) / a^2 = 1"},
+    [RG2_SHAPE_PARABOLOID] = {"paraboloid", 2, {"A", "B"}, {1.0, 1.0}, {A_, K_},
+                              {{0, TWO_PI}, {0.2, 1.0}}, {1, 0}, {6, 4},
+                              "(A v cu, B v su, v^2, 1)", "z = x^2 / A^2 + y^2 / B^2"},
+    [RG2_SHAPE_HYPAR] = {"hypar", 2, {"A", "B"}, {1.0, 1.0}, {K_, K_}, {{-1, 1}, {-1, 1}}, {0, 0},
+                         {4, 4}, "(A u, B v, u^2 - v^2, 1)", "z = x^2 / A^2 - y^2 / B^2"},
+    [RG2_SHAPE_ELLIPSOID] = {"ellipsoid", 3, {"a", "b", "c"}, {2.0, 1.5, 1.0}, {A_, K_},
+                             {{0, TWO_PI}, {0.2, 0.8}}, {1, 0}, {6, 4},
+                             "(2 a v(1-v) cu, 2 b v(1-v) su, c (2v - 1), 2v^2 - 2v + 1)",
+                             "x^2 / a^2 + y^2 / b^2 + z^2 / c^2 = 1"},
+};
+
+const rg2_shape_desc *rg2_shape_describe(rg2_shape_kind kind)
+{
+    if ((int)kind < 0 || kind >= RG2_SHAPE_COUNT)
+        return NULL;
+    return &shape_table[kind];
+}
+
+const char *rg2_shape_name(rg2_shape_kind kind)
+{
+    const rg2_shape_desc *d = rg2_shape_describe(kind);
+    return d ? d->name : NULL;
+}
+
+rg2_status rg2_shape_from_name(const char *name, rg2_shape_kind *kind, rg2_error *err)
+{
+    for (int k = 0; name && k < RG2_SHAPE_COUNT; k++)
+        if (!strcmp(name, shape_table[k].name)) {
+            *kind = (rg2_shape_kind)k;
+            rg2__ok(err);
+            return RG2_OK;
+        }
+    char list[400] = "";
+    for (int k = 0; k < RG2_SHAPE_COUNT; k++) {
+        strncat(list, shape_table[k].name, sizeof list - strlen(list) - 1);
+        if (k + 1 < RG2_SHAPE_COUNT)
+            strncat(list, ", ", sizeof list - strlen(list) - 1);
+    }
+    return rg2__fail(err, RG2_EINVAL, "unknown shape '%s' (known: %s)", name ? name : "(null)", list);
+}
+
+void rg2_shape_init(rg2_shape *s, rg2_shape_kind kind)
+{
+    memset(s, 0, sizeof *s);
+    s->kind = kind;
+    const rg2_shape_desc *d = rg2_shape_describe(kind);
+    if (d)
+        for (int k = 0; k < d->n_params; k++)
+            s->param[k] = d->param_defaults[k];
+    rg2_xform_identity(s->xform);
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* Partitions                                                                             */
+/* ------------------------------------------------------------------------------------- */
+
+static int is_angles(rg2_partition_kind k) { return k == RG2_PART_ANGLES || k == RG2_PART_ANGLES_FULL; }
+
+int rg2_partition_num_segments(const rg2_partition *p)
+{
+    if (!p || !p->values)
+        return 0;
+    int n;
+    switch (p->kind) {
+    case RG2_PART_ANGLES: n = p->n; break;
+    case RG2_PART_KNOTS: n = p->n - 1; break;
+    case RG2_PART_ANGLES_FULL: n = p->n - 4; break;
+    case RG2_PART_KNOTS_FULL: n = p->n - 5; break;
+    default: return 0;
+    }
+    return n > 0 ? n : 0;
+}
+
+/* Index range [lo, hi) of the values that are produced segments (angles) or the bounding
+ * knots of produced segments (knots). */
+static void visible_range(const rg2_partition *p, int *lo, int *hi)
+{
+    switch (p->kind) {
+    case RG2_PART_ANGLES: *lo = 0, *hi = p->n; break;
+    case RG2_PART_KNOTS: *lo = 0, *hi = p->n; break;
+    case RG2_PART_ANGLES_FULL: *lo = 2, *hi = p->n - 2; break;
+    default: *lo = 2, *hi = p->n - 2; break; /* v_1 .. v_{n-2}: values[2 .. n_values - 3] */
+    }
+}
+
+rg2_status rg2_partition_check(const rg2_partition *p, const char *what, rg2_error *err)
+{
+    if (!what)
+        what = "partition";
+    if (!p || p->n <= 0 || !p->values)
+        return rg2__fail(err, RG2_EINVAL, "%s partition is empty (no %s given)", what,
+                         p && !is_angles(p->kind) ? "knots" : "arcs");
+    if ((int)p->kind < 0 || p->kind > RG2_PART_KNOTS_FULL)
+        return rg2__fail(err, RG2_EINVAL, "%s partition has unknown kind %d", what, (int)p->kind);
+    if (p->n > RG2_MAX_POINTS)
+        return rg2__fail(err, RG2_ELIMIT, "%s partition: %d values exceeds the limit %d", what, p->n,
+                         RG2_MAX_POINTS);
+    for (int k = 0; k < p->n; k++)
+        if (!rg2__finite(p->values[k]))
+            return rg2__fail(err, RG2_ENONFINITE, "%s partition: value %d is not finite", what, k);
+    if (is_angles(p->kind)) {
+        if (!rg2__finite(p->start))
+            return rg2__fail(err, RG2_ENONFINITE, "%s partition: start angle is not finite", what);
+        if (p->kind == RG2_PART_ANGLES_FULL && p->closed)
+            return rg2__fail(err, RG2_EINVAL,
+                             "%s partition: a full (data-arc) angle list is open only", what);
+        if (p->kind == RG2_PART_ANGLES_FULL && p->n < 5)
+            return rg2__fail(err, RG2_EINVAL,
+                             "%s partition: %d arcs given with data arcs; need at least 5 "
+                             "(2 data arcs at each end and one produced arc)",
+                             what, p->n);
+        int off = p->kind == RG2_PART_ANGLES_FULL ? 1 : 0;
+        for (int k = 0; k < p->n; k++) {
+            double a = p->values[k];
+            if (!(a > 0.0 && a < M_PI))
+                return rg2__fail(err, RG2_EDOMAIN,
+                                 "%s partition: arc %d has opening angle %.17g rad (%.6g deg); it "
+                                 "must lie in (0, pi)",
+                                 what, k - off, a, a * 180.0 / M_PI);
+        }
+        int lo, hi;
+        visible_range(p, &lo, &hi);
+        double sum = 0.0;
+        for (int k = lo; k < hi; k++)
+            sum += p->values[k];
+        if (p->closed && fabs(sum - TWO_PI) > 1e-12 * TWO_PI)
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "%s partition: the %d arcs of a closed circle sum to %.17g rad (%.10g "
+                             "deg); they must sum to 2 pi",
+                             what, p->n, sum, sum * 180.0 / M_PI);
+        if (!p->closed && sum > TWO_PI * (1.0 + 1e-12))
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "%s partition: the open arcs sum to %.17g rad (%.10g deg), past 2 pi "
+                             "(the surface would overlap itself)",
+                             what, sum, sum * 180.0 / M_PI);
+        if (p->closed && p->n < 3)
+            return rg2__fail(err, RG2_EINVAL, "%s partition: a closed circle needs at least 3 arcs",
+                             what);
+    } else {
+        if (p->closed)
+            return rg2__fail(err, RG2_EINVAL,
+                             "%s partition: knot partitions are open (closed is set)", what);
+        int min = p->kind == RG2_PART_KNOTS ? 2 : 6;
+        if (p->n < min)
+            return rg2__fail(err, RG2_EINVAL, "%s partition: %d knots given, need at least %d%s",
+                             what, p->n, min,
+                             p->kind == RG2_PART_KNOTS ? "" : " (data knots v_-1, v_0 and v_n-1, v_n)");
+        int off = p->kind == RG2_PART_KNOTS_FULL ? 1 : 0;
+        for (int k = 1; k < p->n; k++)
+            if (!(p->values[k] > p->values[k - 1]))
+                return rg2__fail(err, RG2_EDOMAIN,
+                                 "%s partition: knot %d (= %.17g) is not greater than knot %d (= "
+                                 "%.17g); knots must increase strictly",
+                                 what, k - off, p->values[k], k - 1 - off, p->values[k - 1]);
+    }
+    rg2__ok(err);
+    return RG2_OK;
+}
+
+double rg2_partition_map(const rg2_partition *p, int seg, double t)
+{
+    int ns = rg2_partition_num_segments(p);
+    if (seg < 0 || seg >= ns)
+        return NAN;
+    int lo, hi;
+    visible_range(p, &lo, &hi);
+    if (is_angles(p->kind)) {
+        double th = p->start;
+        for (int k = 0; k < seg; k++)
+            th += p->values[lo + k];
+        double beta = 0.5 * p->values[lo + seg];
+        return th + beta + 2.0 * atan(tan(0.5 * beta) * (2.0 * t - 1.0));
+    }
+    double a = p->values[lo + seg], b = p->values[lo + seg + 1];
+    return a + t * (b - a);
+}
+
+rg2_status rg2_partition_equal(rg2_partition *p, rg2_partition_kind kind, int closed, double lo,
+                               double hi, int n, double *values, int cap, rg2_error *err)
+{
+    memset(p, 0, sizeof *p);
+    if (kind != RG2_PART_ANGLES && kind != RG2_PART_KNOTS)
+        return rg2__fail(err, RG2_EINVAL, "equal partition: kind must be angles or knots");
+    if (n < 1)
+        return rg2__fail(err, RG2_EINVAL, "equal partition: %d segments, need at least 1", n);
+    if (cap < n + 1)
+        return rg2__fail(err, RG2_ELIMIT, "equal partition: %d segments need %d values, room for %d",
+                         n, n + 1, cap);
+    if (!rg2__finite(lo) || !rg2__finite(hi))
+        return rg2__fail(err, RG2_ENONFINITE, "equal partition: range is not finite");
+    p->kind = kind;
+    p->values = values;
+    if (kind == RG2_PART_ANGLES) {
+        double sweep = closed ? TWO_PI : hi - lo;
+        for (int k = 0; k < n; k++)
+            values[k] = sweep / n;
+        p->n = n;
+        p->closed = closed ? 1 : 0;
+        p->start = lo;
+    } else {
+        for (int k = 0; k <= n; k++)
+            values[k] = k == n ? hi : lo + (hi - lo) * k / n;
+        p->n = n + 1;
+    }
+    return rg2_partition_check(p, "equal", err);
+}
+
+/* One direction of a product mesh: scalars and the control coefficients of its basis
+ * functions (1, cos, sin: nb = 3; or 1, t, t^2, t^3: nb = 4) at each control point. */
+typedef struct {
+    rg2_scalars sc;
+    int n, nb;
+    double *coef; /* n * nb */
+} dir_data;
+
+static void dir_free(dir_data *d)
+{
+    rg2_scalars_free(&d->sc);
+    free(d->coef);
+    memset(d, 0, sizeof *d);
+}
+
+/* Prefix err->msg with "what: " (core messages do not know the direction). */
+static rg2_status prefixed(rg2_error *err, rg2_status st, const char *what)
+{
+    if (err && st) {
+        size_t lw = strlen(what), cap = sizeof err->msg;
+        if (lw + 3 < cap) {
+            memmove(err->msg + lw + 2, err->msg, cap - lw - 2);
+            memcpy(err->msg, what, lw);
+            err->msg[lw] = ':';
+            err->msg[lw + 1] = ' ';
+            err->msg[cap - 1] = '\0';
+        }
+    }
+    return st;
+}
+
+/*
+ * METHOD: expand the partition to the full layout of rg2_scalars_from_angles / _from_knots
+ * (open angles: copies of the end arcs as the two data arcs at each end; open knots: end
+ * intervals mirrored about the end knots, or copied when there is one interval), then the
+ * control coefficients: (1, C_i, S_i) from rg2_circle_coeffs, or the blossoms of the
+ * monomials at (v_{i-1}, v_i, v_{i+1}) (MATH.md sections 1-3).
+ */
+static rg2_status dir_make(const rg2_partition *p, const char *what, dir_data *d, rg2_error *err)
+{
+    memset(d, 0, sizeof *d);
+    rg2_status st = rg2_partition_check(p, what, err);
+    if (st)
+        return st;
+    int m = p->n;
+    double *full = rg2__calloc((size_t)m + 5, sizeof(double));
+    if (!full)
+        return rg2__fail(err, RG2_ENOMEM, "%s partition: out of memory", what);
+    int nf = 0, closed = 0;
+    double theta0 = 0.0;
+    switch (p->kind) {
+    case RG2_PART_ANGLES:
+        closed = p->closed;
+        if (closed) {
+            memcpy(full, p->values, sizeof(double) * (size_t)m);
+            nf = m;
+            theta0 = p->start;
+        } else {
+            full[0] = full[1] = p->values[0];
+            memcpy(full + 2, p->values, sizeof(double) * (size_t)m);
+            full[m + 2] = full[m + 3] = p->values[m - 1];
+            nf = m + 4;
+            theta0 = p->start - p->values[0];
+        }
+        break;
+    case RG2_PART_ANGLES_FULL:
+        memcpy(full, p->values, sizeof(double) * (size_t)m);
+        nf = m;
+        theta0 = p->start - p->values[1];
+        break;
+    case RG2_PART_KNOTS: {
+        const double *v = p->values;
+        double d0 = v[1] - v[0], d1 = m > 2 ? v[2] - v[0] : 2.0 * d0;
+        double e0 = v[m - 1] - v[m - 2], e1 = m > 2 ? v[m - 1] - v[m - 3] : 2.0 * e0;
+        full[0] = v[0] - d1;
+        full[1] = v[0] - d0;
+        memcpy(full + 2, v, sizeof(double) * (size_t)m);
+        full[m + 2] = v[m - 1] + e0;
+        full[m + 3] = v[m - 1] + e1;
+        nf = m + 4;
+        break;
+    }
+    case RG2_PART_KNOTS_FULL:
+        memcpy(full, p->values, sizeof(double) * (size_t)m);
+        nf = m;
+        break;
+    }
+    if (is_angles(p->kind)) {
+        st = rg2_scalars_from_angles(&d->sc, full, nf, closed, err);
+        d->nb = 3;
+    } else {
+        st = rg2_scalars_from_knots(&d->sc, full, nf, 0, err);
+        d->nb = 4;
+    }
+    if (st) {
+        free(full);
+        return prefixed(err, st, what);
+    }
+    d->n = d->sc.n;
+    d->coef = rg2__calloc((size_t)d->n * (size_t)d->nb, sizeof(double));
+    double *cs = is_angles(p->kind) ? rg2__calloc((size_t)d->n * 2, sizeof(double)) : NULL;
+    if (!d->coef || (is_angles(p->kind) && !cs)) {
+        free(full);
+        free(cs);
+        dir_free(d);
+        return rg2__fail(err, RG2_ENOMEM, "%s partition: out of memory", what);
+    }
+    if (is_angles(p->kind)) {
+        st = rg2_circle_coeffs(full, nf, closed, theta0, cs, err);
+        for (int i = 0; i < d->n && !st; i++) {
+            d->coef[i * 3 + 0] = 1.0;
+            d->coef[i * 3 + 1] = cs[2 * i];
+            d->coef[i * 3 + 2] = cs[2 * i + 1];
+        }
+    } else {
+        for (int i = 0; i < d->n; i++)
+            rg2_blossom_monomials(full[i], full[i + 1], full[i + 2], d->coef + i * 4);
+    }
+    free(full);
+    free(cs);
+    if (st) {
+        dir_free(d);
+        return prefixed(err, st, what);
+    }
+    return RG2_OK;
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* Generic family constructors                                                            */
+/* ------------------------------------------------------------------------------------- */
+
+rg2_status rg2_product_mesh(const double coef[4][4][4], const rg2_partition *pu,
+                            const rg2_partition *pv, rg2_mesh *out, rg2_error *err)
+{
+    memset(out, 0, sizeof *out);
+    for (int k = 0; k < 4; k++)
+        for (int a = 0; a < 4; a++)
+            for (int b = 0; b < 4; b++)
+                if (!rg2__finite(coef[k][a][b]))
+                    return rg2__fail(err, RG2_ENONFINITE, "coefficient [%d][%d][%d] is not finite",
+                                     k, a, b);
+    dir_data du, dv;
+    rg2_status st = dir_make(pu, "u", &du, err);
+    if (st)
+        return st;
+    st = dir_make(pv, "v", &dv, err);
+    if (st) {
+        dir_free(&du);
+        return st;
+    }
+    for (int k = 0; k < 4; k++)
+        for (int a = 0; a < 4; a++)
+            for (int b = 0; b < 4; b++)
+                if (coef[k][a][b] != 0.0 && (a >= du.nb || b >= dv.nb)) {
+                    st = rg2__fail(err, RG2_EINVAL,
+                                   "coefficient [%d][%d][%d] = %g must be 0: the %s direction is a "
+                                   "circle with basis (1, cos, sin)",
+                                   k, a, b, coef[k][a][b], a >= du.nb ? "u" : "v");
+                    goto done;
+                }
+    st = rg2_mesh_init(out, du.n, dv.n, du.sc.closed, dv.sc.closed, err);
+    if (st)
+        goto done;
+    rg2_scalars_free(&out->su);
+    rg2_scalars_free(&out->sv);
+    out->su = du.sc;
+    out->sv = dv.sc;
+    memset(&du.sc, 0, sizeof du.sc);
+    memset(&dv.sc, 0, sizeof dv.sc);
+    for (int i = 0; i < out->nu; i++) {
+        const double *fu = du.coef + (size_t)i * (size_t)du.nb;
+        /* contract u first: cu[k][b] = sum_a coef[k][a][b] fu[a] */
+        double cu[4][4] = {{0}};
+        for (int k = 0; k < 4; k++)
+            for (int b = 0; b < dv.nb; b++)
+                for (int a = 0; a < du.nb; a++)
+                    cu[k][b] += coef[k][a][b] * fu[a];
+        for (int j = 0; j < out->nv; j++) {
+            const double *gv = dv.coef + (size_t)j * (size_t)dv.nb;
+            double *p = rg2_mesh_at(out, i, j);
+            for (int k = 0; k < 4; k++) {
+                double acc = 0.0;
+                for (int b = 0; b < dv.nb; b++)
+                    acc += cu[k][b] * gv[b];
+                p[k] = acc;
+            }
+        }
+    }
+    rg2__ok(err);
+done:
+    dir_free(&du);
+    dir_free(&dv);
+    return st;
+}
+
+static rg2_status need_kinds(const rg2_partition *pu, const rg2_partition *pv, int u_angles,
+                             int v_angles, const char *who, rg2_error *err)
+{
+    const rg2_partition *p[2] = {pu, pv};
+    int want[2] = {u_angles, v_angles};
+    for (int d = 0; d < 2; d++) {
+        if (!p[d])
+            return rg2__fail(err, RG2_EINVAL, "%s: %s partition is empty (NULL)", who, d ? "v" : "u");
+        if (is_angles(p[d]->kind) != want[d])
+            return rg2__fail(err, RG2_EINVAL,
+                             "%s: %s is a %s direction and needs %s partition, not %s", who,
+                             d ? "v" : "u", want[d] ? "circle" : "polynomial",
+                             want[d] ? "an angle" : "a knot", want[d] ? "knots" : "angles");
+    }
+    return RG2_OK;
+}
+
+rg2_status rg2_family1_mesh(const double a[4][9], const rg2_partition *pu, const rg2_partition *pv,
+                            rg2_mesh *out, rg2_error *err)
+{
+    memset(out, 0, sizeof *out);
+    rg2_status st = need_kinds(pu, pv, 1, 1, "family 1", err);
+    if (st)
+        return st;
+    /* [1, cu, su, cv, sv, cu cv, su cv, cu sv, su sv] -> [k][u basis][v basis] */
+    static const int ua[9] = {0, 1, 2, 0, 0, 1, 2, 1, 2}, vb[9] = {0, 0, 0, 1, 2, 1, 1, 2, 2};
+    double c[4][4][4] = {{{0}}};
+    for (int k = 0; k < 4; k++)
+        for (int q = 0; q < 9; q++)
+            c[k][ua[q]][vb[q]] = a[k][q];
+    return rg2_product_mesh((const double(*)[4][4])c, pu, pv, out, err);
+}
+
+rg2_status rg2_family2_mesh(const double cf[4][3][4], const rg2_partition *pu,
+                            const rg2_partition *pv, rg2_mesh *out, rg2_error *err)
+{
+    memset(out, 0, sizeof *out);
+    rg2_status st = need_kinds(pu, pv, 1, 0, "family 2", err);
+    if (st)
+        return st;
+    double c[4][4][4] = {{{0}}};
+    for (int k = 0; k < 4; k++)
+        for (int a = 0; a < 3; a++)
+            for (int s = 0; s < 4; s++)
+                c[k][a][s] = cf[k][a][s];
+    return rg2_product_mesh((const double(*)[4][4])c, pu, pv, out, err);
+}
+
+rg2_status rg2_family3_mesh(const double A[4][4][4], const rg2_partition *pu,
+                            const rg2_partition *pv, rg2_mesh *out, rg2_error *err)
+{
+    memset(out, 0, sizeof *out);
+    rg2_status st = need_kinds(pu, pv, 0, 0, "family 3", err);
+    if (st)
+        return st;
+    return rg2_product_mesh(A, pu, pv, out, err);
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* Named shapes                                                                           */
+/* ------------------------------------------------------------------------------------- */
+
+static rg2_status need_positive(const char *shape, const char *name, double x, rg2_error *err)
+{
+    if (!(x > 0.0))
+        return rg2__fail(err, RG2_EDOMAIN, "%s: parameter %s = %.17g must be > 0", shape, name, x);
+    return RG2_OK;
+}
+
+rg2_status rg2_shape_coeffs(const rg2_shape *s, double C[4][4][4], rg2_error *err)
+{
+    memset(C, 0, sizeof(double[4][4][4]));
+    const rg2_shape_desc *d = rg2_shape_describe(s->kind);
+    if (!d)
+        return rg2__fail(err, RG2_EINVAL, "unknown shape kind %d", (int)s->kind);
+    const double *q = s->param;
+    for (int k = 0; k < d->n_params; k++)
+        if (!rg2__finite(q[k]))
+            return rg2__fail(err, RG2_ENONFINITE, "%s: parameter %s is not finite", d->name,
+                             d->param_names[k]);
+    rg2_status st = RG2_OK;
+    switch (s->kind) {
+    case RG2_SHAPE_TORUS: {
+        double R = q[0], r = q[1];
+        if ((st = need_positive(d->name, "R", R, err)) || (st = need_positive(d->name, "r", r, err)))
+            return st;
+        if (!(r < R))
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "torus: r = %.17g must be < R = %.17g (horn and spindle tori are "
+                             "singular; build them with rg2_family1_mesh)",
+                             r, R);
+        C[0][1][0] = R, C[0][1][1] = r;
+        C[1][2][0] = R, C[1][2][1] = r;
+        C[2][0][2] = r;
+        C[3][0][0] = 1.0;
+        break;
+    }
+    case RG2_SHAPE_CYCLIDE: {
+        double a = q[0], c = q[1], mu = q[2];
+        if ((st = need_positive(d->name, "a", a, err)))
+            return st;
+        if (!(c >= 0.0))
+            return rg2__fail(err, RG2_EDOMAIN, "cyclide: parameter c = %.17g must be >= 0", c);
+        double b2 = a * a - c * c;
+        if (!(b2 > 0.0))
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "cyclide: b^2 = a^2 - c^2 = %.17g <= 0 (a = %.17g, c = %.17g); need c < a",
+                             b2, a, c);
+        if ((st = need_positive(d->name, "mu", mu, err)))
+            return st;
+        double b = sqrt(b2);
+        C[0][0][0] = mu * c, C[0][1][1] = -mu * a, C[0][1][0] = b2;
+        C[1][2][0] = a * b, C[1][2][1] = -b * mu;
+        C[2][1][2] = b * c, C[2][0][2] = -b * mu;
+        C[3][0][0] = a, C[3][1][1] = -c;
+        break;
+    }
+    case RG2_SHAPE_SPHERE:
+    case RG2_SHAPE_ELLIPSOID: {
+        double ax[3];
+        for (int k = 0; k < 3; k++) {
+            ax[k] = s->kind == RG2_SHAPE_SPHERE ? q[0] : q[k];
+            if ((st = need_positive(d->name, d->param_names[s->kind == RG2_SHAPE_SPHERE ? 0 : k],
+                                    ax[k], err)))
+                return st;
+        }
+        C[0][1][1] = 2.0 * ax[0], C[0][1][2] = -2.0 * ax[0];
+        C[1][2][1] = 2.0 * ax[1], C[1][2][2] = -2.0 * ax[1];
+        C[2][0][0] = -ax[2], C[2][0][1] = 2.0 * ax[2];
+        C[3][0][0] = 1.0, C[3][0][1] = -2.0, C[3][0][2] = 2.0;
+        break;
+    }
+    case RG2_SHAPE_CYLINDER:
+        if ((st = need_positive(d->name, "radius", q[0], err)))
+            return st;
+        C[0][1][0] = q[0];
+        C[1][2][0] = q[0];
+        C[2][0][1] = 1.0;
+        C[3][0][0] = 1.0;
+        break;
+    case RG2_SHAPE_CONE:
+        if (!(q[0] != 0.0))
+            return rg2__fail(err, RG2_EDOMAIN, "cone: slope k = 0 gives a plane, not a cone");
+        C[0][1][1] = 1.0;
+        C[1][2][1] = 1.0;
+        C[2][0][1] = q[0];
+        C[3][0][0] = 1.0;
+        break;
+    case RG2_SHAPE_HYPERBOLOID1_RULED:
+    case RG2_SHAPE_HYPERBOLOID1:
+    case RG2_SHAPE_HYPERBOLOID2: {
+        double a = q[0], c = q[1];
+        if ((st = need_positive(d->name, "a", a, err)) || (st = need_positive(d->name, "c", c, err)))
+            return st;
+        if (s->kind == RG2_SHAPE_HYPERBOLOID1_RULED) {
+            C[0][1][0] = a, C[0][2][1] = -a;
+            C[1][2][0] = a, C[1][1][1] = a;
+            C[2][0][1] = c;
+            C[3][0][0] = 1.0;
+        } else if (s->kind == RG2_SHAPE_HYPERBOLOID1) {
+            C[0][1][0] = a, C[0][1][2] = a;
+            C[1][2][0] = a, C[1][2][2] = a;
+            C[2][0][0] = c, C[2][0][2] = -c;
+            C[3][0][1] = 2.0;
+        } else {
+            C[0][1][1] = 2.0 * a;
+            C[1][2][1] = 2.0 * a;
+            C[2][0][0] = c, C[2][0][2] = c;
+            C[3][0][0] = 1.0, C[3][0][2] = -1.0;
+        }
+        break;
+    }
+    case RG2_SHAPE_PARABOLOID:
+        if ((st = need_positive(d->name, "A", q[0], err)) || (st = need_positive(d->name, "B", q[1], err)))
+            return st;
+        C[0][1][1] = q[0];
+        C[1][2][1] = q[1];
+        C[2][0][2] = 1.0;
+        C[3][0][0] = 1.0;
+        break;
+    case RG2_SHAPE_HYPAR:
+        if ((st = need_positive(d->name, "A", q[0], err)) || (st = need_positive(d->name, "B", q[1], err)))
+            return st;
+        C[0][1][0] = q[0];
+        C[1][0][1] = q[1];
+        C[2][2][0] = 1.0, C[2][0][2] = -1.0;
+        C[3][0][0] = 1.0;
+        break;
+    default:
+        return rg2__fail(err, RG2_EINVAL, "unknown shape kind %d", (int)s->kind);
+    }
+    rg2__ok(err);
+    return RG2_OK;
+}
+
+/* Shape-specific limits on the produced parameter range of a knot direction. */
+static rg2_status check_range(const rg2_shape *s, const rg2_partition *pv, rg2_error *err)
+{
+    if (s->kind != RG2_SHAPE_HYPERBOLOID1 && s->kind != RG2_SHAPE_HYPERBOLOID2)
+        return RG2_OK;
+    int lo, hi;
+    visible_range(pv, &lo, &hi);
+    int off = pv->kind == RG2_PART_KNOTS_FULL ? 1 : 0;
+    for (int k = lo; k < hi; k++) {
+        double v = pv->values[k];
+        if (s->kind == RG2_SHAPE_HYPERBOLOID1 && !(v > 0.0))
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "hyperboloid1: v knot %d = %.17g must be > 0 (the weight 2v vanishes "
+                             "at v = 0, the point at infinity)",
+                             k - off, v);
+        if (s->kind == RG2_SHAPE_HYPERBOLOID2 && !(fabs(v) < 1.0))
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "hyperboloid2: v knot %d = %.17g must satisfy |v| < 1 (the weight "
+                             "1 - v^2 vanishes at |v| = 1, the points at infinity)",
+                             k - off, v);
+    }
+    return RG2_OK;
+}
+
+static rg2_status check_xform(const double M[16], const char *who, rg2_error *err)
+{
+    double inv[16];
+    rg2_status st = rg2_xform_invert(M, inv, err);
+    if (st)
+        return prefixed(err, st, who);
+    return RG2_OK;
+}
+
+rg2_status rg2_shape_mesh(const rg2_shape *s, const rg2_partition *pu, const rg2_partition *pv,
+                          rg2_mesh *out, rg2_error *err)
+{
+    memset(out, 0, sizeof *out);
+    double C[4][4][4];
+    rg2_status st = rg2_shape_coeffs(s, C, err);
+    if (st)
+        return st;
+    const rg2_shape_desc *d = rg2_shape_describe(s->kind);
+    if ((st = need_kinds(pu, pv, d->dir_kind[0] == RG2_PART_ANGLES, d->dir_kind[1] == RG2_PART_ANGLES,
+                         d->name, err)))
+        return st;
+    if ((st = rg2_partition_check(pu, "u", err)) || (st = rg2_partition_check(pv, "v", err)))
+        return prefixed(err, st, d->name);
+    if ((st = check_range(s, pv, err)) || (st = check_xform(s->xform, d->name, err)))
+        return st;
+    st = rg2_product_mesh((const double(*)[4][4])C, pu, pv, out, err);
+    if (st)
+        return prefixed(err, st, d->name);
+    rg2_mesh_transform(out, s->xform);
+    return RG2_OK;
+}
+
+static void basis(int nb, double t, double f[4])
+{
+    if (nb == 3) {
+        f[0] = 1.0, f[1] = cos(t), f[2] = sin(t), f[3] = 0.0;
+    } else {
+        f[0] = 1.0, f[1] = t, f[2] = t * t, f[3] = t * t * t;
+    }
+}
+
+void rg2_shape_param(const rg2_shape *s, double u, double v, double h[4])
+{
+    double C[4][4][4];
+    if (rg2_shape_coeffs(s, C, NULL)) {
+        h[0] = h[1] = h[2] = h[3] = NAN;
+        return;
+    }
+    const rg2_shape_desc *d = rg2_shape_describe(s->kind);
+    double fu[4], gv[4], hl[4];
+    basis(d->dir_kind[0] == RG2_PART_ANGLES ? 3 : 4, u, fu);
+    basis(d->dir_kind[1] == RG2_PART_ANGLES ? 3 : 4, v, gv);
+    for (int k = 0; k < 4; k++) {
+        double acc = 0.0;
+        for (int a = 0; a < 4; a++)
+            for (int b = 0; b < 4; b++)
+                acc += C[k][a][b] * fu[a] * gv[b];
+        hl[k] = acc;
+    }
+    for (int r = 0; r < 4; r++)
+        h[r] = s->xform[4 * r] * hl[0] + s->xform[4 * r + 1] * hl[1] + s->xform[4 * r + 2] * hl[2] +
+               s->xform[4 * r + 3] * hl[3];
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* Implicit equations: value, gradient and Hessian by second-order forward jets           */
+/* ------------------------------------------------------------------------------------- */
+
+typedef struct {
+    double v, g[3], h[9];
+} jet;
+
+static jet jconst(double c)
+{
+    jet r;
+    memset(&r, 0, sizeof r);
+    r.v = c;
+    return r;
+}
+
+static jet jadd(jet a, jet b)
+{
+    a.v += b.v;
+    for (int k = 0; k < 3; k++)
+        a.g[k] += b.g[k];
+    for (int k = 0; k < 9; k++)
+        a.h[k] += b.h[k];
+    return a;
+}
+
+static jet jscale(jet a, double c)
+{
+    a.v *= c;
+    for (int k = 0; k < 3; k++)
+        a.g[k] *= c;
+    for (int k = 0; k < 9; k++)
+        a.h[k] *= c;
+    return a;
+}
+
+static jet jsub(jet a, jet b) { return jadd(a, jscale(b, -1.0)); }
+
+static jet jaddc(jet a, double c)
+{
+    a.v += c;
+    return a;
+}
+
+static jet jmul(jet a, jet b)
+{
+    jet r;
+    r.v = a.v * b.v;
+    for (int k = 0; k < 3; k++)
+        r.g[k] = a.g[k] * b.v + a.v * b.g[k];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            r.h[3 * i + j] = a.h[3 * i + j] * b.v + a.v * b.h[3 * i + j] + a.g[i] * b.g[j] +
+                             a.g[j] * b.g[i];
+    return r;
+}
+
+static jet jsq(jet a) { return jmul(a, a); }
+
+static jet jdiv(jet a, jet b)
+{
+    jet r;
+    double q = a.v / b.v;
+    r.v = q;
+    for (int k = 0; k < 3; k++)
+        r.g[k] = (a.g[k] - q * b.g[k]) / b.v;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            r.h[3 * i + j] = (a.h[3 * i + j] - q * b.h[3 * i + j] - r.g[i] * b.g[j] - r.g[j] * b.g[i]) /
+                             b.v;
+    return r;
+}
+
+/* The implicit function of the unplaced shape (0 on the surface). */
+static jet local_implicit(const rg2_shape *s, jet x, jet y, jet z)
+{
+    const double *q = s->param;
+    jet x2 = jsq(x), y2 = jsq(y), z2 = jsq(z);
+    switch (s->kind) {
+    case RG2_SHAPE_TORUS: {
+        double R = q[0], r = q[1];
+        jet t = jaddc(jadd(jadd(x2, y2), z2), R * R - r * r);
+        return jsub(jsq(t), jscale(jadd(x2, y2), 4.0 * R * R));
+    }
+    case RG2_SHAPE_CYCLIDE: {
+        double a = q[0], c = q[1], mu = q[2], b2 = a * a - c * c;
+        jet t = jaddc(jadd(jadd(x2, y2), z2), b2 - mu * mu);
+        jet l = jaddc(jscale(x, a), -c * mu);
+        return jsub(jsub(jsq(t), jscale(jsq(l), 4.0)), jscale(y2, 4.0 * b2));
+    }
+    case RG2_SHAPE_SPHERE:
+        return jaddc(jscale(jadd(jadd(x2, y2), z2), 1.0 / (q[0] * q[0])), -1.0);
+    case RG2_SHAPE_ELLIPSOID:
+        return jaddc(jadd(jadd(jscale(x2, 1.0 / (q[0] * q[0])), jscale(y2, 1.0 / (q[1] * q[1]))),
+                          jscale(z2, 1.0 / (q[2] * q[2]))),
+                     -1.0);
+    case RG2_SHAPE_CYLINDER:
+        return jaddc(jscale(jadd(x2, y2), 1.0 / (q[0] * q[0])), -1.0);
+    case RG2_SHAPE_CONE:
+        return jsub(jscale(jadd(x2, y2), q[0] * q[0]), z2);
+    case RG2_SHAPE_HYPERBOLOID1_RULED:
+    case RG2_SHAPE_HYPERBOLOID1:
+        return jaddc(jsub(jscale(jadd(x2, y2), 1.0 / (q[0] * q[0])), jscale(z2, 1.0 / (q[1] * q[1]))),
+                     -1.0);
+    case RG2_SHAPE_HYPERBOLOID2:
+        return jaddc(jsub(jscale(z2, 1.0 / (q[1] * q[1])), jscale(jadd(x2, y2), 1.0 / (q[0] * q[0]))),
+                     -1.0);
+    case RG2_SHAPE_PARABOLOID:
+        return jsub(jadd(jscale(x2, 1.0 / (q[0] * q[0])), jscale(y2, 1.0 / (q[1] * q[1]))), z);
+    case RG2_SHAPE_HYPAR:
+        return jsub(jsub(jscale(x2, 1.0 / (q[0] * q[0])), jscale(y2, 1.0 / (q[1] * q[1]))), z);
+    default:
+        return jconst(NAN);
+    }
+}
+
+/*
+ * METHOD: the placed surface is M applied to the local one, so the placed implicit function
+ * is f(phi(x)) with phi = M^{-1} as a projective map: y_i = N_i(x) / N_4(x), N = M^{-1} (x, 1).
+ * The jets carry value, gradient and Hessian through the chain rule exactly.
+ */
+double rg2_shape_implicit2(const rg2_shape *s, const double x[3], double grad[3], double hess[9])
+{
+    double C[4][4][4], inv[16];
+    jet f;
+    if (rg2_shape_coeffs(s, C, NULL) || rg2_xform_invert(s->xform, inv, NULL)) {
+        f = jconst(NAN);
+        for (int k = 0; k < 3; k++)
+            f.g[k] = NAN;
+        for (int k = 0; k < 9; k++)
+            f.h[k] = NAN;
+    } else {
+        jet N[4];
+        for (int i = 0; i < 4; i++) {
+            N[i] = jconst(inv[4 * i + 3]);
+            for (int j = 0; j < 3; j++) {
+                N[i].v += inv[4 * i + j] * x[j];
+                N[i].g[j] = inv[4 * i + j];
+            }
+        }
+        int affine = inv[12] == 0.0 && inv[13] == 0.0 && inv[14] == 0.0 && inv[15] == 1.0;
+        if (!affine)
+            for (int i = 0; i < 3; i++)
+                N[i] = jdiv(N[i], N[3]);
+        f = local_implicit(s, N[0], N[1], N[2]);
+    }
+    if (grad)
+        memcpy(grad, f.g, sizeof f.g);
+    if (hess)
+        memcpy(hess, f.h, sizeof f.h);
+    return f.v;
+}
+
+double rg2_shape_implicit(const rg2_shape *s, const double x[3], double grad[3])
+{
+    return rg2_shape_implicit2(s, x, grad, NULL);
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* Placement matrices and exact transforms                                                */
+/* ------------------------------------------------------------------------------------- */
+
+void rg2_xform_identity(double M[16])
+{
+    memset(M, 0, sizeof(double) * 16);
+    M[0] = M[5] = M[10] = M[15] = 1.0;
+}
+
+void rg2_xform_mul(const double A[16], const double B[16], double out[16])
+{
+    double r[16];
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++)
+            r[4 * i + j] = A[4 * i] * B[j] + A[4 * i + 1] * B[4 + j] + A[4 * i + 2] * B[8 + j] +
+                           A[4 * i + 3] * B[12 + j];
+    memcpy(out, r, sizeof r);
+}
+
+void rg2_xform_translate(double M[16], double x, double y, double z)
+{
+    rg2_xform_identity(M);
+    M[3] = x;
+    M[7] = y;
+    M[11] = z;
+}
+
+void rg2_xform_scale(double M[16], double sx, double sy, double sz)
+{
+    rg2_xform_identity(M);
+    M[0] = sx;
+    M[5] = sy;
+    M[10] = sz;
+}
+
+void rg2_xform_rotate(double M[16], double ax, double ay, double az, double angle)
+{
+    rg2_xform_identity(M);
+    double len = sqrt(ax * ax + ay * ay + az * az);
+    if (!(len > 0.0))
+        return;
+    ax /= len, ay /= len, az /= len;
+    double c = cos(angle), s = sin(angle), t = 1.0 - c;
+    M[0] = t * ax * ax + c, M[1] = t * ax * ay - s * az, M[2] = t * ax * az + s * ay;
+    M[4] = t * ax * ay + s * az, M[5] = t * ay * ay + c, M[6] = t * ay * az - s * ax;
+    M[8] = t * ax * az - s * ay, M[9] = t * ay * az + s * ax, M[10] = t * az * az + c;
+}
+
+void rg2_xform_place(double M[16], const double centre[3], const double axis[3])
+{
+    double len = sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+    double R[16], T[16];
+    rg2_xform_identity(R);
+    if (len > 0.0) {
+        double a[3] = {axis[0] / len, axis[1] / len, axis[2] / len};
+        double k[3] = {-a[1], a[0], 0.0}; /* z x a */
+        double sn = sqrt(k[0] * k[0] + k[1] * k[1]);
+        if (sn > 0.0)
+            rg2_xform_rotate(R, k[0], k[1], k[2], atan2(sn, a[2]));
+        else if (a[2] < 0.0)
+            rg2_xform_rotate(R, 1.0, 0.0, 0.0, M_PI);
+    }
+    rg2_xform_translate(T, centre[0], centre[1], centre[2]);
+    rg2_xform_mul(T, R, M);
+}
+
+/* Gauss-Jordan elimination with partial pivoting. Rows whose pivot columns hold exact
+ * zeros (the (0, 0, 0, 1) row of an affine matrix) stay exact. */
+rg2_status rg2_xform_invert(const double M[16], double inv[16], rg2_error *err)
+{
+    double a[4][8];
+    double mx = 0.0;
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) {
+            if (!rg2__finite(M[4 * i + j]))
+                return rg2__fail(err, RG2_ENONFINITE, "placement matrix entry [%d][%d] is not finite",
+                                 i, j);
+            a[i][j] = M[4 * i + j];
+            a[i][4 + j] = i == j ? 1.0 : 0.0;
+            if (fabs(a[i][j]) > mx)
+                mx = fabs(a[i][j]);
+        }
+    for (int c = 0; c < 4; c++) {
+        int piv = c;
+        for (int r = c + 1; r < 4; r++)
+            if (fabs(a[r][c]) > fabs(a[piv][c]))
+                piv = r;
+        if (!(fabs(a[piv][c]) > 1e-14 * mx))
+            return rg2__fail(err, RG2_EDOMAIN, "placement matrix is singular (column %d)", c);
+        if (piv != c)
+            for (int j = 0; j < 8; j++) {
+                double t = a[c][j];
+                a[c][j] = a[piv][j];
+                a[piv][j] = t;
+            }
+        double p = a[c][c];
+        for (int j = 0; j < 8; j++)
+            a[c][j] /= p;
+        for (int r = 0; r < 4; r++) {
+            if (r == c || a[r][c] == 0.0)
+                continue;
+            double f = a[r][c];
+            for (int j = 0; j < 8; j++)
+                a[r][j] -= f * a[c][j];
+        }
+    }
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++)
+            inv[4 * i + j] = a[i][4 + j];
+    rg2__ok(err);
+    return RG2_OK;
+}
+
+void rg2_mesh_transform(rg2_mesh *m, const double M[16])
+{
+    size_t np = (size_t)m->nu * (size_t)m->nv;
+    for (size_t k = 0; k < np; k++) {
+        double *p = m->p + 4 * k, q[4];
+        for (int r = 0; r < 4; r++)
+            q[r] = M[4 * r] * p[0] + M[4 * r + 1] * p[1] + M[4 * r + 2] * p[2] + M[4 * r + 3] * p[3];
+        memcpy(p, q, sizeof q);
+    }
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* Weights and one-call surfaces                                                          */
+/* ------------------------------------------------------------------------------------- */
+
+void rg2_surface_weight_report(const rg2_surface *s, rg2_weight_report *rep)
+{
+    memset(rep, 0, sizeof *rep);
+    rep->min_weight = INFINITY;
+    for (int i = 0; i < s->nu; i++)
+        for (int j = 0; j < s->nv; j++) {
+            const rg2_patch *P = rg2_surface_patch(s, i, j);
+            double mn = INFINITY;
+            for (int r = 0; r < 4; r++)
+                for (int t = 0; t < 4; t++)
+                    if (P->h[r][t][3] < mn)
+                        mn = P->h[r][t][3];
+            if (!(mn > 0.0))
+                rep->n_nonpositive++;
+            if (mn < rep->min_weight) {
+                rep->min_weight = mn;
+                rep->patch_i = i;
+                rep->patch_j = j;
+            }
+        }
+    if (rep->n_nonpositive)
+        rep->flags |= RG2_SHAPE_WARN_WEIGHT;
+}
+
+rg2_status rg2_shape_surface(const rg2_shape *s, const rg2_partition *pu, const rg2_partition *pv,
+                             rg2_surface *out, rg2_weight_report *rep, rg2_error *err)
+{
+    memset(out, 0, sizeof *out);
+    rg2_mesh m;
+    rg2_status st = rg2_shape_mesh(s, pu, pv, &m, err);
+    if (st)
+        return st;
+    st = rg2_surface_build(&m, out, err);
+    rg2_mesh_free(&m);
+    if (st)
+        return st;
+    if (rep)
+        rg2_surface_weight_report(out, rep);
+    return RG2_OK;
+}

@@ -1,0 +1,454 @@
+/* step.c -- STEP AP214 / AP242 (ISO 10303-21) of rational bi-cubic patch surfaces as a shell
+ * of ADVANCED_FACEs on rational B-spline surfaces, following docs/export.md and
+ * shared/spec/INTEROP.md: complex instances in alphabetical order, control nets
+ * LIST[u] OF LIST[v], one EDGE_CURVE / VERTEX_POINT per geometric edge / vertex shared by the
+ * faces on both sides, loops counter-clockwise in (u, v), product structure, mm units. */
+#include "export_internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct {
+    FILE *f;
+    int next; /* next entity id */
+} stepw;
+
+static int new_id(stepw *w) { return w->next++; }
+
+static void put_real(FILE *f, double x)
+{
+    char b[40];
+    rg2__real(b, x);
+    fputs(b, f);
+}
+
+static int put_point(stepw *w, const double h[4])
+{
+    int id = new_id(w);
+    fprintf(w->f, "#%d=CARTESIAN_POINT('',(", id);
+    for (int d = 0; d < 3; d++) {
+        if (d)
+            fputc(',', w->f);
+        put_real(w->f, h[d] / h[3]);
+    }
+    fputs("));\n", w->f);
+    return id;
+}
+
+/* Multiplicities "(4,3,3,4)" and knot values "(0.,1.,2.,3.)" of n_spans Bezier spans. */
+static void put_mults(FILE *f, int n_spans)
+{
+    fputc('(', f);
+    for (int k = 0; k <= n_spans; k++)
+        fprintf(f, "%s%d", k ? "," : "", (k == 0 || k == n_spans) ? 4 : 3);
+    fputc(')', f);
+}
+
+static void put_knot_values(FILE *f, int n_spans)
+{
+    fputc('(', f);
+    for (int k = 0; k <= n_spans; k++)
+        fprintf(f, "%s%d.", k ? "," : "", k);
+    fputc(')', f);
+}
+
+/* A rational cubic B-spline curve through homogeneous poles h[0..n-1] (n = 3 spans + 1). */
+static int put_curve(stepw *w, const double (*h)[4], int n)
+{
+    int *pt = malloc(sizeof(int) * (size_t)n);
+    if (!pt)
+        return -1;
+    for (int a = 0; a < n; a++)
+        pt[a] = put_point(w, h[a]);
+    int id = new_id(w);
+    fprintf(w->f, "#%d=( BOUNDED_CURVE() B_SPLINE_CURVE(3,(", id);
+    for (int a = 0; a < n; a++)
+        fprintf(w->f, "%s#%d%s", a ? "," : "", pt[a], (a % 12 == 11) ? "\n" : "");
+    fputs("),.UNSPECIFIED.,.F.,.F.)\n B_SPLINE_CURVE_WITH_KNOTS(", w->f);
+    put_mults(w->f, (n - 1) / 3);
+    fputc(',', w->f);
+    put_knot_values(w->f, (n - 1) / 3);
+    fputs(",.PIECEWISE_BEZIER_KNOTS.)\n CURVE() GEOMETRIC_REPRESENTATION_ITEM() RATIONAL_B_SPLINE_CURVE((", w->f);
+    for (int a = 0; a < n; a++) {
+        if (a)
+            fputs(a % 8 == 0 ? ",\n" : ",", w->f);
+        put_real(w->f, h[a][3]);
+    }
+    fputs(")) REPRESENTATION_ITEM('') );\n", w->f);
+    free(pt);
+    return id;
+}
+
+/* A rational bi-cubic B-spline surface from a net of NU x NV homogeneous poles, u outer. */
+static int put_surface(stepw *w, const double (*h)[4], int NU, int NV, int closed_u, int closed_v)
+{
+    int *pt = malloc(sizeof(int) * (size_t)NU * (size_t)NV);
+    if (!pt)
+        return -1;
+    for (int a = 0; a < NU * NV; a++)
+        pt[a] = put_point(w, h[a]);
+    int id = new_id(w);
+    fprintf(w->f, "#%d=( BOUNDED_SURFACE() B_SPLINE_SURFACE(3,3,(", id);
+    for (int a = 0; a < NU; a++) {
+        fputs(a ? ",\n(" : "(", w->f);
+        for (int b = 0; b < NV; b++)
+            fprintf(w->f, "%s#%d%s", b ? "," : "", pt[a * NV + b], (b % 12 == 11 && b + 1 < NV) ? "\n" : "");
+        fputc(')', w->f);
+    }
+    fprintf(w->f, "),.UNSPECIFIED.,%s,%s,.F.)\n B_SPLINE_SURFACE_WITH_KNOTS(", closed_u ? ".T." : ".F.",
+            closed_v ? ".T." : ".F.");
+    /* u multiplicities, v multiplicities, u knots, v knots */
+    put_mults(w->f, (NU - 1) / 3);
+    fputc(',', w->f);
+    put_mults(w->f, (NV - 1) / 3);
+    fputc(',', w->f);
+    put_knot_values(w->f, (NU - 1) / 3);
+    fputc(',', w->f);
+    put_knot_values(w->f, (NV - 1) / 3);
+    fputs(",.PIECEWISE_BEZIER_KNOTS.)\n GEOMETRIC_REPRESENTATION_ITEM() RATIONAL_B_SPLINE_SURFACE((", w->f);
+    for (int a = 0; a < NU; a++) {
+        fputs(a ? ",\n(" : "(", w->f);
+        for (int b = 0; b < NV; b++) {
+            if (b)
+                fputs(b % 8 == 0 ? ",\n" : ",", w->f);
+            put_real(w->f, h[a * NV + b][3]);
+        }
+        fputc(')', w->f);
+    }
+    fputs(")) REPRESENTATION_ITEM('') SURFACE() );\n", w->f);
+    free(pt);
+    return id;
+}
+
+static int put_vertex(stepw *w, const double h[4])
+{
+    int p = put_point(w, h);
+    int id = new_id(w);
+    fprintf(w->f, "#%d=VERTEX_POINT('',#%d);\n", id, p);
+    return id;
+}
+
+static int put_edge(stepw *w, int v0, int v1, int curve)
+{
+    int id = new_id(w);
+    fprintf(w->f, "#%d=EDGE_CURVE('',#%d,#%d,#%d,.T.);\n", id, v0, v1, curve);
+    return id;
+}
+
+/* Face bounded by the oriented edges (edge ids, orientation flags). */
+static int put_face(stepw *w, int surface, const int *edge, const int *fwd, int n)
+{
+    int oe[4];
+    for (int k = 0; k < n; k++) {
+        oe[k] = new_id(w);
+        fprintf(w->f, "#%d=ORIENTED_EDGE('',*,*,#%d,%s);\n", oe[k], edge[k], fwd[k] ? ".T." : ".F.");
+    }
+    int loop = new_id(w);
+    fprintf(w->f, "#%d=EDGE_LOOP('',(", loop);
+    for (int k = 0; k < n; k++)
+        fprintf(w->f, "%s#%d", k ? "," : "", oe[k]);
+    fputs("));\n", w->f);
+    int bound = new_id(w);
+    fprintf(w->f, "#%d=FACE_OUTER_BOUND('',#%d,.T.);\n", bound, loop);
+    int face = new_id(w);
+    fprintf(w->f, "#%d=ADVANCED_FACE('',(#%d),#%d,.T.);\n", face, bound, surface);
+    return face;
+}
+
+static int put_shell(stepw *w, const int *faces, int n, int closed)
+{
+    int id = new_id(w);
+    fprintf(w->f, "#%d=%s('',(", id, closed ? "CLOSED_SHELL" : "OPEN_SHELL");
+    for (int k = 0; k < n; k++)
+        fprintf(w->f, "%s#%d%s", k ? "," : "", faces[k], (k % 12 == 11 && k + 1 < n) ? "\n" : "");
+    fputs("));\n", w->f);
+    return id;
+}
+
+/* Corner (I, J) of the patch grid as a homogeneous point of a patch holding it. */
+static const double *corner_point(const rg2_surface *s, int I, int J)
+{
+    int i = I < s->nu ? I : s->nu - 1, j = J < s->nv ? J : s->nv - 1;
+    return rg2_surface_patch(s, i, j)->h[I == i ? 0 : 3][J == j ? 0 : 3];
+}
+
+/* One face per patch, sharing edges and vertices through rg2__topo. Returns the shell id. */
+static rg2_status shell_per_patch(stepw *w, const rg2_surface *s, int *shell, rg2_error *err)
+{
+    rg2__topo t;
+    rg2_status st = rg2__topo_build(s, &t, err);
+    if (st)
+        return st;
+    int nu = s->nu, nv = s->nv;
+    int *vid = malloc(sizeof(int) * (size_t)(t.n_vertices ? t.n_vertices : 1));
+    int *eid = malloc(sizeof(int) * (size_t)(t.n_edges ? t.n_edges : 1));
+    int *fid = malloc(sizeof(int) * (size_t)nu * (size_t)nv);
+    if (!vid || !eid || !fid) {
+        st = rg2__fail(err, RG2_ENOMEM, "STEP: out of memory for %d x %d patches", nu, nv);
+        goto done;
+    }
+    for (int v = 0; v < t.n_vertices; v++) {
+        int c = t.vcorner[v];
+        vid[v] = put_vertex(w, corner_point(s, c / (nv + 1), c % (nv + 1)));
+    }
+    int closed = 1;
+    for (int e = 0; e < t.n_edges; e++) {
+        int p = t.edef[2 * e], side = t.edef[2 * e + 1], i = p / nv, j = p % nv;
+        double h[4][4];
+        rg2__patch_side(&s->patch[p], side, h);
+        int I0 = side == 1 ? i + 1 : i, J0 = side == 2 ? j + 1 : j;
+        int I1 = (side == 0 || side == 2) ? i + 1 : I0, J1 = (side == 1 || side == 3) ? j + 1 : J0;
+        int c = put_curve(w, (const double(*)[4])h, 4);
+        if (c < 0) {
+            st = rg2__fail(err, RG2_ENOMEM, "STEP: out of memory");
+            goto done;
+        }
+        eid[e] = put_edge(w, vid[t.vert[I0 * (nv + 1) + J0]], vid[t.vert[I1 * (nv + 1) + J1]], c);
+        if (t.uses[e] != 2)
+            closed = 0;
+    }
+    for (int i = 0; i < nu; i++)
+        for (int j = 0; j < nv; j++) {
+            const rg2_patch *P = rg2_surface_patch(s, i, j);
+            int surf = put_surface(w, (const double(*)[4])P->h, 4, 4, 0, 0);
+            if (surf < 0) {
+                st = rg2__fail(err, RG2_ENOMEM, "STEP: out of memory");
+                goto done;
+            }
+            int edge[4], fwd[4], n = 0;
+            for (int side = 0; side < 4; side++) {
+                int e, f;
+                rg2__topo_side(&t, i, j, side, &e, &f);
+                if (e < 0)
+                    continue;
+                edge[n] = eid[e];
+                fwd[n++] = f;
+            }
+            fid[i * nv + j] = put_face(w, surf, edge, fwd, n);
+        }
+    *shell = put_shell(w, fid, nu * nv, closed);
+done:
+    free(vid);
+    free(eid);
+    free(fid);
+    rg2__topo_free(&t);
+    return st;
+}
+
+/* Side sd (0 v=0, 1 u=1, 2 v=1, 3 u=0) of an NU x NV net into out; returns its length. */
+static int net_side(const double (*h)[4], int NU, int NV, int sd, double (*out)[4])
+{
+    int n = (sd & 1) ? NV : NU;
+    for (int a = 0; a < n; a++) {
+        size_t k;
+        switch (sd) {
+        case 0: k = (size_t)a * (size_t)NV; break;
+        case 1: k = (size_t)(NU - 1) * (size_t)NV + (size_t)a; break;
+        case 2: k = (size_t)a * (size_t)NV + (size_t)(NV - 1); break;
+        default: k = (size_t)a; break;
+        }
+        memcpy(out[a], h[k], sizeof(double[4]));
+    }
+    return n;
+}
+
+static int curve_collapsed(const double (*h)[4], int n, double tol)
+{
+    for (int a = 1; a < n; a++)
+        for (int d = 0; d < 3; d++)
+            if (!(fabs(h[a][d] / h[a][3] - h[0][d] / h[0][3]) <= tol))
+                return 0;
+    return 1;
+}
+
+static int uf4(int *p, int a)
+{
+    while (p[a] != a)
+        a = p[a];
+    return a;
+}
+
+static void join4(int *p, int a, int b)
+{
+    a = uf4(p, a);
+    b = uf4(p, b);
+    if (a != b)
+        p[a > b ? a : b] = a < b ? a : b;
+}
+
+/* One face per surface on the merged net (MATH.md section 4). Closed directions: the seam
+ * edge appears twice in the loop (.T. and .F.); collapsed boundary curves are left out. */
+static rg2_status shell_per_mesh(stepw *w, const rg2_surface *s, int *shell, rg2_error *err)
+{
+    int NU, NV;
+    double(*h)[4] = rg2__merged_net(s, &NU, &NV);
+    double(*side)[4] = rg2__calloc((size_t)(NU > NV ? NU : NV), sizeof(double[4]));
+    if (!h || !side) {
+        free(h);
+        free(side);
+        return rg2__fail(err, RG2_ENOMEM, "STEP: out of memory for %d x %d patches", s->nu, s->nv);
+    }
+    double tol = rg2__collapse_tol(s);
+    /* corners 0 (u0 v0), 1 (u1 v0), 2 (u1 v1), 3 (u0 v1); sides ccw: 0 v=0, 1 u=1, 2 v=1, 3 u=0 */
+    static const int ends[4][2] = {{0, 1}, {1, 2}, {3, 2}, {0, 3}};
+    int parent[4] = {0, 1, 2, 3}, collapsed[4], n_side[4];
+    for (int sd = 0; sd < 4; sd++) {
+        n_side[sd] = net_side((const double(*)[4])h, NU, NV, sd, side);
+        collapsed[sd] = curve_collapsed((const double(*)[4])side, n_side[sd], tol);
+        if (collapsed[sd])
+            join4(parent, ends[sd][0], ends[sd][1]);
+    }
+    if (s->closed_u) {
+        join4(parent, 0, 1);
+        join4(parent, 3, 2);
+    }
+    if (s->closed_v) {
+        join4(parent, 0, 3);
+        join4(parent, 1, 2);
+    }
+    int vid[4] = {-1, -1, -1, -1};
+    static const int corner_k[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (int c = 0; c < 4; c++) {
+        int r = uf4(parent, c);
+        if (vid[r] < 0)
+            vid[r] = put_vertex(w, h[(size_t)(corner_k[r][0] ? NU - 1 : 0) * (size_t)NV +
+                                     (size_t)(corner_k[r][1] ? NV - 1 : 0)]);
+        vid[c] = vid[r];
+    }
+    int eid[4] = {-1, -1, -1, -1};
+    int order[4] = {0, 3, 1, 2}; /* define v=0 and u=0 first: the closing sides reuse them */
+    for (int q = 0; q < 4; q++) {
+        int sd = order[q];
+        if (collapsed[sd])
+            continue;
+        if (sd == 1 && s->closed_u) {
+            eid[1] = eid[3];
+            continue;
+        }
+        if (sd == 2 && s->closed_v) {
+            eid[2] = eid[0];
+            continue;
+        }
+        net_side((const double(*)[4])h, NU, NV, sd, side);
+        int c = put_curve(w, (const double(*)[4])side, n_side[sd]);
+        if (c < 0)
+            goto oom;
+        eid[sd] = put_edge(w, vid[ends[sd][0]], vid[ends[sd][1]], c);
+    }
+    int surf = put_surface(w, (const double(*)[4])h, NU, NV, s->closed_u, s->closed_v);
+    if (surf < 0)
+        goto oom;
+    int edge[4], fwd[4], n = 0;
+    for (int sd = 0; sd < 4; sd++) {
+        if (eid[sd] < 0)
+            continue;
+        edge[n] = eid[sd];
+        fwd[n++] = sd < 2;
+    }
+    int face = put_face(w, surf, edge, fwd, n);
+    int closed = (s->closed_u || collapsed[1] || collapsed[3]) && (s->closed_v || collapsed[0] || collapsed[2]);
+    *shell = put_shell(w, &face, 1, closed);
+    free(h);
+    free(side);
+    return RG2_OK;
+oom:
+    free(h);
+    free(side);
+    return rg2__fail(err, RG2_ENOMEM, "STEP: out of memory");
+}
+
+/* A STEP string: printable ASCII, apostrophes doubled. */
+static void put_string(FILE *f, const char *s)
+{
+    fputc('\'', f);
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '\'')
+            fputs("''", f);
+        else if (c == '\\')
+            fputs("\\\\", f);
+        else
+            fputc(c >= 32 && c < 127 ? c : '_', f);
+    }
+    fputc('\'', f);
+}
+
+rg2_status rg2__write_step(const rg2_surface *surfs, int n, const rg2_export_opts *o, rg2__out *out,
+                           rg2_error *err)
+{
+    FILE *f = out->f;
+    const char *base = strrchr(out->path, '/');
+    base = base ? base + 1 : out->path;
+    char stamp[32];
+    rg2__utc_stamp(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%S");
+    fputs("ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('rational bi-cubic G2 spline surfaces (rg2)'),'2;1');\n"
+          "FILE_NAME(",
+          f);
+    put_string(f, base);
+    fprintf(f, ",'%s',(''),(''),'rg2 %s','rg2','');\n", stamp, rg2_version());
+    fprintf(f, "FILE_SCHEMA(('%s'));\nENDSEC;\nDATA;\n",
+            o->ap242 ? "AP242_MANAGED_MODEL_BASED_3D_ENGINEERING_MIM_LF { 1 0 10303 442 1 1 4 }"
+                     : "AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }");
+    stepw w = {f, 1};
+    int *shells = malloc(sizeof(int) * (size_t)n);
+    if (!shells)
+        return rg2__fail(err, RG2_ENOMEM, "STEP: out of memory");
+    for (int k = 0; k < n; k++) {
+        rg2_status st = o->layout == RG2_STEP_FACE_PER_MESH ? shell_per_mesh(&w, &surfs[k], &shells[k], err)
+                                                            : shell_per_patch(&w, &surfs[k], &shells[k], err);
+        if (st) {
+            free(shells);
+            return st;
+        }
+    }
+    int model = new_id(&w);
+    fprintf(f, "#%d=SHELL_BASED_SURFACE_MODEL('',(", model);
+    for (int k = 0; k < n; k++)
+        fprintf(f, "%s#%d", k ? "," : "", shells[k]);
+    fputs("));\n", f);
+    free(shells);
+    int origin = new_id(&w), zdir = new_id(&w), xdir = new_id(&w), axis = new_id(&w);
+    fprintf(f, "#%d=CARTESIAN_POINT('',(0.,0.,0.));\n#%d=DIRECTION('',(0.,0.,1.));\n"
+               "#%d=DIRECTION('',(1.,0.,0.));\n#%d=AXIS2_PLACEMENT_3D('',#%d,#%d,#%d);\n",
+            origin, zdir, xdir, axis, origin, zdir, xdir);
+    int ulen = new_id(&w), uang = new_id(&w), usol = new_id(&w), unc = new_id(&w), ctx = new_id(&w);
+    fprintf(f, "#%d=( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );\n", ulen);
+    fprintf(f, "#%d=( NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.) );\n", uang);
+    fprintf(f, "#%d=( NAMED_UNIT(*) SI_UNIT($,.STERADIAN.) SOLID_ANGLE_UNIT() );\n", usol);
+    fprintf(f, "#%d=UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE(1.E-07),#%d,'distance_accuracy_value',"
+               "'confusion accuracy');\n",
+            unc, ulen);
+    fprintf(f, "#%d=( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#%d))\n"
+               " GLOBAL_UNIT_ASSIGNED_CONTEXT((#%d,#%d,#%d)) REPRESENTATION_CONTEXT('Context #1',"
+               "'3D Context with UNIT and UNCERTAINTY') );\n",
+            ctx, unc, ulen, uang, usol);
+    int rep = new_id(&w);
+    fprintf(f, "#%d=MANIFOLD_SURFACE_SHAPE_REPRESENTATION(", rep);
+    put_string(f, o->name);
+    fprintf(f, ",(#%d,#%d),#%d);\n", axis, model, ctx);
+    int app = new_id(&w), apd = new_id(&w), pctx = new_id(&w), prod = new_id(&w), cat = new_id(&w);
+    int pdf = new_id(&w), pdctx = new_id(&w), pd = new_id(&w), pds = new_id(&w), sdr = new_id(&w);
+    if (o->ap242) {
+        fprintf(f, "#%d=APPLICATION_CONTEXT('managed model based 3d engineering');\n", app);
+        fprintf(f, "#%d=APPLICATION_PROTOCOL_DEFINITION('international standard',"
+                   "'ap242_managed_model_based_3d_engineering',2011,#%d);\n",
+                apd, app);
+    } else {
+        fprintf(f, "#%d=APPLICATION_CONTEXT('automotive_design');\n", app);
+        fprintf(f, "#%d=APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#%d);\n",
+                apd, app);
+    }
+    fprintf(f, "#%d=PRODUCT_CONTEXT('',#%d,'mechanical');\n#%d=PRODUCT(", pctx, app, prod);
+    put_string(f, o->name);
+    fputc(',', f);
+    put_string(f, o->name);
+    fprintf(f, ",'',(#%d));\n", pctx);
+    fprintf(f, "#%d=PRODUCT_RELATED_PRODUCT_CATEGORY('part',$,(#%d));\n", cat, prod);
+    fprintf(f, "#%d=PRODUCT_DEFINITION_FORMATION('','',#%d);\n", pdf, prod);
+    fprintf(f, "#%d=PRODUCT_DEFINITION_CONTEXT('part definition',#%d,'design');\n", pdctx, app);
+    fprintf(f, "#%d=PRODUCT_DEFINITION('design','',#%d,#%d);\n", pd, pdf, pdctx);
+    fprintf(f, "#%d=PRODUCT_DEFINITION_SHAPE('','',#%d);\n", pds, pd);
+    fprintf(f, "#%d=SHAPE_DEFINITION_REPRESENTATION(#%d,#%d);\n", sdr, pds, rep);
+    fputs("ENDSEC;\nEND-ISO-10303-21;\n", f);
+    return RG2_OK;
+}

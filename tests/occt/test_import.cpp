@@ -1,0 +1,534 @@
+// test_import.cpp -- OpenCASCADE as the real client of rg2's STEP and IGES: every exported
+// file is read back with OCCT's STEP / IGES readers and checked for the face count, one
+// connected shell with shared edges (IGES: after sewing), maximum tolerance, BRepCheck
+// validity, OCCT's surface points against rg2's evaluation, and G2 (normals and normal
+// curvatures evaluated by OCCT on both faces) across every shared edge.
+extern "C" {
+#include "../export_fixtures.h"
+}
+
+#include <BRepBuilderAPI_Sewing.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRep_Tool.hxx>
+#include <GeomLProp_SLProps.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <Geom_Surface.hxx>
+#include <Geom2d_Curve.hxx>
+#include <Geom_Curve.hxx>
+#include <IFSelect_ReturnStatus.hxx>
+#include <IGESControl_Reader.hxx>
+#include <Interface_Static.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <STEPControl_Reader.hxx>
+#include <ShapeAnalysis_ShapeTolerance.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+#include <gp_Pnt.hxx>
+#include <gp_Pnt2d.hxx>
+#include <gp_Vec.hxx>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace {
+
+struct Worst {
+    double point = 0, angle = 0, curv = 0, tol = 0;
+    int edges = 0, samples = 0;
+};
+Worst g_worst;
+
+struct Case {
+    const char *name;
+    const rg2_surface *s;
+    double scale;
+};
+
+// Expected counts for one surface: faces, edges shared by two face sides, free edges.
+struct Expect {
+    int faces, shared, free_edges;
+};
+
+// Patches of the first row whose v = 0 side collapses to a point (the fixture's pole).
+int collapsed_sides(const rg2_surface *s)
+{
+    if (s->closed_v)
+        return 0;
+    double tol = 1e-11 * rg2t_surface_scale(s);
+    int n = 0;
+    for (int i = 0; i < s->nu; i++) {
+        const rg2_patch *P = rg2_surface_patch(s, i, 0);
+        bool c = true;
+        for (int a = 1; a < 4; a++)
+            for (int d = 0; d < 3; d++)
+                if (std::fabs(P->h[a][0][d] / P->h[a][0][3] - P->h[0][0][d] / P->h[0][0][3]) > tol)
+                    c = false;
+        n += c;
+    }
+    return n;
+}
+
+Expect expect_of(const rg2_surface *s, bool per_mesh)
+{
+    int cb = collapsed_sides(s);
+    Expect e;
+    if (per_mesh) {
+        e.faces = 1;
+        e.shared = (s->closed_u ? 1 : 0) + (s->closed_v ? 1 : 0);
+        e.free_edges = (s->closed_u ? 0 : 2) + (s->closed_v ? 0 : 2) - (cb == s->nu ? 1 : 0);
+    } else {
+        e.faces = s->nu * s->nv;
+        e.shared = (s->nu - 1 + s->closed_u) * s->nv + (s->nv - 1 + s->closed_v) * s->nu;
+        e.free_edges = (s->closed_u ? 0 : 2 * s->nv) + (s->closed_v ? 0 : 2 * s->nu) - cb;
+    }
+    return e;
+}
+
+double dot(const gp_Vec &a, const gp_Vec &b) { return a.Dot(b); }
+
+// Normal curvature of the surface at props in the 3D tangent direction d (projected on the
+// tangent plane), against the unit normal n.
+double normal_curvature(GeomLProp_SLProps &pr, const gp_Vec &n, gp_Vec d)
+{
+    gp_Vec su = pr.D1U(), sv = pr.D1V();
+    d -= n * d.Dot(n);
+    double E = dot(su, su), F = dot(su, sv), G = dot(sv, sv);
+    double r1 = dot(d, su), r2 = dot(d, sv), det = E * G - F * F;
+    double a = (G * r1 - F * r2) / det, c = (E * r2 - F * r1) / det;
+    gp_Vec t = su * a + sv * c;
+    gp_Vec d2 = pr.D2U() * (a * a) + pr.DUV() * (2 * a * c) + pr.D2V() * (c * c);
+    return d2.Dot(n) / t.Dot(t);
+}
+
+struct Occurrence {
+    TopoDS_Face face;
+    TopoDS_Edge edge; // oriented as in the face
+};
+
+// Evaluate OCCT props at the point of the edge occurrence with edge-curve parameter t.
+bool props_at(const Occurrence &o, double t, Handle(Geom_Surface) & surf, gp_Pnt2d &uv)
+{
+    double f, l;
+    Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(o.edge, o.face, f, l);
+    if (pc.IsNull())
+        return false;
+    uv = pc->Value(t);
+    surf = BRep_Tool::Surface(o.face);
+    return !surf.IsNull();
+}
+
+// G2 across every edge with two face occurrences; returns false if something is undefined.
+void check_g2(const TopoDS_Shape &shape, double scale, const char *what, int *n_shared, int *n_free,
+              std::vector<TopoDS_Face> &faces, std::vector<std::vector<int>> &adj)
+{
+    TopTools_IndexedMapOfShape edges, fmap;
+    TopExp::MapShapes(shape, TopAbs_EDGE, edges);
+    TopExp::MapShapes(shape, TopAbs_FACE, fmap);
+    std::vector<std::vector<Occurrence>> occ(edges.Extent() + 1);
+    std::vector<std::vector<int>> occ_face(edges.Extent() + 1);
+    faces.clear();
+    for (int k = 1; k <= fmap.Extent(); k++)
+        faces.push_back(TopoDS::Face(fmap(k)));
+    adj.assign(faces.size(), std::vector<int>());
+    for (size_t k = 0; k < faces.size(); k++)
+        for (TopExp_Explorer ex(faces[k], TopAbs_EDGE); ex.More(); ex.Next()) {
+            TopoDS_Edge e = TopoDS::Edge(ex.Current());
+            if (BRep_Tool::Degenerated(e))
+                continue;
+            int id = edges.FindIndex(e);
+            occ[id].push_back({faces[k], e});
+            occ_face[id].push_back((int)k);
+        }
+    *n_shared = *n_free = 0;
+    double worst_a = 0, worst_c = 0;
+    int samples = 0;
+    for (int id = 1; id <= edges.Extent(); id++) {
+        if (occ[id].size() == 1)
+            (*n_free)++;
+        if (occ[id].size() != 2)
+            continue;
+        (*n_shared)++;
+        adj[occ_face[id][0]].push_back(occ_face[id][1]);
+        adj[occ_face[id][1]].push_back(occ_face[id][0]);
+        double f, l;
+        Handle(Geom_Curve) c3 = BRep_Tool::Curve(TopoDS::Edge(edges(id)), f, l);
+        if (c3.IsNull())
+            continue;
+        for (int q = 1; q <= 7; q++) {
+            double t = f + (l - f) * q / 8.0;
+            gp_Pnt p;
+            gp_Vec tang;
+            c3->D1(t, p, tang);
+            gp_Vec n[2], cross[2];
+            GeomLProp_SLProps *pr[2] = {nullptr, nullptr};
+            Handle(Geom_Surface) surf[2];
+            gp_Pnt2d uv[2];
+            bool ok = true;
+            for (int s = 0; s < 2 && ok; s++) {
+                ok = props_at(occ[id][s], t, surf[s], uv[s]);
+                if (!ok)
+                    break;
+                pr[s] = new GeomLProp_SLProps(surf[s], uv[s].X(), uv[s].Y(), 2, 1e-12);
+                ok = pr[s]->IsNormalDefined();
+                if (ok) {
+                    n[s] = gp_Vec(pr[s]->Normal());
+                    if (occ[id][s].face.Orientation() == TopAbs_REVERSED)
+                        n[s].Reverse();
+                }
+            }
+            if (ok) {
+                double ang = n[0].Angle(n[1]);
+                worst_a = std::max(worst_a, ang);
+                gp_Vec tt = tang.Normalized(), cr = gp_Vec(n[0]).Crossed(tt);
+                gp_Vec dirs[4] = {tt, cr, tt + cr, tt - cr};
+                double kref = 1.0 / scale;
+                if (pr[0]->IsCurvatureDefined())
+                    kref = std::max(kref, std::max(std::fabs(pr[0]->MaxCurvature()), std::fabs(pr[0]->MinCurvature())));
+                for (const gp_Vec &d : dirs) {
+                    double k0 = normal_curvature(*pr[0], n[0], d), k1 = normal_curvature(*pr[1], n[1], d);
+                    worst_c = std::max(worst_c, std::fabs(k0 - k1) / kref);
+                }
+                samples++;
+            }
+            delete pr[0];
+            delete pr[1];
+        }
+    }
+    CHECK(worst_a <= 1e-8, "%s: OCCT normal angle across shared edges %.3g rad", what, worst_a);
+    CHECK(worst_c <= 1e-8, "%s: OCCT normal curvature jump across shared edges %.3g rel", what, worst_c);
+    printf("  %-34s G2 through OCCT: %d shared edges, %d samples, normal angle %.2e rad, curvature %.2e rel\n",
+           what, *n_shared, samples, worst_a, worst_c);
+    g_worst.angle = std::max(g_worst.angle, worst_a);
+    g_worst.curv = std::max(g_worst.curv, worst_c);
+    g_worst.edges += *n_shared;
+    g_worst.samples += samples;
+}
+
+// OCCT's surface points against rg2's evaluation: each face is matched to the patch (per
+// patch layout) by its centre; per mesh, patch (i, j) is the knot span [i, i+1] x [j, j+1].
+void check_points(const std::vector<TopoDS_Face> &faces, const rg2_surface *s, bool per_mesh, double scale,
+                  const char *what)
+{
+    double worst = 0;
+    int matched = 0;
+    std::vector<int> used(s->nu * s->nv, 0);
+    for (const TopoDS_Face &F : faces) {
+        Handle(Geom_Surface) S = BRep_Tool::Surface(F);
+        if (per_mesh) {
+            for (int i = 0; i < s->nu; i++)
+                for (int j = 0; j < s->nv; j++)
+                    for (int a = 0; a <= 4; a++)
+                        for (int b = 0; b <= 4; b++) {
+                            rg2_eval e;
+                            rg2_patch_eval(rg2_surface_patch(s, i, j), a / 4.0, b / 4.0, 0, &e);
+                            gp_Pnt p = S->Value(i + a / 4.0, j + b / 4.0);
+                            worst = std::max(worst, p.Distance(gp_Pnt(e.p[0], e.p[1], e.p[2])) / scale);
+                        }
+            matched++;
+            continue;
+        }
+        gp_Pnt c = S->Value(0.5, 0.5);
+        int best = -1;
+        double bd = 1e300;
+        for (int k = 0; k < s->nu * s->nv; k++) {
+            rg2_eval e;
+            rg2_patch_eval(&s->patch[k], 0.5, 0.5, 0, &e);
+            double d = c.Distance(gp_Pnt(e.p[0], e.p[1], e.p[2]));
+            if (d < bd) {
+                bd = d;
+                best = k;
+            }
+        }
+        if (best < 0 || used[best])
+            continue;
+        used[best] = 1;
+        matched++;
+        for (int a = 0; a <= 6; a++)
+            for (int b = 0; b <= 6; b++) {
+                rg2_eval e;
+                rg2_patch_eval(&s->patch[best], a / 6.0, b / 6.0, 0, &e);
+                gp_Pnt p = S->Value(a / 6.0, b / 6.0);
+                worst = std::max(worst, p.Distance(gp_Pnt(e.p[0], e.p[1], e.p[2])) / scale);
+            }
+    }
+    CHECK(matched == (int)faces.size(), "%s: %d of %zu faces matched to patches", what, matched, faces.size());
+    CHECK(worst <= 1e-9, "%s: OCCT point vs rg2 %.3g relative", what, worst);
+    printf("  %-34s points: %zu faces, OCCT vs rg2 %.2e relative\n", what, faces.size(), worst);
+    g_worst.point = std::max(g_worst.point, worst);
+}
+
+// Normal and normal curvature in direction d from derivatives (local evaluation).
+struct Jet {
+    gp_Vec su, sv, suu, suv, svv, n;
+};
+
+double jet_curvature(const Jet &j, gp_Vec d)
+{
+    d -= j.n * d.Dot(j.n);
+    double E = dot(j.su, j.su), F = dot(j.su, j.sv), G = dot(j.sv, j.sv);
+    double r1 = dot(d, j.su), r2 = dot(d, j.sv), det = E * G - F * F;
+    double a = (G * r1 - F * r2) / det, c = (E * r2 - F * r1) / det;
+    gp_Vec t = j.su * a + j.sv * c;
+    gp_Vec d2 = j.suu * (a * a) + j.suv * (2 * a * c) + j.svv * (c * c);
+    return d2.Dot(j.n) / t.Dot(t);
+}
+
+// Index (1-based) of the knot equal to x, or 0.
+int knot_index(const TColStd_Array1OfReal &k, double x)
+{
+    for (int q = k.Lower(); q <= k.Upper(); q++)
+        if (std::fabs(k(q) - x) < 1e-12)
+            return q;
+    return 0;
+}
+
+// Per-mesh layout: the patch seams are interior knot lines of one B-spline face, not edges.
+// G2 across them through OCCT: LocalD2 on the spans left and right of each knot line.
+void check_knot_lines(const TopoDS_Face &F, const rg2_surface *s, double scale, const char *what)
+{
+    Handle(Geom_BSplineSurface) B = Handle(Geom_BSplineSurface)::DownCast(BRep_Tool::Surface(F));
+    CHECK(!B.IsNull(), "%s: the face is not a B-spline surface", what);
+    if (B.IsNull())
+        return;
+    TColStd_Array1OfReal ku(1, B->NbUKnots()), kv(1, B->NbVKnots());
+    B->UKnots(ku);
+    B->VKnots(kv);
+    double worst_a = 0, worst_c = 0;
+    int samples = 0;
+    for (int dir = 0; dir < 2; dir++) {
+        int nlines = dir == 0 ? s->nu : s->nv, nother = dir == 0 ? s->nv : s->nu;
+        for (int line = 1; line < nlines; line++)
+            for (int span = 0; span < nother; span++)
+                for (int q = 1; q <= 3; q++) {
+                    double t = span + q / 4.0;
+                    int kl = knot_index(dir == 0 ? ku : kv, line);
+                    int ko = knot_index(dir == 0 ? kv : ku, span);
+                    if (!kl || !ko)
+                        continue;
+                    Jet j[2];
+                    for (int side = 0; side < 2; side++) {
+                        int a1 = kl - 1 + side, a2 = kl + side;
+                        gp_Pnt p;
+                        if (dir == 0)
+                            B->LocalD2(line, t, a1, a2, ko, ko + 1, p, j[side].su, j[side].sv, j[side].suu,
+                                       j[side].svv, j[side].suv);
+                        else
+                            B->LocalD2(t, line, ko, ko + 1, a1, a2, p, j[side].su, j[side].sv, j[side].suu,
+                                       j[side].svv, j[side].suv);
+                        j[side].n = j[side].su.Crossed(j[side].sv).Normalized();
+                    }
+                    worst_a = std::max(worst_a, j[0].n.Angle(j[1].n));
+                    gp_Vec tt = (dir == 0 ? j[0].sv : j[0].su).Normalized(), cr = j[0].n.Crossed(tt);
+                    gp_Vec dirs[4] = {tt, cr, tt + cr, tt - cr};
+                    double kref = 1.0 / scale;
+                    for (const gp_Vec &d : dirs)
+                        kref = std::max(kref, std::fabs(jet_curvature(j[0], d)));
+                    for (const gp_Vec &d : dirs)
+                        worst_c = std::max(worst_c, std::fabs(jet_curvature(j[0], d) - jet_curvature(j[1], d)) / kref);
+                    samples++;
+                }
+    }
+    CHECK(worst_a <= 1e-8, "%s: OCCT normal angle across knot lines %.3g rad", what, worst_a);
+    CHECK(worst_c <= 1e-8, "%s: OCCT normal curvature jump across knot lines %.3g rel", what, worst_c);
+    printf("  %-34s G2 across interior knot lines through OCCT: %d samples, normal angle %.2e rad, curvature %.2e rel\n",
+           what, samples, worst_a, worst_c);
+    g_worst.angle = std::max(g_worst.angle, worst_a);
+    g_worst.curv = std::max(g_worst.curv, worst_c);
+    g_worst.samples += samples;
+}
+
+int count_shells(const TopoDS_Shape &shape)
+{
+    TopTools_IndexedMapOfShape m;
+    TopExp::MapShapes(shape, TopAbs_SHELL, m);
+    return m.Extent();
+}
+
+bool connected(const std::vector<std::vector<int>> &adj)
+{
+    if (adj.empty())
+        return false;
+    std::vector<int> seen(adj.size(), 0), stack{0};
+    seen[0] = 1;
+    size_t n = 1;
+    while (!stack.empty()) {
+        int f = stack.back();
+        stack.pop_back();
+        for (int g : adj[f])
+            if (!seen[g]) {
+                seen[g] = 1;
+                n++;
+                stack.push_back(g);
+            }
+    }
+    return n == adj.size();
+}
+
+void check_file(const Case &c, const std::string &dir, const char *ext, int layout, int ap242)
+{
+    bool per_mesh = layout == RG2_STEP_FACE_PER_MESH, iges = ext[0] == 'i';
+    std::string path = dir + "/" + c.name + (per_mesh ? "_mesh" : "_patch") + (ap242 ? "_ap242" : "") + "." + ext;
+    char what[128];
+    snprintf(what, sizeof what, "%s%s%s.%s", c.name, per_mesh ? " per-mesh" : " per-patch", ap242 ? " AP242" : "", ext);
+    rg2_export_opts o;
+    rg2_export_opts_default(&o);
+    o.layout = (rg2_step_layout)layout;
+    o.ap242 = ap242;
+    o.name = c.name;
+    rg2_error err;
+    rg2_status st = rg2_export_file(c.s, 1, path.c_str(), &o, &err);
+    CHECK(st == RG2_OK, "%s: export failed: %s", what, err.msg);
+    if (st)
+        return;
+    TopoDS_Shape shape;
+    if (iges) {
+        IGESControl_Reader r;
+        bool ok = r.ReadFile(path.c_str()) == IFSelect_RetDone;
+        CHECK(ok, "%s: IGES read failed", what);
+        if (!ok)
+            return;
+        r.TransferRoots();
+        TopoDS_Shape raw = r.OneShape();
+        TopTools_IndexedMapOfShape fm;
+        TopExp::MapShapes(raw, TopAbs_FACE, fm);
+        Expect e = expect_of(c.s, per_mesh);
+        CHECK(fm.Extent() == e.faces, "%s: %d faces before sewing, expected %d", what, fm.Extent(), e.faces);
+        BRepBuilderAPI_Sewing sew(1e-6);
+        sew.Add(raw);
+        sew.Perform();
+        shape = sew.SewedShape();
+    } else {
+        STEPControl_Reader r;
+        bool ok = r.ReadFile(path.c_str()) == IFSelect_RetDone;
+        CHECK(ok, "%s: STEP read failed", what);
+        if (!ok)
+            return;
+        int roots = r.TransferRoots();
+        CHECK(roots >= 1, "%s: %d roots transferred", what, roots);
+        shape = r.OneShape();
+    }
+    Expect e = expect_of(c.s, per_mesh);
+    int shells = count_shells(shape);
+    std::vector<TopoDS_Face> faces;
+    std::vector<std::vector<int>> adj;
+    int n_shared = 0, n_free = 0;
+    check_g2(shape, c.scale, what, &n_shared, &n_free, faces, adj);
+    CHECK((int)faces.size() == e.faces, "%s: %zu faces, expected %d", what, faces.size(), e.faces);
+    // a single face may come back bare (IGES per mesh): then there is no shell to count
+    CHECK(shells == 1 || (e.faces == 1 && shells == 0), "%s: %d shells, expected 1", what, shells);
+    CHECK(n_shared == e.shared, "%s: %d shared edges, expected %d", what, n_shared, e.shared);
+    CHECK(n_free == e.free_edges, "%s: %d free edges, expected %d", what, n_free, e.free_edges);
+    CHECK(connected(adj), "%s: the faces are not one connected piece", what);
+    double tol = ShapeAnalysis_ShapeTolerance().Tolerance(shape, 1);
+    CHECK(tol <= 1e-6, "%s: maximum tolerance %.3g", what, tol);
+    g_worst.tol = std::max(g_worst.tol, tol);
+    BRepCheck_Analyzer an(shape);
+    CHECK(an.IsValid(), "%s: BRepCheck says invalid", what);
+    printf("  %-34s faces %zu, shells %d, shared %d, free %d, max tolerance %.2e, valid %d\n", what, faces.size(),
+           shells, n_shared, n_free, tol, (int)an.IsValid());
+    check_points(faces, c.s, per_mesh, c.scale, what);
+    if (per_mesh && faces.size() == 1)
+        check_knot_lines(faces[0], c.s, c.scale, what);
+    if (!getenv("RG2_OCCT_KEEP"))
+        remove(path.c_str());
+}
+
+} // namespace
+
+int main()
+{
+    // OCCT prints translation messages on its default messenger; keep the log readable.
+    if (!getenv("RG2_OCCT_VERBOSE"))
+        Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_Printer));
+    char tmpl[] = "/tmp/rg2_occt_XXXXXX";
+    const char *dir = mkdtemp(tmpl);
+    if (!dir) {
+        perror("mkdtemp");
+        return 1;
+    }
+    rg2_surface torus, random, pole;
+    memset(&torus, 0, sizeof torus);
+    memset(&random, 0, sizeof random);
+    memset(&pole, 0, sizeof pole);
+    rg2_error err;
+    CHECK_OK(fx_torus(13.0, 4.0, 8, 6, &torus, &err), &err);
+    CHECK_OK(fx_random(20261122, 7, 6, &random, &err), &err);
+    CHECK_OK(fx_pole(6, 7, &pole, &err), &err);
+    printf("seed 20261122\n");
+    Case cases[] = {{"torus", &torus, rg2t_surface_scale(&torus)},
+                    {"random", &random, rg2t_surface_scale(&random)},
+                    {"pole", &pole, rg2t_surface_scale(&pole)}};
+    // every named shape with its default partition (rg2_shape_surface); shapes whose patches
+    // have a weight <= 0 must be refused for STEP, naming the patch
+    std::vector<rg2_surface> shapes;
+    std::vector<std::string> shape_names;
+    for (int k = 0; k < RG2_SHAPE_COUNT; k++) {
+        const rg2_shape_desc *d = rg2_shape_describe((rg2_shape_kind)k);
+        if (!d)
+            continue;
+        rg2_shape sh;
+        rg2_shape_init(&sh, (rg2_shape_kind)k);
+        rg2_partition pp[2];
+        double vals[2][64];
+        bool ok = true;
+        for (int dir = 0; dir < 2 && ok; dir++)
+            ok = rg2_partition_equal(&pp[dir], d->dir_kind[dir], d->default_closed[dir], d->default_range[dir][0],
+                                     d->default_range[dir][1], d->default_segments[dir], vals[dir], 64, &err) == RG2_OK;
+        rg2_surface surf;
+        memset(&surf, 0, sizeof surf);
+        rg2_weight_report rep;
+        ok = ok && rg2_shape_surface(&sh, &pp[0], &pp[1], &surf, &rep, &err) == RG2_OK;
+        CHECK(ok, "shape %s: %s", d->name, err.msg);
+        if (!ok)
+            continue;
+        if (rep.n_nonpositive) {
+            std::string path = std::string(dir) + "/" + d->name + ".step";
+            rg2_status st = rg2_export_file(&surf, 1, path.c_str(), nullptr, &err);
+            CHECK(st == RG2_EWEIGHT && strstr(err.msg, "patch ("), "shape %s with weight %g: %s", d->name,
+                  rep.min_weight, err.msg);
+            printf("  %-34s refused: %s\n", d->name, err.msg);
+            rg2_surface_free(&surf);
+            continue;
+        }
+        shapes.push_back(surf);
+        shape_names.push_back(d->name);
+    }
+    for (size_t k = 0; k < shapes.size(); k++) {
+        Case c = {shape_names[k].c_str(), &shapes[k], rg2t_surface_scale(&shapes[k])};
+        check_file(c, dir, "step", RG2_STEP_FACE_PER_PATCH, 0);
+        check_file(c, dir, "step", RG2_STEP_FACE_PER_MESH, 0);
+        check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0);
+    }
+    for (const Case &c : cases) {
+        check_file(c, dir, "step", RG2_STEP_FACE_PER_PATCH, 0);
+        check_file(c, dir, "step", RG2_STEP_FACE_PER_PATCH, 1);
+        check_file(c, dir, "step", RG2_STEP_FACE_PER_MESH, 0);
+        check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0);
+        check_file(c, dir, "igs", RG2_STEP_FACE_PER_MESH, 0);
+    }
+    printf("worst through OpenCASCADE: point %.2e relative, normal angle %.2e rad, normal curvature %.2e rel "
+           "(%d shared edges, %d samples), max tolerance %.2e\n",
+           g_worst.point, g_worst.angle, g_worst.curv, g_worst.edges, g_worst.samples, g_worst.tol);
+    for (rg2_surface &x : shapes)
+        rg2_surface_free(&x);
+    rg2_surface_free(&torus);
+    rg2_surface_free(&random);
+    rg2_surface_free(&pole);
+    if (!getenv("RG2_OCCT_KEEP"))
+        rmdir(dir);
+    else
+        printf("files kept in %s\n", dir);
+    return rg2t_done("occt_import");
+}

@@ -1,0 +1,518 @@
+/* test_export.c -- the export writers read back by readers of our own: OBJ, binary STL and
+ * PLY round-trips against the tessellation, .glb validated structurally (header, chunk
+ * lengths, accessor and index bounds, min/max), .bv / .bez / .json patches exactly, STEP
+ * numbers and complex-instance order, IGES record layout; and the failure cases (unwritable
+ * path, non-positive weight, empty input, unknown extension) leave no file behind. */
+#define _POSIX_C_SOURCE 200809L
+#include "export_fixtures.h"
+
+#include <cjson/cJSON.h>
+#include <dirent.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static char g_dir[64];
+
+static char *path_in(const char *name)
+{
+    static char buf[8][256];
+    static int k;
+    k = (k + 1) % 8;
+    snprintf(buf[k], sizeof buf[k], "%s/%s", g_dir, name);
+    return buf[k];
+}
+
+static unsigned char *slurp(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    unsigned char *b = malloc((size_t)n + 1);
+    if (b && fread(b, 1, (size_t)n, f) != (size_t)n) {
+        free(b);
+        b = NULL;
+    }
+    fclose(f);
+    if (b) {
+        b[n] = 0;
+        *len = (size_t)n;
+    }
+    return b;
+}
+
+static uint32_t rd_u32(const unsigned char *p) { return p[0] | p[1] << 8 | p[2] << 16 | (uint32_t)p[3] << 24; }
+static float rd_f32(const unsigned char *p)
+{
+    uint32_t u = rd_u32(p);
+    float f;
+    memcpy(&f, &u, 4);
+    return f;
+}
+
+static int count_files(void)
+{
+    DIR *d = opendir(g_dir);
+    int n = 0;
+    struct dirent *e;
+    while (d && (e = readdir(d)))
+        if (e->d_name[0] != '.')
+            n++;
+    if (d)
+        closedir(d);
+    return n;
+}
+
+static int exists(const char *p)
+{
+    struct stat st;
+    return stat(p, &st) == 0;
+}
+
+static rg2_status export_one(const rg2_surface *s, const char *name, rg2_error *err)
+{
+    rg2_export_opts o;
+    rg2_export_opts_default(&o);
+    o.density = 6;
+    o.name = "torus";
+    return rg2_export_file(s, 1, path_in(name), &o, err);
+}
+
+/* ---------------------------------------------------------------- OBJ */
+static void obj_roundtrip(const rg2_surface *s, const rg2_tess *t)
+{
+    rg2_error err;
+    CHECK_OK(export_one(s, "t.obj", &err), &err);
+    FILE *f = fopen(path_in("t.obj"), "r");
+    CHECK(f != NULL, "t.obj not written");
+    if (!f)
+        return;
+    char line[512];
+    int nv = 0, nn = 0, nf = 0, bad = 0;
+    while (fgets(line, sizeof line, f)) {
+        double x, y, z;
+        int a[3], b[3];
+        if (sscanf(line, "v %lf %lf %lf", &x, &y, &z) == 3) {
+            if (nv >= t->n_vertices || x != t->pos[3 * nv] || y != t->pos[3 * nv + 1] || z != t->pos[3 * nv + 2])
+                bad++;
+            nv++;
+        } else if (sscanf(line, "vn %lf %lf %lf", &x, &y, &z) == 3) {
+            if (nn >= t->n_vertices || x != t->normal[3 * nn] || y != t->normal[3 * nn + 1] || z != t->normal[3 * nn + 2])
+                bad++;
+            nn++;
+        } else if (sscanf(line, "f %d//%d %d//%d %d//%d", &a[0], &b[0], &a[1], &b[1], &a[2], &b[2]) == 6) {
+            for (int k = 0; k < 3; k++)
+                if (nf >= t->n_triangles || a[k] != b[k] || a[k] - 1 != t->tri[3 * nf + k])
+                    bad++;
+            nf++;
+        }
+    }
+    fclose(f);
+    CHECK(nv == t->n_vertices && nn == nv && nf == t->n_triangles && bad == 0,
+          "OBJ: %d vertices, %d normals, %d faces read (expected %d, %d), %d mismatches", nv, nn, nf, t->n_vertices,
+          t->n_triangles, bad);
+}
+
+/* ---------------------------------------------------------------- STL */
+static void stl_roundtrip(const rg2_surface *s, const rg2_tess *t)
+{
+    rg2_error err;
+    CHECK_OK(export_one(s, "t.stl", &err), &err);
+    size_t len = 0;
+    unsigned char *b = slurp(path_in("t.stl"), &len);
+    CHECK(b && len >= 84, "STL: not read");
+    if (!b)
+        return;
+    uint32_t n = rd_u32(b + 80);
+    CHECK(n == (uint32_t)t->n_triangles && len == 84 + 50 * (size_t)n, "STL: %u triangles, %zu bytes", n, len);
+    int bad = 0, flipped = 0;
+    for (uint32_t q = 0; q < n && len == 84 + 50 * (size_t)n; q++) {
+        const unsigned char *r = b + 84 + 50 * q;
+        for (int v = 0; v < 3; v++)
+            for (int k = 0; k < 3; k++)
+                if (rd_f32(r + 12 + 12 * v + 4 * k) != (float)t->pos[3 * t->tri[3 * q + v] + k])
+                    bad++;
+        double dot = 0;
+        for (int k = 0; k < 3; k++)
+            dot += rd_f32(r + 4 * k) * t->normal[3 * t->tri[3 * q] + k];
+        if (!(dot > 0))
+            flipped++;
+    }
+    CHECK(bad == 0 && flipped == 0, "STL: %d coordinate mismatches, %d facet normals against the surface", bad, flipped);
+    free(b);
+}
+
+/* ---------------------------------------------------------------- PLY */
+static void ply_roundtrip(const rg2_surface *s, const rg2_tess *t)
+{
+    rg2_error err;
+    CHECK_OK(export_one(s, "t.ply", &err), &err);
+    size_t len = 0;
+    unsigned char *b = slurp(path_in("t.ply"), &len);
+    CHECK(b != NULL, "PLY: not read");
+    if (!b)
+        return;
+    char *end = strstr((char *)b, "end_header\n");
+    int nv = -1, nf = -1;
+    char *p = strstr((char *)b, "element vertex ");
+    if (p)
+        nv = atoi(p + 15);
+    p = strstr((char *)b, "element face ");
+    if (p)
+        nf = atoi(p + 13);
+    CHECK(end && nv == t->n_vertices && nf == t->n_triangles, "PLY header: %d vertices, %d faces", nv, nf);
+    CHECK(strstr((char *)b, "property float gaussian_curvature") && strstr((char *)b, "property float mean_curvature"),
+          "PLY: curvature properties missing");
+    if (!end || nv != t->n_vertices || nf != t->n_triangles) {
+        free(b);
+        return;
+    }
+    const unsigned char *d = (unsigned char *)end + 11;
+    size_t expect = (size_t)(d - b) + 32 * (size_t)nv + 13 * (size_t)nf;
+    CHECK(len == expect, "PLY: %zu bytes, expected %zu", len, expect);
+    int bad = 0;
+    rg2_tess tc;
+    rg2_tessellate(s, 6, 1, &tc, &err);
+    for (int v = 0; v < nv && len == expect; v++, d += 32) {
+        for (int k = 0; k < 3; k++) {
+            bad += rd_f32(d + 4 * k) != (float)t->pos[3 * v + k];
+            bad += rd_f32(d + 12 + 4 * k) != (float)t->normal[3 * v + k];
+        }
+        bad += rd_f32(d + 24) != (float)tc.K[v];
+        bad += rd_f32(d + 28) != (float)tc.H[v];
+    }
+    for (int q = 0; q < nf && len == expect; q++, d += 13) {
+        bad += d[0] != 3;
+        for (int k = 0; k < 3; k++)
+            bad += (int)rd_u32(d + 1 + 4 * k) != t->tri[3 * q + k];
+    }
+    CHECK(bad == 0, "PLY: %d mismatches", bad);
+    rg2_tess_free(&tc);
+    free(b);
+}
+
+/* ---------------------------------------------------------------- glb */
+static double num(const cJSON *o, const char *k)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, k);
+    return cJSON_IsNumber(v) ? v->valuedouble : -1;
+}
+
+static void glb_validate(const rg2_surface *s, const rg2_tess *t)
+{
+    rg2_error err;
+    CHECK_OK(export_one(s, "t.glb", &err), &err);
+    size_t len = 0;
+    unsigned char *b = slurp(path_in("t.glb"), &len);
+    CHECK(b && len >= 28, "glb: not read");
+    if (!b || len < 28) {
+        free(b);
+        return;
+    }
+    CHECK(!memcmp(b, "glTF", 4) && rd_u32(b + 4) == 2 && rd_u32(b + 8) == len, "glb header: version %u length %u of %zu",
+          rd_u32(b + 4), rd_u32(b + 8), len);
+    uint32_t jl = rd_u32(b + 12);
+    CHECK(!memcmp(b + 16, "JSON", 4) && jl % 4 == 0 && 20 + (size_t)jl + 8 <= len, "glb JSON chunk: length %u", jl);
+    if (20 + (size_t)jl + 8 > len) {
+        free(b);
+        return;
+    }
+    const unsigned char *bin = b + 20 + jl + 8;
+    uint32_t bl = rd_u32(b + 20 + jl);
+    CHECK(!memcmp(b + 20 + jl + 4, "BIN\0", 4) && bl % 4 == 0 && 20 + (size_t)jl + 8 + bl == len,
+          "glb BIN chunk: length %u", bl);
+    cJSON *j = cJSON_ParseWithLength((const char *)b + 20, jl);
+    CHECK(j != NULL, "glb: JSON chunk does not parse");
+    const cJSON *asset = cJSON_GetObjectItemCaseSensitive(j, "asset");
+    const cJSON *ver = cJSON_GetObjectItemCaseSensitive(asset, "version");
+    CHECK(cJSON_IsString(ver) && !strcmp(ver->valuestring, "2.0"), "glb: asset.version");
+    const cJSON *buffers = cJSON_GetObjectItemCaseSensitive(j, "buffers");
+    CHECK(num(cJSON_GetArrayItem(buffers, 0), "byteLength") == bl, "glb: buffer byteLength != BIN chunk");
+    const cJSON *views = cJSON_GetObjectItemCaseSensitive(j, "bufferViews");
+    const cJSON *acc = cJSON_GetObjectItemCaseSensitive(j, "accessors");
+    const cJSON *prim = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(
+                                               cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(j, "meshes"), 0),
+                                               "primitives"),
+                                           0);
+    int bad = 0;
+    const cJSON *v;
+    cJSON_ArrayForEach(v, views) bad += num(v, "byteOffset") + num(v, "byteLength") > bl || num(v, "byteOffset") < 0;
+    const cJSON *a;
+    cJSON_ArrayForEach(a, acc)
+    {
+        const cJSON *view = cJSON_GetArrayItem(views, (int)num(a, "bufferView"));
+        const cJSON *type = cJSON_GetObjectItemCaseSensitive(a, "type");
+        int comps = cJSON_IsString(type) && !strcmp(type->valuestring, "VEC3") ? 3 : 1;
+        bad += !view || num(a, "count") * comps * 4 > num(view, "byteLength");
+    }
+    const cJSON *attr = cJSON_GetObjectItemCaseSensitive(prim, "attributes");
+    const cJSON *pa = cJSON_GetArrayItem(acc, (int)num(attr, "POSITION"));
+    const cJSON *ia = cJSON_GetArrayItem(acc, (int)num(prim, "indices"));
+    CHECK(pa && ia && num(pa, "count") == t->n_vertices && num(ia, "count") == 3 * t->n_triangles,
+          "glb: accessor counts");
+    if (pa && ia && !bad && num(pa, "count") == t->n_vertices) {
+        const unsigned char *pos = bin + (size_t)num(cJSON_GetArrayItem(views, (int)num(pa, "bufferView")), "byteOffset");
+        const unsigned char *idx = bin + (size_t)num(cJSON_GetArrayItem(views, (int)num(ia, "bufferView")), "byteOffset");
+        const cJSON *mn = cJSON_GetObjectItemCaseSensitive(pa, "min"), *mx = cJSON_GetObjectItemCaseSensitive(pa, "max");
+        double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (int q = 0; q < t->n_vertices; q++)
+            for (int k = 0; k < 3; k++) {
+                float x = rd_f32(pos + 12 * q + 4 * k);
+                bad += x != (float)t->pos[3 * q + k];
+                lo[k] = fmin(lo[k], x);
+                hi[k] = fmax(hi[k], x);
+            }
+        for (int k = 0; k < 3; k++)
+            bad += cJSON_GetArrayItem(mn, k)->valuedouble != lo[k] || cJSON_GetArrayItem(mx, k)->valuedouble != hi[k];
+        for (int q = 0; q < 3 * t->n_triangles; q++)
+            bad += rd_u32(idx + 4 * q) >= (uint32_t)t->n_vertices || (int)rd_u32(idx + 4 * q) != t->tri[q];
+    }
+    CHECK(bad == 0, "glb: %d structural or data errors (views, accessors, min/max, index bounds)", bad);
+    cJSON_Delete(j);
+    free(b);
+}
+
+/* ---------------------------------------------------------------- patch formats */
+static void patches_roundtrip(const rg2_surface *s)
+{
+    rg2_error err;
+    CHECK_OK(export_one(s, "t.bv", &err), &err);
+    CHECK_OK(export_one(s, "t.bez", &err), &err);
+    CHECK_OK(export_one(s, "t.json", &err), &err);
+    int np = s->nu * s->nv, bad = 0, n = 0;
+    FILE *f = fopen(path_in("t.bv"), "r");
+    char line[512];
+    while (f && fgets(line, sizeof line, f)) {
+        if (!strncmp(line, "Group", 5))
+            continue;
+        int du, dv;
+        bad += strcmp(line, "8\n") != 0;
+        bad += !fgets(line, sizeof line, f) || sscanf(line, "%d %d", &du, &dv) != 2 || du != 3 || dv != 3;
+        for (int r = 0; r < 4; r++)
+            for (int t = 0; t < 4; t++) {
+                double h[4];
+                bad += !fgets(line, sizeof line, f) || sscanf(line, "%lf %lf %lf %lf", &h[0], &h[1], &h[2], &h[3]) != 4;
+                bad += n >= np || memcmp(h, s->patch[n < np ? n : 0].h[r][t], sizeof h) != 0;
+            }
+        n++;
+    }
+    if (f)
+        fclose(f);
+    CHECK(n == np && bad == 0, "BezierView: %d patches read (expected %d), %d mismatches", n, np, bad);
+    f = fopen(path_in("t.bez"), "r");
+    bad = 0;
+    n = 0;
+    bad += !f || !fgets(line, sizeof line, f) || strcmp(line, "BEZ334\n");
+    for (; f && n < np; n++)
+        for (int t = 0; t < 4; t++)
+            for (int r = 0; r < 4; r++) {
+                double h[4];
+                bad += fscanf(f, "%lf %lf %lf %lf", &h[0], &h[1], &h[2], &h[3]) != 4 ||
+                       memcmp(h, s->patch[n].h[r][t], sizeof h) != 0;
+            }
+    if (f)
+        fclose(f);
+    CHECK(bad == 0, "BEZ334: %d mismatches", bad);
+    size_t len;
+    unsigned char *b = slurp(path_in("t.json"), &len);
+    cJSON *j = b ? cJSON_Parse((char *)b) : NULL;
+    const cJSON *sf = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(j, "surfaces"), 0);
+    const cJSON *pa = cJSON_GetObjectItemCaseSensitive(sf, "patches");
+    bad = cJSON_GetArraySize(pa) != np || num(sf, "nu") != s->nu || num(sf, "nv") != s->nv;
+    for (int p = 0; p < np && !bad; p++)
+        for (int k = 0; k < 64; k++)
+            bad += cJSON_GetArrayItem(cJSON_GetArrayItem(pa, p), k)->valuedouble != (&s->patch[p].h[0][0][0])[k];
+    CHECK(j && bad == 0, "JSON: %d mismatches", bad);
+    cJSON_Delete(j);
+    free(b);
+}
+
+/* ---------------------------------------------------------------- STEP and IGES text */
+static int is_sorted_complex(const char *ent)
+{
+    /* "( A() B(...) C(...) )": the top-level partial type names must be in ascending order */
+    char prev[96] = "", name[96];
+    int depth = 0;
+    for (const char *p = ent + 1; *p; p++) {
+        if (*p == '\'') {
+            p = strchr(p + 1, '\'');
+            if (!p)
+                return 0;
+            continue;
+        }
+        if (*p == '(')
+            depth++;
+        else if (*p == ')')
+            depth--;
+        else if (depth == 0 && (*p >= 'A' && *p <= 'Z')) {
+            size_t n = strspn(p, "ABCDEFGHIJKLMNOPQRSTUVWXYZ_0123456789");
+            if (n >= sizeof name)
+                return 0;
+            memcpy(name, p, n);
+            name[n] = 0;
+            if (strcmp(prev, name) >= 0)
+                return 0;
+            strcpy(prev, name);
+            p += n - 1;
+        }
+    }
+    return 1;
+}
+
+static void step_text(const rg2_surface *s)
+{
+    rg2_error err;
+    CHECK_OK(export_one(s, "t.step", &err), &err);
+    size_t len;
+    char *b = (char *)slurp(path_in("t.step"), &len);
+    CHECK(b && !strncmp(b, "ISO-10303-21;", 13) && strstr(b, "END-ISO-10303-21;"), "STEP: envelope");
+    if (!b)
+        return;
+    int complex = 0, unsorted = 0, badnum = 0, faces = 0;
+    char *data = strstr(b, "DATA;");
+    for (char *p = data; p && *p;) {
+        char *e = strstr(p, ";\n");
+        if (!e)
+            break;
+        *e = 0;
+        char *eq = strchr(p, '=');
+        if (eq && eq[1] == '(') {
+            complex++;
+            unsorted += !is_sorted_complex(eq + 1);
+        }
+        if (eq && !strncmp(eq + 1, "ADVANCED_FACE", 13))
+            faces++;
+        /* numbers outside strings: a real needs '.', and exponents are upper case */
+        for (char *q = eq ? eq : p; *q; q++) {
+            if (*q == '\'') {
+                q = strchr(q + 1, '\'');
+                if (!q)
+                    break;
+                continue;
+            }
+            if (*q == '#') {
+                q += strspn(q + 1, "0123456789");
+                continue;
+            }
+            if ((*q >= '0' && *q <= '9') && !(q[-1] >= 'A' && q[-1] <= 'Z') && q[-1] != '_') {
+                size_t n = strspn(q, "0123456789.eE+-");
+                int has_e = memchr(q, 'e', n) || memchr(q, 'E', n), has_dot = memchr(q, '.', n) != NULL;
+                if (memchr(q, 'e', n) || (has_e && !has_dot))
+                    badnum++;
+                q += n - 1;
+            }
+        }
+        p = e + 2;
+    }
+    CHECK(complex >= 2 * s->nu * s->nv && unsorted == 0, "STEP: %d complex instances, %d not in alphabetical order",
+          complex, unsorted);
+    CHECK(badnum == 0, "STEP: %d malformed reals", badnum);
+    CHECK(faces == s->nu * s->nv, "STEP: %d ADVANCED_FACEs, expected %d", faces, s->nu * s->nv);
+    free(b);
+
+    CHECK_OK(export_one(s, "t.igs", &err), &err);
+    FILE *f = fopen(path_in("t.igs"), "r");
+    char line[256];
+    int count[5] = {0}, badline = 0, order = 0, de = 0;
+    const char *letters = "SGDPT";
+    while (f && fgets(line, sizeof line, f)) {
+        size_t n = strlen(line);
+        if (n != 81 || line[80] != '\n') {
+            badline++;
+            continue;
+        }
+        const char *l = strchr(letters, line[72]);
+        if (!l) {
+            badline++;
+            continue;
+        }
+        int sec = (int)(l - letters);
+        if (sec < order)
+            badline++;
+        order = sec;
+        count[sec]++;
+        if (atoi(line + 73) != count[sec])
+            badline++;
+        if (sec == 2 && count[2] % 2 == 1)
+            de += atoi(line) == 128;
+    }
+    if (f)
+        fclose(f);
+    CHECK(f && badline == 0 && count[4] == 1, "IGES: %d malformed records", badline);
+    CHECK(de == s->nu * s->nv, "IGES: %d entities 128, expected %d", de, s->nu * s->nv);
+}
+
+/* ---------------------------------------------------------------- failures */
+static void failures(const rg2_surface *s)
+{
+    rg2_error err;
+    int before = count_files();
+    rg2_status st = export_one(s, "no/such/dir/x.step", &err);
+    CHECK(st == RG2_EIO && strstr(err.msg, "x.step"), "unwritable path: %s: %s", rg2_status_str(st), err.msg);
+    st = rg2_export_file(s, 1, g_dir, NULL, &err); /* a directory, no extension */
+    CHECK(st == RG2_EINVAL, "directory as path: %s", rg2_status_str(st));
+    st = export_one(s, "x.xyz", &err);
+    CHECK(st == RG2_EINVAL && strstr(err.msg, ".xyz"), "unknown extension: %s", err.msg);
+    st = rg2_export_file(s, 0, path_in("empty.step"), NULL, &err);
+    CHECK(st == RG2_EINVAL && strstr(err.msg, "empty"), "empty input: %s", err.msg);
+    rg2_surface none;
+    memset(&none, 0, sizeof none);
+    st = rg2_export_file(&none, 1, path_in("none.igs"), NULL, &err);
+    CHECK(st == RG2_EINVAL && strstr(err.msg, "no patches"), "surface without patches: %s", err.msg);
+    rg2_surface bad;
+    CHECK_OK(rg2_surface_copy(s, &bad, &err), &err);
+    double *h = rg2_surface_patch(&bad, 2, 1)->h[1][2];
+    for (int k = 0; k < 4; k++)
+        h[k] *= -0.5; /* same point, negative weight */
+    const char *names[] = {"neg.step", "neg.igs"};
+    for (int k = 0; k < 2; k++) {
+        st = export_one(&bad, names[k], &err);
+        CHECK(st == RG2_EWEIGHT && strstr(err.msg, "patch (2, 1)"), "%s: %s: %s", names[k], rg2_status_str(st), err.msg);
+    }
+    h[3] = 0.0;
+    st = export_one(&bad, "zero.step", &err);
+    CHECK(st == RG2_EWEIGHT && strstr(err.msg, "patch (2, 1)"), "zero weight: %s", err.msg);
+    h[0] = NAN;
+    st = export_one(&bad, "nan.obj", &err);
+    CHECK(st == RG2_ENONFINITE, "NaN: %s", err.msg);
+    rg2_surface_free(&bad);
+    CHECK(count_files() == before, "failed exports left %d files", count_files() - before);
+    CHECK(!exists(path_in("neg.step.tmp")) && !exists(path_in("neg.step")), "neg.step or its .tmp left behind");
+}
+
+int main(void)
+{
+    snprintf(g_dir, sizeof g_dir, "/tmp/rg2_export_XXXXXX");
+    if (!mkdtemp(g_dir)) {
+        perror("mkdtemp");
+        return 1;
+    }
+    rg2_surface s;
+    rg2_error err;
+    rg2_tess t;
+    CHECK_OK(fx_torus(13.0, 4.0, 6, 4, &s, &err), &err);
+    CHECK_OK(rg2_tessellate(&s, 6, 0, &t, &err), &err);
+    obj_roundtrip(&s, &t);
+    stl_roundtrip(&s, &t);
+    ply_roundtrip(&s, &t);
+    glb_validate(&s, &t);
+    patches_roundtrip(&s);
+    step_text(&s);
+    failures(&s);
+    rg2_tess_free(&t);
+    rg2_surface_free(&s);
+    /* clean up */
+    DIR *d = opendir(g_dir);
+    struct dirent *e;
+    while (d && (e = readdir(d)))
+        if (e->d_name[0] != '.')
+            remove(path_in(e->d_name));
+    if (d)
+        closedir(d);
+    rmdir(g_dir);
+    return rg2t_done("test_export");
+}

@@ -1,0 +1,180 @@
+/* test_nurbs.c -- bi-cubic NURBS import against an independent Cox-de Boor evaluation:
+ * random non-uniform knot vectors (clamped, unclamped, partly clamped), random weights and
+ * points; G2 across the seams; errors for repeated interior knots and bad input. */
+#include "expect_err.h"
+#include "harness.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAXN 12
+
+/* Cox-de Boor: the cubic basis functions N_{l-3..l} at u in span l (U_l <= u <= U_{l+1}),
+ * by the recursion N_{i,0} = [U_i <= u < U_{i+1}], N_{i,p} = (u - U_i)/(U_{i+p} - U_i) N_{i,p-1}
+ * + (U_{i+p+1} - u)/(U_{i+p+1} - U_{i+1}) N_{i+1,p-1} over the non-zero ones. */
+static void cox_de_boor(const double *U, int l, double u, double N[4])
+{
+    double B[4][5]; /* B[p][k]: N_{l-p+k, p}, k = 0..p */
+    memset(B, 0, sizeof B);
+    B[0][0] = 1.0;
+    for (int p = 1; p <= 3; p++)
+        for (int k = 0; k <= p; k++) {
+            int i = l - p + k;
+            double left = 0.0, right = 0.0;
+            if (k >= 1 && U[i + p] > U[i]) /* N_{i,p-1} = B[p-1][k-1] */
+                left = (u - U[i]) / (U[i + p] - U[i]) * B[p - 1][k - 1];
+            if (k <= p - 1 && U[i + p + 1] > U[i + 1]) /* N_{i+1,p-1} = B[p-1][k] */
+                right = (U[i + p + 1] - u) / (U[i + p + 1] - U[i + 1]) * B[p - 1][k];
+            B[p][k] = left + right;
+        }
+    memcpy(N, B[3], sizeof(double) * 4);
+}
+
+static void nurbs_point(const rg2_nurbs *nb, int lu, int lv, double u, double v, double out[3])
+{
+    double Nu[4], Nv[4], acc[4] = {0, 0, 0, 0};
+    cox_de_boor(nb->knots_u, lu, u, Nu);
+    cox_de_boor(nb->knots_v, lv, v, Nv);
+    for (int a = 0; a < 4; a++)
+        for (int b = 0; b < 4; b++) {
+            int i = lu - 3 + a, j = lv - 3 + b;
+            size_t k = (size_t)i * (size_t)nb->nv + (size_t)j;
+            double w = nb->weights ? nb->weights[k] : 1.0, c = Nu[a] * Nv[b] * w;
+            for (int d = 0; d < 3; d++)
+                acc[d] += c * nb->points[3 * k + d];
+            acc[3] += c;
+        }
+    for (int d = 0; d < 3; d++)
+        out[d] = acc[d] / acc[3];
+}
+
+/* style: 0 clamped, 1 unclamped, 2 clamped at the start only, 3 partly clamped (2 equal) */
+static void random_knots(rg2t_rng *r, int n, int style, double *U)
+{
+    double t = rg2t_uniform(r, -3, 3);
+    for (int k = 0; k < n + 4; k++) {
+        U[k] = t;
+        t += rg2t_uniform(r, 0.2, 1.8);
+    }
+    if (style == 0 || style == 2)
+        U[0] = U[1] = U[2] = U[3];
+    if (style == 0)
+        U[n + 1] = U[n + 2] = U[n + 3] = U[n];
+    if (style == 3)
+        U[1] = U[2], U[n + 2] = U[n + 1];
+}
+
+static void random_nurbs(void)
+{
+    rg2t_rng r;
+    uint64_t seed = 4242;
+    rg2t_seed(&r, seed);
+    printf("random NURBS, seed %llu\n", (unsigned long long)seed);
+    double worst = 0.0, wang = 0.0, wcurv = 0.0, wpos = 0.0;
+    long samples = 0;
+    for (int trial = 0; trial < 24; trial++) {
+        int nu = rg2t_int(&r, 4, MAXN), nv = rg2t_int(&r, 4, MAXN);
+        double P[MAXN * MAXN * 3], W[MAXN * MAXN], U[MAXN + 4], V[MAXN + 4];
+        for (int k = 0; k < nu * nv; k++) {
+            for (int d = 0; d < 3; d++)
+                P[3 * k + d] = rg2t_uniform(&r, -1, 1) + (d == 0 ? k / nv : d == 1 ? k % nv : 0);
+            W[k] = rg2t_uniform(&r, 0.3, 3.0);
+        }
+        random_knots(&r, nu, trial % 4, U);
+        random_knots(&r, nv, (trial / 4) % 4, V);
+        rg2_nurbs nb = {nu, nv, P, trial % 5 == 4 ? NULL : W, U, V};
+        rg2_mesh m;
+        rg2_surface s;
+        rg2_error err;
+        rg2_status st = rg2_nurbs_mesh(&nb, &m, &err);
+        CHECK(st == RG2_OK, "trial %d: %s", trial, err.msg);
+        if (st)
+            continue;
+        CHECK_OK(rg2_surface_build(&m, &s, &err), &err);
+        CHECK(s.nu == nu - 3 && s.nv == nv - 3, "trial %d: %d x %d patches", trial, s.nu, s.nv);
+        double L = rg2t_surface_scale(&s);
+        for (int i = 0; i < s.nu; i++)
+            for (int j = 0; j < s.nv; j++)
+                for (int a = 0; a <= 8; a++)
+                    for (int b = 0; b <= 8; b++) {
+                        double tu = a / 8.0, tv = b / 8.0, q[3];
+                        double u = U[i + 3] + tu * (U[i + 4] - U[i + 3]);
+                        double v = V[j + 3] + tv * (V[j + 4] - V[j + 3]);
+                        nurbs_point(&nb, i + 3, j + 3, u, v, q);
+                        rg2_eval e;
+                        rg2_patch_eval(rg2_surface_patch(&s, i, j), tu, tv, 0, &e);
+                        double d = sqrt((q[0] - e.p[0]) * (q[0] - e.p[0]) + (q[1] - e.p[1]) * (q[1] - e.p[1]) +
+                                        (q[2] - e.p[2]) * (q[2] - e.p[2])) / L;
+                        if (!(d <= worst)) worst = d;
+                        samples++;
+                    }
+        /* clamped ends interpolate the corner control point */
+        if (trial % 4 == 0 && (trial / 4) % 4 == 0) {
+            rg2_eval e;
+            rg2_patch_eval(rg2_surface_patch(&s, 0, 0), 0, 0, 0, &e);
+            double d = fabs(e.p[0] - P[0]) + fabs(e.p[1] - P[1]) + fabs(e.p[2] - P[2]);
+            CHECK(d <= 1e-13 * L, "clamped corner interpolated: %.3g", d);
+        }
+        rg2t_seams g;
+        rg2t_surface_seams(&s, 8, &g);
+        wang = fmax(wang, g.angle);
+        wcurv = fmax(wcurv, g.curv);
+        wpos = fmax(wpos, g.pos);
+        rg2_surface_free(&s);
+        rg2_mesh_free(&m);
+    }
+    printf("  %ld samples: distance from Cox-de Boor %.2e (relative to size); seams: position %.2e, "
+           "angle %.2e, curvature %.2e\n",
+           samples, worst, wpos, wang, wcurv);
+    CHECK(samples >= 10000, "%ld samples", samples);
+    CHECK(worst <= 1e-13, "NURBS import vs Cox-de Boor: %.3g", worst);
+    CHECK(wpos <= 1e-14 && wang <= 1e-12 && wcurv <= 1e-10, "NURBS seams: %.3g %.3g %.3g", wpos, wang,
+          wcurv);
+}
+
+
+static void errors(void)
+{
+    double P[6 * 5 * 3], W[30];
+    for (int k = 0; k < 90; k++)
+        P[k] = k * 0.1;
+    for (int k = 0; k < 30; k++)
+        W[k] = 1.0;
+    double U[10] = {0, 0, 0, 0, 1, 2, 3, 3, 3, 3}, V[9] = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+    rg2_nurbs nb = {6, 5, P, W, U, V};
+    rg2_mesh m;
+    rg2_error err;
+    CHECK_OK(rg2_nurbs_mesh(&nb, &m, &err), &err);
+    rg2_mesh_free(&m);
+    U[5] = 1.0;
+    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EDOMAIN, &err, "interior knot knots_u[5] = 1 is repeated",
+               "repeated interior knot");
+    U[5] = 0.5;
+    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EDOMAIN, &err, "knots_u[5] = 0.5 is smaller", "decreasing knot");
+    U[5] = 2.0;
+    U[4] = 0.0;
+    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EDOMAIN, &err, "zero length", "empty first span");
+    U[4] = 1.0;
+    W[7] = 0.0;
+    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EWEIGHT, &err, "weight [1][2]", "zero weight");
+    W[7] = 1.0;
+    P[5] = NAN;
+    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_ENONFINITE, &err, "control point [0][1]", "NaN point");
+    P[5] = 0.5;
+    V[8] = INFINITY;
+    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_ENONFINITE, &err, "knots_v[8]", "inf knot");
+    V[8] = 8;
+    nb.nv = 3;
+    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EINVAL, &err, "at least 4", "too few points");
+    nb.nv = 5;
+    nb.knots_v = NULL;
+    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EINVAL, &err, "missing", "no knots");
+}
+
+int main(void)
+{
+    random_nurbs();
+    errors();
+    return rg2t_done("test_nurbs");
+}

@@ -1,0 +1,745 @@
+/* test_shapes.c -- exact basic shapes: every named shape, closed and partial, over equal and
+ * random partitions, scales 1e-3 .. 1e3 and far-from-origin placements, measured against its
+ * implicit equation (residual, Gaussian and mean curvature), its own parameterization through
+ * the arc map of MATH.md section 2, and G2 across every seam; the generic family
+ * constructors, exact transforms, the weight report and every invalid-parameter error. */
+#include "expect_err.h"
+#include "harness.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAXSEG 16
+
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/* Worst measurements of one shape kind. */
+typedef struct {
+    double resid, K, H, repro, angle, curv, pos;
+    double minw;
+    long samples;
+    int configs, skipped;
+} stats;
+
+static void stats_init(stats *s)
+{
+    memset(s, 0, sizeof *s);
+    s->minw = INFINITY;
+}
+
+/* Limits of the knot range used for a polynomial direction of each shape in these tests
+ * (away from poles, apexes and points at infinity, where the shape itself degenerates). */
+static void safe_range(rg2_shape_kind kind, int dir, double r[2])
+{
+    r[0] = -2.0, r[1] = 2.0;
+    switch (kind) {
+    case RG2_SHAPE_SPHERE:
+    case RG2_SHAPE_ELLIPSOID: r[0] = 0.05, r[1] = 0.95; break;
+    case RG2_SHAPE_CONE: r[0] = 0.2, r[1] = 2.0; break;
+    case RG2_SHAPE_HYPERBOLOID1: r[0] = 0.3, r[1] = 3.0; break;
+    case RG2_SHAPE_HYPERBOLOID2: r[0] = 0.1, r[1] = 0.9; break;
+    case RG2_SHAPE_PARABOLOID: r[0] = 0.1, r[1] = 2.0; break;
+    default: break;
+    }
+    (void)dir;
+}
+
+/* A partition of m segments: closed or open circle arcs, or knots in [lo, hi]; equal or random. */
+static void make_partition(rg2t_rng *r, rg2_partition_kind kind, int closed, int m, int random,
+                           const double range[2], double *vals, rg2_partition *p)
+{
+    memset(p, 0, sizeof *p);
+    p->kind = kind;
+    p->values = vals;
+    if (kind == RG2_PART_ANGLES) {
+        p->closed = closed;
+        p->n = m;
+        p->start = rg2t_uniform(r, -M_PI, M_PI);
+        double sweep = closed ? 2.0 * M_PI : rg2t_uniform(r, 0.2, fmin(1.9 * M_PI, 0.9 * M_PI * m));
+        for (int tries = 0;; tries++) {
+            double sum = 0.0, mx = 0.0;
+            for (int k = 0; k < m; k++)
+                sum += (vals[k] = random ? rg2t_uniform(r, 0.4, 1.6) : 1.0);
+            for (int k = 0; k < m; k++) {
+                vals[k] *= sweep / sum;
+                mx = fmax(mx, vals[k]);
+            }
+            if (mx < 0.95 * M_PI || tries > 100)
+                break;
+        }
+        if (closed) { /* make the sum 2 pi to rounding */
+            double sum = 0.0;
+            for (int k = 0; k + 1 < m; k++)
+                sum += vals[k];
+            vals[m - 1] = 2.0 * M_PI - sum;
+        }
+    } else {
+        double lo = range[0], hi = range[1];
+        if (random) { /* a random sub-range */
+            double a = rg2t_uniform(r, lo, hi), b = rg2t_uniform(r, lo, hi);
+            lo = fmin(a, b), hi = fmax(a, b);
+            if (hi - lo < 0.2 * (range[1] - range[0]))
+                lo = range[0], hi = range[1];
+        }
+        p->n = m + 1;
+        double sum = 0.0, w[MAXSEG + 1];
+        for (int k = 0; k < m; k++)
+            sum += (w[k] = random ? rg2t_uniform(r, 0.3, 1.7) : 1.0);
+        vals[0] = lo;
+        double acc = 0.0;
+        for (int k = 1; k < m; k++) {
+            acc += w[k - 1];
+            vals[k] = lo + (hi - lo) * acc / sum;
+        }
+        vals[m] = hi;
+    }
+}
+
+/* The test's own arc / identity map (MATH.md section 2), independent of rg2_partition_map. */
+static double own_map(const rg2_partition *p, int seg, double t)
+{
+    if (p->kind == RG2_PART_KNOTS)
+        return p->values[seg] + t * (p->values[seg + 1] - p->values[seg]);
+    double th = p->start;
+    for (int k = 0; k < seg; k++)
+        th += p->values[k];
+    double beta = 0.5 * p->values[seg];
+    return th + beta + 2.0 * atan(tan(0.5 * beta) * (2.0 * t - 1.0));
+}
+
+/* A random similarity placement: scale, rotation about a random axis, translation. */
+static void random_placement(rg2t_rng *r, double scale, double offset, double M[16])
+{
+    double S[16], R[16], T[16];
+    rg2_xform_scale(S, scale, scale, scale);
+    rg2_xform_rotate(R, rg2t_uniform(r, -1, 1), rg2t_uniform(r, -1, 1), rg2t_uniform(r, -1, 1),
+                     rg2t_uniform(r, -M_PI, M_PI));
+    double d[3] = {rg2t_uniform(r, -1, 1), rg2t_uniform(r, -1, 1), rg2t_uniform(r, -1, 1)};
+    double len = sqrt(dot3(d, d));
+    rg2_xform_translate(T, offset * d[0] / len, offset * d[1] / len, offset * d[2] / len);
+    rg2_xform_mul(R, S, M);
+    rg2_xform_mul(T, M, M);
+}
+
+/* Gaussian and mean curvature of the level set f = 0 from the gradient and Hessian
+ * (normal along the gradient): K = g^T adj(Hf) g / |g|^4, H = (g^T Hf g - |g|^2 tr Hf) / (2 |g|^3). */
+static void implicit_curvatures(const double g[3], const double h[9], double *K, double *H)
+{
+    double adj[9] = {h[4] * h[8] - h[5] * h[7], h[2] * h[7] - h[1] * h[8], h[1] * h[5] - h[2] * h[4],
+                     h[5] * h[6] - h[3] * h[8], h[0] * h[8] - h[2] * h[6], h[2] * h[3] - h[0] * h[5],
+                     h[3] * h[7] - h[4] * h[6], h[1] * h[6] - h[0] * h[7], h[0] * h[4] - h[1] * h[3]};
+    double gg = dot3(g, g), q = 0.0, qa = 0.0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            q += g[i] * h[3 * i + j] * g[j];
+            qa += g[i] * adj[3 * i + j] * g[j];
+        }
+    *K = qa / (gg * gg);
+    *H = (q - gg * (h[0] + h[4] + h[8])) / (2.0 * gg * sqrt(gg));
+}
+
+/* Sample every patch on an ns x ns grid and fold the measurements into st. */
+static void measure_surface(const rg2_shape *sh, const rg2_surface *s, const rg2_partition *pu,
+                            const rg2_partition *pv, double L, int ns, stats *st)
+{
+    for (int i = 0; i < s->nu; i++)
+        for (int j = 0; j < s->nv; j++)
+            for (int a = 0; a < ns; a++)
+                for (int b = 0; b < ns; b++) {
+                    double tu = (a + 0.5) / ns, tv = (b + 0.5) / ns;
+                    if (a == 0) tu = 0.0;
+                    if (b == ns - 1) tv = 1.0;
+                    rg2_eval e;
+                    rg2_patch_eval(rg2_surface_patch(s, i, j), tu, tv, 2, &e);
+                    double g[3], h[9];
+                    double f = rg2_shape_implicit2(sh, e.p, g, h);
+                    double gn = sqrt(dot3(g, g));
+                    st->samples++;
+                    double res = fabs(f) / (gn * L);
+                    if (!(res <= st->resid)) st->resid = res;
+                    /* own parameterization through the arc map */
+                    double hp[4];
+                    rg2_shape_param(sh, own_map(pu, i, tu), own_map(pv, j, tv), hp);
+                    double d[3];
+                    for (int k = 0; k < 3; k++)
+                        d[k] = hp[k] / hp[3] - e.p[k];
+                    double rep = sqrt(dot3(d, d)) / L;
+                    if (!(rep <= st->repro)) st->repro = rep;
+                    if (e.flags & RG2_EVAL_CURVATURE_UNDEFINED) {
+                        st->skipped++;
+                        continue;
+                    }
+                    double Ki, Hi;
+                    implicit_curvatures(g, h, &Ki, &Hi);
+                    if (dot3(g, e.n) < 0.0)
+                        Hi = -Hi;
+                    double kap = fmax(fmax(fabs(e.k1), fabs(e.k2)), 1.0 / L);
+                    double eK = fabs(e.K - Ki) / (kap * kap), eH = fabs(e.H - Hi) / kap;
+                    if (!(eK <= st->K)) st->K = eK;
+                    if (!(eH <= st->H)) st->H = eH;
+                }
+}
+
+/* Build one configuration of a shape, measure it, and fold the figures into near[0] (centred
+ * placements) or near[1] (far from the origin). Far placements put the shape at 10 times its
+ * size from the origin: coordinates then carry only eps * |x| absolute precision, so the
+ * curvature and seam figures are divided by rho = (size + offset) / size before folding. */
+static void run_config(rg2t_rng *r, rg2_shape_kind kind, int cfg, stats st2[2])
+{
+    const rg2_shape_desc *d = rg2_shape_describe(kind);
+    rg2_shape sh;
+    rg2_shape_init(&sh, kind);
+    /* shape parameter variants: cyclide ring / horn / spindle, torus radii */
+    if (kind == RG2_SHAPE_CYCLIDE) {
+        static const double mus[3] = {1.5, 0.6, 2.6}; /* ring c < mu < a, horn mu < c, spindle mu > a */
+        sh.param[2] = mus[cfg % 3];
+    } else if (kind == RG2_SHAPE_TORUS) {
+        sh.param[1] = rg2t_uniform(r, 0.2, 2.5);
+    } else if (kind == RG2_SHAPE_HYPAR || kind == RG2_SHAPE_PARABOLOID) {
+        sh.param[0] = rg2t_uniform(r, 0.5, 2.0);
+        sh.param[1] = rg2t_uniform(r, 0.5, 2.0);
+    }
+    static const double scales[3] = {1e-3, 1.0, 1e3};
+    int far = cfg & 1;
+    double scale = scales[cfg % 3];
+    double vu[MAXSEG + 1], vv[MAXSEG + 1];
+    rg2_partition pu, pv;
+    rg2_partition *ps[2] = {&pu, &pv};
+    double *vs[2] = {vu, vv};
+    for (int dir = 0; dir < 2; dir++) {
+        int closed = d->dir_kind[dir] == RG2_PART_ANGLES && !((cfg >> (1 + dir)) & 1);
+        int m = rg2t_int(r, 3, 12);
+        int random = (cfg >> 3) & 1 ? 1 : (cfg % 2 == 0);
+        double range[2];
+        safe_range(kind, dir, range);
+        make_partition(r, d->dir_kind[dir], closed, m, random, range, vs[dir], ps[dir]);
+    }
+    /* the cyclide's horn and spindle forms have singular points on the v = 0 / pi circles of
+     * u = 0 or pi; open v partitions there keep the samples away from them */
+    if (kind == RG2_SHAPE_CYCLIDE && cfg % 3 != 0) {
+        pv.closed = 0;
+        double sweep = 0.0;
+        for (int k = 0; k < pv.n; k++)
+            sweep += vv[k];
+        if (sweep > 0.7 * M_PI)
+            for (int k = 0; k < pv.n; k++)
+                vv[k] *= 0.7 * M_PI / sweep;
+        pv.start = M_PI / 2 - 0.35 * M_PI;
+    }
+    rg2_surface s;
+    rg2_weight_report rep;
+    rg2_error err;
+    /* size of the unplaced shape, for the far offset */
+    rg2_status stt = rg2_shape_surface(&sh, &pu, &pv, &s, NULL, &err);
+    CHECK(stt == RG2_OK, "%s config %d: %s", d->name, cfg, err.msg);
+    if (stt)
+        return;
+    double size = rg2t_surface_scale(&s) * scale, offset = far ? 10.0 * size : 0.0;
+    rg2_surface_free(&s);
+    random_placement(r, scale, offset, sh.xform);
+    stt = rg2_shape_surface(&sh, &pu, &pv, &s, &rep, &err);
+    CHECK(stt == RG2_OK, "%s config %d: %s", d->name, cfg, err.msg);
+    if (stt)
+        return;
+    CHECK(s.nu == rg2_partition_num_segments(&pu) && s.nv == rg2_partition_num_segments(&pv),
+          "%s config %d: %d x %d patches for %d x %d segments", d->name, cfg, s.nu, s.nv,
+          rg2_partition_num_segments(&pu), rg2_partition_num_segments(&pv));
+    CHECK(rep.min_weight == rg2_surface_min_weight(&s), "%s: weight report %g vs %g", d->name,
+          rep.min_weight, rg2_surface_min_weight(&s));
+    CHECK(((rep.flags & RG2_SHAPE_WARN_WEIGHT) != 0) == (rep.min_weight <= 0.0),
+          "%s: weight flag %u for min weight %g", d->name, rep.flags, rep.min_weight);
+    stats *st = &st2[far], one;
+    stats_init(&one);
+    double L = size + offset, rho = L / size;
+    int ns = 2;
+    while ((long)ns * ns * s.nu * s.nv < 1400)
+        ns++;
+    measure_surface(&sh, &s, &pu, &pv, L, ns, &one);
+    rg2t_seams g;
+    rg2t_surface_seams(&s, 10, &g);
+    st->resid = fmax(st->resid, one.resid);
+    st->repro = fmax(st->repro, one.repro);
+    st->K = fmax(st->K, one.K / rho);
+    st->H = fmax(st->H, one.H / rho);
+    st->angle = fmax(st->angle, g.angle / rho);
+    st->curv = fmax(st->curv, g.curv / rho);
+    st->pos = fmax(st->pos, g.pos);
+    st->minw = fmin(st->minw, rep.min_weight);
+    st->samples += one.samples;
+    st->skipped += one.skipped;
+    st->configs++;
+    if (getenv("RG2T_VERBOSE"))
+        printf("    %s cfg %d scale %g offset %g: %d x %d, K %.2e H %.2e angle %.2e curv %.2e\n", d->name,
+               cfg, scale, offset, s.nu, s.nv, one.K, one.H, g.angle, g.curv);
+    rg2_surface_free(&s);
+}
+
+static void named_shapes(void)
+{
+    rg2t_rng r;
+    uint64_t seed = 3003;
+    rg2t_seed(&r, seed);
+    printf("named shapes, seed %llu: residual = |f| / (|grad f| L), L = size + offset; reproduction\n"
+           "  = distance / L; K, H relative to max(|k1|, |k2|, 1/L); far rows: offset = 10 size,\n"
+           "  curvature and seam figures divided by rho = L / size = 11\n",
+           (unsigned long long)seed);
+    printf("  %-19s %4s %7s %9s %9s %9s %9s %9s %9s %9s\n", "shape", "cfgs", "samples", "residual",
+           "K rel", "H rel", "repro", "seam ang", "seam crv", "min w");
+    for (int kind = 0; kind < RG2_SHAPE_COUNT; kind++) {
+        stats st[2];
+        stats_init(&st[0]);
+        stats_init(&st[1]);
+        for (int cfg = 0; cfg < 10; cfg++)
+            run_config(&r, (rg2_shape_kind)kind, cfg, st);
+        const char *name = rg2_shape_name((rg2_shape_kind)kind);
+        for (int far = 0; far < 2; far++) {
+            printf("  %-19s %4d %7ld %9.2e %9.2e %9.2e %9.2e %9.2e %9.2e %9.3g\n", far ? "  (far)" : name,
+                   st[far].configs, st[far].samples, st[far].resid, st[far].K, st[far].H, st[far].repro,
+                   st[far].angle, st[far].curv, st[far].minw);
+            CHECK(st[far].resid <= 1e-13, "%s far %d: implicit residual %.3g", name, far, st[far].resid);
+            CHECK(st[far].K <= 1e-9, "%s far %d: Gaussian curvature error %.3g", name, far, st[far].K);
+            CHECK(st[far].H <= 1e-9, "%s far %d: mean curvature error %.3g", name, far, st[far].H);
+            CHECK(st[far].repro <= 1e-13, "%s far %d: reproduction of the parameterization %.3g", name,
+                  far, st[far].repro);
+            CHECK(st[far].pos <= 1e-14, "%s far %d: seam position gap %.3g", name, far, st[far].pos);
+            /* far: eps |x| over the smallest patches (spindle cyclide) costs one more digit */
+            CHECK(st[far].angle <= (far ? 1e-11 : 1e-12), "%s far %d: seam normal angle %.3g", name,
+                  far, st[far].angle);
+            CHECK(st[far].curv <= 1e-10, "%s far %d: seam curvature jump %.3g", name, far, st[far].curv);
+        }
+        CHECK(st[0].samples + st[1].samples >= 10000, "%s: %ld samples", name,
+              st[0].samples + st[1].samples);
+    }
+}
+
+/* Distance of patch points from a reference homogeneous map over the partitions' own maps. */
+typedef void (*ref_fn)(const void *ctx, double u, double v, double h[4]);
+
+static double reproduction(const rg2_surface *s, const rg2_partition *pu, const rg2_partition *pv,
+                           ref_fn f, const void *ctx, int ns)
+{
+    double L = rg2t_surface_scale(s), worst = 0.0;
+    for (int i = 0; i < s->nu; i++)
+        for (int j = 0; j < s->nv; j++)
+            for (int a = 0; a <= ns; a++)
+                for (int b = 0; b <= ns; b++) {
+                    double tu = (double)a / ns, tv = (double)b / ns, h[4], d[3];
+                    rg2_eval e;
+                    rg2_patch_eval(rg2_surface_patch(s, i, j), tu, tv, 0, &e);
+                    f(ctx, own_map(pu, i, tu), own_map(pv, j, tv), h);
+                    for (int k = 0; k < 3; k++)
+                        d[k] = h[k] / h[3] - e.p[k];
+                    double x = sqrt(dot3(d, d)) / L;
+                    if (!(x <= worst)) worst = x;
+                }
+    return worst;
+}
+
+static void ref_family1(const void *ctx, double u, double v, double h[4])
+{
+    const double(*a)[9] = (const double(*)[9])ctx;
+    double bs[9] = {1, cos(u), sin(u), cos(v), sin(v), cos(u) * cos(v), sin(u) * cos(v),
+                    cos(u) * sin(v), sin(u) * sin(v)};
+    for (int k = 0; k < 4; k++) {
+        h[k] = 0.0;
+        for (int q = 0; q < 9; q++)
+            h[k] += a[k][q] * bs[q];
+    }
+}
+
+static void ref_family2(const void *ctx, double u, double v, double h[4])
+{
+    const double(*c)[3][4] = (const double(*)[3][4])ctx;
+    for (int k = 0; k < 4; k++) {
+        h[k] = 0.0;
+        for (int s = 0; s < 4; s++)
+            h[k] += (c[k][0][s] + c[k][1][s] * cos(u) + c[k][2][s] * sin(u)) * pow(v, s);
+    }
+}
+
+static void ref_family3(const void *ctx, double u, double v, double h[4])
+{
+    const double(*A)[4][4] = (const double(*)[4][4])ctx;
+    for (int k = 0; k < 4; k++) {
+        h[k] = 0.0;
+        for (int r = 0; r < 4; r++)
+            for (int s = 0; s < 4; s++)
+                h[k] += A[k][r][s] * pow(u, r) * pow(v, s);
+    }
+}
+
+/* Generic family constructors on random coefficients: reproduction and G2. */
+static void families(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 77);
+    printf("generic families, seed 77\n");
+    double worst[3] = {0, 0, 0}, wang = 0, wcurv = 0;
+    rg2_error err;
+    double range[2] = {-1.0, 1.0};
+    for (int trial = 0; trial < 12; trial++) {
+        int fam = trial % 3;
+        double vu[MAXSEG + 1], vv[MAXSEG + 1];
+        rg2_partition pu, pv;
+        make_partition(&r, fam == 2 ? RG2_PART_KNOTS : RG2_PART_ANGLES, trial & 4 ? 0 : 1,
+                       rg2t_int(&r, 3, 12), trial & 8 ? 1 : 0, range, vu, &pu);
+        make_partition(&r, fam == 0 ? RG2_PART_ANGLES : RG2_PART_KNOTS, trial & 2 ? 0 : 1,
+                       rg2t_int(&r, 3, 12), 1, range, vv, &pv);
+        rg2_mesh m;
+        rg2_status st;
+        double a1[4][9], c2[4][3][4], A3[4][4][4];
+        const void *ctx;
+        ref_fn f;
+        if (fam == 0) {
+            for (int k = 0; k < 4; k++)
+                for (int q = 0; q < 9; q++)
+                    a1[k][q] = k == 3 ? (q ? rg2t_uniform(&r, -0.4, 0.4) : 4.0) : rg2t_uniform(&r, -2, 2);
+            st = rg2_family1_mesh((const double(*)[9])a1, &pu, &pv, &m, &err);
+            ctx = a1, f = ref_family1;
+        } else if (fam == 1) {
+            for (int k = 0; k < 4; k++)
+                for (int q = 0; q < 3; q++)
+                    for (int s = 0; s < 4; s++)
+                        c2[k][q][s] = k == 3 ? (q || s ? rg2t_uniform(&r, -0.3, 0.3) : 4.0)
+                                             : rg2t_uniform(&r, -2, 2);
+            st = rg2_family2_mesh((const double(*)[3][4])c2, &pu, &pv, &m, &err);
+            ctx = c2, f = ref_family2;
+        } else {
+            for (int k = 0; k < 4; k++)
+                for (int q = 0; q < 4; q++)
+                    for (int s = 0; s < 4; s++)
+                        A3[k][q][s] = k == 3 ? (q || s ? rg2t_uniform(&r, -0.2, 0.2) : 4.0)
+                                             : rg2t_uniform(&r, -2, 2);
+            st = rg2_family3_mesh((const double(*)[4][4])A3, &pu, &pv, &m, &err);
+            ctx = A3, f = ref_family3;
+        }
+        CHECK(st == RG2_OK, "family %d trial %d: %s", fam + 1, trial, err.msg);
+        if (st)
+            continue;
+        rg2_surface s;
+        CHECK_OK(rg2_surface_build(&m, &s, &err), &err);
+        double rep = reproduction(&s, &pu, &pv, f, ctx, 6);
+        if (rep > worst[fam]) worst[fam] = rep;
+        rg2t_seams g;
+        rg2t_surface_seams(&s, 8, &g);
+        wang = fmax(wang, g.angle);
+        wcurv = fmax(wcurv, g.curv);
+        rg2_surface_free(&s);
+        rg2_mesh_free(&m);
+    }
+    printf("  reproduction: family 1 %.2e, family 2 %.2e, family 3 %.2e; seams: angle %.2e, "
+           "curvature %.2e\n",
+           worst[0], worst[1], worst[2], wang, wcurv);
+    for (int k = 0; k < 3; k++)
+        CHECK(worst[k] <= 1e-13, "family %d reproduction %.3g", k + 1, worst[k]);
+    CHECK(wang <= 1e-12 && wcurv <= 1e-10, "family seams: angle %.3g curvature %.3g", wang, wcurv);
+}
+
+/* Exact transforms: transforming the mesh then building equals building then transforming,
+ * for a projective matrix; and a projectively placed shape satisfies its implicit equation. */
+static void transforms(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 5);
+    rg2_error err;
+    rg2_shape sh;
+    rg2_shape_init(&sh, RG2_SHAPE_TORUS);
+    double vu[8], vv[8];
+    rg2_partition pu, pv;
+    double range[2] = {0, 0};
+    make_partition(&r, RG2_PART_ANGLES, 1, 7, 1, range, vu, &pu);
+    make_partition(&r, RG2_PART_ANGLES, 0, 5, 1, range, vv, &pv);
+    double M[16] = {0.9, 0.2, -0.1, 1.5, -0.3, 1.1, 0.25, -2.0, 0.1, -0.2, 0.8, 0.5,
+                    0.03, -0.02, 0.04, 1.0};
+    rg2_mesh m0, m1;
+    rg2_surface s0, s1;
+    CHECK_OK(rg2_shape_mesh(&sh, &pu, &pv, &m0, &err), &err);
+    CHECK_OK(rg2_mesh_copy(&m0, &m1, &err), &err);
+    rg2_mesh_transform(&m1, M);
+    CHECK_OK(rg2_surface_build(&m0, &s0, &err), &err);
+    CHECK_OK(rg2_surface_build(&m1, &s1, &err), &err);
+    double worst = 0.0, L = rg2t_surface_scale(&s1);
+    for (int i = 0; i < s0.nu; i++)
+        for (int j = 0; j < s0.nv; j++)
+            for (int a = 0; a <= 8; a++)
+                for (int b = 0; b <= 8; b++) {
+                    double H[6][4], q[4];
+                    rg2_patch_eval_h(rg2_surface_patch(&s0, i, j), a / 8.0, b / 8.0, H);
+                    for (int k = 0; k < 4; k++)
+                        q[k] = M[4 * k] * H[0][0] + M[4 * k + 1] * H[0][1] + M[4 * k + 2] * H[0][2] +
+                               M[4 * k + 3] * H[0][3];
+                    rg2_eval e;
+                    rg2_patch_eval(rg2_surface_patch(&s1, i, j), a / 8.0, b / 8.0, 0, &e);
+                    double d[3] = {q[0] / q[3] - e.p[0], q[1] / q[3] - e.p[1], q[2] / q[3] - e.p[2]};
+                    worst = fmax(worst, sqrt(dot3(d, d)) / L);
+                }
+    printf("transform then build vs build then transform (projective): %.2e\n", worst);
+    CHECK(worst <= 1e-13, "transform commutes with the construction: %.3g", worst);
+    /* the projectively placed torus against its implicit equation and parameterization */
+    memcpy(sh.xform, M, sizeof M);
+    stats st;
+    stats_init(&st);
+    measure_surface(&sh, &s1, &pu, &pv, L, 8, &st);
+    printf("projectively placed torus: residual %.2e, K %.2e, H %.2e, reproduction %.2e\n", st.resid,
+           st.K, st.H, st.repro);
+    CHECK(st.resid <= 1e-13 && st.repro <= 1e-13, "projective torus residual %.3g repro %.3g",
+          st.resid, st.repro);
+    CHECK(st.K <= 1e-9 && st.H <= 1e-9, "projective torus curvatures %.3g %.3g", st.K, st.H);
+    /* placement helpers: place() maps z to the axis and the origin to the centre */
+    double P[16], c[3] = {1, -2, 3}, ax[3] = {0.3, -0.4, 0.5}, z[4] = {0, 0, 1, 0}, o[4] = {0, 0, 0, 1};
+    rg2_xform_place(P, c, ax);
+    double pz[4], po[4], la = sqrt(dot3(ax, ax));
+    for (int k = 0; k < 4; k++) {
+        pz[k] = P[4 * k] * z[0] + P[4 * k + 1] * z[1] + P[4 * k + 2] * z[2] + P[4 * k + 3] * z[3];
+        po[k] = P[4 * k] * o[0] + P[4 * k + 1] * o[1] + P[4 * k + 2] * o[2] + P[4 * k + 3] * o[3];
+    }
+    double e1 = 0, e2 = 0;
+    for (int k = 0; k < 3; k++) {
+        e1 = fmax(e1, fabs(pz[k] - ax[k] / la));
+        e2 = fmax(e2, fabs(po[k] - c[k]));
+    }
+    CHECK(e1 <= 1e-15 && e2 <= 1e-15, "xform_place: axis %.3g centre %.3g", e1, e2);
+    double inv[16], I[16];
+    CHECK_OK(rg2_xform_invert(M, inv, &err), &err);
+    rg2_xform_mul(M, inv, I);
+    double ei = 0;
+    for (int k = 0; k < 16; k++)
+        ei = fmax(ei, fabs(I[k] - (k % 5 == 0 ? 1.0 : 0.0)));
+    CHECK(ei <= 1e-14, "xform_invert: M M^-1 - I = %.3g", ei);
+    rg2_surface_free(&s0);
+    rg2_surface_free(&s1);
+    rg2_mesh_free(&m0);
+    rg2_mesh_free(&m1);
+}
+
+/* Partitions with explicit data arcs / knots; the library's parameter map. */
+static void full_partitions(void)
+{
+    rg2_error err;
+    rg2_shape sh;
+    rg2_shape_init(&sh, RG2_SHAPE_TORUS);
+    double arcs[4] = {0.4, 0.7, 0.5, 0.6};
+    double full[8] = {0.4, 0.4, 0.4, 0.7, 0.5, 0.6, 0.6, 0.6};
+    rg2_partition pa = {RG2_PART_ANGLES, 0, 4, arcs, 0.3};
+    rg2_partition pf = {RG2_PART_ANGLES_FULL, 0, 8, full, 0.3};
+    double va[3] = {0.0, 1.0, 2.5};
+    rg2_partition pv = {RG2_PART_ANGLES, 0, 3, va, -1.0};
+    va[0] = 0.9, va[1] = 1.0, va[2] = 1.1;
+    rg2_surface s1, s2;
+    CHECK_OK(rg2_shape_surface(&sh, &pa, &pv, &s1, NULL, &err), &err);
+    CHECK_OK(rg2_shape_surface(&sh, &pf, &pv, &s2, NULL, &err), &err);
+    double d = 0;
+    for (int k = 0; k < s1.nu * s1.nv && s1.nu == s2.nu; k++)
+        for (int q = 0; q < 64; q++)
+            d = fmax(d, fabs((&s1.patch[k].h[0][0][0])[q] - (&s2.patch[k].h[0][0][0])[q]));
+    CHECK(s1.nu == 4 && s2.nu == 4 && d == 0.0, "angles_full with copied data arcs equals angles: %.3g", d);
+    rg2_surface_free(&s2);
+    /* different data arcs: same shape, still exact, same parameter map */
+    full[0] = 1.2, full[1] = 0.2, full[6] = 2.0, full[7] = 0.1;
+    CHECK_OK(rg2_shape_surface(&sh, &pf, &pv, &s2, NULL, &err), &err);
+    double worst = 0, L = rg2t_surface_scale(&s2);
+    for (int i = 0; i < s2.nu; i++)
+        for (int j = 0; j < s2.nv; j++)
+            for (int a = 0; a <= 6; a++) {
+                double t = a / 6.0, h[4];
+                rg2_eval e;
+                rg2_patch_eval(rg2_surface_patch(&s2, i, j), t, 1 - t, 0, &e);
+                CHECK(fabs(rg2_partition_map(&pf, i, t) - own_map(&pa, i, t)) <= 1e-15,
+                      "partition map of full angles");
+                rg2_shape_param(&sh, rg2_partition_map(&pf, i, t), rg2_partition_map(&pv, j, 1 - t), h);
+                for (int k = 0; k < 3; k++)
+                    worst = fmax(worst, fabs(h[k] / h[3] - e.p[k]) / L);
+            }
+    CHECK(worst <= 1e-14, "torus with other data arcs reproduces the torus: %.3g", worst);
+    rg2_surface_free(&s1);
+    rg2_surface_free(&s2);
+    /* knots with explicit data knots: sphere band */
+    rg2_shape_init(&sh, RG2_SHAPE_SPHERE);
+    double kn[7] = {-0.5, 0.0, 0.2, 0.45, 0.7, 1.0, 1.7};
+    rg2_partition pk = {RG2_PART_KNOTS_FULL, 0, 7, kn, 0};
+    double eq[6];
+    rg2_partition pu;
+    CHECK_OK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0.0, 0.0, 5, eq, 6, &err), &err);
+    CHECK(rg2_partition_num_segments(&pk) == 2, "knots_full segments %d", rg2_partition_num_segments(&pk));
+    CHECK_OK(rg2_shape_surface(&sh, &pu, &pk, &s1, NULL, &err), &err);
+    worst = 0;
+    for (int i = 0; i < s1.nu; i++)
+        for (int j = 0; j < s1.nv; j++)
+            for (int a = 0; a <= 8; a++) {
+                double t = a / 8.0, h[4];
+                rg2_eval e;
+                rg2_patch_eval(rg2_surface_patch(&s1, i, j), 0.5, t, 0, &e);
+                rg2_shape_param(&sh, rg2_partition_map(&pu, i, 0.5), kn[j + 2] + t * (kn[j + 3] - kn[j + 2]), h);
+                for (int k = 0; k < 3; k++)
+                    worst = fmax(worst, fabs(h[k] / h[3] - e.p[k]));
+            }
+    CHECK(s1.nv == 2 && worst <= 1e-14, "sphere band over knots_full [0.2, 0.7]: %.3g", worst);
+    rg2_surface_free(&s1);
+}
+
+/* The weight report flags H_rs,4 <= 0: a cyclide with c close to a over 3 x 3 arcs has
+ * some negative Bezier weights (the conic's far middle points times a - c cu cv), though the
+ * surface itself stays exact. */
+static void weight_warning(void)
+{
+    rg2_error err;
+    rg2_shape sh;
+    rg2_shape_init(&sh, RG2_SHAPE_CYCLIDE);
+    sh.param[0] = 1.0, sh.param[1] = 0.8, sh.param[2] = 0.97;
+    double e3[4], e4[5];
+    rg2_partition p3, p4;
+    CHECK_OK(rg2_partition_equal(&p3, RG2_PART_ANGLES, 1, 0.0, 0.0, 3, e3, 4, &err), &err);
+    CHECK_OK(rg2_partition_equal(&p4, RG2_PART_ANGLES, 1, 0.0, 0.0, 4, e4, 5, &err), &err);
+    rg2_surface s;
+    rg2_weight_report rep;
+    CHECK_OK(rg2_shape_surface(&sh, &p3, &p3, &s, &rep, &err), &err);
+    printf("cyclide a = 1, c = 0.8 over 3 x 3 arcs: min weight %.3g, %d patches with H_rs,4 <= 0 "
+           "(patch %d,%d)\n",
+           rep.min_weight, rep.n_nonpositive, rep.patch_i, rep.patch_j);
+    CHECK((rep.flags & RG2_SHAPE_WARN_WEIGHT) && rep.n_nonpositive > 0 && rep.min_weight <= 0.0,
+          "non-positive weight flagged: flags %u, min %g", rep.flags, rep.min_weight);
+    CHECK(rg2_surface_min_weight(&s) == rep.min_weight, "report min weight");
+    stats st;
+    stats_init(&st);
+    measure_surface(&sh, &s, &p3, &p3, rg2t_surface_scale(&s), 12, &st);
+    CHECK(st.resid <= 1e-13 && st.repro <= 1e-13, "the flagged cyclide is still exact: %.3g %.3g",
+          st.resid, st.repro);
+    rg2_surface_free(&s);
+    CHECK_OK(rg2_shape_surface(&sh, &p4, &p4, &s, &rep, &err), &err);
+    CHECK(rep.flags == 0 && rep.min_weight > 0.0, "4 x 4 arcs: positive weights not flagged: %u %g",
+          rep.flags, rep.min_weight);
+    rg2_surface_free(&s);
+}
+
+/* Every invalid parameter gets its code and a message naming the item. */
+static void errors(void)
+{
+    rg2_error err;
+    rg2_shape sh;
+    rg2_mesh m;
+    double eq[9], kn[4] = {0.2, 0.4, 0.6, 0.8};
+    rg2_partition pu, pv = {RG2_PART_KNOTS, 0, 4, kn, 0}, pc;
+    rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0.0, 0.0, 6, eq, 9, &err);
+    rg2_partition_equal(&pc, RG2_PART_ANGLES, 1, 0.0, 0.0, 5, eq + 6 - 6, 9, &err);
+    double e6[6] = {M_PI / 3, M_PI / 3, M_PI / 3, M_PI / 3, M_PI / 3, M_PI / 3};
+    pu.values = e6, pc.values = e6, pc.n = 6;
+
+    rg2_shape_init(&sh, RG2_SHAPE_TORUS);
+    sh.param[0] = 1.0, sh.param[1] = 1.5;
+    expect_err(rg2_shape_mesh(&sh, &pu, &pc, &m, &err), RG2_EDOMAIN, &err, "r = 1.5 must be < R = 1",
+               "torus r >= R");
+    sh.param[1] = -1;
+    expect_err(rg2_shape_mesh(&sh, &pu, &pc, &m, &err), RG2_EDOMAIN, &err, "r = -1", "torus r < 0");
+    sh.param[1] = NAN;
+    expect_err(rg2_shape_mesh(&sh, &pu, &pc, &m, &err), RG2_ENONFINITE, &err, "parameter r", "torus NaN");
+    rg2_shape_init(&sh, RG2_SHAPE_TORUS);
+    expect_err(rg2_shape_mesh(&sh, &pu, &pv, &m, &err), RG2_EINVAL, &err, "v is a circle direction",
+               "knots for a circle direction");
+    rg2_shape_init(&sh, RG2_SHAPE_CYCLIDE);
+    sh.param[1] = 3.0;
+    expect_err(rg2_shape_mesh(&sh, &pu, &pc, &m, &err), RG2_EDOMAIN, &err, "b^2 = a^2 - c^2 = -5",
+               "cyclide b^2 <= 0");
+    rg2_shape_init(&sh, RG2_SHAPE_CYCLIDE);
+    sh.param[2] = 0;
+    expect_err(rg2_shape_mesh(&sh, &pu, &pc, &m, &err), RG2_EDOMAIN, &err, "mu = 0", "cyclide mu");
+    rg2_shape_init(&sh, RG2_SHAPE_SPHERE);
+    sh.param[0] = 0;
+    expect_err(rg2_shape_mesh(&sh, &pu, &pv, &m, &err), RG2_EDOMAIN, &err, "radius = 0", "sphere radius");
+    rg2_shape_init(&sh, RG2_SHAPE_CONE);
+    sh.param[0] = 0;
+    expect_err(rg2_shape_mesh(&sh, &pu, &pv, &m, &err), RG2_EDOMAIN, &err, "k = 0", "cone slope");
+    rg2_shape_init(&sh, RG2_SHAPE_ELLIPSOID);
+    sh.param[2] = -2;
+    expect_err(rg2_shape_mesh(&sh, &pu, &pv, &m, &err), RG2_EDOMAIN, &err, "c = -2", "ellipsoid axis");
+
+    /* partitions */
+    rg2_shape_init(&sh, RG2_SHAPE_CYLINDER);
+    rg2_partition bad = pu;
+    bad.n = 0;
+    expect_err(rg2_shape_mesh(&sh, &bad, &pv, &m, &err), RG2_EINVAL, &err, "u partition is empty",
+               "empty u partition");
+    bad = pv;
+    bad.values = NULL;
+    expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_EINVAL, &err, "v partition is empty",
+               "empty v partition");
+    double a5[5] = {1.0, 1.0, 1.0, 1.0, 1.0};
+    bad = pu, bad.values = a5, bad.n = 5;
+    expect_err(rg2_shape_mesh(&sh, &bad, &pv, &m, &err), RG2_EDOMAIN, &err, "must sum to 2 pi",
+               "closed arcs not summing to 2 pi");
+    double a3[3] = {2.0, M_PI, 2 * M_PI - 2.0 - M_PI};
+    bad = pu, bad.values = a3, bad.n = 3;
+    expect_err(rg2_shape_mesh(&sh, &bad, &pv, &m, &err), RG2_EDOMAIN, &err, "arc 1 has opening angle",
+               "arc of pi");
+    a3[1] = -0.5;
+    expect_err(rg2_shape_mesh(&sh, &bad, &pv, &m, &err), RG2_EDOMAIN, &err, "(0, pi)", "negative arc");
+    double a8[8] = {3, 3, 3, 3, 3, 3, 3, 3};
+    bad = pu, bad.values = a8, bad.n = 8, bad.closed = 0;
+    expect_err(rg2_shape_mesh(&sh, &bad, &pv, &m, &err), RG2_EDOMAIN, &err, "past 2 pi",
+               "open arcs past 2 pi");
+    double k4[4] = {0.0, 0.5, 0.5, 1.0};
+    bad = pv, bad.values = k4;
+    expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_EDOMAIN, &err, "knot 2 (= 0.5) is not greater",
+               "repeated knot");
+    k4[2] = 0.3;
+    expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_EDOMAIN, &err, "knot 2", "decreasing knot");
+    bad = pv, bad.closed = 1;
+    expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_EINVAL, &err, "open", "closed knots");
+    bad = pv, bad.n = 1;
+    expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_EINVAL, &err, "at least 2", "one knot");
+    double kinf[2] = {0.0, INFINITY};
+    bad = pv, bad.values = kinf, bad.n = 2;
+    expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_ENONFINITE, &err, "value 1", "inf knot");
+
+    /* shape-specific ranges */
+    rg2_shape_init(&sh, RG2_SHAPE_HYPERBOLOID1);
+    double kneg[3] = {-0.5, 0.5, 1.0};
+    bad = pv, bad.values = kneg, bad.n = 3;
+    expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_EDOMAIN, &err, "v knot 0 = -0.5 must be > 0",
+               "hyperboloid1 v <= 0");
+    rg2_shape_init(&sh, RG2_SHAPE_HYPERBOLOID2);
+    double kbig[3] = {0.0, 0.5, 1.0};
+    bad = pv, bad.values = kbig, bad.n = 3;
+    expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_EDOMAIN, &err, "v knot 2 = 1 must satisfy |v| < 1",
+               "hyperboloid2 |v| >= 1");
+
+    /* placement, names, families */
+    rg2_shape_init(&sh, RG2_SHAPE_CYLINDER);
+    sh.xform[10] = 0.0;
+    expect_err(rg2_shape_mesh(&sh, &pu, &pv, &m, &err), RG2_EDOMAIN, &err, "singular", "singular xform");
+    sh.xform[10] = NAN;
+    expect_err(rg2_shape_mesh(&sh, &pu, &pv, &m, &err), RG2_ENONFINITE, &err, "[2][2]", "NaN xform");
+    rg2_shape_kind kind;
+    expect_err(rg2_shape_from_name("doughnut", &kind, &err), RG2_EINVAL, &err, "unknown shape 'doughnut'",
+               "unknown name");
+    CHECK(rg2_shape_from_name("cyclide", &kind, &err) == RG2_OK && kind == RG2_SHAPE_CYCLIDE, "name lookup");
+    CHECK(rg2_shape_name((rg2_shape_kind)RG2_SHAPE_COUNT) == NULL && rg2_shape_describe((rg2_shape_kind)-1) == NULL,
+          "unknown kinds have no name");
+    double a1[4][9] = {{0}};
+    expect_err(rg2_family1_mesh((const double(*)[9])a1, &pu, &pv, &m, &err), RG2_EINVAL, &err,
+               "v is a circle direction", "family 1 with knots");
+    double A[4][4][4] = {{{0}}};
+    A[3][0][0] = 1, A[0][3][0] = 1;
+    expect_err(rg2_product_mesh((const double(*)[4][4])A, &pu, &pv, &m, &err), RG2_EINVAL, &err,
+               "coefficient [0][3][0]", "cubic coefficient on a circle direction");
+    A[0][3][0] = NAN;
+    expect_err(rg2_product_mesh((const double(*)[4][4])A, &pv, &pv, &m, &err), RG2_ENONFINITE, &err,
+               "coefficient [0][3][0]", "NaN coefficient");
+    rg2_partition pe;
+    double buf[3];
+    expect_err(rg2_partition_equal(&pe, RG2_PART_ANGLES, 1, 0, 0, 5, buf, 3, &err), RG2_ELIMIT, &err,
+               "room for 3", "equal partition capacity");
+    expect_err(rg2_partition_equal(&pe, RG2_PART_ANGLES, 1, 0, 0, 2, buf, 3, &err), RG2_EDOMAIN, &err,
+               "(0, pi)", "2 closed arcs of pi");
+}
+
+int main(void)
+{
+    named_shapes();
+    families();
+    transforms();
+    full_partitions();
+    weight_warning();
+    errors();
+    return rg2t_done("test_shapes");
+}

@@ -1,0 +1,208 @@
+/* test_tess.c -- watertight tessellation: shared seam vertices, every edge in two triangles
+ * on a closed torus, vertices and normals and curvatures on the exact torus, bit-exact
+ * re-evaluation on an open random surface, and a pole without degenerate triangles. */
+#include "export_fixtures.h"
+
+#include <stdlib.h>
+
+/* Count how many triangles use each undirected edge: returns the number of edges used once
+ * (boundary), and sets *over to the number used more than twice and *dup_dir to the number
+ * of directed edges used twice in the same direction (inconsistent orientation). */
+typedef struct {
+    long long key;
+    int dir;
+} edge_rec;
+
+static int cmp_edge(const void *a, const void *b)
+{
+    long long x = ((const edge_rec *)a)->key, y = ((const edge_rec *)b)->key;
+    return x < y ? -1 : x > y;
+}
+
+static int edge_census(const rg2_tess *t, int *over, int *twice, int *same_dir)
+{
+    size_t ne = 3 * (size_t)t->n_triangles;
+    edge_rec *e = malloc(ne * sizeof *e);
+    for (int q = 0; q < t->n_triangles; q++)
+        for (int k = 0; k < 3; k++) {
+            int a = t->tri[3 * q + k], b = t->tri[3 * q + (k + 1) % 3];
+            int lo = a < b ? a : b, hi = a < b ? b : a;
+            e[3 * q + k].key = (long long)lo * t->n_vertices + hi;
+            e[3 * q + k].dir = a < b;
+        }
+    qsort(e, ne, sizeof *e, cmp_edge);
+    int once = 0;
+    *over = *twice = *same_dir = 0;
+    for (size_t i = 0; i < ne;) {
+        size_t j = i;
+        while (j < ne && e[j].key == e[i].key)
+            j++;
+        if (j - i == 1)
+            once++;
+        else if (j - i == 2) {
+            (*twice)++;
+            if (e[i].dir == e[i + 1].dir)
+                (*same_dir)++;
+        } else
+            (*over)++;
+        i = j;
+    }
+    free(e);
+    return once;
+}
+
+/* Triangles counter-clockwise about the vertex normals, and none degenerate. */
+static void check_orientation(const rg2_tess *t, const char *what)
+{
+    int bad = 0, degenerate = 0;
+    for (int q = 0; q < t->n_triangles; q++) {
+        const int *c = t->tri + 3 * q;
+        if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2])
+            degenerate++;
+        const double *a = t->pos + 3 * c[0], *b = t->pos + 3 * c[1], *d = t->pos + 3 * c[2];
+        double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+        double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        double s = 0;
+        for (int k = 0; k < 3; k++)
+            s += n[k] * (t->normal[3 * c[0] + k] + t->normal[3 * c[1] + k] + t->normal[3 * c[2] + k]);
+        if (!(s > 0))
+            bad++;
+    }
+    CHECK(bad == 0, "%s: %d of %d triangles not counter-clockwise about the normal", what, bad, t->n_triangles);
+    CHECK(degenerate == 0, "%s: %d degenerate triangles", what, degenerate);
+}
+
+static void torus_mesh(void)
+{
+    const double R = 13.0, r = 4.0;
+    rg2_surface s;
+    rg2_error err;
+    rg2_tess t;
+    CHECK_OK(fx_torus(R, r, 8, 6, &s, &err), &err);
+    int d = 8;
+    CHECK_OK(rg2_tessellate(&s, d, 1, &t, &err), &err);
+    CHECK(t.n_vertices == 8 * d * 6 * d, "torus: %d vertices, expected %d (seams shared)", t.n_vertices, 8 * d * 6 * d);
+    CHECK(t.n_triangles == 2 * 8 * d * 6 * d, "torus: %d triangles", t.n_triangles);
+    int over, twice, same;
+    int once = edge_census(&t, &over, &twice, &same);
+    CHECK(once == 0 && over == 0, "torus: %d edges in one triangle, %d in more than two (not watertight)", once, over);
+    CHECK(same == 0, "torus: %d edges used twice in the same direction", same);
+    CHECK(twice == 3 * t.n_triangles / 2, "torus: %d edges in two triangles", twice);
+    check_orientation(&t, "torus");
+    double worst_p = 0, worst_n = 0, worst_k = 0, worst_h = 0, sign = 0;
+    for (int v = 0; v < t.n_vertices; v++) {
+        const double *p = t.pos + 3 * v, *n = t.normal + 3 * v;
+        worst_p = fmax(worst_p, fx_torus_dist(R, r, p) / R);
+        double rho = hypot(p[0], p[1]), cv = (rho - R) / r;
+        double ex[3] = {(p[0] - R * p[0] / rho) / r, (p[1] - R * p[1] / rho) / r, p[2] / r};
+        double dp = n[0] * ex[0] + n[1] * ex[1] + n[2] * ex[2];
+        if (sign == 0)
+            sign = dp > 0 ? 1 : -1;
+        worst_n = fmax(worst_n, fabs(sign * dp - 1.0));
+        double K = cv / (r * (R + r * cv)), H = (R + 2 * r * cv) / (2 * r * (R + r * cv));
+        worst_k = fmax(worst_k, fabs(t.K[v] - K) * r * r);
+        worst_h = fmax(worst_h, fabs(fabs(t.H[v]) - fabs(H)) * r);
+    }
+    CHECK(worst_p <= 1e-14, "torus: vertex off the torus by %.3g relative", worst_p);
+    CHECK(worst_n <= 1e-13, "torus: normal off the exact normal by %.3g", worst_n);
+    CHECK(worst_k <= 1e-10 && worst_h <= 1e-10, "torus: curvature K %.3g H %.3g off (relative)", worst_k, worst_h);
+    printf("torus d=%d: %d vertices, %d triangles, watertight; on-surface %.1e, normal %.1e, K %.1e, H %.1e\n", d,
+           t.n_vertices, t.n_triangles, worst_p, worst_n, worst_k, worst_h);
+    rg2_tess_free(&t);
+    rg2_surface_free(&s);
+}
+
+static void random_mesh(void)
+{
+    rg2_surface s;
+    rg2_error err;
+    rg2_tess t;
+    CHECK_OK(fx_random(7, 8, 7, &s, &err), &err);
+    int d = 5;
+    CHECK_OK(rg2_tessellate(&s, d, 0, &t, &err), &err);
+    int GU = s.nu * d + 1, GV = s.nv * d + 1;
+    CHECK(t.n_vertices == GU * GV, "random: %d vertices, expected %d", t.n_vertices, GU * GV);
+    CHECK(t.K == NULL && t.H == NULL, "random: curvature arrays without request");
+    int exact = 1;
+    for (int v = 0; v < t.n_vertices; v++) {
+        rg2_eval e;
+        rg2_patch_eval(&s.patch[t.patch[v]], t.uv[2 * v], t.uv[2 * v + 1], 1, &e);
+        if (memcmp(e.p, t.pos + 3 * v, sizeof e.p) || memcmp(e.n, t.normal + 3 * v, sizeof e.n))
+            exact = 0;
+    }
+    CHECK(exact, "random: a vertex differs from the patch evaluation at its (u, v)");
+    /* seam vertices: the neighbour patch's evaluation of the same seam point is within rounding */
+    double gap = 0;
+    for (int v = 0; v < t.n_vertices; v++) {
+        int p = t.patch[v], i = p / s.nv, j = p % s.nv;
+        if (t.uv[2 * v] == 0.0 && i > 0) {
+            rg2_eval e;
+            rg2_patch_eval(rg2_surface_patch(&s, i - 1, j), 1.0, t.uv[2 * v + 1], 0, &e);
+            for (int k = 0; k < 3; k++)
+                gap = fmax(gap, fabs(e.p[k] - t.pos[3 * v + k]));
+        }
+    }
+    CHECK(gap <= 1e-12 * rg2t_surface_scale(&s), "random: seam evaluated from both sides differs by %.3g", gap);
+    int over, twice, same;
+    int once = edge_census(&t, &over, &twice, &same);
+    CHECK(once == 2 * (GU - 1) + 2 * (GV - 1), "random: %d boundary edges, expected %d", once, 2 * (GU - 1) + 2 * (GV - 1));
+    CHECK(over == 0 && same == 0, "random: %d edges over-used, %d mis-oriented", over, same);
+    check_orientation(&t, "random");
+    printf("random open %d x %d patches d=%d: %d vertices, bit-exact, seam gap %.1e\n", s.nu, s.nv, d, t.n_vertices, gap);
+    rg2_tess_free(&t);
+    rg2_surface_free(&s);
+}
+
+static void pole_mesh(void)
+{
+    rg2_surface s;
+    rg2_error err;
+    rg2_tess t;
+    CHECK_OK(fx_pole(6, 7, &s, &err), &err);
+    int d = 6;
+    CHECK_OK(rg2_tessellate(&s, d, 1, &t, &err), &err);
+    int ring = s.nu * d, rows = s.nv * d + 1;
+    CHECK(t.n_vertices == ring * (rows - 1) + 1, "pole: %d vertices, expected %d (pole row merged)", t.n_vertices,
+          ring * (rows - 1) + 1);
+    CHECK(t.n_triangles == 2 * ring * (rows - 1) - ring, "pole: %d triangles, expected %d", t.n_triangles,
+          2 * ring * (rows - 1) - ring);
+    check_orientation(&t, "pole");
+    int over, twice, same;
+    int once = edge_census(&t, &over, &twice, &same);
+    CHECK(once == ring && over == 0 && same == 0, "pole: %d boundary edges (expected %d), %d over-used, %d mis-oriented",
+          once, ring, over, same);
+    /* the pole vertex: on the axis, normal along the axis (exact limit) */
+    double worst = 1;
+    for (int v = 0; v < t.n_vertices; v++)
+        if (hypot(t.pos[3 * v], t.pos[3 * v + 1]) < 1e-9)
+            worst = fmin(worst, fabs(t.normal[3 * v + 2]));
+    CHECK(fabs(worst - 1.0) <= 1e-12, "pole: pole normal z %.17g, expected +-1", worst);
+    printf("pole: %d vertices, %d triangles, no degenerate triangle, pole normal |z| = %.17g\n", t.n_vertices,
+           t.n_triangles, worst);
+    rg2_tess_free(&t);
+    rg2_surface_free(&s);
+}
+
+static void bad_input(void)
+{
+    rg2_surface s, empty;
+    rg2_error err;
+    rg2_tess t;
+    memset(&empty, 0, sizeof empty);
+    CHECK(rg2_tessellate(&empty, 4, 0, &t, &err) == RG2_EINVAL, "empty surface accepted");
+    CHECK_OK(fx_random(3, 5, 5, &s, &err), &err);
+    CHECK(rg2_tessellate(&s, 0, 0, &t, &err) == RG2_EINVAL && strstr(err.msg, "density"), "density 0: %s", err.msg);
+    CHECK(t.pos == NULL && t.tri == NULL, "failed tessellation left arrays");
+    CHECK(rg2_tessellate(&s, 5000, 0, &t, &err) == RG2_ELIMIT, "huge density: %s", err.msg);
+    rg2_tess_free(&t);
+    rg2_surface_free(&s);
+}
+
+int main(void)
+{
+    torus_mesh();
+    random_mesh();
+    pole_mesh();
+    bad_input();
+    return rg2t_done("test_tess");
+}
