@@ -111,6 +111,8 @@ static inline void vsum(const rg2_patch *P, double *const bv[4], int b0, int cnt
             double *restrict dst = c[r][k];
             for (int i = 0; i < cnt; i++)
                 dst[i] = h0 * v0[i] + h1 * v1[i] + h2 * v2[i] + h3 * v3[i];
+            for (int i = cnt; i < BLK && (i & 7); i++) /* whole 8-lane vectors stay defined */
+                dst[i] = 0.0;
         }
 }
 
@@ -129,8 +131,7 @@ static inline void seg_pos(const double *restrict U, double c[4][4][BLK], int cn
     }
 }
 
-/* Positions and unit normals of one row segment. The normal is the direction of
- * (Hu - Wu p) x (Hv - Wv p) = W^2 Su x Sv, so no further division is needed. */
+/* Positions and unit normals of one row segment. */
 static inline void seg_pos_normal(const double *restrict U, const double *restrict DU, double c0[4][4][BLK],
                                   double c1[4][4][BLK], int cnt, double *restrict pos, double *restrict nrm)
 {
@@ -147,16 +148,18 @@ static inline void seg_pos_normal(const double *restrict U, const double *restri
 #pragma GCC unroll 3
         for (int k = 0; k < 3; k++) {
             p[k] = h[k] * iw;
-            su[k] = hu[k] - hu[3] * p[k];
-            sv[k] = hv[k] - hv[3] * p[k];
+            su[k] = (hu[k] - hu[3] * p[k]) * iw;
+            sv[k] = (hv[k] - hv[3] * p[k]) * iw;
         }
+        /* the expressions of full_soa, so positions and normals do not depend on which
+         * outputs were requested (bitwise) */
         double cx = su[1] * sv[2] - su[2] * sv[1];
         double cy = su[2] * sv[0] - su[0] * sv[2];
         double cz = su[0] * sv[1] - su[1] * sv[0];
         double l2 = cx * cx + cy * cy + cz * cz;
-        double s2 = (su[0] * su[0] + su[1] * su[1] + su[2] * su[2]) *
-                    (sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2]);
-        double ok = (double)(l2 > 1e-30 * s2); /* branch-free: 0 where undefined */
+        double E = su[0] * su[0] + su[1] * su[1] + su[2] * su[2];
+        double G = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2];
+        double ok = (double)(l2 > 1e-30 * (E * G)); /* branch-free: 0 where undefined */
         double il = ok / sqrt(l2 + (1.0 - ok));
         pos[3 * i] = p[0];
         pos[3 * i + 1] = p[1];
@@ -177,15 +180,27 @@ static inline void put3(double *restrict dst, const double *restrict x, const do
     }
 }
 
-/* Everything (second order) for one row segment: computed into structure-of-arrays
- * temporaries with the formulas of rg2_patch_eval, then copied to the requested outputs. */
-RG2_HOT static void seg_full(const double *restrict U, const double *restrict DU, const double *restrict DDU,
-                            double c0[4][4][BLK], double c1[4][4][BLK], double c2[4][4][BLK], int cnt,
-                            const rg2_grid_out *o, size_t at)
+/* Everything (second order) of one row segment in structure-of-arrays form. */
+typedef struct {
+    _Alignas(64) double p[3][BLK];
+    _Alignas(64) double su[3][BLK];
+    _Alignas(64) double sv[3][BLK];
+    _Alignas(64) double suu[3][BLK];
+    _Alignas(64) double suv[3][BLK];
+    _Alignas(64) double svv[3][BLK];
+    _Alignas(64) double nn[3][BLK];
+    _Alignas(64) double K[BLK];
+    _Alignas(64) double H[BLK];
+} soa_full;
+
+/* The formulas of rg2_patch_eval for points i0 <= i < cnt of a row segment. */
+RG2_HOT static void full_soa(const double *restrict U, const double *restrict DU, const double *restrict DDU,
+                             double c0[4][4][BLK], double c1[4][4][BLK], double c2[4][4][BLK], int i0, int cnt,
+                             soa_full *restrict S)
 {
-    double p[3][BLK], su[3][BLK], sv[3][BLK], suu[3][BLK], suv[3][BLK], svv[3][BLK], nn[3][BLK];
-    double KK[BLK], HH[BLK];
-    for (int i = 0; i < cnt; i++) {
+    double(*p)[BLK] = S->p, (*su)[BLK] = S->su, (*sv)[BLK] = S->sv, (*suu)[BLK] = S->suu;
+    double(*suv)[BLK] = S->suv, (*svv)[BLK] = S->svv, (*nn)[BLK] = S->nn, *KK = S->K, *HH = S->H;
+    for (int i = i0; i < cnt; i++) {
         double h[4], hu[4], hv[4], huu[4], huv[4], hvv[4];
 #pragma GCC unroll 4
         for (int k = 0; k < 4; k++) {
@@ -239,19 +254,25 @@ RG2_HOT static void seg_full(const double *restrict U, const double *restrict DU
         KK[i] = (L * N - M * M) * idet;
         HH[i] = (E * N - 2.0 * F * M + G * L) * (0.5 * idet);
     }
+}
+
+/* Copy a computed row segment to the requested outputs at point index `at`. */
+static void full_out(const soa_full *S, int cnt, const rg2_grid_out *o, size_t at)
+{
     size_t o3 = 3 * at;
-    put3(o->pos + o3, p[0], p[1], p[2], cnt);
+    put3(o->pos + o3, S->p[0], S->p[1], S->p[2], cnt);
     struct {
         double *dst;
-        double(*src)[BLK];
-    } vec[] = {{o->normal, nn}, {o->du, su}, {o->dv, sv}, {o->duu, suu}, {o->duv, suv}, {o->dvv, svv}};
+        const double(*src)[BLK];
+    } vec[] = {{o->normal, S->nn}, {o->du, S->su}, {o->dv, S->sv}, {o->duu, S->suu}, {o->duv, S->suv},
+               {o->dvv, S->svv}};
     for (int q = 0; q < 6; q++)
         if (vec[q].dst)
             put3(vec[q].dst + o3, vec[q].src[0], vec[q].src[1], vec[q].src[2], cnt);
     if (o->K)
-        memcpy(o->K + at, KK, sizeof(double) * (size_t)cnt);
+        memcpy(o->K + at, S->K, sizeof(double) * (size_t)cnt);
     if (o->H)
-        memcpy(o->H + at, HH, sizeof(double) * (size_t)cnt);
+        memcpy(o->H + at, S->H, sizeof(double) * (size_t)cnt);
 }
 #undef USUM
 
@@ -288,23 +309,49 @@ RG2_AVX512_FN static inline __m512d usum8(const __m512d U[4], double c[4][4][BLK
     return _mm512_fmadd_pd(U[3], _mm512_load_pd(&c[3][k][i]), acc);
 }
 
-/* Store 8 points (x, y, z) interleaved as 24 doubles at dst. */
-RG2_AVX512_FN static inline void store_xyz8(double *dst, __m512d x, __m512d y, __m512d z, int stream)
+/* a . b for 8 points */
+RG2_AVX512_FN static inline __m512d dot8(const __m512d a[3], const __m512d b[3])
+{
+    return _mm512_fmadd_pd(a[2], b[2], _mm512_fmadd_pd(a[1], b[1], _mm512_mul_pd(a[0], b[0])));
+}
+
+/* Unit normal n = Su x Sv / |Su x Sv|, 0 where |Su x Sv|^2 <= 1e-30 E G (E = Su.Su, G = Sv.Sv);
+ * returns the mask of points where it is defined. Shared by both kernels (same bits). */
+RG2_AVX512_FN static inline __mmask8 normal8(const __m512d su[3], const __m512d sv[3], __m512d n[3], __m512d *E,
+                                             __m512d *G)
+{
+    __m512d c[3] = {_mm512_fmsub_pd(su[1], sv[2], _mm512_mul_pd(su[2], sv[1])),
+                    _mm512_fmsub_pd(su[2], sv[0], _mm512_mul_pd(su[0], sv[2])),
+                    _mm512_fmsub_pd(su[0], sv[1], _mm512_mul_pd(su[1], sv[0]))};
+    __m512d l2 = dot8(c, c);
+    *E = dot8(su, su);
+    *G = dot8(sv, sv);
+    __mmask8 ok = _mm512_cmp_pd_mask(l2, _mm512_mul_pd(_mm512_set1_pd(1e-30), _mm512_mul_pd(*E, *G)), _CMP_GT_OQ);
+    __m512d il = _mm512_maskz_mov_pd(ok, rsqrt8(_mm512_mask_blend_pd(ok, _mm512_set1_pd(1.0), l2)));
+    for (int k = 0; k < 3; k++)
+        n[k] = _mm512_mul_pd(c[k], il);
+    return ok;
+}
+
+/* Store q <= 8 points (x, y, z) interleaved as 3 q doubles at dst (masked past q). */
+RG2_AVX512_FN static inline void store_xyz8(double *dst, __m512d x, __m512d y, __m512d z, int q, int stream)
 {
     const __m512i i0 = _mm512_set_epi64(10, 2, 0, 9, 1, 0, 8, 0), z0 = _mm512_set_epi64(0, 0, 1, 0, 0, 0, 0, 0);
     const __m512i i1 = _mm512_set_epi64(5, 0, 12, 4, 0, 11, 3, 0), z1 = _mm512_set_epi64(0, 4, 0, 0, 3, 0, 0, 2);
     const __m512i i2 = _mm512_set_epi64(0, 15, 7, 0, 14, 6, 0, 13), z2 = _mm512_set_epi64(7, 0, 0, 6, 0, 0, 5, 0);
-    __m512d o0 = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(x, i0, y), 0x24, z0, z);
-    __m512d o1 = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(x, i1, y), 0x49, z1, z);
-    __m512d o2 = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(x, i2, y), 0x92, z2, z);
-    if (stream && ((uintptr_t)dst & 63) == 0) {
-        _mm512_stream_pd(dst, o0);
-        _mm512_stream_pd(dst + 8, o1);
-        _mm512_stream_pd(dst + 16, o2);
+    __m512d o[3];
+    o[0] = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(x, i0, y), 0x24, z0, z);
+    o[1] = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(x, i1, y), 0x49, z1, z);
+    o[2] = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(x, i2, y), 0x92, z2, z);
+    if (q == 8 && stream && ((uintptr_t)dst & 63) == 0) {
+        for (int k = 0; k < 3; k++)
+            _mm512_stream_pd(dst + 8 * k, o[k]);
+    } else if (q == 8) {
+        for (int k = 0; k < 3; k++)
+            _mm512_storeu_pd(dst + 8 * k, o[k]);
     } else {
-        _mm512_storeu_pd(dst, o0);
-        _mm512_storeu_pd(dst + 8, o1);
-        _mm512_storeu_pd(dst + 16, o2);
+        for (int k = 0, left = 3 * q; k < 3 && left > 0; k++, left -= 8)
+            _mm512_mask_storeu_pd(dst + 8 * k, (__mmask8)(left >= 8 ? 0xff : (1u << left) - 1u), o[k]);
     }
 }
 
@@ -312,18 +359,10 @@ RG2_AVX512_FN static void seg_pos_avx512(const double *U, double c[4][4][BLK], i
                                          int stream)
 {
     __m512d u[4] = {_mm512_set1_pd(U[0]), _mm512_set1_pd(U[1]), _mm512_set1_pd(U[2]), _mm512_set1_pd(U[3])};
-    int i = 0;
-    for (; i + 8 <= cnt; i += 8) {
+    for (int i = 0; i < cnt; i += 8) { /* the last vector may be partial: padded, masked store */
         __m512d iw = recip8(usum8(u, c, 3, i));
         store_xyz8(pos + 3 * i, _mm512_mul_pd(usum8(u, c, 0, i), iw), _mm512_mul_pd(usum8(u, c, 1, i), iw),
-                   _mm512_mul_pd(usum8(u, c, 2, i), iw), stream);
-    }
-    if (i < cnt) { /* the remaining < 8 points: the portable kernel (c is indexed from i) */
-        double tail[4][4][BLK];
-        for (int r = 0; r < 4; r++)
-            for (int k = 0; k < 4; k++)
-                memcpy(tail[r][k], &c[r][k][i], sizeof(double) * (size_t)(cnt - i));
-        seg_pos(U, tail, cnt - i, pos + 3 * i);
+                   _mm512_mul_pd(usum8(u, c, 2, i), iw), cnt - i < 8 ? cnt - i : 8, stream);
     }
     if (stream)
         _mm_sfence();
@@ -335,39 +374,85 @@ RG2_AVX512_FN static void seg_pos_normal_avx512(const double *U, const double *D
 {
     __m512d u[4] = {_mm512_set1_pd(U[0]), _mm512_set1_pd(U[1]), _mm512_set1_pd(U[2]), _mm512_set1_pd(U[3])};
     __m512d du[4] = {_mm512_set1_pd(DU[0]), _mm512_set1_pd(DU[1]), _mm512_set1_pd(DU[2]), _mm512_set1_pd(DU[3])};
-    const __m512d thr = _mm512_set1_pd(1e-30);
-    int i = 0;
-    for (; i + 8 <= cnt; i += 8) {
+    for (int i = 0; i < cnt; i += 8) {
+        /* the expressions of full_soa_avx512 (bitwise the same positions and normals) */
         __m512d iw = recip8(usum8(u, c0, 3, i));
         __m512d hu3 = usum8(du, c0, 3, i), hv3 = usum8(u, c1, 3, i);
         __m512d p[3], su[3], sv[3];
         for (int k = 0; k < 3; k++) {
             p[k] = _mm512_mul_pd(usum8(u, c0, k, i), iw);
-            su[k] = _mm512_fnmadd_pd(hu3, p[k], usum8(du, c0, k, i));
-            sv[k] = _mm512_fnmadd_pd(hv3, p[k], usum8(u, c1, k, i));
+            su[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hu3, p[k], usum8(du, c0, k, i)), iw);
+            sv[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hv3, p[k], usum8(u, c1, k, i)), iw);
         }
-        __m512d cx = _mm512_fmsub_pd(su[1], sv[2], _mm512_mul_pd(su[2], sv[1]));
-        __m512d cy = _mm512_fmsub_pd(su[2], sv[0], _mm512_mul_pd(su[0], sv[2]));
-        __m512d cz = _mm512_fmsub_pd(su[0], sv[1], _mm512_mul_pd(su[1], sv[0]));
-        __m512d l2 = _mm512_fmadd_pd(cz, cz, _mm512_fmadd_pd(cy, cy, _mm512_mul_pd(cx, cx)));
-        __m512d e = _mm512_fmadd_pd(su[2], su[2], _mm512_fmadd_pd(su[1], su[1], _mm512_mul_pd(su[0], su[0])));
-        __m512d g = _mm512_fmadd_pd(sv[2], sv[2], _mm512_fmadd_pd(sv[1], sv[1], _mm512_mul_pd(sv[0], sv[0])));
-        __mmask8 ok = _mm512_cmp_pd_mask(l2, _mm512_mul_pd(thr, _mm512_mul_pd(e, g)), _CMP_GT_OQ);
-        __m512d il = _mm512_maskz_mov_pd(ok, rsqrt8(_mm512_mask_blend_pd(ok, _mm512_set1_pd(1.0), l2)));
-        store_xyz8(pos + 3 * i, p[0], p[1], p[2], stream);
-        store_xyz8(nrm + 3 * i, _mm512_mul_pd(cx, il), _mm512_mul_pd(cy, il), _mm512_mul_pd(cz, il), stream);
-    }
-    if (i < cnt) {
-        double t0[4][4][BLK], t1[4][4][BLK];
-        for (int r = 0; r < 4; r++)
-            for (int k = 0; k < 4; k++) {
-                memcpy(t0[r][k], &c0[r][k][i], sizeof(double) * (size_t)(cnt - i));
-                memcpy(t1[r][k], &c1[r][k][i], sizeof(double) * (size_t)(cnt - i));
-            }
-        seg_pos_normal(U, DU, t0, t1, cnt - i, pos + 3 * i, nrm + 3 * i);
+        __m512d n[3], e, g;
+        normal8(su, sv, n, &e, &g);
+        int q = cnt - i < 8 ? cnt - i : 8;
+        store_xyz8(pos + 3 * i, p[0], p[1], p[2], q, stream);
+        store_xyz8(nrm + 3 * i, n[0], n[1], n[2], q, stream);
     }
     if (stream)
         _mm_sfence();
+}
+
+/* The second-order formulas (as full_soa) for all 8-lane vectors covering 0..cnt-1 (vsum pads
+ * the column sums with zeros; lanes past cnt are computed but never copied out). */
+RG2_AVX512_FN static void full_soa_avx512(const double *U, const double *DU, const double *DDU,
+                                          double c0[4][4][BLK], double c1[4][4][BLK], double c2[4][4][BLK],
+                                          int cnt, soa_full *S)
+{
+    __m512d u[4], du[4], ddu[4];
+    for (int r = 0; r < 4; r++) {
+        u[r] = _mm512_set1_pd(U[r]);
+        du[r] = _mm512_set1_pd(DU[r]);
+        ddu[r] = _mm512_set1_pd(DDU[r]);
+    }
+    const __m512d one = _mm512_set1_pd(1.0), two = _mm512_set1_pd(2.0), half = _mm512_set1_pd(0.5);
+    for (int i = 0; i < cnt; i += 8) {
+        __m512d h[4], hu[4], hv[4], huu[4], huv[4], hvv[4];
+        for (int k = 0; k < 4; k++) {
+            h[k] = usum8(u, c0, k, i);
+            hu[k] = usum8(du, c0, k, i);
+            hv[k] = usum8(u, c1, k, i);
+            huu[k] = usum8(ddu, c0, k, i);
+            huv[k] = usum8(du, c1, k, i);
+            hvv[k] = usum8(u, c2, k, i);
+        }
+        __m512d iw = recip8(h[3]);
+        __m512d P[3], Su[3], Sv[3], Suu[3], Suv[3], Svv[3];
+        for (int k = 0; k < 3; k++) {
+            P[k] = _mm512_mul_pd(h[k], iw);
+            Su[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hu[3], P[k], hu[k]), iw);
+            Sv[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hv[3], P[k], hv[k]), iw);
+            __m512d t = _mm512_fnmadd_pd(_mm512_mul_pd(two, hu[3]), Su[k], huu[k]);
+            Suu[k] = _mm512_mul_pd(_mm512_fnmadd_pd(huu[3], P[k], t), iw);
+            t = _mm512_fnmadd_pd(hu[3], Sv[k], huv[k]);
+            t = _mm512_fnmadd_pd(hv[3], Su[k], t);
+            Suv[k] = _mm512_mul_pd(_mm512_fnmadd_pd(huv[3], P[k], t), iw);
+            t = _mm512_fnmadd_pd(_mm512_mul_pd(two, hv[3]), Sv[k], hvv[k]);
+            Svv[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hvv[3], P[k], t), iw);
+        }
+        __m512d nn[3], E, G;
+        __mmask8 ok = normal8(Su, Sv, nn, &E, &G);
+        __m512d F = dot8(Su, Sv);
+        __m512d L = dot8(Suu, nn), M = dot8(Suv, nn), N = dot8(Svv, nn);
+        __m512d det = _mm512_mask_blend_pd(ok, one, _mm512_fmsub_pd(E, G, _mm512_mul_pd(F, F)));
+        __m512d idet = recip8(det);
+        __m512d K = _mm512_mul_pd(_mm512_fmsub_pd(L, N, _mm512_mul_pd(M, M)), idet);
+        __m512d Hn = _mm512_fmadd_pd(G, L, _mm512_fnmadd_pd(_mm512_mul_pd(two, F), M, _mm512_mul_pd(E, N)));
+        __m512d H = _mm512_mul_pd(Hn, _mm512_mul_pd(half, idet));
+        for (int k = 0; k < 3; k++) {
+            _mm512_store_pd(&S->p[k][i], P[k]);
+            _mm512_store_pd(&S->su[k][i], Su[k]);
+            _mm512_store_pd(&S->sv[k][i], Sv[k]);
+            _mm512_store_pd(&S->suu[k][i], Suu[k]);
+            _mm512_store_pd(&S->suv[k][i], Suv[k]);
+            _mm512_store_pd(&S->svv[k][i], Svv[k]);
+        }
+        for (int k = 0; k < 3; k++)
+            _mm512_store_pd(&S->nn[k][i], nn[k]);
+        _mm512_store_pd(&S->K[i], K);
+        _mm512_store_pd(&S->H[i], H);
+    }
 }
 #endif
 
@@ -386,6 +471,7 @@ RG2_HOT static void grid_patch(const rg2_patch *P, const tables *t, const rg2_gr
     _Alignas(64) double c0[4][4][BLK];
     _Alignas(64) double c1[4][4][BLK];
     _Alignas(64) double c2[4][4][BLK];
+    soa_full S[1];
     for (int b0 = 0; b0 < t->m; b0 += BLK) {
         int cnt = t->m - b0 < BLK ? t->m - b0 : BLK;
         vsum(P, t->bv, b0, cnt, c0);
@@ -407,8 +493,17 @@ RG2_HOT static void grid_patch(const rg2_patch *P, const tables *t, const rg2_gr
                 seg_pos(U, c0, cnt, o->pos + 3 * at);
             else if (t->order == 1)
                 seg_pos_normal(U, DU, c0, c1, cnt, o->pos + 3 * at, o->normal + 3 * at);
-            else
-                seg_full(U, DU, DDU, c0, c1, c2, cnt, o, at);
+            else {
+                int i0 = 0;
+#if RG2_AVX512
+                if (t->avx512) {
+                    full_soa_avx512(U, DU, DDU, c0, c1, c2, cnt, S);
+                    i0 = cnt;
+                }
+#endif
+                full_soa(U, DU, DDU, c0, c1, c2, i0, cnt, S);
+                full_out(S, cnt, o, at);
+            }
         }
     }
 }

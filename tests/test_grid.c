@@ -238,6 +238,10 @@ static void torus(void)
         CHECK(memcmp(a.pos, b.pos, per * np * 3 * sizeof(double)) == 0 &&
                   (!level || memcmp(a.normal, b.normal, per * np * 3 * sizeof(double)) == 0),
               "level %d: 1 and 3 threads give identical bits", level);
+        /* requesting more outputs does not change positions and normals (bitwise) */
+        CHECK(memcmp(b.pos, g.o.pos, per * np * 3 * sizeof(double)) == 0 &&
+                  (!level || memcmp(b.normal, g.o.normal, per * np * 3 * sizeof(double)) == 0),
+              "level %d: the same bits as with every output requested", level);
         diffs dd = {0};
         for (size_t k = 0; k < np; k++)
             compare_patch(&s.patch[k], n, m, &b, k * per, R + r, &dd);
