@@ -334,7 +334,7 @@ RG2_AVX512_FN static inline __mmask8 normal8(const __m512d su[3], const __m512d 
 }
 
 /* Store q <= 8 points (x, y, z) interleaved as 3 q doubles at dst (masked past q). */
-RG2_AVX512_FN static inline void store_xyz8(double *dst, __m512d x, __m512d y, __m512d z, int q, int stream)
+RG2_AVX512_FN static inline void store_xyz8(double *dst, __m512d x, __m512d y, __m512d z, int q)
 {
     const __m512i i0 = _mm512_set_epi64(10, 2, 0, 9, 1, 0, 8, 0), z0 = _mm512_set_epi64(0, 0, 1, 0, 0, 0, 0, 0);
     const __m512i i1 = _mm512_set_epi64(5, 0, 12, 4, 0, 11, 3, 0), z1 = _mm512_set_epi64(0, 4, 0, 0, 3, 0, 0, 2);
@@ -343,35 +343,49 @@ RG2_AVX512_FN static inline void store_xyz8(double *dst, __m512d x, __m512d y, _
     o[0] = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(x, i0, y), 0x24, z0, z);
     o[1] = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(x, i1, y), 0x49, z1, z);
     o[2] = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(x, i2, y), 0x92, z2, z);
-    if (q == 8 && stream && ((uintptr_t)dst & 63) == 0) {
-        for (int k = 0; k < 3; k++)
-            _mm512_stream_pd(dst + 8 * k, o[k]);
-    } else if (q == 8) {
-        for (int k = 0; k < 3; k++)
+    for (int k = 0, left = 3 * q; k < 3 && left > 0; k++, left -= 8) {
+        if (left >= 8)
             _mm512_storeu_pd(dst + 8 * k, o[k]);
-    } else {
-        for (int k = 0, left = 3 * q; k < 3 && left > 0; k++, left -= 8)
-            _mm512_mask_storeu_pd(dst + 8 * k, (__mmask8)(left >= 8 ? 0xff : (1u << left) - 1u), o[k]);
+        else
+            _mm512_mask_storeu_pd(dst + 8 * k, (__mmask8)((1u << left) - 1u), o[k]);
     }
+}
+
+/* Copy n doubles with streaming stores on the 64-byte aligned part of dst (whole cache lines
+ * bypass the caches; the partial lines at both ends are stored normally). */
+RG2_AVX512_FN static void stream_copy(double *dst, const double *src, int n)
+{
+    int h = 0;
+    for (; h < n && ((uintptr_t)(dst + h) & 63); h++)
+        dst[h] = src[h];
+    for (; h + 8 <= n; h += 8)
+        _mm512_stream_pd(dst + h, _mm512_loadu_pd(src + h));
+    for (; h < n; h++)
+        dst[h] = src[h];
 }
 
 RG2_AVX512_FN static void seg_pos_avx512(const double *U, double c[4][4][BLK], int cnt, double *pos,
                                          int stream)
 {
     __m512d u[4] = {_mm512_set1_pd(U[0]), _mm512_set1_pd(U[1]), _mm512_set1_pd(U[2]), _mm512_set1_pd(U[3])};
+    _Alignas(64) double buf[3 * BLK];
+    double *dst = stream ? buf : pos;
     for (int i = 0; i < cnt; i += 8) { /* the last vector may be partial: padded, masked store */
         __m512d iw = recip8(usum8(u, c, 3, i));
-        store_xyz8(pos + 3 * i, _mm512_mul_pd(usum8(u, c, 0, i), iw), _mm512_mul_pd(usum8(u, c, 1, i), iw),
-                   _mm512_mul_pd(usum8(u, c, 2, i), iw), cnt - i < 8 ? cnt - i : 8, stream);
+        store_xyz8(dst + 3 * i, _mm512_mul_pd(usum8(u, c, 0, i), iw), _mm512_mul_pd(usum8(u, c, 1, i), iw),
+                   _mm512_mul_pd(usum8(u, c, 2, i), iw), cnt - i < 8 ? cnt - i : 8);
     }
     if (stream)
-        _mm_sfence();
+        stream_copy(pos, buf, 3 * cnt);
 }
 
 RG2_AVX512_FN static void seg_pos_normal_avx512(const double *U, const double *DU, double c0[4][4][BLK],
                                                 double c1[4][4][BLK], int cnt, double *pos, double *nrm,
                                                 int stream)
 {
+    _Alignas(64) double pbuf[3 * BLK];
+    _Alignas(64) double nbuf[3 * BLK];
+    double *pd = stream ? pbuf : pos, *nd = stream ? nbuf : nrm;
     __m512d u[4] = {_mm512_set1_pd(U[0]), _mm512_set1_pd(U[1]), _mm512_set1_pd(U[2]), _mm512_set1_pd(U[3])};
     __m512d du[4] = {_mm512_set1_pd(DU[0]), _mm512_set1_pd(DU[1]), _mm512_set1_pd(DU[2]), _mm512_set1_pd(DU[3])};
     for (int i = 0; i < cnt; i += 8) {
@@ -387,11 +401,13 @@ RG2_AVX512_FN static void seg_pos_normal_avx512(const double *U, const double *D
         __m512d n[3], e, g;
         normal8(su, sv, n, &e, &g);
         int q = cnt - i < 8 ? cnt - i : 8;
-        store_xyz8(pos + 3 * i, p[0], p[1], p[2], q, stream);
-        store_xyz8(nrm + 3 * i, n[0], n[1], n[2], q, stream);
+        store_xyz8(pd + 3 * i, p[0], p[1], p[2], q);
+        store_xyz8(nd + 3 * i, n[0], n[1], n[2], q);
     }
-    if (stream)
-        _mm_sfence();
+    if (stream) {
+        stream_copy(pos, pbuf, 3 * cnt);
+        stream_copy(nrm, nbuf, 3 * cnt);
+    }
 }
 
 /* The second-order formulas (as full_soa) for all 8-lane vectors covering 0..cnt-1 (vsum pads
@@ -506,6 +522,10 @@ RG2_HOT static void grid_patch(const rg2_patch *P, const tables *t, const rg2_gr
             }
         }
     }
+#if RG2_AVX512
+    if (t->stream) /* streaming stores are weakly ordered: publish them before returning */
+        _mm_sfence();
+#endif
 }
 
 static rg2_status check_args(int n, int m, const rg2_grid_out *out, rg2_error *err)
@@ -558,14 +578,25 @@ rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads, con
         return st;
     t.stream = np * per * (t.order ? 48 : 24) > RG2_STREAM_BYTES;
     long long cnt = (long long)np;
+    int nt = 1;
 #ifdef RG2_HAVE_OPENMP
-    int nt = threads > 0 ? threads : omp_get_max_threads();
+    nt = threads > 0 ? threads : omp_get_max_threads();
     if (nt > cnt)
         nt = (int)cnt;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(nt) if (nt > 1)
+    if (nt > 1) {
+        /* chunks of patches: about 8 per thread, so that many small patches cost no more
+         * scheduling than a few large ones */
+        int chunk = (int)(cnt / (8LL * nt));
+        if (chunk < 1)
+            chunk = 1;
+#pragma omp parallel for schedule(dynamic, chunk) num_threads(nt)
+        for (long long k = 0; k < cnt; k++)
+            grid_patch(&s->patch[k], &t, out, (size_t)k * per);
+    }
 #endif
-    for (long long k = 0; k < cnt; k++)
-        grid_patch(&s->patch[k], &t, out, (size_t)k * per);
+    if (nt <= 1)
+        for (long long k = 0; k < cnt; k++)
+            grid_patch(&s->patch[k], &t, out, (size_t)k * per);
     tables_free(&t);
     rg2__ok(err);
     return RG2_OK;

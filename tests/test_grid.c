@@ -254,6 +254,37 @@ static void torus(void)
     rg2_surface_free(&s);
 }
 
+/* Outputs past 32 MB take the streaming-store path: still equal to rg2_patch_eval. */
+static void large_output(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 11);
+    rg2_patch P;
+    random_patch(&r, &P);
+    const int sizes[2] = {1201, 851}; /* 34.6 MB of positions; 34.8 MB of positions + normals */
+    for (int level = 0; level < 2; level++) {
+        int n = sizes[level];
+        size_t pts = (size_t)n * n;
+        double *pos = malloc(pts * 3 * sizeof(double)), *nrm = level ? malloc(pts * 3 * sizeof(double)) : NULL;
+        rg2_grid_out o = {.pos = pos, .normal = nrm};
+        rg2_error err;
+        CHECK_OK(rg2_patch_grid(&P, n, n, &o, &err), &err);
+        double dp = 0, dn = 0;
+        for (size_t i = 0; i < pts; i += 97) {
+            int a = (int)(i / (size_t)n), b = (int)(i % (size_t)n);
+            rg2_eval e;
+            rg2_patch_eval(&P, a == n - 1 ? 1.0 : (double)a / (n - 1), b == n - 1 ? 1.0 : (double)b / (n - 1), 1, &e);
+            worse(&dp, dist3(pos + 3 * i, e.p) / 3.0);
+            if (nrm)
+                worse(&dn, dist3(nrm + 3 * i, e.n));
+        }
+        CHECK(dp <= 1e-14 && dn <= 1e-14, "large output (%d x %d, level %d): position %.3g normal %.3g", n, n, level,
+              dp, dn);
+        free(pos);
+        free(nrm);
+    }
+}
+
 static void errors(void)
 {
     rg2_patch P;
@@ -292,6 +323,7 @@ int main(void)
     random_patches();
     collapsed_edge();
     torus();
+    large_output();
     errors();
     return rg2t_done("test_grid");
 }
