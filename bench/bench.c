@@ -186,6 +186,7 @@ static void freeform_mesh(int nu, int nv, uint64_t seed, rg2_mesh *m)
  * (8 arcs); v open: 6 rows of the outer half of a torus (R = 3, r = 1) followed by 6 rows of a
  * cylinder of radius 3 rising from the torus top, the torus scalars continued by the uniform
  * B-spline scalars (w = 1, b = 1, g = 0) of the cylinder rows. */
+#ifndef RG2_BENCH_DESIGN
 static void merged_surface(rg2_surface *out)
 {
     const double R = 3.0, r = 1.0;
@@ -225,6 +226,7 @@ static void merged_surface(rg2_surface *out)
     rg2_scalars_free(&st);
     rg2_mesh_free(&m);
 }
+#endif
 
 /* ---- one benchmark case -------------------------------------------------------------- */
 
@@ -816,9 +818,19 @@ int main(int argc, char **argv)
     case_setup(&torus, 64, 9);
     cJSON_AddItemToArray(jcases, run_case(&torus));
 
-    bcase merged = {.name = "merged", .what = "merged mesh built in code: outer half torus rows + cylinder rows "
-                                              "(8 x 12 control points)"};
+#ifdef RG2_BENCH_DESIGN
+    bcase merged = {.name = "merged", .what = "merged design " RG2_BENCH_DESIGN " (surface 0)"};
+    {
+        rg2_design *d = NULL;
+        if (rg2_design_load(RG2_BENCH_DESIGN, &d, &err) || rg2_surface_copy(rg2_design_surface(d, 0), &merged.s, &err))
+            die_rg2(RG2_BENCH_DESIGN, &err);
+        rg2_design_free(d);
+    }
+#else
+    bcase merged = {.name = "merged", .what = "merged mesh built in code (no design module in this tree): outer "
+                                              "half torus rows + cylinder rows (8 x 12 control points)"};
     merged_surface(&merged.s);
+#endif
     case_setup(&merged, 64, 9);
     cJSON_AddItemToArray(jcases, run_case(&merged));
     case_free(&merged);
