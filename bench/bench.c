@@ -729,6 +729,7 @@ static cJSON *construction(void)
     omp_set_num_threads(2);
 #endif
     cJSON *arr = cJSON_CreateArray();
+    double per_cp[5];
     for (int s = 0; s < ns; s++) {
         double cp = (double)sizes[s] * sizes[s];
         double m1 = median(t + (s * 2) * reps, reps), m2 = median(t + (s * 2 + 1) * reps, reps);
@@ -741,11 +742,21 @@ static cJSON *construction(void)
         cJSON_AddNumberToObject(o, "median_s_1_thread", m1);
         cJSON_AddNumberToObject(o, "median_s_2_threads", m2);
         cJSON_AddNumberToObject(o, "ns_per_control_point_1_thread", m1 / cp * 1e9);
+        per_cp[s] = m1 / cp;
         cJSON_AddItemToArray(arr, o);
         rg2_mesh_free(&meshes[s]);
     }
+    /* linear in the number of control points: the time per control point stays flat */
+    double lo = per_cp[2], hi = per_cp[2];
+    for (int s = 2; s < ns; s++)
+        lo = fmin(lo, per_cp[s]), hi = fmax(hi, per_cp[s]);
+    printf("   linearity: from 100^2 to 1000^2 control points (100x more) the time per control point stays within "
+           "a factor %.2f (1 thread)\n", hi / lo);
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddItemToObject(root, "sizes", arr);
+    cJSON_AddNumberToObject(root, "per_control_point_spread_100_to_1000", hi / lo);
     free(t);
-    return arr;
+    return root;
 }
 
 /* ---- main ------------------------------------------------------------------------------- */
