@@ -25,7 +25,10 @@
 #include <emmintrin.h>
 #endif
 
-static int quick = 0; /* --quick: fewer repetitions (smoke test) */
+static int quick = 0;            /* --quick: fewer repetitions (smoke test) */
+static const char *only = NULL;  /* --only PART: one of torus, merged, freeform, scaling, construction */
+
+static int want(const char *part) { return !only || !strcmp(only, part); }
 
 static double now(void)
 {
@@ -825,8 +828,10 @@ int main(int argc, char **argv)
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--quick"))
             quick = 1;
+        else if (!strcmp(argv[i], "--only") && i + 1 < argc)
+            only = argv[++i];
         else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            printf("usage: rg2_bench [out.json] [--quick]\n");
+            printf("usage: rg2_bench [out.json] [--quick] [--only torus|merged|freeform|scaling|construction]\n");
             return 0;
         } else
             out = argv[i];
@@ -847,11 +852,15 @@ int main(int argc, char **argv)
 
     bcase torus = {.name = "torus", .what = "torus R = 3, r = 1, 8 x 6 arcs, 48 rational bi-cubic patches",
                    .torus = 1, .R = 3.0, .r = 1.0, .scale = 4.0};
-    if (rg2t_torus(3.0, 1.0, 8, 6, NULL, &torus.s, &err))
-        die_rg2("torus", &err);
-    case_setup(&torus, 64, 9);
-    cJSON_AddItemToArray(jcases, run_case(&torus));
+    if (want("torus")) {
+        if (rg2t_torus(3.0, 1.0, 8, 6, NULL, &torus.s, &err))
+            die_rg2("torus", &err);
+        case_setup(&torus, 64, 9);
+        cJSON_AddItemToArray(jcases, run_case(&torus));
+        case_free(&torus);
+    }
 
+    if (want("merged")) {
 #ifdef RG2_BENCH_DESIGN
     bcase merged = {.name = "merged", .what = "merged design " RG2_BENCH_DESIGN " (surface 0)"};
     {
@@ -868,7 +877,9 @@ int main(int argc, char **argv)
     case_setup(&merged, 64, 9);
     cJSON_AddItemToArray(jcases, run_case(&merged));
     case_free(&merged);
+    }
 
+    if (want("freeform")) {
     bcase ff = {.name = "freeform", .what = "free-form open mesh 200 x 200 control points, random weights and "
                                             "G2 scalars"};
     {
@@ -881,12 +892,19 @@ int main(int argc, char **argv)
     case_setup(&ff, 8, 5);
     cJSON_AddItemToArray(jcases, run_case(&ff));
     case_free(&ff);
+    }
     cJSON_AddNumberToObject(root, "peak_rss_kb_after_cases", (double)peak_rss_kb());
 
-    cJSON_AddItemToObject(root, "grid_scaling", threads_and_sizes(&torus.s));
-    case_free(&torus);
-    cJSON_AddNumberToObject(root, "peak_rss_kb_after_scaling", (double)peak_rss_kb());
-    cJSON_AddItemToObject(root, "construction", construction());
+    if (want("scaling")) {
+        rg2_surface ts;
+        if (rg2t_torus(3.0, 1.0, 8, 6, NULL, &ts, &err))
+            die_rg2("torus", &err);
+        cJSON_AddItemToObject(root, "grid_scaling", threads_and_sizes(&ts));
+        rg2_surface_free(&ts);
+        cJSON_AddNumberToObject(root, "peak_rss_kb_after_scaling", (double)peak_rss_kb());
+    }
+    if (want("construction"))
+        cJSON_AddItemToObject(root, "construction", construction());
     long rss = peak_rss_kb();
     cJSON_AddNumberToObject(root, "peak_rss_kb", (double)rss);
     printf("\npeak memory (getrusage ru_maxrss): %.1f MB\n", rss / 1024.0);
