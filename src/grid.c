@@ -495,14 +495,19 @@ RG2_HOT static void grid_patch(const rg2_patch *P, const tables *t, const rg2_gr
             vsum(P, t->dv, b0, cnt, c1);
         if (t->order >= 2)
             vsum(P, t->ddv, b0, cnt, c2);
+        /* streaming stores only for rows of whole cache lines' worth (short rows would leave
+         * mostly partial lines, which streaming makes slower) */
+#if RG2_AVX512
+        int stream = t->stream && cnt >= 32;
+#endif
         for (int a = 0; a < t->n; a++) {
             size_t at = first + (size_t)a * (size_t)t->m + (size_t)b0;
             const double *U = t->bu + 4 * a, *DU = t->du + 4 * a, *DDU = t->ddu + 4 * a;
 #if RG2_AVX512
             if (t->avx512 && t->order == 0)
-                seg_pos_avx512(U, c0, cnt, o->pos + 3 * at, t->stream);
+                seg_pos_avx512(U, c0, cnt, o->pos + 3 * at, stream);
             else if (t->avx512 && t->order == 1)
-                seg_pos_normal_avx512(U, DU, c0, c1, cnt, o->pos + 3 * at, o->normal + 3 * at, t->stream);
+                seg_pos_normal_avx512(U, DU, c0, c1, cnt, o->pos + 3 * at, o->normal + 3 * at, stream);
             else
 #endif
             if (t->order == 0)
