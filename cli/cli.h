@@ -19,6 +19,17 @@ enum { RG2_EXIT_OK = 0, RG2_EXIT_FAIL = 1, RG2_EXIT_USAGE = 2, RG2_EXIT_CHECK = 
 
 int rg2_cmd_curve(int argc, char **argv);
 int rg2_cmd_demo(int argc, char **argv);
+int rg2_cmd_build(int argc, char **argv);
+int rg2_cmd_info(int argc, char **argv);
+int rg2_cmd_mesh(int argc, char **argv);
+int rg2_cmd_shapes(int argc, char **argv);
+int rg2_cmd_shape(int argc, char **argv);
+int rg2_cmd_render(int argc, char **argv);
+int rg2_cmd_check(int argc, char **argv);
+/* Load a design and shallow-copy its surfaces and meshes into arrays (free them, then the
+ * design); returns an exit code, message printed. */
+int rg2_cli_load_surfaces(const char *cmd, const char *path, rg2_design **d, rg2_surface **surfs,
+                          rg2_mesh **meshes, int *n);
 
 /* Parse "a,b,c" into at most max doubles; returns the count or -1 (message printed). */
 int rg2_cli_parse_list(const char *opt, const char *s, double *out, int max);

@@ -43,6 +43,7 @@ extern "C" {
 #endif
 
 #define RG2_VERSION_STRING "0.1.0"
+#define RG2_PI 3.14159265358979323846
 
 /* ===================================================================================== */
 /** @name Status and errors */
@@ -289,20 +290,20 @@ typedef enum {
 typedef struct {
     rg2_partition_kind kind;
     int closed;           /**< angles only */
-    int n;                /**< number of arcs (angles) or of knots (knots, n >= 2) */
-    const double *values; /**< n angles (radians) or n increasing knots */
+    int n;                /**< number of values: arcs (angles) or knots (knots, n >= 2) */
+    const double *values; /**< n angles (radians, each in (0, pi)) or n increasing knots */
     double start;         /**< angle of the start of the first arc (angles only) */
 } rg2_partition;
 
 typedef enum {
     RG2_SHAPE_TORUS,          /**< R, r: ((R + r cv) cu, (R + r cv) su, r sv); u, v circles */
     RG2_SHAPE_CYCLIDE,        /**< a, c, mu (Dupin cyclide, b^2 = a^2 - c^2 > 0); u, v circles */
-    RG2_SHAPE_SPHERE,         /**< radius: family-2 band, v knots in (0, 1): 0 south, 1 north */
+    RG2_SHAPE_SPHERE,         /**< radius: family-2 band, v in (0, 1): 0 south, 1 north pole */
     RG2_SHAPE_CYLINDER,       /**< radius: (R cu, R su, v); v knots = heights */
     RG2_SHAPE_CONE,           /**< slope k: (v cu, v su, k v); v knots = radii */
-    RG2_SHAPE_HYPERBOLOID1_RULED, /**< (cu - v su, su + v cu, v); x^2 + y^2 - z^2 = 1 */
-    RG2_SHAPE_HYPERBOLOID1,   /**< ((1+v^2) cu, (1+v^2) su, 1 - v^2, 2v), v > 0 */
-    RG2_SHAPE_HYPERBOLOID2,   /**< (2v cu, 2v su, 1 + v^2, 1 - v^2), |v| < 1 */
+    RG2_SHAPE_HYPERBOLOID1_RULED, /**< a, c: (cu - v su, su + v cu, v); x^2 + y^2 - z^2 = 1 */
+    RG2_SHAPE_HYPERBOLOID1,   /**< a, c: ((1+v^2) cu, (1+v^2) su, 1 - v^2, 2v), v > 0 */
+    RG2_SHAPE_HYPERBOLOID2,   /**< a, c: (2v cu, 2v su, 1 + v^2, 1 - v^2), |v| < 1 */
     RG2_SHAPE_PARABOLOID,     /**< A, B: elliptic paraboloid (A v cu, B v su, v^2) */
     RG2_SHAPE_HYPAR,          /**< A, B: hyperbolic paraboloid (A u, B v, u^2 - v^2); u, v knots */
     RG2_SHAPE_ELLIPSOID,      /**< a, b, c: the sphere band scaled by (a, b, c); v as sphere */
@@ -316,12 +317,16 @@ typedef struct {
     double xform[16];  /**< row-major 4x4 matrix applied to every homogeneous 4-tuple */
 } rg2_shape;
 
-/** Name ("torus", ...), parameter names and count of a shape kind; NULL for an unknown kind. */
+/** Name ("torus", ...) of a shape kind; NULL for an unknown kind. Parameter names, count and
+ *  defaults: rg2_shape_describe. */
 RG2_API const char *rg2_shape_name(rg2_shape_kind kind);
 RG2_API rg2_status rg2_shape_from_name(const char *name, rg2_shape_kind *kind, rg2_error *err);
 /** Initialise a shape with default parameters and the identity placement. */
 RG2_API void rg2_shape_init(rg2_shape *s, rg2_shape_kind kind);
-/** Build the control mesh of the shape over the partitions (u, v). */
+/** Build the placed control mesh of the shape over the partitions (u, v) (docs/shapes.md).
+ *  @return RG2_EDOMAIN / RG2_ENONFINITE for a bad parameter (naming it), RG2_EINVAL for a
+ *  partition of the wrong kind or an empty one, the rg2_partition_check codes, RG2_EDOMAIN for
+ *  a singular placement or a knot outside the shape's range (hyperboloids). */
 RG2_API rg2_status rg2_shape_mesh(const rg2_shape *s, const rg2_partition *pu,
                                   const rg2_partition *pv, rg2_mesh *out, rg2_error *err);
 /** Implicit function of the placed shape at x (0 on the surface); gradient into grad (nullable). */
@@ -348,7 +353,7 @@ typedef struct {
     int n_params;                  /**< used entries of rg2_shape.param */
     const char *param_names[4];
     double param_defaults[4];
-    rg2_partition_kind dir_kind[2];/**< u, v: RG2_PART_ANGLES (circle) or RG2_PART_KNOTS */
+    rg2_partition_kind dir_kind[2]; /**< u, v: RG2_PART_ANGLES (circle) or RG2_PART_KNOTS */
     double default_range[2][2];    /**< u, v: default angle range (radians) or knot range */
     int default_closed[2];         /**< u, v: closed by default (full circles) */
     int default_segments[2];       /**< u, v: default number of arcs / knot intervals */
@@ -450,10 +455,15 @@ RG2_API rg2_status rg2_nurbs_mesh(const rg2_nurbs *nb, rg2_mesh *out, rg2_error 
 /** @name Design (JSON design files and operations, paper section 4) */
 /* ===================================================================================== */
 
-/* A design: shape meshes and operations (cut, merge, edit, transform, morph) read from a
- * JSON design file (docs/design-format.md), built into one or more patch surfaces. Every patch
- * carries a provenance tag: the index of the shape it reproduces exactly, or -1 for a
- * transition patch. */
+/* A design: shape meshes and operations on them (shape, cut, transpose, reverse, merge, edit,
+ * transform, morph) read from a JSON design file (docs/design-format.md), built into one or
+ * more patch surfaces. Every patch carries a provenance tag (rg2_surface.tag): the index of the
+ * shape it reproduces exactly, or -1 for a transition patch. A patch is tagged when its 4 x 4
+ * control block is a consecutive block of a shape's own mesh (in any orientation: transposed,
+ * reversed) and its construction stencils equal that mesh's (to 1e-14), i.e. it is the shape's
+ * own patch. The shape list holds the shapes of the file followed by the transformed copies
+ * that `transform` operations create ("label@meshes.name"). The design owns everything the
+ * accessors return. */
 typedef struct rg2_design rg2_design;
 
 /** Read and build a design file. On failure *out is NULL and err names the offending item
@@ -472,6 +482,15 @@ RG2_API const rg2_mesh *rg2_design_mesh(const rg2_design *d, int k);
 RG2_API int rg2_design_num_shapes(const rg2_design *d);
 RG2_API const rg2_shape *rg2_design_shape(const rg2_design *d, int k);
 RG2_API const char *rg2_design_shape_label(const rg2_design *d, int k);
+/** Name (in the design file) of the mesh surface k was built from. */
+RG2_API const char *rg2_design_mesh_name(const rg2_design *d, int k);
+/** Shape control point (i, j) of output mesh k came from (unchanged), or -1 if it was edited,
+ *  blended or is out of range. */
+RG2_API int rg2_design_point_shape(const rg2_design *d, int k, int i, int j);
+/** Write the output control meshes as JSON (design coordinates d = p_{1..3} / p_4, weights
+ *  W = p_4, scalars w, b, g, provenance and patch tags; docs/design-format.md). Writes
+ *  path.tmp, then renames. @return RG2_EIO if the file cannot be written. */
+RG2_API rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, rg2_error *err);
 
 
 /* ===================================================================================== */
@@ -579,7 +598,136 @@ RG2_API rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const 
 /** @name Pictures and checks */
 /* ===================================================================================== */
 
-/* (render and check API) */
+/* Pictures: per-pixel exact rendering. Every foreground pixel is resolved to the (surface,
+ * patch, u, v) whose exact point lies on the pixel's centre ray (a tessellation z-buffer gives
+ * the start, Newton on the exact patch refines it); shading, curvature and stripe phase come
+ * from rg2_patch_eval there, never from interpolation. Output is deterministic: the same input
+ * gives the same bytes for any number of threads. */
+typedef enum {
+    RG2_RENDER_SHADED = 0, /**< lit surface; exact pieces tinted by their shape tag */
+    RG2_RENDER_MEAN,       /**< mean curvature H colour map (sign as rg2_eval) + colour bar */
+    RG2_RENDER_GAUSS,      /**< Gaussian curvature K colour map (diverging, symmetric) + bar */
+    RG2_RENDER_ZEBRA       /**< reflection of parallel light lines (stripes from the normal) */
+} rg2_render_mode;
+
+typedef struct {
+    int width, height;     /**< image size in pixels (default 800 x 600), each 16..8192 */
+    rg2_render_mode mode;
+    double azimuth;        /**< degrees about +z, 0 looks from +x towards the centre (default 35) */
+    double elevation;      /**< degrees above the xy plane (default 25) */
+    double distance;       /**< eye distance from the view centre (middle of the scene's extent
+                                across the view); <= 0 fits the view to the scene */
+    double fov;            /**< vertical field of view in degrees (default 30) */
+    int boundaries;        /**< draw patch boundaries (seams) as thin dark lines */
+    int mesh;              /**< overlay the control meshes (needs meshes != NULL) */
+    int tint;              /**< shaded: tint patches by shape tag (default 1) */
+    int colorbar;          /**< curvature modes: draw the colour bar and its range (default 1) */
+    int range_set;         /**< 1: use range[] as the colour range; 0: robust range */
+    double range[2];       /**< user colour range lo < hi (curvature modes) */
+    double percentile;     /**< robust range: clip this fraction at each end (default 0.02) */
+    double stripes;        /**< zebra: stripe pairs per half turn (default 12) */
+    int keep_pixels;       /**< fill rg2_image.pixels with the per-pixel exact data */
+    int threads;           /**< OpenMP threads; 0 = the OpenMP default */
+} rg2_render_opts;
+
+/** Exact data of one pixel (rg2_render_opts.keep_pixels). surf < 0 marks background. */
+typedef struct {
+    int surf, patch;       /**< surface index and patch index (i * nv + j) in it */
+    double u, v;           /**< patch parameters where the exact point projects to the centre */
+    double p[3], n[3];     /**< exact point and unit normal (oriented as rg2_eval) */
+    double H, K;           /**< exact mean and Gaussian curvature there */
+    double phase;          /**< zebra stripe phase (radians about the light-line axis) */
+    double resid;          /**< distance of the exact point from the pixel's ray */
+} rg2_pixel;
+
+typedef struct {
+    int width, height;
+    unsigned char *rgb;    /**< width * height * 3 bytes, row-major, top row first */
+    rg2_pixel *pixels;     /**< width * height, or NULL unless keep_pixels */
+    double range[2];       /**< colour range used (curvature modes), else 0 */
+    int foreground;        /**< number of surface pixels */
+    int refined;           /**< pixels whose Newton refinement converged */
+} rg2_image;
+
+RG2_API void rg2_render_opts_default(rg2_render_opts *o);
+/** Render n surfaces (meshes: nullable, n control meshes for the overlay) into out.
+ *  Release with rg2_image_free.
+ *  @return RG2_EINVAL (no surfaces, bad size/range/mode, mesh overlay without meshes),
+ *  RG2_ENONFINITE (non-finite control point, naming it), RG2_ENOMEM. */
+RG2_API rg2_status rg2_render(const rg2_surface *surfs, int n, const rg2_mesh *meshes,
+                              const rg2_render_opts *o, rg2_image *out, rg2_error *err);
+RG2_API void rg2_image_free(rg2_image *img);
+/** Write an RGB image as 8-bit PNG (libpng): path.tmp, then rename. @return RG2_EIO. */
+RG2_API rg2_status rg2_image_write_png(const rg2_image *img, const char *path, rg2_error *err);
+/** rg2_render followed by rg2_image_write_png. */
+RG2_API rg2_status rg2_render_png(const rg2_surface *surfs, int n, const rg2_mesh *meshes,
+                                  const rg2_render_opts *o, const char *path, rg2_error *err);
+
+/* Checks: a continuity and exactness report. Seams are the interior (and closing) patch
+ * seams of each surface; seams between different surfaces are not measured. Gaps are taken at
+ * samples along each seam: position gap relative to the surface size, angle between the unit
+ * normals, and the jump of normal curvature in six tangent directions relative to
+ * max(|k1|, |k2|, 1 / size). Exact pieces (tag >= 0) are sampled against their shape's
+ * implicit equation: |f| / |grad f| relative to the size of that shape's patches. */
+enum {
+    RG2_REQUIRE_G0 = 1u << 0,
+    RG2_REQUIRE_G1 = 1u << 1,
+    RG2_REQUIRE_G2 = 1u << 2,    /**< implies G0 and G1 */
+    RG2_REQUIRE_EXACT = 1u << 3, /**< every tagged patch on its shape */
+    RG2_REQUIRE_WEIGHTS = 1u << 4 /**< every homogeneous weight > 0 */
+};
+
+typedef struct {
+    int seam_samples;      /**< samples per seam (default 16) */
+    int patch_samples;     /**< samples per patch direction for residuals/curvature (default 12) */
+    double tol_g0, tol_g1, tol_g2, tol_exact; /**< pass limits (defaults 1e-12, 1e-10, 1e-8, 1e-11) */
+} rg2_check_opts;
+
+typedef struct {
+    int shape;             /**< index in the shape list */
+    char label[64];        /**< label or shape kind name */
+    int patches;           /**< patches tagged with it */
+    double residual;       /**< worst relative implicit residual */
+    char where[96];        /**< patch and (u, v) of the worst residual */
+} rg2_check_shape;
+
+typedef struct {
+    double value;          /**< the worst gap */
+    int surf, seam_dir;    /**< surface, 0 = u seam, 1 = v seam */
+    int pi, pj, qi, qj;    /**< the two patches (i, j) */
+    double t;              /**< parameter along the seam */
+    double p[3];           /**< the point */
+} rg2_check_gap;
+
+typedef struct {
+    int surfaces, patches, transitions, exact_patches, untagged_bad; /**< untagged_bad: tags
+                              outside the shape list */
+    int n_shapes;
+    rg2_check_shape *shapes; /**< n_shapes entries (allocated) */
+    double worst_residual;
+    int seams, seam_samples, skipped; /**< skipped: samples with an undefined normal */
+    rg2_check_gap g0, g1, g2; /**< position (relative), normal angle (rad), curvature (relative) */
+    double wmin, wmax;     /**< homogeneous weights of all control points */
+    double eval_wmin;      /**< smallest weight met at the samples */
+    double kmin, kmax;     /**< principal curvatures (k2 min, k1 max) over the samples */
+    double Hmin, Hmax, Kmin, Kmax;
+    double size;           /**< bounding-box diagonal used to scale gaps */
+    rg2_check_opts opts;   /**< the options (tolerances) the report was made with */
+} rg2_check_report;
+
+RG2_API void rg2_check_opts_default(rg2_check_opts *o);
+/** Measure surfaces against shapes (nullable if n_shapes == 0; labels nullable). Release the
+ *  report with rg2_check_report_free. @return RG2_EINVAL (no surfaces), RG2_ENOMEM. */
+RG2_API rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes,
+                             const char *const *labels, int n_shapes, const rg2_check_opts *o,
+                             rg2_check_report *out, rg2_error *err);
+RG2_API void rg2_check_report_free(rg2_check_report *r);
+/** The RG2_REQUIRE_* bits of `require` that the report fails (0: every promise holds). */
+RG2_API unsigned rg2_check_failures(const rg2_check_report *r, unsigned require);
+/** Format the report as a text table (json = 0) or JSON (json = 1) into a malloc'd string
+ *  the caller frees with free(). @return RG2_ENOMEM. */
+RG2_API rg2_status rg2_check_format(const rg2_check_report *r, int json, char **text,
+                                    rg2_error *err);
 
 #ifdef __cplusplus
 }

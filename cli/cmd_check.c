@@ -1,0 +1,172 @@
+/* rg2 check -- the continuity and exactness report of a design (rg2_check). */
+#include "cli.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int rg2_cli_load_surfaces(const char *cmd, const char *path, rg2_design **d, rg2_surface **surfs, rg2_mesh **meshes,
+                          int *n)
+{
+    rg2_error err = {0};
+    *surfs = NULL;
+    *meshes = NULL;
+    if (rg2_design_load(path, d, &err))
+        return rg2_cli_report(cmd, &err);
+    *n = rg2_design_num_surfaces(*d);
+    if (*n <= 0) {
+        fprintf(stderr, "rg2 %s: %s: the design has no output surface\n", cmd, path);
+        return RG2_EXIT_FAIL;
+    }
+    *surfs = calloc((size_t)*n, sizeof **surfs);
+    *meshes = calloc((size_t)*n, sizeof **meshes);
+    if (!*surfs || !*meshes) {
+        fprintf(stderr, "rg2 %s: out of memory\n", cmd);
+        return RG2_EXIT_FAIL;
+    }
+    /* shallow copies: the design keeps owning the arrays */
+    for (int k = 0; k < *n; k++) {
+        (*surfs)[k] = *rg2_design_surface(*d, k);
+        (*meshes)[k] = *rg2_design_mesh(*d, k);
+    }
+    return RG2_EXIT_OK;
+}
+
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: rg2 check design.json [--json] [--require g0|g1|g2|exact|weights[,...]] [--samples N]\n\n"
+               "Measures the built surfaces of a design: patches, exact pieces per shape with their worst\n"
+               "implicit residual (|f| / |grad f| / shape size), transitions, the worst G0/G1/G2 gaps over\n"
+               "all patch seams (position / size, normal angle in radians, normal-curvature jump relative\n"
+               "to the principal curvatures) with where they occur, homogeneous weights, curvature range.\n"
+               "  --json              the report as JSON\n"
+               "  --require LIST      promises that must hold (g2 implies g0, g1); repeatable\n"
+               "  --samples N         samples per seam (default 16)\n"
+               "  --tol KIND=X        pass limit for g0, g1, g2 or exact (defaults 1e-12, 1e-10, 1e-8,\n"
+               "                      1e-11); repeatable\n"
+               "Exit codes: 0 ok, 1 invalid design, 2 usage error, 3 a required promise fails.\n");
+}
+
+static int parse_require(const char *s, unsigned *req)
+{
+    char buf[256];
+    snprintf(buf, sizeof buf, "%s", s);
+    for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
+        if (!strcmp(tok, "g0"))
+            *req |= RG2_REQUIRE_G0;
+        else if (!strcmp(tok, "g1"))
+            *req |= RG2_REQUIRE_G1;
+        else if (!strcmp(tok, "g2"))
+            *req |= RG2_REQUIRE_G2;
+        else if (!strcmp(tok, "exact"))
+            *req |= RG2_REQUIRE_EXACT;
+        else if (!strcmp(tok, "weights"))
+            *req |= RG2_REQUIRE_WEIGHTS;
+        else {
+            fprintf(stderr, "rg2 check: --require: unknown promise '%s' (g0, g1, g2, exact, weights)\n", tok);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+int rg2_cmd_check(int argc, char **argv)
+{
+    const char *path = NULL;
+    int json = 0;
+    unsigned req = 0;
+    rg2_check_opts o;
+    rg2_check_opts_default(&o);
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            usage(stdout);
+            return RG2_EXIT_OK;
+        } else if (!strcmp(a, "--json"))
+            json = 1;
+        else if (!strcmp(a, "--require")) {
+            if (i + 1 >= argc || parse_require(argv[++i], &req))
+                return RG2_EXIT_USAGE;
+        } else if (!strcmp(a, "--samples")) {
+            double v;
+            if (i + 1 >= argc || rg2_cli_parse_list("--samples", argv[i + 1], &v, 1) != 1 || v < 1 || v > 10000 ||
+                v != (int)v) {
+                fprintf(stderr, "rg2 check: --samples needs an integer 1..10000\n");
+                return RG2_EXIT_USAGE;
+            }
+            o.seam_samples = (int)v;
+            i++;
+        } else if (!strcmp(a, "--tol")) {
+            const char *t = i + 1 < argc ? argv[++i] : "";
+            const char *eq = strchr(t, '=');
+            double v;
+            double *dst = !eq                               ? NULL
+                          : !strncmp(t, "g0=", 3)          ? &o.tol_g0
+                          : !strncmp(t, "g1=", 3)          ? &o.tol_g1
+                          : !strncmp(t, "g2=", 3)          ? &o.tol_g2
+                          : !strncmp(t, "exact=", 6)       ? &o.tol_exact
+                                                           : NULL;
+            if (!dst || rg2_cli_parse_list("--tol", eq + 1, &v, 1) != 1 || v < 0) {
+                fprintf(stderr, "rg2 check: --tol needs g0=X, g1=X, g2=X or exact=X with X >= 0\n");
+                return RG2_EXIT_USAGE;
+            }
+            *dst = v;
+        } else if (a[0] == '-' && a[1]) {
+            fprintf(stderr, "rg2 check: unknown option '%s'\n", a);
+            usage(stderr);
+            return RG2_EXIT_USAGE;
+        } else if (path) {
+            fprintf(stderr, "rg2 check: more than one design file ('%s', '%s')\n", path, a);
+            return RG2_EXIT_USAGE;
+        } else
+            path = a;
+    }
+    if (!path) {
+        usage(stderr);
+        return RG2_EXIT_USAGE;
+    }
+    rg2_design *d = NULL;
+    rg2_surface *surfs = NULL;
+    rg2_mesh *meshes = NULL;
+    rg2_shape *shapes = NULL;
+    const char **labels = NULL;
+    rg2_check_report rep = {0};
+    char *text = NULL;
+    int n = 0, rc = rg2_cli_load_surfaces("check", path, &d, &surfs, &meshes, &n);
+    if (rc)
+        goto out;
+    int ns = rg2_design_num_shapes(d);
+    shapes = calloc((size_t)(ns > 0 ? ns : 1), sizeof *shapes);
+    labels = calloc((size_t)(ns > 0 ? ns : 1), sizeof *labels);
+    if (!shapes || !labels) {
+        fprintf(stderr, "rg2 check: out of memory\n");
+        rc = RG2_EXIT_FAIL;
+        goto out;
+    }
+    for (int k = 0; k < ns; k++) {
+        shapes[k] = *rg2_design_shape(d, k);
+        labels[k] = rg2_design_shape_label(d, k);
+    }
+    rg2_error err = {0};
+    if (rg2_check(surfs, n, shapes, labels, ns, &o, &rep, &err) || rg2_check_format(&rep, json, &text, &err)) {
+        rc = rg2_cli_report("check", &err);
+        goto out;
+    }
+    fputs(text, stdout);
+    unsigned f = rg2_check_failures(&rep, req);
+    if (f) {
+        fprintf(stderr, "rg2 check: %s: required promise%s failed:%s%s%s%s%s\n", path, (f & (f - 1)) ? "s" : "",
+                f & RG2_REQUIRE_G0 ? " g0" : "", f & RG2_REQUIRE_G1 ? " g1" : "", f & RG2_REQUIRE_G2 ? " g2" : "",
+                f & RG2_REQUIRE_EXACT ? " exact" : "", f & RG2_REQUIRE_WEIGHTS ? " weights" : "");
+        rc = RG2_EXIT_CHECK;
+    }
+out:
+    free(text);
+    rg2_check_report_free(&rep);
+    free(shapes);
+    free(labels);
+    free(surfs);
+    free(meshes);
+    rg2_design_free(d);
+    return rc;
+}

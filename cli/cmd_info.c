@@ -1,0 +1,92 @@
+/* rg2 info -- what a design builds: meshes, patch counts, which patches are exact pieces of
+ * which shape and which are transitions. */
+#include "cli.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: rg2 info [--map] design.json\n\n"
+               "Reads and builds a design file (docs/design-format.md) and prints its shapes, its output\n"
+               "meshes with their control point and patch counts, how many patches are exact pieces of\n"
+               "each shape and how many are transitions, and the smallest homogeneous patch weight.\n"
+               "  --map   also print a map of the patches (one line per u index; a letter per shape as\n"
+               "          listed, '.' for a transition patch)\n"
+               "Exit codes: 0 ok, 1 the design is invalid (message on stderr), 2 usage error.\n");
+}
+
+int rg2_cmd_info(int argc, char **argv)
+{
+    const char *path = NULL;
+    int map = 0;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            usage(stdout);
+            return RG2_EXIT_OK;
+        } else if (!strcmp(argv[i], "--map"))
+            map = 1;
+        else if (argv[i][0] == '-' && argv[i][1]) {
+            fprintf(stderr, "rg2 info: unknown option '%s'\n", argv[i]);
+            usage(stderr);
+            return RG2_EXIT_USAGE;
+        } else if (path) {
+            fprintf(stderr, "rg2 info: more than one design file ('%s', '%s')\n", path, argv[i]);
+            return RG2_EXIT_USAGE;
+        } else
+            path = argv[i];
+    }
+    if (!path) {
+        usage(stderr);
+        return RG2_EXIT_USAGE;
+    }
+    rg2_design *d;
+    rg2_error err;
+    if (rg2_design_load(path, &d, &err))
+        return rg2_cli_report("info", &err);
+    int ns = rg2_design_num_shapes(d);
+    printf("design %s\nshapes:\n", path);
+    for (int k = 0; k < ns; k++) {
+        const rg2_shape *s = rg2_design_shape(d, k);
+        const rg2_shape_desc *desc = rg2_shape_describe(s->kind);
+        printf("  %c %-16s %s", 'A' + k % 26, rg2_design_shape_label(d, k), desc->name);
+        for (int p = 0; p < desc->n_params; p++)
+            printf(" %s=%g", desc->param_names[p], s->param[p]);
+        printf("\n");
+    }
+    int *count = calloc((size_t)ns + 1, sizeof(int));
+    if (!count) {
+        rg2_design_free(d);
+        fprintf(stderr, "rg2 info: out of memory\n");
+        return RG2_EXIT_FAIL;
+    }
+    for (int o = 0; o < rg2_design_num_surfaces(d); o++) {
+        const rg2_mesh *m = rg2_design_mesh(d, o);
+        const rg2_surface *s = rg2_design_surface(d, o);
+        memset(count, 0, sizeof(int) * ((size_t)ns + 1));
+        for (int k = 0; k < s->nu * s->nv; k++)
+            count[s->tag[k] < 0 ? ns : s->tag[k]]++;
+        printf("surface %d: mesh '%s': %d x %d control points (u %s, v %s) -> %d x %d = %d patches\n", o,
+               rg2_design_mesh_name(d, o), m->nu, m->nv, m->su.closed ? "closed" : "open",
+               m->sv.closed ? "closed" : "open", s->nu, s->nv, s->nu * s->nv);
+        for (int k = 0; k < ns; k++)
+            if (count[k])
+                printf("  exact on %-16s %d patches\n", rg2_design_shape_label(d, k), count[k]);
+        printf("  transition           %d patches\n", count[ns]);
+        printf("  smallest patch weight %.6g%s\n", rg2_surface_min_weight(s),
+               rg2_surface_min_weight(s) > 0 ? "" : " (not positive: STEP/IGES export will refuse it)");
+        if (map)
+            for (int i = 0; i < s->nu; i++) {
+                printf("    u %3d  ", i);
+                for (int j = 0; j < s->nv; j++) {
+                    int t = s->tag[i * s->nv + j];
+                    putchar(t < 0 ? '.' : 'A' + t % 26);
+                }
+                putchar('\n');
+            }
+    }
+    free(count);
+    rg2_design_free(d);
+    return RG2_EXIT_OK;
+}

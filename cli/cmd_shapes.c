@@ -1,0 +1,674 @@
+/* rg2 shapes / rg2 shape -- list the exact basic shapes; build one (or a bi-cubic NURBS) into
+ * rational bi-cubic patches and print a summary or a JSON dump of the mesh and patches. */
+#include "cli.h"
+
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAXV 4096
+
+static void print_shape_list_text(void)
+{
+    printf("exact basic shapes (build one with: rg2 shape NAME --PARAM value ...; see rg2 shape --help):\n\n");
+    for (int k = 0; k < RG2_SHAPE_COUNT; k++) {
+        const rg2_shape_desc *d = rg2_shape_describe((rg2_shape_kind)k);
+        printf("%-19s", d->name);
+        for (int p = 0; p < d->n_params; p++)
+            printf(" %s=%g", d->param_names[p], d->param_defaults[p]);
+        printf("\n  u: %s, v: %s\n", d->dir_kind[0] == RG2_PART_ANGLES ? "circle (angles)" : "polynomial (knots)",
+               d->dir_kind[1] == RG2_PART_ANGLES ? "circle (angles)" : "polynomial (knots)");
+        printf("  h(u, v) = %s\n  implicit: %s\n", d->param_text, d->implicit_text);
+    }
+    printf("nurbs               bi-cubic NURBS from a JSON file (rg2 shape nurbs --file F.json)\n");
+}
+
+static void json_doubles(const double *x, int n)
+{
+    printf("[");
+    for (int k = 0; k < n; k++)
+        printf("%s%.17g", k ? ", " : "", x[k]);
+    printf("]");
+}
+
+static void print_shape_list_json(void)
+{
+    printf("{\"shapes\": [");
+    for (int k = 0; k < RG2_SHAPE_COUNT; k++) {
+        const rg2_shape_desc *d = rg2_shape_describe((rg2_shape_kind)k);
+        printf("%s\n  {\"name\": \"%s\", \"params\": {", k ? "," : "", d->name);
+        for (int p = 0; p < d->n_params; p++)
+            printf("%s\"%s\": %.17g", p ? ", " : "", d->param_names[p], d->param_defaults[p]);
+        printf("}, \"u\": \"%s\", \"v\": \"%s\", ", d->dir_kind[0] == RG2_PART_ANGLES ? "angles" : "knots",
+               d->dir_kind[1] == RG2_PART_ANGLES ? "angles" : "knots");
+        printf("\"default_range\": [");
+        json_doubles(d->default_range[0], 2);
+        printf(", ");
+        json_doubles(d->default_range[1], 2);
+        printf("], \"param\": \"%s\", \"implicit\": \"%s\"}", d->param_text, d->implicit_text);
+    }
+    printf("\n]}\n");
+}
+
+int rg2_cmd_shapes(int argc, char **argv)
+{
+    int json = 0;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--json")) {
+            json = 1;
+        } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            printf("usage: rg2 shapes [--json]\n\nLists the exact basic shapes with their parameters "
+                   "(and defaults), direction kinds,\nhomogeneous parameterization and implicit "
+                   "equation. Build one with 'rg2 shape NAME'.\n");
+            return 0;
+        } else {
+            fprintf(stderr, "rg2 shapes: unknown option '%s'\n", argv[i]);
+            return RG2_EXIT_USAGE;
+        }
+    }
+    if (json)
+        print_shape_list_json();
+    else
+        print_shape_list_text();
+    return 0;
+}
+
+static void help_shape(void)
+{
+    printf(
+        "usage: rg2 shape NAME [--PARAM value ...] [direction options] [placement] [--json]\n"
+        "       rg2 shape nurbs (--file F.json | --spec JSON) [--json]\n\n"
+        "Builds the control mesh of an exact shape (rg2 shapes lists them) and its rational\n"
+        "bi-cubic patches; prints a summary (patch counts, weights, implicit residual) or, with\n"
+        "--json, the partitions, control mesh and every patch's homogeneous control points.\n\n"
+        "Direction options (D = u or v). Circle directions, angles in degrees:\n"
+        "  --D-arcs N          N equal arcs: the full circle (closed), or --D-sweep DEG (open)\n"
+        "  --D-angles A,B,...  opening angles, each in (0, 180); closed if they sum to 360\n"
+        "  --D-start DEG       angle where the first arc starts (default 0)\n"
+        "  --D-sweep DEG       open partial circle of this total angle\n"
+        "  --D-open / --D-closed  force open or closed\n"
+        "Polynomial directions:\n"
+        "  --D-knots K0,K1,... increasing knots bounding the segments\n"
+        "  --D-range A,B --D-segments N   N equal segments of [A, B]\n"
+        "Placement (applied in this order: scale, axis rotation, centre, then --xform):\n"
+        "  --scale S | SX,SY,SZ   --axis X,Y,Z (the shape's z axis)   --center X,Y,Z\n"
+        "  --xform M00,M01,...,M33 (16 numbers, row-major, applied to homogeneous 4-tuples)\n"
+        "Other: --samples N (per patch edge for the residual, default 8), --json\n\n"
+        "NURBS JSON: {\"nu\": 4, \"nv\": 5, \"points\": [[x,y,z], ...] (nu*nv, u-major),\n"
+        "  \"weights\": [...] (optional), \"knots_u\": [nu+4 values], \"knots_v\": [nv+4 values]}\n\n"
+        "examples:\n"
+        "  rg2 shape torus --R 3 --r 1 --u-arcs 8 --v-arcs 6\n"
+        "  rg2 shape torus --u-arcs 3 --u-sweep 90 --v-angles 60,120,90,90   (a quarter torus)\n"
+        "  rg2 shape sphere --radius 2 --v-knots 0.25,0.4,0.6,0.75 --json\n"
+        "  rg2 shape cone --k 2 --v-range 0.5,2 --v-segments 4 --center 1,0,0 --axis 1,0,0\n");
+}
+
+typedef struct {
+    double vals[MAXV];
+    int n_vals;      /* -1: none given */
+    int arcs;        /* --D-arcs N, 0: none */
+    int segments;    /* --D-segments N, 0: none */
+    int has_range, has_sweep, has_start;
+    double range[2], sweep, start;
+    int open, closed, is_knots; /* is_knots: values came from --D-knots */
+} dir_opts;
+
+/* Turn the options of one direction into a partition (values stored in o->vals). */
+static int make_partition(const char *shape, const rg2_shape_desc *d, int dir, dir_opts *o,
+                          rg2_partition *p)
+{
+    const char *D = dir ? "v" : "u";
+    memset(p, 0, sizeof *p);
+    rg2_error err = {0};
+    if (d->dir_kind[dir] == RG2_PART_ANGLES) {
+        if (o->is_knots || o->has_range || o->segments) {
+            fprintf(stderr, "rg2 shape: %s: %s is a circle direction: use --%s-arcs, --%s-angles, "
+                            "--%s-sweep, --%s-start\n", shape, D, D, D, D, D);
+            return RG2_EXIT_USAGE;
+        }
+        double start = o->has_start ? o->start * M_PI / 180.0 : 0.0;
+        if (o->n_vals >= 0) {
+            double sum = 0.0;
+            for (int k = 0; k < o->n_vals; k++)
+                sum += o->vals[k];
+            for (int k = 0; k < o->n_vals; k++)
+                o->vals[k] *= M_PI / 180.0;
+            p->kind = RG2_PART_ANGLES;
+            p->n = o->n_vals;
+            p->values = o->vals;
+            p->start = start;
+            p->closed = o->closed ? 1 : o->open ? 0 : fabs(sum - 360.0) <= 1e-9 * 360.0;
+            return 0;
+        }
+        int n = o->arcs, open = o->has_sweep || o->open;
+        if (open && !o->has_sweep) {
+            fprintf(stderr, "rg2 shape: %s: an open %s direction needs --%s-sweep DEG or --%s-angles\n",
+                    shape, D, D, D);
+            return RG2_EXIT_USAGE;
+        }
+        double sweep = open ? o->sweep : 360.0;
+        if (n <= 0) /* open: about as fine as the default full-circle partition */
+            n = open ? (int)ceil(fabs(sweep) / (360.0 / d->default_segments[dir]) - 1e-9)
+                     : d->default_segments[dir];
+        if (n < 1)
+            n = 1;
+        if (n > MAXV - 1) {
+            fprintf(stderr, "rg2 shape: --%s-arcs %d: at most %d\n", D, n, MAXV - 1);
+            return RG2_EXIT_USAGE;
+        }
+        for (int k = 0; k < n; k++) /* validated by rg2_shape_mesh, naming the direction */
+            o->vals[k] = sweep / n * M_PI / 180.0;
+        p->kind = RG2_PART_ANGLES;
+        p->n = n;
+        p->values = o->vals;
+        p->start = start;
+        p->closed = !open;
+        return 0;
+    }
+    if (o->arcs || o->has_sweep || o->has_start || o->open || o->closed || (o->n_vals >= 0 && !o->is_knots)) {
+        fprintf(stderr, "rg2 shape: %s: %s is a polynomial direction: use --%s-knots or --%s-range "
+                        "with --%s-segments\n", shape, D, D, D, D);
+        return RG2_EXIT_USAGE;
+    }
+    if (o->n_vals >= 0) {
+        p->kind = RG2_PART_KNOTS;
+        p->n = o->n_vals;
+        p->values = o->vals;
+        return 0;
+    }
+    double lo = o->has_range ? o->range[0] : d->default_range[dir][0];
+    double hi = o->has_range ? o->range[1] : d->default_range[dir][1];
+    int n = o->segments > 0 ? o->segments : d->default_segments[dir];
+    if (n > MAXV - 1) {
+        fprintf(stderr, "rg2 shape: --%s-segments %d: at most %d\n", D, n, MAXV - 1);
+        return RG2_EXIT_USAGE;
+    }
+    if (rg2_partition_equal(p, RG2_PART_KNOTS, 0, lo, hi, n, o->vals, MAXV, &err))
+        return rg2_cli_report("shape", &err);
+    return 0;
+}
+
+/* --- NURBS from JSON ----------------------------------------------------------------- */
+
+static int json_numbers(const cJSON *a, const char *what, double *out, int max, int width)
+{
+    if (!cJSON_IsArray(a)) {
+        fprintf(stderr, "rg2 shape: nurbs: \"%s\" must be an array\n", what);
+        return -1;
+    }
+    int n = 0, idx = 0;
+    const cJSON *it;
+    cJSON_ArrayForEach(it, a)
+    {
+        const cJSON *row = it;
+        int m = width > 1 ? cJSON_GetArraySize(row) : 1;
+        if (width > 1 && (!cJSON_IsArray(row) || m != width)) {
+            fprintf(stderr, "rg2 shape: nurbs: \"%s\"[%d] must be an array of %d numbers\n", what, idx, width);
+            return -1;
+        }
+        for (int k = 0; k < m; k++) {
+            const cJSON *x = width > 1 ? cJSON_GetArrayItem(row, k) : row;
+            if (!cJSON_IsNumber(x)) {
+                fprintf(stderr, "rg2 shape: nurbs: \"%s\"[%d] is not a number\n", what, idx);
+                return -1;
+            }
+            if (n == max) {
+                fprintf(stderr, "rg2 shape: nurbs: \"%s\" has more than %d numbers\n", what, max);
+                return -1;
+            }
+            out[n++] = x->valuedouble;
+        }
+        idx++;
+    }
+    return n;
+}
+
+static char *read_text(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    size_t cap = 1 << 16, len = 0;
+    char *buf = malloc(cap);
+    while (buf) {
+        size_t got = fread(buf + len, 1, cap - len - 1, f);
+        len += got;
+        if (len < cap - 1)
+            break;
+        char *nb = realloc(buf, cap * 2);
+        if (!nb) {
+            free(buf);
+            buf = NULL;
+            break;
+        }
+        buf = nb;
+        cap *= 2;
+    }
+    fclose(f);
+    if (buf)
+        buf[len] = '\0';
+    return buf;
+}
+
+/* Parse the NURBS JSON text into arrays owned by the caller (free(*store)). */
+static int parse_nurbs(const char *text, const char *name, rg2_nurbs *nb, double **store)
+{
+    *store = NULL;
+    cJSON *root = cJSON_Parse(text);
+    if (!root) {
+        const char *at = cJSON_GetErrorPtr();
+        fprintf(stderr, "rg2 shape: nurbs: %s: malformed JSON near '%.20s'\n", name, at ? at : "");
+        return RG2_EXIT_FAIL;
+    }
+    int rc = RG2_EXIT_FAIL;
+    const cJSON *jnu = cJSON_GetObjectItemCaseSensitive(root, "nu");
+    const cJSON *jnv = cJSON_GetObjectItemCaseSensitive(root, "nv");
+    if (!cJSON_IsNumber(jnu) || !cJSON_IsNumber(jnv) || jnu->valueint < 4 || jnv->valueint < 4 ||
+        jnu->valueint > 100000 || jnv->valueint > 100000 ||
+        (long long)jnu->valueint * jnv->valueint > RG2_MAX_POINTS) {
+        fprintf(stderr, "rg2 shape: nurbs: %s: \"nu\" and \"nv\" must be integers 4..100000 "
+                        "(at most %d points)\n", name, RG2_MAX_POINTS);
+        goto out;
+    }
+    int nu = jnu->valueint, nv = jnv->valueint;
+    size_t np = (size_t)nu * (size_t)nv;
+    double *mem = malloc(sizeof(double) * (np * 4 + (size_t)nu + (size_t)nv + 8));
+    if (!mem) {
+        fprintf(stderr, "rg2 shape: nurbs: out of memory\n");
+        goto out;
+    }
+    *store = mem;
+    double *P = mem, *W = mem + 3 * np, *U = W + np, *V = U + nu + 4;
+    int k;
+    if ((k = json_numbers(cJSON_GetObjectItemCaseSensitive(root, "points"), "points", P, (int)np * 3, 3)) < 0)
+        goto out;
+    if (k != (int)np * 3) {
+        fprintf(stderr, "rg2 shape: nurbs: %s: %d points given, nu * nv = %zu needed\n", name, k / 3, np);
+        goto out;
+    }
+    const cJSON *jw = cJSON_GetObjectItemCaseSensitive(root, "weights");
+    if (jw) {
+        if ((k = json_numbers(jw, "weights", W, (int)np, 1)) < 0)
+            goto out;
+        if (k != (int)np) {
+            fprintf(stderr, "rg2 shape: nurbs: %s: %d weights given, nu * nv = %zu needed\n", name, k, np);
+            goto out;
+        }
+    }
+    if ((k = json_numbers(cJSON_GetObjectItemCaseSensitive(root, "knots_u"), "knots_u", U, nu + 4, 1)) < 0)
+        goto out;
+    if (k != nu + 4) {
+        fprintf(stderr, "rg2 shape: nurbs: %s: %d knots_u given, nu + 4 = %d needed\n", name, k, nu + 4);
+        goto out;
+    }
+    if ((k = json_numbers(cJSON_GetObjectItemCaseSensitive(root, "knots_v"), "knots_v", V, nv + 4, 1)) < 0)
+        goto out;
+    if (k != nv + 4) {
+        fprintf(stderr, "rg2 shape: nurbs: %s: %d knots_v given, nv + 4 = %d needed\n", name, k, nv + 4);
+        goto out;
+    }
+    nb->nu = nu, nb->nv = nv, nb->points = P, nb->weights = jw ? W : NULL, nb->knots_u = U, nb->knots_v = V;
+    rc = 0;
+out:
+    cJSON_Delete(root);
+    return rc;
+}
+
+/* --- output ---------------------------------------------------------------------------- */
+
+static void json_scalars(const rg2_scalars *s)
+{
+    printf("{\"n\": %d, \"closed\": %s, \"w\": ", s->n, s->closed ? "true" : "false");
+    json_doubles(s->w, rg2_scalars_num_w(s));
+    printf(", \"b\": ");
+    json_doubles(s->b, s->n);
+    printf(", \"g\": ");
+    json_doubles(s->g, s->n);
+    printf("}");
+}
+
+static void json_partition(const rg2_partition *p)
+{
+    printf("{\"kind\": \"%s\", \"closed\": %s, \"start\": %.17g, \"values\": ",
+           p->kind == RG2_PART_ANGLES ? "angles" : "knots", p->closed ? "true" : "false", p->start);
+    json_doubles(p->values, p->n);
+    printf("}");
+}
+
+static void print_json(const rg2_shape *sh, const rg2_partition *pu, const rg2_partition *pv,
+                       const rg2_mesh *m, const rg2_surface *s, const rg2_weight_report *rep,
+                       double resid)
+{
+    printf("{");
+    if (sh) {
+        const rg2_shape_desc *d = rg2_shape_describe(sh->kind);
+        printf("\"shape\": \"%s\", \"params\": {", d->name);
+        for (int k = 0; k < d->n_params; k++)
+            printf("%s\"%s\": %.17g", k ? ", " : "", d->param_names[k], sh->param[k]);
+        printf("}, \"xform\": ");
+        json_doubles(sh->xform, 16);
+        printf(",\n \"u\": ");
+        json_partition(pu);
+        printf(",\n \"v\": ");
+        json_partition(pv);
+        printf(",\n \"max_residual\": %.17g,\n", resid);
+    } else {
+        printf("\"shape\": \"nurbs\",\n");
+    }
+    printf(" \"min_weight\": %.17g, \"nonpositive_patches\": %d,\n", rep->min_weight, rep->n_nonpositive);
+    printf(" \"mesh\": {\"nu\": %d, \"nv\": %d, \"u\": ", m->nu, m->nv);
+    json_scalars(&m->su);
+    printf(", \"v\": ");
+    json_scalars(&m->sv);
+    printf(",\n  \"points\": [");
+    for (int i = 0; i < m->nu; i++)
+        for (int j = 0; j < m->nv; j++) {
+            printf("%s", i || j ? ", " : "");
+            json_doubles(rg2_mesh_at(m, i, j), 4);
+        }
+    printf("]},\n \"surface\": {\"nu\": %d, \"nv\": %d, \"closed_u\": %s, \"closed_v\": %s, \"bu\": ", s->nu,
+           s->nv, s->closed_u ? "true" : "false", s->closed_v ? "true" : "false");
+    json_doubles(s->bu, s->nu);
+    printf(", \"gu\": ");
+    json_doubles(s->gu, s->nu);
+    printf(", \"bv\": ");
+    json_doubles(s->bv, s->nv);
+    printf(", \"gv\": ");
+    json_doubles(s->gv, s->nv);
+    printf(",\n  \"patches\": [");
+    for (int i = 0; i < s->nu; i++)
+        for (int j = 0; j < s->nv; j++) {
+            const rg2_patch *P = rg2_surface_patch(s, i, j);
+            printf("%s\n   {\"i\": %d, \"j\": %d, \"h\": [", i || j ? "," : "", i, j);
+            for (int r = 0; r < 4; r++) {
+                printf("%s[", r ? ", " : "");
+                for (int t = 0; t < 4; t++) {
+                    printf("%s", t ? ", " : "");
+                    json_doubles(P->h[r][t], 4);
+                }
+                printf("]");
+            }
+            printf("]}");
+        }
+    printf("\n  ]}\n}\n");
+}
+
+static void print_partition_text(const char *D, const rg2_partition *p)
+{
+    if (p->kind == RG2_PART_ANGLES) {
+        double sum = 0.0;
+        for (int k = 0; k < p->n; k++)
+            sum += p->values[k];
+        printf("  %s: %s circle, %d arcs from %g deg, total %g deg:", D, p->closed ? "closed" : "open", p->n,
+               p->start * 180.0 / M_PI, sum * 180.0 / M_PI);
+        for (int k = 0; k < p->n && k < 12; k++)
+            printf(" %.6g", p->values[k] * 180.0 / M_PI);
+    } else {
+        printf("  %s: polynomial, %d segments, knots:", D, p->n - 1);
+        for (int k = 0; k < p->n && k < 13; k++)
+            printf(" %.6g", p->values[k]);
+    }
+    printf("%s\n", p->n > 13 ? " ..." : "");
+}
+
+/* Largest |f| / |grad f| over samples x samples points per patch, relative to the size. */
+static double max_residual(const rg2_shape *sh, const rg2_surface *s, int samples, double *size)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, worst = 0.0;
+    for (int i = 0; i < s->nu; i++)
+        for (int j = 0; j < s->nv; j++)
+            for (int a = 0; a <= samples; a++)
+                for (int b = 0; b <= samples; b++) {
+                    rg2_eval e;
+                    rg2_patch_eval(rg2_surface_patch(s, i, j), (double)a / samples, (double)b / samples, 0, &e);
+                    double g[3], f = rg2_shape_implicit(sh, e.p, g);
+                    double r = fabs(f) / sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+                    if (!(r <= worst))
+                        worst = r;
+                    for (int k = 0; k < 3; k++)
+                        lo[k] = fmin(lo[k], e.p[k]), hi[k] = fmax(hi[k], e.p[k]);
+                }
+    *size = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                 (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    return worst;
+}
+
+static void print_summary(const rg2_shape *sh, const rg2_partition *pu, const rg2_partition *pv,
+                          const rg2_mesh *m, const rg2_surface *s, const rg2_weight_report *rep,
+                          double resid, double size, int samples)
+{
+    if (sh) {
+        const rg2_shape_desc *d = rg2_shape_describe(sh->kind);
+        printf("%s", d->name);
+        for (int k = 0; k < d->n_params; k++)
+            printf("%s %s = %g", k ? "," : "", d->param_names[k], sh->param[k]);
+        printf("\n  h(u, v) = %s\n", d->param_text);
+        print_partition_text("u", pu);
+        print_partition_text("v", pv);
+    } else {
+        printf("bi-cubic NURBS\n");
+    }
+    printf("  control mesh %d x %d (%s x %s)\n", m->nu, m->nv, m->su.closed ? "closed" : "open",
+           m->sv.closed ? "closed" : "open");
+    printf("  %d x %d rational bi-cubic patches, min homogeneous weight %.6g (patch %d,%d)%s\n", s->nu,
+           s->nv, rep->min_weight, rep->patch_i, rep->patch_j,
+           rep->flags & RG2_SHAPE_WARN_WEIGHT ? "" : ", all positive");
+    if (sh)
+        printf("  implicit %s: max |f|/|grad f| = %.3g (%.3g of the size %.6g) over %d x %d samples per "
+               "patch\n",
+               rg2_shape_describe(sh->kind)->implicit_text, resid, size > 0 ? resid / size : resid, size,
+               samples + 1, samples + 1);
+}
+
+/* --- rg2 shape ------------------------------------------------------------------------- */
+
+static int parse_one(const char *opt, const char *val, double *out)
+{
+    return rg2_cli_parse_list(opt, val, out, 1) == 1 ? 0 : -1;
+}
+
+int rg2_cmd_shape(int argc, char **argv)
+{
+    if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
+        help_shape();
+        return argc < 2 ? RG2_EXIT_USAGE : 0;
+    }
+    static dir_opts dop[2];
+    memset(dop, 0, sizeof dop);
+    dop[0].n_vals = dop[1].n_vals = -1;
+    const char *name = argv[1], *file = NULL, *spec = NULL;
+    int is_nurbs = !strcmp(name, "nurbs"), json = 0, samples = 8;
+    rg2_shape sh;
+    rg2_error err = {0};
+    const rg2_shape_desc *d = NULL;
+    if (!is_nurbs) {
+        rg2_shape_kind kind;
+        if (rg2_shape_from_name(name, &kind, &err)) {
+            fprintf(stderr, "rg2 shape: %s (or nurbs)\n", err.msg);
+            return RG2_EXIT_USAGE;
+        }
+        rg2_shape_init(&sh, kind);
+        d = rg2_shape_describe(kind);
+    }
+    double scale[3] = {1, 1, 1}, axis[3] = {0, 0, 1}, centre[3] = {0, 0, 0}, xf[16];
+    int has_xform = 0;
+    for (int i = 2; i < argc; i++) {
+        const char *a = argv[i];
+        const char *val = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "--json")) {
+            json = 1;
+            continue;
+        }
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            help_shape();
+            return 0;
+        }
+        if (strncmp(a, "--", 2)) {
+            fprintf(stderr, "rg2 shape: unexpected argument '%s'\n", a);
+            return RG2_EXIT_USAGE;
+        }
+        /* flags without a value */
+        if ((a[2] == 'u' || a[2] == 'v') && a[3] == '-' && (!strcmp(a + 4, "open") || !strcmp(a + 4, "closed"))) {
+            dir_opts *o = &dop[a[2] == 'v'];
+            if (a[4] == 'o')
+                o->open = 1;
+            else
+                o->closed = 1;
+            continue;
+        }
+        if (!val) {
+            fprintf(stderr, "rg2 shape: %s needs a value\n", a);
+            return RG2_EXIT_USAGE;
+        }
+        i++;
+        int pi = -1;
+        for (int k = 0; d && k < d->n_params; k++)
+            if (!strcmp(a + 2, d->param_names[k]))
+                pi = k;
+        if (pi >= 0) {
+            if (parse_one(a, val, &sh.param[pi]))
+                return RG2_EXIT_USAGE;
+        } else if ((a[2] == 'u' || a[2] == 'v') && a[3] == '-') {
+            dir_opts *o = &dop[a[2] == 'v'];
+            const char *what = a + 4;
+            if (!strcmp(what, "arcs") || !strcmp(what, "segments")) {
+                char *end;
+                long n = strtol(val, &end, 10);
+                if (*end || n < 1 || n > MAXV - 1) {
+                    fprintf(stderr, "rg2 shape: %s %s: need an integer 1..%d\n", a, val, MAXV - 1);
+                    return RG2_EXIT_USAGE;
+                }
+                if (what[0] == 'a')
+                    o->arcs = (int)n;
+                else
+                    o->segments = (int)n;
+            } else if (!strcmp(what, "angles") || !strcmp(what, "knots")) {
+                if ((o->n_vals = rg2_cli_parse_list(a, val, o->vals, MAXV)) < 0)
+                    return RG2_EXIT_USAGE;
+                o->is_knots = what[0] == 'k';
+            } else if (!strcmp(what, "start")) {
+                if (parse_one(a, val, &o->start))
+                    return RG2_EXIT_USAGE;
+                o->has_start = 1;
+            } else if (!strcmp(what, "sweep")) {
+                if (parse_one(a, val, &o->sweep))
+                    return RG2_EXIT_USAGE;
+                o->has_sweep = 1;
+            } else if (!strcmp(what, "range")) {
+                if (rg2_cli_parse_list(a, val, o->range, 2) != 2) {
+                    fprintf(stderr, "rg2 shape: %s needs two numbers A,B\n", a);
+                    return RG2_EXIT_USAGE;
+                }
+                o->has_range = 1;
+            } else {
+                fprintf(stderr, "rg2 shape: unknown option '%s' (see rg2 shape --help)\n", a);
+                return RG2_EXIT_USAGE;
+            }
+        } else if (!strcmp(a, "--scale")) {
+            int n = rg2_cli_parse_list(a, val, scale, 3);
+            if (n == 1)
+                scale[1] = scale[2] = scale[0];
+            else if (n != 3) {
+                fprintf(stderr, "rg2 shape: --scale needs 1 or 3 numbers\n");
+                return RG2_EXIT_USAGE;
+            }
+        } else if (!strcmp(a, "--axis") || !strcmp(a, "--center") || !strcmp(a, "--centre")) {
+            if (rg2_cli_parse_list(a, val, a[2] == 'a' ? axis : centre, 3) != 3) {
+                fprintf(stderr, "rg2 shape: %s needs three numbers X,Y,Z\n", a);
+                return RG2_EXIT_USAGE;
+            }
+        } else if (!strcmp(a, "--xform")) {
+            if (rg2_cli_parse_list(a, val, xf, 16) != 16) {
+                fprintf(stderr, "rg2 shape: --xform needs 16 numbers (row-major 4x4)\n");
+                return RG2_EXIT_USAGE;
+            }
+            has_xform = 1;
+        } else if (!strcmp(a, "--samples")) {
+            char *end;
+            long n = strtol(val, &end, 10);
+            if (*end || n < 1 || n > 1000) {
+                fprintf(stderr, "rg2 shape: --samples %s: need an integer 1..1000\n", val);
+                return RG2_EXIT_USAGE;
+            }
+            samples = (int)n;
+        } else if (is_nurbs && !strcmp(a, "--file")) {
+            file = val;
+        } else if (is_nurbs && !strcmp(a, "--spec")) {
+            spec = val;
+        } else {
+            if (d) {
+                fprintf(stderr, "rg2 shape: unknown option '%s'; %s takes", a, d->name);
+                for (int k = 0; k < d->n_params; k++)
+                    fprintf(stderr, " --%s", d->param_names[k]);
+                fprintf(stderr, " (see rg2 shape --help)\n");
+            } else {
+                fprintf(stderr, "rg2 shape: unknown option '%s' (see rg2 shape --help)\n", a);
+            }
+            return RG2_EXIT_USAGE;
+        }
+    }
+
+    rg2_mesh m = {0};
+    rg2_surface s = {0};
+    rg2_weight_report rep;
+    rg2_partition pu, pv;
+    double *store = NULL, resid = 0.0, size = 0.0;
+    int rc = 0;
+    if (is_nurbs) {
+        if (!file == !spec) {
+            fprintf(stderr, "rg2 shape: nurbs needs exactly one of --file F.json or --spec JSON\n");
+            return RG2_EXIT_USAGE;
+        }
+        char *text = file ? read_text(file) : NULL;
+        if (file && !text) {
+            fprintf(stderr, "rg2 shape: nurbs: cannot read '%s'\n", file);
+            return RG2_EXIT_FAIL;
+        }
+        rg2_nurbs nb;
+        rc = parse_nurbs(file ? text : spec, file ? file : "--spec", &nb, &store);
+        free(text);
+        if (rc)
+            goto out;
+        if (rg2_nurbs_mesh(&nb, &m, &err)) {
+            rc = rg2_cli_report("shape", &err);
+            goto out;
+        }
+    } else {
+        if ((rc = make_partition(d->name, d, 0, &dop[0], &pu)) || (rc = make_partition(d->name, d, 1, &dop[1], &pv)))
+            goto out;
+        double S[16], R[16], T[16];
+        rg2_xform_scale(S, scale[0], scale[1], scale[2]);
+        rg2_xform_place(R, centre, axis);
+        rg2_xform_mul(R, S, T);
+        if (has_xform)
+            rg2_xform_mul(xf, T, T);
+        memcpy(sh.xform, T, sizeof T);
+        if (rg2_shape_mesh(&sh, &pu, &pv, &m, &err)) {
+            rc = rg2_cli_report("shape", &err);
+            goto out;
+        }
+    }
+    if (rg2_surface_build(&m, &s, &err)) {
+        rc = rg2_cli_report("shape", &err);
+        goto out;
+    }
+    rg2_surface_weight_report(&s, &rep);
+    if (!is_nurbs)
+        resid = max_residual(&sh, &s, samples, &size);
+    if (json)
+        print_json(is_nurbs ? NULL : &sh, &pu, &pv, &m, &s, &rep, resid);
+    else
+        print_summary(is_nurbs ? NULL : &sh, &pu, &pv, &m, &s, &rep, resid, size, samples);
+    if (rep.flags & RG2_SHAPE_WARN_WEIGHT)
+        fprintf(stderr,
+                "rg2 shape: warning: %d patches have homogeneous weights <= 0 (min %.6g at patch "
+                "%d,%d); STEP/IGES export needs positive weights: use more arcs or knots\n",
+                rep.n_nonpositive, rep.min_weight, rep.patch_i, rep.patch_j);
+out:
+    free(store);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+    return rc;
+}

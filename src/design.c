@@ -1,0 +1,457 @@
+/* design.c -- designs (paper section 4): registries of shapes, sources and meshes, the
+ * build of the output surfaces, and the provenance tags telling which patches are exact
+ * pieces of which shape (MATH.md section 6). */
+#include "design_internal.h"
+
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ------------------------------------------------------------------------------------- */
+/* registries */
+
+static int grow(void **arr, int *cap, int need, size_t size)
+{
+    if (need <= *cap)
+        return 1;
+    int nc = *cap ? *cap * 2 : 8;
+    while (nc < need)
+        nc *= 2;
+    void *p = realloc(*arr, (size_t)nc * size);
+    if (!p)
+        return 0;
+    memset((char *)p + (size_t)*cap * size, 0, (size_t)(nc - *cap) * size);
+    *arr = p;
+    *cap = nc;
+    return 1;
+}
+
+static char *dupstr(const char *s)
+{
+    char *r = malloc(strlen(s) + 1);
+    if (r)
+        strcpy(r, s);
+    return r;
+}
+
+int rg2__design_add_shape(rg2_design *d, const rg2_shape *s, const char *label, rg2_error *err)
+{
+    int cap = d->cap_shapes;
+    if (!grow((void **)&d->shapes, &cap, d->n_shapes + 1, sizeof *d->shapes) ||
+        !grow((void **)&d->labels, &d->cap_shapes, d->n_shapes + 1, sizeof *d->labels)) {
+        rg2__fail(err, RG2_ENOMEM, "design: out of memory for shapes");
+        return -1;
+    }
+    char *l = dupstr(label);
+    if (!l) {
+        rg2__fail(err, RG2_ENOMEM, "design: out of memory for shapes");
+        return -1;
+    }
+    d->shapes[d->n_shapes] = *s;
+    d->labels[d->n_shapes] = l;
+    return d->n_shapes++;
+}
+
+int rg2__design_add_source(rg2_design *d, int shape, const rg2_mesh *base, rg2_error *err)
+{
+    if (!grow((void **)&d->src, &d->cap_src, d->n_src + 1, sizeof *d->src)) {
+        rg2__fail(err, RG2_ENOMEM, "design: out of memory for source meshes");
+        return -1;
+    }
+    rg2__source *s = &d->src[d->n_src];
+    memset(s, 0, sizeof *s);
+    s->shape = shape;
+    if (rg2__stencil_make(&base->su, &s->st[0], err) || rg2__stencil_make(&base->sv, &s->st[1], err)) {
+        rg2__stencil_free(&s->st[0]);
+        return -1;
+    }
+    s->base = *base; /* takes ownership */
+    return d->n_src++;
+}
+
+rg2__dmesh *rg2__design_new_mesh(rg2_design *d, rg2_error *err)
+{
+    if (!grow((void **)&d->mesh, &d->cap_mesh, d->n_mesh + 1, sizeof *d->mesh)) {
+        rg2__fail(err, RG2_ENOMEM, "design: out of memory for meshes");
+        return NULL;
+    }
+    memset(&d->mesh[d->n_mesh], 0, sizeof d->mesh[0]);
+    return &d->mesh[d->n_mesh];
+}
+
+int rg2__design_find_mesh(const rg2_design *d, const char *name)
+{
+    for (int k = 0; k < d->n_mesh; k++)
+        if (d->mesh[k].name && !strcmp(d->mesh[k].name, name))
+            return k;
+    return -1;
+}
+
+void rg2_design_free(rg2_design *d)
+{
+    if (!d)
+        return;
+    for (int k = 0; k < d->n_shapes; k++)
+        free(d->labels[k]);
+    free(d->labels);
+    free(d->shapes);
+    for (int k = 0; k < d->n_src; k++) {
+        rg2_mesh_free(&d->src[k].base);
+        rg2__stencil_free(&d->src[k].st[0]);
+        rg2__stencil_free(&d->src[k].st[1]);
+    }
+    free(d->src);
+    for (int k = 0; k < d->n_mesh; k++)
+        rg2__dmesh_free(&d->mesh[k]);
+    free(d->mesh);
+    if (d->surf)
+        for (int k = 0; k < d->n_out; k++)
+            rg2_surface_free(&d->surf[k]);
+    free(d->surf);
+    free(d->out);
+    free(d->name);
+    free(d);
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* provenance tags */
+
+/* Stencil segment of the source direction whose leg is L (the segment from point L to L+1),
+ * or -1 if the source does not produce it. */
+static int source_segment(const rg2__stencil *st, int L)
+{
+    if (st->closed)
+        return rg2__wrap(L, st->n, 1);
+    return (L >= 1 && L <= st->n - 3) ? L - 1 : -1;
+}
+
+/* Stencil segment ka of a equals segment kb of b (to 1e-14); flip: b runs the other way, so
+ * coefficient r over point a corresponds to b's coefficient 3 - r over point 3 - a. */
+static int stencil_equal(const rg2__stencil *a, int ka, const rg2__stencil *b, int kb, int flip)
+{
+    const double tol = 1e-14;
+    if (fabs(a->w[ka] - b->w[kb]) > tol * fabs(b->w[kb]))
+        return 0;
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++)
+            if (fabs(a->c[ka][r][c] - b->c[kb][flip ? 3 - r : r][flip ? 3 - c : c]) > tol)
+                return 0;
+    return 1;
+}
+
+/*
+ * METHOD: patch (k, l) is the image of the 4x4 control block starting at p^{i-1, j-1}
+ * (i, j its legs) under the u and v stencils of the mesh. It is a piece of shape s exactly
+ * when (1) the 16 points are, bit for bit, a consecutive 4x4 block of one source mesh of s,
+ * in any of the 8 orientations (transposed or not, each direction forwards or reversed), and
+ * (2) the u and v stencils of the patch agree (to 1e-14) with the source's stencils of the
+ * corresponding segments (read backwards for a reversed direction), which must be segments the
+ * source itself produces. Then the patch equals the source's own patch up to rounding and
+ * reparameterization. This is the dependency rule of MATH.md section 6 (points p^{i-1..i+2},
+ * the scalars of junctions i-1..i+2 and legs i-2..i+2 enter only through the stencil), checked
+ * on values, so it also accepts seams whose scalars were re-solved to keep the stencils.
+ */
+int rg2__patch_tag(const rg2_design *d, const rg2__dmesh *dm, const rg2__stencil st[2], int k, int l)
+{
+    const rg2_mesh *m = &dm->m;
+    int iu = st[0].first[k], jv = st[1].first[l];
+    const rg2__pprov *p0 =
+        rg2__dmesh_pp(dm, rg2__wrap(iu, m->nu, m->su.closed), rg2__wrap(jv, m->nv, m->sv.closed));
+    if (p0->src < 0)
+        return -1;
+    const rg2__source *S = &d->src[p0->src];
+    const rg2_mesh *B = &S->base;
+    for (int o = 0; o < 8; o++) {
+        int tr = o & 1, ru = (o >> 1) & 1, rv = (o >> 2) & 1, ok = 1;
+        for (int a = 0; a < 4 && ok; a++)
+            for (int b = 0; b < 4 && ok; b++) {
+                int mi = rg2__wrap(iu + a, m->nu, m->su.closed), mj = rg2__wrap(jv + b, m->nv, m->sv.closed);
+                const rg2__pprov *q = rg2__dmesh_pp(dm, mi, mj);
+                int du = ru ? -a : a, dv = rv ? -b : b;
+                int ei = p0->i + (tr ? dv : du), ej = p0->j + (tr ? du : dv);
+                if (B->su.closed)
+                    ei = rg2__wrap(ei, B->nu, 1);
+                if (B->sv.closed)
+                    ej = rg2__wrap(ej, B->nv, 1);
+                if (ei < 0 || ej < 0 || ei >= B->nu || ej >= B->nv || q->src != p0->src || q->i != ei ||
+                    q->j != ej || memcmp(rg2_mesh_at(m, mi, mj), rg2_mesh_at(B, ei, ej), 4 * sizeof(double)))
+                    ok = 0;
+            }
+        if (!ok)
+            continue;
+        /* mesh u follows source u (tr = 0) or source v (tr = 1); a reversed direction's first
+         * point is the source's last of the four, so the source leg is 2 before it */
+        int bu = tr ? p0->j : p0->i, bv = tr ? p0->i : p0->j;
+        int su = source_segment(&S->st[tr], ru ? bu - 2 : bu + 1);
+        int sv = source_segment(&S->st[1 - tr], rv ? bv - 2 : bv + 1);
+        if (su < 0 || sv < 0)
+            continue;
+        if (stencil_equal(&st[0], k, &S->st[tr], su, ru) && stencil_equal(&st[1], l, &S->st[1 - tr], sv, rv))
+            return S->shape;
+    }
+    return -1;
+}
+
+rg2_status rg2__design_build(rg2_design *d, rg2_error *err)
+{
+    d->surf = rg2__calloc((size_t)d->n_out, sizeof *d->surf);
+    if (!d->surf)
+        return rg2__fail(err, RG2_ENOMEM, "design: out of memory");
+    for (int o = 0; o < d->n_out; o++) {
+        const rg2__dmesh *dm = &d->mesh[d->out[o]];
+        rg2_surface *s = &d->surf[o];
+        rg2_status st = rg2_surface_build(&dm->m, s, err);
+        if (st) {
+            rg2_error e = *err;
+            return rg2__fail(err, st, "mesh '%s': %s", dm->name, e.msg);
+        }
+        rg2__stencil sten[2];
+        if ((st = rg2__stencil_make(&dm->m.su, &sten[0], err)))
+            return st;
+        if ((st = rg2__stencil_make(&dm->m.sv, &sten[1], err))) {
+            rg2__stencil_free(&sten[0]);
+            return st;
+        }
+        s->tag = rg2__calloc((size_t)s->nu * (size_t)s->nv, sizeof(int));
+        if (!s->tag) {
+            rg2__stencil_free(&sten[0]);
+            rg2__stencil_free(&sten[1]);
+            return rg2__fail(err, RG2_ENOMEM, "design: out of memory for tags");
+        }
+        for (int k = 0; k < s->nu; k++)
+            for (int l = 0; l < s->nv; l++)
+                s->tag[k * s->nv + l] = rg2__patch_tag(d, dm, sten, k, l);
+        rg2__stencil_free(&sten[0]);
+        rg2__stencil_free(&sten[1]);
+    }
+    return RG2_OK;
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* public entry points */
+
+rg2_status rg2_design_parse(const char *json, size_t len, const char *name, rg2_design **out,
+                            rg2_error *err)
+{
+    *out = NULL;
+    if (!name)
+        name = "design";
+    if (!json)
+        return rg2__fail(err, RG2_EINVAL, "%s: no text", name);
+    rg2_design *d = rg2__calloc(1, sizeof *d);
+    if (!d)
+        return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", name);
+    d->name = dupstr(name);
+    rg2_error local;
+    if (!err)
+        err = &local;
+    rg2_status st = d->name ? rg2__design_parse_json(d, json, len, name, err)
+                            : rg2__fail(err, RG2_ENOMEM, "%s: out of memory", name);
+    if (!st)
+        st = rg2__design_build(d, err);
+    if (st) {
+        rg2_design_free(d);
+        return st;
+    }
+    rg2__ok(err);
+    *out = d;
+    return RG2_OK;
+}
+
+#define RG2_DESIGN_MAX_BYTES (64u << 20)
+
+rg2_status rg2_design_load(const char *path, rg2_design **out, rg2_error *err)
+{
+    *out = NULL;
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return rg2__fail(err, RG2_EIO, "%s: cannot open: %s", path, strerror(errno));
+    size_t cap = 1 << 16, len = 0;
+    char *buf = malloc(cap);
+    while (buf) {
+        size_t r = fread(buf + len, 1, cap - len - 1, f);
+        len += r;
+        if (len < cap - 1)
+            break;
+        if (cap >= RG2_DESIGN_MAX_BYTES) {
+            free(buf);
+            fclose(f);
+            return rg2__fail(err, RG2_ELIMIT, "%s: larger than %u bytes", path, RG2_DESIGN_MAX_BYTES);
+        }
+        char *nb = realloc(buf, cap * 2);
+        if (!nb) {
+            free(buf);
+            buf = NULL;
+            break;
+        }
+        buf = nb;
+        cap *= 2;
+    }
+    int bad = ferror(f);
+    fclose(f);
+    if (!buf)
+        return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", path);
+    if (bad) {
+        free(buf);
+        return rg2__fail(err, RG2_EIO, "%s: read error", path);
+    }
+    buf[len] = 0;
+    rg2_status st = rg2_design_parse(buf, len, path, out, err);
+    free(buf);
+    return st;
+}
+
+int rg2_design_num_surfaces(const rg2_design *d) { return d ? d->n_out : 0; }
+
+const rg2_surface *rg2_design_surface(const rg2_design *d, int k)
+{
+    return (d && k >= 0 && k < d->n_out) ? &d->surf[k] : NULL;
+}
+
+const rg2_mesh *rg2_design_mesh(const rg2_design *d, int k)
+{
+    return (d && k >= 0 && k < d->n_out) ? &d->mesh[d->out[k]].m : NULL;
+}
+
+const char *rg2_design_mesh_name(const rg2_design *d, int k)
+{
+    return (d && k >= 0 && k < d->n_out) ? d->mesh[d->out[k]].name : NULL;
+}
+
+int rg2_design_num_shapes(const rg2_design *d) { return d ? d->n_shapes : 0; }
+
+const rg2_shape *rg2_design_shape(const rg2_design *d, int k)
+{
+    return (d && k >= 0 && k < d->n_shapes) ? &d->shapes[k] : NULL;
+}
+
+const char *rg2_design_shape_label(const rg2_design *d, int k)
+{
+    return (d && k >= 0 && k < d->n_shapes) ? d->labels[k] : NULL;
+}
+
+int rg2_design_point_shape(const rg2_design *d, int k, int i, int j)
+{
+    if (!d || k < 0 || k >= d->n_out)
+        return -1;
+    const rg2__dmesh *dm = &d->mesh[d->out[k]];
+    if (i < 0 || i >= dm->m.nu || j < 0 || j >= dm->m.nv)
+        return -1;
+    int s = rg2__dmesh_pp(dm, i, j)->src;
+    return s < 0 ? -1 : d->src[s].shape;
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* the control mesh as JSON (rg2 mesh) */
+
+static cJSON *num_array(const double *v, int n)
+{
+    cJSON *a = cJSON_CreateArray();
+    for (int i = 0; a && i < n; i++)
+        cJSON_AddItemToArray(a, cJSON_CreateNumber(v[i]));
+    return a;
+}
+
+static cJSON *int_array(const int *v, int n)
+{
+    cJSON *a = cJSON_CreateArray();
+    for (int i = 0; a && i < n; i++)
+        cJSON_AddItemToArray(a, cJSON_CreateNumber(v[i]));
+    return a;
+}
+
+static cJSON *scalars_json(const rg2_scalars *s, const int *leg, const int *jun)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddBoolToObject(o, "closed", s->closed);
+    cJSON_AddNumberToObject(o, "first_leg", s->closed ? 0 : -1);
+    cJSON_AddItemToObject(o, "w", num_array(s->w, rg2_scalars_num_w(s)));
+    cJSON_AddItemToObject(o, "b", num_array(s->b, s->n));
+    cJSON_AddItemToObject(o, "g", num_array(s->g, s->n));
+    cJSON_AddItemToObject(o, "w_shape", int_array(leg, rg2_scalars_num_w(s)));
+    cJSON_AddItemToObject(o, "junction_shape", int_array(jun, s->n));
+    return o;
+}
+
+rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, rg2_error *err)
+{
+    cJSON *root = cJSON_CreateObject();
+    if (!root)
+        return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", path);
+    cJSON_AddStringToObject(root, "format", "rg2 control mesh 1");
+    cJSON_AddStringToObject(root, "design", d->name);
+    cJSON *shapes = cJSON_AddArrayToObject(root, "shapes");
+    for (int k = 0; k < d->n_shapes; k++) {
+        cJSON *s = cJSON_CreateObject();
+        const rg2_shape_desc *desc = rg2_shape_describe(d->shapes[k].kind);
+        cJSON_AddStringToObject(s, "label", d->labels[k]);
+        cJSON_AddStringToObject(s, "kind", desc ? desc->name : "?");
+        if (desc)
+            for (int p = 0; p < desc->n_params; p++)
+                cJSON_AddNumberToObject(s, desc->param_names[p], d->shapes[k].param[p]);
+        cJSON_AddItemToObject(s, "matrix", num_array(d->shapes[k].xform, 16));
+        cJSON_AddItemToArray(shapes, s);
+    }
+    cJSON *meshes = cJSON_AddArrayToObject(root, "meshes");
+    for (int o = 0; o < d->n_out; o++) {
+        const rg2__dmesh *dm = &d->mesh[d->out[o]];
+        const rg2_mesh *m = &dm->m;
+        cJSON *jm = cJSON_CreateObject();
+        cJSON_AddStringToObject(jm, "name", dm->name);
+        cJSON_AddNumberToObject(jm, "nu", m->nu);
+        cJSON_AddNumberToObject(jm, "nv", m->nv);
+        cJSON *dd = cJSON_AddArrayToObject(jm, "d"), *WW = cJSON_AddArrayToObject(jm, "W"),
+              *ss = cJSON_AddArrayToObject(jm, "shape");
+        for (int i = 0; i < m->nu; i++) {
+            cJSON *row = cJSON_CreateArray(), *wrow = cJSON_CreateArray(), *srow = cJSON_CreateArray();
+            for (int j = 0; j < m->nv; j++) {
+                const double *p = rg2_mesh_at(m, i, j);
+                double x[3] = {p[0] / p[3], p[1] / p[3], p[2] / p[3]};
+                cJSON_AddItemToArray(row, num_array(x, 3));
+                cJSON_AddItemToArray(wrow, cJSON_CreateNumber(p[3]));
+                int sp = rg2__dmesh_pp(dm, i, j)->src;
+                cJSON_AddItemToArray(srow, cJSON_CreateNumber(sp < 0 ? -1 : d->src[sp].shape));
+            }
+            cJSON_AddItemToArray(dd, row);
+            cJSON_AddItemToArray(WW, wrow);
+            cJSON_AddItemToArray(ss, srow);
+        }
+        cJSON_AddItemToObject(jm, "u", scalars_json(&m->su, dm->leg[0], dm->jun[0]));
+        cJSON_AddItemToObject(jm, "v", scalars_json(&m->sv, dm->leg[1], dm->jun[1]));
+        const rg2_surface *s = &d->surf[o];
+        cJSON_AddItemToObject(jm, "patch_shape", int_array(s->tag, s->nu * s->nv));
+        cJSON_AddItemToArray(meshes, jm);
+    }
+    char *text = cJSON_Print(root);
+    cJSON_Delete(root);
+    if (!text)
+        return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", path);
+    size_t n = strlen(path);
+    char *tmp = malloc(n + 5);
+    if (!tmp) {
+        cJSON_free(text);
+        return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", path);
+    }
+    memcpy(tmp, path, n);
+    memcpy(tmp + n, ".tmp", 5);
+    FILE *f = fopen(tmp, "wb");
+    rg2_status st = RG2_OK;
+    if (!f)
+        st = rg2__fail(err, RG2_EIO, "%s: cannot write: %s", tmp, strerror(errno));
+    else {
+        size_t tl = strlen(text);
+        int bad = fwrite(text, 1, tl, f) != tl || fputc('\n', f) == EOF;
+        bad = fclose(f) != 0 || bad;
+        if (bad || rename(tmp, path) != 0) {
+            st = rg2__fail(err, RG2_EIO, "%s: write failed: %s", path, strerror(errno));
+            remove(tmp);
+        }
+    }
+    free(tmp);
+    cJSON_free(text);
+    if (!st)
+        rg2__ok(err);
+    return st;
+}

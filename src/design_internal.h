@@ -1,0 +1,104 @@
+/* design_internal.h -- private structures of the design module (design.c, design_ops.c,
+ * design_parse.c); never installed. */
+#ifndef RG2_DESIGN_INTERNAL_H
+#define RG2_DESIGN_INTERNAL_H
+
+#include "internal.h"
+
+/* Where a control point came from: source mesh `src` (index into rg2_design.src) at
+ * its point (i, j); src = -1 for a point that was edited or blended. */
+typedef struct {
+    int src, i, j;
+} rg2__pprov;
+
+/* A source: the control mesh of one shape over one pair of partitions, as the shape module
+ * produced it (or a transformed copy). Patches whose 4x4 control block is a consecutive block
+ * of a source and whose construction stencils agree with the source's are pieces of its shape. */
+typedef struct {
+    int shape;        /* index into rg2_design.shapes */
+    rg2_mesh base;
+    rg2__stencil st[2]; /* u and v stencils of base */
+} rg2__source;
+
+/* A design mesh: a control mesh with provenance. Scalar provenance (shape index or -1) is
+ * kept per stored weight (leg) and per junction of each direction, for reporting. */
+typedef struct {
+    char *name;
+    rg2_mesh m;
+    rg2__pprov *pp;    /* nu * nv */
+    int *leg[2];       /* rg2_scalars_num_w entries per direction (u = 0, v = 1) */
+    int *jun[2];       /* n entries per direction */
+} rg2__dmesh;
+
+struct rg2_design {
+    char *name;
+    int n_shapes, cap_shapes;
+    rg2_shape *shapes;
+    char **labels;
+    int n_src, cap_src;
+    rg2__source *src;
+    int n_mesh, cap_mesh;
+    rg2__dmesh *mesh;
+    int n_out;
+    int *out;             /* indices into mesh */
+    rg2_surface *surf;    /* n_out built surfaces with tags */
+};
+
+/* Seam rules of merge (docs/design-format.md). */
+typedef enum { RG2__SEAM_PRESERVE = 0, RG2__SEAM_PLAIN = 1 } rg2__seam_rule;
+
+/* Design-mesh storage. */
+rg2_status rg2__dmesh_alloc(rg2__dmesh *d, const char *name, int nu, int nv, int cu, int cv,
+                            rg2_error *err);
+void rg2__dmesh_free(rg2__dmesh *d);
+static inline rg2__pprov *rg2__dmesh_pp(const rg2__dmesh *d, int i, int j)
+{
+    return d->pp + (size_t)i * (size_t)d->m.nv + (size_t)j;
+}
+
+/* Registries of the design (grow arrays); return the new index or -1 (err set). */
+int rg2__design_add_shape(rg2_design *d, const rg2_shape *s, const char *label, rg2_error *err);
+int rg2__design_add_source(rg2_design *d, int shape, const rg2_mesh *base, rg2_error *err);
+rg2__dmesh *rg2__design_new_mesh(rg2_design *d, rg2_error *err);
+int rg2__design_find_mesh(const rg2_design *d, const char *name);
+
+/* Operations (design_ops.c). `what` names the operation in messages (e.g. "meshes.A").
+ * Each writes a new design mesh into *out (allocated by the callee, name set by caller). */
+rg2_status rg2__op_shape(rg2_design *d, int shape, const rg2_partition *pu, const rg2_partition *pv,
+                         rg2__dmesh *out, const char *what, rg2_error *err);
+/* Keep points first[dir]..last[dir] (inclusive; closed directions may wrap: last may exceed
+ * n - 1). A direction with first = -1 is kept as is. */
+rg2_status rg2__op_cut(const rg2__dmesh *in, const int first[2], const int last[2],
+                       rg2__dmesh *out, const char *what, rg2_error *err);
+rg2_status rg2__op_transpose(const rg2__dmesh *in, rg2__dmesh *out, const char *what,
+                             rg2_error *err);
+/* Reverse direction dir: points in reverse order, legs reversed, junction scalars
+ * b' = 1 / b, g' = g / b^3 (the same curves traversed backwards). */
+rg2_status rg2__op_reverse(const rg2__dmesh *in, int dir, rg2__dmesh *out, const char *what,
+                           rg2_error *err);
+rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int closed,
+                         rg2__seam_rule rule, rg2__dmesh *out, const char *what, rg2_error *err);
+rg2_status rg2__op_transform(rg2_design *d, const rg2__dmesh *in, const double M[16],
+                             rg2__dmesh *out, const char *what, rg2_error *err);
+rg2_status rg2__op_morph(const rg2__dmesh *a, const rg2__dmesh *b, double t, rg2__dmesh *out,
+                         const char *what, rg2_error *err);
+rg2_status rg2__dmesh_copy(const rg2__dmesh *in, rg2__dmesh *out, rg2_error *err);
+/* Edits in place on a copy. */
+typedef enum { RG2__EDIT_MOVE, RG2__EDIT_TO, RG2__EDIT_WEIGHT } rg2__edit_kind;
+rg2_status rg2__edit_point(rg2__dmesh *m, int i, int j, rg2__edit_kind kind, const double *v,
+                           const char *what, rg2_error *err);
+/* Scalars: which = 'w' (leg index i), 'b' or 'g' (junction index i). */
+rg2_status rg2__edit_scalar(rg2__dmesh *m, int dir, char which, int i, double value,
+                            const char *what, rg2_error *err);
+
+/* Build the output surfaces with provenance tags (design.c). */
+rg2_status rg2__design_build(rg2_design *d, rg2_error *err);
+/* Tag of patch (k, l) of surface s built from dmesh dm: shape index or -1. */
+int rg2__patch_tag(const rg2_design *d, const rg2__dmesh *dm, const rg2__stencil st[2], int k,
+                   int l);
+
+/* JSON design parser (design_parse.c). */
+rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, const char *name,
+                                  rg2_error *err);
+
+#endif

@@ -1,0 +1,662 @@
+/* design_ops.c -- operations on design meshes (paper section 4, MATH.md section 6): shape
+ * meshes, cut, transpose, merge, transform, morph, edits; every operation carries the
+ * provenance of control points and scalars along. */
+#include "design_internal.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *dir_name(int dir) { return dir ? "v" : "u"; }
+
+rg2_status rg2__dmesh_alloc(rg2__dmesh *d, const char *name, int nu, int nv, int cu, int cv,
+                            rg2_error *err)
+{
+    memset(d, 0, sizeof *d);
+    rg2_status st = rg2_mesh_init(&d->m, nu, nv, cu, cv, err);
+    if (st)
+        return st;
+    d->pp = rg2__calloc((size_t)nu * (size_t)nv, sizeof *d->pp);
+    int ok = d->pp != NULL;
+    for (int k = 0; k < 2; k++) {
+        const rg2_scalars *s = k ? &d->m.sv : &d->m.su;
+        d->leg[k] = rg2__calloc((size_t)rg2_scalars_num_w(s), sizeof(int));
+        d->jun[k] = rg2__calloc((size_t)s->n, sizeof(int));
+        ok = ok && d->leg[k] && d->jun[k];
+    }
+    if (name) {
+        d->name = rg2__calloc(strlen(name) + 1, 1);
+        ok = ok && d->name;
+        if (d->name)
+            strcpy(d->name, name);
+    }
+    if (!ok) {
+        rg2__dmesh_free(d);
+        return rg2__fail(err, RG2_ENOMEM, "mesh %s: out of memory for %d x %d points",
+                         name ? name : "", nu, nv);
+    }
+    return RG2_OK;
+}
+
+void rg2__dmesh_free(rg2__dmesh *d)
+{
+    if (!d)
+        return;
+    rg2_mesh_free(&d->m);
+    free(d->name);
+    free(d->pp);
+    for (int k = 0; k < 2; k++) {
+        free(d->leg[k]);
+        free(d->jun[k]);
+    }
+    memset(d, 0, sizeof *d);
+}
+
+static const rg2_scalars *dir_scalars(const rg2_mesh *m, int dir) { return dir ? &m->sv : &m->su; }
+static rg2_scalars *dir_scalars_mut(rg2_mesh *m, int dir) { return dir ? &m->sv : &m->su; }
+
+rg2_status rg2__dmesh_copy(const rg2__dmesh *in, rg2__dmesh *out, rg2_error *err)
+{
+    rg2_status st = rg2__dmesh_alloc(out, NULL, in->m.nu, in->m.nv, in->m.su.closed,
+                                     in->m.sv.closed, err);
+    if (st)
+        return st;
+    size_t np = (size_t)in->m.nu * (size_t)in->m.nv;
+    memcpy(out->m.p, in->m.p, np * 4 * sizeof(double));
+    memcpy(out->pp, in->pp, np * sizeof *in->pp);
+    for (int k = 0; k < 2; k++) {
+        const rg2_scalars *a = dir_scalars(&in->m, k);
+        rg2_scalars *b = dir_scalars_mut(&out->m, k);
+        int nw = rg2_scalars_num_w(a);
+        memcpy(b->w, a->w, (size_t)nw * sizeof(double));
+        memcpy(b->b, a->b, (size_t)a->n * sizeof(double));
+        memcpy(b->g, a->g, (size_t)a->n * sizeof(double));
+        memcpy(out->leg[k], in->leg[k], (size_t)nw * sizeof(int));
+        memcpy(out->jun[k], in->jun[k], (size_t)a->n * sizeof(int));
+    }
+    return RG2_OK;
+}
+
+/* ------------------------------------------------------------------------------------- */
+
+rg2_status rg2__op_shape(rg2_design *d, int shape, const rg2_partition *pu, const rg2_partition *pv,
+                         rg2__dmesh *out, const char *what, rg2_error *err)
+{
+    rg2_mesh base = {0};
+    rg2_status st = rg2_shape_mesh(&d->shapes[shape], pu, pv, &base, err);
+    if (st) {
+        rg2_error e = *err;
+        return rg2__fail(err, st, "%s: %s", what, e.msg);
+    }
+    int src = rg2__design_add_source(d, shape, &base, err);
+    if (src < 0) {
+        rg2_mesh_free(&base);
+        return err->code;
+    }
+    /* the source owns base now; the design mesh is a copy with provenance */
+    const rg2_mesh *b = &d->src[src].base;
+    st = rg2__dmesh_alloc(out, NULL, b->nu, b->nv, b->su.closed, b->sv.closed, err);
+    if (st)
+        return st;
+    rg2_mesh_free(&out->m);
+    st = rg2_mesh_copy(b, &out->m, err);
+    if (st)
+        return st;
+    for (int i = 0; i < b->nu; i++)
+        for (int j = 0; j < b->nv; j++)
+            *rg2__dmesh_pp(out, i, j) = (rg2__pprov){src, i, j};
+    for (int k = 0; k < 2; k++) {
+        const rg2_scalars *s = dir_scalars(b, k);
+        for (int i = 0; i < rg2_scalars_num_w(s); i++)
+            out->leg[k][i] = shape;
+        for (int i = 0; i < s->n; i++)
+            out->jun[k][i] = shape;
+    }
+    return RG2_OK;
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* cut */
+
+rg2_status rg2__op_cut(const rg2__dmesh *in, const int first[2], const int last[2],
+                       rg2__dmesh *out, const char *what, rg2_error *err)
+{
+    int n[2], cl[2], f[2];
+    for (int k = 0; k < 2; k++) {
+        const rg2_scalars *s = dir_scalars(&in->m, k);
+        if (first[k] < 0) {
+            n[k] = s->n;
+            cl[k] = s->closed;
+            f[k] = 0;
+            continue;
+        }
+        int cnt = last[k] - first[k] + 1;
+        int maxlast = s->closed ? first[k] + s->n + 2 : s->n - 1;
+        if (first[k] >= s->n || last[k] < first[k] || last[k] > maxlast)
+            return rg2__fail(err, RG2_EINVAL,
+                             "%s: %s range [%d, %d] is outside the %d control points of mesh '%s' "
+                             "(%s; need 0 <= first < %d, first <= last <= %d)",
+                             what, dir_name(k), first[k], last[k], s->n, in->name,
+                             s->closed ? "closed, last may wrap" : "open", s->n, maxlast);
+        if (cnt < 4)
+            return rg2__fail(err, RG2_EINVAL,
+                             "%s: %s range [%d, %d] keeps %d control points; an open direction "
+                             "needs at least 4",
+                             what, dir_name(k), first[k], last[k], cnt);
+        n[k] = cnt;
+        cl[k] = 0;
+        f[k] = first[k];
+    }
+    rg2_status st = rg2__dmesh_alloc(out, NULL, n[0], n[1], cl[0], cl[1], err);
+    if (st)
+        return st;
+    for (int i = 0; i < n[0]; i++)
+        for (int j = 0; j < n[1]; j++) {
+            int si = rg2__wrap(f[0] + i, in->m.nu, in->m.su.closed);
+            int sj = rg2__wrap(f[1] + j, in->m.nv, in->m.sv.closed);
+            memcpy(rg2_mesh_at(&out->m, i, j), rg2_mesh_at(&in->m, si, sj), 4 * sizeof(double));
+            *rg2__dmesh_pp(out, i, j) = *rg2__dmesh_pp(in, si, sj);
+        }
+    for (int k = 0; k < 2; k++) {
+        const rg2_scalars *a = dir_scalars(&in->m, k);
+        rg2_scalars *b = dir_scalars_mut(&out->m, k);
+        int off_a = a->closed ? 0 : 1, off_b = b->closed ? 0 : 1;
+        /* junctions */
+        for (int i = 0; i < b->n; i++) {
+            int si = rg2__wrap(f[k] + i, a->n, a->closed);
+            b->b[i] = a->b[si];
+            b->g[i] = a->g[si];
+            out->jun[k][i] = in->jun[k][si];
+        }
+        /* legs: out leg l (stored l + off_b) is in leg f + l */
+        int lo = b->closed ? 0 : -1, hi = b->n - 1;
+        for (int l = lo; l <= hi; l++) {
+            int sl = f[k] + l;
+            if (a->closed)
+                sl = rg2__wrap(sl, a->n, 1);
+            b->w[l + off_b] = a->w[sl + off_a];
+            out->leg[k][l + off_b] = in->leg[k][sl + off_a];
+        }
+    }
+    return RG2_OK;
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* transpose */
+
+rg2_status rg2__op_transpose(const rg2__dmesh *in, rg2__dmesh *out, const char *what,
+                             rg2_error *err)
+{
+    (void)what;
+    rg2_status st = rg2__dmesh_alloc(out, NULL, in->m.nv, in->m.nu, in->m.sv.closed,
+                                     in->m.su.closed, err);
+    if (st)
+        return st;
+    for (int i = 0; i < in->m.nu; i++)
+        for (int j = 0; j < in->m.nv; j++) {
+            memcpy(rg2_mesh_at(&out->m, j, i), rg2_mesh_at(&in->m, i, j), 4 * sizeof(double));
+            *rg2__dmesh_pp(out, j, i) = *rg2__dmesh_pp(in, i, j);
+        }
+    for (int k = 0; k < 2; k++) {
+        const rg2_scalars *a = dir_scalars(&in->m, 1 - k);
+        rg2_scalars *b = dir_scalars_mut(&out->m, k);
+        int nw = rg2_scalars_num_w(a);
+        memcpy(b->w, a->w, (size_t)nw * sizeof(double));
+        memcpy(b->b, a->b, (size_t)a->n * sizeof(double));
+        memcpy(b->g, a->g, (size_t)a->n * sizeof(double));
+        memcpy(out->leg[k], in->leg[1 - k], (size_t)nw * sizeof(int));
+        memcpy(out->jun[k], in->jun[1 - k], (size_t)a->n * sizeof(int));
+    }
+    return RG2_OK;
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* reverse */
+
+/*
+ * METHOD: with L(t) = f_i(1 - t), R(t) = f_{i-1}(1 - t), Definition 1 at the junction gives
+ * R'(0) = (1 / b) L'(1) and R''(0) = (1 / b^2) L''(1) + (g / b^3) L'(1): the reversed junction
+ * has b' = 1 / b, g' = g / b^3 (so K' = K / b^3 > 0), and leg l of the reversed direction is
+ * leg n - 2 - l. The construction is symmetric under this relabelling, so every patch is the
+ * same patch traversed backwards (the provenance tags check it on the stencils).
+ */
+rg2_status rg2__op_reverse(const rg2__dmesh *in, int dir, rg2__dmesh *out, const char *what,
+                           rg2_error *err)
+{
+    rg2_status st = rg2__dmesh_copy(in, out, err);
+    if (st)
+        return st;
+    const rg2_scalars *a = dir_scalars(&in->m, dir);
+    rg2_scalars *b = dir_scalars_mut(&out->m, dir);
+    int n = a->n;
+    for (int i = 0; i < in->m.nu; i++)
+        for (int j = 0; j < in->m.nv; j++) {
+            int si = dir == 0 ? n - 1 - i : i, sj = dir == 0 ? j : n - 1 - j;
+            memcpy(rg2_mesh_at(&out->m, i, j), rg2_mesh_at(&in->m, si, sj), 4 * sizeof(double));
+            *rg2__dmesh_pp(out, i, j) = *rg2__dmesh_pp(in, si, sj);
+        }
+    for (int j = 0; j < n; j++) {
+        double bb = a->b[n - 1 - j];
+        b->b[j] = 1.0 / bb;
+        b->g[j] = a->g[n - 1 - j] / (bb * bb * bb);
+        out->jun[dir][j] = in->jun[dir][n - 1 - j];
+    }
+    for (int s = 0; s < rg2_scalars_num_w(a); s++) {
+        int from = a->closed ? rg2__wrap(n - 2 - s, n, 1) : n - s;
+        b->w[s] = a->w[from];
+        out->leg[dir][s] = in->leg[dir][from];
+    }
+    st = rg2_scalars_check(b, what, err);
+    if (st)
+        rg2__dmesh_free(out);
+    return st;
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* merge */
+
+static int close_rel(double a, double b, double tol)
+{
+    return fabs(a - b) <= tol * fmax(1.0, fmax(fabs(a), fabs(b)));
+}
+
+/* First difference between two direction scalars, written to msg; 0 if they agree. */
+static int scalars_differ(const rg2_scalars *a, const rg2_scalars *b, char *msg, size_t cap)
+{
+    if (a->n != b->n) {
+        snprintf(msg, cap, "%d vs %d control points", a->n, b->n);
+        return 1;
+    }
+    if (a->closed != b->closed) {
+        snprintf(msg, cap, "%s vs %s", a->closed ? "closed" : "open", b->closed ? "closed" : "open");
+        return 1;
+    }
+    int nw = rg2_scalars_num_w(a), off = a->closed ? 0 : 1;
+    const double tol = 1e-12;
+    for (int i = 0; i < nw; i++)
+        if (!close_rel(a->w[i], b->w[i], tol)) {
+            snprintf(msg, cap, "leg weight w[%d] = %.17g vs %.17g", i - off, a->w[i], b->w[i]);
+            return 1;
+        }
+    for (int i = 0; i < a->n; i++) {
+        if (!close_rel(a->b[i], b->b[i], tol)) {
+            snprintf(msg, cap, "junction scalar b[%d] = %.17g vs %.17g", i, a->b[i], b->b[i]);
+            return 1;
+        }
+        if (!close_rel(a->g[i], b->g[i], tol)) {
+            snprintf(msg, cap, "junction scalar g[%d] = %.17g vs %.17g", i, a->g[i], b->g[i]);
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/*
+ * METHOD (seam rule "preserve", docs/design-format.md): the parts are concatenated along dir
+ * without new points. Part legs and junctions keep their scalars. The seam leg between the
+ * last point of part L and the first of part R gets the mean of L's data-only end weight and
+ * R's data-only start weight, w_s. The junction scalars b at both seam junctions stay; g is
+ * re-solved so that the stencil quantities the parts' own end segments use are unchanged:
+ *   at L's last junction j:  B_{j-1} = 2 b^2 (w_j + b w_{j-1}) / (w_j K_j)   is kept,
+ *   at R's first junction j: A_j     = 2 (w_j + b w_{j-1}) / (w_{j-1} K_j)   is kept,
+ * i.e. K_j is rescaled and g_j = K_j - 2 b (3 w_j - 2) - 2 b^2 (3 w_{j-1} - 2). Then every
+ * patch of every part stays exactly what it was, K stays > 0 (a positive multiple of the
+ * part's K), and the 3 patches straddling each seam are the transition.
+ * Rule "plain" keeps b and g as they are (only w_s is new): simpler, but the end patches of
+ * both parts change (they depend on w_s through K).
+ */
+rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int closed,
+                         rg2__seam_rule rule, rg2__dmesh *out, const char *what, rg2_error *err)
+{
+    int other = 1 - dir, n = 0;
+    for (int t = 0; t < n_in; t++) {
+        const rg2_scalars *s = dir_scalars(&in[t]->m, dir);
+        if (s->closed)
+            return rg2__fail(err, RG2_EINCOMPATIBLE,
+                             "%s: mesh '%s' is closed in %s; cut it open before merging along %s",
+                             what, in[t]->name, dir_name(dir), dir_name(dir));
+        n += s->n;
+        if (t > 0) {
+            char msg[200];
+            if (scalars_differ(dir_scalars(&in[0]->m, other), dir_scalars(&in[t]->m, other), msg,
+                               sizeof msg))
+                return rg2__fail(err, RG2_EINCOMPATIBLE,
+                                 "%s: meshes '%s' and '%s' do not agree in %s (the direction "
+                                 "that must match when merging along %s): %s",
+                                 what, in[0]->name, in[t]->name, dir_name(other), dir_name(dir), msg);
+        }
+    }
+    if (n > RG2_MAX_POINTS)
+        return rg2__fail(err, RG2_ELIMIT, "%s: %d points along %s exceed the limit", what, n,
+                         dir_name(dir));
+    const rg2_scalars *so = dir_scalars(&in[0]->m, other);
+    int nn[2], cc[2];
+    nn[dir] = n;
+    cc[dir] = closed;
+    nn[other] = so->n;
+    cc[other] = so->closed;
+    rg2_status st = rg2__dmesh_alloc(out, NULL, nn[0], nn[1], cc[0], cc[1], err);
+    if (st)
+        return st;
+    /* points */
+    int off = 0;
+    for (int t = 0; t < n_in; t++) {
+        const rg2__dmesh *p = in[t];
+        for (int i = 0; i < p->m.nu; i++)
+            for (int j = 0; j < p->m.nv; j++) {
+                int oi = dir == 0 ? off + i : i, oj = dir == 0 ? j : off + j;
+                memcpy(rg2_mesh_at(&out->m, oi, oj), rg2_mesh_at(&p->m, i, j), 4 * sizeof(double));
+                *rg2__dmesh_pp(out, oi, oj) = *rg2__dmesh_pp(p, i, j);
+            }
+        off += dir_scalars(&p->m, dir)->n;
+    }
+    /* the shared direction: the first mesh's scalars */
+    {
+        rg2_scalars *b = dir_scalars_mut(&out->m, other);
+        int nw = rg2_scalars_num_w(so);
+        memcpy(b->w, so->w, (size_t)nw * sizeof(double));
+        memcpy(b->b, so->b, (size_t)so->n * sizeof(double));
+        memcpy(b->g, so->g, (size_t)so->n * sizeof(double));
+        memcpy(out->leg[other], in[0]->leg[other], (size_t)nw * sizeof(int));
+        memcpy(out->jun[other], in[0]->jun[other], (size_t)so->n * sizeof(int));
+        for (int t = 1; t < n_in; t++) {
+            for (int i = 0; i < nw; i++)
+                if (out->leg[other][i] != in[t]->leg[other][i])
+                    out->leg[other][i] = -1;
+            for (int i = 0; i < so->n; i++)
+                if (out->jun[other][i] != in[t]->jun[other][i])
+                    out->jun[other][i] = -1;
+        }
+    }
+    /* the merge direction */
+    rg2_scalars *S = dir_scalars_mut(&out->m, dir);
+    int ooff = closed ? 0 : 1; /* stored index of leg l is l + ooff */
+    off = 0;
+    for (int t = 0; t < n_in; t++) {
+        const rg2_scalars *a = dir_scalars(&in[t]->m, dir);
+        for (int i = 0; i < a->n; i++) {
+            S->b[off + i] = a->b[i];
+            S->g[off + i] = a->g[i];
+            out->jun[dir][off + i] = in[t]->jun[dir][i];
+        }
+        for (int l = 0; l <= a->n - 2; l++) { /* the part's own legs (stored l + 1) */
+            S->w[off + l + ooff] = a->w[l + 1];
+            out->leg[dir][off + l + ooff] = in[t]->leg[dir][l + 1];
+        }
+        off += a->n;
+    }
+    if (!closed) { /* data-only end legs of the whole */
+        const rg2_scalars *a0 = dir_scalars(&in[0]->m, dir), *al = dir_scalars(&in[n_in - 1]->m, dir);
+        S->w[0] = a0->w[0];
+        out->leg[dir][0] = in[0]->leg[dir][0];
+        S->w[n] = al->w[al->n];
+        out->leg[dir][n] = in[n_in - 1]->leg[dir][al->n];
+    }
+    /* seams */
+    off = 0;
+    for (int t = 0; t < n_in; t++) {
+        const rg2__dmesh *L = in[t];
+        const rg2_scalars *a = dir_scalars(&L->m, dir);
+        off += a->n;
+        if (t == n_in - 1 && !closed)
+            break;
+        const rg2__dmesh *R = in[(t + 1) % n_in];
+        const rg2_scalars *r = dir_scalars(&R->m, dir);
+        int jl = off - 1, jr = off % n; /* seam junctions; seam leg = jl */
+        double wvl = a->w[a->n], wvr = r->w[0];
+        double ws = wvl == wvr ? wvl : 0.5 * (wvl + wvr);
+        S->w[jl + ooff] = ws;
+        out->leg[dir][jl + ooff] =
+            (wvl == wvr && L->leg[dir][a->n] == R->leg[dir][0]) ? L->leg[dir][a->n] : -1;
+        if (rule == RG2__SEAM_PLAIN || wvl == wvr)
+            continue;
+        /* left: keep B_{jl-1} */
+        double b = a->b[a->n - 1], wp = a->w[a->n - 1], KL = rg2_scalars_K(a, a->n - 1);
+        double K = KL * (ws + b * wp) * wvl / (ws * (wvl + b * wp));
+        S->g[jl] = K - 2.0 * b * (3.0 * ws - 2.0) - 2.0 * b * b * (3.0 * wp - 2.0);
+        out->jun[dir][jl] = -1;
+        /* right: keep A_{jr} */
+        b = r->b[0];
+        double wn = r->w[1], KR = rg2_scalars_K(r, 0);
+        K = KR * wvr * (wn + b * ws) / (ws * (wn + b * wvr));
+        S->g[jr] = K - 2.0 * b * (3.0 * wn - 2.0) - 2.0 * b * b * (3.0 * ws - 2.0);
+        out->jun[dir][jr] = -1;
+    }
+    st = rg2_scalars_check(S, what, err);
+    if (st)
+        rg2__dmesh_free(out);
+    return st;
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* transform */
+
+rg2_status rg2__op_transform(rg2_design *d, const rg2__dmesh *in, const double M[16],
+                             rg2__dmesh *out, const char *what, rg2_error *err)
+{
+    for (int k = 0; k < 16; k++)
+        if (!rg2__finite(M[k]))
+            return rg2__fail(err, RG2_ENONFINITE, "%s: matrix entry %d is not finite", what, k);
+    rg2_status st = rg2__dmesh_copy(in, out, err);
+    if (st)
+        return st;
+    rg2_mesh_transform(&out->m, M);
+    /* every source (and shape) the mesh uses gets a transformed copy */
+    int n0 = d->n_src;
+    int *map = rg2__calloc((size_t)n0 + 1, sizeof(int)), *smap = rg2__calloc((size_t)d->n_shapes + 1, sizeof(int));
+    if (!map || !smap) {
+        free(map);
+        free(smap);
+        rg2__dmesh_free(out);
+        return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", what);
+    }
+    for (int k = 0; k < n0; k++)
+        map[k] = -1;
+    int nsh0 = d->n_shapes;
+    for (int k = 0; k < nsh0; k++)
+        smap[k] = -1;
+    size_t np = (size_t)out->m.nu * (size_t)out->m.nv;
+    for (size_t q = 0; q < np; q++) {
+        int s = out->pp[q].src;
+        if (s < 0 || map[s] >= 0)
+            continue;
+        int sh = d->src[s].shape;
+        if (smap[sh] < 0) {
+            rg2_shape ns = d->shapes[sh];
+            rg2_xform_mul(M, d->shapes[sh].xform, ns.xform);
+            char label[256];
+            snprintf(label, sizeof label, "%s@%s", d->labels[sh], what);
+            smap[sh] = rg2__design_add_shape(d, &ns, label, err);
+            if (smap[sh] < 0)
+                goto fail;
+        }
+        rg2_mesh base = {0};
+        if ((st = rg2_mesh_copy(&d->src[s].base, &base, err)))
+            goto fail;
+        rg2_mesh_transform(&base, M);
+        map[s] = rg2__design_add_source(d, smap[sh], &base, err);
+        if (map[s] < 0) {
+            rg2_mesh_free(&base);
+            goto fail;
+        }
+    }
+    for (size_t q = 0; q < np; q++)
+        if (out->pp[q].src >= 0)
+            out->pp[q].src = map[out->pp[q].src];
+    for (int k = 0; k < 2; k++) {
+        const rg2_scalars *s = dir_scalars(&out->m, k);
+        for (int i = 0; i < rg2_scalars_num_w(s); i++)
+            if (out->leg[k][i] >= 0 && out->leg[k][i] < nsh0 && smap[out->leg[k][i]] >= 0)
+                out->leg[k][i] = smap[out->leg[k][i]];
+        for (int i = 0; i < s->n; i++)
+            if (out->jun[k][i] >= 0 && out->jun[k][i] < nsh0 && smap[out->jun[k][i]] >= 0)
+                out->jun[k][i] = smap[out->jun[k][i]];
+    }
+    free(map);
+    free(smap);
+    return RG2_OK;
+fail:
+    free(map);
+    free(smap);
+    rg2__dmesh_free(out);
+    return err ? err->code : RG2_ENOMEM;
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* morph */
+
+static double blend(double a, double b, double t)
+{
+    if (t == 0.0 || a == b)
+        return a;
+    if (t == 1.0)
+        return b;
+    return (1.0 - t) * a + t * b;
+}
+
+/*
+ * METHOD: the homogeneous 4-tuples and the scalars w, b, g are blended linearly,
+ * (1 - t) A + t B; equal values are copied (no rounding), t = 0 and t = 1 copy A and B.
+ * Provenance survives where both meshes agree in value and provenance (or at t = 0, 1).
+ */
+rg2_status rg2__op_morph(const rg2__dmesh *a, const rg2__dmesh *b, double t, rg2__dmesh *out,
+                         const char *what, rg2_error *err)
+{
+    if (!rg2__finite(t) || t < 0.0 || t > 1.0)
+        return rg2__fail(err, RG2_EDOMAIN, "%s: t = %g, must lie in [0, 1]", what, t);
+    for (int k = 0; k < 2; k++) {
+        const rg2_scalars *sa = dir_scalars(&a->m, k), *sb = dir_scalars(&b->m, k);
+        if (sa->n != sb->n || sa->closed != sb->closed)
+            return rg2__fail(err, RG2_EINCOMPATIBLE,
+                             "%s: meshes '%s' (%d %s) and '%s' (%d %s) differ in %s; a morph needs "
+                             "meshes of equal structure",
+                             what, a->name, sa->n, sa->closed ? "closed" : "open", b->name, sb->n,
+                             sb->closed ? "closed" : "open", dir_name(k));
+    }
+    rg2_status st = rg2__dmesh_copy(t == 1.0 ? b : a, out, err);
+    if (st)
+        return st;
+    if (t == 0.0 || t == 1.0)
+        return RG2_OK;
+    size_t np = (size_t)a->m.nu * (size_t)a->m.nv;
+    for (size_t q = 0; q < np; q++) {
+        int same = 1;
+        for (int c = 0; c < 4; c++) {
+            double x = a->m.p[q * 4 + c], y = b->m.p[q * 4 + c];
+            same = same && x == y;
+            out->m.p[q * 4 + c] = blend(x, y, t);
+        }
+        if (!same || memcmp(&a->pp[q], &b->pp[q], sizeof a->pp[q]))
+            out->pp[q].src = -1;
+    }
+    for (int k = 0; k < 2; k++) {
+        const rg2_scalars *sa = dir_scalars(&a->m, k), *sb = dir_scalars(&b->m, k);
+        rg2_scalars *so = dir_scalars_mut(&out->m, k);
+        for (int i = 0; i < rg2_scalars_num_w(sa); i++) {
+            so->w[i] = blend(sa->w[i], sb->w[i], t);
+            if (sa->w[i] != sb->w[i] || a->leg[k][i] != b->leg[k][i])
+                out->leg[k][i] = -1;
+        }
+        for (int i = 0; i < sa->n; i++) {
+            so->b[i] = blend(sa->b[i], sb->b[i], t);
+            so->g[i] = blend(sa->g[i], sb->g[i], t);
+            if (sa->b[i] != sb->b[i] || sa->g[i] != sb->g[i] || a->jun[k][i] != b->jun[k][i])
+                out->jun[k][i] = -1;
+        }
+        char w[160];
+        snprintf(w, sizeof w, "%s at t = %g: %s", what, t, dir_name(k));
+        st = rg2_scalars_check(so, w, err);
+        if (st) {
+            rg2__dmesh_free(out);
+            return st;
+        }
+    }
+    return RG2_OK;
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* edits */
+
+rg2_status rg2__edit_point(rg2__dmesh *m, int i, int j, rg2__edit_kind kind, const double *v,
+                           const char *what, rg2_error *err)
+{
+    if (i < 0 || i >= m->m.nu || j < 0 || j >= m->m.nv)
+        return rg2__fail(err, RG2_EINVAL,
+                         "%s: control point [%d, %d] is outside the %d x %d points of mesh '%s'",
+                         what, i, j, m->m.nu, m->m.nv, m->name);
+    int nv = kind == RG2__EDIT_WEIGHT ? 1 : 3;
+    for (int k = 0; k < nv; k++)
+        if (!rg2__finite(v[k]))
+            return rg2__fail(err, RG2_ENONFINITE, "%s: value %d is not finite", what, k);
+    double *p = rg2_mesh_at(&m->m, i, j), W = p[3], q[4];
+    if (kind == RG2__EDIT_WEIGHT && !(v[0] > 0.0))
+        return rg2__fail(err, RG2_EWEIGHT, "%s: weight W = %g, must be > 0", what, v[0]);
+    if (!(W > 0.0) && kind != RG2__EDIT_WEIGHT)
+        return rg2__fail(err, RG2_EWEIGHT,
+                         "%s: control point [%d, %d] has weight W = %g; design coordinates need W > 0",
+                         what, i, j, W);
+    if (kind == RG2__EDIT_MOVE && v[0] == 0.0 && v[1] == 0.0 && v[2] == 0.0)
+        return RG2_OK;
+    switch (kind) {
+    case RG2__EDIT_MOVE:
+        for (int k = 0; k < 3; k++)
+            q[k] = W * (p[k] / W + v[k]);
+        q[3] = W;
+        break;
+    case RG2__EDIT_TO:
+        for (int k = 0; k < 3; k++)
+            q[k] = W * v[k];
+        q[3] = W;
+        break;
+    default:
+        if (!(W > 0.0))
+            return rg2__fail(err, RG2_EWEIGHT, "%s: control point [%d, %d] has weight W = %g",
+                             what, i, j, W);
+        for (int k = 0; k < 3; k++)
+            q[k] = v[0] * (p[k] / W);
+        q[3] = v[0];
+        break;
+    }
+    for (int k = 0; k < 4; k++)
+        if (!rg2__finite(q[k]))
+            return rg2__fail(err, RG2_ENONFINITE, "%s: control point [%d, %d] becomes non-finite",
+                             what, i, j);
+    if (memcmp(p, q, sizeof q)) {
+        memcpy(p, q, sizeof q);
+        rg2__dmesh_pp(m, i, j)->src = -1;
+    }
+    return RG2_OK;
+}
+
+rg2_status rg2__edit_scalar(rg2__dmesh *m, int dir, char which, int i, double value,
+                            const char *what, rg2_error *err)
+{
+    rg2_scalars *s = dir_scalars_mut(&m->m, dir);
+    if (!rg2__finite(value))
+        return rg2__fail(err, RG2_ENONFINITE, "%s: %c is not finite", what, which);
+    if (which == 'w') {
+        int lo = s->closed ? 0 : -1, hi = s->n - 1;
+        if (i < lo || i > hi)
+            return rg2__fail(err, RG2_EINVAL, "%s: %s leg %d is outside %d..%d of mesh '%s'", what,
+                             dir_name(dir), i, lo, hi, m->name);
+        if (!(value > 0.0))
+            return rg2__fail(err, RG2_EWEIGHT, "%s: leg weight w = %g, must be > 0", what, value);
+        int si = i + (s->closed ? 0 : 1);
+        if (s->w[si] != value) {
+            s->w[si] = value;
+            m->leg[dir][si] = -1;
+        }
+        return RG2_OK;
+    }
+    if (i < 0 || i >= s->n)
+        return rg2__fail(err, RG2_EINVAL, "%s: %s junction %d is outside 0..%d of mesh '%s'", what,
+                         dir_name(dir), i, s->n - 1, m->name);
+    if (which == 'b' && !(value > 0.0))
+        return rg2__fail(err, RG2_EWEIGHT, "%s: junction scalar b = %g, must be > 0", what, value);
+    double *x = which == 'b' ? &s->b[i] : &s->g[i];
+    if (*x != value) {
+        *x = value;
+        m->jun[dir][i] = -1;
+    }
+    return RG2_OK;
+}

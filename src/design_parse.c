@@ -1,0 +1,1067 @@
+/* design_parse.c -- the JSON design file format (docs/design-format.md), read with cJSON.
+ * Every semantic error names the JSON path of the offending item; syntax errors give the
+ * line and column; unknown keys and names suggest the closest known one. */
+#include "design_internal.h"
+
+#include <cjson/cJSON.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct {
+    rg2_design *d;
+    const char *file;
+    rg2_error *err;
+} pctx;
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 4, 5)))
+#endif
+static rg2_status fail(pctx *c, rg2_status code, const char *path, const char *fmt, ...)
+{
+    char msg[400];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return rg2__fail(c->err, code, "%s: %s: %s", c->file, path, msg);
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* suggestions */
+
+static int edit_distance(const char *a, const char *b)
+{
+    size_t la = strlen(a), lb = strlen(b);
+    if (la > 63 || lb > 63)
+        return 99;
+    int row[64];
+    for (size_t j = 0; j <= lb; j++)
+        row[j] = (int)j;
+    for (size_t i = 1; i <= la; i++) {
+        int prev = row[0];
+        row[0] = (int)i;
+        for (size_t j = 1; j <= lb; j++) {
+            int cur = row[j];
+            int sub = prev + (a[i - 1] != b[j - 1]);
+            int del = row[j] + 1, ins = row[j - 1] + 1;
+            row[j] = sub < del ? (sub < ins ? sub : ins) : (del < ins ? del : ins);
+            prev = cur;
+        }
+    }
+    return row[lb];
+}
+
+/* " (did you mean 'x'?)" for the closest of names, or "" if none is close. */
+static void suggest(const char *word, const char *const *names, int n, char *out, size_t cap)
+{
+    int best = -1, bd = 1 << 30;
+    for (int k = 0; k < n; k++) {
+        int dd = edit_distance(word, names[k]);
+        if (dd < bd) {
+            bd = dd;
+            best = k;
+        }
+    }
+    int lim = (int)strlen(word) / 2 + 1;
+    if (best >= 0 && bd <= (lim < 3 ? lim : 3))
+        snprintf(out, cap, " (did you mean '%s'?)", names[best]);
+    else
+        out[0] = 0;
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* typed access */
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+static void fmtpath(char *buf, size_t cap, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf, cap, fmt, ap);
+    va_end(ap);
+}
+
+static void subpath(char *buf, size_t cap, const char *path, const char *key)
+{
+    fmtpath(buf, cap, "%s.%s", path, key);
+}
+
+static void indexpath(char *buf, size_t cap, const char *path, int k)
+{
+    fmtpath(buf, cap, "%s[%d]", path, k);
+}
+
+
+static rg2_status check_keys(pctx *c, const cJSON *obj, const char *path, const char *const *allowed,
+                             int n)
+{
+    for (const cJSON *it = obj->child; it; it = it->next) {
+        int ok = !strcmp(it->string, "comment");
+        for (int k = 0; k < n && !ok; k++)
+            ok = !strcmp(it->string, allowed[k]);
+        if (!ok) {
+            char sug[128], list[400] = "";
+            suggest(it->string, allowed, n, sug, sizeof sug);
+            for (int k = 0; k < n; k++) {
+                strncat(list, allowed[k], sizeof list - strlen(list) - 1);
+                if (k + 1 < n)
+                    strncat(list, ", ", sizeof list - strlen(list) - 1);
+            }
+            return fail(c, RG2_EPARSE, path, "unknown key '%s'%s; known keys: %s", it->string, sug, list);
+        }
+        for (const cJSON *o = obj->child; o != it; o = o->next)
+            if (!strcmp(o->string, it->string))
+                return fail(c, RG2_EPARSE, path, "duplicate key '%s'", it->string);
+    }
+    return RG2_OK;
+}
+
+static const char *type_name(const cJSON *x)
+{
+    if (cJSON_IsNumber(x)) return "a number";
+    if (cJSON_IsString(x)) return "a string";
+    if (cJSON_IsBool(x)) return "a boolean";
+    if (cJSON_IsNull(x)) return "null";
+    if (cJSON_IsArray(x)) return "an array";
+    if (cJSON_IsObject(x)) return "an object";
+    return "invalid";
+}
+
+static rg2_status as_num(pctx *c, const cJSON *x, const char *path, double *out)
+{
+    if (!cJSON_IsNumber(x))
+        return fail(c, RG2_EPARSE, path, "expected a number, found %s", type_name(x));
+    if (!rg2__finite(x->valuedouble))
+        return fail(c, RG2_ENONFINITE, path,
+                    "number is not finite (it overflows a double; JSON has no NaN or infinity)");
+    *out = x->valuedouble;
+    return RG2_OK;
+}
+
+static rg2_status as_int(pctx *c, const cJSON *x, const char *path, int *out)
+{
+    double v;
+    rg2_status st = as_num(c, x, path, &v);
+    if (st)
+        return st;
+    if (v != floor(v) || fabs(v) > 1e9)
+        return fail(c, RG2_EPARSE, path, "expected an integer, found %.17g", v);
+    *out = (int)v;
+    return RG2_OK;
+}
+
+static rg2_status as_bool(pctx *c, const cJSON *x, const char *path, int *out)
+{
+    if (!cJSON_IsBool(x))
+        return fail(c, RG2_EPARSE, path, "expected true or false, found %s", type_name(x));
+    *out = cJSON_IsTrue(x) ? 1 : 0;
+    return RG2_OK;
+}
+
+static rg2_status as_str(pctx *c, const cJSON *x, const char *path, const char **out)
+{
+    if (!cJSON_IsString(x))
+        return fail(c, RG2_EPARSE, path, "expected a string, found %s", type_name(x));
+    *out = x->valuestring;
+    return RG2_OK;
+}
+
+static rg2_status as_obj(pctx *c, const cJSON *x, const char *path)
+{
+    if (!cJSON_IsObject(x))
+        return fail(c, RG2_EPARSE, path, "expected an object, found %s", type_name(x));
+    return RG2_OK;
+}
+
+/* A number array of exactly n (n > 0) or of 1..max (n = 0, count into *count). */
+static rg2_status as_nums(pctx *c, const cJSON *x, const char *path, double *out, int n, int max,
+                          int *count)
+{
+    if (!cJSON_IsArray(x))
+        return fail(c, RG2_EPARSE, path, "expected an array of %s numbers, found %s",
+                    n ? (n == 3 ? "3" : n == 16 ? "16" : "2") : "", type_name(x));
+    int len = cJSON_GetArraySize(x);
+    if (n && len != n)
+        return fail(c, RG2_EPARSE, path, "expected %d numbers, found %d", n, len);
+    if (!n && len < 1)
+        return fail(c, RG2_EPARSE, path, "expected at least one number, found an empty array");
+    if (!n && len > max)
+        return fail(c, RG2_ELIMIT, path, "expected at most %d numbers, found %d", max, len);
+    int k = 0;
+    for (const cJSON *it = x->child; it; it = it->next, k++) {
+        char p[300];
+        indexpath(p, sizeof p, path, k);
+        rg2_status st = as_num(c, it, p, &out[k]);
+        if (st)
+            return st;
+    }
+    if (count)
+        *count = len;
+    return RG2_OK;
+}
+
+static const cJSON *get(const cJSON *obj, const char *key)
+{
+    return cJSON_GetObjectItemCaseSensitive(obj, key);
+}
+
+static rg2_status need(pctx *c, const cJSON *obj, const char *key, const char *path, const cJSON **out)
+{
+    *out = get(obj, key);
+    if (!*out)
+        return fail(c, RG2_EPARSE, path, "missing key '%s'", key);
+    return RG2_OK;
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* placement: scale, then rotate, then translate, then matrix */
+
+static const char *const placement_keys[] = {"matrix", "translate", "rotate", "scale"};
+
+static rg2_status parse_placement(pctx *c, const cJSON *obj, const char *path, double M[16], int *any)
+{
+    char p[300];
+    rg2_status st;
+    double T[16];
+    rg2_xform_identity(M);
+    *any = 0;
+    const cJSON *x;
+    if ((x = get(obj, "scale"))) {
+        double s[3];
+        subpath(p, sizeof p, path, "scale");
+        if (cJSON_IsNumber(x)) {
+            if ((st = as_num(c, x, p, &s[0])))
+                return st;
+            s[1] = s[2] = s[0];
+        } else if ((st = as_nums(c, x, p, s, 3, 3, NULL)))
+            return st;
+        if (s[0] == 0.0 || s[1] == 0.0 || s[2] == 0.0)
+            return fail(c, RG2_EDOMAIN, p, "scale factors must be non-zero");
+        rg2_xform_scale(T, s[0], s[1], s[2]);
+        rg2_xform_mul(T, M, M);
+        *any = 1;
+    }
+    if ((x = get(obj, "rotate"))) {
+        subpath(p, sizeof p, path, "rotate");
+        if ((st = as_obj(c, x, p)))
+            return st;
+        static const char *const rk[] = {"axis", "degrees"};
+        if ((st = check_keys(c, x, p, rk, 2)))
+            return st;
+        const cJSON *ax, *dg;
+        double a[3], deg;
+        char q[320];
+        if ((st = need(c, x, "axis", p, &ax)) || (st = need(c, x, "degrees", p, &dg)))
+            return st;
+        subpath(q, sizeof q, p, "axis");
+        if ((st = as_nums(c, ax, q, a, 3, 3, NULL)))
+            return st;
+        if (a[0] == 0.0 && a[1] == 0.0 && a[2] == 0.0)
+            return fail(c, RG2_EDOMAIN, q, "the rotation axis is the zero vector");
+        subpath(q, sizeof q, p, "degrees");
+        if ((st = as_num(c, dg, q, &deg)))
+            return st;
+        rg2_xform_rotate(T, a[0], a[1], a[2], deg * M_PI / 180.0);
+        rg2_xform_mul(T, M, M);
+        *any = 1;
+    }
+    if ((x = get(obj, "translate"))) {
+        double t[3];
+        subpath(p, sizeof p, path, "translate");
+        if ((st = as_nums(c, x, p, t, 3, 3, NULL)))
+            return st;
+        rg2_xform_translate(T, t[0], t[1], t[2]);
+        rg2_xform_mul(T, M, M);
+        *any = 1;
+    }
+    if ((x = get(obj, "matrix"))) {
+        subpath(p, sizeof p, path, "matrix");
+        if ((st = as_nums(c, x, p, T, 16, 16, NULL)))
+            return st;
+        rg2_xform_mul(T, M, M);
+        *any = 1;
+    }
+    return RG2_OK;
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* shapes */
+
+static rg2_status parse_shape(pctx *c, const cJSON *obj, const char *label, const char *path)
+{
+    rg2_status st = as_obj(c, obj, path);
+    if (st)
+        return st;
+    const cJSON *k;
+    const char *kind;
+    char p[300];
+    if ((st = need(c, obj, "kind", path, &k)))
+        return st;
+    subpath(p, sizeof p, path, "kind");
+    if ((st = as_str(c, k, p, &kind)))
+        return st;
+    const char *names[RG2_SHAPE_COUNT];
+    int kk = -1;
+    for (int q = 0; q < RG2_SHAPE_COUNT; q++) {
+        names[q] = rg2_shape_name((rg2_shape_kind)q);
+        if (!strcmp(kind, names[q]))
+            kk = q;
+    }
+    if (kk < 0) {
+        char sug[128], list[400] = "";
+        suggest(kind, names, RG2_SHAPE_COUNT, sug, sizeof sug);
+        for (int q = 0; q < RG2_SHAPE_COUNT; q++) {
+            strncat(list, names[q], sizeof list - strlen(list) - 1);
+            if (q + 1 < RG2_SHAPE_COUNT)
+                strncat(list, ", ", sizeof list - strlen(list) - 1);
+        }
+        return fail(c, RG2_EPARSE, p, "unknown shape kind '%s'%s; known kinds: %s", kind, sug, list);
+    }
+    const rg2_shape_desc *desc = rg2_shape_describe((rg2_shape_kind)kk);
+    const char *allowed[12];
+    int na = 0;
+    allowed[na++] = "kind";
+    for (int q = 0; q < 4; q++)
+        allowed[na++] = placement_keys[q];
+    for (int q = 0; q < desc->n_params; q++)
+        allowed[na++] = desc->param_names[q];
+    if ((st = check_keys(c, obj, path, allowed, na)))
+        return st;
+    rg2_shape s;
+    rg2_shape_init(&s, (rg2_shape_kind)kk);
+    for (int q = 0; q < desc->n_params; q++) {
+        const cJSON *x = get(obj, desc->param_names[q]);
+        if (!x)
+            continue;
+        subpath(p, sizeof p, path, desc->param_names[q]);
+        if ((st = as_num(c, x, p, &s.param[q])))
+            return st;
+    }
+    int any;
+    if ((st = parse_placement(c, obj, path, s.xform, &any)))
+        return st;
+    /* let the shape module validate the parameters and the placement */
+    double coef[4][4][4], inv[16];
+    rg2_error e;
+    if ((st = rg2_shape_coeffs(&s, coef, &e)))
+        return fail(c, st, path, "%s", e.msg);
+    if (any && (st = rg2_xform_invert(s.xform, inv, &e)))
+        return fail(c, st, path, "placement: %s", e.msg);
+    return rg2__design_add_shape(c->d, &s, label, c->err) < 0 ? c->err->code : RG2_OK;
+}
+
+static int find_shape(const rg2_design *d, const char *label)
+{
+    for (int k = 0; k < d->n_shapes; k++)
+        if (!strcmp(d->labels[k], label))
+            return k;
+    return -1;
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* partitions */
+
+#define MAX_PART 100000
+
+typedef struct {
+    rg2_partition p;
+    double *values;
+} part_buf;
+
+static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, const rg2_shape_desc *desc,
+                                  int dir, part_buf *pb)
+{
+    rg2_status st;
+    char p[300];
+    int angles = desc->dir_kind[dir] == RG2_PART_ANGLES;
+    double lo = desc->default_range[dir][0], hi = desc->default_range[dir][1];
+    int closed = desc->default_closed[dir], nseg = desc->default_segments[dir];
+    if (angles) {
+        lo *= 180.0 / M_PI;
+        hi *= 180.0 / M_PI;
+    }
+    const cJSON *list = NULL;
+    int have_to = 0, have_closed = 0;
+    if (obj) {
+        if ((st = as_obj(c, obj, path)))
+            return st;
+        static const char *const ka[] = {"arcs", "from", "to", "closed"};
+        static const char *const kk[] = {"knots", "segments", "from", "to"};
+        if ((st = check_keys(c, obj, path, angles ? ka : kk, 4)))
+            return st;
+        const cJSON *x;
+        if ((x = get(obj, "from"))) {
+            subpath(p, sizeof p, path, "from");
+            if ((st = as_num(c, x, p, &lo)))
+                return st;
+        }
+        if ((x = get(obj, "to"))) {
+            subpath(p, sizeof p, path, "to");
+            if ((st = as_num(c, x, p, &hi)))
+                return st;
+            have_to = 1;
+        }
+        if ((x = get(obj, "closed"))) {
+            subpath(p, sizeof p, path, "closed");
+            if ((st = as_bool(c, x, p, &closed)))
+                return st;
+            have_closed = 1;
+        }
+        const char *ck = angles ? "arcs" : "segments";
+        x = get(obj, ck);
+        if (!angles && get(obj, "knots")) {
+            if (x || get(obj, "from") || have_to)
+                return fail(c, RG2_EPARSE, path, "give either 'knots' or 'segments' with 'from'/'to'");
+            list = get(obj, "knots");
+        } else if (x) {
+            subpath(p, sizeof p, path, ck);
+            if (angles && !cJSON_IsArray(x) && !cJSON_IsNumber(x))
+                return fail(c, RG2_EPARSE, p,
+                            "expected a number of arcs or an array of opening angles (degrees), "
+                            "found %s", type_name(x));
+            if (angles && cJSON_IsArray(x)) {
+                if (have_to)
+                    return fail(c, RG2_EPARSE, path,
+                                "'to' goes with a number of arcs; a list of arcs starts at 'from' "
+                                "and ends where its angles add up");
+                list = x;
+            }
+            else if ((st = as_int(c, x, p, &nseg)))
+                return st;
+            else if (nseg < 1 || nseg > MAX_PART)
+                return fail(c, RG2_EDOMAIN, p, "%d %s; need 1 to %d", nseg, ck, MAX_PART);
+        }
+    }
+    int n;
+    if (list) {
+        subpath(p, sizeof p, path, angles ? "arcs" : "knots");
+        int len = cJSON_IsArray(list) ? cJSON_GetArraySize(list) : 0;
+        pb->values = rg2__calloc((size_t)(len > 0 ? len : 1), sizeof(double));
+        if (!pb->values)
+            return fail(c, RG2_ENOMEM, p, "out of memory");
+        if ((st = as_nums(c, list, p, pb->values, 0, MAX_PART, &n)))
+            return st;
+        if (angles) {
+            double sum = 0;
+            for (int k = 0; k < n; k++) {
+                sum += pb->values[k];
+                pb->values[k] *= M_PI / 180.0;
+            }
+            if (!have_closed)
+                closed = fabs(sum - 360.0) <= 1e-9 * 360.0;
+        }
+    } else {
+        if (angles && !have_closed)
+            closed = !have_to;
+        if (!angles)
+            closed = 0;
+        pb->values = rg2__calloc((size_t)nseg + 1, sizeof(double));
+        if (!pb->values)
+            return fail(c, RG2_ENOMEM, path, "out of memory");
+        if (angles) {
+            double span = closed ? 360.0 : hi - lo;
+            if (!(span > 0.0))
+                return fail(c, RG2_EDOMAIN, path, "arc range from %g to %g degrees is empty", lo, hi);
+            for (int k = 0; k < nseg; k++)
+                pb->values[k] = closed ? 2.0 * M_PI / nseg : span * (M_PI / 180.0) / nseg;
+            n = nseg;
+        } else {
+            if (!(hi > lo))
+                return fail(c, RG2_EDOMAIN, path, "knot range from %g to %g is empty", lo, hi);
+            for (int k = 0; k <= nseg; k++)
+                pb->values[k] = k == nseg ? hi : lo + (hi - lo) * k / nseg;
+            n = nseg + 1;
+        }
+    }
+    pb->p.kind = angles ? RG2_PART_ANGLES : RG2_PART_KNOTS;
+    pb->p.closed = angles ? closed : 0;
+    pb->p.n = n;
+    pb->p.values = pb->values;
+    pb->p.start = angles ? lo * M_PI / 180.0 : 0.0;
+    rg2_error e;
+    if ((st = rg2_partition_check(&pb->p, dir ? "v" : "u", &e)))
+        return fail(c, st, path, "%s", e.msg);
+    return RG2_OK;
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* meshes */
+
+static const char *const ops[] = {"shape", "cut", "merge", "transpose", "reverse", "edit", "transform", "morph"};
+#define N_OPS 8
+
+static rg2_status mesh_ref(pctx *c, const cJSON *x, const char *path, int *idx)
+{
+    const char *name;
+    rg2_status st = as_str(c, x, path, &name);
+    if (st)
+        return st;
+    *idx = rg2__design_find_mesh(c->d, name);
+    if (*idx < 0) {
+        const char **names = rg2__calloc((size_t)c->d->n_mesh + 1, sizeof *names);
+        char sug[128] = "";
+        if (names) {
+            for (int k = 0; k < c->d->n_mesh; k++)
+                names[k] = c->d->mesh[k].name;
+            suggest(name, names, c->d->n_mesh, sug, sizeof sug);
+            free(names);
+        }
+        return fail(c, RG2_EPARSE, path, "no mesh named '%s' defined before this one%s", name, sug);
+    }
+    return RG2_OK;
+}
+
+/* Common start of the single-source operations: check the keys (keys[0] is the operation,
+ * whose value names the input mesh) and resolve the input. */
+static rg2_status op_begin(pctx *c, const cJSON *obj, const char *path, const char *const *keys,
+                           int nk, int *src)
+{
+    rg2_status st = check_keys(c, obj, path, keys, nk);
+    if (st)
+        return st;
+    char p[300];
+    subpath(p, sizeof p, path, keys[0]);
+    return mesh_ref(c, get(obj, keys[0]), p, src);
+}
+
+static rg2_status op_shape(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
+{
+    static const char *const keys[] = {"shape", "u", "v"};
+    rg2_status st = check_keys(c, obj, path, keys, 3);
+    if (st)
+        return st;
+    char p[300];
+    const char *label;
+    subpath(p, sizeof p, path, "shape");
+    if ((st = as_str(c, get(obj, "shape"), p, &label)))
+        return st;
+    int sh = find_shape(c->d, label);
+    if (sh < 0) {
+        char sug[128];
+        suggest(label, (const char *const *)c->d->labels, c->d->n_shapes, sug, sizeof sug);
+        return fail(c, RG2_EPARSE, p, "no shape labelled '%s' in \"shapes\"%s", label, sug);
+    }
+    const rg2_shape_desc *desc = rg2_shape_describe(c->d->shapes[sh].kind);
+    part_buf pb[2] = {{{0}, NULL}, {{0}, NULL}};
+    for (int k = 0; k < 2 && !st; k++) {
+        subpath(p, sizeof p, path, k ? "v" : "u");
+        st = parse_partition(c, get(obj, k ? "v" : "u"), p, desc, k, &pb[k]);
+    }
+    if (!st)
+        st = rg2__op_shape(c->d, sh, &pb[0].p, &pb[1].p, out, path, c->err);
+    free(pb[0].values);
+    free(pb[1].values);
+    return st;
+}
+
+static rg2_status op_cut(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
+{
+    static const char *const keys[] = {"cut", "u", "v"};
+    int src;
+    char p[300];
+    rg2_status st = op_begin(c, obj, path, keys, 3, &src);
+    if (st)
+        return st;
+    const rg2__dmesh *in = &c->d->mesh[src];
+    int first[2] = {-1, -1}, last[2] = {-1, -1};
+    if (!get(obj, "u") && !get(obj, "v"))
+        return fail(c, RG2_EPARSE, path, "a cut needs a range in 'u' or 'v'");
+    for (int k = 0; k < 2; k++) {
+        const cJSON *x = get(obj, k ? "v" : "u");
+        if (!x)
+            continue;
+        subpath(p, sizeof p, path, k ? "v" : "u");
+        const rg2_scalars *s = k ? &in->m.sv : &in->m.su;
+        if (cJSON_IsObject(x)) {
+            static const char *const ok[] = {"open_at"};
+            if ((st = check_keys(c, x, p, ok, 1)))
+                return st;
+            const cJSON *y;
+            if ((st = need(c, x, "open_at", p, &y)))
+                return st;
+            char q[320];
+            subpath(q, sizeof q, p, "open_at");
+            int j;
+            if ((st = as_int(c, y, q, &j)))
+                return st;
+            if (!s->closed)
+                return fail(c, RG2_EINVAL, q, "mesh '%s' is already open in %s", in->name, k ? "v" : "u");
+            if (j < 0 || j >= s->n)
+                return fail(c, RG2_EINVAL, q, "junction %d is outside 0..%d", j, s->n - 1);
+            first[k] = j;
+            last[k] = j + s->n - 1;
+        } else {
+            double r[2];
+            if ((st = as_nums(c, x, p, r, 2, 2, NULL)))
+                return st;
+            for (int q = 0; q < 2; q++)
+                if (r[q] != floor(r[q]) || fabs(r[q]) > 1e9)
+                    return fail(c, RG2_EPARSE, p, "expected integer indices [first, last], found %.17g",
+                                r[q]);
+            first[k] = (int)r[0];
+            last[k] = (int)r[1];
+            if (first[k] < 0)
+                return fail(c, RG2_EINVAL, p, "first index %d is negative", first[k]);
+        }
+    }
+    return rg2__op_cut(in, first, last, out, path, c->err);
+}
+
+static rg2_status parse_dir(pctx *c, const cJSON *x, const char *path, int *dir)
+{
+    const char *s;
+    rg2_status st = as_str(c, x, path, &s);
+    if (st)
+        return st;
+    if (!strcmp(s, "u") || !strcmp(s, "v")) {
+        *dir = s[0] == 'v';
+        return RG2_OK;
+    }
+    return fail(c, RG2_EPARSE, path, "expected \"u\" or \"v\", found \"%s\"", s);
+}
+
+static rg2_status op_merge(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
+{
+    static const char *const keys[] = {"merge", "along", "closed", "seam"};
+    rg2_status st = check_keys(c, obj, path, keys, 4);
+    if (st)
+        return st;
+    char p[300];
+    const cJSON *x = get(obj, "merge"), *y;
+    subpath(p, sizeof p, path, "merge");
+    if (!cJSON_IsArray(x) || cJSON_GetArraySize(x) < 2)
+        return fail(c, RG2_EPARSE, p, "expected an array of at least 2 mesh names, found %s",
+                    cJSON_IsArray(x) ? "a shorter array" : type_name(x));
+    int n = cJSON_GetArraySize(x);
+    const rg2__dmesh **in = rg2__calloc((size_t)n, sizeof *in);
+    if (!in)
+        return fail(c, RG2_ENOMEM, p, "out of memory");
+    int k = 0;
+    for (const cJSON *it = x->child; it; it = it->next, k++) {
+        char q[320];
+        indexpath(q, sizeof q, p, k);
+        int idx;
+        if ((st = mesh_ref(c, it, q, &idx))) {
+            free(in);
+            return st;
+        }
+        in[k] = &c->d->mesh[idx];
+    }
+    int dir = 0, closed = 0;
+    rg2__seam_rule rule = RG2__SEAM_PRESERVE;
+    subpath(p, sizeof p, path, "along");
+    if ((st = need(c, obj, "along", path, &y)) || (st = parse_dir(c, y, p, &dir)))
+        goto done;
+    if ((y = get(obj, "closed"))) {
+        subpath(p, sizeof p, path, "closed");
+        if ((st = as_bool(c, y, p, &closed)))
+            goto done;
+    }
+    if ((y = get(obj, "seam"))) {
+        const char *s;
+        subpath(p, sizeof p, path, "seam");
+        if ((st = as_str(c, y, p, &s)))
+            goto done;
+        if (!strcmp(s, "plain"))
+            rule = RG2__SEAM_PLAIN;
+        else if (strcmp(s, "preserve")) {
+            st = fail(c, RG2_EPARSE, p, "unknown seam rule '%s'; known: preserve, plain", s);
+            goto done;
+        }
+    }
+    st = rg2__op_merge(in, n, dir, closed, rule, out, path, c->err);
+done:
+    free(in);
+    return st;
+}
+
+static rg2_status op_transpose(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
+{
+    static const char *const keys[] = {"transpose"};
+    int src;
+    rg2_status st = op_begin(c, obj, path, keys, 1, &src);
+    if (st)
+        return st;
+    return rg2__op_transpose(&c->d->mesh[src], out, path, c->err);
+}
+
+static rg2_status op_reverse(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
+{
+    static const char *const keys[] = {"reverse", "dir"};
+    int src, dir;
+    rg2_status st = op_begin(c, obj, path, keys, 2, &src);
+    if (st)
+        return st;
+    const cJSON *x;
+    char p[300];
+    subpath(p, sizeof p, path, "dir");
+    if ((st = need(c, obj, "dir", path, &x)) || (st = parse_dir(c, x, p, &dir)))
+        return st;
+    return rg2__op_reverse(&c->d->mesh[src], dir, out, path, c->err);
+}
+
+static rg2_status op_transform(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
+{
+    static const char *const keys[] = {"transform", "matrix", "translate", "rotate", "scale"};
+    int src, any;
+    double M[16];
+    rg2_status st = op_begin(c, obj, path, keys, 5, &src);
+    if (st)
+        return st;
+    if ((st = parse_placement(c, obj, path, M, &any)))
+        return st;
+    if (!any)
+        return fail(c, RG2_EPARSE, path, "a transform needs 'matrix', 'translate', 'rotate' or 'scale'");
+    return rg2__op_transform(c->d, &c->d->mesh[src], M, out, path, c->err);
+}
+
+static rg2_status op_morph(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
+{
+    static const char *const keys[] = {"morph", "t"};
+    rg2_status st = check_keys(c, obj, path, keys, 2);
+    if (st)
+        return st;
+    char p[300];
+    const cJSON *x = get(obj, "morph"), *y;
+    subpath(p, sizeof p, path, "morph");
+    if (!cJSON_IsArray(x) || cJSON_GetArraySize(x) != 2)
+        return fail(c, RG2_EPARSE, p, "expected an array of 2 mesh names, found %s", type_name(x));
+    int a, b;
+    char q[320];
+    fmtpath(q, sizeof q, "%s[0]", p);
+    if ((st = mesh_ref(c, x->child, q, &a)))
+        return st;
+    fmtpath(q, sizeof q, "%s[1]", p);
+    if ((st = mesh_ref(c, x->child->next, q, &b)))
+        return st;
+    double t;
+    subpath(p, sizeof p, path, "t");
+    if ((st = need(c, obj, "t", path, &y)) || (st = as_num(c, y, p, &t)))
+        return st;
+    if (t < 0.0 || t > 1.0)
+        return fail(c, RG2_EDOMAIN, p, "t = %g, must lie in [0, 1]", t);
+    return rg2__op_morph(&c->d->mesh[a], &c->d->mesh[b], t, out, path, c->err);
+}
+
+static rg2_status edit_points(pctx *c, const cJSON *arr, const char *path, rg2__dmesh *m)
+{
+    if (!cJSON_IsArray(arr))
+        return fail(c, RG2_EPARSE, path, "expected an array of point edits, found %s", type_name(arr));
+    int k = 0;
+    rg2_status st;
+    for (const cJSON *e = arr->child; e; e = e->next, k++) {
+        char p[300], q[320];
+        indexpath(p, sizeof p, path, k);
+        static const char *const keys[] = {"at", "move", "to", "W"};
+        if ((st = as_obj(c, e, p)) || (st = check_keys(c, e, p, keys, 4)))
+            return st;
+        const cJSON *at, *mv = get(e, "move"), *to = get(e, "to"), *W = get(e, "W");
+        if ((st = need(c, e, "at", p, &at)))
+            return st;
+        if (mv && to)
+            return fail(c, RG2_EPARSE, p, "give 'move' (offset) or 'to' (position), not both");
+        if (!mv && !to && !W)
+            return fail(c, RG2_EPARSE, p, "a point edit needs 'move', 'to' or 'W'");
+        double v[3], w = 0;
+        if (mv || to) {
+            subpath(q, sizeof q, p, mv ? "move" : "to");
+            if ((st = as_nums(c, mv ? mv : to, q, v, 3, 3, NULL)))
+                return st;
+        }
+        if (W) {
+            subpath(q, sizeof q, p, "W");
+            if ((st = as_num(c, W, q, &w)))
+                return st;
+            if (!(w > 0.0))
+                return fail(c, RG2_EWEIGHT, q, "weight W = %g, must be > 0", w);
+        }
+        /* "at": [i, j] or [[i, j], ...] */
+        subpath(q, sizeof q, p, "at");
+        if (!cJSON_IsArray(at) || cJSON_GetArraySize(at) < 1)
+            return fail(c, RG2_EPARSE, q, "expected [i, j] or a list of [i, j], found %s", type_name(at));
+        int multi = cJSON_IsArray(at->child);
+        int idx = 0;
+        for (const cJSON *it = multi ? at->child : at; it; it = multi ? it->next : NULL, idx++) {
+            char r[340];
+            if (multi)
+                indexpath(r, sizeof r, q, idx);
+            else
+                fmtpath(r, sizeof r, "%s", q);
+            double ij[2];
+            if ((st = as_nums(c, it, r, ij, 2, 2, NULL)))
+                return st;
+            if (ij[0] != floor(ij[0]) || ij[1] != floor(ij[1]) || fabs(ij[0]) > 1e9 || fabs(ij[1]) > 1e9)
+                return fail(c, RG2_EPARSE, r, "expected integer indices");
+            int i = (int)ij[0], j = (int)ij[1];
+            if (mv || to)
+                if ((st = rg2__edit_point(m, i, j, mv ? RG2__EDIT_MOVE : RG2__EDIT_TO, v, r, c->err)))
+                    return st;
+            if (W && (st = rg2__edit_point(m, i, j, RG2__EDIT_WEIGHT, &w, r, c->err)))
+                return st;
+        }
+    }
+    return RG2_OK;
+}
+
+static rg2_status edit_scalars(pctx *c, const cJSON *arr, const char *path, rg2__dmesh *m)
+{
+    if (!cJSON_IsArray(arr))
+        return fail(c, RG2_EPARSE, path, "expected an array of scalar edits, found %s", type_name(arr));
+    int k = 0;
+    rg2_status st;
+    for (const cJSON *e = arr->child; e; e = e->next, k++) {
+        char p[300], q[320];
+        indexpath(p, sizeof p, path, k);
+        static const char *const keys[] = {"dir", "leg", "junction", "w", "b", "g"};
+        if ((st = as_obj(c, e, p)) || (st = check_keys(c, e, p, keys, 6)))
+            return st;
+        const cJSON *d, *leg = get(e, "leg"), *jun = get(e, "junction");
+        int dir, idx;
+        subpath(q, sizeof q, p, "dir");
+        if ((st = need(c, e, "dir", p, &d)) || (st = parse_dir(c, d, q, &dir)))
+            return st;
+        if (!leg == !jun)
+            return fail(c, RG2_EPARSE, p, "give exactly one of 'leg' (for w) or 'junction' (for b, g)");
+        subpath(q, sizeof q, p, leg ? "leg" : "junction");
+        if ((st = as_int(c, leg ? leg : jun, q, &idx)))
+            return st;
+        static const char which[3] = {'w', 'b', 'g'};
+        int any = 0;
+        for (int s = 0; s < 3; s++) {
+            char key[2] = {which[s], 0};
+            const cJSON *x = get(e, key);
+            if (!x)
+                continue;
+            subpath(q, sizeof q, p, key);
+            if ((s == 0) != (leg != NULL))
+                return fail(c, RG2_EPARSE, q, "'w' belongs to a 'leg', 'b' and 'g' to a 'junction'");
+            double v;
+            if ((st = as_num(c, x, q, &v)) || (st = rg2__edit_scalar(m, dir, which[s], idx, v, q, c->err)))
+                return st;
+            any = 1;
+        }
+        if (!any)
+            return fail(c, RG2_EPARSE, p, "a scalar edit needs 'w' (leg) or 'b'/'g' (junction)");
+    }
+    return RG2_OK;
+}
+
+static rg2_status op_edit(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
+{
+    static const char *const keys[] = {"edit", "points", "scalars"};
+    int src;
+    char p[300];
+    rg2_status st = op_begin(c, obj, path, keys, 3, &src);
+    if (st)
+        return st;
+    if (!get(obj, "points") && !get(obj, "scalars"))
+        return fail(c, RG2_EPARSE, path, "an edit needs 'points' or 'scalars'");
+    if ((st = rg2__dmesh_copy(&c->d->mesh[src], out, c->err)))
+        return st;
+    out->name = c->d->mesh[src].name; /* borrowed for messages; replaced by the caller */
+    const cJSON *x;
+    if ((x = get(obj, "points"))) {
+        subpath(p, sizeof p, path, "points");
+        st = edit_points(c, x, p, out);
+    }
+    if (!st && (x = get(obj, "scalars"))) {
+        subpath(p, sizeof p, path, "scalars");
+        st = edit_scalars(c, x, p, out);
+    }
+    if (!st) {
+        char w[320];
+        fmtpath(w, sizeof w, "%s: %s", c->file, path);
+        for (int k = 0; k < 2 && !st; k++) {
+            char ww[340];
+            fmtpath(ww, sizeof ww, "%s: %s", w, k ? "v" : "u");
+            st = rg2_scalars_check(k ? &out->m.sv : &out->m.su, ww, c->err);
+        }
+    }
+    out->name = NULL;
+    if (st)
+        rg2__dmesh_free(out);
+    return st;
+}
+
+static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const char *path)
+{
+    rg2_status st = as_obj(c, obj, path);
+    if (st)
+        return st;
+    int op = -1;
+    for (int k = 0; k < N_OPS; k++)
+        if (get(obj, ops[k])) {
+            if (op >= 0)
+                return fail(c, RG2_EPARSE, path, "both '%s' and '%s': a mesh has exactly one operation",
+                            ops[op], ops[k]);
+            op = k;
+        }
+    if (op < 0)
+        return fail(c, RG2_EPARSE, path,
+                    "no operation: give one of shape, cut, merge, transpose, reverse, edit, transform, morph");
+    if (rg2__design_find_mesh(c->d, name) >= 0)
+        return fail(c, RG2_EPARSE, path, "a mesh named '%s' already exists", name);
+    rg2__dmesh tmp;
+    memset(&tmp, 0, sizeof tmp);
+    switch (op) {
+    case 0: st = op_shape(c, obj, path, &tmp); break;
+    case 1: st = op_cut(c, obj, path, &tmp); break;
+    case 2: st = op_merge(c, obj, path, &tmp); break;
+    case 3: st = op_transpose(c, obj, path, &tmp); break;
+    case 4: st = op_reverse(c, obj, path, &tmp); break;
+    case 5: st = op_edit(c, obj, path, &tmp); break;
+    case 6: st = op_transform(c, obj, path, &tmp); break;
+    default: st = op_morph(c, obj, path, &tmp); break;
+    }
+    if (st) {
+        rg2__dmesh_free(&tmp); /* whatever the operation had allocated */
+        /* operation messages from the ops module lack the file name: add it */
+        if (c->err && strncmp(c->err->msg, c->file, strlen(c->file))) {
+            rg2_error e = *c->err;
+            rg2__fail(c->err, st, "%s: %s", c->file, e.msg);
+        }
+        return st;
+    }
+    rg2__dmesh *slot = rg2__design_new_mesh(c->d, c->err);
+    if (!slot) {
+        rg2__dmesh_free(&tmp);
+        return c->err->code;
+    }
+    *slot = tmp;
+    slot->name = rg2__calloc(strlen(name) + 1, 1);
+    if (!slot->name) {
+        rg2__dmesh_free(slot);
+        return fail(c, RG2_ENOMEM, path, "out of memory");
+    }
+    strcpy(slot->name, name);
+    c->d->n_mesh++;
+    return RG2_OK;
+}
+
+/* ------------------------------------------------------------------------------------- */
+
+static void line_col(const char *text, size_t off, int *line, int *col)
+{
+    *line = 1;
+    *col = 1;
+    for (size_t k = 0; k < off && text[k]; k++) {
+        if (text[k] == '\n') {
+            (*line)++;
+            *col = 1;
+        } else
+            (*col)++;
+    }
+}
+
+rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, const char *name,
+                                  rg2_error *err)
+{
+    pctx c = {d, name, err};
+    char *buf = malloc(len + 1);
+    if (!buf)
+        return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", name);
+    memcpy(buf, json, len);
+    buf[len] = 0;
+    if (strlen(buf) != len) {
+        size_t off = strlen(buf);
+        int line, col;
+        line_col(buf, off, &line, &col);
+        free(buf);
+        return rg2__fail(err, RG2_EPARSE, "%s:%d:%d: NUL byte in the design text", name, line, col);
+    }
+    const char *end = NULL;
+    cJSON *root = cJSON_ParseWithLengthOpts(buf, len + 1, &end, 1);
+    if (!root) {
+        size_t off = end ? (size_t)(end - buf) : 0;
+        if (off > len)
+            off = len;
+        int line, col;
+        line_col(buf, off, &line, &col);
+        char near[24];
+        size_t k = 0;
+        for (; k < sizeof near - 1 && buf[off + k] && buf[off + k] != '\n'; k++)
+            near[k] = buf[off + k];
+        near[k] = 0;
+        free(buf);
+        return rg2__fail(err, RG2_EPARSE, "%s:%d:%d: malformed JSON %s%s%s", name, line, col,
+                         k ? "near '" : "at the end of the text", near, k ? "'" : "");
+    }
+    free(buf);
+    rg2_status st;
+    static const char *const top[] = {"format", "description", "shapes", "meshes", "output", "expect"};
+    if ((st = as_obj(&c, root, "(top level)")) || (st = check_keys(&c, root, "(top level)", top, 6)))
+        goto done;
+    const cJSON *x;
+    if ((x = get(root, "format"))) {
+        const char *f;
+        if ((st = as_str(&c, x, "format", &f)))
+            goto done;
+        if (strcmp(f, "rg2 design 1")) {
+            st = fail(&c, RG2_EPARSE, "format", "unsupported format '%s' (this is \"rg2 design 1\")", f);
+            goto done;
+        }
+    }
+    if ((x = get(root, "description")) && (st = as_str(&c, x, "description", &(const char *){0})))
+        goto done;
+    const cJSON *shapes, *meshes;
+    if ((st = need(&c, root, "shapes", "(top level)", &shapes)) || (st = as_obj(&c, shapes, "shapes")))
+        goto done;
+    for (const cJSON *it = shapes->child; it; it = it->next) {
+        if (!strcmp(it->string, "comment") && cJSON_IsString(it))
+            continue;
+        char p[300];
+        fmtpath(p, sizeof p, "shapes.%s", it->string);
+        for (const cJSON *o = shapes->child; o != it; o = o->next)
+            if (!strcmp(o->string, it->string)) {
+                st = fail(&c, RG2_EPARSE, p, "duplicate shape label");
+                goto done;
+            }
+        if ((st = parse_shape(&c, it, it->string, p)))
+            goto done;
+    }
+    if ((st = need(&c, root, "meshes", "(top level)", &meshes)) || (st = as_obj(&c, meshes, "meshes")))
+        goto done;
+    for (const cJSON *it = meshes->child; it; it = it->next) {
+        if (!strcmp(it->string, "comment") && cJSON_IsString(it))
+            continue;
+        char p[300];
+        fmtpath(p, sizeof p, "meshes.%s", it->string);
+        if ((st = parse_mesh(&c, it, it->string, p)))
+            goto done;
+    }
+    if (!d->n_mesh) {
+        st = fail(&c, RG2_EPARSE, "meshes", "no meshes");
+        goto done;
+    }
+    /* outputs: a name, a list of names, or (default) the last mesh */
+    x = get(root, "output");
+    int n_out = !x ? 1 : cJSON_IsArray(x) ? cJSON_GetArraySize(x) : 1;
+    if (n_out < 1) {
+        st = fail(&c, RG2_EPARSE, "output", "empty output list");
+        goto done;
+    }
+    d->out = rg2__calloc((size_t)n_out, sizeof(int));
+    if (!d->out) {
+        st = fail(&c, RG2_ENOMEM, "output", "out of memory");
+        goto done;
+    }
+    d->n_out = n_out;
+    if (!x)
+        d->out[0] = d->n_mesh - 1;
+    else if (cJSON_IsArray(x)) {
+        int k = 0;
+        for (const cJSON *it = x->child; it; it = it->next, k++) {
+            char p[40];
+            fmtpath(p, sizeof p, "output[%d]", k);
+            if ((st = mesh_ref(&c, it, p, &d->out[k])))
+                goto done;
+        }
+    } else if ((st = mesh_ref(&c, x, "output", &d->out[0])))
+        goto done;
+done:
+    cJSON_Delete(root);
+    return st;
+}

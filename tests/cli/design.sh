@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# CLI tests of rg2 build / info / mesh: good designs write their outputs; bad designs exit 1
+# with a message naming the problem and write nothing; usage errors exit 2.
+# Usage: bash design.sh <path-to-rg2> <source-dir>
+set -u
+rg2=$1 src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fails=0 passes=0
+ok() { passes=$((passes + 1)); }
+bad() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+
+# expect CODE SUBSTRING -- command...: exit code and a stderr substring
+expect() {
+  local code=$1 sub=$2; shift 2
+  "$@" >"$tmp/out" 2>"$tmp/err"
+  local rc=$?
+  if [ "$rc" != "$code" ]; then bad "$* -> exit $rc, expected $code ($(head -c 300 "$tmp/err"))"; return; fi
+  if [ -n "$sub" ] && ! grep -qF -- "$sub" "$tmp/err"; then bad "$* -> message '$(cat "$tmp/err")' lacks '$sub'"; return; fi
+  ok
+}
+
+for cmd in build info mesh; do
+  "$rg2" $cmd --help >"$tmp/out" 2>&1 && grep -q "usage: rg2 $cmd" "$tmp/out" && ok || bad "$cmd --help"
+  expect 2 "" "$rg2" $cmd
+  expect 2 "unknown option" "$rg2" $cmd --frobnicate "$src/examples/torus_sphere.json"
+done
+"$rg2" --help | grep -q '^  build' && ok || bad "build missing from rg2 --help"
+
+# good design: several outputs
+expect 0 "" "$rg2" build -q "$src/examples/torus_sphere.json" -o "$tmp/ts.step" -o "$tmp/ts.json"
+[ -s "$tmp/ts.step" ] && head -1 "$tmp/ts.step" | grep -q "ISO-10303-21" && ok || bad "ts.step not written"
+[ -s "$tmp/ts.json" ] && ok || bad "ts.json not written"
+ls "$tmp" | grep -q '\.tmp$' && bad "temporary file left behind" || ok
+expect 0 "" "$rg2" info --map "$src/examples/torus_sphere.json"
+grep -q "exact on ring *48 patches" "$tmp/out" && grep -q "exact on ball *24 patches" "$tmp/out" &&
+  grep -q "transition *48 patches" "$tmp/out" && ok || bad "info counts: $(cat "$tmp/out")"
+expect 0 "" "$rg2" mesh "$src/examples/fig1_torus.json" -o "$tmp/mesh.json"
+grep -q '"rg2 control mesh 1"' "$tmp/mesh.json" && grep -q '"patch_shape"' "$tmp/mesh.json" && ok || bad "mesh.json content"
+
+# a bad extension among several outputs: nothing stays written
+expect 1 "unknown export format" "$rg2" build -q "$src/examples/fig5_workflow.json" -o "$tmp/w.step" -o "$tmp/w.xyz"
+[ -e "$tmp/w.step" ] && bad "w.step left behind after a failed build" || ok
+
+# an unwritable output: exit 1 naming the path
+expect 1 "$tmp/no/such/dir/x.step" "$rg2" build -q "$src/examples/fig5_workflow.json" -o "$tmp/no/such/dir/x.step"
+expect 1 "$tmp/no/such/dir/m.json" "$rg2" mesh "$src/examples/fig5_workflow.json" -o "$tmp/no/such/dir/m.json"
+
+# bad designs: exit 1, the message, no output file
+check_bad() {
+  local file=$1 sub=$2
+  for cmd in build mesh; do
+    rm -f "$tmp/o.step" "$tmp/o.json"
+    if [ $cmd = build ]; then
+      expect 1 "$sub" "$rg2" build -q "$src/tests/data/$file" -o "$tmp/o.step"
+    else
+      expect 1 "$sub" "$rg2" mesh "$src/tests/data/$file" -o "$tmp/o.json"
+    fi
+    [ -e "$tmp/o.step" ] || [ -e "$tmp/o.json" ] || [ -e "$tmp/o.step.tmp" ] && bad "$cmd $file wrote output" || ok
+  done
+  expect 1 "$sub" "$rg2" info "$src/tests/data/$file"
+}
+check_bad bad_syntax.json "bad_syntax.json:3:3: malformed JSON"
+check_bad bad_key.json "meshes.M: unknown key 'closd' (did you mean 'closed'?)"
+check_bad bad_shape.json "unknown shape kind 'sphre' (did you mean 'sphere'?)"
+check_bad bad_merge.json "meshes 'tube' and 'band' do not agree in v"
+check_bad bad_index.json "meshes.E.points[0].at: control point [3, 6] is outside the 8 x 6 points"
+check_bad bad_overflow.json "shapes.t.R: number is not finite"
+check_bad bad_weight.json "meshes.E.points[0].W: weight W = -0.5, must be > 0"
+check_bad bad_type.json "shapes.t.R: expected a number, found a string"
+check_bad bad_missing.json "meshes.M: missing key 'along'"
+check_bad bad_scalar.json "junction 2 has K"
+check_bad no_such_design.json "cannot open"
+
+echo "cli design: $passes passed, $fails failed"
+[ "$fails" = 0 ]

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# CLI tests of rg2 render / rg2 check: pictures of every mode are valid PNGs of the asked size;
+# every example design checks G2 and exact; strict limits and bad designs fail with the right
+# exit code and a message; usage errors exit 2.
+# Usage: bash render_check.sh <path-to-rg2> <source-dir>
+set -u
+. "$(dirname "$0")/lib.sh"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+ex=$SRC/examples/torus_sphere.json
+
+# PNG header: signature, IHDR width/height, bit depth 8, colour type 2 (RGB)
+png_is() {
+  local f=$1 w=$2 h=$3
+  [ -f "$f" ] || { bad "$f missing"; return; }
+  local hdr
+  hdr=$(od -An -tx1 -N26 "$f" | tr -d ' \n')
+  local want
+  want=$(printf '89504e470d0a1a0a0000000d49484452%08x%08x0802' "$w" "$h")
+  [ "$hdr" = "$want" ] && ok || bad "$f header $hdr, expected $want"
+}
+
+for cmd in render check; do
+  "$RG2" $cmd --help 2>&1 | grep -q "usage: rg2 $cmd" && ok || bad "$cmd --help"
+  expect 2 "usage" -- "$RG2" $cmd
+  expect 2 "unknown option" -- "$RG2" $cmd --frobnicate "$ex"
+done
+expect 2 "--mode" -- "$RG2" render "$ex" -o "$tmp/x.png" --mode fancy
+expect 2 "--size" -- "$RG2" render "$ex" -o "$tmp/x.png" --size 10x10
+expect 2 "--range" -- "$RG2" render "$ex" -o "$tmp/x.png" --range 1
+expect 1 "colour range" -- "$RG2" render "$ex" -o "$tmp/x.png" --mode mean --range 2,1
+[ ! -e "$tmp/x.png" ] && [ ! -e "$tmp/x.png.tmp" ] && ok || bad "a failed render left a file"
+expect 1 "cannot write" -- "$RG2" render "$ex" -o "$tmp/no/such/dir/x.png"
+
+i=0
+for mode in shaded mean gauss zebra; do
+  i=$((i + 1))
+  expect 0 "" -- "$RG2" render "$ex" -o "$tmp/$mode.png" --mode $mode --size $((120 + i))x96 --boundaries --mesh
+  png_is "$tmp/$mode.png" $((120 + i)) 96
+done
+# same bytes for 1 and 2 threads
+"$RG2" render "$ex" -o "$tmp/t1.png" --mode zebra --size 160x120 --threads 1 &&
+  "$RG2" render "$ex" -o "$tmp/t2.png" --mode zebra --size 160x120 --threads 2 &&
+  cmp -s "$tmp/t1.png" "$tmp/t2.png" && ok || bad "render depends on the thread count"
+
+# every example: G2 and exact
+for f in "$SRC"/examples/*.json; do
+  expect 0 "" -- "$RG2" check "$f" --require g2,exact,weights
+done
+out=$("$RG2" check "$ex" --json 2>&1)
+case "$out" in *'"g2":	true'*'"exact":	true'*) ok ;; *) bad "check --json: $out" ;; esac
+case "$("$RG2" check "$ex")" in *"ring"*"ball"*"G2 curvature jump"*) ok ;; *) bad "check table lacks shapes or G2 line" ;; esac
+# an impossible limit is a failed promise: exit 3 naming it
+expect 3 "failed: g2" -- "$RG2" check "$ex" --require g2 --tol g2=0
+expect 3 "exact" -- "$RG2" check "$ex" --require exact --tol exact=0
+expect 2 "--require" -- "$RG2" check "$ex" --require g3
+expect 2 "--tol" -- "$RG2" check "$ex" --tol g2
+# bad designs: exit 1 with the loader's message
+expect 1 "K = " -- "$RG2" check "$SRC/tests/data/bad_scalar.json"
+expect 1 "" -- "$RG2" render "$SRC/tests/data/bad_weight.json" -o "$tmp/bad.png"
+[ ! -e "$tmp/bad.png" ] && ok || bad "render of a bad design wrote a file"
+finish

@@ -1,0 +1,63 @@
+# CLI: rg2 shapes (listing) and rg2 shape (building named shapes and NURBS), with bad input.
+. "$(dirname "$0")/lib.sh"
+expect 0 "usage: rg2 shapes" -- "$RG2" shapes --help
+expect 0 "usage: rg2 shape NAME" -- "$RG2" shape --help
+# every shape is listed with its parameters and builds with its defaults
+for s in torus cyclide sphere cylinder cone hyperboloid1_ruled hyperboloid1 hyperboloid2 paraboloid hypar ellipsoid; do
+  expect 0 "$s" -- "$RG2" shapes
+  expect 0 "rational bi-cubic patches" -- "$RG2" shape "$s"
+done
+expect 0 "R=3 r=1" -- "$RG2" shapes
+expect 0 '"name": "cyclide", "params": {"a": 2' -- "$RG2" shapes --json
+expect 0 "8 x 6 rational bi-cubic patches" -- "$RG2" shape torus --R 3 --r 1 --u-arcs 8 --v-arcs 6
+expect 0 "3 x 4 rational bi-cubic patches" -- "$RG2" shape torus --u-arcs 3 --u-sweep 90 --v-angles 60,120,90,90
+expect 0 "open circle, 3 arcs from 45 deg, total 90 deg" -- "$RG2" shape torus --u-arcs 3 --u-sweep 90 --u-start 45
+expect 0 "6 x 3 rational bi-cubic patches" -- "$RG2" shape sphere --radius 2 --v-knots 0.25,0.4,0.6,0.75
+expect 0 "knots: 0.5 0.875 1.25 1.625 2" -- "$RG2" shape cone --k 2 --v-range 0.5,2 --v-segments 4 --center 1,0,0 --axis 1,0,0
+expect 0 "all positive" -- "$RG2" shape ellipsoid --a 3 --b 2 --c 1 --scale 10 --center 1000,0,0
+# the residual reported is tiny (exact shape)
+out=$("$RG2" shape cyclide --a 2 --c 1 --mu 0.5 --u-arcs 7 --v-arcs 5 --scale 100 --center 1e3,-2e3,5e2)
+case "$out" in *"max |f|/|grad f| = "*) r=$(printf '%s\n' "$out" | sed -n 's/.*(\([0-9.e+-]*\) of the size.*/\1/p')
+  awk -v r="$r" 'BEGIN { exit !(r + 0 <= 1e-13) }' && ok || bad "cyclide residual $r" ;;
+  *) bad "cyclide summary: $out" ;; esac
+# weights: warning on stderr, exit 0
+expect 0 "warning: 1 patches have homogeneous weights <= 0" -- "$RG2" shape cyclide --a 1 --c 0.8 --mu 0.97 --u-arcs 3 --v-arcs 3
+# JSON dump: patches with 4x4 homogeneous points, exact torus weight (1 + 2 cos 30)/3 in the mesh scalars
+expect 0 '"patches": [' -- "$RG2" shape torus --u-arcs 3 --v-arcs 3 --json
+"$RG2" shape torus --u-arcs 4 --v-arcs 4 --json | grep -q '0.80473785412436' && ok || bad "exact circle weight in JSON"
+if command -v python3 >/dev/null; then
+  "$RG2" shape hypar --u-knots -1,0,1 --v-knots -1,-0.5,0.5,1 --json |
+    python3 -c 'import json,sys; d=json.load(sys.stdin); s=d["surface"]; assert s["nu"]==2 and s["nv"]==3 and len(s["patches"])==6 and len(s["patches"][0]["h"][3][3])==4' && ok || bad "hypar JSON"
+fi
+# NURBS from a JSON spec and file
+N='{"nu":4,"nv":5,"points":[[0,0,0],[0,1,0],[0,2,0],[0,3,0],[0,4,0],[1,0,0],[1,1,1],[1,2,1],[1,3,1],[1,4,0],[2,0,0],[2,1,1],[2,2,2],[2,3,1],[2,4,0],[3,0,0],[3,1,0],[3,2,0],[3,3,0],[3,4,0]],"knots_u":[0,0,0,0,1,1,1,1],"knots_v":[0,0,0,0,0.4,1,1,1,1]}'
+expect 0 "1 x 2 rational bi-cubic patches" -- "$RG2" shape nurbs --spec "$N"
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+printf '%s' "$N" > "$tmp/n.json"
+expect 0 '"shape": "nurbs"' -- "$RG2" shape nurbs --file "$tmp/n.json" --json
+expect 1 "cannot read" -- "$RG2" shape nurbs --file "$tmp/missing.json"
+expect 1 "malformed JSON" -- "$RG2" shape nurbs --spec '{"nu": 4,'
+expect 1 "the first or last span of the domain" -- "$RG2" shape nurbs --spec "$(printf '%s' "$N" | sed 's/0.4,1,1,1,1/0.4,0.4,1,1,1/')"
+expect 1 "knots_u given, nu + 4 = 8 needed" -- "$RG2" shape nurbs --spec "$(printf '%s' "$N" | sed 's/"knots_u":\[0,/"knots_u":[/')"
+expect 1 "nurbs: weight [0][1] = -1 must be finite and > 0" -- "$RG2" shape nurbs --spec "$(printf '%s' "$N" | sed 's/"knots_u"/"weights":[1,-1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1],"knots_u"/')"
+expect 2 "exactly one of --file" -- "$RG2" shape nurbs
+# bad input: each with its message
+expect 2 "unknown shape 'donut'" -- "$RG2" shape donut
+expect 1 "r = 2 must be < R = 1" -- "$RG2" shape torus --R 1 --r 2
+expect 1 "b^2 = a^2 - c^2" -- "$RG2" shape cyclide --a 1 --c 2
+expect 1 "parameter radius = -1 must be > 0" -- "$RG2" shape sphere --radius -1
+expect 1 "must sum to 2 pi" -- "$RG2" shape torus --u-angles 100,100,100 --u-closed
+expect 1 "arc 1 has opening angle" -- "$RG2" shape cylinder --u-angles 90,180,90
+expect 1 "past 2 pi" -- "$RG2" shape cylinder --u-arcs 5 --u-sweep 400
+expect 1 "knot 2 (= 0.5) is not greater than knot 1" -- "$RG2" shape sphere --v-knots 0.2,0.5,0.5
+expect 1 "v knot 0 = -1 must be > 0" -- "$RG2" shape hyperboloid1 --v-knots -1,1
+expect 1 "|v| < 1" -- "$RG2" shape hyperboloid2 --v-range 0,1.5
+expect 1 "k = 0 gives a plane" -- "$RG2" shape cone --k 0
+expect 1 "singular" -- "$RG2" shape torus --scale 0
+expect 2 "v is a circle direction" -- "$RG2" shape torus --v-knots 1,2
+expect 2 "u is a polynomial direction" -- "$RG2" shape hypar --u-arcs 4
+expect 2 "needs --u-sweep" -- "$RG2" shape torus --u-open
+expect 2 "torus takes --R --r" -- "$RG2" shape torus --radius 2
+expect 2 "not a finite number" -- "$RG2" shape torus --R abc
+expect 2 "--xform needs 16 numbers" -- "$RG2" shape torus --xform 1,2,3
+finish

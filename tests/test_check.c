@@ -1,0 +1,298 @@
+/* test_check.c -- the continuity/exactness report: agrees with the test harness's own seam
+ * measurement, reports exact shapes as exact, and reports deliberately broken surfaces
+ * (moved control points, a G1 join) as failures at the right seam. */
+#include "harness.h"
+#include "scenes.h"
+
+#include <cjson/cJSON.h>
+#include <dirent.h>
+#include <stdlib.h>
+#include <string.h>
+
+static double rel(double a, double b) { return fabs(a - b) / fmax(fmax(fabs(a), fabs(b)), 1e-300); }
+
+/* rg2_check's own seam measurement equals rg2t_surface_seams (same definitions). */
+static void agrees_with_harness(const rg2_surface *s, const char *name)
+{
+    rg2_check_opts o;
+    rg2_check_opts_default(&o);
+    rg2_check_report r;
+    rg2_error err;
+    CHECK_OK(rg2_check(s, 1, NULL, NULL, 0, &o, &r, &err), &err);
+    rg2t_seams t;
+    rg2t_surface_seams(s, o.seam_samples, &t);
+    printf("%s: %d seams, G0 %.2e (harness %.2e), G1 %.2e (%.2e), G2 %.2e (%.2e)\n", name, r.seams, r.g0.value, t.pos,
+           r.g1.value, t.angle, r.g2.value, t.curv);
+    CHECK(r.seams == t.seams && r.seam_samples == t.samples && r.skipped == t.skipped, "%s: seams %d/%d samples %d/%d",
+          name, r.seams, t.seams, r.seam_samples, t.samples);
+    /* tiny gaps are rounding noise: compare them absolutely, larger ones relatively */
+    CHECK(fabs(r.g0.value - t.pos) <= 1e-15 || rel(r.g0.value, t.pos) < 1e-9, "%s: G0 %.17g vs %.17g", name,
+          r.g0.value, t.pos);
+    CHECK(fabs(r.g1.value - t.angle) <= 1e-15 || rel(r.g1.value, t.angle) < 1e-9, "%s: G1 %.17g vs %.17g", name,
+          r.g1.value, t.angle);
+    CHECK(fabs(r.g2.value - t.curv) <= 1e-13 || rel(r.g2.value, t.curv) < 1e-9, "%s: G2 %.17g vs %.17g", name,
+          r.g2.value, t.curv);
+    rg2_check_report_free(&r);
+}
+
+static void harness_agreement(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_revolve(3.0, 1.0, 8, 6, 1, 0, 0, &m, &s, &err), &err);
+    agrees_with_harness(&s, "torus");
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+    CHECK_OK(scene_cyl_plane(1.0, 1.5, 2.0, &s, &err), &err);
+    agrees_with_harness(&s, "cylinder+plane (G1)");
+    rg2_surface_free(&s);
+    /* a random mesh, open x closed, seed printed */
+    rg2t_rng r;
+    rg2t_seed(&r, 4711);
+    printf("random mesh seed 4711\n");
+    CHECK_OK(rg2_mesh_init(&m, 7, 5, 0, 1, &err), &err);
+    for (int i = 0; i < 7; i++)
+        for (int j = 0; j < 5; j++) {
+            double *p = rg2_mesh_at(&m, i, j), W = rg2t_uniform(&r, 0.7, 1.4);
+            for (int k = 0; k < 3; k++)
+                p[k] = W * (rg2t_uniform(&r, -1, 1) + (k == 0 ? i : 0));
+            p[3] = W;
+        }
+    CHECK_OK(rg2_surface_build(&m, &s, &err), &err);
+    agrees_with_harness(&s, "random");
+    s.patch[1 * s.nv + 2].h[2][1][2] += 0.03;
+    agrees_with_harness(&s, "random, broken");
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
+/* A torus from the shapes module, tagged 0: exact, G2, passes every promise; a moved control
+ * point breaks exactness and the continuity of that patch's seams. */
+static void exact_and_broken(void)
+{
+    rg2_shape sh;
+    rg2_shape_init(&sh, RG2_SHAPE_TORUS);
+    sh.param[0] = 3;
+    sh.param[1] = 1;
+    double M[16];
+    rg2_xform_rotate(M, 1, 2, 3, 0.7);
+    memcpy(sh.xform, M, sizeof M);
+    double au[9], av[7];
+    rg2_partition pu, pv;
+    rg2_error err;
+    CHECK_OK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0, 0, 8, au, 9, &err), &err);
+    CHECK_OK(rg2_partition_equal(&pv, RG2_PART_ANGLES, 1, 0, 0, 6, av, 7, &err), &err);
+    rg2_surface s;
+    CHECK_OK(rg2_shape_surface(&sh, &pu, &pv, &s, NULL, &err), &err);
+    s.tag = calloc((size_t)s.nu * s.nv, sizeof *s.tag);
+    const char *labels[1] = {"ring"};
+    rg2_check_opts o;
+    rg2_check_opts_default(&o);
+    rg2_check_report r;
+    CHECK_OK(rg2_check(&s, 1, &sh, labels, 1, &o, &r, &err), &err);
+    printf("torus (tilted): residual %.2e at %s; G0 %.2e, G1 %.2e, G2 %.2e; weights [%.4g, %.4g]; H [%.4g, %.4g]\n",
+           r.worst_residual, r.shapes[0].where, r.g0.value, r.g1.value, r.g2.value, r.wmin, r.wmax, r.Hmin, r.Hmax);
+    CHECK(r.patches == 48 && r.exact_patches == 48 && r.transitions == 0 && r.shapes[0].patches == 48,
+          "patch counts %d/%d/%d", r.patches, r.exact_patches, r.transitions);
+    CHECK(r.worst_residual <= 1e-13, "torus patches on the torus: %.3g", r.worst_residual);
+    CHECK(rg2_check_failures(&r, RG2_REQUIRE_G2 | RG2_REQUIRE_EXACT | RG2_REQUIRE_WEIGHTS) == 0,
+          "every promise holds: %#x", rg2_check_failures(&r, RG2_REQUIRE_G2 | RG2_REQUIRE_EXACT | RG2_REQUIRE_WEIGHTS));
+    /* torus curvature: k1 = 1 / r on the tube (in magnitude), H between the outer and inner
+     * values (R + 2 r cos v) / (2 r (R + r cos v)) */
+    double Hout = (3.0 + 2.0) / (2.0 * 4.0), Hin = (3.0 - 2.0) / (2.0 * 2.0);
+    CHECK(fabs(fmax(fabs(r.Hmin), fabs(r.Hmax)) - Hout) < 1e-9 && fabs(fmin(fabs(r.Hmin), fabs(r.Hmax)) - Hin) < 1e-9,
+          "H range [%.12g, %.12g] vs torus %.12g, %.12g", r.Hmin, r.Hmax, Hout, Hin);
+    char *txt = NULL;
+    CHECK_OK(rg2_check_format(&r, 0, &txt, &err), &err);
+    CHECK(txt && strstr(txt, "ring") && strstr(txt, "G2 curvature jump") && !strstr(txt, "FAIL"), "text:\n%s", txt);
+    if (txt)
+        fputs(txt, stdout);
+    free(txt);
+    rg2_check_report_free(&r);
+
+    /* an inner control point of patch (3, 2) moved: every inner point sits next to an edge, so
+     * a seam of that patch loses G1 (and G2); positions still meet */
+    rg2_patch *P = rg2_surface_patch(&s, 3, 2);
+    for (int k = 0; k < 3; k++)
+        P->h[2][1][k] += 0.02 * P->h[2][1][3];
+    CHECK_OK(rg2_check(&s, 1, &sh, labels, 1, &o, &r, &err), &err);
+    unsigned f = rg2_check_failures(&r, RG2_REQUIRE_G0 | RG2_REQUIRE_G1 | RG2_REQUIRE_G2 | RG2_REQUIRE_EXACT);
+    printf("moved point: G0 %.2e, G1 %.2e, G2 %.2e at surface %d %c seam (%d,%d)|(%d,%d); residual %.2e; "
+           "failures %#x\n",
+           r.g0.value, r.g1.value, r.g2.value, r.g2.surf, r.g2.seam_dir ? 'v' : 'u', r.g2.pi, r.g2.pj, r.g2.qi,
+           r.g2.qj, r.worst_residual, f);
+    CHECK(f == (RG2_REQUIRE_G1 | RG2_REQUIRE_G2 | RG2_REQUIRE_EXACT), "G1, G2 and exactness fail, G0 holds: %#x", f);
+    int at32 = (r.g2.pi == 3 && r.g2.pj == 2) || (r.g2.qi == 3 && r.g2.qj == 2);
+    int g1at32 = (r.g1.pi == 3 && r.g1.pj == 2) || (r.g1.qi == 3 && r.g1.qj == 2);
+    CHECK(r.g2.value > 1e-3 && r.g1.value > 1e-3 && at32 && g1at32, "worst gaps %.3g, %.3g located at patch (3,2)",
+          r.g1.value, r.g2.value);
+    CHECK(strstr(r.shapes[0].where, "patch (3,2)") != NULL, "worst residual located: %s", r.shapes[0].where);
+    char *js = NULL;
+    CHECK_OK(rg2_check_format(&r, 1, &js, &err), &err);
+    cJSON *j = js ? cJSON_Parse(js) : NULL;
+    CHECK(j != NULL, "JSON parses");
+    if (j) {
+        cJSON *g2 = cJSON_GetObjectItem(j, "g2_curvature_jump");
+        CHECK(cJSON_IsFalse(cJSON_GetObjectItem(j, "g2")) && cJSON_IsFalse(cJSON_GetObjectItem(j, "exact")) &&
+                  g2 && fabs(cJSON_GetObjectItem(g2, "value")->valuedouble - r.g2.value) <= 1e-12 * r.g2.value,
+              "JSON reports the failures");
+        cJSON *shapes = cJSON_GetObjectItem(j, "shapes");
+        CHECK(cJSON_GetArraySize(shapes) == 1 &&
+                  !strcmp(cJSON_GetObjectItem(cJSON_GetArrayItem(shapes, 0), "label")->valuestring, "ring"),
+              "JSON shape label");
+        cJSON_Delete(j);
+    }
+    free(js);
+    rg2_check_report_free(&r);
+
+    /* a tag pointing outside the shape list is an exactness failure */
+    s.tag[0] = 5;
+    CHECK_OK(rg2_check(&s, 1, &sh, labels, 1, &o, &r, &err), &err);
+    CHECK(r.untagged_bad == 1 && (rg2_check_failures(&r, RG2_REQUIRE_EXACT) & RG2_REQUIRE_EXACT), "unknown tag: %d",
+          r.untagged_bad);
+    rg2_check_report_free(&r);
+    free(s.tag);
+    s.tag = NULL;
+    rg2_surface_free(&s);
+}
+
+/* The G1 cylinder + plane: G1 holds, G2 fails at its one seam by the jump 1/R -> 0. */
+static void g1_join(void)
+{
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_cyl_plane(2.0, 1.5, 2.0, &s, &err), &err);
+    rg2_check_report r;
+    CHECK_OK(rg2_check(&s, 1, NULL, NULL, 0, NULL, &r, &err), &err);
+    unsigned f = rg2_check_failures(&r, RG2_REQUIRE_G1 | RG2_REQUIRE_G2);
+    /* normal curvature across the seam: 1/R on the cylinder, 0 on the plane; relative to
+     * max(|k|, 1/size) = 1/R: jump exactly 1 */
+    printf("cylinder+plane: G0 %.2e, G1 %.2e, G2 %.6f, k [%g, %g]\n", r.g0.value, r.g1.value, r.g2.value, r.kmin, r.kmax);
+    CHECK(f == RG2_REQUIRE_G2, "G2 fails, G1 holds: %#x", f);
+    CHECK(fabs(r.g2.value - 1.0) < 1e-12, "relative curvature jump %.17g", r.g2.value);
+    CHECK(fabs(r.kmax - 0.5) < 1e-12 || fabs(r.kmin + 0.5) < 1e-12, "cylinder curvature 1/R in [%g, %g]", r.kmin,
+          r.kmax);
+    rg2_check_report_free(&r);
+    CHECK(rg2_check(&s, 0, NULL, NULL, 0, NULL, &r, &err) == RG2_EINVAL && strstr(err.msg, "no surfaces"), "%s",
+          err.msg);
+    rg2_surface_free(&s);
+}
+
+static char *read_text(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *t = n >= 0 ? malloc((size_t)n + 1) : NULL;
+    if (t && fread(t, 1, (size_t)n, f) != (size_t)n) {
+        free(t);
+        t = NULL;
+    }
+    if (t)
+        t[n] = '\0';
+    fclose(f);
+    return t;
+}
+
+/* Every example design: per output surface, the check's patch, exact-per-shape and transition
+ * counts equal the design file's own "expect" block, and every surface is G2, exact and has
+ * positive weights. */
+static void check_example(const char *path)
+{
+    rg2_design *d = NULL;
+    rg2_error err;
+    CHECK_OK(rg2_design_load(path, &d, &err), &err);
+    char *txt = read_text(path);
+    cJSON *j = txt ? cJSON_Parse(txt) : NULL;
+    cJSON *exp = cJSON_GetObjectItem(cJSON_GetObjectItem(j, "expect"), "surfaces");
+    if (!d || !exp) {
+        CHECK(d && exp, "%s: loads and has an expect block", path);
+        goto out;
+    }
+    int ns = rg2_design_num_shapes(d), n = rg2_design_num_surfaces(d);
+    rg2_shape *shapes = calloc((size_t)ns + 1, sizeof *shapes);
+    const char **labels = calloc((size_t)ns + 1, sizeof *labels);
+    for (int k = 0; k < ns; k++) {
+        shapes[k] = *rg2_design_shape(d, k);
+        labels[k] = rg2_design_shape_label(d, k);
+    }
+    CHECK(cJSON_GetArraySize(exp) == n, "%s: %d surfaces, expect lists %d", path, n, cJSON_GetArraySize(exp));
+    double worst_res = 0, worst_g2 = 0;
+    for (int s = 0; s < n && s < cJSON_GetArraySize(exp); s++) {
+        cJSON *e = cJSON_GetArrayItem(exp, s);
+        rg2_check_report r;
+        CHECK_OK(rg2_check(rg2_design_surface(d, s), 1, shapes, labels, ns, NULL, &r, &err), &err);
+        CHECK(r.patches == cJSON_GetObjectItem(e, "patches")->valueint &&
+                  r.transitions == cJSON_GetObjectItem(e, "transition")->valueint,
+              "%s surface %d: %d patches, %d transitions", path, s, r.patches, r.transitions);
+        int listed = 0;
+        cJSON *ex;
+        cJSON_ArrayForEach(ex, cJSON_GetObjectItem(e, "exact"))
+        {
+            int found = 0;
+            for (int k = 0; k < ns; k++)
+                if (!strcmp(r.shapes[k].label, ex->string)) {
+                    found = 1;
+                    listed += r.shapes[k].patches;
+                    CHECK(r.shapes[k].patches == ex->valueint, "%s surface %d: %s has %d exact patches, expected %d",
+                          path, s, ex->string, r.shapes[k].patches, ex->valueint);
+                }
+            CHECK(found, "%s: shape %s in the report", path, ex->string);
+        }
+        CHECK(listed == r.exact_patches, "%s surface %d: %d exact patches, %d listed", path, s, r.exact_patches, listed);
+        CHECK(!rg2_check_failures(&r, RG2_REQUIRE_G2 | RG2_REQUIRE_EXACT | RG2_REQUIRE_WEIGHTS),
+              "%s surface %d: residual %.3g, G2 %.3g at %s seam (%d,%d)|(%d,%d)", path, s, r.worst_residual,
+              r.g2.value, r.g2.seam_dir ? "v" : "u", r.g2.pi, r.g2.pj, r.g2.qi, r.g2.qj);
+        worst_res = fmax(worst_res, r.worst_residual);
+        worst_g2 = fmax(worst_g2, r.g2.value);
+        rg2_check_report_free(&r);
+    }
+    printf("%s: %d surfaces match their expect block; residual %.2e, G2 %.2e\n", path, n, worst_res, worst_g2);
+    free(shapes);
+    free(labels);
+out:
+    cJSON_Delete(j);
+    free(txt);
+    rg2_design_free(d);
+}
+
+static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+static void examples(void)
+{
+    DIR *dir = opendir("examples");
+    CHECK(dir != NULL, "examples/ directory (tests run in the source tree)");
+    if (!dir)
+        return;
+    char *names[64];
+    int n = 0;
+    struct dirent *de;
+    while ((de = readdir(dir)) && n < 64) {
+        size_t len = strlen(de->d_name);
+        if (len > 5 && !strcmp(de->d_name + len - 5, ".json")) {
+            names[n] = malloc(len + 10);
+            snprintf(names[n], len + 10, "examples/%s", de->d_name);
+            n++;
+        }
+    }
+    closedir(dir);
+    qsort(names, (size_t)n, sizeof *names, cmp_str);
+    CHECK(n >= 1, "%d example designs", n);
+    for (int k = 0; k < n; k++) {
+        check_example(names[k]);
+        free(names[k]);
+    }
+}
+
+int main(void)
+{
+    harness_agreement();
+    exact_and_broken();
+    g1_join();
+    examples();
+    return rg2t_done("test_check");
+}

@@ -1,0 +1,672 @@
+/* test_design.c -- design files: every example builds, its exact patches lie on their shapes,
+ * its seams are G2 and its exact/transition counts are the intended ones; edits are local;
+ * morphs reproduce their ends; bad designs fail with clear messages. */
+#include "harness.h"
+
+#include <cjson/cJSON.h>
+#include <dirent.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static char *read_text(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *s = malloc((size_t)n + 1);
+    if (s && fread(s, 1, (size_t)n, f) != (size_t)n) {
+        free(s);
+        s = NULL;
+    }
+    if (s)
+        s[n] = 0;
+    fclose(f);
+    return s;
+}
+
+/* Largest |F| / (|grad F| * scale) over samples of the patches tagged with a shape. */
+static double exact_residual(const rg2_design *d, const rg2_surface *s, int samples, int *n_exact)
+{
+    double scale = rg2t_surface_scale(s), worst = 0.0;
+    *n_exact = 0;
+    for (int k = 0; k < s->nu * s->nv; k++) {
+        if (s->tag[k] < 0)
+            continue;
+        (*n_exact)++;
+        const rg2_shape *sh = rg2_design_shape(d, s->tag[k]);
+        for (int a = 0; a <= samples; a++)
+            for (int b = 0; b <= samples; b++) {
+                rg2_eval e;
+                rg2_patch_eval(&s->patch[k], (double)a / samples, (double)b / samples, 0, &e);
+                double g[3], F = rg2_shape_implicit(sh, e.p, g);
+                double gn = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+                double r = gn > 0 ? fabs(F) / (gn * scale) : (F == 0 ? 0 : INFINITY);
+                if (!(r <= worst))
+                    worst = r;
+            }
+    }
+    return worst;
+}
+
+/* Smallest sine of the angle between Su and Sv over samples of the transition patches: near 0
+ * means a fold or a collapsed transition (G2 holds regardless, so this is the quality guard). */
+static double transition_min_sine(const rg2_surface *s, int samples)
+{
+    double worst = 1.0;
+    for (int k = 0; k < s->nu * s->nv; k++) {
+        if (s->tag[k] >= 0)
+            continue;
+        for (int a = 0; a <= samples; a++)
+            for (int b = 0; b <= samples; b++) {
+                rg2_eval e;
+                rg2_patch_eval(&s->patch[k], (double)a / samples, (double)b / samples, 1, &e);
+                double c[3] = {e.su[1] * e.sv[2] - e.su[2] * e.sv[1], e.su[2] * e.sv[0] - e.su[0] * e.sv[2],
+                               e.su[0] * e.sv[1] - e.su[1] * e.sv[0]};
+                double nu = sqrt(e.su[0] * e.su[0] + e.su[1] * e.su[1] + e.su[2] * e.su[2]);
+                double nv = sqrt(e.sv[0] * e.sv[0] + e.sv[1] * e.sv[1] + e.sv[2] * e.sv[2]);
+                double sn = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) / (nu * nv);
+                if (!(sn >= worst))
+                    worst = sn;
+            }
+    }
+    return worst;
+}
+
+static int label_index(const rg2_design *d, const char *label)
+{
+    for (int k = 0; k < rg2_design_num_shapes(d); k++)
+        if (!strcmp(rg2_design_shape_label(d, k), label))
+            return k;
+    return -1;
+}
+
+/* Compare the surface's patch counts with the example's "expect" entry. */
+static void check_expect(const char *file, const rg2_design *d, int o, const cJSON *ex)
+{
+    const rg2_surface *s = rg2_design_surface(d, o);
+    int np = s->nu * s->nv, ns = rg2_design_num_shapes(d);
+    int *cnt = calloc((size_t)ns + 1, sizeof(int));
+    for (int k = 0; k < np; k++)
+        cnt[s->tag[k] < 0 ? ns : s->tag[k]]++;
+    const cJSON *x = cJSON_GetObjectItem(ex, "patches");
+    CHECK(cJSON_IsNumber(x) && x->valueint == np, "%s surface %d: %d patches, expected %d", file, o, np,
+          x ? x->valueint : -1);
+    x = cJSON_GetObjectItem(ex, "transition");
+    CHECK(cJSON_IsNumber(x) && x->valueint == cnt[ns], "%s surface %d: %d transition patches, expected %d",
+          file, o, cnt[ns], x ? x->valueint : -1);
+    const cJSON *exact = cJSON_GetObjectItem(ex, "exact");
+    int listed = 0;
+    for (const cJSON *it = exact ? exact->child : NULL; it; it = it->next) {
+        int k = label_index(d, it->string);
+        CHECK(k >= 0, "%s: expect names unknown shape '%s'", file, it->string);
+        if (k >= 0) {
+            CHECK(cnt[k] == it->valueint, "%s surface %d: %d patches exact on %s, expected %d", file, o,
+                  cnt[k], it->string, it->valueint);
+            listed += cnt[k];
+        }
+    }
+    CHECK(listed + cnt[ns] == np, "%s surface %d: patches on shapes not listed in expect", file, o);
+    free(cnt);
+}
+
+static void examples(void)
+{
+    DIR *dir = opendir("examples");
+    CHECK(dir != NULL, "cannot open examples/ (run from the source directory)");
+    if (!dir)
+        return;
+    char *names[64];
+    int n = 0;
+    struct dirent *de;
+    while ((de = readdir(dir)) && n < 64) {
+        size_t l = strlen(de->d_name);
+        if (l > 5 && !strcmp(de->d_name + l - 5, ".json")) {
+            names[n] = malloc(l + 10);
+            snprintf(names[n], l + 10, "examples/%s", de->d_name);
+            n++;
+        }
+    }
+    closedir(dir);
+    for (int a = 0; a < n; a++) /* sorted, for a stable report */
+        for (int b = a + 1; b < n; b++)
+            if (strcmp(names[a], names[b]) > 0) {
+                char *t = names[a];
+                names[a] = names[b];
+                names[b] = t;
+            }
+    CHECK(n >= 6, "only %d examples", n);
+    for (int e = 0; e < n; e++) {
+        const char *file = names[e];
+        rg2_design *d = NULL;
+        rg2_error err;
+        CHECK_OK(rg2_design_load(file, &d, &err), &err);
+        char *text = read_text(file);
+        cJSON *root = text ? cJSON_Parse(text) : NULL;
+        const cJSON *surfs = cJSON_GetObjectItem(cJSON_GetObjectItem(root, "expect"), "surfaces");
+        CHECK(cJSON_IsArray(surfs), "%s has no expect.surfaces", file);
+        if (d && cJSON_IsArray(surfs)) {
+            CHECK(cJSON_GetArraySize(surfs) == rg2_design_num_surfaces(d), "%s: %d surfaces, expect lists %d",
+                  file, rg2_design_num_surfaces(d), cJSON_GetArraySize(surfs));
+            for (int o = 0; o < rg2_design_num_surfaces(d); o++) {
+                const rg2_surface *s = rg2_design_surface(d, o);
+                int n_exact;
+                double res = exact_residual(d, s, 8, &n_exact);
+                rg2t_seams g;
+                rg2t_surface_seams(s, 8, &g);
+                double sine = transition_min_sine(s, 8);
+                printf("  %-34s surface %d: %4d patches, %4d exact (residual %.1e), %3d transition "
+                       "(min sin(Su, Sv) %.2f); seams: normal angle %.1e rad, curvature jump %.1e rel, "
+                       "min weight %.3g\n",
+                       file, o, s->nu * s->nv, n_exact, res, s->nu * s->nv - n_exact, sine, g.angle,
+                       g.curv, rg2_surface_min_weight(s));
+                CHECK(sine > 0.2, "%s surface %d: a transition patch nearly folds (sin %.3g)", file, o, sine);
+                CHECK(res <= 1e-13, "%s surface %d: exact patches off their shape by %.3g", file, o, res);
+                CHECK(g.angle <= 1e-11, "%s surface %d: normal angle %.3g at seams", file, o, g.angle);
+                CHECK(g.curv <= 1e-9, "%s surface %d: curvature jump %.3g at %s", file, o, g.curv, g.where);
+                CHECK(g.pos <= 1e-13, "%s surface %d: position gap %.3g", file, o, g.pos);
+                CHECK(rg2_surface_min_weight(s) > 0, "%s surface %d: non-positive weight", file, o);
+                if (o < cJSON_GetArraySize(surfs))
+                    check_expect(file, d, o, cJSON_GetArrayItem(surfs, o));
+            }
+        }
+        cJSON_Delete(root);
+        free(text);
+        rg2_design_free(d);
+        free(names[e]);
+    }
+}
+
+/* ------------------------------------------------------------------------------------- */
+
+static rg2_design *parse(const char *json, rg2_error *err)
+{
+    rg2_design *d = NULL;
+    rg2_status st = rg2_design_parse(json, strlen(json), "test", &d, err);
+    CHECK(st == RG2_OK, "parse -> %s: %s", rg2_status_str(st), err->msg);
+    return d;
+}
+
+/* Patches of b that differ from a (bitwise); *outside counts those outside the support. */
+static int changed_patches(const rg2_surface *a, const rg2_surface *b, const int *in_u, const int *in_v,
+                           int *outside)
+{
+    int changed = 0;
+    *outside = 0;
+    for (int k = 0; k < a->nu; k++)
+        for (int l = 0; l < a->nv; l++) {
+            int diff = memcmp(rg2_surface_patch(a, k, l), rg2_surface_patch(b, k, l), sizeof(rg2_patch)) != 0;
+            changed += diff;
+            if (diff && !(in_u[k] && in_v[l]))
+                (*outside)++;
+        }
+    return changed;
+}
+
+/* Support of control point / junction i in a direction of n points: the segments k whose
+ * stencil uses it (closed: k = i-2..i+1 mod n; open: k = i-3..i). */
+static void support(int *in, int nseg, int n, int closed, int i)
+{
+    memset(in, 0, sizeof(int) * (size_t)nseg);
+    for (int d = 0; d < 4; d++) {
+        int k = closed ? ((i - 2 + d) % n + n) % n : i - 3 + d;
+        if (k >= 0 && k < nseg)
+            in[k] = 1;
+    }
+}
+
+static void edits_are_local(void)
+{
+    /* closed x open torus piece: u closed (10 points), v open (8 arcs -> 11 points) */
+    const char *base = "{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": 3, \"r\": 1}},"
+                       " \"meshes\": {\"m\": {\"shape\": \"t\", \"u\": {\"arcs\": 10},"
+                       " \"v\": {\"arcs\": 8, \"from\": 0, \"to\": 270}}%s}}";
+    struct {
+        const char *edit;
+        int i, j; /* point or (leg/junction, -1) / (-1, leg/junction) */
+    } cases[] = {
+        {", \"e\": {\"edit\": \"m\", \"points\": [{\"at\": [4, 5], \"move\": [0.1, -0.2, 0.3]}]}", 4, 5},
+        {", \"e\": {\"edit\": \"m\", \"points\": [{\"at\": [0, 0], \"to\": [2, 2, 2]}]}", 0, 0},
+        {", \"e\": {\"edit\": \"m\", \"points\": [{\"at\": [9, 10], \"W\": 0.7}]}", 9, 10},
+        {", \"e\": {\"edit\": \"m\", \"scalars\": [{\"dir\": \"u\", \"junction\": 3, \"b\": 1.3, \"g\": 0.2}]}", 3, -1},
+        {", \"e\": {\"edit\": \"m\", \"scalars\": [{\"dir\": \"v\", \"junction\": 6, \"g\": -0.1}]}", -1, 6},
+    };
+    char json[2048];
+    rg2_error err;
+    snprintf(json, sizeof json, base, "");
+    rg2_design *d0 = parse(json, &err);
+    if (!d0)
+        return;
+    const rg2_surface *s0 = rg2_design_surface(d0, 0);
+    const rg2_mesh *m0 = rg2_design_mesh(d0, 0);
+    int in_u[64], in_v[64];
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        snprintf(json, sizeof json, base, cases[c].edit);
+        rg2_design *d1 = parse(json, &err);
+        if (!d1)
+            continue;
+        const rg2_surface *s1 = rg2_design_surface(d1, 0);
+        if (cases[c].i >= 0)
+            support(in_u, s0->nu, m0->nu, 1, cases[c].i);
+        else
+            for (int k = 0; k < s0->nu; k++) in_u[k] = 1;
+        if (cases[c].j >= 0)
+            support(in_v, s0->nv, m0->nv, 0, cases[c].j);
+        else
+            for (int k = 0; k < s0->nv; k++) in_v[k] = 1;
+        int outside, ch = changed_patches(s0, s1, in_u, in_v, &outside);
+        int n_in = 0;
+        for (int k = 0; k < s0->nu; k++)
+            for (int l = 0; l < s0->nv; l++)
+                n_in += in_u[k] && in_v[l];
+        printf("  edit %zu: %d patches changed (support %d), %d outside the support\n", c, ch, n_in, outside);
+        CHECK(outside == 0, "edit %zu changed %d patches outside the 4x4 support", c, outside);
+        CHECK(ch > 0 && ch == n_in, "edit %zu changed %d patches, its support has %d", c, ch, n_in);
+        /* changed patches are tagged transition, the others keep their tags */
+        int tag_ok = 1;
+        for (int k = 0; k < s0->nu * s0->nv; k++) {
+            int diff = memcmp(&s0->patch[k], &s1->patch[k], sizeof(rg2_patch)) != 0;
+            if (diff ? s1->tag[k] != -1 : s1->tag[k] != s0->tag[k])
+                tag_ok = 0;
+        }
+        CHECK(tag_ok, "edit %zu: tags do not follow the changed patches", c);
+        if (c < 3) {
+            int ps = rg2_design_point_shape(d1, 0, cases[c].i, cases[c].j);
+            int other = rg2_design_point_shape(d1, 0, (cases[c].i + 5) % m0->nu, (cases[c].j + 5) % m0->nv);
+            CHECK(ps == -1 && other == 0, "edit %zu: point provenance %d (edited), %d (untouched)", c, ps, other);
+        }
+        rg2t_seams g;
+        rg2t_surface_seams(s1, 6, &g);
+        CHECK(g.angle <= 1e-11 && g.curv <= 1e-9, "edit %zu: seams %.3g rad, %.3g", c, g.angle, g.curv);
+        rg2_design_free(d1);
+    }
+    rg2_design_free(d0);
+}
+
+static int same_mesh(const rg2_mesh *a, const rg2_mesh *b);
+
+/* Operations that must keep every patch exact: cuts (ranges, wrap, open_at), transpose,
+ * reverse (the same patches traversed backwards), transform, and cutting a closed torus in two and merging it back (the seam data agree, so
+ * the result is the torus again, every patch exact). */
+static void ops_keep_exactness(void)
+{
+    const char *json =
+        "{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": 3, \"r\": 1}},"
+        " \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": [20, 25, 30, 35, 40, 30, 25, 35, 30, 25, 35, 30]},"
+        "                       \"v\": {\"arcs\": 6}},"
+        "  \"wrap\": {\"cut\": \"T\", \"u\": [9, 15], \"v\": [1, 5]},"
+        "  \"open\": {\"cut\": \"T\", \"u\": {\"open_at\": 3}},"
+        "  \"turned\": {\"transpose\": \"wrap\"},"
+        "  \"moved\": {\"transform\": \"turned\", \"scale\": 0.5, \"rotate\": {\"axis\": [1, 2, 3], \"degrees\": 33},"
+        "             \"translate\": [1, -2, 0.5]},"
+        "  \"A\": {\"cut\": \"T\", \"u\": [0, 5]}, \"B\": {\"cut\": \"T\", \"u\": [6, 11]},"
+        "  \"again\": {\"merge\": [\"A\", \"B\"], \"along\": \"u\", \"closed\": true},"
+        "  \"back\": {\"reverse\": \"wrap\", \"dir\": \"v\"}, \"backT\": {\"reverse\": \"T\", \"dir\": \"u\"},"
+        "  \"both\": {\"reverse\": \"backT\", \"dir\": \"v\"}},"
+        " \"output\": [\"wrap\", \"open\", \"turned\", \"moved\", \"again\", \"T\", \"back\", \"backT\", \"both\"]}";
+    rg2_error err;
+    rg2_design *d = parse(json, &err);
+    if (!d)
+        return;
+    const int want[9][2] = {{4, 2}, {9, 6}, {2, 4}, {2, 4}, {12, 6}, {12, 6}, {4, 2}, {12, 6}, {12, 6}};
+    for (int o = 0; o < rg2_design_num_surfaces(d); o++) {
+        const rg2_surface *s = rg2_design_surface(d, o);
+        int n_exact;
+        double res = exact_residual(d, s, 6, &n_exact);
+        CHECK(s->nu == want[o][0] && s->nv == want[o][1], "ops surface %d: %d x %d patches, expected %d x %d", o,
+              s->nu, s->nv, want[o][0], want[o][1]);
+        CHECK(n_exact == s->nu * s->nv, "ops surface %d (%s): %d of %d patches exact", o,
+              rg2_design_mesh_name(d, o), n_exact, s->nu * s->nv);
+        CHECK(res <= 1e-13, "ops surface %d: residual %.3g", o, res);
+        printf("  %-7s %2d x %d patches, all exact (residual %.1e)%s\n", rg2_design_mesh_name(d, o), s->nu, s->nv,
+               res, o == 3 ? ", on the transformed torus" : "");
+    }
+    CHECK(same_mesh(rg2_design_mesh(d, 4), rg2_design_mesh(d, 5)), "cut in two and merged back differs from T");
+    /* leg i of backT is leg n - 2 - i of T: its patch is T's patch run backwards */
+    const rg2_surface *T = rg2_design_surface(d, 5), *R = rg2_design_surface(d, 7);
+    double dev = 0;
+    for (int i = 0; i < T->nu; i++)
+        for (int j = 0; j < T->nv; j++)
+            for (int a = 0; a <= 4; a++) {
+                rg2_eval e1, e2;
+                rg2_patch_eval(rg2_surface_patch(T, i, j), a / 4.0, 0.3, 0, &e1);
+                rg2_patch_eval(rg2_surface_patch(R, (2 * T->nu - 2 - i) % T->nu, j), 1.0 - a / 4.0, 0.3, 0, &e2);
+                for (int q = 0; q < 3; q++)
+                    dev = fmax(dev, fabs(e1.p[q] - e2.p[q]));
+            }
+    CHECK(dev <= 1e-14 * rg2t_surface_scale(T), "reversed torus differs from the torus run backwards by %.3g", dev);
+    printf("  reverse: the reversed torus is the torus run backwards to %.1e\n", dev);
+    const rg2_surface *mv = rg2_design_surface(d, 3);
+    CHECK(mv->tag[0] >= 1 && strstr(rg2_design_shape_label(d, mv->tag[0]), "t@meshes.moved"),
+          "transformed patches tagged %d", mv->tag[0]);
+    rg2_design_free(d);
+}
+
+/* Random operation chains (fixed seed): cuts of two random tori-like shapes, random edits,
+ * reversals, transposes, transforms and merges. Whatever the chain, every tagged patch must lie on its
+ * shape and every seam must be G2; the count of exact patches is reported. */
+static void random_arcs(rg2t_rng *r, int n, char *out, size_t cap)
+{
+    double a[16], sum = 0, acc = 0;
+    for (int k = 0; k < n; k++)
+        sum += a[k] = rg2t_uniform(r, 0.6, 1.4);
+    for (int k = 0; k < n - 1; k++)
+        acc += a[k] = 360.0 * a[k] / sum;
+    a[n - 1] = 360.0 - acc; /* closes the circle exactly */
+    size_t len = 0;
+    for (int k = 0; k < n && len < cap; k++)
+        len += (size_t)snprintf(out + len, cap - len, "%s%.17g%s", k ? ", " : "[", a[k], k == n - 1 ? "]" : "");
+}
+
+static void random_designs(void)
+{
+    rg2t_rng r;
+    uint64_t seed = 4242;
+    rg2t_seed(&r, seed);
+    double worst_res = 0, worst_ang = 0, worst_curv = 0;
+    int n_designs = 0, n_patches = 0, n_exact = 0;
+    for (int trial = 0; trial < 40; trial++) {
+        int nu = rg2t_int(&r, 8, 12), nv = rg2t_int(&r, 5, 7);
+        char au[400], av[400], bu[400], json[4096];
+        random_arcs(&r, nu, au, sizeof au);
+        random_arcs(&r, nv, av, sizeof av);
+        random_arcs(&r, nu, bu, sizeof bu);
+        int c0 = rg2t_int(&r, 0, nu - 1), len0 = rg2t_int(&r, 4, nu);
+        int c1 = rg2t_int(&r, 0, nu - 1), len1 = rg2t_int(&r, 4, nu);
+        int ei = rg2t_int(&r, 0, len0 - 1), ej = rg2t_int(&r, 0, nv - 1);
+        double mv = rg2t_int(&r, 0, 1) ? rg2t_uniform(&r, -0.3, 0.3) : 0.0;
+        int closed = rg2t_int(&r, 0, 1), transpose = rg2t_int(&r, 0, 1);
+        int rev = rg2t_int(&r, 0, 1);
+        snprintf(json, sizeof json,
+                 "{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": %.6f, \"r\": %.6f},"
+                 "  \"c\": {\"kind\": \"cyclide\", \"a\": %.6f, \"c\": %.6f, \"mu\": %.6f,"
+                 "        \"rotate\": {\"axis\": [0, 0, 1], \"degrees\": %.3f}}},"
+                 " \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": %s}, \"v\": {\"arcs\": %s}},"
+                 "  \"C\": {\"shape\": \"c\", \"u\": {\"arcs\": %s}, \"v\": {\"arcs\": %s, \"from\": 180}},"
+                 "  \"A\": {\"cut\": \"T\", \"u\": [%d, %d]}, \"B\": {\"cut\": \"C\", \"u\": [%d, %d]},"
+                 "  \"E\": {\"edit\": \"A\", \"points\": [{\"at\": [%d, %d], \"move\": [%.3f, 0, %.3f]}]},"
+                 "  \"BR\": {\"reverse\": \"B\", \"dir\": \"u\"},"
+                 "  \"M\": {\"merge\": [\"E\", \"%s\"], \"along\": \"u\", \"closed\": %s},"
+                 "  \"P\": {\"transpose\": \"M\"},"
+                 "  \"X\": {\"transform\": \"%s\", \"rotate\": {\"axis\": [1, 1, 0], \"degrees\": %.3f},"
+                 "         \"translate\": [%.3f, 0, 1]}}}",
+                 rg2t_uniform(&r, 2.5, 4), rg2t_uniform(&r, 0.5, 1), 3.0, rg2t_uniform(&r, 0.2, 0.8),
+                 rg2t_uniform(&r, 0.9, 1.2), rg2t_uniform(&r, 0, 360), au, av, bu, av, c0, c0 + len0 - 1, c1,
+                 c1 + len1 - 1, ei, ej, mv, mv, rev ? "BR" : "B", closed ? "true" : "false", transpose ? "P" : "M",
+                 rg2t_uniform(&r, 0, 90), rg2t_uniform(&r, -2, 2));
+        rg2_design *d = NULL;
+        rg2_error err;
+        rg2_status st = rg2_design_parse(json, strlen(json), "random", &d, &err);
+        CHECK(st == RG2_OK, "random design %d: %s", trial, err.msg);
+        if (st)
+            continue;
+        const rg2_surface *s = rg2_design_surface(d, 0);
+        int ne;
+        double res = exact_residual(d, s, 4, &ne);
+        rg2t_seams g;
+        rg2t_surface_seams(s, 4, &g);
+        CHECK(res <= 1e-13, "random design %d: tagged patches off their shapes by %.3g", trial, res);
+        CHECK(g.angle <= 1e-11 && g.curv <= 1e-9, "random design %d: seams %.3g rad, %.3g", trial, g.angle, g.curv);
+        worst_res = fmax(worst_res, res);
+        worst_ang = fmax(worst_ang, g.angle);
+        worst_curv = fmax(worst_curv, g.curv);
+        n_designs++;
+        n_patches += s->nu * s->nv;
+        n_exact += ne;
+        rg2_design_free(d);
+    }
+    printf("  seed %llu: %d random designs, %d patches, %d tagged exact (residual %.1e), seams %.1e rad / %.1e\n",
+           (unsigned long long)seed, n_designs, n_patches, n_exact, worst_res, worst_ang, worst_curv);
+    CHECK(n_exact > n_patches / 4, "random designs: only %d of %d patches exact", n_exact, n_patches);
+}
+
+/* ------------------------------------------------------------------------------------- */
+
+static int same_mesh(const rg2_mesh *a, const rg2_mesh *b)
+{
+    if (a->nu != b->nu || a->nv != b->nv)
+        return 0;
+    if (memcmp(a->p, b->p, sizeof(double) * 4 * (size_t)a->nu * (size_t)a->nv))
+        return 0;
+    const rg2_scalars *sa[2] = {&a->su, &a->sv}, *sb[2] = {&b->su, &b->sv};
+    for (int k = 0; k < 2; k++)
+        if (sa[k]->closed != sb[k]->closed ||
+            memcmp(sa[k]->w, sb[k]->w, sizeof(double) * (size_t)rg2_scalars_num_w(sa[k])) ||
+            memcmp(sa[k]->b, sb[k]->b, sizeof(double) * (size_t)sa[k]->n) ||
+            memcmp(sa[k]->g, sb[k]->g, sizeof(double) * (size_t)sa[k]->n))
+            return 0;
+    return 1;
+}
+
+static int same_surface(const rg2_surface *a, const rg2_surface *b)
+{
+    return a->nu == b->nu && a->nv == b->nv &&
+           !memcmp(a->patch, b->patch, sizeof(rg2_patch) * (size_t)a->nu * (size_t)a->nv) &&
+           !memcmp(a->tag, b->tag, sizeof(int) * (size_t)a->nu * (size_t)a->nv);
+}
+
+static void morph_ends(void)
+{
+    const char *json =
+        "{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": 3, \"r\": 1},"
+        "  \"c\": {\"kind\": \"cyclide\", \"a\": 2, \"c\": 0.7, \"mu\": 1.2}},"
+        " \"meshes\": {\"A\": {\"shape\": \"t\", \"u\": {\"arcs\": [40, 50, 60, 70, 60, 80]}, \"v\": {\"arcs\": 5}},"
+        "  \"B0\": {\"shape\": \"c\", \"u\": {\"arcs\": 6}, \"v\": {\"arcs\": [72, 60, 84, 72, 72]}},"
+        "  \"B\": {\"edit\": \"B0\", \"points\": [{\"at\": [2, 2], \"move\": [0, 0, 0.5]}]},"
+        "  \"M0\": {\"morph\": [\"A\", \"B\"], \"t\": 0}, \"M1\": {\"morph\": [\"A\", \"B\"], \"t\": 1},"
+        "  \"Mh\": {\"morph\": [\"A\", \"B\"], \"t\": 0.5}},"
+        " \"output\": [\"A\", \"B\", \"M0\", \"M1\", \"Mh\"]}";
+    rg2_error err;
+    rg2_design *d = parse(json, &err);
+    if (!d)
+        return;
+    CHECK(same_mesh(rg2_design_mesh(d, 0), rg2_design_mesh(d, 2)), "morph t = 0 differs from A");
+    CHECK(same_mesh(rg2_design_mesh(d, 1), rg2_design_mesh(d, 3)), "morph t = 1 differs from B");
+    CHECK(same_surface(rg2_design_surface(d, 0), rg2_design_surface(d, 2)), "morph t = 0 surface differs");
+    CHECK(same_surface(rg2_design_surface(d, 1), rg2_design_surface(d, 3)), "morph t = 1 surface differs");
+    CHECK(!same_mesh(rg2_design_mesh(d, 0), rg2_design_mesh(d, 4)), "morph t = 0.5 equals A");
+    const rg2_surface *h = rg2_design_surface(d, 4);
+    int exact = 0;
+    for (int k = 0; k < h->nu * h->nv; k++)
+        exact += h->tag[k] >= 0;
+    CHECK(exact == 0, "morph t = 0.5 of different shapes has %d exact patches", exact);
+    rg2t_seams g;
+    rg2t_surface_seams(h, 6, &g);
+    CHECK(g.angle <= 1e-11 && g.curv <= 1e-9, "morph t = 0.5 seams %.3g rad, %.3g", g.angle, g.curv);
+    int ex0 = 0;
+    const rg2_surface *s0 = rg2_design_surface(d, 0);
+    for (int k = 0; k < s0->nu * s0->nv; k++)
+        ex0 += s0->tag[k] >= 0;
+    CHECK(ex0 == s0->nu * s0->nv, "morph t = 0 keeps %d of %d exact patches", ex0, s0->nu * s0->nv);
+    printf("  morph: t = 0 and t = 1 reproduce both meshes and surfaces bit for bit\n");
+    rg2_design_free(d);
+}
+
+/* ------------------------------------------------------------------------------------- */
+
+/* Largest |k1|, |k2| (times the surface size) and |H| over samples of the transition patches. */
+static void transition_curvature(const rg2_surface *s, int samples, double *kmax, double *hmax)
+{
+    double size = rg2t_surface_scale(s);
+    *kmax = *hmax = 0.0;
+    for (int k = 0; k < s->nu * s->nv; k++) {
+        if (s->tag[k] >= 0)
+            continue;
+        for (int a = 0; a <= samples; a++)
+            for (int b = 0; b <= samples; b++) {
+                rg2_eval e;
+                rg2_patch_eval(&s->patch[k], (double)a / samples, (double)b / samples, 2, &e);
+                double km = fmax(fabs(e.k1), fabs(e.k2)) * size;
+                if (km > *kmax)
+                    *kmax = km;
+                if (fabs(e.H) * size > *hmax)
+                    *hmax = fabs(e.H) * size;
+            }
+    }
+}
+
+/* The seam rule: "preserve" keeps every patch of both parts exact; "plain" loses the end
+ * patches next to each seam whose data-only weights differ. Both are G2, and their transitions
+ * are equally fair. Measured on the examples with merges. */
+static void seam_rules(void)
+{
+    const char *files[] = {"examples/torus_sphere.json", "examples/fig6_torus_hyperboloid.json",
+                           "examples/fig7_torus_cyclide.json"};
+    for (int f = 0; f < 3; f++) {
+        char *text = read_text(files[f]);
+        cJSON *root = text ? cJSON_Parse(text) : NULL;
+        CHECK(root != NULL, "%s missing or unreadable", files[f]);
+        int counts[2] = {0, 0};
+        double kmax[2] = {0, 0};
+        for (int rule = 0; root && rule < 2; rule++) {
+            for (cJSON *m = cJSON_GetObjectItem(root, "meshes")->child; m; m = m->next)
+                if (cJSON_GetObjectItem(m, "merge")) {
+                    cJSON_DeleteItemFromObject(m, "seam");
+                    cJSON_AddStringToObject(m, "seam", rule ? "plain" : "preserve");
+                }
+            char *t = cJSON_PrintUnformatted(root);
+            rg2_design *d = NULL;
+            rg2_error err;
+            CHECK_OK(rg2_design_parse(t, strlen(t), files[f], &d, &err), &err);
+            if (d) {
+                const rg2_surface *s = rg2_design_surface(d, 0);
+                double res = exact_residual(d, s, 8, &counts[rule]), hmax;
+                rg2t_seams g;
+                rg2t_surface_seams(s, 8, &g);
+                transition_curvature(s, 16, &kmax[rule], &hmax);
+                printf("  %-36s seam %-8s: %3d exact patches (residual %.1e), seams %.1e rad / %.1e; "
+                       "transitions: max |k| size %.2f, max |H| size %.2f\n",
+                       files[f], rule ? "plain" : "preserve", counts[rule], res, g.angle, g.curv, kmax[rule], hmax);
+                CHECK(res <= 1e-13 && g.angle <= 1e-11 && g.curv <= 1e-9, "%s seam rule %d: %.3g %.3g %.3g",
+                      files[f], rule, res, g.angle, g.curv);
+                rg2_design_free(d);
+            }
+            cJSON_free(t);
+        }
+        CHECK(counts[0] >= counts[1] && (f || counts[0] > counts[1]), "%s: preserve keeps %d exact patches, plain %d",
+              files[f], counts[0], counts[1]);
+        cJSON_Delete(root);
+        free(text);
+    }
+}
+
+/* ------------------------------------------------------------------------------------- */
+
+#define TORUS_SHAPES "\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": 3, \"r\": 1}, \"s\": {\"kind\": \"sphere\"}}"
+#define TORUS_MESH "\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": 8}, \"v\": {\"arcs\": 6}}"
+
+static void bad_inputs(void)
+{
+    struct {
+        const char *json;
+        rg2_status code;
+        const char *substr;
+    } cases[] = {
+        {"{\"shapes\": {}, \n  \"meshes\": {,}}", RG2_EPARSE, "test:2:15: malformed JSON near '}}'"},
+        {"{\"shapes\": {\"t\": {\"kind\": \"torus\"}}", RG2_EPARSE, "malformed JSON"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH "}} x", RG2_EPARSE, "test:1:"},
+        {"{" TORUS_SHAPES ", \"meshs\": {}}", RG2_EPARSE, "did you mean 'meshes'"},
+        {"{\"shapes\": {\"t\": {\"kind\": \"tours\"}}, \"meshes\": {}}", RG2_EPARSE, "did you mean 'torus'"},
+        {"{\"shapes\": {\"t\": {\"kind\": \"torus\", \"radius\": 2}}, \"meshes\": {}}", RG2_EPARSE,
+         "unknown key 'radius'"},
+        {"{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": \"3\"}}, \"meshes\": {}}", RG2_EPARSE,
+         "shapes.t.R: expected a number, found a string"},
+        {"{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": 1e999}}, \"meshes\": {}}", RG2_ENONFINITE,
+         "shapes.t.R: number is not finite"},
+        {"{\"shapes\": {\"t\": {\"R\": 3}}, \"meshes\": {}}", RG2_EPARSE, "shapes.t: missing key 'kind'"},
+        {"{" TORUS_SHAPES "}", RG2_EPARSE, "missing key 'meshes'"},
+        {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"tt\"}}}", RG2_EPARSE, "did you mean 't'"},
+        {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": [90, 90, 200]}}}}", RG2_EDOMAIN,
+         "meshes.T.u"},
+        {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"s\", \"v\": {\"arcs\": 4}}}}", RG2_EPARSE,
+         "meshes.T.v: unknown key 'arcs'"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"C\": {\"cut\": \"T\", \"u\": [2, 40]}}}",
+         RG2_EINVAL, "meshes.C: u range [2, 40]"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"C\": {\"cut\": \"T\", \"u\": [2, 4]}}}",
+         RG2_EINVAL, "needs at least 4"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"C\": {\"cut\": \"X\", \"u\": [2, 4]}}}",
+         RG2_EPARSE, "no mesh named 'X'"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"A\": {\"cut\": \"T\", \"u\": [0, 4]},"
+         " \"S0\": {\"shape\": \"s\", \"u\": {\"arcs\": 5}}, \"S\": {\"transpose\": \"S0\"},"
+         " \"M\": {\"merge\": [\"A\", \"S\"], \"along\": \"u\"}}}",
+         RG2_EINCOMPATIBLE, "meshes 'A' and 'S' do not agree in v"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"A\": {\"cut\": \"T\", \"u\": [0, 4]},"
+         " \"B\": {\"cut\": \"T\", \"u\": [4, 8]}, \"M\": {\"merge\": [\"A\", \"T\"], \"along\": \"u\"}}}",
+         RG2_EINCOMPATIBLE, "mesh 'T' is closed in u"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"A\": {\"cut\": \"T\", \"u\": [0, 4]},"
+         " \"M\": {\"merge\": [\"A\", \"A\"], \"along\": \"w\"}}}", RG2_EPARSE, "expected \"u\" or \"v\""},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"points\": [{\"at\": [8, 0], \"move\": [0, 0, 1]}]}}}",
+         RG2_EINVAL, "meshes.E.points[0].at: control point [8, 0] is outside the 8 x 6"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"points\": [{\"at\": [1, 1], \"W\": 0}]}}}",
+         RG2_EWEIGHT, "meshes.E.points[0].W: weight W = 0, must be > 0"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"points\": [{\"at\": [1, 1], \"move\": [0, 1e999, 0]}]}}}",
+         RG2_ENONFINITE, "meshes.E.points[0].move[1]"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"scalars\": [{\"dir\": \"u\", \"leg\": 2, \"w\": -1}]}}}",
+         RG2_EWEIGHT, "meshes.E.scalars[0].w: leg weight w = -1, must be > 0"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"scalars\": [{\"dir\": \"v\", \"junction\": 1, \"b\": 0}]}}}",
+         RG2_EWEIGHT, "junction scalar b = 0"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"scalars\": [{\"dir\": \"v\", \"junction\": 1, \"g\": -50}]}}}",
+         RG2_EWEIGHT, "junction 1 has K"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"scalars\": [{\"dir\": \"v\", \"junction\": 9, \"g\": 0}]}}}",
+         RG2_EINVAL, "v junction 9 is outside 0..5"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"points\": [{\"at\": [1, 1], \"mvoe\": [0, 0, 1]}]}}}",
+         RG2_EPARSE, "did you mean 'move'"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"S\": {\"shape\": \"s\"}, \"M\": {\"morph\": [\"T\", \"S\"], \"t\": 0.5}}}",
+         RG2_EINCOMPATIBLE, "meshes 'T' (8 closed) and 'S'"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"M\": {\"morph\": [\"T\", \"T\"], \"t\": 1.5}}}",
+         RG2_EDOMAIN, "meshes.M.t: t = 1.5"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"X\": {\"transform\": \"T\", \"rotate\": {\"axis\": [0, 0, 0], \"degrees\": 3}}}}",
+         RG2_EDOMAIN, "zero vector"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"X\": {\"transform\": \"T\", \"cut\": \"T\"}}}",
+         RG2_EPARSE, "exactly one operation"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH "}, \"output\": \"Y\"}", RG2_EPARSE, "output: no mesh named 'Y'"},
+        {"[1, 2]", RG2_EPARSE, "expected an object"},
+        {"{" TORUS_SHAPES ", \"meshes\": {\"comment\": \"only a comment\"}}", RG2_EPARSE, "meshes: no meshes"},
+        {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": []}}}}", RG2_EPARSE,
+         "meshes.T.u.arcs: expected at least one number"},
+        {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": [30, 30], \"to\": 90}}}}",
+         RG2_EPARSE, "'to' goes with a number of arcs"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"R\": {\"reverse\": \"T\"}}}", RG2_EPARSE,
+         "meshes.R: missing key 'dir'"},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        rg2_design *d = (rg2_design *)1;
+        rg2_error err;
+        memset(&err, 0, sizeof err);
+        rg2_status st = rg2_design_parse(cases[c].json, strlen(cases[c].json), "test", &d, &err);
+        CHECK(st == cases[c].code && d == NULL && strstr(err.msg, cases[c].substr),
+              "bad case %zu: got %s '%s', expected %s with '%s'", c, rg2_status_str(st), err.msg,
+              rg2_status_str(cases[c].code), cases[c].substr);
+        if (st == RG2_OK)
+            rg2_design_free(d);
+    }
+    printf("  %zu bad designs rejected with their messages, e.g. '%s'\n", sizeof cases / sizeof cases[0],
+           "test:2:15: malformed JSON near '}}'");
+    rg2_design *d;
+    rg2_error err;
+    CHECK(rg2_design_load("tests/data/no-such-file.json", &d, &err) == RG2_EIO && d == NULL &&
+              strstr(err.msg, "no-such-file.json"),
+          "missing file: %s", err.msg);
+}
+
+int main(void)
+{
+    printf("examples (exact-patch residual |F| / (|grad F| size), G2 seam gaps):\n");
+    examples();
+    printf("edit locality:\n");
+    edits_are_local();
+    printf("operations that keep exactness:\n");
+    ops_keep_exactness();
+    printf("random operation chains:\n");
+    random_designs();
+    printf("morph:\n");
+    morph_ends();
+    printf("merge seam rules:\n");
+    seam_rules();
+    printf("bad input:\n");
+    bad_inputs();
+    return rg2t_done("test_design");
+}

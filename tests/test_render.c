@@ -1,0 +1,345 @@
+/* test_render.c -- per-pixel exact pictures: the exact data behind each pixel (sphere: the
+ * mean curvature is constant, normals are unit, points lie on the sphere), zebra stripes kink
+ * across a G1 seam and not across G2 seams, PNG output decodes, output is deterministic.
+ * Set RG2_KEEP_PICTURES=dir to keep the PNGs for looking at them. */
+#include "harness.h"
+#include "scenes.h"
+
+#include <png.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static const char *keep_dir(void) { return getenv("RG2_KEEP_PICTURES"); }
+
+/* Write img to a temporary (or kept) PNG; returns the path in buf. */
+static const char *png_path(const char *name, char *buf, size_t len)
+{
+    const char *dir = keep_dir();
+    if (dir)
+        snprintf(buf, len, "%s/%s.png", dir, name);
+    else
+        snprintf(buf, len, "/tmp/rg2_test_render_%ld_%s.png", (long)getpid(), name);
+    return buf;
+}
+
+static void done_png(const char *path)
+{
+    if (!keep_dir())
+        remove(path);
+}
+
+/* Decode a PNG with libpng: size, colour type, bit depth; pixels into *rgb (malloc'd). */
+static int read_png(const char *path, int *w, int *h, int *ctype, int *depth, unsigned char **rgb)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return 0;
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+    png_infop info = png_create_info_struct(png);
+    unsigned char *volatile data = NULL;
+    png_bytep *volatile rows = NULL;
+    volatile int ok = 0;
+    if (setjmp(png_jmpbuf(png)) == 0) {
+        png_init_io(png, f);
+        png_read_info(png, info);
+        *w = (int)png_get_image_width(png, info);
+        *h = (int)png_get_image_height(png, info);
+        *ctype = png_get_color_type(png, info);
+        *depth = png_get_bit_depth(png, info);
+        if (*ctype == PNG_COLOR_TYPE_RGB && *depth == 8) {
+            data = malloc((size_t)*w * *h * 3);
+            rows = malloc((size_t)*h * sizeof *rows);
+            for (int y = 0; y < *h; y++)
+                rows[y] = data + (size_t)y * *w * 3;
+            png_read_image(png, rows);
+            png_read_end(png, NULL);
+        }
+        ok = 1;
+    }
+    png_destroy_read_struct(&png, &info, NULL);
+    fclose(f);
+    free(rows);
+    *rgb = data;
+    return ok;
+}
+
+/* Sphere band (radius 1, latitudes -60..60 degrees): every pixel's exact data. */
+static void sphere_pixels(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_revolve(0.0, 1.0, 6, 4, 0, -M_PI / 3, M_PI / 6, &m, &s, &err), &err);
+    rg2_render_opts o;
+    rg2_render_opts_default(&o);
+    o.width = 160;
+    o.height = 120;
+    o.mode = RG2_RENDER_MEAN;
+    o.keep_pixels = 1;
+    rg2_image img;
+    CHECK_OK(rg2_render(&s, 1, &m, &o, &img, &err), &err);
+    double worstH = 0, worstN = 0, worstR = 0, worstRes = 0, H0 = 0;
+    int fg = 0;
+    for (int k = 0; k < img.width * img.height; k++) {
+        const rg2_pixel *p = &img.pixels[k];
+        if (p->surf < 0)
+            continue;
+        if (!fg)
+            H0 = p->H;
+        fg++;
+        worstH = fmax(worstH, fabs(fabs(p->H) - 1.0));
+        worstH = fmax(worstH, fabs(p->H - H0));
+        worstN = fmax(worstN, fabs(sqrt(p->n[0] * p->n[0] + p->n[1] * p->n[1] + p->n[2] * p->n[2]) - 1.0));
+        worstR = fmax(worstR, fabs(sqrt(p->p[0] * p->p[0] + p->p[1] * p->p[1] + p->p[2] * p->p[2]) - 1.0));
+        worstRes = fmax(worstRes, p->resid);
+    }
+    printf("sphere band %dx%d: %d foreground pixels, %d refined; |H| - 1: %.2e, |n| - 1: %.2e, "
+           "|p| - 1: %.2e, ray residual %.2e\n",
+           img.width, img.height, fg, img.refined, worstH, worstN, worstR, worstRes);
+    CHECK(fg > 2000, "sphere covers %d pixels", fg);
+    CHECK(img.refined >= fg * 95 / 100, "Newton converged at %d of %d pixels", img.refined, fg);
+    CHECK(worstH <= 1e-12, "mean curvature per pixel constant to %.3g", worstH);
+    CHECK(worstN <= 1e-14, "normals unit to %.3g", worstN);
+    CHECK(worstR <= 1e-13, "pixel points on the sphere to %.3g", worstR);
+    CHECK(img.range[0] < H0 && H0 < img.range[1], "colour range [%g, %g] holds H = %g", img.range[0],
+          img.range[1], H0);
+    rg2_image_free(&img);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
+/* A whole sphere from a closed v circle (patch edges collapse to the poles, where the normal
+ * is undefined): the picture still resolves every pixel to a finite point on the sphere. */
+static void sphere_poles(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_revolve(0.0, 1.0, 4, 4, 1, 0, 0, &m, &s, &err), &err);
+    rg2_render_opts o;
+    rg2_render_opts_default(&o);
+    o.width = 96;
+    o.height = 96;
+    o.elevation = 80; /* look almost down onto a pole */
+    o.mode = RG2_RENDER_GAUSS;
+    o.keep_pixels = 1;
+    rg2_image img;
+    CHECK_OK(rg2_render(&s, 1, NULL, &o, &img, &err), &err);
+    int fg = 0, bad = 0;
+    double worstR = 0, worstK = 0;
+    for (int k = 0; k < img.width * img.height; k++) {
+        const rg2_pixel *p = &img.pixels[k];
+        if (p->surf < 0)
+            continue;
+        fg++;
+        if (!isfinite(p->K) || !isfinite(p->phase) || !isfinite(p->p[0]))
+            bad++;
+        worstR = fmax(worstR, fabs(sqrt(p->p[0] * p->p[0] + p->p[1] * p->p[1] + p->p[2] * p->p[2]) - 1.0));
+        if (p->n[0] != 0 || p->n[1] != 0 || p->n[2] != 0)
+            worstK = fmax(worstK, fabs(p->K - 1.0));
+    }
+    printf("sphere with poles: %d pixels, %d non-finite, |p| - 1 %.2e, K - 1 %.2e\n", fg, bad, worstR, worstK);
+    CHECK(fg > 2000 && bad == 0, "%d pixels, %d non-finite", fg, bad);
+    CHECK(worstR <= 1e-13, "points on the sphere to %.3g", worstR);
+    CHECK(worstK <= 1e-9, "Gaussian curvature 1 to %.3g where the normal is defined", worstK);
+    char path[512];
+    if (keep_dir())
+        rg2_image_write_png(&img, png_path("sphere_poles", path, sizeof path), &err);
+    rg2_image_free(&img);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
+/* Wrap a phase difference into (-pi, pi]. */
+static double wrap(double a)
+{
+    while (a > M_PI)
+        a -= 2 * M_PI;
+    while (a <= -M_PI)
+        a += 2 * M_PI;
+    return a;
+}
+
+static int cmp_d(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Stripe-kink statistic: along each image row, where the patch changes between pixels x and
+ * x + 1 (same surface, three pixels of each patch on either side), the one-sided phase slopes
+ * s(-2), s(-1) left and s(1), s(2) right (s(k) = phi(x+k+1) - phi(x+k), s(-1) = phi(x) -
+ * phi(x-1)). The slope jump across the seam beyond the local trend,
+ *   |s(1) - s(-1) - ((s(-1) - s(-2)) + (s(2) - s(1)))|,
+ * relative to max(|s(-1)|, |s(1)|), median over the rows. A G1 seam's curvature jump makes the
+ * stripe direction jump; across a G2 seam the slope changes smoothly. */
+static double stripe_kink(const rg2_image *img, int *count)
+{
+    int W = img->width;
+    double *vals = malloc(sizeof(double) * (size_t)img->height * 8);
+    int n = 0;
+    for (int y = 0; y < img->height; y++)
+        for (int x = 2; x + 3 < W; x++) {
+            const rg2_pixel *p = &img->pixels[(size_t)y * W + x - 2];
+            int ok = 1;
+            for (int k = 0; k < 6; k++)
+                ok &= p[k].surf == p[0].surf && p[k].surf >= 0 && p[k].patch == (k < 3 ? p[0].patch : p[5].patch);
+            if (!ok || p[0].patch == p[5].patch)
+                continue;
+            double sm2 = wrap(p[1].phase - p[0].phase), sm1 = wrap(p[2].phase - p[1].phase);
+            double s1 = wrap(p[4].phase - p[3].phase), s2 = wrap(p[5].phase - p[4].phase);
+            double jump = fabs(s1 - sm1 - ((sm1 - sm2) + (s2 - s1)));
+            double den = fmax(fabs(sm1), fabs(s1));
+            if (den > 0 && n < img->height * 8)
+                vals[n++] = jump / den;
+        }
+    double med = 0;
+    if (n) {
+        qsort(vals, (size_t)n, sizeof *vals, cmp_d);
+        med = vals[n / 2];
+    }
+    free(vals);
+    *count = n;
+    return med;
+}
+
+static void zebra_kinks(void)
+{
+    rg2_surface g1, g2;
+    rg2_mesh m2;
+    rg2_error err;
+    CHECK_OK(scene_cyl_plane(1.0, 1.6, 2.0, &g1, &err), &err);
+    CHECK_OK(scene_bspline_profile(1.0, 1.6, 2.0, &m2, &g2, &err), &err);
+    rg2_render_opts o;
+    rg2_render_opts_default(&o);
+    o.width = 240;
+    o.height = 180;
+    o.mode = RG2_RENDER_ZEBRA;
+    o.azimuth = -90;
+    o.elevation = 55;
+    o.stripes = 24;
+    o.keep_pixels = 1;
+    rg2_image a, b;
+    CHECK_OK(rg2_render(&g1, 1, NULL, &o, &a, &err), &err);
+    CHECK_OK(rg2_render(&g2, 1, &m2, &o, &b, &err), &err);
+    int na, nb;
+    double ka = stripe_kink(&a, &na), kb = stripe_kink(&b, &nb);
+    rg2t_seams sa, sb;
+    rg2t_surface_seams(&g1, 16, &sa);
+    rg2t_surface_seams(&g2, 16, &sb);
+    printf("zebra stripe kink (median |slope jump| / slope at seam pixels): G1 cylinder+plane %.3f "
+           "(%d rows), G2 B-spline %.4f (%d seam pixels); measured curvature jumps %.3g vs %.3g\n",
+           ka, na, kb, nb, sa.curv, sb.curv);
+    CHECK(na >= 50 && nb >= 50, "seam pixels found: %d, %d", na, nb);
+    CHECK(ka > 0.2, "G1 seam kinks the stripes: %.3g", ka);
+    CHECK(kb < 0.05, "G2 seams do not kink the stripes: %.3g", kb);
+    CHECK(ka > 8 * kb, "the statistic separates G1 (%.3g) from G2 (%.3g)", ka, kb);
+    CHECK(sa.curv > 0.5 && sb.curv < 1e-10, "the seams are G1 (%.3g) and G2 (%.3g)", sa.curv, sb.curv);
+    char path[512];
+    if (keep_dir()) {
+        rg2_image_write_png(&a, png_path("zebra_g1", path, sizeof path), &err);
+        rg2_image_write_png(&b, png_path("zebra_g2", path, sizeof path), &err);
+    }
+    rg2_image_free(&a);
+    rg2_image_free(&b);
+    rg2_surface_free(&g1);
+    rg2_surface_free(&g2);
+    rg2_mesh_free(&m2);
+}
+
+/* PNG: decodes with libpng as 8-bit RGB of the requested size, same pixels as rendered. */
+static void png_valid_and_deterministic(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_revolve(3.0, 1.0, 8, 6, 1, 0, 0, &m, &s, &err), &err);
+    static const rg2_render_mode modes[4] = {RG2_RENDER_SHADED, RG2_RENDER_MEAN, RG2_RENDER_GAUSS, RG2_RENDER_ZEBRA};
+    static const char *names[4] = {"torus_shaded", "torus_mean", "torus_gauss", "torus_zebra"};
+    for (int q = 0; q < 4; q++) {
+        rg2_render_opts o;
+        rg2_render_opts_default(&o);
+        o.width = 200 + q;
+        o.height = 130;
+        o.mode = modes[q];
+        o.boundaries = q == 0;
+        o.mesh = q == 0;
+        rg2_image one, two;
+        o.threads = 1;
+        CHECK_OK(rg2_render(&s, 1, &m, &o, &one, &err), &err);
+        o.threads = 2;
+        CHECK_OK(rg2_render(&s, 1, &m, &o, &two, &err), &err);
+        size_t nbytes = (size_t)one.width * one.height * 3;
+        CHECK(two.rgb && one.rgb && !memcmp(one.rgb, two.rgb, nbytes), "%s: 1 and 2 threads give the same bytes",
+              names[q]);
+        char path[512];
+        png_path(names[q], path, sizeof path);
+        CHECK_OK(rg2_image_write_png(&one, path, &err), &err);
+        int w = 0, h = 0, ct = -1, bd = 0;
+        unsigned char *rgb = NULL;
+        CHECK(read_png(path, &w, &h, &ct, &bd, &rgb), "%s decodes", path);
+        CHECK(w == o.width && h == o.height && ct == PNG_COLOR_TYPE_RGB && bd == 8,
+              "%s: %dx%d colour type %d depth %d", names[q], w, h, ct, bd);
+        CHECK(rgb && !memcmp(rgb, one.rgb, nbytes), "%s: decoded pixels equal the rendered ones", names[q]);
+        /* a picture, not a blank: the surface covers a good part and has many tones */
+        int tones[256] = {0}, distinct = 0;
+        for (size_t k = 0; k < nbytes; k += 3)
+            tones[one.rgb[k + 1]] = 1;
+        for (int k = 0; k < 256; k++)
+            distinct += tones[k];
+        CHECK(one.foreground > one.width * one.height / 5 && distinct > 40, "%s: %d surface pixels, %d green levels",
+              names[q], one.foreground, distinct);
+        free(rgb);
+        done_png(path);
+        rg2_image_free(&one);
+        rg2_image_free(&two);
+    }
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
+static void errors(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_revolve(3.0, 1.0, 4, 4, 1, 0, 0, &m, &s, &err), &err);
+    rg2_render_opts o;
+    rg2_render_opts_default(&o);
+    rg2_image img;
+    CHECK(rg2_render(&s, 0, NULL, &o, &img, &err) == RG2_EINVAL && strstr(err.msg, "no surfaces"), "%s", err.msg);
+    o.width = 4;
+    CHECK(rg2_render(&s, 1, NULL, &o, &img, &err) == RG2_EINVAL && strstr(err.msg, "4 x 600"), "%s", err.msg);
+    o.width = 64;
+    o.mesh = 1;
+    CHECK(rg2_render(&s, 1, NULL, &o, &img, &err) == RG2_EINVAL && strstr(err.msg, "mesh"), "%s", err.msg);
+    o.mesh = 0;
+    o.range_set = 1;
+    o.range[0] = 2;
+    o.range[1] = 1;
+    CHECK(rg2_render(&s, 1, NULL, &o, &img, &err) == RG2_EINVAL && strstr(err.msg, "range"), "%s", err.msg);
+    o.range_set = 0;
+    s.patch[5].h[1][2][0] = NAN;
+    CHECK(rg2_render(&s, 1, NULL, &o, &img, &err) == RG2_ENONFINITE && strstr(err.msg, "patch (1,1)"), "%s",
+          err.msg);
+    s.patch[5].h[1][2][0] = 0;
+    o.width = 32;
+    o.height = 32;
+    CHECK_OK(rg2_render(&s, 1, NULL, &o, &img, &err), &err);
+    CHECK(rg2_image_write_png(&img, "/nonexistent-dir/x.png", &err) == RG2_EIO && strstr(err.msg, "nonexistent"),
+          "%s", err.msg);
+    rg2_image_free(&img);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
+int main(void)
+{
+    sphere_pixels();
+    sphere_poles();
+    zebra_kinks();
+    png_valid_and_deterministic();
+    errors();
+    return rg2t_done("test_render");
+}
