@@ -636,12 +636,19 @@ static cJSON *run_case(bcase *c)
         double ratio = mpts[pairs[p].a] / mpts[pairs[p].b];
         int valid = chk[pairs[p].a].ok && chk[pairs[p].b].ok;
         printf("     %-44s %8.2fx", pairs[p].label, ratio);
+        /* the most any method writing the same bytes could reach: write ceiling / peer */
+        int ceil_m = pairs[p].a == M_GRID0 ? M_CEIL0 : pairs[p].a == M_GRID1 ? M_CEIL1 : -1;
+        double bound = ceil_m >= 0 && pairs[p].b != ceil_m ? mpts[ceil_m] / mpts[pairs[p].b] : 0;
         if (pairs[p].target > 0)
-            printf("   target >= %gx: %s", pairs[p].target, !valid ? "INVALID" : ratio >= pairs[p].target ? "met" : "missed");
+            printf("   target >= %gx: %-7s", pairs[p].target, !valid ? "INVALID" : ratio >= pairs[p].target ? "met" : "missed");
+        if (bound > 0)
+            printf("   (write ceiling allows %.1fx)", bound);
         printf("\n");
         cJSON *o = cJSON_CreateObject();
         cJSON_AddStringToObject(o, "pair", pairs[p].label);
         cJSON_AddNumberToObject(o, "ratio", ratio);
+        if (bound > 0)
+            cJSON_AddNumberToObject(o, "write_ceiling_bound", bound);
         if (pairs[p].target > 0) {
             cJSON_AddNumberToObject(o, "target", pairs[p].target);
             cJSON_AddBoolToObject(o, "met", valid && ratio >= pairs[p].target);
