@@ -3,12 +3,15 @@
  *
  * METHOD: separable evaluation. The Bernstein values (and derivatives) at the grid
  * parameters are tabulated once per call: per u index as 4-vectors, per v index as four
- * structure-of-arrays columns. For grid row a, the u-sums Q_s = sum_r B_r(u_a) h_rs (16
- * numbers, and the same with B' and B'' when derivatives are wanted) are formed once; every
- * point of the row is then sum_s B_s(v_b) Q_s: 16 multiply-adds per homogeneous value, a
- * branch-free loop over b that the compiler vectorises (x86-64: AVX-512 / AVX2 / baseline
- * clones chosen at load time). The quotient rule and the curvature formulas are those of
- * rg2_patch_eval (eval.c), which stays the independent reference.
+ * structure-of-arrays columns. Per block of up to BLK columns of a patch, the column sums
+ * c_r(v_b) = sum_s h_rs B_s(v_b) (16 numbers per column; with B' and B'' when derivatives are
+ * wanted) are formed once; every point of every row is then sum_r B_r(u_a) c_r(v_b): 16
+ * multiply-adds per homogeneous value, in the summation order of rg2_patch_eval, in a
+ * branch-free loop over the columns that the compiler vectorises (x86-64 with GCC: AVX-512 /
+ * AVX2 / baseline clones chosen at load time). On AVX-512 CPUs hand-written kernels replace the
+ * divisions and square roots by rcp14 / rsqrt14 and two Newton steps. The quotient rule and the
+ * curvature formulas are those of rg2_patch_eval (eval.c), which stays the independent
+ * reference; tests/test_grid.c holds the two to 1e-14.
  */
 #include "internal.h"
 
@@ -29,9 +32,10 @@
 #define RG2_HOT
 #endif
 
-/* Hand-written AVX-512 kernels for positions and normals (reciprocals by rcp14/rsqrt14 and
- * two Newton steps instead of divisions, interleaving permutes, optional streaming stores),
- * chosen at run time when the CPU has AVX-512F/DQ. */
+/* Hand-written AVX-512 kernels for positions, normals and the second-order quantities
+ * (reciprocals by rcp14/rsqrt14 and two Newton steps instead of divisions, interleaving
+ * permutes, masked tails, optional streaming stores), chosen at run time when the CPU has
+ * AVX-512F/DQ. */
 #if defined(__GNUC__) && defined(__x86_64__) && !defined(RG2_NO_CLONES)
 #define RG2_AVX512 1
 #include <immintrin.h>
