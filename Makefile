@@ -3,6 +3,7 @@
 #   make test   install what is missing, build under ASan+UBSan, run every test
 #   make bench  build optimised and run the benchmark against SISL and OpenCASCADE
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+MAKEFLAGS += --no-print-directory
 DESIGN ?= examples/torus_sphere.json
 
 .PHONY: all build run test bench clean
@@ -12,7 +13,7 @@ all: build
 build:
 	@scripts/deps.sh base
 	@cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DRG2_BUILD_TESTS=OFF >/dev/null
-	@cmake --build build -j$(JOBS)
+	@cmake --build build -j$(JOBS) | grep -E "warning|error|Linking" || true
 
 run: build
 	@mkdir -p out

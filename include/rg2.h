@@ -494,10 +494,114 @@ RG2_API rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, 
 
 
 /* ===================================================================================== */
-/** @name Poles (polar configurations, caps, Moebius, paper section 5) */
+/** @name Poles (polar configurations, caps, Moebius, paper section 5)
+ *
+ * A polar configuration (MATH.md section 7) is an open-v mesh whose first and/or last row is
+ * collapsed to a single polar point (a triangle fan); the construction on it yields the band
+ * between the two rings next to the poles, and the caps close the band at the poles.
+ * See docs/poles.md for the choices made where the paper is silent.
+ */
 /* ===================================================================================== */
 
-/* (poles API) */
+/** Knots of a polar configuration from the interior knots v_1 < ... < v_m in (0, 1), m >= 2:
+ *  writes the m + 4 knots v_{-1} = v_1 / (v_1 - 1), v_0 = 0, v_1, ..., v_m, v_{m+1} = 1,
+ *  v_{m+2} = 1 / v_m (the layout of rg2_scalars_from_knots, open, for m + 2 points).
+ *  @return RG2_EDOMAIN for a knot outside (0, 1) or not increasing, naming it. */
+RG2_API rg2_status rg2_polar_knots(const double *v, int m, double *knots, rg2_error *err);
+
+/** Polar control mesh of the unit sphere (family 2, MATH.md eq. 13): u a closed circle
+ *  partition (n_alpha arcs summing to 2 pi, junction 0 at angle theta0), v the polar knots of
+ *  rg2_polar_knots(v, m). The mesh has n_alpha x (m + 2) points; row 0 is the south polar
+ *  point (0, 0, Zs, 1), row m + 1 the north polar point (0, 0, Zn, 1) (exactly collapsed).
+ *  The surface built from it is the band v in [v_1, v_m] of the sphere, exactly.
+ *  M (nullable): row-major 4x4 placement applied to every 4-tuple (exact; rows stay collapsed).
+ *  Free out with rg2_mesh_free. */
+RG2_API rg2_status rg2_polar_sphere_mesh(const double *alpha, int n_alpha, double theta0,
+                                         const double *v, int m, const double *M, rg2_mesh *out,
+                                         rg2_error *err);
+
+/** 1 if row j (all i) of the mesh is one point: every 4-tuple projectively equal to the first
+ *  one to 1e-12 relative to the mesh size; 0 otherwise (or for a bad j). */
+RG2_API int rg2_mesh_row_collapsed(const rg2_mesh *m, int j);
+
+/** Move a polar point: end 0 sets every 4-tuple of row 0, end 1 of row nv - 1, to p
+ *  (a homogeneous 4-tuple, p[3] > 0). Moving a polar point moves the whole collapsed row.
+ *  @return RG2_EINVAL (bad end, closed v), RG2_ENONFINITE, RG2_EWEIGHT (p[3] <= 0). */
+RG2_API rg2_status rg2_polar_set_point(rg2_mesh *m, int end, const double p[4], rg2_error *err);
+
+/** Moebius pole placement of eq. (16), M(z) = (z - b) / (b z + 1), as the linear map of the
+ *  sphere's 4-tuples it induces (divided by 1 + b^2): a rotation about the y-axis taking the
+ *  south pole (0,0,-1) to (2b, 0, b^2 - 1) / (1 + b^2) and the north pole to
+ *  (-2b, 0, 1 - b^2) / (1 + b^2). R (nullable, row-major 3x3 rotation) is applied after it.
+ *  Writes the row-major 4x4 matrix to M. */
+RG2_API void rg2_mobius_matrix(double b, const double *R, double M[16]);
+
+/** The general Moebius transformation of the unit sphere (a Lorentz map of its 4-tuples,
+ *  rotation composed with a boost) that takes the south pole (0,0,-1) to `south` and the north
+ *  pole (0,0,1) to `north`: any two distinct points of the unit sphere (need not be antipodal).
+ *  Writes the row-major 4x4 matrix to M.
+ *  @return RG2_EDOMAIN if a point is not on the unit sphere (1e-9) or the two coincide. */
+RG2_API rg2_status rg2_mobius_poles_matrix(const double south[3], const double north[3],
+                                           double M[16], rg2_error *err);
+
+/** Apply a Moebius matrix (of the unit sphere) to a sphere-like mesh whose reference sphere
+ *  has the given center and radius: every 4-tuple p becomes T M T^-1 p, T = translate(center)
+ *  scale(radius). An exact sphere mesh stays exact (same sphere, poles moved); a free-form
+ *  sphere-like mesh moves with its poles.
+ *  @return RG2_EWEIGHT if a resulting weight is not > 0 (naming the control point), then the
+ *  mesh is unchanged; RG2_EDOMAIN for radius <= 0. */
+RG2_API rg2_status rg2_mesh_mobius(rg2_mesh *m, const double center[3], double radius,
+                                   const double M[16], rg2_error *err);
+
+/** Cap ends. */
+enum { RG2_CAP_SOUTH = 1, RG2_CAP_NORTH = 2 };
+
+/** Options of the bi-3 polar cap (paper section 5.1, docs/poles.md). Index 0 south, 1 north. */
+typedef struct {
+    int ends;             /**< RG2_CAP_SOUTH | RG2_CAP_NORTH (default both) */
+    double length[2];     /**< cap parameter length in units of the adjacent body ring;
+                               0 = automatic (default) */
+    double vc[2];         /**< seam position v_c in [0, 1) in the cap chart F = v^2 q(r): the cap
+                               is v in [0, v_c] (0: polynomial chart, pole at r = 0); used only
+                               when length > 0 */
+    double jet_weight[3]; /**< multipliers of the value, first and second derivative rows of the
+                               least-squares fit (default 1, 1, 0.25) */
+    int samples;          /**< boundary samples per patch column (default 8) */
+} rg2_cap_opts;
+
+/** What the cap construction chose and measured, per end (0 south, 1 north). */
+typedef struct {
+    int capped[2];        /**< 1 if that end was capped */
+    int polar[2];         /**< 1 if the end was a polar configuration (parameters from scalars) */
+    double length[2];     /**< cap length L used (body ring units) */
+    double vc[2];         /**< v_c used */
+    double q[2][4][4];    /**< fitted eq. (14) coefficients q[end][k][c]: q_k = q_k0 + q_k1 x +
+                               q_k2 y + q_k3 (x^2 + y^2), k = x, y, z, w; cap map
+                               F = v^2 q(r(u, v)), r = ((1 - v) / v)(cos u, sin u), v = 0 at the
+                               pole, u measured from junction 0; all zero when vc = 0 */
+    double g[2][4][4];    /**< the same fit in the normalized chart t = v / v_c in [0, 1]:
+                               G = g0 (1 - v_c t)^2 + (g1 cos u + g2 sin u) t (1 - v_c t) + g3 t^2 */
+    double residual[2];   /**< relative weighted RMS residual of the fit (0 for sphere data) */
+    double pole[2][3];    /**< the pole points */
+    int rows_before;      /**< cap patch rows before the body rows in the output (0 or 3) */
+    int rows_after;       /**< cap patch rows after the body rows (0 or 3) */
+} rg2_cap_info;
+
+RG2_API void rg2_cap_opts_default(rg2_cap_opts *o);
+
+/** Build the body surface of `body` (rg2_surface_build) and close its ends with bi-3 polar
+ *  caps: least-squares fit of the 16 coefficients of eq. (14)-(15) to the body's boundary
+ *  2-jet, trisection of the cap, each u-row a C2 cubic spline of 3 pieces with the pole 2-jet
+ *  of the fitted map and the body's 2-jet at the seam. The result is one surface: 3 cap patch
+ *  rows before the body rows (south) and/or 3 after (north), with bv/gv set so that every seam
+ *  is G2; the pole is a collapsed patch edge (normal undefined exactly there, its limit is
+ *  unique). The body needs a closed u-direction with circle scalars (arc partition) and an
+ *  open v-direction. opts and info are nullable. Free out with rg2_surface_free.
+ *  @return RG2_EINVAL (u open, v closed, no body patch row), RG2_EINCOMPATIBLE (u scalars are
+ *  not a circle partition), RG2_EDOMAIN (boundary ring collapsed or too small, rank-deficient
+ *  fit, bad option), or the errors of rg2_surface_build. */
+RG2_API rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts,
+                                 rg2_surface *out, rg2_cap_info *info, rg2_error *err);
 
 /* ===================================================================================== */
 /** @name Grid evaluation and tessellation */

@@ -202,7 +202,9 @@ rg2_status rg2__design_build(rg2_design *d, rg2_error *err)
     for (int o = 0; o < d->n_out; o++) {
         const rg2__dmesh *dm = &d->mesh[d->out[o]];
         rg2_surface *s = &d->surf[o];
-        rg2_status st = rg2_surface_build(&dm->m, s, err);
+        rg2_status st = dm->capped ? rg2__design_build_capped(d, dm, s, err) : rg2_surface_build(&dm->m, s, err);
+        if (dm->capped && !st)
+            continue; /* tagged by the caps module */
         if (st) {
             rg2_error e = *err;
             return rg2__fail(err, st, "mesh '%s': %s", dm->name, e.msg);

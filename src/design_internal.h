@@ -28,6 +28,8 @@ typedef struct {
     rg2__pprov *pp;    /* nu * nv */
     int *leg[2];       /* rg2_scalars_num_w entries per direction (u = 0, v = 1) */
     int *jun[2];       /* n entries per direction */
+    int capped;        /* built with polar caps (design_poles.c; an output property, not copied) */
+    rg2_cap_opts cap;
 } rg2__dmesh;
 
 struct rg2_design {
@@ -87,9 +89,22 @@ rg2_status rg2__dmesh_copy(const rg2__dmesh *in, rg2__dmesh *out, rg2_error *err
 typedef enum { RG2__EDIT_MOVE, RG2__EDIT_TO, RG2__EDIT_WEIGHT } rg2__edit_kind;
 rg2_status rg2__edit_point(rg2__dmesh *m, int i, int j, rg2__edit_kind kind, const double *v,
                            const char *what, rg2_error *err);
+rg2_status rg2__edit_pole(rg2__dmesh *m, int end, rg2__edit_kind kind, const double *v, const char *what,
+                          rg2_error *err);
 /* Scalars: which = 'w' (leg index i), 'b' or 'g' (junction index i). */
 rg2_status rg2__edit_scalar(rg2__dmesh *m, int dir, char which, int i, double value,
                             const char *what, rg2_error *err);
+
+/* Poles (design_poles.c, docs/poles.md): a polar configuration of a sphere, ellipsoid,
+ * paraboloid or two-sheeted hyperboloid over interior knots v[0..m-1]; the Moebius map of a
+ * reference sphere (shape index or -1 for the unit sphere; b for eq. 16, else the two poles in
+ * world coordinates); a polar point edit (end 0 south, 1 north); a capped output surface. */
+rg2_status rg2__op_polar(rg2_design *d, int shape, const rg2_partition *pu, const double *v, int m,
+                         rg2__dmesh *out, const char *what, rg2_error *err);
+rg2_status rg2__op_mobius(rg2_design *d, const rg2__dmesh *in, int shape, const double *b,
+                          double poles[2][3], rg2__dmesh *out, const char *what, rg2_error *err);
+rg2_status rg2__design_build_capped(const rg2_design *d, const rg2__dmesh *dm, rg2_surface *s,
+                                    rg2_error *err);
 
 /* Build the output surfaces with provenance tags (design.c). */
 rg2_status rg2__design_build(rg2_design *d, rg2_error *err);

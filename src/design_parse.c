@@ -490,8 +490,9 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
 /* ------------------------------------------------------------------------------------- */
 /* meshes */
 
-static const char *const ops[] = {"shape", "cut", "merge", "transpose", "reverse", "edit", "transform", "morph"};
-#define N_OPS 8
+static const char *const ops[] = {"shape", "cut", "merge", "transpose", "reverse", "edit", "transform", "morph",
+                                  "polar", "mobius", "cap"};
+#define N_OPS 11
 
 static rg2_status mesh_ref(pctx *c, const cJSON *x, const char *path, int *idx)
 {
@@ -755,11 +756,13 @@ static rg2_status edit_points(pctx *c, const cJSON *arr, const char *path, rg2__
     for (const cJSON *e = arr->child; e; e = e->next, k++) {
         char p[300], q[320];
         indexpath(p, sizeof p, path, k);
-        static const char *const keys[] = {"at", "move", "to", "W"};
-        if ((st = as_obj(c, e, p)) || (st = check_keys(c, e, p, keys, 4)))
+        static const char *const keys[] = {"at", "move", "to", "W", "pole"};
+        if ((st = as_obj(c, e, p)) || (st = check_keys(c, e, p, keys, 5)))
             return st;
-        const cJSON *at, *mv = get(e, "move"), *to = get(e, "to"), *W = get(e, "W");
-        if ((st = need(c, e, "at", p, &at)))
+        const cJSON *at = NULL, *mv = get(e, "move"), *to = get(e, "to"), *W = get(e, "W"), *pole = get(e, "pole");
+        if (pole && get(e, "at"))
+            return fail(c, RG2_EPARSE, p, "give 'at' (points) or 'pole' (a polar point), not both");
+        if (!pole && (st = need(c, e, "at", p, &at)))
             return st;
         if (mv && to)
             return fail(c, RG2_EPARSE, p, "give 'move' (offset) or 'to' (position), not both");
@@ -777,6 +780,20 @@ static rg2_status edit_points(pctx *c, const cJSON *arr, const char *path, rg2__
                 return st;
             if (!(w > 0.0))
                 return fail(c, RG2_EWEIGHT, q, "weight W = %g, must be > 0", w);
+        }
+        if (pole) { /* a polar point: the whole collapsed row moves (docs/poles.md) */
+            const char *pn = NULL;
+            subpath(q, sizeof q, p, "pole");
+            if ((st = as_str(c, pole, q, &pn)))
+                return st;
+            if (strcmp(pn, "south") && strcmp(pn, "north"))
+                return fail(c, RG2_EPARSE, q, "expected \"south\" or \"north\", found '%s'", pn);
+            int end = !strcmp(pn, "north");
+            if ((mv || to) && (st = rg2__edit_pole(m, end, mv ? RG2__EDIT_MOVE : RG2__EDIT_TO, v, q, c->err)))
+                return st;
+            if (W && (st = rg2__edit_pole(m, end, RG2__EDIT_WEIGHT, &w, q, c->err)))
+                return st;
+            continue;
         }
         /* "at": [i, j] or [[i, j], ...] */
         subpath(q, sizeof q, p, "at");
@@ -886,6 +903,10 @@ static rg2_status op_edit(pctx *c, const cJSON *obj, const char *path, rg2__dmes
     return st;
 }
 
+static rg2_status op_polar(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out);
+static rg2_status op_mobius(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out);
+static rg2_status op_cap(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out);
+
 static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const char *path)
 {
     rg2_status st = as_obj(c, obj, path);
@@ -901,7 +922,8 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
         }
     if (op < 0)
         return fail(c, RG2_EPARSE, path,
-                    "no operation: give one of shape, cut, merge, transpose, reverse, edit, transform, morph");
+                    "no operation: give one of shape, cut, merge, transpose, reverse, edit, transform, morph, "
+                    "polar, mobius, cap");
     if (rg2__design_find_mesh(c->d, name) >= 0)
         return fail(c, RG2_EPARSE, path, "a mesh named '%s' already exists", name);
     rg2__dmesh tmp;
@@ -914,7 +936,10 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
     case 4: st = op_reverse(c, obj, path, &tmp); break;
     case 5: st = op_edit(c, obj, path, &tmp); break;
     case 6: st = op_transform(c, obj, path, &tmp); break;
-    default: st = op_morph(c, obj, path, &tmp); break;
+    case 7: st = op_morph(c, obj, path, &tmp); break;
+    case 8: st = op_polar(c, obj, path, &tmp); break;
+    case 9: st = op_mobius(c, obj, path, &tmp); break;
+    default: st = op_cap(c, obj, path, &tmp); break;
     }
     if (st) {
         rg2__dmesh_free(&tmp); /* whatever the operation had allocated */
@@ -1064,4 +1089,151 @@ rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, c
 done:
     cJSON_Delete(root);
     return st;
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* poles operations (docs/poles.md): polar, mobius, cap */
+
+static rg2_status op_polar(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
+{
+    static const char *const keys[] = {"polar", "u", "v"};
+    rg2_status st = check_keys(c, obj, path, keys, 3);
+    if (st)
+        return st;
+    char p[300], q[320];
+    const char *label = NULL;
+    subpath(p, sizeof p, path, "polar");
+    if ((st = as_str(c, get(obj, "polar"), p, &label)))
+        return st;
+    int sh = find_shape(c->d, label);
+    if (sh < 0) {
+        char sug[128];
+        suggest(label, (const char *const *)c->d->labels, c->d->n_shapes, sug, sizeof sug);
+        return fail(c, RG2_EPARSE, p, "no shape labelled '%s' in \"shapes\"%s", label, sug);
+    }
+    const rg2_shape_desc *desc = rg2_shape_describe(c->d->shapes[sh].kind);
+    const cJSON *vo, *kn;
+    subpath(p, sizeof p, path, "v");
+    static const char *const vkeys[] = {"knots"};
+    if ((st = need(c, obj, "v", path, &vo)) || (st = as_obj(c, vo, p)) || (st = check_keys(c, vo, p, vkeys, 1)) ||
+        (st = need(c, vo, "knots", p, &kn)))
+        return st;
+    subpath(q, sizeof q, p, "knots");
+    int len = cJSON_IsArray(kn) ? cJSON_GetArraySize(kn) : 0, m = 0;
+    double *v = rg2__calloc((size_t)(len > 0 ? len : 1), sizeof(double));
+    if (!v)
+        return fail(c, RG2_ENOMEM, q, "out of memory");
+    part_buf pb = {{0}, NULL};
+    if (!(st = as_nums(c, kn, q, v, 0, MAX_PART, &m))) {
+        subpath(p, sizeof p, path, "u");
+        st = parse_partition(c, get(obj, "u"), p, desc, 0, &pb);
+    }
+    if (!st && pb.p.kind != RG2_PART_ANGLES)
+        st = fail(c, RG2_EPARSE, path, "a polar configuration needs a circle u-direction");
+    if (!st && !pb.p.closed)
+        st = fail(c, RG2_EPARSE, p, "a polar configuration needs a closed u-direction (full circle)");
+    if (!st)
+        st = rg2__op_polar(c->d, sh, &pb.p, v, m, out, path, c->err);
+    free(v);
+    free(pb.values);
+    return st;
+}
+
+static rg2_status op_mobius(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
+{
+    static const char *const keys[] = {"mobius", "sphere", "b", "poles"};
+    int src, sh = -1;
+    char p[300], q[320];
+    rg2_status st = op_begin(c, obj, path, keys, 4, &src);
+    if (st)
+        return st;
+    const cJSON *x;
+    if ((x = get(obj, "sphere"))) {
+        const char *label = NULL;
+        subpath(p, sizeof p, path, "sphere");
+        if ((st = as_str(c, x, p, &label)))
+            return st;
+        if ((sh = find_shape(c->d, label)) < 0) {
+            char sug[128];
+            suggest(label, (const char *const *)c->d->labels, c->d->n_shapes, sug, sizeof sug);
+            return fail(c, RG2_EPARSE, p, "no shape labelled '%s' in \"shapes\"%s", label, sug);
+        }
+    }
+    const cJSON *bj = get(obj, "b"), *pj = get(obj, "poles");
+    if (!bj == !pj)
+        return fail(c, RG2_EPARSE, path, "give exactly one of 'b' (eq. 16) or 'poles' ({\"south\": [x, y, z], "
+                                         "\"north\": [x, y, z]})");
+    double b = 0, poles[2][3];
+    if (bj) {
+        subpath(p, sizeof p, path, "b");
+        if ((st = as_num(c, bj, p, &b)))
+            return st;
+    } else {
+        static const char *const pk[] = {"south", "north"};
+        subpath(p, sizeof p, path, "poles");
+        if ((st = as_obj(c, pj, p)) || (st = check_keys(c, pj, p, pk, 2)))
+            return st;
+        for (int e = 0; e < 2; e++) {
+            const cJSON *y;
+            subpath(q, sizeof q, p, pk[e]);
+            if ((st = need(c, pj, pk[e], p, &y)) || (st = as_nums(c, y, q, poles[e], 3, 3, NULL)))
+                return st;
+        }
+    }
+    return rg2__op_mobius(c->d, &c->d->mesh[src], sh, bj ? &b : NULL, poles, out, path, c->err);
+}
+
+static rg2_status op_cap(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
+{
+    static const char *const keys[] = {"cap", "ends", "length", "vc", "samples", "jet_weights"};
+    int src;
+    char p[300];
+    rg2_status st = op_begin(c, obj, path, keys, 6, &src);
+    if (st)
+        return st;
+    rg2_cap_opts o;
+    rg2_cap_opts_default(&o);
+    const cJSON *x;
+    if ((x = get(obj, "ends"))) {
+        const char *e = NULL;
+        subpath(p, sizeof p, path, "ends");
+        if ((st = as_str(c, x, p, &e)))
+            return st;
+        if (!strcmp(e, "both"))
+            o.ends = RG2_CAP_SOUTH | RG2_CAP_NORTH;
+        else if (!strcmp(e, "south"))
+            o.ends = RG2_CAP_SOUTH;
+        else if (!strcmp(e, "north"))
+            o.ends = RG2_CAP_NORTH;
+        else
+            return fail(c, RG2_EPARSE, p, "expected \"both\", \"south\" or \"north\", found '%s'", e);
+    }
+    if ((x = get(obj, "length"))) {
+        subpath(p, sizeof p, path, "length");
+        if ((st = as_nums(c, x, p, o.length, 2, 2, NULL)))
+            return st;
+        o.vc[0] = o.vc[1] = 0.5;
+    }
+    if ((x = get(obj, "vc"))) {
+        subpath(p, sizeof p, path, "vc");
+        if (!get(obj, "length"))
+            return fail(c, RG2_EPARSE, p, "'vc' needs 'length' (both are automatic otherwise)");
+        if ((st = as_nums(c, x, p, o.vc, 2, 2, NULL)))
+            return st;
+    }
+    if ((x = get(obj, "samples"))) {
+        subpath(p, sizeof p, path, "samples");
+        if ((st = as_int(c, x, p, &o.samples)))
+            return st;
+    }
+    if ((x = get(obj, "jet_weights"))) {
+        subpath(p, sizeof p, path, "jet_weights");
+        if ((st = as_nums(c, x, p, o.jet_weight, 3, 3, NULL)))
+            return st;
+    }
+    if ((st = rg2__dmesh_copy(&c->d->mesh[src], out, c->err)))
+        return st;
+    out->capped = 1;
+    out->cap = o;
+    return RG2_OK;
 }

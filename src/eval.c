@@ -80,7 +80,16 @@ void rg2_patch_eval(const rg2_patch *P, double u, double v, int order, rg2_eval 
     /* Relative to |su|^2 + |sv|^2, not |su||sv|: on a collapsed edge one derivative is
      * rounding noise and |su x sv| ~ |su||sv| would not be small. */
     double scale = dot3(e->su, e->su) + dot3(e->sv, e->sv);
-    if (!(len > 1e-14 * scale)) {
+    /* A derivative (H' - W' p) / W at the level of its own rounding error is zero (a pole with
+     * a short transversal derivative would otherwise pass the relative test above). */
+    double ru = 0.0, rv = 0.0;
+    for (int k = 0; k < 3; k++) {
+        ru += fabs(H[1][k]) + fabs(H[1][3] * e->p[k]);
+        rv += fabs(H[2][k]) + fabs(H[2][3] * e->p[k]);
+    }
+    int zero_d = sqrt(dot3(e->su, e->su)) <= 1e-13 * ru * fabs(iW) ||
+                 sqrt(dot3(e->sv, e->sv)) <= 1e-13 * rv * fabs(iW);
+    if (!(len > 1e-14 * scale) || zero_d) {
         e->flags |= RG2_EVAL_NORMAL_UNDEFINED | RG2_EVAL_CURVATURE_UNDEFINED;
     } else {
         for (int k = 0; k < 3; k++)

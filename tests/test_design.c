@@ -64,6 +64,8 @@ static double transition_min_sine(const rg2_surface *s, int samples)
             for (int b = 0; b <= samples; b++) {
                 rg2_eval e;
                 rg2_patch_eval(&s->patch[k], (double)a / samples, (double)b / samples, 1, &e);
+                if (e.flags & RG2_EVAL_NORMAL_UNDEFINED)
+                    continue; /* a collapsed edge (pole of a cap) is not a fold */
                 double c[3] = {e.su[1] * e.sv[2] - e.su[2] * e.sv[1], e.su[2] * e.sv[0] - e.su[0] * e.sv[2],
                                e.su[0] * e.sv[1] - e.su[1] * e.sv[0]};
                 double nu = sqrt(e.su[0] * e.su[0] + e.su[1] * e.su[1] + e.su[2] * e.su[2]);

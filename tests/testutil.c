@@ -81,7 +81,7 @@ static void measure(const rg2_eval *L, const rg2_eval *R, int dir, double b, dou
         e2[k] = rtt[k] - b * b * ltt[k] - g * lt[k];
     }
     double nl = norm(lt);
-    if (nl > 0) {
+    if (nl > 1e-12 * scale) { /* not at a collapsed edge (pole): there lt is rounding noise */
         double p1 = norm(e1) / nl;
         double p2 = norm(e2) / (b * b * norm(ltt) + fabs(g) * nl + nl);
         if (p1 > o->param1) o->param1 = p1;

@@ -39,6 +39,8 @@ extern "C" {
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <dirent.h>
+#include <algorithm>
 #include <unistd.h>
 #include <vector>
 
@@ -61,19 +63,20 @@ struct Expect {
     int faces, shared, free_edges;
 };
 
-// Patches of the first row whose v = 0 side collapses to a point (the fixture's pole).
-int collapsed_sides(const rg2_surface *s)
+// Patches of the first row whose v = 0 side (end 0), or of the last row whose v = 1 side
+// (end 1), collapses to a point (a pole).
+int collapsed_sides(const rg2_surface *s, int end)
 {
     if (s->closed_v)
         return 0;
     double tol = 1e-11 * rg2t_surface_scale(s);
-    int n = 0;
+    int n = 0, c0 = end ? 3 : 0;
     for (int i = 0; i < s->nu; i++) {
-        const rg2_patch *P = rg2_surface_patch(s, i, 0);
+        const rg2_patch *P = rg2_surface_patch(s, i, end ? s->nv - 1 : 0);
         bool c = true;
         for (int a = 1; a < 4; a++)
             for (int d = 0; d < 3; d++)
-                if (std::fabs(P->h[a][0][d] / P->h[a][0][3] - P->h[0][0][d] / P->h[0][0][3]) > tol)
+                if (std::fabs(P->h[a][c0][d] / P->h[a][c0][3] - P->h[0][c0][d] / P->h[0][c0][3]) > tol)
                     c = false;
         n += c;
     }
@@ -82,16 +85,17 @@ int collapsed_sides(const rg2_surface *s)
 
 Expect expect_of(const rg2_surface *s, bool per_mesh)
 {
-    int cb = collapsed_sides(s);
+    int cb0 = collapsed_sides(s, 0), cb1 = collapsed_sides(s, 1);
     Expect e;
     if (per_mesh) {
         e.faces = 1;
         e.shared = (s->closed_u ? 1 : 0) + (s->closed_v ? 1 : 0);
-        e.free_edges = (s->closed_u ? 0 : 2) + (s->closed_v ? 0 : 2) - (cb == s->nu ? 1 : 0);
+        e.free_edges = (s->closed_u ? 0 : 2) + (s->closed_v ? 0 : 2) - (cb0 == s->nu ? 1 : 0) -
+                       (cb1 == s->nu ? 1 : 0);
     } else {
         e.faces = s->nu * s->nv;
         e.shared = (s->nu - 1 + s->closed_u) * s->nv + (s->nv - 1 + s->closed_v) * s->nu;
-        e.free_edges = (s->closed_u ? 0 : 2 * s->nv) + (s->closed_v ? 0 : 2 * s->nu) - cb;
+        e.free_edges = (s->closed_u ? 0 : 2 * s->nv) + (s->closed_v ? 0 : 2 * s->nu) - cb0 - cb1;
     }
     return e;
 }
@@ -118,7 +122,10 @@ struct Occurrence {
 };
 
 // Evaluate OCCT props at the point of the edge occurrence with edge-curve parameter t.
-bool props_at(const Occurrence &o, double t, Handle(Geom_Surface) & surf, gp_Pnt2d &uv)
+// OCCT computes the pcurves of a STEP file by projection; near a pole they are off by up to
+// ~1e-9 in v, which would compare the two faces at slightly different points. So the pcurve's
+// (u, v) is refined by Gauss-Newton until the face's point is the edge's 3D point p.
+bool props_at(const Occurrence &o, double t, const gp_Pnt &p, Handle(Geom_Surface) & surf, gp_Pnt2d &uv)
 {
     double f, l;
     Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(o.edge, o.face, f, l);
@@ -126,7 +133,24 @@ bool props_at(const Occurrence &o, double t, Handle(Geom_Surface) & surf, gp_Pnt
         return false;
     uv = pc->Value(t);
     surf = BRep_Tool::Surface(o.face);
-    return !surf.IsNull();
+    if (surf.IsNull())
+        return false;
+    double u = uv.X(), v = uv.Y(), u1, u2, v1, v2;
+    surf->Bounds(u1, u2, v1, v2);
+    for (int it = 0; it < 4; it++) {
+        gp_Pnt q;
+        gp_Vec du, dv;
+        surf->D1(u, v, q, du, dv);
+        gp_Vec r(q, p);
+        double a = du.Dot(du), b = du.Dot(dv), c = dv.Dot(dv), det = a * c - b * b;
+        if (!(det > 1e-300))
+            break; // at a collapsed edge: keep the pcurve's value
+        double x = du.Dot(r), y = dv.Dot(r);
+        u = std::min(u2, std::max(u1, u + (c * x - b * y) / det));
+        v = std::min(v2, std::max(v1, v + (a * y - b * x) / det));
+    }
+    uv.SetCoord(u, v);
+    return true;
 }
 
 // G2 across every edge with two face occurrences; returns false if something is undefined.
@@ -177,7 +201,7 @@ void check_g2(const TopoDS_Shape &shape, double scale, const char *what, int *n_
             gp_Pnt2d uv[2];
             bool ok = true;
             for (int s = 0; s < 2 && ok; s++) {
-                ok = props_at(occ[id][s], t, surf[s], uv[s]);
+                ok = props_at(occ[id][s], t, p, surf[s], uv[s]);
                 if (!ok)
                     break;
                 pr[s] = new GeomLProp_SLProps(surf[s], uv[s].X(), uv[s].Y(), 2, 1e-12);
@@ -466,10 +490,22 @@ int main()
     CHECK_OK(fx_torus(13.0, 4.0, 8, 6, &torus, &err), &err);
     CHECK_OK(fx_random(20261122, 7, 6, &random, &err), &err);
     CHECK_OK(fx_pole(6, 7, &pole, &err), &err);
+    /* a complete sphere: polar mesh + bi-3 caps (both ends collapsed, docs/poles.md) */
+    rg2_surface capped;
+    memset(&capped, 0, sizeof capped);
+    {
+        double alpha[6] = {M_PI / 3, M_PI / 3, M_PI / 3, M_PI / 3, M_PI / 3, M_PI / 3}, v[4] = {0.2, 0.4, 0.6, 0.8};
+        rg2_mesh m;
+        memset(&m, 0, sizeof m);
+        CHECK_OK(rg2_polar_sphere_mesh(alpha, 6, 0.0, v, 4, NULL, &m, &err), &err);
+        CHECK_OK(rg2_cap_build(&m, NULL, &capped, NULL, &err), &err);
+        rg2_mesh_free(&m);
+    }
     printf("seed 20261122\n");
     Case cases[] = {{"torus", &torus, rg2t_surface_scale(&torus)},
                     {"random", &random, rg2t_surface_scale(&random)},
-                    {"pole", &pole, rg2t_surface_scale(&pole)}};
+                    {"pole", &pole, rg2t_surface_scale(&pole)},
+                    {"capped sphere", &capped, rg2t_surface_scale(&capped)}};
     // every named shape with its default partition (rg2_shape_surface); shapes whose patches
     // have a weight <= 0 must be refused for STEP, naming the patch
     std::vector<rg2_surface> shapes;
@@ -511,6 +547,37 @@ int main()
         check_file(c, dir, "step", RG2_STEP_FACE_PER_MESH, 0);
         check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0);
     }
+    // every example design (examples/*.json): each output surface through STEP (both layouts)
+    // and IGES, with the same face, connectivity, tolerance, point and G2 checks
+    std::vector<std::string> examples;
+    const std::string exdir = std::string(getenv("RG2_SRC") ? getenv("RG2_SRC") : ".") + "/examples";
+    if (DIR *ed = opendir(exdir.c_str())) {
+        while (struct dirent *ent = readdir(ed)) {
+            std::string n = ent->d_name;
+            if (n.size() > 5 && n.compare(n.size() - 5, 5, ".json") == 0)
+                examples.push_back(n);
+        }
+        closedir(ed);
+    }
+    std::sort(examples.begin(), examples.end());
+    CHECK(!examples.empty(), "no example designs found under examples/");
+    for (const std::string &n : examples) {
+        rg2_design *d = nullptr;
+        std::string path = exdir + "/" + n;
+        rg2_status st = rg2_design_load(path.c_str(), &d, &err);
+        CHECK(st == RG2_OK, "%s: %s", path.c_str(), err.msg);
+        if (st)
+            continue;
+        for (int k = 0; k < rg2_design_num_surfaces(d); k++) {
+            std::string name = n.substr(0, n.size() - 5) + "_" + std::to_string(k);
+            const rg2_surface *s = rg2_design_surface(d, k);
+            Case c = {name.c_str(), s, rg2t_surface_scale(s)};
+            check_file(c, dir, "step", RG2_STEP_FACE_PER_PATCH, 0);
+            check_file(c, dir, "step", RG2_STEP_FACE_PER_MESH, 0);
+            check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0);
+        }
+        rg2_design_free(d);
+    }
     for (const Case &c : cases) {
         check_file(c, dir, "step", RG2_STEP_FACE_PER_PATCH, 0);
         check_file(c, dir, "step", RG2_STEP_FACE_PER_PATCH, 1);
@@ -526,6 +593,7 @@ int main()
     rg2_surface_free(&torus);
     rg2_surface_free(&random);
     rg2_surface_free(&pole);
+    rg2_surface_free(&capped);
     if (!getenv("RG2_OCCT_KEEP"))
         rmdir(dir);
     else

@@ -1,0 +1,619 @@
+/* cap.c -- bi-3 polar caps (paper section 5.1, eq. 14-15, MATH.md section 7): least-squares fit
+ * of the 16 coefficients of the cap map to the body's boundary 2-jet, trisection of the cap
+ * interval, and C2 rows in v joining the pole 2-jet of the cap map to the body's 2-jet. */
+#include "internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+void rg2_cap_opts_default(rg2_cap_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->ends = RG2_CAP_SOUTH | RG2_CAP_NORTH;
+    o->jet_weight[0] = o->jet_weight[1] = 1.0;
+    o->jet_weight[2] = 0.25; /* docs/poles.md: a dome, not a bullet, on a cylinder */
+    o->samples = 8;
+}
+
+/* The body's u-circle: per patch column, affine Bezier coefficients of (1, cos u, sin u) and
+ * the column's middle weight, from the construction with the body's own u-scalars. */
+typedef struct {
+    rg2_curve c; /* dim 3, one segment per patch column */
+} ucircle;
+
+static const char *end_name(int e) { return e ? "north" : "south"; }
+
+/*
+ * METHOD: a circle partition has w_i = (1 + 2 cos beta_i) / 3 (MATH.md section 2), so the arc
+ * angles are recovered from the leg weights, checked against b_i and g_i of the scalars and
+ * against the 2 pi sum; the circle coefficients (C_i, S_i) with junction 0 at angle 0 then
+ * give, under the body's scalars, the exact rational cubic arcs of (cos u, sin u).
+ */
+static rg2_status ucircle_make(const rg2_scalars *su, ucircle *uc, rg2_error *err)
+{
+    memset(uc, 0, sizeof *uc);
+    int n = su->n;
+    double *alpha = rg2__calloc((size_t)n, sizeof(double));
+    double *pts = rg2__calloc((size_t)n * 3, sizeof(double));
+    double *cs = rg2__calloc((size_t)n * 2, sizeof(double));
+    rg2_status st = RG2_OK;
+    if (!alpha || !pts || !cs) {
+        st = rg2__fail(err, RG2_ENOMEM, "cap: out of memory");
+        goto done;
+    }
+    double sum = 0.0;
+    for (int i = 0; i < n; i++) {
+        double w = su->w[i], cb = (3.0 * w - 1.0) / 2.0;
+        if (!(cb > -1.0 && cb < 1.0)) {
+            st = rg2__fail(err, RG2_EINCOMPATIBLE,
+                           "cap: body u leg %d has weight %.17g; a circle arc needs 1/3 < w < 1 "
+                           "(the body's u-direction must be a circle partition)",
+                           i, w);
+            goto done;
+        }
+        alpha[i] = 2.0 * acos(cb);
+        sum += alpha[i];
+    }
+    if (!(fabs(sum - 2.0 * M_PI) <= 1e-8 * 2.0 * M_PI)) {
+        st = rg2__fail(err, RG2_EINCOMPATIBLE,
+                       "cap: the body's u arcs (from the leg weights) sum to %.17g rad, not 2 pi: "
+                       "the u-direction is not a full circle",
+                       sum);
+        goto done;
+    }
+    for (int i = 0; i < n; i++)
+        alpha[i] *= 2.0 * M_PI / sum;
+    for (int i = 0; i < n; i++) {
+        double bi = 0.5 * alpha[i], bm = 0.5 * alpha[(i + n - 1) % n];
+        double b = sin(bi) / sin(bm), g = 2.0 * b * sin(bi) * (tan(0.5 * bi) + tan(0.5 * bm));
+        if (!(fabs(b - su->b[i]) <= 1e-8 * fmax(1.0, b) && fabs(g - su->g[i]) <= 1e-8 * fmax(1.0, fabs(g)))) {
+            st = rg2__fail(err, RG2_EINCOMPATIBLE,
+                           "cap: body u junction %d has b = %.17g, g = %.17g but its arcs need b = %.17g, "
+                           "g = %.17g: the u-direction is not a circle partition",
+                           i, su->b[i], su->g[i], b, g);
+            goto done;
+        }
+    }
+    if ((st = rg2_circle_coeffs(alpha, n, 1, 0.0, cs, err)))
+        goto done;
+    for (int i = 0; i < n; i++) {
+        pts[3 * i] = 1.0;
+        pts[3 * i + 1] = cs[2 * i];
+        pts[3 * i + 2] = cs[2 * i + 1];
+    }
+    st = rg2_curve_build(3, pts, su, &uc->c, err);
+done:
+    free(alpha);
+    free(pts);
+    free(cs);
+    return st;
+}
+
+/* Homogeneous u-coefficient r of (1, cos, sin) on column i: omega_r * affine coefficient. */
+static void ucircle_h(const ucircle *uc, int i, int r, double h[3])
+{
+    double om = (r == 0 || r == 3) ? 1.0 : uc->c.w[i];
+    const double *b = uc->c.bez + ((size_t)i * 4 + (size_t)r) * 3;
+    for (int k = 0; k < 3; k++)
+        h[k] = om * b[k];
+}
+
+/* One boundary sample: cos, sin of the circle, and the body's v-jet (value, d/ds, d2/ds2 in
+ * the body ring's own parameter, pointing away from the cap) divided by the circle's
+ * denominator. */
+typedef struct {
+    double c, s;
+    double J[3][4];
+} sample;
+
+/* Fit data of one end. */
+typedef struct {
+    int n;
+    sample *smp;
+    double jw[3];
+} fitdata;
+
+/*
+ * Cap chart (docs/poles.md): t in [0, 1] from the pole (t = 0) to the seam (t = 1),
+ *   G(u, t) = g0 (1 - vc t)^2 + (g1 cos u + g2 sin u) t (1 - vc t) + g3 t^2,
+ * i.e. F = v^2 q(r) of eq. (15) with v = vc t (reparameterized so the pole is at r = 0 when
+ * vc = 0). Basis values and t-derivatives at t = 1 (seam) and t = 0 (pole).
+ */
+static void basis_at(double vc, double t, double phi0[3], double psi[3], double phi3[3])
+{
+    phi0[0] = (1.0 - vc * t) * (1.0 - vc * t);
+    phi0[1] = -2.0 * vc * (1.0 - vc * t);
+    phi0[2] = 2.0 * vc * vc;
+    psi[0] = t * (1.0 - vc * t);
+    psi[1] = 1.0 - 2.0 * vc * t;
+    psi[2] = -2.0 * vc;
+    phi3[0] = t * t;
+    phi3[1] = 2.0 * t;
+    phi3[2] = 2.0;
+}
+
+/* Least squares min |A x - b| by Householder QR; A is rows x nc (row-major), overwritten.
+ * Returns the residual norm, or -1 if a column is dependent (relative 1e-12). */
+static double lsq_qr(double *A, double *b, int rows, int nc, double *x)
+{
+    double Rd[32], amax = 0.0;
+    for (int c = 0; c < nc; c++) {
+        double nrm = 0.0;
+        for (int r = c; r < rows; r++)
+            nrm += A[(size_t)r * nc + c] * A[(size_t)r * nc + c];
+        nrm = sqrt(nrm);
+        amax = fmax(amax, nrm);
+        if (!(nrm > 1e-12 * amax))
+            return -1.0;
+        double alpha = A[(size_t)c * nc + c] > 0 ? -nrm : nrm;
+        A[(size_t)c * nc + c] -= alpha;
+        double vv = 0.0;
+        for (int r = c; r < rows; r++)
+            vv += A[(size_t)r * nc + c] * A[(size_t)r * nc + c];
+        for (int cc = c + 1; cc <= nc; cc++) { /* cc == nc is the right-hand side */
+            double s = 0.0;
+            for (int r = c; r < rows; r++)
+                s += A[(size_t)r * nc + c] * (cc < nc ? A[(size_t)r * nc + cc] : b[r]);
+            s *= 2.0 / vv;
+            for (int r = c; r < rows; r++) {
+                if (cc < nc)
+                    A[(size_t)r * nc + cc] -= s * A[(size_t)r * nc + c];
+                else
+                    b[r] -= s * A[(size_t)r * nc + c];
+            }
+        }
+        Rd[c] = alpha;
+    }
+    for (int c = nc - 1; c >= 0; c--) {
+        double s = b[c];
+        for (int cc = c + 1; cc < nc; cc++)
+            s -= A[(size_t)c * nc + cc] * x[cc];
+        x[c] = s / Rd[c];
+    }
+    double rr = 0.0;
+    for (int r = nc; r < rows; r++)
+        rr += b[r] * b[r];
+    return sqrt(rr);
+}
+
+/*
+ * METHOD: weighted linear least squares (Householder QR) for the 16 coefficients g[c][d]
+ * (c: basis function, d: homogeneous coordinate) and the two derivatives lambda1, lambda2 of a
+ * scalar factor lambda(s) = 1 + lambda1 s + lambda2 s^2 / 2 on the body's 4-tuples (4-tuples
+ * are defined only up to a scalar function; lambda(0) = 1 keeps the boundary values). Row
+ * (sample, order k, coordinate d): weight jw[k] / k! times
+ *   sum_c basis_c^(k)(t = 1) g[c][d] - L^k (d^k/ds^k of lambda H - H) = L^k d^k H/ds^k,
+ * with d/dt = L d/ds. The 1/k! makes each order count by the size of its Taylor term over the
+ * cap (t-length 1). Sphere data are matched exactly with lambda = 1. Returns the relative
+ * residual, -1 when rank deficient, -2 when out of memory.
+ */
+static double fit_solve(const fitdata *fd, double L, double vc, double g[4][4], double lam[2])
+{
+    const int nc = 18;
+    int rows = 12 * fd->n;
+    double *A = rg2__calloc((size_t)rows * nc, sizeof(double)), *B = rg2__calloc((size_t)rows, sizeof(double));
+    if (!A || !B) {
+        free(A);
+        free(B);
+        return -2.0;
+    }
+    double phi0[3], psi[3], phi3[3];
+    basis_at(vc, 1.0, phi0, psi, phi3);
+    const double fact[3] = {1.0, 1.0, 0.5};
+    double bnorm = 0.0;
+    for (int q = 0; q < fd->n; q++) {
+        const sample *sm = fd->smp + q;
+        double Lk = 1.0;
+        for (int k = 0; k < 3; k++) {
+            double W = fd->jw[k] * fact[k];
+            for (int d = 0; d < 4; d++) {
+                int row = 12 * q + 4 * k + d;
+                double *a = A + (size_t)row * nc;
+                a[4 * 0 + d] = W * phi0[k];
+                a[4 * 1 + d] = W * sm->c * psi[k];
+                a[4 * 2 + d] = W * sm->s * psi[k];
+                a[4 * 3 + d] = W * phi3[k];
+                if (k == 1)
+                    a[16] = -W * Lk * sm->J[0][d];
+                if (k == 2) {
+                    a[16] = -W * Lk * 2.0 * sm->J[1][d];
+                    a[17] = -W * Lk * sm->J[0][d];
+                }
+                B[row] = W * Lk * sm->J[k][d];
+                bnorm += B[row] * B[row];
+            }
+            Lk *= L;
+        }
+    }
+    double x[18];
+    double res = lsq_qr(A, B, rows, nc, x);
+    if (res >= 0.0) {
+        for (int c = 0; c < 4; c++)
+            for (int d = 0; d < 4; d++)
+                g[c][d] = x[4 * c + d];
+        lam[0] = x[16];
+        lam[1] = x[17];
+        res = bnorm > 0.0 ? res / sqrt(bnorm) : 0.0;
+    }
+    free(A);
+    free(B);
+    return res;
+}
+
+/* Patch row of the body next to end e and the parameter of its boundary. */
+static int body_row(const rg2_surface *S, int e) { return e ? S->nv - 1 : 0; }
+
+static rg2_status sample_end(const rg2_surface *S, const ucircle *uc, int e, int ns, fitdata *fd,
+                             rg2_error *err)
+{
+    fd->n = S->nu * ns;
+    fd->smp = rg2__calloc((size_t)fd->n, sizeof(sample));
+    if (!fd->smp)
+        return rg2__fail(err, RG2_ENOMEM, "cap: out of memory for %d samples", fd->n);
+    int j = body_row(S, e);
+    double t = e ? 1.0 : 0.0, sg = e ? -1.0 : 1.0;
+    for (int i = 0; i < S->nu; i++)
+        for (int k = 0; k < ns; k++) {
+            double u = (k + 0.5) / ns, B[4], H[6][4];
+            rg2__bern3(u, B, NULL, NULL);
+            double D = 0.0, C = 0.0, Sn = 0.0;
+            for (int r = 0; r < 4; r++) {
+                double h[3];
+                ucircle_h(uc, i, r, h);
+                D += B[r] * h[0];
+                C += B[r] * h[1];
+                Sn += B[r] * h[2];
+            }
+            rg2_patch_eval_h(rg2_surface_patch(S, i, j), u, t, H);
+            sample *sm = fd->smp + i * ns + k;
+            sm->c = C / D;
+            sm->s = Sn / D;
+            for (int d = 0; d < 4; d++) {
+                sm->J[0][d] = H[0][d] / D;
+                sm->J[1][d] = sg * H[2][d] / D;
+                sm->J[2][d] = H[5][d] / D;
+            }
+        }
+    return RG2_OK;
+}
+
+/* Extent of the boundary ring relative to the body's size; both in 3D. */
+static void ring_extent(const fitdata *fd, double *extent, double *center_w)
+{
+    double c[3] = {0, 0, 0};
+    double wmin = INFINITY;
+    for (int q = 0; q < fd->n; q++) {
+        const double *J = fd->smp[q].J[0];
+        wmin = fmin(wmin, J[3]);
+        for (int k = 0; k < 3; k++)
+            c[k] += J[k] / J[3] / fd->n;
+    }
+    double ext = 0.0;
+    for (int q = 0; q < fd->n; q++) {
+        const double *J = fd->smp[q].J[0];
+        double d2 = 0.0;
+        for (int k = 0; k < 3; k++)
+            d2 += (J[k] / J[3] - c[k]) * (J[k] / J[3] - c[k]);
+        ext = fmax(ext, sqrt(d2));
+    }
+    *extent = ext;
+    *center_w = wmin;
+}
+
+/*
+ * METHOD (automatic parameters, docs/poles.md): for a polar configuration the band's scalars
+ * encode the cap. With b~0, b~1 the v scalars of the polar junction and the next one, oriented
+ * from the pole (north: reciprocals of the last two), the polar knots give v_1 = 1 - b~0 and
+ * cap length v_1 / (v_2 - v_1) = 1 / b~1. So L = 1 / b~1, vc = 1 - b~0; this makes the sphere
+ * (b~0 = 1 - v_1) and the paraboloid/two-sheeted hyperboloid polar configurations (symmetric
+ * knots, b~0 = 1) exact. Otherwise (an open ring) vc = 1/2, the seam at the equator of a
+ * hemisphere-like cap, and L = 2 rho / sigma with rho the RMS radius of the boundary ring and
+ * sigma the RMS speed |dX/ds| of the body across it: the length at which a hemisphere of
+ * radius rho (speed 2 rho per unit of its chart) meets the body with matching speed; on a
+ * circular cylinder the fitted cap is then tangent to a hemisphere.
+ */
+static rg2_status choose_params(const rg2_mesh *body, const fitdata *fd, int e, const rg2_cap_opts *o,
+                                double *L, double *vc, int *polar, rg2_error *err)
+{
+    *polar = 0;
+    if (o->length[e] > 0.0) {
+        *L = o->length[e];
+        *vc = o->vc[e];
+        return RG2_OK;
+    }
+    int n = body->sv.n;
+    if (rg2_mesh_row_collapsed(body, e ? n - 1 : 0)) {
+        double b0 = e ? 1.0 / body->sv.b[n - 1] : body->sv.b[0];
+        double b1 = e ? 1.0 / body->sv.b[n - 2] : body->sv.b[1];
+        *polar = 1;
+        *L = 1.0 / b1;
+        *vc = 1.0 - b0;
+        return RG2_OK;
+    }
+    *vc = 0.5;
+    double c[3] = {0, 0, 0}, rho = 0.0, sigma = 0.0;
+    for (int q = 0; q < fd->n; q++) {
+        const double *J0 = fd->smp[q].J[0];
+        for (int k = 0; k < 3; k++)
+            c[k] += J0[k] / J0[3] / fd->n;
+    }
+    for (int q = 0; q < fd->n; q++) {
+        const double *J0 = fd->smp[q].J[0], *J1 = fd->smp[q].J[1];
+        for (int k = 0; k < 3; k++) {
+            double x = J0[k] / J0[3], dx = (J1[k] - J1[3] * x) / J0[3];
+            rho += (x - c[k]) * (x - c[k]) / fd->n;
+            sigma += dx * dx / fd->n;
+        }
+    }
+    rho = sqrt(rho);
+    sigma = sqrt(sigma);
+    if (!(sigma > 0.0) || !(rho > 0.0))
+        return rg2__fail(err, RG2_EDOMAIN,
+                         "cap: the body does not move away from its %s boundary ring (speed %g); "
+                         "give the cap length in the options",
+                         end_name(e), sigma);
+    *L = 2.0 * rho / sigma;
+    return RG2_OK;
+}
+
+/*
+ * METHOD (trisection): per patch column i and u-Bernstein index r, the homogeneous v-curve of
+ * the cap is a uniform C2 cubic spline of 3 pieces (6 de Boor points d0..d5). Its 2-jet at the
+ * pole is that of G's column-r coefficient (fixes d0, d1, d2); its 2-jet at the seam is the
+ * body's (fixes d3, d4, d5), taken from lambda H (lambda from the fit; lambda H and H have
+ * the same 3D jets) and converted with the seam scalars b = 3 / L, g = 0 (a piece has length
+ * L/3 in body-ring units). The end Bezier points are taken from the jets directly so the
+ * pole and the seam row are exact. Every coefficient is the same linear combination for all
+ * r and i, so the u-direction G2 structure of the body and of G carries over to the cap.
+ * Piece k (k = 0 at the pole) is returned in P[k] oriented from the pole.
+ */
+static void cap_column(const rg2_surface *S, const ucircle *uc, int e, int i, double L, double vc,
+                       double g[4][4], const double lam[2], rg2_patch P[3])
+{
+    double phi0[3], psi[3], phi3[3];
+    basis_at(vc, 0.0, phi0, psi, phi3);
+    const rg2_patch *Bp = rg2_surface_patch(S, i, body_row(S, e));
+    for (int r = 0; r < 4; r++) {
+        double uh[3];
+        ucircle_h(uc, i, r, uh);
+        double A[3][4], C[4][4], G[3][4];
+        for (int k = 0; k < 3; k++)
+            for (int d = 0; d < 4; d++)
+                G[k][d] = uh[0] * g[0][d] * phi0[k] + (uh[1] * g[1][d] + uh[2] * g[2][d]) * psi[k] +
+                          uh[0] * g[3][d] * phi3[k];
+        for (int d = 0; d < 4; d++) {
+            /* pole jet in the piece parameter (t = sigma / 3) */
+            double P0 = G[0][d], P1 = G[1][d] / 3.0, P2 = G[2][d] / 9.0;
+            A[0][d] = P0;
+            A[1][d] = P0 + P1 / 3.0;
+            A[2][d] = 2.0 * A[1][d] - A[0][d] + P2 / 6.0;
+            /* body jet at the seam, oriented away from the cap, in the piece parameter */
+            double h0 = e ? Bp->h[r][3][d] : Bp->h[r][0][d];
+            double h1 = e ? Bp->h[r][2][d] : Bp->h[r][1][d];
+            double h2 = e ? Bp->h[r][1][d] : Bp->h[r][2][d];
+            double sc = L / 3.0;
+            double J1 = 3.0 * (h1 - h0), J2 = 6.0 * (h2 - 2.0 * h1 + h0);
+            /* jets of lambda H (lambda(0) = 1): the same 3D jets, scaled like the fit */
+            double Q1 = sc * (J1 + lam[0] * h0), Q2 = sc * sc * (J2 + 2.0 * lam[0] * J1 + lam[1] * h0);
+            /* the piece parameter runs from the pole into the body: C'(1) = Q1, C''(1) = Q2 */
+            C[3][d] = h0;
+            C[2][d] = h0 - Q1 / 3.0;
+            C[1][d] = 2.0 * C[2][d] - C[3][d] + Q2 / 6.0;
+            double db[6];
+            db[1] = 2.0 * A[1][d] - A[2][d];
+            db[2] = 2.0 * A[2][d] - A[1][d];
+            db[0] = 6.0 * A[0][d] - 4.0 * db[1] - db[2];
+            db[3] = 2.0 * C[1][d] - C[2][d];
+            db[4] = 2.0 * C[2][d] - C[1][d];
+            db[5] = 6.0 * C[3][d] - db[3] - 4.0 * db[4];
+            for (int k = 0; k < 3; k++) {
+                double *x = db + k;
+                double bz[4] = {(x[0] + 4.0 * x[1] + x[2]) / 6.0, (2.0 * x[1] + x[2]) / 3.0,
+                                (x[1] + 2.0 * x[2]) / 3.0, (x[1] + 4.0 * x[2] + x[3]) / 6.0};
+                if (k == 0)
+                    bz[0] = A[0][d], bz[1] = A[1][d], bz[2] = A[2][d];
+                if (k == 2)
+                    bz[1] = C[1][d], bz[2] = C[2][d], bz[3] = C[3][d];
+                for (int s = 0; s < 4; s++)
+                    P[k].h[r][s][d] = bz[s];
+            }
+        }
+    }
+}
+
+/* Convert the normalized-chart coefficients to eq. (14) (v = vc t): q0 = g3 / vc^2,
+ * q1,2 = g1,2 / vc, q3 = g0 (q_k3 multiplies (1 - v)^2, the pole value). */
+static void chart_to_q(double g[4][4], double vc, double q[4][4])
+{
+    memset(q, 0, sizeof(double[4][4]));
+    if (!(vc > 0.0))
+        return;
+    for (int k = 0; k < 4; k++) {
+        q[k][0] = g[3][k] / (vc * vc);
+        q[k][1] = g[1][k] / vc;
+        q[k][2] = g[2][k] / vc;
+        q[k][3] = g[0][k];
+    }
+}
+
+rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_surface *out,
+                         rg2_cap_info *info, rg2_error *err)
+{
+    memset(out, 0, sizeof *out);
+    rg2_cap_opts o;
+    if (opts)
+        o = *opts;
+    else
+        rg2_cap_opts_default(&o);
+    rg2_cap_info inf;
+    memset(&inf, 0, sizeof inf);
+    if (!body || !body->p)
+        return rg2__fail(err, RG2_EINVAL, "cap: empty body mesh");
+    if (!(o.ends & (RG2_CAP_SOUTH | RG2_CAP_NORTH)) || (o.ends & ~(RG2_CAP_SOUTH | RG2_CAP_NORTH)))
+        return rg2__fail(err, RG2_EINVAL, "cap: ends = %d, must be a non-empty combination of south (1) and north (2)",
+                         o.ends);
+    if (o.samples < 2 || o.samples > 256)
+        return rg2__fail(err, RG2_EDOMAIN, "cap: %d boundary samples per column, must be in 2..256", o.samples);
+    for (int k = 0; k < 3; k++)
+        if (!rg2__finite(o.jet_weight[k]) || !(o.jet_weight[k] >= 0.0))
+            return rg2__fail(err, RG2_EDOMAIN, "cap: jet weight %d is %g, must be finite and >= 0", k,
+                             o.jet_weight[k]);
+    for (int e = 0; e < 2; e++)
+        if (o.length[e] != 0.0 && (!rg2__finite(o.length[e]) || !(o.length[e] > 0.0) ||
+                                   !(o.vc[e] >= 0.0 && o.vc[e] < 1.0)))
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "cap: %s cap length %g and v_c %g: need length > 0 and 0 <= v_c < 1",
+                             end_name(e), o.length[e], o.vc[e]);
+    if (!body->su.closed)
+        return rg2__fail(err, RG2_EINVAL,
+                         "cap: the body's u-direction is open; a cap closes a closed ring (closed u)");
+    if (body->nu < 3)
+        return rg2__fail(err, RG2_EINVAL, "cap: the body's ring has %d control points, too small (at least 3)",
+                         body->nu);
+    if (body->sv.closed)
+        return rg2__fail(err, RG2_EINVAL, "cap: the body's v-direction is closed; it has no end to cap");
+    if (body->nv < 4)
+        return rg2__fail(err, RG2_EINVAL,
+                         "cap: the body has %d rows in v; at least 4 are needed for one ring of patches",
+                         body->nv);
+    rg2_surface S;
+    rg2_status st = rg2_surface_build(body, &S, err);
+    if (st)
+        return st;
+    ucircle uc;
+    fitdata fd[2];
+    memset(fd, 0, sizeof fd);
+    double L[2] = {0, 0}, vc[2] = {0, 0}, g[2][4][4], lam[2][2] = {{0, 0}, {0, 0}};
+    if ((st = ucircle_make(&body->su, &uc, err)))
+        goto done;
+    double scale = 0.0;
+    for (size_t k = 0; k < (size_t)S.nu * (size_t)S.nv; k++)
+        for (int r = 0; r < 4; r++)
+            for (int s = 0; s < 4; s++)
+                for (int d = 0; d < 3; d++)
+                    scale = fmax(scale, fabs(S.patch[k].h[r][s][d] / S.patch[k].h[r][s][3]));
+    for (int e = 0; e < 2; e++) {
+        if (!(o.ends & (1 << e)))
+            continue;
+        fd[e].jw[0] = o.jet_weight[0];
+        fd[e].jw[1] = o.jet_weight[1];
+        fd[e].jw[2] = o.jet_weight[2];
+        if ((st = sample_end(&S, &uc, e, o.samples, &fd[e], err)))
+            goto done;
+        double ext, wmin;
+        ring_extent(&fd[e], &ext, &wmin);
+        if (!(wmin > 0.0)) {
+            st = rg2__fail(err, RG2_EWEIGHT, "cap: the body's %s boundary ring has weight %g <= 0",
+                           end_name(e), wmin);
+            goto done;
+        }
+        if (!(ext > 1e-9 * fmax(scale, 1e-300))) {
+            st = rg2__fail(err, RG2_EDOMAIN,
+                           "cap: the body's %s boundary ring is collapsed (extent %.3g of body size %.3g): "
+                           "the body already ends in a point; cap the band of a polar configuration "
+                           "(knots v_1 > 0, v_m < 1) instead",
+                           end_name(e), ext, scale);
+            goto done;
+        }
+        int polar = 0;
+        if ((st = choose_params(body, &fd[e], e, &o, &L[e], &vc[e], &polar, err)))
+            goto done;
+        if (!(L[e] > 0.0) || !rg2__finite(L[e]) || !(vc[e] < 1.0)) {
+            st = rg2__fail(err, RG2_EDOMAIN,
+                           "cap: %s end: cap length %g and v_c %g from the body's v scalars are unusable "
+                           "(need length > 0, v_c < 1); give them in the options",
+                           end_name(e), L[e], vc[e]);
+            goto done;
+        }
+        double res = fit_solve(&fd[e], L[e], vc[e], g[e], lam[e]);
+        if (res < -1.5) {
+            st = rg2__fail(err, RG2_ENOMEM, "cap: out of memory in the fit");
+            goto done;
+        }
+        if (res < 0.0) {
+            st = rg2__fail(err, RG2_EDOMAIN,
+                           "cap: the %s boundary ring does not determine the cap map (rank-deficient "
+                           "least-squares fit; is the ring degenerate?)",
+                           end_name(e));
+            goto done;
+        }
+        if (!(g[e][0][3] > 0.0)) {
+            st = rg2__fail(err, RG2_EDOMAIN,
+                           "cap: the fitted %s pole has weight %g <= 0 (the body's end does not close "
+                           "like a cap)",
+                           end_name(e), g[e][0][3]);
+            goto done;
+        }
+        inf.capped[e] = 1;
+        inf.polar[e] = polar;
+        inf.length[e] = L[e];
+        inf.vc[e] = vc[e];
+        inf.residual[e] = res;
+        for (int k = 0; k < 4; k++)
+            for (int d = 0; d < 4; d++)
+                inf.g[e][k][d] = g[e][k][d];
+        chart_to_q(g[e], vc[e], inf.q[e]);
+        for (int k = 0; k < 3; k++)
+            inf.pole[e][k] = g[e][0][k] / g[e][0][3];
+    }
+    int rb = inf.capped[0] ? 3 : 0, ra = inf.capped[1] ? 3 : 0;
+    inf.rows_before = rb;
+    inf.rows_after = ra;
+    /* assemble: cap rows, body rows, cap rows */
+    int nv = S.nv + rb + ra;
+    out->patch = rg2__calloc((size_t)S.nu * (size_t)nv, sizeof(rg2_patch));
+    out->bu = rg2__calloc((size_t)S.nu, sizeof(double));
+    out->gu = rg2__calloc((size_t)S.nu, sizeof(double));
+    out->bv = rg2__calloc((size_t)nv, sizeof(double));
+    out->gv = rg2__calloc((size_t)nv, sizeof(double));
+    if (!out->patch || !out->bu || !out->gu || !out->bv || !out->gv) {
+        rg2_surface_free(out);
+        st = rg2__fail(err, RG2_ENOMEM, "cap: out of memory for %d x %d patches", S.nu, nv);
+        goto done;
+    }
+    out->nu = S.nu;
+    out->nv = nv;
+    out->closed_u = S.closed_u;
+    out->closed_v = 0;
+    memcpy(out->bu, S.bu, sizeof(double) * (size_t)S.nu);
+    memcpy(out->gu, S.gu, sizeof(double) * (size_t)S.nu);
+    for (int j = 0; j < nv; j++)
+        out->bv[j] = 1.0;
+    for (int j = 0; j < S.nv; j++) {
+        out->bv[rb + j] = S.bv[j];
+        out->gv[rb + j] = S.gv[j];
+    }
+    if (rb)
+        out->bv[rb] = 3.0 / L[0], out->gv[rb] = 0.0;
+    if (ra)
+        out->bv[rb + S.nv] = L[1] / 3.0, out->gv[rb + S.nv] = 0.0;
+    for (int i = 0; i < S.nu; i++) {
+        for (int j = 0; j < S.nv; j++)
+            *(out->patch + (size_t)i * nv + rb + j) = *rg2_surface_patch(&S, i, j);
+        for (int e = 0; e < 2; e++) {
+            if (!inf.capped[e])
+                continue;
+            rg2_patch P[3];
+            cap_column(&S, &uc, e, i, L[e], vc[e], g[e], lam[e], P);
+            for (int k = 0; k < 3; k++) {
+                if (e == 0) {
+                    out->patch[(size_t)i * nv + k] = P[k];
+                } else {
+                    rg2_patch *D = out->patch + (size_t)i * nv + (nv - 1 - k);
+                    for (int r = 0; r < 4; r++)
+                        for (int s = 0; s < 4; s++)
+                            memcpy(D->h[r][s], P[k].h[r][3 - s], sizeof(double[4]));
+                }
+            }
+        }
+    }
+    if (info)
+        *info = inf;
+    rg2__ok(err);
+done:
+    for (int e = 0; e < 2; e++)
+        free(fd[e].smp);
+    rg2_curve_free(&uc.c);
+    rg2_surface_free(&S);
+    return st;
+}

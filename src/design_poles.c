@@ -1,0 +1,217 @@
+/* design_poles.c -- the poles operations of the design format (docs/design-format.md,
+ * docs/poles.md): polar configurations of a shape, Moebius pole placement, polar point edits,
+ * and capped output surfaces. */
+#include "design_internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* Collapse row j of a mesh to its first point (bit-exact polar row). */
+static void collapse_row(rg2_mesh *m, int j)
+{
+    for (int i = 1; i < m->nu; i++)
+        memcpy(rg2_mesh_at(m, i, j), rg2_mesh_at(m, 0, j), 4 * sizeof(double));
+}
+
+/*
+ * METHOD: a polar configuration is the shape's own family-2 mesh over the full knot vector of
+ * the polar configuration (RG2_PART_KNOTS_FULL): sphere and ellipsoid v_{-1} = v_1/(v_1 - 1),
+ * 0, v_1..v_m, 1, 1/v_m (MATH.md section 7, both poles); paraboloid and two-sheeted
+ * hyperboloid -v_1, 0, v_1..v_m and two data-only knots past v_m (the blossom of v vanishes on
+ * row 0: the pole at v = 0 is the south end), or, for knots below 0, two data-only knots before
+ * v_1 and v_1..v_m, 0, -v_m (the pole is the north end). The rows that collapse mathematically are made bit-exact in the
+ * source too, so provenance sees the band patches as pieces of the shape.
+ */
+rg2_status rg2__op_polar(rg2_design *d, int shape, const rg2_partition *pu, const double *v, int m,
+                         rg2__dmesh *out, const char *what, rg2_error *err)
+{
+    rg2_shape_kind kind = d->shapes[shape].kind;
+    int both = kind == RG2_SHAPE_SPHERE || kind == RG2_SHAPE_ELLIPSOID;
+    if (!both && kind != RG2_SHAPE_PARABOLOID && kind != RG2_SHAPE_HYPERBOLOID2)
+        return rg2__fail(err, RG2_EINVAL,
+                         "%s: shape kind '%s' has no polar configuration (sphere, ellipsoid: both poles; "
+                         "paraboloid, hyperboloid2: the pole at v = 0)",
+                         what, rg2_shape_name(kind));
+    if (m < 2)
+        return rg2__fail(err, RG2_EINVAL, "%s: %d knot(s); a polar configuration needs at least 2", what, m);
+    double *k = rg2__calloc((size_t)m + 4, sizeof(double));
+    if (!k)
+        return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", what);
+    rg2_status st = RG2_OK;
+    int north = !both && v[m - 1] < 0.0; /* paraboloid, hyperboloid2: knots below 0, pole at the end */
+    if (both) {
+        st = rg2_polar_knots(v, m, k, err);
+    } else {
+        for (int q = 0; q < m && !st; q++)
+            if (!(north ? v[q] < 0.0 : v[q] > 0.0) || (q && !(v[q] > v[q - 1])))
+                st = rg2__fail(err, RG2_EDOMAIN,
+                               "knot v_%d = %.17g: the knots must increase and all lie on one side of the "
+                               "pole v = 0",
+                               q + 1, v[q]);
+        if (!st && !north) {
+            double dl = v[m - 1] - v[m - 2];
+            k[0] = -v[0];
+            k[1] = 0.0;
+            memcpy(k + 2, v, (size_t)m * sizeof(double));
+            k[m + 2] = v[m - 1] + dl;
+            k[m + 3] = v[m - 1] + 2.0 * dl;
+        } else if (!st) {
+            double dl = v[1] - v[0];
+            k[0] = v[0] - 2.0 * dl;
+            k[1] = v[0] - dl;
+            memcpy(k + 2, v, (size_t)m * sizeof(double));
+            k[m + 2] = 0.0;
+            k[m + 3] = -v[m - 1];
+        }
+    }
+    if (st) {
+        rg2_error e = *err;
+        free(k);
+        return rg2__fail(err, st, "%s: %s", what, e.msg);
+    }
+    rg2_partition pv = {RG2_PART_KNOTS_FULL, 0, m + 4, k, 0.0};
+    st = rg2__op_shape(d, shape, pu, &pv, out, what, err);
+    free(k);
+    if (st)
+        return st;
+    rg2_mesh *base = &d->src[d->n_src - 1].base;
+    for (int e = 0; e < 2; e++) {
+        if (!both && e != north)
+            continue;
+        int j = e ? base->nv - 1 : 0;
+        collapse_row(base, j);
+        collapse_row(&out->m, j);
+    }
+    return RG2_OK;
+}
+
+/*
+ * METHOD: the Moebius matrix M acts on the reference unit sphere; the shape's placement X
+ * (its matrix times diag(radius) or diag(a, b, c)) maps that sphere onto the shape, so the
+ * mesh gets X M X^-1 (a transform: the sources and the shape get transformed copies, and the
+ * placed shape's implicit equation is carried through the projective map). Poles given in
+ * world coordinates are first mapped back to the unit sphere by X^-1.
+ */
+rg2_status rg2__op_mobius(rg2_design *d, const rg2__dmesh *in, int shape, const double *b,
+                          double poles[2][3], rg2__dmesh *out, const char *what, rg2_error *err)
+{
+    double X[16], Xi[16], M[16], A[16];
+    rg2_xform_identity(X);
+    if (shape >= 0) {
+        const rg2_shape *s = &d->shapes[shape];
+        double S[16];
+        if (s->kind == RG2_SHAPE_SPHERE)
+            rg2_xform_scale(S, s->param[0], s->param[0], s->param[0]);
+        else if (s->kind == RG2_SHAPE_ELLIPSOID)
+            rg2_xform_scale(S, s->param[0], s->param[1], s->param[2]);
+        else
+            return rg2__fail(err, RG2_EINVAL, "%s: the reference shape must be a sphere or an ellipsoid, not a %s",
+                             what, rg2_shape_name(s->kind));
+        rg2_xform_mul(s->xform, S, X);
+    }
+    rg2_status st = rg2_xform_invert(X, Xi, err);
+    if (st)
+        return st;
+    if (b) {
+        rg2_mobius_matrix(*b, NULL, M);
+    } else {
+        double loc[2][3];
+        for (int e = 0; e < 2; e++) {
+            double h[4];
+            for (int r = 0; r < 4; r++)
+                h[r] = Xi[4 * r] * poles[e][0] + Xi[4 * r + 1] * poles[e][1] + Xi[4 * r + 2] * poles[e][2] + Xi[4 * r + 3];
+            for (int q = 0; q < 3; q++)
+                loc[e][q] = h[q] / h[3];
+        }
+        if ((st = rg2_mobius_poles_matrix(loc[0], loc[1], M, err))) {
+            rg2_error e = *err;
+            return rg2__fail(err, st, "%s: %s (poles taken relative to the reference sphere)", what, e.msg);
+        }
+    }
+    rg2_xform_mul(M, Xi, A);
+    rg2_xform_mul(X, A, A);
+    if ((st = rg2__op_transform(d, in, A, out, what, err)))
+        return st;
+    for (int i = 0; i < out->m.nu; i++)
+        for (int j = 0; j < out->m.nv; j++)
+            if (!(rg2_mesh_at(&out->m, i, j)[3] > 0.0)) {
+                double w = rg2_mesh_at(&out->m, i, j)[3];
+                rg2__dmesh_free(out);
+                return rg2__fail(err, RG2_EWEIGHT,
+                                 "%s: control point [%d][%d] gets weight %g; the Moebius map sends it through "
+                                 "infinity (move the poles less far, or refine the u partition)",
+                                 what, i, j, w);
+            }
+    return RG2_OK;
+}
+
+rg2_status rg2__edit_pole(rg2__dmesh *m, int end, rg2__edit_kind kind, const double *v, const char *what,
+                          rg2_error *err)
+{
+    if (m->m.sv.closed)
+        return rg2__fail(err, RG2_EINVAL, "%s: the mesh's v-direction is closed; it has no poles", what);
+    int j = end ? m->m.nv - 1 : 0;
+    if (!rg2_mesh_row_collapsed(&m->m, j))
+        return rg2__fail(err, RG2_EINVAL, "%s: row %d (the %s end) is not a polar point (not collapsed)", what, j,
+                         end ? "north" : "south");
+    for (int i = 0; i < m->m.nu; i++) {
+        rg2_status st = rg2__edit_point(m, i, j, kind, v, what, err);
+        if (st)
+            return st;
+    }
+    collapse_row(&m->m, j);
+    return RG2_OK;
+}
+
+/*
+ * Build a capped output: rg2_cap_build on the mesh; body patches are tagged like an uncapped
+ * build (offset by the cap rows before them); a cap takes the shape tag of its boundary ring
+ * when every ring patch carries that tag and the fit reproduced the ring's jets (relative
+ * residual <= 1e-12: the fit is unique, so the cap map is the shape's own, e.g. the sphere),
+ * else -1.
+ */
+rg2_status rg2__design_build_capped(const rg2_design *d, const rg2__dmesh *dm, rg2_surface *s,
+                                    rg2_error *err)
+{
+    rg2_cap_info info;
+    rg2_status st = rg2_cap_build(&dm->m, &dm->cap, s, &info, err);
+    if (st)
+        return st;
+    rg2__stencil sten[2];
+    if ((st = rg2__stencil_make(&dm->m.su, &sten[0], err)))
+        goto fail;
+    if ((st = rg2__stencil_make(&dm->m.sv, &sten[1], err))) {
+        rg2__stencil_free(&sten[0]);
+        goto fail;
+    }
+    s->tag = rg2__calloc((size_t)s->nu * (size_t)s->nv, sizeof(int));
+    if (!s->tag) {
+        rg2__stencil_free(&sten[0]);
+        rg2__stencil_free(&sten[1]);
+        st = rg2__fail(err, RG2_ENOMEM, "design: out of memory for tags");
+        goto fail;
+    }
+    int rb = info.rows_before, nb = s->nv - rb - info.rows_after;
+    for (int k = 0; k < s->nu; k++)
+        for (int l = 0; l < nb; l++)
+            s->tag[k * s->nv + rb + l] = rg2__patch_tag(d, dm, sten, k, l);
+    rg2__stencil_free(&sten[0]);
+    rg2__stencil_free(&sten[1]);
+    for (int e = 0; e < 2; e++) {
+        if (!info.capped[e])
+            continue;
+        int ring = e ? rb + nb - 1 : rb, t = s->tag[ring];
+        for (int k = 0; k < s->nu; k++)
+            if (s->tag[k * s->nv + ring] != t)
+                t = -1;
+        if (!(info.residual[e] <= 1e-12))
+            t = -1;
+        for (int k = 0; k < s->nu; k++)
+            for (int r = 0; r < 3; r++)
+                s->tag[k * s->nv + (e ? s->nv - 1 - r : r)] = t;
+    }
+    return RG2_OK;
+fail:
+    rg2_surface_free(s);
+    return st;
+}

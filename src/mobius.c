@@ -1,0 +1,176 @@
+/* mobius.c -- Moebius pole placement (paper eq. 16, MATH.md section 7). A Moebius map of the
+ * sphere acts linearly on the sphere's homogeneous 4-tuples (x, y, z, w), x^2+y^2+z^2 = w^2:
+ * it is a Lorentz transformation. Applying its 4x4 matrix to every control 4-tuple keeps an
+ * exact sphere exact and moves the poles of the parameterization. */
+#include "internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static void matmul4(const double A[16], const double B[16], double C[16])
+{
+    double T[16];
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++) {
+            double s = 0.0;
+            for (int k = 0; k < 4; k++)
+                s += A[4 * r + k] * B[4 * k + c];
+            T[4 * r + c] = s;
+        }
+    memcpy(C, T, sizeof T);
+}
+
+/* Embed a row-major 3x3 matrix as the upper-left block of a 4x4 one. */
+static void embed3(const double R[9], double M[16])
+{
+    memset(M, 0, 16 * sizeof(double));
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++)
+            M[4 * r + c] = R[3 * r + c];
+    M[15] = 1.0;
+}
+
+/*
+ * METHOD: eq. (16) gives, for the sphere 4-tuple (X, Y, Z, W) of MATH.md section 5,
+ *   x' = (1 - b^2) X - 2b Z,  y' = (1 + b^2) Y,  z' = 2b X + (1 - b^2) Z,  w' = (1 + b^2) W,
+ * i.e. (1 + b^2) times the rotation about y by the angle 2 atan(b).
+ */
+void rg2_mobius_matrix(double b, const double *R, double M[16])
+{
+    double s = 1.0 + b * b;
+    double B[16] = {(1.0 - b * b) / s, 0, -2.0 * b / s, 0, 0, 1, 0, 0, 2.0 * b / s, 0, (1.0 - b * b) / s, 0,
+                    0, 0, 0, 1};
+    if (R) {
+        double E[16];
+        embed3(R, E);
+        matmul4(E, B, M);
+    } else {
+        memcpy(M, B, sizeof B);
+    }
+}
+
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static void cross3(const double a[3], const double b[3], double c[3])
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static void unit3(double a[3])
+{
+    double l = sqrt(dot3(a, a));
+    for (int k = 0; k < 3; k++)
+        a[k] /= l;
+}
+
+/*
+ * METHOD: a boost along x with rapidity t takes the poles (0,0,-+1) to (tanh t, 0, -+1/cosh t),
+ * whose angle has cosine (sinh^2 t - 1) / (sinh^2 t + 1); choose sinh^2 t = (1 + c) / (1 - c),
+ * c = south . north, then rotate the frame (a + b, a - b, x) of the boosted pair onto the frame
+ * of the target pair (both pairs have the same angle). Antipodal targets need no boost.
+ */
+rg2_status rg2_mobius_poles_matrix(const double south[3], const double north[3], double M[16],
+                                   rg2_error *err)
+{
+    const double *pts[2] = {south, north};
+    for (int e = 0; e < 2; e++) {
+        for (int k = 0; k < 3; k++)
+            if (!rg2__finite(pts[e][k]))
+                return rg2__fail(err, RG2_ENONFINITE, "moebius: %s pole component %d is not finite",
+                                 e ? "north" : "south", k);
+        double l = sqrt(dot3(pts[e], pts[e]));
+        if (!(fabs(l - 1.0) <= 1e-9))
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "moebius: %s pole (%g, %g, %g) is not on the unit sphere (|p| = %.17g)",
+                             e ? "north" : "south", pts[e][0], pts[e][1], pts[e][2], l);
+    }
+    double d[3] = {north[0] - south[0], north[1] - south[1], north[2] - south[2]};
+    if (!(sqrt(dot3(d, d)) > 1e-9))
+        return rg2__fail(err, RG2_EDOMAIN, "moebius: the south and north poles coincide at (%g, %g, %g)",
+                         south[0], south[1], south[2]);
+    double n[3], s[3];
+    memcpy(n, north, sizeof n);
+    memcpy(s, south, sizeof s);
+    unit3(n);
+    unit3(s);
+    double c = fmin(fmax(dot3(n, s), -1.0), 1.0);
+    double sh = sqrt((1.0 + c) / (1.0 - c)), ch = sqrt(1.0 + sh * sh);
+    double B[16] = {ch, 0, 0, sh, 0, 1, 0, 0, 0, 0, 1, 0, sh, 0, 0, ch};
+    /* target frame f1 ~ n + s, f2 ~ n - s, f3 = f1 x f2; source frame (1,0,0), (0,0,1), (0,-1,0) */
+    double f1[3], f2[3] = {d[0], d[1], d[2]}, f3[3];
+    unit3(f2);
+    double ps[3] = {n[0] + s[0], n[1] + s[1], n[2] + s[2]};
+    if (sqrt(dot3(ps, ps)) > 1e-6) {
+        memcpy(f1, ps, sizeof f1);
+    } else { /* antipodal: any direction perpendicular to the pole axis */
+        double ax[3] = {1, 0, 0};
+        if (fabs(f2[0]) > 0.9)
+            ax[0] = 0, ax[1] = 1;
+        double t = dot3(ax, f2);
+        for (int k = 0; k < 3; k++)
+            f1[k] = ax[k] - t * f2[k];
+    }
+    /* make f1 exactly perpendicular to f2 */
+    double t = dot3(f1, f2);
+    for (int k = 0; k < 3; k++)
+        f1[k] -= t * f2[k];
+    unit3(f1);
+    cross3(f1, f2, f3);
+    /* R = F E^T with E = [e1 e2 e3] = [(1,0,0) (0,0,1) (0,-1,0)] */
+    double R[9];
+    for (int r = 0; r < 3; r++) {
+        R[3 * r + 0] = f1[r];
+        R[3 * r + 1] = -f3[r];
+        R[3 * r + 2] = f2[r];
+    }
+    double E[16];
+    embed3(R, E);
+    matmul4(E, B, M);
+    rg2__ok(err);
+    return RG2_OK;
+}
+
+rg2_status rg2_mesh_mobius(rg2_mesh *m, const double center[3], double radius, const double M[16],
+                           rg2_error *err)
+{
+    if (!m || !m->p)
+        return rg2__fail(err, RG2_EINVAL, "moebius: empty mesh");
+    if (!rg2__finite(radius) || !(radius > 0.0))
+        return rg2__fail(err, RG2_EDOMAIN, "moebius: sphere radius %g, must be > 0", radius);
+    for (int k = 0; k < 3; k++)
+        if (!rg2__finite(center[k]))
+            return rg2__fail(err, RG2_ENONFINITE, "moebius: center component %d is not finite", k);
+    for (int k = 0; k < 16; k++)
+        if (!rg2__finite(M[k]))
+            return rg2__fail(err, RG2_ENONFINITE, "moebius: matrix entry %d is not finite", k);
+    double T[16] = {radius, 0, 0, center[0], 0, radius, 0, center[1], 0, 0, radius, center[2], 0, 0, 0, 1};
+    double Ti[16] = {1 / radius, 0, 0, -center[0] / radius, 0, 1 / radius, 0, -center[1] / radius,
+                     0, 0, 1 / radius, -center[2] / radius, 0, 0, 0, 1};
+    double A[16];
+    matmul4(M, Ti, A);
+    matmul4(T, A, A);
+    size_t np = (size_t)m->nu * (size_t)m->nv;
+    double *q = rg2__calloc(np * 4, sizeof(double));
+    if (!q)
+        return rg2__fail(err, RG2_ENOMEM, "moebius: out of memory");
+    for (size_t k = 0; k < np; k++) {
+        const double *p = m->p + 4 * k;
+        for (int r = 0; r < 4; r++)
+            q[4 * k + r] = A[4 * r] * p[0] + A[4 * r + 1] * p[1] + A[4 * r + 2] * p[2] + A[4 * r + 3] * p[3];
+        if (!(q[4 * k + 3] > 0.0)) {
+            int i = (int)(k / (size_t)m->nv), j = (int)(k % (size_t)m->nv);
+            double w = q[4 * k + 3];
+            free(q);
+            return rg2__fail(err, RG2_EWEIGHT,
+                             "moebius: control point [%d][%d] gets weight %g; the map sends it through "
+                             "infinity (use a smaller pole displacement)",
+                             i, j, w);
+        }
+    }
+    memcpy(m->p, q, np * 4 * sizeof(double));
+    free(q);
+    rg2__ok(err);
+    return RG2_OK;
+}

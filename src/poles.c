@@ -1,0 +1,158 @@
+/* poles.c -- polar configurations (paper section 5, MATH.md section 7): polar knots, the
+ * polar control mesh of the sphere, collapsed-row detection and polar point edits. */
+#include "internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+rg2_status rg2_polar_knots(const double *v, int m, double *knots, rg2_error *err)
+{
+    if (!v || !knots)
+        return rg2__fail(err, RG2_EINVAL, "polar knots: no knots given");
+    if (m < 2)
+        return rg2__fail(err, RG2_EINVAL,
+                         "polar knots: %d interior knot(s); a polar configuration needs at least "
+                         "2 (v_1 < v_2) for one band ring",
+                         m);
+    for (int k = 0; k < m; k++) {
+        if (!rg2__finite(v[k]))
+            return rg2__fail(err, RG2_ENONFINITE, "polar knots: v_%d is not finite", k + 1);
+        if (!(v[k] > 0.0 && v[k] < 1.0))
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "polar knots: v_%d = %.17g must lie strictly between the poles 0 and 1",
+                             k + 1, v[k]);
+        if (k > 0 && !(v[k] > v[k - 1]))
+            return rg2__fail(err, RG2_EDOMAIN, "polar knots: v_%d = %.17g is not above v_%d = %.17g",
+                             k + 1, v[k], k, v[k - 1]);
+    }
+    knots[0] = v[0] / (v[0] - 1.0);
+    knots[1] = 0.0;
+    for (int k = 0; k < m; k++)
+        knots[k + 2] = v[k];
+    knots[m + 2] = 1.0;
+    knots[m + 3] = 1.0 / v[m - 1];
+    rg2__ok(err);
+    return RG2_OK;
+}
+
+static void apply4(const double *M, double p[4])
+{
+    double q[4];
+    for (int r = 0; r < 4; r++)
+        q[r] = M[4 * r] * p[0] + M[4 * r + 1] * p[1] + M[4 * r + 2] * p[2] + M[4 * r + 3] * p[3];
+    memcpy(p, q, sizeof q);
+}
+
+/*
+ * METHOD: family 2 (MATH.md section 5), h = (2v(1-v) cu, 2v(1-v) su, 2v - 1, 2v^2 - 2v + 1).
+ * Control 4-tuple (i, j) = products of the circle coefficients (C_i, S_i) and the blossoms
+ * B1, B2 of v, v^2 at (v_{j-1}, v_j, v_{j+1}) (Corollary 1). With the polar knots B1 = B2 on
+ * rows 0 and m + 1, so x, y vanish there: those rows are written as the exact polar points of
+ * eq. (13) so that they are collapsed to the last bit.
+ */
+rg2_status rg2_polar_sphere_mesh(const double *alpha, int n_alpha, double theta0, const double *v,
+                                 int m, const double *M, rg2_mesh *out, rg2_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (!alpha || n_alpha < 3)
+        return rg2__fail(err, RG2_EINVAL, "polar sphere: %d arcs, a closed circle needs at least 3",
+                         alpha ? n_alpha : 0);
+    if (M)
+        for (int k = 0; k < 16; k++)
+            if (!rg2__finite(M[k]))
+                return rg2__fail(err, RG2_ENONFINITE, "polar sphere: placement entry %d is not finite", k);
+    double *knots = rg2__calloc((size_t)m + 4, sizeof(double));
+    double *cs = rg2__calloc((size_t)n_alpha * 2, sizeof(double));
+    rg2_status st = RG2_OK;
+    if (!knots || !cs) {
+        st = rg2__fail(err, RG2_ENOMEM, "polar sphere: out of memory");
+        goto done;
+    }
+    if ((st = rg2_polar_knots(v, m, knots, err)) ||
+        (st = rg2_circle_coeffs(alpha, n_alpha, 1, theta0, cs, err)))
+        goto done;
+    if ((st = rg2_mesh_init(out, n_alpha, m + 2, 1, 0, err)))
+        goto done;
+    rg2_scalars_free(&out->su);
+    rg2_scalars_free(&out->sv);
+    if ((st = rg2_scalars_from_angles(&out->su, alpha, n_alpha, 1, err)) ||
+        (st = rg2_scalars_from_knots(&out->sv, knots, m + 4, 0, err))) {
+        rg2_mesh_free(out);
+        goto done;
+    }
+    double Zs = (3.0 - 3.0 * v[0] + 2.0 * v[0] * v[0]) / (3.0 * (v[0] - 1.0));
+    double Zn = (2.0 - v[m - 1] + 2.0 * v[m - 1] * v[m - 1]) / (3.0 * v[m - 1]);
+    for (int j = 0; j < m + 2; j++) {
+        double bl[4];
+        rg2_blossom_monomials(knots[j], knots[j + 1], knots[j + 2], bl);
+        double rad = 2.0 * (bl[1] - bl[2]), z = 2.0 * bl[1] - 1.0, w = 2.0 * bl[2] - 2.0 * bl[1] + 1.0;
+        for (int i = 0; i < n_alpha; i++) {
+            double *p = rg2_mesh_at(out, i, j);
+            if (j == 0 || j == m + 1) {
+                p[0] = p[1] = 0.0;
+                p[2] = j == 0 ? Zs : Zn;
+                p[3] = 1.0;
+            } else {
+                p[0] = rad * cs[2 * i];
+                p[1] = rad * cs[2 * i + 1];
+                p[2] = z;
+                p[3] = w;
+            }
+            if (M)
+                apply4(M, p);
+        }
+    }
+done:
+    free(knots);
+    free(cs);
+    return st;
+}
+
+int rg2_mesh_row_collapsed(const rg2_mesh *m, int j)
+{
+    if (!m || !m->p || j < 0 || j >= m->nv || m->nu < 1)
+        return 0;
+    /* mesh size: largest affine coordinate over the mesh */
+    double size = 0.0;
+    for (int i = 0; i < m->nu; i++)
+        for (int jj = 0; jj < m->nv; jj++) {
+            const double *p = rg2_mesh_at(m, i, jj);
+            if (p[3] != 0.0)
+                for (int k = 0; k < 3; k++)
+                    size = fmax(size, fabs(p[k] / p[3]));
+        }
+    if (size == 0.0)
+        size = 1.0;
+    const double *p0 = rg2_mesh_at(m, 0, j);
+    if (!(p0[3] != 0.0))
+        return 0;
+    for (int i = 1; i < m->nu; i++) {
+        const double *p = rg2_mesh_at(m, i, j);
+        if (!(p[3] != 0.0))
+            return 0;
+        for (int k = 0; k < 3; k++)
+            if (!(fabs(p[k] / p[3] - p0[k] / p0[3]) <= 1e-12 * size))
+                return 0;
+    }
+    return 1;
+}
+
+rg2_status rg2_polar_set_point(rg2_mesh *m, int end, const double p[4], rg2_error *err)
+{
+    if (!m || !m->p)
+        return rg2__fail(err, RG2_EINVAL, "polar point: empty mesh");
+    if (end != 0 && end != 1)
+        return rg2__fail(err, RG2_EINVAL, "polar point: end %d, must be 0 (south) or 1 (north)", end);
+    if (m->sv.closed)
+        return rg2__fail(err, RG2_EINVAL, "polar point: the mesh's v-direction is closed; it has no poles");
+    for (int k = 0; k < 4; k++)
+        if (!rg2__finite(p[k]))
+            return rg2__fail(err, RG2_ENONFINITE, "polar point: component %d is not finite", k);
+    if (!(p[3] > 0.0))
+        return rg2__fail(err, RG2_EWEIGHT, "polar point: weight %g, must be > 0", p[3]);
+    int j = end == 0 ? 0 : m->nv - 1;
+    for (int i = 0; i < m->nu; i++)
+        memcpy(rg2_mesh_at(m, i, j), p, 4 * sizeof(double));
+    rg2__ok(err);
+    return RG2_OK;
+}

@@ -1,0 +1,785 @@
+/* test_cap.c -- bi-3 polar caps: the complete sphere from a polar mesh (exact, G2, one pole
+ * point with one limit normal), exact recovery of the cap coefficients on sphere data, exact
+ * paraboloid and two-sheeted hyperboloid caps, free-form caps (perturbed spheres, random
+ * tubes) with G2 seams and a smooth pole, and the errors for degenerate input. */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp, rmdir */
+#include "poles_testutil.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static void unit(double a[3])
+{
+    double l = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    for (int k = 0; k < 3; k++)
+        a[k] /= l;
+}
+
+/* Limit normal at a collapsed edge v = v0 (0 or 1) of a patch: su = (v - v0) suv + ..., so
+ * n ~ sign(v - v0) suv x sv. */
+static void limit_normal(const rg2_patch *P, double u, double v0, double n[3], unsigned *flags)
+{
+    rg2_eval e;
+    rg2_patch_eval(P, u, v0, 2, &e);
+    *flags = e.flags;
+    double sg = v0 == 0.0 ? 1.0 : -1.0;
+    n[0] = sg * (e.suv[1] * e.sv[2] - e.suv[2] * e.sv[1]);
+    n[1] = sg * (e.suv[2] * e.sv[0] - e.suv[0] * e.sv[2]);
+    n[2] = sg * (e.suv[0] * e.sv[1] - e.suv[1] * e.sv[0]);
+    unit(n);
+}
+
+/* Pole measurements of a capped surface for end e (0: v = 0 of row 0, 1: v = 1 of the last
+ * row): spread of the pole point, spread of the limit normals over every fan patch, whether
+ * the evaluator flags the pole, and the approach of normal and curvature as v -> pole. */
+typedef struct {
+    double point, normal;   /* max distance between pole evaluations / scale; max normal angle */
+    int flagged, samples;   /* evaluations at the pole that set RG2_EVAL_NORMAL_UNDEFINED */
+    double nconv[4];        /* max angle between n(u, eps) and the limit normal, eps = 1e-1..1e-4 */
+    double kspread[4];      /* spread of K and H over the fan at eps, relative to |k|max */
+    double pole[3], n[3];
+} pole_meas;
+
+static void measure_pole(const rg2_surface *s, int e, double scale, pole_meas *pm)
+{
+    memset(pm, 0, sizeof *pm);
+    int j = e ? s->nv - 1 : 0;
+    double v0 = e ? 1.0 : 0.0;
+    int first = 1;
+    for (int i = 0; i < s->nu; i++)
+        for (int k = 0; k <= 8; k++) {
+            double u = k / 8.0, n[3];
+            unsigned fl;
+            const rg2_patch *P = rg2_surface_patch(s, i, j);
+            limit_normal(P, u, v0, n, &fl);
+            rg2_eval e0;
+            rg2_patch_eval(P, u, v0, 0, &e0);
+            pm->samples++;
+            if (fl & RG2_EVAL_NORMAL_UNDEFINED)
+                pm->flagged++;
+            if (first) {
+                memcpy(pm->pole, e0.p, sizeof pm->pole);
+                memcpy(pm->n, n, sizeof pm->n);
+                first = 0;
+            }
+            double d = hypot(hypot(e0.p[0] - pm->pole[0], e0.p[1] - pm->pole[1]), e0.p[2] - pm->pole[2]);
+            pm->point = fmax(pm->point, d / scale);
+            pm->normal = fmax(pm->normal, pt_angle3(n, pm->n));
+        }
+    for (int q = 0; q < 4; q++) {
+        double eps = pow(10.0, -(q + 1)), Kmin = INFINITY, Kmax = -INFINITY, Hmin = INFINITY,
+               Hmax = -INFINITY, kmax = 0;
+        for (int i = 0; i < s->nu; i++)
+            for (int k = 0; k < 8; k++) {
+                rg2_eval ev;
+                rg2_patch_eval(rg2_surface_patch(s, i, j), (k + 0.5) / 8.0, e ? 1.0 - eps : eps, 2, &ev);
+                pm->nconv[q] = fmax(pm->nconv[q], pt_angle3(ev.n, pm->n));
+                Kmin = fmin(Kmin, ev.K), Kmax = fmax(Kmax, ev.K);
+                Hmin = fmin(Hmin, ev.H), Hmax = fmax(Hmax, ev.H);
+                kmax = fmax(kmax, fmax(fabs(ev.k1), fabs(ev.k2)));
+            }
+        pm->kspread[q] = fmax((Kmax - Kmin) / (kmax * kmax), (Hmax - Hmin) / kmax);
+    }
+}
+
+/* Worst distance from the unit sphere (after undoing placement center c, radius R) over dense
+ * samples of every patch. */
+static double sphere_dist(const rg2_surface *s, const double c[3], double R)
+{
+    double worst = 0;
+    for (int i = 0; i < s->nu; i++)
+        for (int j = 0; j < s->nv; j++)
+            for (int a = 0; a <= 8; a++)
+                for (int b = 0; b <= 8; b++) {
+                    rg2_eval e;
+                    rg2_patch_eval(rg2_surface_patch(s, i, j), a / 8.0, b / 8.0, 0, &e);
+                    double d = hypot(hypot(e.p[0] - c[0], e.p[1] - c[1]), e.p[2] - c[2]);
+                    worst = fmax(worst, fabs(d - R) / R);
+                }
+    return worst;
+}
+
+static void print_pole(const char *what, const pole_meas *pm)
+{
+    printf("  %s pole: point spread %.2e, limit-normal spread %.2e rad, flagged %d/%d\n", what, pm->point,
+           pm->normal, pm->flagged, pm->samples);
+    printf("    approach eps = 1e-1..1e-4: normal angle to limit %.1e %.1e %.1e %.1e rad; "
+           "K/H spread over the fan %.1e %.1e %.1e %.1e\n",
+           pm->nconv[0], pm->nconv[1], pm->nconv[2], pm->nconv[3], pm->kspread[0], pm->kspread[1],
+           pm->kspread[2], pm->kspread[3]);
+}
+
+static void check_seams(const rg2_surface *s, const char *what, double angle_tol, double curv_tol,
+                        rg2t_seams *g)
+{
+    rg2t_surface_seams(s, 12, g);
+    CHECK(g->pos <= 1e-13, "%s: position gap %.3g", what, g->pos);
+    CHECK(g->angle <= angle_tol, "%s: normal angle %.3g", what, g->angle);
+    CHECK(g->curv <= curv_tol, "%s: curvature jump %.3g at %s", what, g->curv, g->where);
+    CHECK(g->param1 <= 1e-10 && g->param2 <= 1e-9, "%s: parametric %.3g %.3g", what, g->param1, g->param2);
+    printf("  %s: %d seams, position %.2e, normal angle %.2e rad, curvature %.2e rel, "
+           "parametric %.2e / %.2e, skipped %d (pole)\n",
+           what, g->seams, g->pos, g->angle, g->curv, g->param1, g->param2, g->skipped);
+}
+
+/* Seams between the cap and the body only: rows (r, r + 1) of a capped surface copied into a
+ * 2-row surface whose one v seam is the cap/body seam (bv, gv of row r + 1). */
+static void cap_body_seams(const rg2_surface *s, const rg2_cap_info *info, rg2t_seams *worst)
+{
+    for (int e = 0; e < 2; e++) {
+        if (!info->capped[e])
+            continue;
+        int r = e ? s->nv - 4 : 2; /* south: cap row 2 | body row 3; north: body | cap */
+        rg2_surface t = *s;
+        rg2_patch *pp = malloc(sizeof(rg2_patch) * 2 * (size_t)s->nu);
+        double bv[2] = {1, s->bv[r + 1]}, gv[2] = {0, s->gv[r + 1]};
+        for (int i = 0; i < s->nu; i++)
+            for (int q = 0; q < 2; q++)
+                pp[i * 2 + q] = *rg2_surface_patch(s, i, r + q);
+        t.patch = pp;
+        t.nv = 2;
+        t.closed_v = 0;
+        t.bv = bv;
+        t.gv = gv;
+        t.tag = NULL;
+        rg2t_seams g;
+        rg2t_surface_seams(&t, 16, &g);
+        worst->pos = fmax(worst->pos, g.pos);
+        worst->angle = fmax(worst->angle, g.angle);
+        worst->curv = fmax(worst->curv, g.curv);
+        worst->param1 = fmax(worst->param1, g.param1);
+        worst->param2 = fmax(worst->param2, g.param2);
+        worst->seams++;
+        free(pp);
+    }
+}
+
+/* The complete sphere from polar meshes with random partitions, knots and placement. */
+static void sphere_caps(void)
+{
+    rg2t_rng r;
+    uint64_t seed = 606;
+    rg2t_seed(&r, seed);
+    printf("sphere from polar mesh + caps, seed %llu\n", (unsigned long long)seed);
+    double worst_d = 0, worst_q = 0;
+    for (int trial = 0; trial < 6; trial++) {
+        int n = rg2t_int(&r, 3, 9), m = rg2t_int(&r, 2, 7);
+        double alpha[16], v[16];
+        pt_random_arcs(&r, n, alpha);
+        pt_random_knots(&r, m, 0.0, 1.0, v);
+        double R = trial ? rg2t_uniform(&r, 0.5, 3.0) : 1.0;
+        double c[3] = {0, 0, 0};
+        if (trial)
+            for (int k = 0; k < 3; k++)
+                c[k] = rg2t_uniform(&r, -2, 2);
+        double M[16] = {R, 0, 0, c[0], 0, R, 0, c[1], 0, 0, R, c[2], 0, 0, 0, 1};
+        rg2_mesh mesh;
+        rg2_error err;
+        CHECK_OK(rg2_polar_sphere_mesh(alpha, n, 0.0, v, m, M, &mesh, &err), &err);
+        rg2_surface s;
+        rg2_cap_info info;
+        CHECK_OK(rg2_cap_build(&mesh, NULL, &s, &info, &err), &err);
+        CHECK(s.nv == m - 1 + 6 && s.nu == n, "patch grid %d x %d", s.nu, s.nv);
+        CHECK(info.polar[0] && info.polar[1], "both ends recognised as polar");
+        double d = sphere_dist(&s, c, R);
+        worst_d = fmax(worst_d, d);
+        CHECK(d <= 1e-13, "trial %d: capped sphere off the sphere by %.3g", trial, d);
+        /* coefficients of eq. (14): south (2x, 2y, 1 - x^2 - y^2, 1 + x^2 + y^2), north z negated,
+         * then placed: q_k -> sum_l M_kl q_l */
+        for (int e = 0; e < 2; e++) {
+            double q0[4][4] = {{0, 2, 0, 0}, {0, 0, 2, 0}, {1, 0, 0, -1}, {1, 0, 0, 1}};
+            if (e)
+                q0[2][0] = -1, q0[2][3] = 1;
+            CHECK(fabs(info.vc[e] - (e ? 1 - v[m - 1] : v[0])) <= 1e-14, "v_c %g", info.vc[e]);
+            double dq = 0;
+            for (int k = 0; k < 4; k++)
+                for (int cc = 0; cc < 4; cc++) {
+                    double ex = 0;
+                    for (int l = 0; l < 4; l++)
+                        ex += M[4 * k + l] * q0[l][cc];
+                    dq = fmax(dq, fabs(info.q[e][k][cc] - ex));
+                }
+            worst_q = fmax(worst_q, dq);
+            CHECK(dq <= 1e-12, "trial %d %s: coefficients recovered to %.3g", trial, e ? "north" : "south", dq);
+            CHECK(info.residual[e] <= 1e-13, "sphere fit residual %.3g", info.residual[e]);
+        }
+        if (trial == 0) {
+            rg2t_seams g;
+            check_seams(&s, "sphere seams", 1e-12, 1e-10, &g);
+            for (int e = 0; e < 2; e++) {
+                pole_meas pm;
+                measure_pole(&s, e, 2 * R, &pm);
+                CHECK(pm.point <= 1e-15, "pole is one point: %.3g", pm.point);
+                CHECK(pm.normal <= 1e-10, "fan limit normals agree: %.3g rad", pm.normal);
+                CHECK(pm.flagged == pm.samples, "pole flagged normal-undefined %d/%d", pm.flagged, pm.samples);
+                double expect[3] = {0, 0, e ? 1.0 : -1.0};
+                CHECK(pt_angle3(pm.n, expect) <= 1e-12 || pt_angle3(pm.n, expect) >= M_PI - 1e-12,
+                      "limit normal is the axis");
+                print_pole(e ? "north" : "south", &pm);
+            }
+        }
+        rg2_surface_free(&s);
+        rg2_mesh_free(&mesh);
+    }
+    printf("  6 spheres: distance %.2e, coefficients %.2e\n", worst_d, worst_q);
+}
+
+/* A family-2 mesh (u circle, v polynomial): 4-tuple from the circle coefficients (C, S) and the
+ * blossoms B1 = blossom(v), B2 = blossom(v^2) at each row. */
+typedef void (*family2_fn)(double C, double S, double B1, double B2, const double *prm, double p[4]);
+
+static void family2_mesh(const double *alpha, int n, const double *knots, int nk, family2_fn fn,
+                         const double *prm, rg2_mesh *m)
+{
+    rg2_error err;
+    double cs[64];
+    int nv = nk - 2;
+    CHECK_OK(rg2_mesh_init(m, n, nv, 1, 0, &err), &err);
+    rg2_scalars_free(&m->su);
+    rg2_scalars_free(&m->sv);
+    CHECK_OK(rg2_scalars_from_angles(&m->su, alpha, n, 1, &err), &err);
+    CHECK_OK(rg2_scalars_from_knots(&m->sv, knots, nk, 0, &err), &err);
+    CHECK_OK(rg2_circle_coeffs(alpha, n, 1, 0.0, cs, &err), &err);
+    for (int j = 0; j < nv; j++) {
+        double bl[4];
+        rg2_blossom_monomials(knots[j], knots[j + 1], knots[j + 2], bl);
+        for (int i = 0; i < n; i++)
+            fn(cs[2 * i], cs[2 * i + 1], bl[1], bl[2], prm, rg2_mesh_at(m, i, j));
+    }
+}
+
+/* elliptic paraboloid (A v cu, B v su, v^2, 1): z = x^2 / A^2 + y^2 / B^2 */
+static void paraboloid_fn(double C, double S, double B1, double B2, const double *prm, double p[4])
+{
+    p[0] = prm[0] * B1 * C;
+    p[1] = prm[1] * B1 * S;
+    p[2] = B2;
+    p[3] = 1;
+}
+
+/* two-sheeted hyperboloid (2v cu, 2v su, 1 + v^2, 1 - v^2): z^2 - x^2 - y^2 = 1 */
+static void hyperboloid2_fn(double C, double S, double B1, double B2, const double *prm, double p[4])
+{
+    (void)prm;
+    p[0] = 2 * B1 * C;
+    p[1] = 2 * B1 * S;
+    p[2] = 1 + B2;
+    p[3] = 1 - B2;
+}
+
+/* Worst implicit residual |f| / |grad f| / scale over dense samples. */
+static double implicit_dist(const rg2_surface *s, int kind, const double *prm, double scale)
+{
+    double worst = 0;
+    for (int i = 0; i < s->nu; i++)
+        for (int j = 0; j < s->nv; j++)
+            for (int a = 0; a <= 8; a++)
+                for (int b = 0; b <= 8; b++) {
+                    rg2_eval e;
+                    rg2_patch_eval(rg2_surface_patch(s, i, j), a / 8.0, b / 8.0, 0, &e);
+                    double x = e.p[0], y = e.p[1], z = e.p[2], f, gx, gy, gz;
+                    if (kind == 0) {
+                        f = z - x * x / (prm[0] * prm[0]) - y * y / (prm[1] * prm[1]);
+                        gx = -2 * x / (prm[0] * prm[0]), gy = -2 * y / (prm[1] * prm[1]), gz = 1;
+                    } else {
+                        f = z * z - x * x - y * y - 1;
+                        gx = -2 * x, gy = -2 * y, gz = 2 * z;
+                    }
+                    worst = fmax(worst, fabs(f) / sqrt(gx * gx + gy * gy + gz * gz) / scale);
+                }
+    return worst;
+}
+
+/* Polar configurations of the paraboloid and the two-sheeted hyperboloid: symmetric knots
+ * t_{-1} = -t_1, t_0 = 0 collapse row 0 (blossom of v vanishes); the cap parameters read from
+ * the scalars (v_c = 0, the polynomial chart) make band + cap exact. The open far end gets a
+ * free-form cap. */
+static void quadric_caps(void)
+{
+    rg2t_rng r;
+    uint64_t seed = 1212;
+    rg2t_seed(&r, seed);
+    printf("paraboloid and two-sheeted hyperboloid polar configurations, seed %llu\n", (unsigned long long)seed);
+    for (int kind = 0; kind < 2; kind++) {
+        int n = rg2t_int(&r, 3, 7), m = rg2t_int(&r, 2, 5);
+        double alpha[16], t[16], knots[20];
+        pt_random_arcs(&r, n, alpha);
+        pt_random_knots(&r, m + 2, 0.0, kind ? 0.95 : 1.5, t);
+        knots[0] = -t[0];
+        knots[1] = 0;
+        for (int k = 0; k < m + 2; k++)
+            knots[k + 2] = t[k];
+        double prm[2] = {rg2t_uniform(&r, 0.7, 1.5), rg2t_uniform(&r, 0.7, 1.5)};
+        rg2_mesh mesh;
+        family2_mesh(alpha, n, knots, m + 4, kind ? hyperboloid2_fn : paraboloid_fn, prm, &mesh);
+        /* row 0 collapses to rounding; make it exact like a designer's polar point */
+        double pole[4];
+        memcpy(pole, rg2_mesh_at(&mesh, 0, 0), sizeof pole);
+        pole[0] = pole[1] = 0;
+        rg2_error err;
+        CHECK_OK(rg2_polar_set_point(&mesh, 0, pole, &err), &err);
+        CHECK(rg2_mesh_row_collapsed(&mesh, 0) && !rg2_mesh_row_collapsed(&mesh, m + 1), "row 0 is polar");
+        rg2_surface s;
+        rg2_cap_info info;
+        rg2_cap_opts o;
+        rg2_cap_opts_default(&o);
+        o.ends = RG2_CAP_SOUTH;
+        CHECK_OK(rg2_cap_build(&mesh, &o, &s, &info, &err), &err);
+        double scale = rg2t_surface_scale(&s);
+        double d = implicit_dist(&s, kind, prm, scale);
+        CHECK(info.polar[0] && info.vc[0] == 0.0, "%s: polar with v_c = %g", kind ? "hyperboloid" : "paraboloid",
+              info.vc[0]);
+        CHECK(d <= 1e-13, "%s: capped surface off by %.3g", kind ? "hyperboloid" : "paraboloid", d);
+        rg2t_seams g;
+        check_seams(&s, kind ? "hyperboloid cap seams" : "paraboloid cap seams", 1e-12, 1e-10, &g);
+        pole_meas pm;
+        measure_pole(&s, 0, scale, &pm);
+        CHECK(pm.point <= 1e-15 && pm.normal <= 1e-10, "pole point %.3g normal %.3g", pm.point, pm.normal);
+        printf("  %s: distance %.2e, fit residual %.2e\n", kind ? "hyperboloid" : "paraboloid", d, info.residual[0]);
+        rg2_surface_free(&s);
+        /* both ends: the far end is an open ring, capped free-form */
+        o.ends = RG2_CAP_SOUTH | RG2_CAP_NORTH;
+        CHECK_OK(rg2_cap_build(&mesh, &o, &s, &info, &err), &err);
+        CHECK(!info.polar[1], "far end is not polar");
+        check_seams(&s, kind ? "hyperboloid both caps" : "paraboloid both caps", 1e-11, 1e-8, &g);
+        measure_pole(&s, 1, rg2t_surface_scale(&s), &pm);
+        CHECK(pm.point <= 1e-14 && pm.normal <= 1e-10, "free-form pole point %.3g normal %.3g", pm.point,
+              pm.normal);
+        printf("  far free-form cap: L = %.4g, v_c = %.2g, fit residual %.2e\n", info.length[1], info.vc[1],
+               info.residual[1]);
+        print_pole("far", &pm);
+        rg2_surface_free(&s);
+        rg2_mesh_free(&mesh);
+    }
+}
+
+/* Free-form caps: perturbed polar sphere meshes (interior rows and polar points moved) and
+ * tubes from random closed rings; G2 seams (angle <= 1e-11, curvature <= 1e-8) and a smooth
+ * pole (one point, one limit normal; curvature spread shrinking towards the pole). */
+static void freeform_caps(void)
+{
+    rg2t_rng r;
+    uint64_t seed = 4242;
+    rg2t_seed(&r, seed);
+    printf("free-form caps, seed %llu\n", (unsigned long long)seed);
+    rg2t_seams worst = {0}, cb = {0};
+    double wpn = 0, wpp = 0;
+    for (int trial = 0; trial < 6; trial++) {
+        int tube = trial >= 3;
+        int n = rg2t_int(&r, 4, 8), m = rg2t_int(&r, 3, 6);
+        double alpha[16], v[16];
+        pt_random_arcs(&r, n, alpha);
+        rg2_mesh mesh;
+        rg2_error err;
+        if (!tube) {
+            pt_random_knots(&r, m, 0.0, 1.0, v);
+            CHECK_OK(rg2_polar_sphere_mesh(alpha, n, 0.0, v, m, NULL, &mesh, &err), &err);
+            for (int i = 0; i < n; i++)
+                for (int j = 1; j <= m; j++) {
+                    double *p = rg2_mesh_at(&mesh, i, j);
+                    for (int k = 0; k < 3; k++)
+                        p[k] += p[3] * rg2t_uniform(&r, -0.15, 0.15);
+                }
+            for (int e = 0; e < 2; e++) {
+                double p[4];
+                memcpy(p, rg2_mesh_at(&mesh, 0, e ? m + 1 : 0), sizeof p);
+                for (int k = 0; k < 3; k++)
+                    p[k] += rg2t_uniform(&r, -0.2, 0.2);
+                CHECK_OK(rg2_polar_set_point(&mesh, e, p, &err), &err);
+            }
+        } else {
+            double knots[20], cs[32];
+            pt_random_knots(&r, m + 4, 0.0, 4.0, knots);
+            CHECK_OK(rg2_mesh_init(&mesh, n, m + 2, 1, 0, &err), &err);
+            rg2_scalars_free(&mesh.su);
+            rg2_scalars_free(&mesh.sv);
+            CHECK_OK(rg2_scalars_from_angles(&mesh.su, alpha, n, 1, &err), &err);
+            CHECK_OK(rg2_scalars_from_knots(&mesh.sv, knots, m + 4, 0, &err), &err);
+            CHECK_OK(rg2_circle_coeffs(alpha, n, 1, 0.0, cs, &err), &err);
+            for (int i = 0; i < n; i++)
+                for (int j = 0; j < m + 2; j++) {
+                    double *p = rg2_mesh_at(&mesh, i, j), rad = rg2t_uniform(&r, 0.7, 1.3);
+                    double W = rg2t_uniform(&r, 0.9, 1.1);
+                    p[0] = W * (rad * cs[2 * i] + rg2t_uniform(&r, -0.1, 0.1));
+                    p[1] = W * (rad * cs[2 * i + 1] + rg2t_uniform(&r, -0.1, 0.1));
+                    p[2] = W * (knots[j + 1] + rg2t_uniform(&r, -0.2, 0.2));
+                    p[3] = W;
+                }
+        }
+        rg2_surface s;
+        rg2_cap_info info;
+        CHECK_OK(rg2_cap_build(&mesh, NULL, &s, &info, &err), &err);
+        rg2t_seams g;
+        char what[64];
+        snprintf(what, sizeof what, "%s %d", tube ? "tube" : "perturbed sphere", trial);
+        check_seams(&s, what, 1e-11, 1e-8, &g);
+        cap_body_seams(&s, &info, &cb);
+        worst.angle = fmax(worst.angle, g.angle);
+        worst.curv = fmax(worst.curv, g.curv);
+        worst.pos = fmax(worst.pos, g.pos);
+        double scale = rg2t_surface_scale(&s);
+        for (int e = 0; e < 2; e++) {
+            pole_meas pm;
+            measure_pole(&s, e, scale, &pm);
+            CHECK(pm.point <= 1e-14, "%s: pole is one point (%.3g)", what, pm.point);
+            CHECK(pm.normal <= 1e-10, "%s: fan limit normals agree to %.3g rad", what, pm.normal);
+            CHECK(pm.flagged == pm.samples, "%s: pole flagged %d/%d", what, pm.flagged, pm.samples);
+            /* C2 at the pole: the curvature spread over the fan shrinks like eps */
+            CHECK(pm.kspread[2] < 0.2 * pm.kspread[0] + 1e-6, "%s: curvature spread %.3g -> %.3g", what,
+                  pm.kspread[0], pm.kspread[2]);
+            CHECK(pm.nconv[2] < 0.2 * pm.nconv[0], "%s: normal converges %.3g -> %.3g", what, pm.nconv[0],
+                  pm.nconv[2]);
+            wpn = fmax(wpn, pm.normal);
+            wpp = fmax(wpp, pm.point);
+            if (trial == 0 || trial == 3)
+                print_pole(e ? "north" : "south", &pm);
+        }
+        printf("    L = %.4g / %.4g, v_c = %.3g / %.3g, fit residual %.2e / %.2e\n", info.length[0],
+               info.length[1], info.vc[0], info.vc[1], info.residual[0], info.residual[1]);
+        rg2_surface_free(&s);
+        rg2_mesh_free(&mesh);
+    }
+    printf("  free-form worst: position %.2e, normal angle %.2e rad, curvature %.2e rel; pole point %.2e, "
+           "pole normals %.2e rad\n",
+           worst.pos, worst.angle, worst.curv, wpp, wpn);
+    CHECK(cb.seams == 12 && cb.angle <= 1e-11 && cb.curv <= 1e-8 && cb.pos <= 1e-14,
+          "cap/body seams: %d, angle %.3g, curvature %.3g", cb.seams, cb.angle, cb.curv);
+    printf("  the 12 cap/body seams alone: position %.2e, normal angle %.2e rad, curvature %.2e rel, "
+           "parametric %.2e / %.2e\n",
+           cb.pos, cb.angle, cb.curv, cb.param1, cb.param2);
+}
+
+static void cap_errors(void)
+{
+    rg2_error err;
+    rg2_mesh m;
+    rg2_surface s;
+    double alpha[4] = {M_PI / 2, M_PI / 2, M_PI / 2, M_PI / 2}, v[3] = {0.2, 0.5, 0.8};
+    CHECK_OK(rg2_polar_sphere_mesh(alpha, 4, 0.0, v, 3, NULL, &m, &err), &err);
+    /* non-circle u scalars */
+    rg2_mesh b;
+    rg2_mesh_copy(&m, &b, &err);
+    for (int i = 0; i < 4; i++)
+        b.su.w[i] = 1.0, b.su.b[i] = 1.0, b.su.g[i] = 0.0;
+    CHECK(rg2_cap_build(&b, NULL, &s, NULL, &err) == RG2_EINCOMPATIBLE && strstr(err.msg, "circle"),
+          "non-circle u refused: %s", err.msg);
+    rg2_mesh_free(&b);
+    /* collapsed body: every row one point */
+    rg2_mesh_copy(&m, &b, &err);
+    for (int j = 0; j < b.nv; j++)
+        for (int i = 1; i < b.nu; i++)
+            memcpy(rg2_mesh_at(&b, i, j), rg2_mesh_at(&b, 0, j), 4 * sizeof(double));
+    CHECK(rg2_cap_build(&b, NULL, &s, NULL, &err) == RG2_EDOMAIN && strstr(err.msg, "collapsed"),
+          "collapsed body refused: %s", err.msg);
+    /* tiny ring: scale the body's x, y to 1e-13 of its height */
+    rg2_mesh_free(&b);
+    rg2_mesh_copy(&m, &b, &err);
+    for (int j = 0; j < b.nv; j++)
+        for (int i = 0; i < b.nu; i++)
+            rg2_mesh_at(&b, i, j)[0] *= 1e-13, rg2_mesh_at(&b, i, j)[1] *= 1e-13;
+    CHECK(rg2_cap_build(&b, NULL, &s, NULL, &err) == RG2_EDOMAIN && strstr(err.msg, "south"),
+          "too small ring refused: %s", err.msg);
+    rg2_mesh_free(&b);
+    /* open u (non-closed end) and closed v */
+    CHECK_OK(rg2_mesh_init(&b, 5, 5, 0, 0, &err), &err);
+    for (int k = 0; k < 25; k++)
+        b.p[4 * k + 3] = 1, b.p[4 * k] = k % 5, b.p[4 * k + 1] = k / 5;
+    CHECK(rg2_cap_build(&b, NULL, &s, NULL, &err) == RG2_EINVAL && strstr(err.msg, "open"),
+          "open ring refused: %s", err.msg);
+    rg2_mesh_free(&b);
+    CHECK_OK(rg2_mesh_init(&b, 4, 4, 1, 1, &err), &err);
+    CHECK(rg2_cap_build(&b, NULL, &s, NULL, &err) == RG2_EINVAL && strstr(err.msg, "closed"),
+          "closed v refused: %s", err.msg);
+    rg2_mesh_free(&b);
+    /* bad options */
+    rg2_cap_opts o;
+    rg2_cap_opts_default(&o);
+    o.samples = 1;
+    CHECK(rg2_cap_build(&m, &o, &s, NULL, &err) == RG2_EDOMAIN && strstr(err.msg, "samples"), "samples: %s",
+          err.msg);
+    rg2_cap_opts_default(&o);
+    o.length[1] = 1.0, o.vc[1] = 1.0;
+    CHECK(rg2_cap_build(&m, &o, &s, NULL, &err) == RG2_EDOMAIN && strstr(err.msg, "north"), "v_c: %s", err.msg);
+    rg2_cap_opts_default(&o);
+    o.ends = 0;
+    CHECK(rg2_cap_build(&m, &o, &s, NULL, &err) == RG2_EINVAL, "no ends: %s", err.msg);
+    CHECK(s.patch == NULL, "failed builds leave an empty surface");
+    rg2_mesh_free(&m);
+}
+
+/* The pole of end e of a surface whose end row is a collapsed edge (a cap), or NULL. */
+static int surface_pole(const rg2_surface *s, int e, double p[3])
+{
+    rg2_eval a, b;
+    int j = e ? s->nv - 1 : 0;
+    rg2_patch_eval(rg2_surface_patch(s, 0, j), 0.2, e ? 1.0 : 0.0, 0, &a);
+    rg2_patch_eval(rg2_surface_patch(s, s->nu / 2, j), 0.7, e ? 1.0 : 0.0, 0, &b);
+    memcpy(p, a.p, sizeof a.p);
+    return pt_dist3(a.p, b.p) <= 1e-14 * (1 + fabs(a.p[0]) + fabs(a.p[1]) + fabs(a.p[2]));
+}
+
+/* The example designs of Figs. 9-12 and 14: they build, every seam is G2, every cap has one
+ * pole point with one limit normal, they export (STEP, IGES, OBJ), and the figure-specific
+ * facts hold (exact spheres with poles where eq. 16 says, exact quadric caps at the vertices). */
+static void design_examples(void)
+{
+    static const char *const files[] = {"examples/fig9_polar_sphere.json", "examples/fig10_sphere_cylinder.json",
+                                        "examples/fig11_cube_tube.json",
+                                        "examples/fig12_paraboloid_hyperboloid.json", "examples/fig14_mobius.json",
+                                        "examples/fig15_saddle_caps.json"};
+    char dir[] = "/tmp/rg2_poles_XXXXXX";
+    CHECK(mkdtemp(dir) != NULL, "temporary directory");
+    printf("pole example designs:\n");
+    for (size_t f = 0; f < sizeof files / sizeof *files; f++) {
+        rg2_design *d = NULL;
+        rg2_error err;
+        CHECK_OK(rg2_design_load(files[f], &d, &err), &err);
+        if (!d)
+            continue;
+        for (int o = 0; o < rg2_design_num_surfaces(d); o++) {
+            const rg2_surface *s = rg2_design_surface(d, o);
+            double scale = rg2t_surface_scale(s);
+            rg2t_seams g;
+            rg2t_surface_seams(s, 10, &g);
+            CHECK(g.pos <= 1e-13 && g.angle <= 1e-11 && g.curv <= 1e-8, "%s %d: seams %.3g %.3g %.3g at %s",
+                  files[f], o, g.pos, g.angle, g.curv, g.where);
+            int poles = 0;
+            double pn = 0, pp = 0;
+            for (int e = 0; e < 2; e++) {
+                double p[3];
+                if (!surface_pole(s, e, p))
+                    continue;
+                poles++;
+                pole_meas pm;
+                measure_pole(s, e, scale, &pm);
+                CHECK(pm.point <= 1e-14 && pm.normal <= 1e-10, "%s %d: pole %.3g, normals %.3g", files[f], o,
+                      pm.point, pm.normal);
+                pn = fmax(pn, pm.normal);
+                pp = fmax(pp, pm.point);
+            }
+            char path[256];
+            static const char *const ext[] = {"step", "igs", "obj"};
+            for (int x = 0; x < 3; x++) {
+                snprintf(path, sizeof path, "%s/f%zu_%d.%s", dir, f, o, ext[x]);
+                rg2_export_opts eo;
+                rg2_export_opts_default(&eo);
+                CHECK_OK(rg2_export_file(s, 1, path, &eo, &err), &err);
+                FILE *fp = fopen(path, "rb");
+                long len = 0;
+                if (fp) {
+                    fseek(fp, 0, SEEK_END);
+                    len = ftell(fp);
+                    fclose(fp);
+                }
+                CHECK(len > 100, "%s written (%ld bytes)", path, len);
+                remove(path);
+            }
+            /* fairness guard: no crease anywhere (curvature relative to the size) */
+            double kmax = 0;
+            for (int q = 0; q < s->nu * s->nv; q++)
+                for (int a = 0; a <= 8; a++)
+                    for (int b = 0; b <= 8; b++) {
+                        rg2_eval ev;
+                        rg2_patch_eval(&s->patch[q], a / 8.0, b / 8.0, 2, &ev);
+                        if (!(ev.flags & RG2_EVAL_CURVATURE_UNDEFINED))
+                            kmax = fmax(kmax, fmax(fabs(ev.k1), fabs(ev.k2)));
+                    }
+            CHECK(kmax * scale <= 40, "%s %d: max |k| x size %.3g (a crease?)", files[f], o, kmax * scale);
+            printf("  %-44s %d: %4d patches, %d pole(s): point %.1e, normals %.1e rad; seams: normal %.1e rad, "
+                   "curvature %.1e rel; max |k| x size %.1f\n",
+                   files[f], o, s->nu * s->nv, poles, pp, pn, g.angle, g.curv, kmax * scale);
+        }
+        /* figure-specific facts */
+        if (f == 0) {
+            double c[3] = {2.5, 0, 0}; /* the capped sphere is shown beside the band */
+            double dd = sphere_dist(rg2_design_surface(d, 1), c, 1.0);
+            CHECK(dd <= 1e-13, "Fig. 9 capped sphere: %.3g", dd);
+        }
+        if (f == 3) {
+            double p[3], v0[3] = {0, 0, 0}, v1[3] = {0, 0, 2.0};
+            CHECK(surface_pole(rg2_design_surface(d, 0), 0, p) && pt_dist3(p, v0) <= 1e-14,
+                  "Fig. 12 bowl pole at the vertex");
+            CHECK(surface_pole(rg2_design_surface(d, 0), 1, p) && pt_dist3(p, v1) <= 1e-14,
+                  "Fig. 12 lid pole at the vertex (%g %g %g)", p[0], p[1], p[2]);
+        }
+        if (f == 4) {
+            double c[3] = {0, 0, 1}, R = 1.5, b = 0.5, B = 1 + b * b;
+            /* surface 2 is shown 8 to the right: poles requested at (1.2, 0, 0.1), (0, 0, 2.5) */
+            double ex[3][2][3] = {{{c[0] + R * 2 * b / B, 0, c[2] + R * (b * b - 1) / B},
+                                   {c[0] - R * 2 * b / B, 0, c[2] + R * (1 - b * b) / B}},
+                                  {{0}},
+                                  {{9.2, 0, 0.1}, {8, 0, 2.5}}};
+            for (int o = 0; o < 3; o += 2) {
+                const rg2_surface *s = rg2_design_surface(d, o);
+                double co[3] = {o ? 8.0 : 0.0, 0, 1};
+                double dd = sphere_dist(s, co, R);
+                CHECK(dd <= 1e-13, "Fig. 14 surface %d on the sphere: %.3g", o, dd);
+                for (int e = 0; e < 2; e++) {
+                    double p[3];
+                    CHECK(surface_pole(s, e, p) && pt_dist3(p, ex[o][e]) <= 1e-13,
+                          "Fig. 14 surface %d pole %d at (%g %g %g), found (%g %g %g)", o, e, ex[o][e][0],
+                          ex[o][e][1], ex[o][e][2], p[0], p[1], p[2]);
+                }
+            }
+        }
+        if (f == 5) /* Fig. 15: report the meridian curvature of the saddle caps (oscillation) */
+            for (int o = 0; o < 2; o++) {
+                const rg2_surface *s = rg2_design_surface(d, o);
+                int worst = 0;
+                double kmin = 0;
+                for (int i = 0; i < s->nu; i++) {
+                    int ch = 0;
+                    double prev = 0;
+                    for (int j = s->nv - 4; j < s->nv; j++)
+                        for (int t = 0; t <= 16; t++) {
+                            rg2_eval e;
+                            rg2_patch_eval(rg2_surface_patch(s, i, j), 0.0, t / 16.0, 2, &e);
+                            if (e.flags & RG2_EVAL_NORMAL_UNDEFINED)
+                                continue;
+                            double k = rg2_eval_normal_curvature(&e, 0, 1);
+                            kmin = fmin(kmin, k);
+                            if (fabs(k) > 1e-3) {
+                                ch += prev * k < 0;
+                                prev = k;
+                            }
+                        }
+                    worst = ch > worst ? ch : worst;
+                }
+                printf("  Fig. 15 %s: most sign changes of the meridian curvature along one meridian of the cap "
+                       "%d, strongest meridian curvature %.2f\n",
+                       o ? "4-saddle" : "saddle", worst, kmin);
+            }
+        rg2_design_free(d);
+    }
+    rmdir(dir);
+}
+
+/* A body with rational v-scalars (w != 1, g != 0): a half torus, transposed so that the tube
+ * circle is u and the open ring arc is v, capped at both ends (a bent sausage). */
+static void rational_body_caps(void)
+{
+    const char *json = "{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": 3, \"r\": 1}}, \"meshes\": {"
+                       "\"half\": {\"shape\": \"t\", \"u\": {\"arcs\": 6, \"from\": 0, \"to\": 180}, "
+                       "\"v\": {\"arcs\": 8}}, \"tube\": {\"transpose\": \"half\"}, \"capped\": {\"cap\": \"tube\"}}}";
+    rg2_design *d = NULL;
+    rg2_error err;
+    CHECK_OK(rg2_design_parse(json, strlen(json), "sausage", &d, &err), &err);
+    if (!d)
+        return;
+    const rg2_surface *s = rg2_design_surface(d, 0);
+    const rg2_mesh *m = rg2_design_mesh(d, 0);
+    double wmin = INFINITY, wmax = 0, gmax = 0;
+    for (int k = 0; k < rg2_scalars_num_w(&m->sv); k++)
+        wmin = fmin(wmin, m->sv.w[k]), wmax = fmax(wmax, m->sv.w[k]);
+    for (int k = 0; k < m->sv.n; k++)
+        gmax = fmax(gmax, fabs(m->sv.g[k]));
+    CHECK(wmax < 1 && gmax > 0.1, "the body's v is rational (w %.3g..%.3g, g up to %.3g)", wmin, wmax, gmax);
+    rg2t_seams g;
+    check_seams(s, "half torus capped", 1e-11, 1e-8, &g);
+    double scale = rg2t_surface_scale(s);
+    for (int e = 0; e < 2; e++) {
+        pole_meas pm;
+        measure_pole(s, e, scale, &pm);
+        CHECK(pm.point <= 1e-14 && pm.normal <= 1e-10 && pm.kspread[2] < 0.2 * pm.kspread[0],
+              "half torus pole %d: point %.3g, normals %.3g, curvature spread %.3g -> %.3g", e, pm.point, pm.normal,
+              pm.kspread[0], pm.kspread[2]);
+        if (!e)
+            print_pole("half torus south", &pm);
+    }
+    CHECK(rg2_surface_min_weight(s) > 0, "positive weights: %.3g", rg2_surface_min_weight(s));
+    rg2_design_free(d);
+}
+
+/* Ellipsoid polar configuration through the design format, Moebius-moved on its reference
+ * ellipsoid and capped: every patch (band and caps) on the ellipsoid. */
+static void ellipsoid_caps(void)
+{
+    const char *json = "{\"shapes\": {\"e\": {\"kind\": \"ellipsoid\", \"a\": 2, \"b\": 1.5, \"c\": 1, "
+                       "\"rotate\": {\"axis\": [1, 1, 0], \"degrees\": 30}, \"translate\": [1, 2, 3]}}, "
+                       "\"meshes\": {\"P\": {\"polar\": \"e\", \"u\": {\"arcs\": 7}, \"v\": {\"knots\": [0.1, 0.3, "
+                       "0.5, 0.7, 0.9]}}, \"M\": {\"mobius\": \"P\", \"sphere\": \"e\", \"b\": -0.4}, "
+                       "\"C\": {\"cap\": \"M\"}}}";
+    rg2_design *d = NULL;
+    rg2_error err;
+    CHECK_OK(rg2_design_parse(json, strlen(json), "ellipsoid", &d, &err), &err);
+    if (!d)
+        return;
+    const rg2_surface *s = rg2_design_surface(d, 0);
+    const rg2_shape *e = rg2_design_shape(d, 0);
+    double worst = 0, scale = rg2t_surface_scale(s);
+    int tagged = 0;
+    for (int k = 0; k < s->nu * s->nv; k++) {
+        tagged += s->tag[k] >= 0;
+        for (int a = 0; a <= 6; a++)
+            for (int b = 0; b <= 6; b++) {
+                rg2_eval ev;
+                rg2_patch_eval(&s->patch[k], a / 6.0, b / 6.0, 0, &ev);
+                double g[3], F = rg2_shape_implicit(e, ev.p, g);
+                worst = fmax(worst, fabs(F) / (sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]) * scale));
+            }
+    }
+    CHECK(worst <= 1e-13, "Moebius-moved capped ellipsoid off by %.3g", worst);
+    CHECK(tagged == s->nu * s->nv, "all %d patches tagged exact (%d)", s->nu * s->nv, tagged);
+    rg2t_seams g;
+    check_seams(s, "ellipsoid caps", 1e-11, 1e-9, &g);
+    printf("  capped ellipsoid (eq. 16, b = -0.4, on its reference ellipsoid): %d patches, distance %.2e\n",
+           s->nu * s->nv, worst);
+    rg2_design_free(d);
+}
+
+/* Design-file errors of the poles operations name the item. */
+static void design_errors(void)
+{
+    static const struct {
+        const char *json;
+        rg2_status code;
+        const char *msg;
+    } cases[] = {
+        {"{\"shapes\": {\"t\": {\"kind\": \"torus\"}}, \"meshes\": {\"P\": {\"polar\": \"t\", \"u\": {\"arcs\": 8},"
+         " \"v\": {\"knots\": [0.2, 0.5]}}}}",
+         RG2_EINVAL, "no polar configuration"},
+        {"{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 8},"
+         " \"v\": {\"knots\": [0.5, 0.2]}}}}",
+         RG2_EDOMAIN, "meshes.P"},
+        {"{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\", \"v\": {\"knots\": "
+         "[0.2, 0.5]}}, \"M\": {\"mobius\": \"P\", \"b\": 1, \"poles\": {}}}}",
+         RG2_EPARSE, "exactly one of 'b'"},
+        {"{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\", \"v\": {\"knots\": "
+         "[0.2, 0.5]}}, \"C\": {\"cap\": \"P\", \"ends\": \"top\"}}}",
+         RG2_EPARSE, "meshes.C.ends"},
+        {"{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {\"A\": {\"shape\": \"c\"}, \"E\": {\"edit\": "
+         "\"A\", \"points\": [{\"pole\": \"south\", \"move\": [0, 0, 1]}]}}}",
+         RG2_EINVAL, "not a polar point"},
+        {"{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {\"A\": {\"shape\": \"c\", \"u\": {\"arcs\": 4, "
+         "\"to\": 90}}, \"C\": {\"cap\": \"A\"}}}",
+         RG2_EINVAL, "closed ring"},
+        {"{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 3}, "
+         "\"v\": {\"knots\": [0.2, 0.5, 0.8]}}, \"M\": {\"mobius\": \"P\", \"poles\": {\"south\": [0, 0.999, "
+         "-0.0447101778], \"north\": [0, 1, 0]}}}}",
+         RG2_EWEIGHT, "through infinity"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+        rg2_design *d = NULL;
+        rg2_error err = {0};
+        rg2_status st = rg2_design_parse(cases[k].json, strlen(cases[k].json), "poles", &d, &err);
+        CHECK(st == cases[k].code && strstr(err.msg, cases[k].msg) && d == NULL,
+              "design error %zu: got %s '%s', expected %s with '%s'", k, rg2_status_str(st), err.msg,
+              rg2_status_str(cases[k].code), cases[k].msg);
+        rg2_design_free(d);
+    }
+}
+
+int main(void)
+{
+    sphere_caps();
+    quadric_caps();
+    freeform_caps();
+    cap_errors();
+    design_examples();
+    rational_body_caps();
+    ellipsoid_caps();
+    design_errors();
+    return rg2t_done("test_cap");
+}

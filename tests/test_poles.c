@@ -1,0 +1,339 @@
+/* test_poles.c -- polar configurations and Moebius pole placement: polar knots, the polar
+ * sphere mesh (collapsed rows, eq. 13 polar points, the band [v_1, v_m] reproduced exactly with
+ * its parameterization), Moebius maps (eq. 16 and general pole pairs) keeping the sphere exact
+ * with the poles where MATH.md section 7 says, and errors. */
+#include "poles_testutil.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void polar_knots(void)
+{
+    double v[3] = {0.25, 0.5, 0.8}, k[7];
+    rg2_error err;
+    CHECK_OK(rg2_polar_knots(v, 3, k, &err), &err);
+    CHECK(fabs(k[0] - 0.25 / (0.25 - 1)) < 1e-16 && k[1] == 0 && k[2] == 0.25 && k[4] == 0.8 && k[5] == 1 &&
+              fabs(k[6] - 1 / 0.8) < 1e-16,
+          "polar knot vector");
+    /* the blossoms of v and v^2 agree at both polar rows: x, y of the sphere vanish */
+    double b0[4], b1[4];
+    rg2_blossom_monomials(k[0], k[1], k[2], b0);
+    rg2_blossom_monomials(k[4], k[5], k[6], b1);
+    CHECK(fabs(b0[1] - b0[2]) < 1e-16 && fabs(b1[1] - b1[2]) < 1e-15, "rows collapse: %.3g %.3g", b0[1] - b0[2],
+          b1[1] - b1[2]);
+    double bad1[2] = {0.5, 0.4}, bad2[2] = {0.0, 0.5}, bad3[2] = {0.5, 1.0};
+    CHECK(rg2_polar_knots(bad1, 2, k, &err) == RG2_EDOMAIN && strstr(err.msg, "v_2"), "%s", err.msg);
+    CHECK(rg2_polar_knots(bad2, 2, k, &err) == RG2_EDOMAIN && strstr(err.msg, "v_1"), "%s", err.msg);
+    CHECK(rg2_polar_knots(bad3, 2, k, &err) == RG2_EDOMAIN && strstr(err.msg, "v_2"), "%s", err.msg);
+    CHECK(rg2_polar_knots(v, 1, k, &err) == RG2_EINVAL && strstr(err.msg, "at least 2"), "%s", err.msg);
+}
+
+/* Arc parameter map (MATH.md section 2): angle of local parameter t on arc [theta_a, +alpha]. */
+static double arc_angle(double theta_a, double alpha, double t)
+{
+    double be = 0.5 * alpha;
+    return theta_a + be + 2 * atan(tan(0.5 * be) * (2 * t - 1));
+}
+
+/* The band of the polar sphere mesh: collapsed rows with the eq. 13 points, exact sphere, the
+ * sphere's own parameterization on [v_1, v_m] (arc map in u, affine in v), and G2 seams. */
+static void polar_sphere_band(void)
+{
+    rg2t_rng r;
+    uint64_t seed = 1313;
+    rg2t_seed(&r, seed);
+    printf("polar sphere band, seed %llu\n", (unsigned long long)seed);
+    double wd = 0, wp = 0;
+    rg2t_seams worst = {0};
+    for (int trial = 0; trial < 8; trial++) {
+        int n = rg2t_int(&r, 3, 9), m = rg2t_int(&r, 2, 8);
+        double alpha[16], v[16], th0 = rg2t_uniform(&r, -1, 1);
+        pt_random_arcs(&r, n, alpha);
+        pt_random_knots(&r, m, 0.0, 1.0, v);
+        rg2_mesh mesh;
+        rg2_error err;
+        CHECK_OK(rg2_polar_sphere_mesh(alpha, n, th0, v, m, NULL, &mesh, &err), &err);
+        CHECK(mesh.nu == n && mesh.nv == m + 2, "mesh %d x %d", mesh.nu, mesh.nv);
+        for (int j = 0; j < m + 2; j++)
+            CHECK(rg2_mesh_row_collapsed(&mesh, j) == (j == 0 || j == m + 1), "row %d collapsed = %d", j,
+                  rg2_mesh_row_collapsed(&mesh, j));
+        double Zs = (3 - 3 * v[0] + 2 * v[0] * v[0]) / (3 * (v[0] - 1));
+        double Zn = (2 - v[m - 1] + 2 * v[m - 1] * v[m - 1]) / (3 * v[m - 1]);
+        const double *ps = rg2_mesh_at(&mesh, 1, 0), *pn = rg2_mesh_at(&mesh, 0, m + 1);
+        CHECK(ps[0] == 0 && ps[1] == 0 && fabs(ps[2] / ps[3] - Zs) < 1e-15, "south polar point");
+        CHECK(pn[0] == 0 && pn[1] == 0 && fabs(pn[2] / pn[3] - Zn) < 1e-15, "north polar point");
+        CHECK(fabs(mesh.sv.b[0] - (1 - v[0])) < 1e-15 && fabs(mesh.sv.b[m + 1] - 1 / v[m - 1]) < 1e-14,
+              "polar scalars b_0 = 1 - v_1, b_{m+1} = 1 / v_m");
+        rg2_surface s;
+        CHECK_OK(rg2_surface_build(&mesh, &s, &err), &err);
+        CHECK(s.nu == n && s.nv == m - 1, "band %d x %d patches", s.nu, s.nv);
+        double theta = th0;
+        for (int i = 0; i < n; i++) {
+            for (int j = 0; j < m - 1; j++)
+                for (int a = 0; a <= 6; a++)
+                    for (int b = 0; b <= 6; b++) {
+                        rg2_eval e;
+                        rg2_patch_eval(rg2_surface_patch(&s, i, j), a / 6.0, b / 6.0, 0, &e);
+                        double rr = sqrt(e.p[0] * e.p[0] + e.p[1] * e.p[1] + e.p[2] * e.p[2]);
+                        wd = fmax(wd, fabs(rr - 1));
+                        double th = arc_angle(theta, alpha[i], a / 6.0);
+                        double vv = v[j] + (v[j + 1] - v[j]) * b / 6.0;
+                        double W = 2 * vv * vv - 2 * vv + 1;
+                        double h[3] = {2 * vv * (1 - vv) * cos(th) / W, 2 * vv * (1 - vv) * sin(th) / W,
+                                       (2 * vv - 1) / W};
+                        wp = fmax(wp, pt_dist3(e.p, h));
+                    }
+            theta += alpha[i];
+        }
+        rg2t_seams g;
+        rg2t_surface_seams(&s, 8, &g);
+        worst.angle = fmax(worst.angle, g.angle);
+        worst.curv = fmax(worst.curv, g.curv);
+        worst.pos = fmax(worst.pos, g.pos);
+        CHECK(g.pos <= 1e-14 && g.angle <= 1e-12 && g.curv <= 1e-10, "band seams %.3g %.3g %.3g", g.pos, g.angle,
+              g.curv);
+        rg2_surface_free(&s);
+        rg2_mesh_free(&mesh);
+    }
+    CHECK(wd <= 1e-13, "band on the sphere: %.3g", wd);
+    CHECK(wp <= 1e-13, "band reproduces the parameterization: %.3g", wp);
+    printf("  8 bands: distance %.2e, parameterization %.2e, seams: position %.2e, normal %.2e rad, "
+           "curvature %.2e rel\n",
+           wd, wp, worst.pos, worst.angle, worst.curv);
+}
+
+/* Lorentz check: M^T J M = c J with J = diag(1, 1, 1, -1), c > 0 (maps the sphere to itself). */
+static double lorentz_defect(const double M[16])
+{
+    double J[4] = {1, 1, 1, -1}, c = 0, d = 0;
+    double T[4][4];
+    for (int a = 0; a < 4; a++)
+        for (int b = 0; b < 4; b++) {
+            double s = 0;
+            for (int k = 0; k < 4; k++)
+                s += M[4 * k + a] * J[k] * M[4 * k + b];
+            T[a][b] = s;
+        }
+    c = T[0][0];
+    for (int a = 0; a < 4; a++)
+        for (int b = 0; b < 4; b++)
+            d = fmax(d, fabs(T[a][b] - (a == b ? c * J[a] : 0)));
+    return c > 0 ? d / c : INFINITY;
+}
+
+static void apply(const double M[16], const double p[4], double q[4])
+{
+    for (int r = 0; r < 4; r++)
+        q[r] = M[4 * r] * p[0] + M[4 * r + 1] * p[1] + M[4 * r + 2] * p[2] + M[4 * r + 3] * p[3];
+}
+
+/* Worst distance from the sphere (center c, radius R) over a capped surface, and its poles. */
+static double capped_sphere(const rg2_mesh *mesh, const double c[3], double R, double pole[2][3],
+                            rg2t_seams *g)
+{
+    rg2_surface s;
+    rg2_error err;
+    rg2_cap_info info;
+    double worst = INFINITY;
+    CHECK_OK(rg2_cap_build(mesh, NULL, &s, &info, &err), &err);
+    if (!s.patch)
+        return worst;
+    worst = 0;
+    for (int i = 0; i < s.nu; i++)
+        for (int j = 0; j < s.nv; j++)
+            for (int a = 0; a <= 6; a++)
+                for (int b = 0; b <= 6; b++) {
+                    rg2_eval e;
+                    rg2_patch_eval(rg2_surface_patch(&s, i, j), a / 6.0, b / 6.0, 0, &e);
+                    worst = fmax(worst, fabs(pt_dist3(e.p, c) - R) / R);
+                }
+    for (int e = 0; e < 2; e++) {
+        rg2_eval ev;
+        rg2_patch_eval(rg2_surface_patch(&s, 0, e ? s.nv - 1 : 0), 0.3, e ? 1.0 : 0.0, 0, &ev);
+        memcpy(pole[e], ev.p, sizeof ev.p);
+        CHECK(pt_dist3(ev.p, info.pole[e]) <= 1e-14 * R, "info pole");
+    }
+    rg2t_surface_seams(&s, 8, g);
+    rg2_surface_free(&s);
+    return worst;
+}
+
+/* Eq. (16): the Moebius mesh is exact; its polar points and poles are where MATH.md says, and
+ * the band is the eq. (16) parameterization. */
+static void mobius_b(void)
+{
+    rg2t_rng r;
+    uint64_t seed = 1616;
+    rg2t_seed(&r, seed);
+    printf("Moebius pole placement (eq. 16), seed %llu\n", (unsigned long long)seed);
+    const double bs[5] = {0.0, 0.2, -0.5, 1.0, 3.0};
+    double wd = 0, wpole = 0, wpp = 0, wpar = 0, wl = 0;
+    for (int t = 0; t < 5; t++) {
+        double b = bs[t];
+        int n = rg2t_int(&r, 3, 8), m = rg2t_int(&r, 2, 6);
+        double alpha[16], v[16];
+        pt_random_arcs(&r, n, alpha);
+        pt_random_knots(&r, m, 0.0, 1.0, v);
+        rg2_mesh mesh;
+        rg2_error err;
+        CHECK_OK(rg2_polar_sphere_mesh(alpha, n, 0.0, v, m, NULL, &mesh, &err), &err);
+        double M[16];
+        rg2_mobius_matrix(b, NULL, M);
+        wl = fmax(wl, lorentz_defect(M));
+        double c0[3] = {0, 0, 0};
+        CHECK_OK(rg2_mesh_mobius(&mesh, c0, 1.0, M, &err), &err);
+        double Zs = (3 - 3 * v[0] + 2 * v[0] * v[0]) / (3 * (v[0] - 1));
+        double Zn = (2 - v[m - 1] + 2 * v[m - 1] * v[m - 1]) / (3 * v[m - 1]);
+        double B2 = 1 + b * b;
+        double es[3] = {-2 * b * Zs / B2, 0, (1 - b * b) * Zs / B2}, en[3] = {-2 * b * Zn / B2, 0, (1 - b * b) * Zn / B2};
+        for (int i = 0; i < n; i++) {
+            const double *ps = rg2_mesh_at(&mesh, i, 0), *pn = rg2_mesh_at(&mesh, i, m + 1);
+            double a[3] = {ps[0] / ps[3], ps[1] / ps[3], ps[2] / ps[3]}, c[3] = {pn[0] / pn[3], pn[1] / pn[3], pn[2] / pn[3]};
+            wpp = fmax(wpp, fmax(pt_dist3(a, es), pt_dist3(c, en)));
+        }
+        /* band against eq. (16) at the sphere's (u, v) */
+        rg2_surface band;
+        CHECK_OK(rg2_surface_build(&mesh, &band, &err), &err);
+        double theta = 0;
+        for (int i = 0; i < n; i++) {
+            for (int j = 0; j < m - 1; j++)
+                for (int a = 0; a <= 4; a++)
+                    for (int bb = 0; bb <= 4; bb++) {
+                        rg2_eval e;
+                        rg2_patch_eval(rg2_surface_patch(&band, i, j), a / 4.0, bb / 4.0, 0, &e);
+                        double th = arc_angle(theta, alpha[i], a / 4.0), cu = cos(th), su = sin(th);
+                        double vv = v[j] + (v[j + 1] - v[j]) * bb / 4.0, q = vv * (1 - vv);
+                        double h[4] = {2 * (b * (1 - 2 * vv) + (1 - b * b) * q * cu), 2 * (1 + b * b) * q * su,
+                                       (b * b - 1) * (1 - 2 * vv) + 4 * b * q * cu,
+                                       (1 + b * b) * (2 * vv * vv - 2 * vv + 1)};
+                        double x[3] = {h[0] / h[3], h[1] / h[3], h[2] / h[3]};
+                        wpar = fmax(wpar, pt_dist3(e.p, x));
+                    }
+            theta += alpha[i];
+        }
+        rg2_surface_free(&band);
+        double pole[2][3];
+        rg2t_seams g;
+        double d = capped_sphere(&mesh, c0, 1.0, pole, &g);
+        wd = fmax(wd, d);
+        CHECK(g.angle <= 1e-12 && g.curv <= 1e-10, "b = %g: seams %.3g %.3g", b, g.angle, g.curv);
+        double s_ex[3] = {2 * b / B2, 0, (b * b - 1) / B2}, n_ex[3] = {-2 * b / B2, 0, (1 - b * b) / B2};
+        wpole = fmax(wpole, fmax(pt_dist3(pole[0], s_ex), pt_dist3(pole[1], n_ex)));
+        rg2_mesh_free(&mesh);
+    }
+    CHECK(wd <= 1e-13, "Moebius spheres exact: %.3g", wd);
+    CHECK(wpole <= 1e-14, "poles at (2b, 0, b^2 - 1) / (1 + b^2) and (-2b, 0, 1 - b^2) / (1 + b^2): %.3g", wpole);
+    CHECK(wpp <= 1e-14, "polar points of eq. 16: %.3g", wpp);
+    CHECK(wpar <= 1e-13, "band is the eq. 16 parameterization: %.3g", wpar);
+    CHECK(wl <= 1e-15, "eq. 16 is a Lorentz map: %.3g", wl);
+    printf("  b in {0, 0.2, -0.5, 1, 3}: distance %.2e, poles %.2e, polar points %.2e, parameterization %.2e\n", wd,
+           wpole, wpp, wpar);
+}
+
+/* General pole pairs (not antipodal): a boost composed with a rotation; placed sphere. */
+static void mobius_general(void)
+{
+    rg2t_rng r;
+    uint64_t seed = 1717;
+    rg2t_seed(&r, seed);
+    printf("general Moebius pole placement, seed %llu\n", (unsigned long long)seed);
+    double wd = 0, wpole = 0, wl = 0;
+    for (int t = 0; t < 6; t++) {
+        double s[3], nn[3];
+        for (int k = 0; k < 3; k++)
+            s[k] = rg2t_uniform(&r, -1, 1), nn[k] = rg2t_uniform(&r, -1, 1);
+        if (t == 0)
+            for (int k = 0; k < 3; k++)
+                nn[k] = -s[k]; /* antipodal */
+        double ls = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]), ln = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+        for (int k = 0; k < 3; k++)
+            s[k] /= ls, nn[k] /= ln;
+        /* keep the poles >= 90 deg apart: a strong boost sends control points outside the
+         * sphere through infinity (tested in errors()) */
+        if (s[0] * nn[0] + s[1] * nn[1] + s[2] * nn[2] > 0.0) {
+            t--;
+            continue;
+        }
+        double M[16];
+        rg2_error err;
+        CHECK_OK(rg2_mobius_poles_matrix(s, nn, M, &err), &err);
+        wl = fmax(wl, lorentz_defect(M));
+        double S4[4] = {0, 0, -1, 1}, N4[4] = {0, 0, 1, 1}, a[4], b[4];
+        apply(M, S4, a);
+        apply(M, N4, b);
+        double as[3] = {a[0] / a[3], a[1] / a[3], a[2] / a[3]}, bn[3] = {b[0] / b[3], b[1] / b[3], b[2] / b[3]};
+        CHECK(pt_dist3(as, s) <= 1e-14 && pt_dist3(bn, nn) <= 1e-14, "poles mapped: %.3g %.3g", pt_dist3(as, s), pt_dist3(bn, nn));
+        /* placed sphere: center c, radius R */
+        double c[3] = {rg2t_uniform(&r, -1, 1), rg2t_uniform(&r, -1, 1), rg2t_uniform(&r, -1, 1)}, R = rg2t_uniform(&r, 0.5, 2);
+        double P[16] = {R, 0, 0, c[0], 0, R, 0, c[1], 0, 0, R, c[2], 0, 0, 0, 1};
+        int n = rg2t_int(&r, 6, 9), m = rg2t_int(&r, 3, 6);
+        double alpha[16], v[16];
+        pt_random_arcs(&r, n, alpha);
+        pt_random_knots(&r, m, 0.0, 1.0, v);
+        rg2_mesh mesh;
+        CHECK_OK(rg2_polar_sphere_mesh(alpha, n, 0.0, v, m, P, &mesh, &err), &err);
+        rg2_status st = rg2_mesh_mobius(&mesh, c, R, M, &err);
+        CHECK(st == RG2_OK, "general Moebius on mesh: %s", err.msg);
+        if (st == RG2_OK) {
+            double pole[2][3];
+            rg2t_seams g;
+            double d = capped_sphere(&mesh, c, R, pole, &g);
+            wd = fmax(wd, d);
+            CHECK(g.angle <= 1e-12 && g.curv <= 1e-9, "general Moebius seams %.3g %.3g at %s (trial %d)", g.angle,
+                  g.curv, g.where, t);
+            double ps[3], pn[3];
+            for (int k = 0; k < 3; k++)
+                ps[k] = c[k] + R * s[k], pn[k] = c[k] + R * nn[k];
+            wpole = fmax(wpole, fmax(pt_dist3(pole[0], ps), pt_dist3(pole[1], pn)) / R);
+        }
+        rg2_mesh_free(&mesh);
+    }
+    CHECK(wd <= 1e-13, "general Moebius spheres exact: %.3g", wd);
+    CHECK(wpole <= 1e-13, "poles at the requested points: %.3g", wpole);
+    CHECK(wl <= 1e-13, "Lorentz maps: %.3g", wl);
+    printf("  6 pole pairs (1 antipodal): distance %.2e, poles %.2e, Lorentz defect %.2e\n", wd, wpole, wl);
+}
+
+static void errors(void)
+{
+    rg2_error err;
+    double s[3] = {0, 0, -1}, nb[3] = {0, 0, 1.1}, M[16];
+    CHECK(rg2_mobius_poles_matrix(s, nb, M, &err) == RG2_EDOMAIN && strstr(err.msg, "north"), "%s", err.msg);
+    CHECK(rg2_mobius_poles_matrix(s, s, M, &err) == RG2_EDOMAIN && strstr(err.msg, "coincide"), "%s", err.msg);
+    double alpha[3] = {2 * M_PI / 3, 2 * M_PI / 3, 2 * M_PI / 3}, v[2] = {0.3, 0.7};
+    rg2_mesh m;
+    CHECK_OK(rg2_polar_sphere_mesh(alpha, 3, 0.0, v, 2, NULL, &m, &err), &err);
+    /* a Lorentz map that sends a control point through infinity: boost towards the polar point */
+    double c0[3] = {0, 0, 0};
+    double sn[3] = {0, 0.999999, -sqrt(1 - 0.999999 * 0.999999)}, nn[3] = {0, 1, 0};
+    rg2_status st = rg2_mobius_poles_matrix(sn, nn, M, &err);
+    CHECK(st == RG2_OK, "nearly coincident poles accepted: %s", err.msg);
+    double before = m.p[3];
+    st = rg2_mesh_mobius(&m, c0, 1.0, M, &err);
+    CHECK(st == RG2_EWEIGHT && strstr(err.msg, "weight") && m.p[3] == before, "weight through zero: %s", err.msg);
+    CHECK(rg2_mesh_mobius(&m, c0, 0.0, M, &err) == RG2_EDOMAIN, "radius 0: %s", err.msg);
+    double p[4] = {0, 0, 1, 0};
+    CHECK(rg2_polar_set_point(&m, 0, p, &err) == RG2_EWEIGHT, "polar weight 0: %s", err.msg);
+    CHECK(rg2_polar_set_point(&m, 2, p, &err) == RG2_EINVAL, "end 2: %s", err.msg);
+    p[3] = 2;
+    CHECK_OK(rg2_polar_set_point(&m, 1, p, &err), &err);
+    CHECK(rg2_mesh_row_collapsed(&m, m.nv - 1) && rg2_mesh_at(&m, 2, m.nv - 1)[2] == 1, "whole row moved");
+    double bad[2] = {0.7, 0.3};
+    rg2_mesh b;
+    CHECK(rg2_polar_sphere_mesh(alpha, 3, 0.0, bad, 2, NULL, &b, &err) == RG2_EDOMAIN, "knots: %s", err.msg);
+    double a2[3] = {1, 1, 1};
+    CHECK(rg2_polar_sphere_mesh(a2, 3, 0.0, v, 2, NULL, &b, &err) == RG2_EDOMAIN && strstr(err.msg, "2 pi"),
+          "arcs: %s", err.msg);
+    rg2_mesh_free(&m);
+}
+
+int main(void)
+{
+    polar_knots();
+    polar_sphere_band();
+    mobius_b();
+    mobius_general();
+    errors();
+    return rg2t_done("test_poles");
+}
