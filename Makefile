@@ -5,6 +5,7 @@
 #   make check-memory  the rg2 command under valgrind on every example and bad input (make test runs it)
 #   make fuzz   build the libFuzzer harnesses (clang) into build-fuzz/ and run each FUZZ_SECONDS
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+MAKEFLAGS += --no-print-directory
 DESIGN ?= examples/torus_sphere.json
 FUZZ_SECONDS ?= 60
 
@@ -15,7 +16,7 @@ all: build
 build:
 	@scripts/deps.sh base
 	@cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DRG2_BUILD_TESTS=OFF >/dev/null
-	@cmake --build build -j$(JOBS)
+	@cmake --build build -j$(JOBS) | grep -E "warning|error|Linking" || true
 
 run: build
 	@mkdir -p out

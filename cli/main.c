@@ -5,15 +5,15 @@
 #include <string.h>
 
 static const rg2_cli_command commands[] = {
-    {"curve", "print the exact Bezier segments of a circle or a control polygon", rg2_cmd_curve},
-    {"demo", "print a circle's Bezier form and a torus surface summary", rg2_cmd_demo},
     {"build", "build a design file into surfaces and write them (STEP, IGES, ...)", rg2_cmd_build},
+    {"check", "report exactness and G0/G1/G2 gaps of a design; fail on a broken promise", rg2_cmd_check},
+    {"render", "render a design as a PNG: shaded, curvature maps, zebra stripes", rg2_cmd_render},
     {"info", "show a design's meshes, patch counts, exact pieces and transitions", rg2_cmd_info},
     {"mesh", "write a design's control mesh (d, W, scalars) as JSON", rg2_cmd_mesh},
     {"shapes", "list the exact basic shapes with their parameters", rg2_cmd_shapes},
     {"shape", "build an exact shape or a bi-cubic NURBS into patches", rg2_cmd_shape},
-    {"render", "render a design as a PNG: shaded, curvature maps, zebra stripes", rg2_cmd_render},
-    {"check", "report exactness and G0/G1/G2 gaps of a design; fail on a broken promise", rg2_cmd_check},
+    {"curve", "print the exact Bezier segments of a circle or a control polygon", rg2_cmd_curve},
+    {"demo", "print a circle's Bezier form and a torus surface summary", rg2_cmd_demo},
 };
 
 static void usage(FILE *f)

@@ -4,12 +4,14 @@
 
 #include <string.h>
 
-void rg2_patch_eval_h(const rg2_patch *P, double u, double v, double out[6][4])
+/* Homogeneous values up to `order` (rows 0; 0-2; 0-5 of out), v-sums first. */
+static void eval_h(const rg2_patch *P, double u, double v, int order, double out[6][4])
 {
     double Bu[4], Du[4], DDu[4], Bv[4], Dv[4], DDv[4];
     rg2__bern3(u, Bu, Du, DDu);
     rg2__bern3(v, Bv, Dv, DDv);
-    memset(out, 0, sizeof(double[6][4]));
+    int rows = order < 1 ? 1 : order < 2 ? 3 : 6;
+    memset(out, 0, sizeof(double[4]) * (size_t)rows);
     for (int r = 0; r < 4; r++) {
         /* column sums over s first: value, d/dv, d2/dv2 */
         double c0[4] = {0}, c1[4] = {0}, c2[4] = {0};
@@ -20,15 +22,27 @@ void rg2_patch_eval_h(const rg2_patch *P, double u, double v, double out[6][4])
                 c1[k] += h * Dv[s];
                 c2[k] += h * DDv[s];
             }
-        for (int k = 0; k < 4; k++) {
+        for (int k = 0; k < 4; k++)
             out[0][k] += Bu[r] * c0[k];
+        if (rows < 3)
+            continue;
+        for (int k = 0; k < 4; k++) {
             out[1][k] += Du[r] * c0[k];
             out[2][k] += Bu[r] * c1[k];
+        }
+        if (rows < 6)
+            continue;
+        for (int k = 0; k < 4; k++) {
             out[3][k] += DDu[r] * c0[k];
             out[4][k] += Du[r] * c1[k];
             out[5][k] += Bu[r] * c2[k];
         }
     }
+}
+
+void rg2_patch_eval_h(const rg2_patch *P, double u, double v, double out[6][4])
+{
+    eval_h(P, u, v, 2, out);
 }
 
 static void cross3(const double a[3], const double b[3], double c[3])
@@ -47,7 +61,7 @@ void rg2_patch_eval(const rg2_patch *P, double u, double v, int order, rg2_eval 
 {
     memset(e, 0, sizeof *e);
     double H[6][4];
-    rg2_patch_eval_h(P, u, v, H);
+    eval_h(P, u, v, order, H);
     double W = H[0][3];
     if (!(W > 0.0))
         e->flags |= RG2_EVAL_WEIGHT_NONPOSITIVE;

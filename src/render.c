@@ -8,7 +8,8 @@
  *      triangles are rasterised into a z-buffer that stores (surface, patch, u, v).
  *   3. Exactness: per pixel, Newton on the exact patch moves (u, v) until the exact point lies
  *      on the pixel's centre ray (two residuals orthogonal to the ray); shading, H, K and the
- *      stripe phase are evaluated there with rg2_patch_eval (order 2).
+ *      stripe phase are evaluated there with rg2_patch_eval (order 2). The sampling for
+ *      the view and the z-buffer uses the grid evaluator (rg2_patch_grid).
  *   4. Colour: per-pixel, then overlays (boundaries, silhouettes, mesh, colour bar).
  *   Threads: the grid sampling and the per-pixel work are split by patch / by row, the
  *   rasteriser by bands of rows; no result depends on the thread count.
@@ -112,14 +113,15 @@ static rg2_status scene_points(const rg2_surface *surfs, int n, const rg2_mesh *
         return rg2__fail(err, RG2_ENOMEM, "render: out of memory for %zu view samples", cap);
     for (int s = 0; s < n; s++) {
         size_t np = (size_t)surfs[s].nu * (size_t)surfs[s].nv;
-        for (size_t k = 0; k < np; k++)
-            for (int a = 0; a <= S; a++)
-                for (int b = 0; b <= S; b++) {
-                    rg2_eval e;
-                    rg2_patch_eval(&surfs[s].patch[k], (double)a / S, (double)b / S, 0, &e);
-                    if (isfinite(e.p[0]) && isfinite(e.p[1]) && isfinite(e.p[2]))
-                        memcpy(P + 3 * m++, e.p, sizeof e.p);
-                }
+        for (size_t k = 0; k < np; k++) {
+            double g[3 * (S + 1) * (S + 1)];
+            rg2_grid_out go = {.pos = g};
+            if (rg2_patch_grid(&surfs[s].patch[k], S + 1, S + 1, &go, NULL) != RG2_OK)
+                continue;
+            for (int q = 0; q < (S + 1) * (S + 1); q++)
+                if (isfinite(g[3 * q]) && isfinite(g[3 * q + 1]) && isfinite(g[3 * q + 2]))
+                    memcpy(P + 3 * m++, g + 3 * q, 3 * sizeof *g);
+        }
         if (with_mesh) {
             const rg2_mesh *me = &meshes[s];
             for (int i = 0; i < me->nu; i++)
@@ -349,17 +351,26 @@ static rg2_status rasterise(const rg2_surface *surfs, int n, const camera *c, zc
         for (int q = 0; q < m; q++) {
             int A = Nu[q], B = Nv[q];
             const rg2_patch *P = &surfs[ps[q]].patch[pk[q]];
+            /* positions by the grid evaluator (one Bernstein table per patch), per point as a
+             * fallback if its buffer cannot be had */
+            double *g = malloc(sizeof(double) * 3 * (size_t)(A + 1) * (size_t)(B + 1));
+            rg2_grid_out go = {.pos = g};
+            int have_grid = g && rg2_patch_grid(P, A + 1, B + 1, &go, NULL) == RG2_OK;
             for (int a = 0; a <= A; a++)
                 for (int b = 0; b <= B; b++) {
-                    rg2_eval e;
-                    rg2_patch_eval(P, (double)a / A, (double)b / B, 0, &e);
-                    vtx *t = &verts[off[q] + (size_t)a * (B + 1) + b];
+                    double pt[3];
+                    size_t idx = (size_t)a * (B + 1) + b;
+                    if (have_grid)
+                        memcpy(pt, g + 3 * idx, sizeof pt);
+                    else
+                        rg2_patch_point(P, (double)a / A, (double)b / B, pt);
+                    vtx *t = &verts[off[q] + idx];
                     double sx = 0, sy = 0;
-                    t->z = (isfinite(e.p[0]) && isfinite(e.p[1]) && isfinite(e.p[2])) ? project(c, e.p, &sx, &sy)
-                                                                                      : -1.0;
+                    t->z = (isfinite(pt[0]) && isfinite(pt[1]) && isfinite(pt[2])) ? project(c, pt, &sx, &sy) : -1.0;
                     t->sx = (float)sx;
                     t->sy = (float)sy;
                 }
+            free(g);
         }
         /* bands of rows: each pixel is written by one thread, triangles in a fixed order */
         int bands = nt > 1 ? 4 * nt : 1, h = c->h;

@@ -77,10 +77,29 @@ static void degenerate_point(const rg2_patch *P, double u, double v, int side, i
 /*
  * Per-patch sampling: (d + 1)^2 points at u = a / d, v = b / d, stored at a * (d + 1) + b.
  * `collapsed` has bit k set when side k (0 v=0, 1 u=1, 2 v=1, 3 u=0) is collapsed.
- * This is the only place that evaluates the surface (the grid evaluator replaces it).
+ * This is the only place that evaluates the surface: the grid evaluator (rg2_patch_grid,
+ * grid.c) for every point, then the points on collapsed sides again by rg2_patch_eval and
+ * degenerate_point. `scratch` holds 8 (d + 1)^2 doubles. Returns non-zero on failure.
  */
-static void sample_patch(const rg2_patch *P, int d, int curvature, unsigned collapsed, tess_sample *out)
+static int sample_patch(const rg2_patch *P, int d, int curvature, unsigned collapsed, double *scratch,
+                        tess_sample *out)
 {
+    size_t np = (size_t)(d + 1) * (size_t)(d + 1);
+    rg2_grid_out go = {.pos = scratch, .normal = scratch + 3 * np};
+    if (curvature) {
+        go.K = scratch + 6 * np;
+        go.H = scratch + 7 * np;
+    }
+    if (rg2_patch_grid(P, d + 1, d + 1, &go, NULL))
+        return 1;
+    for (size_t k = 0; k < np; k++) {
+        memcpy(out[k].p, go.pos + 3 * k, sizeof out[k].p);
+        memcpy(out[k].n, go.normal + 3 * k, sizeof out[k].n);
+        out[k].K = curvature ? go.K[k] : 0.0;
+        out[k].H = curvature ? go.H[k] : 0.0;
+    }
+    if (!collapsed)
+        return 0;
     for (int a = 0; a <= d; a++) {
         double u = a == d ? 1.0 : (double)a / d;
         for (int b = 0; b <= d; b++) {
@@ -94,17 +113,28 @@ static void sample_patch(const rg2_patch *P, int d, int curvature, unsigned coll
                 side = 2;
             else if (a == 0 && (collapsed & 8u))
                 side = 3;
+            if (side < 0)
+                continue;
             rg2_eval e;
-            rg2_patch_eval(P, u, v, (curvature || side >= 0) ? 2 : 1, &e);
-            if (side >= 0)
-                degenerate_point(P, u, v, side, curvature, &e);
+            rg2_patch_eval(P, u, v, 2, &e);
+            degenerate_point(P, u, v, side, curvature, &e);
             tess_sample *o = &out[a * (d + 1) + b];
             memcpy(o->p, e.p, sizeof e.p);
             memcpy(o->n, e.n, sizeof e.n);
-            o->K = e.K;
-            o->H = e.H;
+            o->K = curvature ? e.K : 0.0;
+            o->H = curvature ? e.H : 0.0;
         }
     }
+    return 0;
+}
+
+static unsigned collapsed_sides(const rg2_patch *P, double tol)
+{
+    unsigned collapsed = 0;
+    for (int side = 0; side < 4; side++)
+        if (rg2__patch_side_collapsed(P, side, tol))
+            collapsed |= 1u << side;
+    return collapsed;
 }
 
 /* Global grid index of patch-grid point (I, J), folding the closing lines. */
@@ -163,20 +193,19 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
 #endif
     for (int p = 0; p < nu * nv; p++) {
         int i = p / nv, j = p % nv;
-        tess_sample *buf = malloc(sizeof(tess_sample) * (size_t)(d + 1) * (size_t)(d + 1));
-        if (!buf) {
+        size_t npp = (size_t)(d + 1) * (size_t)(d + 1);
+        tess_sample *buf = malloc(sizeof(tess_sample) * npp);
+        double *scratch = malloc(sizeof(double) * 8 * npp);
+        if (!buf || !scratch || sample_patch(rg2_surface_patch(s, i, j), d, curvature,
+                                             collapsed_sides(rg2_surface_patch(s, i, j), tol), scratch, buf)) {
+            free(buf);
+            free(scratch);
 #ifdef RG2_HAVE_OPENMP
 #pragma omp atomic write
 #endif
             failed = 1;
             continue;
         }
-        const rg2_patch *P = rg2_surface_patch(s, i, j);
-        unsigned collapsed = 0;
-        for (int side = 0; side < 4; side++)
-            if (rg2__patch_side_collapsed(P, side, tol))
-                collapsed |= 1u << side;
-        sample_patch(P, d, curvature, collapsed, buf);
         int a1 = (i == nu - 1 && !cu) ? d : d - 1, b1 = (j == nv - 1 && !cv) ? d : d - 1;
         for (int a = 0; a <= a1; a++)
             for (int b = 0; b <= b1; b++) {
@@ -185,6 +214,7 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
                 gpatch[k] = p;
             }
         free(buf);
+        free(scratch);
     }
     if (failed)
         goto done;

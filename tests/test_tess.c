@@ -1,6 +1,6 @@
 /* test_tess.c -- watertight tessellation: shared seam vertices, every edge in two triangles
- * on a closed torus, vertices and normals and curvatures on the exact torus, bit-exact
- * re-evaluation on an open random surface, and a pole without degenerate triangles. */
+ * on a closed torus, vertices and normals and curvatures on the exact torus, equal to
+ * (to 1e-14) re-evaluation on an open random surface, and a pole without degenerate triangles. */
 #include "export_fixtures.h"
 
 #include <stdlib.h>
@@ -123,14 +123,19 @@ static void random_mesh(void)
     int GU = s.nu * d + 1, GV = s.nv * d + 1;
     CHECK(t.n_vertices == GU * GV, "random: %d vertices, expected %d", t.n_vertices, GU * GV);
     CHECK(t.K == NULL && t.H == NULL, "random: curvature arrays without request");
-    int exact = 1;
+    /* vertices come from the grid evaluator (grid.c): equal to the independent per-point
+     * evaluation at their (u, v) to rounding (<= 1e-14 relative) */
+    double scale = rg2t_surface_scale(&s), dev_p = 0, dev_n = 0;
     for (int v = 0; v < t.n_vertices; v++) {
         rg2_eval e;
         rg2_patch_eval(&s.patch[t.patch[v]], t.uv[2 * v], t.uv[2 * v + 1], 1, &e);
-        if (memcmp(e.p, t.pos + 3 * v, sizeof e.p) || memcmp(e.n, t.normal + 3 * v, sizeof e.n))
-            exact = 0;
+        for (int k = 0; k < 3; k++) {
+            dev_p = fmax(dev_p, fabs(e.p[k] - t.pos[3 * v + k]) / scale);
+            dev_n = fmax(dev_n, fabs(e.n[k] - t.normal[3 * v + k]));
+        }
     }
-    CHECK(exact, "random: a vertex differs from the patch evaluation at its (u, v)");
+    CHECK(dev_p <= 1e-14 && dev_n <= 1e-14, "random: vertices differ from the patch evaluation at their (u, v): "
+          "position %.3g, normal %.3g", dev_p, dev_n);
     /* seam vertices: the neighbour patch's evaluation of the same seam point is within rounding */
     double gap = 0;
     for (int v = 0; v < t.n_vertices; v++) {
@@ -148,7 +153,7 @@ static void random_mesh(void)
     CHECK(once == 2 * (GU - 1) + 2 * (GV - 1), "random: %d boundary edges, expected %d", once, 2 * (GU - 1) + 2 * (GV - 1));
     CHECK(over == 0 && same == 0, "random: %d edges over-used, %d mis-oriented", over, same);
     check_orientation(&t, "random");
-    printf("random open %d x %d patches d=%d: %d vertices, bit-exact, seam gap %.1e\n", s.nu, s.nv, d, t.n_vertices, gap);
+    printf("random open %d x %d patches d=%d: %d vertices, = rg2_patch_eval to 1e-14, seam gap %.1e\n", s.nu, s.nv, d, t.n_vertices, gap);
     rg2_tess_free(&t);
     rg2_surface_free(&s);
 }

@@ -2,6 +2,7 @@
 #include "harness.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 int rg2t_passed = 0, rg2t_failed = 0;
@@ -151,4 +152,47 @@ void rg2t_surface_seams(const rg2_surface *s, int samples, rg2t_seams *o)
             }
         }
     }
+}
+
+rg2_status rg2t_torus(double R, double r, int nu, int nv, rg2_mesh *mesh, rg2_surface *out, rg2_error *err)
+{
+    rg2_mesh m = {0};
+    memset(out, 0, sizeof *out);
+    double *a = calloc((size_t)(nu + nv) * 3, sizeof(double));
+    if (!a)
+        return RG2_ENOMEM;
+    double *au = a, *av = a + nu, *csu = a + nu + nv, *csv = csu + 2 * nu;
+    for (int i = 0; i < nu; i++)
+        au[i] = 2 * M_PI / nu;
+    for (int j = 0; j < nv; j++)
+        av[j] = 2 * M_PI / nv;
+    rg2_status st = rg2_mesh_init(&m, nu, nv, 1, 1, err);
+    if (!st)
+        st = rg2_circle_coeffs(au, nu, 1, 0.0, csu, err);
+    if (!st)
+        st = rg2_circle_coeffs(av, nv, 1, 0.0, csv, err);
+    if (!st) {
+        rg2_scalars_free(&m.su);
+        rg2_scalars_free(&m.sv);
+        st = rg2_scalars_from_angles(&m.su, au, nu, 1, err);
+    }
+    if (!st)
+        st = rg2_scalars_from_angles(&m.sv, av, nv, 1, err);
+    if (!st) {
+        for (int i = 0; i < nu; i++)
+            for (int j = 0; j < nv; j++) {
+                double *p = rg2_mesh_at(&m, i, j);
+                p[0] = (R + r * csv[2 * j]) * csu[2 * i];
+                p[1] = (R + r * csv[2 * j]) * csu[2 * i + 1];
+                p[2] = r * csv[2 * j + 1];
+                p[3] = 1.0;
+            }
+        st = rg2_surface_build(&m, out, err);
+    }
+    free(a);
+    if (mesh && !st)
+        *mesh = m;
+    else
+        rg2_mesh_free(&m);
+    return st;
 }

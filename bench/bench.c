@@ -1,0 +1,922 @@
+/* bench.c -- rg2_bench: rg2 grid and per-point evaluation against SISL (s1421, s1506) and
+ * OpenCASCADE (Geom_BSplineSurface, GeomAdaptor_Surface, GeomLProp_SLProps) on the same
+ * surfaces in the same run, with interleaved repetitions and medians; the memory write ceiling;
+ * 1 vs 2 threads; construction time; peak memory. Every method's output is checked (the exact
+ * torus, or the independent evaluator rg2_patch_eval) so that a wrong fast path cannot win.
+ * Usage: rg2_bench [out.json] [--quick]
+ */
+#define _POSIX_C_SOURCE 200809L
+#include "bench.h"
+#include "harness.h"
+#include "rg2.h"
+
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <sisl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <time.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+static int quick = 0;            /* --quick: fewer repetitions (smoke test) */
+static const char *only = NULL;  /* --only PART: one of torus, merged, freeform, scaling, construction */
+
+static int want(const char *part) { return !only || !strcmp(only, part); }
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static int cmp_d(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(const double *v, int n)
+{
+    double *w = malloc(sizeof(double) * (size_t)n);
+    memcpy(w, v, sizeof(double) * (size_t)n);
+    qsort(w, (size_t)n, sizeof(double), cmp_d);
+    double m = n % 2 ? w[n / 2] : 0.5 * (w[n / 2 - 1] + w[n / 2]);
+    free(w);
+    return m;
+}
+
+static void *xmalloc(size_t bytes)
+{
+    void *p = malloc(bytes ? bytes : 1);
+    if (!p) {
+        fprintf(stderr, "rg2_bench: out of memory (%zu bytes)\n", bytes);
+        exit(1);
+    }
+    return p;
+}
+
+static long peak_rss_kb(void)
+{
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    return ru.ru_maxrss;
+}
+
+static void die_rg2(const char *what, const rg2_error *err)
+{
+    fprintf(stderr, "rg2_bench: %s: %s\n", what, err->msg);
+    exit(1);
+}
+
+/* ---- the memory write ceiling --------------------------------------------------------- */
+
+static volatile double sink;
+
+static double ceil_memset(void *buf, size_t bytes)
+{
+    double t = now();
+    memset(buf, 0x5a, bytes);
+    t = now() - t;
+    sink = ((double *)buf)[bytes / 16];
+    return t;
+}
+
+static double ceil_plain(double *buf, size_t bytes)
+{
+    size_t n = bytes / sizeof(double);
+    double t = now();
+    for (size_t i = 0; i < n; i++)
+        buf[i] = 1.25;
+    t = now() - t;
+    sink = buf[n / 2];
+    return t;
+}
+
+static double ceil_stream(double *buf, size_t bytes)
+{
+    size_t n = bytes / sizeof(double);
+    double t = now();
+#if defined(__SSE2__)
+    __m128d v = _mm_set1_pd(1.5);
+    size_t i = 0;
+    for (; i + 2 <= n; i += 2)
+        _mm_stream_pd(buf + i, v);
+    for (; i < n; i++)
+        buf[i] = 1.5;
+    _mm_sfence();
+#else
+    for (size_t i = 0; i < n; i++)
+        buf[i] = 1.5;
+#endif
+    t = now() - t;
+    sink = buf[n / 2];
+    return t;
+}
+
+/* Fastest of the three ways (each its own timing); buf is 64-byte aligned. */
+static double ceiling_time(double *buf, size_t bytes)
+{
+    double a = ceil_memset(buf, bytes), b = ceil_plain(buf, bytes), c = ceil_stream(buf, bytes);
+    return fmin(a, fmin(b, c));
+}
+
+/* ---- surfaces ---------------------------------------------------------------------------- */
+
+/* The B-spline (degree 3, triple interior knots) holding a patchwork exactly. */
+static void bspline_from(const rg2_surface *s, bspline *b)
+{
+    b->spans1 = s->nu;
+    b->spans2 = s->nv;
+    b->in1 = 3 * s->nu + 1;
+    b->in2 = 3 * s->nv + 1;
+    b->knots1 = xmalloc(sizeof(double) * (size_t)(b->in1 + 4));
+    b->knots2 = xmalloc(sizeof(double) * (size_t)(b->in2 + 4));
+    for (int k = 0; k < b->in1 + 4; k++)
+        b->knots1[k] = k < 4 ? 0.0 : k >= b->in1 ? s->nu : (double)((k - 1) / 3);
+    for (int k = 0; k < b->in2 + 4; k++)
+        b->knots2[k] = k < 4 ? 0.0 : k >= b->in2 ? s->nv : (double)((k - 1) / 3);
+    b->hcoef = xmalloc(sizeof(double) * 4 * (size_t)b->in1 * (size_t)b->in2);
+    for (int J = 0; J < b->in2; J++)
+        for (int I = 0; I < b->in1; I++) {
+            int i = I / 3 < s->nu ? I / 3 : s->nu - 1, j = J / 3 < s->nv ? J / 3 : s->nv - 1;
+            const rg2_patch *P = rg2_surface_patch(s, i, j);
+            memcpy(b->hcoef + ((size_t)J * b->in1 + I) * 4, P->h[I - 3 * i][J - 3 * j], sizeof(double) * 4);
+        }
+}
+
+static void bspline_free(bspline *b)
+{
+    free(b->knots1);
+    free(b->knots2);
+    free(b->hcoef);
+}
+
+/* A free-form open mesh of nu x nv control points: a smooth height field with random
+ * rational weights and random G2 scalars (fixed seed). */
+static void freeform_mesh(int nu, int nv, uint64_t seed, rg2_mesh *m)
+{
+    rg2_error err;
+    if (rg2_mesh_init(m, nu, nv, 0, 0, &err))
+        die_rg2("free-form mesh", &err);
+    rg2t_rng r;
+    rg2t_seed(&r, seed);
+    rg2_scalars *sc[2] = {&m->su, &m->sv};
+    for (int d = 0; d < 2; d++) {
+        for (int k = 0; k < rg2_scalars_num_w(sc[d]); k++)
+            sc[d]->w[k] = rg2t_uniform(&r, 0.8, 1.25);
+        for (int k = 0; k < sc[d]->n; k++) {
+            sc[d]->b[k] = rg2t_uniform(&r, 0.8, 1.25);
+            sc[d]->g[k] = rg2t_uniform(&r, -0.3, 0.3);
+        }
+    }
+    for (int i = 0; i < nu; i++)
+        for (int j = 0; j < nv; j++) {
+            double *p = rg2_mesh_at(m, i, j), W = rg2t_uniform(&r, 0.7, 1.4);
+            double x = i, y = j, z = 3.0 * sin(0.11 * i) * cos(0.07 * j) + rg2t_uniform(&r, -0.2, 0.2);
+            p[0] = W * x, p[1] = W * y, p[2] = W * z, p[3] = W;
+        }
+}
+
+/* A merged mesh built in code (no design example in main yet): u closed around the axis
+ * (8 arcs); v open: 6 rows of the outer half of a torus (R = 3, r = 1) followed by 6 rows of a
+ * cylinder of radius 3 rising from the torus top, the torus scalars continued by the uniform
+ * B-spline scalars (w = 1, b = 1, g = 0) of the cylinder rows. */
+#ifndef RG2_BENCH_DESIGN
+static void merged_surface(rg2_surface *out)
+{
+    const double R = 3.0, r = 1.0;
+    rg2_error err;
+    int nu = 8, nt = 6, nc = 6, nv = nt + nc;
+    double au[8], csu[16], at[7], cst[12];
+    for (int i = 0; i < nu; i++)
+        au[i] = 2 * M_PI / nu;
+    for (int k = 0; k < nt + 1; k++)
+        at[k] = M_PI / 6; /* 30 degree arcs starting at -90 degrees */
+    rg2_mesh m;
+    rg2_scalars st;
+    if (rg2_mesh_init(&m, nu, nv, 1, 0, &err) || rg2_circle_coeffs(au, nu, 1, 0.0, csu, &err) ||
+        rg2_circle_coeffs(at, nt + 1, 0, -M_PI / 2 - M_PI / 6, cst, &err) ||
+        rg2_scalars_from_angles(&st, at, nt + 1, 0, &err))
+        die_rg2("merged mesh", &err);
+    rg2_scalars_free(&m.su);
+    if (rg2_scalars_from_angles(&m.su, au, nu, 1, &err))
+        die_rg2("merged mesh", &err);
+    for (int k = 0; k < nt + 1; k++)
+        m.sv.w[k] = st.w[k];
+    for (int k = 0; k < nt; k++) {
+        m.sv.b[k] = st.b[k];
+        m.sv.g[k] = st.g[k];
+    }
+    for (int i = 0; i < nu; i++)
+        for (int j = 0; j < nv; j++) {
+            double *p = rg2_mesh_at(&m, i, j);
+            double rad = j < nt ? R + r * cst[2 * j] : R;
+            p[0] = rad * csu[2 * i];
+            p[1] = rad * csu[2 * i + 1];
+            p[2] = j < nt ? r * cst[2 * j + 1] : r + 0.6 * (j - nt + 1);
+            p[3] = 1.0;
+        }
+    if (rg2_surface_build(&m, out, &err))
+        die_rg2("merged surface", &err);
+    rg2_scalars_free(&st);
+    rg2_mesh_free(&m);
+}
+#endif
+
+/* ---- one benchmark case -------------------------------------------------------------- */
+
+typedef struct {
+    const char *name, *what;
+    rg2_surface s;
+    int torus; /* 1: check against the exact torus (R, r) */
+    double R, r, scale;
+    int n, reps;
+    size_t pts;
+    bspline b;
+    grid_params g;
+    SISLSurf *sisl;
+    occt_surf *occt;
+    int m1, m2;
+    double *x, *y;                           /* SISL grid parameters */
+    double *ref_pos, *ref_nrm, *ref_K, *ref_H; /* rg2_patch_eval, patch layout */
+    /* output buffers */
+    double *pos, *nrm, *K, *H, *eder, *snorm;
+} bcase;
+
+enum { LAYOUT_PATCH = 0, LAYOUT_SISL = 1, LAYOUT_NONE = 2 };
+
+typedef struct {
+    const double *pos, *nrm, *K, *H;
+    int pstride, layout;
+} result;
+
+typedef struct {
+    const char *name, *peer;
+    int level; /* 0 positions, 1 + unit normals, 2 + K and H */
+    double (*run)(bcase *c, result *res);
+} method;
+
+static double run_grid(bcase *c, int level, result *res)
+{
+    rg2_grid_out o = {.pos = c->pos};
+    if (level >= 1)
+        o.normal = c->nrm;
+    if (level >= 2)
+        o.K = c->K, o.H = c->H;
+    rg2_error err;
+    double t = now();
+    if (rg2_surface_grid(&c->s, c->n, c->n, 1, &o, &err))
+        die_rg2("rg2_surface_grid", &err);
+    t = now() - t;
+    *res = (result){c->pos, c->nrm, c->K, c->H, 3, LAYOUT_PATCH};
+    return t;
+}
+static double m_grid0(bcase *c, result *r) { return run_grid(c, 0, r); }
+static double m_grid1(bcase *c, result *r) { return run_grid(c, 1, r); }
+static double m_grid2(bcase *c, result *r) { return run_grid(c, 2, r); }
+
+/* Per-point loops over the patch layout. */
+#define FOR_POINTS(c)                                                                              \
+    for (int pi = 0, idx = 0; pi < (c)->s.nu; pi++)                                              \
+        for (int pj = 0; pj < (c)->s.nv; pj++)                                                   \
+            for (int a = 0; a < (c)->n; a++)                                                     \
+                for (int b = 0; b < (c)->n; b++, idx++)
+
+static double m_point0(bcase *c, result *res)
+{
+    double t = now();
+    FOR_POINTS(c)
+    rg2_patch_point(rg2_surface_patch(&c->s, pi, pj), c->g.t[a], c->g.t[b], c->pos + 3 * idx);
+    t = now() - t;
+    *res = (result){c->pos, NULL, NULL, NULL, 3, LAYOUT_PATCH};
+    return t;
+}
+
+static double m_point1(bcase *c, result *res)
+{
+    double t = now();
+    FOR_POINTS(c)
+    rg2_patch_point_normal(rg2_surface_patch(&c->s, pi, pj), c->g.t[a], c->g.t[b], c->pos + 3 * idx,
+                           c->nrm + 3 * idx);
+    t = now() - t;
+    *res = (result){c->pos, c->nrm, NULL, NULL, 3, LAYOUT_PATCH};
+    return t;
+}
+
+/* rg2_patch_eval order 2 at every point (the per-point method and the reference). */
+static void eval_all(const bcase *c, double *pos, double *nrm, double *K, double *H)
+{
+    FOR_POINTS(c)
+    {
+        rg2_eval e;
+        rg2_patch_eval(rg2_surface_patch(&c->s, pi, pj), c->g.t[a], c->g.t[b], 2, &e);
+        memcpy(pos + 3 * idx, e.p, sizeof e.p);
+        memcpy(nrm + 3 * idx, e.n, sizeof e.n);
+        K[idx] = e.K;
+        H[idx] = e.H;
+    }
+}
+
+static double m_point2(bcase *c, result *res)
+{
+    double t = now();
+    eval_all(c, c->pos, c->nrm, c->K, c->H);
+    t = now() - t;
+    *res = (result){c->pos, c->nrm, c->K, c->H, 3, LAYOUT_PATCH};
+    return t;
+}
+
+static void normalize3(const double *in, double *out)
+{
+    double l = sqrt(in[0] * in[0] + in[1] * in[1] + in[2] * in[2]);
+    double il = l > 0 ? 1.0 / l : 0.0;
+    out[0] = in[0] * il, out[1] = in[1] * il, out[2] = in[2] * il;
+}
+
+/* Seconds since t0; a SISL error status is reported (and the check will fail). */
+static double sisl_elapsed(const char *fn, int stat, double t0)
+{
+    double t = now() - t0;
+    if (stat < 0)
+        fprintf(stderr, "rg2_bench: %s status %d\n", fn, stat);
+    return t;
+}
+
+static double run_s1421(bcase *c, int ider, result *res)
+{
+    int lk1 = 0, lk2 = 0, stat = 0;
+    double der[9], nn[3];
+    double t = now();
+    FOR_POINTS(c)
+    {
+        double par[2] = {pi + c->g.t[a], pj + c->g.t[b]};
+        s1421(c->sisl, ider, par, &lk1, &lk2, der, nn, &stat);
+        memcpy(c->pos + 3 * idx, der, sizeof(double) * 3);
+        if (ider)
+            normalize3(nn, c->nrm + 3 * idx);
+    }
+    t = sisl_elapsed("s1421", stat, t);
+    *res = (result){c->pos, ider ? c->nrm : NULL, NULL, NULL, 3, LAYOUT_PATCH};
+    return t;
+}
+static double m_s1421_0(bcase *c, result *r) { return run_s1421(c, 0, r); }
+static double m_s1421_1(bcase *c, result *r) { return run_s1421(c, 1, r); }
+
+static double run_s1506(bcase *c, int ider, result *res)
+{
+    int stat = 0;
+    double t = now();
+    s1506(c->sisl, ider, c->m1, c->x, c->m2, c->y, c->eder, c->snorm, &stat);
+    if (ider) /* unit normals, as every other method delivers */
+        for (size_t i = 0; i < c->pts; i++)
+            normalize3(c->snorm + 3 * i, c->nrm + 3 * i);
+    t = sisl_elapsed("s1506", stat, t);
+    *res = (result){c->eder, ider ? c->nrm : NULL, NULL, NULL, ider ? 9 : 3, LAYOUT_SISL};
+    return t;
+}
+static double m_s1506_0(bcase *c, result *r) { return run_s1506(c, 0, r); }
+static double m_s1506_1(bcase *c, result *r) { return run_s1506(c, 1, r); }
+
+static double run_occt(bcase *c, occt_method meth, result *res)
+{
+    double t = now();
+    occt_eval(c->occt, meth, &c->g, c->pos, c->nrm, c->K, c->H);
+    t = now() - t;
+    int n1 = meth == OCCT_BSPLINE_D1 || meth == OCCT_ADAPTOR_D1 || meth == OCCT_SLPROPS;
+    int kh = meth == OCCT_SLPROPS;
+    *res = (result){c->pos, n1 ? c->nrm : NULL, kh ? c->K : NULL, kh ? c->H : NULL, 3, LAYOUT_PATCH};
+    return t;
+}
+static double m_bs_d0(bcase *c, result *r) { return run_occt(c, OCCT_BSPLINE_D0, r); }
+static double m_bs_d1(bcase *c, result *r) { return run_occt(c, OCCT_BSPLINE_D1, r); }
+static double m_ad_d0(bcase *c, result *r) { return run_occt(c, OCCT_ADAPTOR_D0, r); }
+static double m_ad_d1(bcase *c, result *r) { return run_occt(c, OCCT_ADAPTOR_D1, r); }
+static double m_slprops(bcase *c, result *r) { return run_occt(c, OCCT_SLPROPS, r); }
+
+static double run_ceiling(bcase *c, int level, result *res)
+{
+    *res = (result){NULL, NULL, NULL, NULL, 0, LAYOUT_NONE};
+    return ceiling_time(c->eder, c->pts * (level ? 48 : 24));
+}
+static double m_ceil0(bcase *c, result *r) { return run_ceiling(c, 0, r); }
+static double m_ceil1(bcase *c, result *r) { return run_ceiling(c, 1, r); }
+
+static const method methods[] = {
+    {"rg2 grid (rg2_surface_grid)", "rg2", 0, m_grid0},
+    {"rg2 grid (rg2_surface_grid)", "rg2", 1, m_grid1},
+    {"rg2 grid (rg2_surface_grid)", "rg2", 2, m_grid2},
+    {"rg2 per point (rg2_patch_point)", "rg2", 0, m_point0},
+    {"rg2 per point (rg2_patch_point_normal)", "rg2", 1, m_point1},
+    {"rg2 per point (rg2_patch_eval order 2)", "rg2", 2, m_point2},
+    {"SISL s1421 per point", "SISL", 0, m_s1421_0},
+    {"SISL s1421 per point", "SISL", 1, m_s1421_1},
+    {"SISL s1506 grid, whole surface", "SISL", 0, m_s1506_0},
+    {"SISL s1506 grid, whole surface", "SISL", 1, m_s1506_1},
+    {"OCCT Geom_BSplineSurface D0/D1", "OpenCASCADE", 0, m_bs_d0},
+    {"OCCT Geom_BSplineSurface D0/D1", "OpenCASCADE", 1, m_bs_d1},
+    {"OCCT GeomAdaptor_Surface D0/D1", "OpenCASCADE", 0, m_ad_d0},
+    {"OCCT GeomAdaptor_Surface D0/D1", "OpenCASCADE", 1, m_ad_d1},
+    {"OCCT GeomLProp_SLProps", "OpenCASCADE", 2, m_slprops},
+    {"write ceiling (memset/stores/streaming)", "memory", 0, m_ceil0},
+    {"write ceiling (memset/stores/streaming)", "memory", 1, m_ceil1},
+};
+enum {
+    M_GRID0, M_GRID1, M_GRID2, M_PT0, M_PT1, M_PT2, M_S1421_0, M_S1421_1, M_S1506_0, M_S1506_1,
+    M_BS0, M_BS1, M_AD0, M_AD1, M_SLP, M_CEIL0, M_CEIL1, N_METHODS
+};
+static const char *level_name[] = {"position", "position + unit normal", "+ K and H"};
+
+/* Map an output index of a layout to its patch-layout index. */
+static size_t to_patch_index(const bcase *c, int layout, size_t i)
+{
+    if (layout != LAYOUT_SISL)
+        return i;
+    size_t gi = i % (size_t)c->m1, gj = i / (size_t)c->m1;
+    size_t pi = gi / (size_t)c->n, a = gi % (size_t)c->n, pj = gj / (size_t)c->n, b = gj % (size_t)c->n;
+    return (((pi * (size_t)c->s.nv + pj) * (size_t)c->n + a) * (size_t)c->n) + b;
+}
+
+typedef struct {
+    double pos, nrm, K, H;
+    int ok;
+} check;
+
+/* Worst errors of a result: against the exact torus (implicit equation, exact normal and
+ * curvatures at the computed point), or against rg2_patch_eval. Normals compare with sign;
+ * H compares in absolute value (orientation conventions differ between libraries). */
+static check check_result(const bcase *c, int level, const result *r)
+{
+    check k = {0, 0, 0, 0, 1};
+    if (r->layout == LAYOUT_NONE)
+        return k;
+    for (size_t i = 0; i < c->pts; i++) {
+        const double *p = r->pos + (size_t)r->pstride * i;
+        const double *n = r->nrm ? r->nrm + 3 * i : NULL;
+        double ep[3], en[3], eK, eH;
+        if (c->torus) {
+            double rho = hypot(p[0], p[1]), q = rho - c->R;
+            double d = fabs(hypot(q, p[2]) - c->r);
+            k.pos = fmax(k.pos, d / c->scale);
+            double g[3] = {p[0] / rho * q, p[1] / rho * q, p[2]};
+            normalize3(g, en);
+            double cv = q / c->r;
+            eK = cv / (c->r * (c->R + c->r * cv));
+            eH = (c->R + 2 * c->r * cv) / (2 * c->r * (c->R + c->r * cv));
+            if (n && en[0] * n[0] + en[1] * n[1] + en[2] * n[2] < 0) /* torus normal orientation */
+                en[0] = -en[0], en[1] = -en[1], en[2] = -en[2];
+            (void)ep;
+        } else {
+            size_t j = to_patch_index(c, r->layout, i);
+            memcpy(ep, c->ref_pos + 3 * j, sizeof ep);
+            memcpy(en, c->ref_nrm + 3 * j, sizeof en);
+            eK = c->ref_K[j];
+            eH = c->ref_H[j];
+            double d[3] = {p[0] - ep[0], p[1] - ep[1], p[2] - ep[2]};
+            k.pos = fmax(k.pos, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / c->scale);
+        }
+        if (n && level >= 1) {
+            double d[3] = {n[0] - en[0], n[1] - en[1], n[2] - en[2]};
+            k.nrm = fmax(k.nrm, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+        }
+        if (r->K && level >= 2) {
+            double ks = fmax(fabs(eH) + sqrt(fabs(eH * eH - eK)), 1.0 / c->scale);
+            k.K = fmax(k.K, fabs(r->K[i] - eK) / (ks * ks));
+            k.H = fmax(k.H, fabs(fabs(r->H[i]) - fabs(eH)) / ks);
+        }
+    }
+    k.ok = k.pos <= 1e-11 && k.nrm <= 1e-8 && k.K <= 1e-7 && k.H <= 1e-7;
+    return k;
+}
+
+static void case_setup(bcase *c, int n, int reps)
+{
+    c->n = n;
+    c->reps = quick ? 3 : reps;
+    size_t np = (size_t)c->s.nu * (size_t)c->s.nv;
+    c->pts = np * (size_t)n * (size_t)n;
+    c->g = (grid_params){c->s.nu, c->s.nv, n, xmalloc(sizeof(double) * (size_t)n)};
+    for (int a = 0; a < n; a++)
+        c->g.t[a] = a == n - 1 ? 1.0 : (double)a / (n - 1);
+    bspline_from(&c->s, &c->b);
+    c->sisl = newSurf(c->b.in1, c->b.in2, 4, 4, c->b.knots1, c->b.knots2, c->b.hcoef, 2, 3, 1);
+    c->occt = occt_make(&c->b);
+    c->m1 = c->s.nu * n;
+    c->m2 = c->s.nv * n;
+    c->x = xmalloc(sizeof(double) * (size_t)c->m1);
+    c->y = xmalloc(sizeof(double) * (size_t)c->m2);
+    for (int i = 0; i < c->m1; i++)
+        c->x[i] = i / n + c->g.t[i % n];
+    for (int j = 0; j < c->m2; j++)
+        c->y[j] = j / n + c->g.t[j % n];
+    c->pos = xmalloc(c->pts * 3 * sizeof(double));
+    c->nrm = xmalloc(c->pts * 3 * sizeof(double));
+    c->K = xmalloc(c->pts * sizeof(double));
+    c->H = xmalloc(c->pts * sizeof(double));
+    c->eder = xmalloc(c->pts * 9 * sizeof(double));
+    c->snorm = xmalloc(c->pts * 3 * sizeof(double));
+    memset(c->pos, 0, c->pts * 3 * sizeof(double)); /* touch every page before timing */
+    memset(c->nrm, 0, c->pts * 3 * sizeof(double));
+    memset(c->eder, 0, c->pts * 9 * sizeof(double));
+    memset(c->snorm, 0, c->pts * 3 * sizeof(double));
+    if (!c->torus) { /* the independent evaluator as the reference */
+        c->ref_pos = xmalloc(c->pts * 3 * sizeof(double));
+        c->ref_nrm = xmalloc(c->pts * 3 * sizeof(double));
+        c->ref_K = xmalloc(c->pts * sizeof(double));
+        c->ref_H = xmalloc(c->pts * sizeof(double));
+        eval_all(c, c->ref_pos, c->ref_nrm, c->ref_K, c->ref_H);
+    }
+    if (c->scale == 0)
+        c->scale = rg2t_surface_scale(&c->s);
+}
+
+static void case_free(bcase *c)
+{
+    freeSurf(c->sisl);
+    occt_free(c->occt);
+    bspline_free(&c->b);
+    free(c->g.t);
+    free(c->x);
+    free(c->y);
+    free(c->pos), free(c->nrm), free(c->K), free(c->H), free(c->eder), free(c->snorm);
+    free(c->ref_pos), free(c->ref_nrm), free(c->ref_K), free(c->ref_H);
+    rg2_surface_free(&c->s);
+}
+
+/* Ratio pairs (a over b) with the targets (0: informative). */
+typedef struct {
+    int a, b;
+    double target;
+    const char *label;
+} pair;
+static const pair pairs[] = {
+    {M_GRID0, M_S1506_0, 25, "grid positions / SISL s1506"},
+    {M_GRID0, M_AD0, 60, "grid positions / GeomAdaptor D0"},
+    {M_GRID1, M_S1506_1, 30, "grid pos+normals / SISL s1506"},
+    {M_GRID1, M_AD1, 50, "grid pos+normals / GeomAdaptor D1"},
+    {M_GRID2, M_SLP, 50, "grid with K, H / GeomLProp_SLProps"},
+    {M_GRID0, M_S1421_0, 0, "grid positions / SISL s1421"},
+    {M_GRID0, M_BS0, 0, "grid positions / Geom_BSplineSurface D0"},
+    {M_GRID1, M_S1421_1, 0, "grid pos+normals / SISL s1421"},
+    {M_GRID1, M_BS1, 0, "grid pos+normals / Geom_BSplineSurface D1"},
+    {M_PT0, M_S1421_0, 0, "per point positions / SISL s1421"},
+    {M_PT0, M_AD0, 0, "per point positions / GeomAdaptor D0"},
+    {M_PT1, M_S1421_1, 0, "per point pos+normals / SISL s1421"},
+    {M_PT1, M_AD1, 0, "per point pos+normals / GeomAdaptor D1"},
+    {M_PT2, M_SLP, 0, "per point with K, H / GeomLProp_SLProps"},
+    {M_GRID0, M_CEIL0, 0, "grid positions / write ceiling"},
+    {M_GRID1, M_CEIL1, 0, "grid pos+normals / write ceiling"},
+};
+
+static cJSON *run_case(bcase *c)
+{
+    int nm = N_METHODS, reps = c->reps;
+    double *times = xmalloc(sizeof(double) * (size_t)(nm * reps));
+    check chk[N_METHODS];
+    printf("\n== %s: %s\n   %d x %d patches, %d x %d points per patch = %zu points, %d interleaved repetitions\n",
+           c->name, c->what, c->s.nu, c->s.nv, c->n, c->n, c->pts, reps);
+    fflush(stdout);
+    for (int rep = 0; rep < reps; rep++)
+        for (int k = 0; k < nm; k++) {
+            result r;
+            times[k * reps + rep] = methods[k].run(c, &r);
+            if (rep == 0)
+                chk[k] = check_result(c, methods[k].level, &r);
+        }
+    cJSON *jc = cJSON_CreateObject();
+    cJSON_AddStringToObject(jc, "name", c->name);
+    cJSON_AddStringToObject(jc, "surface", c->what);
+    cJSON_AddNumberToObject(jc, "patches", (double)c->s.nu * c->s.nv);
+    cJSON_AddNumberToObject(jc, "points_per_patch", (double)c->n * c->n);
+    cJSON_AddNumberToObject(jc, "points", (double)c->pts);
+    cJSON_AddNumberToObject(jc, "repetitions", reps);
+    cJSON_AddStringToObject(jc, "checked_against", c->torus ? "exact torus" : "rg2_patch_eval");
+    cJSON *jm = cJSON_AddArrayToObject(jc, "methods");
+    double mpts[N_METHODS];
+    printf("   %-42s %-24s %10s %10s  %-9s %-9s %-9s %s\n", "method", "output", "median ms", "M pts/s",
+           "pos err", "nrm err", "K,H err", "check");
+    for (int k = 0; k < nm; k++) {
+        double med = median(times + k * reps, reps);
+        mpts[k] = (double)c->pts / med / 1e6;
+        const check *q = &chk[k];
+        printf("   %-42s %-24s %10.3f %10.1f  %-9.1e %-9.1e %-9.1e %s\n", methods[k].name,
+               level_name[methods[k].level], med * 1e3, mpts[k], q->pos, q->nrm, fmax(q->K, q->H),
+               methods[k].peer[0] == 'm' ? "-" : q->ok ? "ok" : "WRONG");
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddStringToObject(o, "method", methods[k].name);
+        cJSON_AddStringToObject(o, "peer", methods[k].peer);
+        cJSON_AddStringToObject(o, "output", level_name[methods[k].level]);
+        cJSON_AddNumberToObject(o, "median_s", med);
+        cJSON_AddNumberToObject(o, "mpoints_per_s", mpts[k]);
+        cJSON_AddNumberToObject(o, "max_pos_err_rel", q->pos);
+        cJSON_AddNumberToObject(o, "max_normal_err", q->nrm);
+        cJSON_AddNumberToObject(o, "max_K_err_rel", q->K);
+        cJSON_AddNumberToObject(o, "max_H_err_rel", q->H);
+        cJSON_AddBoolToObject(o, "output_correct", q->ok);
+        cJSON_AddItemToArray(jm, o);
+    }
+    printf("   ratios (same run, medians, single thread):\n");
+    cJSON *jr = cJSON_AddArrayToObject(jc, "ratios");
+    for (size_t p = 0; p < sizeof pairs / sizeof pairs[0]; p++) {
+        double ratio = mpts[pairs[p].a] / mpts[pairs[p].b];
+        int valid = chk[pairs[p].a].ok && chk[pairs[p].b].ok;
+        printf("     %-44s %8.2fx", pairs[p].label, ratio);
+        /* the most any method writing the same bytes could reach: write ceiling / peer */
+        int ceil_m = pairs[p].a == M_GRID0 ? M_CEIL0 : pairs[p].a == M_GRID1 ? M_CEIL1 : -1;
+        double bound = ceil_m >= 0 && pairs[p].b != ceil_m ? mpts[ceil_m] / mpts[pairs[p].b] : 0;
+        if (pairs[p].target > 0)
+            printf("   target >= %gx: %-7s", pairs[p].target, !valid ? "INVALID" : ratio >= pairs[p].target ? "met" : "missed");
+        if (bound > 0)
+            printf("   (write ceiling allows %.1fx)", bound);
+        printf("\n");
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddStringToObject(o, "pair", pairs[p].label);
+        cJSON_AddNumberToObject(o, "ratio", ratio);
+        if (bound > 0)
+            cJSON_AddNumberToObject(o, "write_ceiling_bound", bound);
+        if (pairs[p].target > 0) {
+            cJSON_AddNumberToObject(o, "target", pairs[p].target);
+            cJSON_AddBoolToObject(o, "met", valid && ratio >= pairs[p].target);
+        }
+        cJSON_AddItemToArray(jr, o);
+    }
+    free(times);
+    return jc;
+}
+
+/* ---- 1 vs 2 threads; main-memory sizes ---------------------------------------------------- */
+
+static cJSON *threads_and_sizes(const rg2_surface *torus)
+{
+    cJSON *j = cJSON_CreateObject();
+    cJSON *jt = cJSON_AddArrayToObject(j, "threads");
+    int sizes[] = {32, 64, 256};
+    printf("\n== rg2 grid on the torus: 1 vs 2 threads (single calls alternating), and the write ceiling at "
+           "each output size\n");
+    printf("   %-9s %-24s %12s %12s %8s %8s %14s %10s\n", "per patch", "output", "1 thr Mpt/s", "2 thr Mpt/s",
+           "2t/1t", "(fastest)", "ceiling Mpt/s", "1t/ceil");
+    for (int si = 0; si < 3; si++) {
+        int n = sizes[si];
+        size_t pts = (size_t)torus->nu * torus->nv * n * n;
+        double *pos = xmalloc(pts * 24), *nrm = xmalloc(pts * 24), *K = xmalloc(pts * 8), *H = xmalloc(pts * 8);
+        double *cbuf = xmalloc(pts * 48);
+        memset(pos, 0, pts * 24), memset(nrm, 0, pts * 24), memset(K, 0, pts * 8), memset(H, 0, pts * 8);
+        memset(cbuf, 0, pts * 48);
+        int reps = quick ? 5 : n >= 256 ? 9 : 41;
+        for (int level = 0; level < 3; level++) {
+            rg2_grid_out o = {.pos = pos, .normal = level ? nrm : NULL, .K = level > 1 ? K : NULL,
+                              .H = level > 1 ? H : NULL};
+            double *t1 = xmalloc(sizeof(double) * (size_t)reps * 4), *t2 = t1 + reps, *tc = t2 + reps, *t3 = tc + reps;
+            double best[2] = {0, 0};
+            rg2_error err;
+            for (int rep = 0; rep < reps; rep++) { /* interleaved */
+                /* single calls, 1 and 2 threads alternating (a batch of 2-thread calls would
+                 * let an idle OpenMP worker spin on the core the caller needs) */
+                for (int th = 1; th <= 2; th++) {
+                    double t0 = now();
+                    if (rg2_surface_grid(torus, n, n, th, &o, &err))
+                        die_rg2("rg2_surface_grid", &err);
+                    double t = now() - t0;
+                    (th == 1 ? t1 : t2)[rep] = t;
+                    best[th - 1] = rep == 0 ? t : fmin(best[th - 1], t);
+                }
+            }
+            /* the ceiling in its own loop: between the grid calls it would let the OpenMP worker
+             * fall asleep, and every 2-thread call would then pay a wake-up (milliseconds when
+             * the machine is loaded); alternated with 1-thread grid calls for the same load */
+            for (int rep = 0; rep < reps; rep++) {
+                tc[rep] = ceiling_time(cbuf, pts * (level ? 48 : 24));
+                double t0 = now();
+                if (rg2_surface_grid(torus, n, n, 1, &o, &err))
+                    die_rg2("rg2_surface_grid", &err);
+                t3[rep] = now() - t0;
+            }
+            double m1 = pts / median(t1, reps) / 1e6, m2 = pts / median(t2, reps) / 1e6;
+            double mc = pts / median(tc, reps) / 1e6, m3 = pts / median(t3, reps) / 1e6;
+            double b1 = pts / best[0] / 1e6, b2 = pts / best[1] / 1e6; /* fastest single calls */
+            printf("   %4d^2    %-24s %12.1f %12.1f %7.2fx %7.2fx %14.1f %9.2f\n", n, level_name[level], m1, m2,
+                   m2 / m1, b2 / b1, level < 2 ? mc : NAN, level < 2 ? m3 / mc : NAN);
+            cJSON *o2 = cJSON_CreateObject();
+            cJSON_AddNumberToObject(o2, "points_per_patch_side", n);
+            cJSON_AddStringToObject(o2, "output", level_name[level]);
+            cJSON_AddNumberToObject(o2, "output_bytes", (double)pts * (level == 0 ? 24 : level == 1 ? 48 : 64));
+            cJSON_AddNumberToObject(o2, "mpoints_per_s_1_thread", m1);
+            cJSON_AddNumberToObject(o2, "mpoints_per_s_2_threads", m2);
+            cJSON_AddNumberToObject(o2, "speedup_2_threads", m2 / m1);
+            cJSON_AddNumberToObject(o2, "speedup_2_threads_fastest_calls", b2 / b1);
+            if (level < 2) {
+                cJSON_AddNumberToObject(o2, "ceiling_mpoints_per_s", mc);
+                cJSON_AddNumberToObject(o2, "fraction_of_ceiling_1_thread", m3 / mc);
+            }
+            cJSON_AddItemToArray(jt, o2);
+            free(t1);
+        }
+        free(pos), free(nrm), free(K), free(H), free(cbuf);
+    }
+    return j;
+}
+
+/* ---- construction time ------------------------------------------------------------------ */
+
+static cJSON *construction(void)
+{
+    int sizes[] = {10, 32, 100, 316, 1000};
+    int ns = 5, reps = quick ? 3 : 7;
+    rg2_mesh meshes[5];
+    for (int s = 0; s < ns; s++)
+        freeform_mesh(sizes[s], sizes[s], 1000 + s, &meshes[s]);
+    double *t = xmalloc(sizeof(double) * (size_t)(ns * reps * 2));
+    printf("\n== construction (mesh -> patches, rg2_surface_build), free-form open meshes, %d interleaved "
+           "repetitions of batches\n", reps);
+    printf("   %-12s %10s %14s %14s %16s %12s\n", "control pts", "patches", "1 thread ms", "ns / ctrl pt",
+           "2 threads ms", "ns / ctrl pt");
+    for (int rep = 0; rep < reps; rep++)
+        for (int s = 0; s < ns; s++)
+            for (int th = 0; th < 2; th++) {
+#ifdef _OPENMP
+                omp_set_num_threads(th + 1);
+#endif
+                rg2_surface surf;
+                rg2_error err;
+                double t0 = now(), tb, tfree = 0;
+                int calls = 0;
+                do { /* a batch (>= 20 ms) of builds; freeing is not timed */
+                    if (rg2_surface_build(&meshes[s], &surf, &err))
+                        die_rg2("rg2_surface_build", &err);
+                    double tf = now();
+                    rg2_surface_free(&surf);
+                    tfree += now() - tf;
+                    calls++;
+                } while ((tb = now() - t0) < 0.02);
+                t[(s * 2 + th) * reps + rep] = (tb - tfree) / calls;
+            }
+#ifdef _OPENMP
+    omp_set_num_threads(2);
+#endif
+    cJSON *arr = cJSON_CreateArray();
+    double per_cp[5];
+    for (int s = 0; s < ns; s++) {
+        double cp = (double)sizes[s] * sizes[s];
+        double m1 = median(t + (s * 2) * reps, reps), m2 = median(t + (s * 2 + 1) * reps, reps);
+        int np = (sizes[s] - 3) * (sizes[s] - 3);
+        printf("   %4d x %-5d %10d %14.3f %14.1f %16.3f %12.1f\n", sizes[s], sizes[s], np, m1 * 1e3, m1 / cp * 1e9,
+               m2 * 1e3, m2 / cp * 1e9);
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddNumberToObject(o, "control_points", cp);
+        cJSON_AddNumberToObject(o, "patches", np);
+        cJSON_AddNumberToObject(o, "median_s_1_thread", m1);
+        cJSON_AddNumberToObject(o, "median_s_2_threads", m2);
+        cJSON_AddNumberToObject(o, "ns_per_control_point_1_thread", m1 / cp * 1e9);
+        per_cp[s] = m1 / cp;
+        cJSON_AddItemToArray(arr, o);
+        rg2_mesh_free(&meshes[s]);
+    }
+    /* linear in the number of control points: the time per control point stays flat */
+    double lo = per_cp[2], hi = per_cp[2];
+    for (int s = 2; s < ns; s++)
+        lo = fmin(lo, per_cp[s]), hi = fmax(hi, per_cp[s]);
+    printf("   linearity: from 100^2 to 1000^2 control points (100x more) the time per control point stays within "
+           "a factor %.2f (1 thread)\n", hi / lo);
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddItemToObject(root, "sizes", arr);
+    cJSON_AddNumberToObject(root, "per_control_point_spread_100_to_1000", hi / lo);
+    free(t);
+    return root;
+}
+
+/* ---- main ------------------------------------------------------------------------------- */
+
+static void cpu_model(char *buf, size_t len)
+{
+    snprintf(buf, len, "unknown");
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    if (!f)
+        return;
+    char line[512];
+    while (fgets(line, sizeof line, f))
+        if (!strncmp(line, "model name", 10)) {
+            char *p = strchr(line, ':');
+            if (p) {
+                snprintf(buf, len, "%s", p + 2);
+                buf[strcspn(buf, "\n")] = 0;
+            }
+            break;
+        }
+    fclose(f);
+}
+
+static int write_json(cJSON *root, const char *path)
+{
+    char *txt = cJSON_Print(root);
+    char tmp[4096];
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *f = fopen(tmp, "w");
+    if (!f || !txt || fputs(txt, f) < 0 || fclose(f) != 0 || rename(tmp, path) != 0) {
+        fprintf(stderr, "rg2_bench: cannot write %s\n", path);
+        free(txt);
+        remove(tmp);
+        return 1;
+    }
+    free(txt);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    const char *out = "out/bench.json";
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--quick"))
+            quick = 1;
+        else if (!strcmp(argv[i], "--only") && i + 1 < argc)
+            only = argv[++i];
+        else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            printf("usage: rg2_bench [out.json] [--quick] [--only torus|merged|freeform|scaling|construction]\n");
+            return 0;
+        } else
+            out = argv[i];
+    }
+    char cpu[256];
+    cpu_model(cpu, sizeof cpu);
+    int nthreads = 1;
+#ifdef _OPENMP
+    nthreads = omp_get_max_threads();
+#endif
+    printf("rg2_bench %s on %s, %d hardware threads available\n", rg2_version(), cpu, nthreads);
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "rg2_version", rg2_version());
+    cJSON_AddStringToObject(root, "cpu", cpu);
+    cJSON_AddNumberToObject(root, "threads_available", nthreads);
+    cJSON *jcases = cJSON_AddArrayToObject(root, "cases");
+    rg2_error err;
+
+    bcase torus = {.name = "torus", .what = "torus R = 3, r = 1, 8 x 6 arcs, 48 rational bi-cubic patches",
+                   .torus = 1, .R = 3.0, .r = 1.0, .scale = 4.0};
+    if (want("torus")) {
+        if (rg2t_torus(3.0, 1.0, 8, 6, NULL, &torus.s, &err))
+            die_rg2("torus", &err);
+        case_setup(&torus, 64, 9);
+        cJSON_AddItemToArray(jcases, run_case(&torus));
+        case_free(&torus);
+    }
+
+    if (want("merged")) {
+#ifdef RG2_BENCH_DESIGN
+    bcase merged = {.name = "merged", .what = "merged design " RG2_BENCH_DESIGN " (surface 0)"};
+    {
+        rg2_design *d = NULL;
+        if (rg2_design_load(RG2_BENCH_DESIGN, &d, &err) || rg2_surface_copy(rg2_design_surface(d, 0), &merged.s, &err))
+            die_rg2(RG2_BENCH_DESIGN, &err);
+        rg2_design_free(d);
+    }
+#else
+    bcase merged = {.name = "merged", .what = "merged mesh built in code (no design module in this tree): outer "
+                                              "half torus rows + cylinder rows (8 x 12 control points)"};
+    merged_surface(&merged.s);
+#endif
+    case_setup(&merged, 64, 9);
+    cJSON_AddItemToArray(jcases, run_case(&merged));
+    case_free(&merged);
+    }
+
+    if (want("freeform")) {
+    bcase ff = {.name = "freeform", .what = "free-form open mesh 200 x 200 control points, random weights and "
+                                            "G2 scalars"};
+    {
+        rg2_mesh m;
+        freeform_mesh(200, 200, 42, &m);
+        if (rg2_surface_build(&m, &ff.s, &err))
+            die_rg2("free-form surface", &err);
+        rg2_mesh_free(&m);
+    }
+    case_setup(&ff, 8, 5);
+    cJSON_AddItemToArray(jcases, run_case(&ff));
+    case_free(&ff);
+    }
+    cJSON_AddNumberToObject(root, "peak_rss_kb_after_cases", (double)peak_rss_kb());
+
+    if (want("scaling")) {
+        rg2_surface ts;
+        if (rg2t_torus(3.0, 1.0, 8, 6, NULL, &ts, &err))
+            die_rg2("torus", &err);
+        cJSON_AddItemToObject(root, "grid_scaling", threads_and_sizes(&ts));
+        rg2_surface_free(&ts);
+        cJSON_AddNumberToObject(root, "peak_rss_kb_after_scaling", (double)peak_rss_kb());
+    }
+    if (want("construction"))
+        cJSON_AddItemToObject(root, "construction", construction());
+    long rss = peak_rss_kb();
+    cJSON_AddNumberToObject(root, "peak_rss_kb", (double)rss);
+    printf("\npeak memory (getrusage ru_maxrss): %.1f MB\n", rss / 1024.0);
+    int rc = write_json(root, out);
+    if (!rc)
+        printf("wrote %s\n", out);
+    cJSON_Delete(root);
+    return rc;
+}

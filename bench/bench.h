@@ -1,0 +1,46 @@
+/* bench.h -- shared types of rg2_bench (bench.c, C) and its OpenCASCADE side (occt.cpp). */
+#ifndef RG2_BENCH_H
+#define RG2_BENCH_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* One B-spline surface of degree 3 x 3 holding a patchwork exactly: interior knots of
+ * multiplicity 3 at 1, 2, ..., spans - 1 (clamped ends), in1 = 3 spans1 + 1 homogeneous
+ * poles (w x, w y, w z, w) with the first direction running fastest (SISL order). */
+typedef struct {
+    int spans1, spans2, in1, in2;
+    double *knots1, *knots2; /* in + 4 values each */
+    double *hcoef;           /* in1 * in2 * 4 */
+} bspline;
+
+/* Evaluation points: pu x pv patches, n x n points per patch at local t[a] = a / (n - 1). */
+typedef struct {
+    int pu, pv, n;
+    double *t;
+} grid_params;
+
+typedef enum {
+    OCCT_BSPLINE_D0,
+    OCCT_BSPLINE_D1,
+    OCCT_ADAPTOR_D0,
+    OCCT_ADAPTOR_D1,
+    OCCT_SLPROPS
+} occt_method;
+
+typedef struct occt_surf occt_surf;
+occt_surf *occt_make(const bspline *b);
+void occt_free(occt_surf *s);
+/* Evaluate every grid point in patch layout (patch i * pv + j, then a * n + b); nrm is
+ * unit normals (D1, SLProps), K and H only for SLProps. */
+void occt_eval(occt_surf *s, occt_method meth, const grid_params *g, double *pos, double *nrm, double *K,
+               double *H);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

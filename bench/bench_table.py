@@ -1,0 +1,55 @@
+#!/usr/bin/env python3
+"""Markdown tables from rg2_bench's JSON (out/bench.json), as in docs/performance.md.
+Usage: python3 bench/bench_table.py [out/bench.json]"""
+import json
+import sys
+
+
+def main(path):
+    d = json.load(open(path))
+    print(f"Machine: {d['cpu']}, {d['threads_available']} hardware threads; rg2 {d['rg2_version']}.")
+    for c in d.get('cases', []):
+        print(f"\n#### {c['name']}: {c['surface']}\n")
+        print(f"{int(c['patches'])} patches x {int(c['points_per_patch'])} points = {int(c['points'])} points, "
+              f"{c['repetitions']} interleaved repetitions; every output checked against the {c['checked_against']}.\n")
+        print("| method | output | median ms | M points/s | max position error | max normal error | max K, H error | check |")
+        print("|---|---|---:|---:|---:|---:|---:|---|")
+        for m in c['methods']:
+            mem = m['peer'] == 'memory'
+            ok = '-' if mem else ('ok' if m['output_correct'] else 'WRONG')
+            e = (lambda x: '-') if mem else (lambda x: f"{x:.1e}")
+            print(f"| {m['method']} | {m['output']} | {m['median_s'] * 1e3:.3f} | {m['mpoints_per_s']:.1f} | "
+                  f"{e(m['max_pos_err_rel'])} | {e(m['max_normal_err'])} | "
+                  f"{e(max(m['max_K_err_rel'], m['max_H_err_rel']))} | {ok} |")
+        print("\n| ratio (same run, medians, 1 thread) | value | target | | write ceiling allows |")
+        print("|---|---:|---:|---|---:|")
+        for r in c['ratios']:
+            t = f">= {r['target']:g}x" if 'target' in r else ''
+            met = ('met' if r['met'] else 'missed') if 'target' in r else ''
+            b = f"{r['write_ceiling_bound']:.1f}x" if 'write_ceiling_bound' in r else ''
+            print(f"| {r['pair']} | {r['ratio']:.2f}x | {t} | {met} | {b} |")
+    if 'grid_scaling' in d:
+        print("\n| points per patch | output | 1 thread M pts/s | 2 threads M pts/s | 2t / 1t (medians) | "
+              "2t / 1t (fastest calls) | write ceiling M pts/s | 1 thread / ceiling |")
+        print("|---|---|---:|---:|---:|---:|---:|---:|")
+        for r in d['grid_scaling']['threads']:
+            c = f"{r['ceiling_mpoints_per_s']:.1f}" if 'ceiling_mpoints_per_s' in r else '-'
+            f = f"{r['fraction_of_ceiling_1_thread']:.2f}" if 'fraction_of_ceiling_1_thread' in r else '-'
+            print(f"| {r['points_per_patch_side']}^2 | {r['output']} | {r['mpoints_per_s_1_thread']:.1f} | "
+                  f"{r['mpoints_per_s_2_threads']:.1f} | {r['speedup_2_threads']:.2f}x | "
+                  f"{r['speedup_2_threads_fastest_calls']:.2f}x | {c} | {f} |")
+    if 'construction' in d:
+        cs = d['construction']
+        print("\n| control points | patches | 1 thread ms | ns per control point | 2 threads ms |")
+        print("|---|---:|---:|---:|---:|")
+        for r in cs['sizes']:
+            n = int(round(r['control_points'] ** 0.5))
+            print(f"| {n} x {n} | {int(r['patches'])} | {r['median_s_1_thread'] * 1e3:.3f} | "
+                  f"{r['ns_per_control_point_1_thread']:.0f} | {r['median_s_2_threads'] * 1e3:.3f} |")
+        print(f"\nFrom 100^2 to 1000^2 control points the time per control point stays within a factor "
+              f"{cs['per_control_point_spread_100_to_1000']:.2f}.")
+    print(f"\nPeak memory (getrusage ru_maxrss): {d['peak_rss_kb'] / 1024:.0f} MB.")
+
+
+if __name__ == '__main__':
+    main(sys.argv[1] if len(sys.argv) > 1 else 'out/bench.json')

@@ -1,0 +1,674 @@
+/* grid.c -- fast evaluation of rational bi-3 patches on regular parameter grids (positions,
+ * unit normals, derivatives, curvatures) and a fast per-point evaluator.
+ *
+ * METHOD: separable evaluation. The Bernstein values (and derivatives) at the grid
+ * parameters are tabulated once per call: per u index as 4-vectors, per v index as four
+ * structure-of-arrays columns. Per block of up to BLK columns of a patch, the column sums
+ * c_r(v_b) = sum_s h_rs B_s(v_b) (16 numbers per column; with B' and B'' when derivatives are
+ * wanted) are formed once; every point of every row is then sum_r B_r(u_a) c_r(v_b): 16
+ * multiply-adds per homogeneous value, in the summation order of rg2_patch_eval, in a
+ * branch-free loop over the columns that the compiler vectorises (x86-64 with GCC: AVX-512 /
+ * AVX2 / baseline clones chosen at load time). On AVX-512 CPUs hand-written kernels replace the
+ * divisions and square roots by rcp14 / rsqrt14 and two Newton steps. The quotient rule and the
+ * curvature formulas are those of rg2_patch_eval (eval.c), which stays the independent
+ * reference; tests/test_grid.c holds the two to 1e-14.
+ */
+#include "internal.h"
+
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef RG2_HAVE_OPENMP
+#include <omp.h>
+#endif
+
+/* Function multi-versioning on x86-64 ELF with GCC: the hot kernels get AVX-512, AVX2 and
+ * baseline clones; the loader picks one per machine, so the library stays portable. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__ELF__) &&     \
+    !defined(RG2_NO_CLONES) && !defined(__AVX2__)
+#define RG2_HOT __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define RG2_HOT
+#endif
+
+/* Hand-written AVX-512 kernels for positions, normals and the second-order quantities
+ * (reciprocals by rcp14/rsqrt14 and two Newton steps instead of divisions, interleaving
+ * permutes, masked tails, optional streaming stores), chosen at run time when the CPU has
+ * AVX-512F/DQ. */
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(RG2_NO_CLONES)
+#define RG2_AVX512 1
+#include <immintrin.h>
+#else
+#define RG2_AVX512 0
+#endif
+
+/* Outputs larger than this (bytes) are written with streaming stores on the AVX-512 path. */
+#define RG2_STREAM_BYTES ((size_t)32 << 20)
+
+#define BLK 64 /* points per block in the full kernel (structure-of-arrays temporaries) */
+
+/* Bernstein tables of one call: u as rows of 4, v as 4 columns of m values. */
+typedef struct {
+    int n, m, order;
+    int avx512; /* use the AVX-512 kernels (this CPU has them) */
+    int stream; /* large output: non-temporal stores (bypass the caches) */
+    double *bu, *du, *ddu;             /* n * 4 each */
+    double *bv[4], *dv[4], *ddv[4];    /* m each */
+    double *mem;
+} tables;
+
+static void tables_free(tables *t)
+{
+    free(t->mem);
+    memset(t, 0, sizeof *t);
+}
+
+static rg2_status tables_make(tables *t, int n, int m, int order, rg2_error *err)
+{
+    memset(t, 0, sizeof *t);
+    size_t per = (size_t)n * 4 * 3 + (size_t)m * 12;
+    t->mem = rg2__calloc(per, sizeof(double));
+    if (!t->mem)
+        return rg2__fail(err, RG2_ENOMEM, "grid: out of memory for %d x %d tables", n, m);
+    t->n = n;
+    t->m = m;
+    t->order = order;
+#if RG2_AVX512
+    t->avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+#endif
+    double *q = t->mem;
+    t->bu = q, q += (size_t)n * 4;
+    t->du = q, q += (size_t)n * 4;
+    t->ddu = q, q += (size_t)n * 4;
+    for (int s = 0; s < 4; s++) {
+        t->bv[s] = q, q += m;
+        t->dv[s] = q, q += m;
+        t->ddv[s] = q, q += m;
+    }
+    for (int a = 0; a < n; a++) {
+        double u = a == n - 1 ? 1.0 : (double)a / (double)(n - 1);
+        rg2__bern3(u, t->bu + 4 * a, t->du + 4 * a, t->ddu + 4 * a);
+    }
+    for (int b = 0; b < m; b++) {
+        double v = b == m - 1 ? 1.0 : (double)b / (double)(m - 1);
+        double B[4], D[4], DD[4];
+        rg2__bern3(v, B, D, DD);
+        for (int s = 0; s < 4; s++) {
+            t->bv[s][b] = B[s];
+            t->dv[s][b] = D[s];
+            t->ddv[s][b] = DD[s];
+        }
+    }
+    return RG2_OK;
+}
+
+/* Column sums of one block of columns, in the order of rg2_patch_eval (v first):
+ * c[r][k][i] = sum_s h[r][s][k] bv[s][b0 + i]. */
+static inline void vsum(const rg2_patch *P, double *const bv[4], int b0, int cnt, double c[4][4][BLK])
+{
+    const double *restrict v0 = bv[0] + b0, *restrict v1 = bv[1] + b0, *restrict v2 = bv[2] + b0,
+                           *restrict v3 = bv[3] + b0;
+    for (int r = 0; r < 4; r++)
+        for (int k = 0; k < 4; k++) {
+            double h0 = P->h[r][0][k], h1 = P->h[r][1][k], h2 = P->h[r][2][k], h3 = P->h[r][3][k];
+            double *restrict dst = c[r][k];
+            for (int i = 0; i < cnt; i++)
+                dst[i] = h0 * v0[i] + h1 * v1[i] + h2 * v2[i] + h3 * v3[i];
+            for (int i = cnt; i < BLK && (i & 7); i++) /* whole 8-lane vectors stay defined */
+                dst[i] = 0.0;
+        }
+}
+
+/* sum_r U[r] c[r][k][i], the u-sum of a point (U: row constants). */
+#define USUM(U, c, k) (U[0] * c[0][k][i] + U[1] * c[1][k][i] + U[2] * c[2][k][i] + U[3] * c[3][k][i])
+
+/* Positions of one row segment of cnt points. */
+static inline void seg_pos(const double *restrict U, double c[4][4][BLK], int cnt, double *restrict pos)
+{
+    for (int i = 0; i < cnt; i++) {
+        double X = USUM(U, c, 0), Y = USUM(U, c, 1), Z = USUM(U, c, 2), W = USUM(U, c, 3);
+        double iw = 1.0 / W;
+        pos[3 * i] = X * iw;
+        pos[3 * i + 1] = Y * iw;
+        pos[3 * i + 2] = Z * iw;
+    }
+}
+
+/* Positions and unit normals of one row segment. */
+static inline void seg_pos_normal(const double *restrict U, const double *restrict DU, double c0[4][4][BLK],
+                                  double c1[4][4][BLK], int cnt, double *restrict pos, double *restrict nrm)
+{
+    for (int i = 0; i < cnt; i++) {
+        double h[4], hu[4], hv[4];
+#pragma GCC unroll 4
+        for (int k = 0; k < 4; k++) {
+            h[k] = USUM(U, c0, k);
+            hu[k] = USUM(DU, c0, k);
+            hv[k] = USUM(U, c1, k);
+        }
+        double iw = 1.0 / h[3];
+        double p[3], su[3], sv[3];
+#pragma GCC unroll 3
+        for (int k = 0; k < 3; k++) {
+            p[k] = h[k] * iw;
+            su[k] = (hu[k] - hu[3] * p[k]) * iw;
+            sv[k] = (hv[k] - hv[3] * p[k]) * iw;
+        }
+        /* the expressions of full_soa, so positions and normals do not depend on which
+         * outputs were requested (bitwise) */
+        double cx = su[1] * sv[2] - su[2] * sv[1];
+        double cy = su[2] * sv[0] - su[0] * sv[2];
+        double cz = su[0] * sv[1] - su[1] * sv[0];
+        double l2 = cx * cx + cy * cy + cz * cz;
+        double E = su[0] * su[0] + su[1] * su[1] + su[2] * su[2];
+        double G = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2];
+        double ok = (double)(l2 > 1e-30 * (E * G)); /* branch-free: 0 where undefined */
+        double il = ok / sqrt(l2 + (1.0 - ok));
+        pos[3 * i] = p[0];
+        pos[3 * i + 1] = p[1];
+        pos[3 * i + 2] = p[2];
+        nrm[3 * i] = cx * il;
+        nrm[3 * i + 1] = cy * il;
+        nrm[3 * i + 2] = cz * il;
+    }
+}
+
+static inline void put3(double *restrict dst, const double *restrict x, const double *restrict y,
+                        const double *restrict z, int cnt)
+{
+    for (int i = 0; i < cnt; i++) {
+        dst[3 * i] = x[i];
+        dst[3 * i + 1] = y[i];
+        dst[3 * i + 2] = z[i];
+    }
+}
+
+/* Everything (second order) of one row segment in structure-of-arrays form. */
+typedef struct {
+    _Alignas(64) double p[3][BLK];
+    _Alignas(64) double su[3][BLK];
+    _Alignas(64) double sv[3][BLK];
+    _Alignas(64) double suu[3][BLK];
+    _Alignas(64) double suv[3][BLK];
+    _Alignas(64) double svv[3][BLK];
+    _Alignas(64) double nn[3][BLK];
+    _Alignas(64) double K[BLK];
+    _Alignas(64) double H[BLK];
+} soa_full;
+
+/* The formulas of rg2_patch_eval for points i0 <= i < cnt of a row segment. */
+RG2_HOT static void full_soa(const double *restrict U, const double *restrict DU, const double *restrict DDU,
+                             double c0[4][4][BLK], double c1[4][4][BLK], double c2[4][4][BLK], int i0, int cnt,
+                             soa_full *restrict S)
+{
+    double(*p)[BLK] = S->p, (*su)[BLK] = S->su, (*sv)[BLK] = S->sv, (*suu)[BLK] = S->suu;
+    double(*suv)[BLK] = S->suv, (*svv)[BLK] = S->svv, (*nn)[BLK] = S->nn, *KK = S->K, *HH = S->H;
+    for (int i = i0; i < cnt; i++) {
+        double h[4], hu[4], hv[4], huu[4], huv[4], hvv[4];
+#pragma GCC unroll 4
+        for (int k = 0; k < 4; k++) {
+            h[k] = USUM(U, c0, k);
+            hu[k] = USUM(DU, c0, k);
+            hv[k] = USUM(U, c1, k);
+            huu[k] = USUM(DDU, c0, k);
+            huv[k] = USUM(DU, c1, k);
+            hvv[k] = USUM(U, c2, k);
+        }
+        double iw = 1.0 / h[3];
+        double P[3], Su[3], Sv[3], Suu[3], Suv[3], Svv[3];
+#pragma GCC unroll 3
+        for (int k = 0; k < 3; k++) {
+            P[k] = h[k] * iw;
+            Su[k] = (hu[k] - hu[3] * P[k]) * iw;
+            Sv[k] = (hv[k] - hv[3] * P[k]) * iw;
+            Suu[k] = (huu[k] - 2.0 * hu[3] * Su[k] - huu[3] * P[k]) * iw;
+            Suv[k] = (huv[k] - hu[3] * Sv[k] - hv[3] * Su[k] - huv[3] * P[k]) * iw;
+            Svv[k] = (hvv[k] - 2.0 * hv[3] * Sv[k] - hvv[3] * P[k]) * iw;
+        }
+        double c0x = Su[1] * Sv[2] - Su[2] * Sv[1];
+        double c1x = Su[2] * Sv[0] - Su[0] * Sv[2];
+        double c2x = Su[0] * Sv[1] - Su[1] * Sv[0];
+        double l2 = c0x * c0x + c1x * c1x + c2x * c2x;
+        double E = Su[0] * Su[0] + Su[1] * Su[1] + Su[2] * Su[2];
+        double F = Su[0] * Sv[0] + Su[1] * Sv[1] + Su[2] * Sv[2];
+        double G = Sv[0] * Sv[0] + Sv[1] * Sv[1] + Sv[2] * Sv[2];
+        /* branch-free: ok is 1 where the normal is defined, else 0 (then n = 0,
+         * L = M = N = 0 and K = H = 0 over a denominator >= 1) */
+        double ok = (double)(l2 > 1e-30 * (E * G));
+        double il = ok / sqrt(l2 + (1.0 - ok));
+        double n0 = c0x * il, n1 = c1x * il, n2 = c2x * il;
+        double L = Suu[0] * n0 + Suu[1] * n1 + Suu[2] * n2;
+        double M = Suv[0] * n0 + Suv[1] * n1 + Suv[2] * n2;
+        double N = Svv[0] * n0 + Svv[1] * n1 + Svv[2] * n2;
+        double det = E * G - F * F + (1.0 - ok);
+#pragma GCC unroll 3
+        for (int k = 0; k < 3; k++) {
+            p[k][i] = P[k];
+            su[k][i] = Su[k];
+            sv[k][i] = Sv[k];
+            suu[k][i] = Suu[k];
+            suv[k][i] = Suv[k];
+            svv[k][i] = Svv[k];
+        }
+        nn[0][i] = n0;
+        nn[1][i] = n1;
+        nn[2][i] = n2;
+        double idet = 1.0 / det;
+        KK[i] = (L * N - M * M) * idet;
+        HH[i] = (E * N - 2.0 * F * M + G * L) * (0.5 * idet);
+    }
+}
+
+/* Copy a computed row segment to the requested outputs at point index `at`. */
+static void full_out(const soa_full *S, int cnt, const rg2_grid_out *o, size_t at)
+{
+    size_t o3 = 3 * at;
+    put3(o->pos + o3, S->p[0], S->p[1], S->p[2], cnt);
+    struct {
+        double *dst;
+        const double(*src)[BLK];
+    } vec[] = {{o->normal, S->nn}, {o->du, S->su}, {o->dv, S->sv}, {o->duu, S->suu}, {o->duv, S->suv},
+               {o->dvv, S->svv}};
+    for (int q = 0; q < 6; q++)
+        if (vec[q].dst)
+            put3(vec[q].dst + o3, vec[q].src[0], vec[q].src[1], vec[q].src[2], cnt);
+    if (o->K)
+        memcpy(o->K + at, S->K, sizeof(double) * (size_t)cnt);
+    if (o->H)
+        memcpy(o->H + at, S->H, sizeof(double) * (size_t)cnt);
+}
+#undef USUM
+
+#if RG2_AVX512
+#define RG2_AVX512_FN __attribute__((target("avx512f,avx512dq,fma")))
+
+/* 1 / x to ~1 ulp: rcp14 then two Newton steps (relative error 2^-14 -> 2^-28 -> 2^-56). */
+RG2_AVX512_FN static inline __m512d recip8(__m512d x)
+{
+    const __m512d one = _mm512_set1_pd(1.0);
+    __m512d y = _mm512_rcp14_pd(x);
+    y = _mm512_fmadd_pd(y, _mm512_fnmadd_pd(x, y, one), y);
+    return _mm512_fmadd_pd(y, _mm512_fnmadd_pd(x, y, one), y);
+}
+
+/* 1 / sqrt(x) to ~1 ulp: rsqrt14 then two Newton steps y (3 - x y^2) / 2. */
+RG2_AVX512_FN static inline __m512d rsqrt8(__m512d x)
+{
+    const __m512d half = _mm512_set1_pd(0.5), three = _mm512_set1_pd(3.0);
+    __m512d y = _mm512_rsqrt14_pd(x);
+    for (int it = 0; it < 2; it++) {
+        __m512d xyy = _mm512_mul_pd(_mm512_mul_pd(x, y), y);
+        y = _mm512_mul_pd(_mm512_mul_pd(half, y), _mm512_sub_pd(three, xyy));
+    }
+    return y;
+}
+
+/* sum_r U[r] c[r][k][i..i+7] */
+RG2_AVX512_FN static inline __m512d usum8(const __m512d U[4], double c[4][4][BLK], int k, int i)
+{
+    __m512d acc = _mm512_mul_pd(U[0], _mm512_load_pd(&c[0][k][i]));
+    acc = _mm512_fmadd_pd(U[1], _mm512_load_pd(&c[1][k][i]), acc);
+    acc = _mm512_fmadd_pd(U[2], _mm512_load_pd(&c[2][k][i]), acc);
+    return _mm512_fmadd_pd(U[3], _mm512_load_pd(&c[3][k][i]), acc);
+}
+
+/* a . b for 8 points */
+RG2_AVX512_FN static inline __m512d dot8(const __m512d a[3], const __m512d b[3])
+{
+    return _mm512_fmadd_pd(a[2], b[2], _mm512_fmadd_pd(a[1], b[1], _mm512_mul_pd(a[0], b[0])));
+}
+
+/* Unit normal n = Su x Sv / |Su x Sv|, 0 where |Su x Sv|^2 <= 1e-30 E G (E = Su.Su, G = Sv.Sv);
+ * returns the mask of points where it is defined. Shared by both kernels (same bits). */
+RG2_AVX512_FN static inline __mmask8 normal8(const __m512d su[3], const __m512d sv[3], __m512d n[3], __m512d *E,
+                                             __m512d *G)
+{
+    __m512d c[3] = {_mm512_fmsub_pd(su[1], sv[2], _mm512_mul_pd(su[2], sv[1])),
+                    _mm512_fmsub_pd(su[2], sv[0], _mm512_mul_pd(su[0], sv[2])),
+                    _mm512_fmsub_pd(su[0], sv[1], _mm512_mul_pd(su[1], sv[0]))};
+    __m512d l2 = dot8(c, c);
+    *E = dot8(su, su);
+    *G = dot8(sv, sv);
+    __mmask8 ok = _mm512_cmp_pd_mask(l2, _mm512_mul_pd(_mm512_set1_pd(1e-30), _mm512_mul_pd(*E, *G)), _CMP_GT_OQ);
+    __m512d il = _mm512_maskz_mov_pd(ok, rsqrt8(_mm512_mask_blend_pd(ok, _mm512_set1_pd(1.0), l2)));
+    for (int k = 0; k < 3; k++)
+        n[k] = _mm512_mul_pd(c[k], il);
+    return ok;
+}
+
+/* Store q <= 8 points (x, y, z) interleaved as 3 q doubles at dst (masked past q). */
+RG2_AVX512_FN static inline void store_xyz8(double *dst, __m512d x, __m512d y, __m512d z, int q)
+{
+    const __m512i i0 = _mm512_set_epi64(10, 2, 0, 9, 1, 0, 8, 0), z0 = _mm512_set_epi64(0, 0, 1, 0, 0, 0, 0, 0);
+    const __m512i i1 = _mm512_set_epi64(5, 0, 12, 4, 0, 11, 3, 0), z1 = _mm512_set_epi64(0, 4, 0, 0, 3, 0, 0, 2);
+    const __m512i i2 = _mm512_set_epi64(0, 15, 7, 0, 14, 6, 0, 13), z2 = _mm512_set_epi64(7, 0, 0, 6, 0, 0, 5, 0);
+    __m512d o[3];
+    o[0] = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(x, i0, y), 0x24, z0, z);
+    o[1] = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(x, i1, y), 0x49, z1, z);
+    o[2] = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(x, i2, y), 0x92, z2, z);
+    for (int k = 0, left = 3 * q; k < 3 && left > 0; k++, left -= 8) {
+        if (left >= 8)
+            _mm512_storeu_pd(dst + 8 * k, o[k]);
+        else
+            _mm512_mask_storeu_pd(dst + 8 * k, (__mmask8)((1u << left) - 1u), o[k]);
+    }
+}
+
+/* Copy n doubles with streaming stores on the 64-byte aligned part of dst (whole cache lines
+ * bypass the caches; the partial lines at both ends are stored normally). */
+RG2_AVX512_FN static void stream_copy(double *dst, const double *src, int n)
+{
+    int h = 0;
+    for (; h < n && ((uintptr_t)(dst + h) & 63); h++)
+        dst[h] = src[h];
+    for (; h + 8 <= n; h += 8)
+        _mm512_stream_pd(dst + h, _mm512_loadu_pd(src + h));
+    for (; h < n; h++)
+        dst[h] = src[h];
+}
+
+RG2_AVX512_FN static void seg_pos_avx512(const double *U, double c[4][4][BLK], int cnt, double *pos,
+                                         int stream)
+{
+    __m512d u[4] = {_mm512_set1_pd(U[0]), _mm512_set1_pd(U[1]), _mm512_set1_pd(U[2]), _mm512_set1_pd(U[3])};
+    _Alignas(64) double buf[3 * BLK];
+    double *dst = stream ? buf : pos;
+    for (int i = 0; i < cnt; i += 8) { /* the last vector may be partial: padded, masked store */
+        __m512d iw = recip8(usum8(u, c, 3, i));
+        store_xyz8(dst + 3 * i, _mm512_mul_pd(usum8(u, c, 0, i), iw), _mm512_mul_pd(usum8(u, c, 1, i), iw),
+                   _mm512_mul_pd(usum8(u, c, 2, i), iw), cnt - i < 8 ? cnt - i : 8);
+    }
+    if (stream)
+        stream_copy(pos, buf, 3 * cnt);
+}
+
+RG2_AVX512_FN static void seg_pos_normal_avx512(const double *U, const double *DU, double c0[4][4][BLK],
+                                                double c1[4][4][BLK], int cnt, double *pos, double *nrm,
+                                                int stream)
+{
+    _Alignas(64) double pbuf[3 * BLK];
+    _Alignas(64) double nbuf[3 * BLK];
+    double *pd = stream ? pbuf : pos, *nd = stream ? nbuf : nrm;
+    __m512d u[4] = {_mm512_set1_pd(U[0]), _mm512_set1_pd(U[1]), _mm512_set1_pd(U[2]), _mm512_set1_pd(U[3])};
+    __m512d du[4] = {_mm512_set1_pd(DU[0]), _mm512_set1_pd(DU[1]), _mm512_set1_pd(DU[2]), _mm512_set1_pd(DU[3])};
+    for (int i = 0; i < cnt; i += 8) {
+        /* the expressions of full_soa_avx512 (bitwise the same positions and normals) */
+        __m512d iw = recip8(usum8(u, c0, 3, i));
+        __m512d hu3 = usum8(du, c0, 3, i), hv3 = usum8(u, c1, 3, i);
+        __m512d p[3], su[3], sv[3];
+        for (int k = 0; k < 3; k++) {
+            p[k] = _mm512_mul_pd(usum8(u, c0, k, i), iw);
+            su[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hu3, p[k], usum8(du, c0, k, i)), iw);
+            sv[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hv3, p[k], usum8(u, c1, k, i)), iw);
+        }
+        __m512d n[3], e, g;
+        normal8(su, sv, n, &e, &g);
+        int q = cnt - i < 8 ? cnt - i : 8;
+        store_xyz8(pd + 3 * i, p[0], p[1], p[2], q);
+        store_xyz8(nd + 3 * i, n[0], n[1], n[2], q);
+    }
+    if (stream) {
+        stream_copy(pos, pbuf, 3 * cnt);
+        stream_copy(nrm, nbuf, 3 * cnt);
+    }
+}
+
+/* The second-order formulas (as full_soa) for all 8-lane vectors covering 0..cnt-1 (vsum pads
+ * the column sums with zeros; lanes past cnt are computed but never copied out). */
+RG2_AVX512_FN static void full_soa_avx512(const double *U, const double *DU, const double *DDU,
+                                          double c0[4][4][BLK], double c1[4][4][BLK], double c2[4][4][BLK],
+                                          int cnt, soa_full *S)
+{
+    __m512d u[4], du[4], ddu[4];
+    for (int r = 0; r < 4; r++) {
+        u[r] = _mm512_set1_pd(U[r]);
+        du[r] = _mm512_set1_pd(DU[r]);
+        ddu[r] = _mm512_set1_pd(DDU[r]);
+    }
+    const __m512d one = _mm512_set1_pd(1.0), two = _mm512_set1_pd(2.0), half = _mm512_set1_pd(0.5);
+    for (int i = 0; i < cnt; i += 8) {
+        __m512d h[4], hu[4], hv[4], huu[4], huv[4], hvv[4];
+        for (int k = 0; k < 4; k++) {
+            h[k] = usum8(u, c0, k, i);
+            hu[k] = usum8(du, c0, k, i);
+            hv[k] = usum8(u, c1, k, i);
+            huu[k] = usum8(ddu, c0, k, i);
+            huv[k] = usum8(du, c1, k, i);
+            hvv[k] = usum8(u, c2, k, i);
+        }
+        __m512d iw = recip8(h[3]);
+        __m512d P[3], Su[3], Sv[3], Suu[3], Suv[3], Svv[3];
+        for (int k = 0; k < 3; k++) {
+            P[k] = _mm512_mul_pd(h[k], iw);
+            Su[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hu[3], P[k], hu[k]), iw);
+            Sv[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hv[3], P[k], hv[k]), iw);
+            __m512d t = _mm512_fnmadd_pd(_mm512_mul_pd(two, hu[3]), Su[k], huu[k]);
+            Suu[k] = _mm512_mul_pd(_mm512_fnmadd_pd(huu[3], P[k], t), iw);
+            t = _mm512_fnmadd_pd(hu[3], Sv[k], huv[k]);
+            t = _mm512_fnmadd_pd(hv[3], Su[k], t);
+            Suv[k] = _mm512_mul_pd(_mm512_fnmadd_pd(huv[3], P[k], t), iw);
+            t = _mm512_fnmadd_pd(_mm512_mul_pd(two, hv[3]), Sv[k], hvv[k]);
+            Svv[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hvv[3], P[k], t), iw);
+        }
+        __m512d nn[3], E, G;
+        __mmask8 ok = normal8(Su, Sv, nn, &E, &G);
+        __m512d F = dot8(Su, Sv);
+        __m512d L = dot8(Suu, nn), M = dot8(Suv, nn), N = dot8(Svv, nn);
+        __m512d det = _mm512_mask_blend_pd(ok, one, _mm512_fmsub_pd(E, G, _mm512_mul_pd(F, F)));
+        __m512d idet = recip8(det);
+        __m512d K = _mm512_mul_pd(_mm512_fmsub_pd(L, N, _mm512_mul_pd(M, M)), idet);
+        __m512d Hn = _mm512_fmadd_pd(G, L, _mm512_fnmadd_pd(_mm512_mul_pd(two, F), M, _mm512_mul_pd(E, N)));
+        __m512d H = _mm512_mul_pd(Hn, _mm512_mul_pd(half, idet));
+        for (int k = 0; k < 3; k++) {
+            _mm512_store_pd(&S->p[k][i], P[k]);
+            _mm512_store_pd(&S->su[k][i], Su[k]);
+            _mm512_store_pd(&S->sv[k][i], Sv[k]);
+            _mm512_store_pd(&S->suu[k][i], Suu[k]);
+            _mm512_store_pd(&S->suv[k][i], Suv[k]);
+            _mm512_store_pd(&S->svv[k][i], Svv[k]);
+        }
+        for (int k = 0; k < 3; k++)
+            _mm512_store_pd(&S->nn[k][i], nn[k]);
+        _mm512_store_pd(&S->K[i], K);
+        _mm512_store_pd(&S->H[i], H);
+    }
+}
+#endif
+
+/* Order needed by an output set: 0 positions, 1 adds normals, 2 everything else. */
+static int out_order(const rg2_grid_out *o)
+{
+    if (o->du || o->dv || o->duu || o->duv || o->dvv || o->K || o->H)
+        return 2;
+    return o->normal ? 1 : 0;
+}
+
+/* All n x m points of one patch, written at point index `first` of the outputs: blocks of
+ * BLK columns, their column sums once, then every row of the block. */
+RG2_HOT static void grid_patch(const rg2_patch *P, const tables *t, const rg2_grid_out *o, size_t first)
+{
+    _Alignas(64) double c0[4][4][BLK];
+    _Alignas(64) double c1[4][4][BLK];
+    _Alignas(64) double c2[4][4][BLK];
+    soa_full S[1];
+    for (int b0 = 0; b0 < t->m; b0 += BLK) {
+        int cnt = t->m - b0 < BLK ? t->m - b0 : BLK;
+        vsum(P, t->bv, b0, cnt, c0);
+        if (t->order >= 1)
+            vsum(P, t->dv, b0, cnt, c1);
+        if (t->order >= 2)
+            vsum(P, t->ddv, b0, cnt, c2);
+        /* streaming stores only for rows of whole cache lines' worth (short rows would leave
+         * mostly partial lines, which streaming makes slower) */
+#if RG2_AVX512
+        int stream = t->stream && cnt >= 32;
+#endif
+        for (int a = 0; a < t->n; a++) {
+            size_t at = first + (size_t)a * (size_t)t->m + (size_t)b0;
+            const double *U = t->bu + 4 * a, *DU = t->du + 4 * a, *DDU = t->ddu + 4 * a;
+#if RG2_AVX512
+            if (t->avx512 && t->order == 0)
+                seg_pos_avx512(U, c0, cnt, o->pos + 3 * at, stream);
+            else if (t->avx512 && t->order == 1)
+                seg_pos_normal_avx512(U, DU, c0, c1, cnt, o->pos + 3 * at, o->normal + 3 * at, stream);
+            else
+#endif
+            if (t->order == 0)
+                seg_pos(U, c0, cnt, o->pos + 3 * at);
+            else if (t->order == 1)
+                seg_pos_normal(U, DU, c0, c1, cnt, o->pos + 3 * at, o->normal + 3 * at);
+            else {
+                int i0 = 0;
+#if RG2_AVX512
+                if (t->avx512) {
+                    full_soa_avx512(U, DU, DDU, c0, c1, c2, cnt, S);
+                    i0 = cnt;
+                }
+#endif
+                full_soa(U, DU, DDU, c0, c1, c2, i0, cnt, S);
+                full_out(S, cnt, o, at);
+            }
+        }
+    }
+#if RG2_AVX512
+    if (t->stream) /* streaming stores are weakly ordered: publish them before returning */
+        _mm_sfence();
+#endif
+}
+
+static rg2_status check_args(int n, int m, const rg2_grid_out *out, rg2_error *err)
+{
+    if (!out || !out->pos)
+        return rg2__fail(err, RG2_EINVAL, "grid: the position array (out->pos) is NULL");
+    if (n < 2 || m < 2)
+        return rg2__fail(err, RG2_EINVAL, "grid: %d x %d points per patch; need at least 2 x 2", n, m);
+    if (n > RG2_GRID_MAX || m > RG2_GRID_MAX)
+        return rg2__fail(err, RG2_ELIMIT, "grid: %d x %d points per patch exceeds the limit %d per direction",
+                         n, m, RG2_GRID_MAX);
+    return RG2_OK;
+}
+
+rg2_status rg2_patch_grid(const rg2_patch *P, int n, int m, const rg2_grid_out *out, rg2_error *err)
+{
+    rg2_status st = check_args(n, m, out, err);
+    if (st)
+        return st;
+    if (!P)
+        return rg2__fail(err, RG2_EINVAL, "grid: the patch is NULL");
+    tables t;
+    st = tables_make(&t, n, m, out_order(out), err);
+    if (st)
+        return st;
+    t.stream = (size_t)n * (size_t)m * (t.order ? 48 : 24) > RG2_STREAM_BYTES;
+    grid_patch(P, &t, out, 0);
+    tables_free(&t);
+    rg2__ok(err);
+    return RG2_OK;
+}
+
+rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads, const rg2_grid_out *out,
+                            rg2_error *err)
+{
+    rg2_status st = check_args(n, m, out, err);
+    if (st)
+        return st;
+    if (!s || !s->patch || s->nu < 1 || s->nv < 1)
+        return rg2__fail(err, RG2_EINVAL, "grid: the surface is empty (no patches)");
+    if (threads < 0)
+        return rg2__fail(err, RG2_EINVAL, "grid: thread count %d is negative", threads);
+    size_t np = (size_t)s->nu * (size_t)s->nv, per = (size_t)n * (size_t)m;
+    if (np > SIZE_MAX / 3 / sizeof(double) / per)
+        return rg2__fail(err, RG2_ELIMIT, "grid: %zu patches x %d x %d points exceed the addressable size", np,
+                         n, m);
+    tables t;
+    st = tables_make(&t, n, m, out_order(out), err);
+    if (st)
+        return st;
+    t.stream = np * per * (t.order ? 48 : 24) > RG2_STREAM_BYTES;
+    long long cnt = (long long)np;
+    int nt = 1;
+#ifdef RG2_HAVE_OPENMP
+    nt = threads > 0 ? threads : omp_get_max_threads();
+    if (nt > cnt)
+        nt = (int)cnt;
+    if (nt > 1) {
+        /* chunks of patches: about 8 per thread, so that many small patches cost no more
+         * scheduling than a few large ones */
+        int chunk = (int)(cnt / (8LL * nt));
+        if (chunk < 1)
+            chunk = 1;
+#pragma omp parallel for schedule(dynamic, chunk) num_threads(nt)
+        for (long long k = 0; k < cnt; k++)
+            grid_patch(&s->patch[k], &t, out, (size_t)k * per);
+    }
+#endif
+    if (nt <= 1)
+        for (long long k = 0; k < cnt; k++)
+            grid_patch(&s->patch[k], &t, out, (size_t)k * per);
+    tables_free(&t);
+    rg2__ok(err);
+    return RG2_OK;
+}
+
+/* ---- per point ---------------------------------------------------------------------- */
+
+/* Column sums at one v (c[r][k] = sum_s h[r][s][k] B[s]), as in rg2_patch_eval. */
+static inline void vsum1(const rg2_patch *P, const double B[4], double c[4][4])
+{
+    for (int r = 0; r < 4; r++)
+        for (int k = 0; k < 4; k++)
+            c[r][k] = P->h[r][0][k] * B[0] + P->h[r][1][k] * B[1] + P->h[r][2][k] * B[2] +
+                      P->h[r][3][k] * B[3];
+}
+
+static inline double usum1(const double U[4], double c[4][4], int k)
+{
+    return U[0] * c[0][k] + U[1] * c[1][k] + U[2] * c[2][k] + U[3] * c[3][k];
+}
+
+void rg2_patch_point(const rg2_patch *P, double u, double v, double p[3])
+{
+    double Bu[4], Bv[4], c[4][4];
+    rg2__bern3(u, Bu, NULL, NULL);
+    rg2__bern3(v, Bv, NULL, NULL);
+    vsum1(P, Bv, c);
+    double iw = 1.0 / usum1(Bu, c, 3);
+    for (int k = 0; k < 3; k++)
+        p[k] = usum1(Bu, c, k) * iw;
+}
+
+unsigned rg2_patch_point_normal(const rg2_patch *P, double u, double v, double p[3], double nrm[3])
+{
+    double Bu[4], Du[4], Bv[4], Dv[4], c0[4][4], c1[4][4];
+    rg2__bern3(u, Bu, Du, NULL);
+    rg2__bern3(v, Bv, Dv, NULL);
+    vsum1(P, Bv, c0);
+    vsum1(P, Dv, c1);
+    double h[4], hu[4], hv[4];
+    for (int k = 0; k < 4; k++) {
+        h[k] = usum1(Bu, c0, k);
+        hu[k] = usum1(Du, c0, k);
+        hv[k] = usum1(Bu, c1, k);
+    }
+    unsigned flags = h[3] > 0.0 ? 0u : (unsigned)RG2_EVAL_WEIGHT_NONPOSITIVE;
+    double iw = 1.0 / h[3], su[3], sv[3];
+    for (int k = 0; k < 3; k++) {
+        p[k] = h[k] * iw;
+        su[k] = hu[k] - hu[3] * p[k];
+        sv[k] = hv[k] - hv[3] * p[k];
+    }
+    double c[3] = {su[1] * sv[2] - su[2] * sv[1], su[2] * sv[0] - su[0] * sv[2],
+                   su[0] * sv[1] - su[1] * sv[0]};
+    double l2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    double s2 = (su[0] * su[0] + su[1] * su[1] + su[2] * su[2]) *
+                (sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2]);
+    if (!(l2 > 1e-30 * s2)) {
+        nrm[0] = nrm[1] = nrm[2] = 0.0;
+        return flags | RG2_EVAL_NORMAL_UNDEFINED | RG2_EVAL_CURVATURE_UNDEFINED;
+    }
+    double len = sqrt(l2);
+    for (int k = 0; k < 3; k++)
+        nrm[k] = c[k] / len;
+    return flags;
+}

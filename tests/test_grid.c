@@ -1,0 +1,329 @@
+/* test_grid.c -- the grid evaluator against the independent per-point evaluator
+ * (rg2_patch_eval) on random rational patches and the exact torus; thread-count
+ * independence (bitwise); argument errors. */
+#include "harness.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static double norm3(const double *a) { return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
+
+static double dist3(const double *a, const double *b)
+{
+    double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+    return norm3(d);
+}
+
+/* Worst relative differences of a grid evaluation against rg2_patch_eval. */
+typedef struct {
+    double pos, normal, d1, d2, K, H;
+    int undefined; /* points where the reference flags the normal as undefined */
+} diffs;
+
+static void worse(double *w, double v)
+{
+    if (!(v <= *w)) /* NaN counts as worse */
+        *w = v;
+}
+
+/* Compare n x m grid points starting at point index `first` of `o` with the reference. */
+static void compare_patch(const rg2_patch *P, int n, int m, const rg2_grid_out *o, size_t first,
+                          double scale, diffs *d)
+{
+    for (int a = 0; a < n; a++)
+        for (int b = 0; b < m; b++) {
+            double u = a == n - 1 ? 1.0 : (double)a / (n - 1), v = b == m - 1 ? 1.0 : (double)b / (m - 1);
+            rg2_eval e;
+            rg2_patch_eval(P, u, v, 2, &e);
+            size_t i = first + (size_t)a * m + b;
+            worse(&d->pos, dist3(o->pos + 3 * i, e.p) / scale);
+            if (e.flags & RG2_EVAL_NORMAL_UNDEFINED) {
+                d->undefined++;
+                if (o->normal)
+                    worse(&d->normal, norm3(o->normal + 3 * i)); /* must be the zero vector */
+                if (o->K)
+                    worse(&d->K, fabs(o->K[i]));
+                if (o->H)
+                    worse(&d->H, fabs(o->H[i]));
+                continue;
+            }
+            if (o->normal)
+                worse(&d->normal, dist3(o->normal + 3 * i, e.n));
+            double s1 = fmax(norm3(e.su), norm3(e.sv));
+            double s2 = fmax(fmax(norm3(e.suu), norm3(e.suv)), norm3(e.svv));
+            if (o->du)
+                worse(&d->d1, dist3(o->du + 3 * i, e.su) / s1);
+            if (o->dv)
+                worse(&d->d1, dist3(o->dv + 3 * i, e.sv) / s1);
+            if (o->duu)
+                worse(&d->d2, dist3(o->duu + 3 * i, e.suu) / s2);
+            if (o->duv)
+                worse(&d->d2, dist3(o->duv + 3 * i, e.suv) / s2);
+            if (o->dvv)
+                worse(&d->d2, dist3(o->dvv + 3 * i, e.svv) / s2);
+            double kmax = fmax(fabs(e.k1), fabs(e.k2));
+            if (o->K)
+                worse(&d->K, fabs(o->K[i] - e.K) / fmax(kmax * kmax, 1e-300));
+            if (o->H)
+                worse(&d->H, fabs(o->H[i] - e.H) / fmax(kmax, 1e-300));
+        }
+}
+
+/* All output arrays for `pts` points (every one allocated). */
+typedef struct {
+    rg2_grid_out o;
+    double *mem;
+} grid_buf;
+
+static void buf_alloc(grid_buf *g, size_t pts)
+{
+    g->mem = calloc(pts * 23, sizeof(double));
+    double *q = g->mem;
+    double **vec[] = {&g->o.pos, &g->o.normal, &g->o.du, &g->o.dv, &g->o.duu, &g->o.duv, &g->o.dvv};
+    for (int k = 0; k < 7; k++, q += 3 * pts)
+        *vec[k] = q;
+    g->o.K = q;
+    g->o.H = q + pts;
+}
+
+static void random_patch(rg2t_rng *r, rg2_patch *P)
+{
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) {
+            double W = rg2t_uniform(r, 0.5, 2.0);
+            double x = i + rg2t_uniform(r, -0.3, 0.3), y = j + rg2t_uniform(r, -0.3, 0.3);
+            double z = rg2t_uniform(r, -1.0, 1.0);
+            P->h[i][j][0] = W * x;
+            P->h[i][j][1] = W * y;
+            P->h[i][j][2] = W * z;
+            P->h[i][j][3] = W;
+        }
+}
+
+static void random_patches(void)
+{
+    rg2t_rng r;
+    uint64_t seed = 88;
+    rg2t_seed(&r, seed);
+    printf("random rational patches, seed %llu\n", (unsigned long long)seed);
+    const int sizes[][2] = {{2, 2}, {7, 5}, {3, 130}, {17, 64}, {9, 65}};
+    diffs all = {0};
+    for (int trial = 0; trial < 20; trial++) {
+        rg2_patch P;
+        random_patch(&r, &P);
+        int n = sizes[trial % 5][0], m = sizes[trial % 5][1];
+        grid_buf g;
+        buf_alloc(&g, (size_t)n * m);
+        rg2_error err;
+        CHECK_OK(rg2_patch_grid(&P, n, m, &g.o, &err), &err);
+        diffs d = {0};
+        compare_patch(&P, n, m, &g.o, 0, 3.0, &d);
+        CHECK(d.pos <= 1e-14 && d.normal <= 1e-14 && d.d1 <= 1e-14 && d.d2 <= 1e-14 && d.K <= 1e-14 &&
+                  d.H <= 1e-14,
+              "trial %d (%d x %d): pos %.3g normal %.3g d1 %.3g d2 %.3g K %.3g H %.3g", trial, n, m, d.pos,
+              d.normal, d.d1, d.d2, d.K, d.H);
+        worse(&all.pos, d.pos), worse(&all.normal, d.normal), worse(&all.d1, d.d1);
+        worse(&all.d2, d.d2), worse(&all.K, d.K), worse(&all.H, d.H);
+
+        /* position-only and position+normal requests take other kernels: same answers */
+        grid_buf h;
+        buf_alloc(&h, (size_t)n * m);
+        rg2_grid_out o0 = {.pos = h.o.pos}, o1 = {.pos = h.o.pos, .normal = h.o.normal};
+        CHECK_OK(rg2_patch_grid(&P, n, m, &o0, &err), &err);
+        diffs d0 = {0};
+        compare_patch(&P, n, m, &o0, 0, 3.0, &d0);
+        CHECK_OK(rg2_patch_grid(&P, n, m, &o1, &err), &err);
+        diffs d1 = {0};
+        compare_patch(&P, n, m, &o1, 0, 3.0, &d1);
+        CHECK(d0.pos <= 1e-14 && d1.pos <= 1e-14 && d1.normal <= 1e-14,
+              "trial %d kernels: positions %.3g / %.3g, normals %.3g", trial, d0.pos, d1.pos, d1.normal);
+        /* the per-point fast paths */
+        double worst_pt = 0, worst_n = 0;
+        for (int k = 0; k < 16; k++) {
+            double u = rg2t_uniform(&r, 0, 1), v = rg2t_uniform(&r, 0, 1), p[3], nn[3];
+            rg2_eval e;
+            rg2_patch_eval(&P, u, v, 1, &e);
+            rg2_patch_point(&P, u, v, p);
+            worse(&worst_pt, dist3(p, e.p) / 3.0);
+            unsigned fl = rg2_patch_point_normal(&P, u, v, p, nn);
+            worse(&worst_pt, dist3(p, e.p) / 3.0);
+            worse(&worst_n, fl == e.flags ? dist3(nn, e.n) : 1.0);
+        }
+        CHECK(worst_pt <= 1e-14 && worst_n <= 1e-14, "trial %d per point: position %.3g normal %.3g", trial,
+              worst_pt, worst_n);
+        free(g.mem);
+        free(h.mem);
+    }
+    printf("  grid vs rg2_patch_eval: position %.2e, normal %.2e, d1 %.2e, d2 %.2e, K %.2e, H %.2e\n",
+           all.pos, all.normal, all.d1, all.d2, all.K, all.H);
+}
+
+/* A patch whose u = 0 edge collapses to a point: normal undefined there, zeros out. */
+static void collapsed_edge(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 5);
+    rg2_patch P;
+    random_patch(&r, &P);
+    for (int s = 0; s < 4; s++)
+        for (int k = 0; k < 4; k++)
+            P.h[0][s][k] = k == 3 ? 1.0 : 0.5;
+    grid_buf g;
+    buf_alloc(&g, 9 * 9);
+    rg2_error err;
+    CHECK_OK(rg2_patch_grid(&P, 9, 9, &g.o, &err), &err);
+    diffs d = {0};
+    compare_patch(&P, 9, 9, &g.o, 0, 3.0, &d);
+    CHECK(d.undefined >= 9, "collapsed edge: %d undefined normals", d.undefined);
+    CHECK(d.pos <= 1e-14 && d.normal <= 1e-14 && d.K <= 1e-14 && d.H <= 1e-14,
+          "collapsed edge: pos %.3g normal %.3g K %.3g H %.3g", d.pos, d.normal, d.K, d.H);
+    free(g.mem);
+}
+
+static void torus(void)
+{
+    const double R = 3.0, r = 1.0;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(rg2t_torus(R, r, 8, 6, NULL, &s, &err), &err);
+    int n = 33, m = 20;
+    size_t per = (size_t)n * m, np = (size_t)s.nu * s.nv;
+    grid_buf g;
+    buf_alloc(&g, per * np);
+    CHECK_OK(rg2_surface_grid(&s, n, m, 0, &g.o, &err), &err);
+    diffs d = {0};
+    for (size_t k = 0; k < np; k++)
+        compare_patch(&s.patch[k], n, m, &g.o, k * per, R + r, &d);
+    CHECK(d.pos <= 1e-14 && d.normal <= 1e-14 && d.d1 <= 1e-14 && d.d2 <= 1e-14 && d.K <= 1e-14 && d.H <= 1e-14,
+          "torus grid vs rg2_patch_eval: pos %.3g normal %.3g d1 %.3g d2 %.3g K %.3g H %.3g", d.pos, d.normal,
+          d.d1, d.d2, d.K, d.H);
+    /* against the exact torus: distance, normal, K = cos v / (r (R + r cos v)),
+     * |H| = (R + 2 r cos v) / (2 r (R + r cos v)) */
+    double dist = 0, nerr = 0, kerr = 0, herr = 0;
+    for (size_t i = 0; i < per * np; i++) {
+        const double *p = g.o.pos + 3 * i, *nn = g.o.normal + 3 * i;
+        double rho = hypot(p[0], p[1]), q = rho - R;
+        worse(&dist, fabs(hypot(q, p[2]) - r) / (R + r));
+        double c[3] = {p[0] / rho * q, p[1] / rho * q, p[2]}; /* exact normal direction */
+        double cl = norm3(c);
+        worse(&nerr, fmin(dist3((double[3]){c[0] / cl, c[1] / cl, c[2] / cl}, nn),
+                          dist3((double[3]){-c[0] / cl, -c[1] / cl, -c[2] / cl}, nn)));
+        double cv = q / r;
+        double K = cv / (r * (R + r * cv)), H = (R + 2 * r * cv) / (2 * r * (R + r * cv));
+        worse(&kerr, fabs(g.o.K[i] - K));
+        worse(&herr, fabs(fabs(g.o.H[i]) - H));
+    }
+    printf("torus, %zu patches x %d x %d: vs rg2_patch_eval pos %.2e normal %.2e K %.2e H %.2e; vs the "
+           "exact torus: distance %.2e, normal %.2e, K %.2e, H %.2e\n",
+           np, n, m, d.pos, d.normal, d.K, d.H, dist, nerr, kerr, herr);
+    CHECK(dist <= 1e-14 && nerr <= 1e-13 && kerr <= 1e-13 && herr <= 1e-13,
+          "torus exactness: distance %.3g normal %.3g K %.3g H %.3g", dist, nerr, kerr, herr);
+
+    /* the thread count does not change a single bit */
+    grid_buf g1, g2;
+    buf_alloc(&g1, per * np);
+    buf_alloc(&g2, per * np);
+    CHECK_OK(rg2_surface_grid(&s, n, m, 1, &g1.o, &err), &err);
+    CHECK_OK(rg2_surface_grid(&s, n, m, 2, &g2.o, &err), &err);
+    size_t bytes = per * np * 23 * sizeof(double);
+    CHECK(memcmp(g1.mem, g2.mem, bytes) == 0 && memcmp(g1.mem, g.mem, bytes) == 0,
+          "1, 2 and default threads give identical bits");
+    /* the position-only and position+normal kernels (other code paths): 1 vs 3 threads */
+    for (int level = 0; level < 2; level++) {
+        rg2_grid_out a = {.pos = g1.o.pos, .normal = level ? g1.o.normal : NULL};
+        rg2_grid_out b = {.pos = g2.o.pos, .normal = level ? g2.o.normal : NULL};
+        CHECK_OK(rg2_surface_grid(&s, n, m, 1, &a, &err), &err);
+        CHECK_OK(rg2_surface_grid(&s, n, m, 3, &b, &err), &err);
+        CHECK(memcmp(a.pos, b.pos, per * np * 3 * sizeof(double)) == 0 &&
+                  (!level || memcmp(a.normal, b.normal, per * np * 3 * sizeof(double)) == 0),
+              "level %d: 1 and 3 threads give identical bits", level);
+        /* requesting more outputs does not change positions and normals (bitwise) */
+        CHECK(memcmp(b.pos, g.o.pos, per * np * 3 * sizeof(double)) == 0 &&
+                  (!level || memcmp(b.normal, g.o.normal, per * np * 3 * sizeof(double)) == 0),
+              "level %d: the same bits as with every output requested", level);
+        diffs dd = {0};
+        for (size_t k = 0; k < np; k++)
+            compare_patch(&s.patch[k], n, m, &b, k * per, R + r, &dd);
+        CHECK(dd.pos <= 1e-14 && dd.normal <= 1e-14, "level %d kernel vs rg2_patch_eval: pos %.3g normal %.3g",
+              level, dd.pos, dd.normal);
+    }
+    free(g.mem);
+    free(g1.mem);
+    free(g2.mem);
+    rg2_surface_free(&s);
+}
+
+/* Outputs past 32 MB take the streaming-store path: still equal to rg2_patch_eval. */
+static void large_output(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 11);
+    rg2_patch P;
+    random_patch(&r, &P);
+    const int sizes[2] = {1201, 851}; /* 34.6 MB of positions; 34.8 MB of positions + normals */
+    for (int level = 0; level < 2; level++) {
+        int n = sizes[level];
+        size_t pts = (size_t)n * n;
+        double *pos = malloc(pts * 3 * sizeof(double)), *nrm = level ? malloc(pts * 3 * sizeof(double)) : NULL;
+        rg2_grid_out o = {.pos = pos, .normal = nrm};
+        rg2_error err;
+        CHECK_OK(rg2_patch_grid(&P, n, n, &o, &err), &err);
+        double dp = 0, dn = 0;
+        for (size_t i = 0; i < pts; i += 97) {
+            int a = (int)(i / (size_t)n), b = (int)(i % (size_t)n);
+            rg2_eval e;
+            rg2_patch_eval(&P, a == n - 1 ? 1.0 : (double)a / (n - 1), b == n - 1 ? 1.0 : (double)b / (n - 1), 1, &e);
+            worse(&dp, dist3(pos + 3 * i, e.p) / 3.0);
+            if (nrm)
+                worse(&dn, dist3(nrm + 3 * i, e.n));
+        }
+        CHECK(dp <= 1e-14 && dn <= 1e-14, "large output (%d x %d, level %d): position %.3g normal %.3g", n, n, level,
+              dp, dn);
+        free(pos);
+        free(nrm);
+    }
+}
+
+static void errors(void)
+{
+    rg2_patch P;
+    memset(&P, 0, sizeof P);
+    double pos[3 * 16];
+    rg2_grid_out o = {.pos = pos};
+    rg2_error err;
+    CHECK(rg2_patch_grid(&P, 1, 4, &o, &err) == RG2_EINVAL && strstr(err.msg, "at least 2"), "n = 1: %s",
+          err.msg);
+    CHECK(rg2_patch_grid(&P, 4, 0, &o, &err) == RG2_EINVAL && strstr(err.msg, "4 x 0"), "m = 0: %s", err.msg);
+    CHECK(rg2_patch_grid(&P, RG2_GRID_MAX + 1, 4, &o, &err) == RG2_ELIMIT && strstr(err.msg, "limit"),
+          "past RG2_GRID_MAX: %s", err.msg);
+    rg2_grid_out none = {0};
+    CHECK(rg2_patch_grid(&P, 4, 4, &none, &err) == RG2_EINVAL && strstr(err.msg, "pos"), "NULL pos: %s",
+          err.msg);
+    CHECK(rg2_patch_grid(&P, 4, 4, NULL, &err) == RG2_EINVAL && strstr(err.msg, "pos"), "NULL out: %s",
+          err.msg);
+    CHECK(rg2_patch_grid(NULL, 4, 4, &o, &err) == RG2_EINVAL && strstr(err.msg, "patch"), "NULL patch: %s",
+          err.msg);
+    rg2_surface s;
+    memset(&s, 0, sizeof s);
+    CHECK(rg2_surface_grid(&s, 4, 4, 0, &o, &err) == RG2_EINVAL && strstr(err.msg, "empty"), "empty surface: %s",
+          err.msg);
+    s.nu = s.nv = 1;
+    s.patch = &P;
+    CHECK(rg2_surface_grid(&s, 4, 4, -1, &o, &err) == RG2_EINVAL && strstr(err.msg, "thread"),
+          "negative threads: %s", err.msg);
+    s.nu = s.nv = 2000000000; /* never dereferenced: the size check comes first */
+    CHECK(rg2_surface_grid(&s, RG2_GRID_MAX, RG2_GRID_MAX, 1, &o, &err) == RG2_ELIMIT &&
+              strstr(err.msg, "addressable"),
+          "total size past memory sizes: %s", err.msg);
+}
+
+int main(void)
+{
+    random_patches();
+    collapsed_edge();
+    torus();
+    large_output();
+    errors();
+    return rg2t_done("test_grid");
+}
