@@ -33,37 +33,22 @@ int rg2_cmd_demo(int argc, char **argv)
     rg2_curve_free(&c);
     rg2_scalars_free(&s);
 
-    /* Torus (R + r cos v) (cos u, sin u), r sin v as a product of circle coefficients. */
+    /* Torus (R + r cos v) (cos u, sin u), r sin v from its exact control mesh. */
     const double R = 3.0, r = 1.0;
     int nu = 8, nv = 6;
-    double au[8], av[6], csu[16], csv[12];
+    double au[8], av[6];
     for (int i = 0; i < nu; i++)
         au[i] = 2 * M_PI / nu;
     for (int j = 0; j < nv; j++)
         av[j] = 2 * M_PI / nv;
-    rg2_mesh m = {0};
+    rg2_shape torus;
+    rg2_shape_init(&torus, RG2_SHAPE_TORUS);
+    torus.param[0] = R;
+    torus.param[1] = r;
+    rg2_partition pu = {RG2_PART_ANGLES, 1, nu, au, 0.0}, pv = {RG2_PART_ANGLES, 1, nv, av, 0.0};
     rg2_surface surf = {0};
     int rc = 0;
-    if (rg2_mesh_init(&m, nu, nv, 1, 1, &err) || rg2_circle_coeffs(au, nu, 1, 0.0, csu, &err) ||
-        rg2_circle_coeffs(av, nv, 1, 0.0, csv, &err)) {
-        rc = rg2_cli_report("demo", &err);
-        goto out;
-    }
-    rg2_scalars_free(&m.su);
-    rg2_scalars_free(&m.sv);
-    if (rg2_scalars_from_angles(&m.su, au, nu, 1, &err) || rg2_scalars_from_angles(&m.sv, av, nv, 1, &err)) {
-        rc = rg2_cli_report("demo", &err);
-        goto out;
-    }
-    for (int i = 0; i < nu; i++)
-        for (int j = 0; j < nv; j++) {
-            double *p = rg2_mesh_at(&m, i, j);
-            p[0] = (R + r * csv[2 * j]) * csu[2 * i];
-            p[1] = (R + r * csv[2 * j]) * csu[2 * i + 1];
-            p[2] = r * csv[2 * j + 1];
-            p[3] = 1.0;
-        }
-    if (rg2_surface_build(&m, &surf, &err)) {
+    if (rg2_shape_surface(&torus, &pu, &pv, &surf, NULL, &err)) {
         rc = rg2_cli_report("demo", &err);
         goto out;
     }
@@ -85,6 +70,5 @@ int rg2_cmd_demo(int argc, char **argv)
     printf("  largest distance from the torus over 33 x 33 samples per patch: %.3g\n", worst);
 out:
     rg2_surface_free(&surf);
-    rg2_mesh_free(&m);
     return rc;
 }

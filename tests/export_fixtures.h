@@ -12,38 +12,7 @@
 /* Torus (R + r cos v)(cos u, sin u), r sin v from nu x nv arcs (the demo's construction). */
 static inline rg2_status fx_torus(double R, double r, int nu, int nv, rg2_surface *out, rg2_error *err)
 {
-    double au[32], av[32], csu[64], csv[64];
-    rg2_mesh m;
-    memset(&m, 0, sizeof m);
-    for (int i = 0; i < nu; i++)
-        au[i] = 2 * M_PI / nu;
-    for (int j = 0; j < nv; j++)
-        av[j] = 2 * M_PI / nv;
-    rg2_status st = rg2_mesh_init(&m, nu, nv, 1, 1, err);
-    if (!st)
-        st = rg2_circle_coeffs(au, nu, 1, 0.0, csu, err);
-    if (!st)
-        st = rg2_circle_coeffs(av, nv, 1, 0.0, csv, err);
-    if (!st) {
-        rg2_scalars_free(&m.su);
-        rg2_scalars_free(&m.sv);
-        st = rg2_scalars_from_angles(&m.su, au, nu, 1, err);
-    }
-    if (!st)
-        st = rg2_scalars_from_angles(&m.sv, av, nv, 1, err);
-    if (!st) {
-        for (int i = 0; i < nu; i++)
-            for (int j = 0; j < nv; j++) {
-                double *p = rg2_mesh_at(&m, i, j);
-                p[0] = (R + r * csv[2 * j]) * csu[2 * i];
-                p[1] = (R + r * csv[2 * j]) * csu[2 * i + 1];
-                p[2] = r * csv[2 * j + 1];
-                p[3] = 1.0;
-            }
-        st = rg2_surface_build(&m, out, err);
-    }
-    rg2_mesh_free(&m);
-    return st;
+    return rg2t_torus(R, r, nu, nv, NULL, out, err);
 }
 
 /* Torus implicit distance estimate: | |(hypot(x,y) - R, z)| - r |. */

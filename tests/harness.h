@@ -10,10 +10,6 @@
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
-/* The torus ((R + r cos v) cos u, (R + r cos v) sin u, r sin v) as a closed mesh of nu x nv
- * equal arcs (exact circle scalars), built into nu x nv rational bi-cubic patches. The mesh is
- * kept in *mesh if not NULL (caller frees). Returns the status; err names a failure. */
-rg2_status rg2t_torus(double R, double r, int nu, int nv, rg2_mesh *mesh, rg2_surface *out, rg2_error *err);
 
 #endif
 
