@@ -132,6 +132,7 @@ static const char *type_name(const cJSON *x)
 
 static rg2_status as_num(pctx *c, const cJSON *x, const char *path, double *out)
 {
+    *out = 0.0;
     if (!cJSON_IsNumber(x))
         return fail(c, RG2_EPARSE, path, "expected a number, found %s", type_name(x));
     if (!rg2__finite(x->valuedouble))
@@ -148,7 +149,7 @@ static rg2_status as_num(pctx *c, const cJSON *x, const char *path, double *out)
 
 static rg2_status as_int(pctx *c, const cJSON *x, const char *path, int *out)
 {
-    double v;
+    double v = 0.0;
     rg2_status st = as_num(c, x, path, &v);
     if (st)
         return st;
@@ -168,6 +169,7 @@ static rg2_status as_bool(pctx *c, const cJSON *x, const char *path, int *out)
 
 static rg2_status as_str(pctx *c, const cJSON *x, const char *path, const char **out)
 {
+    *out = NULL;
     if (!cJSON_IsString(x))
         return fail(c, RG2_EPARSE, path, "expected a string, found %s", type_name(x));
     *out = x->valuestring;
@@ -501,7 +503,7 @@ static const char *const ops[] = {"shape", "cut", "merge", "transpose", "reverse
 
 static rg2_status mesh_ref(pctx *c, const cJSON *x, const char *path, int *idx)
 {
-    const char *name;
+    const char *name = NULL;
     rg2_status st = as_str(c, x, path, &name);
     if (st)
         return st;
@@ -618,7 +620,7 @@ static rg2_status op_cut(pctx *c, const cJSON *obj, const char *path, rg2__dmesh
 
 static rg2_status parse_dir(pctx *c, const cJSON *x, const char *path, int *dir)
 {
-    const char *s;
+    const char *s = NULL;
     rg2_status st = as_str(c, x, path, &s);
     if (st)
         return st;
@@ -1034,7 +1036,7 @@ rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, c
         goto done;
     const cJSON *x;
     if ((x = get(root, "format"))) {
-        const char *f;
+        const char *f = NULL;
         if ((st = as_str(&c, x, "format", &f)))
             goto done;
         if (strcmp(f, "rg2 design 1")) {

@@ -48,7 +48,7 @@ static void pw_flush(pwriter *w)
     char rec[81];
     memset(rec, ' ', 80);
     memcpy(rec, w->line, (size_t)w->col);
-    char tail[17];
+    char tail[32]; /* 15 characters used; room for any int */
     snprintf(tail, sizeof tail, "%7dP%7d", w->de, w->P->nlines + 1);
     memcpy(rec + 65, tail, 15);
     ib_put(w->P, rec);
@@ -154,7 +154,7 @@ static void g_flush(ibuf *G, const char *line, int col)
     char rec[81];
     memset(rec, ' ', 80);
     memcpy(rec, line, (size_t)col);
-    char tail[10];
+    char tail[16]; /* 8 characters used; room for any int */
     snprintf(tail, sizeof tail, "G%7d", G->nlines + 1);
     memcpy(rec + 72, tail, 8);
     ib_put(G, rec);
@@ -184,7 +184,7 @@ static void put_section_line(FILE *f, const char *text, char letter, int seq)
     memset(rec, ' ', 80);
     size_t n = strlen(text);
     memcpy(rec, text, n > 72 ? 72 : n);
-    char tail[10];
+    char tail[16]; /* 8 characters used; room for any int */
     snprintf(tail, sizeof tail, "%c%7d", letter, seq);
     memcpy(rec + 72, tail, 8);
     fwrite(rec, 1, 80, f);

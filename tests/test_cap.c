@@ -304,7 +304,7 @@ static void quadric_caps(void)
     printf("paraboloid and two-sheeted hyperboloid polar configurations, seed %llu\n", (unsigned long long)seed);
     for (int kind = 0; kind < 2; kind++) {
         int n = rg2t_int(&r, 3, 7), m = rg2t_int(&r, 2, 5);
-        double alpha[16], t[16], knots[20];
+        double alpha[16], t[16] = {0}, knots[20];
         pt_random_arcs(&r, n, alpha);
         pt_random_knots(&r, m + 2, 0.0, kind ? 0.95 : 1.5, t);
         knots[0] = -t[0];
