@@ -54,5 +54,6 @@ while IFS=$'\t' read -r file code msg args; do
   run "$code" "$rg2" "${words[@]}"
   rm -rf "$tmp/bad"
 done <"$src/tests/bad/table.tsv"
-echo "check-memory ($runs valgrind runs): $((runs - fails)) passed, $fails failed"
+echo "valgrind memcheck: $runs runs of rg2"
+echo "check-memory: $((runs - fails)) passed, $fails failed"
 [ "$fails" = 0 ]
