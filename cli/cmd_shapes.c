@@ -225,6 +225,9 @@ static int json_numbers(const cJSON *a, const char *what, double *out, int max, 
     return n;
 }
 
+/* Same limit as design files (README, Limits and errors). */
+#define NURBS_MAX_BYTES (64u << 20)
+
 static char *read_text(const char *path)
 {
     FILE *f = fopen(path, "rb");
@@ -237,7 +240,7 @@ static char *read_text(const char *path)
         len += got;
         if (len < cap - 1)
             break;
-        char *nb = realloc(buf, cap * 2);
+        char *nb = cap >= NURBS_MAX_BYTES ? NULL : realloc(buf, cap * 2);
         if (!nb) {
             free(buf);
             buf = NULL;
@@ -246,7 +249,12 @@ static char *read_text(const char *path)
         buf = nb;
         cap *= 2;
     }
+    int bad = ferror(f);
     fclose(f);
+    if (buf && bad) {
+        free(buf);
+        buf = NULL;
+    }
     if (buf)
         buf[len] = '\0';
     return buf;
@@ -623,7 +631,8 @@ int rg2_cmd_shape(int argc, char **argv)
         }
         char *text = file ? read_text(file) : NULL;
         if (file && !text) {
-            fprintf(stderr, "rg2 shape: nurbs: cannot read '%s'\n", file);
+            fprintf(stderr, "rg2 shape: nurbs: cannot read '%s' (missing, unreadable, or larger than %u bytes)\n",
+                    file, NURBS_MAX_BYTES);
             return RG2_EXIT_FAIL;
         }
         rg2_nurbs nb;
