@@ -210,6 +210,17 @@ typedef struct {
     double h[4][4][4];
 } rg2_patch;
 
+#define RG2_MAX_DEGREE 5 /**< highest degree per direction of an rg2_xpatch */
+
+/** A rational Bezier patch of degree (du, dv), 1 <= du, dv <= RG2_MAX_DEGREE: h[r][s] for
+ *  r <= du, s <= dv is the homogeneous control point (w x, w y, w z, w); entries beyond the
+ *  degrees are zero. Surfaces hold such patches only where a construction needs a degree above
+ *  3: the general-quadratic polar caps (degree 4 or 5 in u, 3 in v; docs/poles.md). */
+typedef struct {
+    int du, dv;
+    double h[RG2_MAX_DEGREE + 1][RG2_MAX_DEGREE + 1][4];
+} rg2_xpatch;
+
 /** A grid of patches: patch (i, j) = patch[i * nv + j]; its u = 1 edge meets patch (i+1, j)'s
  *  u = 0 edge, with scalars (b, g) of the u-direction junction between them. */
 typedef struct {
@@ -220,6 +231,11 @@ typedef struct {
                               for open u, bu[0] is unused) */
     double *bv, *gv;     /**< v junction scalars likewise (nv values) */
     int *tag;            /**< nu * nv provenance tags (shape index, -1 transition); may be NULL */
+    rg2_xpatch *xp;      /**< NULL for an all-bi-3 surface; else nu * nv entries: where
+                              xp[k].du > 0, patch k is that higher-degree patch (the general-
+                              quadratic polar caps) and patch[k] is unused (all NaN). Read
+                              patches through rg2_surface_eval / rg2_surface_patch_get to
+                              handle both kinds. */
 } rg2_surface;
 
 /** The Bi-cubic Construction: rows then columns of the curve construction on 4-tuples.
@@ -231,8 +247,25 @@ static inline rg2_patch *rg2_surface_patch(const rg2_surface *s, int i, int j)
 {
     return s->patch + (size_t)i * (size_t)s->nv + (size_t)j;
 }
+/** The higher-degree patch (i, j), or NULL when patch (i, j) is an ordinary bi-3 patch. */
+static inline const rg2_xpatch *rg2_surface_xpatch(const rg2_surface *s, int i, int j)
+{
+    const rg2_xpatch *x = s->xp ? s->xp + (size_t)i * (size_t)s->nv + (size_t)j : 0;
+    return x && x->du > 0 ? x : 0;
+}
+/** Patch (i, j) in the general form, whichever kind it is (bi-3 patches with du = dv = 3). */
+RG2_API void rg2_surface_patch_get(const rg2_surface *s, int i, int j, rg2_xpatch *out);
+/** Highest u- and v-degree over all patches (3, 3 for an all-bi-3 surface). */
+RG2_API void rg2_surface_degree(const rg2_surface *s, int *du, int *dv);
 /** Smallest homogeneous weight over all control points of all patches. */
 RG2_API double rg2_surface_min_weight(const rg2_surface *s);
+
+/** A bi-3 patch in the general form (du = dv = 3). */
+RG2_API void rg2_xpatch_from_patch(const rg2_patch *P, rg2_xpatch *out);
+/** Exact degree elevation to (du, dv) >= the patch's degrees (same rational surface).
+ *  @return RG2_EINVAL when a target degree is below the patch's or above RG2_MAX_DEGREE. */
+RG2_API rg2_status rg2_xpatch_elevate(const rg2_xpatch *X, int du, int dv, rg2_xpatch *out,
+                                      rg2_error *err);
 
 /* ===================================================================================== */
 /** @name Evaluation */
@@ -261,6 +294,14 @@ typedef struct {
 RG2_API void rg2_patch_eval(const rg2_patch *P, double u, double v, int order, rg2_eval *out);
 /** Homogeneous values: out[d][k] for d = 0 value, 1 d/du, 2 d/dv, 3 d2/du2, 4 d2/dudv, 5 d2/dv2. */
 RG2_API void rg2_patch_eval_h(const rg2_patch *P, double u, double v, double out[6][4]);
+/** rg2_patch_eval and rg2_patch_eval_h for a patch of any degree. */
+RG2_API void rg2_xpatch_eval(const rg2_xpatch *X, double u, double v, int order, rg2_eval *out);
+RG2_API void rg2_xpatch_eval_h(const rg2_xpatch *X, double u, double v, double out[6][4]);
+/** Evaluate patch (i, j) of a surface, whichever kind it is (rg2_patch_eval or rg2_xpatch_eval). */
+RG2_API void rg2_surface_eval(const rg2_surface *s, int i, int j, double u, double v, int order,
+                              rg2_eval *out);
+RG2_API void rg2_surface_eval_h(const rg2_surface *s, int i, int j, double u, double v,
+                                double out[6][4]);
 /** Normal curvature in the tangent direction t = a su + c sv of an order-2 evaluation. */
 RG2_API double rg2_eval_normal_curvature(const rg2_eval *e, double a, double c);
 

@@ -59,9 +59,15 @@ static double dot3(const double a[3], const double b[3])
 
 void rg2_patch_eval(const rg2_patch *P, double u, double v, int order, rg2_eval *e)
 {
-    memset(e, 0, sizeof *e);
     double H[6][4];
     eval_h(P, u, v, order, H);
+    rg2__eval_from_h(H, order, e);
+}
+
+/* Position, derivatives, normal and curvatures from the homogeneous values (quotient rule). */
+void rg2__eval_from_h(double H[6][4], int order, rg2_eval *e)
+{
+    memset(e, 0, sizeof *e);
     double W = H[0][3];
     if (!(W > 0.0))
         e->flags |= RG2_EVAL_WEIGHT_NONPOSITIVE;

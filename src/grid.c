@@ -606,6 +606,8 @@ rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads, con
     if (nt <= 1)
         for (long long k = 0; k < cnt; k++)
             grid_patch(&s->patch[k], &t, out, (size_t)k * per);
+    if (s->xp) /* higher-degree patches: the general evaluator (xpatch.c) */
+        rg2__grid_xpatches(s, n, m, out);
     tables_free(&t);
     rg2__ok(err);
     return RG2_OK;

@@ -71,6 +71,18 @@ static inline int rg2__wrap(int a, int n, int closed)
 
 static inline int rg2__finite(double x) { return isfinite(x); }
 
+/* Position, derivatives, normal and curvatures of an evaluation from the homogeneous values
+ * H[d][k] (d = value, d/du, d/dv, d2/du2, d2/dudv, d2/dv2) up to `order` (eval.c). */
+void rg2__eval_from_h(double H[6][4], int order, rg2_eval *e);
+
+/* Bernstein basis of degree n <= RG2_MAX_DEGREE and its first two derivatives at t (D, DD
+ * nullable), in the summation order of rg2__bern3 for n = 3 (xpatch.c). */
+void rg2__bern(int n, double t, double *B, double *D, double *DD);
+
+/* The points of the higher-degree patches of s (s->xp) on the n x m grid, in the layout of
+ * rg2_surface_grid, by rg2_xpatch_eval (xpatch.c; grid.c calls it after the bi-3 patches). */
+void rg2__grid_xpatches(const rg2_surface *s, int n, int m, const rg2_grid_out *out);
+
 /* Bernstein cubic basis and derivatives at t. */
 static inline void rg2__bern3(double t, double B[4], double D[4], double DD[4])
 {

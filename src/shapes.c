@@ -1053,12 +1053,13 @@ void rg2_surface_weight_report(const rg2_surface *s, rg2_weight_report *rep)
     rep->min_weight = INFINITY;
     for (int i = 0; i < s->nu; i++)
         for (int j = 0; j < s->nv; j++) {
-            const rg2_patch *P = rg2_surface_patch(s, i, j);
+            rg2_xpatch P;
+            rg2_surface_patch_get(s, i, j, &P);
             double mn = INFINITY;
-            for (int r = 0; r < 4; r++)
-                for (int t = 0; t < 4; t++)
-                    if (P->h[r][t][3] < mn)
-                        mn = P->h[r][t][3];
+            for (int r = 0; r <= P.du; r++)
+                for (int t = 0; t <= P.dv; t++)
+                    if (P.h[r][t][3] < mn)
+                        mn = P.h[r][t][3];
             if (!(mn > 0.0))
                 rep->n_nonpositive++;
             if (mn < rep->min_weight) {

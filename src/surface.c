@@ -15,6 +15,7 @@ void rg2_surface_free(rg2_surface *s)
     free(s->bv);
     free(s->gv);
     free(s->tag);
+    free(s->xp);
     memset(s, 0, sizeof *s);
 }
 
@@ -52,6 +53,14 @@ rg2_status rg2_surface_copy(const rg2_surface *src, rg2_surface *dst, rg2_error 
     memcpy(dst->gv, src->gv, (size_t)src->nv * sizeof(double));
     if (src->tag)
         memcpy(dst->tag, src->tag, np * sizeof(int));
+    if (src->xp) {
+        dst->xp = rg2__calloc(np, sizeof(rg2_xpatch));
+        if (!dst->xp) {
+            rg2_surface_free(dst);
+            return rg2__fail(err, RG2_ENOMEM, "surface: out of memory for %zu patches", np);
+        }
+        memcpy(dst->xp, src->xp, np * sizeof(rg2_xpatch));
+    }
     return RG2_OK;
 }
 
@@ -172,5 +181,11 @@ double rg2_surface_min_weight(const rg2_surface *s)
             for (int t = 0; t < 4; t++)
                 if (s->patch[k].h[r][t][3] < mn)
                     mn = s->patch[k].h[r][t][3];
+    if (s->xp)
+        for (size_t k = 0; k < np; k++)
+            for (int r = 0; r <= s->xp[k].du; r++)
+                for (int t = 0; t <= s->xp[k].dv; t++)
+                    if (s->xp[k].du > 0 && s->xp[k].h[r][t][3] < mn)
+                        mn = s->xp[k].h[r][t][3];
     return mn;
 }
