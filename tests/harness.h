@@ -68,6 +68,10 @@ double rg2t_surface_scale(const rg2_surface *s);
 /* The torus ((R + r cos v) cos u, (R + r cos v) sin u, r sin v) as a closed mesh of nu x nv
  * equal arcs (exact circle scalars), built into nu x nv rational bi-cubic patches. The mesh is
  * kept in *mesh if not NULL (caller frees). Returns the status; err names a failure. */
+/* Replace every `stride`-th patch (k % stride == phase, k = i * nv + j) of s by its exact
+ * degree elevation to (du, dv) held in s->xp (patch[k] set to NaN): the same geometry, so
+ * every exactness/G2 test of s must still pass through the higher-degree code paths. */
+rg2_status rg2t_elevate_some(rg2_surface *s, int du, int dv, int stride, int phase, rg2_error *err);
 rg2_status rg2t_torus(double R, double r, int nu, int nv, rg2_mesh *mesh, rg2_surface *out, rg2_error *err);
 
 #endif

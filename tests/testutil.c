@@ -33,17 +33,20 @@ int rg2t_int(rg2t_rng *r, int lo, int hi) { return lo + (int)(next(r) % (uint64_
 double rg2t_surface_scale(const rg2_surface *s)
 {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    size_t np = (size_t)s->nu * (size_t)s->nv;
-    for (size_t k = 0; k < np; k++)
-        for (int r = 0; r < 4; r++)
-            for (int t = 0; t < 4; t++) {
-                const double *h = s->patch[k].h[r][t];
+    for (int i = 0; i < s->nu; i++)
+        for (int j = 0; j < s->nv; j++) {
+            rg2_xpatch P;
+            rg2_surface_patch_get(s, i, j, &P);
+            for (int r = 0; r <= P.du; r++)
+            for (int t = 0; t <= P.dv; t++) {
+                const double *h = P.h[r][t];
                 for (int d = 0; d < 3; d++) {
                     double x = h[d] / h[3];
                     if (x < lo[d]) lo[d] = x;
                     if (x > hi[d]) hi[d] = x;
                 }
             }
+        }
     return sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                 (hi[2] - lo[2]) * (hi[2] - lo[2]));
 }
@@ -132,8 +135,8 @@ void rg2t_surface_seams(const rg2_surface *s, int samples, rg2t_seams *o)
             for (int k = 0; k <= samples; k++) {
                 double t = (double)k / samples;
                 rg2_eval L, R;
-                rg2_patch_eval(rg2_surface_patch(s, im, j), 1.0, t, 2, &L);
-                rg2_patch_eval(rg2_surface_patch(s, i, j), 0.0, t, 2, &R);
+                rg2_surface_eval(s, im, j, 1.0, t, 2, &L);
+                rg2_surface_eval(s, i, j, 0.0, t, 2, &R);
                 measure(&L, &R, 0, s->bu[i], s->gu[i], scale, o, where);
             }
         }
@@ -146,8 +149,8 @@ void rg2t_surface_seams(const rg2_surface *s, int samples, rg2t_seams *o)
             for (int k = 0; k <= samples; k++) {
                 double t = (double)k / samples;
                 rg2_eval L, R;
-                rg2_patch_eval(rg2_surface_patch(s, i, jm), t, 1.0, 2, &L);
-                rg2_patch_eval(rg2_surface_patch(s, i, j), t, 0.0, 2, &R);
+                rg2_surface_eval(s, i, jm, t, 1.0, 2, &L);
+                rg2_surface_eval(s, i, j, t, 0.0, 2, &R);
                 measure(&L, &R, 1, s->bv[j], s->gv[j], scale, o, where);
             }
         }
@@ -195,4 +198,28 @@ rg2_status rg2t_torus(double R, double r, int nu, int nv, rg2_mesh *mesh, rg2_su
     else
         rg2_mesh_free(&m);
     return st;
+}
+
+rg2_status rg2t_elevate_some(rg2_surface *s, int du, int dv, int stride, int phase, rg2_error *err)
+{
+    size_t np = (size_t)s->nu * (size_t)s->nv;
+    if (!s->xp) {
+        s->xp = calloc(np, sizeof(rg2_xpatch));
+        if (!s->xp)
+            return RG2_ENOMEM;
+    }
+    for (size_t k = 0; k < np; k++) {
+        if ((int)(k % (size_t)stride) != phase || s->xp[k].du > 0)
+            continue;
+        rg2_xpatch x;
+        rg2_xpatch_from_patch(&s->patch[k], &x);
+        rg2_status st = rg2_xpatch_elevate(&x, du, dv, &s->xp[k], err);
+        if (st)
+            return st;
+        for (int r = 0; r < 4; r++)
+            for (int t = 0; t < 4; t++)
+                for (int c = 0; c < 4; c++)
+                    s->patch[k].h[r][t][c] = NAN;
+    }
+    return RG2_OK;
 }
