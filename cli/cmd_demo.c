@@ -58,7 +58,7 @@ int rg2_cmd_demo(int argc, char **argv)
             for (int a = 0; a <= 32; a++)
                 for (int b = 0; b <= 32; b++) {
                     rg2_eval e;
-                    rg2_patch_eval(rg2_surface_patch(&surf, i, j), a / 32.0, b / 32.0, 0, &e);
+                    rg2_surface_eval(&surf, i, j, a / 32.0, b / 32.0, 0, &e);
                     double q = hypot(e.p[0], e.p[1]) - R;
                     double d = fabs(hypot(q, e.p[2]) - r);
                     if (d > worst)

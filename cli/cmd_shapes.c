@@ -388,13 +388,17 @@ static void print_json(const rg2_shape *sh, const rg2_partition *pu, const rg2_p
     printf(",\n  \"patches\": [");
     for (int i = 0; i < s->nu; i++)
         for (int j = 0; j < s->nv; j++) {
-            const rg2_patch *P = rg2_surface_patch(s, i, j);
-            printf("%s\n   {\"i\": %d, \"j\": %d, \"h\": [", i || j ? "," : "", i, j);
-            for (int r = 0; r < 4; r++) {
+            rg2_xpatch P;
+            rg2_surface_patch_get(s, i, j, &P);
+            printf("%s\n   {\"i\": %d, \"j\": %d, ", i || j ? "," : "", i, j);
+            if (rg2_surface_xpatch(s, i, j)) /* higher degree: h is (du + 1) x (dv + 1) */
+                printf("\"du\": %d, \"dv\": %d, ", P.du, P.dv);
+            printf("\"h\": [");
+            for (int r = 0; r <= P.du; r++) {
                 printf("%s[", r ? ", " : "");
-                for (int t = 0; t < 4; t++) {
+                for (int t = 0; t <= P.dv; t++) {
                     printf("%s", t ? ", " : "");
-                    json_doubles(P->h[r][t], 4);
+                    json_doubles(P.h[r][t], 4);
                 }
                 printf("]");
             }
@@ -430,7 +434,7 @@ static double max_residual(const rg2_shape *sh, const rg2_surface *s, int sample
             for (int a = 0; a <= samples; a++)
                 for (int b = 0; b <= samples; b++) {
                     rg2_eval e;
-                    rg2_patch_eval(rg2_surface_patch(s, i, j), (double)a / samples, (double)b / samples, 0, &e);
+                    rg2_surface_eval(s, i, j, (double)a / samples, (double)b / samples, 0, &e);
                     double g[3], f = rg2_shape_implicit(sh, e.p, g);
                     double r = fabs(f) / sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
                     if (!(r <= worst))

@@ -12,8 +12,11 @@
  *   surface, relative to the size of that shape's patches).
  *   Weights: the homogeneous weights of all control points, and the denominators at the
  *   samples. Curvature range: k1, k2, H, K over the samples.
+ *   Patches of higher degree (s->xp) are read through rg2_surface_eval / rg2_surface_eval_h
+ *   and their own control points.
  */
 #include "internal.h"
+#include "xpatch_util.h"
 
 #include <cjson/cJSON.h>
 #include <float.h>
@@ -43,21 +46,8 @@ static void cross3(const double *a, const double *b, double *c)
 /* Diagonal of the box of the affine control points (positive weights) of a surface. */
 static double surface_size(const rg2_surface *s)
 {
-    double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
-    size_t np = (size_t)s->nu * (size_t)s->nv;
-    for (size_t k = 0; k < np; k++)
-        for (int r = 0; r < 4; r++)
-            for (int q = 0; q < 4; q++) {
-                const double *h = s->patch[k].h[r][q];
-                if (!(h[3] > 0))
-                    continue;
-                for (int d = 0; d < 3; d++) {
-                    double x = h[d] / h[3];
-                    if (x < lo[d]) lo[d] = x;
-                    if (x > hi[d]) hi[d] = x;
-                }
-            }
-    if (lo[0] > hi[0])
+    double lo[3], hi[3];
+    if (!rg2__surface_ctrl_box(s, 1, lo, hi) || lo[0] > hi[0])
         return 1.0;
     double d = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                     (hi[2] - lo[2]) * (hi[2] - lo[2]));
@@ -141,16 +131,15 @@ static void seams(rg2_check_report *r, const rg2_surface *s, int surf, int sampl
             for (int b = 0; b < nB; b++) {
                 r->seams++;
                 seam_at at = {surf, dir, dir == 0 ? am : b, dir == 0 ? b : am, dir == 0 ? a : b, dir == 0 ? b : a, 0};
-                const rg2_patch *PL = rg2_surface_patch(s, at.pi, at.pj), *PR = rg2_surface_patch(s, at.qi, at.qj);
                 for (int k = 0; k <= samples; k++) {
                     at.t = (double)k / samples;
                     rg2_eval L, R;
                     if (dir == 0) {
-                        rg2_patch_eval(PL, 1.0, at.t, 2, &L);
-                        rg2_patch_eval(PR, 0.0, at.t, 2, &R);
+                        rg2_surface_eval(s, at.pi, at.pj, 1.0, at.t, 2, &L);
+                        rg2_surface_eval(s, at.qi, at.qj, 0.0, at.t, 2, &R);
                     } else {
-                        rg2_patch_eval(PL, at.t, 1.0, 2, &L);
-                        rg2_patch_eval(PR, at.t, 0.0, 2, &R);
+                        rg2_surface_eval(s, at.pi, at.pj, at.t, 1.0, 2, &L);
+                        rg2_surface_eval(s, at.qi, at.qj, at.t, 0.0, 2, &R);
                     }
                     seam_point(r, &L, &R, dir, size, &at);
                 }
@@ -176,20 +165,22 @@ static void patches(rg2_check_report *r, const rg2_surface *s, int surf, const r
             r->exact_patches++;
             r->shapes[tag].patches++;
         }
-        for (int a = 0; a < 4; a++)
-            for (int b = 0; b < 4; b++) {
-                double w = s->patch[k].h[a][b][3];
+        int du, dv, pi = (int)(k / (size_t)s->nv), pj = (int)(k % (size_t)s->nv);
+        rg2__patch_degree(s, k, &du, &dv);
+        for (int a = 0; a <= du; a++)
+            for (int b = 0; b <= dv; b++) {
+                double w = rg2__patch_ctrl(s, k, a, b)[3];
                 if (!(w >= r->wmin)) r->wmin = w;
                 if (!(w <= r->wmax)) r->wmax = w;
             }
         for (int a = 0; a <= S; a++)
             for (int b = 0; b <= S; b++) {
                 double u = (double)a / S, v = (double)b / S, H[6][4];
-                rg2_patch_eval_h(&s->patch[k], u, v, H);
+                rg2_surface_eval_h(s, pi, pj, u, v, H);
                 if (!(H[0][3] >= r->eval_wmin))
                     r->eval_wmin = H[0][3];
                 rg2_eval e;
-                rg2_patch_eval(&s->patch[k], u, v, 2, &e);
+                rg2_surface_eval(s, pi, pj, u, v, 2, &e);
                 if (!(e.flags & RG2_EVAL_CURVATURE_UNDEFINED)) {
                     r->kmin = fmin(r->kmin, e.k2);
                     r->kmax = fmax(r->kmax, e.k1);
@@ -207,8 +198,8 @@ static void patches(rg2_check_report *r, const rg2_surface *s, int surf, const r
                 rg2_check_shape *cs = &r->shapes[tag];
                 if (!isnan(cs->residual) && !(res <= cs->residual)) {
                     cs->residual = res;
-                    snprintf(cs->where, sizeof cs->where, "surface %d patch (%d,%d) u=%.3g v=%.3g", surf,
-                             (int)(k / (size_t)s->nv), (int)(k % (size_t)s->nv), u, v);
+                    snprintf(cs->where, sizeof cs->where, "surface %d patch (%d,%d) u=%.3g v=%.3g", surf, pi, pj,
+                             u, v);
                 }
             }
     }
@@ -266,9 +257,10 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
     for (int s = 0; s < n; s++) {
         size_t np = (size_t)surfs[s].nu * (size_t)surfs[s].nv;
         for (size_t k = 0; k < np; k++) {
-            int tag = surfs[s].tag ? surfs[s].tag[k] : -1;
-            for (int a = 0; a < 16; a++) {
-                const double *h = surfs[s].patch[k].h[a / 4][a % 4];
+            int tag = surfs[s].tag ? surfs[s].tag[k] : -1, du, dv;
+            rg2__patch_degree(&surfs[s], k, &du, &dv);
+            for (int a = 0; a < (du + 1) * (dv + 1); a++) {
+                const double *h = rg2__patch_ctrl(&surfs[s], k, a / (dv + 1), a % (dv + 1));
                 if (!(h[3] > 0))
                     continue;
                 for (int d = 0; d < 3; d++) {

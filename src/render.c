@@ -8,13 +8,15 @@
  *      triangles are rasterised into a z-buffer that stores (surface, patch, u, v).
  *   3. Exactness: per pixel, Newton on the exact patch moves (u, v) until the exact point lies
  *      on the pixel's centre ray (two residuals orthogonal to the ray); shading, H, K and the
- *      stripe phase are evaluated there with rg2_patch_eval (order 2). The sampling for
- *      the view and the z-buffer uses the grid evaluator (rg2_patch_grid).
+ *      stripe phase are evaluated there with rg2_surface_eval (order 2). The sampling for
+ *      the view and the z-buffer uses the grid evaluator (rg2_patch_grid). Patches of higher
+ *      degree (s->xp) go through the same steps with the general evaluator.
  *   4. Colour: per-pixel, then overlays (boundaries, silhouettes, mesh, colour bar).
  *   Threads: the grid sampling and the per-pixel work are split by patch / by row, the
  *   rasteriser by bands of rows; no result depends on the thread count.
  */
 #include "internal.h"
+#include "xpatch_util.h"
 
 #include <errno.h>
 #include <float.h>
@@ -112,11 +114,10 @@ static rg2_status scene_points(const rg2_surface *surfs, int n, const rg2_mesh *
     if (!P)
         return rg2__fail(err, RG2_ENOMEM, "render: out of memory for %zu view samples", cap);
     for (int s = 0; s < n; s++) {
-        size_t np = (size_t)surfs[s].nu * (size_t)surfs[s].nv;
-        for (size_t k = 0; k < np; k++) {
+        for (int k = 0; k < surfs[s].nu * surfs[s].nv; k++) {
             double g[3 * (S + 1) * (S + 1)];
             rg2_grid_out go = {.pos = g};
-            if (rg2_patch_grid(&surfs[s].patch[k], S + 1, S + 1, &go, NULL) != RG2_OK)
+            if (rg2__surface_patch_grid(&surfs[s], k / surfs[s].nv, k % surfs[s].nv, S + 1, S + 1, &go, NULL) != RG2_OK)
                 continue;
             for (int q = 0; q < (S + 1) * (S + 1); q++)
                 if (isfinite(g[3 * q]) && isfinite(g[3 * q + 1]) && isfinite(g[3 * q + 2]))
@@ -209,14 +210,17 @@ typedef struct {
     float u, v;
 } zcell;
 
-/* Grid density of a patch: about one sample per 3 pixels of its projected control net. */
-static int patch_density(const camera *c, const rg2_patch *P)
+/* Grid density of patch k of S (any degree): about one sample per 3 pixels of its projected
+ * control net. */
+static int patch_density(const camera *c, const rg2_surface *S, size_t k)
 {
     double ext = 0, sx0 = 0, sy0 = 0;
     double lo[2] = {DBL_MAX, DBL_MAX}, hi[2] = {-DBL_MAX, -DBL_MAX};
-    for (int r = 0; r < 4; r++)
-        for (int s = 0; s < 4; s++) {
-            const double *h = P->h[r][s];
+    int du, dv;
+    rg2__patch_degree(S, k, &du, &dv);
+    for (int r = 0; r <= du; r++)
+        for (int s = 0; s <= dv; s++) {
+            const double *h = rg2__patch_ctrl(S, k, r, s);
             if (!(h[3] > 0))
                 return 24;
             double x[3] = {h[0] / h[3], h[1] / h[3], h[2] / h[3]};
@@ -291,7 +295,7 @@ static int *grid_densities(const rg2_surface *surfs, int n, const camera *c, siz
         int *du = dens + doff[s], *dv = du + surfs[s].nu;
         for (int i = 0; i < surfs[s].nu; i++)
             for (int j = 0; j < surfs[s].nv; j++) {
-                int N = patch_density(c, rg2_surface_patch(&surfs[s], i, j));
+                int N = patch_density(c, &surfs[s], (size_t)i * (size_t)surfs[s].nv + (size_t)j);
                 if (N > du[i]) du[i] = N;
                 if (N > dv[j]) dv[j] = N;
             }
@@ -350,20 +354,24 @@ static rg2_status rasterise(const rg2_surface *surfs, int n, const camera *c, zc
         RG2_PARALLEL_FOR
         for (int q = 0; q < m; q++) {
             int A = Nu[q], B = Nv[q];
-            const rg2_patch *P = &surfs[ps[q]].patch[pk[q]];
+            const rg2_surface *S = &surfs[ps[q]];
+            int pi = pk[q] / S->nv, pj = pk[q] % S->nv;
             /* positions by the grid evaluator (one Bernstein table per patch), per point as a
              * fallback if its buffer cannot be had */
             double *g = malloc(sizeof(double) * 3 * (size_t)(A + 1) * (size_t)(B + 1));
             rg2_grid_out go = {.pos = g};
-            int have_grid = g && rg2_patch_grid(P, A + 1, B + 1, &go, NULL) == RG2_OK;
+            int have_grid = g && rg2__surface_patch_grid(S, pi, pj, A + 1, B + 1, &go, NULL) == RG2_OK;
             for (int a = 0; a <= A; a++)
                 for (int b = 0; b <= B; b++) {
                     double pt[3];
                     size_t idx = (size_t)a * (B + 1) + b;
                     if (have_grid)
                         memcpy(pt, g + 3 * idx, sizeof pt);
-                    else
-                        rg2_patch_point(P, (double)a / A, (double)b / B, pt);
+                    else {
+                        rg2_eval e;
+                        rg2_surface_eval(S, pi, pj, (double)a / A, (double)b / B, 0, &e);
+                        memcpy(pt, e.p, sizeof pt);
+                    }
                     vtx *t = &verts[off[q] + idx];
                     double sx = 0, sy = 0;
                     t->z = (isfinite(pt[0]) && isfinite(pt[1]) && isfinite(pt[2])) ? project(c, pt, &sx, &sy) : -1.0;
@@ -411,9 +419,10 @@ out:
 
 /* ---------------------------------------------------------------- exact per-pixel data */
 
-/* Newton: move (u, v) in [0,1]^2 until S(u, v) lies on the ray eye + t d. Returns 1 if the
- * residual reached 1e-12 of the scene size. */
-static int refine(const rg2_patch *P, const camera *c, const double d[3], double *u, double *v, double *resid)
+/* Newton: move (u, v) in [0,1]^2 until patch (i, j) of S (any degree) at (u, v) lies on the
+ * ray eye + t d. Returns 1 if the residual reached 1e-12 of the scene size. */
+static int refine(const rg2_surface *S, int i, int j, const camera *c, const double d[3], double *u, double *v,
+                  double *resid)
 {
     double e1[3], e2[3];
     for (int k = 0; k < 3; k++)
@@ -423,7 +432,7 @@ static int refine(const rg2_patch *P, const camera *c, const double d[3], double
     double tol = 1e-12 * c->scale, best = DBL_MAX, bu = *u, bv = *v;
     for (int it = 0; it < 12; it++) {
         rg2_eval e;
-        rg2_patch_eval(P, *u, *v, 1, &e);
+        rg2_surface_eval(S, i, j, *u, *v, 1, &e);
         double q[3] = {e.p[0] - c->eye[0], e.p[1] - c->eye[1], e.p[2] - c->eye[2]};
         double F0 = dot3(q, e1), F1 = dot3(q, e2), res = hypot(F0, F1);
         if (!isfinite(res))
@@ -477,12 +486,13 @@ static void pixel_exact(const rg2_surface *surfs, const camera *c, const zcell *
     o->patch = -1;
     if (zc->surf < 0)
         return;
-    const rg2_patch *P = &surfs[zc->surf].patch[zc->patch];
+    const rg2_surface *S = &surfs[zc->surf];
+    int i = zc->patch / S->nv, j = zc->patch % S->nv;
     double d[3], u = zc->u, v = zc->v, res;
     pixel_ray(c, px, py, d);
-    *converged = refine(P, c, d, &u, &v, &res);
+    *converged = refine(S, i, j, c, d, &u, &v, &res);
     rg2_eval e;
-    rg2_patch_eval(P, u, v, 2, &e);
+    rg2_surface_eval(S, i, j, u, v, 2, &e);
     if (!isfinite(e.p[0]) || !isfinite(e.p[1]) || !isfinite(e.p[2]))
         return;
     o->surf = zc->surf;
@@ -795,11 +805,14 @@ static rg2_status check_input(const rg2_surface *surfs, int n, const rg2_mesh *m
         if (surfs[s].nu <= 0 || surfs[s].nv <= 0 || !surfs[s].patch)
             return rg2__fail(err, RG2_EINVAL, "render: surface %d has no patches", s);
         size_t np = (size_t)surfs[s].nu * (size_t)surfs[s].nv;
-        for (size_t k = 0; k < np; k++)
-            for (int q = 0; q < 64; q++)
-                if (!isfinite((&surfs[s].patch[k].h[0][0][0])[q]))
+        for (size_t k = 0; k < np; k++) {
+            int du, dv;
+            rg2__patch_degree(&surfs[s], k, &du, &dv);
+            for (int q = 0; q < 4 * (du + 1) * (dv + 1); q++)
+                if (!isfinite(rg2__patch_ctrl(&surfs[s], k, q / 4 / (dv + 1), q / 4 % (dv + 1))[q % 4]))
                     return rg2__fail(err, RG2_ENONFINITE, "render: surface %d patch (%zu,%zu) has a non-finite control point",
                                      s, k / (size_t)surfs[s].nv, k % (size_t)surfs[s].nv);
+        }
     }
     return RG2_OK;
 }

@@ -2,6 +2,7 @@
  * the grid points on seams stored once (bit-identical on both sides), exact normals and
  * curvatures from the patch evaluation, collapsed sides (poles) merged into one vertex. */
 #include "export_internal.h"
+#include "xpatch_util.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -46,7 +47,8 @@ static void cross3(const double a[3], const double b[3], double c[3])
  * is Suv x Sv normalised (the sign flips on v = 1, and u = 0 / 1 use Su x Suv likewise). The
  * curvatures there are taken 1e-6 inside the patch (they have no value on a collapsed side).
  */
-static void degenerate_point(const rg2_patch *P, double u, double v, int side, int curvature, rg2_eval *e)
+static void degenerate_point(const rg2_surface *s, int i, int j, double u, double v, int side, int curvature,
+                             rg2_eval *e)
 {
     double n[3] = {0, 0, 0};
     if (side == 0 || side == 2) {
@@ -62,7 +64,7 @@ static void degenerate_point(const rg2_patch *P, double u, double v, int side, i
     }
     rg2_eval in;
     double du = u < 0.5 ? 1e-6 : -1e-6, dv = v < 0.5 ? 1e-6 : -1e-6;
-    rg2_patch_eval(P, u + du, v + dv, curvature ? 2 : 1, &in);
+    rg2_surface_eval(s, i, j, u + du, v + dv, curvature ? 2 : 1, &in);
     double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     if (l > 0.0 && n[0] * in.n[0] + n[1] * in.n[1] + n[2] * in.n[2] > 0.0) {
         normalize3(n);
@@ -75,14 +77,15 @@ static void degenerate_point(const rg2_patch *P, double u, double v, int side, i
 }
 
 /*
- * Per-patch sampling: (d + 1)^2 points at u = a / d, v = b / d, stored at a * (d + 1) + b.
- * `collapsed` has bit k set when side k (0 v=0, 1 u=1, 2 v=1, 3 u=0) is collapsed.
- * This is the only place that evaluates the surface: the grid evaluator (rg2_patch_grid,
- * grid.c) for every point, then the points on collapsed sides again by rg2_patch_eval and
- * degenerate_point. `scratch` holds 8 (d + 1)^2 doubles. Returns non-zero on failure.
+ * Per-patch sampling of patch (i, j) of s (bi-3 or of higher degree): (d + 1)^2 points at
+ * u = a / d, v = b / d, stored at a * (d + 1) + b. `collapsed` has bit k set when side k
+ * (0 v=0, 1 u=1, 2 v=1, 3 u=0) is collapsed. This is the only place that evaluates the
+ * surface: the grid evaluator (rg2_patch_grid, grid.c; the general evaluator for a higher-
+ * degree patch) for every point, then the points on collapsed sides again by rg2_surface_eval
+ * and degenerate_point. `scratch` holds 8 (d + 1)^2 doubles. Returns non-zero on failure.
  */
-static int sample_patch(const rg2_patch *P, int d, int curvature, unsigned collapsed, double *scratch,
-                        tess_sample *out)
+static int sample_patch(const rg2_surface *s, int i, int j, int d, int curvature, unsigned collapsed,
+                        double *scratch, tess_sample *out)
 {
     size_t np = (size_t)(d + 1) * (size_t)(d + 1);
     rg2_grid_out go = {.pos = scratch, .normal = scratch + 3 * np};
@@ -90,7 +93,7 @@ static int sample_patch(const rg2_patch *P, int d, int curvature, unsigned colla
         go.K = scratch + 6 * np;
         go.H = scratch + 7 * np;
     }
-    if (rg2_patch_grid(P, d + 1, d + 1, &go, NULL))
+    if (rg2__surface_patch_grid(s, i, j, d + 1, d + 1, &go, NULL))
         return 1;
     for (size_t k = 0; k < np; k++) {
         memcpy(out[k].p, go.pos + 3 * k, sizeof out[k].p);
@@ -116,8 +119,8 @@ static int sample_patch(const rg2_patch *P, int d, int curvature, unsigned colla
             if (side < 0)
                 continue;
             rg2_eval e;
-            rg2_patch_eval(P, u, v, 2, &e);
-            degenerate_point(P, u, v, side, curvature, &e);
+            rg2_surface_eval(s, i, j, u, v, 2, &e);
+            degenerate_point(s, i, j, u, v, side, curvature, &e);
             tess_sample *o = &out[a * (d + 1) + b];
             memcpy(o->p, e.p, sizeof e.p);
             memcpy(o->n, e.n, sizeof e.n);
@@ -128,11 +131,11 @@ static int sample_patch(const rg2_patch *P, int d, int curvature, unsigned colla
     return 0;
 }
 
-static unsigned collapsed_sides(const rg2_patch *P, double tol)
+static unsigned collapsed_sides(const rg2_surface *s, int i, int j, double tol)
 {
     unsigned collapsed = 0;
     for (int side = 0; side < 4; side++)
-        if (rg2__patch_side_collapsed(P, side, tol))
+        if (rg2__surface_side_collapsed(s, i, j, side, tol))
             collapsed |= 1u << side;
     return collapsed;
 }
@@ -157,7 +160,7 @@ static double dist2(const double *a, const double *b)
  * METHOD: the surface's grid points (I, J), I = 0..nu d, J = 0..nv d, closing lines folded
  * onto line 0, each belong to exactly one patch (the one with i = min(I / d, nu - 1)), which
  * evaluates it; the patch on the other side of a seam uses the same vertex. Sides detected
- * as collapsed (rg2__patch_side_collapsed) merge their grid points (union-find) into one
+ * as collapsed (rg2__surface_side_collapsed, patches of any degree) merge their grid points (union-find) into one
  * vertex; triangles that then repeat a vertex are dropped.
  */
 rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_tess *out,
@@ -187,7 +190,7 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
         failed = 1;
         goto done;
     }
-    double tol = rg2__collapse_tol(s);
+    double tol = rg2__surface_collapse_tol(s);
 #ifdef RG2_HAVE_OPENMP
 #pragma omp parallel for schedule(dynamic) if (nu * nv > 16)
 #endif
@@ -196,8 +199,8 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
         size_t npp = (size_t)(d + 1) * (size_t)(d + 1);
         tess_sample *buf = malloc(sizeof(tess_sample) * npp);
         double *scratch = malloc(sizeof(double) * 8 * npp);
-        if (!buf || !scratch || sample_patch(rg2_surface_patch(s, i, j), d, curvature,
-                                             collapsed_sides(rg2_surface_patch(s, i, j), tol), scratch, buf)) {
+        if (!buf || !scratch ||
+            sample_patch(s, i, j, d, curvature, collapsed_sides(s, i, j, tol), scratch, buf)) {
             free(buf);
             free(scratch);
 #ifdef RG2_HAVE_OPENMP
@@ -223,7 +226,7 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
     for (int i = 0; i < nu; i++)
         for (int j = 0; j < nv; j++)
             for (int side = 0; side < 4; side++) {
-                if (!rg2__patch_side_collapsed(rg2_surface_patch(s, i, j), side, tol))
+                if (!rg2__surface_side_collapsed(s, i, j, side, tol))
                     continue;
                 for (int t = 0; t <= d; t++) {
                     int I, J, I0, J0;

@@ -1,0 +1,107 @@
+/* xpatch_util.c -- reading a patch of a surface whichever kind it is (bi-3 rg2_patch or
+ * higher-degree rg2_xpatch): control points, control boxes, collapsed sides and grids, for
+ * the tessellator, the renderer and the check report. */
+#include "xpatch_util.h"
+
+#include "export_internal.h"
+
+void rg2__patch_degree(const rg2_surface *s, size_t k, int *du, int *dv)
+{
+    const rg2_xpatch *x = s->xp && s->xp[k].du > 0 ? s->xp + k : 0;
+    *du = x ? x->du : 3;
+    *dv = x ? x->dv : 3;
+}
+
+const double *rg2__patch_ctrl(const rg2_surface *s, size_t k, int r, int t)
+{
+    if (s->xp && s->xp[k].du > 0)
+        return s->xp[k].h[r][t];
+    return s->patch[k].h[r][t];
+}
+
+int rg2__surface_ctrl_box(const rg2_surface *s, int positive_only, double lo[3], double hi[3])
+{
+    int any = 0;
+    for (int d = 0; d < 3; d++) {
+        lo[d] = INFINITY;
+        hi[d] = -INFINITY;
+    }
+    size_t np = (size_t)s->nu * (size_t)s->nv;
+    for (size_t k = 0; k < np; k++) {
+        int du, dv;
+        rg2__patch_degree(s, k, &du, &dv);
+        for (int r = 0; r <= du; r++)
+            for (int t = 0; t <= dv; t++) {
+                const double *h = rg2__patch_ctrl(s, k, r, t);
+                if (positive_only && !(h[3] > 0))
+                    continue;
+                for (int d = 0; d < 3; d++) {
+                    double x = h[d] / h[3];
+                    if (!isfinite(x))
+                        continue;
+                    lo[d] = x < lo[d] ? x : lo[d];
+                    hi[d] = x > hi[d] ? x : hi[d];
+                    any = 1;
+                }
+            }
+    }
+    return any;
+}
+
+double rg2__surface_collapse_tol(const rg2_surface *s)
+{
+    double lo[3], hi[3], diag = 0.0;
+    if (!rg2__surface_ctrl_box(s, 0, lo, hi))
+        return 0.0;
+    for (int d = 0; d < 3; d++)
+        diag += lo[d] <= hi[d] ? (hi[d] - lo[d]) * (hi[d] - lo[d]) : 0.0;
+    return 1e-11 * sqrt(diag);
+}
+
+int rg2__xpatch_side_collapsed(const rg2_xpatch *X, int side, double tol)
+{
+    int n = side == 0 || side == 2 ? X->du : X->dv;
+    const double *c0 = NULL;
+    for (int a = 0; a <= n; a++) {
+        const double *h;
+        switch (side) {
+        case 0: h = X->h[a][0]; break;
+        case 1: h = X->h[X->du][a]; break;
+        case 2: h = X->h[a][X->dv]; break;
+        default: h = X->h[0][a]; break;
+        }
+        if (!c0) {
+            c0 = h;
+            continue;
+        }
+        for (int d = 0; d < 3; d++)
+            if (!(fabs(h[d] / h[3] - c0[d] / c0[3]) <= tol))
+                return 0;
+    }
+    return 1;
+}
+
+int rg2__surface_side_collapsed(const rg2_surface *s, int i, int j, int side, double tol)
+{
+    const rg2_xpatch *x = rg2_surface_xpatch(s, i, j);
+    return x ? rg2__xpatch_side_collapsed(x, side, tol) : rg2__patch_side_collapsed(rg2_surface_patch(s, i, j), side, tol);
+}
+
+rg2_status rg2__surface_patch_grid(const rg2_surface *s, int i, int j, int n, int m, const rg2_grid_out *out,
+                                   rg2_error *err)
+{
+    const rg2_xpatch *x = rg2_surface_xpatch(s, i, j);
+    if (!x)
+        return rg2_patch_grid(rg2_surface_patch(s, i, j), n, m, out, err);
+    if (!out || !out->pos || n < 2 || m < 2 || n > RG2_GRID_MAX || m > RG2_GRID_MAX)
+        return rg2__fail(err, n > RG2_GRID_MAX || m > RG2_GRID_MAX ? RG2_ELIMIT : RG2_EINVAL,
+                         "grid: patch (%d, %d) of degree (%d, %d): %d x %d points, or no position array", i, j,
+                         x->du, x->dv, n, m);
+    /* a one-patch view of the higher-degree patch for the surface-wide general evaluator */
+    rg2_surface one = {0};
+    one.nu = one.nv = 1;
+    one.xp = (rg2_xpatch *)x;
+    rg2__grid_xpatches(&one, n, m, out);
+    rg2__ok(err);
+    return RG2_OK;
+}

@@ -1,0 +1,32 @@
+/* xpatch_util.h -- private helpers that read a patch of a surface whichever kind it is (an
+ * ordinary bi-3 rg2_patch or a higher-degree rg2_xpatch in s->xp), for the evaluating
+ * consumers (tessellation, rendering, the check report); never installed. */
+#ifndef RG2_XPATCH_UTIL_H
+#define RG2_XPATCH_UTIL_H
+
+#include "internal.h"
+
+/* Degrees of patch k = i * nv + j of s (3, 3 for a bi-3 patch). */
+void rg2__patch_degree(const rg2_surface *s, size_t k, int *du, int *dv);
+/* Homogeneous control point (r, t), r <= du, t <= dv, of patch k of s. */
+const double *rg2__patch_ctrl(const rg2_surface *s, size_t k, int r, int t);
+
+/* Box of the affine control points of every patch of s (only those of positive weight when
+ * positive_only; non-finite coordinates are skipped). Returns 0 when no point counted. */
+int rg2__surface_ctrl_box(const rg2_surface *s, int positive_only, double lo[3], double hi[3]);
+/* Collapse tolerance over patches of any degree: 1e-11 times the diagonal of
+ * rg2__surface_ctrl_box (for an all-bi-3 surface the same value as rg2__collapse_tol). */
+double rg2__surface_collapse_tol(const rg2_surface *s);
+/* Whether side `side` (0 v=0, 1 u=1, 2 v=1, 3 u=0) of a patch of any degree collapses to one
+ * point (every affine control point of the side within tol of the first, per coordinate). */
+int rg2__xpatch_side_collapsed(const rg2_xpatch *X, int side, double tol);
+/* The same for patch (i, j) of s, whichever kind it is. */
+int rg2__surface_side_collapsed(const rg2_surface *s, int i, int j, int side, double tol);
+
+/* Patch (i, j) of s on an n x m grid in the layout of rg2_patch_grid (point (a, b) at
+ * u = a / (n - 1), v = b / (m - 1), index a * m + b): rg2_patch_grid for a bi-3 patch, the
+ * general evaluator (rg2__grid_xpatches) for a higher-degree one. Errors as rg2_patch_grid. */
+rg2_status rg2__surface_patch_grid(const rg2_surface *s, int i, int j, int n, int m, const rg2_grid_out *out,
+                                   rg2_error *err);
+
+#endif
