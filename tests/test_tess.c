@@ -1,7 +1,11 @@
 /* test_tess.c -- watertight tessellation: shared seam vertices, every edge in two triangles
  * on a closed torus, vertices and normals and curvatures on the exact torus, equal to
- * (to 1e-14) re-evaluation on an open random surface, and a pole without degenerate triangles. */
+ * (to 1e-14) re-evaluation on an open random surface, and a pole without degenerate triangles.
+ * Every check runs again on the same surfaces with a mixed pattern of patches replaced by
+ * their exact degree elevations ((4,3), (5,3), (4,4), (3,5) next to bi-3: xmix.h), and the
+ * two tessellations are compared. */
 #include "export_fixtures.h"
+#include "xmix.h"
 
 #include <stdlib.h>
 
@@ -72,13 +76,86 @@ static void check_orientation(const rg2_tess *t, const char *what)
     CHECK(degenerate == 0, "%s: %d degenerate triangles", what, degenerate);
 }
 
-static void torus_mesh(void)
+static int cmp_int(const void *a, const void *b) { return *(const int *)a - *(const int *)b; }
+
+static double dist2(const double *a, const double *b)
+{
+    double d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
+    return d0 * d0 + d1 * d1 + d2 * d2;
+}
+
+/* Same vertices (to 1e-15 of the size), normals, curvatures (except on the z axis, where a pole's
+ * curvature is taken 1e-6 inside the patch and carries rounding amplified ~1e12 in either form)
+ * and triangles: a surface with elevated patches tessellates like the bi-3 original. The
+ * triangles come quad by quad in the same order; a quad may take the other diagonal only where
+ * its two diagonals are equally long to rounding (1e-12 of size^2). */
+static void same_tess(const rg2_tess *a, const rg2_tess *b, double size, const char *what)
+{
+    CHECK(a->n_vertices == b->n_vertices && a->n_triangles == b->n_triangles, "%s: %d/%d vertices, %d/%d triangles",
+          what, a->n_vertices, b->n_vertices, a->n_triangles, b->n_triangles);
+    if (a->n_vertices != b->n_vertices || a->n_triangles != b->n_triangles)
+        return;
+    double dp = 0, dn = 0, dk = 0;
+    for (int v = 0; v < a->n_vertices; v++)
+        for (int k = 0; k < 3; k++) {
+            dp = fmax(dp, fabs(a->pos[3 * v + k] - b->pos[3 * v + k]) / size);
+            dn = fmax(dn, fabs(a->normal[3 * v + k] - b->normal[3 * v + k]));
+            if (a->K && b->K && hypot(a->pos[3 * v], a->pos[3 * v + 1]) > 1e-9 * size)
+                dk = fmax(dk, fmax(fabs(a->K[v] - b->K[v]) / (fabs(b->K[v]) + 1 / (size * size)),
+                                   fabs(a->H[v] - b->H[v]) / (fabs(b->H[v]) + 1 / size)));
+        }
+    int flips = 0, same_tri = 1;
+    for (int q = 0; q < a->n_triangles; q++) {
+        int x[3], y[3];
+        memcpy(x, a->tri + 3 * q, sizeof x);
+        memcpy(y, b->tri + 3 * q, sizeof y);
+        qsort(x, 3, sizeof(int), cmp_int);
+        qsort(y, 3, sizeof(int), cmp_int);
+        if (!memcmp(x, y, sizeof x))
+            continue;
+        /* X, Y: the vertices only in a's / b's triangle; P, Q the two shared ones. One of
+         * (XP, YQ), (XQ, YP) is the pair of diagonals of the quad. */
+        int X = -1, Y = -1, PQ[2], np = 0;
+        for (int k = 0; k < 3; k++) {
+            int in_y = x[k] == y[0] || x[k] == y[1] || x[k] == y[2];
+            int in_x = y[k] == x[0] || y[k] == x[1] || y[k] == x[2];
+            if (!in_y)
+                X = x[k];
+            else if (np < 2)
+                PQ[np++] = x[k];
+            if (!in_x)
+                Y = y[k];
+        }
+        flips++;
+        if (X < 0 || Y < 0 || np != 2) {
+            same_tri = 0;
+            continue;
+        }
+        double xp = dist2(a->pos + 3 * X, a->pos + 3 * PQ[0]), yq = dist2(a->pos + 3 * Y, a->pos + 3 * PQ[1]);
+        double xq = dist2(a->pos + 3 * X, a->pos + 3 * PQ[1]), yp = dist2(a->pos + 3 * Y, a->pos + 3 * PQ[0]);
+        if (!(fmin(fabs(xp - yq), fabs(xq - yp)) <= 1e-12 * size * size))
+            same_tri = 0;
+    }
+    int same_uv = !memcmp(a->uv, b->uv, 2 * sizeof(double) * (size_t)a->n_vertices) &&
+                  !memcmp(a->patch, b->patch, sizeof(int) * (size_t)a->n_vertices);
+    printf("%s: elevated vs bi-3 tessellation: position %.1e, normal %.1e, curvature %.1e (relative), "
+           "triangles the same but %d diagonal flips at ties, (patch, u, v) %s\n",
+           what, dp, dn, dk, flips, same_uv ? "identical" : "differ");
+    CHECK(dp <= 1e-15 && dn <= 1e-14 && dk <= 1e-12, "%s: elevated tessellation differs: p %.3g n %.3g K/H %.3g",
+          what, dp, dn, dk);
+    CHECK(same_tri && same_uv, "%s: same triangles but for diagonals at ties %d (%d flips), same (patch, u, v) %d",
+          what, same_tri, flips, same_uv);
+}
+
+static void torus_mesh(int mixed)
 {
     const double R = 13.0, r = 4.0;
     rg2_surface s;
     rg2_error err;
     rg2_tess t;
     CHECK_OK(fx_torus(R, r, 8, 6, &s, &err), &err);
+    if (mixed)
+        CHECK_OK(xmix_elevate(&s, &err), &err);
     int d = 8;
     CHECK_OK(rg2_tessellate(&s, d, 1, &t, &err), &err);
     CHECK(t.n_vertices == 8 * d * 6 * d, "torus: %d vertices, expected %d (seams shared)", t.n_vertices, 8 * d * 6 * d);
@@ -106,18 +183,29 @@ static void torus_mesh(void)
     CHECK(worst_p <= 1e-14, "torus: vertex off the torus by %.3g relative", worst_p);
     CHECK(worst_n <= 1e-13, "torus: normal off the exact normal by %.3g", worst_n);
     CHECK(worst_k <= 1e-10 && worst_h <= 1e-10, "torus: curvature K %.3g H %.3g off (relative)", worst_k, worst_h);
-    printf("torus d=%d: %d vertices, %d triangles, watertight; on-surface %.1e, normal %.1e, K %.1e, H %.1e\n", d,
-           t.n_vertices, t.n_triangles, worst_p, worst_n, worst_k, worst_h);
+    printf("torus d=%d%s: %d vertices, %d triangles, watertight; on-surface %.1e, normal %.1e, K %.1e, H %.1e\n", d,
+           mixed ? " (mixed degrees)" : "", t.n_vertices, t.n_triangles, worst_p, worst_n, worst_k, worst_h);
+    if (mixed) {
+        rg2_surface b;
+        rg2_tess tb;
+        CHECK_OK(fx_torus(R, r, 8, 6, &b, &err), &err);
+        CHECK_OK(rg2_tessellate(&b, d, 1, &tb, &err), &err);
+        same_tess(&t, &tb, 2 * (R + r), "torus");
+        rg2_tess_free(&tb);
+        rg2_surface_free(&b);
+    }
     rg2_tess_free(&t);
     rg2_surface_free(&s);
 }
 
-static void random_mesh(void)
+static void random_mesh(int mixed)
 {
     rg2_surface s;
     rg2_error err;
     rg2_tess t;
     CHECK_OK(fx_random(7, 8, 7, &s, &err), &err);
+    if (mixed)
+        CHECK_OK(xmix_elevate(&s, &err), &err);
     int d = 5;
     CHECK_OK(rg2_tessellate(&s, d, 0, &t, &err), &err);
     int GU = s.nu * d + 1, GV = s.nv * d + 1;
@@ -128,7 +216,7 @@ static void random_mesh(void)
     double scale = rg2t_surface_scale(&s), dev_p = 0, dev_n = 0;
     for (int v = 0; v < t.n_vertices; v++) {
         rg2_eval e;
-        rg2_patch_eval(&s.patch[t.patch[v]], t.uv[2 * v], t.uv[2 * v + 1], 1, &e);
+        rg2_surface_eval(&s, t.patch[v] / s.nv, t.patch[v] % s.nv, t.uv[2 * v], t.uv[2 * v + 1], 1, &e);
         for (int k = 0; k < 3; k++) {
             dev_p = fmax(dev_p, fabs(e.p[k] - t.pos[3 * v + k]) / scale);
             dev_n = fmax(dev_n, fabs(e.n[k] - t.normal[3 * v + k]));
@@ -142,7 +230,7 @@ static void random_mesh(void)
         int p = t.patch[v], i = p / s.nv, j = p % s.nv;
         if (t.uv[2 * v] == 0.0 && i > 0) {
             rg2_eval e;
-            rg2_patch_eval(rg2_surface_patch(&s, i - 1, j), 1.0, t.uv[2 * v + 1], 0, &e);
+            rg2_surface_eval(&s, i - 1, j, 1.0, t.uv[2 * v + 1], 0, &e);
             for (int k = 0; k < 3; k++)
                 gap = fmax(gap, fabs(e.p[k] - t.pos[3 * v + k]));
         }
@@ -153,17 +241,25 @@ static void random_mesh(void)
     CHECK(once == 2 * (GU - 1) + 2 * (GV - 1), "random: %d boundary edges, expected %d", once, 2 * (GU - 1) + 2 * (GV - 1));
     CHECK(over == 0 && same == 0, "random: %d edges over-used, %d mis-oriented", over, same);
     check_orientation(&t, "random");
-    printf("random open %d x %d patches d=%d: %d vertices, = rg2_patch_eval to 1e-14, seam gap %.1e\n", s.nu, s.nv, d, t.n_vertices, gap);
+    printf("random open %d x %d patches d=%d%s: %d vertices, = rg2_surface_eval to 1e-14, seam gap %.1e\n", s.nu, s.nv,
+           d, mixed ? " (mixed degrees)" : "", t.n_vertices, gap);
     rg2_tess_free(&t);
     rg2_surface_free(&s);
 }
 
-static void pole_mesh(void)
+static void pole_mesh(int mixed)
 {
     rg2_surface s;
     rg2_error err;
     rg2_tess t;
     CHECK_OK(fx_pole(6, 7, &s, &err), &err);
+    if (mixed) {
+        CHECK_OK(xmix_elevate(&s, &err), &err);
+        int fan = 0; /* patches of the pole row (j = 0) that are of higher degree */
+        for (int i = 0; i < s.nu; i++)
+            fan += rg2_surface_xpatch(&s, i, 0) != NULL;
+        CHECK(fan >= 4, "%d of %d pole patches elevated", fan, s.nu);
+    }
     int d = 6;
     CHECK_OK(rg2_tessellate(&s, d, 1, &t, &err), &err);
     int ring = s.nu * d, rows = s.nv * d + 1;
@@ -182,8 +278,17 @@ static void pole_mesh(void)
         if (hypot(t.pos[3 * v], t.pos[3 * v + 1]) < 1e-9)
             worst = fmin(worst, fabs(t.normal[3 * v + 2]));
     CHECK(fabs(worst - 1.0) <= 1e-12, "pole: pole normal z %.17g, expected +-1", worst);
-    printf("pole: %d vertices, %d triangles, no degenerate triangle, pole normal |z| = %.17g\n", t.n_vertices,
-           t.n_triangles, worst);
+    printf("pole%s: %d vertices, %d triangles, no degenerate triangle, pole normal |z| = %.17g\n",
+           mixed ? " (mixed degrees)" : "", t.n_vertices, t.n_triangles, worst);
+    if (mixed) {
+        rg2_surface b;
+        rg2_tess tb;
+        CHECK_OK(fx_pole(6, 7, &b, &err), &err);
+        CHECK_OK(rg2_tessellate(&b, d, 1, &tb, &err), &err);
+        same_tess(&t, &tb, rg2t_surface_scale(&b), "pole");
+        rg2_tess_free(&tb);
+        rg2_surface_free(&b);
+    }
     rg2_tess_free(&t);
     rg2_surface_free(&s);
 }
@@ -205,9 +310,11 @@ static void bad_input(void)
 
 int main(void)
 {
-    torus_mesh();
-    random_mesh();
-    pole_mesh();
+    for (int mixed = 0; mixed < 2; mixed++) {
+        torus_mesh(mixed);
+        random_mesh(mixed);
+        pole_mesh(mixed);
+    }
     bad_input();
     return rg2t_done("test_tess");
 }
