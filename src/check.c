@@ -14,6 +14,11 @@
  *   samples. Curvature range: k1, k2, H, K over the samples.
  *   Patches of higher degree (s->xp) are read through rg2_surface_eval / rg2_surface_eval_h
  *   and their own control points.
+ *   Poles: a sample on a collapsed patch side (all its control points on one point, to 1e-11
+ *   of the control box) has no normal or curvature, whatever the evaluator's rounding-level
+ *   derivatives say there: its position gap counts, its normal and curvature are skipped (seams)
+ *   or left out of the curvature range (patches). The same geometry then gives the same
+ *   report in any patch degree.
  */
 #include "internal.h"
 #include "xpatch_util.h"
@@ -84,14 +89,22 @@ static void gap_update(rg2_check_gap *g, double value, const seam_at *at, const 
     }
 }
 
-/* One seam point: L at the end of its transversal parameter, R at the start. */
+/* Whether (u, v) lies on a side of a patch whose collapsed-side bits (0 v=0, 1 u=1, 2 v=1,
+ * 3 u=0; rg2__surface_collapsed_sides) are c. */
+static int on_collapsed(unsigned c, double u, double v)
+{
+    return ((c & 1u) && v == 0.0) || ((c & 2u) && u == 1.0) || ((c & 4u) && v == 1.0) || ((c & 8u) && u == 0.0);
+}
+
+/* One seam point: L at the end of its transversal parameter, R at the start; pole: the point
+ * lies on a collapsed side of either patch. */
 static void seam_point(rg2_check_report *r, const rg2_eval *L, const rg2_eval *R, int dir, double size,
-                       const seam_at *at)
+                       const seam_at *at, int pole)
 {
     r->seam_samples++;
     double d[3] = {L->p[0] - R->p[0], L->p[1] - R->p[1], L->p[2] - R->p[2]};
     gap_update(&r->g0, norm3(d) / size, at, L->p);
-    if ((L->flags | R->flags) & RG2_EVAL_NORMAL_UNDEFINED) {
+    if (pole || ((L->flags | R->flags) & RG2_EVAL_NORMAL_UNDEFINED)) {
         r->skipped++;
         return;
     }
@@ -120,7 +133,7 @@ static void seam_point(rg2_check_report *r, const rg2_eval *L, const rg2_eval *R
 
 static void seams(rg2_check_report *r, const rg2_surface *s, int surf, int samples)
 {
-    double size = surface_size(s);
+    double size = surface_size(s), tol = rg2__surface_collapse_tol(s);
     for (int dir = 0; dir < 2; dir++) {
         int nA = dir == 0 ? s->nu : s->nv, nB = dir == 0 ? s->nv : s->nu;
         int closed = dir == 0 ? s->closed_u : s->closed_v;
@@ -131,17 +144,16 @@ static void seams(rg2_check_report *r, const rg2_surface *s, int surf, int sampl
             for (int b = 0; b < nB; b++) {
                 r->seams++;
                 seam_at at = {surf, dir, dir == 0 ? am : b, dir == 0 ? b : am, dir == 0 ? a : b, dir == 0 ? b : a, 0};
+                unsigned cL = rg2__surface_collapsed_sides(s, at.pi, at.pj, tol);
+                unsigned cR = rg2__surface_collapsed_sides(s, at.qi, at.qj, tol);
                 for (int k = 0; k <= samples; k++) {
                     at.t = (double)k / samples;
                     rg2_eval L, R;
-                    if (dir == 0) {
-                        rg2_surface_eval(s, at.pi, at.pj, 1.0, at.t, 2, &L);
-                        rg2_surface_eval(s, at.qi, at.qj, 0.0, at.t, 2, &R);
-                    } else {
-                        rg2_surface_eval(s, at.pi, at.pj, at.t, 1.0, 2, &L);
-                        rg2_surface_eval(s, at.qi, at.qj, at.t, 0.0, 2, &R);
-                    }
-                    seam_point(r, &L, &R, dir, size, &at);
+                    double uL = dir == 0 ? 1.0 : at.t, vL = dir == 0 ? at.t : 1.0;
+                    double uR = dir == 0 ? 0.0 : at.t, vR = dir == 0 ? at.t : 0.0;
+                    rg2_surface_eval(s, at.pi, at.pj, uL, vL, 2, &L);
+                    rg2_surface_eval(s, at.qi, at.qj, uR, vR, 2, &R);
+                    seam_point(r, &L, &R, dir, size, &at, on_collapsed(cL, uL, vL) || on_collapsed(cR, uR, vR));
                 }
             }
         }
@@ -154,6 +166,7 @@ static void patches(rg2_check_report *r, const rg2_surface *s, int surf, const r
                     const double *shape_size, int S)
 {
     size_t np = (size_t)s->nu * (size_t)s->nv;
+    double tol = rg2__surface_collapse_tol(s);
     for (size_t k = 0; k < np; k++) {
         int tag = s->tag ? s->tag[k] : -1;
         r->patches++;
@@ -166,6 +179,7 @@ static void patches(rg2_check_report *r, const rg2_surface *s, int surf, const r
             r->shapes[tag].patches++;
         }
         int du, dv, pi = (int)(k / (size_t)s->nv), pj = (int)(k % (size_t)s->nv);
+        unsigned coll = rg2__surface_collapsed_sides(s, pi, pj, tol);
         rg2__patch_degree(s, k, &du, &dv);
         for (int a = 0; a <= du; a++)
             for (int b = 0; b <= dv; b++) {
@@ -181,7 +195,7 @@ static void patches(rg2_check_report *r, const rg2_surface *s, int surf, const r
                     r->eval_wmin = H[0][3];
                 rg2_eval e;
                 rg2_surface_eval(s, pi, pj, u, v, 2, &e);
-                if (!(e.flags & RG2_EVAL_CURVATURE_UNDEFINED)) {
+                if (!(e.flags & RG2_EVAL_CURVATURE_UNDEFINED) && !on_collapsed(coll, u, v)) {
                     r->kmin = fmin(r->kmin, e.k2);
                     r->kmax = fmax(r->kmax, e.k1);
                     r->Hmin = fmin(r->Hmin, e.H);

@@ -131,15 +131,6 @@ static int sample_patch(const rg2_surface *s, int i, int j, int d, int curvature
     return 0;
 }
 
-static unsigned collapsed_sides(const rg2_surface *s, int i, int j, double tol)
-{
-    unsigned collapsed = 0;
-    for (int side = 0; side < 4; side++)
-        if (rg2__surface_side_collapsed(s, i, j, side, tol))
-            collapsed |= 1u << side;
-    return collapsed;
-}
-
 /* Global grid index of patch-grid point (I, J), folding the closing lines. */
 static int gidx(int I, int J, int nu_d, int nv_d, int cu, int cv, int GV)
 {
@@ -200,7 +191,7 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
         tess_sample *buf = malloc(sizeof(tess_sample) * npp);
         double *scratch = malloc(sizeof(double) * 8 * npp);
         if (!buf || !scratch ||
-            sample_patch(s, i, j, d, curvature, collapsed_sides(s, i, j, tol), scratch, buf)) {
+            sample_patch(s, i, j, d, curvature, rg2__surface_collapsed_sides(s, i, j, tol), scratch, buf)) {
             free(buf);
             free(scratch);
 #ifdef RG2_HAVE_OPENMP

@@ -87,6 +87,15 @@ int rg2__surface_side_collapsed(const rg2_surface *s, int i, int j, int side, do
     return x ? rg2__xpatch_side_collapsed(x, side, tol) : rg2__patch_side_collapsed(rg2_surface_patch(s, i, j), side, tol);
 }
 
+unsigned rg2__surface_collapsed_sides(const rg2_surface *s, int i, int j, double tol)
+{
+    unsigned c = 0;
+    for (int side = 0; side < 4; side++)
+        if (rg2__surface_side_collapsed(s, i, j, side, tol))
+            c |= 1u << side;
+    return c;
+}
+
 rg2_status rg2__surface_patch_grid(const rg2_surface *s, int i, int j, int n, int m, const rg2_grid_out *out,
                                    rg2_error *err)
 {

@@ -22,6 +22,8 @@ double rg2__surface_collapse_tol(const rg2_surface *s);
 int rg2__xpatch_side_collapsed(const rg2_xpatch *X, int side, double tol);
 /* The same for patch (i, j) of s, whichever kind it is. */
 int rg2__surface_side_collapsed(const rg2_surface *s, int i, int j, int side, double tol);
+/* All four at once: bit k set when side k of patch (i, j) collapses. */
+unsigned rg2__surface_collapsed_sides(const rg2_surface *s, int i, int j, double tol);
 
 /* Patch (i, j) of s on an n x m grid in the layout of rg2_patch_grid (point (a, b) at
  * u = a / (n - 1), v = b / (m - 1), index a * m + b): rg2_patch_grid for a bi-3 patch, the

@@ -1,8 +1,11 @@
 /* test_check.c -- the continuity/exactness report: agrees with the test harness's own seam
  * measurement, reports exact shapes as exact, and reports deliberately broken surfaces
- * (moved control points, a G1 join) as failures at the right seam. */
+ * (moved control points, a G1 join) as failures at the right seam. Every check runs again on
+ * the same surfaces with a mixed pattern of patches replaced by their exact degree elevations
+ * (xmix.h); the reports of the two forms are compared. */
 #include "harness.h"
 #include "scenes.h"
+#include "xmix.h"
 
 #include <cjson/cJSON.h>
 #include <dirent.h>
@@ -35,13 +38,72 @@ static void agrees_with_harness(const rg2_surface *s, const char *name)
     rg2_check_report_free(&r);
 }
 
+/* The report of a surface with elevated patches against the bi-3 original's: the same counts
+ * and failures, gaps equal to rounding (absolute 1e-13 for G0 / G1, 1e-11 relative or
+ * absolute for the curvature jump), the same residuals, curvature ranges (relative to
+ * max(|value|, 1 / size)) and sampled denominators to 1e-12; control weights within the
+ * original's range (elevated weights are convex combinations). Next to a pole (surfaces with
+ * skipped pole samples) |Su| ~ v |Suv|: normals and curvatures at the samples 1/16 from the
+ * pole amplify the rounding of either form by ~1e3 - 1e5, so there G1 agrees to 1e-11 and G2
+ * and the curvature ranges to 1e-8 (the G2 promise) only. */
+static void same_report(const rg2_check_report *a, const rg2_check_report *b, const char *name)
+{
+    CHECK(a->seams == b->seams && a->seam_samples == b->seam_samples && a->skipped == b->skipped &&
+              a->patches == b->patches && a->exact_patches == b->exact_patches && a->transitions == b->transitions,
+          "%s: counts differ (seams %d/%d, skipped %d/%d, exact %d/%d)", name, a->seams, b->seams, a->skipped,
+          b->skipped, a->exact_patches, b->exact_patches);
+    double d0 = fabs(a->g0.value - b->g0.value), d1 = fabs(a->g1.value - b->g1.value);
+    double d2 = fabs(a->g2.value - b->g2.value) / fmax(1.0, fabs(b->g2.value));
+    double dr = fabs(a->worst_residual - b->worst_residual);
+    double dc = 0;
+    const double ra[6] = {a->kmin, a->kmax, a->Hmin, a->Hmax, a->Kmin, a->Kmax};
+    const double rb[6] = {b->kmin, b->kmax, b->Hmin, b->Hmax, b->Kmin, b->Kmax};
+    for (int k = 0; k < 6; k++) {
+        double floor = k < 4 ? 1.0 / b->size : 1.0 / (b->size * b->size);
+        dc = fmax(dc, fabs(ra[k] - rb[k]) / fmax(fmax(fabs(ra[k]), fabs(rb[k])), floor));
+    }
+    double dw = rel(a->eval_wmin, b->eval_wmin);
+    int wok = a->wmin >= b->wmin * (1 - 1e-15) && a->wmax <= b->wmax * (1 + 1e-15);
+    int pole = b->skipped > 0;
+    printf("%s: elevated vs bi-3 report%s: G0 %.1e, G1 %.1e, G2 %.1e (G2 %.2e vs %.2e), residual %.1e, curvature "
+           "ranges %.1e, denominators %.1e, weights [%.4g, %.4g] in [%.4g, %.4g]\n",
+           name, pole ? " (poles)" : "", d0, d1, d2, a->g2.value, b->g2.value, dr, dc, dw, a->wmin, a->wmax, b->wmin,
+           b->wmax);
+    double t1 = pole ? 1e-11 : 1e-13, t2 = pole ? 1e-8 : 1e-11, tc = pole ? 1e-8 : 1e-12;
+    CHECK(d0 <= 1e-13 && d1 <= t1 && d2 <= t2 && dr <= 1e-14 && dc <= tc && dw <= 1e-12 && wok,
+          "%s: reports differ: G0 %.3g G1 %.3g G2 %.3g residual %.3g curvature %.3g denominators %.3g weights %d", name,
+          d0, d1, d2, dr, dc, dw, wok);
+    CHECK(rg2_check_failures(a, ~0u) == rg2_check_failures(b, ~0u), "%s: failures %#x vs %#x", name,
+          rg2_check_failures(a, ~0u), rg2_check_failures(b, ~0u));
+}
+
+/* rg2_check of s and of s with mixed-degree patches: same report. */
+static void mixed_same(const rg2_surface *s, const rg2_shape *shapes, const char *const *labels, int ns,
+                       const char *name)
+{
+    rg2_surface x;
+    rg2_error err;
+    CHECK_OK(xmix_copy(s, &x, &err), &err);
+    rg2_check_report a, b;
+    CHECK_OK(rg2_check(&x, 1, shapes, labels, ns, NULL, &a, &err), &err);
+    CHECK_OK(rg2_check(s, 1, shapes, labels, ns, NULL, &b, &err), &err);
+    same_report(&a, &b, name);
+    rg2_check_report_free(&a);
+    rg2_check_report_free(&b);
+    rg2_surface_free(&x);
+}
+
 static void harness_agreement(void)
 {
     rg2_mesh m;
-    rg2_surface s;
+    rg2_surface s, x;
     rg2_error err;
     CHECK_OK(scene_revolve(3.0, 1.0, 8, 6, 1, 0, 0, &m, &s, &err), &err);
     agrees_with_harness(&s, "torus");
+    CHECK_OK(xmix_copy(&s, &x, &err), &err);
+    agrees_with_harness(&x, "torus, mixed degrees");
+    mixed_same(&s, NULL, NULL, 0, "torus");
+    rg2_surface_free(&x);
     rg2_surface_free(&s);
     rg2_mesh_free(&m);
     CHECK_OK(scene_cyl_plane(1.0, 1.5, 2.0, &s, &err), &err);
@@ -61,15 +123,20 @@ static void harness_agreement(void)
         }
     CHECK_OK(rg2_surface_build(&m, &s, &err), &err);
     agrees_with_harness(&s, "random");
+    mixed_same(&s, NULL, NULL, 0, "random");
     s.patch[1 * s.nv + 2].h[2][1][2] += 0.03;
     agrees_with_harness(&s, "random, broken");
+    CHECK_OK(xmix_copy(&s, &x, &err), &err);
+    agrees_with_harness(&x, "random, broken, mixed degrees");
+    mixed_same(&s, NULL, NULL, 0, "random, broken");
+    rg2_surface_free(&x);
     rg2_surface_free(&s);
     rg2_mesh_free(&m);
 }
 
 /* A torus from the shapes module, tagged 0: exact, G2, passes every promise; a moved control
  * point breaks exactness and the continuity of that patch's seams. */
-static void exact_and_broken(void)
+static void exact_and_broken(int mixed)
 {
     rg2_shape sh;
     rg2_shape_init(&sh, RG2_SHAPE_TORUS);
@@ -86,6 +153,10 @@ static void exact_and_broken(void)
     rg2_surface s;
     CHECK_OK(rg2_shape_surface(&sh, &pu, &pv, &s, NULL, &err), &err);
     s.tag = calloc((size_t)s.nu * s.nv, sizeof *s.tag);
+    if (mixed) {
+        CHECK_OK(xmix_elevate(&s, &err), &err);
+        printf("torus (tilted) with %d of %d patches elevated:\n", xmix_count(&s), s.nu * s.nv);
+    }
     const char *labels[1] = {"ring"};
     rg2_check_opts o;
     rg2_check_opts_default(&o);
@@ -113,9 +184,10 @@ static void exact_and_broken(void)
 
     /* an inner control point of patch (3, 2) moved: every inner point sits next to an edge, so
      * a seam of that patch loses G1 (and G2); positions still meet */
-    rg2_patch *P = rg2_surface_patch(&s, 3, 2);
+    double *h = rg2_surface_xpatch(&s, 3, 2) ? s.xp[3 * s.nv + 2].h[2][1] : rg2_surface_patch(&s, 3, 2)->h[2][1];
+    CHECK(!mixed || rg2_surface_xpatch(&s, 3, 2), "patch (3,2) of higher degree in the mixed torus");
     for (int k = 0; k < 3; k++)
-        P->h[2][1][k] += 0.02 * P->h[2][1][3];
+        h[k] += 0.02 * h[3];
     CHECK_OK(rg2_check(&s, 1, &sh, labels, 1, &o, &r, &err), &err);
     unsigned f = rg2_check_failures(&r, RG2_REQUIRE_G0 | RG2_REQUIRE_G1 | RG2_REQUIRE_G2 | RG2_REQUIRE_EXACT);
     printf("moved point: G0 %.2e, G1 %.2e, G2 %.2e at surface %d %c seam (%d,%d)|(%d,%d); residual %.2e; "
@@ -250,6 +322,9 @@ static void check_example(const char *path)
         worst_res = fmax(worst_res, r.worst_residual);
         worst_g2 = fmax(worst_g2, r.g2.value);
         rg2_check_report_free(&r);
+        char name[600];
+        snprintf(name, sizeof name, "%s surface %d", path, s);
+        mixed_same(rg2_design_surface(d, s), shapes, labels, ns, name);
     }
     printf("%s: %d surfaces match their expect block; residual %.2e, G2 %.2e\n", path, n, worst_res, worst_g2);
     free(shapes);
@@ -291,7 +366,8 @@ static void examples(void)
 int main(void)
 {
     harness_agreement();
-    exact_and_broken();
+    exact_and_broken(0);
+    exact_and_broken(1);
     g1_join();
     examples();
     return rg2t_done("test_check");

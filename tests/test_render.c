@@ -1,9 +1,12 @@
 /* test_render.c -- per-pixel exact pictures: the exact data behind each pixel (sphere: the
  * mean curvature is constant, normals are unit, points lie on the sphere), zebra stripes kink
  * across a G1 seam and not across G2 seams, PNG output decodes, output is deterministic.
+ * The sphere checks run again with a mixed pattern of patches replaced by their exact degree
+ * elevations (xmix.h), and pictures of such surfaces are compared with the bi-3 ones.
  * Set RG2_KEEP_PICTURES=dir to keep the PNGs for looking at them. */
 #include "harness.h"
 #include "scenes.h"
+#include "xmix.h"
 
 #include <png.h>
 #include <stdlib.h>
@@ -65,12 +68,14 @@ static int read_png(const char *path, int *w, int *h, int *ctype, int *depth, un
 }
 
 /* Sphere band (radius 1, latitudes -60..60 degrees): every pixel's exact data. */
-static void sphere_pixels(void)
+static void sphere_pixels(int mixed)
 {
     rg2_mesh m;
     rg2_surface s;
     rg2_error err;
     CHECK_OK(scene_revolve(0.0, 1.0, 6, 4, 0, -M_PI / 3, M_PI / 6, &m, &s, &err), &err);
+    if (mixed)
+        CHECK_OK(xmix_elevate(&s, &err), &err);
     rg2_render_opts o;
     rg2_render_opts_default(&o);
     o.width = 160;
@@ -94,9 +99,9 @@ static void sphere_pixels(void)
         worstR = fmax(worstR, fabs(sqrt(p->p[0] * p->p[0] + p->p[1] * p->p[1] + p->p[2] * p->p[2]) - 1.0));
         worstRes = fmax(worstRes, p->resid);
     }
-    printf("sphere band %dx%d: %d foreground pixels, %d refined; |H| - 1: %.2e, |n| - 1: %.2e, "
+    printf("sphere band %dx%d%s: %d foreground pixels, %d refined; |H| - 1: %.2e, |n| - 1: %.2e, "
            "|p| - 1: %.2e, ray residual %.2e\n",
-           img.width, img.height, fg, img.refined, worstH, worstN, worstR, worstRes);
+           img.width, img.height, mixed ? " (mixed degrees)" : "", fg, img.refined, worstH, worstN, worstR, worstRes);
     CHECK(fg > 2000, "sphere covers %d pixels", fg);
     CHECK(img.refined >= fg * 95 / 100, "Newton converged at %d of %d pixels", img.refined, fg);
     CHECK(worstH <= 1e-12, "mean curvature per pixel constant to %.3g", worstH);
@@ -111,12 +116,14 @@ static void sphere_pixels(void)
 
 /* A whole sphere from a closed v circle (patch edges collapse to the poles, where the normal
  * is undefined): the picture still resolves every pixel to a finite point on the sphere. */
-static void sphere_poles(void)
+static void sphere_poles(int mixed)
 {
     rg2_mesh m;
     rg2_surface s;
     rg2_error err;
     CHECK_OK(scene_revolve(0.0, 1.0, 4, 4, 1, 0, 0, &m, &s, &err), &err);
+    if (mixed)
+        CHECK_OK(xmix_elevate(&s, &err), &err);
     rg2_render_opts o;
     rg2_render_opts_default(&o);
     o.width = 96;
@@ -139,7 +146,8 @@ static void sphere_poles(void)
         if (p->n[0] != 0 || p->n[1] != 0 || p->n[2] != 0)
             worstK = fmax(worstK, fabs(p->K - 1.0));
     }
-    printf("sphere with poles: %d pixels, %d non-finite, |p| - 1 %.2e, K - 1 %.2e\n", fg, bad, worstR, worstK);
+    printf("sphere with poles%s: %d pixels, %d non-finite, |p| - 1 %.2e, K - 1 %.2e\n", mixed ? " (mixed degrees)" : "",
+           fg, bad, worstR, worstK);
     CHECK(fg > 2000 && bad == 0, "%d pixels, %d non-finite", fg, bad);
     CHECK(worstR <= 1e-13, "points on the sphere to %.3g", worstR);
     CHECK(worstK <= 1e-9, "Gaussian curvature 1 to %.3g where the normal is defined", worstK);
@@ -299,6 +307,76 @@ static void png_valid_and_deterministic(void)
     rg2_mesh_free(&m);
 }
 
+/* A torus picture of a surface with elevated patches against the bi-3 original (every mode,
+ * boundaries and mesh overlaid): the same pixels resolve to the same patch, the exact data
+ * agree to rounding, the bytes agree but for pixels where rounding tips a colour level, and 1
+ * and 2 threads give the same bytes. */
+static void mixed_vs_plain(void)
+{
+    rg2_mesh m;
+    rg2_surface s, x;
+    rg2_error err;
+    CHECK_OK(scene_revolve(3.0, 1.0, 8, 6, 1, 0, 0, &m, &s, &err), &err);
+    CHECK_OK(xmix_copy(&s, &x, &err), &err);
+    static const rg2_render_mode modes[4] = {RG2_RENDER_SHADED, RG2_RENDER_MEAN, RG2_RENDER_GAUSS, RG2_RENDER_ZEBRA};
+    for (int q = 0; q < 4; q++) {
+        rg2_render_opts o;
+        rg2_render_opts_default(&o);
+        o.width = 180;
+        o.height = 120;
+        o.mode = modes[q];
+        o.boundaries = q == 0;
+        o.mesh = q == 0;
+        o.keep_pixels = 1;
+        o.threads = 1;
+        rg2_image a, b, b2;
+        CHECK_OK(rg2_render(&s, 1, &m, &o, &a, &err), &err);
+        CHECK_OK(rg2_render(&x, 1, &m, &o, &b, &err), &err);
+        o.threads = 2;
+        CHECK_OK(rg2_render(&x, 1, &m, &o, &b2, &err), &err);
+        size_t np = (size_t)a.width * a.height;
+        int other_patch = 0, bytes = 0, maxbyte = 0;
+        double dp = 0, dn = 0, dH = 0, dK = 0;
+        for (size_t k = 0; k < np; k++) {
+            const rg2_pixel *p = &a.pixels[k], *r = &b.pixels[k];
+            if (p->surf != r->surf || p->patch != r->patch) {
+                other_patch++;
+                continue;
+            }
+            if (p->surf < 0)
+                continue;
+            for (int c = 0; c < 3; c++) {
+                dp = fmax(dp, fabs(p->p[c] - r->p[c]) / 8.0);
+                dn = fmax(dn, fabs(p->n[c] - r->n[c]));
+            }
+            dH = fmax(dH, fabs(p->H - r->H));
+            dK = fmax(dK, fabs(p->K - r->K));
+        }
+        for (size_t k = 0; k < 3 * np; k++) {
+            int d = abs((int)a.rgb[k] - (int)b.rgb[k]);
+            bytes += d != 0;
+            maxbyte = d > maxbyte ? d : maxbyte;
+        }
+        printf("torus mode %d, %d of 48 patches elevated vs bi-3: %d of %zu pixels on another patch, exact data p %.1e "
+               "n %.1e H %.1e K %.1e, %d bytes differ (by <= %d), threads 1/2 %s\n",
+               q, xmix_count(&x), other_patch, np, dp, dn, dH, dK, bytes, maxbyte,
+               b2.rgb && !memcmp(b.rgb, b2.rgb, 3 * np) ? "identical" : "differ");
+        CHECK(a.foreground == b.foreground && other_patch <= (int)(np / 1000), "mode %d: foreground %d vs %d, %d pixels "
+              "on another patch", q, a.foreground, b.foreground, other_patch);
+        /* both pixel points lie on the pixel ray to the Newton tolerance, 1e-12 of the scene */
+        CHECK(dp <= 1e-12 && dn <= 1e-11 && dH <= 1e-11 && dK <= 1e-11, "mode %d: exact data p %.3g n %.3g H %.3g K %.3g",
+              q, dp, dn, dH, dK);
+        CHECK(bytes <= (int)(3 * np / 1000) && maxbyte <= 2, "mode %d: %d bytes differ, by up to %d", q, bytes, maxbyte);
+        CHECK(b2.rgb && !memcmp(b.rgb, b2.rgb, 3 * np), "mode %d: 1 and 2 threads give the same bytes", q);
+        rg2_image_free(&a);
+        rg2_image_free(&b);
+        rg2_image_free(&b2);
+    }
+    rg2_surface_free(&x);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 static void errors(void)
 {
     rg2_mesh m;
@@ -324,6 +402,23 @@ static void errors(void)
     CHECK(rg2_render(&s, 1, NULL, &o, &img, &err) == RG2_ENONFINITE && strstr(err.msg, "patch (1,1)"), "%s",
           err.msg);
     s.patch[5].h[1][2][0] = 0;
+    /* a higher-degree patch: its own control points are checked, the unused bi-3 slot is not */
+    CHECK_OK(rg2t_elevate_some(&s, 5, 3, 16, 7, &err), &err);
+    s.xp[7].h[4][2][3] = INFINITY;
+    CHECK(rg2_render(&s, 1, NULL, &o, &img, &err) == RG2_ENONFINITE && strstr(err.msg, "patch (1,3)"), "%s",
+          err.msg);
+    s.xp[7].h[4][2][3] = 1;
+    s.xp[7].h[5][3][1] = NAN;
+    CHECK(rg2_render(&s, 1, NULL, &o, &img, &err) == RG2_ENONFINITE && strstr(err.msg, "patch (1,3)"),
+          "degree-5 row checked: %s", err.msg);
+    s.xp[7].du = 0; /* back to the bi-3 slot, which the elevation filled with NaN */
+    CHECK(rg2_render(&s, 1, NULL, &o, &img, &err) == RG2_ENONFINITE && strstr(err.msg, "patch (1,3)"), "%s",
+          err.msg);
+    free(s.xp);
+    s.xp = NULL;
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+    CHECK_OK(scene_revolve(3.0, 1.0, 4, 4, 1, 0, 0, &m, &s, &err), &err);
     o.width = 32;
     o.height = 32;
     CHECK_OK(rg2_render(&s, 1, NULL, &o, &img, &err), &err);
@@ -336,8 +431,11 @@ static void errors(void)
 
 int main(void)
 {
-    sphere_pixels();
-    sphere_poles();
+    for (int mixed = 0; mixed < 2; mixed++) {
+        sphere_pixels(mixed);
+        sphere_poles(mixed);
+    }
+    mixed_vs_plain();
     zebra_kinks();
     png_valid_and_deterministic();
     errors();
