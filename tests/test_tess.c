@@ -253,8 +253,11 @@ static void pole_mesh(int mixed)
     rg2_error err;
     rg2_tess t;
     CHECK_OK(fx_pole(6, 7, &s, &err), &err);
+    if (mixed == 2) /* every patch of degree (5,3): no bi-3 patch left to size the tolerances */
+        CHECK_OK(rg2t_elevate_some(&s, 5, 3, 1, 0, &err), &err);
     if (mixed) {
-        CHECK_OK(xmix_elevate(&s, &err), &err);
+        if (mixed == 1)
+            CHECK_OK(xmix_elevate(&s, &err), &err);
         int fan = 0; /* patches of the pole row (j = 0) that are of higher degree */
         for (int i = 0; i < s.nu; i++)
             fan += rg2_surface_xpatch(&s, i, 0) != NULL;
@@ -279,13 +282,13 @@ static void pole_mesh(int mixed)
             worst = fmin(worst, fabs(t.normal[3 * v + 2]));
     CHECK(fabs(worst - 1.0) <= 1e-12, "pole: pole normal z %.17g, expected +-1", worst);
     printf("pole%s: %d vertices, %d triangles, no degenerate triangle, pole normal |z| = %.17g\n",
-           mixed ? " (mixed degrees)" : "", t.n_vertices, t.n_triangles, worst);
+           mixed == 2 ? " (all (5,3))" : mixed ? " (mixed degrees)" : "", t.n_vertices, t.n_triangles, worst);
     if (mixed) {
         rg2_surface b;
         rg2_tess tb;
         CHECK_OK(fx_pole(6, 7, &b, &err), &err);
         CHECK_OK(rg2_tessellate(&b, d, 1, &tb, &err), &err);
-        same_tess(&t, &tb, rg2t_surface_scale(&b), "pole");
+        same_tess(&t, &tb, rg2t_surface_scale(&b), mixed == 2 ? "pole, all (5,3)" : "pole");
         rg2_tess_free(&tb);
         rg2_surface_free(&b);
     }
@@ -315,6 +318,7 @@ int main(void)
         random_mesh(mixed);
         pole_mesh(mixed);
     }
+    pole_mesh(2);
     bad_input();
     return rg2t_done("test_tess");
 }
