@@ -608,7 +608,16 @@ typedef struct {
     double jet_weight[3]; /**< multipliers of the value, first and second derivative rows of the
                                least-squares fit (default 1, 1, 0.25) */
     int samples;          /**< boundary samples per patch column (default 8) */
+    int quadratic;        /**< RG2_CAP_ROTATIONAL (default): eq. (14), q_k3 (x^2 + y^2), bi-3
+                               caps; RG2_CAP_GENERAL: the general quadratic q_k3 x^2 + q_k4 x y +
+                               q_k5 y^2 (6 coefficients per coordinate), for saddle-like ends
+                               (paper Fig. 15c); its caps are rg2_xpatch of degree 4 in u when
+                               the body's end ring is a family-2 ring (sphere, cylinder, ...),
+                               5 otherwise, and 3 in v (docs/poles.md) */
 } rg2_cap_opts;
+
+/** rg2_cap_opts.quadratic */
+enum { RG2_CAP_ROTATIONAL = 0, RG2_CAP_GENERAL = 1 };
 
 /** What the cap construction chose and measured, per end (0 south, 1 north). */
 typedef struct {
@@ -622,6 +631,10 @@ typedef struct {
                                pole, u measured from junction 0; all zero when vc = 0 */
     double g[2][4][4];    /**< the same fit in the normalized chart t = v / v_c in [0, 1]:
                                G = g0 (1 - v_c t)^2 + (g1 cos u + g2 sin u) t (1 - v_c t) + g3 t^2 */
+    double quad[2][4][3]; /**< coefficients of cos^2 u, cos u sin u, sin^2 u of the t^2 term of
+                               G per coordinate k (general form; the rotational form has
+                               g3, 0, g3); g[e][3] is then their mean (g3 + g5) / 2 */
+    int du[2];            /**< u-degree of that end's cap patches (3 rotational; 4 or 5 general) */
     double residual[2];   /**< relative weighted RMS residual of the fit (0 for sphere data) */
     double pole[2][3];    /**< the pole points */
     int rows_before;      /**< cap patch rows before the body rows in the output (0 or 3) */

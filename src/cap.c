@@ -187,9 +187,9 @@ static double lsq_qr(double *A, double *b, int rows, int nc, double *x)
  * cap (t-length 1). Sphere data are matched exactly with lambda = 1. Returns the relative
  * residual, -1 when rank deficient, -2 when out of memory.
  */
-static double fit_solve(const fitdata *fd, double L, double vc, double g[4][4], double lam[2])
+static double fit_solve(const fitdata *fd, double L, double vc, int nb, double g[6][4], double lam[2])
 {
-    const int nc = 18;
+    const int nc = 4 * nb + 2;
     int rows = 12 * fd->n;
     double *A = rg2__calloc((size_t)rows * nc, sizeof(double)), *B = rg2__calloc((size_t)rows, sizeof(double));
     if (!A || !B) {
@@ -212,12 +212,18 @@ static double fit_solve(const fitdata *fd, double L, double vc, double g[4][4], 
                 a[4 * 0 + d] = W * phi0[k];
                 a[4 * 1 + d] = W * sm->c * psi[k];
                 a[4 * 2 + d] = W * sm->s * psi[k];
-                a[4 * 3 + d] = W * phi3[k];
+                if (nb == 4) {
+                    a[4 * 3 + d] = W * phi3[k];
+                } else {
+                    a[4 * 3 + d] = W * sm->c * sm->c * phi3[k];
+                    a[4 * 4 + d] = W * sm->c * sm->s * phi3[k];
+                    a[4 * 5 + d] = W * sm->s * sm->s * phi3[k];
+                }
                 if (k == 1)
-                    a[16] = -W * Lk * sm->J[0][d];
+                    a[4 * nb] = -W * Lk * sm->J[0][d];
                 if (k == 2) {
-                    a[16] = -W * Lk * 2.0 * sm->J[1][d];
-                    a[17] = -W * Lk * sm->J[0][d];
+                    a[4 * nb] = -W * Lk * 2.0 * sm->J[1][d];
+                    a[4 * nb + 1] = -W * Lk * sm->J[0][d];
                 }
                 B[row] = W * Lk * sm->J[k][d];
                 bnorm += B[row] * B[row];
@@ -225,14 +231,14 @@ static double fit_solve(const fitdata *fd, double L, double vc, double g[4][4], 
             Lk *= L;
         }
     }
-    double x[18];
+    double x[26];
     double res = lsq_qr(A, B, rows, nc, x);
     if (res >= 0.0) {
-        for (int c = 0; c < 4; c++)
+        for (int c = 0; c < nb; c++)
             for (int d = 0; d < 4; d++)
                 g[c][d] = x[4 * c + d];
-        lam[0] = x[16];
-        lam[1] = x[17];
+        lam[0] = x[4 * nb];
+        lam[1] = x[4 * nb + 1];
         res = bnorm > 0.0 ? res / sqrt(bnorm) : 0.0;
     }
     free(A);
@@ -365,10 +371,56 @@ static rg2_status choose_params(const rg2_mesh *body, const fitdata *fd, int e, 
  * L/3 in body-ring units). The end Bezier points are taken from the jets directly so the
  * pole and the seam row are exact. Every coefficient is the same linear combination for all
  * r and i, so the u-direction G2 structure of the body and of G carries over to the cap.
- * Piece k (k = 0 at the pole) is returned in P[k] oriented from the pole.
+ * row_pieces does it for one scalar coefficient: G[k] the pole jet (t-derivatives), h0, h1, h2
+ * the body's Bezier v-points at the seam (h0 on it), oriented away from the cap; bz[k][s] is
+ * piece k (k = 0 at the pole) oriented from the pole.
  */
+static void row_pieces(const double G[3], double h0, double h1, double h2, double L, const double lam[2],
+                       double bz[3][4])
+{
+    double A[3], C[4];
+    /* pole jet in the piece parameter (t = sigma / 3) */
+    double P0 = G[0], P1 = G[1] / 3.0, P2 = G[2] / 9.0;
+    A[0] = P0;
+    A[1] = P0 + P1 / 3.0;
+    A[2] = 2.0 * A[1] - A[0] + P2 / 6.0;
+    /* body jet at the seam, oriented away from the cap, in the piece parameter */
+    double sc = L / 3.0;
+    double J1 = 3.0 * (h1 - h0), J2 = 6.0 * (h2 - 2.0 * h1 + h0);
+    /* jets of lambda H (lambda(0) = 1): the same 3D jets, scaled like the fit */
+    double Q1 = sc * (J1 + lam[0] * h0), Q2 = sc * sc * (J2 + 2.0 * lam[0] * J1 + lam[1] * h0);
+    /* the piece parameter runs from the pole into the body: C'(1) = Q1, C''(1) = Q2 */
+    C[3] = h0;
+    C[2] = h0 - Q1 / 3.0;
+    C[1] = 2.0 * C[2] - C[3] + Q2 / 6.0;
+    double db[6];
+    db[1] = 2.0 * A[1] - A[2];
+    db[2] = 2.0 * A[2] - A[1];
+    db[0] = 6.0 * A[0] - 4.0 * db[1] - db[2];
+    db[3] = 2.0 * C[1] - C[2];
+    db[4] = 2.0 * C[2] - C[1];
+    db[5] = 6.0 * C[3] - db[3] - 4.0 * db[4];
+    for (int k = 0; k < 3; k++) {
+        double *x = db + k;
+        bz[k][0] = (x[0] + 4.0 * x[1] + x[2]) / 6.0;
+        bz[k][1] = (2.0 * x[1] + x[2]) / 3.0;
+        bz[k][2] = (x[1] + 2.0 * x[2]) / 3.0;
+        bz[k][3] = (x[1] + 4.0 * x[2] + x[3]) / 6.0;
+    }
+    bz[0][0] = A[0], bz[0][1] = A[1], bz[0][2] = A[2];
+    bz[2][1] = C[1], bz[2][2] = C[2], bz[2][3] = C[3];
+}
+
+/* Body Bezier v-points of u-index r and coordinate d at the seam of end e: h[0] on the seam,
+ * h[1], h[2] going into the body. */
+static void seam_rows(const rg2_patch *Bp, int e, int r, int d, double h[3])
+{
+    for (int q = 0; q < 3; q++)
+        h[q] = e ? Bp->h[r][3 - q][d] : Bp->h[r][q][d];
+}
+
 static void cap_column(const rg2_surface *S, const ucircle *uc, int e, int i, double L, double vc,
-                       double g[4][4], const double lam[2], rg2_patch P[3])
+                       double g[6][4], const double lam[2], rg2_patch P[3])
 {
     double phi0[3], psi[3], phi3[3];
     basis_at(vc, 0.0, phi0, psi, phi3);
@@ -376,47 +428,152 @@ static void cap_column(const rg2_surface *S, const ucircle *uc, int e, int i, do
     for (int r = 0; r < 4; r++) {
         double uh[3];
         ucircle_h(uc, i, r, uh);
-        double A[3][4], C[4][4], G[3][4];
-        for (int k = 0; k < 3; k++)
-            for (int d = 0; d < 4; d++)
-                G[k][d] = uh[0] * g[0][d] * phi0[k] + (uh[1] * g[1][d] + uh[2] * g[2][d]) * psi[k] +
-                          uh[0] * g[3][d] * phi3[k];
         for (int d = 0; d < 4; d++) {
-            /* pole jet in the piece parameter (t = sigma / 3) */
-            double P0 = G[0][d], P1 = G[1][d] / 3.0, P2 = G[2][d] / 9.0;
-            A[0][d] = P0;
-            A[1][d] = P0 + P1 / 3.0;
-            A[2][d] = 2.0 * A[1][d] - A[0][d] + P2 / 6.0;
-            /* body jet at the seam, oriented away from the cap, in the piece parameter */
-            double h0 = e ? Bp->h[r][3][d] : Bp->h[r][0][d];
-            double h1 = e ? Bp->h[r][2][d] : Bp->h[r][1][d];
-            double h2 = e ? Bp->h[r][1][d] : Bp->h[r][2][d];
-            double sc = L / 3.0;
-            double J1 = 3.0 * (h1 - h0), J2 = 6.0 * (h2 - 2.0 * h1 + h0);
-            /* jets of lambda H (lambda(0) = 1): the same 3D jets, scaled like the fit */
-            double Q1 = sc * (J1 + lam[0] * h0), Q2 = sc * sc * (J2 + 2.0 * lam[0] * J1 + lam[1] * h0);
-            /* the piece parameter runs from the pole into the body: C'(1) = Q1, C''(1) = Q2 */
-            C[3][d] = h0;
-            C[2][d] = h0 - Q1 / 3.0;
-            C[1][d] = 2.0 * C[2][d] - C[3][d] + Q2 / 6.0;
-            double db[6];
-            db[1] = 2.0 * A[1][d] - A[2][d];
-            db[2] = 2.0 * A[2][d] - A[1][d];
-            db[0] = 6.0 * A[0][d] - 4.0 * db[1] - db[2];
-            db[3] = 2.0 * C[1][d] - C[2][d];
-            db[4] = 2.0 * C[2][d] - C[1][d];
-            db[5] = 6.0 * C[3][d] - db[3] - 4.0 * db[4];
-            for (int k = 0; k < 3; k++) {
-                double *x = db + k;
-                double bz[4] = {(x[0] + 4.0 * x[1] + x[2]) / 6.0, (2.0 * x[1] + x[2]) / 3.0,
-                                (x[1] + 2.0 * x[2]) / 3.0, (x[1] + 4.0 * x[2] + x[3]) / 6.0};
-                if (k == 0)
-                    bz[0] = A[0][d], bz[1] = A[1][d], bz[2] = A[2][d];
-                if (k == 2)
-                    bz[1] = C[1][d], bz[2] = C[2][d], bz[3] = C[3][d];
+            double G[3], h[3], bz[3][4];
+            for (int k = 0; k < 3; k++)
+                G[k] = uh[0] * g[0][d] * phi0[k] + (uh[1] * g[1][d] + uh[2] * g[2][d]) * psi[k] +
+                       uh[0] * g[3][d] * phi3[k];
+            seam_rows(Bp, e, r, d, h);
+            row_pieces(G, h[0], h[1], h[2], L, lam, bz);
+            for (int k = 0; k < 3; k++)
                 for (int s = 0; s < 4; s++)
-                    P[k].h[r][s][d] = bz[s];
+                    P[k].h[r][s][d] = bz[k][s];
+        }
+    }
+}
+
+/* ---- the general-quadratic cap (degree 4 or 5 in u) ------------------------------------ */
+
+static double binom(int n, int k)
+{
+    double b = 1.0;
+    for (int q = 1; q <= k; q++)
+        b = b * (n - k + q) / q;
+    return b;
+}
+
+/* Bernstein product: c (degree na + nb) = a (degree na) * b (degree nb). */
+static void bmul(const double *a, int na, const double *b, int nb, double *c)
+{
+    for (int k = 0; k <= na + nb; k++)
+        c[k] = 0.0;
+    for (int i = 0; i <= na; i++)
+        for (int j = 0; j <= nb; j++)
+            c[i + j] += binom(na, i) * binom(nb, j) / binom(na + nb, i + j) * a[i] * b[j];
+}
+
+/* One degree elevation n -> n + 1 of Bernstein coefficients (in place, a has room). */
+static void belevate(double *a, int n)
+{
+    double t[RG2_MAX_DEGREE + 2];
+    for (int i = 0; i <= n + 1; i++) {
+        double f = (double)i / (n + 1);
+        t[i] = (i > 0 ? f * a[i - 1] : 0.0) + (i <= n ? (1.0 - f) * a[i] : 0.0);
+    }
+    for (int i = 0; i <= n + 1; i++)
+        a[i] = t[i];
+}
+
+/* Whether the cubic Bernstein coefficients c are a degree-raised quadratic (third difference
+ * at rounding level against their size). */
+static int cubic_is_quadratic(const double c[4])
+{
+    double m = fmax(fmax(fabs(c[0]), fabs(c[1])), fmax(fabs(c[2]), fabs(c[3])));
+    return fabs(c[3] - 3.0 * c[2] + 3.0 * c[1] - c[0]) <= 1e-13 * m;
+}
+
+/* The quadratic (D, C, S) of the body's u-circle on column i (its cubic is a degree-raised
+ * conic arc: weights (1, w, w, 1) with w = (1 + 2 cos beta) / 3). */
+static void ucircle_quadratic(const ucircle *uc, int i, double q[3][3])
+{
+    double c[4][3];
+    for (int r = 0; r < 4; r++)
+        ucircle_h(uc, i, r, c[r]);
+    for (int k = 0; k < 3; k++) {
+        q[k][0] = c[0][k];
+        q[k][1] = 0.5 * (3.0 * c[1][k] - c[0][k]);
+        q[k][2] = c[3][k];
+    }
+}
+
+/* Whether every seam row of the body (both ends that are capped) is a degree-raised quadratic
+ * in u: then D times the body is degree 4 and so is the cap; else 5. */
+static int seam_degree(const rg2_surface *S, int e)
+{
+    for (int i = 0; i < S->nu; i++) {
+        const rg2_patch *Bp = rg2_surface_patch(S, i, body_row(S, e));
+        for (int q = 0; q < 3; q++)
+            for (int d = 0; d < 4; d++) {
+                double c[4], h[3];
+                for (int r = 0; r < 4; r++) {
+                    seam_rows(Bp, e, r, d, h);
+                    c[r] = h[q];
+                }
+                if (!cubic_is_quadratic(c))
+                    return 5;
             }
+    }
+    return 4;
+}
+
+/*
+ * METHOD (general quadratic, docs/poles.md): G = g0 phi0 + (g1 c + g2 s) psi + (g3 c^2 +
+ * g4 c s + g5 s^2) phi3 has c^2 = C^2 / D^2 with (D, C, S) the quadratic conic arcs of the
+ * u-circle, so its homogeneous form is D^2 G: degree 4 in u. The fit matched G to H / D, so
+ * the body side of the C2 rows is D H (lambda H likewise): degree 4 when the body's seam rows
+ * are quadratics in u (family-2 rings), else 5, and the pole side is elevated to match. Rows
+ * in v are as in the bi-3 cap, per u-coefficient (row_pieces).
+ */
+static void cap_column_x(const rg2_surface *S, const ucircle *uc, int e, int i, int du, double L, double vc,
+                         double g[6][4], const double lam[2], rg2_xpatch X[3])
+{
+    double phi0[3], psi[3], phi3[3];
+    basis_at(vc, 0.0, phi0, psi, phi3);
+    double q[3][3], DD[5], DC[5], DS[5], CC[5], CS[5], SS[5];
+    ucircle_quadratic(uc, i, q);
+    bmul(q[0], 2, q[0], 2, DD);
+    bmul(q[0], 2, q[1], 2, DC);
+    bmul(q[0], 2, q[2], 2, DS);
+    bmul(q[1], 2, q[1], 2, CC);
+    bmul(q[1], 2, q[2], 2, CS);
+    bmul(q[2], 2, q[2], 2, SS);
+    const rg2_patch *Bp = rg2_surface_patch(S, i, body_row(S, e));
+    for (int k = 0; k < 3; k++) {
+        memset(&X[k], 0, sizeof X[k]);
+        X[k].du = du;
+        X[k].dv = 3;
+    }
+    for (int d = 0; d < 4; d++) {
+        /* pole jet per order: Bernstein coefficients in u, degree 4 (then du) */
+        double G[3][RG2_MAX_DEGREE + 2];
+        for (int k = 0; k < 3; k++) {
+            for (int r = 0; r <= 4; r++)
+                G[k][r] = DD[r] * g[0][d] * phi0[k] + (DC[r] * g[1][d] + DS[r] * g[2][d]) * psi[k] +
+                          (CC[r] * g[3][d] + CS[r] * g[4][d] + SS[r] * g[5][d]) * phi3[k];
+            if (du == 5)
+                belevate(G[k], 4);
+        }
+        /* body seam rows times D */
+        double H[3][RG2_MAX_DEGREE + 2];
+        for (int qq = 0; qq < 3; qq++) {
+            double c[4], h[3];
+            for (int r = 0; r < 4; r++) {
+                seam_rows(Bp, e, r, d, h);
+                c[r] = h[qq];
+            }
+            if (du == 4) {
+                double c2[3] = {c[0], 0.5 * (3.0 * c[1] - c[0]), c[3]};
+                bmul(q[0], 2, c2, 2, H[qq]);
+            } else {
+                bmul(q[0], 2, c, 3, H[qq]);
+            }
+        }
+        for (int r = 0; r <= du; r++) {
+            double Gr[3] = {G[0][r], G[1][r], G[2][r]}, bz[3][4];
+            row_pieces(Gr, H[0][r], H[1][r], H[2][r], L, lam, bz);
+            for (int k = 0; k < 3; k++)
+                for (int s = 0; s < 4; s++)
+                    X[k].h[r][s][d] = bz[k][s];
         }
     }
 }
@@ -483,7 +640,9 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
     ucircle uc;
     fitdata fd[2];
     memset(fd, 0, sizeof fd);
-    double L[2] = {0, 0}, vc[2] = {0, 0}, g[2][4][4], lam[2][2] = {{0, 0}, {0, 0}};
+    double L[2] = {0, 0}, vc[2] = {0, 0}, g[2][6][4], lam[2][2] = {{0, 0}, {0, 0}};
+    int general = o.quadratic == RG2_CAP_GENERAL, nb = general ? 6 : 4;
+    memset(g, 0, sizeof g);
     if ((st = ucircle_make(&body->su, &uc, err)))
         goto done;
     double scale = 0.0;
@@ -525,7 +684,7 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
                            end_name(e), L[e], vc[e]);
             goto done;
         }
-        double res = fit_solve(&fd[e], L[e], vc[e], g[e], lam[e]);
+        double res = fit_solve(&fd[e], L[e], vc[e], nb, g[e], lam[e]);
         if (res < -1.5) {
             st = rg2__fail(err, RG2_ENOMEM, "cap: out of memory in the fit");
             goto done;
@@ -549,10 +708,20 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
         inf.length[e] = L[e];
         inf.vc[e] = vc[e];
         inf.residual[e] = res;
-        for (int k = 0; k < 4; k++)
-            for (int d = 0; d < 4; d++)
+        for (int d = 0; d < 4; d++) {
+            for (int k = 0; k < 3; k++)
                 inf.g[e][k][d] = g[e][k][d];
-        chart_to_q(g[e], vc[e], inf.q[e]);
+            if (general) {
+                inf.quad[e][d][0] = g[e][3][d];
+                inf.quad[e][d][1] = g[e][4][d];
+                inf.quad[e][d][2] = g[e][5][d];
+                inf.g[e][3][d] = 0.5 * (g[e][3][d] + g[e][5][d]);
+            } else {
+                inf.quad[e][d][0] = inf.quad[e][d][2] = inf.g[e][3][d] = g[e][3][d];
+            }
+        }
+        inf.du[e] = general ? seam_degree(&S, e) : 3;
+        chart_to_q(inf.g[e], vc[e], inf.q[e]);
         for (int k = 0; k < 3; k++)
             inf.pole[e][k] = g[e][0][k] / g[e][0][3];
     }
@@ -566,7 +735,9 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
     out->gu = rg2__calloc((size_t)S.nu, sizeof(double));
     out->bv = rg2__calloc((size_t)nv, sizeof(double));
     out->gv = rg2__calloc((size_t)nv, sizeof(double));
-    if (!out->patch || !out->bu || !out->gu || !out->bv || !out->gv) {
+    if (general)
+        out->xp = rg2__calloc((size_t)S.nu * (size_t)nv, sizeof(rg2_xpatch));
+    if (!out->patch || !out->bu || !out->gu || !out->bv || !out->gv || (general && !out->xp)) {
         rg2_surface_free(out);
         st = rg2__fail(err, RG2_ENOMEM, "cap: out of memory for %d x %d patches", S.nu, nv);
         goto done;
@@ -593,6 +764,24 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
         for (int e = 0; e < 2; e++) {
             if (!inf.capped[e])
                 continue;
+            if (general) {
+                rg2_xpatch X[3];
+                cap_column_x(&S, &uc, e, i, inf.du[e], L[e], vc[e], g[e], lam[e], X);
+                for (int k = 0; k < 3; k++) {
+                    size_t at = (size_t)i * nv + (e == 0 ? k : nv - 1 - k);
+                    rg2_xpatch *D = out->xp + at;
+                    *D = X[k];
+                    if (e)
+                        for (int r = 0; r <= X[k].du; r++)
+                            for (int t = 0; t <= 3; t++)
+                                memcpy(D->h[r][t], X[k].h[r][3 - t], sizeof(double[4]));
+                    for (int r = 0; r < 4; r++)
+                        for (int t = 0; t < 4; t++)
+                            for (int d = 0; d < 4; d++)
+                                out->patch[at].h[r][t][d] = NAN;
+                }
+                continue;
+            }
             rg2_patch P[3];
             cap_column(&S, &uc, e, i, L[e], vc[e], g[e], lam[e], P);
             for (int k = 0; k < 3; k++) {

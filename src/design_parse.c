@@ -1200,10 +1200,10 @@ static rg2_status op_mobius(pctx *c, const cJSON *obj, const char *path, rg2__dm
 
 static rg2_status op_cap(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
 {
-    static const char *const keys[] = {"cap", "ends", "length", "vc", "samples", "jet_weights"};
+    static const char *const keys[] = {"cap", "ends", "length", "vc", "samples", "jet_weights", "quadratic"};
     int src;
     char p[300];
-    rg2_status st = op_begin(c, obj, path, keys, 6, &src);
+    rg2_status st = op_begin(c, obj, path, keys, 7, &src);
     if (st)
         return st;
     rg2_cap_opts o;
@@ -1245,6 +1245,18 @@ static rg2_status op_cap(pctx *c, const cJSON *obj, const char *path, rg2__dmesh
         subpath(p, sizeof p, path, "jet_weights");
         if ((st = as_nums(c, x, p, o.jet_weight, 3, 3, NULL)))
             return st;
+    }
+    if ((x = get(obj, "quadratic"))) {
+        const char *q = NULL;
+        subpath(p, sizeof p, path, "quadratic");
+        if ((st = as_str(c, x, p, &q)))
+            return st;
+        if (!strcmp(q, "rotational"))
+            o.quadratic = RG2_CAP_ROTATIONAL;
+        else if (!strcmp(q, "general"))
+            o.quadratic = RG2_CAP_GENERAL;
+        else
+            return fail(c, RG2_EPARSE, p, "expected \"rotational\" (bi-3 caps) or \"general\" (degree 4/5 in u), found '%s'", q);
     }
     if ((st = rg2__dmesh_copy(&c->d->mesh[src], out, c->err)))
         return st;

@@ -19,10 +19,10 @@ static void unit(double a[3])
 
 /* Limit normal at a collapsed edge v = v0 (0 or 1) of a patch: su = (v - v0) suv + ..., so
  * n ~ sign(v - v0) suv x sv. */
-static void limit_normal(const rg2_patch *P, double u, double v0, double n[3], unsigned *flags)
+static void limit_normal(const rg2_surface *s, int i, int j, double u, double v0, double n[3], unsigned *flags)
 {
     rg2_eval e;
-    rg2_patch_eval(P, u, v0, 2, &e);
+    rg2_surface_eval(s, i, j, u, v0, 2, &e);
     *flags = e.flags;
     double sg = v0 == 0.0 ? 1.0 : -1.0;
     n[0] = sg * (e.suv[1] * e.sv[2] - e.suv[2] * e.sv[1]);
@@ -52,10 +52,9 @@ static void measure_pole(const rg2_surface *s, int e, double scale, pole_meas *p
         for (int k = 0; k <= 8; k++) {
             double u = k / 8.0, n[3];
             unsigned fl;
-            const rg2_patch *P = rg2_surface_patch(s, i, j);
-            limit_normal(P, u, v0, n, &fl);
+            limit_normal(s, i, j, u, v0, n, &fl);
             rg2_eval e0;
-            rg2_patch_eval(P, u, v0, 0, &e0);
+            rg2_surface_eval(s, i, j, u, v0, 0, &e0);
             pm->samples++;
             if (fl & RG2_EVAL_NORMAL_UNDEFINED)
                 pm->flagged++;
@@ -74,7 +73,7 @@ static void measure_pole(const rg2_surface *s, int e, double scale, pole_meas *p
         for (int i = 0; i < s->nu; i++)
             for (int k = 0; k < 8; k++) {
                 rg2_eval ev;
-                rg2_patch_eval(rg2_surface_patch(s, i, j), (k + 0.5) / 8.0, e ? 1.0 - eps : eps, 2, &ev);
+                rg2_surface_eval(s, i, j, (k + 0.5) / 8.0, e ? 1.0 - eps : eps, 2, &ev);
                 pm->nconv[q] = fmax(pm->nconv[q], pt_angle3(ev.n, pm->n));
                 Kmin = fmin(Kmin, ev.K), Kmax = fmax(Kmax, ev.K);
                 Hmin = fmin(Hmin, ev.H), Hmax = fmax(Hmax, ev.H);
@@ -94,7 +93,7 @@ static double sphere_dist(const rg2_surface *s, const double c[3], double R)
             for (int a = 0; a <= 8; a++)
                 for (int b = 0; b <= 8; b++) {
                     rg2_eval e;
-                    rg2_patch_eval(rg2_surface_patch(s, i, j), a / 8.0, b / 8.0, 0, &e);
+                    rg2_surface_eval(s, i, j, a / 8.0, b / 8.0, 0, &e);
                     double d = hypot(hypot(e.p[0] - c[0], e.p[1] - c[1]), e.p[2] - c[2]);
                     worst = fmax(worst, fabs(d - R) / R);
                 }
@@ -134,11 +133,16 @@ static void cap_body_seams(const rg2_surface *s, const rg2_cap_info *info, rg2t_
         int r = e ? s->nv - 4 : 2; /* south: cap row 2 | body row 3; north: body | cap */
         rg2_surface t = *s;
         rg2_patch *pp = malloc(sizeof(rg2_patch) * 2 * (size_t)s->nu);
+        rg2_xpatch *xx = s->xp ? malloc(sizeof(rg2_xpatch) * 2 * (size_t)s->nu) : NULL;
         double bv[2] = {1, s->bv[r + 1]}, gv[2] = {0, s->gv[r + 1]};
         for (int i = 0; i < s->nu; i++)
-            for (int q = 0; q < 2; q++)
+            for (int q = 0; q < 2; q++) {
                 pp[i * 2 + q] = *rg2_surface_patch(s, i, r + q);
+                if (xx)
+                    xx[i * 2 + q] = s->xp[(size_t)i * s->nv + r + q];
+            }
         t.patch = pp;
+        t.xp = xx;
         t.nv = 2;
         t.closed_v = 0;
         t.bv = bv;
@@ -153,16 +157,21 @@ static void cap_body_seams(const rg2_surface *s, const rg2_cap_info *info, rg2t_
         worst->param2 = fmax(worst->param2, g.param2);
         worst->seams++;
         free(pp);
+        free(xx);
     }
 }
 
 /* The complete sphere from polar meshes with random partitions, knots and placement. */
-static void sphere_caps(void)
+static void sphere_caps(int quadratic)
 {
     rg2t_rng r;
     uint64_t seed = 606;
     rg2t_seed(&r, seed);
-    printf("sphere from polar mesh + caps, seed %llu\n", (unsigned long long)seed);
+    printf("sphere from polar mesh + %s caps, seed %llu\n", quadratic ? "general-quadratic" : "bi-3",
+           (unsigned long long)seed);
+    rg2_cap_opts opts;
+    rg2_cap_opts_default(&opts);
+    opts.quadratic = quadratic;
     double worst_d = 0, worst_q = 0;
     for (int trial = 0; trial < 6; trial++) {
         int n = rg2t_int(&r, 3, 9), m = rg2t_int(&r, 2, 7);
@@ -180,8 +189,19 @@ static void sphere_caps(void)
         CHECK_OK(rg2_polar_sphere_mesh(alpha, n, 0.0, v, m, M, &mesh, &err), &err);
         rg2_surface s;
         rg2_cap_info info;
-        CHECK_OK(rg2_cap_build(&mesh, NULL, &s, &info, &err), &err);
+        CHECK_OK(rg2_cap_build(&mesh, &opts, &s, &info, &err), &err);
         CHECK(s.nv == m - 1 + 6 && s.nu == n, "patch grid %d x %d", s.nu, s.nv);
+        /* a sphere's end rings are family-2 rings: the general cap is degree 4 in u, and its
+         * quadratic form comes out rotational (c^2 and s^2 equal, no c s) */
+        int du_expect = quadratic ? 4 : 3, du, dv;
+        rg2_surface_degree(&s, &du, &dv);
+        CHECK(info.du[0] == du_expect && info.du[1] == du_expect && du == du_expect && dv == 3,
+              "cap degrees %d %d, surface (%d, %d)", info.du[0], info.du[1], du, dv);
+        for (int e = 0; e < 2; e++)
+            for (int k = 0; k < 4; k++)
+                CHECK(fabs(info.quad[e][k][1]) <= 1e-12 && fabs(info.quad[e][k][0] - info.quad[e][k][2]) <= 1e-12,
+                      "quadratic form of coordinate %d: %.3g %.3g %.3g", k, info.quad[e][k][0], info.quad[e][k][1],
+                      info.quad[e][k][2]);
         CHECK(info.polar[0] && info.polar[1], "both ends recognised as polar");
         double d = sphere_dist(&s, c, R);
         worst_d = fmax(worst_d, d);
@@ -278,7 +298,7 @@ static double implicit_dist(const rg2_surface *s, int kind, const double *prm, d
             for (int a = 0; a <= 8; a++)
                 for (int b = 0; b <= 8; b++) {
                     rg2_eval e;
-                    rg2_patch_eval(rg2_surface_patch(s, i, j), a / 8.0, b / 8.0, 0, &e);
+                    rg2_surface_eval(s, i, j, a / 8.0, b / 8.0, 0, &e);
                     double x = e.p[0], y = e.p[1], z = e.p[2], f, gx, gy, gz;
                     if (kind == 0) {
                         f = z - x * x / (prm[0] * prm[0]) - y * y / (prm[1] * prm[1]);
@@ -358,12 +378,15 @@ static void quadric_caps(void)
 /* Free-form caps: perturbed polar sphere meshes (interior rows and polar points moved) and
  * tubes from random closed rings; G2 seams (angle <= 1e-11, curvature <= 1e-8) and a smooth
  * pole (one point, one limit normal; curvature spread shrinking towards the pole). */
-static void freeform_caps(void)
+static void freeform_caps(int quadratic)
 {
     rg2t_rng r;
     uint64_t seed = 4242;
     rg2t_seed(&r, seed);
-    printf("free-form caps, seed %llu\n", (unsigned long long)seed);
+    printf("free-form %s caps, seed %llu\n", quadratic ? "general-quadratic" : "bi-3", (unsigned long long)seed);
+    rg2_cap_opts opts;
+    rg2_cap_opts_default(&opts);
+    opts.quadratic = quadratic;
     rg2t_seams worst = {0}, cb = {0};
     double wpn = 0, wpp = 0;
     for (int trial = 0; trial < 6; trial++) {
@@ -410,7 +433,9 @@ static void freeform_caps(void)
         }
         rg2_surface s;
         rg2_cap_info info;
-        CHECK_OK(rg2_cap_build(&mesh, NULL, &s, &info, &err), &err);
+        CHECK_OK(rg2_cap_build(&mesh, &opts, &s, &info, &err), &err);
+        CHECK(info.du[0] == (quadratic ? 5 : 3) && info.du[1] == info.du[0], "free-form cap u-degrees %d %d",
+              info.du[0], info.du[1]);
         rg2t_seams g;
         char what[64];
         snprintf(what, sizeof what, "%s %d", tube ? "tube" : "perturbed sphere", trial);
@@ -514,10 +539,96 @@ static int surface_pole(const rg2_surface *s, int e, double p[3])
 {
     rg2_eval a, b;
     int j = e ? s->nv - 1 : 0;
-    rg2_patch_eval(rg2_surface_patch(s, 0, j), 0.2, e ? 1.0 : 0.0, 0, &a);
-    rg2_patch_eval(rg2_surface_patch(s, s->nu / 2, j), 0.7, e ? 1.0 : 0.0, 0, &b);
+    rg2_surface_eval(s, 0, j, 0.2, e ? 1.0 : 0.0, 0, &a);
+    rg2_surface_eval(s, s->nu / 2, j, 0.7, e ? 1.0 : 0.0, 0, &b);
     memcpy(p, a.p, sizeof a.p);
     return pt_dist3(a.p, b.p) <= 1e-14 * (1 + fabs(a.p[0]) + fabs(a.p[1]) + fabs(a.p[2]));
+}
+
+/* Sign changes of the meridian normal curvature and of K along the meridians of the south
+ * cap (seam to pole, 4 meridians per patch column), and K next to the pole. */
+typedef struct {
+    int merid_changes, gauss_changes;
+    double pole_K;
+} cap_shape;
+
+static void cap_shape_measure(const rg2_surface *s, cap_shape *cs)
+{
+    memset(cs, 0, sizeof *cs);
+    for (int i = 0; i < s->nu; i++)
+        for (int a = 0; a < 4; a++) {
+            int mc = 0, gc = 0;
+            double pk = 0, pK = 0;
+            for (int j = 2; j >= 0; j--)
+                for (int t = 32; t >= 0; t--) {
+                    rg2_eval e;
+                    rg2_surface_eval(s, i, j, a / 4.0, t / 32.0, 2, &e);
+                    if (e.flags & RG2_EVAL_NORMAL_UNDEFINED)
+                        continue;
+                    double k = rg2_eval_normal_curvature(&e, 0, 1);
+                    if (fabs(k) > 1e-3) {
+                        mc += pk * k < 0;
+                        pk = k;
+                    }
+                    if (fabs(e.K) > 1e-3) {
+                        gc += pK * e.K < 0;
+                        pK = e.K;
+                    }
+                }
+            cs->merid_changes = mc > cs->merid_changes ? mc : cs->merid_changes;
+            cs->gauss_changes = gc > cs->gauss_changes ? gc : cs->gauss_changes;
+        }
+    rg2_eval e;
+    rg2_surface_eval(s, 0, 0, 0.3, 1e-3, 2, &e);
+    cs->pole_K = e.K;
+}
+
+/* Fig. 15: the saddle mesh (a) capped by the rotational form (b) oscillates (curvature sign
+ * changes between the saddle ring and the round pole); the general quadratic (c) follows the
+ * saddle (no sign change, hyperbolic pole, smaller fit residual) with degree-5 caps. */
+static void fig15_compare(const rg2_design *d)
+{
+    rg2_cap_info info[2];
+    cap_shape cs[2];
+    for (int q = 0; q < 2; q++) {
+        rg2_cap_opts o;
+        rg2_cap_opts_default(&o);
+        o.ends = RG2_CAP_SOUTH;
+        o.quadratic = q ? RG2_CAP_GENERAL : RG2_CAP_ROTATIONAL;
+        rg2_surface s;
+        rg2_error err;
+        CHECK_OK(rg2_cap_build(rg2_design_mesh(d, q), &o, &s, &info[q], &err), &err);
+        cap_shape_measure(&s, &cs[q]);
+        /* the design's own output is the same surface */
+        const rg2_surface *ds = rg2_design_surface(d, q);
+        double dd = 0;
+        for (int i = 0; i < s.nu; i++)
+            for (int j = 0; j < 3; j++) {
+                rg2_eval a, b;
+                rg2_surface_eval(&s, i, j, 0.37, 0.61, 0, &a);
+                rg2_surface_eval(ds, i, j, 0.37, 0.61, 0, &b);
+                dd = fmax(dd, pt_dist3(a.p, b.p) - (q ? 3.0 : 0.0));
+            }
+        CHECK(fabs(dd) <= 1e-12, "Fig. 15 design surface %d is the capped mesh (%.3g)", q, dd);
+        rg2_surface_free(&s);
+    }
+    CHECK(info[0].du[0] == 3 && info[1].du[0] == 5, "cap u-degrees %d (bi-3), %d (general)", info[0].du[0],
+          info[1].du[0]);
+    CHECK(cs[0].merid_changes >= 1 && cs[0].gauss_changes >= 1,
+          "Fig. 15b oscillates: meridian curvature changes sign %d times, K %d times", cs[0].merid_changes,
+          cs[0].gauss_changes);
+    CHECK(cs[1].merid_changes == 0 && cs[1].gauss_changes == 0,
+          "Fig. 15c follows the saddle: meridian curvature changes sign %d times, K %d times", cs[1].merid_changes,
+          cs[1].gauss_changes);
+    CHECK(cs[1].pole_K < 0, "Fig. 15c has a hyperbolic pole (K = %.3g)", cs[1].pole_K);
+    CHECK(info[1].residual[0] < 0.2 * info[0].residual[0], "general fit residual %.3g vs rotational %.3g",
+          info[1].residual[0], info[0].residual[0]);
+    printf("  Fig. 15 saddle mesh: (b) rotational bi-3 cap: fit residual %.2e, meridian-curvature / K sign changes "
+           "along a meridian %d / %d, K at the pole %.3f;\n"
+           "                      (c) general quadratic, degree (%d,3): fit residual %.2e, sign changes %d / %d, "
+           "K at the pole %.3f\n",
+           info[0].residual[0], cs[0].merid_changes, cs[0].gauss_changes, cs[0].pole_K, info[1].du[0],
+           info[1].residual[0], cs[1].merid_changes, cs[1].gauss_changes, cs[1].pole_K);
 }
 
 /* The example designs of Figs. 9-12 and 14: they build, every seam is G2, every cap has one
@@ -582,7 +693,7 @@ static void design_examples(void)
                 for (int a = 0; a <= 8; a++)
                     for (int b = 0; b <= 8; b++) {
                         rg2_eval ev;
-                        rg2_patch_eval(&s->patch[q], a / 8.0, b / 8.0, 2, &ev);
+                        rg2_surface_eval(s, q / s->nv, q % s->nv, a / 8.0, b / 8.0, 2, &ev);
                         if (!(ev.flags & RG2_EVAL_CURVATURE_UNDEFINED))
                             kmax = fmax(kmax, fmax(fabs(ev.k1), fabs(ev.k2)));
                     }
@@ -624,33 +735,8 @@ static void design_examples(void)
                 }
             }
         }
-        if (f == 5) /* Fig. 15: report the meridian curvature of the saddle caps (oscillation) */
-            for (int o = 0; o < 2; o++) {
-                const rg2_surface *s = rg2_design_surface(d, o);
-                int worst = 0;
-                double kmin = 0;
-                for (int i = 0; i < s->nu; i++) {
-                    int ch = 0;
-                    double prev = 0;
-                    for (int j = s->nv - 4; j < s->nv; j++)
-                        for (int t = 0; t <= 16; t++) {
-                            rg2_eval e;
-                            rg2_patch_eval(rg2_surface_patch(s, i, j), 0.0, t / 16.0, 2, &e);
-                            if (e.flags & RG2_EVAL_NORMAL_UNDEFINED)
-                                continue;
-                            double k = rg2_eval_normal_curvature(&e, 0, 1);
-                            kmin = fmin(kmin, k);
-                            if (fabs(k) > 1e-3) {
-                                ch += prev * k < 0;
-                                prev = k;
-                            }
-                        }
-                    worst = ch > worst ? ch : worst;
-                }
-                printf("  Fig. 15 %s: most sign changes of the meridian curvature along one meridian of the cap "
-                       "%d, strongest meridian curvature %.2f\n",
-                       o ? "4-saddle" : "saddle", worst, kmin);
-            }
+        if (f == 5) /* Fig. 15 (b) vs (c): the same saddle mesh capped both ways */
+            fig15_compare(d);
         rg2_design_free(d);
     }
     rmdir(dir);
@@ -715,7 +801,7 @@ static void ellipsoid_caps(void)
         for (int a = 0; a <= 6; a++)
             for (int b = 0; b <= 6; b++) {
                 rg2_eval ev;
-                rg2_patch_eval(&s->patch[k], a / 6.0, b / 6.0, 0, &ev);
+                rg2_surface_eval(s, k / s->nv, k % s->nv, a / 6.0, b / 6.0, 0, &ev);
                 double g[3], F = rg2_shape_implicit(e, ev.p, g);
                 worst = fmax(worst, fabs(F) / (sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]) * scale));
             }
@@ -773,9 +859,11 @@ static void design_errors(void)
 
 int main(void)
 {
-    sphere_caps();
+    sphere_caps(RG2_CAP_ROTATIONAL);
+    sphere_caps(RG2_CAP_GENERAL);
     quadric_caps();
-    freeform_caps();
+    freeform_caps(RG2_CAP_ROTATIONAL);
+    freeform_caps(RG2_CAP_GENERAL);
     cap_errors();
     design_examples();
     rational_body_caps();
