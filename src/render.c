@@ -810,8 +810,9 @@ static rg2_status check_input(const rg2_surface *surfs, int n, const rg2_mesh *m
             rg2__patch_degree(&surfs[s], k, &du, &dv);
             for (int q = 0; q < 4 * (du + 1) * (dv + 1); q++)
                 if (!isfinite(rg2__patch_ctrl(&surfs[s], k, q / 4 / (dv + 1), q / 4 % (dv + 1))[q % 4]))
-                    return rg2__fail(err, RG2_ENONFINITE, "render: surface %d patch (%zu,%zu) has a non-finite control point",
-                                     s, k / (size_t)surfs[s].nv, k % (size_t)surfs[s].nv);
+                    return rg2__fail(err, RG2_ENONFINITE,
+                                     "render: surface %d patch (%zu,%zu) has a non-finite control point", s,
+                                     k / (size_t)surfs[s].nv, k % (size_t)surfs[s].nv);
         }
     }
     return RG2_OK;

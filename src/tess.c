@@ -151,8 +151,8 @@ static double dist2(const double *a, const double *b)
  * METHOD: the surface's grid points (I, J), I = 0..nu d, J = 0..nv d, closing lines folded
  * onto line 0, each belong to exactly one patch (the one with i = min(I / d, nu - 1)), which
  * evaluates it; the patch on the other side of a seam uses the same vertex. Sides detected
- * as collapsed (rg2__surface_side_collapsed, patches of any degree) merge their grid points (union-find) into one
- * vertex; triangles that then repeat a vertex are dropped.
+ * as collapsed (rg2__surface_side_collapsed, patches of any degree) merge their grid points
+ * (union-find) into one vertex; triangles that then repeat a vertex are dropped.
  */
 rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_tess *out,
                           rg2_error *err)

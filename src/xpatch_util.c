@@ -84,7 +84,9 @@ int rg2__xpatch_side_collapsed(const rg2_xpatch *X, int side, double tol)
 int rg2__surface_side_collapsed(const rg2_surface *s, int i, int j, int side, double tol)
 {
     const rg2_xpatch *x = rg2_surface_xpatch(s, i, j);
-    return x ? rg2__xpatch_side_collapsed(x, side, tol) : rg2__patch_side_collapsed(rg2_surface_patch(s, i, j), side, tol);
+    if (x)
+        return rg2__xpatch_side_collapsed(x, side, tol);
+    return rg2__patch_side_collapsed(rg2_surface_patch(s, i, j), side, tol);
 }
 
 unsigned rg2__surface_collapsed_sides(const rg2_surface *s, int i, int j, double tol)

@@ -361,8 +361,8 @@ static void mixed_vs_plain(void)
                "n %.1e H %.1e K %.1e, %d bytes differ (by <= %d), threads 1/2 %s\n",
                q, xmix_count(&x), other_patch, np, dp, dn, dH, dK, bytes, maxbyte,
                b2.rgb && !memcmp(b.rgb, b2.rgb, 3 * np) ? "identical" : "differ");
-        CHECK(a.foreground == b.foreground && other_patch <= (int)(np / 1000), "mode %d: foreground %d vs %d, %d pixels "
-              "on another patch", q, a.foreground, b.foreground, other_patch);
+        CHECK(a.foreground == b.foreground && other_patch <= (int)(np / 1000),
+              "mode %d: foreground %d vs %d, %d pixels on another patch", q, a.foreground, b.foreground, other_patch);
         /* both pixel points lie on the pixel ray to the Newton tolerance, 1e-12 of the scene */
         CHECK(dp <= 1e-12 && dn <= 1e-11 && dH <= 1e-11 && dK <= 1e-11, "mode %d: exact data p %.3g n %.3g H %.3g K %.3g",
               q, dp, dn, dH, dK);

@@ -86,9 +86,10 @@ static double dist2(const double *a, const double *b)
 
 /* Same vertices (to 1e-15 of the size), normals (1e-13) and curvatures (1e-11 relative to
  * max(|value|, 1 / size), except on the z axis, where a pole's curvature is taken 1e-6 inside
- * the patch and carries rounding amplified ~1e12 in either form) and triangles: a surface with elevated patches tessellates like the bi-3 original. The
- * triangles come quad by quad in the same order; a quad may take the other diagonal only where
- * its two diagonals are equally long to rounding (1e-12 of size^2). */
+ * the patch and carries rounding amplified ~1e12 in either form) and triangles: a surface with
+ * elevated patches tessellates like the bi-3 original. The triangles come quad by quad in the
+ * same order; a quad may take the other diagonal only where its two diagonals are equally long
+ * to rounding (1e-12 of size^2). */
 static void same_tess(const rg2_tess *a, const rg2_tess *b, double size, const char *what)
 {
     CHECK(a->n_vertices == b->n_vertices && a->n_triangles == b->n_triangles, "%s: %d/%d vertices, %d/%d triangles",
