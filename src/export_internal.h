@@ -44,14 +44,11 @@ void rg2__patch_side(const rg2_patch *P, int side, double out[4][4]);
 /* Whether side `side` of P collapses to a point (all four affine points within tol). */
 int rg2__patch_side_collapsed(const rg2_patch *P, int side, double tol);
 /* The same for a patch of any degree: side `side` of X (du + 1 points on sides 0 and 2,
- * dv + 1 on 1 and 3; returns the count), and whether it collapses to a point. */
+ * dv + 1 on 1 and 3); returns the count. */
 int rg2__xpatch_side(const rg2_xpatch *X, int side, double out[RG2_MAX_DEGREE + 1][4]);
-int rg2__xpatch_side_collapsed(const rg2_xpatch *X, int side, double tol);
 /* The (du + 1) x (dv + 1) homogeneous control points of X as a net out[r * (dv + 1) + t], u
  * outer (the layout of the merged net); returns their count. */
 int rg2__xpatch_net(const rg2_xpatch *X, double (*out)[4]);
-/* Whether side `side` of patch (i, j) of s collapses, whichever kind the patch is. */
-int rg2__surface_side_collapsed(const rg2_surface *s, int i, int j, int side, double tol);
 /* Collapse tolerance of a surface: 1e-11 times the bounding-box diagonal of its control points
  * (of patches of any degree). */
 double rg2__collapse_tol(const rg2_surface *s);

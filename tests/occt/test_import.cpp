@@ -58,6 +58,7 @@ struct Case {
     double scale;
     // distance of a point from the exact shape the surface represents (nullptr: none)
     double (*exact)(const double p[3]) = nullptr;
+    bool ap242 = true; // also write AP242 (it differs from AP214 in the header only)
 };
 
 double torus_13_4(const double p[3]) { return fx_torus_dist(13.0, 4.0, p); }
@@ -546,14 +547,43 @@ int main()
         CHECK_OK(rg2t_elevate_some(&pole_x, xdeg[k][0], xdeg[k][1], xstride[k], ph, &err), &err);
         CHECK_OK(rg2t_elevate_some(&capped_x, xdeg[k][0], xdeg[k][1], xstride[k], k, &err), &err);
     }
+    // one genuinely degree-(5, 4) patch (not an elevation): random weights and a perturbed grid
+    rg2_surface single;
+    memset(&single, 0, sizeof single);
+    {
+        single.nu = single.nv = 1;
+        single.patch = (rg2_patch *)calloc(1, sizeof(rg2_patch));
+        single.xp = (rg2_xpatch *)calloc(1, sizeof(rg2_xpatch));
+        single.bu = (double *)calloc(1, sizeof(double));
+        single.gu = (double *)calloc(1, sizeof(double));
+        single.bv = (double *)calloc(1, sizeof(double));
+        single.gv = (double *)calloc(1, sizeof(double));
+        rg2t_rng rng;
+        rg2t_seed(&rng, 20261122);
+        rg2_xpatch &X = single.xp[0];
+        X.du = 5;
+        X.dv = 4;
+        for (int r = 0; r <= X.du; r++)
+            for (int t = 0; t <= X.dv; t++) {
+                double w = rg2t_uniform(&rng, 0.5, 2.0);
+                double p[3] = {2.0 * r + rg2t_uniform(&rng, -0.4, 0.4), 2.0 * t + rg2t_uniform(&rng, -0.4, 0.4),
+                               rg2t_uniform(&rng, -2.0, 2.0)};
+                for (int d = 0; d < 3; d++)
+                    X.h[r][t][d] = w * p[d];
+                X.h[r][t][3] = w;
+            }
+        for (int k = 0; k < 64; k++)
+            (&single.patch[0].h[0][0][0])[k] = NAN;
+    }
     printf("seed 20261122\n");
     Case cases[] = {{"torus", &torus, rg2t_surface_scale(&torus), torus_13_4},
                     {"random", &random, rg2t_surface_scale(&random)},
                     {"pole", &pole, rg2t_surface_scale(&pole)},
                     {"capped sphere", &capped, rg2t_surface_scale(&capped)},
-                    {"torus elevated", &torus_x, rg2t_surface_scale(&torus_x), torus_13_4},
-                    {"pole elevated", &pole_x, rg2t_surface_scale(&pole_x)},
-                    {"capped sphere elevated", &capped_x, rg2t_surface_scale(&capped_x)}};
+                    {"torus elevated", &torus_x, rg2t_surface_scale(&torus_x), torus_13_4, false},
+                    {"pole elevated", &pole_x, rg2t_surface_scale(&pole_x), nullptr, false},
+                    {"capped sphere elevated", &capped_x, rg2t_surface_scale(&capped_x), nullptr, false},
+                    {"random (5, 4) patch", &single, rg2t_surface_scale(&single), nullptr, false}};
     // every named shape with its default partition (rg2_shape_surface); shapes whose patches
     // have a weight <= 0 must be refused for STEP, naming the patch
     std::vector<rg2_surface> shapes;
@@ -628,7 +658,7 @@ int main()
     }
     for (const Case &c : cases) {
         check_file(c, dir, "step", RG2_STEP_FACE_PER_PATCH, 0);
-        if (!strstr(c.name, "elevated")) // AP242 differs in the header only
+        if (c.ap242)
             check_file(c, dir, "step", RG2_STEP_FACE_PER_PATCH, 1);
         check_file(c, dir, "step", RG2_STEP_FACE_PER_MESH, 0);
         check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0);
@@ -646,6 +676,7 @@ int main()
     rg2_surface_free(&torus_x);
     rg2_surface_free(&pole_x);
     rg2_surface_free(&capped_x);
+    rg2_surface_free(&single);
     if (!getenv("RG2_OCCT_KEEP"))
         rmdir(dir);
     else
