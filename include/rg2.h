@@ -611,9 +611,10 @@ typedef struct {
     int quadratic;        /**< RG2_CAP_ROTATIONAL (default): eq. (14), q_k3 (x^2 + y^2), bi-3
                                caps; RG2_CAP_GENERAL: the general quadratic q_k3 x^2 + q_k4 x y +
                                q_k5 y^2 (6 coefficients per coordinate), for saddle-like ends
-                               (paper Fig. 15c); its caps are rg2_xpatch of degree 4 in u when
-                               the body's end ring is a family-2 ring (sphere, cylinder, ...),
-                               5 otherwise, and 3 in v (docs/poles.md) */
+                               (paper Fig. 15c); the whole capped surface is then held as
+                               rg2_xpatch of degree (4, 3) when the body's rows are family-2
+                               rows (sphere, cylinder, ...), else (5, 3), the body in the
+                               caps' homogeneous scaling (docs/poles.md) */
 } rg2_cap_opts;
 
 /** rg2_cap_opts.quadratic */

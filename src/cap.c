@@ -496,24 +496,48 @@ static void ucircle_quadratic(const ucircle *uc, int i, double q[3][3])
     }
 }
 
-/* Whether every seam row of the body (both ends that are capped) is a degree-raised quadratic
- * in u: then D times the body is degree 4 and so is the cap; else 5. */
-static int seam_degree(const rg2_surface *S, int e)
+/* The u-degree of a general-quadratic capped surface: D times the body is degree 4 when every
+ * body patch row is a degree-raised quadratic in u (family-2 rows: sphere, cylinder, ...),
+ * else 5. */
+static int general_degree(const rg2_surface *S)
 {
-    for (int i = 0; i < S->nu; i++) {
-        const rg2_patch *Bp = rg2_surface_patch(S, i, body_row(S, e));
-        for (int q = 0; q < 3; q++)
+    for (size_t k = 0; k < (size_t)S->nu * (size_t)S->nv; k++)
+        for (int t = 0; t < 4; t++)
             for (int d = 0; d < 4; d++) {
-                double c[4], h[3];
-                for (int r = 0; r < 4; r++) {
-                    seam_rows(Bp, e, r, d, h);
-                    c[r] = h[q];
-                }
+                double c[4];
+                for (int r = 0; r < 4; r++)
+                    c[r] = S->patch[k].h[r][t][d];
                 if (!cubic_is_quadratic(c))
                     return 5;
             }
-    }
     return 4;
+}
+
+/* Body patch (i, j) times D_i(u), the column's circle denominator: the same rational surface
+ * of degree (du, 3), in the homogeneous scaling of the general caps (so that every seam of the
+ * output, cap/body included, has one homogeneous form and the surface is one B-spline). */
+static void body_times_d(const rg2_surface *S, const ucircle *uc, int i, int j, int du, rg2_xpatch *X)
+{
+    double q[3][3];
+    ucircle_quadratic(uc, i, q);
+    const rg2_patch *P = rg2_surface_patch(S, i, j);
+    memset(X, 0, sizeof *X);
+    X->du = du;
+    X->dv = 3;
+    for (int t = 0; t < 4; t++)
+        for (int d = 0; d < 4; d++) {
+            double c[4], out[RG2_MAX_DEGREE + 1];
+            for (int r = 0; r < 4; r++)
+                c[r] = P->h[r][t][d];
+            if (du == 4) {
+                double c2[3] = {c[0], 0.5 * (3.0 * c[1] - c[0]), c[3]};
+                bmul(q[0], 2, c2, 2, out);
+            } else {
+                bmul(q[0], 2, c, 3, out);
+            }
+            for (int r = 0; r <= du; r++)
+                X->h[r][t][d] = out[r];
+        }
 }
 
 /*
@@ -720,7 +744,7 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
                 inf.quad[e][d][0] = inf.quad[e][d][2] = inf.g[e][3][d] = g[e][3][d];
             }
         }
-        inf.du[e] = general ? seam_degree(&S, e) : 3;
+        inf.du[e] = general ? general_degree(&S) : 3;
         chart_to_q(inf.g[e], vc[e], inf.q[e]);
         for (int k = 0; k < 3; k++)
             inf.pole[e][k] = g[e][0][k] / g[e][0][3];
@@ -759,8 +783,18 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
     if (ra)
         out->bv[rb + S.nv] = L[1] / 3.0, out->gv[rb + S.nv] = 0.0;
     for (int i = 0; i < S.nu; i++) {
-        for (int j = 0; j < S.nv; j++)
-            *(out->patch + (size_t)i * nv + rb + j) = *rg2_surface_patch(&S, i, j);
+        for (int j = 0; j < S.nv; j++) {
+            size_t at = (size_t)i * nv + rb + j;
+            if (general) {
+                body_times_d(&S, &uc, i, j, inf.du[inf.capped[0] ? 0 : 1], out->xp + at);
+                for (int r = 0; r < 4; r++)
+                    for (int t = 0; t < 4; t++)
+                        for (int d = 0; d < 4; d++)
+                            out->patch[at].h[r][t][d] = NAN;
+            } else {
+                out->patch[at] = *rg2_surface_patch(&S, i, j);
+            }
+        }
         for (int e = 0; e < 2; e++) {
             if (!inf.capped[e])
                 continue;

@@ -122,10 +122,11 @@ rg2_status rg2__check_weights(const rg2_surface *surfs, int n_surfs, const char 
         const rg2_surface *s = &surfs[k];
         for (int i = 0; i < s->nu; i++)
             for (int j = 0; j < s->nv; j++) {
-                const rg2_patch *P = rg2_surface_patch(s, i, j);
-                for (int r = 0; r < 4; r++)
-                    for (int t = 0; t < 4; t++) {
-                        const double *h = P->h[r][t];
+                rg2_xpatch P;
+                rg2_surface_patch_get(s, i, j, &P);
+                for (int r = 0; r <= P.du; r++)
+                    for (int t = 0; t <= P.dv; t++) {
+                        const double *h = P.h[r][t];
                         if (!(rg2__finite(h[0]) && rg2__finite(h[1]) && rg2__finite(h[2]) &&
                               rg2__finite(h[3])))
                             return rg2__fail(err, RG2_ENONFINITE,
@@ -146,45 +147,82 @@ rg2_status rg2__check_weights(const rg2_surface *surfs, int n_surfs, const char 
 
 /* ---------------------------------------------------------------- patch sides */
 
-void rg2__patch_side(const rg2_patch *P, int side, double out[4][4])
+int rg2__xpatch_side(const rg2_xpatch *X, int side, double out[RG2_MAX_DEGREE + 1][4])
 {
-    for (int a = 0; a < 4; a++) {
+    int n = (side & 1) ? X->dv : X->du;
+    for (int a = 0; a <= n; a++) {
         const double *h;
         switch (side) {
-        case 0: h = P->h[a][0]; break;
-        case 1: h = P->h[3][a]; break;
-        case 2: h = P->h[a][3]; break;
-        default: h = P->h[0][a]; break;
+        case 0: h = X->h[a][0]; break;
+        case 1: h = X->h[X->du][a]; break;
+        case 2: h = X->h[a][X->dv]; break;
+        default: h = X->h[0][a]; break;
         }
         memcpy(out[a], h, sizeof(double[4]));
     }
+    return n + 1;
 }
 
-int rg2__patch_side_collapsed(const rg2_patch *P, int side, double tol)
+int rg2__xpatch_net(const rg2_xpatch *X, double (*out)[4])
 {
-    double c[4][4];
-    rg2__patch_side(P, side, c);
-    for (int a = 1; a < 4; a++)
+    for (int r = 0; r <= X->du; r++)
+        memcpy(out[r * (X->dv + 1)], X->h[r], sizeof(double[4]) * (size_t)(X->dv + 1));
+    return (X->du + 1) * (X->dv + 1);
+}
+
+/* Whether side `side` of X collapses to a point (all its affine control points within tol).
+ * (Static, as the next one: the branch xview has public twins in src/xpatch_util.c; fold them
+ * together when both are merged.) */
+static int xside_collapsed(const rg2_xpatch *X, int side, double tol)
+{
+    double c[RG2_MAX_DEGREE + 1][4];
+    int n = rg2__xpatch_side(X, side, c);
+    for (int a = 1; a < n; a++)
         for (int d = 0; d < 3; d++)
             if (!(fabs(c[a][d] / c[a][3] - c[0][d] / c[0][3]) <= tol))
                 return 0;
     return 1;
 }
 
+/* Whether side `side` of patch (i, j) of s collapses, whichever kind the patch is. */
+static int side_collapsed(const rg2_surface *s, int i, int j, int side, double tol)
+{
+    rg2_xpatch X;
+    rg2_surface_patch_get(s, i, j, &X);
+    return xside_collapsed(&X, side, tol);
+}
+
+void rg2__patch_side(const rg2_patch *P, int side, double out[4][4])
+{
+    rg2_xpatch X;
+    double c[RG2_MAX_DEGREE + 1][4];
+    rg2_xpatch_from_patch(P, &X);
+    rg2__xpatch_side(&X, side, c);
+    memcpy(out, c, sizeof(double[4][4]));
+}
+
+int rg2__patch_side_collapsed(const rg2_patch *P, int side, double tol)
+{
+    rg2_xpatch X;
+    rg2_xpatch_from_patch(P, &X);
+    return xside_collapsed(&X, side, tol);
+}
+
 double rg2__collapse_tol(const rg2_surface *s)
 {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    size_t np = (size_t)s->nu * (size_t)s->nv;
-    for (size_t k = 0; k < np; k++)
-        for (int r = 0; r < 4; r++)
-            for (int t = 0; t < 4; t++) {
-                const double *h = s->patch[k].h[r][t];
-                for (int d = 0; d < 3; d++) {
-                    double x = h[d] / h[3];
-                    lo[d] = x < lo[d] ? x : lo[d];
-                    hi[d] = x > hi[d] ? x : hi[d];
-                }
-            }
+    for (int i = 0; i < s->nu; i++)
+        for (int j = 0; j < s->nv; j++) {
+            rg2_xpatch X;
+            rg2_surface_patch_get(s, i, j, &X);
+            for (int r = 0; r <= X.du; r++)
+                for (int t = 0; t <= X.dv; t++)
+                    for (int d = 0; d < 3; d++) {
+                        double x = X.h[r][t][d] / X.h[r][t][3];
+                        lo[d] = x < lo[d] ? x : lo[d];
+                        hi[d] = x > hi[d] ? x : hi[d];
+                    }
+        }
     double diag = 0.0;
     for (int d = 0; d < 3; d++)
         diag += (hi[d] - lo[d]) * (hi[d] - lo[d]);
@@ -240,6 +278,13 @@ static void side_slot(int nu, int nv, int closed_u, int closed_v, int i, int j, 
         *idx -= nv * nu;
 }
 
+/* Degree of patch (i, j) along side `side` (u-degree on sides 0 and 2, v-degree on 1 and 3). */
+static int side_degree(const rg2_surface *s, int i, int j, int side)
+{
+    const rg2_xpatch *x = rg2_surface_xpatch(s, i, j);
+    return x ? ((side & 1) ? x->dv : x->du) : 3;
+}
+
 /*
  * METHOD: corners (I, J) of the patch grid are vertices, with I = nu identified with I = 0
  * for closed u (likewise v). Every patch side is a grid edge; the two patches meeting at a
@@ -282,7 +327,7 @@ rg2_status rg2__topo_build(const rg2_surface *s, rg2__topo *t, rg2_error *err)
     for (int i = 0; i < nu; i++)
         for (int j = 0; j < nv; j++)
             for (int side = 0; side < 4; side++) {
-                if (!rg2__patch_side_collapsed(rg2_surface_patch(s, i, j), side, tol))
+                if (!side_collapsed(s, i, j, side, tol))
                     continue;
                 int which, idx;
                 side_slot(nu, nv, s->closed_u, s->closed_v, i, j, side, &which, &idx);
@@ -299,7 +344,10 @@ rg2_status rg2__topo_build(const rg2_surface *s, rg2__topo *t, rg2_error *err)
                 }
                 rg2__uf_union(parent, a, b);
             }
-    /* pass 2: ids for the others, in patch order; the first patch using an edge defines it */
+    /* pass 2: ids for the others, in patch order. The edge's curve is the side of the patch
+     * with the lowest degree along it (the first such patch): between a bi-3 patch and a
+     * higher-degree neighbour, the bi-3 side, of which the neighbour's side is the exact degree
+     * elevation (the same curve). */
     for (size_t k = 0; k < nue; k++)
         t->ue[k] = t->ue[k] == -1 ? -1 : -2;
     for (size_t k = 0; k < nve; k++)
@@ -316,6 +364,12 @@ rg2_status rg2__topo_build(const rg2_surface *s, rg2__topo *t, rg2_error *err)
                     *slot = t->n_edges++;
                     t->edef[2 * *slot] = i * nv + j;
                     t->edef[2 * *slot + 1] = side;
+                } else {
+                    int p = t->edef[2 * *slot];
+                    if (side_degree(s, i, j, side) < side_degree(s, p / nv, p % nv, t->edef[2 * *slot + 1])) {
+                        t->edef[2 * *slot] = i * nv + j;
+                        t->edef[2 * *slot + 1] = side;
+                    }
                 }
                 t->uses[*slot]++;
             }
@@ -350,23 +404,32 @@ void rg2__topo_side(const rg2__topo *t, int i, int j, int side, int *edge, int *
     *forward = side < 2;
 }
 
-/* The whole surface as one net of (3 nu + 1) x (3 nv + 1) poles: patch boundary rows are
- * shared (taken from the first patch holding them; the closing row of a closed direction is
- * row 0). Caller frees. */
-double (*rg2__merged_net(const rg2_surface *s, int *NU, int *NV))[4]
+/* The whole surface as one net of (du nu + 1) x (dv nv + 1) poles, (du, dv) =
+ * rg2_surface_degree: every patch degree-elevated (exactly) to (du, dv); patch boundary rows
+ * are shared (taken from the first patch holding them; the closing row of a closed direction
+ * is row 0). Caller frees. */
+double (*rg2__merged_net(const rg2_surface *s, int *NU, int *NV, int *du, int *dv))[4]
 {
-    int nu = s->nu, nv = s->nv;
-    *NU = 3 * nu + 1;
-    *NV = 3 * nv + 1;
+    int nu = s->nu, nv = s->nv, Du, Dv;
+    rg2_surface_degree(s, &Du, &Dv);
+    *du = Du;
+    *dv = Dv;
+    *NU = Du * nu + 1;
+    *NV = Dv * nv + 1;
     double(*h)[4] = rg2__calloc((size_t)*NU * (size_t)*NV, sizeof(double[4]));
     if (!h)
         return NULL;
     for (int i = nu - 1; i >= 0; i--)
         for (int j = nv - 1; j >= 0; j--) {
-            const rg2_patch *P = rg2_surface_patch(s, i, j);
-            for (int r = 3; r >= 0; r--)
-                for (int t = 3; t >= 0; t--)
-                    memcpy(h[(size_t)(3 * i + r) * (size_t)*NV + (size_t)(3 * j + t)], P->h[r][t],
+            rg2_xpatch X, E;
+            rg2_surface_patch_get(s, i, j, &X);
+            if (rg2_xpatch_elevate(&X, Du, Dv, &E, NULL) != RG2_OK) {
+                free(h); /* cannot happen: (Du, Dv) is the maximum over the patches */
+                return NULL;
+            }
+            for (int r = Du; r >= 0; r--)
+                for (int t = Dv; t >= 0; t--)
+                    memcpy(h[(size_t)(Du * i + r) * (size_t)*NV + (size_t)(Dv * j + t)], E.h[r][t],
                            sizeof(double[4]));
         }
     if (s->closed_u)
@@ -404,7 +467,7 @@ static rg2_status write_json(const rg2_surface *surfs, int n, const rg2_export_o
     cJSON *root = cJSON_CreateObject();
     cJSON *arr = root ? cJSON_AddArrayToObject(root, "surfaces") : NULL;
     int ok = root && arr && cJSON_AddStringToObject(root, "format", "rg2-patches") &&
-             cJSON_AddNumberToObject(root, "version", 1) && cJSON_AddStringToObject(root, "name", o->name);
+             cJSON_AddNumberToObject(root, "version", 2) && cJSON_AddStringToObject(root, "name", o->name);
     for (int k = 0; ok && k < n; k++) {
         const rg2_surface *s = &surfs[k];
         cJSON *js = cJSON_CreateObject();
@@ -425,11 +488,18 @@ static rg2_status write_json(const rg2_surface *surfs, int n, const rg2_export_o
             ok = tg && cJSON_AddItemToObject(js, "tag", tg);
         }
         cJSON *pa = ok ? cJSON_AddArrayToObject(js, "patches") : NULL;
-        ok = ok && pa;
+        cJSON *jdu = ok ? cJSON_AddArrayToObject(js, "du") : NULL;
+        cJSON *jdv = ok ? cJSON_AddArrayToObject(js, "dv") : NULL;
+        ok = ok && pa && jdu && jdv;
         for (int p = 0; ok && p < s->nu * s->nv; p++) {
-            /* one patch: 16 homogeneous points h[r][s], r (u) outer */
-            cJSON *jp = exact_array(&s->patch[p].h[0][0][0], 64);
-            ok = jp && cJSON_AddItemToArray(pa, jp);
+            /* one patch of degree (du, dv): (du + 1)(dv + 1) homogeneous points h[r][s], r (u)
+             * outer -- 64 numbers for a bi-3 patch */
+            rg2_xpatch X;
+            double net[(RG2_MAX_DEGREE + 1) * (RG2_MAX_DEGREE + 1)][4];
+            rg2_surface_patch_get(s, p / s->nv, p % s->nv, &X);
+            cJSON *jp = exact_array(&net[0][0], 4 * rg2__xpatch_net(&X, net));
+            ok = jp && cJSON_AddItemToArray(pa, jp) && cJSON_AddItemToArray(jdu, cJSON_CreateNumber(X.du)) &&
+                 cJSON_AddItemToArray(jdv, cJSON_CreateNumber(X.dv));
         }
     }
     char *text = ok ? cJSON_Print(root) : NULL;

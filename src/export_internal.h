@@ -43,7 +43,14 @@ rg2_status rg2__check_nonempty(const rg2_surface *surfs, int n_surfs, rg2_error 
 void rg2__patch_side(const rg2_patch *P, int side, double out[4][4]);
 /* Whether side `side` of P collapses to a point (all four affine points within tol). */
 int rg2__patch_side_collapsed(const rg2_patch *P, int side, double tol);
-/* Collapse tolerance of a surface: 1e-11 times the bounding-box diagonal of its control points. */
+/* The same for a patch of any degree: side `side` of X (du + 1 points on sides 0 and 2,
+ * dv + 1 on 1 and 3); returns the count. */
+int rg2__xpatch_side(const rg2_xpatch *X, int side, double out[RG2_MAX_DEGREE + 1][4]);
+/* The (du + 1) x (dv + 1) homogeneous control points of X as a net out[r * (dv + 1) + t], u
+ * outer (the layout of the merged net); returns their count. */
+int rg2__xpatch_net(const rg2_xpatch *X, double (*out)[4]);
+/* Collapse tolerance of a surface: 1e-11 times the bounding-box diagonal of its control points
+ * (of patches of any degree). */
 double rg2__collapse_tol(const rg2_surface *s);
 
 /* Topology of one surface as a grid of corners and edges (shared by the STEP writer).
@@ -58,7 +65,8 @@ typedef struct {
     int *ue;     /* (nu + 1) * nv edge ids, -1 collapsed */
     int *ve;     /* (nv + 1) * nu edge ids, -1 collapsed */
     int *vcorner; /* n_vertices: a corner index I * (nv + 1) + J holding each vertex */
-    int *edef;   /* n_edges * 2: defining patch index and side of each edge */
+    int *edef;   /* n_edges * 2: defining patch index and side of each edge (the patch of
+                    lowest degree along the edge among those using it) */
     int *uses;   /* n_edges: how many patch sides use each edge (1 boundary, 2 shared) */
 } rg2__topo;
 
@@ -68,11 +76,12 @@ void rg2__topo_free(rg2__topo *t);
  * counter-clockwise loop runs along the edge (1: sides 0, 1) or against it (0: sides 2, 3). */
 void rg2__topo_side(const rg2__topo *t, int i, int j, int side, int *edge, int *forward);
 
-/* The whole surface as one net of (3 nu + 1) x (3 nv + 1) homogeneous poles h[a * NV + b],
- * a along u (MATH.md section 4): patch boundary rows are shared, taken from the first patch
- * holding them; the closing row of a closed direction is a copy of row 0. Caller frees;
- * NULL when out of memory. */
-double (*rg2__merged_net(const rg2_surface *s, int *NU, int *NV))[4];
+/* The whole surface as one net of (du nu + 1) x (dv nv + 1) homogeneous poles h[a * NV + b],
+ * a along u (MATH.md section 4), where (du, dv) = rg2_surface_degree (3, 3 for all-bi-3
+ * surfaces) and every patch is exactly degree-elevated to it: patch boundary rows are shared,
+ * taken from the first patch holding them; the closing row of a closed direction is a copy of
+ * row 0. Caller frees; NULL when out of memory. */
+double (*rg2__merged_net(const rg2_surface *s, int *NU, int *NV, int *du, int *dv))[4];
 
 /* The tessellation of several surfaces concatenated (meshio writers). */
 rg2_status rg2__tess_all(const rg2_surface *surfs, int n_surfs, int density, int curvature,

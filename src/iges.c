@@ -1,6 +1,7 @@
-/* iges.c -- IGES 5.3 of rational bi-cubic patch surfaces: one untrimmed rational B-spline
- * surface (entity 128, form 0) per patch or per surface (merged net, interior knots of
- * multiplicity 3), fixed 80-column records, global section in mm with resolution 1e-6
+/* iges.c -- IGES 5.3 of rational patch surfaces: one untrimmed rational B-spline surface
+ * (entity 128, form 0) per patch, of that patch's degrees, or per surface (merged net of all
+ * patches elevated to the surface's degrees (du, dv), interior knots of multiplicity du, dv),
+ * fixed 80-column records, global section in mm with resolution 1e-6
  * (shared/spec/INTEROP.md section 3). */
 #include "export_internal.h"
 
@@ -80,21 +81,23 @@ static void pw_real(pwriter *w, double x, char delim)
     pw_tok(w, b, delim);
 }
 
-/* Full knot vector 0,0,0,0,1,1,1,2,2,2,...,n,n,n,n of n spans. */
-static void pw_knots(pwriter *w, int n_spans)
+/* Full knot vector of n spans of degree deg: 0 (deg + 1 times), 1 (deg times), ..., n
+ * (deg + 1 times); for degree 3: 0,0,0,0,1,1,1,2,2,2,...,n,n,n,n. */
+static void pw_knots(pwriter *w, int n_spans, int deg)
 {
     for (int k = 0; k <= n_spans; k++) {
-        int m = (k == 0 || k == n_spans) ? 4 : 3;
+        int m = (k == 0 || k == n_spans) ? deg + 1 : deg;
         for (int q = 0; q < m; q++)
             pw_real(w, (double)k, ',');
     }
 }
 
 /*
- * Entity 128 of a net of NU x NV homogeneous poles h[a * NV + b] (a along u). IGES lists
- * weights and poles with the u index fastest.
+ * Entity 128 of degree (du, dv), piecewise Bezier, of a net of NU x NV homogeneous poles
+ * h[a * NV + b] (a along u). IGES lists weights and poles with the u index fastest.
  */
-static void put_128(pwriter *w, const double (*h)[4], int NU, int NV, int closed_u, int closed_v)
+static void put_128(pwriter *w, const double (*h)[4], int NU, int NV, int du, int dv, int closed_u,
+                    int closed_v)
 {
     int rational = 0;
     for (int a = 0; a < NU * NV; a++)
@@ -103,15 +106,15 @@ static void put_128(pwriter *w, const double (*h)[4], int NU, int NV, int closed
     pw_int(w, 128);
     pw_int(w, NU - 1);
     pw_int(w, NV - 1);
-    pw_int(w, 3);
-    pw_int(w, 3);
+    pw_int(w, du);
+    pw_int(w, dv);
     pw_int(w, closed_u);
     pw_int(w, closed_v);
     pw_int(w, rational ? 0 : 1);
     pw_int(w, 0);
     pw_int(w, 0);
-    pw_knots(w, (NU - 1) / 3);
-    pw_knots(w, (NV - 1) / 3);
+    pw_knots(w, (NU - 1) / du, du);
+    pw_knots(w, (NV - 1) / dv, dv);
     for (int b = 0; b < NV; b++)
         for (int a = 0; a < NU; a++)
             pw_real(w, h[a * NV + b][3], ',');
@@ -120,9 +123,9 @@ static void put_128(pwriter *w, const double (*h)[4], int NU, int NV, int closed
             for (int d = 0; d < 3; d++)
                 pw_real(w, h[a * NV + b][d] / h[a * NV + b][3], ',');
     pw_real(w, 0.0, ',');
-    pw_real(w, (double)((NU - 1) / 3), ',');
+    pw_real(w, (double)((NU - 1) / du), ',');
     pw_real(w, 0.0, ',');
-    pw_real(w, (double)((NV - 1) / 3), ';');
+    pw_real(w, (double)((NV - 1) / dv), ';');
     if (w->col > 0)
         pw_flush(w);
 }
@@ -201,23 +204,26 @@ rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opt
     rg2_status st = RG2_OK;
     for (int k = 0; k < n && !P.failed; k++) {
         const rg2_surface *s = &surfs[k];
-        for (int p = 0; p < s->nu * s->nv; p++)
-            for (int r = 0; r < 4; r++)
-                for (int t = 0; t < 4; t++)
+        for (int p = 0; p < s->nu * s->nv; p++) {
+            rg2_xpatch X;
+            rg2_surface_patch_get(s, p / s->nv, p % s->nv, &X);
+            for (int r = 0; r <= X.du; r++)
+                for (int t = 0; t <= X.dv; t++)
                     for (int d = 0; d < 3; d++) {
-                        double x = fabs(s->patch[p].h[r][t][d] / s->patch[p].h[r][t][3]);
+                        double x = fabs(X.h[r][t][d] / X.h[r][t][3]);
                         maxc = x > maxc ? x : maxc;
                     }
+        }
         if (o->layout == RG2_STEP_FACE_PER_MESH) {
-            int NU, NV;
-            double(*h)[4] = rg2__merged_net(s, &NU, &NV);
+            int NU, NV, du, dv;
+            double(*h)[4] = rg2__merged_net(s, &NU, &NV, &du, &dv);
             if (!h) {
                 P.failed = 1;
                 break;
             }
             int start = P.nlines + 1;
             w.de = 2 * entity + 1;
-            put_128(&w, (const double(*)[4])h, NU, NV, s->closed_u, s->closed_v);
+            put_128(&w, (const double(*)[4])h, NU, NV, du, dv, s->closed_u, s->closed_v);
             put_de(&D, 128, start, P.nlines + 1 - start, entity);
             entity++;
             free(h);
@@ -225,7 +231,11 @@ rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opt
             for (int p = 0; p < s->nu * s->nv; p++) {
                 int start = P.nlines + 1;
                 w.de = 2 * entity + 1;
-                put_128(&w, (const double(*)[4])s->patch[p].h, 4, 4, 0, 0);
+                rg2_xpatch X;
+                double h[(RG2_MAX_DEGREE + 1) * (RG2_MAX_DEGREE + 1)][4];
+                rg2_surface_patch_get(s, p / s->nv, p % s->nv, &X);
+                rg2__xpatch_net(&X, h);
+                put_128(&w, (const double(*)[4])h, X.du + 1, X.dv + 1, X.du, X.dv, 0, 0);
                 put_de(&D, 128, start, P.nlines + 1 - start, entity);
                 entity++;
             }

@@ -1,8 +1,10 @@
-/* step.c -- STEP AP214 / AP242 (ISO 10303-21) of rational bi-cubic patch surfaces as a shell
- * of ADVANCED_FACEs on rational B-spline surfaces, following docs/export.md and
- * shared/spec/INTEROP.md: complex instances in alphabetical order, control nets
- * LIST[u] OF LIST[v], one EDGE_CURVE / VERTEX_POINT per geometric edge / vertex shared by the
- * faces on both sides, loops counter-clockwise in (u, v), product structure, mm units. */
+/* step.c -- STEP AP214 / AP242 (ISO 10303-21) of rational patch surfaces as a shell of
+ * ADVANCED_FACEs on rational B-spline surfaces (bi-3 patches, and rg2_xpatch patches with their
+ * own degrees per face, or all elevated to the surface's degrees on one face per mesh),
+ * following docs/export.md and shared/spec/INTEROP.md: complex instances in alphabetical
+ * order, control nets LIST[u] OF LIST[v], one EDGE_CURVE / VERTEX_POINT per geometric edge /
+ * vertex shared by the faces on both sides, loops counter-clockwise in (u, v), product
+ * structure, mm units. */
 #include "export_internal.h"
 
 #include <stdlib.h>
@@ -35,12 +37,13 @@ static int put_point(stepw *w, const double h[4])
     return id;
 }
 
-/* Multiplicities "(4,3,3,4)" and knot values "(0.,1.,2.,3.)" of n_spans Bezier spans. */
-static void put_mults(FILE *f, int n_spans)
+/* Multiplicities "(4,3,3,4)" (degree 3) and knot values "(0.,1.,2.,3.)" of n_spans Bezier
+ * spans of degree deg: end knots deg + 1, interior knots deg. */
+static void put_mults(FILE *f, int n_spans, int deg)
 {
     fputc('(', f);
     for (int k = 0; k <= n_spans; k++)
-        fprintf(f, "%s%d", k ? "," : "", (k == 0 || k == n_spans) ? 4 : 3);
+        fprintf(f, "%s%d", k ? "," : "", (k == 0 || k == n_spans) ? deg + 1 : deg);
     fputc(')', f);
 }
 
@@ -52,8 +55,9 @@ static void put_knot_values(FILE *f, int n_spans)
     fputc(')', f);
 }
 
-/* A rational cubic B-spline curve through homogeneous poles h[0..n-1] (n = 3 spans + 1). */
-static int put_curve(stepw *w, const double (*h)[4], int n)
+/* A rational B-spline curve of degree deg, piecewise Bezier, through homogeneous poles
+ * h[0..n-1] (n = deg spans + 1). */
+static int put_curve(stepw *w, const double (*h)[4], int n, int deg)
 {
     int *pt = malloc(sizeof(int) * (size_t)n);
     if (!pt)
@@ -61,13 +65,13 @@ static int put_curve(stepw *w, const double (*h)[4], int n)
     for (int a = 0; a < n; a++)
         pt[a] = put_point(w, h[a]);
     int id = new_id(w);
-    fprintf(w->f, "#%d=( BOUNDED_CURVE() B_SPLINE_CURVE(3,(", id);
+    fprintf(w->f, "#%d=( BOUNDED_CURVE() B_SPLINE_CURVE(%d,(", id, deg);
     for (int a = 0; a < n; a++)
         fprintf(w->f, "%s#%d%s", a ? "," : "", pt[a], (a % 12 == 11) ? "\n" : "");
     fputs("),.UNSPECIFIED.,.F.,.F.)\n B_SPLINE_CURVE_WITH_KNOTS(", w->f);
-    put_mults(w->f, (n - 1) / 3);
+    put_mults(w->f, (n - 1) / deg, deg);
     fputc(',', w->f);
-    put_knot_values(w->f, (n - 1) / 3);
+    put_knot_values(w->f, (n - 1) / deg);
     fputs(",.PIECEWISE_BEZIER_KNOTS.)\n CURVE() GEOMETRIC_REPRESENTATION_ITEM() RATIONAL_B_SPLINE_CURVE((", w->f);
     for (int a = 0; a < n; a++) {
         if (a)
@@ -79,8 +83,10 @@ static int put_curve(stepw *w, const double (*h)[4], int n)
     return id;
 }
 
-/* A rational bi-cubic B-spline surface from a net of NU x NV homogeneous poles, u outer. */
-static int put_surface(stepw *w, const double (*h)[4], int NU, int NV, int closed_u, int closed_v)
+/* A rational B-spline surface of degree (du, dv), piecewise Bezier, from a net of NU x NV
+ * homogeneous poles h[a * NV + b], u outer. */
+static int put_surface(stepw *w, const double (*h)[4], int NU, int NV, int du, int dv, int closed_u,
+                       int closed_v)
 {
     int *pt = malloc(sizeof(int) * (size_t)NU * (size_t)NV);
     if (!pt)
@@ -88,7 +94,7 @@ static int put_surface(stepw *w, const double (*h)[4], int NU, int NV, int close
     for (int a = 0; a < NU * NV; a++)
         pt[a] = put_point(w, h[a]);
     int id = new_id(w);
-    fprintf(w->f, "#%d=( BOUNDED_SURFACE() B_SPLINE_SURFACE(3,3,(", id);
+    fprintf(w->f, "#%d=( BOUNDED_SURFACE() B_SPLINE_SURFACE(%d,%d,(", id, du, dv);
     for (int a = 0; a < NU; a++) {
         fputs(a ? ",\n(" : "(", w->f);
         for (int b = 0; b < NV; b++)
@@ -98,13 +104,13 @@ static int put_surface(stepw *w, const double (*h)[4], int NU, int NV, int close
     fprintf(w->f, "),.UNSPECIFIED.,%s,%s,.F.)\n B_SPLINE_SURFACE_WITH_KNOTS(", closed_u ? ".T." : ".F.",
             closed_v ? ".T." : ".F.");
     /* u multiplicities, v multiplicities, u knots, v knots */
-    put_mults(w->f, (NU - 1) / 3);
+    put_mults(w->f, (NU - 1) / du, du);
     fputc(',', w->f);
-    put_mults(w->f, (NV - 1) / 3);
+    put_mults(w->f, (NV - 1) / dv, dv);
     fputc(',', w->f);
-    put_knot_values(w->f, (NU - 1) / 3);
+    put_knot_values(w->f, (NU - 1) / du);
     fputc(',', w->f);
-    put_knot_values(w->f, (NV - 1) / 3);
+    put_knot_values(w->f, (NV - 1) / dv);
     fputs(",.PIECEWISE_BEZIER_KNOTS.)\n GEOMETRIC_REPRESENTATION_ITEM() RATIONAL_B_SPLINE_SURFACE((", w->f);
     for (int a = 0; a < NU; a++) {
         fputs(a ? ",\n(" : "(", w->f);
@@ -166,10 +172,12 @@ static int put_shell(stepw *w, const int *faces, int n, int closed)
 }
 
 /* Corner (I, J) of the patch grid as a homogeneous point of a patch holding it. */
-static const double *corner_point(const rg2_surface *s, int I, int J)
+static void corner_point(const rg2_surface *s, int I, int J, double out[4])
 {
     int i = I < s->nu ? I : s->nu - 1, j = J < s->nv ? J : s->nv - 1;
-    return rg2_surface_patch(s, i, j)->h[I == i ? 0 : 3][J == j ? 0 : 3];
+    rg2_xpatch X;
+    rg2_surface_patch_get(s, i, j, &X);
+    memcpy(out, X.h[I == i ? 0 : X.du][J == j ? 0 : X.dv], sizeof(double[4]));
 }
 
 /* One face per patch, sharing edges and vertices through rg2__topo. Returns the shell id. */
@@ -189,16 +197,20 @@ static rg2_status shell_per_patch(stepw *w, const rg2_surface *s, int *shell, rg
     }
     for (int v = 0; v < t.n_vertices; v++) {
         int c = t.vcorner[v];
-        vid[v] = put_vertex(w, corner_point(s, c / (nv + 1), c % (nv + 1)));
+        double h[4];
+        corner_point(s, c / (nv + 1), c % (nv + 1), h);
+        vid[v] = put_vertex(w, h);
     }
     int closed = 1;
     for (int e = 0; e < t.n_edges; e++) {
         int p = t.edef[2 * e], side = t.edef[2 * e + 1], i = p / nv, j = p % nv;
-        double h[4][4];
-        rg2__patch_side(&s->patch[p], side, h);
+        rg2_xpatch X;
+        double h[RG2_MAX_DEGREE + 1][4];
+        rg2_surface_patch_get(s, i, j, &X);
+        int n = rg2__xpatch_side(&X, side, h);
         int I0 = side == 1 ? i + 1 : i, J0 = side == 2 ? j + 1 : j;
         int I1 = (side == 0 || side == 2) ? i + 1 : I0, J1 = (side == 1 || side == 3) ? j + 1 : J0;
-        int c = put_curve(w, (const double(*)[4])h, 4);
+        int c = put_curve(w, (const double(*)[4])h, n, n - 1);
         if (c < 0) {
             st = rg2__fail(err, RG2_ENOMEM, "STEP: out of memory");
             goto done;
@@ -209,8 +221,11 @@ static rg2_status shell_per_patch(stepw *w, const rg2_surface *s, int *shell, rg
     }
     for (int i = 0; i < nu; i++)
         for (int j = 0; j < nv; j++) {
-            const rg2_patch *P = rg2_surface_patch(s, i, j);
-            int surf = put_surface(w, (const double(*)[4])P->h, 4, 4, 0, 0);
+            rg2_xpatch X;
+            double h[(RG2_MAX_DEGREE + 1) * (RG2_MAX_DEGREE + 1)][4];
+            rg2_surface_patch_get(s, i, j, &X);
+            rg2__xpatch_net(&X, h);
+            int surf = put_surface(w, (const double(*)[4])h, X.du + 1, X.dv + 1, X.du, X.dv, 0, 0);
             if (surf < 0) {
                 st = rg2__fail(err, RG2_ENOMEM, "STEP: out of memory");
                 goto done;
@@ -280,8 +295,8 @@ static void join4(int *p, int a, int b)
  * edge appears twice in the loop (.T. and .F.); collapsed boundary curves are left out. */
 static rg2_status shell_per_mesh(stepw *w, const rg2_surface *s, int *shell, rg2_error *err)
 {
-    int NU, NV;
-    double(*h)[4] = rg2__merged_net(s, &NU, &NV);
+    int NU, NV, du, dv;
+    double(*h)[4] = rg2__merged_net(s, &NU, &NV, &du, &dv);
     double(*side)[4] = rg2__calloc((size_t)(NU > NV ? NU : NV), sizeof(double[4]));
     if (!h || !side) {
         free(h);
@@ -330,12 +345,12 @@ static rg2_status shell_per_mesh(stepw *w, const rg2_surface *s, int *shell, rg2
             continue;
         }
         net_side((const double(*)[4])h, NU, NV, sd, side);
-        int c = put_curve(w, (const double(*)[4])side, n_side[sd]);
+        int c = put_curve(w, (const double(*)[4])side, n_side[sd], (sd & 1) ? dv : du);
         if (c < 0)
             goto oom;
         eid[sd] = put_edge(w, vid[ends[sd][0]], vid[ends[sd][1]], c);
     }
-    int surf = put_surface(w, (const double(*)[4])h, NU, NV, s->closed_u, s->closed_v);
+    int surf = put_surface(w, (const double(*)[4])h, NU, NV, du, dv, s->closed_u, s->closed_v);
     if (surf < 0)
         goto oom;
     int edge[4], fwd[4], n = 0;

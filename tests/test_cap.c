@@ -123,6 +123,42 @@ static void check_seams(const rg2_surface *s, const char *what, double angle_tol
            what, g->seams, g->pos, g->angle, g->curv, g->param1, g->param2, g->skipped);
 }
 
+/* Largest mismatch (relative to the largest homogeneous coordinate) between the shared
+ * boundary control points of neighbouring patches, all taken at the surface's degrees: zero
+ * when every seam has one homogeneous form, which a one-B-spline export (STEP/IGES per mesh)
+ * needs. */
+static double homogeneous_seam_gap(const rg2_surface *s)
+{
+    int du, dv;
+    rg2_surface_degree(s, &du, &dv);
+    double gap = 0, big = 0;
+    for (int i = 0; i < s->nu; i++)
+        for (int j = 0; j < s->nv; j++) {
+            rg2_xpatch a, A, b, B;
+            rg2_surface_patch_get(s, i, j, &a);
+            rg2_xpatch_elevate(&a, du, dv, &A, NULL);
+            for (int r = 0; r <= du; r++)
+                for (int t = 0; t <= dv; t++)
+                    for (int d = 0; d < 4; d++)
+                        big = fmax(big, fabs(A.h[r][t][d]));
+            if (j + 1 < s->nv || s->closed_v) {
+                rg2_surface_patch_get(s, i, (j + 1) % s->nv, &b);
+                rg2_xpatch_elevate(&b, du, dv, &B, NULL);
+                for (int r = 0; r <= du; r++)
+                    for (int d = 0; d < 4; d++)
+                        gap = fmax(gap, fabs(A.h[r][dv][d] - B.h[r][0][d]));
+            }
+            if (i + 1 < s->nu || s->closed_u) {
+                rg2_surface_patch_get(s, (i + 1) % s->nu, j, &b);
+                rg2_xpatch_elevate(&b, du, dv, &B, NULL);
+                for (int t = 0; t <= dv; t++)
+                    for (int d = 0; d < 4; d++)
+                        gap = fmax(gap, fabs(A.h[du][t][d] - B.h[0][t][d]));
+            }
+        }
+    return gap / big;
+}
+
 /* Seams between the cap and the body only: rows (r, r + 1) of a capped surface copied into a
  * 2-row surface whose one v seam is the cap/body seam (bv, gv of row r + 1). */
 static void cap_body_seams(const rg2_surface *s, const rg2_cap_info *info, rg2t_seams *worst)
@@ -197,6 +233,8 @@ static void sphere_caps(int quadratic)
         rg2_surface_degree(&s, &du, &dv);
         CHECK(info.du[0] == du_expect && info.du[1] == du_expect && du == du_expect && dv == 3,
               "cap degrees %d %d, surface (%d, %d)", info.du[0], info.du[1], du, dv);
+        double hg = homogeneous_seam_gap(&s);
+        CHECK(hg <= 1e-14, "sphere %d: one homogeneous form across every seam (%.3g)", trial, hg);
         for (int e = 0; e < 2; e++)
             for (int k = 0; k < 4; k++)
                 CHECK(fabs(info.quad[e][k][1]) <= 1e-12 && fabs(info.quad[e][k][0] - info.quad[e][k][2]) <= 1e-12,
@@ -436,6 +474,8 @@ static void freeform_caps(int quadratic)
         CHECK_OK(rg2_cap_build(&mesh, &opts, &s, &info, &err), &err);
         CHECK(info.du[0] == (quadratic ? 5 : 3) && info.du[1] == info.du[0], "free-form cap u-degrees %d %d",
               info.du[0], info.du[1]);
+        double hg = homogeneous_seam_gap(&s);
+        CHECK(hg <= 1e-14, "free-form %d: one homogeneous form across every seam (%.3g)", trial, hg);
         rg2t_seams g;
         char what[64];
         snprintf(what, sizeof what, "%s %d", tube ? "tube" : "perturbed sphere", trial);

@@ -277,7 +277,15 @@ static void glb_validate(const rg2_surface *s, const rg2_tess *t)
 }
 
 /* ---------------------------------------------------------------- patch formats */
-static void patches_roundtrip(const rg2_surface *s)
+/* Worst distance (relative to the size) between rg2's patches and the patches read back from
+ * .bez (elevated to the file's degrees), and of the .bez patches from the exact torus. */
+static double g_bez_dev, g_bez_torus;
+
+/* .bv, .bez and .json read back: .bv and .json hold each patch with its own degrees, exactly;
+ * .bez holds every patch elevated to the highest degrees (the header's), exactly the
+ * elevation of rg2's patch, and evaluating to the same surface. torus_R > 0: s is that torus
+ * (minor radius torus_r), and the .bez patches are checked against it. */
+static void patches_roundtrip(const rg2_surface *s, double torus_R, double torus_r)
 {
     rg2_error err;
     CHECK_OK(export_one(s, "t.bv", &err), &err);
@@ -290,42 +298,80 @@ static void patches_roundtrip(const rg2_surface *s)
         if (!strncmp(line, "Group", 5))
             continue;
         int du, dv;
+        rg2_xpatch X;
+        rg2_surface_patch_get(s, (n < np ? n : 0) / s->nv, (n < np ? n : 0) % s->nv, &X);
         bad += strcmp(line, "8\n") != 0;
-        bad += !fgets(line, sizeof line, f) || sscanf(line, "%d %d", &du, &dv) != 2 || du != 3 || dv != 3;
-        for (int r = 0; r < 4; r++)
-            for (int t = 0; t < 4; t++) {
+        bad += !fgets(line, sizeof line, f) || sscanf(line, "%d %d", &du, &dv) != 2 || du != X.du || dv != X.dv;
+        for (int r = 0; r <= X.du; r++)
+            for (int t = 0; t <= X.dv; t++) {
                 double h[4];
                 bad += !fgets(line, sizeof line, f) || sscanf(line, "%lf %lf %lf %lf", &h[0], &h[1], &h[2], &h[3]) != 4;
-                bad += n >= np || memcmp(h, s->patch[n < np ? n : 0].h[r][t], sizeof h) != 0;
+                bad += n >= np || memcmp(h, X.h[r][t], sizeof h) != 0;
             }
         n++;
     }
     if (f)
         fclose(f);
     CHECK(n == np && bad == 0, "BezierView: %d patches read (expected %d), %d mismatches", n, np, bad);
+    int Du, Dv;
+    rg2_surface_degree(s, &Du, &Dv);
+    char header[16];
+    snprintf(header, sizeof header, "BEZ%d%d4\n", Du, Dv);
     f = fopen(path_in("t.bez"), "r");
     bad = 0;
     n = 0;
-    bad += !f || !fgets(line, sizeof line, f) || strcmp(line, "BEZ334\n");
-    for (; f && n < np; n++)
-        for (int t = 0; t < 4; t++)
-            for (int r = 0; r < 4; r++) {
-                double h[4];
+    bad += !f || !fgets(line, sizeof line, f) || strcmp(line, header);
+    double scale = rg2t_surface_scale(s), dev = 0.0, off = 0.0;
+    for (; f && n < np; n++) {
+        rg2_xpatch X, E, R;
+        memset(&R, 0, sizeof R);
+        R.du = Du;
+        R.dv = Dv;
+        rg2_surface_patch_get(s, n / s->nv, n % s->nv, &X);
+        CHECK_OK(rg2_xpatch_elevate(&X, Du, Dv, &E, &err), &err);
+        for (int t = 0; t <= Dv; t++)
+            for (int r = 0; r <= Du; r++) {
+                double *h = R.h[r][t];
                 bad += fscanf(f, "%lf %lf %lf %lf", &h[0], &h[1], &h[2], &h[3]) != 4 ||
-                       memcmp(h, s->patch[n].h[r][t], sizeof h) != 0;
+                       memcmp(h, E.h[r][t], sizeof(double[4])) != 0;
             }
+        for (int a = 0; a <= 4; a++)
+            for (int b = 0; b <= 4; b++) {
+                rg2_eval e, q;
+                rg2_surface_eval(s, n / s->nv, n % s->nv, a / 4.0, b / 4.0, 0, &e);
+                rg2_xpatch_eval(&R, a / 4.0, b / 4.0, 0, &q);
+                double d = hypot(hypot(e.p[0] - q.p[0], e.p[1] - q.p[1]), e.p[2] - q.p[2]) / scale;
+                dev = d > dev ? d : dev;
+                if (torus_R > 0) {
+                    double t = fx_torus_dist(torus_R, torus_r, q.p) / scale;
+                    off = t > off ? t : off;
+                }
+            }
+    }
     if (f)
         fclose(f);
-    CHECK(bad == 0, "BEZ334: %d mismatches", bad);
+    CHECK(bad == 0, "%.6s: %d mismatches", header, bad);
+    CHECK(dev <= 1e-14, "%.6s: patches evaluate %.3g (relative) from rg2's", header, dev);
+    CHECK(off <= 1e-13, "%.6s: patches %.3g (relative) off the exact torus", header, off);
+    g_bez_dev = dev > g_bez_dev ? dev : g_bez_dev;
+    g_bez_torus = off > g_bez_torus ? off : g_bez_torus;
     size_t len;
     unsigned char *b = slurp(path_in("t.json"), &len);
     cJSON *j = b ? cJSON_Parse((char *)b) : NULL;
     const cJSON *sf = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(j, "surfaces"), 0);
     const cJSON *pa = cJSON_GetObjectItemCaseSensitive(sf, "patches");
-    bad = cJSON_GetArraySize(pa) != np || num(sf, "nu") != s->nu || num(sf, "nv") != s->nv;
-    for (int p = 0; p < np && !bad; p++)
-        for (int k = 0; k < 64; k++)
-            bad += cJSON_GetArrayItem(cJSON_GetArrayItem(pa, p), k)->valuedouble != (&s->patch[p].h[0][0][0])[k];
+    const cJSON *jdu = cJSON_GetObjectItemCaseSensitive(sf, "du"), *jdv = cJSON_GetObjectItemCaseSensitive(sf, "dv");
+    bad = cJSON_GetArraySize(pa) != np || cJSON_GetArraySize(jdu) != np || cJSON_GetArraySize(jdv) != np ||
+          num(sf, "nu") != s->nu || num(sf, "nv") != s->nv;
+    for (int p = 0; p < np && !bad; p++) {
+        rg2_xpatch X;
+        rg2_surface_patch_get(s, p / s->nv, p % s->nv, &X);
+        const cJSON *jp = cJSON_GetArrayItem(pa, p);
+        bad += cJSON_GetArrayItem(jdu, p)->valueint != X.du || cJSON_GetArrayItem(jdv, p)->valueint != X.dv ||
+               cJSON_GetArraySize(jp) != 4 * (X.du + 1) * (X.dv + 1);
+        for (int k = 0; k < 4 * (X.du + 1) * (X.dv + 1) && !bad; k++)
+            bad += cJSON_GetArrayItem(jp, k)->valuedouble != X.h[k / (4 * (X.dv + 1))][k / 4 % (X.dv + 1)][k % 4];
+    }
     CHECK(j && bad == 0, "JSON: %d mismatches", bad);
     cJSON_Delete(j);
     free(b);
@@ -446,6 +492,142 @@ static void step_text(const rg2_surface *s)
     CHECK(de == s->nu * s->nv, "IGES: %d entities 128, expected %d", de, s->nu * s->nv);
 }
 
+/* ---------------------------------------------------------------- degrees in STEP and IGES */
+static int g_deg_checked;
+
+/* Degree of patch (i, j) (any kind) in u (dir 0) or v (dir 1). */
+static int pdeg(const rg2_surface *s, int i, int j, int dir)
+{
+    rg2_xpatch X;
+    rg2_surface_patch_get(s, i, j, &X);
+    return dir ? X.dv : X.du;
+}
+
+/* Counts of "B_SPLINE_SURFACE(a,b," and "B_SPLINE_CURVE(a," in STEP text. */
+static void step_degree_counts(const char *text, int surf[8][8], int curve[8])
+{
+    memset(surf, 0, sizeof(int[8][8]));
+    memset(curve, 0, sizeof(int[8]));
+    for (const char *p = text; (p = strstr(p, "B_SPLINE_")); p++) {
+        int a, b;
+        if (sscanf(p, "B_SPLINE_SURFACE(%d,%d,", &a, &b) == 2 && a >= 0 && a < 8 && b >= 0 && b < 8)
+            surf[a][b]++;
+        else if (sscanf(p, "B_SPLINE_CURVE(%d,", &a) == 1 && a >= 0 && a < 8)
+            curve[a]++;
+    }
+}
+
+/* Multiplicities "(d+1,d,...,d,d+1)" of n spans of degree d. */
+static void mults_text(char *buf, size_t cap, int n, int d)
+{
+    size_t len = 0;
+    len += (size_t)snprintf(buf + len, cap - len, "(");
+    for (int k = 0; k <= n; k++)
+        len += (size_t)snprintf(buf + len, cap - len, "%s%d", k ? "," : "", k == 0 || k == n ? d + 1 : d);
+    snprintf(buf + len, cap - len, ")");
+}
+
+/*
+ * Every STEP face / IGES entity 128 carries the degrees of its patch (face per patch), or
+ * the surface's highest degrees with interior knots of that multiplicity (face per mesh);
+ * every STEP edge curve has the lowest degree of the patch sides along it (s: no pole).
+ */
+static void export_degrees(const rg2_surface *s)
+{
+    rg2_error err;
+    rg2_export_opts o;
+    rg2_export_opts_default(&o);
+    o.name = "degrees";
+    int nu = s->nu, nv = s->nv, Du, Dv;
+    rg2_surface_degree(s, &Du, &Dv);
+    int want_s[8][8] = {{0}}, want_c[8] = {0}, got_s[8][8], got_c[8];
+    for (int i = 0; i < nu; i++)
+        for (int j = 0; j < nv; j++) {
+            want_s[pdeg(s, i, j, 0)][pdeg(s, i, j, 1)]++;
+            /* the u = 0 side (a v-curve) and the v = 0 side (a u-curve) of each patch, shared with
+             * the previous patch where there is one; the far boundaries of open directions */
+            int dl = pdeg(s, i, j, 1), db = pdeg(s, i, j, 0);
+            if (i > 0 || s->closed_u) {
+                int o2 = pdeg(s, (i + nu - 1) % nu, j, 1);
+                dl = o2 < dl ? o2 : dl;
+            }
+            if (j > 0 || s->closed_v) {
+                int o2 = pdeg(s, i, (j + nv - 1) % nv, 0);
+                db = o2 < db ? o2 : db;
+            }
+            want_c[dl]++;
+            want_c[db]++;
+            if (i == nu - 1 && !s->closed_u)
+                want_c[pdeg(s, i, j, 1)]++;
+            if (j == nv - 1 && !s->closed_v)
+                want_c[pdeg(s, i, j, 0)]++;
+        }
+    size_t len;
+    o.layout = RG2_STEP_FACE_PER_PATCH;
+    CHECK_OK(rg2_export_file(s, 1, path_in("d.step"), &o, &err), &err);
+    char *b = (char *)slurp(path_in("d.step"), &len);
+    CHECK(b != NULL, "d.step not read");
+    if (!b)
+        return;
+    step_degree_counts(b, got_s, got_c);
+    free(b);
+    CHECK(!memcmp(got_s, want_s, sizeof got_s), "STEP per patch: face degrees differ from the patches'");
+    CHECK(!memcmp(got_c, want_c, sizeof got_c),
+          "STEP per patch: edge curve degrees 3/4/5: %d/%d/%d, expected %d/%d/%d", got_c[3], got_c[4], got_c[5],
+          want_c[3], want_c[4], want_c[5]);
+    o.layout = RG2_STEP_FACE_PER_MESH;
+    CHECK_OK(rg2_export_file(s, 1, path_in("d.step"), &o, &err), &err);
+    b = (char *)slurp(path_in("d.step"), &len);
+    CHECK(b != NULL, "d.step (per mesh) not read");
+    if (!b)
+        return;
+    step_degree_counts(b, got_s, got_c);
+    char knots[256], mu[100], mv[100];
+    mults_text(mu, sizeof mu, nu, Du);
+    mults_text(mv, sizeof mv, nv, Dv);
+    snprintf(knots, sizeof knots, "B_SPLINE_SURFACE_WITH_KNOTS(%s,%s,", mu, mv);
+    int others = 0;
+    for (int a = 0; a < 8; a++)
+        for (int c = 0; c < 8; c++)
+            others += (a != Du || c != Dv) ? got_s[a][c] : 0;
+    CHECK(got_s[Du][Dv] == 1 && others == 0 && strstr(b, knots),
+          "STEP per mesh: %d surfaces of degree (%d, %d), %d others, knots %s %s", got_s[Du][Dv], Du, Dv, others,
+          knots, strstr(b, knots) ? "found" : "missing");
+    free(b);
+    /* IGES: the first parameter record of each entity starts "128,K1,K2,M1,M2," */
+    for (int layout = 0; layout < 2; layout++) {
+        o.layout = layout ? RG2_STEP_FACE_PER_MESH : RG2_STEP_FACE_PER_PATCH;
+        CHECK_OK(rg2_export_file(s, 1, path_in("d.igs"), &o, &err), &err);
+        FILE *f = fopen(path_in("d.igs"), "r");
+        char line[256];
+        int n = 0, bad = 0, prev_de = -1;
+        while (f && fgets(line, sizeof line, f)) {
+            if (strlen(line) < 73 || line[72] != 'P')
+                continue;
+            int de = atoi(line + 64);
+            if (de == prev_de)
+                continue;
+            prev_de = de;
+            int K1, K2, M1, M2;
+            if (sscanf(line, "128,%d,%d,%d,%d,", &K1, &K2, &M1, &M2) != 4) {
+                bad++;
+                continue;
+            }
+            if (layout == 0)
+                bad += n >= nu * nv || M1 != pdeg(s, n / nv, n % nv, 0) || M2 != pdeg(s, n / nv, n % nv, 1) ||
+                       K1 != M1 || K2 != M2;
+            else
+                bad += M1 != Du || M2 != Dv || K1 != Du * nu || K2 != Dv * nv;
+            n++;
+        }
+        if (f)
+            fclose(f);
+        CHECK(n == (layout ? 1 : nu * nv) && bad == 0, "IGES %s: %d entities, %d with wrong degrees",
+              layout ? "per mesh" : "per patch", n, bad);
+    }
+    g_deg_checked++;
+}
+
 /* ---------------------------------------------------------------- failures */
 static void failures(const rg2_surface *s)
 {
@@ -484,6 +666,55 @@ static void failures(const rg2_surface *s)
     CHECK(!exists(path_in("neg.step.tmp")) && !exists(path_in("neg.step")), "neg.step or its .tmp left behind");
 }
 
+/* The failures again where the offending point is in a higher-degree patch, beyond the bi-3
+ * index range: the weight and finiteness checks read every patch at its own degrees. */
+static void xfailures(const rg2_surface *x)
+{
+    rg2_error err;
+    int before = count_files(), k = -1;
+    rg2_surface bad;
+    CHECK_OK(rg2_surface_copy(x, &bad, &err), &err);
+    for (int q = 0; bad.xp && q < bad.nu * bad.nv; q++)
+        if (bad.xp[q].du > 3)
+            k = q;
+    CHECK(k >= 0, "no patch of u-degree > 3 in the elevated torus");
+    if (k < 0) {
+        rg2_surface_free(&bad);
+        return;
+    }
+    rg2_xpatch *X = &bad.xp[k];
+    char where[64];
+    snprintf(where, sizeof where, "patch (%d, %d) control point [%d][%d]", k / bad.nv, k % bad.nv, X->du, X->dv - 1);
+    double *h = X->h[X->du][X->dv - 1];
+    for (int c = 0; c < 4; c++)
+        h[c] *= -0.5; /* same point, negative weight */
+    const char *names[] = {"xneg.step", "xneg.igs"};
+    for (int q = 0; q < 2; q++) {
+        rg2_status st = export_one(&bad, names[q], &err);
+        CHECK(st == RG2_EWEIGHT && strstr(err.msg, where), "%s: %s: %s (expected %s)", names[q], rg2_status_str(st),
+              err.msg, where);
+    }
+    h[3] = 0.0;
+    rg2_status st = export_one(&bad, "xzero.step", &err);
+    CHECK(st == RG2_EWEIGHT && strstr(err.msg, where), "zero weight in a degree-%d patch: %s", X->du, err.msg);
+    h[1] = NAN;
+    st = export_one(&bad, "xnan.bv", &err);
+    CHECK(st == RG2_ENONFINITE && strstr(err.msg, where), "NaN in a degree-%d patch: %s", X->du, err.msg);
+    rg2_surface_free(&bad);
+    CHECK(count_files() == before, "failed exports left %d files", count_files() - before);
+}
+
+/* A torus with some patches replaced by their exact degree elevations to (4, 3), (5, 3),
+ * (4, 4) and (3, 5): the same surface through the higher-degree code paths. */
+static rg2_status elevated_torus(rg2_surface *s, rg2_error *err)
+{
+    static const int deg[4][2] = {{4, 3}, {5, 3}, {4, 4}, {3, 5}}, stride[4] = {3, 5, 7, 4};
+    rg2_status st = fx_torus(13.0, 4.0, 6, 4, s, err);
+    for (int k = 0; k < 4 && !st; k++)
+        st = rg2t_elevate_some(s, deg[k][0], deg[k][1], stride[k], k, err);
+    return st;
+}
+
 int main(void)
 {
     snprintf(g_dir, sizeof g_dir, "/tmp/rg2_export_XXXXXX");
@@ -500,9 +731,22 @@ int main(void)
     stl_roundtrip(&s, &t);
     ply_roundtrip(&s, &t);
     glb_validate(&s, &t);
-    patches_roundtrip(&s);
+    patches_roundtrip(&s, 13.0, 4.0);
     step_text(&s);
     failures(&s);
+    export_degrees(&s);
+    rg2_surface x;
+    CHECK_OK(elevated_torus(&x, &err), &err);
+    patches_roundtrip(&x, 13.0, 4.0);
+    step_text(&x);
+    export_degrees(&x);
+    xfailures(&x);
+    int Du, Dv;
+    rg2_surface_degree(&x, &Du, &Dv);
+    printf("higher-degree patches (torus 6 x 4, degrees up to (%d, %d)): .bez elevated patches %.2e from rg2's, "
+           "%.2e from the exact torus (relative); degrees checked in STEP/IGES for %d surfaces\n",
+           Du, Dv, g_bez_dev, g_bez_torus, g_deg_checked);
+    rg2_surface_free(&x);
     rg2_tess_free(&t);
     rg2_surface_free(&s);
     /* clean up */

@@ -30,7 +30,7 @@ extern "C" {
 namespace {
 
 struct Patch {
-    const rg2_patch *p;
+    rg2_xpatch p; // any degree (rg2_surface_patch_get)
     const rg2_shape *shape; // NULL for a transition patch
     double scale;
 };
@@ -49,8 +49,13 @@ void check_example(const std::string &file, const std::string &dir)
         const rg2_surface *s = rg2_design_surface(d, o);
         surfs.push_back(*s);
         double scale = rg2t_surface_scale(s);
-        for (int k = 0; k < s->nu * s->nv; k++)
-            patches.push_back({&s->patch[k], s->tag[k] >= 0 ? rg2_design_shape(d, s->tag[k]) : nullptr, scale});
+        for (int k = 0; k < s->nu * s->nv; k++) {
+            Patch P;
+            rg2_surface_patch_get(s, k / s->nv, k % s->nv, &P.p);
+            P.shape = s->tag[k] >= 0 ? rg2_design_shape(d, s->tag[k]) : nullptr;
+            P.scale = scale;
+            patches.push_back(P);
+        }
     }
     std::string path = dir + "/" + file.substr(file.find_last_of('/') + 1) + ".step";
     rg2_export_opts opts;
@@ -83,7 +88,7 @@ void check_example(const std::string &file, const std::string &dir)
         double bd = 1e300;
         for (size_t k = 0; k < patches.size(); k++) {
             rg2_eval e;
-            rg2_patch_eval(patches[k].p, 0.5, 0.5, 0, &e);
+            rg2_xpatch_eval(&patches[k].p, 0.5, 0.5, 0, &e);
             double dist = c.Distance(gp_Pnt(e.p[0], e.p[1], e.p[2]));
             if (!used[k] && dist < bd) {
                 bd = dist;
@@ -99,7 +104,7 @@ void check_example(const std::string &file, const std::string &dir)
         for (int a = 0; a <= 6; a++)
             for (int b = 0; b <= 6; b++) {
                 rg2_eval e;
-                rg2_patch_eval(P.p, a / 6.0, b / 6.0, 0, &e);
+                rg2_xpatch_eval(&P.p, a / 6.0, b / 6.0, 0, &e);
                 gp_Pnt p = S->Value(a / 6.0, b / 6.0);
                 worst_pt = std::max(worst_pt, p.Distance(gp_Pnt(e.p[0], e.p[1], e.p[2])) / P.scale);
                 if (P.shape) {
