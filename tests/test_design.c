@@ -41,7 +41,7 @@ static double exact_residual(const rg2_design *d, const rg2_surface *s, int samp
         for (int a = 0; a <= samples; a++)
             for (int b = 0; b <= samples; b++) {
                 rg2_eval e;
-                rg2_patch_eval(&s->patch[k], (double)a / samples, (double)b / samples, 0, &e);
+                rg2_surface_eval(s, k / s->nv, k % s->nv, (double)a / samples, (double)b / samples, 0, &e);
                 double g[3], F = rg2_shape_implicit(sh, e.p, g);
                 double gn = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
                 double r = gn > 0 ? fabs(F) / (gn * scale) : (F == 0 ? 0 : INFINITY);
@@ -63,7 +63,7 @@ static double transition_min_sine(const rg2_surface *s, int samples)
         for (int a = 0; a <= samples; a++)
             for (int b = 0; b <= samples; b++) {
                 rg2_eval e;
-                rg2_patch_eval(&s->patch[k], (double)a / samples, (double)b / samples, 1, &e);
+                rg2_surface_eval(s, k / s->nv, k % s->nv, (double)a / samples, (double)b / samples, 1, &e);
                 if (e.flags & RG2_EVAL_NORMAL_UNDEFINED)
                     continue; /* a collapsed edge (pole of a cap) is not a fold */
                 double c[3] = {e.su[1] * e.sv[2] - e.su[2] * e.sv[1], e.su[2] * e.sv[0] - e.su[0] * e.sv[2],
@@ -500,7 +500,7 @@ static void transition_curvature(const rg2_surface *s, int samples, double *kmax
         for (int a = 0; a <= samples; a++)
             for (int b = 0; b <= samples; b++) {
                 rg2_eval e;
-                rg2_patch_eval(&s->patch[k], (double)a / samples, (double)b / samples, 2, &e);
+                rg2_surface_eval(s, k / s->nv, k % s->nv, (double)a / samples, (double)b / samples, 2, &e);
                 double km = fmax(fabs(e.k1), fabs(e.k2)) * size;
                 if (km > *kmax)
                     *kmax = km;
