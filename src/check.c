@@ -20,7 +20,7 @@
  *   or left out of the curvature range (patches). The same geometry then gives the same
  *   report in any patch degree.
  */
-#include "internal.h"
+#include "export_internal.h"
 #include "xpatch_util.h"
 
 #include <cjson/cJSON.h>
@@ -133,7 +133,7 @@ static void seam_point(rg2_check_report *r, const rg2_eval *L, const rg2_eval *R
 
 static void seams(rg2_check_report *r, const rg2_surface *s, int surf, int samples)
 {
-    double size = surface_size(s), tol = rg2__surface_collapse_tol(s);
+    double size = surface_size(s), tol = rg2__collapse_tol(s);
     for (int dir = 0; dir < 2; dir++) {
         int nA = dir == 0 ? s->nu : s->nv, nB = dir == 0 ? s->nv : s->nu;
         int closed = dir == 0 ? s->closed_u : s->closed_v;
@@ -166,7 +166,7 @@ static void patches(rg2_check_report *r, const rg2_surface *s, int surf, const r
                     const double *shape_size, int S)
 {
     size_t np = (size_t)s->nu * (size_t)s->nv;
-    double tol = rg2__surface_collapse_tol(s);
+    double tol = rg2__collapse_tol(s);
     for (size_t k = 0; k < np; k++) {
         int tag = s->tag ? s->tag[k] : -1;
         r->patches++;

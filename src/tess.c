@@ -181,7 +181,7 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
         failed = 1;
         goto done;
     }
-    double tol = rg2__surface_collapse_tol(s);
+    double tol = rg2__collapse_tol(s);
 #ifdef RG2_HAVE_OPENMP
 #pragma omp parallel for schedule(dynamic) if (nu * nv > 16)
 #endif

@@ -48,36 +48,14 @@ int rg2__surface_ctrl_box(const rg2_surface *s, int positive_only, double lo[3],
     return any;
 }
 
-double rg2__surface_collapse_tol(const rg2_surface *s)
-{
-    double lo[3], hi[3], diag = 0.0;
-    if (!rg2__surface_ctrl_box(s, 0, lo, hi))
-        return 0.0;
-    for (int d = 0; d < 3; d++)
-        diag += lo[d] <= hi[d] ? (hi[d] - lo[d]) * (hi[d] - lo[d]) : 0.0;
-    return 1e-11 * sqrt(diag);
-}
-
 int rg2__xpatch_side_collapsed(const rg2_xpatch *X, int side, double tol)
 {
-    int n = side == 0 || side == 2 ? X->du : X->dv;
-    const double *c0 = NULL;
-    for (int a = 0; a <= n; a++) {
-        const double *h;
-        switch (side) {
-        case 0: h = X->h[a][0]; break;
-        case 1: h = X->h[X->du][a]; break;
-        case 2: h = X->h[a][X->dv]; break;
-        default: h = X->h[0][a]; break;
-        }
-        if (!c0) {
-            c0 = h;
-            continue;
-        }
+    double c[RG2_MAX_DEGREE + 1][4];
+    int n = rg2__xpatch_side(X, side, c);
+    for (int a = 1; a < n; a++)
         for (int d = 0; d < 3; d++)
-            if (!(fabs(h[d] / h[3] - c0[d] / c0[3]) <= tol))
+            if (!(fabs(c[a][d] / c[a][3] - c[0][d] / c[0][3]) <= tol))
                 return 0;
-    }
     return 1;
 }
 

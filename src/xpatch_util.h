@@ -14,11 +14,9 @@ const double *rg2__patch_ctrl(const rg2_surface *s, size_t k, int r, int t);
 /* Box of the affine control points of every patch of s (only those of positive weight when
  * positive_only; non-finite coordinates are skipped). Returns 0 when no point counted. */
 int rg2__surface_ctrl_box(const rg2_surface *s, int positive_only, double lo[3], double hi[3]);
-/* Collapse tolerance over patches of any degree: 1e-11 times the diagonal of
- * rg2__surface_ctrl_box (for an all-bi-3 surface the same value as rg2__collapse_tol). */
-double rg2__surface_collapse_tol(const rg2_surface *s);
 /* Whether side `side` (0 v=0, 1 u=1, 2 v=1, 3 u=0) of a patch of any degree collapses to one
- * point (every affine control point of the side within tol of the first, per coordinate). */
+ * point (every affine control point of the side within tol of the first, per coordinate; tol
+ * from rg2__collapse_tol, export.c, which reads patches of any degree). */
 int rg2__xpatch_side_collapsed(const rg2_xpatch *X, int side, double tol);
 /* The same for patch (i, j) of s, whichever kind it is. */
 int rg2__surface_side_collapsed(const rg2_surface *s, int i, int j, int side, double tol);
