@@ -468,7 +468,7 @@ static void belevate(double *a, int n)
     double t[RG2_MAX_DEGREE + 2];
     for (int i = 0; i <= n + 1; i++) {
         double f = (double)i / (n + 1);
-        t[i] = (i > 0 ? f * a[i - 1] : 0.0) + (i <= n ? (1.0 - f) * a[i] : 0.0);
+        t[i] = i == 0 ? a[0] : i > n ? a[n] : a[i] + f * (a[i - 1] - a[i]);
     }
     for (int i = 0; i <= n + 1; i++)
         a[i] = t[i];

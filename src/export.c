@@ -3,6 +3,7 @@
  * collapsed patch sides and the corner/edge topology of a patch grid. */
 #define _POSIX_C_SOURCE 200809L
 #include "export_internal.h"
+#include "xpatch_util.h"
 
 #include <cjson/cJSON.h>
 #include <ctype.h>
@@ -170,28 +171,6 @@ int rg2__xpatch_net(const rg2_xpatch *X, double (*out)[4])
     return (X->du + 1) * (X->dv + 1);
 }
 
-/* Whether side `side` of X collapses to a point (all its affine control points within tol).
- * (Static, as the next one: the branch xview has public twins in src/xpatch_util.c; fold them
- * together when both are merged.) */
-static int xside_collapsed(const rg2_xpatch *X, int side, double tol)
-{
-    double c[RG2_MAX_DEGREE + 1][4];
-    int n = rg2__xpatch_side(X, side, c);
-    for (int a = 1; a < n; a++)
-        for (int d = 0; d < 3; d++)
-            if (!(fabs(c[a][d] / c[a][3] - c[0][d] / c[0][3]) <= tol))
-                return 0;
-    return 1;
-}
-
-/* Whether side `side` of patch (i, j) of s collapses, whichever kind the patch is. */
-static int side_collapsed(const rg2_surface *s, int i, int j, int side, double tol)
-{
-    rg2_xpatch X;
-    rg2_surface_patch_get(s, i, j, &X);
-    return xside_collapsed(&X, side, tol);
-}
-
 void rg2__patch_side(const rg2_patch *P, int side, double out[4][4])
 {
     rg2_xpatch X;
@@ -205,7 +184,7 @@ int rg2__patch_side_collapsed(const rg2_patch *P, int side, double tol)
 {
     rg2_xpatch X;
     rg2_xpatch_from_patch(P, &X);
-    return xside_collapsed(&X, side, tol);
+    return rg2__xpatch_side_collapsed(&X, side, tol);
 }
 
 double rg2__collapse_tol(const rg2_surface *s)
@@ -327,7 +306,7 @@ rg2_status rg2__topo_build(const rg2_surface *s, rg2__topo *t, rg2_error *err)
     for (int i = 0; i < nu; i++)
         for (int j = 0; j < nv; j++)
             for (int side = 0; side < 4; side++) {
-                if (!side_collapsed(s, i, j, side, tol))
+                if (!rg2__surface_side_collapsed(s, i, j, side, tol))
                     continue;
                 int which, idx;
                 side_slot(nu, nv, s->closed_u, s->closed_v, i, j, side, &which, &idx);

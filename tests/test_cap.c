@@ -600,7 +600,7 @@ static void cap_shape_measure(const rg2_surface *s, cap_shape *cs)
             int mc = 0, gc = 0;
             double pk = 0, pK = 0;
             for (int j = 2; j >= 0; j--)
-                for (int t = 32; t >= 0; t--) {
+                for (int t = 32; t >= (j == 0); t--) { /* not the pole itself */
                     rg2_eval e;
                     rg2_surface_eval(s, i, j, a / 4.0, t / 32.0, 2, &e);
                     if (e.flags & RG2_EVAL_NORMAL_UNDEFINED)
