@@ -39,7 +39,7 @@ int main(int argc, char **argv)
                 for (int b = 0; b <= 8; b++) {
                     rg2_eval e;
                     double g[3];
-                    rg2_patch_eval(rg2_surface_patch(&s, i, j), a / 8.0, b / 8.0, 2, &e);
+                    rg2_surface_eval(&s, i, j, a / 8.0, b / 8.0, 2, &e);
                     double f = rg2_shape_implicit(&torus, e.p, g);
                     double d = fabs(f) / sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
                     if (d > worst)
