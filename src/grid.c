@@ -517,6 +517,32 @@ static int out_order(const rg2_grid_out *o)
 }
 
 #if RG2_AVX512
+/* full_out with interleaving permutes and masked tails (the structure-of-arrays temporaries are
+ * padded to whole vectors). */
+RG2_AVX512_FN static void full_out_avx512(const soa_full *S, int cnt, const rg2_grid_out *o, size_t at)
+{
+    struct {
+        double *dst;
+        const double(*src)[BLK];
+    } vec[] = {{o->pos, S->p}, {o->normal, S->nn}, {o->du, S->su}, {o->dv, S->sv}, {o->duu, S->suu},
+               {o->duv, S->suv}, {o->dvv, S->svv}};
+    for (int q = 0; q < 7; q++) {
+        if (!vec[q].dst)
+            continue;
+        double *dst = vec[q].dst + 3 * at;
+        const double(*src)[BLK] = vec[q].src;
+        for (int i = 0; i < cnt; i += 8) {
+            __m512d v[3];
+            xyz8(_mm512_load_pd(src[0] + i), _mm512_load_pd(src[1] + i), _mm512_load_pd(src[2] + i), v);
+            put8(dst + 3 * i, v, cnt - i < 8 ? cnt - i : 8, ST_PLAIN);
+        }
+    }
+    if (o->K)
+        memcpy(o->K + at, S->K, sizeof(double) * (size_t)cnt);
+    if (o->H)
+        memcpy(o->H + at, S->H, sizeof(double) * (size_t)cnt);
+}
+
 /* How to store a row segment of cnt points at dst (see ST_*). */
 static inline int store_mode(const tables *t, const double *dst, int cnt)
 {
@@ -574,7 +600,7 @@ RG2_AVX512_FN static void grid_patch_avx512(const rg2_patch *P, const tables *t,
                 }
             } else {
                 full_soa_avx512(U, DU, t->ddu + 4 * a, c0, c1, c2, cnt, S);
-                full_out(S, cnt, o, at);
+                full_out_avx512(S, cnt, o, at);
             }
         }
     }
