@@ -254,7 +254,7 @@ static void torus(void)
     rg2_surface_free(&s);
 }
 
-/* Outputs past 4 MB take the streaming-store paths (straight into 64-byte aligned rows of whole
+/* Outputs past 16 MB take the streaming-store paths (straight into 64-byte aligned rows of whole
  * vectors, or through a buffer): still equal to rg2_patch_eval. */
 static void large_output(void)
 {
@@ -263,8 +263,8 @@ static void large_output(void)
     rg2_patch P;
     random_patch(&r, &P);
     /* 34.6 MB of positions; 34.8 MB of positions + normals (rows misaligned and aligned); then
-     * 64-byte aligned arrays with rows of whole vectors (6.3 and 12.6 MB) */
-    const int sizes[4] = {1201, 851, 512, 512};
+     * 64-byte aligned arrays with rows of whole vectors (25.2 and 28.3 MB) */
+    const int sizes[4] = {1201, 851, 1024, 768};
     for (int cfg = 0; cfg < 4; cfg++) {
         int n = sizes[cfg], level = cfg & 1;
         size_t pts = (size_t)n * n, bytes = pts * 3 * sizeof(double);
