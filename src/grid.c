@@ -46,10 +46,11 @@
 /* Outputs larger than this (bytes) are written with streaming stores on the AVX-512 path; smaller
  * ones with plain stores and prefetchw ahead of them (RG2_PREFETCHW_AHEAD), and they stay in the
  * caches for the consumer. Measured on this kind of machine (2 MiB L2 per core, large shared L3):
- * at 4.7 MB of positions plain + prefetchw is 1.25x faster than streaming, at 9-23 MB the two are
- * equal, at 60-150 MB streaming is 1.5-2.5x faster (no read for ownership per line). */
+ * 4.7 MB of positions: plain + prefetchw 1.25x faster than streaming; 9.4 MB of positions and
+ * normals: streaming 1.3x faster; 11.5 MB of positions: equal; 60-150 MB: streaming 1.5-2.5x
+ * faster (no read for ownership per line). */
 #ifndef RG2_STREAM_BYTES
-#define RG2_STREAM_BYTES ((size_t)16 << 20)
+#define RG2_STREAM_BYTES ((size_t)8 << 20)
 #endif
 
 #define BLK 64 /* points per block in the full kernel (structure-of-arrays temporaries) */

@@ -254,7 +254,7 @@ static void torus(void)
     rg2_surface_free(&s);
 }
 
-/* Outputs past 16 MB take the streaming-store paths (straight into 64-byte aligned rows of whole
+/* Outputs past 8 MB take the streaming-store paths (straight into 64-byte aligned rows of whole
  * vectors, or through a buffer): still equal to rg2_patch_eval. */
 static void large_output(void)
 {
