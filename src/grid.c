@@ -778,7 +778,10 @@ rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads, con
         /* contiguous runs of patches, 4 per thread, handed out dynamically (a busy core takes
          * fewer); one run per call of grid_range, so prefetching and the closing store fence
          * are per run, not per patch */
-        long long nchunk = 4LL * nt;
+#ifndef RG2_RUNS_PER_THREAD
+#define RG2_RUNS_PER_THREAD 4
+#endif
+        long long nchunk = (long long)RG2_RUNS_PER_THREAD * nt;
         if (nchunk > cnt)
             nchunk = cnt;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
