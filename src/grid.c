@@ -8,8 +8,10 @@
  * wanted) are formed once; every point of every row is then sum_r B_r(u_a) c_r(v_b): 16
  * multiply-adds per homogeneous value, in the summation order of rg2_patch_eval, in a
  * branch-free loop over the columns that the compiler vectorises (x86-64 with GCC: AVX-512 /
- * AVX2 / baseline clones chosen at load time). On AVX-512 CPUs hand-written kernels replace the
- * divisions and square roots by rcp14 / rsqrt14 and two Newton steps. The quotient rule and the
+ * AVX2 / baseline clones chosen at load time). On AVX-512 CPUs hand-written kernels take whole
+ * patches (grid_patch_avx512): rcp14 / rsqrt14 and two Newton steps instead of divisions and
+ * square roots, permutes for the x, y, z interleave, plain stores with prefetchw for outputs in
+ * the caches and streaming stores past RG2_STREAM_BYTES (see docs/performance.md). The quotient rule and the
  * curvature formulas are those of rg2_patch_eval (eval.c), which stays the independent
  * reference; tests/test_grid.c holds the two to 1e-14.
  */
@@ -205,14 +207,14 @@ typedef struct {
     _Alignas(64) double H[BLK];
 } soa_full;
 
-/* The formulas of rg2_patch_eval for points i0 <= i < cnt of a row segment. */
+/* The formulas of rg2_patch_eval for the points 0 <= i < cnt of a row segment. */
 RG2_HOT static void full_soa(const double *restrict U, const double *restrict DU, const double *restrict DDU,
-                             double c0[4][4][BLK], double c1[4][4][BLK], double c2[4][4][BLK], int i0, int cnt,
+                             double c0[4][4][BLK], double c1[4][4][BLK], double c2[4][4][BLK], int cnt,
                              soa_full *restrict S)
 {
     double(*p)[BLK] = S->p, (*su)[BLK] = S->su, (*sv)[BLK] = S->sv, (*suu)[BLK] = S->suu;
     double(*suv)[BLK] = S->suv, (*svv)[BLK] = S->svv, (*nn)[BLK] = S->nn, *KK = S->K, *HH = S->H;
-    for (int i = i0; i < cnt; i++) {
+    for (int i = 0; i < cnt; i++) {
         double h[4], hu[4], hv[4], huu[4], huv[4], hvv[4];
 #pragma GCC unroll 4
         for (int k = 0; k < 4; k++) {
@@ -694,7 +696,7 @@ RG2_HOT static void grid_patch(const rg2_patch *P, const tables *t, const rg2_gr
             else if (t->order == 1)
                 seg_pos_normal(U, DU, c0, c1, cnt, o->pos + 3 * at, o->normal + 3 * at);
             else {
-                full_soa(U, DU, DDU, c0, c1, c2, 0, cnt, S);
+                full_soa(U, DU, DDU, c0, c1, c2, cnt, S);
                 full_out(S, cnt, o, at);
             }
         }
