@@ -45,12 +45,13 @@
 #define RG2_AVX512 0
 #endif
 
-/* Outputs larger than this (bytes) are written with streaming stores on the AVX-512 path; smaller
- * ones with plain stores and prefetchw ahead of them (RG2_PREFETCHW_AHEAD), and they stay in the
- * caches for the consumer. Measured on this kind of machine (2 MiB L2 per core, large shared L3):
- * 4.7 MB of positions: plain + prefetchw 1.25x faster than streaming; 9.4 MB of positions and
- * normals: streaming 1.3x faster; 11.5 MB of positions: equal; 60-150 MB: streaming 1.5-2.5x
- * faster (no read for ownership per line). */
+/* Outputs with normals (or more) larger than this (bytes), and positions alone larger than twice
+ * this, are written with streaming stores on the AVX-512 path; smaller ones with plain stores and
+ * prefetchw ahead of them (RG2_PREFETCHW_AHEAD), and they stay in the caches for the consumer.
+ * Measured on this kind of machine (2 MiB L2 per core, large shared L3), each in the caches'
+ * steady state: positions alone, plain + prefetchw faster than streaming by 1.25x at 4.7 MB and
+ * 1.1x at 11.8 and 15.7 MB, streaming faster by 1.45x at 23.6 MB and 2x at 75 MB; positions +
+ * normals (two arrays), streaming 1.3x faster at 9.4 MB, equal at 23.6 MB. */
 #ifndef RG2_STREAM_BYTES
 #define RG2_STREAM_BYTES ((size_t)8 << 20)
 #endif
@@ -721,6 +722,12 @@ static void grid_range(const rg2_patch *P, const tables *t, const rg2_grid_out *
 #endif
 }
 
+/* Whether an output of pts points at this order goes out with streaming stores. */
+static int stream_output(size_t pts, int order)
+{
+    return order ? pts * 48 > RG2_STREAM_BYTES : pts * 24 > 2 * RG2_STREAM_BYTES;
+}
+
 static rg2_status check_args(int n, int m, const rg2_grid_out *out, rg2_error *err)
 {
     if (!out || !out->pos)
@@ -744,7 +751,7 @@ rg2_status rg2_patch_grid(const rg2_patch *P, int n, int m, const rg2_grid_out *
     st = tables_make(&t, n, m, out_order(out), err);
     if (st)
         return st;
-    t.stream = (size_t)n * (size_t)m * (t.order ? 48 : 24) > RG2_STREAM_BYTES;
+    t.stream = stream_output((size_t)n * (size_t)m, t.order);
     grid_range(P, &t, out, 0, 1, 0);
     tables_free(&t);
     rg2__ok(err);
@@ -769,7 +776,7 @@ rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads, con
     st = tables_make(&t, n, m, out_order(out), err);
     if (st)
         return st;
-    t.stream = np * per * (t.order ? 48 : 24) > RG2_STREAM_BYTES;
+    t.stream = stream_output(np * per, t.order);
     long long cnt = (long long)np;
     int nt = 1;
 #ifdef RG2_HAVE_OPENMP
