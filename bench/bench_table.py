@@ -11,7 +11,11 @@ def main(path):
     for c in d.get('cases', []):
         print(f"\n#### {c['name']}: {c['surface']}\n")
         print(f"{int(c['patches'])} patches x {int(c['points_per_patch'])} points = {int(c['points'])} points, "
-              f"{c['repetitions']} interleaved repetitions; every output checked against the {c['checked_against']}.\n")
+              f"{c['repetitions']} interleaved repetitions; every output checked against the {c['checked_against']}.")
+        if 'positions_fit' in c:
+            print(f"Output {c['points'] * 24e-6:.1f} MB of positions (fits {c['positions_fit']}), "
+                  f"{c['points'] * 48e-6:.1f} MB with normals (fits {c['normals_fit']}).")
+        print()
         print("| method | output | median ms | M points/s | max position error | max normal error | max K, H error | check |")
         print("|---|---|---:|---:|---:|---:|---:|---|")
         for m in c['methods']:
@@ -30,14 +34,15 @@ def main(path):
             print(f"| {r['pair']} | {r['ratio']:.2f}x | {t} | {met} | {b} |")
     if 'grid_scaling' in d:
         print("\n| points per patch | output | 1 thread M pts/s | 2 threads M pts/s | 2t / 1t (medians) | "
-              "2t / 1t (fastest calls) | write ceiling M pts/s | 1 thread / ceiling |")
-        print("|---|---|---:|---:|---:|---:|---:|---:|")
+              "2t / 1t (fastest calls) | write ceiling M pts/s | 1 thread / ceiling | output MB, fits |")
+        print("|---|---|---:|---:|---:|---:|---:|---:|---|")
         for r in d['grid_scaling']['threads']:
             c = f"{r['ceiling_mpoints_per_s']:.1f}" if 'ceiling_mpoints_per_s' in r else '-'
             f = f"{r['fraction_of_ceiling_1_thread']:.2f}" if 'fraction_of_ceiling_1_thread' in r else '-'
             print(f"| {r['points_per_patch_side']}^2 | {r['output']} | {r['mpoints_per_s_1_thread']:.1f} | "
                   f"{r['mpoints_per_s_2_threads']:.1f} | {r['speedup_2_threads']:.2f}x | "
-                  f"{r['speedup_2_threads_fastest_calls']:.2f}x | {c} | {f} |")
+                  f"{r['speedup_2_threads_fastest_calls']:.2f}x | {c} | {f} | "
+                  f"{r['output_bytes'] * 1e-6:.1f}, {r.get('output_fits', '')} |")
     if 'construction' in d:
         cs = d['construction']
         print("\n| control points | patches | 1 thread ms | ns per control point | 2 threads ms |")
@@ -49,6 +54,9 @@ def main(path):
         print(f"\nFrom 100^2 to 1000^2 control points the time per control point stays within a factor "
               f"{cs['per_control_point_spread_100_to_1000']:.2f}.")
     print(f"\nPeak memory (getrusage ru_maxrss): {d['peak_rss_kb'] / 1024:.0f} MB.")
+    if 'ceiling_fastest_way_counts' in d:
+        w = ', '.join(f"{k} {v}" for k, v in d['ceiling_fastest_way_counts'].items())
+        print(f"\nWrite ceiling: the fastest way of writing, counted over all ceiling measurements: {w}.")
 
 
 if __name__ == '__main__':

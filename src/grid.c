@@ -8,8 +8,10 @@
  * wanted) are formed once; every point of every row is then sum_r B_r(u_a) c_r(v_b): 16
  * multiply-adds per homogeneous value, in the summation order of rg2_patch_eval, in a
  * branch-free loop over the columns that the compiler vectorises (x86-64 with GCC: AVX-512 /
- * AVX2 / baseline clones chosen at load time). On AVX-512 CPUs hand-written kernels replace the
- * divisions and square roots by rcp14 / rsqrt14 and two Newton steps. The quotient rule and the
+ * AVX2 / baseline clones chosen at load time). On AVX-512 CPUs hand-written kernels take whole
+ * patches (grid_patch_avx512): rcp14 / rsqrt14 and two Newton steps instead of divisions and
+ * square roots, permutes for the x, y, z interleave, plain stores with prefetchw for outputs in
+ * the caches and streaming stores past RG2_STREAM_BYTES (see docs/performance.md). The quotient rule and the
  * curvature formulas are those of rg2_patch_eval (eval.c), which stays the independent
  * reference; tests/test_grid.c holds the two to 1e-14.
  */
@@ -43,8 +45,16 @@
 #define RG2_AVX512 0
 #endif
 
-/* Outputs larger than this (bytes) are written with streaming stores on the AVX-512 path. */
-#define RG2_STREAM_BYTES ((size_t)32 << 20)
+/* Outputs with normals (or more) larger than this (bytes), and positions alone larger than twice
+ * this, are written with streaming stores on the AVX-512 path; smaller ones with plain stores and
+ * prefetchw ahead of them (RG2_PREFETCHW_AHEAD), and they stay in the caches for the consumer.
+ * Measured on this kind of machine (2 MiB L2 per core, large shared L3), each in the caches'
+ * steady state: positions alone, plain + prefetchw faster than streaming by 1.25x at 4.7 MB and
+ * 1.1x at 11.8 and 15.7 MB, streaming faster by 1.45x at 23.6 MB and 2x at 75 MB; positions +
+ * normals (two arrays), streaming 1.3x faster at 9.4 MB, equal at 23.6 MB. */
+#ifndef RG2_STREAM_BYTES
+#define RG2_STREAM_BYTES ((size_t)8 << 20)
+#endif
 
 #define BLK 64 /* points per block in the full kernel (structure-of-arrays temporaries) */
 
@@ -67,7 +77,8 @@ static void tables_free(tables *t)
 static rg2_status tables_make(tables *t, int n, int m, int order, rg2_error *err)
 {
     memset(t, 0, sizeof *t);
-    size_t per = (size_t)n * 4 * 3 + (size_t)m * 12;
+    size_t m8 = ((size_t)m + 7) & ~(size_t)7; /* v columns padded with zeros to whole 8-lane vectors */
+    size_t per = (size_t)n * 4 * 3 + m8 * 12;
     t->mem = rg2__calloc(per, sizeof(double));
     if (!t->mem)
         return rg2__fail(err, RG2_ENOMEM, "grid: out of memory for %d x %d tables", n, m);
@@ -82,9 +93,9 @@ static rg2_status tables_make(tables *t, int n, int m, int order, rg2_error *err
     t->du = q, q += (size_t)n * 4;
     t->ddu = q, q += (size_t)n * 4;
     for (int s = 0; s < 4; s++) {
-        t->bv[s] = q, q += m;
-        t->dv[s] = q, q += m;
-        t->ddv[s] = q, q += m;
+        t->bv[s] = q, q += m8;
+        t->dv[s] = q, q += m8;
+        t->ddv[s] = q, q += m8;
     }
     for (int a = 0; a < n; a++) {
         double u = a == n - 1 ? 1.0 : (double)a / (double)(n - 1);
@@ -197,14 +208,14 @@ typedef struct {
     _Alignas(64) double H[BLK];
 } soa_full;
 
-/* The formulas of rg2_patch_eval for points i0 <= i < cnt of a row segment. */
+/* The formulas of rg2_patch_eval for the points 0 <= i < cnt of a row segment. */
 RG2_HOT static void full_soa(const double *restrict U, const double *restrict DU, const double *restrict DDU,
-                             double c0[4][4][BLK], double c1[4][4][BLK], double c2[4][4][BLK], int i0, int cnt,
+                             double c0[4][4][BLK], double c1[4][4][BLK], double c2[4][4][BLK], int cnt,
                              soa_full *restrict S)
 {
     double(*p)[BLK] = S->p, (*su)[BLK] = S->su, (*sv)[BLK] = S->sv, (*suu)[BLK] = S->suu;
     double(*suv)[BLK] = S->suv, (*svv)[BLK] = S->svv, (*nn)[BLK] = S->nn, *KK = S->K, *HH = S->H;
-    for (int i = i0; i < cnt; i++) {
+    for (int i = 0; i < cnt; i++) {
         double h[4], hu[4], hv[4], huu[4], huv[4], hvv[4];
 #pragma GCC unroll 4
         for (int k = 0; k < 4; k++) {
@@ -281,7 +292,7 @@ static void full_out(const soa_full *S, int cnt, const rg2_grid_out *o, size_t a
 #undef USUM
 
 #if RG2_AVX512
-#define RG2_AVX512_FN __attribute__((target("avx512f,avx512dq,fma")))
+#define RG2_AVX512_FN __attribute__((target("avx512f,avx512dq,fma,prfchw")))
 
 /* 1 / x to ~1 ulp: rcp14 then two Newton steps (relative error 2^-14 -> 2^-28 -> 2^-56). */
 RG2_AVX512_FN static inline __m512d recip8(__m512d x)
@@ -292,15 +303,13 @@ RG2_AVX512_FN static inline __m512d recip8(__m512d x)
     return _mm512_fmadd_pd(y, _mm512_fnmadd_pd(x, y, one), y);
 }
 
-/* 1 / sqrt(x) to ~1 ulp: rsqrt14 then two Newton steps y (3 - x y^2) / 2. */
+/* 1 / sqrt(x) to ~1 ulp: rsqrt14 then two Newton steps y (3/2 - (x/2) y^2), 3 operations each. */
 RG2_AVX512_FN static inline __m512d rsqrt8(__m512d x)
 {
-    const __m512d half = _mm512_set1_pd(0.5), three = _mm512_set1_pd(3.0);
-    __m512d y = _mm512_rsqrt14_pd(x);
-    for (int it = 0; it < 2; it++) {
-        __m512d xyy = _mm512_mul_pd(_mm512_mul_pd(x, y), y);
-        y = _mm512_mul_pd(_mm512_mul_pd(half, y), _mm512_sub_pd(three, xyy));
-    }
+    const __m512d c15 = _mm512_set1_pd(1.5);
+    __m512d hx = _mm512_mul_pd(_mm512_set1_pd(0.5), x), y = _mm512_rsqrt14_pd(x);
+    for (int it = 0; it < 2; it++)
+        y = _mm512_mul_pd(y, _mm512_fnmadd_pd(_mm512_mul_pd(hx, y), y, c15));
     return y;
 }
 
@@ -319,39 +328,62 @@ RG2_AVX512_FN static inline __m512d dot8(const __m512d a[3], const __m512d b[3])
     return _mm512_fmadd_pd(a[2], b[2], _mm512_fmadd_pd(a[1], b[1], _mm512_mul_pd(a[0], b[0])));
 }
 
-/* Unit normal n = Su x Sv / |Su x Sv|, 0 where |Su x Sv|^2 <= 1e-30 E G (E = Su.Su, G = Sv.Sv);
- * returns the mask of points where it is defined. Shared by both kernels (same bits). */
-RG2_AVX512_FN static inline __mmask8 normal8(const __m512d su[3], const __m512d sv[3], __m512d n[3], __m512d *E,
-                                             __m512d *G)
+/* Unit normal n = a x b / |a x b|, 0 where |a x b|^2 <= 1e-30 (a.a) (b.b); returns the mask of
+ * points where it is defined. a, b are w^2 Su and w^2 Sv (w hu - hu_w h, w hv - hv_w h: the
+ * tangents without the divisions by the weight, which the normalisation cancels; the test is
+ * invariant under the scaling too), so no reciprocal lies on the normal's dependency chain.
+ * Shared by both kernels (same bits). */
+RG2_AVX512_FN static inline __mmask8 normal8(const __m512d su[3], const __m512d sv[3], __m512d n[3])
 {
     __m512d c[3] = {_mm512_fmsub_pd(su[1], sv[2], _mm512_mul_pd(su[2], sv[1])),
                     _mm512_fmsub_pd(su[2], sv[0], _mm512_mul_pd(su[0], sv[2])),
                     _mm512_fmsub_pd(su[0], sv[1], _mm512_mul_pd(su[1], sv[0]))};
-    __m512d l2 = dot8(c, c);
-    *E = dot8(su, su);
-    *G = dot8(sv, sv);
-    __mmask8 ok = _mm512_cmp_pd_mask(l2, _mm512_mul_pd(_mm512_set1_pd(1e-30), _mm512_mul_pd(*E, *G)), _CMP_GT_OQ);
-    __m512d il = _mm512_maskz_mov_pd(ok, rsqrt8(_mm512_mask_blend_pd(ok, _mm512_set1_pd(1.0), l2)));
+    __m512d l2 = dot8(c, c), E = dot8(su, su), G = dot8(sv, sv);
+    __mmask8 ok = _mm512_cmp_pd_mask(l2, _mm512_mul_pd(_mm512_set1_pd(1e-30), _mm512_mul_pd(E, G)), _CMP_GT_OQ);
+    __m512d il = _mm512_maskz_mov_pd(ok, rsqrt8(l2)); /* (lanes not ok: whatever rsqrt8 gave, zeroed) */
     for (int k = 0; k < 3; k++)
         n[k] = _mm512_mul_pd(c[k], il);
     return ok;
 }
 
-/* Store q <= 8 points (x, y, z) interleaved as 3 q doubles at dst (masked past q). */
-RG2_AVX512_FN static inline void store_xyz8(double *dst, __m512d x, __m512d y, __m512d z, int q)
+/* Points x, y, z of 8 lanes interleaved as 24 doubles in o[0..2] (two-source permutes). */
+RG2_AVX512_FN static inline void xyz8(__m512d x, __m512d y, __m512d z, __m512d o[3])
 {
     const __m512i i0 = _mm512_set_epi64(10, 2, 0, 9, 1, 0, 8, 0), z0 = _mm512_set_epi64(0, 0, 1, 0, 0, 0, 0, 0);
     const __m512i i1 = _mm512_set_epi64(5, 0, 12, 4, 0, 11, 3, 0), z1 = _mm512_set_epi64(0, 4, 0, 0, 3, 0, 0, 2);
     const __m512i i2 = _mm512_set_epi64(0, 15, 7, 0, 14, 6, 0, 13), z2 = _mm512_set_epi64(7, 0, 0, 6, 0, 0, 5, 0);
-    __m512d o[3];
     o[0] = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(x, i0, y), 0x24, z0, z);
     o[1] = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(x, i1, y), 0x49, z1, z);
     o[2] = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(x, i2, y), 0x92, z2, z);
-    for (int k = 0, left = 3 * q; k < 3 && left > 0; k++, left -= 8) {
-        if (left >= 8)
-            _mm512_storeu_pd(dst + 8 * k, o[k]);
-        else
-            _mm512_mask_storeu_pd(dst + 8 * k, (__mmask8)((1u << left) - 1u), o[k]);
+}
+
+/* How a row segment reaches memory: plain stores, streaming stores straight into a 64-byte
+ * aligned destination of whole vectors, or plain stores to an L1 buffer then streamed out. */
+enum { ST_PLAIN, ST_STREAM, ST_STAGED };
+
+/* Plain stores ask for the lines this far ahead (doubles) with prefetchw, so that the reads for
+ * ownership are under way before the stores reach them (+25 % for 4.7 MB of positions in L3). */
+#ifndef RG2_PREFETCHW_AHEAD
+#define RG2_PREFETCHW_AHEAD 384
+#endif
+
+/* 8 interleaved points (24 doubles) at dst: q < 8 stores only 3 q doubles (masked). */
+RG2_AVX512_FN static inline void put8(double *dst, const __m512d o[3], int q, int st)
+{
+    if (st != ST_STREAM) /* (prefetches never fault, past the array's end included) */
+        for (int k = 0; k < 3; k++)
+            __builtin_prefetch(dst + RG2_PREFETCHW_AHEAD + 8 * k, 1, 3);
+    if (st == ST_STREAM) {
+        _mm512_stream_pd(dst, o[0]);
+        _mm512_stream_pd(dst + 8, o[1]);
+        _mm512_stream_pd(dst + 16, o[2]);
+    } else if (q == 8) {
+        _mm512_storeu_pd(dst, o[0]);
+        _mm512_storeu_pd(dst + 8, o[1]);
+        _mm512_storeu_pd(dst + 16, o[2]);
+    } else {
+        for (int k = 0, left = 3 * q; k < 3 && left > 0; k++, left -= 8)
+            _mm512_mask_storeu_pd(dst + 8 * k, (__mmask8)(left >= 8 ? 0xff : (1u << left) - 1u), o[k]);
     }
 }
 
@@ -368,49 +400,101 @@ RG2_AVX512_FN static void stream_copy(double *dst, const double *src, int n)
         dst[h] = src[h];
 }
 
-RG2_AVX512_FN static void seg_pos_avx512(const double *U, double c[4][4][BLK], int cnt, double *pos,
-                                         int stream)
+/* Column sums of one block, as vsum (zeros past cnt come from the zero-padded tables). */
+RG2_AVX512_FN static void vsum_avx512(const rg2_patch *P, double *const bv[4], int b0, int cnt,
+                                      double c[4][4][BLK])
 {
-    __m512d u[4] = {_mm512_set1_pd(U[0]), _mm512_set1_pd(U[1]), _mm512_set1_pd(U[2]), _mm512_set1_pd(U[3])};
-    _Alignas(64) double buf[3 * BLK];
-    double *dst = stream ? buf : pos;
-    for (int i = 0; i < cnt; i += 8) { /* the last vector may be partial: padded, masked store */
-        __m512d iw = recip8(usum8(u, c, 3, i));
-        store_xyz8(dst + 3 * i, _mm512_mul_pd(usum8(u, c, 0, i), iw), _mm512_mul_pd(usum8(u, c, 1, i), iw),
-                   _mm512_mul_pd(usum8(u, c, 2, i), iw), cnt - i < 8 ? cnt - i : 8);
+    const double *v0 = bv[0] + b0, *v1 = bv[1] + b0, *v2 = bv[2] + b0, *v3 = bv[3] + b0;
+    for (int i = 0; i < cnt; i += 8) {
+        __m512d V0 = _mm512_loadu_pd(v0 + i), V1 = _mm512_loadu_pd(v1 + i), V2 = _mm512_loadu_pd(v2 + i),
+                V3 = _mm512_loadu_pd(v3 + i);
+        for (int r = 0; r < 4; r++)
+            for (int k = 0; k < 4; k++) {
+                /* products rounded before the sums (no FMA), as rg2_patch_eval rounds them */
+                __m512d acc = _mm512_mul_pd(_mm512_set1_pd(P->h[r][0][k]), V0);
+                acc = _mm512_add_pd(acc, _mm512_mul_pd(_mm512_set1_pd(P->h[r][1][k]), V1));
+                acc = _mm512_add_pd(acc, _mm512_mul_pd(_mm512_set1_pd(P->h[r][2][k]), V2));
+                _mm512_store_pd(&c[r][k][i], _mm512_add_pd(acc, _mm512_mul_pd(_mm512_set1_pd(P->h[r][3][k]), V3)));
+            }
     }
-    if (stream)
-        stream_copy(pos, buf, 3 * cnt);
 }
 
-RG2_AVX512_FN static void seg_pos_normal_avx512(const double *U, const double *DU, double c0[4][4][BLK],
-                                                double c1[4][4][BLK], int cnt, double *pos, double *nrm,
-                                                int stream)
+/* Positions of one row segment of cnt points at dst (short rows: see seg_pos_cx_avx512). */
+RG2_AVX512_FN static inline void seg_pos_avx512(const double *U, double c[4][4][BLK], int cnt, double *dst,
+                                                int st)
 {
-    _Alignas(64) double pbuf[3 * BLK];
-    _Alignas(64) double nbuf[3 * BLK];
-    double *pd = stream ? pbuf : pos, *nd = stream ? nbuf : nrm;
+    __m512d u[4] = {_mm512_set1_pd(U[0]), _mm512_set1_pd(U[1]), _mm512_set1_pd(U[2]), _mm512_set1_pd(U[3])};
+    for (int i = 0; i < cnt; i += 8) { /* the last vector may be partial: padded, masked store */
+        __m512d iw = recip8(usum8(u, c, 3, i)), o[3];
+        xyz8(_mm512_mul_pd(usum8(u, c, 0, i), iw), _mm512_mul_pd(usum8(u, c, 1, i), iw),
+             _mm512_mul_pd(usum8(u, c, 2, i), iw), o);
+        put8(dst + 3 * i, o, cnt - i < 8 ? cnt - i : 8, st);
+    }
+}
+
+/* The x, y, z column sums of a block interleaved like the output: cx[r][3 b + k] = c[r][k][b]. */
+RG2_AVX512_FN static void interleave_csum(double c[4][4][BLK], int cnt, double cx[4][3 * BLK])
+{
+    for (int r = 0; r < 4; r++)
+        for (int i = 0; i < cnt; i += 8) {
+            __m512d o[3];
+            xyz8(_mm512_load_pd(&c[r][0][i]), _mm512_load_pd(&c[r][1][i]), _mm512_load_pd(&c[r][2][i]), o);
+            for (int j = 0; j < 3; j++)
+                _mm512_store_pd(&cx[r][3 * i + 8 * j], o[j]);
+        }
+}
+
+/* Positions of one row segment of cnt points at dst, from the interleaved column sums cx (x, y, z)
+ * and c (for w): the sums and products of seg_pos_avx512 lane by lane (the same bits), with 1 / w
+ * spread to the x, y, z lanes by 3 permutes instead of interleaving the results by 6. Pays off
+ * from about 16 rows per block (interleave_csum costs 24 permutes per 8 columns). */
+RG2_AVX512_FN static inline void seg_pos_cx_avx512(const double *U, double c[4][4][BLK], double cx[4][3 * BLK],
+                                                int cnt, double *dst, int st)
+{
+    const __m512i s0 = _mm512_set_epi64(2, 2, 1, 1, 1, 0, 0, 0), s1 = _mm512_set_epi64(5, 4, 4, 4, 3, 3, 3, 2);
+    const __m512i s2 = _mm512_set_epi64(7, 7, 7, 6, 6, 6, 5, 5);
+    __m512d u[4] = {_mm512_set1_pd(U[0]), _mm512_set1_pd(U[1]), _mm512_set1_pd(U[2]), _mm512_set1_pd(U[3])};
+    for (int i = 0; i < cnt; i += 8) { /* the last vector may be partial: padded, masked store */
+        __m512d iw = recip8(usum8(u, c, 3, i)), o[3];
+        __m512d iw3[3] = {_mm512_permutexvar_pd(s0, iw), _mm512_permutexvar_pd(s1, iw),
+                          _mm512_permutexvar_pd(s2, iw)};
+        for (int j = 0; j < 3; j++) {
+            const double *q = &cx[0][3 * i + 8 * j];
+            __m512d acc = _mm512_mul_pd(u[0], _mm512_load_pd(q));
+            acc = _mm512_fmadd_pd(u[1], _mm512_load_pd(q + 3 * BLK), acc);
+            acc = _mm512_fmadd_pd(u[2], _mm512_load_pd(q + 6 * BLK), acc);
+            acc = _mm512_fmadd_pd(u[3], _mm512_load_pd(q + 9 * BLK), acc);
+            o[j] = _mm512_mul_pd(acc, iw3[j]);
+        }
+        put8(dst + 3 * i, o, cnt - i < 8 ? cnt - i : 8, st);
+    }
+}
+
+/* Positions and unit normals of one row segment. */
+RG2_AVX512_FN static inline void seg_pos_normal_avx512(const double *U, const double *DU, double c0[4][4][BLK],
+                                                       double c1[4][4][BLK], int cnt, double *pd, double *nd,
+                                                       int st)
+{
     __m512d u[4] = {_mm512_set1_pd(U[0]), _mm512_set1_pd(U[1]), _mm512_set1_pd(U[2]), _mm512_set1_pd(U[3])};
     __m512d du[4] = {_mm512_set1_pd(DU[0]), _mm512_set1_pd(DU[1]), _mm512_set1_pd(DU[2]), _mm512_set1_pd(DU[3])};
     for (int i = 0; i < cnt; i += 8) {
         /* the expressions of full_soa_avx512 (bitwise the same positions and normals) */
-        __m512d iw = recip8(usum8(u, c0, 3, i));
+        __m512d w = usum8(u, c0, 3, i), iw = recip8(w);
         __m512d hu3 = usum8(du, c0, 3, i), hv3 = usum8(u, c1, 3, i);
-        __m512d p[3], su[3], sv[3];
+        __m512d p[3], a[3], b[3];
         for (int k = 0; k < 3; k++) {
-            p[k] = _mm512_mul_pd(usum8(u, c0, k, i), iw);
-            su[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hu3, p[k], usum8(du, c0, k, i)), iw);
-            sv[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hv3, p[k], usum8(u, c1, k, i)), iw);
+            __m512d h = usum8(u, c0, k, i);
+            p[k] = _mm512_mul_pd(h, iw);
+            a[k] = _mm512_fmsub_pd(w, usum8(du, c0, k, i), _mm512_mul_pd(hu3, h));
+            b[k] = _mm512_fmsub_pd(w, usum8(u, c1, k, i), _mm512_mul_pd(hv3, h));
         }
-        __m512d n[3], e, g;
-        normal8(su, sv, n, &e, &g);
+        __m512d n[3], o[3];
+        normal8(a, b, n);
         int q = cnt - i < 8 ? cnt - i : 8;
-        store_xyz8(pd + 3 * i, p[0], p[1], p[2], q);
-        store_xyz8(nd + 3 * i, n[0], n[1], n[2], q);
-    }
-    if (stream) {
-        stream_copy(pos, pbuf, 3 * cnt);
-        stream_copy(nrm, nbuf, 3 * cnt);
+        xyz8(p[0], p[1], p[2], o);
+        put8(pd + 3 * i, o, q, st);
+        xyz8(n[0], n[1], n[2], o);
+        put8(nd + 3 * i, o, q, st);
     }
 }
 
@@ -438,9 +522,11 @@ RG2_AVX512_FN static void full_soa_avx512(const double *U, const double *DU, con
             hvv[k] = usum8(u, c2, k, i);
         }
         __m512d iw = recip8(h[3]);
-        __m512d P[3], Su[3], Sv[3], Suu[3], Suv[3], Svv[3];
+        __m512d P[3], A[3], B[3], Su[3], Sv[3], Suu[3], Suv[3], Svv[3];
         for (int k = 0; k < 3; k++) {
             P[k] = _mm512_mul_pd(h[k], iw);
+            A[k] = _mm512_fmsub_pd(h[3], hu[k], _mm512_mul_pd(hu[3], h[k]));
+            B[k] = _mm512_fmsub_pd(h[3], hv[k], _mm512_mul_pd(hv[3], h[k]));
             Su[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hu[3], P[k], hu[k]), iw);
             Sv[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hv[3], P[k], hv[k]), iw);
             __m512d t = _mm512_fnmadd_pd(_mm512_mul_pd(two, hu[3]), Su[k], huu[k]);
@@ -451,9 +537,9 @@ RG2_AVX512_FN static void full_soa_avx512(const double *U, const double *DU, con
             t = _mm512_fnmadd_pd(_mm512_mul_pd(two, hv[3]), Sv[k], hvv[k]);
             Svv[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hvv[3], P[k], t), iw);
         }
-        __m512d nn[3], E, G;
-        __mmask8 ok = normal8(Su, Sv, nn, &E, &G);
-        __m512d F = dot8(Su, Sv);
+        __m512d nn[3];
+        __mmask8 ok = normal8(A, B, nn);
+        __m512d E = dot8(Su, Su), F = dot8(Su, Sv), G = dot8(Sv, Sv);
         __m512d L = dot8(Suu, nn), M = dot8(Suv, nn), N = dot8(Svv, nn);
         __m512d det = _mm512_mask_blend_pd(ok, one, _mm512_fmsub_pd(E, G, _mm512_mul_pd(F, F)));
         __m512d idet = recip8(det);
@@ -484,10 +570,114 @@ static int out_order(const rg2_grid_out *o)
     return o->normal ? 1 : 0;
 }
 
+#if RG2_AVX512
+/* full_out with interleaving permutes and masked tails (the structure-of-arrays temporaries are
+ * padded to whole vectors). */
+RG2_AVX512_FN static void full_out_avx512(const soa_full *S, int cnt, const rg2_grid_out *o, size_t at)
+{
+    struct {
+        double *dst;
+        const double(*src)[BLK];
+    } vec[] = {{o->pos, S->p}, {o->normal, S->nn}, {o->du, S->su}, {o->dv, S->sv}, {o->duu, S->suu},
+               {o->duv, S->suv}, {o->dvv, S->svv}};
+    for (int q = 0; q < 7; q++) {
+        if (!vec[q].dst)
+            continue;
+        double *dst = vec[q].dst + 3 * at;
+        const double(*src)[BLK] = vec[q].src;
+        for (int i = 0; i < cnt; i += 8) {
+            __m512d v[3];
+            xyz8(_mm512_load_pd(src[0] + i), _mm512_load_pd(src[1] + i), _mm512_load_pd(src[2] + i), v);
+            put8(dst + 3 * i, v, cnt - i < 8 ? cnt - i : 8, ST_PLAIN);
+        }
+    }
+    if (o->K)
+        memcpy(o->K + at, S->K, sizeof(double) * (size_t)cnt);
+    if (o->H)
+        memcpy(o->H + at, S->H, sizeof(double) * (size_t)cnt);
+}
+
+/* How to store a row segment of cnt points at dst (see ST_*). */
+static inline int store_mode(const tables *t, const double *dst, int cnt)
+{
+    if (!t->stream)
+        return ST_PLAIN;
+    if (!((uintptr_t)dst & 63) && !(cnt & 7))
+        return ST_STREAM;
+    /* misaligned: through a buffer, streaming only rows of whole cache lines' worth (short
+     * rows would leave mostly partial lines, which streaming makes slower) */
+    return cnt >= 32 ? ST_STAGED : ST_PLAIN;
+}
+
+/* grid_patch with the AVX-512 kernels. */
+RG2_AVX512_FN static void grid_patch_avx512(const rg2_patch *P, const tables *t, const rg2_grid_out *o,
+                                            size_t first)
+{
+    _Alignas(64) double c0[4][4][BLK];
+    _Alignas(64) double c1[4][4][BLK];
+    _Alignas(64) double c2[4][4][BLK];
+    _Alignas(64) double pbuf[3 * BLK];
+    _Alignas(64) double nbuf[3 * BLK];
+    _Alignas(64) double cx[4][3 * BLK];
+    soa_full S[1];
+    for (int b0 = 0; b0 < t->m; b0 += BLK) {
+        int cnt = t->m - b0 < BLK ? t->m - b0 : BLK;
+        vsum_avx512(P, t->bv, b0, cnt, c0);
+        int use_cx = t->order == 0 && t->n >= 16;
+        if (use_cx)
+            interleave_csum(c0, cnt, cx);
+        if (t->order >= 1)
+            vsum_avx512(P, t->dv, b0, cnt, c1);
+        if (t->order >= 2)
+            vsum_avx512(P, t->ddv, b0, cnt, c2);
+        for (int a = 0; a < t->n; a++) {
+            size_t at = first + (size_t)a * (size_t)t->m + (size_t)b0;
+            const double *U = t->bu + 4 * a, *DU = t->du + 4 * a;
+            double *pos = o->pos + 3 * at;
+            if (t->order == 0) {
+                int st = store_mode(t, pos, cnt);
+                double *dst = st == ST_STAGED ? pbuf : pos;
+                if (use_cx && st == ST_STREAM)
+                    seg_pos_cx_avx512(U, c0, cx, cnt, dst, ST_STREAM);
+                else if (use_cx)
+                    seg_pos_cx_avx512(U, c0, cx, cnt, dst, ST_PLAIN);
+                else if (st == ST_STREAM)
+                    seg_pos_avx512(U, c0, cnt, dst, ST_STREAM);
+                else
+                    seg_pos_avx512(U, c0, cnt, dst, ST_PLAIN);
+                if (st == ST_STAGED)
+                    stream_copy(pos, pbuf, 3 * cnt);
+            } else if (t->order == 1) {
+                double *nrm = o->normal + 3 * at;
+                int st = store_mode(t, pos, cnt);
+                if (st == ST_STREAM && !((uintptr_t)nrm & 63))
+                    seg_pos_normal_avx512(U, DU, c0, c1, cnt, pos, nrm, ST_STREAM);
+                else if (st == ST_PLAIN)
+                    seg_pos_normal_avx512(U, DU, c0, c1, cnt, pos, nrm, ST_PLAIN);
+                else {
+                    seg_pos_normal_avx512(U, DU, c0, c1, cnt, pbuf, nbuf, ST_PLAIN);
+                    stream_copy(pos, pbuf, 3 * cnt);
+                    stream_copy(nrm, nbuf, 3 * cnt);
+                }
+            } else {
+                full_soa_avx512(U, DU, t->ddu + 4 * a, c0, c1, c2, cnt, S);
+                full_out_avx512(S, cnt, o, at);
+            }
+        }
+    }
+}
+#endif
+
 /* All n x m points of one patch, written at point index `first` of the outputs: blocks of
  * BLK columns, their column sums once, then every row of the block. */
 RG2_HOT static void grid_patch(const rg2_patch *P, const tables *t, const rg2_grid_out *o, size_t first)
 {
+#if RG2_AVX512
+    if (t->avx512) {
+        grid_patch_avx512(P, t, o, first);
+        return;
+    }
+#endif
     _Alignas(64) double c0[4][4][BLK];
     _Alignas(64) double c1[4][4][BLK];
     _Alignas(64) double c2[4][4][BLK];
@@ -499,42 +689,43 @@ RG2_HOT static void grid_patch(const rg2_patch *P, const tables *t, const rg2_gr
             vsum(P, t->dv, b0, cnt, c1);
         if (t->order >= 2)
             vsum(P, t->ddv, b0, cnt, c2);
-        /* streaming stores only for rows of whole cache lines' worth (short rows would leave
-         * mostly partial lines, which streaming makes slower) */
-#if RG2_AVX512
-        int stream = t->stream && cnt >= 32;
-#endif
         for (int a = 0; a < t->n; a++) {
             size_t at = first + (size_t)a * (size_t)t->m + (size_t)b0;
             const double *U = t->bu + 4 * a, *DU = t->du + 4 * a, *DDU = t->ddu + 4 * a;
-#if RG2_AVX512
-            if (t->avx512 && t->order == 0)
-                seg_pos_avx512(U, c0, cnt, o->pos + 3 * at, stream);
-            else if (t->avx512 && t->order == 1)
-                seg_pos_normal_avx512(U, DU, c0, c1, cnt, o->pos + 3 * at, o->normal + 3 * at, stream);
-            else
-#endif
             if (t->order == 0)
                 seg_pos(U, c0, cnt, o->pos + 3 * at);
             else if (t->order == 1)
                 seg_pos_normal(U, DU, c0, c1, cnt, o->pos + 3 * at, o->normal + 3 * at);
             else {
-                int i0 = 0;
-#if RG2_AVX512
-                if (t->avx512) {
-                    full_soa_avx512(U, DU, DDU, c0, c1, c2, cnt, S);
-                    i0 = cnt;
-                }
-#endif
-                full_soa(U, DU, DDU, c0, c1, c2, i0, cnt, S);
+                full_soa(U, DU, DDU, c0, c1, c2, cnt, S);
                 full_out(S, cnt, o, at);
             }
         }
+    }
+}
+
+/* Patches k0 <= k < k1 of the array P, patch k at point index k * per of the outputs. */
+static void grid_range(const rg2_patch *P, const tables *t, const rg2_grid_out *o, size_t k0, size_t k1,
+                       size_t per)
+{
+    for (size_t k = k0; k < k1; k++) {
+#if RG2_AVX512
+        if (k + 1 < k1) /* the next patch's 8 cache lines while this one computes */
+            for (int q = 0; q < 8; q++)
+                _mm_prefetch((const char *)(P + k + 1) + 64 * q, _MM_HINT_T0);
+#endif
+        grid_patch(P + k, t, o, k * per);
     }
 #if RG2_AVX512
     if (t->stream) /* streaming stores are weakly ordered: publish them before returning */
         _mm_sfence();
 #endif
+}
+
+/* Whether an output of pts points at this order goes out with streaming stores. */
+static int stream_output(size_t pts, int order)
+{
+    return order ? pts * 48 > RG2_STREAM_BYTES : pts * 24 > 2 * RG2_STREAM_BYTES;
 }
 
 static rg2_status check_args(int n, int m, const rg2_grid_out *out, rg2_error *err)
@@ -560,8 +751,8 @@ rg2_status rg2_patch_grid(const rg2_patch *P, int n, int m, const rg2_grid_out *
     st = tables_make(&t, n, m, out_order(out), err);
     if (st)
         return st;
-    t.stream = (size_t)n * (size_t)m * (t.order ? 48 : 24) > RG2_STREAM_BYTES;
-    grid_patch(P, &t, out, 0);
+    t.stream = stream_output((size_t)n * (size_t)m, t.order);
+    grid_range(P, &t, out, 0, 1, 0);
     tables_free(&t);
     rg2__ok(err);
     return RG2_OK;
@@ -585,7 +776,7 @@ rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads, con
     st = tables_make(&t, n, m, out_order(out), err);
     if (st)
         return st;
-    t.stream = np * per * (t.order ? 48 : 24) > RG2_STREAM_BYTES;
+    t.stream = stream_output(np * per, t.order);
     long long cnt = (long long)np;
     int nt = 1;
 #ifdef RG2_HAVE_OPENMP
@@ -593,20 +784,23 @@ rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads, con
     if (nt > cnt)
         nt = (int)cnt;
     if (nt > 1) {
-        /* chunks of patches: about 8 per thread, so that many small patches cost no more
-         * scheduling than a few large ones */
-        int chunk = (int)(cnt / (8LL * nt));
-        if (chunk < 1)
-            chunk = 1;
-#pragma omp parallel for schedule(dynamic, chunk) num_threads(nt)
-        for (long long k = 0; k < cnt; k++)
-            grid_patch(&s->patch[k], &t, out, (size_t)k * per);
+        /* contiguous runs of patches, 4 per thread, handed out dynamically (a busy core takes
+         * fewer); one run per call of grid_range, so prefetching and the closing store fence
+         * are per run, not per patch */
+#ifndef RG2_RUNS_PER_THREAD
+#define RG2_RUNS_PER_THREAD 4
+#endif
+        long long nchunk = (long long)RG2_RUNS_PER_THREAD * nt;
+        if (nchunk > cnt)
+            nchunk = cnt;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+        for (long long c = 0; c < nchunk; c++)
+            grid_range(s->patch, &t, out, (size_t)(c * cnt / nchunk), (size_t)((c + 1) * cnt / nchunk), per);
     }
 #endif
     if (nt <= 1)
-        for (long long k = 0; k < cnt; k++)
-            grid_patch(&s->patch[k], &t, out, (size_t)k * per);
-    if (s->xp) /* higher-degree patches: the general evaluator (xpatch.c) */
+        grid_range(s->patch, &t, out, 0, (size_t)cnt, per);
+    if (s->xp) /* higher-degree patches: the general evaluator (xpatch.c) overwrites their points */
         rg2__grid_xpatches(s, n, m, out);
     tables_free(&t);
     rg2__ok(err);

@@ -254,18 +254,22 @@ static void torus(void)
     rg2_surface_free(&s);
 }
 
-/* Outputs past 32 MB take the streaming-store path: still equal to rg2_patch_eval. */
+/* Outputs past 8 MB take the streaming-store paths (straight into 64-byte aligned rows of whole
+ * vectors, or through a buffer): still equal to rg2_patch_eval. */
 static void large_output(void)
 {
     rg2t_rng r;
     rg2t_seed(&r, 11);
     rg2_patch P;
     random_patch(&r, &P);
-    const int sizes[2] = {1201, 851}; /* 34.6 MB of positions; 34.8 MB of positions + normals */
-    for (int level = 0; level < 2; level++) {
-        int n = sizes[level];
-        size_t pts = (size_t)n * n;
-        double *pos = malloc(pts * 3 * sizeof(double)), *nrm = level ? malloc(pts * 3 * sizeof(double)) : NULL;
+    /* 34.6 MB of positions; 34.8 MB of positions + normals (rows misaligned and aligned); then
+     * 64-byte aligned arrays with rows of whole vectors (25.2 and 28.3 MB) */
+    const int sizes[4] = {1201, 851, 1024, 768};
+    for (int cfg = 0; cfg < 4; cfg++) {
+        int n = sizes[cfg], level = cfg & 1;
+        size_t pts = (size_t)n * n, bytes = pts * 3 * sizeof(double);
+        double *pos = cfg < 2 ? malloc(bytes) : aligned_alloc(64, bytes);
+        double *nrm = !level ? NULL : cfg < 2 ? malloc(bytes) : aligned_alloc(64, bytes);
         rg2_grid_out o = {.pos = pos, .normal = nrm};
         rg2_error err;
         CHECK_OK(rg2_patch_grid(&P, n, n, &o, &err), &err);
