@@ -4,23 +4,27 @@
 
 #include <string.h>
 
-/* Homogeneous values up to `order` (rows 0; 0-2; 0-5 of out), v-sums first. */
-static void eval_h(const rg2_patch *P, double u, double v, int order, double out[6][4])
+/* Homogeneous values up to `order` (rows 0; 0-2; 0-5 of out) of a rational Bezier patch of
+ * degree (du, dv) whose control point (r, s) coordinate k is h[r * rs + s * ss + k]; v-sums
+ * first. Serves both patch kinds (xpatch.c). */
+void rg2__eval_hom(const double *h, int du, int dv, size_t rs, size_t ss, double u, double v, int order,
+                   double out[6][4])
 {
-    double Bu[4], Du[4], DDu[4], Bv[4], Dv[4], DDv[4];
-    rg2__bern3(u, Bu, Du, DDu);
-    rg2__bern3(v, Bv, Dv, DDv);
+    double Bu[RG2_MAX_DEGREE + 1], Du[RG2_MAX_DEGREE + 1], DDu[RG2_MAX_DEGREE + 1];
+    double Bv[RG2_MAX_DEGREE + 1], Dv[RG2_MAX_DEGREE + 1], DDv[RG2_MAX_DEGREE + 1];
+    rg2__bern(du, u, Bu, Du, DDu);
+    rg2__bern(dv, v, Bv, Dv, DDv);
     int rows = order < 1 ? 1 : order < 2 ? 3 : 6;
     memset(out, 0, sizeof(double[4]) * (size_t)rows);
-    for (int r = 0; r < 4; r++) {
+    for (int r = 0; r <= du; r++) {
         /* column sums over s first: value, d/dv, d2/dv2 */
         double c0[4] = {0}, c1[4] = {0}, c2[4] = {0};
-        for (int s = 0; s < 4; s++)
+        for (int s = 0; s <= dv; s++)
             for (int k = 0; k < 4; k++) {
-                double h = P->h[r][s][k];
-                c0[k] += h * Bv[s];
-                c1[k] += h * Dv[s];
-                c2[k] += h * DDv[s];
+                double x = h[(size_t)r * rs + (size_t)s * ss + (size_t)k];
+                c0[k] += x * Bv[s];
+                c1[k] += x * Dv[s];
+                c2[k] += x * DDv[s];
             }
         for (int k = 0; k < 4; k++)
             out[0][k] += Bu[r] * c0[k];
@@ -38,6 +42,11 @@ static void eval_h(const rg2_patch *P, double u, double v, int order, double out
             out[5][k] += Bu[r] * c2[k];
         }
     }
+}
+
+static void eval_h(const rg2_patch *P, double u, double v, int order, double out[6][4])
+{
+    rg2__eval_hom(&P->h[0][0][0], 3, 3, 16, 4, u, v, order, out);
 }
 
 void rg2_patch_eval_h(const rg2_patch *P, double u, double v, double out[6][4])

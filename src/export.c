@@ -189,20 +189,9 @@ int rg2__patch_side_collapsed(const rg2_patch *P, int side, double tol)
 
 double rg2__collapse_tol(const rg2_surface *s)
 {
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (int i = 0; i < s->nu; i++)
-        for (int j = 0; j < s->nv; j++) {
-            rg2_xpatch X;
-            rg2_surface_patch_get(s, i, j, &X);
-            for (int r = 0; r <= X.du; r++)
-                for (int t = 0; t <= X.dv; t++)
-                    for (int d = 0; d < 3; d++) {
-                        double x = X.h[r][t][d] / X.h[r][t][3];
-                        lo[d] = x < lo[d] ? x : lo[d];
-                        hi[d] = x > hi[d] ? x : hi[d];
-                    }
-        }
-    double diag = 0.0;
+    double lo[3], hi[3], diag = 0.0;
+    if (!rg2__surface_ctrl_box(s, 0, lo, hi))
+        return 0.0;
     for (int d = 0; d < 3; d++)
         diag += (hi[d] - lo[d]) * (hi[d] - lo[d]);
     return 1e-11 * sqrt(diag);

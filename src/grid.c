@@ -705,10 +705,12 @@ RG2_HOT static void grid_patch(const rg2_patch *P, const tables *t, const rg2_gr
 }
 
 /* Patches k0 <= k < k1 of the array P, patch k at point index k * per of the outputs. */
-static void grid_range(const rg2_patch *P, const tables *t, const rg2_grid_out *o, size_t k0, size_t k1,
-                       size_t per)
+static void grid_range(const rg2_patch *P, const rg2_xpatch *xp, const tables *t, const rg2_grid_out *o,
+                       size_t k0, size_t k1, size_t per)
 {
     for (size_t k = k0; k < k1; k++) {
+        if (xp && xp[k].du > 0) /* a higher-degree patch: rg2__grid_xpatches fills its points */
+            continue;
 #if RG2_AVX512
         if (k + 1 < k1) /* the next patch's 8 cache lines while this one computes */
             for (int q = 0; q < 8; q++)
@@ -752,7 +754,7 @@ rg2_status rg2_patch_grid(const rg2_patch *P, int n, int m, const rg2_grid_out *
     if (st)
         return st;
     t.stream = stream_output((size_t)n * (size_t)m, t.order);
-    grid_range(P, &t, out, 0, 1, 0);
+    grid_range(P, NULL, &t, out, 0, 1, 0);
     tables_free(&t);
     rg2__ok(err);
     return RG2_OK;
@@ -795,12 +797,12 @@ rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads, con
             nchunk = cnt;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
         for (long long c = 0; c < nchunk; c++)
-            grid_range(s->patch, &t, out, (size_t)(c * cnt / nchunk), (size_t)((c + 1) * cnt / nchunk), per);
+            grid_range(s->patch, s->xp, &t, out, (size_t)(c * cnt / nchunk), (size_t)((c + 1) * cnt / nchunk), per);
     }
 #endif
     if (nt <= 1)
-        grid_range(s->patch, &t, out, 0, (size_t)cnt, per);
-    if (s->xp) /* higher-degree patches: the general evaluator (xpatch.c) overwrites their points */
+        grid_range(s->patch, s->xp, &t, out, 0, (size_t)cnt, per);
+    if (s->xp) /* higher-degree patches (skipped above): the general evaluator (xpatch.c) */
         rg2__grid_xpatches(s, n, m, out);
     tables_free(&t);
     rg2__ok(err);

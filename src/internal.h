@@ -75,6 +75,12 @@ static inline int rg2__finite(double x) { return isfinite(x); }
  * H[d][k] (d = value, d/du, d/dv, d2/du2, d2/dudv, d2/dv2) up to `order` (eval.c). */
 void rg2__eval_from_h(double H[6][4], int order, rg2_eval *e);
 
+/* Homogeneous values (value, d/du, d/dv, d2/du2, d2/dudv, d2/dv2) up to `order` of a rational
+ * Bezier patch of degree (du, dv) with control point (r, s) coordinate k at h[r rs + s ss + k]
+ * (eval.c; both patch kinds). */
+void rg2__eval_hom(const double *h, int du, int dv, size_t rs, size_t ss, double u, double v, int order,
+                   double out[6][4]);
+
 /* Bernstein basis of degree n <= RG2_MAX_DEGREE and its first two derivatives at t (D, DD
  * nullable), in the summation order of rg2__bern3 for n = 3 (xpatch.c). */
 void rg2__bern(int n, double t, double *B, double *D, double *DD);

@@ -38,40 +38,9 @@ void rg2__bern(int n, double t, double *B, double *D, double *DD)
         }
 }
 
-/* Homogeneous values up to `order` (rows 0; 0-2; 0-5), v-sums first as in eval.c. */
 static void xeval_h(const rg2_xpatch *X, double u, double v, int order, double out[6][4])
 {
-    double Bu[RG2_MAX_DEGREE + 1], Du[RG2_MAX_DEGREE + 1], DDu[RG2_MAX_DEGREE + 1];
-    double Bv[RG2_MAX_DEGREE + 1], Dv[RG2_MAX_DEGREE + 1], DDv[RG2_MAX_DEGREE + 1];
-    rg2__bern(X->du, u, Bu, Du, DDu);
-    rg2__bern(X->dv, v, Bv, Dv, DDv);
-    int rows = order < 1 ? 1 : order < 2 ? 3 : 6;
-    memset(out, 0, sizeof(double[4]) * (size_t)rows);
-    for (int r = 0; r <= X->du; r++) {
-        double c0[4] = {0}, c1[4] = {0}, c2[4] = {0};
-        for (int s = 0; s <= X->dv; s++)
-            for (int k = 0; k < 4; k++) {
-                double h = X->h[r][s][k];
-                c0[k] += h * Bv[s];
-                c1[k] += h * Dv[s];
-                c2[k] += h * DDv[s];
-            }
-        for (int k = 0; k < 4; k++)
-            out[0][k] += Bu[r] * c0[k];
-        if (rows < 3)
-            continue;
-        for (int k = 0; k < 4; k++) {
-            out[1][k] += Du[r] * c0[k];
-            out[2][k] += Bu[r] * c1[k];
-        }
-        if (rows < 6)
-            continue;
-        for (int k = 0; k < 4; k++) {
-            out[3][k] += DDu[r] * c0[k];
-            out[4][k] += Du[r] * c1[k];
-            out[5][k] += Bu[r] * c2[k];
-        }
-    }
+    rg2__eval_hom(&X->h[0][0][0], X->du, X->dv, (RG2_MAX_DEGREE + 1) * 4, 4, u, v, order, out);
 }
 
 void rg2_xpatch_eval_h(const rg2_xpatch *X, double u, double v, double out[6][4])
