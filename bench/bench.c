@@ -787,7 +787,7 @@ static cJSON *threads_and_sizes(const rg2_surface *torus)
             rg2_error err;
             for (int rep = 0; rep < reps; rep++) { /* interleaved */
                 /* single calls, 1 and 2 threads alternating (a batch of 2-thread calls would
-                 * let an idle OpenMP worker spin on the core the caller needs) */
+                 * let an idle pool worker spin on the core the caller needs) */
                 for (int th = 1; th <= 2; th++) {
                     double t0 = now();
                     if (rg2_surface_grid(torus, n, n, th, &o, &err))
@@ -797,7 +797,7 @@ static cJSON *threads_and_sizes(const rg2_surface *torus)
                     best[th - 1] = rep == 0 ? t : fmin(best[th - 1], t);
                 }
             }
-            /* the ceiling in its own loop: between the grid calls it would let the OpenMP worker
+            /* the ceiling in its own loop: between the grid calls it would let the pool's worker
              * fall asleep, and every 2-thread call would then pay a wake-up (milliseconds when
              * the machine is loaded); alternated with 1-thread grid calls for the same load */
             for (int rep = 0; rep < reps; rep++) {

@@ -724,6 +724,20 @@ static void grid_range(const rg2_patch *P, const rg2_xpatch *xp, const tables *t
 #endif
 }
 
+/* rg2_surface_grid's work for the pool: run c of nrun is patches [c np / nrun, (c+1) np / nrun). */
+typedef struct {
+    const rg2_surface *s;
+    const tables *t;
+    const rg2_grid_out *o;
+    size_t np, per, nrun;
+} grid_job;
+
+static void grid_job_run(void *arg, uint32_t c)
+{
+    const grid_job *j = arg;
+    grid_range(j->s->patch, j->s->xp, j->t, j->o, c * j->np / j->nrun, (c + 1) * j->np / j->nrun, j->per);
+}
+
 /* Whether an output of pts points at this order goes out with streaming stores. */
 static int stream_output(size_t pts, int order)
 {
@@ -779,29 +793,37 @@ rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads, con
     if (st)
         return st;
     t.stream = stream_output(np * per, t.order);
-    long long cnt = (long long)np;
-    int nt = 1;
+    int nt = threads;
+    if (nt == 0) {
 #ifdef RG2_HAVE_OPENMP
-    nt = threads > 0 ? threads : omp_get_max_threads();
-    if (nt > cnt)
-        nt = (int)cnt;
-    if (nt > 1) {
-        /* contiguous runs of patches, 4 per thread, handed out dynamically (a busy core takes
-         * fewer); one run per call of grid_range, so prefetching and the closing store fence
-         * are per run, not per patch */
-#ifndef RG2_RUNS_PER_THREAD
-#define RG2_RUNS_PER_THREAD 4
+        nt = omp_get_max_threads(); /* OMP_NUM_THREADS, else the cores */
+#else
+        nt = 1;
 #endif
-        long long nchunk = (long long)RG2_RUNS_PER_THREAD * nt;
-        if (nchunk > cnt)
-            nchunk = cnt;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
-        for (long long c = 0; c < nchunk; c++)
-            grid_range(s->patch, s->xp, &t, out, (size_t)(c * cnt / nchunk), (size_t)((c + 1) * cnt / nchunk), per);
     }
+    if (nt > 64) /* the pool's size */
+        nt = 64;
+    if ((size_t)nt > np)
+        nt = (int)np;
+    /* contiguous runs of patches, RG2_RUNS_PER_THREAD per thread, claimed one at a time by the
+     * caller and the pool's workers (a busy core takes fewer, a worker without a core none);
+     * prefetching and the closing store fence are per run, not per patch */
+#ifndef RG2_RUNS_PER_THREAD
+#define RG2_RUNS_PER_THREAD 8
 #endif
-    if (nt <= 1)
-        grid_range(s->patch, s->xp, &t, out, 0, (size_t)cnt, per);
+#ifndef RG2_RUN_POINTS
+#define RG2_RUN_POINTS 16384
+#endif
+    size_t nrun = 1;
+    if (nt > 1) { /* at least RG2_RUNS_PER_THREAD per thread, runs of about RG2_RUN_POINTS points */
+        nrun = np * per / RG2_RUN_POINTS;
+        if (nrun < (size_t)RG2_RUNS_PER_THREAD * (size_t)nt)
+            nrun = (size_t)RG2_RUNS_PER_THREAD * (size_t)nt;
+        if (nrun > np)
+            nrun = np;
+    }
+    grid_job job = {s, &t, out, np, per, nrun};
+    rg2__pool_run(nt, (uint32_t)nrun, grid_job_run, &job);
     if (s->xp) /* higher-degree patches (skipped above): the general evaluator (xpatch.c) */
         rg2__grid_xpatches(s, n, m, out);
     tables_free(&t);

@@ -44,6 +44,13 @@ void rg2__ok(rg2_error *err);
 /* Overflow-checked allocation of n * size bytes (zeroed); NULL on failure or overflow. */
 void *rg2__calloc(size_t n, size_t size);
 
+/* Run fn(arg, c) for the chunks c = 0..n-1 on up to nthreads threads (src/pool.c): the caller
+ * and persistent workers claim chunks from one counter; the call returns when every chunk is
+ * done and never waits for a worker that has not claimed one. Chunks must be independent. */
+#include <stdint.h>
+typedef void (*rg2__pool_fn)(void *arg, uint32_t chunk);
+void rg2__pool_run(int nthreads, uint32_t n, rg2__pool_fn fn, void *arg);
+
 /* The curve construction of MATH.md eq. 3-4 as a linear stencil: Bezier coefficient r
  * (0..3) of output segment k is sum_a c[k][r][a] * p^{first[k] + a}, a = 0..3 (indices
  * mod n for closed directions). w[k] is the segment's middle weight. */
