@@ -26,21 +26,7 @@ void rg2__eval_hom(const double *h, int du, int dv, size_t rs, size_t ss, double
                 c1[k] += x * Dv[s];
                 c2[k] += x * DDv[s];
             }
-        for (int k = 0; k < 4; k++)
-            out[0][k] += Bu[r] * c0[k];
-        if (rows < 3)
-            continue;
-        for (int k = 0; k < 4; k++) {
-            out[1][k] += Du[r] * c0[k];
-            out[2][k] += Bu[r] * c1[k];
-        }
-        if (rows < 6)
-            continue;
-        for (int k = 0; k < 4; k++) {
-            out[3][k] += DDu[r] * c0[k];
-            out[4][k] += Du[r] * c1[k];
-            out[5][k] += Bu[r] * c2[k];
-        }
+        rg2__hom_row(out, rows, Bu[r], Du[r], DDu[r], c0, c1, c2);
     }
 }
 

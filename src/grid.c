@@ -705,12 +705,14 @@ RG2_HOT static void grid_patch(const rg2_patch *P, const tables *t, const rg2_gr
 }
 
 /* Patches k0 <= k < k1 of the array P, patch k at point index k * per of the outputs. */
-static void grid_range(const rg2_patch *P, const rg2_xpatch *xp, const tables *t, const rg2_grid_out *o,
-                       size_t k0, size_t k1, size_t per)
+static void grid_range(const rg2_patch *P, const rg2_xpatch *xp, const rg2__xgrid *xt, const tables *t,
+                       const rg2_grid_out *o, size_t k0, size_t k1, size_t per)
 {
     for (size_t k = k0; k < k1; k++) {
-        if (xp && xp[k].du > 0) /* a higher-degree patch: rg2__grid_xpatches fills its points */
+        if (xp && xp[k].du > 0) { /* a higher-degree patch (xpatch.c) */
+            rg2__xgrid_patch(&xp[k], xt, o, k * per);
             continue;
+        }
 #if RG2_AVX512
         if (k + 1 < k1) /* the next patch's 8 cache lines while this one computes */
             for (int q = 0; q < 8; q++)
@@ -727,6 +729,7 @@ static void grid_range(const rg2_patch *P, const rg2_xpatch *xp, const tables *t
 /* rg2_surface_grid's work for the pool: run c of nrun is patches [c np / nrun, (c+1) np / nrun). */
 typedef struct {
     const rg2_surface *s;
+    const rg2__xgrid *xt;
     const tables *t;
     const rg2_grid_out *o;
     size_t np, per, nrun;
@@ -735,7 +738,7 @@ typedef struct {
 static void grid_job_run(void *arg, uint32_t c)
 {
     const grid_job *j = arg;
-    grid_range(j->s->patch, j->s->xp, j->t, j->o, c * j->np / j->nrun, (c + 1) * j->np / j->nrun, j->per);
+    grid_range(j->s->patch, j->s->xp, j->xt, j->t, j->o, c * j->np / j->nrun, (c + 1) * j->np / j->nrun, j->per);
 }
 
 /* Whether an output of pts points at this order goes out with streaming stores. */
@@ -768,7 +771,7 @@ rg2_status rg2_patch_grid(const rg2_patch *P, int n, int m, const rg2_grid_out *
     if (st)
         return st;
     t.stream = stream_output((size_t)n * (size_t)m, t.order);
-    grid_range(P, NULL, &t, out, 0, 1, 0);
+    grid_range(P, NULL, NULL, &t, out, 0, 1, 0);
     tables_free(&t);
     rg2__ok(err);
     return RG2_OK;
@@ -793,6 +796,11 @@ rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads, con
     if (st)
         return st;
     t.stream = stream_output(np * per, t.order);
+    rg2__xgrid xt = {0};
+    if (s->xp && (st = rg2__xgrid_make(s, n, m, out, &xt, err))) {
+        tables_free(&t);
+        return st;
+    }
     int nt = threads;
     if (nt == 0) {
 #ifdef RG2_HAVE_OPENMP
@@ -822,10 +830,9 @@ rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads, con
         if (nrun > np)
             nrun = np;
     }
-    grid_job job = {s, &t, out, np, per, nrun};
+    grid_job job = {s, &xt, &t, out, np, per, nrun};
     rg2__pool_run(nt, (uint32_t)nrun, grid_job_run, &job);
-    if (s->xp) /* higher-degree patches (skipped above): the general evaluator (xpatch.c) */
-        rg2__grid_xpatches(s, n, m, out);
+    rg2__xgrid_free(&xt);
     tables_free(&t);
     rg2__ok(err);
     return RG2_OK;

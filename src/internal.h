@@ -82,6 +82,29 @@ static inline int rg2__finite(double x) { return isfinite(x); }
  * H[d][k] (d = value, d/du, d/dv, d2/du2, d2/dudv, d2/dv2) up to `order` (eval.c). */
 void rg2__eval_from_h(double H[6][4], int order, rg2_eval *e);
 
+/* Row r's share of the homogeneous values in rg2__eval_hom's order: H[0] += B c0, then (rows >= 3)
+ * H[1] += D c0, H[2] += B c1, then (rows == 6) H[3] += DD c0, H[4] += D c1, H[5] += B c2, where
+ * B, D, DD are row r's Bernstein value and derivatives and c0, c1, c2 its column sums. */
+static inline void rg2__hom_row(double H[6][4], int rows, double B, double D, double DD, const double c0[4],
+                                const double c1[4], const double c2[4])
+{
+    for (int k = 0; k < 4; k++)
+        H[0][k] += B * c0[k];
+    if (rows < 3)
+        return;
+    for (int k = 0; k < 4; k++) {
+        H[1][k] += D * c0[k];
+        H[2][k] += B * c1[k];
+    }
+    if (rows < 6)
+        return;
+    for (int k = 0; k < 4; k++) {
+        H[3][k] += DD * c0[k];
+        H[4][k] += D * c1[k];
+        H[5][k] += B * c2[k];
+    }
+}
+
 /* Homogeneous values (value, d/du, d/dv, d2/du2, d2/dudv, d2/dv2) up to `order` of a rational
  * Bezier patch of degree (du, dv) with control point (r, s) coordinate k at h[r rs + s ss + k]
  * (eval.c; both patch kinds). */
@@ -92,9 +115,19 @@ void rg2__eval_hom(const double *h, int du, int dv, size_t rs, size_t ss, double
  * nullable), in the summation order of rg2__bern3 for n = 3 (xpatch.c). */
 void rg2__bern(int n, double t, double *B, double *D, double *DD);
 
-/* The points of the higher-degree patches of s (s->xp) on the n x m grid, in the layout of
- * rg2_surface_grid, by rg2_xpatch_eval (xpatch.c; grid.c calls it after the bi-3 patches). */
-void rg2__grid_xpatches(const rg2_surface *s, int n, int m, const rg2_grid_out *out);
+/* The grid evaluator for higher-degree patches (xpatch.c; rg2_surface_grid calls it for the
+ * patches with xp[k].du > 0): Bernstein tables of the degrees present at the n x m grid
+ * parameters (make: RG2_ENOMEM), then all points of one patch written at point index `first` of
+ * out, each equal to rg2_xpatch_eval's bit for bit. */
+typedef struct {
+    int n, m, order;
+    double *tab[2][RG2_MAX_DEGREE + 1]; /* [u or v][degree d]: per parameter B, D, DD (3 (d + 1)) */
+    double *mem;
+} rg2__xgrid;
+rg2_status rg2__xgrid_make(const rg2_surface *s, int n, int m, const rg2_grid_out *out, rg2__xgrid *t,
+                           rg2_error *err);
+void rg2__xgrid_free(rg2__xgrid *t);
+void rg2__xgrid_patch(const rg2_xpatch *x, const rg2__xgrid *t, const rg2_grid_out *out, size_t first);
 
 /* Bernstein cubic basis and derivatives at t. */
 static inline void rg2__bern3(double t, double B[4], double D[4], double DD[4])

@@ -3,6 +3,7 @@
  * the surface accessors that serve both patch kinds. */
 #include "internal.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 void rg2__bern(int n, double t, double *B, double *D, double *DD)
@@ -158,34 +159,111 @@ static void put3(double *a, size_t i, const double v[3])
         memcpy(a + 3 * i, v, sizeof(double[3]));
 }
 
-void rg2__grid_xpatches(const rg2_surface *s, int n, int m, const rg2_grid_out *out)
+/* ---- grid of higher-degree patches --------------------------------------------------------
+ * Separable as the bi-3 grid evaluator (grid.c): Bernstein values at the grid parameters once per
+ * call and degree, column sums once per column, then per point the row sums and the derived
+ * quantities. The sums run in the order of rg2__eval_hom, so every value equals rg2_xpatch_eval's
+ * bit for bit. */
+
+#define XBLK 32 /* columns per block of column sums */
+
+rg2_status rg2__xgrid_make(const rg2_surface *s, int n, int m, const rg2_grid_out *out, rg2__xgrid *t,
+                           rg2_error *err)
 {
-    int order = out->du || out->dv || out->normal ? 1 : 0;
+    memset(t, 0, sizeof *t);
+    t->n = n;
+    t->m = m;
+    t->order = out->du || out->dv || out->normal ? 1 : 0;
     if (out->duu || out->duv || out->dvv || out->K || out->H)
-        order = 2;
-    size_t per = (size_t)n * (size_t)m;
-    for (int i = 0; i < s->nu; i++)
-        for (int j = 0; j < s->nv; j++) {
-            const rg2_xpatch *x = rg2_surface_xpatch(s, i, j);
-            if (!x)
+        t->order = 2;
+    int need[2][RG2_MAX_DEGREE + 1] = {{0}};
+    size_t np = (size_t)s->nu * (size_t)s->nv, total = 0, cnt[2] = {(size_t)n, (size_t)m};
+    for (size_t k = 0; k < np; k++)
+        if (s->xp[k].du > 0)
+            need[0][s->xp[k].du] = need[1][s->xp[k].dv] = 1;
+    for (int dir = 0; dir < 2; dir++)
+        for (int d = 1; d <= RG2_MAX_DEGREE; d++)
+            if (need[dir][d])
+                total += cnt[dir] * 3 * (size_t)(d + 1);
+    t->mem = rg2__calloc(total ? total : 1, sizeof(double));
+    if (!t->mem)
+        return rg2__fail(err, RG2_ENOMEM, "grid: out of memory for the Bernstein tables of %d x %d points", n, m);
+    double *q = t->mem;
+    for (int dir = 0; dir < 2; dir++)
+        for (int d = 1; d <= RG2_MAX_DEGREE; d++) {
+            if (!need[dir][d])
                 continue;
-            size_t base = ((size_t)i * (size_t)s->nv + (size_t)j) * per;
-            for (int a = 0; a < n; a++)
-                for (int b = 0; b < m; b++) {
-                    rg2_eval e;
-                    rg2_xpatch_eval(x, (double)a / (n - 1), (double)b / (m - 1), order, &e);
-                    size_t q = base + (size_t)a * (size_t)m + (size_t)b;
-                    put3(out->pos, q, e.p);
-                    put3(out->normal, q, e.n);
-                    put3(out->du, q, e.su);
-                    put3(out->dv, q, e.sv);
-                    put3(out->duu, q, e.suu);
-                    put3(out->duv, q, e.suv);
-                    put3(out->dvv, q, e.svv);
-                    if (out->K)
-                        out->K[q] = e.K;
-                    if (out->H)
-                        out->H[q] = e.H;
-                }
+            t->tab[dir][d] = q;
+            for (size_t a = 0; a < cnt[dir]; a++, q += 3 * (d + 1)) /* B, D, DD of parameter a */
+                rg2__bern(d, (double)a / (double)(cnt[dir] - 1), q, q + d + 1, q + 2 * (d + 1));
         }
+    return RG2_OK;
+}
+
+void rg2__xgrid_free(rg2__xgrid *t)
+{
+    free(t->mem);
+    memset(t, 0, sizeof *t);
+}
+
+void rg2__xgrid_patch(const rg2_xpatch *x, const rg2__xgrid *t, const rg2_grid_out *out, size_t first)
+{
+    const int du = x->du, dv = x->dv, rows = t->order < 1 ? 1 : t->order < 2 ? 3 : 6;
+    const size_t su = 3 * (size_t)(du + 1), sv = 3 * (size_t)(dv + 1);
+    double c[XBLK][3][RG2_MAX_DEGREE + 1][4]; /* column sums: value, d/dv, d2/dv2 per row r */
+    for (int b0 = 0; b0 < t->m; b0 += XBLK) {
+        int cnt = t->m - b0 < XBLK ? t->m - b0 : XBLK;
+        for (int bb = 0; bb < cnt; bb++) {
+            const double *Bv = t->tab[1][dv] + (size_t)(b0 + bb) * sv, *Dv = Bv + dv + 1, *DDv = Dv + dv + 1;
+            for (int r = 0; r <= du; r++) {
+                double *c0 = c[bb][0][r], *c1 = c[bb][1][r], *c2 = c[bb][2][r];
+                for (int k = 0; k < 4; k++)
+                    c0[k] = c1[k] = c2[k] = 0.0;
+                for (int s = 0; s <= dv; s++)
+                    for (int k = 0; k < 4; k++) {
+                        double h = x->h[r][s][k];
+                        c0[k] += h * Bv[s];
+                        if (rows > 1)
+                            c1[k] += h * Dv[s];
+                        if (rows > 3)
+                            c2[k] += h * DDv[s];
+                    }
+            }
+        }
+        for (int a = 0; a < t->n; a++) {
+            const double *Bu = t->tab[0][du] + (size_t)a * su, *Du = Bu + du + 1, *DDu = Du + du + 1;
+            if (rows == 1) { /* positions only: rg2__eval_from_h's expressions for order 0 */
+                double *pos = out->pos + 3 * (first + (size_t)a * (size_t)t->m + (size_t)b0);
+                for (int bb = 0; bb < cnt; bb++) {
+                    double h[4] = {0};
+                    for (int r = 0; r <= du; r++)
+                        for (int k = 0; k < 4; k++)
+                            h[k] += Bu[r] * c[bb][0][r][k];
+                    double iw = 1.0 / h[3];
+                    for (int k = 0; k < 3; k++)
+                        pos[3 * bb + k] = h[k] * iw;
+                }
+                continue;
+            }
+            for (int bb = 0; bb < cnt; bb++) {
+                double H[6][4] = {{0}};
+                for (int r = 0; r <= du; r++)
+                    rg2__hom_row(H, rows, Bu[r], Du[r], DDu[r], c[bb][0][r], c[bb][1][r], c[bb][2][r]);
+                rg2_eval e;
+                rg2__eval_from_h(H, t->order, &e);
+                size_t q = first + (size_t)a * (size_t)t->m + (size_t)(b0 + bb);
+                put3(out->pos, q, e.p);
+                put3(out->normal, q, e.n);
+                put3(out->du, q, e.su);
+                put3(out->dv, q, e.sv);
+                put3(out->duu, q, e.suu);
+                put3(out->duv, q, e.suv);
+                put3(out->dvv, q, e.svv);
+                if (out->K)
+                    out->K[q] = e.K;
+                if (out->H)
+                    out->H[q] = e.H;
+            }
+        }
+    }
 }

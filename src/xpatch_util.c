@@ -86,11 +86,16 @@ rg2_status rg2__surface_patch_grid(const rg2_surface *s, int i, int j, int n, in
         return rg2__fail(err, n > RG2_GRID_MAX || m > RG2_GRID_MAX ? RG2_ELIMIT : RG2_EINVAL,
                          "grid: patch (%d, %d) of degree (%d, %d): %d x %d points, or no position array", i, j,
                          x->du, x->dv, n, m);
-    /* a one-patch view of the higher-degree patch for the surface-wide general evaluator */
+    /* a one-patch view of the higher-degree patch for the tables */
     rg2_surface one = {0};
     one.nu = one.nv = 1;
     one.xp = (rg2_xpatch *)x;
-    rg2__grid_xpatches(&one, n, m, out);
+    rg2__xgrid t;
+    rg2_status st = rg2__xgrid_make(&one, n, m, out, &t, err);
+    if (st)
+        return st;
+    rg2__xgrid_patch(x, &t, out, 0);
+    rg2__xgrid_free(&t);
     rg2__ok(err);
     return RG2_OK;
 }

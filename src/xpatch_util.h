@@ -25,7 +25,7 @@ unsigned rg2__surface_collapsed_sides(const rg2_surface *s, int i, int j, double
 
 /* Patch (i, j) of s on an n x m grid in the layout of rg2_patch_grid (point (a, b) at
  * u = a / (n - 1), v = b / (m - 1), index a * m + b): rg2_patch_grid for a bi-3 patch, the
- * general evaluator (rg2__grid_xpatches) for a higher-degree one. Errors as rg2_patch_grid. */
+ * higher-degree grid (rg2__xgrid_patch) for a higher-degree one. Errors as rg2_patch_grid. */
 rg2_status rg2__surface_patch_grid(const rg2_surface *s, int i, int j, int n, int m, const rg2_grid_out *out,
                                    rg2_error *err);
 

@@ -278,6 +278,7 @@ static void surface_grids(void)
     CHECK_OK(rg2_surface_grid(&x, N, M, 1, &go, &err), &err);
     evdiff d = {0};
     double dp_patch = 0;
+    int xbits = 0; /* higher-degree patch samples not bitwise equal to rg2_surface_eval */
     for (int i = 0; i < x.nu; i++)
         for (int j = 0; j < x.nv; j++) {
             double pg[3 * N * M], ng[3 * N * M];
@@ -298,6 +299,14 @@ static void surface_grids(void)
                     memcpy(gq.svv, go.dvv + 3 * q, sizeof gq.svv);
                     gq.K = go.K[q];
                     gq.H = go.H[q];
+                    /* the separable grid of higher-degree patches sums in rg2__eval_hom's order */
+                    if (rg2_surface_xpatch(&x, i, j) &&
+                        (memcmp(gq.p, e.p, sizeof e.p) || memcmp(gq.n, e.n, sizeof e.n) ||
+                         memcmp(gq.su, e.su, sizeof e.su) || memcmp(gq.sv, e.sv, sizeof e.sv) ||
+                         memcmp(gq.suu, e.suu, sizeof e.suu) || memcmp(gq.suv, e.suv, sizeof e.suv) ||
+                         memcmp(gq.svv, e.svv, sizeof e.svv) || memcmp(&gq.K, &e.K, sizeof e.K) ||
+                         memcmp(&gq.H, &e.H, sizeof e.H)))
+                        xbits++;
                     gq.k1 = e.k1;
                     gq.k2 = e.k2;
                     ev_compare(&e, &gq, 14.0, &d);
@@ -311,6 +320,22 @@ static void surface_grids(void)
           "surface grid = rg2_surface_eval: p %.3g d1 %.3g d2 %.3g n %.3g K %.3g H %.3g", d.p, d.d1, d.d2, d.n, d.K,
           d.H);
     CHECK(dp_patch <= 1e-14, "per-patch grid = rg2_surface_eval: %.3g", dp_patch);
+    CHECK(xbits == 0, "%d samples of higher-degree patches differ from rg2_xpatch_eval in some bit", xbits);
+    /* threads split the higher-degree patches too: the same bits */
+    double *buf2 = calloc(tot, 23 * sizeof(double));
+    rg2_grid_out g2 = {.pos = buf2, .normal = buf2 + 3 * tot, .du = buf2 + 6 * tot, .dv = buf2 + 9 * tot,
+                       .duu = buf2 + 12 * tot, .duv = buf2 + 15 * tot, .dvv = buf2 + 18 * tot,
+                       .K = buf2 + 21 * tot, .H = buf2 + 22 * tot};
+    CHECK_OK(rg2_surface_grid(&x, N, M, 3, &g2, &err), &err);
+    CHECK(!memcmp(buf, buf2, tot * 23 * sizeof(double)), "mixed-degree surface grid: 1 and 3 threads differ");
+    /* positions alone (their own loop) and with normals only: the same bits */
+    rg2_grid_out g0 = {.pos = buf2}, g1 = {.pos = buf2 + 3 * tot, .normal = buf2 + 6 * tot};
+    CHECK_OK(rg2_surface_grid(&x, N, M, 2, &g0, &err), &err);
+    CHECK_OK(rg2_surface_grid(&x, N, M, 1, &g1, &err), &err);
+    CHECK(!memcmp(buf2, buf, tot * 3 * sizeof(double)) && !memcmp(buf2 + 3 * tot, buf, tot * 3 * sizeof(double)) &&
+              !memcmp(buf2 + 6 * tot, go.normal, tot * 3 * sizeof(double)),
+          "mixed-degree surface grid: positions / normals depend on the other outputs requested");
+    free(buf2);
     double p1[3 * 4];
     rg2_grid_out bad = {.pos = p1};
     CHECK(rg2__surface_patch_grid(&x, 0, 0, 1, 4, &bad, &err) == RG2_EINVAL && strstr(err.msg, "degree (4, 3)"),
