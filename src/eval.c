@@ -7,13 +7,19 @@
 /* Homogeneous values up to `order` (rows 0; 0-2; 0-5 of out) of a rational Bezier patch of
  * degree (du, dv) whose control point (r, s) coordinate k is h[r * rs + s * ss + k]; v-sums
  * first. Serves both patch kinds (xpatch.c). */
-void rg2__eval_hom(const double *h, int du, int dv, size_t rs, size_t ss, double u, double v, int order,
-                   double out[6][4])
+static inline __attribute__((always_inline)) void eval_hom(const double *h, int du, int dv, size_t rs, size_t ss,
+                                                           double u, double v, int order, double out[6][4])
 {
     double Bu[RG2_MAX_DEGREE + 1], Du[RG2_MAX_DEGREE + 1], DDu[RG2_MAX_DEGREE + 1];
     double Bv[RG2_MAX_DEGREE + 1], Dv[RG2_MAX_DEGREE + 1], DDv[RG2_MAX_DEGREE + 1];
-    rg2__bern(du, u, Bu, Du, DDu);
-    rg2__bern(dv, v, Bv, Dv, DDv);
+    if (du == 3) /* (the bi-3 call below has constant degrees: inlined, the loops unrolled) */
+        rg2__bern3(u, Bu, Du, DDu);
+    else
+        rg2__bern(du, u, Bu, Du, DDu);
+    if (dv == 3)
+        rg2__bern3(v, Bv, Dv, DDv);
+    else
+        rg2__bern(dv, v, Bv, Dv, DDv);
     int rows = order < 1 ? 1 : order < 2 ? 3 : 6;
     memset(out, 0, sizeof(double[4]) * (size_t)rows);
     for (int r = 0; r <= du; r++) {
@@ -30,9 +36,16 @@ void rg2__eval_hom(const double *h, int du, int dv, size_t rs, size_t ss, double
     }
 }
 
+void rg2__eval_hom(const double *h, int du, int dv, size_t rs, size_t ss, double u, double v, int order,
+                   double out[6][4])
+{
+    eval_hom(h, du, dv, rs, ss, u, v, order, out);
+}
+
+/* The same code with the bi-3 degrees and strides as constants. */
 static void eval_h(const rg2_patch *P, double u, double v, int order, double out[6][4])
 {
-    rg2__eval_hom(&P->h[0][0][0], 3, 3, 16, 4, u, v, order, out);
+    eval_hom(&P->h[0][0][0], 3, 3, 16, 4, u, v, order, out);
 }
 
 void rg2_patch_eval_h(const rg2_patch *P, double u, double v, double out[6][4])
