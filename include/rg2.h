@@ -692,7 +692,11 @@ typedef struct {
 RG2_API rg2_status rg2_patch_grid(const rg2_patch *P, int n, int m, const rg2_grid_out *out,
                                   rg2_error *err);
 /** Evaluate every patch of s on an n x m grid (arrays of s->nu * s->nv * n * m points).
- *  threads: 0 = OpenMP default, 1 = serial, t > 1 = t threads (results identical for any t).
+ *  threads: 0 = the OpenMP default (OMP_NUM_THREADS, else the cores), 1 = serial, t > 1 = up to
+ *  t threads (at most 64): the caller and a persistent pool of worker threads share the patches,
+ *  and the call never waits for a worker that has not started (a busy core costs no more than
+ *  running alone). Results are identical for any t; safe to call from several threads at once.
+ *  Patches of higher degree (s->xp) are evaluated too, equal to rg2_xpatch_eval bit for bit.
  *  @return as rg2_patch_grid; RG2_EINVAL for an empty surface or threads < 0; RG2_ELIMIT when
  *  the total number of values does not fit in memory sizes. */
 RG2_API rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads,

@@ -13,7 +13,9 @@
  * square roots, permutes for the x, y, z interleave, plain stores with prefetchw for outputs in
  * the caches and streaming stores past RG2_STREAM_BYTES (see docs/performance.md). The quotient rule and the
  * curvature formulas are those of rg2_patch_eval (eval.c), which stays the independent
- * reference; tests/test_grid.c holds the two to 1e-14.
+ * reference; tests/test_grid.c holds the two to 1e-14. Patches of higher degree (s->xp) take
+ * the separable scalar grid of xpatch.c. Threads: the pool of pool.c (runs of patches claimed
+ * by the caller and the workers; the caller never waits for a worker that has not started).
  */
 #include "internal.h"
 

@@ -10,7 +10,7 @@
  *      on the pixel's centre ray (two residuals orthogonal to the ray); shading, H, K and the
  *      stripe phase are evaluated there with rg2_surface_eval (order 2). The sampling for
  *      the view and the z-buffer uses the grid evaluator (rg2_patch_grid). Patches of higher
- *      degree (s->xp) go through the same steps with the general evaluator.
+ *      degree (s->xp) go through the same steps (their grid: rg2__xgrid_patch, xpatch.c).
  *   4. Colour: per-pixel, then overlays (boundaries, silhouettes, mesh, colour bar).
  *   Threads: the grid sampling and the per-pixel work are split by patch / by row, the
  *   rasteriser by bands of rows; no result depends on the thread count.

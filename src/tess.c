@@ -80,8 +80,8 @@ static void degenerate_point(const rg2_surface *s, int i, int j, double u, doubl
  * Per-patch sampling of patch (i, j) of s (bi-3 or of higher degree): (d + 1)^2 points at
  * u = a / d, v = b / d, stored at a * (d + 1) + b. `collapsed` has bit k set when side k
  * (0 v=0, 1 u=1, 2 v=1, 3 u=0) is collapsed. This is the only place that evaluates the
- * surface: the grid evaluator (rg2_patch_grid, grid.c; the general evaluator for a higher-
- * degree patch) for every point, then the points on collapsed sides again by rg2_surface_eval
+ * surface: the grid evaluator (rg2_patch_grid, grid.c; the separable higher-degree grid of
+ * xpatch.c for a higher-degree patch) for every point, then the points on collapsed sides again by rg2_surface_eval
  * and degenerate_point. `scratch` holds 8 (d + 1)^2 doubles. Returns non-zero on failure.
  */
 static int sample_patch(const rg2_surface *s, int i, int j, int d, int curvature, unsigned collapsed,
