@@ -225,41 +225,6 @@ static int json_numbers(const cJSON *a, const char *what, double *out, int max, 
     return n;
 }
 
-/* Same limit as design files (README, Limits and errors). */
-#define NURBS_MAX_BYTES (64u << 20)
-
-static char *read_text(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    size_t cap = 1 << 16, len = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        size_t got = fread(buf + len, 1, cap - len - 1, f);
-        len += got;
-        if (len < cap - 1)
-            break;
-        char *nb = cap >= NURBS_MAX_BYTES ? NULL : realloc(buf, cap * 2);
-        if (!nb) {
-            free(buf);
-            buf = NULL;
-            break;
-        }
-        buf = nb;
-        cap *= 2;
-    }
-    int bad = ferror(f);
-    fclose(f);
-    if (buf && bad) {
-        free(buf);
-        buf = NULL;
-    }
-    if (buf)
-        buf[len] = '\0';
-    return buf;
-}
-
 /* Parse the NURBS JSON text into arrays owned by the caller (free(*store)). */
 static int parse_nurbs(const char *text, const char *name, rg2_nurbs *nb, double **store)
 {
@@ -633,10 +598,10 @@ int rg2_cmd_shape(int argc, char **argv)
             fprintf(stderr, "rg2 shape: nurbs needs exactly one of --file F.json or --spec JSON\n");
             return RG2_EXIT_USAGE;
         }
-        char *text = file ? read_text(file) : NULL;
-        if (file && !text) {
-            fprintf(stderr, "rg2 shape: nurbs: cannot read '%s' (missing, unreadable, or larger than %u bytes)\n",
-                    file, NURBS_MAX_BYTES);
+        char *text = NULL;
+        rg2_error rerr;
+        if (file && rg2_read_text(file, &text, NULL, &rerr)) {
+            fprintf(stderr, "rg2 shape: nurbs: cannot read %s\n", rerr.msg);
             return RG2_EXIT_FAIL;
         }
         rg2_nurbs nb;

@@ -507,6 +507,13 @@ RG2_API rg2_status rg2_nurbs_mesh(const rg2_nurbs *nb, rg2_mesh *out, rg2_error 
  * accessors return. */
 typedef struct rg2_design rg2_design;
 
+/** Largest text file rg2 reads (design files, NURBS files): 64 MiB. */
+#define RG2_TEXT_MAX_BYTES (64u << 20)
+/** Read a whole text file into a NUL-terminated buffer (*out, release with free; *len its
+ *  length, len may be NULL). RG2_EIO when it cannot be opened or read, RG2_ELIMIT past
+ *  RG2_TEXT_MAX_BYTES, RG2_ENOMEM; the message names the file. */
+RG2_API rg2_status rg2_read_text(const char *path, char **out, size_t *len, rg2_error *err);
+
 /** Read and build a design file. On failure *out is NULL and err names the offending item
  *  (file, line and column for syntax errors, JSON path for semantic ones). */
 RG2_API rg2_status rg2_design_load(const char *path, rg2_design **out, rg2_error *err);

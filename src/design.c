@@ -296,45 +296,15 @@ rg2_status rg2_design_parse(const char *json, size_t len, const char *name, rg2_
     return RG2_OK;
 }
 
-#define RG2_DESIGN_MAX_BYTES (64u << 20)
-
 rg2_status rg2_design_load(const char *path, rg2_design **out, rg2_error *err)
 {
     *out = NULL;
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return rg2__fail(err, RG2_EIO, "%s: cannot open: %s", path, strerror(errno));
-    size_t cap = 1 << 16, len = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        size_t r = fread(buf + len, 1, cap - len - 1, f);
-        len += r;
-        if (len < cap - 1)
-            break;
-        if (cap >= RG2_DESIGN_MAX_BYTES) {
-            free(buf);
-            fclose(f);
-            return rg2__fail(err, RG2_ELIMIT, "%s: larger than %u bytes", path, RG2_DESIGN_MAX_BYTES);
-        }
-        char *nb = realloc(buf, cap * 2);
-        if (!nb) {
-            free(buf);
-            buf = NULL;
-            break;
-        }
-        buf = nb;
-        cap *= 2;
-    }
-    int bad = ferror(f);
-    fclose(f);
-    if (!buf)
-        return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", path);
-    if (bad) {
-        free(buf);
-        return rg2__fail(err, RG2_EIO, "%s: read error", path);
-    }
-    buf[len] = 0;
-    rg2_status st = rg2_design_parse(buf, len, path, out, err);
+    char *buf;
+    size_t len;
+    rg2_status st = rg2_read_text(path, &buf, &len, err);
+    if (st)
+        return st;
+    st = rg2_design_parse(buf, len, path, out, err);
     free(buf);
     return st;
 }

@@ -1,0 +1,52 @@
+/* textfile.c -- reading a whole text file (design files, NURBS files of the command line) with
+ * a size limit and messages that name the file. */
+#include "internal.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+rg2_status rg2_read_text(const char *path, char **out, size_t *len, rg2_error *err)
+{
+    *out = NULL;
+    if (len)
+        *len = 0;
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return rg2__fail(err, RG2_EIO, "%s: cannot open: %s", path, strerror(errno));
+    size_t cap = 1 << 16, n = 0;
+    char *buf = malloc(cap);
+    while (buf) {
+        n += fread(buf + n, 1, cap - n - 1, f);
+        if (n < cap - 1)
+            break;
+        if (cap >= RG2_TEXT_MAX_BYTES) {
+            free(buf);
+            fclose(f);
+            return rg2__fail(err, RG2_ELIMIT, "%s: larger than %u bytes", path, RG2_TEXT_MAX_BYTES);
+        }
+        char *nb = realloc(buf, cap * 2);
+        if (!nb) {
+            free(buf);
+            buf = NULL;
+            break;
+        }
+        buf = nb;
+        cap *= 2;
+    }
+    int bad = ferror(f);
+    fclose(f);
+    if (!buf)
+        return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", path);
+    if (bad) {
+        free(buf);
+        return rg2__fail(err, RG2_EIO, "%s: read error", path);
+    }
+    buf[n] = 0;
+    *out = buf;
+    if (len)
+        *len = n;
+    rg2__ok(err);
+    return RG2_OK;
+}
