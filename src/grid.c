@@ -61,6 +61,8 @@
 #define BLK 64 /* points per block in the full kernel (structure-of-arrays temporaries) */
 
 /* Bernstein tables of one call: u as rows of 4, v as 4 columns of m values. */
+int rg2__grid_portable = 0;
+
 typedef struct {
     int n, m, order;
     int avx512; /* use the AVX-512 kernels (this CPU has them) */
@@ -88,7 +90,7 @@ static rg2_status tables_make(tables *t, int n, int m, int order, rg2_error *err
     t->m = m;
     t->order = order;
 #if RG2_AVX512
-    t->avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+    t->avx512 = !rg2__grid_portable && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
 #endif
     double *q = t->mem;
     t->bu = q, q += (size_t)n * 4;
@@ -148,6 +150,25 @@ static inline void seg_pos(const double *restrict U, double c[4][4][BLK], int cn
     }
 }
 
+/* Unit normal n of su x sv, 0 where |su x sv|^2 <= 1e-30 |su|^2 |sv|^2 (branch-free); returns 1
+ * where defined, else 0, with E = su . su and G = sv . sv. Shared by both portable kernels, so
+ * positions and normals do not depend on which outputs were requested (bitwise). */
+static inline double normal1(const double su[3], const double sv[3], double n[3], double *E, double *G)
+{
+    double cx = su[1] * sv[2] - su[2] * sv[1];
+    double cy = su[2] * sv[0] - su[0] * sv[2];
+    double cz = su[0] * sv[1] - su[1] * sv[0];
+    double l2 = cx * cx + cy * cy + cz * cz;
+    *E = su[0] * su[0] + su[1] * su[1] + su[2] * su[2];
+    *G = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2];
+    double ok = (double)(l2 > 1e-30 * (*E * *G));
+    double il = ok / sqrt(l2 + (1.0 - ok));
+    n[0] = cx * il;
+    n[1] = cy * il;
+    n[2] = cz * il;
+    return ok;
+}
+
 /* Positions and unit normals of one row segment. */
 static inline void seg_pos_normal(const double *restrict U, const double *restrict DU, double c0[4][4][BLK],
                                   double c1[4][4][BLK], int cnt, double *restrict pos, double *restrict nrm)
@@ -168,22 +189,14 @@ static inline void seg_pos_normal(const double *restrict U, const double *restri
             su[k] = (hu[k] - hu[3] * p[k]) * iw;
             sv[k] = (hv[k] - hv[3] * p[k]) * iw;
         }
-        /* the expressions of full_soa, so positions and normals do not depend on which
-         * outputs were requested (bitwise) */
-        double cx = su[1] * sv[2] - su[2] * sv[1];
-        double cy = su[2] * sv[0] - su[0] * sv[2];
-        double cz = su[0] * sv[1] - su[1] * sv[0];
-        double l2 = cx * cx + cy * cy + cz * cz;
-        double E = su[0] * su[0] + su[1] * su[1] + su[2] * su[2];
-        double G = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2];
-        double ok = (double)(l2 > 1e-30 * (E * G)); /* branch-free: 0 where undefined */
-        double il = ok / sqrt(l2 + (1.0 - ok));
+        double n[3], E, G;
+        normal1(su, sv, n, &E, &G);
         pos[3 * i] = p[0];
         pos[3 * i + 1] = p[1];
         pos[3 * i + 2] = p[2];
-        nrm[3 * i] = cx * il;
-        nrm[3 * i + 1] = cy * il;
-        nrm[3 * i + 2] = cz * il;
+        nrm[3 * i] = n[0];
+        nrm[3 * i + 1] = n[1];
+        nrm[3 * i + 2] = n[2];
     }
 }
 
@@ -239,18 +252,12 @@ RG2_HOT static void full_soa(const double *restrict U, const double *restrict DU
             Suv[k] = (huv[k] - hu[3] * Sv[k] - hv[3] * Su[k] - huv[3] * P[k]) * iw;
             Svv[k] = (hvv[k] - 2.0 * hv[3] * Sv[k] - hvv[3] * P[k]) * iw;
         }
-        double c0x = Su[1] * Sv[2] - Su[2] * Sv[1];
-        double c1x = Su[2] * Sv[0] - Su[0] * Sv[2];
-        double c2x = Su[0] * Sv[1] - Su[1] * Sv[0];
-        double l2 = c0x * c0x + c1x * c1x + c2x * c2x;
-        double E = Su[0] * Su[0] + Su[1] * Su[1] + Su[2] * Su[2];
+        /* where the normal is undefined (ok = 0): n = 0, L = M = N = 0 and K = H = 0 over a
+         * denominator >= 1 */
+        double nv[3], E, G;
+        double ok = normal1(Su, Sv, nv, &E, &G);
         double F = Su[0] * Sv[0] + Su[1] * Sv[1] + Su[2] * Sv[2];
-        double G = Sv[0] * Sv[0] + Sv[1] * Sv[1] + Sv[2] * Sv[2];
-        /* branch-free: ok is 1 where the normal is defined, else 0 (then n = 0,
-         * L = M = N = 0 and K = H = 0 over a denominator >= 1) */
-        double ok = (double)(l2 > 1e-30 * (E * G));
-        double il = ok / sqrt(l2 + (1.0 - ok));
-        double n0 = c0x * il, n1 = c1x * il, n2 = c2x * il;
+        double n0 = nv[0], n1 = nv[1], n2 = nv[2];
         double L = Suu[0] * n0 + Suu[1] * n1 + Suu[2] * n2;
         double M = Suv[0] * n0 + Suv[1] * n1 + Suv[2] * n2;
         double N = Svv[0] * n0 + Svv[1] * n1 + Svv[2] * n2;

@@ -115,6 +115,10 @@ void rg2__eval_hom(const double *h, int du, int dv, size_t rs, size_t ss, double
  * nullable), in the summation order of rg2__bern3 for n = 3 (xpatch.c). */
 void rg2__bern(int n, double t, double *B, double *D, double *DD);
 
+/* Test hook (grid.c): non-zero makes the grid evaluator use its portable kernels even on CPUs
+ * with AVX-512, so tests cover both. */
+extern int rg2__grid_portable;
+
 /* The grid evaluator for higher-degree patches (xpatch.c; rg2_surface_grid calls it for the
  * patches with xp[k].du > 0): Bernstein tables of the degrees present at the n x m grid
  * parameters (make: RG2_ENOMEM), then all points of one patch written at point index `first` of

@@ -1,6 +1,7 @@
 /* test_grid.c -- the grid evaluator against the independent per-point evaluator
  * (rg2_patch_eval) on random rational patches and the exact torus; thread-count
  * independence (bitwise); argument errors. */
+#include "../src/internal.h"
 #include "harness.h"
 
 #include <math.h>
@@ -324,10 +325,15 @@ static void errors(void)
 
 int main(void)
 {
-    random_patches();
-    collapsed_edge();
-    torus();
-    large_output();
+    /* both kernel families: the AVX-512 ones (where the CPU has them), then the portable ones */
+    for (int portable = 0; portable < 2; portable++) {
+        rg2__grid_portable = portable;
+        printf("-- %s kernels\n", portable ? "portable" : "default (AVX-512 where available)");
+        random_patches();
+        collapsed_edge();
+        torus();
+        large_output();
+    }
     errors();
     return rg2t_done("test_grid");
 }
