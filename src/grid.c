@@ -376,6 +376,10 @@ enum { ST_PLAIN, ST_STREAM, ST_STAGED };
 #define RG2_PREFETCHW_AHEAD 384
 #endif
 
+#ifndef RG2_PATCH_AHEAD
+#define RG2_PATCH_AHEAD 1
+#endif
+
 /* 8 interleaved points (24 doubles) at dst: q < 8 stores only 3 q doubles (masked). */
 RG2_AVX512_FN static inline void put8(double *dst, const __m512d o[3], int q, int st)
 {
@@ -409,22 +413,27 @@ RG2_AVX512_FN static void stream_copy(double *dst, const double *src, int n)
         dst[h] = src[h];
 }
 
+/* sum_s h[r][s][k] V[s] for 8 columns: the products rounded before the sums (no FMA), as
+ * rg2_patch_eval rounds them. */
+RG2_AVX512_FN static inline __m512d colsum8(const rg2_patch *P, const __m512d V[4], int r, int k)
+{
+    __m512d acc = _mm512_mul_pd(_mm512_set1_pd(P->h[r][0][k]), V[0]);
+    acc = _mm512_add_pd(acc, _mm512_mul_pd(_mm512_set1_pd(P->h[r][1][k]), V[1]));
+    acc = _mm512_add_pd(acc, _mm512_mul_pd(_mm512_set1_pd(P->h[r][2][k]), V[2]));
+    return _mm512_add_pd(acc, _mm512_mul_pd(_mm512_set1_pd(P->h[r][3][k]), V[3]));
+}
+
 /* Column sums of one block, as vsum (zeros past cnt come from the zero-padded tables). */
 RG2_AVX512_FN static void vsum_avx512(const rg2_patch *P, double *const bv[4], int b0, int cnt,
                                       double c[4][4][BLK])
 {
-    const double *v0 = bv[0] + b0, *v1 = bv[1] + b0, *v2 = bv[2] + b0, *v3 = bv[3] + b0;
     for (int i = 0; i < cnt; i += 8) {
-        __m512d V0 = _mm512_loadu_pd(v0 + i), V1 = _mm512_loadu_pd(v1 + i), V2 = _mm512_loadu_pd(v2 + i),
-                V3 = _mm512_loadu_pd(v3 + i);
+        __m512d V[4];
+        for (int s = 0; s < 4; s++)
+            V[s] = _mm512_loadu_pd(bv[s] + b0 + i);
         for (int r = 0; r < 4; r++)
-            for (int k = 0; k < 4; k++) {
-                /* products rounded before the sums (no FMA), as rg2_patch_eval rounds them */
-                __m512d acc = _mm512_mul_pd(_mm512_set1_pd(P->h[r][0][k]), V0);
-                acc = _mm512_add_pd(acc, _mm512_mul_pd(_mm512_set1_pd(P->h[r][1][k]), V1));
-                acc = _mm512_add_pd(acc, _mm512_mul_pd(_mm512_set1_pd(P->h[r][2][k]), V2));
-                _mm512_store_pd(&c[r][k][i], _mm512_add_pd(acc, _mm512_mul_pd(_mm512_set1_pd(P->h[r][3][k]), V3)));
-            }
+            for (int k = 0; k < 4; k++)
+                _mm512_store_pd(&c[r][k][i], colsum8(P, V, r, k));
     }
 }
 
@@ -476,6 +485,82 @@ RG2_AVX512_FN static inline void seg_pos_cx_avx512(const double *U, double c[4][
             o[j] = _mm512_mul_pd(acc, iw3[j]);
         }
         put8(dst + 3 * i, o, cnt - i < 8 ? cnt - i : 8, st);
+    }
+}
+
+/* The 16 column sums of a patch at most 8 points wide, kept in registers. */
+RG2_AVX512_FN static inline void vsum_narrow(const rg2_patch *P, double *const bv[4], __m512d c[4][4])
+{
+    __m512d V[4];
+    for (int s = 0; s < 4; s++)
+        V[s] = _mm512_loadu_pd(bv[s]); /* zero-padded to 8 */
+    for (int r = 0; r < 4; r++)
+        for (int k = 0; k < 4; k++)
+            c[r][k] = colsum8(P, V, r, k);
+}
+
+/* sum_r U[r] c[r][k] */
+RG2_AVX512_FN static inline __m512d usum_narrow(const __m512d U[4], __m512d c[4][4], int k)
+{
+    __m512d acc = _mm512_mul_pd(U[0], c[0][k]);
+    acc = _mm512_fmadd_pd(U[1], c[1][k], acc);
+    acc = _mm512_fmadd_pd(U[2], c[2][k], acc);
+    return _mm512_fmadd_pd(U[3], c[3][k], acc);
+}
+
+/* Store mode of a patch at most 8 points wide written at dst: streaming needs whole aligned
+ * vectors, so rows of exactly 8 points from a 64-byte aligned start. */
+static inline int narrow_mode(const tables *t, const double *dst)
+{
+    return t->stream && t->m == 8 && !((uintptr_t)dst & 63) ? ST_STREAM : ST_PLAIN;
+}
+
+/* Positions of a patch at most 8 points wide (m <= 8, every row one vector), written at pos: the
+ * 16 column sums stay in registers and the rows need no block bookkeeping (small per-patch grids
+ * of large meshes). The operations of vsum_avx512 and seg_pos_avx512, so the same bits. */
+RG2_AVX512_FN static void patch_pos_narrow_avx512(const rg2_patch *P, const tables *t, double *pos)
+{
+    const int n = t->n, m = t->m, st = narrow_mode(t, pos);
+    __m512d c[4][4];
+    vsum_narrow(P, t->bv, c);
+    for (int a = 0; a < n; a++) {
+        const double *U = t->bu + 4 * a;
+        __m512d u[4] = {_mm512_set1_pd(U[0]), _mm512_set1_pd(U[1]), _mm512_set1_pd(U[2]), _mm512_set1_pd(U[3])};
+        __m512d iw = recip8(usum_narrow(u, c, 3)), o[3];
+        xyz8(_mm512_mul_pd(usum_narrow(u, c, 0), iw), _mm512_mul_pd(usum_narrow(u, c, 1), iw),
+             _mm512_mul_pd(usum_narrow(u, c, 2), iw), o);
+        put8(pos + 3 * m * a, o, m, st);
+    }
+}
+
+/* Positions and unit normals of a patch at most 8 points wide (as patch_pos_narrow_avx512), with
+ * the expressions of seg_pos_normal_avx512 (the same bits). */
+RG2_AVX512_FN static void patch_normal_narrow_avx512(const rg2_patch *P, const tables *t, double *pos,
+                                                     double *nrm)
+{
+    const int n = t->n, m = t->m;
+    const int st = narrow_mode(t, pos) == ST_STREAM && !((uintptr_t)nrm & 63) ? ST_STREAM : ST_PLAIN;
+    __m512d c0[4][4], c1[4][4];
+    vsum_narrow(P, t->bv, c0);
+    vsum_narrow(P, t->dv, c1);
+    for (int a = 0; a < n; a++) {
+        const double *U = t->bu + 4 * a, *DU = t->du + 4 * a;
+        __m512d u[4] = {_mm512_set1_pd(U[0]), _mm512_set1_pd(U[1]), _mm512_set1_pd(U[2]), _mm512_set1_pd(U[3])};
+        __m512d du[4] = {_mm512_set1_pd(DU[0]), _mm512_set1_pd(DU[1]), _mm512_set1_pd(DU[2]), _mm512_set1_pd(DU[3])};
+        __m512d w = usum_narrow(u, c0, 3), iw = recip8(w);
+        __m512d hu3 = usum_narrow(du, c0, 3), hv3 = usum_narrow(u, c1, 3);
+        __m512d p[3], da[3], db[3], nv[3], o[3];
+        for (int k = 0; k < 3; k++) {
+            __m512d h = usum_narrow(u, c0, k);
+            p[k] = _mm512_mul_pd(h, iw);
+            da[k] = _mm512_fmsub_pd(w, usum_narrow(du, c0, k), _mm512_mul_pd(hu3, h));
+            db[k] = _mm512_fmsub_pd(w, usum_narrow(u, c1, k), _mm512_mul_pd(hv3, h));
+        }
+        normal8(da, db, nv);
+        xyz8(p[0], p[1], p[2], o);
+        put8(pos + 3 * m * a, o, m, st);
+        xyz8(nv[0], nv[1], nv[2], o);
+        put8(nrm + 3 * m * a, o, m, st);
     }
 }
 
@@ -629,6 +714,13 @@ RG2_AVX512_FN static void grid_patch_avx512(const rg2_patch *P, const tables *t,
     _Alignas(64) double nbuf[3 * BLK];
     _Alignas(64) double cx[4][3 * BLK];
     soa_full S[1];
+    if (t->m <= 8 && t->order <= 1) { /* narrow patches: whole rows in registers */
+        if (t->order == 0)
+            patch_pos_narrow_avx512(P, t, o->pos + 3 * first);
+        else
+            patch_normal_narrow_avx512(P, t, o->pos + 3 * first, o->normal + 3 * first);
+        return;
+    }
     for (int b0 = 0; b0 < t->m; b0 += BLK) {
         int cnt = t->m - b0 < BLK ? t->m - b0 : BLK;
         vsum_avx512(P, t->bv, b0, cnt, c0);
@@ -723,9 +815,9 @@ static void grid_range(const rg2_patch *P, const rg2_xpatch *xp, const rg2__xgri
             continue;
         }
 #if RG2_AVX512
-        if (k + 1 < k1) /* the next patch's 8 cache lines while this one computes */
+        if (k + RG2_PATCH_AHEAD < k1) /* a later patch's 8 cache lines while this one computes */
             for (int q = 0; q < 8; q++)
-                _mm_prefetch((const char *)(P + k + 1) + 64 * q, _MM_HINT_T0);
+                _mm_prefetch((const char *)(P + k + RG2_PATCH_AHEAD) + 64 * q, _MM_HINT_T0);
 #endif
         grid_patch(P + k, t, o, k * per);
     }

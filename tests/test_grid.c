@@ -290,6 +290,58 @@ static void large_output(void)
     }
 }
 
+/* Patches at most 8 points wide take kernels of their own on AVX-512 (whole rows in registers):
+ * against rg2_patch_eval, the same bits as the wide kernels give with every output requested, 1 vs
+ * 2 threads; with 64-byte aligned arrays of 8 x 8 patches past the streaming thresholds (17.6 MB of
+ * positions, 35 MB with normals: streaming stores straight into the rows), misaligned arrays of the
+ * same (plain stores) and rows shorter than a vector (masked stores). */
+static void narrow_patches(void)
+{
+    enum { NP = 11500 };
+    rg2t_rng r;
+    rg2t_seed(&r, 23);
+    rg2_patch *P = malloc(NP * sizeof *P);
+    for (int k = 0; k < NP; k++)
+        random_patch(&r, &P[k]);
+    const struct {
+        int n, m, np, misalign;
+    } cfg[] = {{8, 8, NP, 0}, {8, 8, NP, 1}, {9, 5, 700, 1}, {3, 7, 700, 0}, {6, 2, 700, 0}};
+    for (size_t c = 0; c < sizeof cfg / sizeof cfg[0]; c++) {
+        int n = cfg[c].n, m = cfg[c].m, np = cfg[c].np;
+        rg2_surface s;
+        memset(&s, 0, sizeof s);
+        s.nu = np / 100, s.nv = 100, s.patch = P;
+        size_t pts = (size_t)s.nu * s.nv * n * m, vec = 3 * pts + 8;
+        double *mem = aligned_alloc(64, ((5 * vec + pts + 8 + 7) & ~(size_t)7) * sizeof(double));
+        double *pos = mem + cfg[c].misalign, *nrm = pos + vec, *pos2 = nrm + vec, *nrm2 = pos2 + vec;
+        double *pos3 = nrm2 + vec, *K = pos3 + vec;
+        rg2_error err;
+        /* every output the wide kernels give (K asks for the second order) */
+        rg2_grid_out full = {.pos = pos, .normal = nrm, .K = K};
+        CHECK_OK(rg2_surface_grid(&s, n, m, 1, &full, &err), &err);
+        rg2_grid_out o0 = {.pos = pos3}, o1 = {.pos = pos2, .normal = nrm2};
+        for (int th = 1; th <= 2; th++) {
+            CHECK_OK(rg2_surface_grid(&s, n, m, th, &o0, &err), &err);
+            CHECK_OK(rg2_surface_grid(&s, n, m, th, &o1, &err), &err);
+            CHECK(memcmp(pos3, pos, 3 * pts * sizeof(double)) == 0 &&
+                      memcmp(pos2, pos, 3 * pts * sizeof(double)) == 0 &&
+                      memcmp(nrm2, nrm, 3 * pts * sizeof(double)) == 0,
+                  "narrow %d x %d, %d patches, %d thread(s): positions and normals bitwise as with every output",
+                  n, m, np, th);
+        }
+        diffs d = {0};
+        for (int k = 0; k < s.nu * s.nv; k += 37)
+            compare_patch(&P[k], n, m, &o1, (size_t)k * n * m, 3.0, &d);
+        CHECK(d.pos <= 1e-14 && d.normal <= 1e-14, "narrow %d x %d vs rg2_patch_eval: position %.3g normal %.3g",
+              n, m, d.pos, d.normal);
+        printf("  narrow %d x %d per patch, %d patches (%.1f MB of positions%s): vs rg2_patch_eval position "
+               "%.2e, normal %.2e\n",
+               n, m, np, 24e-6 * (double)pts, cfg[c].misalign ? ", misaligned" : "", d.pos, d.normal);
+        free(mem);
+    }
+    free(P);
+}
+
 static void errors(void)
 {
     rg2_patch P;
@@ -333,6 +385,7 @@ int main(void)
         collapsed_edge();
         torus();
         large_output();
+        narrow_patches();
     }
     errors();
     return rg2t_done("test_grid");
