@@ -437,15 +437,80 @@ RG2_AVX512_FN static void vsum_avx512(const rg2_patch *P, double *const bv[4], i
     }
 }
 
+/* The 16 column sums of a patch at most 8 points wide, kept in registers. */
+RG2_AVX512_FN static inline void vsum_narrow(const rg2_patch *P, double *const bv[4], __m512d c[4][4])
+{
+    __m512d V[4];
+    for (int s = 0; s < 4; s++)
+        V[s] = _mm512_loadu_pd(bv[s]); /* zero-padded to 8 */
+    for (int r = 0; r < 4; r++)
+        for (int k = 0; k < 4; k++)
+            c[r][k] = colsum8(P, V, r, k);
+}
+
+/* sum_r U[r] c[r][k] (8 columns' sums as vectors) */
+RG2_AVX512_FN static inline __m512d usumv(const __m512d U[4], __m512d c[4][4], int k)
+{
+    __m512d acc = _mm512_mul_pd(U[0], c[0][k]);
+    acc = _mm512_fmadd_pd(U[1], c[1][k], acc);
+    acc = _mm512_fmadd_pd(U[2], c[2][k], acc);
+    return _mm512_fmadd_pd(U[3], c[3][k], acc);
+}
+
+/* The 4 Bernstein values of a row broadcast to vectors. */
+RG2_AVX512_FN static inline void bcast4(const double *U, __m512d u[4])
+{
+    for (int r = 0; r < 4; r++)
+        u[r] = _mm512_set1_pd(U[r]);
+}
+
+/* Columns i..i+7 of a block's column sums as vectors. */
+RG2_AVX512_FN static inline void csum_at(double c[4][4][BLK], int i, __m512d v[4][4])
+{
+    for (int r = 0; r < 4; r++)
+        for (int k = 0; k < 4; k++)
+            v[r][k] = _mm512_load_pd(&c[r][k][i]);
+}
+
+/* Positions of 8 points of a row (u: its Bernstein values) from their column sums c, interleaved
+ * x, y, z in o[0..2]. */
+RG2_AVX512_FN static inline void pos8(const __m512d u[4], __m512d c[4][4], __m512d o[3])
+{
+    __m512d iw = recip8(usumv(u, c, 3));
+    xyz8(_mm512_mul_pd(usumv(u, c, 0), iw), _mm512_mul_pd(usumv(u, c, 1), iw), _mm512_mul_pd(usumv(u, c, 2), iw),
+         o);
+}
+
+/* Positions and unit normals of 8 points of a row (u, du: its Bernstein values and derivatives)
+ * from their column sums c0 and v-derivative column sums c1, interleaved in po and no; the
+ * expressions of full_soa_avx512 (bitwise the same positions and normals). */
+RG2_AVX512_FN static inline void pos_normal8(const __m512d u[4], const __m512d du[4], __m512d c0[4][4],
+                                             __m512d c1[4][4], __m512d po[3], __m512d no[3])
+{
+    __m512d w = usumv(u, c0, 3), iw = recip8(w);
+    __m512d hu3 = usumv(du, c0, 3), hv3 = usumv(u, c1, 3);
+    __m512d p[3], a[3], b[3], n[3];
+    for (int k = 0; k < 3; k++) {
+        __m512d h = usumv(u, c0, k);
+        p[k] = _mm512_mul_pd(h, iw);
+        a[k] = _mm512_fmsub_pd(w, usumv(du, c0, k), _mm512_mul_pd(hu3, h));
+        b[k] = _mm512_fmsub_pd(w, usumv(u, c1, k), _mm512_mul_pd(hv3, h));
+    }
+    normal8(a, b, n);
+    xyz8(p[0], p[1], p[2], po);
+    xyz8(n[0], n[1], n[2], no);
+}
+
 /* Positions of one row segment of cnt points at dst (short rows: see seg_pos_cx_avx512). */
 RG2_AVX512_FN static inline void seg_pos_avx512(const double *U, double c[4][4][BLK], int cnt, double *dst,
                                                 int st)
 {
-    __m512d u[4] = {_mm512_set1_pd(U[0]), _mm512_set1_pd(U[1]), _mm512_set1_pd(U[2]), _mm512_set1_pd(U[3])};
+    __m512d u[4];
+    bcast4(U, u);
     for (int i = 0; i < cnt; i += 8) { /* the last vector may be partial: padded, masked store */
-        __m512d iw = recip8(usum8(u, c, 3, i)), o[3];
-        xyz8(_mm512_mul_pd(usum8(u, c, 0, i), iw), _mm512_mul_pd(usum8(u, c, 1, i), iw),
-             _mm512_mul_pd(usum8(u, c, 2, i), iw), o);
+        __m512d cv[4][4], o[3];
+        csum_at(c, i, cv);
+        pos8(u, cv, o);
         put8(dst + 3 * i, o, cnt - i < 8 ? cnt - i : 8, st);
     }
 }
@@ -471,7 +536,8 @@ RG2_AVX512_FN static inline void seg_pos_cx_avx512(const double *U, double c[4][
 {
     const __m512i s0 = _mm512_set_epi64(2, 2, 1, 1, 1, 0, 0, 0), s1 = _mm512_set_epi64(5, 4, 4, 4, 3, 3, 3, 2);
     const __m512i s2 = _mm512_set_epi64(7, 7, 7, 6, 6, 6, 5, 5);
-    __m512d u[4] = {_mm512_set1_pd(U[0]), _mm512_set1_pd(U[1]), _mm512_set1_pd(U[2]), _mm512_set1_pd(U[3])};
+    __m512d u[4];
+    bcast4(U, u);
     for (int i = 0; i < cnt; i += 8) { /* the last vector may be partial: padded, masked store */
         __m512d iw = recip8(usum8(u, c, 3, i)), o[3];
         __m512d iw3[3] = {_mm512_permutexvar_pd(s0, iw), _mm512_permutexvar_pd(s1, iw),
@@ -488,26 +554,6 @@ RG2_AVX512_FN static inline void seg_pos_cx_avx512(const double *U, double c[4][
     }
 }
 
-/* The 16 column sums of a patch at most 8 points wide, kept in registers. */
-RG2_AVX512_FN static inline void vsum_narrow(const rg2_patch *P, double *const bv[4], __m512d c[4][4])
-{
-    __m512d V[4];
-    for (int s = 0; s < 4; s++)
-        V[s] = _mm512_loadu_pd(bv[s]); /* zero-padded to 8 */
-    for (int r = 0; r < 4; r++)
-        for (int k = 0; k < 4; k++)
-            c[r][k] = colsum8(P, V, r, k);
-}
-
-/* sum_r U[r] c[r][k] */
-RG2_AVX512_FN static inline __m512d usum_narrow(const __m512d U[4], __m512d c[4][4], int k)
-{
-    __m512d acc = _mm512_mul_pd(U[0], c[0][k]);
-    acc = _mm512_fmadd_pd(U[1], c[1][k], acc);
-    acc = _mm512_fmadd_pd(U[2], c[2][k], acc);
-    return _mm512_fmadd_pd(U[3], c[3][k], acc);
-}
-
 /* Store mode of a patch at most 8 points wide written at dst: streaming needs whole aligned
  * vectors, so rows of exactly 8 points from a 64-byte aligned start. */
 static inline int narrow_mode(const tables *t, const double *dst)
@@ -517,7 +563,7 @@ static inline int narrow_mode(const tables *t, const double *dst)
 
 /* Positions of a patch at most 8 points wide (m <= 8, every row one vector), written at pos: the
  * 16 column sums stay in registers and the rows need no block bookkeeping (small per-patch grids
- * of large meshes). The operations of vsum_avx512 and seg_pos_avx512, so the same bits. */
+ * of large meshes). The column sums of vsum_avx512 and pos8 as in seg_pos_avx512: the same bits. */
 RG2_AVX512_FN static void patch_pos_narrow_avx512(const rg2_patch *P, const tables *t, double *pos)
 {
     const int n = t->n, m = t->m, st = narrow_mode(t, pos);
@@ -525,16 +571,15 @@ RG2_AVX512_FN static void patch_pos_narrow_avx512(const rg2_patch *P, const tabl
     vsum_narrow(P, t->bv, c);
     for (int a = 0; a < n; a++) {
         const double *U = t->bu + 4 * a;
-        __m512d u[4] = {_mm512_set1_pd(U[0]), _mm512_set1_pd(U[1]), _mm512_set1_pd(U[2]), _mm512_set1_pd(U[3])};
-        __m512d iw = recip8(usum_narrow(u, c, 3)), o[3];
-        xyz8(_mm512_mul_pd(usum_narrow(u, c, 0), iw), _mm512_mul_pd(usum_narrow(u, c, 1), iw),
-             _mm512_mul_pd(usum_narrow(u, c, 2), iw), o);
+        __m512d u[4], o[3];
+        bcast4(U, u);
+        pos8(u, c, o);
         put8(pos + 3 * m * a, o, m, st);
     }
 }
 
-/* Positions and unit normals of a patch at most 8 points wide (as patch_pos_narrow_avx512), with
- * the expressions of seg_pos_normal_avx512 (the same bits). */
+/* Positions and unit normals of a patch at most 8 points wide (as patch_pos_narrow_avx512), by
+ * pos_normal8 as in seg_pos_normal_avx512 (the same bits). */
 RG2_AVX512_FN static void patch_normal_narrow_avx512(const rg2_patch *P, const tables *t, double *pos,
                                                      double *nrm)
 {
@@ -545,22 +590,12 @@ RG2_AVX512_FN static void patch_normal_narrow_avx512(const rg2_patch *P, const t
     vsum_narrow(P, t->dv, c1);
     for (int a = 0; a < n; a++) {
         const double *U = t->bu + 4 * a, *DU = t->du + 4 * a;
-        __m512d u[4] = {_mm512_set1_pd(U[0]), _mm512_set1_pd(U[1]), _mm512_set1_pd(U[2]), _mm512_set1_pd(U[3])};
-        __m512d du[4] = {_mm512_set1_pd(DU[0]), _mm512_set1_pd(DU[1]), _mm512_set1_pd(DU[2]), _mm512_set1_pd(DU[3])};
-        __m512d w = usum_narrow(u, c0, 3), iw = recip8(w);
-        __m512d hu3 = usum_narrow(du, c0, 3), hv3 = usum_narrow(u, c1, 3);
-        __m512d p[3], da[3], db[3], nv[3], o[3];
-        for (int k = 0; k < 3; k++) {
-            __m512d h = usum_narrow(u, c0, k);
-            p[k] = _mm512_mul_pd(h, iw);
-            da[k] = _mm512_fmsub_pd(w, usum_narrow(du, c0, k), _mm512_mul_pd(hu3, h));
-            db[k] = _mm512_fmsub_pd(w, usum_narrow(u, c1, k), _mm512_mul_pd(hv3, h));
-        }
-        normal8(da, db, nv);
-        xyz8(p[0], p[1], p[2], o);
-        put8(pos + 3 * m * a, o, m, st);
-        xyz8(nv[0], nv[1], nv[2], o);
-        put8(nrm + 3 * m * a, o, m, st);
+        __m512d u[4], du[4], po[3], no[3];
+        bcast4(U, u);
+        bcast4(DU, du);
+        pos_normal8(u, du, c0, c1, po, no);
+        put8(pos + 3 * m * a, po, m, st);
+        put8(nrm + 3 * m * a, no, m, st);
     }
 }
 
@@ -569,26 +604,17 @@ RG2_AVX512_FN static inline void seg_pos_normal_avx512(const double *U, const do
                                                        double c1[4][4][BLK], int cnt, double *pd, double *nd,
                                                        int st)
 {
-    __m512d u[4] = {_mm512_set1_pd(U[0]), _mm512_set1_pd(U[1]), _mm512_set1_pd(U[2]), _mm512_set1_pd(U[3])};
-    __m512d du[4] = {_mm512_set1_pd(DU[0]), _mm512_set1_pd(DU[1]), _mm512_set1_pd(DU[2]), _mm512_set1_pd(DU[3])};
+    __m512d u[4], du[4];
+    bcast4(U, u);
+    bcast4(DU, du);
     for (int i = 0; i < cnt; i += 8) {
-        /* the expressions of full_soa_avx512 (bitwise the same positions and normals) */
-        __m512d w = usum8(u, c0, 3, i), iw = recip8(w);
-        __m512d hu3 = usum8(du, c0, 3, i), hv3 = usum8(u, c1, 3, i);
-        __m512d p[3], a[3], b[3];
-        for (int k = 0; k < 3; k++) {
-            __m512d h = usum8(u, c0, k, i);
-            p[k] = _mm512_mul_pd(h, iw);
-            a[k] = _mm512_fmsub_pd(w, usum8(du, c0, k, i), _mm512_mul_pd(hu3, h));
-            b[k] = _mm512_fmsub_pd(w, usum8(u, c1, k, i), _mm512_mul_pd(hv3, h));
-        }
-        __m512d n[3], o[3];
-        normal8(a, b, n);
+        __m512d v0[4][4], v1[4][4], po[3], no[3];
+        csum_at(c0, i, v0);
+        csum_at(c1, i, v1);
+        pos_normal8(u, du, v0, v1, po, no);
         int q = cnt - i < 8 ? cnt - i : 8;
-        xyz8(p[0], p[1], p[2], o);
-        put8(pd + 3 * i, o, q, st);
-        xyz8(n[0], n[1], n[2], o);
-        put8(nd + 3 * i, o, q, st);
+        put8(pd + 3 * i, po, q, st);
+        put8(nd + 3 * i, no, q, st);
     }
 }
 
@@ -599,11 +625,9 @@ RG2_AVX512_FN static void full_soa_avx512(const double *U, const double *DU, con
                                           int cnt, soa_full *S)
 {
     __m512d u[4], du[4], ddu[4];
-    for (int r = 0; r < 4; r++) {
-        u[r] = _mm512_set1_pd(U[r]);
-        du[r] = _mm512_set1_pd(DU[r]);
-        ddu[r] = _mm512_set1_pd(DDU[r]);
-    }
+    bcast4(U, u);
+    bcast4(DU, du);
+    bcast4(DDU, ddu);
     const __m512d one = _mm512_set1_pd(1.0), two = _mm512_set1_pd(2.0), half = _mm512_set1_pd(0.5);
     for (int i = 0; i < cnt; i += 8) {
         __m512d h[4], hu[4], hv[4], huu[4], huv[4], hvv[4];
