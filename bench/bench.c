@@ -7,6 +7,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include "bench.h"
+#include "timing.h"
 #include "harness.h"
 #include "rg2.h"
 
@@ -40,28 +41,7 @@ static int want(const char *part) { return !only || !strcmp(only, part); }
  * counts only the time the method ran (stalls on memory included). On an idle machine both agree. */
 static clockid_t bench_clock = CLOCK_MONOTONIC;
 
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(bench_clock, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(const double *v, int n)
-{
-    double *w = malloc(sizeof(double) * (size_t)n);
-    memcpy(w, v, sizeof(double) * (size_t)n);
-    qsort(w, (size_t)n, sizeof(double), cmp_d);
-    double m = n % 2 ? w[n / 2] : 0.5 * (w[n / 2 - 1] + w[n / 2]);
-    free(w);
-    return m;
-}
+static double now(void) { return bench_seconds(bench_clock); }
 
 static void *xmalloc(size_t bytes)
 {
@@ -716,7 +696,7 @@ static cJSON *run_case(bcase *c)
     printf("   %-42s %-24s %10s %10s  %-9s %-9s %-9s %s\n", "method", "output", "median ms", "M pts/s",
            "pos err", "nrm err", "K,H err", "check");
     for (int k = 0; k < nm; k++) {
-        double med = median(times + k * reps, reps);
+        double med = bench_median(times + k * reps, reps);
         mpts[k] = (double)c->pts / med / 1e6;
         const check *q = &chk[k];
         printf("   %-42s %-24s %10.3f %10.1f  %-9.1e %-9.1e %-9.1e %s\n", methods[k].name,
@@ -798,8 +778,8 @@ static void busy_core_times(const rg2_surface *torus, int n, const rg2_grid_out 
         }
     atomic_store(&spin, 0);
     pthread_join(tid, NULL);
-    *m1 = median(t, reps);
-    *m2 = median(t + reps, reps);
+    *m1 = bench_median(t, reps);
+    *m2 = bench_median(t + reps, reps);
     free(t);
 }
 
@@ -855,8 +835,8 @@ static cJSON *threads_and_sizes(const rg2_surface *torus)
              * has no core, so 2 threads should cost no more than 1 */
             double bt1, bt2;
             busy_core_times(torus, n, &o, reps, &bt1, &bt2);
-            double m1 = pts / median(t1, reps) / 1e6, m2 = pts / median(t2, reps) / 1e6;
-            double mc = pts / median(tc, reps) / 1e6, m3 = pts / median(t3, reps) / 1e6;
+            double m1 = pts / bench_median(t1, reps) / 1e6, m2 = pts / bench_median(t2, reps) / 1e6;
+            double mc = pts / bench_median(tc, reps) / 1e6, m3 = pts / bench_median(t3, reps) / 1e6;
             double b1 = pts / best[0] / 1e6, b2 = pts / best[1] / 1e6; /* fastest single calls */
             double obytes = (double)pts * (level == 0 ? 24 : level == 1 ? 48 : 64);
             printf("   %4d^2    %-24s %12.1f %12.1f %7.2fx %7.2fx %8.2fx %14.1f %9.2f   %.1f MB, %s\n", n,
@@ -925,7 +905,7 @@ static cJSON *construction(void)
     double per_cp[5];
     for (int s = 0; s < ns; s++) {
         double cp = (double)sizes[s] * sizes[s];
-        double m1 = median(t + (s * 2) * reps, reps), m2 = median(t + (s * 2 + 1) * reps, reps);
+        double m1 = bench_median(t + (s * 2) * reps, reps), m2 = bench_median(t + (s * 2 + 1) * reps, reps);
         int np = (sizes[s] - 3) * (sizes[s] - 3);
         printf("   %4d x %-5d %10d %14.3f %14.1f %16.3f %12.1f\n", sizes[s], sizes[s], np, m1 * 1e3, m1 / cp * 1e9,
                m2 * 1e3, m2 / cp * 1e9);

@@ -16,24 +16,13 @@
 #include <string.h>
 #include <time.h>
 
+#include "timing.h"
+
 #if defined(__GNUC__) && defined(__x86_64__)
 #include <immintrin.h>
 #define TR_FN __attribute__((target("avx512f,fma")))
 
 enum { NPATCH = 197 * 197, IN_D = 64, OUT_D = 192 }; /* doubles per patch read and written */
-
-static double cpu_now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
 
 /* One pass of a mode over all patches; returns a value that depends on everything computed. */
 TR_FN static double pass(int mode, int arith, const double *in, double *out, double *l1)
@@ -108,9 +97,9 @@ int main(int argc, char **argv)
     for (int r = 0; r < reps; r++)
         for (int m = 0; m < 4; m++) {
             chk += pass(m, arith, in, out, l1); /* untimed: warm */
-            double t0 = cpu_now();
+            double t0 = bench_seconds(CLOCK_THREAD_CPUTIME_ID);
             chk += pass(m, arith, in, out, l1);
-            t[m * reps + r] = cpu_now() - t0;
+            t[m * reps + r] = bench_seconds(CLOCK_THREAD_CPUTIME_ID) - t0;
         }
     const char *name[4] = {"write (streaming stores)", "read 512 B + write per patch", "read + write + arithmetic",
                            "arithmetic alone (L1)"};
@@ -119,8 +108,7 @@ int main(int argc, char **argv)
            "%d repetitions, --arith %d\n",
            NPATCH, 512e-6 * NPATCH, 1536e-6 * NPATCH, reps, arith);
     for (int m = 0; m < 4; m++) {
-        qsort(t + m * reps, (size_t)reps, sizeof(double), cmp_d);
-        med[m] = t[m * reps + reps / 2];
+        med[m] = bench_median(t + m * reps, reps);
         printf("  %-30s %8.3f ms  %7.1f M points/s  %6.1f ns per patch", name[m], 1e3 * med[m], 1e-6 * pts / med[m],
                1e9 * med[m] / NPATCH);
         if (m < 3)
