@@ -62,10 +62,28 @@
 
 /* Bernstein tables of one call: u as rows of 4, v as 4 columns of m values. */
 int rg2__grid_portable = 0;
+int rg2__grid_hwdiv = -1;
+
+/* Whether the AVX-512 kernels divide and take square roots by the hardware instead of rcp14 /
+ * rsqrt14 and Newton steps: on AMD CPUs, whose divider runs beside the multiply-add pipes the
+ * kernels keep busy (Zen 5, measured: positions of 8 x 8 patches in main memory 1.07x, with
+ * normals 1.03-1.10x, bitwise within 1 ulp of the Newton steps); not on Intel's (Sapphire Rapids:
+ * slower, docs/performance.md). rg2__grid_hwdiv (a test hook) forces 0 or 1. */
+static int grid_hwdiv(void)
+{
+    if (rg2__grid_hwdiv >= 0)
+        return rg2__grid_hwdiv;
+#if RG2_AVX512
+    return __builtin_cpu_is("amd");
+#else
+    return 0;
+#endif
+}
 
 typedef struct {
     int n, m, order;
     int avx512; /* use the AVX-512 kernels (this CPU has them) */
+    int hwdiv;  /* ... with divisions and square roots by the hardware (grid_hwdiv) */
     int stream; /* large output: non-temporal stores (bypass the caches) */
     double *bu, *du, *ddu;             /* n * 4 each */
     double *bv[4], *dv[4], *ddv[4];    /* m each */
@@ -91,6 +109,7 @@ static rg2_status tables_make(tables *t, int n, int m, int order, rg2_error *err
     t->order = order;
 #if RG2_AVX512
     t->avx512 = !rg2__grid_portable && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+    t->hwdiv = t->avx512 && grid_hwdiv();
 #endif
     double *q = t->mem;
     t->bu = q, q += (size_t)n * 4;
@@ -303,19 +322,25 @@ static void full_out(const soa_full *S, int cnt, const rg2_grid_out *o, size_t a
 #if RG2_AVX512
 #define RG2_AVX512_FN __attribute__((target("avx512f,avx512dq,fma,prfchw")))
 
-/* 1 / x to ~1 ulp: rcp14 then two Newton steps (relative error 2^-14 -> 2^-28 -> 2^-56). */
-RG2_AVX512_FN static inline __m512d recip8(__m512d x)
+/* 1 / x: with hw, the division (correctly rounded; on CPUs whose divider is fast, it runs
+ * beside the multiply-add pipes, see grid_hwdiv); else rcp14 then two Newton steps (relative
+ * error 2^-14 -> 2^-28 -> 2^-56, ~1 ulp: 5 multiply-adds). */
+RG2_AVX512_FN static inline __m512d recip8(__m512d x, int hw)
 {
     const __m512d one = _mm512_set1_pd(1.0);
+    if (hw)
+        return _mm512_div_pd(one, x);
     __m512d y = _mm512_rcp14_pd(x);
     y = _mm512_fmadd_pd(y, _mm512_fnmadd_pd(x, y, one), y);
     return _mm512_fmadd_pd(y, _mm512_fnmadd_pd(x, y, one), y);
 }
 
 /* 1 / sqrt(x) to ~1 ulp: rsqrt14 then two Newton steps y (3/2 - (x/2) y^2), 3 operations each. */
-RG2_AVX512_FN static inline __m512d rsqrt8(__m512d x)
+RG2_AVX512_FN static inline __m512d rsqrt8(__m512d x, int hw)
 {
     const __m512d c15 = _mm512_set1_pd(1.5);
+    if (hw) /* with hw: 1 / sqrt(x) by the square root and the division */
+        return _mm512_div_pd(_mm512_set1_pd(1.0), _mm512_sqrt_pd(x));
     __m512d hx = _mm512_mul_pd(_mm512_set1_pd(0.5), x), y = _mm512_rsqrt14_pd(x);
     for (int it = 0; it < 2; it++)
         y = _mm512_mul_pd(y, _mm512_fnmadd_pd(_mm512_mul_pd(hx, y), y, c15));
@@ -342,14 +367,14 @@ RG2_AVX512_FN static inline __m512d dot8(const __m512d a[3], const __m512d b[3])
  * tangents without the divisions by the weight, which the normalisation cancels; the test is
  * invariant under the scaling too), so no reciprocal lies on the normal's dependency chain.
  * Shared by both kernels (same bits). */
-RG2_AVX512_FN static inline __mmask8 normal8(const __m512d su[3], const __m512d sv[3], __m512d n[3])
+RG2_AVX512_FN static inline __mmask8 normal8(const __m512d su[3], const __m512d sv[3], __m512d n[3], int hw)
 {
     __m512d c[3] = {_mm512_fmsub_pd(su[1], sv[2], _mm512_mul_pd(su[2], sv[1])),
                     _mm512_fmsub_pd(su[2], sv[0], _mm512_mul_pd(su[0], sv[2])),
                     _mm512_fmsub_pd(su[0], sv[1], _mm512_mul_pd(su[1], sv[0]))};
     __m512d l2 = dot8(c, c), E = dot8(su, su), G = dot8(sv, sv);
     __mmask8 ok = _mm512_cmp_pd_mask(l2, _mm512_mul_pd(_mm512_set1_pd(1e-30), _mm512_mul_pd(E, G)), _CMP_GT_OQ);
-    __m512d il = _mm512_maskz_mov_pd(ok, rsqrt8(l2)); /* (lanes not ok: whatever rsqrt8 gave, zeroed) */
+    __m512d il = _mm512_maskz_mov_pd(ok, rsqrt8(l2, hw)); /* (lanes not ok: whatever rsqrt8 gave, zeroed) */
     for (int k = 0; k < 3; k++)
         n[k] = _mm512_mul_pd(c[k], il);
     return ok;
@@ -474,9 +499,9 @@ RG2_AVX512_FN static inline void csum_at(double c[4][4][BLK], int i, __m512d v[4
 
 /* Positions of 8 points of a row (u: its Bernstein values) from their column sums c, interleaved
  * x, y, z in o[0..2]. */
-RG2_AVX512_FN static inline void pos8(const __m512d u[4], __m512d c[4][4], __m512d o[3])
+RG2_AVX512_FN static inline void pos8(const __m512d u[4], __m512d c[4][4], __m512d o[3], int hw)
 {
-    __m512d iw = recip8(usumv(u, c, 3));
+    __m512d iw = recip8(usumv(u, c, 3), hw);
     xyz8(_mm512_mul_pd(usumv(u, c, 0), iw), _mm512_mul_pd(usumv(u, c, 1), iw), _mm512_mul_pd(usumv(u, c, 2), iw),
          o);
 }
@@ -485,9 +510,9 @@ RG2_AVX512_FN static inline void pos8(const __m512d u[4], __m512d c[4][4], __m51
  * from their column sums c0 and v-derivative column sums c1, interleaved in po and no; the
  * expressions of full_soa_avx512 (bitwise the same positions and normals). */
 RG2_AVX512_FN static inline void pos_normal8(const __m512d u[4], const __m512d du[4], __m512d c0[4][4],
-                                             __m512d c1[4][4], __m512d po[3], __m512d no[3])
+                                             __m512d c1[4][4], __m512d po[3], __m512d no[3], int hw)
 {
-    __m512d w = usumv(u, c0, 3), iw = recip8(w);
+    __m512d w = usumv(u, c0, 3), iw = recip8(w, hw);
     __m512d hu3 = usumv(du, c0, 3), hv3 = usumv(u, c1, 3);
     __m512d p[3], a[3], b[3], n[3];
     for (int k = 0; k < 3; k++) {
@@ -496,21 +521,21 @@ RG2_AVX512_FN static inline void pos_normal8(const __m512d u[4], const __m512d d
         a[k] = _mm512_fmsub_pd(w, usumv(du, c0, k), _mm512_mul_pd(hu3, h));
         b[k] = _mm512_fmsub_pd(w, usumv(u, c1, k), _mm512_mul_pd(hv3, h));
     }
-    normal8(a, b, n);
+    normal8(a, b, n, hw);
     xyz8(p[0], p[1], p[2], po);
     xyz8(n[0], n[1], n[2], no);
 }
 
 /* Positions of one row segment of cnt points at dst (short rows: see seg_pos_cx_avx512). */
 RG2_AVX512_FN static inline void seg_pos_avx512(const double *U, double c[4][4][BLK], int cnt, double *dst,
-                                                int st)
+                                                int st, int hw)
 {
     __m512d u[4];
     bcast4(U, u);
     for (int i = 0; i < cnt; i += 8) { /* the last vector may be partial: padded, masked store */
         __m512d cv[4][4], o[3];
         csum_at(c, i, cv);
-        pos8(u, cv, o);
+        pos8(u, cv, o, hw);
         put8(dst + 3 * i, o, cnt - i < 8 ? cnt - i : 8, st);
     }
 }
@@ -532,14 +557,14 @@ RG2_AVX512_FN static void interleave_csum(double c[4][4][BLK], int cnt, double c
  * spread to the x, y, z lanes by 3 permutes instead of interleaving the results by 6. Pays off
  * from about 16 rows per block (interleave_csum costs 24 permutes per 8 columns). */
 RG2_AVX512_FN static inline void seg_pos_cx_avx512(const double *U, double c[4][4][BLK], double cx[4][3 * BLK],
-                                                int cnt, double *dst, int st)
+                                                int cnt, double *dst, int st, int hw)
 {
     const __m512i s0 = _mm512_set_epi64(2, 2, 1, 1, 1, 0, 0, 0), s1 = _mm512_set_epi64(5, 4, 4, 4, 3, 3, 3, 2);
     const __m512i s2 = _mm512_set_epi64(7, 7, 7, 6, 6, 6, 5, 5);
     __m512d u[4];
     bcast4(U, u);
     for (int i = 0; i < cnt; i += 8) { /* the last vector may be partial: padded, masked store */
-        __m512d iw = recip8(usum8(u, c, 3, i)), o[3];
+        __m512d iw = recip8(usum8(u, c, 3, i), hw), o[3];
         __m512d iw3[3] = {_mm512_permutexvar_pd(s0, iw), _mm512_permutexvar_pd(s1, iw),
                           _mm512_permutexvar_pd(s2, iw)};
         for (int j = 0; j < 3; j++) {
@@ -564,7 +589,8 @@ static inline int narrow_mode(const tables *t, const double *dst)
 /* Positions of a patch at most 8 points wide (m <= 8, every row one vector), written at pos: the
  * 16 column sums stay in registers and the rows need no block bookkeeping (small per-patch grids
  * of large meshes). The column sums of vsum_avx512 and pos8 as in seg_pos_avx512: the same bits. */
-RG2_AVX512_FN static void patch_pos_narrow_avx512(const rg2_patch *P, const tables *t, double *pos)
+RG2_AVX512_FN static inline void patch_pos_narrow_avx512(const rg2_patch *P, const tables *t, double *pos,
+                                                        int hw)
 {
     const int n = t->n, m = t->m, st = narrow_mode(t, pos);
     __m512d c[4][4];
@@ -573,15 +599,15 @@ RG2_AVX512_FN static void patch_pos_narrow_avx512(const rg2_patch *P, const tabl
         const double *U = t->bu + 4 * a;
         __m512d u[4], o[3];
         bcast4(U, u);
-        pos8(u, c, o);
+        pos8(u, c, o, hw);
         put8(pos + 3 * m * a, o, m, st);
     }
 }
 
 /* Positions and unit normals of a patch at most 8 points wide (as patch_pos_narrow_avx512), by
  * pos_normal8 as in seg_pos_normal_avx512 (the same bits). */
-RG2_AVX512_FN static void patch_normal_narrow_avx512(const rg2_patch *P, const tables *t, double *pos,
-                                                     double *nrm)
+RG2_AVX512_FN static inline void patch_normal_narrow_avx512(const rg2_patch *P, const tables *t, double *pos,
+                                                            double *nrm, int hw)
 {
     const int n = t->n, m = t->m;
     const int st = narrow_mode(t, pos) == ST_STREAM && !((uintptr_t)nrm & 63) ? ST_STREAM : ST_PLAIN;
@@ -593,7 +619,7 @@ RG2_AVX512_FN static void patch_normal_narrow_avx512(const rg2_patch *P, const t
         __m512d u[4], du[4], po[3], no[3];
         bcast4(U, u);
         bcast4(DU, du);
-        pos_normal8(u, du, c0, c1, po, no);
+        pos_normal8(u, du, c0, c1, po, no, hw);
         put8(pos + 3 * m * a, po, m, st);
         put8(nrm + 3 * m * a, no, m, st);
     }
@@ -602,7 +628,7 @@ RG2_AVX512_FN static void patch_normal_narrow_avx512(const rg2_patch *P, const t
 /* Positions and unit normals of one row segment. */
 RG2_AVX512_FN static inline void seg_pos_normal_avx512(const double *U, const double *DU, double c0[4][4][BLK],
                                                        double c1[4][4][BLK], int cnt, double *pd, double *nd,
-                                                       int st)
+                                                       int st, int hw)
 {
     __m512d u[4], du[4];
     bcast4(U, u);
@@ -611,7 +637,7 @@ RG2_AVX512_FN static inline void seg_pos_normal_avx512(const double *U, const do
         __m512d v0[4][4], v1[4][4], po[3], no[3];
         csum_at(c0, i, v0);
         csum_at(c1, i, v1);
-        pos_normal8(u, du, v0, v1, po, no);
+        pos_normal8(u, du, v0, v1, po, no, hw);
         int q = cnt - i < 8 ? cnt - i : 8;
         put8(pd + 3 * i, po, q, st);
         put8(nd + 3 * i, no, q, st);
@@ -620,9 +646,9 @@ RG2_AVX512_FN static inline void seg_pos_normal_avx512(const double *U, const do
 
 /* The second-order formulas (as full_soa) for all 8-lane vectors covering 0..cnt-1 (vsum pads
  * the column sums with zeros; lanes past cnt are computed but never copied out). */
-RG2_AVX512_FN static void full_soa_avx512(const double *U, const double *DU, const double *DDU,
-                                          double c0[4][4][BLK], double c1[4][4][BLK], double c2[4][4][BLK],
-                                          int cnt, soa_full *S)
+RG2_AVX512_FN static inline void full_soa_avx512(const double *U, const double *DU, const double *DDU,
+                                                 double c0[4][4][BLK], double c1[4][4][BLK],
+                                                 double c2[4][4][BLK], int cnt, soa_full *S, int hw)
 {
     __m512d u[4], du[4], ddu[4];
     bcast4(U, u);
@@ -639,7 +665,7 @@ RG2_AVX512_FN static void full_soa_avx512(const double *U, const double *DU, con
             huv[k] = usum8(du, c1, k, i);
             hvv[k] = usum8(u, c2, k, i);
         }
-        __m512d iw = recip8(h[3]);
+        __m512d iw = recip8(h[3], hw);
         __m512d P[3], A[3], B[3], Su[3], Sv[3], Suu[3], Suv[3], Svv[3];
         for (int k = 0; k < 3; k++) {
             P[k] = _mm512_mul_pd(h[k], iw);
@@ -656,11 +682,11 @@ RG2_AVX512_FN static void full_soa_avx512(const double *U, const double *DU, con
             Svv[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hvv[3], P[k], t), iw);
         }
         __m512d nn[3];
-        __mmask8 ok = normal8(A, B, nn);
+        __mmask8 ok = normal8(A, B, nn, hw);
         __m512d E = dot8(Su, Su), F = dot8(Su, Sv), G = dot8(Sv, Sv);
         __m512d L = dot8(Suu, nn), M = dot8(Suv, nn), N = dot8(Svv, nn);
         __m512d det = _mm512_mask_blend_pd(ok, one, _mm512_fmsub_pd(E, G, _mm512_mul_pd(F, F)));
-        __m512d idet = recip8(det);
+        __m512d idet = recip8(det, hw);
         __m512d K = _mm512_mul_pd(_mm512_fmsub_pd(L, N, _mm512_mul_pd(M, M)), idet);
         __m512d Hn = _mm512_fmadd_pd(G, L, _mm512_fnmadd_pd(_mm512_mul_pd(two, F), M, _mm512_mul_pd(E, N)));
         __m512d H = _mm512_mul_pd(Hn, _mm512_mul_pd(half, idet));
@@ -727,9 +753,10 @@ static inline int store_mode(const tables *t, const double *dst, int cnt)
     return cnt >= 32 ? ST_STAGED : ST_PLAIN;
 }
 
-/* grid_patch with the AVX-512 kernels. */
-RG2_AVX512_FN static void grid_patch_avx512(const rg2_patch *P, const tables *t, const rg2_grid_out *o,
-                                            size_t first)
+/* grid_patch with the AVX-512 kernels; hw: divisions and square roots by the hardware (a
+ * constant in both calls of grid_patch_avx512, so each gets kernels of its own). */
+RG2_AVX512_FN static inline __attribute__((always_inline)) void
+grid_patch_avx512_hw(const rg2_patch *P, const tables *t, const rg2_grid_out *o, size_t first, const int hw)
 {
     _Alignas(64) double c0[4][4][BLK];
     _Alignas(64) double c1[4][4][BLK];
@@ -740,9 +767,9 @@ RG2_AVX512_FN static void grid_patch_avx512(const rg2_patch *P, const tables *t,
     soa_full S[1];
     if (t->m <= 8 && t->order <= 1) { /* narrow patches: whole rows in registers */
         if (t->order == 0)
-            patch_pos_narrow_avx512(P, t, o->pos + 3 * first);
+            patch_pos_narrow_avx512(P, t, o->pos + 3 * first, hw);
         else
-            patch_normal_narrow_avx512(P, t, o->pos + 3 * first, o->normal + 3 * first);
+            patch_normal_narrow_avx512(P, t, o->pos + 3 * first, o->normal + 3 * first, hw);
         return;
     }
     for (int b0 = 0; b0 < t->m; b0 += BLK) {
@@ -763,33 +790,42 @@ RG2_AVX512_FN static void grid_patch_avx512(const rg2_patch *P, const tables *t,
                 int st = store_mode(t, pos, cnt);
                 double *dst = st == ST_STAGED ? pbuf : pos;
                 if (use_cx && st == ST_STREAM)
-                    seg_pos_cx_avx512(U, c0, cx, cnt, dst, ST_STREAM);
+                    seg_pos_cx_avx512(U, c0, cx, cnt, dst, ST_STREAM, hw);
                 else if (use_cx)
-                    seg_pos_cx_avx512(U, c0, cx, cnt, dst, ST_PLAIN);
+                    seg_pos_cx_avx512(U, c0, cx, cnt, dst, ST_PLAIN, hw);
                 else if (st == ST_STREAM)
-                    seg_pos_avx512(U, c0, cnt, dst, ST_STREAM);
+                    seg_pos_avx512(U, c0, cnt, dst, ST_STREAM, hw);
                 else
-                    seg_pos_avx512(U, c0, cnt, dst, ST_PLAIN);
+                    seg_pos_avx512(U, c0, cnt, dst, ST_PLAIN, hw);
                 if (st == ST_STAGED)
                     stream_copy(pos, pbuf, 3 * cnt);
             } else if (t->order == 1) {
                 double *nrm = o->normal + 3 * at;
                 int st = store_mode(t, pos, cnt);
                 if (st == ST_STREAM && !((uintptr_t)nrm & 63))
-                    seg_pos_normal_avx512(U, DU, c0, c1, cnt, pos, nrm, ST_STREAM);
+                    seg_pos_normal_avx512(U, DU, c0, c1, cnt, pos, nrm, ST_STREAM, hw);
                 else if (st == ST_PLAIN)
-                    seg_pos_normal_avx512(U, DU, c0, c1, cnt, pos, nrm, ST_PLAIN);
+                    seg_pos_normal_avx512(U, DU, c0, c1, cnt, pos, nrm, ST_PLAIN, hw);
                 else {
-                    seg_pos_normal_avx512(U, DU, c0, c1, cnt, pbuf, nbuf, ST_PLAIN);
+                    seg_pos_normal_avx512(U, DU, c0, c1, cnt, pbuf, nbuf, ST_PLAIN, hw);
                     stream_copy(pos, pbuf, 3 * cnt);
                     stream_copy(nrm, nbuf, 3 * cnt);
                 }
             } else {
-                full_soa_avx512(U, DU, t->ddu + 4 * a, c0, c1, c2, cnt, S);
+                full_soa_avx512(U, DU, t->ddu + 4 * a, c0, c1, c2, cnt, S, hw);
                 full_out_avx512(S, cnt, o, at);
             }
         }
     }
+}
+
+RG2_AVX512_FN static void grid_patch_avx512(const rg2_patch *P, const tables *t, const rg2_grid_out *o,
+                                            size_t first)
+{
+    if (t->hwdiv)
+        grid_patch_avx512_hw(P, t, o, first, 1);
+    else
+        grid_patch_avx512_hw(P, t, o, first, 0);
 }
 #endif
 

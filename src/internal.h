@@ -118,6 +118,7 @@ void rg2__bern(int n, double t, double *B, double *D, double *DD);
 /* Test hook (grid.c): non-zero makes the grid evaluator use its portable kernels even on CPUs
  * with AVX-512, so tests cover both. */
 extern int rg2__grid_portable;
+extern int rg2__grid_hwdiv; /* test hook: -1 by CPU, 0 Newton steps, 1 hardware division */
 
 /* The grid evaluator for higher-degree patches (xpatch.c; rg2_surface_grid calls it for the
  * patches with xp[k].du > 0): Bernstein tables of the degrees present at the n x m grid

@@ -377,10 +377,15 @@ static void errors(void)
 
 int main(void)
 {
-    /* both kernel families: the AVX-512 ones (where the CPU has them), then the portable ones */
-    for (int portable = 0; portable < 2; portable++) {
+    /* every kernel family: the AVX-512 ones (where the CPU has them) with Newton steps and with
+     * the hardware's divisions and square roots, then the portable ones */
+    for (int family = 0; family < 3; family++) {
+        int portable = family == 2;
         rg2__grid_portable = portable;
-        printf("-- %s kernels\n", portable ? "portable" : "default (AVX-512 where available)");
+        rg2__grid_hwdiv = family;
+        printf("-- %s kernels\n", portable       ? "portable"
+                                  : family == 0 ? "AVX-512 (where available), Newton steps"
+                                                : "AVX-512 (where available), hardware division");
         random_patches();
         collapsed_edge();
         torus();
