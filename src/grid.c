@@ -66,9 +66,10 @@ int rg2__grid_hwdiv = -1;
 
 /* Whether the AVX-512 kernels divide and take square roots by the hardware instead of rcp14 /
  * rsqrt14 and Newton steps: on AMD CPUs, whose divider runs beside the multiply-add pipes the
- * kernels keep busy (Zen 5, measured: positions of 8 x 8 patches in main memory 1.07x, with
- * normals 1.03-1.10x, bitwise within 1 ulp of the Newton steps); not on Intel's (Sapphire Rapids:
- * slower, docs/performance.md). rg2__grid_hwdiv (a test hook) forces 0 or 1. */
+ * kernels keep busy (Zen 5, measured: positions 0.99-1.08x in L3 and 1.07x for 8 x 8 patches in
+ * main memory, with normals 1.03-1.11x; the results correctly rounded where the Newton steps
+ * leave about 1 ulp); not on Intel's (Sapphire Rapids: slower, docs/performance.md).
+ * rg2__grid_hwdiv (a test hook) forces 0 or 1. */
 static int grid_hwdiv(void)
 {
     if (rg2__grid_hwdiv >= 0)
