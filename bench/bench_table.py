@@ -47,14 +47,21 @@ def main(path):
                   f"{r['output_bytes'] * 1e-6:.1f}, {r.get('output_fits', '')} |")
     if 'construction' in d:
         cs = d['construction']
-        print("\n| control points | patches | 1 thread ms | ns per control point | 2 threads ms |")
-        print("|---|---:|---:|---:|---:|")
+        rb = 'rebuild_per_control_point_spread_100_to_1000' in cs
+        print("\n| control points | patches | build 1 thread ms | ns per control point | build 2 threads ms |"
+              + (" rebuild 1 thread ms | ns per control point | rebuild 2 threads ms |" if rb else ""))
+        print("|---|---:|---:|---:|---:|" + ("---:|---:|---:|" if rb else ""))
         for r in cs['sizes']:
             n = int(round(r['control_points'] ** 0.5))
-            print(f"| {n} x {n} | {int(r['patches'])} | {r['median_s_1_thread'] * 1e3:.3f} | "
-                  f"{r['ns_per_control_point_1_thread']:.0f} | {r['median_s_2_threads'] * 1e3:.3f} |")
+            row = (f"| {n} x {n} | {int(r['patches'])} | {r['median_s_1_thread'] * 1e3:.3f} | "
+                   f"{r['ns_per_control_point_1_thread']:.0f} | {r['median_s_2_threads'] * 1e3:.3f} |")
+            if rb:
+                row += (f" {r['rebuild_median_s_1_thread'] * 1e3:.3f} | {r['rebuild_ns_per_control_point_1_thread']:.0f} | "
+                        f"{r['rebuild_median_s_2_threads'] * 1e3:.3f} |")
+            print(row)
         print(f"\nFrom 100^2 to 1000^2 control points the time per control point stays within a factor "
-              f"{cs['per_control_point_spread_100_to_1000']:.2f}.")
+              f"{cs['per_control_point_spread_100_to_1000']:.2f} for rg2_surface_build"
+              + (f", {cs['rebuild_per_control_point_spread_100_to_1000']:.2f} for rg2_surface_rebuild." if rb else "."))
     print(f"\nPeak memory (getrusage ru_maxrss): {d['peak_rss_kb'] / 1024:.0f} MB.")
     if 'ceiling_fastest_way_counts' in d:
         w = ', '.join(f"{k} {v}" for k, v in d['ceiling_fastest_way_counts'].items())

@@ -241,6 +241,14 @@ typedef struct {
 /** The Bi-cubic Construction: rows then columns of the curve construction on 4-tuples.
  *  Patch (i, j) comes from segment i in u and j in v (open directions: segments 1..n-3). */
 RG2_API rg2_status rg2_surface_build(const rg2_mesh *m, rg2_surface *out, rg2_error *err);
+/** rg2_surface_build into a surface that already exists (from rg2_surface_build, _copy,
+ *  _rebuild, or all zeros), for editing loops (move a control point, rebuild, re-tessellate):
+ *  when s holds as many patches as m gives, its memory is reused (a 1000 x 1000 mesh: 0.5 GB
+ *  that would otherwise be fresh pages, docs/performance.md), else it is freed and allocated
+ *  anew. The result equals rg2_surface_build's bit for bit (tags and higher-degree patches of
+ *  the old surface are dropped). On failure s is left empty (freed), with the errors of
+ *  rg2_surface_build. */
+RG2_API rg2_status rg2_surface_rebuild(const rg2_mesh *m, rg2_surface *s, rg2_error *err);
 RG2_API void rg2_surface_free(rg2_surface *s);
 RG2_API rg2_status rg2_surface_copy(const rg2_surface *src, rg2_surface *dst, rg2_error *err);
 static inline rg2_patch *rg2_surface_patch(const rg2_surface *s, int i, int j)

@@ -3,6 +3,7 @@
 #include "harness.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 static void random_scalars(rg2t_rng *r, rg2_scalars *s)
@@ -168,6 +169,89 @@ static void mesh_errors(void)
     CHECK(rg2_mesh_init(&m, 5000, 5000, 0, 0, &err) == RG2_ELIMIT, "huge mesh refused: %s", err.msg);
 }
 
+/* The surfaces a and b are the same bit for bit (patches, junction scalars, counts, closure). */
+static int same_surface(const rg2_surface *a, const rg2_surface *b)
+{
+    size_t np = (size_t)a->nu * (size_t)a->nv;
+    return a->nu == b->nu && a->nv == b->nv && a->closed_u == b->closed_u && a->closed_v == b->closed_v &&
+           !memcmp(a->patch, b->patch, np * sizeof(rg2_patch)) && !memcmp(a->bu, b->bu, a->nu * sizeof(double)) &&
+           !memcmp(a->gu, b->gu, a->nu * sizeof(double)) && !memcmp(a->bv, b->bv, a->nv * sizeof(double)) &&
+           !memcmp(a->gv, b->gv, a->nv * sizeof(double)) && !a->tag == !b->tag && !a->xp == !b->xp;
+}
+
+/* rg2_surface_rebuild: the result of rg2_surface_build bit for bit, into the old memory when the
+ * patch counts stay (an editing loop), into new memory otherwise; old tags and higher-degree
+ * patches dropped; on failure the surface is left empty (ASan sees any leak). */
+static void rebuild(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 77);
+    rg2_error err;
+    rg2_surface s;
+    memset(&s, 0, sizeof s);
+    int reused = 0, edits = 0;
+    for (int trial = 0; trial < 12; trial++) {
+        int cu = trial & 1, cv = (trial >> 1) & 1;
+        int nu = rg2t_int(&r, cu ? 3 : 4, 9), nv = rg2t_int(&r, cv ? 3 : 4, 9);
+        rg2_mesh m;
+        CHECK_OK(rg2_mesh_init(&m, nu, nv, cu, cv, &err), &err);
+        random_scalars(&r, &m.su);
+        random_scalars(&r, &m.sv);
+        for (int k = 0; k < nu * nv; k++) {
+            double W = rg2t_uniform(&r, 0.6, 1.6);
+            for (int q = 0; q < 3; q++)
+                m.p[4 * k + q] = W * rg2t_uniform(&r, -1, 1);
+            m.p[4 * k + 3] = W;
+        }
+        if (trial % 3 == 2) { /* the previous surface carries tags and higher-degree slots */
+            size_t np = (size_t)s.nu * (size_t)s.nv;
+            s.tag = calloc(np ? np : 1, sizeof(int));
+            s.xp = calloc(np ? np : 1, sizeof(rg2_xpatch));
+        }
+        rg2_surface fresh;
+        CHECK_OK(rg2_surface_build(&m, &fresh, &err), &err);
+        CHECK_OK(rg2_surface_rebuild(&m, &s, &err), &err);
+        CHECK(same_surface(&s, &fresh) && !s.tag && !s.xp, "trial %d (%d x %d, closed %d %d): rebuild = build",
+              trial, nu, nv, cu, cv);
+        /* editing: move one control point, rebuild in place */
+        for (int e = 0; e < 3; e++) {
+            const rg2_patch *before = s.patch;
+            size_t np = (size_t)s.nu * (size_t)s.nv;
+            rg2_patch *old = malloc(np * sizeof *old);
+            memcpy(old, s.patch, np * sizeof *old);
+            double *p = rg2_mesh_at(&m, rg2t_int(&r, 0, nu - 1), rg2t_int(&r, 0, nv - 1));
+            p[2] += p[3] * rg2t_uniform(&r, 0.1, 0.5);
+            rg2_surface_free(&fresh);
+            CHECK_OK(rg2_surface_build(&m, &fresh, &err), &err);
+            CHECK_OK(rg2_surface_rebuild(&m, &s, &err), &err);
+            CHECK(same_surface(&s, &fresh), "trial %d edit %d: rebuild = build", trial, e);
+            reused += s.patch == before;
+            edits += memcmp(old, s.patch, np * sizeof *old) != 0; /* the edit reached the patches */
+            free(old);
+        }
+        rg2_surface_free(&fresh);
+        rg2_mesh_free(&m);
+    }
+    CHECK(reused == 36 && edits == 36, "edits rebuild in place: %d of 36 reused the patch memory, %d changed it",
+          reused, edits);
+    /* a bad mesh: the error of rg2_surface_build, the surface left empty */
+    rg2_mesh m;
+    CHECK_OK(rg2_mesh_init(&m, 5, 5, 0, 0, &err), &err);
+    for (int k = 0; k < 25; k++)
+        m.p[4 * k] = k, m.p[4 * k + 1] = k % 5, m.p[4 * k + 2] = 0, m.p[4 * k + 3] = 1;
+    rg2_mesh_at(&m, 1, 4)[2] = NAN;
+    CHECK(rg2_surface_rebuild(&m, &s, &err) == RG2_ENONFINITE && strstr(err.msg, "[1][4]") && !s.patch &&
+              s.nu == 0,
+          "bad mesh: %s; surface left empty", err.msg);
+    rg2_mesh_at(&m, 1, 4)[2] = 0;
+    CHECK_OK(rg2_surface_rebuild(&m, &s, &err), &err); /* from the empty surface */
+    CHECK(s.nu == 2 && s.nv == 2, "rebuild after a failure: %d x %d patches", s.nu, s.nv);
+    CHECK(rg2_surface_rebuild(&m, NULL, &err) == RG2_EINVAL, "NULL surface: %s", err.msg);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+    printf("rebuild: 12 meshes x 3 edits equal to rg2_surface_build bit for bit, %d of 36 in place\n", reused);
+}
+
 /* Torus from circle products: exact point, normal and curvatures against the implicit
  * geometry (K = cos v / (r (R + r cos v)), H from the principal curvatures 1/r and
  * cos v / (R + r cos v), with cos v = (rho - R) / r read off the point). */
@@ -278,5 +362,6 @@ int main(void)
     broken_is_detected();
     transpose_symmetry();
     mesh_errors();
+    rebuild();
     return rg2t_done("test_surface");
 }
