@@ -10,7 +10,8 @@
  * branch-free loop over the columns that the compiler vectorises (x86-64 with GCC: AVX-512 /
  * AVX2 / baseline clones chosen at load time). On AVX-512 CPUs hand-written kernels take whole
  * patches (grid_patch_avx512): rcp14 / rsqrt14 and two Newton steps instead of divisions and
- * square roots, permutes for the x, y, z interleave, plain stores with prefetchw for outputs in
+ * square roots (except on AMD CPUs, whose divider runs beside the multiply-adds: grid_hwdiv),
+ * permutes for the x, y, z interleave, plain stores with prefetchw for outputs in
  * the caches and streaming stores past RG2_STREAM_BYTES (see docs/performance.md). The quotient rule and the
  * curvature formulas are those of rg2_patch_eval (eval.c), which stays the independent
  * reference; tests/test_grid.c holds the two to 1e-14. Patches of higher degree (s->xp) take
@@ -48,9 +49,9 @@
 #endif
 
 /* Outputs with normals (or more) larger than this (bytes) per thread of the call, and positions
- * alone larger than twice this, are written with streaming stores on the AVX-512 path; smaller ones with plain stores and
- * prefetchw ahead of them (RG2_PREFETCHW_AHEAD), and they stay in the caches for the consumer.
- * Measured on this kind of machine (2 MiB L2 per core, large shared L3), each in the caches'
+ * alone larger than twice this, are written with streaming stores on the AVX-512 path; smaller
+ * ones with plain stores and prefetchw ahead of them (RG2_PREFETCHW_AHEAD), and they stay in
+ * the caches for the consumer. Measured on the Intel machine (2 MiB L2 per core, large shared L3), each in the caches'
  * steady state: positions alone, plain + prefetchw faster than streaming by 1.25x at 4.7 MB and
  * 1.1x at 11.8 and 15.7 MB, streaming faster by 1.45x at 23.6 MB and 2x at 75 MB; positions +
  * normals (two arrays), streaming 1.3x faster at 9.4 MB, equal at 23.6 MB. */
