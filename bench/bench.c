@@ -839,9 +839,8 @@ static cJSON *threads_and_sizes(const rg2_surface *torus)
             double *t1 = xmalloc(sizeof(double) * (size_t)reps * 4), *t2 = t1 + reps, *tc = t2 + reps, *t3 = tc + reps;
             double best[2] = {0, 0};
             rg2_error err;
-            /* untimed calls first, as in run_grid: the output in the caches' steady state, and the
-             * pool's worker started and settled on the other core (a thread just created may
-             * first run on the caller's core and take no share for a few milliseconds) */
+            /* untimed calls first, as in run_grid: the output in the caches' steady state and the
+             * pool's worker created before the first timed 2-thread call */
             for (int w = 0; w < 3; w++)
                 for (int th = 1; th <= 2; th++)
                     if (rg2_surface_grid(torus, n, n, th, &o, &err))
