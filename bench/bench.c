@@ -832,7 +832,8 @@ static cJSON *threads_and_sizes(const rg2_surface *torus)
         size_t pts = (size_t)torus->nu * torus->nv * n * n;
         double *pos = xalloc64(pts * 24), *nrm = xalloc64(pts * 24), *K = xalloc64(pts * 8), *H = xalloc64(pts * 8);
         memset(pos, 0, pts * 24), memset(nrm, 0, pts * 24), memset(K, 0, pts * 8), memset(H, 0, pts * 8);
-        int reps = quick ? 5 : n >= 256 ? 9 : n >= 64 ? 101 : 301; /* 32^2 calls take 0.02-0.3 ms: enough of them to span about 0.1 s */
+        /* calls of 0.02-1 ms below 256^2: enough of them to span about 0.1 s */
+        int reps = quick ? 5 : n >= 256 ? 9 : n >= 64 ? 101 : 301;
         for (int level = 0; level < 3; level++) {
             rg2_grid_out o = {.pos = pos, .normal = level ? nrm : NULL, .K = level > 1 ? K : NULL,
                               .H = level > 1 ? H : NULL};

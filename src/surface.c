@@ -70,30 +70,28 @@ rg2_status rg2_surface_copy(const rg2_surface *src, rg2_surface *dst, rg2_error 
  * for every mesh column j; then columns: b_rs = sum_c cv[l][s][c] R[r][jv+c]. Homogeneous
  * control points H_rs = omega_r omega'_s b_rs with omega = (1, w, w, 1).
  *
- * build_into: rg2_surface_build into out; with reuse, out holds a surface (or zeros) whose arrays are kept
- * when its patch counts are those of m (no fresh memory, so no page faults: an editing loop), and
- * freed otherwise. On failure out is left empty.
+ * build_into: out holds a surface (or zeros); its arrays are kept when its patch counts are those
+ * of m (no fresh memory, so no page faults: an editing loop), else freed and allocated anew. On
+ * failure out is left empty.
  */
-static rg2_status build_into(const rg2_mesh *m, rg2_surface *out, int reuse, rg2_error *err)
+static rg2_status build_into(const rg2_mesh *m, rg2_surface *out, rg2_error *err)
 {
     rg2__stencil su, sv;
     rg2_status st = rg2_mesh_check(m, err);
     if (!st && !(st = rg2__stencil_make(&m->su, &su, err)) && (st = rg2__stencil_make(&m->sv, &sv, err)))
         rg2__stencil_free(&su);
     if (st) {
-        if (reuse)
-            rg2_surface_free(out);
+        rg2_surface_free(out);
         return st;
     }
     int nsu = su.n_segments, nsv = sv.n_segments;
-    if (reuse && out->patch && out->bu && out->gu && out->bv && out->gv && out->nu == nsu && out->nv == nsv) {
+    if (out->patch && out->bu && out->gu && out->bv && out->gv && out->nu == nsu && out->nv == nsv) {
         free(out->tag); /* a built surface has neither tags nor higher-degree patches */
         free(out->xp);
         out->tag = NULL;
         out->xp = NULL;
     } else {
-        if (reuse)
-            rg2_surface_free(out);
+        rg2_surface_free(out);
         st = surface_alloc(out, nsu, nsv, 0, err);
         if (st)
             goto done;
@@ -183,15 +181,15 @@ done:
 
 rg2_status rg2_surface_build(const rg2_mesh *m, rg2_surface *out, rg2_error *err)
 {
-    memset(out, 0, sizeof *out);
-    return build_into(m, out, 0, err);
+    memset(out, 0, sizeof *out); /* out may hold garbage: nothing of it is kept */
+    return build_into(m, out, err);
 }
 
 rg2_status rg2_surface_rebuild(const rg2_mesh *m, rg2_surface *s, rg2_error *err)
 {
     if (!s)
         return rg2__fail(err, RG2_EINVAL, "surface: rebuild into a NULL surface");
-    return build_into(m, s, 1, err);
+    return build_into(m, s, err);
 }
 
 double rg2_surface_min_weight(const rg2_surface *s)
