@@ -3,8 +3,9 @@
  * own degrees per face, or all elevated to the surface's degrees on one face per mesh),
  * following docs/export.md and shared/spec/INTEROP.md: complex instances in alphabetical
  * order, control nets LIST[u] OF LIST[v], one EDGE_CURVE / VERTEX_POINT per geometric edge /
- * vertex shared by the faces on both sides, loops counter-clockwise in (u, v), product
- * structure, mm units. */
+ * vertex shared by the faces on both sides, each edge's curve a SURFACE_CURVE with the exact
+ * pcurve (a side of the parameter rectangle) on every face it bounds, loops counter-clockwise in
+ * (u, v), product structure, mm units. */
 #include "export_internal.h"
 
 #include <stdlib.h>
@@ -12,7 +13,8 @@
 
 typedef struct {
     FILE *f;
-    int next; /* next entity id */
+    int next;  /* next entity id */
+    int ctx2d; /* the parameter-space context of the pcurves (0: not written yet) */
 } stepw;
 
 static int new_id(stepw *w) { return w->next++; }
@@ -141,6 +143,60 @@ static int put_edge(stepw *w, int v0, int v1, int curve)
     return id;
 }
 
+/* The line (u0, v0) + t (du, dv) of a surface's parameter space (unit direction), as the
+ * DEFINITIONAL_REPRESENTATION a PCURVE refers to. Every face of one layout shares the four
+ * lines of its boundary. */
+static int put_line2d(stepw *w, double u0, double v0, double du, double dv)
+{
+    if (!w->ctx2d) {
+        w->ctx2d = new_id(w);
+        fprintf(w->f, "#%d=( GEOMETRIC_REPRESENTATION_CONTEXT(2) PARAMETRIC_REPRESENTATION_CONTEXT() "
+                      "REPRESENTATION_CONTEXT('2D SPACE','') );\n",
+                w->ctx2d);
+    }
+    int p = new_id(w), d = new_id(w), vec = new_id(w), line = new_id(w), rep = new_id(w);
+    fprintf(w->f, "#%d=CARTESIAN_POINT('',(", p);
+    put_real(w->f, u0);
+    fputc(',', w->f);
+    put_real(w->f, v0);
+    fprintf(w->f, "));\n#%d=DIRECTION('',(", d);
+    put_real(w->f, du);
+    fputc(',', w->f);
+    put_real(w->f, dv);
+    fprintf(w->f, "));\n#%d=VECTOR('',#%d,1.);\n#%d=LINE('',#%d,#%d);\n", vec, d, line, p, vec);
+    fprintf(w->f, "#%d=DEFINITIONAL_REPRESENTATION('',(#%d),#%d);\n", rep, line, w->ctx2d);
+    return rep;
+}
+
+/* The boundary lines of a parameter rectangle [0, U1] x [0, V1], side sd (0 v=0, 1 u=U1, 2 v=1,
+ * 3 u=0), each running in +u or +v with the parameter of the boundary's edge curve (whose knots
+ * are the surface's along that side). */
+static void put_side_lines(stepw *w, double U1, double V1, int rep[4])
+{
+    rep[0] = put_line2d(w, 0, 0, 1, 0);
+    rep[1] = put_line2d(w, U1, 0, 0, 1);
+    rep[2] = put_line2d(w, 0, V1, 1, 0);
+    rep[3] = put_line2d(w, 0, 0, 0, 1);
+}
+
+/* The 3D curve of an edge with its pcurves on the n (1 or 2) surfaces of the faces it bounds
+ * (surf[k], parameter line rep[k]); a SEAM_CURVE when both pcurves lie on one surface. */
+static int put_surface_curve(stepw *w, int curve, int n, const int *surf, const int *rep)
+{
+    int pc[2] = {0, 0};
+    for (int k = 0; k < n; k++) {
+        pc[k] = new_id(w);
+        fprintf(w->f, "#%d=PCURVE('',#%d,#%d);\n", pc[k], surf[k], rep[k]);
+    }
+    int id = new_id(w);
+    fprintf(w->f, "#%d=%s('',#%d,(#%d", id, n == 2 && surf[0] == surf[1] ? "SEAM_CURVE" : "SURFACE_CURVE", curve,
+            pc[0]);
+    if (n == 2)
+        fprintf(w->f, ",#%d", pc[1]);
+    fputs("),.CURVE_3D.);\n", w->f);
+    return id;
+}
+
 /* Face bounded by the oriented edges (edge ids, orientation flags). */
 static int put_face(stepw *w, int surface, const int *edge, const int *fwd, int n)
 {
@@ -191,7 +247,10 @@ static rg2_status shell_per_patch(stepw *w, const rg2_surface *s, int *shell, rg
     int *vid = malloc(sizeof(int) * (size_t)(t.n_vertices ? t.n_vertices : 1));
     int *eid = malloc(sizeof(int) * (size_t)(t.n_edges ? t.n_edges : 1));
     int *fid = malloc(sizeof(int) * (size_t)nu * (size_t)nv);
-    if (!vid || !eid || !fid) {
+    int *sid = malloc(sizeof(int) * (size_t)nu * (size_t)nv);
+    size_t ne = (size_t)(t.n_edges ? t.n_edges : 1);
+    int *nuse = malloc(sizeof(int) * ne), *user = malloc(sizeof(int) * 2 * ne), *uside = malloc(sizeof(int) * 2 * ne);
+    if (!vid || !eid || !fid || !sid || !nuse || !user || !uside) {
         st = rg2__fail(err, RG2_ENOMEM, "STEP: out of memory for %d x %d patches", nu, nv);
         goto done;
     }
@@ -201,6 +260,33 @@ static rg2_status shell_per_patch(stepw *w, const rg2_surface *s, int *shell, rg
         corner_point(s, c / (nv + 1), c % (nv + 1), h);
         vid[v] = put_vertex(w, h);
     }
+    /* the surfaces first: each edge's pcurves refer to the surfaces of the faces it bounds */
+    for (int i = 0; i < nu; i++)
+        for (int j = 0; j < nv; j++) {
+            rg2_xpatch X;
+            double h[(RG2_MAX_DEGREE + 1) * (RG2_MAX_DEGREE + 1)][4];
+            rg2_surface_patch_get(s, i, j, &X);
+            rg2__xpatch_net(&X, h);
+            sid[i * nv + j] = put_surface(w, (const double(*)[4])h, X.du + 1, X.dv + 1, X.du, X.dv, 0, 0);
+            if (sid[i * nv + j] < 0) {
+                st = rg2__fail(err, RG2_ENOMEM, "STEP: out of memory");
+                goto done;
+            }
+        }
+    /* the (at most 2) patch sides using each edge, in grid order */
+    for (int e = 0; e < t.n_edges; e++)
+        nuse[e] = 0;
+    for (int p = 0; p < nu * nv; p++)
+        for (int side = 0; side < 4; side++) {
+            int e, f;
+            rg2__topo_side(&t, p / nv, p % nv, side, &e, &f);
+            if (e >= 0 && nuse[e] < 2) {
+                user[2 * e + nuse[e]] = p;
+                uside[2 * e + nuse[e]++] = side;
+            }
+        }
+    int line[4]; /* every patch's parameter square is [0, 1]^2 */
+    put_side_lines(w, 1, 1, line);
     int closed = 1;
     for (int e = 0; e < t.n_edges; e++) {
         int p = t.edef[2 * e], side = t.edef[2 * e + 1], i = p / nv, j = p % nv;
@@ -215,21 +301,20 @@ static rg2_status shell_per_patch(stepw *w, const rg2_surface *s, int *shell, rg
             st = rg2__fail(err, RG2_ENOMEM, "STEP: out of memory");
             goto done;
         }
+        /* every edge runs in +u or +v on both sides with knots (0, 1): the pcurve on a patch
+         * is its side's boundary line of the unit square */
+        int surf[2], rep[2];
+        for (int k = 0; k < nuse[e]; k++) {
+            surf[k] = sid[user[2 * e + k]];
+            rep[k] = line[uside[2 * e + k]];
+        }
+        c = put_surface_curve(w, c, nuse[e], surf, rep);
         eid[e] = put_edge(w, vid[t.vert[I0 * (nv + 1) + J0]], vid[t.vert[I1 * (nv + 1) + J1]], c);
         if (t.uses[e] != 2)
             closed = 0;
     }
     for (int i = 0; i < nu; i++)
         for (int j = 0; j < nv; j++) {
-            rg2_xpatch X;
-            double h[(RG2_MAX_DEGREE + 1) * (RG2_MAX_DEGREE + 1)][4];
-            rg2_surface_patch_get(s, i, j, &X);
-            rg2__xpatch_net(&X, h);
-            int surf = put_surface(w, (const double(*)[4])h, X.du + 1, X.dv + 1, X.du, X.dv, 0, 0);
-            if (surf < 0) {
-                st = rg2__fail(err, RG2_ENOMEM, "STEP: out of memory");
-                goto done;
-            }
             int edge[4], fwd[4], n = 0;
             for (int side = 0; side < 4; side++) {
                 int e, f;
@@ -239,13 +324,17 @@ static rg2_status shell_per_patch(stepw *w, const rg2_surface *s, int *shell, rg
                 edge[n] = eid[e];
                 fwd[n++] = f;
             }
-            fid[i * nv + j] = put_face(w, surf, edge, fwd, n);
+            fid[i * nv + j] = put_face(w, sid[i * nv + j], edge, fwd, n);
         }
     *shell = put_shell(w, fid, nu * nv, closed);
 done:
     free(vid);
     free(eid);
     free(fid);
+    free(sid);
+    free(nuse);
+    free(user);
+    free(uside);
     rg2__topo_free(&t);
     return st;
 }
@@ -330,6 +419,11 @@ static rg2_status shell_per_mesh(stepw *w, const rg2_surface *s, int *shell, rg2
                                      (size_t)(corner_k[r][1] ? NV - 1 : 0)]);
         vid[c] = vid[r];
     }
+    int surf = put_surface(w, (const double(*)[4])h, NU, NV, du, dv, s->closed_u, s->closed_v);
+    if (surf < 0)
+        goto oom;
+    int line[4]; /* the parameter rectangle [0, nu] x [0, nv] (knots 0, 1, ..., as the edge curves') */
+    put_side_lines(w, s->nu, s->nv, line);
     int eid[4] = {-1, -1, -1, -1};
     int order[4] = {0, 3, 1, 2}; /* define v=0 and u=0 first: the closing sides reuse them */
     for (int q = 0; q < 4; q++) {
@@ -348,11 +442,12 @@ static rg2_status shell_per_mesh(stepw *w, const rg2_surface *s, int *shell, rg2
         int c = put_curve(w, (const double(*)[4])side, n_side[sd], (sd & 1) ? dv : du);
         if (c < 0)
             goto oom;
+        /* a closed direction's seam lies on the face twice: u = 0 and u = nu (or v) */
+        int seam = (sd == 3 && s->closed_u) || (sd == 0 && s->closed_v);
+        int surfs[2] = {surf, surf}, rep[2] = {line[sd], line[sd == 3 ? 1 : 2]};
+        c = put_surface_curve(w, c, seam ? 2 : 1, surfs, rep);
         eid[sd] = put_edge(w, vid[ends[sd][0]], vid[ends[sd][1]], c);
     }
-    int surf = put_surface(w, (const double(*)[4])h, NU, NV, du, dv, s->closed_u, s->closed_v);
-    if (surf < 0)
-        goto oom;
     int edge[4], fwd[4], n = 0;
     for (int sd = 0; sd < 4; sd++) {
         if (eid[sd] < 0)
@@ -404,7 +499,7 @@ rg2_status rg2__write_step(const rg2_surface *surfs, int n, const rg2_export_opt
     fprintf(f, "FILE_SCHEMA(('%s'));\nENDSEC;\nDATA;\n",
             o->ap242 ? "AP242_MANAGED_MODEL_BASED_3D_ENGINEERING_MIM_LF { 1 0 10303 442 1 1 4 }"
                      : "AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }");
-    stepw w = {f, 1};
+    stepw w = {f, 1, 0};
     int *shells = malloc(sizeof(int) * (size_t)n);
     if (!shells)
         return rg2__fail(err, RG2_ENOMEM, "STEP: out of memory");

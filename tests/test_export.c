@@ -1,7 +1,7 @@
 /* test_export.c -- the export writers read back by readers of our own: OBJ, binary STL and
  * PLY round-trips against the tessellation, .glb validated structurally (header, chunk
  * lengths, accessor and index bounds, min/max), .bv / .bez / .json patches exactly, STEP
- * numbers and complex-instance order, IGES record layout; and the failure cases (unwritable
+ * numbers, complex-instance order and one pcurve per edge use, IGES record layout; and the failure cases (unwritable
  * path, non-positive weight, empty input, unknown extension) leave no file behind. */
 #define _POSIX_C_SOURCE 200809L
 #include "export_fixtures.h"
@@ -419,6 +419,8 @@ static void step_text(const rg2_surface *s)
     if (!b)
         return;
     int complex = 0, unsorted = 0, badnum = 0, faces = 0;
+    int ecurves = 0, scurves = 0, pcurves = 0, oedges = 0, edge_sc = 0;
+    char *is_sc = calloc(len, 1); /* by entity id: a SURFACE_CURVE or SEAM_CURVE */
     char *data = strstr(b, "DATA;");
     for (char *p = data; p && *p;) {
         char *e = strstr(p, ";\n");
@@ -432,6 +434,23 @@ static void step_text(const rg2_surface *s)
         }
         if (eq && !strncmp(eq + 1, "ADVANCED_FACE", 13))
             faces++;
+        if (eq) {
+            ecurves += !strncmp(eq + 1, "EDGE_CURVE(", 11);
+            int sc = !strncmp(eq + 1, "SURFACE_CURVE(", 14) || !strncmp(eq + 1, "SEAM_CURVE(", 11), id = 0;
+            scurves += sc;
+            if (is_sc && sscanf(p, "#%d=", &id) == 1 && id > 0 && (size_t)id < len) /* ids < bytes */
+                is_sc[id] = (char)sc;
+            pcurves += !strncmp(eq + 1, "PCURVE(", 7);
+            oedges += !strncmp(eq + 1, "ORIENTED_EDGE(", 14);
+            if (!strncmp(eq + 1, "EDGE_CURVE(", 11)) { /* its curve: the 4th argument */
+                int cid = 0;
+                char *c = eq;
+                for (int k = 0; k < 3 && c; k++)
+                    c = strchr(c + 1, ',');
+                if (is_sc && c && sscanf(c + 1, "#%d", &cid) == 1 && cid > 0 && (size_t)cid < len)
+                    edge_sc += is_sc[cid]; /* (written before the edge) */
+            }
+        }
         /* numbers outside strings: a real needs '.', and exponents are upper case */
         for (char *q = eq ? eq : p; *q; q++) {
             if (*q == '\'') {
@@ -458,6 +477,11 @@ static void step_text(const rg2_surface *s)
           complex, unsorted);
     CHECK(badnum == 0, "STEP: %d malformed reals", badnum);
     CHECK(faces == s->nu * s->nv, "STEP: %d ADVANCED_FACEs, expected %d", faces, s->nu * s->nv);
+    /* every edge a SURFACE_CURVE with one PCURVE per face it bounds: one per use in a loop */
+    CHECK(ecurves > 0 && edge_sc == ecurves && scurves == ecurves && pcurves == oedges,
+          "STEP: %d edges, %d on surface curves (%d written), %d pcurves for %d edge uses", ecurves, edge_sc,
+          scurves, pcurves, oedges);
+    free(is_sc);
     free(b);
 
     CHECK_OK(export_one(s, "t.igs", &err), &err);

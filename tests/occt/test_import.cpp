@@ -1,8 +1,9 @@
 // test_import.cpp -- OpenCASCADE as the real client of rg2's STEP and IGES: every exported
 // file is read back with OCCT's STEP / IGES readers and checked for the face count, one
 // connected shell with shared edges (IGES: after sewing), maximum tolerance, BRepCheck
-// validity, OCCT's surface points against rg2's evaluation, and G2 (normals and normal
-// curvatures evaluated by OCCT on both faces) across every shared edge.
+// validity, OCCT's surface points against rg2's evaluation, the pcurves (STEP: exactly the
+// sides of each face's parameter rectangle), and G2 (normals and normal curvatures evaluated
+// by OCCT on both faces) across every shared edge.
 extern "C" {
 #include "../export_fixtures.h"
 }
@@ -14,6 +15,8 @@ extern "C" {
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_Surface.hxx>
 #include <Geom2d_Curve.hxx>
+#include <Geom2d_Line.hxx>
+#include <Geom2d_TrimmedCurve.hxx>
 #include <Geom_Curve.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <IGESControl_Reader.hxx>
@@ -47,7 +50,7 @@ extern "C" {
 namespace {
 
 struct Worst {
-    double point = 0, angle = 0, curv = 0, tol = 0, exact = 0;
+    double point = 0, angle = 0, curv = 0, tol = 0, exact = 0, pcurve = 0;
     int edges = 0, samples = 0;
 };
 Worst g_worst;
@@ -129,9 +132,10 @@ struct Occurrence {
 };
 
 // Evaluate OCCT props at the point of the edge occurrence with edge-curve parameter t.
-// OCCT computes the pcurves of a STEP file by projection; near a pole they are off by up to
-// ~1e-9 in v, which would compare the two faces at slightly different points. So the pcurve's
-// (u, v) is refined by Gauss-Newton until the face's point is the edge's 3D point p.
+// rg2's STEP files carry exact pcurves (check_pcurves), but for IGES OCCT computes them by
+// projection, and near a pole they can be off by ~1e-9 in v, which would compare the two faces
+// at slightly different points. So the pcurve's (u, v) is refined by Gauss-Newton until the
+// face's point is the edge's 3D point p.
 bool props_at(const Occurrence &o, double t, const gp_Pnt &p, Handle(Geom_Surface) & surf, gp_Pnt2d &uv)
 {
     double f, l;
@@ -245,6 +249,66 @@ void check_g2(const TopoDS_Shape &shape, double scale, const char *what, int *n_
     g_worst.curv = std::max(g_worst.curv, worst_c);
     g_worst.edges += *n_shared;
     g_worst.samples += samples;
+}
+
+// Every edge's pcurve on every face it bounds, as OCCT holds it. The faces are untrimmed, so each
+// pcurve must be a side of the face's parameter rectangle [u1, u2] x [v1, v2] run at the edge's
+// own parameter: one coordinate a bound, the other the affine map of t from one bound to the
+// other. rg2's STEP files carry these lines, so there the deviation must be at rounding level,
+// poles included. (When a file has no pcurves, as IGES, OCCT projects the edges; near a pole the
+// parameter then comes out off by up to ~1e-9 while the point is right, so the point distance
+// S(pcurve(t)) - C(t), also measured, cannot show it.)
+void check_pcurves(const TopoDS_Shape &shape, double scale, const char *what, bool exact)
+{
+    double worst_uv = 0, worst_pt = 0;
+    int occurrences = 0, lines = 0;
+    for (TopExp_Explorer fx(shape, TopAbs_FACE); fx.More(); fx.Next()) {
+        TopoDS_Face face = TopoDS::Face(fx.Current());
+        Handle(Geom_Surface) surf = BRep_Tool::Surface(face);
+        if (surf.IsNull())
+            continue;
+        double b[4];
+        surf->Bounds(b[0], b[1], b[2], b[3]);
+        for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) {
+            TopoDS_Edge e = TopoDS::Edge(ex.Current());
+            if (BRep_Tool::Degenerated(e))
+                continue;
+            double f, l, f3, l3;
+            Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, face, f, l);
+            Handle(Geom_Curve) c3 = BRep_Tool::Curve(e, f3, l3);
+            CHECK(!pc.IsNull() && !c3.IsNull(), "%s: an edge without pcurve or 3D curve", what);
+            if (pc.IsNull() || c3.IsNull())
+                continue;
+            occurrences++;
+            Handle(Geom2d_Curve) basis = pc;
+            while (basis->IsKind(STANDARD_TYPE(Geom2d_TrimmedCurve)))
+                basis = Handle(Geom2d_TrimmedCurve)::DownCast(basis)->BasisCurve();
+            lines += basis->IsKind(STANDARD_TYPE(Geom2d_Line));
+            gp_Pnt2d a = pc->Value(f), z = pc->Value(l);
+            int fixed = std::fabs(a.X() - z.X()) <= std::fabs(a.Y() - z.Y()) ? 0 : 1; // 0: u constant
+            int freec = 1 - fixed;
+            double lo = b[2 * freec], hi = b[2 * freec + 1];
+            bool up = (freec ? a.Y() : a.X()) < 0.5 * (lo + hi);
+            double size = std::max(b[1] - b[0], b[3] - b[2]);
+            for (int q = 0; q <= 8; q++) {
+                double t = f + (l - f) * q / 8.0, s = (t - f) / (l - f);
+                gp_Pnt2d uv = pc->Value(t);
+                double fc = fixed ? uv.Y() : uv.X(), fr = freec ? uv.Y() : uv.X();
+                double dfix = std::min(std::fabs(fc - b[2 * fixed]), std::fabs(fc - b[2 * fixed + 1]));
+                double dfree = std::fabs(fr - (up ? lo + s * (hi - lo) : hi - s * (hi - lo)));
+                worst_uv = std::max(worst_uv, std::max(dfix, dfree) / size);
+                worst_pt = std::max(worst_pt, surf->Value(uv.X(), uv.Y()).Distance(c3->Value(t)) / scale);
+            }
+        }
+    }
+    if (exact) {
+        CHECK(worst_uv <= 1e-14, "%s: pcurves off the sides of the parameter rectangle by %.3g", what, worst_uv);
+        CHECK(worst_pt <= 1e-13, "%s: pcurve points off their edges by %.3g relative", what, worst_pt);
+        CHECK(lines == occurrences, "%s: %d of %d pcurves are lines", what, lines, occurrences);
+        g_worst.pcurve = std::max(g_worst.pcurve, worst_uv);
+    }
+    printf("  %-34s pcurves: %d edge uses, %d lines, parameter %.2e, point %.2e relative%s\n", what, occurrences,
+           lines, worst_uv, worst_pt, exact ? "" : " (computed by OCCT)");
 }
 
 // OCCT's surface points against rg2's evaluation (rg2_surface_eval: patches of any degree):
@@ -495,6 +559,7 @@ void check_file(const Case &c, const std::string &dir, const char *ext, int layo
     printf("  %-34s faces %zu, shells %d, shared %d, free %d, max tolerance %.2e, valid %d\n", what, faces.size(),
            shells, n_shared, n_free, tol, (int)an.IsValid());
     check_points(faces, c, per_mesh, what);
+    check_pcurves(shape, c.scale, what, !iges);
     if (per_mesh && faces.size() == 1)
         check_knot_lines(faces[0], c.s, c.scale, what);
     if (!getenv("RG2_OCCT_KEEP"))
@@ -665,8 +730,9 @@ int main()
         check_file(c, dir, "igs", RG2_STEP_FACE_PER_MESH, 0);
     }
     printf("worst through OpenCASCADE: point %.2e relative (exact shapes %.2e), normal angle %.2e rad, "
-           "normal curvature %.2e rel (%d shared edges, %d samples), max tolerance %.2e\n",
-           g_worst.point, g_worst.exact, g_worst.angle, g_worst.curv, g_worst.edges, g_worst.samples, g_worst.tol);
+           "normal curvature %.2e rel (%d shared edges, %d samples), max tolerance %.2e, STEP pcurves off the parameter rectangle %.2e\n",
+           g_worst.point, g_worst.exact, g_worst.angle, g_worst.curv, g_worst.edges, g_worst.samples, g_worst.tol,
+           g_worst.pcurve);
     for (rg2_surface &x : shapes)
         rg2_surface_free(&x);
     rg2_surface_free(&torus);
