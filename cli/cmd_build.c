@@ -18,6 +18,8 @@ static void usage(FILE *f)
                "writes nothing.\n"
                "  --face-per-mesh   STEP/IGES: one B-spline surface per mesh instead of one face per patch\n"
                "  --ap242           STEP: write AP242 instead of AP214\n"
+               "  --iges-brep       IGES: a B-rep shell per mesh (faces, shared edges and vertices;\n"
+               "                    no sewing needed) instead of untrimmed surfaces\n"
                "  --density N       triangle meshes: samples per patch edge (default 16)\n"
                "  -q, --quiet       no progress line\n"
                "A progress line goes to stderr when it is a terminal.\n"
@@ -59,6 +61,8 @@ int rg2_cmd_build(int argc, char **argv)
             opts.layout = RG2_STEP_FACE_PER_MESH;
         else if (!strcmp(a, "--ap242"))
             opts.ap242 = 1;
+        else if (!strcmp(a, "--iges-brep"))
+            opts.iges_brep = 1;
         else if (!strcmp(a, "-q") || !strcmp(a, "--quiet"))
             quiet = 1;
         else if (!strcmp(a, "--density")) {

@@ -735,6 +735,9 @@ typedef enum {
 typedef struct {
     rg2_step_layout layout; /**< STEP/IGES: faces per patch or per mesh */
     int ap242;              /**< STEP: write AP242 instead of AP214 */
+    int iges_brep;          /**< IGES: a B-rep shell (entity 514 of faces 510 on the patches,
+                                 edges and vertices shared, exact pcurves) instead of
+                                 untrimmed surfaces; face per patch only */
     int density;            /**< meshes: samples per patch edge (default 16) */
     const char *name;       /**< product / object name (default "rg2") */
 } rg2_export_opts;

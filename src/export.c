@@ -364,6 +364,14 @@ rg2_status rg2__topo_build(const rg2_surface *s, rg2__topo *t, rg2_error *err)
     return RG2_OK;
 }
 
+void rg2__corner_point(const rg2_surface *s, int I, int J, double out[4])
+{
+    int i = I < s->nu ? I : s->nu - 1, j = J < s->nv ? J : s->nv - 1;
+    rg2_xpatch X;
+    rg2_surface_patch_get(s, i, j, &X);
+    memcpy(out, X.h[I == i ? 0 : X.du][J == j ? 0 : X.dv], sizeof(double[4]));
+}
+
 void rg2__topo_side(const rg2__topo *t, int i, int j, int side, int *edge, int *forward)
 {
     int which, idx;

@@ -75,6 +75,9 @@ void rg2__topo_free(rg2__topo *t);
 /* The edge id on side `side` of patch (i, j) (-1 collapsed) and whether the patch's
  * counter-clockwise loop runs along the edge (1: sides 0, 1) or against it (0: sides 2, 3). */
 void rg2__topo_side(const rg2__topo *t, int i, int j, int side, int *edge, int *forward);
+/* Corner (I, J) of the patch grid (I = 0..nu, J = 0..nv) as a homogeneous point of a patch
+ * holding it. */
+void rg2__corner_point(const rg2_surface *s, int I, int J, double out[4]);
 
 /* The whole surface as one net of (du nu + 1) x (dv nv + 1) homogeneous poles h[a * NV + b],
  * a along u (MATH.md section 4), where (du, dv) = rg2_surface_degree (3, 3 for all-bi-3

@@ -1,8 +1,9 @@
 /* iges.c -- IGES 5.3 of rational patch surfaces: one untrimmed rational B-spline surface
  * (entity 128, form 0) per patch, of that patch's degrees, or per surface (merged net of all
- * patches elevated to the surface's degrees (du, dv), interior knots of multiplicity du, dv),
- * fixed 80-column records, global section in mm with resolution 1e-6
- * (shared/spec/INTEROP.md section 3). */
+ * patches elevated to the surface's degrees (du, dv), interior knots of multiplicity du, dv);
+ * or (iges_brep) per surface a B-rep shell (514) of one face (510) per patch with shared
+ * edges (504, model curves 126) and vertices (502) and exact pcurves (110); fixed 80-column
+ * records, global section in mm with resolution 1e-6 (shared/spec/INTEROP.md section 3). */
 #include "export_internal.h"
 
 #include <stdlib.h>
@@ -130,15 +131,208 @@ static void put_128(pwriter *w, const double (*h)[4], int NU, int NV, int du, in
         pw_flush(w);
 }
 
-static void put_de(ibuf *D, int type, int pstart, int pcount, int index)
+/* The two directory-entry records of an entity: status "00000000" (independent) or
+ * "00010000" (physically dependent: referenced by another entity), label and subscript. */
+static void put_de_full(ibuf *D, int type, int pstart, int pcount, int form, const char *status, const char *label,
+                        int index)
 {
     char rec[96];
-    snprintf(rec, sizeof rec, "%8d%8d%8d%8d%8d%8d%8d%8d%8sD%7d", type, pstart, 0, 0, 0, 0, 0, 0, "00000000",
+    snprintf(rec, sizeof rec, "%8d%8d%8d%8d%8d%8d%8d%8d%8sD%7d", type, pstart, 0, 0, 0, 0, 0, 0, status,
              D->nlines + 1);
     ib_put(D, rec);
-    snprintf(rec, sizeof rec, "%8d%8d%8d%8d%8d%8s%8s%8s%8dD%7d", type, 0, 0, pcount, 0, "", "", "RG2SURF",
-             index, D->nlines + 1);
+    snprintf(rec, sizeof rec, "%8d%8d%8d%8d%8d%8s%8s%8s%8dD%7d", type, 0, 0, pcount, form, "", "", label, index,
+             D->nlines + 1);
     ib_put(D, rec);
+}
+
+static void put_de(ibuf *D, int type, int pstart, int pcount, int index)
+{
+    put_de_full(D, type, pstart, pcount, 0, "00000000", "RG2SURF", index);
+}
+
+/* ---------------------------------------------------------------- B-rep shell (iges_brep) */
+
+/* The DE pointer of the q-th entity of the file. */
+static int de_of(int q) { return 2 * q + 1; }
+
+/* Close the parameter data of entity q (type, form) and write its directory entry. */
+static void end_entity(pwriter *w, ibuf *D, int start, int type, int form, const char *status, const char *label,
+                       int q)
+{
+    if (w->col > 0)
+        pw_flush(w);
+    put_de_full(D, type, start, w->P->nlines + 1 - start, form, status, label, q);
+}
+
+/* Entity 126 (rational B-spline curve), piecewise Bezier of degree deg through the n
+ * homogeneous poles h (n = deg spans + 1), parameter 0 .. spans: an edge's model-space curve. */
+static void put_126(pwriter *w, const double (*h)[4], int n, int deg)
+{
+    int rational = 0;
+    for (int a = 0; a < n; a++)
+        if (h[a][3] != 1.0)
+            rational = 1;
+    pw_int(w, 126);
+    pw_int(w, n - 1);
+    pw_int(w, deg);
+    pw_int(w, 0); /* not asserted planar */
+    pw_int(w, 0);
+    pw_int(w, rational ? 0 : 1);
+    pw_int(w, 0);
+    pw_knots(w, (n - 1) / deg, deg);
+    for (int a = 0; a < n; a++)
+        pw_real(w, h[a][3], ',');
+    for (int a = 0; a < n; a++)
+        for (int d = 0; d < 3; d++)
+            pw_real(w, h[a][d] / h[a][3], ',');
+    pw_real(w, 0.0, ',');
+    pw_real(w, (double)((n - 1) / deg), ';');
+}
+
+/* The B-rep entities of one surface, face per patch, from entity index *q on:
+ *   514 shell, 502 vertex list, 504 edge list, 126 per edge, then per patch 128, 508, 510.
+ * Edges and vertices come from rg2__topo as in the STEP writer (one per geometric edge /
+ * corner, shared by the faces on both sides; collapsed sides left out of their loops). The
+ * loops run counter-clockwise in (u, v); each edge use carries its pcurve, line[side] (the
+ * file's four 110 lines along the sides of [0, 1]^2 in the loop's direction). */
+static rg2_status brep_shell(pwriter *w, ibuf *D, const rg2_surface *s, const int line[4], int *q,
+                             rg2_error *err)
+{
+    rg2__topo t;
+    rg2_status st = rg2__topo_build(s, &t, err);
+    if (st)
+        return st;
+    int nu = s->nu, nv = s->nv, np = nu * nv;
+    int q_shell = *q, q_vl = q_shell + 1, q_el = q_shell + 2, q_curve = q_shell + 3;
+    int q_patch = q_curve + t.n_edges; /* patch p: 128 at q_patch + 3 p, 508 + 1, 510 + 2 */
+    int closed = 1;
+    for (int e = 0; e < t.n_edges; e++)
+        closed &= t.uses[e] == 2;
+    /* 514: the faces, each with the sense of its surface */
+    int start = w->P->nlines + 1;
+    w->de = de_of(q_shell);
+    pw_int(w, 514);
+    pw_int(w, np);
+    for (int p = 0; p < np; p++) {
+        pw_int(w, de_of(q_patch + 3 * p + 2));
+        if (p + 1 < np)
+            pw_int(w, 1);
+        else
+            pw_tok(w, "1", ';');
+    }
+    end_entity(w, D, start, 514, closed ? 1 : 2, "00000000", "RG2SHELL", q_shell);
+    /* 502: the vertices */
+    start = w->P->nlines + 1;
+    w->de = de_of(q_vl);
+    pw_int(w, 502);
+    pw_int(w, t.n_vertices);
+    for (int v = 0; v < t.n_vertices; v++) {
+        double h[4];
+        rg2__corner_point(s, t.vcorner[v] / (nv + 1), t.vcorner[v] % (nv + 1), h);
+        for (int d = 0; d < 3; d++)
+            pw_real(w, h[d] / h[3], v + 1 == t.n_vertices && d == 2 ? ';' : ',');
+    }
+    end_entity(w, D, start, 502, 1, "00010000", "RG2VERT", q_vl);
+    /* 504: each edge's curve and end vertices (the same corners as the STEP writer's) */
+    start = w->P->nlines + 1;
+    w->de = de_of(q_el);
+    pw_int(w, 504);
+    pw_int(w, t.n_edges);
+    for (int e = 0; e < t.n_edges; e++) {
+        int p = t.edef[2 * e], side = t.edef[2 * e + 1], i = p / nv, j = p % nv;
+        int I0 = side == 1 ? i + 1 : i, J0 = side == 2 ? j + 1 : j;
+        int I1 = (side == 0 || side == 2) ? i + 1 : I0, J1 = (side == 1 || side == 3) ? j + 1 : J0;
+        pw_int(w, de_of(q_curve + e));
+        pw_int(w, de_of(q_vl));
+        pw_int(w, t.vert[I0 * (nv + 1) + J0] + 1);
+        pw_int(w, de_of(q_vl));
+        char last[24];
+        snprintf(last, sizeof last, "%d", t.vert[I1 * (nv + 1) + J1] + 1);
+        pw_tok(w, last, e + 1 == t.n_edges ? ';' : ',');
+    }
+    end_entity(w, D, start, 504, 1, "00010000", "RG2EDGE", q_el);
+    /* 126: the edge curves */
+    for (int e = 0; e < t.n_edges; e++) {
+        int p = t.edef[2 * e];
+        rg2_xpatch X;
+        double h[RG2_MAX_DEGREE + 1][4];
+        rg2_surface_patch_get(s, p / nv, p % nv, &X);
+        int n = rg2__xpatch_side(&X, t.edef[2 * e + 1], h);
+        start = w->P->nlines + 1;
+        w->de = de_of(q_curve + e);
+        put_126(w, (const double(*)[4])h, n, n - 1);
+        end_entity(w, D, start, 126, 0, "00010000", "RG2CURVE", q_curve + e);
+    }
+    /* per patch: its surface, loop and face */
+    for (int p = 0; p < np; p++) {
+        int qs = q_patch + 3 * p;
+        rg2_xpatch X;
+        double h[(RG2_MAX_DEGREE + 1) * (RG2_MAX_DEGREE + 1)][4];
+        rg2_surface_patch_get(s, p / nv, p % nv, &X);
+        rg2__xpatch_net(&X, h);
+        start = w->P->nlines + 1;
+        w->de = de_of(qs);
+        put_128(w, (const double(*)[4])h, X.du + 1, X.dv + 1, X.du, X.dv, 0, 0);
+        put_de_full(D, 128, start, w->P->nlines + 1 - start, 0, "00010000", "RG2SURF", qs);
+        int edge[4], fwd[4], side_of[4], n = 0;
+        for (int side = 0; side < 4; side++) {
+            int e, f;
+            rg2__topo_side(&t, p / nv, p % nv, side, &e, &f);
+            if (e < 0)
+                continue;
+            edge[n] = e;
+            fwd[n] = f;
+            side_of[n++] = side;
+        }
+        start = w->P->nlines + 1;
+        w->de = de_of(qs + 1);
+        pw_int(w, 508);
+        pw_int(w, n);
+        for (int k = 0; k < n; k++) {
+            pw_int(w, 0); /* an edge (not a vertex) */
+            pw_int(w, de_of(q_el));
+            pw_int(w, edge[k] + 1);
+            pw_int(w, fwd[k]);
+            pw_int(w, 1); /* one pcurve: the side of the parameter square */
+            pw_int(w, 0);
+            char ref[24];
+            snprintf(ref, sizeof ref, "%d", de_of(line[side_of[k]]));
+            pw_tok(w, ref, k + 1 == n ? ';' : ',');
+        }
+        end_entity(w, D, start, 508, 1, "00010000", "RG2LOOP", qs + 1);
+        start = w->P->nlines + 1;
+        w->de = de_of(qs + 2);
+        pw_int(w, 510);
+        pw_int(w, de_of(qs));
+        pw_int(w, 1);
+        pw_int(w, 1); /* the loop is the outer one */
+        char ref[24];
+        snprintf(ref, sizeof ref, "%d", de_of(qs + 1));
+        pw_tok(w, ref, ';');
+        end_entity(w, D, start, 510, 1, "00010000", "RG2FACE", qs + 2);
+    }
+    *q = q_patch + 3 * np;
+    rg2__topo_free(&t);
+    return RG2_OK;
+}
+
+/* The four pcurves of every face: 110 lines along the sides of [0, 1]^2, counter-clockwise
+ * (v=0 in +u, u=1 in +v, v=1 in -u, u=0 in -v), as entities q .. q + 3. */
+static void brep_lines(pwriter *w, ibuf *D, int q)
+{
+    static const double ends[4][4] = {{0, 0, 1, 0}, {1, 0, 1, 1}, {1, 1, 0, 1}, {0, 1, 0, 0}};
+    for (int k = 0; k < 4; k++) {
+        int start = w->P->nlines + 1;
+        w->de = de_of(q + k);
+        pw_int(w, 110);
+        pw_real(w, ends[k][0], ',');
+        pw_real(w, ends[k][1], ',');
+        pw_real(w, 0.0, ',');
+        pw_real(w, ends[k][2], ',');
+        pw_real(w, ends[k][3], ',');
+        pw_real(w, 0.0, ';');
+        end_entity(w, D, start, 110, 0, "00010000", "RG2PCURV", q + k);
+    }
 }
 
 /* Hollerith string nHtext. */
@@ -200,8 +394,16 @@ rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opt
     ibuf D = {0}, P = {0}, G = {0};
     pwriter w = {&P, {0}, 0, 0};
     double maxc = 0.0;
-    int entity = 0;
+    int entity = 0, line[4] = {0, 1, 2, 3};
     rg2_status st = RG2_OK;
+    if (o->iges_brep && o->layout == RG2_STEP_FACE_PER_MESH)
+        return rg2__fail(err, RG2_EINVAL,
+                         "IGES: the B-rep shell is written face per patch; drop the face-per-mesh layout "
+                         "or the B-rep option");
+    if (o->iges_brep) {
+        brep_lines(&w, &D, 0);
+        entity = 4;
+    }
     for (int k = 0; k < n && !P.failed; k++) {
         const rg2_surface *s = &surfs[k];
         for (int p = 0; p < s->nu * s->nv; p++) {
@@ -214,7 +416,11 @@ rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opt
                         maxc = x > maxc ? x : maxc;
                     }
         }
-        if (o->layout == RG2_STEP_FACE_PER_MESH) {
+        if (o->iges_brep) {
+            st = brep_shell(&w, &D, s, line, &entity, err);
+            if (st)
+                goto done;
+        } else if (o->layout == RG2_STEP_FACE_PER_MESH) {
             int NU, NV, du, dv;
             double(*h)[4] = rg2__merged_net(s, &NU, &NV, &du, &dv);
             if (!h) {
@@ -261,7 +467,10 @@ rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opt
         st = rg2__fail(err, RG2_ENOMEM, "IGES: out of memory");
         goto done;
     }
-    put_section_line(out->f, "rg2: rational bi-cubic G2 spline surfaces, IGES 5.3 entity 128", 'S', 1);
+    put_section_line(out->f,
+                     o->iges_brep ? "rg2: rational bi-cubic G2 spline surfaces, IGES 5.3 B-rep shells (514)"
+                                  : "rg2: rational bi-cubic G2 spline surfaces, IGES 5.3 entity 128",
+                     'S', 1);
     fwrite(G.s, 1, G.len, out->f);
     fwrite(D.s, 1, D.len, out->f);
     fwrite(P.s, 1, P.len, out->f);

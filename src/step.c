@@ -227,15 +227,6 @@ static int put_shell(stepw *w, const int *faces, int n, int closed)
     return id;
 }
 
-/* Corner (I, J) of the patch grid as a homogeneous point of a patch holding it. */
-static void corner_point(const rg2_surface *s, int I, int J, double out[4])
-{
-    int i = I < s->nu ? I : s->nu - 1, j = J < s->nv ? J : s->nv - 1;
-    rg2_xpatch X;
-    rg2_surface_patch_get(s, i, j, &X);
-    memcpy(out, X.h[I == i ? 0 : X.du][J == j ? 0 : X.dv], sizeof(double[4]));
-}
-
 /* One face per patch, sharing edges and vertices through rg2__topo. Returns the shell id. */
 static rg2_status shell_per_patch(stepw *w, const rg2_surface *s, int *shell, rg2_error *err)
 {
@@ -257,7 +248,7 @@ static rg2_status shell_per_patch(stepw *w, const rg2_surface *s, int *shell, rg
     for (int v = 0; v < t.n_vertices; v++) {
         int c = t.vcorner[v];
         double h[4];
-        corner_point(s, c / (nv + 1), c % (nv + 1), h);
+        rg2__corner_point(s, c / (nv + 1), c % (nv + 1), h);
         vid[v] = put_vertex(w, h);
     }
     /* the surfaces first: each edge's pcurves refer to the surfaces of the faces it bounds */

@@ -409,6 +409,129 @@ static int is_sorted_complex(const char *ent)
     return 1;
 }
 
+/* Records of an IGES file: the number of malformed ones (length, section letter, order,
+ * sequence numbers, terminate section; -1 if unreadable) and the entity count per type
+ * (types[0..999]) from the directory entries. */
+static int iges_scan(const char *path, int types[1000])
+{
+    memset(types, 0, 1000 * sizeof(int));
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return -1;
+    char line[256];
+    int count[5] = {0}, badline = 0, order = 0;
+    const char *letters = "SGDPT";
+    while (fgets(line, sizeof line, f)) {
+        size_t n = strlen(line);
+        if (n != 81 || line[80] != '\n') {
+            badline++;
+            continue;
+        }
+        const char *l = strchr(letters, line[72]);
+        if (!l) {
+            badline++;
+            continue;
+        }
+        int sec = (int)(l - letters);
+        if (sec < order)
+            badline++;
+        order = sec;
+        count[sec]++;
+        if (atoi(line + 73) != count[sec])
+            badline++;
+        if (sec == 2 && count[2] % 2 == 1) {
+            int type = atoi(line);
+            if (type > 0 && type < 1000)
+                types[type]++;
+        }
+    }
+    fclose(f);
+    return badline + (count[4] != 1);
+}
+
+/* The parameter data of entity DE pointer `de` of an IGES file as numbers (the delimiters
+ * ',' and ';' dropped; at most cap); returns how many, -1 if absent. */
+static int iges_params(const char *text, int de, double *v, int cap)
+{
+    char buf[65], *all = NULL;
+    size_t len = 0;
+    for (const char *l = text; *l; l = strchr(l, '\n') ? strchr(l, '\n') + 1 : l + strlen(l)) {
+        if (strlen(l) < 80 || l[72] != 'P' || atoi(l + 65) != de)
+            continue;
+        memcpy(buf, l, 64);
+        buf[64] = 0;
+        char *grown = realloc(all, len + 65);
+        if (!grown)
+            break;
+        all = grown;
+        memcpy(all + len, buf, 65);
+        len += 64;
+    }
+    if (!all)
+        return -1;
+    int n = 0;
+    for (char *tok = strtok(all, ",;"); tok && n < cap; tok = strtok(NULL, ",;"))
+        if (strspn(tok, " ") < strlen(tok))
+            v[n++] = atof(tok);
+    free(all);
+    return n;
+}
+
+/* Every loop (508) of an IGES B-rep file closes: with its orientation flags, each edge use
+ * ends at the vertex where the next one starts (edges and vertices from the 504 list). Returns
+ * the number of loops checked, -1 for a malformed file, and counts the broken ones. */
+static int iges_loops_close(const char *path, int *broken)
+{
+    size_t len;
+    char *text = (char *)slurp(path, &len);
+    *broken = 0;
+    if (!text)
+        return -1;
+    int loops = 0, nv = 0;
+    static double el[1 + 5 * 100000], lp[2 + 7 * 8];
+    int ne = -1;
+    for (const char *l = text; l && *l; l = strchr(l, '\n') ? strchr(l, '\n') + 1 : NULL) {
+        if (strlen(l) < 80 || l[72] != 'D' || atoi(l + 73) % 2 == 0)
+            continue;
+        int type = atoi(l), de = atoi(l + 73);
+        if (type == 504) {
+            ne = iges_params(text, de, el, (int)(sizeof el / sizeof el[0]));
+            nv++;
+        }
+    }
+    for (const char *l = text; ne > 1 && l && *l; l = strchr(l, '\n') ? strchr(l, '\n') + 1 : NULL) {
+        if (strlen(l) < 80 || l[72] != 'D' || atoi(l + 73) % 2 == 0 || atoi(l) != 508)
+            continue;
+        int n = iges_params(text, atoi(l + 73), lp, (int)(sizeof lp / sizeof lp[0]));
+        int k = n > 1 ? (int)lp[1] : 0;
+        if (k < 1 || k > 8 || n != 2 + 7 * k) {
+            loops = -1;
+            break;
+        }
+        int from[8], to[8];
+        for (int q = 0; q < k; q++) {
+            const double *u = lp + 2 + 7 * q; /* type, list, index, OF, K, ISOP, pcurve */
+            int e = (int)u[2];
+            if (e < 1 || 2 + 5 * e > ne) {
+                loops = -1;
+                break;
+            }
+            int sv = (int)el[2 + 5 * (e - 1) + 2], tv = (int)el[2 + 5 * (e - 1) + 4];
+            from[q] = u[3] != 0 ? sv : tv;
+            to[q] = u[3] != 0 ? tv : sv;
+        }
+        if (loops < 0)
+            break;
+        int ok = 1;
+        for (int q = 0; q < k; q++)
+            ok &= to[q] == from[(q + 1) % k];
+        *broken += !ok;
+        loops++;
+    }
+    free(text);
+    return nv == 1 ? loops : -1;
+}
+
 static void step_text(const rg2_surface *s)
 {
     rg2_error err;
@@ -485,35 +608,28 @@ static void step_text(const rg2_surface *s)
     free(b);
 
     CHECK_OK(export_one(s, "t.igs", &err), &err);
-    FILE *f = fopen(path_in("t.igs"), "r");
-    char line[256];
-    int count[5] = {0}, badline = 0, order = 0, de = 0;
-    const char *letters = "SGDPT";
-    while (f && fgets(line, sizeof line, f)) {
-        size_t n = strlen(line);
-        if (n != 81 || line[80] != '\n') {
-            badline++;
-            continue;
-        }
-        const char *l = strchr(letters, line[72]);
-        if (!l) {
-            badline++;
-            continue;
-        }
-        int sec = (int)(l - letters);
-        if (sec < order)
-            badline++;
-        order = sec;
-        count[sec]++;
-        if (atoi(line + 73) != count[sec])
-            badline++;
-        if (sec == 2 && count[2] % 2 == 1)
-            de += atoi(line) == 128;
-    }
-    if (f)
-        fclose(f);
-    CHECK(f && badline == 0 && count[4] == 1, "IGES: %d malformed records", badline);
-    CHECK(de == s->nu * s->nv, "IGES: %d entities 128, expected %d", de, s->nu * s->nv);
+    int types[1000], badline = iges_scan(path_in("t.igs"), types);
+    CHECK(badline == 0, "IGES: %d malformed records", badline);
+    CHECK(types[128] == s->nu * s->nv, "IGES: %d entities 128, expected %d", types[128], s->nu * s->nv);
+
+    /* the B-rep form: one shell; a face, loop and surface per patch; one vertex list and one
+     * edge list; a model curve (126) per edge, as many as the STEP file's edges; the four pcurve
+     * lines (110) shared by all loops (OpenCASCADE reads it back in tests/occt) */
+    rg2_export_opts o;
+    rg2_export_opts_default(&o);
+    o.iges_brep = 1;
+    CHECK_OK(rg2_export_file(s, 1, path_in("b.igs"), &o, &err), &err);
+    badline = iges_scan(path_in("b.igs"), types);
+    int np = s->nu * s->nv;
+    CHECK(badline == 0 && types[514] == 1 && types[510] == np && types[508] == np && types[128] == np &&
+              types[502] == 1 && types[504] == 1 && types[110] == 4 && types[126] == ecurves,
+          "IGES B-rep: %d malformed records; entities 514 %d, 510 %d, 508 %d, 128 %d, 502 %d, 504 %d, 110 %d, "
+          "126 %d (STEP edges %d)",
+          badline, types[514], types[510], types[508], types[128], types[502], types[504], types[110], types[126],
+          ecurves);
+    int broken, loops = iges_loops_close(path_in("b.igs"), &broken);
+    CHECK(loops == np && broken == 0, "IGES B-rep: %d loops read (expected %d), %d do not close with their edge "
+                                      "orientations", loops, np, broken);
 }
 
 /* ---------------------------------------------------------------- degrees in STEP and IGES */
@@ -674,6 +790,16 @@ static void failures(const rg2_surface *s)
     double *h = rg2_surface_patch(&bad, 2, 1)->h[1][2];
     for (int k = 0; k < 4; k++)
         h[k] *= -0.5; /* same point, negative weight */
+    rg2_export_opts o;
+    rg2_export_opts_default(&o);
+    o.iges_brep = 1;
+    o.layout = RG2_STEP_FACE_PER_MESH;
+    st = rg2_export_file(s, 1, path_in("brep_mesh.igs"), &o, &err);
+    CHECK(st == RG2_EINVAL && strstr(err.msg, "B-rep") && strstr(err.msg, "face per patch"),
+          "IGES B-rep per mesh: %s: %s", rg2_status_str(st), err.msg);
+    o.layout = RG2_STEP_FACE_PER_PATCH;
+    st = rg2_export_file(&bad, 1, path_in("neg_brep.igs"), &o, &err);
+    CHECK(st == RG2_EWEIGHT && strstr(err.msg, "patch (2, 1)"), "IGES B-rep negative weight: %s", err.msg);
     const char *names[] = {"neg.step", "neg.igs"};
     for (int k = 0; k < 2; k++) {
         st = export_one(&bad, names[k], &err);

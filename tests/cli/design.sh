@@ -31,6 +31,11 @@ done
 expect 0 "" "$rg2" build -q "$src/examples/torus_sphere.json" -o "$tmp/ts.step" -o "$tmp/ts.json"
 [ -s "$tmp/ts.step" ] && head -1 "$tmp/ts.step" | grep -q "ISO-10303-21" && ok || bad "ts.step not written"
 [ -s "$tmp/ts.json" ] && ok || bad "ts.json not written"
+# IGES as B-rep shells: one 514 per output surface (torus_sphere: 1), faces 510 per patch (120)
+expect 0 "" "$rg2" build -q "$src/examples/torus_sphere.json" -o "$tmp/ts.igs" --iges-brep
+n514=$(awk 'substr($0,73,1)=="D" && substr($0,74)%2==1 && $1==514' "$tmp/ts.igs" | wc -l)
+n510=$(awk 'substr($0,73,1)=="D" && substr($0,74)%2==1 && $1==510' "$tmp/ts.igs" | wc -l)
+[ "$n514" -eq 1 ] && [ "$n510" -eq 120 ] && ok || bad "ts.igs B-rep: $n514 shells, $n510 faces"
 ls "$tmp" | grep -q '\.tmp$' && bad "temporary file left behind" || ok
 expect 0 "" "$rg2" info --map "$src/examples/torus_sphere.json"
 grep -q "exact on ring *48 patches" "$tmp/out" && grep -q "exact on ball *24 patches" "$tmp/out" &&

@@ -496,16 +496,20 @@ bool connected(const std::vector<std::vector<int>> &adj)
     return n == adj.size();
 }
 
-void check_file(const Case &c, const std::string &dir, const char *ext, int layout, int ap242)
+// brep: IGES as B-rep shells (rg2_export_opts.iges_brep), read without sewing.
+void check_file(const Case &c, const std::string &dir, const char *ext, int layout, int ap242, int brep = 0)
 {
     bool per_mesh = layout == RG2_STEP_FACE_PER_MESH, iges = ext[0] == 'i';
-    std::string path = dir + "/" + c.name + (per_mesh ? "_mesh" : "_patch") + (ap242 ? "_ap242" : "") + "." + ext;
+    std::string path = dir + "/" + c.name + (per_mesh ? "_mesh" : "_patch") + (ap242 ? "_ap242" : "") +
+                       (brep ? "_brep" : "") + "." + ext;
     char what[128];
-    snprintf(what, sizeof what, "%s%s%s.%s", c.name, per_mesh ? " per-mesh" : " per-patch", ap242 ? " AP242" : "", ext);
+    snprintf(what, sizeof what, "%s%s%s%s.%s", c.name, per_mesh ? " per-mesh" : " per-patch", ap242 ? " AP242" : "",
+             brep ? " B-rep" : "", ext);
     rg2_export_opts o;
     rg2_export_opts_default(&o);
     o.layout = (rg2_step_layout)layout;
     o.ap242 = ap242;
+    o.iges_brep = brep;
     o.name = c.name;
     rg2_error err;
     rg2_status st = rg2_export_file(c.s, 1, path.c_str(), &o, &err);
@@ -525,10 +529,14 @@ void check_file(const Case &c, const std::string &dir, const char *ext, int layo
         TopExp::MapShapes(raw, TopAbs_FACE, fm);
         Expect e = expect_of(c.s, per_mesh);
         CHECK(fm.Extent() == e.faces, "%s: %d faces before sewing, expected %d", what, fm.Extent(), e.faces);
-        BRepBuilderAPI_Sewing sew(1e-6);
-        sew.Add(raw);
-        sew.Perform();
-        shape = sew.SewedShape();
+        if (brep) // the file's own topology: no sewing
+            shape = raw;
+        else {
+            BRepBuilderAPI_Sewing sew(1e-6);
+            sew.Add(raw);
+            sew.Perform();
+            shape = sew.SewedShape();
+        }
     } else {
         STEPControl_Reader r;
         bool ok = r.ReadFile(path.c_str()) == IFSelect_RetDone;
@@ -559,7 +567,7 @@ void check_file(const Case &c, const std::string &dir, const char *ext, int layo
     printf("  %-34s faces %zu, shells %d, shared %d, free %d, max tolerance %.2e, valid %d\n", what, faces.size(),
            shells, n_shared, n_free, tol, (int)an.IsValid());
     check_points(faces, c, per_mesh, what);
-    check_pcurves(shape, c.scale, what, !iges);
+    check_pcurves(shape, c.scale, what, !iges || brep);
     if (per_mesh && faces.size() == 1)
         check_knot_lines(faces[0], c.s, c.scale, what);
     if (!getenv("RG2_OCCT_KEEP"))
@@ -689,6 +697,7 @@ int main()
         check_file(c, dir, "step", RG2_STEP_FACE_PER_PATCH, 0);
         check_file(c, dir, "step", RG2_STEP_FACE_PER_MESH, 0);
         check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0);
+        check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0, 1);
     }
     // every example design (examples/*.json): each output surface through STEP (both layouts)
     // and IGES, with the same face, connectivity, tolerance, point and G2 checks
@@ -718,6 +727,7 @@ int main()
             check_file(c, dir, "step", RG2_STEP_FACE_PER_PATCH, 0);
             check_file(c, dir, "step", RG2_STEP_FACE_PER_MESH, 0);
             check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0);
+            check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0, 1);
         }
         rg2_design_free(d);
     }
@@ -727,6 +737,7 @@ int main()
             check_file(c, dir, "step", RG2_STEP_FACE_PER_PATCH, 1);
         check_file(c, dir, "step", RG2_STEP_FACE_PER_MESH, 0);
         check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0);
+        check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0, 1);
         check_file(c, dir, "igs", RG2_STEP_FACE_PER_MESH, 0);
     }
     printf("worst through OpenCASCADE: point %.2e relative (exact shapes %.2e), normal angle %.2e rad, "
