@@ -33,16 +33,19 @@ def main(path):
             b = f"{r['write_ceiling_bound']:.1f}x" if 'write_ceiling_bound' in r else ''
             print(f"| {r['pair']} | {r['ratio']:.2f}x | {t} | {met} | {b} |")
     if 'grid_scaling' in d:
+        paired = any('speedup_2_threads_paired' in r for r in d['grid_scaling']['threads'])
         print("\n| points per patch | output | 1 thread M pts/s | 2 threads M pts/s | 2t / 1t (medians) | "
-              "2t / 1t (fastest calls) | 2t / 1t, second core busy | write ceiling M pts/s | 1 thread / ceiling | "
+              + ("2t / 1t (paired calls) | " if paired else "")
+              + "2t / 1t (fastest calls) | 2t / 1t, second core busy | write ceiling M pts/s | 1 thread / ceiling | "
               "output MB, fits |")
-        print("|---|---|---:|---:|---:|---:|---:|---:|---:|---|")
+        print("|---|---|---:|---:|---:|" + ("---:|" if paired else "") + "---:|---:|---:|---:|---|")
         for r in d['grid_scaling']['threads']:
             c = f"{r['ceiling_mpoints_per_s']:.1f}" if 'ceiling_mpoints_per_s' in r else '-'
             f = f"{r['fraction_of_ceiling_1_thread']:.2f}" if 'fraction_of_ceiling_1_thread' in r else '-'
             print(f"| {r['points_per_patch_side']}^2 | {r['output']} | {r['mpoints_per_s_1_thread']:.1f} | "
                   f"{r['mpoints_per_s_2_threads']:.1f} | {r['speedup_2_threads']:.2f}x | "
-                  f"{r['speedup_2_threads_fastest_calls']:.2f}x | "
+                  + (f"{r['speedup_2_threads_paired']:.2f}x | " if paired else "")
+                  + f"{r['speedup_2_threads_fastest_calls']:.2f}x | "
                   f"{r['speedup_2_threads_second_core_busy']:.2f}x | {c} | {f} | "
                   f"{r['output_bytes'] * 1e-6:.1f}, {r.get('output_fits', '')} |")
     if 'construction' in d:

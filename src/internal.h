@@ -45,8 +45,9 @@ void rg2__ok(rg2_error *err);
 void *rg2__calloc(size_t n, size_t size);
 
 /* Run fn(arg, c) for the chunks c = 0..n-1 on up to nthreads threads (src/pool.c): the caller
- * and persistent workers claim chunks from one counter; the call returns when every chunk is
- * done and never waits for a worker that has not claimed one. Chunks must be independent. */
+ * and persistent workers claim chunks, each from its own contiguous home block first, then from
+ * the others'; the call returns when every chunk is done and never waits for a worker that has
+ * not claimed one. Chunks must be independent. */
 #include <stdint.h>
 typedef void (*rg2__pool_fn)(void *arg, uint32_t chunk);
 void rg2__pool_run(int nthreads, uint32_t n, rg2__pool_fn fn, void *arg);

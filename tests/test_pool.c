@@ -42,25 +42,39 @@ static void sleep_ms(int ms)
     nanosleep(&ts, NULL);
 }
 
-/* Every chunk exactly once, for thread counts 0..5 and chunk counts 0..600; some calls after a
- * pause longer than the workers' spin (they sleep and must be woken). */
+/* One pool call of n chunks on th threads; the number of chunks run other than once or with
+ * their result not visible on return. */
+static int one_call(int th, uint32_t n)
+{
+    count_job j = {n, calloc(n + 1, sizeof(unsigned)), calloc(n + 1, sizeof(double))};
+    rg2__pool_run(th, n, count_chunk, &j);
+    int bad = 0;
+    for (uint32_t c = 0; c < n; c++)
+        if (j.hits[c] != 1 || j.work[c] != expect(c))
+            bad++;
+    free(j.hits);
+    free(j.work);
+    return bad;
+}
+
+/* Every chunk exactly once, for thread counts 0..5 and chunk counts 0..600 (and 70001, more than
+ * one job holds); some calls after a pause longer than the workers' spin (they sleep and must be
+ * woken). */
 static void chunks_once(void)
 {
     int bad = 0, calls = 0;
     for (int th = 0; th <= 5; th++)
         for (uint32_t n = 0; n <= 600; n += n < 20 ? 1 : 97) {
-            count_job j = {n, calloc(n + 1, sizeof(unsigned)), calloc(n + 1, sizeof(double))};
             if (n == 301)
                 sleep_ms(5);
-            rg2__pool_run(th, n, count_chunk, &j);
+            bad += one_call(th, n);
             calls++;
-            for (uint32_t c = 0; c < n; c++)
-                if (j.hits[c] != 1 || j.work[c] != expect(c))
-                    bad++;
-            free(j.hits);
-            free(j.work);
         }
-    printf("pool: %d calls (threads 0..5, 0..600 chunks): %d chunks run other than once or not visible\n",
+    /* more chunks than one job's 16-bit block positions hold: run as consecutive jobs */
+    for (int th = 2; th <= 3; th++, calls++)
+        bad += one_call(th, 70001);
+    printf("pool: %d calls (threads 0..5, 0..600 and 70001 chunks): %d chunks run other than once or not "
+           "visible\n",
            calls, bad);
     CHECK(bad == 0, "%d chunks run other than once or with their result not visible", bad);
 }
