@@ -25,8 +25,8 @@ run() {
   fi
 }
 has() { "$rg2" --help | grep -q "^  $1 "; }
-# every example through build (all writers), check and render; info, mesh and the
-# face-per-mesh layout once (each valgrind start costs about a second)
+# every example through build (all writers), check and render; info, mesh, the face-per-mesh
+# layout and the IGES B-rep form once (each valgrind start costs about a second)
 for f in "$src"/examples/*.json; do
   b=$(basename "$f" .json)
   run 0 "$rg2" build -q "$f" -o "$tmp/$b.step" -o "$tmp/$b.igs" -o "$tmp/$b.bv" -o "$tmp/$b.stl" \
@@ -39,6 +39,7 @@ ex="$src/examples/torus_sphere.json"
 run 0 "$rg2" info --map "$ex"
 run 0 "$rg2" mesh "$ex" -o "$tmp/mesh.json"
 run 0 "$rg2" build -q "$ex" --face-per-mesh --ap242 -o "$tmp/m.step" -o "$tmp/m.igs" -o "$tmp/m.obj" -o "$tmp/m.ply" -o "$tmp/m.bez"
+run 0 "$rg2" build -q "$src/examples/fig9_polar_sphere.json" --iges-brep -o "$tmp/b.igs"
 run 0 "$rg2" demo
 run 0 "$rg2" shapes
 # the error paths: every row of the bad-input table (tests/bad/table.tsv, see its header)
