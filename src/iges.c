@@ -388,6 +388,8 @@ static void put_section_line(FILE *f, const char *text, char letter, int seq)
     fputc('\n', f);
 }
 
+int rg2__iges_max_records = 9999999;
+
 rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opts *o, rg2__out *out,
                            rg2_error *err)
 {
@@ -465,6 +467,15 @@ rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opt
     put_global(&G, gt, (int)(sizeof gt / sizeof gt[0]));
     if (D.failed || P.failed || G.failed) {
         st = rg2__fail(err, RG2_ENOMEM, "IGES: out of memory");
+        goto done;
+    }
+    /* each record carries its sequence number in 7 columns (and directory entries point to each
+     * other by them): past 9,999,999 records in a section the file cannot be written */
+    if (D.nlines > rg2__iges_max_records || P.nlines > rg2__iges_max_records) {
+        st = rg2__fail(err, RG2_ELIMIT,
+                       "IGES: %d directory and %d parameter records, more than the %d that IGES's 7-digit "
+                       "sequence numbers allow (size limit exceeded); write STEP, or fewer patches",
+                       D.nlines, P.nlines, rg2__iges_max_records);
         goto done;
     }
     put_section_line(out->f,

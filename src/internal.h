@@ -120,6 +120,8 @@ void rg2__bern(int n, double t, double *B, double *D, double *DD);
  * with AVX-512, so tests cover both. */
 extern int rg2__grid_portable;
 extern int rg2__grid_hwdiv; /* test hook: -1 by CPU, 0 Newton steps, 1 hardware division */
+/* Test hook (iges.c): the largest sequence number of an IGES section, 9,999,999 (7 columns). */
+extern int rg2__iges_max_records;
 
 /* The grid evaluator for higher-degree patches (xpatch.c; rg2_surface_grid calls it for the
  * patches with xp[k].du > 0): Bernstein tables of the degrees present at the n x m grid

@@ -1,9 +1,11 @@
 /* test_export.c -- the export writers read back by readers of our own: OBJ, binary STL and
  * PLY round-trips against the tessellation, .glb validated structurally (header, chunk
  * lengths, accessor and index bounds, min/max), .bv / .bez / .json patches exactly, STEP
- * numbers, complex-instance order and one pcurve per edge use, IGES record layout; and the failure cases (unwritable
- * path, non-positive weight, empty input, unknown extension) leave no file behind. */
+ * numbers, complex-instance order and one pcurve per edge use, IGES record layout and B-rep
+ * loops; and the failure cases (unwritable path, non-positive weight, empty input, unknown
+ * extension, more IGES records than its sequence numbers hold) leave no file behind. */
 #define _POSIX_C_SOURCE 200809L
+#include "../src/internal.h"
 #include "export_fixtures.h"
 
 #include <cjson/cJSON.h>
@@ -790,6 +792,13 @@ static void failures(const rg2_surface *s)
     double *h = rg2_surface_patch(&bad, 2, 1)->h[1][2];
     for (int k = 0; k < 4; k++)
         h[k] *= -0.5; /* same point, negative weight */
+    /* more records than IGES's 7-digit sequence numbers hold (the limit lowered by the test
+     * hook: a real case needs some 440,000 patches, 250,000 in the B-rep form) */
+    rg2__iges_max_records = 50;
+    st = export_one(s, "many.igs", &err);
+    rg2__iges_max_records = 9999999;
+    CHECK(st == RG2_ELIMIT && strstr(err.msg, "sequence numbers"), "IGES past its record limit: %s: %s",
+          rg2_status_str(st), err.msg);
     rg2_export_opts o;
     rg2_export_opts_default(&o);
     o.iges_brep = 1;
