@@ -741,7 +741,7 @@ int main()
         check_file(c, dir, "igs", RG2_STEP_FACE_PER_MESH, 0);
     }
     printf("worst through OpenCASCADE: point %.2e relative (exact shapes %.2e), normal angle %.2e rad, "
-           "normal curvature %.2e rel (%d shared edges, %d samples), max tolerance %.2e, STEP pcurves off the parameter rectangle %.2e\n",
+           "normal curvature %.2e rel (%d shared edges, %d samples), max tolerance %.2e, STEP and IGES B-rep pcurves off the parameter rectangle %.2e\n",
            g_worst.point, g_worst.exact, g_worst.angle, g_worst.curv, g_worst.edges, g_worst.samples, g_worst.tol,
            g_worst.pcurve);
     for (rg2_surface &x : shapes)
