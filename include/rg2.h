@@ -710,7 +710,11 @@ RG2_API rg2_status rg2_patch_grid(const rg2_patch *P, int n, int m, const rg2_gr
  *  threads: 0 = the OpenMP default (OMP_NUM_THREADS, else the cores), 1 = serial, t > 1 = up to
  *  t threads (at most 64): the caller and a persistent pool of worker threads share the patches,
  *  and the call never waits for a worker that has not started (a busy core costs no more than
- *  running alone). Results are identical for any t; safe to call from several threads at once.
+ *  running alone). Each thread takes the same patches call after call when the threads keep
+ *  pace, so repeated calls into the same arrays find them in that thread's cache. Workers idle
+ *  for more than 2 ms sleep, and the next call wakes them: in a loop with longer pauses between
+ *  small calls (an interactive editor at 60 Hz, say) threads = 1 is faster (docs/performance.md).
+ *  Results are identical for any t; safe to call from several threads at once.
  *  Patches of higher degree (s->xp) are evaluated too, equal to rg2_xpatch_eval bit for bit.
  *  @return as rg2_patch_grid; RG2_EINVAL for an empty surface or threads < 0; RG2_ELIMIT when
  *  the total number of values does not fit in memory sizes. */
