@@ -4,12 +4,13 @@
 #   make bench  build optimised and run the benchmark against SISL and OpenCASCADE
 #   make check-memory  the rg2 command under valgrind on every example and bad input (make test runs it)
 #   make fuzz   build the libFuzzer harnesses (clang) into build-fuzz/ and run each FUZZ_SECONDS
+#   make check-freecad  FreeCAD opens our STEP / IGES (installs freecad-python3, ~930 MB; not in make test)
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 MAKEFLAGS += --no-print-directory
 DESIGN ?= examples/torus_sphere.json
 FUZZ_SECONDS ?= 60
 
-.PHONY: all build run test bench clean check-memory fuzz
+.PHONY: all build run test bench clean check-memory check-freecad fuzz
 
 all: build
 
@@ -35,6 +36,10 @@ check-memory:
 	@cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_FLAGS=-g -DRG2_BUILD_TESTS=OFF >/dev/null
 	@cmake --build build -j$(JOBS)
 	@scripts/check_memory.sh build/rg2 .
+
+check-freecad: build
+	@scripts/deps.sh freecad
+	@scripts/freecad_check.sh build/rg2 .
 
 fuzz:
 	@scripts/deps.sh fuzz

@@ -1,16 +1,18 @@
 #!/usr/bin/env bash
 # Install the Debian packages a make target needs, only those missing (idempotent).
-# Usage: scripts/deps.sh base|test|bench|fuzz
+# Usage: scripts/deps.sh base|test|bench|fuzz|freecad
 set -eu
 base="cmake make gcc g++ pkg-config libcjson-dev libpng-dev"
 test="$base valgrind gmsh libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev libtbb-dev"
 bench="$test libsisl-dev"
 fuzz="$base clang libclang-rt-14-dev"
+freecad="$base freecad-python3"
 case "${1:-base}" in
   base) want=$base ;;
   test) want=$test ;;
   bench) want=$bench ;;
   fuzz) want=$fuzz ;;
+  freecad) want=$freecad ;;
   *) echo "deps.sh: unknown set '$1'" >&2; exit 2 ;;
 esac
 missing=""

@@ -7,26 +7,18 @@
 # gmsh sews the faces (Geometry.OCCSewFaces): the check can fail, and does where it should.
 # Usage: bash gmsh.sh <path-to-rg2> <source-dir>
 set -u
-rg2=$1
+. "$(dirname "$0")/lib.sh" "$@"
+rg2=$RG2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-fails=0 passes=0
-ok() { passes=$((passes + 1)); }
-bad() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
 
 if ! command -v gmsh >/dev/null; then
   echo "FAIL: gmsh is not installed (make test installs it: scripts/deps.sh test)" >&2
   exit 1
 fi
 
-cat >"$tmp/torus.json" <<'EOF'
-{"format": "rg2 design 1",
- "shapes": {"torus": {"kind": "torus", "R": 3, "r": 1}},
- "meshes": {"a": {"shape": "torus", "u": {"arcs": 8}, "v": {"arcs": 6}}},
- "output": ["a"]}
-EOF
-"$rg2" build -q "$tmp/torus.json" -o "$tmp/t.step" -o "$tmp/t.igs" && ok || bad "rg2 build (STEP, IGES)"
-"$rg2" build -q "$tmp/torus.json" -o "$tmp/tb.igs" --iges-brep && ok || bad "rg2 build --iges-brep"
+"$rg2" build -q "$SRC/tests/data/torus_8x6.json" -o "$tmp/t.step" -o "$tmp/t.igs" && ok || bad "rg2 build (STEP, IGES)"
+"$rg2" build -q "$SRC/tests/data/torus_8x6.json" -o "$tmp/tb.igs" --iges-brep && ok || bad "rg2 build --iges-brep"
 
 # nodes, triangles, triangle edges used once, and the largest distance of a node from the torus
 # (relative to R + r) of a gmsh .msh (format 2)
@@ -76,5 +68,4 @@ mesh "$tmp/tb.igs" "IGES B-rep" 1
 mesh "$tmp/t.igs" "IGES, untrimmed surfaces" 0
 mesh "$tmp/t.igs" "IGES, untrimmed surfaces, sewn by gmsh" 1 -setnumber Geometry.OCCSewFaces 1
 
-echo "cli gmsh: $passes passed, $fails failed"
-[ "$fails" = 0 ]
+finish
