@@ -82,6 +82,14 @@ static void pw_real(pwriter *w, double x, char delim)
     pw_tok(w, b, delim);
 }
 
+/* End the entity: its last delimiter becomes ';' (every token is followed by one, in the current
+ * line: pw_tok flushes before a token, never after it). */
+static void pw_end(pwriter *w)
+{
+    if (w->col > 0 && w->line[w->col - 1] == ',')
+        w->line[w->col - 1] = ';';
+}
+
 /* Full knot vector of n spans of degree deg: 0 (deg + 1 times), 1 (deg times), ..., n
  * (deg + 1 times); for degree 3: 0,0,0,0,1,1,1,2,2,2,...,n,n,n,n. */
 static void pw_knots(pwriter *w, int n_spans, int deg)
@@ -215,11 +223,9 @@ static rg2_status brep_shell(pwriter *w, ibuf *D, const rg2_surface *s, const in
     pw_int(w, np);
     for (int p = 0; p < np; p++) {
         pw_int(w, de_of(q_patch + 3 * p + 2));
-        if (p + 1 < np)
-            pw_int(w, 1);
-        else
-            pw_tok(w, "1", ';');
+        pw_int(w, 1);
     }
+    pw_end(w);
     end_entity(w, D, start, 514, closed ? 1 : 2, "00000000", "RG2SHELL", q_shell);
     /* 502: the vertices */
     start = w->P->nlines + 1;
@@ -230,8 +236,9 @@ static rg2_status brep_shell(pwriter *w, ibuf *D, const rg2_surface *s, const in
         double h[4];
         rg2__corner_point(s, t.vcorner[v] / (nv + 1), t.vcorner[v] % (nv + 1), h);
         for (int d = 0; d < 3; d++)
-            pw_real(w, h[d] / h[3], v + 1 == t.n_vertices && d == 2 ? ';' : ',');
+            pw_real(w, h[d] / h[3], ',');
     }
+    pw_end(w);
     end_entity(w, D, start, 502, 1, "00010000", "RG2VERT", q_vl);
     /* 504: each edge's curve and end vertices (the same corners as the STEP writer's) */
     start = w->P->nlines + 1;
@@ -246,10 +253,9 @@ static rg2_status brep_shell(pwriter *w, ibuf *D, const rg2_surface *s, const in
         pw_int(w, de_of(q_vl));
         pw_int(w, t.vert[I0 * (nv + 1) + J0] + 1);
         pw_int(w, de_of(q_vl));
-        char last[24];
-        snprintf(last, sizeof last, "%d", t.vert[I1 * (nv + 1) + J1] + 1);
-        pw_tok(w, last, e + 1 == t.n_edges ? ';' : ',');
+        pw_int(w, t.vert[I1 * (nv + 1) + J1] + 1);
     }
+    pw_end(w);
     end_entity(w, D, start, 504, 1, "00010000", "RG2EDGE", q_el);
     /* 126: the edge curves */
     for (int e = 0; e < t.n_edges; e++) {
@@ -295,10 +301,9 @@ static rg2_status brep_shell(pwriter *w, ibuf *D, const rg2_surface *s, const in
             pw_int(w, fwd[k]);
             pw_int(w, 1); /* one pcurve: the side of the parameter square */
             pw_int(w, 0);
-            char ref[24];
-            snprintf(ref, sizeof ref, "%d", de_of(line[side_of[k]]));
-            pw_tok(w, ref, k + 1 == n ? ';' : ',');
+            pw_int(w, de_of(line[side_of[k]]));
         }
+        pw_end(w);
         end_entity(w, D, start, 508, 1, "00010000", "RG2LOOP", qs + 1);
         start = w->P->nlines + 1;
         w->de = de_of(qs + 2);
@@ -306,9 +311,8 @@ static rg2_status brep_shell(pwriter *w, ibuf *D, const rg2_surface *s, const in
         pw_int(w, de_of(qs));
         pw_int(w, 1);
         pw_int(w, 1); /* the loop is the outer one */
-        char ref[24];
-        snprintf(ref, sizeof ref, "%d", de_of(qs + 1));
-        pw_tok(w, ref, ';');
+        pw_int(w, de_of(qs + 1));
+        pw_end(w);
         end_entity(w, D, start, 510, 1, "00010000", "RG2FACE", qs + 2);
     }
     *q = q_patch + 3 * np;
