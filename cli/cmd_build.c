@@ -19,7 +19,7 @@ static void usage(FILE *f)
                "  --face-per-mesh   STEP/IGES: one B-spline surface per mesh instead of one face per patch\n"
                "  --ap242           STEP: write AP242 instead of AP214\n"
                "  --iges-brep       IGES: a B-rep shell per mesh (faces, shared edges and vertices;\n"
-               "                    no sewing needed) instead of untrimmed surfaces\n"
+               "                    no sewing needed) instead of untrimmed surfaces; either layout\n"
                "  --density N       triangle meshes: samples per patch edge (default 16)\n"
                "  -q, --quiet       no progress line\n"
                "A progress line goes to stderr when it is a terminal.\n"

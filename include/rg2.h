@@ -739,9 +739,10 @@ typedef enum {
 typedef struct {
     rg2_step_layout layout; /**< STEP/IGES: faces per patch or per mesh */
     int ap242;              /**< STEP: write AP242 instead of AP214 */
-    int iges_brep;          /**< IGES: a B-rep shell (entity 514 of faces 510 on the patches,
-                                 edges and vertices shared, exact pcurves) instead of
-                                 untrimmed surfaces; face per patch only */
+    int iges_brep;          /**< IGES: a B-rep shell per surface (entity 514 of faces 510, one
+                                 per patch or, with the face-per-mesh layout, one on the
+                                 merged net; edges and vertices shared, exact pcurves) instead
+                                 of untrimmed surfaces */
     int density;            /**< meshes: samples per patch edge (default 16) */
     const char *name;       /**< product / object name (default "rg2") */
 } rg2_export_opts;

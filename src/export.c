@@ -372,6 +372,110 @@ void rg2__corner_point(const rg2_surface *s, int I, int J, double out[4])
     memcpy(out, X.h[I == i ? 0 : X.du][J == j ? 0 : X.dv], sizeof(double[4]));
 }
 
+const int rg2__side_ends[4][2] = {{0, 1}, {1, 2}, {3, 2}, {0, 3}};
+
+int rg2__net_side(rg2__mesh_topo *t, int sd)
+{
+    int NU = t->NU, NV = t->NV, n = (sd & 1) ? NV : NU;
+    for (int a = 0; a < n; a++) {
+        size_t k;
+        switch (sd) {
+        case 0: k = (size_t)a * (size_t)NV; break;
+        case 1: k = (size_t)(NU - 1) * (size_t)NV + (size_t)a; break;
+        case 2: k = (size_t)a * (size_t)NV + (size_t)(NV - 1); break;
+        default: k = (size_t)a; break;
+        }
+        memcpy(t->side[a], t->h[k], sizeof(double[4]));
+    }
+    return n;
+}
+
+static int curve_collapsed(const double (*h)[4], int n, double tol)
+{
+    for (int a = 1; a < n; a++)
+        for (int d = 0; d < 3; d++)
+            if (!(fabs(h[a][d] / h[a][3] - h[0][d] / h[0][3]) <= tol))
+                return 0;
+    return 1;
+}
+
+static int uf4(const int *p, int a)
+{
+    while (p[a] != a)
+        a = p[a];
+    return a;
+}
+
+static void join4(int *p, int a, int b)
+{
+    a = uf4(p, a);
+    b = uf4(p, b);
+    if (a != b)
+        p[a > b ? a : b] = a < b ? a : b;
+}
+
+void rg2__mesh_topo_free(rg2__mesh_topo *t)
+{
+    free(t->h);
+    free(t->side);
+    t->h = t->side = NULL;
+}
+
+rg2_status rg2__mesh_topo_build(const rg2_surface *s, rg2__mesh_topo *t, rg2_error *err)
+{
+    memset(t, 0, sizeof *t);
+    t->h = rg2__merged_net(s, &t->NU, &t->NV, &t->du, &t->dv);
+    t->side = t->h ? rg2__calloc((size_t)(t->NU > t->NV ? t->NU : t->NV), sizeof(double[4])) : NULL;
+    if (!t->h || !t->side) {
+        rg2__mesh_topo_free(t);
+        return rg2__fail(err, RG2_ENOMEM, "export: out of memory for %d x %d patches", s->nu, s->nv);
+    }
+    double tol = rg2__collapse_tol(s);
+    int parent[4] = {0, 1, 2, 3}, collapsed[4];
+    for (int sd = 0; sd < 4; sd++) {
+        int n = rg2__net_side(t, sd);
+        collapsed[sd] = curve_collapsed((const double(*)[4])t->side, n, tol);
+        if (collapsed[sd])
+            join4(parent, rg2__side_ends[sd][0], rg2__side_ends[sd][1]);
+    }
+    if (s->closed_u) {
+        join4(parent, 0, 1);
+        join4(parent, 3, 2);
+    }
+    if (s->closed_v) {
+        join4(parent, 0, 3);
+        join4(parent, 1, 2);
+    }
+    int vof[4] = {-1, -1, -1, -1};
+    for (int c = 0; c < 4; c++) {
+        int r = uf4(parent, c);
+        if (vof[r] < 0) {
+            vof[r] = t->n_vertices;
+            t->vcorner[t->n_vertices++] = r;
+        }
+        t->vert[c] = vof[r];
+    }
+    /* define v = 0 and u = 0 first: the closing sides reuse them */
+    static const int order[4] = {0, 3, 1, 2};
+    for (int q = 0; q < 4; q++)
+        t->edge[q] = -1;
+    for (int q = 0; q < 4; q++) {
+        int sd = order[q];
+        if (collapsed[sd])
+            continue;
+        if (sd == 1 && s->closed_u)
+            t->edge[1] = t->edge[3];
+        else if (sd == 2 && s->closed_v)
+            t->edge[2] = t->edge[0];
+        else {
+            t->eside[t->n_edges] = sd;
+            t->edge[sd] = t->n_edges++;
+        }
+    }
+    t->closed = (s->closed_u || collapsed[1] || collapsed[3]) && (s->closed_v || collapsed[0] || collapsed[2]);
+    return RG2_OK;
+}
+
 void rg2__topo_side(const rg2__topo *t, int i, int j, int side, int *edge, int *forward)
 {
     int which, idx;

@@ -79,6 +79,30 @@ void rg2__topo_side(const rg2__topo *t, int i, int j, int side, int *edge, int *
  * holding it. */
 void rg2__corner_point(const rg2_surface *s, int I, int J, double out[4]);
 
+/* Topology of one surface as one face on its merged net (the face-per-mesh layouts of the STEP
+ * and IGES B-rep writers). Corners 0 (u0 v0), 1 (u1 v0), 2 (u1 v1), 3 (u0 v1), merged into
+ * vertices where a direction closes or a side collapses; sides counter-clockwise 0 (v = 0, from
+ * corner 0 to 1), 1 (u = U1, 1 to 2), 2 (v = V1, 3 to 2), 3 (u = 0, 0 to 3), each running in +u or
+ * +v; the loop uses sides 0 and 1 forward, 2 and 3 reversed. A closed direction's closing side
+ * (1 or 2) uses the edge of its partner (3 or 0): a seam, on the face twice. */
+typedef struct {
+    int NU, NV, du, dv;
+    double (*h)[4];  /* the merged net (rg2__merged_net) */
+    double (*side)[4]; /* room for one side of it (rg2__net_side) */
+    int n_vertices, n_edges;
+    int vert[4];     /* vertex of each corner */
+    int vcorner[4];  /* a corner of each vertex */
+    int edge[4];     /* edge of each side, -1 where the side collapses */
+    int eside[4];    /* the side whose control points are each edge's curve */
+    int closed;      /* no free edge: a closed shell */
+} rg2__mesh_topo;
+
+extern const int rg2__side_ends[4][2]; /* the corners each side runs between, in its direction */
+rg2_status rg2__mesh_topo_build(const rg2_surface *s, rg2__mesh_topo *t, rg2_error *err);
+void rg2__mesh_topo_free(rg2__mesh_topo *t);
+/* Side sd of the merged net into t->side; returns its number of control points. */
+int rg2__net_side(rg2__mesh_topo *t, int sd);
+
 /* The whole surface as one net of (du nu + 1) x (dv nv + 1) homogeneous poles h[a * NV + b],
  * a along u (MATH.md section 4), where (du, dv) = rg2_surface_degree (3, 3 for all-bi-3
  * surfaces) and every patch is exactly degree-elevated to it: patch boundary rows are shared,

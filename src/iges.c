@@ -1,8 +1,9 @@
 /* iges.c -- IGES 5.3 of rational patch surfaces: one untrimmed rational B-spline surface
  * (entity 128, form 0) per patch, of that patch's degrees, or per surface (merged net of all
  * patches elevated to the surface's degrees (du, dv), interior knots of multiplicity du, dv);
- * or (iges_brep) per surface a B-rep shell (514) of one face (510) per patch with shared
- * edges (504, model curves 126) and vertices (502) and exact pcurves (110); fixed 80-column
+ * or (iges_brep) per surface a B-rep shell (514) of one face (510) per patch, or of one face on
+ * the merged net, with shared edges (504, model curves 126) and vertices (502) and exact pcurves
+ * (110); fixed 80-column
  * records, global section in mm with resolution 1e-6 (shared/spec/INTEROP.md section 3). */
 #include "export_internal.h"
 
@@ -197,6 +198,99 @@ static void put_126(pwriter *w, const double (*h)[4], int n, int deg)
     pw_real(w, (double)((n - 1) / deg), ';');
 }
 
+/* 514: a shell of the faces with DE pointers face_de[0..n-1], each with its surface's sense. */
+static void put_514(pwriter *w, ibuf *D, int q, const int *face_q, int n, int closed)
+{
+    int start = w->P->nlines + 1;
+    w->de = de_of(q);
+    pw_int(w, 514);
+    pw_int(w, n);
+    for (int k = 0; k < n; k++) {
+        pw_int(w, de_of(face_q[k]));
+        pw_int(w, 1);
+    }
+    pw_end(w);
+    end_entity(w, D, start, 514, closed ? 1 : 2, "00000000", "RG2SHELL", q);
+}
+
+/* 502: the vertices, homogeneous points h[0..n-1]. */
+static void put_502(pwriter *w, ibuf *D, int q, const double (*h)[4], int n)
+{
+    int start = w->P->nlines + 1;
+    w->de = de_of(q);
+    pw_int(w, 502);
+    pw_int(w, n);
+    for (int v = 0; v < n; v++)
+        for (int d = 0; d < 3; d++)
+            pw_real(w, h[v][d] / h[v][3], ',');
+    pw_end(w);
+    end_entity(w, D, start, 502, 1, "00010000", "RG2VERT", q);
+}
+
+/* 504: edge e runs along the curve entity q_curve + e from vertex ends[e][0] to ends[e][1] of
+ * the vertex list q_vl (0-based indices). */
+static void put_504(pwriter *w, ibuf *D, int q, int q_vl, int q_curve, const int (*ends)[2], int n)
+{
+    int start = w->P->nlines + 1;
+    w->de = de_of(q);
+    pw_int(w, 504);
+    pw_int(w, n);
+    for (int e = 0; e < n; e++) {
+        pw_int(w, de_of(q_curve + e));
+        pw_int(w, de_of(q_vl));
+        pw_int(w, ends[e][0] + 1);
+        pw_int(w, de_of(q_vl));
+        pw_int(w, ends[e][1] + 1);
+    }
+    pw_end(w);
+    end_entity(w, D, start, 504, 1, "00010000", "RG2EDGE", q);
+}
+
+/* 126 at entity q: an edge's model curve, poles h[0..n-1] of degree deg. */
+static void put_126_entity(pwriter *w, ibuf *D, int q, const double (*h)[4], int n, int deg)
+{
+    int start = w->P->nlines + 1;
+    w->de = de_of(q);
+    put_126(w, h, n, deg);
+    end_entity(w, D, start, 126, 0, "00010000", "RG2CURVE", q);
+}
+
+/* 128 at entity q (a face's surface), 508 at q + 1 (its loop: the n uses of edges edge[k] of the
+ * list q_el, orientation fwd[k], pcurve entity line_q[k]) and 510 at q + 2 (the face). */
+static void put_face_entities(pwriter *w, ibuf *D, int q, const double (*h)[4], int NU, int NV, int du, int dv,
+                              int closed_u, int closed_v, int q_el, const int *edge, const int *fwd,
+                              const int *line_q, int n)
+{
+    int start = w->P->nlines + 1;
+    w->de = de_of(q);
+    put_128(w, h, NU, NV, du, dv, closed_u, closed_v);
+    put_de_full(D, 128, start, w->P->nlines + 1 - start, 0, "00010000", "RG2SURF", q);
+    start = w->P->nlines + 1;
+    w->de = de_of(q + 1);
+    pw_int(w, 508);
+    pw_int(w, n);
+    for (int k = 0; k < n; k++) {
+        pw_int(w, 0); /* an edge (not a vertex) */
+        pw_int(w, de_of(q_el));
+        pw_int(w, edge[k] + 1);
+        pw_int(w, fwd[k]);
+        pw_int(w, 1); /* one pcurve: the side of the parameter rectangle */
+        pw_int(w, 0);
+        pw_int(w, de_of(line_q[k]));
+    }
+    pw_end(w);
+    end_entity(w, D, start, 508, 1, "00010000", "RG2LOOP", q + 1);
+    start = w->P->nlines + 1;
+    w->de = de_of(q + 2);
+    pw_int(w, 510);
+    pw_int(w, de_of(q));
+    pw_int(w, 1);
+    pw_int(w, 1); /* the loop is the outer one */
+    pw_int(w, de_of(q + 1));
+    pw_end(w);
+    end_entity(w, D, start, 510, 1, "00010000", "RG2FACE", q + 2);
+}
+
 /* The B-rep entities of one surface, face per patch, from entity index *q on:
  *   514 shell, 502 vertex list, 504 edge list, 126 per edge, then per patch 128, 508, 510.
  * Edges and vertices come from rg2__topo as in the STEP writer (one per geometric edge /
@@ -216,71 +310,41 @@ static rg2_status brep_shell(pwriter *w, ibuf *D, const rg2_surface *s, const in
     int closed = 1;
     for (int e = 0; e < t.n_edges; e++)
         closed &= t.uses[e] == 2;
-    /* 514: the faces, each with the sense of its surface */
-    int start = w->P->nlines + 1;
-    w->de = de_of(q_shell);
-    pw_int(w, 514);
-    pw_int(w, np);
-    for (int p = 0; p < np; p++) {
-        pw_int(w, de_of(q_patch + 3 * p + 2));
-        pw_int(w, 1);
+    int *face_q = malloc(sizeof(int) * (size_t)np);
+    double(*vh)[4] = malloc(sizeof(double[4]) * (size_t)(t.n_vertices ? t.n_vertices : 1));
+    int(*ends)[2] = malloc(sizeof(int[2]) * (size_t)(t.n_edges ? t.n_edges : 1));
+    if (!face_q || !vh || !ends) {
+        st = rg2__fail(err, RG2_ENOMEM, "IGES: out of memory for %d x %d patches", nu, nv);
+        goto done;
     }
-    pw_end(w);
-    end_entity(w, D, start, 514, closed ? 1 : 2, "00000000", "RG2SHELL", q_shell);
-    /* 502: the vertices */
-    start = w->P->nlines + 1;
-    w->de = de_of(q_vl);
-    pw_int(w, 502);
-    pw_int(w, t.n_vertices);
-    for (int v = 0; v < t.n_vertices; v++) {
-        double h[4];
-        rg2__corner_point(s, t.vcorner[v] / (nv + 1), t.vcorner[v] % (nv + 1), h);
-        for (int d = 0; d < 3; d++)
-            pw_real(w, h[d] / h[3], ',');
-    }
-    pw_end(w);
-    end_entity(w, D, start, 502, 1, "00010000", "RG2VERT", q_vl);
-    /* 504: each edge's curve and end vertices (the same corners as the STEP writer's) */
-    start = w->P->nlines + 1;
-    w->de = de_of(q_el);
-    pw_int(w, 504);
-    pw_int(w, t.n_edges);
-    for (int e = 0; e < t.n_edges; e++) {
+    for (int p = 0; p < np; p++)
+        face_q[p] = q_patch + 3 * p + 2;
+    put_514(w, D, q_shell, face_q, np, closed);
+    for (int v = 0; v < t.n_vertices; v++)
+        rg2__corner_point(s, t.vcorner[v] / (nv + 1), t.vcorner[v] % (nv + 1), vh[v]);
+    put_502(w, D, q_vl, (const double(*)[4])vh, t.n_vertices);
+    for (int e = 0; e < t.n_edges; e++) { /* the same corners as the STEP writer's */
         int p = t.edef[2 * e], side = t.edef[2 * e + 1], i = p / nv, j = p % nv;
         int I0 = side == 1 ? i + 1 : i, J0 = side == 2 ? j + 1 : j;
         int I1 = (side == 0 || side == 2) ? i + 1 : I0, J1 = (side == 1 || side == 3) ? j + 1 : J0;
-        pw_int(w, de_of(q_curve + e));
-        pw_int(w, de_of(q_vl));
-        pw_int(w, t.vert[I0 * (nv + 1) + J0] + 1);
-        pw_int(w, de_of(q_vl));
-        pw_int(w, t.vert[I1 * (nv + 1) + J1] + 1);
+        ends[e][0] = t.vert[I0 * (nv + 1) + J0];
+        ends[e][1] = t.vert[I1 * (nv + 1) + J1];
     }
-    pw_end(w);
-    end_entity(w, D, start, 504, 1, "00010000", "RG2EDGE", q_el);
-    /* 126: the edge curves */
+    put_504(w, D, q_el, q_vl, q_curve, (const int(*)[2])ends, t.n_edges);
     for (int e = 0; e < t.n_edges; e++) {
         int p = t.edef[2 * e];
         rg2_xpatch X;
         double h[RG2_MAX_DEGREE + 1][4];
         rg2_surface_patch_get(s, p / nv, p % nv, &X);
         int n = rg2__xpatch_side(&X, t.edef[2 * e + 1], h);
-        start = w->P->nlines + 1;
-        w->de = de_of(q_curve + e);
-        put_126(w, (const double(*)[4])h, n, n - 1);
-        end_entity(w, D, start, 126, 0, "00010000", "RG2CURVE", q_curve + e);
+        put_126_entity(w, D, q_curve + e, (const double(*)[4])h, n, n - 1);
     }
-    /* per patch: its surface, loop and face */
     for (int p = 0; p < np; p++) {
-        int qs = q_patch + 3 * p;
         rg2_xpatch X;
         double h[(RG2_MAX_DEGREE + 1) * (RG2_MAX_DEGREE + 1)][4];
         rg2_surface_patch_get(s, p / nv, p % nv, &X);
         rg2__xpatch_net(&X, h);
-        start = w->P->nlines + 1;
-        w->de = de_of(qs);
-        put_128(w, (const double(*)[4])h, X.du + 1, X.dv + 1, X.du, X.dv, 0, 0);
-        put_de_full(D, 128, start, w->P->nlines + 1 - start, 0, "00010000", "RG2SURF", qs);
-        int edge[4], fwd[4], side_of[4], n = 0;
+        int edge[4], fwd[4], lq[4], n = 0;
         for (int side = 0; side < 4; side++) {
             int e, f;
             rg2__topo_side(&t, p / nv, p % nv, side, &e, &f);
@@ -288,43 +352,25 @@ static rg2_status brep_shell(pwriter *w, ibuf *D, const rg2_surface *s, const in
                 continue;
             edge[n] = e;
             fwd[n] = f;
-            side_of[n++] = side;
+            lq[n++] = line[side];
         }
-        start = w->P->nlines + 1;
-        w->de = de_of(qs + 1);
-        pw_int(w, 508);
-        pw_int(w, n);
-        for (int k = 0; k < n; k++) {
-            pw_int(w, 0); /* an edge (not a vertex) */
-            pw_int(w, de_of(q_el));
-            pw_int(w, edge[k] + 1);
-            pw_int(w, fwd[k]);
-            pw_int(w, 1); /* one pcurve: the side of the parameter square */
-            pw_int(w, 0);
-            pw_int(w, de_of(line[side_of[k]]));
-        }
-        pw_end(w);
-        end_entity(w, D, start, 508, 1, "00010000", "RG2LOOP", qs + 1);
-        start = w->P->nlines + 1;
-        w->de = de_of(qs + 2);
-        pw_int(w, 510);
-        pw_int(w, de_of(qs));
-        pw_int(w, 1);
-        pw_int(w, 1); /* the loop is the outer one */
-        pw_int(w, de_of(qs + 1));
-        pw_end(w);
-        end_entity(w, D, start, 510, 1, "00010000", "RG2FACE", qs + 2);
+        put_face_entities(w, D, q_patch + 3 * p, (const double(*)[4])h, X.du + 1, X.dv + 1, X.du, X.dv, 0, 0, q_el,
+                          edge, fwd, lq, n);
     }
     *q = q_patch + 3 * np;
+done:
+    free(face_q);
+    free(vh);
+    free(ends);
     rg2__topo_free(&t);
-    return RG2_OK;
+    return st;
 }
 
-/* The four pcurves of every face: 110 lines along the sides of [0, 1]^2, counter-clockwise
- * (v=0 in +u, u=1 in +v, v=1 in -u, u=0 in -v), as entities q .. q + 3. */
-static void brep_lines(pwriter *w, ibuf *D, int q)
+/* The four pcurves of a face on [0, U1] x [0, V1]: 110 lines along its sides, counter-clockwise
+ * (v=0 in +u, u=U1 in +v, v=V1 in -u, u=0 in -v), as entities q .. q + 3. */
+static void brep_lines(pwriter *w, ibuf *D, int q, double U1, double V1)
 {
-    static const double ends[4][4] = {{0, 0, 1, 0}, {1, 0, 1, 1}, {1, 1, 0, 1}, {0, 1, 0, 0}};
+    const double ends[4][4] = {{0, 0, U1, 0}, {U1, 0, U1, V1}, {U1, V1, 0, V1}, {0, V1, 0, 0}};
     for (int k = 0; k < 4; k++) {
         int start = w->P->nlines + 1;
         w->de = de_of(q + k);
@@ -337,6 +383,53 @@ static void brep_lines(pwriter *w, ibuf *D, int q)
         pw_real(w, 0.0, ';');
         end_entity(w, D, start, 110, 0, "00010000", "RG2PCURV", q + k);
     }
+}
+
+/* The B-rep entities of one surface as one face on its merged net (face per mesh), from entity
+ * index *q on: 514 shell, 502 vertex list, 504 edge list, 126 per edge, the face's four 110
+ * lines on [0, nu] x [0, nv], 128, 508, 510; the topology of rg2__mesh_topo (the STEP writer's):
+ * a closed direction's seam edge is used twice by the loop, once with each of its lines. */
+static rg2_status brep_mesh_shell(pwriter *w, ibuf *D, const rg2_surface *s, int *q, rg2_error *err)
+{
+    rg2__mesh_topo t;
+    rg2_status st = rg2__mesh_topo_build(s, &t, err);
+    if (st)
+        return st;
+    int q_shell = *q, q_vl = q_shell + 1, q_el = q_shell + 2, q_curve = q_shell + 3;
+    int q_line = q_curve + t.n_edges, q_face = q_line + 4;
+    int face_q = q_face + 2;
+    put_514(w, D, q_shell, &face_q, 1, t.closed);
+    double vh[4][4];
+    for (int v = 0; v < t.n_vertices; v++) {
+        int c = t.vcorner[v];
+        memcpy(vh[v], t.h[(size_t)(c == 1 || c == 2 ? t.NU - 1 : 0) * (size_t)t.NV + (size_t)(c >= 2 ? t.NV - 1 : 0)],
+               sizeof(double[4]));
+    }
+    put_502(w, D, q_vl, (const double(*)[4])vh, t.n_vertices);
+    int ends[4][2];
+    for (int e = 0; e < t.n_edges; e++) {
+        ends[e][0] = t.vert[rg2__side_ends[t.eside[e]][0]];
+        ends[e][1] = t.vert[rg2__side_ends[t.eside[e]][1]];
+    }
+    put_504(w, D, q_el, q_vl, q_curve, (const int(*)[2])ends, t.n_edges);
+    for (int e = 0; e < t.n_edges; e++) {
+        int sd = t.eside[e], n = rg2__net_side(&t, sd);
+        put_126_entity(w, D, q_curve + e, (const double(*)[4])t.side, n, (sd & 1) ? t.dv : t.du);
+    }
+    brep_lines(w, D, q_line, (double)s->nu, (double)s->nv);
+    int edge[4], fwd[4], lq[4], n = 0;
+    for (int sd = 0; sd < 4; sd++) {
+        if (t.edge[sd] < 0)
+            continue;
+        edge[n] = t.edge[sd];
+        fwd[n] = sd < 2;
+        lq[n++] = q_line + sd;
+    }
+    put_face_entities(w, D, q_face, (const double(*)[4])t.h, t.NU, t.NV, t.du, t.dv, s->closed_u, s->closed_v, q_el,
+                      edge, fwd, lq, n);
+    *q = q_face + 3;
+    rg2__mesh_topo_free(&t);
+    return RG2_OK;
 }
 
 /* Hollerith string nHtext. */
@@ -402,12 +495,9 @@ rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opt
     double maxc = 0.0;
     int entity = 0, line[4] = {0, 1, 2, 3};
     rg2_status st = RG2_OK;
-    if (o->iges_brep && o->layout == RG2_STEP_FACE_PER_MESH)
-        return rg2__fail(err, RG2_EINVAL,
-                         "IGES: the B-rep shell is written face per patch; drop the face-per-mesh layout "
-                         "or the B-rep option");
-    if (o->iges_brep) {
-        brep_lines(&w, &D, 0);
+    int per_mesh = o->layout == RG2_STEP_FACE_PER_MESH;
+    if (o->iges_brep && !per_mesh) { /* every patch face shares the lines of [0, 1]^2 */
+        brep_lines(&w, &D, 0, 1.0, 1.0);
         entity = 4;
     }
     for (int k = 0; k < n && !P.failed; k++) {
@@ -423,10 +513,10 @@ rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opt
                     }
         }
         if (o->iges_brep) {
-            st = brep_shell(&w, &D, s, line, &entity, err);
+            st = per_mesh ? brep_mesh_shell(&w, &D, s, &entity, err) : brep_shell(&w, &D, s, line, &entity, err);
             if (st)
                 goto done;
-        } else if (o->layout == RG2_STEP_FACE_PER_MESH) {
+        } else if (per_mesh) {
             int NU, NV, du, dv;
             double(*h)[4] = rg2__merged_net(s, &NU, &NV, &du, &dv);
             if (!h) {

@@ -330,131 +330,52 @@ done:
     return st;
 }
 
-/* Side sd (0 v=0, 1 u=1, 2 v=1, 3 u=0) of an NU x NV net into out; returns its length. */
-static int net_side(const double (*h)[4], int NU, int NV, int sd, double (*out)[4])
-{
-    int n = (sd & 1) ? NV : NU;
-    for (int a = 0; a < n; a++) {
-        size_t k;
-        switch (sd) {
-        case 0: k = (size_t)a * (size_t)NV; break;
-        case 1: k = (size_t)(NU - 1) * (size_t)NV + (size_t)a; break;
-        case 2: k = (size_t)a * (size_t)NV + (size_t)(NV - 1); break;
-        default: k = (size_t)a; break;
-        }
-        memcpy(out[a], h[k], sizeof(double[4]));
-    }
-    return n;
-}
-
-static int curve_collapsed(const double (*h)[4], int n, double tol)
-{
-    for (int a = 1; a < n; a++)
-        for (int d = 0; d < 3; d++)
-            if (!(fabs(h[a][d] / h[a][3] - h[0][d] / h[0][3]) <= tol))
-                return 0;
-    return 1;
-}
-
-static int uf4(int *p, int a)
-{
-    while (p[a] != a)
-        a = p[a];
-    return a;
-}
-
-static void join4(int *p, int a, int b)
-{
-    a = uf4(p, a);
-    b = uf4(p, b);
-    if (a != b)
-        p[a > b ? a : b] = a < b ? a : b;
-}
-
-/* One face per surface on the merged net (MATH.md section 4). Closed directions: the seam
- * edge appears twice in the loop (.T. and .F.); collapsed boundary curves are left out. */
+/* One face per surface on the merged net (MATH.md section 4), on rg2__mesh_topo: closed
+ * directions' seam edges appear twice in the loop (.T. and .F.) as SEAM_CURVEs; collapsed
+ * boundary curves are left out. */
 static rg2_status shell_per_mesh(stepw *w, const rg2_surface *s, int *shell, rg2_error *err)
 {
-    int NU, NV, du, dv;
-    double(*h)[4] = rg2__merged_net(s, &NU, &NV, &du, &dv);
-    double(*side)[4] = rg2__calloc((size_t)(NU > NV ? NU : NV), sizeof(double[4]));
-    if (!h || !side) {
-        free(h);
-        free(side);
-        return rg2__fail(err, RG2_ENOMEM, "STEP: out of memory for %d x %d patches", s->nu, s->nv);
+    rg2__mesh_topo t;
+    rg2_status st = rg2__mesh_topo_build(s, &t, err);
+    if (st)
+        return st;
+    int vid[4], eid[4];
+    for (int v = 0; v < t.n_vertices; v++) {
+        int c = t.vcorner[v];
+        vid[v] = put_vertex(w, t.h[(size_t)(c == 1 || c == 2 ? t.NU - 1 : 0) * (size_t)t.NV +
+                                   (size_t)(c >= 2 ? t.NV - 1 : 0)]);
     }
-    double tol = rg2__collapse_tol(s);
-    /* corners 0 (u0 v0), 1 (u1 v0), 2 (u1 v1), 3 (u0 v1); sides ccw: 0 v=0, 1 u=1, 2 v=1, 3 u=0 */
-    static const int ends[4][2] = {{0, 1}, {1, 2}, {3, 2}, {0, 3}};
-    int parent[4] = {0, 1, 2, 3}, collapsed[4], n_side[4];
-    for (int sd = 0; sd < 4; sd++) {
-        n_side[sd] = net_side((const double(*)[4])h, NU, NV, sd, side);
-        collapsed[sd] = curve_collapsed((const double(*)[4])side, n_side[sd], tol);
-        if (collapsed[sd])
-            join4(parent, ends[sd][0], ends[sd][1]);
-    }
-    if (s->closed_u) {
-        join4(parent, 0, 1);
-        join4(parent, 3, 2);
-    }
-    if (s->closed_v) {
-        join4(parent, 0, 3);
-        join4(parent, 1, 2);
-    }
-    int vid[4] = {-1, -1, -1, -1};
-    static const int corner_k[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    for (int c = 0; c < 4; c++) {
-        int r = uf4(parent, c);
-        if (vid[r] < 0)
-            vid[r] = put_vertex(w, h[(size_t)(corner_k[r][0] ? NU - 1 : 0) * (size_t)NV +
-                                     (size_t)(corner_k[r][1] ? NV - 1 : 0)]);
-        vid[c] = vid[r];
-    }
-    int surf = put_surface(w, (const double(*)[4])h, NU, NV, du, dv, s->closed_u, s->closed_v);
+    int surf = put_surface(w, (const double(*)[4])t.h, t.NU, t.NV, t.du, t.dv, s->closed_u, s->closed_v);
     if (surf < 0)
         goto oom;
     int line[4]; /* the parameter rectangle [0, nu] x [0, nv] (knots 0, 1, ..., as the edge curves') */
     put_side_lines(w, s->nu, s->nv, line);
-    int eid[4] = {-1, -1, -1, -1};
-    int order[4] = {0, 3, 1, 2}; /* define v=0 and u=0 first: the closing sides reuse them */
-    for (int q = 0; q < 4; q++) {
-        int sd = order[q];
-        if (collapsed[sd])
-            continue;
-        if (sd == 1 && s->closed_u) {
-            eid[1] = eid[3];
-            continue;
-        }
-        if (sd == 2 && s->closed_v) {
-            eid[2] = eid[0];
-            continue;
-        }
-        net_side((const double(*)[4])h, NU, NV, sd, side);
-        int c = put_curve(w, (const double(*)[4])side, n_side[sd], (sd & 1) ? dv : du);
+    for (int e = 0; e < t.n_edges; e++) {
+        int sd = t.eside[e], n = rg2__net_side(&t, sd);
+        int c = put_curve(w, (const double(*)[4])t.side, n, (sd & 1) ? t.dv : t.du);
         if (c < 0)
             goto oom;
-        /* a closed direction's seam lies on the face twice: u = 0 and u = nu (or v) */
-        int seam = (sd == 3 && s->closed_u) || (sd == 0 && s->closed_v);
-        int surfs[2] = {surf, surf}, rep[2] = {line[sd], line[sd == 3 ? 1 : 2]};
-        c = put_surface_curve(w, c, seam ? 2 : 1, surfs, rep);
-        eid[sd] = put_edge(w, vid[ends[sd][0]], vid[ends[sd][1]], c);
+        /* the pcurves of the sides using the edge (a closed direction's seam: u = 0 and u = nu) */
+        int surfs[2] = {surf, surf}, rep[2], k = 0;
+        for (int q = 0; q < 4; q++)
+            if (t.edge[(sd + q) % 4] == e)
+                rep[k++] = line[(sd + q) % 4];
+        c = put_surface_curve(w, c, k, surfs, rep);
+        eid[e] = put_edge(w, vid[t.vert[rg2__side_ends[sd][0]]], vid[t.vert[rg2__side_ends[sd][1]]], c);
     }
     int edge[4], fwd[4], n = 0;
     for (int sd = 0; sd < 4; sd++) {
-        if (eid[sd] < 0)
+        if (t.edge[sd] < 0)
             continue;
-        edge[n] = eid[sd];
+        edge[n] = eid[t.edge[sd]];
         fwd[n++] = sd < 2;
     }
     int face = put_face(w, surf, edge, fwd, n);
-    int closed = (s->closed_u || collapsed[1] || collapsed[3]) && (s->closed_v || collapsed[0] || collapsed[2]);
-    *shell = put_shell(w, &face, 1, closed);
-    free(h);
-    free(side);
+    *shell = put_shell(w, &face, 1, t.closed);
+    rg2__mesh_topo_free(&t);
     return RG2_OK;
 oom:
-    free(h);
-    free(side);
+    rg2__mesh_topo_free(&t);
     return rg2__fail(err, RG2_ENOMEM, "STEP: out of memory");
 }
 

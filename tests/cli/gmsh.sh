@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # gmsh (a second CAD client, reading through OpenCASCADE) meshes rg2's STEP and IGES files:
-# a torus (R = 3, r = 1, closed both ways) written as STEP, as IGES B-rep and as plain IGES is
-# meshed by `gmsh -2`; every mesh node must lie on the exact torus, and the mesh must be
-# conforming (no triangle edge used only once: gmsh saw every seam as one shared curve) for STEP
-# and IGES B-rep. Plain IGES has no shared edges, so there the mesh is open along every seam until
+# a torus (R = 3, r = 1, closed both ways) written as STEP and IGES B-rep (face per patch and
+# face per mesh) and as plain IGES is meshed by `gmsh -2`; every mesh node must lie on the exact
+# torus, and the mesh must be conforming (no triangle edge used only once: gmsh saw every seam as
+# one shared curve) for STEP and IGES B-rep. Plain IGES has no shared edges, so there the mesh is open along every seam until
 # gmsh sews the faces (Geometry.OCCSewFaces): the check can fail, and does where it should.
 # Usage: bash gmsh.sh <path-to-rg2> <source-dir>
 set -u
@@ -19,6 +19,8 @@ fi
 
 "$rg2" build -q "$SRC/tests/data/torus_8x6.json" -o "$tmp/t.step" -o "$tmp/t.igs" && ok || bad "rg2 build (STEP, IGES)"
 "$rg2" build -q "$SRC/tests/data/torus_8x6.json" -o "$tmp/tb.igs" --iges-brep && ok || bad "rg2 build --iges-brep"
+"$rg2" build -q "$SRC/tests/data/torus_8x6.json" -o "$tmp/tm.step" -o "$tmp/tbm.igs" --iges-brep --face-per-mesh && ok ||
+  bad "rg2 build --iges-brep --face-per-mesh"
 
 # nodes, triangles, triangle edges used once, and the largest distance of a node from the torus
 # (relative to R + r) of a gmsh .msh (format 2)
@@ -65,6 +67,8 @@ mesh() {
 
 mesh "$tmp/t.step" "STEP" 1
 mesh "$tmp/tb.igs" "IGES B-rep" 1
+mesh "$tmp/tm.step" "STEP, face per mesh" 1
+mesh "$tmp/tbm.igs" "IGES B-rep, face per mesh" 1
 mesh "$tmp/t.igs" "IGES, untrimmed surfaces" 0
 mesh "$tmp/t.igs" "IGES, untrimmed surfaces, sewn by gmsh" 1 -setnumber Geometry.OCCSewFaces 1
 

@@ -698,6 +698,7 @@ int main()
         check_file(c, dir, "step", RG2_STEP_FACE_PER_MESH, 0);
         check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0);
         check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0, 1);
+        check_file(c, dir, "igs", RG2_STEP_FACE_PER_MESH, 0, 1);
     }
     // every example design (examples/*.json): each output surface through STEP (both layouts)
     // and IGES, with the same face, connectivity, tolerance, point and G2 checks
@@ -728,6 +729,7 @@ int main()
             check_file(c, dir, "step", RG2_STEP_FACE_PER_MESH, 0);
             check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0);
             check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0, 1);
+            check_file(c, dir, "igs", RG2_STEP_FACE_PER_MESH, 0, 1);
         }
         rg2_design_free(d);
     }
@@ -739,6 +741,7 @@ int main()
         check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0);
         check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0, 1);
         check_file(c, dir, "igs", RG2_STEP_FACE_PER_MESH, 0);
+        check_file(c, dir, "igs", RG2_STEP_FACE_PER_MESH, 0, 1);
     }
     printf("worst through OpenCASCADE: point %.2e relative (exact shapes %.2e), normal angle %.2e rad, "
            "normal curvature %.2e rel (%d shared edges, %d samples), max tolerance %.2e, STEP and IGES B-rep pcurves off the parameter rectangle %.2e\n",
