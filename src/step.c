@@ -168,7 +168,7 @@ static int put_line2d(stepw *w, double u0, double v0, double du, double dv)
     return rep;
 }
 
-/* The boundary lines of a parameter rectangle [0, U1] x [0, V1], side sd (0 v=0, 1 u=U1, 2 v=1,
+/* The boundary lines of a parameter rectangle [0, U1] x [0, V1], side sd (0 v=0, 1 u=U1, 2 v=V1,
  * 3 u=0), each running in +u or +v with the parameter of the boundary's edge curve (whose knots
  * are the surface's along that side). */
 static void put_side_lines(stepw *w, double U1, double V1, int rep[4])
