@@ -87,8 +87,9 @@ typedef struct {
     int avx512; /* use the AVX-512 kernels (this CPU has them) */
     int hwdiv;  /* ... with divisions and square roots by the hardware (grid_hwdiv) */
     int stream; /* large output: non-temporal stores (bypass the caches) */
-    double *bu, *du, *ddu;             /* n * 4 each */
-    double *bv[4], *dv[4], *ddv[4];    /* m each */
+    double *bu, *ddu;                  /* n * 4 each */
+    double *hu;                        /* n * 4: 3 B^2_q(u), q < 3 (then 0), see USUM3 */
+    double *bv[4], *hv[4], *ddv[4];    /* m each; hv: 3 B^2_q(v), q < 3 (see vsumh; hv[3] unused) */
     double *mem;
 } tables;
 
@@ -115,26 +116,32 @@ static rg2_status tables_make(tables *t, int n, int m, int order, rg2_error *err
 #endif
     double *q = t->mem;
     t->bu = q, q += (size_t)n * 4;
-    t->du = q, q += (size_t)n * 4;
     t->ddu = q, q += (size_t)n * 4;
+    t->hu = q, q += (size_t)n * 4;
     for (int s = 0; s < 4; s++) {
         t->bv[s] = q, q += m8;
-        t->dv[s] = q, q += m8;
+        t->hv[s] = q, q += m8;
         t->ddv[s] = q, q += m8;
     }
     for (int a = 0; a < n; a++) {
         double u = a == n - 1 ? 1.0 : (double)a / (double)(n - 1);
-        rg2__bern3(u, t->bu + 4 * a, t->du + 4 * a, t->ddu + 4 * a);
+        rg2__bern3(u, t->bu + 4 * a, NULL, t->ddu + 4 * a);
+        double s = 1.0 - u, *hq = t->hu + 4 * a; /* d/du sum_r B_r c_r = sum_q 3 B^2_q (c_q+1 - c_q) */
+        hq[0] = 3.0 * s * s;
+        hq[1] = 6.0 * u * s;
+        hq[2] = 3.0 * u * u;
     }
     for (int b = 0; b < m; b++) {
         double v = b == m - 1 ? 1.0 : (double)b / (double)(m - 1);
-        double B[4], D[4], DD[4];
-        rg2__bern3(v, B, D, DD);
+        double B[4], DD[4], s1 = 1.0 - v;
+        rg2__bern3(v, B, NULL, DD);
         for (int s = 0; s < 4; s++) {
             t->bv[s][b] = B[s];
-            t->dv[s][b] = D[s];
             t->ddv[s][b] = DD[s];
         }
+        t->hv[0][b] = 3.0 * s1 * s1;
+        t->hv[1][b] = 6.0 * v * s1;
+        t->hv[2][b] = 3.0 * v * v;
     }
     return RG2_OK;
 }
@@ -156,8 +163,39 @@ static inline void vsum(const rg2_patch *P, double *const bv[4], int b0, int cnt
         }
 }
 
+/* The v-derivative column sums by the hodograph, as USUM3 in u: sum_s h_rs B_s'(v) =
+ * sum_q 3 B^2_q(v) (h_r,q+1 - h_rs), from the control point differences of a patch. */
+static inline void hdiff(const rg2_patch *P, double dh[4][3][4])
+{
+    for (int r = 0; r < 4; r++)
+        for (int q = 0; q < 3; q++)
+            for (int k = 0; k < 4; k++)
+                dh[r][q][k] = P->h[r][q + 1][k] - P->h[r][q][k];
+}
+
+/* c[r][k][i] = sum_q dh[r][q][k] hv[q][b0 + i]: the v-derivative column sums of one block. */
+static inline void vsumh(double dh[4][3][4], double *const hv[4], int b0, int cnt, double c[4][4][BLK])
+{
+    const double *restrict v0 = hv[0] + b0, *restrict v1 = hv[1] + b0, *restrict v2 = hv[2] + b0;
+    for (int r = 0; r < 4; r++)
+        for (int k = 0; k < 4; k++) {
+            double d0 = dh[r][0][k], d1 = dh[r][1][k], d2 = dh[r][2][k];
+            double *restrict dst = c[r][k];
+            for (int i = 0; i < cnt; i++)
+                dst[i] = d0 * v0[i] + d1 * v1[i] + d2 * v2[i];
+            for (int i = cnt; i < BLK && (i & 7); i++)
+                dst[i] = 0.0;
+        }
+}
+
 /* sum_r U[r] c[r][k][i], the u-sum of a point (U: row constants). */
 #define USUM(U, c, k) (U[0] * c[0][k][i] + U[1] * c[1][k][i] + U[2] * c[2][k][i] + U[3] * c[3][k][i])
+/* The u-derivative by the hodograph: d/du sum_r B_r(u) c_r = sum_q 3 B^2_q(u) (c_q+1 - c_q), three
+ * multiply-adds per point instead of four (U: the row's hu table entries). Every kernel forms the
+ * differences c_q+1 - c_q the same way (in registers: arrays of them would take L1 sets that the
+ * 512-byte strided column sums of narrow blocks already fill), so the bits agree. */
+#define USUM3(U, c, k)                                                                                 \
+    (U[0] * (c[1][k][i] - c[0][k][i]) + U[1] * (c[2][k][i] - c[1][k][i]) + U[2] * (c[3][k][i] - c[2][k][i]))
 
 /* Positions of one row segment of cnt points. */
 static inline void seg_pos(const double *restrict U, double c[4][4][BLK], int cnt, double *restrict pos)
@@ -191,7 +229,7 @@ static inline double normal1(const double su[3], const double sv[3], double n[3]
 }
 
 /* Positions and unit normals of one row segment. */
-static inline void seg_pos_normal(const double *restrict U, const double *restrict DU, double c0[4][4][BLK],
+static inline void seg_pos_normal(const double *restrict U, const double *restrict HU, double c0[4][4][BLK],
                                   double c1[4][4][BLK], int cnt, double *restrict pos, double *restrict nrm)
 {
     for (int i = 0; i < cnt; i++) {
@@ -199,7 +237,7 @@ static inline void seg_pos_normal(const double *restrict U, const double *restri
 #pragma GCC unroll 4
         for (int k = 0; k < 4; k++) {
             h[k] = USUM(U, c0, k);
-            hu[k] = USUM(DU, c0, k);
+            hu[k] = USUM3(HU, c0, k);
             hv[k] = USUM(U, c1, k);
         }
         double iw = 1.0 / h[3];
@@ -245,7 +283,7 @@ typedef struct {
 } soa_full;
 
 /* The formulas of rg2_patch_eval for the points 0 <= i < cnt of a row segment. */
-RG2_HOT static void full_soa(const double *restrict U, const double *restrict DU, const double *restrict DDU,
+RG2_HOT static void full_soa(const double *restrict U, const double *restrict DDU, const double *restrict HU,
                              double c0[4][4][BLK], double c1[4][4][BLK], double c2[4][4][BLK], int cnt,
                              soa_full *restrict S)
 {
@@ -256,10 +294,10 @@ RG2_HOT static void full_soa(const double *restrict U, const double *restrict DU
 #pragma GCC unroll 4
         for (int k = 0; k < 4; k++) {
             h[k] = USUM(U, c0, k);
-            hu[k] = USUM(DU, c0, k);
+            hu[k] = USUM3(HU, c0, k);
             hv[k] = USUM(U, c1, k);
             huu[k] = USUM(DDU, c0, k);
-            huv[k] = USUM(DU, c1, k);
+            huv[k] = USUM3(HU, c1, k);
             hvv[k] = USUM(U, c2, k);
         }
         double iw = 1.0 / h[3];
@@ -320,6 +358,7 @@ static void full_out(const soa_full *S, int cnt, const rg2_grid_out *o, size_t a
         memcpy(o->H + at, S->H, sizeof(double) * (size_t)cnt);
 }
 #undef USUM
+#undef USUM3
 
 #if RG2_AVX512
 #define RG2_AVX512_FN __attribute__((target("avx512f,avx512dq,fma,prfchw")))
@@ -358,6 +397,20 @@ RG2_AVX512_FN static inline __m512d usum8(const __m512d U[4], double c[4][4][BLK
     return _mm512_fmadd_pd(U[3], _mm512_load_pd(&c[3][k][i]), acc);
 }
 
+/* c[q+1][k][i..i+7] - c[q][k][i..i+7], the differences of USUM3 */
+RG2_AVX512_FN static inline __m512d cdiff8(double c[4][4][BLK], int q, int k, int i)
+{
+    return _mm512_sub_pd(_mm512_load_pd(&c[q + 1][k][i]), _mm512_load_pd(&c[q][k][i]));
+}
+
+/* sum_q U[q] (c[q+1][k] - c[q][k]) at i..i+7: the hodograph's u-sum (USUM3) */
+RG2_AVX512_FN static inline __m512d usum8h(const __m512d U[3], double c[4][4][BLK], int k, int i)
+{
+    __m512d acc = _mm512_mul_pd(U[0], cdiff8(c, 0, k, i));
+    acc = _mm512_fmadd_pd(U[1], cdiff8(c, 1, k, i), acc);
+    return _mm512_fmadd_pd(U[2], cdiff8(c, 2, k, i), acc);
+}
+
 /* a . b for 8 points */
 RG2_AVX512_FN static inline __m512d dot8(const __m512d a[3], const __m512d b[3])
 {
@@ -368,14 +421,16 @@ RG2_AVX512_FN static inline __m512d dot8(const __m512d a[3], const __m512d b[3])
  * points where it is defined. a, b are w^2 Su and w^2 Sv (w hu - hu_w h, w hv - hv_w h: the
  * tangents without the divisions by the weight, which the normalisation cancels; the test is
  * invariant under the scaling too), so no reciprocal lies on the normal's dependency chain.
- * Shared by both kernels (same bits). */
+ * The test is taken as |a x b|^2 > 1e-30 (a.b)^2: by Lagrange's identity (a.a)(b.b) =
+ * |a x b|^2 + (a.b)^2 the two differ by the factor 1 - 1e-30 (and rounding), and one dot product
+ * takes the place of two. Shared by all AVX-512 kernels (same bits). */
 RG2_AVX512_FN static inline __mmask8 normal8(const __m512d su[3], const __m512d sv[3], __m512d n[3], int hw)
 {
     __m512d c[3] = {_mm512_fmsub_pd(su[1], sv[2], _mm512_mul_pd(su[2], sv[1])),
                     _mm512_fmsub_pd(su[2], sv[0], _mm512_mul_pd(su[0], sv[2])),
                     _mm512_fmsub_pd(su[0], sv[1], _mm512_mul_pd(su[1], sv[0]))};
-    __m512d l2 = dot8(c, c), E = dot8(su, su), G = dot8(sv, sv);
-    __mmask8 ok = _mm512_cmp_pd_mask(l2, _mm512_mul_pd(_mm512_set1_pd(1e-30), _mm512_mul_pd(E, G)), _CMP_GT_OQ);
+    __m512d l2 = dot8(c, c), F = dot8(su, sv);
+    __mmask8 ok = _mm512_cmp_pd_mask(l2, _mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(1e-30), F), F), _CMP_GT_OQ);
     __m512d il = _mm512_maskz_mov_pd(ok, rsqrt8(l2, hw)); /* (lanes not ok: whatever rsqrt8 gave, zeroed) */
     for (int k = 0; k < 3; k++)
         n[k] = _mm512_mul_pd(c[k], il);
@@ -469,6 +524,49 @@ RG2_AVX512_FN static void vsum_avx512(const rg2_patch *P, double *const bv[4], i
     }
 }
 
+/* hdiff with 4-lane vectors (the same differences). */
+RG2_AVX512_FN static inline void hdiff_avx(const rg2_patch *P, double dh[4][3][4])
+{
+    for (int r = 0; r < 4; r++)
+        for (int q = 0; q < 3; q++)
+            _mm256_storeu_pd(dh[r][q], _mm256_sub_pd(_mm256_loadu_pd(P->h[r][q + 1]), _mm256_loadu_pd(P->h[r][q])));
+}
+
+/* sum_q dh[r][q][k] V[q] for 8 columns (vsumh), products rounded before the sums. */
+RG2_AVX512_FN static inline __m512d colsum8h(double dh[4][3][4], const __m512d V[3], int r, int k)
+{
+    __m512d acc = _mm512_mul_pd(_mm512_set1_pd(dh[r][0][k]), V[0]);
+    acc = _mm512_add_pd(acc, _mm512_mul_pd(_mm512_set1_pd(dh[r][1][k]), V[1]));
+    return _mm512_add_pd(acc, _mm512_mul_pd(_mm512_set1_pd(dh[r][2][k]), V[2]));
+}
+
+/* vsumh with vectors. */
+RG2_AVX512_FN static void vsumh_avx512(double dh[4][3][4], double *const hv[4], int b0, int cnt,
+                                       double c[4][4][BLK])
+{
+    for (int i = 0; i < cnt; i += 8) {
+        __m512d V[3];
+        for (int q = 0; q < 3; q++)
+            V[q] = _mm512_loadu_pd(hv[q] + b0 + i);
+        for (int r = 0; r < 4; r++)
+            for (int k = 0; k < 4; k++)
+                _mm512_store_pd(&c[r][k][i], colsum8h(dh, V, r, k));
+    }
+}
+
+/* The 16 v-derivative column sums of a patch at most 8 points wide (vsumh), in registers. */
+RG2_AVX512_FN static inline void vsumh_narrow(const rg2_patch *P, double *const hv[4], __m512d c[4][4])
+{
+    double dh[4][3][4];
+    hdiff_avx(P, dh);
+    __m512d V[3];
+    for (int q = 0; q < 3; q++)
+        V[q] = _mm512_loadu_pd(hv[q]); /* zero-padded to 8 */
+    for (int r = 0; r < 4; r++)
+        for (int k = 0; k < 4; k++)
+            c[r][k] = colsum8h(dh, V, r, k);
+}
+
 /* The 16 column sums of a patch at most 8 points wide, kept in registers. */
 RG2_AVX512_FN static inline void vsum_narrow(const rg2_patch *P, double *const bv[4], __m512d c[4][4])
 {
@@ -489,6 +587,14 @@ RG2_AVX512_FN static inline __m512d usumv(const __m512d U[4], __m512d c[4][4], i
     return _mm512_fmadd_pd(U[3], c[3][k], acc);
 }
 
+/* sum_q U[q] d[q][k] (8 columns' differences as vectors) */
+RG2_AVX512_FN static inline __m512d usumvh(const __m512d U[3], __m512d d[3][4], int k)
+{
+    __m512d acc = _mm512_mul_pd(U[0], d[0][k]);
+    acc = _mm512_fmadd_pd(U[1], d[1][k], acc);
+    return _mm512_fmadd_pd(U[2], d[2][k], acc);
+}
+
 /* The 4 Bernstein values of a row broadcast to vectors. */
 RG2_AVX512_FN static inline void bcast4(const double *U, __m512d u[4])
 {
@@ -504,6 +610,14 @@ RG2_AVX512_FN static inline void csum_at(double c[4][4][BLK], int i, __m512d v[4
             v[r][k] = _mm512_load_pd(&c[r][k][i]);
 }
 
+/* The differences of consecutive column sums as vectors (USUM3). */
+RG2_AVX512_FN static inline void cdiff_v(__m512d c[4][4], __m512d d[3][4])
+{
+    for (int q = 0; q < 3; q++)
+        for (int k = 0; k < 4; k++)
+            d[q][k] = _mm512_sub_pd(c[q + 1][k], c[q][k]);
+}
+
 /* Positions of 8 points of a row (u: its Bernstein values) from their column sums c, interleaved
  * x, y, z in o[0..2]. */
 RG2_AVX512_FN static inline void pos8(const __m512d u[4], __m512d c[4][4], __m512d o[3], int hw)
@@ -513,19 +627,21 @@ RG2_AVX512_FN static inline void pos8(const __m512d u[4], __m512d c[4][4], __m51
          o);
 }
 
-/* Positions and unit normals of 8 points of a row (u, du: its Bernstein values and derivatives)
- * from their column sums c0 and v-derivative column sums c1, interleaved in po and no; the
- * expressions of full_soa_avx512 (bitwise the same positions and normals). */
-RG2_AVX512_FN static inline void pos_normal8(const __m512d u[4], const __m512d du[4], __m512d c0[4][4],
-                                             __m512d c1[4][4], __m512d po[3], __m512d no[3], int hw)
+/* Positions and unit normals of 8 points of a row (u, hu: its Bernstein values and hodograph
+ * weights) from their column sums c0, their differences dc and the v-derivative column sums c1,
+ * interleaved in po and no; the expressions of full_soa_avx512 (bitwise the same positions and
+ * normals). */
+RG2_AVX512_FN static inline void pos_normal8(const __m512d u[4], const __m512d hu[3], __m512d c0[4][4],
+                                             __m512d dc[3][4], __m512d c1[4][4], __m512d po[3], __m512d no[3],
+                                             int hw)
 {
     __m512d w = usumv(u, c0, 3), iw = recip8(w, hw);
-    __m512d hu3 = usumv(du, c0, 3), hv3 = usumv(u, c1, 3);
+    __m512d hu3 = usumvh(hu, dc, 3), hv3 = usumv(u, c1, 3);
     __m512d p[3], a[3], b[3], n[3];
     for (int k = 0; k < 3; k++) {
         __m512d h = usumv(u, c0, k);
         p[k] = _mm512_mul_pd(h, iw);
-        a[k] = _mm512_fmsub_pd(w, usumv(du, c0, k), _mm512_mul_pd(hu3, h));
+        a[k] = _mm512_fmsub_pd(w, usumvh(hu, dc, k), _mm512_mul_pd(hu3, h));
         b[k] = _mm512_fmsub_pd(w, usumv(u, c1, k), _mm512_mul_pd(hv3, h));
     }
     normal8(a, b, n, hw);
@@ -618,33 +734,37 @@ RG2_AVX512_FN static inline void patch_normal_narrow_avx512(const rg2_patch *P, 
 {
     const int n = t->n, m = t->m;
     const int st = narrow_mode(t, pos) == ST_STREAM && !((uintptr_t)nrm & 63) ? ST_STREAM : ST_PLAIN;
-    __m512d c0[4][4], c1[4][4];
+    __m512d c0[4][4], dc[3][4], c1[4][4];
     vsum_narrow(P, t->bv, c0);
-    vsum_narrow(P, t->dv, c1);
+    cdiff_v(c0, dc);
+    vsumh_narrow(P, t->hv, c1);
     for (int a = 0; a < n; a++) {
-        const double *U = t->bu + 4 * a, *DU = t->du + 4 * a;
-        __m512d u[4], du[4], po[3], no[3];
+        const double *U = t->bu + 4 * a, *HU = t->hu + 4 * a;
+        __m512d u[4], hu[3], po[3], no[3];
         bcast4(U, u);
-        bcast4(DU, du);
-        pos_normal8(u, du, c0, c1, po, no, hw);
+        for (int q = 0; q < 3; q++)
+            hu[q] = _mm512_set1_pd(HU[q]);
+        pos_normal8(u, hu, c0, dc, c1, po, no, hw);
         put8(pos + 3 * m * a, po, m, st);
         put8(nrm + 3 * m * a, no, m, st);
     }
 }
 
 /* Positions and unit normals of one row segment. */
-RG2_AVX512_FN static inline void seg_pos_normal_avx512(const double *U, const double *DU, double c0[4][4][BLK],
+RG2_AVX512_FN static inline void seg_pos_normal_avx512(const double *U, const double *HU, double c0[4][4][BLK],
                                                        double c1[4][4][BLK], int cnt, double *pd, double *nd,
                                                        int st, int hw)
 {
-    __m512d u[4], du[4];
+    __m512d u[4], hu[3];
     bcast4(U, u);
-    bcast4(DU, du);
+    for (int q = 0; q < 3; q++)
+        hu[q] = _mm512_set1_pd(HU[q]);
     for (int i = 0; i < cnt; i += 8) {
-        __m512d v0[4][4], v1[4][4], po[3], no[3];
+        __m512d v0[4][4], vd[3][4], v1[4][4], po[3], no[3];
         csum_at(c0, i, v0);
+        cdiff_v(v0, vd);
         csum_at(c1, i, v1);
-        pos_normal8(u, du, v0, v1, po, no, hw);
+        pos_normal8(u, hu, v0, vd, v1, po, no, hw);
         int q = cnt - i < 8 ? cnt - i : 8;
         put8(pd + 3 * i, po, q, st);
         put8(nd + 3 * i, no, q, st);
@@ -653,23 +773,24 @@ RG2_AVX512_FN static inline void seg_pos_normal_avx512(const double *U, const do
 
 /* The second-order formulas (as full_soa) for all 8-lane vectors covering 0..cnt-1 (vsum pads
  * the column sums with zeros; lanes past cnt are computed but never copied out). */
-RG2_AVX512_FN static inline void full_soa_avx512(const double *U, const double *DU, const double *DDU,
+RG2_AVX512_FN static inline void full_soa_avx512(const double *U, const double *DDU, const double *HU,
                                                  double c0[4][4][BLK], double c1[4][4][BLK],
                                                  double c2[4][4][BLK], int cnt, soa_full *S, int hw)
 {
-    __m512d u[4], du[4], ddu[4];
+    __m512d u[4], ddu[4], hq[3];
     bcast4(U, u);
-    bcast4(DU, du);
     bcast4(DDU, ddu);
+    for (int q = 0; q < 3; q++)
+        hq[q] = _mm512_set1_pd(HU[q]);
     const __m512d one = _mm512_set1_pd(1.0), two = _mm512_set1_pd(2.0), half = _mm512_set1_pd(0.5);
     for (int i = 0; i < cnt; i += 8) {
         __m512d h[4], hu[4], hv[4], huu[4], huv[4], hvv[4];
         for (int k = 0; k < 4; k++) {
             h[k] = usum8(u, c0, k, i);
-            hu[k] = usum8(du, c0, k, i);
+            hu[k] = usum8h(hq, c0, k, i);
             hv[k] = usum8(u, c1, k, i);
             huu[k] = usum8(ddu, c0, k, i);
-            huv[k] = usum8(du, c1, k, i);
+            huv[k] = usum8h(hq, c1, k, i);
             hvv[k] = usum8(u, c2, k, i);
         }
         __m512d iw = recip8(h[3], hw);
@@ -779,6 +900,9 @@ grid_patch_avx512_hw(const rg2_patch *P, const tables *t, const rg2_grid_out *o,
             patch_normal_narrow_avx512(P, t, o->pos + 3 * first, o->normal + 3 * first, hw);
         return;
     }
+    double dh[4][3][4];
+    if (t->order >= 1)
+        hdiff_avx(P, dh);
     for (int b0 = 0; b0 < t->m; b0 += BLK) {
         int cnt = t->m - b0 < BLK ? t->m - b0 : BLK;
         vsum_avx512(P, t->bv, b0, cnt, c0);
@@ -786,12 +910,12 @@ grid_patch_avx512_hw(const rg2_patch *P, const tables *t, const rg2_grid_out *o,
         if (use_cx)
             interleave_csum(c0, cnt, cx);
         if (t->order >= 1)
-            vsum_avx512(P, t->dv, b0, cnt, c1);
+            vsumh_avx512(dh, t->hv, b0, cnt, c1);
         if (t->order >= 2)
             vsum_avx512(P, t->ddv, b0, cnt, c2);
         for (int a = 0; a < t->n; a++) {
             size_t at = first + (size_t)a * (size_t)t->m + (size_t)b0;
-            const double *U = t->bu + 4 * a, *DU = t->du + 4 * a;
+            const double *U = t->bu + 4 * a, *HU = t->hu + 4 * a;
             double *pos = o->pos + 3 * at;
             if (t->order == 0) {
                 int st = store_mode(t, pos, cnt);
@@ -810,16 +934,16 @@ grid_patch_avx512_hw(const rg2_patch *P, const tables *t, const rg2_grid_out *o,
                 double *nrm = o->normal + 3 * at;
                 int st = store_mode(t, pos, cnt);
                 if (st == ST_STREAM && !((uintptr_t)nrm & 63))
-                    seg_pos_normal_avx512(U, DU, c0, c1, cnt, pos, nrm, ST_STREAM, hw);
+                    seg_pos_normal_avx512(U, HU, c0, c1, cnt, pos, nrm, ST_STREAM, hw);
                 else if (st == ST_PLAIN)
-                    seg_pos_normal_avx512(U, DU, c0, c1, cnt, pos, nrm, ST_PLAIN, hw);
+                    seg_pos_normal_avx512(U, HU, c0, c1, cnt, pos, nrm, ST_PLAIN, hw);
                 else {
-                    seg_pos_normal_avx512(U, DU, c0, c1, cnt, pbuf, nbuf, ST_PLAIN, hw);
+                    seg_pos_normal_avx512(U, HU, c0, c1, cnt, pbuf, nbuf, ST_PLAIN, hw);
                     stream_copy(pos, pbuf, 3 * cnt);
                     stream_copy(nrm, nbuf, 3 * cnt);
                 }
             } else {
-                full_soa_avx512(U, DU, t->ddu + 4 * a, c0, c1, c2, cnt, S, hw);
+                full_soa_avx512(U, t->ddu + 4 * a, HU, c0, c1, c2, cnt, S, hw);
                 full_out_avx512(S, cnt, o, at);
             }
         }
@@ -850,22 +974,25 @@ RG2_HOT static void grid_patch(const rg2_patch *P, const tables *t, const rg2_gr
     _Alignas(64) double c1[4][4][BLK];
     _Alignas(64) double c2[4][4][BLK];
     soa_full S[1];
+    double dh[4][3][4];
+    if (t->order >= 1)
+        hdiff(P, dh);
     for (int b0 = 0; b0 < t->m; b0 += BLK) {
         int cnt = t->m - b0 < BLK ? t->m - b0 : BLK;
         vsum(P, t->bv, b0, cnt, c0);
         if (t->order >= 1)
-            vsum(P, t->dv, b0, cnt, c1);
+            vsumh(dh, t->hv, b0, cnt, c1);
         if (t->order >= 2)
             vsum(P, t->ddv, b0, cnt, c2);
         for (int a = 0; a < t->n; a++) {
             size_t at = first + (size_t)a * (size_t)t->m + (size_t)b0;
-            const double *U = t->bu + 4 * a, *DU = t->du + 4 * a, *DDU = t->ddu + 4 * a;
+            const double *U = t->bu + 4 * a, *DDU = t->ddu + 4 * a, *HU = t->hu + 4 * a;
             if (t->order == 0)
                 seg_pos(U, c0, cnt, o->pos + 3 * at);
             else if (t->order == 1)
-                seg_pos_normal(U, DU, c0, c1, cnt, o->pos + 3 * at, o->normal + 3 * at);
+                seg_pos_normal(U, HU, c0, c1, cnt, o->pos + 3 * at, o->normal + 3 * at);
             else {
-                full_soa(U, DU, DDU, c0, c1, c2, cnt, S);
+                full_soa(U, DDU, HU, c0, c1, c2, cnt, S);
                 full_out(S, cnt, o, at);
             }
         }
