@@ -6,7 +6,9 @@
  * structure-of-arrays columns. Per block of up to BLK columns of a patch, the column sums
  * c_r(v_b) = sum_s h_rs B_s(v_b) (16 numbers per column; with B' and B'' when derivatives are
  * wanted) are formed once; every point of every row is then sum_r B_r(u_a) c_r(v_b): 16
- * multiply-adds per homogeneous value, in the summation order of rg2_patch_eval, in a
+ * multiply-adds per homogeneous value, in the summation order of rg2_patch_eval (first
+ * derivatives by the hodograph: three terms on differences, of the column sums in u and of the
+ * control points in v; second derivatives by B''), in a
  * branch-free loop over the columns that the compiler vectorises (x86-64 with GCC: AVX-512 /
  * AVX2 / baseline clones chosen at load time). On AVX-512 CPUs hand-written kernels take whole
  * patches (grid_patch_avx512): rcp14 / rsqrt14 and two Newton steps instead of divisions and
@@ -471,12 +473,13 @@ enum { ST_PLAIN, ST_STREAM, ST_STAGED };
 #define RG2_PATCH_AHEAD 1
 #endif
 
-/* 8 interleaved points (24 doubles) at dst: q < 8 stores only 3 q doubles (masked). */
-RG2_AVX512_FN static inline void put8(double *dst, const __m512d o[3], int q, int st)
+/* 8 interleaved points (24 doubles) at dst: q < 8 stores only 3 q doubles (masked); plain
+ * stores first ask for the lines `ahead` doubles further on. */
+RG2_AVX512_FN static inline void put8a(double *dst, const __m512d o[3], int q, int st, size_t ahead)
 {
     if (st != ST_STREAM) /* (prefetches never fault, past the array's end included) */
         for (int k = 0; k < 3; k++)
-            __builtin_prefetch(dst + RG2_PREFETCHW_AHEAD + 8 * k, 1, 3);
+            __builtin_prefetch(dst + ahead + 8 * k, 1, 3);
     if (st == ST_STREAM) {
         _mm512_stream_pd(dst, o[0]);
         _mm512_stream_pd(dst + 8, o[1]);
@@ -489,6 +492,11 @@ RG2_AVX512_FN static inline void put8(double *dst, const __m512d o[3], int q, in
         for (int k = 0, left = 3 * q; k < 3 && left > 0; k++, left -= 8)
             _mm512_mask_storeu_pd(dst + 8 * k, (__mmask8)(left >= 8 ? 0xff : (1u << left) - 1u), o[k]);
     }
+}
+
+RG2_AVX512_FN static inline void put8(double *dst, const __m512d o[3], int q, int st)
+{
+    put8a(dst, o, q, st, RG2_PREFETCHW_AHEAD);
 }
 
 /* Copy n doubles with streaming stores on the 64-byte aligned part of dst (whole cache lines
@@ -740,8 +748,8 @@ seg_pos_cxr_avx512(const double *U, double c[4][4][BLK], double cx[4][3 * BLK], 
             }
         }
         int q = cnt - i < 8 ? cnt - i : 8;
-        for (int k = 0; k < R; k++)
-            put8(dst + k * stride + 3 * i, o[k], q, st);
+        for (int k = 0; k < R; k++) /* prefetchw: the same columns R rows on (the next pass) */
+            put8a(dst + k * stride + 3 * i, o[k], q, st, (size_t)R * stride);
     }
 }
 
