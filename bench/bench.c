@@ -1122,7 +1122,7 @@ int main(int argc, char **argv)
             die_rg2("free-form surface", &err);
         rg2_mesh_free(&m);
     }
-    case_setup(&ff, 8, 5);
+    case_setup(&ff, 8, 9);
     cJSON_AddItemToArray(jcases, run_case(&ff));
     case_free(&ff);
     }
