@@ -466,7 +466,7 @@ enum { ST_PLAIN, ST_STREAM, ST_STAGED };
 #endif
 
 #ifndef RG2_POS_ROWS
-#define RG2_POS_ROWS 4 /* rows per call of seg_pos_cxr_avx512 (1 row: 0.85-0.88x in L2 and L3, AMD Zen 5) */
+#define RG2_POS_ROWS 4 /* rows per pass of seg_pos_cxr_avx512 (1 row: 0.85-0.88x in L2 and L3, AMD Zen 5) */
 #endif
 
 #ifndef RG2_PATCH_AHEAD
@@ -661,7 +661,7 @@ RG2_AVX512_FN static inline void pos_normal8(const __m512d u[4], const __m512d h
     xyz8(n[0], n[1], n[2], no);
 }
 
-/* Positions of one row segment of cnt points at dst (short rows: see seg_pos_cx_avx512). */
+/* Positions of one row segment of cnt points at dst (short rows: see seg_pos_cxr_avx512). */
 RG2_AVX512_FN static inline void seg_pos_avx512(const double *U, double c[4][4][BLK], int cnt, double *dst,
                                                 int st, int hw)
 {
@@ -687,39 +687,16 @@ RG2_AVX512_FN static void interleave_csum(double c[4][4][BLK], int cnt, double c
         }
 }
 
-/* Positions of one row segment of cnt points at dst, from the interleaved column sums cx (x, y, z)
- * and c (for w): the sums and products of seg_pos_avx512 lane by lane (the same bits), with 1 / w
- * spread to the x, y, z lanes by 3 permutes instead of interleaving the results by 6. Pays off
- * from about 16 rows per block (interleave_csum costs 24 permutes per 8 columns). */
-RG2_AVX512_FN static inline void seg_pos_cx_avx512(const double *U, double c[4][4][BLK], double cx[4][3 * BLK],
-                                                int cnt, double *dst, int st, int hw)
-{
-    const __m512i s0 = _mm512_set_epi64(2, 2, 1, 1, 1, 0, 0, 0), s1 = _mm512_set_epi64(5, 4, 4, 4, 3, 3, 3, 2);
-    const __m512i s2 = _mm512_set_epi64(7, 7, 7, 6, 6, 6, 5, 5);
-    __m512d u[4];
-    bcast4(U, u);
-    for (int i = 0; i < cnt; i += 8) { /* the last vector may be partial: padded, masked store */
-        __m512d iw = recip8(usum8(u, c, 3, i), hw), o[3];
-        __m512d iw3[3] = {_mm512_permutexvar_pd(s0, iw), _mm512_permutexvar_pd(s1, iw),
-                          _mm512_permutexvar_pd(s2, iw)};
-        for (int j = 0; j < 3; j++) {
-            const double *q = &cx[0][3 * i + 8 * j];
-            __m512d acc = _mm512_mul_pd(u[0], _mm512_load_pd(q));
-            acc = _mm512_fmadd_pd(u[1], _mm512_load_pd(q + 3 * BLK), acc);
-            acc = _mm512_fmadd_pd(u[2], _mm512_load_pd(q + 6 * BLK), acc);
-            acc = _mm512_fmadd_pd(u[3], _mm512_load_pd(q + 9 * BLK), acc);
-            o[j] = _mm512_mul_pd(acc, iw3[j]);
-        }
-        put8(dst + 3 * i, o, cnt - i < 8 ? cnt - i : 8, st);
-    }
-}
-
-/* seg_pos_cx_avx512 for R rows at once (row k: Bernstein values U + 4 k, output at dst + k * stride;
- * the same bits): each column sum is loaded once for all R rows, and their reciprocal chains
- * overlap. */
+/* Positions of R rows of cnt points (row k: Bernstein values U + 4 k, output at dst + k stride),
+ * from the interleaved column sums cx (x, y, z) and c (for w): the sums and products of
+ * seg_pos_avx512 lane by lane (the same bits), with 1 / w spread to the x, y, z lanes by 3
+ * permutes instead of interleaving the results by 6 (pays off from about 16 rows per block:
+ * interleave_csum costs 24 permutes per 8 columns). With R > 1 each column sum is loaded once for
+ * all R rows and their reciprocal chains overlap; plain stores ask for the lines `ahead` doubles
+ * on (with R rows per pass: R rows on, the next pass's). */
 RG2_AVX512_FN static inline __attribute__((always_inline)) void
 seg_pos_cxr_avx512(const double *U, double c[4][4][BLK], double cx[4][3 * BLK], int cnt, double *dst,
-                   size_t stride, int st, int hw, const int R)
+                   size_t stride, size_t ahead, int st, int hw, const int R)
 {
     const __m512i sel[3] = {_mm512_set_epi64(2, 2, 1, 1, 1, 0, 0, 0), _mm512_set_epi64(5, 4, 4, 4, 3, 3, 3, 2),
                             _mm512_set_epi64(7, 7, 7, 6, 6, 6, 5, 5)};
@@ -748,8 +725,8 @@ seg_pos_cxr_avx512(const double *U, double c[4][4][BLK], double cx[4][3 * BLK], 
             }
         }
         int q = cnt - i < 8 ? cnt - i : 8;
-        for (int k = 0; k < R; k++) /* prefetchw: the same columns R rows on (the next pass) */
-            put8a(dst + k * stride + 3 * i, o[k], q, st, (size_t)R * stride);
+        for (int k = 0; k < R; k++)
+            put8a(dst + k * stride + 3 * i, o[k], q, st, ahead);
     }
 }
 
@@ -969,15 +946,16 @@ grid_patch_avx512_hw(const rg2_patch *P, const tables *t, const rg2_grid_out *o,
             const double *U = t->bu + 4 * a, *HU = t->hu + 4 * a;
             double *pos = o->pos + 3 * at;
             if (t->order == 0 && use_cx && !t->stream && a + RG2_POS_ROWS <= t->n) { /* rows together */
-                seg_pos_cxr_avx512(U, c0, cx, cnt, pos, 3 * (size_t)t->m, ST_PLAIN, hw, RG2_POS_ROWS);
+                size_t stride = 3 * (size_t)t->m; /* prefetchw: the same columns of the next pass */
+                seg_pos_cxr_avx512(U, c0, cx, cnt, pos, stride, RG2_POS_ROWS * stride, ST_PLAIN, hw, RG2_POS_ROWS);
                 a += RG2_POS_ROWS - 1;
             } else if (t->order == 0) {
                 int st = store_mode(t, pos, cnt);
                 double *dst = st == ST_STAGED ? pbuf : pos;
                 if (use_cx && st == ST_STREAM)
-                    seg_pos_cx_avx512(U, c0, cx, cnt, dst, ST_STREAM, hw);
+                    seg_pos_cxr_avx512(U, c0, cx, cnt, dst, 0, 0, ST_STREAM, hw, 1);
                 else if (use_cx)
-                    seg_pos_cx_avx512(U, c0, cx, cnt, dst, ST_PLAIN, hw);
+                    seg_pos_cxr_avx512(U, c0, cx, cnt, dst, 0, RG2_PREFETCHW_AHEAD, ST_PLAIN, hw, 1);
                 else if (st == ST_STREAM)
                     seg_pos_avx512(U, c0, cnt, dst, ST_STREAM, hw);
                 else
