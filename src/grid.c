@@ -468,6 +468,7 @@ enum { ST_PLAIN, ST_STREAM, ST_STAGED };
 #ifndef RG2_POS_ROWS
 #define RG2_POS_ROWS 4 /* rows per pass of seg_pos_cxr_avx512 (1 row: 0.85-0.88x in L2 and L3, AMD Zen 5) */
 #endif
+_Static_assert(RG2_POS_ROWS >= 1 && RG2_POS_ROWS <= 4, "seg_pos_cxr_avx512 holds at most 4 rows");
 
 #ifndef RG2_PATCH_AHEAD
 #define RG2_PATCH_AHEAD 1
