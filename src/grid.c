@@ -642,7 +642,7 @@ RG2_AVX512_FN static inline void pos8(const __m512d u[4], __m512d c[4][4], __m51
 
 /* Positions and unit normals of 8 points of a row (u, hu: its Bernstein values and hodograph
  * weights) from their column sums c0, their differences dc and the v-derivative column sums c1,
- * interleaved in po and no; the expressions of full_soa_avx512 (bitwise the same positions and
+ * interleaved in po and no; the expressions of full_avx512 (bitwise the same positions and
  * normals). */
 RG2_AVX512_FN static inline void pos_normal8(const __m512d u[4], const __m512d hu[3], __m512d c0[4][4],
                                              __m512d dc[3][4], __m512d c1[4][4], __m512d po[3], __m512d no[3],
@@ -800,11 +800,22 @@ RG2_AVX512_FN static inline void seg_pos_normal_avx512(const double *U, const do
     }
 }
 
+/* x, y, z of 8 points (q of them) interleaved at dst, when the output is requested. */
+RG2_AVX512_FN static inline void out3(double *dst, const __m512d v[3], int q)
+{
+    if (dst) {
+        __m512d o[3];
+        xyz8(v[0], v[1], v[2], o);
+        put8(dst, o, q, ST_PLAIN);
+    }
+}
+
 /* The second-order formulas (as full_soa) for all 8-lane vectors covering 0..cnt-1 (vsum pads
- * the column sums with zeros; lanes past cnt are computed but never copied out). */
-RG2_AVX512_FN static inline void full_soa_avx512(const double *U, const double *DDU, const double *HU,
-                                                 double c0[4][4][BLK], double c1[4][4][BLK],
-                                                 double c2[4][4][BLK], int cnt, soa_full *S, int hw)
+ * the column sums with zeros; lanes past cnt are computed but not stored), each requested output
+ * interleaved and stored as soon as it is computed (point index `at` of the outputs). */
+RG2_AVX512_FN static inline void full_avx512(const double *U, const double *DDU, const double *HU,
+                                             double c0[4][4][BLK], double c1[4][4][BLK], double c2[4][4][BLK],
+                                             int cnt, const rg2_grid_out *o, size_t at, int hw)
 {
     __m512d u[4], ddu[4], hq[3];
     bcast4(U, u);
@@ -847,18 +858,20 @@ RG2_AVX512_FN static inline void full_soa_avx512(const double *U, const double *
         __m512d K = _mm512_mul_pd(_mm512_fmsub_pd(L, N, _mm512_mul_pd(M, M)), idet);
         __m512d Hn = _mm512_fmadd_pd(G, L, _mm512_fnmadd_pd(_mm512_mul_pd(two, F), M, _mm512_mul_pd(E, N)));
         __m512d H = _mm512_mul_pd(Hn, _mm512_mul_pd(half, idet));
-        for (int k = 0; k < 3; k++) {
-            _mm512_store_pd(&S->p[k][i], P[k]);
-            _mm512_store_pd(&S->su[k][i], Su[k]);
-            _mm512_store_pd(&S->sv[k][i], Sv[k]);
-            _mm512_store_pd(&S->suu[k][i], Suu[k]);
-            _mm512_store_pd(&S->suv[k][i], Suv[k]);
-            _mm512_store_pd(&S->svv[k][i], Svv[k]);
-        }
-        for (int k = 0; k < 3; k++)
-            _mm512_store_pd(&S->nn[k][i], nn[k]);
-        _mm512_store_pd(&S->K[i], K);
-        _mm512_store_pd(&S->H[i], H);
+        int q = cnt - i < 8 ? cnt - i : 8;
+        size_t o3 = 3 * (at + (size_t)i);
+        out3(o->pos + o3, P, q);
+        out3(o->normal ? o->normal + o3 : NULL, nn, q);
+        out3(o->du ? o->du + o3 : NULL, Su, q);
+        out3(o->dv ? o->dv + o3 : NULL, Sv, q);
+        out3(o->duu ? o->duu + o3 : NULL, Suu, q);
+        out3(o->duv ? o->duv + o3 : NULL, Suv, q);
+        out3(o->dvv ? o->dvv + o3 : NULL, Svv, q);
+        __mmask8 mq = (__mmask8)((1u << q) - 1u);
+        if (o->K)
+            _mm512_mask_storeu_pd(o->K + at + i, mq, K);
+        if (o->H)
+            _mm512_mask_storeu_pd(o->H + at + i, mq, H);
     }
 }
 #endif
@@ -872,32 +885,6 @@ static int out_order(const rg2_grid_out *o)
 }
 
 #if RG2_AVX512
-/* full_out with interleaving permutes and masked tails (the structure-of-arrays temporaries are
- * padded to whole vectors). */
-RG2_AVX512_FN static void full_out_avx512(const soa_full *S, int cnt, const rg2_grid_out *o, size_t at)
-{
-    struct {
-        double *dst;
-        const double(*src)[BLK];
-    } vec[] = {{o->pos, S->p}, {o->normal, S->nn}, {o->du, S->su}, {o->dv, S->sv}, {o->duu, S->suu},
-               {o->duv, S->suv}, {o->dvv, S->svv}};
-    for (int q = 0; q < 7; q++) {
-        if (!vec[q].dst)
-            continue;
-        double *dst = vec[q].dst + 3 * at;
-        const double(*src)[BLK] = vec[q].src;
-        for (int i = 0; i < cnt; i += 8) {
-            __m512d v[3];
-            xyz8(_mm512_load_pd(src[0] + i), _mm512_load_pd(src[1] + i), _mm512_load_pd(src[2] + i), v);
-            put8(dst + 3 * i, v, cnt - i < 8 ? cnt - i : 8, ST_PLAIN);
-        }
-    }
-    if (o->K)
-        memcpy(o->K + at, S->K, sizeof(double) * (size_t)cnt);
-    if (o->H)
-        memcpy(o->H + at, S->H, sizeof(double) * (size_t)cnt);
-}
-
 /* How to store a row segment of cnt points at dst (see ST_*). */
 static inline int store_mode(const tables *t, const double *dst, int cnt)
 {
@@ -921,7 +908,6 @@ grid_patch_avx512_hw(const rg2_patch *P, const tables *t, const rg2_grid_out *o,
     _Alignas(64) double pbuf[3 * BLK];
     _Alignas(64) double nbuf[3 * BLK];
     _Alignas(64) double cx[4][3 * BLK];
-    soa_full S[1];
     if (t->m <= 8 && t->order <= 1) { /* narrow patches: whole rows in registers */
         if (t->order == 0)
             patch_pos_narrow_avx512(P, t, o->pos + 3 * first, hw);
@@ -976,8 +962,7 @@ grid_patch_avx512_hw(const rg2_patch *P, const tables *t, const rg2_grid_out *o,
                     stream_copy(nrm, nbuf, 3 * cnt);
                 }
             } else {
-                full_soa_avx512(U, t->ddu + 4 * a, HU, c0, c1, c2, cnt, S, hw);
-                full_out_avx512(S, cnt, o, at);
+                full_avx512(U, t->ddu + 4 * a, HU, c0, c1, c2, cnt, o, at, hw);
             }
         }
     }
