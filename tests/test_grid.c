@@ -337,6 +337,12 @@ static void narrow_patches(void)
         printf("  narrow %d x %d per patch, %d patches (%.1f MB of positions%s): vs rg2_patch_eval position "
                "%.2e, normal %.2e\n",
                n, m, np, 24e-6 * (double)pts, cfg[c].misalign ? ", misaligned" : "", d.pos, d.normal);
+        /* K without the normals it is made from: the second-order kernel stores only what is asked */
+        memset(nrm2, 0, 3 * pts * sizeof(double));
+        rg2_grid_out ok = {.pos = pos3, .K = nrm2};
+        CHECK_OK(rg2_surface_grid(&s, n, m, 1, &ok, &err), &err);
+        CHECK(memcmp(nrm2, K, pts * sizeof(double)) == 0 && memcmp(pos3, pos, 3 * pts * sizeof(double)) == 0,
+              "narrow %d x %d: K (and positions) alone bitwise as with the normals", n, m);
         free(mem);
     }
     free(P);
