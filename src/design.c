@@ -209,11 +209,11 @@ static rg2_status mesh_range(const rg2_mesh *m, const char *file, const char *na
         big = fmax(big, fmax(fabs(lo[q]), fabs(hi[q])));
         diag = hypot(diag, hi[q] - lo[q]);
     }
-    if (!(big <= RG2_DESIGN_MAX_ABS) || !(diag >= RG2_DESIGN_MIN_ABS))
+    if (!(big <= RG2_DESIGN_MAX_COORD) || !(diag >= RG2_DESIGN_MIN_SIZE))
         return rg2__fail(err, RG2_EDOMAIN,
                          "%s: mesh '%s': coordinates up to %g, size %g: outside the supported range "
                          "(coordinates up to %g, size at least %g)",
-                         file, name, big, diag, RG2_DESIGN_MAX_ABS, RG2_DESIGN_MIN_ABS);
+                         file, name, big, diag, RG2_DESIGN_MAX_COORD, RG2_DESIGN_MIN_SIZE);
     return RG2_OK;
 }
 
@@ -237,8 +237,10 @@ rg2_status rg2__design_build(rg2_design *d, rg2_error *err)
         if (st)
             return st;
         st = dm->capped ? rg2__design_build_capped(d, dm, s, err) : rg2_surface_build(&dm->m, s, err);
-        if (dm->capped && !st)
-            continue; /* tagged by the caps module */
+        if (dm->capped && !st) {
+            rg2__surface_normalize_weights(s); /* (rg2_surface_build does it for the uncapped) */
+            continue;                          /* tagged by the caps module */
+        }
         if (st) {
             rg2_error e = *err;
             return rg2__fail(err, st, "mesh '%s': %s", dm->name, e.msg);

@@ -88,12 +88,21 @@ void rg2__eval_from_h(double H[6][4], int order, rg2_eval *e)
         e->su[k] = (H[1][k] - H[1][3] * e->p[k]) * iW;
         e->sv[k] = (H[2][k] - H[2][3] * e->p[k]) * iW;
     }
+    /* The normal's test, direction and (below) K and H from copies of the derivatives scaled by
+     * one power of two, so that the squares and products of squares stay in the double range
+     * for any surface size (rg2__scale_pair: exact, and the identity in the usual range). A
+     * common factor t on all first derivatives and t^2 on the second ones is a
+     * reparameterisation (u, v) -> (u / t, v / t): n, K and H do not change. */
+    double su[3], sv[3];
+    memcpy(su, e->su, sizeof su);
+    memcpy(sv, e->sv, sizeof sv);
+    double t = rg2__scale_pair(su, sv);
     double c[3];
-    cross3(e->su, e->sv, c);
+    cross3(su, sv, c);
     double len = sqrt(dot3(c, c));
     /* Relative to |su|^2 + |sv|^2, not |su||sv|: on a collapsed edge one derivative is
      * rounding noise and |su x sv| ~ |su||sv| would not be small. */
-    double scale = dot3(e->su, e->su) + dot3(e->sv, e->sv);
+    double scale = dot3(su, su) + dot3(sv, sv);
     /* A derivative (H' - W' p) / W at the level of its own rounding error is zero (a pole with
      * a short transversal derivative would otherwise pass the relative test above). */
     double ru = 0.0, rv = 0.0;
@@ -101,8 +110,7 @@ void rg2__eval_from_h(double H[6][4], int order, rg2_eval *e)
         ru += fabs(H[1][k]) + fabs(H[1][3] * e->p[k]);
         rv += fabs(H[2][k]) + fabs(H[2][3] * e->p[k]);
     }
-    int zero_d = sqrt(dot3(e->su, e->su)) <= 1e-13 * ru * fabs(iW) ||
-                 sqrt(dot3(e->sv, e->sv)) <= 1e-13 * rv * fabs(iW);
+    int zero_d = sqrt(dot3(su, su)) <= 1e-13 * ru * fabs(iW) * t || sqrt(dot3(sv, sv)) <= 1e-13 * rv * fabs(iW) * t;
     if (!(len > 1e-14 * scale) || zero_d) {
         e->flags |= RG2_EVAL_NORMAL_UNDEFINED | RG2_EVAL_CURVATURE_UNDEFINED;
     } else {
@@ -118,8 +126,14 @@ void rg2__eval_from_h(double H[6][4], int order, rg2_eval *e)
     }
     if (e->flags & RG2_EVAL_NORMAL_UNDEFINED)
         return;
-    double E = dot3(e->su, e->su), F = dot3(e->su, e->sv), G = dot3(e->sv, e->sv);
-    double L = dot3(e->suu, e->n), M = dot3(e->suv, e->n), N = dot3(e->svv, e->n);
+    double suu[3], suv[3], svv[3];
+    for (int k = 0; k < 3; k++) { /* (t twice: t^2 alone may overflow) */
+        suu[k] = e->suu[k] * t * t;
+        suv[k] = e->suv[k] * t * t;
+        svv[k] = e->svv[k] * t * t;
+    }
+    double E = dot3(su, su), F = dot3(su, sv), G = dot3(sv, sv);
+    double L = dot3(suu, e->n), M = dot3(suv, e->n), N = dot3(svv, e->n);
     double det = E * G - F * F;
     e->K = (L * N - M * M) / det;
     e->H = (E * N - 2.0 * F * M + G * L) / (2.0 * det);

@@ -1201,6 +1201,7 @@ unsigned rg2_patch_point_normal(const rg2_patch *P, double u, double v, double p
         su[k] = hu[k] - hu[3] * p[k];
         sv[k] = hv[k] - hv[3] * p[k];
     }
+    rg2__scale_pair(su, sv);
     double c[3] = {su[1] * sv[2] - su[2] * sv[1], su[2] * sv[0] - su[0] * sv[2],
                    su[0] * sv[1] - su[1] * sv[0]};
     double l2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];

@@ -22,10 +22,15 @@
 #endif
 
 /* Supported numeric range of design files: every number is 0 or has a magnitude in
- * [RG2_DESIGN_MIN_ABS, RG2_DESIGN_MAX_ABS], and so must every output mesh's coordinates and
- * size (bounding-box diagonal). Beyond it squares and curvatures leave the double range. */
+ * [RG2_DESIGN_MIN_ABS, RG2_DESIGN_MAX_ABS]; every output mesh's coordinates stay below
+ * RG2_DESIGN_MAX_COORD and its size (bounding-box diagonal) is at least RG2_DESIGN_MIN_SIZE.
+ * Beyond 1e+-75 the fourth powers of the implicit equations (torus, cyclide) and of the
+ * normal formulas (|Su x Sv|^2) leave the double range; 1e+-60 keeps a margin of 1e15 for
+ * patches much smaller than their surface and for curvature radii. */
 #define RG2_DESIGN_MAX_ABS 1e100
 #define RG2_DESIGN_MIN_ABS 1e-100
+#define RG2_DESIGN_MAX_COORD 1e60
+#define RG2_DESIGN_MIN_SIZE 1e-60
 
 /* Smallest circle arc a shape partition accepts (radians; docs/robustness.md): below it the
  * seam curvature of the tiny patches agrees only to about 2e-15 / alpha^2 (measured), worse
@@ -136,6 +141,34 @@ rg2_status rg2__xgrid_make(const rg2_surface *s, int n, int m, const rg2_grid_ou
                            rg2_error *err);
 void rg2__xgrid_free(rg2__xgrid *t);
 void rg2__xgrid_patch(const rg2_xpatch *x, const rg2__xgrid *t, const rg2_grid_out *out, size_t first);
+
+/* Each patch's homogeneous control values times one power of two (projectively the same patch;
+ * positions, normals and curvatures evaluate to the same bits) where its largest weight lies
+ * outside [2^-32, 2^32]: the grid kernels' normal formulas carry w^8 (w^2 Su x w^2 Sv, squared),
+ * which leaves the double range for weights as far out as 1e-40 or 1e40. */
+void rg2__surface_normalize_weights(rg2_surface *s);
+
+/* Two tangent vectors a, b scaled in place by one power of two 2^-e (exact), when the largest
+ * |component| m lies outside [2^-128, 2^128]: then m becomes 1 <= m < 2 and the squares and
+ * products of squares of the normal and curvature formulas stay inside the double range (they
+ * over- or underflow past |a| |b| ~ 1e+-154 otherwise). Returns the factor 2^-e (1.0 in the usual
+ * range, where nothing changes). */
+static inline double rg2__scale_pair(double a[3], double b[3])
+{
+    double m = 0.0;
+    for (int k = 0; k < 3; k++)
+        m = fmax(m, fmax(fabs(a[k]), fabs(b[k])));
+    if (!(m > 0x1p-128 && m < 0x1p128) && m > 0.0 && m <= 1.79e308) {
+        int e = ilogb(m);
+        double t = ldexp(1.0, e < -1000 ? 1000 : -e); /* (subnormal m: 2^1000, not past the range) */
+        for (int k = 0; k < 3; k++) {
+            a[k] *= t;
+            b[k] *= t;
+        }
+        return t;
+    }
+    return 1.0;
+}
 
 /* Bernstein cubic basis and derivatives at t. */
 static inline void rg2__bern3(double t, double B[4], double D[4], double DD[4])

@@ -10,6 +10,12 @@
  * 2. Near-degenerate circle partitions: arcs of 1e-4 .. 1e-7 rad next to ordinary ones, and
  *    arcs just under pi (pi - 1e-2 .. pi - 1e-9). Each either builds to the same accuracy or is
  *    refused with a message naming the arc; the figures are printed (docs/robustness.md).
+ * 3. Power-of-two scalings of a torus and a sphere mesh: the coordinates by 2^a (a up to +-330,
+ *    sizes 1e-99 .. 1e99) and all four homogeneous values by 2^b (weights 1e-90 .. 1e90, the
+ *    same surface). Scaling by a power of two is exact, so every evaluator must give the
+ *    unscaled results times the exact power: positions 2^a, normals the same bits, K 2^-2a,
+ *    H 2^-a. rg2_patch_eval and rg2_patch_point_normal over the whole range, the grid over
+ *    the design range (|a| <= 190, about 1e57).
  */
 #include "harness.h"
 
@@ -245,9 +251,116 @@ static void degenerate_partitions(void)
     }
 }
 
+/* ------------------------------------------------------------------------------------- */
+
+/* The surface of a mesh whose points are scaled: xyz by 2^a, all four values by 2^b. */
+static int scaled_surface(const rg2_mesh *m0, int a, int b, rg2_surface *s)
+{
+    rg2_mesh m;
+    rg2_error err;
+    if (rg2_mesh_copy(m0, &m, &err) != RG2_OK)
+        return 0;
+    for (size_t k = 0; k < (size_t)m.nu * (size_t)m.nv; k++)
+        for (int q = 0; q < 4; q++)
+            m.p[4 * k + q] = ldexp(m.p[4 * k + q], (q < 3 ? a : 0) + b);
+    rg2_status st = rg2_surface_build(&m, s, &err);
+    CHECK(st == RG2_OK, "scaled 2^%d, weights 2^%d: %s", a, b, err.msg);
+    rg2_mesh_free(&m);
+    return st == RG2_OK;
+}
+
+static int same3(const double *x, const double *y, int e)
+{
+    return x[0] == ldexp(y[0], e) && x[1] == ldexp(y[1], e) && x[2] == ldexp(y[2], e);
+}
+
+static void power_scales(void)
+{
+    static const int as[] = {-330, -250, -190, -100, 0, 100, 190, 250, 330};
+    static const int bs[] = {-300, -150, 0, 150, 300};
+    printf("power-of-two scalings (coordinates 2^a, weights 2^b): results must be the exact powers\n");
+    for (int kind = 0; kind < 2; kind++) {
+        rg2_shape_kind sk = kind ? RG2_SHAPE_SPHERE : RG2_SHAPE_TORUS;
+        double vu[64], vv[64];
+        rg2_partition pu, pv;
+        default_partition(sk, 0, vu, &pu);
+        default_partition(sk, 1, vv, &pv);
+        rg2_shape sh;
+        rg2_shape_init(&sh, sk);
+        rg2_mesh m0;
+        rg2_error err;
+        rg2_surface s0;
+        if (rg2_shape_mesh(&sh, &pu, &pv, &m0, &err) != RG2_OK || !scaled_surface(&m0, 0, 0, &s0)) {
+            CHECK(0, "shape mesh: %s", err.msg);
+            continue;
+        }
+        const int n = 8, per = n * n;
+        size_t pts = (size_t)s0.nu * (size_t)s0.nv * (size_t)per;
+        double *g0 = calloc(8 * pts, sizeof(double)), *g1 = calloc(8 * pts, sizeof(double));
+        rg2_grid_out o0 = {.pos = g0, .normal = g0 + 3 * pts, .K = g0 + 6 * pts, .H = g0 + 7 * pts};
+        rg2_grid_out o1 = {.pos = g1, .normal = g1 + 3 * pts, .K = g1 + 6 * pts, .H = g1 + 7 * pts};
+        CHECK(rg2_surface_grid(&s0, n, n, 1, &o0, &err) == RG2_OK, "grid: %s", err.msg);
+        int bad_eval = 0, bad_point = 0, bad_grid = 0, cases = 0, undefined = 0;
+        for (size_t ia = 0; ia < sizeof as / sizeof as[0]; ia++)
+            for (size_t ib = 0; ib < sizeof bs / sizeof bs[0]; ib++) {
+                int a = as[ia], b = bs[ib];
+                rg2_surface s;
+                if (!scaled_surface(&m0, a, b, &s))
+                    continue;
+                cases++;
+                for (int i = 0; i < s.nu; i++)
+                    for (int j = 0; j < s.nv; j++)
+                        for (int q = 0; q < 25; q++) {
+                            double u = (q / 5) / 4.0, v = (q % 5) / 4.0;
+                            rg2_eval e0, e;
+                            rg2_patch_eval(rg2_surface_patch(&s0, i, j), u, v, 2, &e0);
+                            rg2_patch_eval(rg2_surface_patch(&s, i, j), u, v, 2, &e);
+                            undefined += (e0.flags & RG2_EVAL_NORMAL_UNDEFINED) != 0;
+                            if (e.flags != e0.flags || !same3(e.p, e0.p, a) || !same3(e.n, e0.n, 0) ||
+                                e.K != ldexp(e0.K, -2 * a) || e.H != ldexp(e0.H, -a)) {
+                                if (bad_eval++ < 3)
+                                    printf("  rg2_patch_eval 2^%d 2^%d patch (%d,%d) (%g,%g): flags %u/%u "
+                                           "n (%g %g %g)/(%g %g %g) K %g/%g\n",
+                                           a, b, i, j, u, v, e.flags, e0.flags, e.n[0], e.n[1], e.n[2],
+                                           e0.n[0], e0.n[1], e0.n[2], e.K, ldexp(e0.K, -2 * a));
+                            }
+                            double p0[3], n0[3], p1[3], n1[3];
+                            unsigned f0 = rg2_patch_point_normal(rg2_surface_patch(&s0, i, j), u, v, p0, n0);
+                            unsigned f1 = rg2_patch_point_normal(rg2_surface_patch(&s, i, j), u, v, p1, n1);
+                            if (f0 != f1 || !same3(p1, p0, a) || !same3(n1, n0, 0))
+                                bad_point++;
+                        }
+                if (a >= -190 && a <= 190) {
+                    CHECK(rg2_surface_grid(&s, n, n, 1, &o1, &err) == RG2_OK, "grid: %s", err.msg);
+                    for (size_t k = 0; k < pts; k++)
+                        if (!same3(g1 + 3 * k, g0 + 3 * k, a) || !same3(o1.normal + 3 * k, o0.normal + 3 * k, 0) ||
+                            o1.K[k] != ldexp(o0.K[k], -2 * a) || o1.H[k] != ldexp(o0.H[k], -a)) {
+                            if (bad_grid++ < 3)
+                                printf("  grid 2^%d 2^%d point %zu: n (%g %g %g)/(%g %g %g)\n", a, b, k,
+                                       o1.normal[3 * k], o1.normal[3 * k + 1], o1.normal[3 * k + 2],
+                                       o0.normal[3 * k], o0.normal[3 * k + 1], o0.normal[3 * k + 2]);
+                        }
+                }
+                rg2_surface_free(&s);
+            }
+        printf("  %-7s %d scalings: rg2_patch_eval %d, rg2_patch_point_normal %d, grid %d points off "
+               "(%d reference samples with an undefined normal, at the poles)\n",
+               kind ? "sphere" : "torus", cases, bad_eval, bad_point, bad_grid, undefined);
+        CHECK(cases == (int)(sizeof as / sizeof as[0] * sizeof bs / sizeof bs[0]), "%d scalings built", cases);
+        CHECK(bad_eval == 0, "rg2_patch_eval: %d samples not the exact powers", bad_eval);
+        CHECK(bad_point == 0, "rg2_patch_point_normal: %d samples not the exact powers", bad_point);
+        CHECK(bad_grid == 0, "grid: %d points not the exact powers", bad_grid);
+        free(g0);
+        free(g1);
+        rg2_surface_free(&s0);
+        rg2_mesh_free(&m0);
+    }
+}
+
 int main(void)
 {
     scales();
     degenerate_partitions();
+    power_scales();
     return rg2t_done("test_robust");
 }
