@@ -74,6 +74,20 @@ rg2_status rg2_surface_copy(const rg2_surface *src, rg2_surface *dst, rg2_error 
  * of m (no fresh memory, so no page faults: an editing loop), else freed and allocated anew. On
  * failure out is left empty.
  */
+/* The homogeneous values of n doubles (4-tuples, weight last) times 2^-e, where 2^e <= the largest
+ * weight < 2^(e+1), if that weight lies outside [2^-32, 2^32]. */
+static void normalize_weights(double *h, int n)
+{
+    double m = 0.0;
+    for (int q = 3; q < n; q += 4)
+        m = fmax(m, fabs(h[q]));
+    if (!(m > 0.0) || (m >= 0x1p-32 && m <= 0x1p32) || !(m <= 1.79e308))
+        return;
+    double t = ldexp(1.0, -ilogb(m));
+    for (int q = 0; q < n; q++)
+        h[q] *= t;
+}
+
 static rg2_status build_into(const rg2_mesh *m, rg2_surface *out, rg2_error *err)
 {
     rg2__stencil su, sv;
@@ -172,26 +186,12 @@ static rg2_status build_into(const rg2_mesh *m, rg2_surface *out, rg2_error *err
                                pi, pj);
                 goto done;
             }
+        normalize_weights(&out->patch[k].h[0][0][0], 64); /* (while the patch is in cache) */
     }
-    rg2__surface_normalize_weights(out);
 done:
     rg2__stencil_free(&su);
     rg2__stencil_free(&sv);
     return st;
-}
-
-/* The homogeneous values of n doubles (4-tuples, weight last) times 2^-e, where 2^e <= the largest
- * weight < 2^(e+1), if that weight lies outside [2^-32, 2^32]. */
-static void normalize_weights(double *h, int n)
-{
-    double m = 0.0;
-    for (int q = 3; q < n; q += 4)
-        m = fmax(m, fabs(h[q]));
-    if (!(m > 0.0) || (m >= 0x1p-32 && m <= 0x1p32) || !(m <= 1.79e308))
-        return;
-    double t = ldexp(1.0, -ilogb(m));
-    for (int q = 0; q < n; q++)
-        h[q] *= t;
 }
 
 void rg2__surface_normalize_weights(rg2_surface *s)
