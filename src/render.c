@@ -1012,6 +1012,29 @@ void rg2_image_free(rg2_image *img)
 
 /* ---------------------------------------------------------------- PNG */
 
+/* libpng's message and the errno of the failing write, kept for our error (libpng's default
+ * handlers would print to stderr; the library never prints). */
+typedef struct {
+    char msg[160];
+    int errnum;
+} png_fail;
+
+static void png_on_error(png_structp png, png_const_charp msg)
+{
+    png_fail *pf = png_get_error_ptr(png);
+    if (pf) {
+        pf->errnum = errno;
+        snprintf(pf->msg, sizeof pf->msg, "%s", msg ? msg : "error");
+    }
+    png_longjmp(png, 1);
+}
+
+static void png_on_warning(png_structp png, png_const_charp msg)
+{
+    (void)png;
+    (void)msg; /* warnings change nothing in the written file */
+}
+
 rg2_status rg2_image_write_png(const rg2_image *img, const char *path, rg2_error *err)
 {
     if (!img || !img->rgb || img->width <= 0 || img->height <= 0)
@@ -1030,11 +1053,14 @@ rg2_status rg2_image_write_png(const rg2_image *img, const char *path, rg2_error
         free(tmp);
         return st;
     }
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+    png_fail pf = {"", 0};
+    errno = 0;
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &pf, png_on_error, png_on_warning);
     png_infop info = png ? png_create_info_struct(png) : NULL;
     png_bytep *rows = malloc((size_t)img->height * sizeof *rows);
     volatile int ok = 0;
-    if (png && info && rows) {
+    const int allocated = png && info && rows;
+    if (allocated) {
         if (setjmp(png_jmpbuf(png)) == 0) {
             png_init_io(png, f);
             png_set_IHDR(png, info, (png_uint_32)img->width, (png_uint_32)img->height, 8, PNG_COLOR_TYPE_RGB,
@@ -1049,11 +1075,28 @@ rg2_status rg2_image_write_png(const rg2_image *img, const char *path, rg2_error
     }
     png_destroy_write_struct(&png, &info);
     free(rows);
-    if (fclose(f) != 0)
+    if (ok && fflush(f) != 0) {
         ok = 0;
-    if (!ok || rename(tmp, path) != 0) {
+        pf.errnum = errno;
+    }
+    if (fclose(f) != 0 && ok) {
+        ok = 0;
+        pf.errnum = errno;
+    }
+    if (!allocated) {
         remove(tmp);
-        rg2_status st = rg2__fail(err, RG2_EIO, "png: writing '%s' failed", path);
+        free(tmp);
+        return rg2__fail(err, RG2_ENOMEM, "png: out of memory");
+    }
+    if (!ok || rename(tmp, path) != 0) {
+        int en = ok ? errno : pf.errnum;
+        remove(tmp);
+        char why[256];
+        if (pf.msg[0] && en)
+            snprintf(why, sizeof why, "%s (%s)", pf.msg, strerror(en));
+        else
+            snprintf(why, sizeof why, "%s", pf.msg[0] ? pf.msg : en ? strerror(en) : "unknown error");
+        rg2_status st = rg2__fail(err, RG2_EIO, "png: writing '%s' failed: %s", path, why);
         free(tmp);
         return st;
     }

@@ -4,11 +4,15 @@
  * The sphere checks run again with a mixed pattern of patches replaced by their exact degree
  * elevations (xmix.h), and pictures of such surfaces are compared with the bi-3 ones.
  * Set RG2_KEEP_PICTURES=dir to keep the PNGs for looking at them. */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp, symlink */
 #include "harness.h"
 #include "scenes.h"
 #include "xmix.h"
 
+#include <errno.h>
+#include <sys/stat.h>
 #include <png.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -482,6 +486,43 @@ static void errors(void)
     CHECK_OK(rg2_render(&s, 1, NULL, &o, &img, &err), &err);
     CHECK(rg2_image_write_png(&img, "/nonexistent-dir/x.png", &err) == RG2_EIO && strstr(err.msg, "nonexistent"),
           "%s", err.msg);
+    /* a full disk: the temporary file is a link to /dev/full, so libpng's writes fail with ENOSPC.
+     * The error names the reason, nothing is printed (stderr to a file meanwhile), nothing is
+     * left behind. */
+    char dir[] = "/tmp/rg2-png-XXXXXX";
+    if (mkdtemp(dir) && access("/dev/full", W_OK) == 0) {
+        char png_out[64], tmp[80], log[80];
+        snprintf(png_out, sizeof png_out, "%s/x.png", dir);
+        snprintf(tmp, sizeof tmp, "%s.tmp", png_out);
+        snprintf(log, sizeof log, "%s/stderr", dir);
+        CHECK(symlink("/dev/full", tmp) == 0, "symlink %s", tmp);
+        fflush(stderr);
+        int saved = dup(2);
+        FILE *lf = fopen(log, "w");
+        dup2(fileno(lf), 2);
+        rg2_image big = {.width = 128, .height = 128, .rgb = malloc(128 * 128 * 3)}; /* noise: */
+        unsigned x = 2463534242u; /* xorshift noise: 48 KB that do not compress, past stdio's buffer */
+        for (int k = 0; big.rgb && k < 128 * 128 * 3; k++) {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            big.rgb[k] = (unsigned char)(x >> 24);
+        }
+        rg2_status st = rg2_image_write_png(&big, png_out, &err);
+        free(big.rgb);
+        fflush(stderr);
+        dup2(saved, 2);
+        close(saved);
+        fclose(lf);
+        struct stat sb;
+        long printed = stat(log, &sb) == 0 ? (long)sb.st_size : -1;
+        CHECK(st == RG2_EIO && strstr(err.msg, "x.png") && strstr(err.msg, strerror(ENOSPC)),
+              "full disk: %s", err.msg);
+        CHECK(printed == 0, "full disk: the library printed %ld bytes to stderr", printed);
+        CHECK(access(png_out, F_OK) != 0 && access(tmp, F_OK) != 0, "full disk: nothing left behind");
+        remove(log);
+        rmdir(dir);
+    }
     rg2_image_free(&img);
     rg2_surface_free(&s);
     rg2_mesh_free(&m);
