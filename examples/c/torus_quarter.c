@@ -1,7 +1,10 @@
 /* examples/c/torus_quarter.c -- embedding rg2: build a quarter torus from its exact control
  * mesh, check it against the torus equation, and export it as STEP.
  *
- *   cc torus_quarter.c -lrg2 -lm -o torus_quarter && ./torus_quarter out.step
+ *   cmake --install build --prefix /usr/local        (or any prefix; add it to PKG_CONFIG_PATH)
+ *   cc torus_quarter.c $(pkg-config --cflags --libs --static rg2) -o torus_quarter
+ *   ./torus_quarter out.step
+ * (librg2 is a static library: --static adds cJSON, libpng, OpenMP and threads; tests/embed.sh)
  */
 #include <rg2.h>
 
