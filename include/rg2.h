@@ -797,7 +797,8 @@ typedef enum {
 } rg2_render_mode;
 
 typedef struct {
-    int width, height;     /**< image size in pixels (default 800 x 600), each 16..8192 */
+    int width, height;     /**< image size in pixels (default 800 x 600), each 16..8192; about
+                                125 bytes of memory per pixel (8192 x 8192: 8.4 GB) */
     rg2_render_mode mode;
     double azimuth;        /**< degrees about +z, 0 looks from +x towards the centre (default 35) */
     double elevation;      /**< degrees above the xy plane (default 25) */
