@@ -98,7 +98,7 @@ int rg2_cmd_info(int argc, char **argv)
         for (int k = 0; k < ns; k++)
             if (count[k])
                 printf("  exact on %-16s %d patches\n", rg2_design_shape_label(d, k), count[k]);
-        printf("  transition           %d patches\n", count[ns]);
+        printf("  %-25s %d patches\n", "transition", count[ns]);
         printf("  smallest patch weight %.6g%s\n", rg2_surface_min_weight(s),
                rg2_surface_min_weight(s) > 0 ? "" : " (not positive: STEP/IGES export will refuse it)");
         if (map)
