@@ -1098,6 +1098,12 @@ rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, c
             fmtpath(p, sizeof p, "output[%d]", k);
             if ((st = mesh_ref(&c, it, p, &d->out[k])))
                 goto done;
+            for (int j = 0; j < k; j++)
+                if (d->out[j] == d->out[k]) { /* the same surface twice in every export */
+                    st = fail(&c, RG2_EPARSE, p, "mesh '%s' is listed twice (also output[%d])",
+                              d->mesh[d->out[k]].name, j);
+                    goto done;
+                }
         }
     } else if ((st = mesh_ref(&c, x, "output", &d->out[0])))
         goto done;
