@@ -243,7 +243,7 @@ rg2_status rg2__design_build(rg2_design *d, rg2_error *err)
         }
         if (st) {
             rg2_error e = *err;
-            return rg2__fail(err, st, "mesh '%s': %s", dm->name, e.msg);
+            return rg2__fail(err, st, "%s: mesh '%s': %s", d->name, dm->name, e.msg);
         }
         rg2__stencil sten[2];
         if ((st = rg2__stencil_make(&dm->m.su, &sten[0], err)))
