@@ -27,10 +27,10 @@ static const rg2_shape_desc shape_table[RG2_SHAPE_COUNT] = {
     [RG2_SHAPE_SPHERE] = {"sphere", 1, {"radius"}, {1.0}, {A_, K_}, {{0, TWO_PI}, {0.2, 0.8}},
                           {1, 0}, {6, 4},
                           "(2 rho v(1-v) cu, 2 rho v(1-v) su, rho (2v - 1), 2v^2 - 2v + 1); "
-                          "v = 0 south pole, v = 1 north pole",
+                          "rho = radius; v = 0 south pole, v = 1 north pole",
                           "x^2 + y^2 + z^2 = rho^2"},
     [RG2_SHAPE_CYLINDER] = {"cylinder", 1, {"radius"}, {1.0}, {A_, K_}, {{0, TWO_PI}, {0, 1}},
-                            {1, 0}, {6, 3}, "(R cu, R su, v, 1); v = height",
+                            {1, 0}, {6, 3}, "(R cu, R su, v, 1), R = radius; v = height",
                             "x^2 + y^2 = R^2"},
     [RG2_SHAPE_CONE] = {"cone", 1, {"k"}, {1.0}, {A_, K_}, {{0, TWO_PI}, {0.5, 1.5}}, {1, 0},
                         {6, 3}, "(v cu, v su, k v, 1); v = radius", "k^2 (x^2 + y^2) = z^2"},
