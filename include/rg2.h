@@ -855,7 +855,12 @@ RG2_API rg2_status rg2_render_png(const rg2_surface *surfs, int n, const rg2_mes
  * samples along each seam: position gap relative to the surface size, angle between the unit
  * normals, and the jump of normal curvature in six tangent directions relative to
  * max(|k1|, |k2|, 1 / size). Exact pieces (tag >= 0) are sampled against their shape's
- * implicit equation: |f| / |grad f| relative to the size of that shape's patches. */
+ * implicit equation: |f| / |grad f| relative to the size of that shape's patches.
+ * Samples on a pole (a patch side collapsed to a point while a parallel control line of the
+ * patch is not) have no normal and are not compared; an undefined normal anywhere else fails
+ * G1 and G2. Next to a pole the normal and curvature lose digits like 1/v and 1/v^2: a sample
+ * of a patch with a pole side whose first-order rounding bound exceeds tol_g1 / tol_g2 is
+ * measured against that bound (reported apart: near_pole, g1_pole, g2_pole). */
 enum {
     RG2_REQUIRE_G0 = 1u << 0,
     RG2_REQUIRE_G1 = 1u << 1,
@@ -865,7 +870,7 @@ enum {
 };
 
 typedef struct {
-    int seam_samples;      /**< samples per seam (default 16) */
+    int seam_samples;      /**< seam intervals: seam_samples + 1 samples per seam (default 16) */
     int patch_samples;     /**< samples per patch direction for residuals/curvature (default 12) */
     double tol_g0, tol_g1, tol_g2, tol_exact; /**< pass limits (defaults 1e-12, 1e-10, 1e-8, 1e-11) */
 } rg2_check_opts;
@@ -892,8 +897,22 @@ typedef struct {
     int n_shapes;
     rg2_check_shape *shapes; /**< n_shapes entries (allocated) */
     double worst_residual;
-    int seams, seam_samples, skipped; /**< skipped: samples with an undefined normal */
-    rg2_check_gap g0, g1, g2; /**< position (relative), normal angle (rad), curvature (relative) */
+    int seams, seam_samples; /**< seams and seam samples (seam_samples + 1 per seam) */
+    int skipped;           /**< samples whose normals were not compared: pole_samples +
+                                pole_unresolved + unmeasured */
+    int pole_samples;      /**< samples on a collapsed patch side (a pole): no normal exists there */
+    int unmeasured;        /**< samples with an undefined normal away from a pole, or a rounding
+                                bound above 1e-4 rad / 1e-2 further than 1e-3 from one: G1 and
+                                G2 fail when > 0 */
+    rg2_check_gap g0, g1, g2; /**< position (relative), normal angle (rad), curvature (relative),
+                                   over the samples measured against tol_g0, tol_g1, tol_g2 */
+    int near_pole;         /**< samples of patches with a pole side whose rounding bound (the
+                                expected floating-point error of the two evaluations) exceeds
+                                tol_g1 or tol_g2: measured against that bound instead */
+    int pole_unresolved;   /**< samples within 1e-3 (parametric) of a pole whose rounding bound
+                                exceeds 1e-4 rad / 1e-2: not compared, no failure */
+    double near_pole_tol1, near_pole_tol2; /**< the largest G1 (rad) / G2 limits they got */
+    rg2_check_gap g1_pole, g2_pole; /**< their worst gap / own limit (pass: <= 1) */
     double wmin, wmax;     /**< homogeneous weights of all control points */
     double eval_wmin;      /**< smallest weight met at the samples */
     double kmin, kmax;     /**< principal curvatures (k2 min, k1 max) over the samples */

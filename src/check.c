@@ -69,6 +69,14 @@ static double kn_dir(const rg2_eval *e, const double t[3])
     return rg2_eval_normal_curvature(e, (G * r1 - F * r2) / det, (E * r2 - F * r1) / det);
 }
 
+/* Whether the first fundamental form of e is usable: finite and positive definite (at sizes
+ * beyond ~1e77 E G - F^2 overflows and no curvature can be computed). */
+static int metric_ok(const rg2_eval *e)
+{
+    double E = dot3(e->su, e->su), F = dot3(e->su, e->sv), G = dot3(e->sv, e->sv), det = E * G - F * F;
+    return det > 0 && isfinite(det);
+}
+
 typedef struct {
     int surf, dir, pi, pj, qi, qj;
     double t;
@@ -90,36 +98,224 @@ static void gap_update(rg2_check_gap *g, double value, const seam_at *at, const 
 }
 
 /* Whether (u, v) lies on a side of a patch whose collapsed-side bits (0 v=0, 1 u=1, 2 v=1,
- * 3 u=0; rg2__surface_collapsed_sides) are c. */
+ * 3 u=0) are c. */
 static int on_collapsed(unsigned c, double u, double v)
 {
     return ((c & 1u) && v == 0.0) || ((c & 2u) && u == 1.0) || ((c & 4u) && v == 1.0) || ((c & 8u) && u == 0.0);
 }
 
-/* One seam point: L at the end of its transversal parameter, R at the start; pole: the point
- * lies on a collapsed side of either patch. */
-static void seam_point(rg2_check_report *r, const rg2_eval *L, const rg2_eval *R, int dir, double size,
-                       const seam_at *at, int pole)
+/* Spread (diagonal of the box) of the affine control points of row `b` (dir 0: the points
+ * (a, b), a = 0..du, a u-row) or column `a` (dir 1: (a, b), b = 0..dv) of patch k; +inf when a
+ * weight is not positive. */
+static double ctrl_line_spread(const rg2_surface *s, size_t k, int dir, int idx)
 {
+    int du, dv;
+    rg2__patch_degree(s, k, &du, &dv);
+    double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
+    int n = dir == 0 ? du : dv;
+    for (int m = 0; m <= n; m++) {
+        const double *h = dir == 0 ? rg2__patch_ctrl(s, k, m, idx) : rg2__patch_ctrl(s, k, idx, m);
+        if (!(h[3] > 0))
+            return HUGE_VAL;
+        for (int d = 0; d < 3; d++) {
+            lo[d] = fmin(lo[d], h[d] / h[3]);
+            hi[d] = fmax(hi[d], h[d] / h[3]);
+        }
+    }
+    double d2 = 0;
+    for (int d = 0; d < 3; d++)
+        d2 += (hi[d] - lo[d]) * (hi[d] - lo[d]);
+    return sqrt(d2);
+}
+
+/* The genuinely collapsed sides of patch (pi, pj) (bits as on_collapsed): a side is a pole when
+ * its control points coincide to 1e-11 of the widest control line parallel to it in the same
+ * patch, and that line is longer than 1e-11 of the patch's largest coordinate (rounding). A
+ * patch that is thin everywhere (all parallel lines short: a band of height 1e-95) has no pole:
+ * its undefined normals are a failure, not a pole. */
+static unsigned pole_sides(const rg2_surface *s, int pi, int pj)
+{
+    size_t k = (size_t)pi * (size_t)s->nv + (size_t)pj;
+    int du, dv;
+    rg2__patch_degree(s, k, &du, &dv);
+    unsigned c = 0;
+    /* the parallel lines must be wider than the rounding of the coordinates (a thin band whose
+     * width is rounding noise is no fan) */
+    double floor = 0;
+    for (int a = 0; a <= du; a++)
+        for (int b = 0; b <= dv; b++) {
+            const double *h = rg2__patch_ctrl(s, k, a, b);
+            for (int d = 0; d < 3; d++)
+                floor = fmax(floor, fabs(h[d] / h[3]));
+        }
+    floor *= 1e-11;
+    /* sides 0 (v = 0: u-row b = 0) and 2 (v = 1: row b = dv); sides 3 (u = 0: column 0), 1 (u = 1) */
+    for (int dir = 0; dir < 2; dir++) {
+        int n = dir == 0 ? dv : du;
+        double wide = 0;
+        for (int m = 1; m < n; m++)
+            wide = fmax(wide, ctrl_line_spread(s, k, dir, m));
+        double first = ctrl_line_spread(s, k, dir, 0), last = ctrl_line_spread(s, k, dir, n);
+        double w0 = fmax(wide, last), w1 = fmax(wide, first); /* parallel lines other than the side */
+        if (w0 > floor && w0 < HUGE_VAL && first <= 1e-11 * w0)
+            c |= dir == 0 ? 1u : 8u;
+        if (w1 > floor && w1 < HUGE_VAL && last <= 1e-11 * w1)
+            c |= dir == 0 ? 4u : 2u;
+    }
+    return c;
+}
+
+/* A first-order bound on the rounding error of an evaluation (eval.c's quotient rule): the
+ * homogeneous sums carry (du + dv + 3) eps times the sums of the absolute terms, propagated
+ * through p, the first and second derivatives and the normal. Next to a pole the derivative
+ * along the collapsed side is a difference of O(1) terms that is O(v): this bound grows like
+ * 1 / v (normal) and 1 / v^2 (curvature), as the measured seam gaps do there. */
+typedef struct {
+    double su, sv, suu, suv, svv; /* Euclidean norms of the error bounds */
+    double n;                     /* angle error of the unit normal */
+} eval_err;
+
+static void eval_bound(const rg2_surface *s, int pi, int pj, double u, double v, const rg2_eval *e, eval_err *out)
+{
+    size_t k = (size_t)pi * (size_t)s->nv + (size_t)pj;
+    int du, dv;
+    rg2__patch_degree(s, k, &du, &dv);
+    double Bu[RG2_MAX_DEGREE + 1], Du[RG2_MAX_DEGREE + 1], DDu[RG2_MAX_DEGREE + 1];
+    double Bv[RG2_MAX_DEGREE + 1], Dv[RG2_MAX_DEGREE + 1], DDv[RG2_MAX_DEGREE + 1];
+    rg2__bern(du, u, Bu, Du, DDu);
+    rg2__bern(dv, v, Bv, Dv, DDv);
+    double H[6][4], A[6][4] = {{0}};
+    rg2_surface_eval_h(s, pi, pj, u, v, H);
+    for (int a = 0; a <= du; a++)
+        for (int b = 0; b <= dv; b++) {
+            const double *h = rg2__patch_ctrl(s, k, a, b);
+            double f[6] = {fabs(Bu[a] * Bv[b]),  fabs(Du[a] * Bv[b]),  fabs(Bu[a] * Dv[b]),
+                           fabs(DDu[a] * Bv[b]), fabs(Du[a] * Dv[b]), fabs(Bu[a] * DDv[b])};
+            for (int r = 0; r < 6; r++)
+                for (int d = 0; d < 4; d++)
+                    A[r][d] += fabs(h[d]) * f[r];
+        }
+    const double ep = DBL_EPSILON, g = (du + dv + 3) * ep;
+    double iW = 1.0 / fabs(H[0][3]), dH[6][4];
+    for (int r = 0; r < 6; r++)
+        for (int d = 0; d < 4; d++)
+            dH[r][d] = g * A[r][d];
+    double bsu[3], bsv[3], bsuu[3], bsuv[3], bsvv[3];
+    for (int d = 0; d < 3; d++) {
+        double p = fabs(e->p[d]), su = fabs(e->su[d]), sv = fabs(e->sv[d]);
+        double bp = (dH[0][d] + p * dH[0][3]) * iW + ep * p;
+        bsu[d] = (dH[1][d] + fabs(H[1][3]) * bp + p * dH[1][3] + ep * (fabs(H[1][d]) + fabs(H[1][3]) * p)) * iW;
+        bsv[d] = (dH[2][d] + fabs(H[2][3]) * bp + p * dH[2][3] + ep * (fabs(H[2][d]) + fabs(H[2][3]) * p)) * iW;
+        bsuu[d] = (dH[3][d] + 2 * fabs(H[1][3]) * bsu[d] + 2 * su * dH[1][3] + fabs(H[3][3]) * bp + p * dH[3][3] +
+                   ep * (fabs(H[3][d]) + 2 * fabs(H[1][3]) * su + fabs(H[3][3]) * p)) * iW;
+        bsuv[d] = (dH[4][d] + fabs(H[1][3]) * bsv[d] + sv * dH[1][3] + fabs(H[2][3]) * bsu[d] + su * dH[2][3] +
+                   fabs(H[4][3]) * bp + p * dH[4][3] +
+                   ep * (fabs(H[4][d]) + fabs(H[1][3]) * sv + fabs(H[2][3]) * su + fabs(H[4][3]) * p)) * iW;
+        bsvv[d] = (dH[5][d] + 2 * fabs(H[2][3]) * bsv[d] + 2 * sv * dH[2][3] + fabs(H[5][3]) * bp + p * dH[5][3] +
+                   ep * (fabs(H[5][d]) + 2 * fabs(H[2][3]) * sv + fabs(H[5][3]) * p)) * iW;
+    }
+    out->su = norm3(bsu);
+    out->sv = norm3(bsv);
+    out->suu = norm3(bsuu);
+    out->suv = norm3(bsuv);
+    out->svv = norm3(bsvv);
+    double c[3];
+    cross3(e->su, e->sv, c);
+    double lc = norm3(c);
+    out->n = lc > 0 ? (norm3(e->su) * out->sv + norm3(e->sv) * out->su) / lc + 4 * ep : HUGE_VAL;
+}
+
+/* Bound on the rounding error of kn_dir(e, t) from the bounds b of e. */
+static double kn_bound(const rg2_eval *e, const eval_err *b, const double t[3])
+{
+    double E = dot3(e->su, e->su), F = dot3(e->su, e->sv), G = dot3(e->sv, e->sv);
+    double r1 = dot3(t, e->su), r2 = dot3(t, e->sv), det = E * G - F * F;
+    if (!(det > 0))
+        return HUGE_VAL;
+    double a = (G * r1 - F * r2) / det, c = (E * r2 - F * r1) / det, T[3], d2[3];
+    for (int k = 0; k < 3; k++) {
+        T[k] = a * e->su[k] + c * e->sv[k];
+        d2[k] = a * a * e->suu[k] + 2 * a * c * e->suv[k] + c * c * e->svv[k];
+    }
+    double tt = dot3(T, T), lt = sqrt(tt);
+    if (!(tt > 0))
+        return HUGE_VAL;
+    double kn = dot3(d2, e->n) / tt, a2 = fabs(a), c2 = fabs(c);
+    double dT = (a2 * b->su + c2 * b->sv) / lt + 4 * DBL_EPSILON * (E + G) / sqrt(det); /* direction */
+    return (a2 * a2 * b->suu + 2 * a2 * c2 * b->suv + c2 * c2 * b->svv + norm3(d2) * b->n) / tt +
+           2 * fabs(kn) * (a2 * b->su + c2 * b->sv) / lt + fabs(e->k1 - e->k2) * dT;
+}
+
+/* One side of a seam point: the patch, its parameters, its evaluation and its pole sides. */
+typedef struct {
+    int i, j;
+    double u, v;
+    unsigned poles;
+    rg2_eval e;
+} seam_side;
+
+/* Worst gap / own limit of a sample measured next to a pole against its rounding bound. */
+static void near_update(rg2_check_gap *g, double *tol_max, double value, double limit, const seam_at *at,
+                        const double p[3])
+{
+    *tol_max = fmax(*tol_max, limit);
+    gap_update(g, value / limit, at, p);
+}
+
+/* Parametric distance of a seam side's point to the nearest pole side of its patch (1: none). */
+static double pole_distance(const seam_side *x)
+{
+    double d = 1.0;
+    if (x->poles & 1u) d = fmin(d, x->v);
+    if (x->poles & 2u) d = fmin(d, 1.0 - x->u);
+    if (x->poles & 4u) d = fmin(d, 1.0 - x->v);
+    if (x->poles & 8u) d = fmin(d, x->u);
+    return d;
+}
+
+/* Closer than this to a pole (parametric), a sample whose rounding bound exceeds the limits
+ * below is a floating-point limit (counted, reported, no verdict); further away a failure. */
+#define POLE_BLUR 1e-3
+/* A G1 limit above this (rad) or a G2 limit above this (relative) is no measurement. */
+#define NEAR_POLE_MAX_G1 1e-4
+#define NEAR_POLE_MAX_G2 1e-2
+
+/* One seam point: L at the end of its transversal parameter, R at the start. */
+static void seam_point(rg2_check_report *r, const rg2_surface *s, const seam_side *Ls, const seam_side *Rs, int dir,
+                       double size, const seam_at *at)
+{
+    const rg2_eval *L = &Ls->e, *R = &Rs->e;
+    const rg2_check_opts *o = &r->opts;
     r->seam_samples++;
     double d[3] = {L->p[0] - R->p[0], L->p[1] - R->p[1], L->p[2] - R->p[2]};
     gap_update(&r->g0, norm3(d) / size, at, L->p);
-    if (pole || ((L->flags | R->flags) & RG2_EVAL_NORMAL_UNDEFINED)) {
+    if (on_collapsed(Ls->poles, Ls->u, Ls->v) || on_collapsed(Rs->poles, Rs->u, Rs->v)) {
         r->skipped++;
+        r->pole_samples++;
         return;
+    }
+    const double *along = dir == 0 ? L->sv : L->su;
+    double la = norm3(along);
+    if (((L->flags | R->flags) & RG2_EVAL_NORMAL_UNDEFINED) || !(la > 0) || !metric_ok(L) || !metric_ok(R)) {
+        r->skipped++;
+        r->unmeasured++;
+        return;
+    }
+    /* next to a pole: the limits are the rounding bounds of the two evaluations, where larger */
+    int pole_patch = (Ls->poles | Rs->poles) != 0;
+    eval_err bL, bR;
+    double lim1 = o->tol_g1, lim2 = o->tol_g2;
+    if (pole_patch) {
+        eval_bound(s, Ls->i, Ls->j, Ls->u, Ls->v, L, &bL);
+        eval_bound(s, Rs->i, Rs->j, Rs->u, Rs->v, R, &bR);
+        lim1 = fmax(lim1, bL.n + bR.n);
     }
     double c[3];
     cross3(L->n, R->n, c);
-    gap_update(&r->g1, atan2(norm3(c), dot3(L->n, R->n)), at, L->p);
-    const double *along = dir == 0 ? L->sv : L->su;
-    double la = norm3(along);
-    if (!(la > 0)) {
-        r->skipped++;
-        return;
-    }
+    double angle = atan2(norm3(c), dot3(L->n, R->n));
     double t1[3] = {along[0] / la, along[1] / la, along[2] / la}, t2[3];
     cross3(L->n, t1, t2);
-    double kscale = fmax(fmax(fabs(L->k1), fabs(L->k2)), 1.0 / size), worst = 0;
+    double kscale = fmax(fmax(fabs(L->k1), fabs(L->k2)), 1.0 / size), worst = 0, bound = 0;
     for (int q = 0; q < 6; q++) {
         double ph = M_PI * q / 6.0, t[3];
         for (int k = 0; k < 3; k++)
@@ -127,13 +323,35 @@ static void seam_point(rg2_check_report *r, const rg2_eval *L, const rg2_eval *R
         double jump = fabs(kn_dir(L, t) - kn_dir(R, t)) / kscale;
         if (!(jump <= worst))
             worst = jump;
+        if (pole_patch)
+            bound = fmax(bound, (kn_bound(L, &bL, t) + kn_bound(R, &bR, t)) / kscale);
     }
-    gap_update(&r->g2, worst, at, L->p);
+    lim2 = fmax(lim2, bound);
+    if (!(lim1 <= NEAR_POLE_MAX_G1 && lim2 <= NEAR_POLE_MAX_G2)) {
+        /* rounding hides any gap: within POLE_BLUR of the pole (a floating-point limit, reported),
+         * elsewhere a failure */
+        r->skipped++;
+        if (fmin(pole_distance(Ls), pole_distance(Rs)) < POLE_BLUR)
+            r->pole_unresolved++;
+        else
+            r->unmeasured++;
+        return;
+    }
+    if (lim1 > o->tol_g1 || lim2 > o->tol_g2)
+        r->near_pole++;
+    if (lim1 > o->tol_g1)
+        near_update(&r->g1_pole, &r->near_pole_tol1, angle, lim1, at, L->p);
+    else
+        gap_update(&r->g1, angle, at, L->p);
+    if (lim2 > o->tol_g2)
+        near_update(&r->g2_pole, &r->near_pole_tol2, worst, lim2, at, L->p);
+    else
+        gap_update(&r->g2, worst, at, L->p);
 }
 
 static void seams(rg2_check_report *r, const rg2_surface *s, int surf, int samples)
 {
-    double size = surface_size(s), tol = rg2__collapse_tol(s);
+    double size = surface_size(s);
     for (int dir = 0; dir < 2; dir++) {
         int nA = dir == 0 ? s->nu : s->nv, nB = dir == 0 ? s->nv : s->nu;
         int closed = dir == 0 ? s->closed_u : s->closed_v;
@@ -144,16 +362,17 @@ static void seams(rg2_check_report *r, const rg2_surface *s, int surf, int sampl
             for (int b = 0; b < nB; b++) {
                 r->seams++;
                 seam_at at = {surf, dir, dir == 0 ? am : b, dir == 0 ? b : am, dir == 0 ? a : b, dir == 0 ? b : a, 0};
-                unsigned cL = rg2__surface_collapsed_sides(s, at.pi, at.pj, tol);
-                unsigned cR = rg2__surface_collapsed_sides(s, at.qi, at.qj, tol);
+                seam_side L = {.i = at.pi, .j = at.pj, .poles = pole_sides(s, at.pi, at.pj)};
+                seam_side R = {.i = at.qi, .j = at.qj, .poles = pole_sides(s, at.qi, at.qj)};
                 for (int k = 0; k <= samples; k++) {
                     at.t = (double)k / samples;
-                    rg2_eval L, R;
-                    double uL = dir == 0 ? 1.0 : at.t, vL = dir == 0 ? at.t : 1.0;
-                    double uR = dir == 0 ? 0.0 : at.t, vR = dir == 0 ? at.t : 0.0;
-                    rg2_surface_eval(s, at.pi, at.pj, uL, vL, 2, &L);
-                    rg2_surface_eval(s, at.qi, at.qj, uR, vR, 2, &R);
-                    seam_point(r, &L, &R, dir, size, &at, on_collapsed(cL, uL, vL) || on_collapsed(cR, uR, vR));
+                    L.u = dir == 0 ? 1.0 : at.t;
+                    L.v = dir == 0 ? at.t : 1.0;
+                    R.u = dir == 0 ? 0.0 : at.t;
+                    R.v = dir == 0 ? at.t : 0.0;
+                    rg2_surface_eval(s, L.i, L.j, L.u, L.v, 2, &L.e);
+                    rg2_surface_eval(s, R.i, R.j, R.u, R.v, 2, &R.e);
+                    seam_point(r, s, &L, &R, dir, size, &at);
                 }
             }
         }
@@ -166,7 +385,6 @@ static void patches(rg2_check_report *r, const rg2_surface *s, int surf, const r
                     const double *shape_size, int S)
 {
     size_t np = (size_t)s->nu * (size_t)s->nv;
-    double tol = rg2__collapse_tol(s);
     for (size_t k = 0; k < np; k++) {
         int tag = s->tag ? s->tag[k] : -1;
         r->patches++;
@@ -179,7 +397,7 @@ static void patches(rg2_check_report *r, const rg2_surface *s, int surf, const r
             r->shapes[tag].patches++;
         }
         int du, dv, pi = (int)(k / (size_t)s->nv), pj = (int)(k % (size_t)s->nv);
-        unsigned coll = rg2__surface_collapsed_sides(s, pi, pj, tol);
+        unsigned coll = pole_sides(s, pi, pj);
         rg2__patch_degree(s, k, &du, &dv);
         for (int a = 0; a <= du; a++)
             for (int b = 0; b <= dv; b++) {
@@ -331,7 +549,11 @@ unsigned rg2_check_failures(const rg2_check_report *r, unsigned require)
 {
     unsigned f = 0;
     const rg2_check_opts *o = &r->opts;
-    int g0 = !(r->g0.value <= o->tol_g0), g1 = g0 || !(r->g1.value <= o->tol_g1), g2 = g1 || !(r->g2.value <= o->tol_g2);
+    /* no normal compared at all on a surface with seams, or one undefined away from a pole: not G1 */
+    int none = r->unmeasured > 0 || (r->seams > 0 && r->seam_samples == r->pole_samples);
+    int g0 = !(r->g0.value <= o->tol_g0);
+    int g1 = g0 || none || !(r->g1.value <= o->tol_g1) || !(r->g1_pole.value <= 1.0);
+    int g2 = g1 || !(r->g2.value <= o->tol_g2) || !(r->g2_pole.value <= 1.0);
     if ((require & RG2_REQUIRE_G0) && g0)
         f |= RG2_REQUIRE_G0;
     if ((require & RG2_REQUIRE_G1) && g1)
@@ -386,13 +608,19 @@ static void sb_printf(sbuf *b, const char *fmt, ...)
 
 static const char *verdict(double v, double tol) { return v <= tol ? "ok" : "FAIL"; }
 
-static void gap_text(sbuf *b, const char *name, const char *unit, const rg2_check_gap *g, double tol, int seams)
+static void gap_where(sbuf *b, const rg2_check_gap *g)
 {
-    sb_printf(b, "  %-22s %9.2e %-5s %-4s (limit %.0e)", name, g->value, unit, seams ? verdict(g->value, tol) : "-",
-              tol);
-    if (seams && g->value > 0)
-        sb_printf(b, "  at surface %d %s seam (%d,%d)|(%d,%d) t=%.3g, point (%.6g, %.6g, %.6g)", g->surf,
-                  g->seam_dir == 0 ? "u" : "v", g->pi, g->pj, g->qi, g->qj, g->t, g->p[0], g->p[1], g->p[2]);
+    sb_printf(b, "  at surface %d %s seam (%d,%d)|(%d,%d) t=%.3g, point (%.6g, %.6g, %.6g)", g->surf,
+              g->seam_dir == 0 ? "u" : "v", g->pi, g->pj, g->qi, g->qj, g->t, g->p[0], g->p[1], g->p[2]);
+}
+
+/* One gap row; pass: the row's promise holds (-1: no seams, no verdict). */
+static void gap_text(sbuf *b, const char *name, const char *unit, const rg2_check_gap *g, double tol, int pass)
+{
+    sb_printf(b, "  %-22s %9.2e %-5s %-4s (limit %.0e)", name, g->value, unit,
+              pass < 0 ? "-" : pass ? "ok" : "FAIL", tol);
+    if (pass >= 0 && g->value > 0)
+        gap_where(b, g);
     sb_printf(b, "\n");
 }
 
@@ -411,10 +639,32 @@ static void format_text(const rg2_check_report *r, sbuf *b)
                       s->patches ? verdict(s->residual, o->tol_exact) : "-", s->where);
         }
     }
-    sb_printf(b, "seams %d, %d samples (%d with an undefined normal)\n", r->seams, r->seam_samples, r->skipped);
-    gap_text(b, "G0 position gap", "rel", &r->g0, o->tol_g0, r->seams);
-    gap_text(b, "G1 normal angle", "rad", &r->g1, o->tol_g1, r->seams);
-    gap_text(b, "G2 curvature jump", "rel", &r->g2, o->tol_g2, r->seams);
+    unsigned f = rg2_check_failures(r, RG2_REQUIRE_G0 | RG2_REQUIRE_G1 | RG2_REQUIRE_G2);
+    sb_printf(b, "seams %d, %d samples (%d per seam): %d at a pole (no normal there), %d not measured\n", r->seams,
+              r->seam_samples, o->seam_samples + 1, r->pole_samples, r->unmeasured);
+    int has = r->seams > 0;
+    gap_text(b, "G0 position gap", "rel", &r->g0, o->tol_g0, has ? !(f & RG2_REQUIRE_G0) : -1);
+    gap_text(b, "G1 normal angle", "rad", &r->g1, o->tol_g1, has ? !(f & RG2_REQUIRE_G1) : -1);
+    gap_text(b, "G2 curvature jump", "rel", &r->g2, o->tol_g2, has ? !(f & RG2_REQUIRE_G2) : -1);
+    if (r->near_pole) {
+        sb_printf(b, "  next to a pole         %d samples measured against their rounding bound (limits up to %.1e rad "
+                     "G1, %.1e G2)\n", r->near_pole, fmax(r->near_pole_tol1, o->tol_g1), fmax(r->near_pole_tol2, o->tol_g2));
+        sb_printf(b, "    worst gap / limit    G1 %.2g %s, G2 %.2g %s", r->g1_pole.value, verdict(r->g1_pole.value, 1.0),
+                  r->g2_pole.value, verdict(r->g2_pole.value, 1.0));
+        if (r->g2_pole.value > 0)
+            gap_where(b, r->g2_pole.value >= r->g1_pole.value ? &r->g2_pole : &r->g1_pole);
+        sb_printf(b, "\n");
+    }
+    if (r->pole_unresolved)
+        sb_printf(b, "  too close to a pole    %d samples within %.0e of a pole whose rounding bound exceeds %.0e rad / "
+                     "%.0e: not compared (floating-point limit)\n", r->pole_unresolved, POLE_BLUR, NEAR_POLE_MAX_G1,
+                  NEAR_POLE_MAX_G2);
+    if (r->unmeasured)
+        sb_printf(b, "  NOT MEASURED           %d samples away from any pole could not be measured (an undefined "
+                     "normal: a degenerate or ill-conditioned patch; or a metric out of floating-point range): "
+                     "G1 and G2 FAIL\n", r->unmeasured);
+    else if (has && r->seam_samples == r->pole_samples)
+        sb_printf(b, "  NOT MEASURED           every sample lies on a pole: G1 and G2 FAIL\n");
     sb_printf(b, "homogeneous weights  control points [%.6g, %.6g], at samples min %.6g %s\n", r->wmin, r->wmax,
               r->eval_wmin, r->wmin > 0 ? "(all > 0)" : "(NON-POSITIVE)");
     sb_printf(b, "curvature            k [%.6g, %.6g]  H [%.6g, %.6g]  K [%.6g, %.6g]\n", r->kmin, r->kmax, r->Hmin,
@@ -465,9 +715,23 @@ static char *format_json(const rg2_check_report *r)
     cJSON_AddNumberToObject(j, "seams", r->seams);
     cJSON_AddNumberToObject(j, "seam_samples", r->seam_samples);
     cJSON_AddNumberToObject(j, "skipped", r->skipped);
-    cJSON_AddItemToObject(j, "g0_position", gap_json(&r->g0, o->tol_g0));
-    cJSON_AddItemToObject(j, "g1_normal_angle", gap_json(&r->g1, o->tol_g1));
-    cJSON_AddItemToObject(j, "g2_curvature_jump", gap_json(&r->g2, o->tol_g2));
+    cJSON_AddNumberToObject(j, "pole_samples", r->pole_samples);
+    cJSON_AddNumberToObject(j, "unmeasured", r->unmeasured);
+    unsigned fg = rg2_check_failures(r, RG2_REQUIRE_G0 | RG2_REQUIRE_G1 | RG2_REQUIRE_G2);
+    cJSON *g;
+    cJSON_AddItemToObject(j, "g0_position", g = gap_json(&r->g0, o->tol_g0));
+    cJSON_ReplaceItemInObject(g, "ok", cJSON_CreateBool(!(fg & RG2_REQUIRE_G0)));
+    cJSON_AddItemToObject(j, "g1_normal_angle", g = gap_json(&r->g1, o->tol_g1));
+    cJSON_ReplaceItemInObject(g, "ok", cJSON_CreateBool(!(fg & RG2_REQUIRE_G1)));
+    cJSON_AddItemToObject(j, "g2_curvature_jump", g = gap_json(&r->g2, o->tol_g2));
+    cJSON_ReplaceItemInObject(g, "ok", cJSON_CreateBool(!(fg & RG2_REQUIRE_G2)));
+    cJSON *np = cJSON_AddObjectToObject(j, "near_pole");
+    cJSON_AddNumberToObject(np, "samples", r->near_pole);
+    cJSON_AddNumberToObject(np, "unresolved", r->pole_unresolved);
+    cJSON_AddNumberToObject(np, "g1_limit_max", fmax(r->near_pole_tol1, o->tol_g1));
+    cJSON_AddNumberToObject(np, "g2_limit_max", fmax(r->near_pole_tol2, o->tol_g2));
+    cJSON_AddItemToObject(np, "g1_gap_over_limit", gap_json(&r->g1_pole, 1.0));
+    cJSON_AddItemToObject(np, "g2_gap_over_limit", gap_json(&r->g2_pole, 1.0));
     double w[3] = {r->wmin, r->wmax, r->eval_wmin}, k[6] = {r->kmin, r->kmax, r->Hmin, r->Hmax, r->Kmin, r->Kmax};
     cJSON_AddItemToObject(j, "weights", cJSON_CreateDoubleArray(w, 2));
     cJSON_AddNumberToObject(j, "min_weight_at_samples", w[2]);

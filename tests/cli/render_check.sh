@@ -43,10 +43,26 @@ done
   "$RG2" render "$ex" -o "$tmp/t2.png" --mode zebra --size 160x120 --threads 2 &&
   cmp -s "$tmp/t1.png" "$tmp/t2.png" && ok || bad "render depends on the thread count"
 
-# every example: G2 and exact
+# every example: G2 and exact, at every sample count (next to a pole rounding grows like
+# 1/v^2 with the distance v to it: the verdict must not depend on --samples)
 for f in "$SRC"/examples/*.json; do
-  expect 0 "" -- "$RG2" check "$f" --require g2,exact,weights
+  for n in 16 64 256 1000; do
+    expect 0 "" -- "$RG2" check "$f" --require g2,exact,weights --samples $n
+  done
 done
+# a pole design says what it did next to its poles
+expect 0 "next to a pole" -- "$RG2" check "$SRC/examples/fig9_polar_sphere.json" --samples 256
+expect 0 "16 at a pole" -- "$RG2" check "$SRC/examples/fig9_polar_sphere.json"
+# normals undefined away from a pole (a cylinder band of height 1e-95): G1 and G2 fail and the
+# table says how many samples could not be measured
+thin=$SRC/tests/data/thin_band.json
+expect 3 "failed: g1" -- "$RG2" check "$thin" --require g1
+expect 3 "failed: g2" -- "$RG2" check "$thin" --require g2
+expect 3 "5304 not measured" -- "$RG2" check "$thin" --require g2
+expect 3 "NOT MEASURED" -- "$RG2" check "$thin" --require g2
+expect 0 "" -- "$RG2" check "$thin" --require g0
+expect 0 "(17 per seam)" -- "$RG2" check "$ex"
+"$RG2" check --help | grep -q "17 samples" && ok || bad "check --help: samples per seam"
 out=$("$RG2" check "$ex" --json 2>&1)
 case "$out" in *'"g2":	true'*'"exact":	true'*) ok ;; *) bad "check --json: $out" ;; esac
 case "$("$RG2" check "$ex")" in *"ring"*"ball"*"G2 curvature jump"*) ok ;; *) bad "check table lacks shapes or G2 line" ;; esac
