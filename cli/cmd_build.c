@@ -14,7 +14,7 @@ static void usage(FILE *f)
     fprintf(f, "usage: rg2 build design.json -o out.step [-o out.igs ...] [options]\n\n"
                "Reads a design file (docs/design-format.md), builds its output meshes into G2 rational\n"
                "bi-cubic surfaces and writes them. The format follows each -o extension: .step/.stp,\n"
-               ".igs/.iges, .bv, .obj, .stl, .ply, .glb, .json. Several -o are allowed. A failed build\n"
+               ".igs/.iges, .bv, .bez, .obj, .stl, .ply, .glb, .json. Several -o are allowed. A failed build\n"
                "writes nothing.\n"
                "  --face-per-mesh   STEP/IGES: one B-spline surface per mesh instead of one face per patch\n"
                "  --ap242           STEP: write AP242 instead of AP214\n"
@@ -117,6 +117,13 @@ int rg2_cmd_build(int argc, char **argv)
         progress(tty, "rg2 build: writing %s", out[k]);
         if (rg2_export_file(surfs, ns, out[k], &opts, &err)) {
             progress(tty, NULL, NULL);
+            const char *at = strstr(err.msg, ": surface ");
+            int sk;
+            if (at && sscanf(at, ": surface %d", &sk) == 1 && sk >= 0 && sk < ns) {
+                size_t len = strlen(err.msg); /* say which mesh surface k is */
+                snprintf(err.msg + len, sizeof err.msg - len, " (surface %d is mesh '%s')", sk,
+                         rg2_design_mesh_name(d, sk));
+            }
             rc = rg2_cli_report("build", &err);
         } else
             written++;

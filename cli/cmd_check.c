@@ -55,6 +55,13 @@ static int parse_require(const char *s, unsigned *req)
 {
     char buf[256];
     snprintf(buf, sizeof buf, "%s", s);
+    int any = 0;
+    for (const char *q = s; *q; q++)
+        any |= *q != ',' && *q != ' ';
+    if (!any || strstr(s, ",,") || s[0] == ',' || s[strlen(s) - 1] == ',') {
+        fprintf(stderr, "rg2 check: --require '%s': needs a comma-separated list of g0, g1, g2, exact, weights\n", s);
+        return -1;
+    }
     for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
         if (!strcmp(tok, "g0"))
             *req |= RG2_REQUIRE_G0;

@@ -14,6 +14,11 @@ int rg2_cmd_demo(int argc, char **argv)
                "largest deviation from the torus over 32 x 32 samples per patch.\n");
         return 0;
     }
+    if (argc > 1) {
+        fprintf(stderr, "rg2 demo: %s '%s' (rg2 demo takes no arguments; see rg2 demo --help)\n",
+                argv[1][0] == '-' ? "unknown option" : "unexpected argument", argv[1]);
+        return RG2_EXIT_USAGE;
+    }
     rg2_error err = {0};
     double a4[4] = {M_PI / 2, M_PI / 2, M_PI / 2, M_PI / 2}, cs4[8];
     rg2_scalars s = {0};

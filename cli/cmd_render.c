@@ -13,12 +13,12 @@ static void usage(FILE *f)
                "  --mode M            shaded (default), mean, gauss or zebra\n"
                "  --size WxH          image size (default 800x600)\n"
                "  --azimuth A         view azimuth about +z in degrees (default 35)\n"
-               "  --elevation E       view elevation in degrees (default 25)\n"
-               "  --distance D        eye distance from the view centre (default: fit to view)\n"
-               "  --fov F             vertical field of view in degrees (default 30)\n"
+               "  --elevation E       view elevation in degrees, -90..90 (default 25)\n"
+               "  --distance D        eye distance from the view centre, > 0 (default: fit to view)\n"
+               "  --fov F             vertical field of view in degrees, in (1, 170) (default 30)\n"
                "  --range lo,hi       curvature colour range (default: 2%%..98%% robust range;\n"
                "                      Gauss symmetric about 0)\n"
-               "  --stripes N         zebra: stripe pairs per half turn (default 12)\n"
+               "  --stripes N         zebra: stripe pairs per half turn, 1..1000 (default 12)\n"
                "  --boundaries        draw the patch boundaries\n"
                "  --mesh              overlay the control meshes\n"
                "  --no-tint           shaded: do not tint exact pieces by their shape\n"
@@ -35,6 +35,20 @@ static int number(const char *opt, int argc, char **argv, int *i, double *v)
         return -1;
     }
     (*i)++;
+    return 0;
+}
+
+/* A number option within [lo, hi] (open ends where lo_open / hi_open): a bad value is a usage
+ * error (exit 2), like --size and --threads, not left to the renderer. */
+static int ranged(const char *opt, int argc, char **argv, int *i, double *v, double lo, int lo_open, double hi,
+                  int hi_open, const char *what)
+{
+    if (number(opt, argc, argv, i, v))
+        return -1;
+    if ((lo_open ? !(*v > lo) : !(*v >= lo)) || (hi_open ? !(*v < hi) : !(*v <= hi))) {
+        fprintf(stderr, "rg2 render: %s %s: %s\n", opt, argv[*i], what);
+        return -1;
+    }
     return 0;
 }
 
@@ -85,16 +99,17 @@ int rg2_cmd_render(int argc, char **argv)
             if (number(a, argc, argv, &i, &o.azimuth))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--elevation")) {
-            if (number(a, argc, argv, &i, &o.elevation))
+            if (ranged(a, argc, argv, &i, &o.elevation, -90, 0, 90, 0, "the elevation must lie in [-90, 90] degrees"))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--distance")) {
-            if (number(a, argc, argv, &i, &o.distance))
+            if (ranged(a, argc, argv, &i, &o.distance, 0, 1, 1e100, 0,
+                       "the eye distance must be > 0 (leave it out to fit the view)"))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--fov")) {
-            if (number(a, argc, argv, &i, &o.fov))
+            if (ranged(a, argc, argv, &i, &o.fov, 1, 1, 170, 1, "the field of view must lie in (1, 170) degrees"))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--stripes")) {
-            if (number(a, argc, argv, &i, &o.stripes))
+            if (ranged(a, argc, argv, &i, &o.stripes, 1, 0, 1000, 0, "needs 1..1000 stripe pairs"))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--threads")) {
             if (number(a, argc, argv, &i, &v) || v < 1 || v > 1024 || v != (int)v) {
@@ -111,6 +126,10 @@ int rg2_cmd_render(int argc, char **argv)
         } else if (!strcmp(a, "--range")) {
             if (i + 1 >= argc || rg2_cli_parse_list("--range", argv[i + 1], o.range, 2) != 2) {
                 fprintf(stderr, "rg2 render: --range needs lo,hi\n");
+                return RG2_EXIT_USAGE;
+            }
+            if (!(o.range[0] < o.range[1])) {
+                fprintf(stderr, "rg2 render: --range %s: needs lo < hi\n", argv[i + 1]);
                 return RG2_EXIT_USAGE;
             }
             o.range_set = 1;

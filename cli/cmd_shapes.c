@@ -25,11 +25,22 @@ static void print_shape_list_text(void)
     printf("nurbs               bi-cubic NURBS from a JSON file (rg2 shape nurbs --file F.json)\n");
 }
 
+/* A JSON number, or null for NaN / infinity (JSON has neither). */
+static void json_num(double x)
+{
+    if (isfinite(x))
+        printf("%.17g", x);
+    else
+        printf("null");
+}
+
 static void json_doubles(const double *x, int n)
 {
     printf("[");
-    for (int k = 0; k < n; k++)
-        printf("%s%.17g", k ? ", " : "", x[k]);
+    for (int k = 0; k < n; k++) {
+        printf("%s", k ? ", " : "");
+        json_num(x[k]);
+    }
     printf("]");
 }
 
@@ -218,6 +229,13 @@ static int json_numbers(const cJSON *a, const char *what, double *out, int max, 
                 fprintf(stderr, "rg2 shape: nurbs: \"%s\" has more than %d numbers\n", what, max);
                 return -1;
             }
+            char item[96];
+            rg2_error err;
+            snprintf(item, sizeof item, "nurbs: \"%s\"[%d]", what, idx);
+            if (rg2_number_check(x->valuedouble, item, &err)) {
+                rg2_cli_report("shape", &err);
+                return -1;
+            }
             out[n++] = x->valuedouble;
         }
         idx++;
@@ -304,8 +322,10 @@ static void json_scalars(const rg2_scalars *s)
 
 static void json_partition(const rg2_partition *p)
 {
-    printf("{\"kind\": \"%s\", \"closed\": %s, \"start\": %.17g, \"values\": ",
-           p->kind == RG2_PART_ANGLES ? "angles" : "knots", p->closed ? "true" : "false", p->start);
+    printf("{\"kind\": \"%s\", \"closed\": %s, \"start\": ", p->kind == RG2_PART_ANGLES ? "angles" : "knots",
+           p->closed ? "true" : "false");
+    json_num(p->start);
+    printf(", \"values\": ");
     json_doubles(p->values, p->n);
     printf("}");
 }
@@ -319,18 +339,25 @@ static void print_json(const rg2_shape *sh, const rg2_partition *pu, const rg2_p
         const rg2_shape_desc *d = rg2_shape_describe(sh->kind);
         printf("\"shape\": \"%s\", \"params\": {", d->name);
         for (int k = 0; k < d->n_params; k++)
-            printf("%s\"%s\": %.17g", k ? ", " : "", d->param_names[k], sh->param[k]);
+        {
+            printf("%s\"%s\": ", k ? ", " : "", d->param_names[k]);
+            json_num(sh->param[k]);
+        }
         printf("}, \"xform\": ");
         json_doubles(sh->xform, 16);
         printf(",\n \"u\": ");
         json_partition(pu);
         printf(",\n \"v\": ");
         json_partition(pv);
-        printf(",\n \"max_residual\": %.17g,\n", resid);
+        printf(",\n \"max_residual\": ");
+        json_num(resid);
+        printf(",\n");
     } else {
         printf("\"shape\": \"nurbs\",\n");
     }
-    printf(" \"min_weight\": %.17g, \"nonpositive_patches\": %d,\n", rep->min_weight, rep->n_nonpositive);
+    printf(" \"min_weight\": ");
+    json_num(rep->min_weight);
+    printf(", \"nonpositive_patches\": %d,\n", rep->n_nonpositive);
     printf(" \"mesh\": {\"nu\": %d, \"nv\": %d, \"u\": ", m->nu, m->nv);
     json_scalars(&m->su);
     printf(", \"v\": ");
@@ -401,7 +428,8 @@ static double max_residual(const rg2_shape *sh, const rg2_surface *s, int sample
                     rg2_eval e;
                     rg2_surface_eval(s, i, j, (double)a / samples, (double)b / samples, 0, &e);
                     double g[3], f = rg2_shape_implicit(sh, e.p, g);
-                    double r = fabs(f) / sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+                    double gn = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+                    double r = f == 0.0 ? 0.0 : fabs(f) / gn; /* f = 0 = grad f: a cone's apex */
                     if (!(r <= worst))
                         worst = r;
                     for (int k = 0; k < 3; k++)
@@ -432,14 +460,35 @@ static void print_summary(const rg2_shape *sh, const rg2_partition *pu, const rg
     printf("  %d x %d rational bi-cubic patches, min homogeneous weight %.6g (patch %d,%d)%s\n", s->nu,
            s->nv, rep->min_weight, rep->patch_i, rep->patch_j,
            rep->flags & RG2_SHAPE_WARN_WEIGHT ? "" : ", all positive");
-    if (sh)
+    if (sh && isfinite(resid) && isfinite(size))
         printf("  implicit %s: max |f|/|grad f| = %.3g (%.3g of the size %.6g) over %d x %d samples per "
                "patch\n",
                rg2_shape_describe(sh->kind)->implicit_text, resid, size > 0 ? resid / size : resid, size,
                samples + 1, samples + 1);
+    else if (sh) /* the size is in range, but powers of it (the quartic torus) leave the doubles */
+        printf("  implicit %s: max |f|/|grad f| not computable in double precision at this size (the "
+               "implicit function overflows)\n",
+               rg2_shape_describe(sh->kind)->implicit_text);
 }
 
 /* --- rg2 shape ------------------------------------------------------------------------- */
+
+/* The numeric range a design file's numbers get (rg2_number_check): 0 on success, else the
+ * exit code with the message printed. */
+static int check_numbers(const char *opt, const double *x, int n)
+{
+    for (int k = 0; k < n; k++) {
+        char what[96];
+        rg2_error err;
+        if (n > 1)
+            snprintf(what, sizeof what, "%s item %d", opt, k);
+        else
+            snprintf(what, sizeof what, "%s", opt);
+        if (rg2_number_check(x[k], what, &err))
+            return rg2_cli_report("shape", &err);
+    }
+    return 0;
+}
 
 static int parse_one(const char *opt, const char *val, double *out)
 {
@@ -470,7 +519,7 @@ int rg2_cmd_shape(int argc, char **argv)
         d = rg2_shape_describe(kind);
     }
     double scale[3] = {1, 1, 1}, axis[3] = {0, 0, 1}, centre[3] = {0, 0, 0}, xf[16];
-    int has_xform = 0;
+    int has_xform = 0, rc = 0;
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
@@ -507,6 +556,8 @@ int rg2_cmd_shape(int argc, char **argv)
         if (pi >= 0) {
             if (parse_one(a, val, &sh.param[pi]))
                 return RG2_EXIT_USAGE;
+            if ((rc = check_numbers(a, &sh.param[pi], 1)))
+                return rc;
         } else if ((a[2] == 'u' || a[2] == 'v') && a[3] == '-') {
             dir_opts *o = &dop[a[2] == 'v'];
             const char *what = a + 4;
@@ -524,20 +575,28 @@ int rg2_cmd_shape(int argc, char **argv)
             } else if (!strcmp(what, "angles") || !strcmp(what, "knots")) {
                 if ((o->n_vals = rg2_cli_parse_list(a, val, o->vals, MAXV)) < 0)
                     return RG2_EXIT_USAGE;
+                if ((rc = check_numbers(a, o->vals, o->n_vals)))
+                    return rc;
                 o->is_knots = what[0] == 'k';
             } else if (!strcmp(what, "start")) {
                 if (parse_one(a, val, &o->start))
                     return RG2_EXIT_USAGE;
+                if ((rc = check_numbers(a, &o->start, 1)))
+                    return rc;
                 o->has_start = 1;
             } else if (!strcmp(what, "sweep")) {
                 if (parse_one(a, val, &o->sweep))
                     return RG2_EXIT_USAGE;
+                if ((rc = check_numbers(a, &o->sweep, 1)))
+                    return rc;
                 o->has_sweep = 1;
             } else if (!strcmp(what, "range")) {
                 if (rg2_cli_parse_list(a, val, o->range, 2) != 2) {
                     fprintf(stderr, "rg2 shape: %s needs two numbers A,B\n", a);
                     return RG2_EXIT_USAGE;
                 }
+                if ((rc = check_numbers(a, o->range, 2)))
+                    return rc;
                 o->has_range = 1;
             } else {
                 fprintf(stderr, "rg2 shape: unknown option '%s' (see rg2 shape --help)\n", a);
@@ -551,16 +610,31 @@ int rg2_cmd_shape(int argc, char **argv)
                 fprintf(stderr, "rg2 shape: --scale needs 1 or 3 numbers\n");
                 return RG2_EXIT_USAGE;
             }
+            if ((rc = check_numbers(a, scale, n)))
+                return rc;
+            if (scale[0] == 0.0 || scale[1] == 0.0 || scale[2] == 0.0) {
+                fprintf(stderr, "rg2 shape: --scale %s: scale factors must be non-zero\n", val);
+                return RG2_EXIT_FAIL;
+            }
         } else if (!strcmp(a, "--axis") || !strcmp(a, "--center") || !strcmp(a, "--centre")) {
-            if (rg2_cli_parse_list(a, val, a[2] == 'a' ? axis : centre, 3) != 3) {
+            double *x = a[2] == 'a' ? axis : centre;
+            if (rg2_cli_parse_list(a, val, x, 3) != 3) {
                 fprintf(stderr, "rg2 shape: %s needs three numbers X,Y,Z\n", a);
                 return RG2_EXIT_USAGE;
+            }
+            if ((rc = check_numbers(a, x, 3)))
+                return rc;
+            if (x == axis && axis[0] == 0.0 && axis[1] == 0.0 && axis[2] == 0.0) {
+                fprintf(stderr, "rg2 shape: --axis %s: the axis is the zero vector\n", val);
+                return RG2_EXIT_FAIL;
             }
         } else if (!strcmp(a, "--xform")) {
             if (rg2_cli_parse_list(a, val, xf, 16) != 16) {
                 fprintf(stderr, "rg2 shape: --xform needs 16 numbers (row-major 4x4)\n");
                 return RG2_EXIT_USAGE;
             }
+            if ((rc = check_numbers(a, xf, 16)))
+                return rc;
             has_xform = 1;
         } else if (!strcmp(a, "--samples")) {
             char *end;
@@ -592,7 +666,6 @@ int rg2_cmd_shape(int argc, char **argv)
     rg2_weight_report rep;
     rg2_partition pu, pv;
     double *store = NULL, resid = 0.0, size = 0.0;
-    int rc = 0;
     if (is_nurbs) {
         if (!file == !spec) {
             fprintf(stderr, "rg2 shape: nurbs needs exactly one of --file F.json or --spec JSON\n");
@@ -628,7 +701,8 @@ int rg2_cmd_shape(int argc, char **argv)
             goto out;
         }
     }
-    if (rg2_surface_build(&m, &s, &err)) {
+    /* the range every output mesh of a design must stay in (rg2 build refuses the same) */
+    if (rg2_mesh_check_range(&m, is_nurbs ? "nurbs" : d->name, &err) || rg2_surface_build(&m, &s, &err)) {
         rc = rg2_cli_report("shape", &err);
         goto out;
     }

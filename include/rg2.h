@@ -194,6 +194,11 @@ RG2_API void rg2_mesh_free(rg2_mesh *m);
 RG2_API rg2_status rg2_mesh_copy(const rg2_mesh *src, rg2_mesh *dst, rg2_error *err);
 /** Check counts, scalars of both directions, and finiteness of every 4-tuple (naming [i][j]). */
 RG2_API rg2_status rg2_mesh_check(const rg2_mesh *m, rg2_error *err);
+/** Check that every control point has a weight p_4 > 0 (design points d = p_{1..3} / p_4 need
+ *  it; a weight <= 0 puts the surface through infinity). RG2_EWEIGHT (RG2_ENONFINITE for a
+ *  non-finite weight) naming the first offending point "[i, j]" and its weight; its indices go
+ *  to *wi, *wj (each nullable). */
+RG2_API rg2_status rg2_mesh_check_weights(const rg2_mesh *m, int *wi, int *wj, rg2_error *err);
 /** Pointer to 4-tuple (i, j). */
 static inline double *rg2_mesh_at(const rg2_mesh *m, int i, int j)
 {
@@ -375,7 +380,8 @@ RG2_API void rg2_shape_init(rg2_shape *s, rg2_shape_kind kind);
 /** Build the placed control mesh of the shape over the partitions (u, v) (docs/shapes.md).
  *  @return RG2_EDOMAIN / RG2_ENONFINITE for a bad parameter (naming it), RG2_EINVAL for a
  *  partition of the wrong kind or an empty one, the rg2_partition_check codes, RG2_EDOMAIN for
- *  a singular placement or a knot outside the shape's range (hyperboloids). */
+ *  a singular placement or a knot outside the shape's range (hyperboloids), RG2_EWEIGHT for a
+ *  placement that turns a positive control weight <= 0 (naming the point and the weight). */
 RG2_API rg2_status rg2_shape_mesh(const rg2_shape *s, const rg2_partition *pu,
                                   const rg2_partition *pv, rg2_mesh *out, rg2_error *err);
 /** Implicit function of the placed shape at x (0 on the surface); gradient into grad (nullable). */
@@ -521,6 +527,15 @@ typedef struct rg2_design rg2_design;
  *  length, len may be NULL). RG2_EIO when it cannot be opened or read, RG2_ELIMIT past
  *  RG2_TEXT_MAX_BYTES, RG2_ENOMEM; the message names the file. */
 RG2_API rg2_status rg2_read_text(const char *path, char **out, size_t *len, rg2_error *err);
+
+/** The supported numeric range of every number a design (or `rg2 shape`) gives: finite, and 0
+ *  or a magnitude within the limits of docs/robustness.md "Numeric range" (1e-100 .. 1e100).
+ *  RG2_ENONFINITE / RG2_EDOMAIN, the message starting with `what` (nullable). */
+RG2_API rg2_status rg2_number_check(double x, const char *what, rg2_error *err);
+/** The supported range of a mesh's design points p_{1..3} / p_4: coordinates up to
+ *  the largest supported magnitude, bounding-box diagonal at least the smallest (what every
+ *  output mesh of a design must satisfy). RG2_EDOMAIN, the message starting with `what` (nullable). */
+RG2_API rg2_status rg2_mesh_check_range(const rg2_mesh *m, const char *what, rg2_error *err);
 
 /** Read and build a design file. On failure *out is NULL and err names the offending item
  *  (file, line and column for syntax errors, JSON path for semantic ones). */

@@ -194,9 +194,26 @@ int rg2__patch_tag(const rg2_design *d, const rg2__dmesh *dm, const rg2__stencil
     return -1;
 }
 
-/* The supported numeric range (internal.h): coordinates and size of a mesh's design points. */
-static rg2_status mesh_range(const rg2_mesh *m, const char *file, const char *name, rg2_error *err)
+rg2_status rg2_number_check(double x, const char *what, rg2_error *err)
 {
+    if (!what)
+        what = "number";
+    if (!rg2__finite(x))
+        return rg2__fail(err, RG2_ENONFINITE, "%s: number is not finite", what);
+    double a = fabs(x);
+    if (a > RG2_DESIGN_MAX_ABS || (a > 0.0 && a < RG2_DESIGN_MIN_ABS))
+        return rg2__fail(err, RG2_EDOMAIN,
+                         "%s: number %g is outside the supported range (0 or a magnitude from %g to %g)",
+                         what, x, RG2_DESIGN_MIN_ABS, RG2_DESIGN_MAX_ABS);
+    rg2__ok(err);
+    return RG2_OK;
+}
+
+/* The supported numeric range (internal.h): coordinates and size of a mesh's design points. */
+rg2_status rg2_mesh_check_range(const rg2_mesh *m, const char *what, rg2_error *err)
+{
+    if (!what)
+        what = "mesh";
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t k = 0; k < (size_t)m->nu * (size_t)m->nv; k++)
         for (int q = 0; q < 3; q++) {
@@ -211,10 +228,18 @@ static rg2_status mesh_range(const rg2_mesh *m, const char *file, const char *na
     }
     if (!(big <= RG2_DESIGN_MAX_COORD) || !(diag >= RG2_DESIGN_MIN_SIZE))
         return rg2__fail(err, RG2_EDOMAIN,
-                         "%s: mesh '%s': coordinates up to %g, size %g: outside the supported range "
+                         "%s: coordinates up to %g, size %g: outside the supported range "
                          "(coordinates up to %g, size at least %g)",
-                         file, name, big, diag, RG2_DESIGN_MAX_COORD, RG2_DESIGN_MIN_SIZE);
+                         what, big, diag, RG2_DESIGN_MAX_COORD, RG2_DESIGN_MIN_SIZE);
+    rg2__ok(err);
     return RG2_OK;
+}
+
+static rg2_status mesh_range(const rg2_mesh *m, const char *file, const char *name, rg2_error *err)
+{
+    char what[300];
+    snprintf(what, sizeof what, "%s: mesh '%s'", file, name);
+    return rg2_mesh_check_range(m, what, err);
 }
 
 rg2_status rg2__design_build(rg2_design *d, rg2_error *err)
@@ -447,7 +472,7 @@ rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, rg2_erro
     FILE *f = fopen(tmp, "wb");
     rg2_status st = RG2_OK;
     if (!f)
-        st = rg2__fail(err, RG2_EIO, "%s: cannot write: %s", tmp, strerror(errno));
+        st = rg2__fail(err, RG2_EIO, "%s: cannot write: %s", path, strerror(errno));
     else {
         size_t tl = strlen(text);
         int bad = fwrite(text, 1, tl, f) != tl || fputc('\n', f) == EOF;

@@ -138,11 +138,10 @@ static rg2_status as_num(pctx *c, const cJSON *x, const char *path, double *out)
     if (!rg2__finite(x->valuedouble))
         return fail(c, RG2_ENONFINITE, path,
                     "number is not finite (it overflows a double; JSON has no NaN or infinity)");
-    double a = fabs(x->valuedouble);
-    if (a > RG2_DESIGN_MAX_ABS || (a > 0.0 && a < RG2_DESIGN_MIN_ABS))
-        return fail(c, RG2_EDOMAIN, path,
-                    "number %g is outside the supported range (0 or a magnitude from %g to %g)",
-                    x->valuedouble, RG2_DESIGN_MIN_ABS, RG2_DESIGN_MAX_ABS);
+    rg2_error e;
+    rg2_status st = rg2_number_check(x->valuedouble, path, &e); /* the range rg2 shape applies too */
+    if (st)
+        return rg2__fail(c->err, st, "%s: %s", c->file, e.msg);
     *out = x->valuedouble;
     return RG2_OK;
 }
@@ -560,6 +559,14 @@ static rg2_status op_shape(pctx *c, const cJSON *obj, const char *path, rg2__dme
     }
     if (!st)
         st = rg2__op_shape(c->d, sh, &pb[0].p, &pb[1].p, out, path, c->err);
+    if (st == RG2_EWEIGHT || st == RG2_ENONFINITE) { /* the placement's weights: name the shape's matrix */
+        rg2_error e = *c->err;
+        subpath(p, sizeof p, "shapes", label);
+        char q[320];
+        subpath(q, sizeof q, p, "matrix");
+        if (strstr(e.msg, "the placement gives"))
+            st = fail(c, st, q, "%s", e.msg);
+    }
     free(pb[0].values);
     free(pb[1].values);
     return st;
@@ -914,6 +921,35 @@ static rg2_status op_polar(pctx *c, const cJSON *obj, const char *path, rg2__dme
 static rg2_status op_mobius(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out);
 static rg2_status op_cap(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out);
 
+/* A transform's matrix must keep the weights W = p_4 of the control points positive, like a
+ * shape's placement (rg2_shape_mesh): the design points are p_{1..3} / W, and a weight the
+ * matrix turns <= 0 puts the surface through infinity (the exports then write garbage).
+ * Weights that were <= 0 already are the shape's (docs/shapes.md "Homogeneous weights"). The
+ * other operations cannot turn a positive weight non-positive: cut, merge, transpose, reverse
+ * and morph (t in [0, 1]) keep or blend weights, edits check their W, mobius checks its own. */
+static rg2_status transform_weights(pctx *c, const cJSON *obj, const char *path, const rg2__dmesh *m)
+{
+    const cJSON *x = get(obj, "transform");
+    int k = cJSON_IsString(x) ? rg2__design_find_mesh(c->d, x->valuestring) : -1;
+    if (k < 0 || c->d->mesh[k].m.nu != m->m.nu || c->d->mesh[k].m.nv != m->m.nv)
+        return RG2_OK;
+    const rg2_mesh *in = &c->d->mesh[k].m;
+    for (int i = 0; i < m->m.nu; i++)
+        for (int j = 0; j < m->m.nv; j++) {
+            double W = rg2_mesh_at(&m->m, i, j)[3], before = rg2_mesh_at(in, i, j)[3];
+            if (W > 0.0 || !(before > 0.0))
+                continue;
+            char p[300];
+            subpath(p, sizeof p, path, "matrix");
+            return fail(c, rg2__finite(W) ? RG2_EWEIGHT : RG2_ENONFINITE, get(obj, "matrix") ? p : path,
+                        "the transform gives control point [%d, %d] of mesh '%s' the weight W = %.6g (%.6g "
+                        "before); weights must stay > 0 (the matrix's last row must be positive on the "
+                        "whole mesh, or the surface passes through infinity)",
+                        i, j, c->d->mesh[k].name, W, before);
+        }
+    return RG2_OK;
+}
+
 static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const char *path)
 {
     rg2_status st = as_obj(c, obj, path);
@@ -955,6 +991,10 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
             rg2_error e = *c->err;
             rg2__fail(c->err, st, "%s: %s", c->file, e.msg);
         }
+        return st;
+    }
+    if (op == 6 && (st = transform_weights(c, obj, path, &tmp))) {
+        rg2__dmesh_free(&tmp);
         return st;
     }
     size_t total = (size_t)tmp.m.nu * (size_t)tmp.m.nv;

@@ -674,6 +674,11 @@ rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *pa
         fmt = F_GLB;
     else if (!strcasecmp(ext, "json"))
         fmt = F_JSON;
+    else if (!*ext)
+        return rg2__fail(err, RG2_EINVAL,
+                         "%s: the file name has no extension to choose the export format by (use .step "
+                         ".stp .igs .iges .bv .bez .obj .stl .ply .glb .json)",
+                         path);
     else
         return rg2__fail(err, RG2_EINVAL,
                          "%s: unknown export format '.%s' (use .step .stp .igs .iges .bv .bez .obj "
@@ -686,8 +691,10 @@ rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *pa
         st = rg2__check_weights(surfs, n_surfs, fmt == F_STEP ? "STEP" : "IGES", err);
     else
         st = rg2__check_weights(surfs, n_surfs, "export", err) == RG2_ENONFINITE ? RG2_ENONFINITE : RG2_OK;
-    if (st)
-        return st;
+    if (st) { /* name the file too: "out.step: STEP: surface 0 patch (2, 0) ..." */
+        rg2_error e = *err;
+        return rg2__fail(err, st, "%s: %s", path, e.msg);
+    }
     rg2_tess *tess = NULL;
     if (fmt == F_OBJ || fmt == F_STL || fmt == F_PLY || fmt == F_GLB) {
         st = rg2__tess_all(surfs, n_surfs, opts->density, fmt == F_PLY, &tess, err);

@@ -85,3 +85,23 @@ rg2_status rg2_mesh_check(const rg2_mesh *m, rg2_error *err)
     rg2__ok(err);
     return RG2_OK;
 }
+
+rg2_status rg2_mesh_check_weights(const rg2_mesh *m, int *wi, int *wj, rg2_error *err)
+{
+    for (int i = 0; m && m->p && i < m->nu; i++)
+        for (int j = 0; j < m->nv; j++) {
+            double W = rg2_mesh_at(m, i, j)[3];
+            if (!(W > 0.0)) {
+                if (wi)
+                    *wi = i;
+                if (wj)
+                    *wj = j;
+                if (!rg2__finite(W))
+                    return rg2__fail(err, RG2_ENONFINITE, "control point [%d, %d] has weight W = %g", i, j, W);
+                return rg2__fail(err, RG2_EWEIGHT, "control point [%d, %d] has weight W = %.6g, must be > 0", i,
+                                 j, W);
+            }
+        }
+    rg2__ok(err);
+    return RG2_OK;
+}

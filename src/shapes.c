@@ -652,11 +652,23 @@ rg2_status rg2_shape_coeffs(const rg2_shape *s, double C[4][4][4], rg2_error *er
 /* Shape-specific limits on the produced parameter range of a knot direction. */
 static rg2_status check_range(const rg2_shape *s, const rg2_partition *pv, rg2_error *err)
 {
-    if (s->kind != RG2_SHAPE_HYPERBOLOID1 && s->kind != RG2_SHAPE_HYPERBOLOID2)
-        return RG2_OK;
     int lo, hi;
     visible_range(pv, &lo, &hi);
     int off = pv->kind == RG2_PART_KNOTS_FULL ? 1 : 0;
+    if ((s->kind == RG2_SHAPE_SPHERE || s->kind == RG2_SHAPE_ELLIPSOID) && pv->kind == RG2_PART_KNOTS) {
+        /* a band: the poles v = 0, 1 must lie outside it (polar configurations choose their
+         * data knots with RG2_PART_KNOTS_FULL and reach the poles on purpose) */
+        for (int k = lo; k < hi; k++)
+            if (!(pv->values[k] > 0.0 && pv->values[k] < 1.0))
+                return rg2__fail(err, RG2_EDOMAIN,
+                                 "%s: v knot %d = %.17g must lie in (0, 1) (v = 0 is the south pole, "
+                                 "v = 1 the north pole; a knot at or past a pole puts the pole inside "
+                                 "the band: close the sphere with the polar operation)",
+                                 rg2_shape_name(s->kind), k, pv->values[k]);
+        return RG2_OK;
+    }
+    if (s->kind != RG2_SHAPE_HYPERBOLOID1 && s->kind != RG2_SHAPE_HYPERBOLOID2)
+        return RG2_OK;
     for (int k = lo; k < hi; k++) {
         double v = pv->values[k];
         if (s->kind == RG2_SHAPE_HYPERBOLOID1 && !(v > 0.0))
@@ -682,6 +694,29 @@ static rg2_status check_xform(const double M[16], const char *who, rg2_error *er
     return RG2_OK;
 }
 
+/* A placement must keep every positive control weight positive: its last row gives the new
+ * weight W' = M[12] x + M[13] y + M[14] z + M[15] W, and W' <= 0 puts the surface through
+ * infinity. (Weights the shape itself gives <= 0, on data-only points or coarse arcs, are the
+ * shape's: docs/shapes.md "Homogeneous weights".) */
+static rg2_status check_placed_weights(const rg2_mesh *m, const double M[16], const char *who, rg2_error *err)
+{
+    if (M[12] == 0.0 && M[13] == 0.0 && M[14] == 0.0 && M[15] > 0.0)
+        return RG2_OK; /* every weight times M[15] > 0 */
+    for (int i = 0; i < m->nu; i++)
+        for (int j = 0; j < m->nv; j++) {
+            const double *p = rg2_mesh_at(m, i, j);
+            double W = M[12] * p[0] + M[13] * p[1] + M[14] * p[2] + M[15] * p[3];
+            if (p[3] > 0.0 && !(W > 0.0))
+                return rg2__fail(err, rg2__finite(W) ? RG2_EWEIGHT : RG2_ENONFINITE,
+                                 "%s: the placement gives control point [%d, %d] the weight W = %.6g "
+                                 "(%.6g unplaced); weights must stay > 0 (the placement matrix's last "
+                                 "row must be positive on the whole mesh, or the surface passes through "
+                                 "infinity)",
+                                 who, i, j, W, p[3]);
+        }
+    return RG2_OK;
+}
+
 rg2_status rg2_shape_mesh(const rg2_shape *s, const rg2_partition *pu, const rg2_partition *pv,
                           rg2_mesh *out, rg2_error *err)
 {
@@ -701,6 +736,10 @@ rg2_status rg2_shape_mesh(const rg2_shape *s, const rg2_partition *pu, const rg2
     st = rg2_product_mesh((const double(*)[4][4])C, pu, pv, out, err);
     if (st)
         return prefixed(err, st, d->name);
+    if ((st = check_placed_weights(out, s->xform, d->name, err))) {
+        rg2_mesh_free(out);
+        return st;
+    }
     rg2_mesh_transform(out, s->xform);
     return RG2_OK;
 }

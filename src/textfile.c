@@ -6,12 +6,16 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 rg2_status rg2_read_text(const char *path, char **out, size_t *len, rg2_error *err)
 {
     *out = NULL;
     if (len)
         *len = 0;
+    struct stat sb;
+    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
+        return rg2__fail(err, RG2_EIO, "%s: is a directory, not a file", path);
     FILE *f = fopen(path, "rb");
     if (!f)
         return rg2__fail(err, RG2_EIO, "%s: cannot open: %s", path, strerror(errno));

@@ -720,6 +720,20 @@ static void errors(void)
     bad = pv, bad.values = kbig, bad.n = 3;
     expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_EDOMAIN, &err, "v knot 2 = 1 must satisfy |v| < 1",
                "hyperboloid2 |v| >= 1");
+    /* sphere and ellipsoid bands: knots in (0, 1), the poles outside (the full knots of a
+     * polar configuration reach them on purpose: the knots_full test above) */
+    rg2_shape_init(&sh, RG2_SHAPE_SPHERE);
+    expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_EDOMAIN, &err, "sphere: v knot 0 = 0 must lie in (0, 1)",
+               "sphere knot at the south pole");
+    double kpast[3] = {0.2, 0.5, 1.5};
+    bad.values = kpast;
+    rg2_shape_init(&sh, RG2_SHAPE_ELLIPSOID);
+    expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_EDOMAIN, &err,
+               "ellipsoid: v knot 2 = 1.5 must lie in (0, 1)", "ellipsoid knot past the north pole");
+    double kin[3] = {0.01, 0.5, 0.99};
+    bad.values = kin;
+    CHECK_OK(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), &err);
+    rg2_mesh_free(&m);
 
     /* placement, names, families */
     rg2_shape_init(&sh, RG2_SHAPE_CYLINDER);
@@ -727,6 +741,34 @@ static void errors(void)
     expect_err(rg2_shape_mesh(&sh, &pu, &pv, &m, &err), RG2_EDOMAIN, &err, "singular", "singular xform");
     sh.xform[10] = NAN;
     expect_err(rg2_shape_mesh(&sh, &pu, &pv, &m, &err), RG2_ENONFINITE, &err, "[2][2]", "NaN xform");
+    /* a projective placement must keep the weights positive: last row (1, 0, 0, 1) takes the
+     * torus's weights through 0 (x from -4 to 4), (0, 0, 0, -1) flips them all */
+    rg2_shape_init(&sh, RG2_SHAPE_TORUS);
+    sh.xform[12] = 1.0;
+    expect_err(rg2_shape_mesh(&sh, &pu, &pc, &m, &err), RG2_EWEIGHT, &err,
+               "torus: the placement gives control point [2, 0] the weight W = -1.55064", "weights through 0");
+    CHECK(m.p == NULL, "no mesh left after a refused placement");
+    rg2_shape_init(&sh, RG2_SHAPE_TORUS);
+    sh.xform[15] = -1.0;
+    expect_err(rg2_shape_mesh(&sh, &pu, &pc, &m, &err), RG2_EWEIGHT, &err,
+               "control point [0, 0] the weight W = -1", "weights flipped");
+    sh.xform[15] = 1.0, sh.xform[12] = 0.1; /* |0.1 x| < 1: still positive */
+    CHECK_OK(rg2_shape_mesh(&sh, &pu, &pc, &m, &err), &err);
+    int wi = -1, wj = -1;
+    CHECK_OK(rg2_mesh_check_weights(&m, &wi, &wj, &err), &err);
+    rg2_mesh_at(&m, 2, 1)[3] = 0.0;
+    expect_err(rg2_mesh_check_weights(&m, &wi, &wj, &err), RG2_EWEIGHT, &err,
+               "control point [2, 1] has weight W = 0, must be > 0", "mesh weight check");
+    CHECK(wi == 2 && wj == 1, "mesh weight check names [2, 1]: [%d, %d]", wi, wj);
+    rg2_mesh_free(&m);
+    /* the numeric range of design numbers, shared with rg2 shape */
+    CHECK_OK(rg2_number_check(0.0, "x", &err), &err);
+    CHECK_OK(rg2_number_check(-3.5e50, "x", &err), &err);
+    expect_err(rg2_number_check(1e200, "--R", &err), RG2_EDOMAIN, &err,
+               "--R: number 1e+200 is outside the supported range", "number too big");
+    expect_err(rg2_number_check(-1e-200, "--scale", &err), RG2_EDOMAIN, &err,
+               "--scale: number -1e-200 is outside", "number too small");
+    expect_err(rg2_number_check(NAN, "y", &err), RG2_ENONFINITE, &err, "y: number is not finite", "NaN number");
     rg2_shape_kind kind;
     expect_err(rg2_shape_from_name("doughnut", &kind, &err), RG2_EINVAL, &err, "unknown shape 'doughnut'",
                "unknown name");

@@ -28,7 +28,7 @@ done
 expect 2 "--mode" -- "$RG2" render "$ex" -o "$tmp/x.png" --mode fancy
 expect 2 "--size" -- "$RG2" render "$ex" -o "$tmp/x.png" --size 10x10
 expect 2 "--range" -- "$RG2" render "$ex" -o "$tmp/x.png" --range 1
-expect 1 "colour range" -- "$RG2" render "$ex" -o "$tmp/x.png" --mode mean --range 2,1
+expect 2 "--range 2,1: needs lo < hi" -- "$RG2" render "$ex" -o "$tmp/x.png" --mode mean --range 2,1
 [ ! -e "$tmp/x.png" ] && [ ! -e "$tmp/x.png.tmp" ] && ok || bad "a failed render left a file"
 expect 1 "cannot write" -- "$RG2" render "$ex" -o "$tmp/no/such/dir/x.png"
 
@@ -70,6 +70,8 @@ case "$("$RG2" check "$ex")" in *"ring"*"ball"*"G2 curvature jump"*) ok ;; *) ba
 expect 3 "failed: g2" -- "$RG2" check "$ex" --require g2 --tol g2=0
 expect 3 "exact" -- "$RG2" check "$ex" --require exact --tol exact=0
 expect 2 "--require" -- "$RG2" check "$ex" --require g3
+expect 2 "--require '': needs a comma-separated list" -- "$RG2" check "$ex" --require ""
+expect 2 "--require 'g2,,exact': needs a comma-separated list" -- "$RG2" check "$ex" --require g2,,exact
 expect 2 "--tol" -- "$RG2" check "$ex" --tol g2
 # bad designs: exit 1 with the loader's message
 expect 1 "K = " -- "$RG2" check "$SRC/tests/data/bad_scalar.json"

@@ -53,11 +53,30 @@ expect 1 "knot 2 (= 0.5) is not greater than knot 1" -- "$RG2" shape sphere --v-
 expect 1 "v knot 0 = -1 must be > 0" -- "$RG2" shape hyperboloid1 --v-knots -1,1
 expect 1 "|v| < 1" -- "$RG2" shape hyperboloid2 --v-range 0,1.5
 expect 1 "k = 0 gives a plane" -- "$RG2" shape cone --k 0
-expect 1 "singular" -- "$RG2" shape torus --scale 0
+expect 1 "--scale 0: scale factors must be non-zero" -- "$RG2" shape torus --scale 0
 expect 2 "v is a circle direction" -- "$RG2" shape torus --v-knots 1,2
 expect 2 "u is a polynomial direction" -- "$RG2" shape hypar --u-arcs 4
 expect 2 "needs --u-sweep" -- "$RG2" shape torus --u-open
 expect 2 "torus takes --R --r" -- "$RG2" shape torus --radius 2
 expect 2 "not a finite number" -- "$RG2" shape torus --R abc
 expect 2 "--xform needs 16 numbers" -- "$RG2" shape torus --xform 1,2,3
+# the numeric range and placement checks of design files (rg2_number_check, rg2_mesh_check_range,
+# rg2_shape_mesh's weights): never a nan summary or a bare nan in --json
+expect 1 "--R: number 1e+200 is outside the supported range" -- "$RG2" shape torus --R 1e200
+expect 1 "--r: number 1e+299 is outside the supported range" -- "$RG2" shape torus --r 1e299 --R 1e99 --json
+expect 1 "--center item 0: number 1e+101 is outside" -- "$RG2" shape sphere --center 1e101,0,0
+expect 1 "sphere: coordinates up to" -- "$RG2" shape sphere --radius 1e60 --scale 1e60
+expect 1 "torus: coordinates up to 4.68015e-200, size 1.34027e-199: outside the supported range" -- "$RG2" shape torus --R 3e-100 --r 1e-100 --scale 1e-100
+expect 1 "--axis 0,0,0: the axis is the zero vector" -- "$RG2" shape cone --axis 0,0,0
+expect 1 "the placement gives control point" -- "$RG2" shape torus --xform 1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,-1
+expect 1 "ellipsoid: v knot 1 = 1 must lie in (0, 1)" -- "$RG2" shape ellipsoid --v-knots 0.5,1,1.5
+expect 1 "torus: coordinates up to" -- "$RG2" shape torus --R 1e90 --r 1e89
+for args in "torus" "cone --v-range 0,1 --v-segments 2" "sphere --v-knots 0.01,0.5,0.99" "torus --scale 1e-50" \
+            "torus --R 1e50 --r 1e49"; do
+  if "$RG2" shape $args --json | python3 -c 'import json, math, sys
+d = json.load(sys.stdin, parse_constant=lambda c: sys.exit("bare " + c))
+r = d["max_residual"]
+sys.exit(0 if r is not None and math.isfinite(r) else "residual %r" % r)'; then ok
+  else bad "rg2 shape $args --json: not valid JSON with a finite max_residual"; fi
+done
 finish
