@@ -599,7 +599,7 @@ static rg2_status op_cut(pctx *c, const cJSON *obj, const char *path, rg2__dmesh
                 return st;
             char q[320];
             subpath(q, sizeof q, p, "open_at");
-            int j;
+            int j = 0;
             if ((st = as_int(c, y, q, &j)))
                 return st;
             if (!s->closed)
@@ -850,7 +850,7 @@ static rg2_status edit_scalars(pctx *c, const cJSON *arr, const char *path, rg2_
         if ((st = as_obj(c, e, p)) || (st = check_keys(c, e, p, keys, 6)))
             return st;
         const cJSON *d, *leg = get(e, "leg"), *jun = get(e, "junction");
-        int dir, idx;
+        int dir, idx = 0;
         subpath(q, sizeof q, p, "dir");
         if ((st = need(c, e, "dir", p, &d)) || (st = parse_dir(c, d, q, &dir)))
             return st;
