@@ -420,9 +420,12 @@ RG2_AVX512_FN static inline __m512d dot8(const __m512d a[3], const __m512d b[3])
 }
 
 /* Unit normal n = a x b / |a x b|, 0 where |a x b|^2 <= 1e-30 (a.a) (b.b); returns the mask of
- * points where it is defined. a, b are w^2 Su and w^2 Sv (w hu - hu_w h, w hv - hv_w h: the
- * tangents without the divisions by the weight, which the normalisation cancels; the test is
- * invariant under the scaling too), so no reciprocal lies on the normal's dependency chain.
+ * points where it is defined. a, b are w Su and w Sv (hu - hu_w p, hv - hv_w p with p = h / w,
+ * one multiply-add per component: the tangents of rg2_patch_eval without its last division by
+ * the weight, which the normalisation cancels; the test is invariant under the scaling too).
+ * (The earlier w hu - hu_w h, w hv - hv_w h kept the reciprocal off the normal's dependency
+ * chain but took two operations per component: the one-operation form is 1.06-1.10x faster
+ * for 8 x 8 patches, 1.01-1.05x for 64-point rows, AMD Zen 5, and as accurate.)
  * The test is taken as |a x b|^2 > 1e-30 (a.b)^2: by Lagrange's identity (a.a)(b.b) =
  * |a x b|^2 + (a.b)^2 the two differ by the factor 1 - 1e-30 (and rounding), and one dot product
  * takes the place of two. Shared by all AVX-512 kernels (same bits). */
@@ -652,10 +655,9 @@ RG2_AVX512_FN static inline void pos_normal8(const __m512d u[4], const __m512d h
     __m512d hu3 = usumvh(hu, dc, 3), hv3 = usumv(u, c1, 3);
     __m512d p[3], a[3], b[3], n[3];
     for (int k = 0; k < 3; k++) {
-        __m512d h = usumv(u, c0, k);
-        p[k] = _mm512_mul_pd(h, iw);
-        a[k] = _mm512_fmsub_pd(w, usumvh(hu, dc, k), _mm512_mul_pd(hu3, h));
-        b[k] = _mm512_fmsub_pd(w, usumv(u, c1, k), _mm512_mul_pd(hv3, h));
+        p[k] = _mm512_mul_pd(usumv(u, c0, k), iw);
+        a[k] = _mm512_fnmadd_pd(hu3, p[k], usumvh(hu, dc, k));
+        b[k] = _mm512_fnmadd_pd(hv3, p[k], usumv(u, c1, k));
     }
     normal8(a, b, n, hw);
     xyz8(p[0], p[1], p[2], po);
@@ -837,10 +839,10 @@ RG2_AVX512_FN static inline void full_avx512(const double *U, const double *DDU,
         __m512d P[3], A[3], B[3], Su[3], Sv[3], Suu[3], Suv[3], Svv[3];
         for (int k = 0; k < 3; k++) {
             P[k] = _mm512_mul_pd(h[k], iw);
-            A[k] = _mm512_fmsub_pd(h[3], hu[k], _mm512_mul_pd(hu[3], h[k]));
-            B[k] = _mm512_fmsub_pd(h[3], hv[k], _mm512_mul_pd(hv[3], h[k]));
-            Su[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hu[3], P[k], hu[k]), iw);
-            Sv[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hv[3], P[k], hv[k]), iw);
+            A[k] = _mm512_fnmadd_pd(hu[3], P[k], hu[k]);
+            B[k] = _mm512_fnmadd_pd(hv[3], P[k], hv[k]);
+            Su[k] = _mm512_mul_pd(A[k], iw);
+            Sv[k] = _mm512_mul_pd(B[k], iw);
             __m512d t = _mm512_fnmadd_pd(_mm512_mul_pd(two, hu[3]), Su[k], huu[k]);
             Suu[k] = _mm512_mul_pd(_mm512_fnmadd_pd(huu[3], P[k], t), iw);
             t = _mm512_fnmadd_pd(hu[3], Sv[k], huv[k]);
