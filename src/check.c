@@ -632,10 +632,14 @@ static void format_text(const rg2_check_report *r, sbuf *b)
     if (r->untagged_bad)
         sb_printf(b, ", %d tagged with an unknown shape\n", r->untagged_bad);
     if (r->n_shapes > 0) {
-        sb_printf(b, "exact pieces                 patches  worst residual  verdict  where\n");
+        int wl = 24; /* the label column: as wide as the longest label (never cut) */
+        for (int k = 0; k < r->n_shapes; k++)
+            if ((int)strlen(r->shapes[k].label) > wl)
+                wl = (int)strlen(r->shapes[k].label);
+        sb_printf(b, "%-*s patches  worst residual  verdict  where\n", wl + 4, "exact pieces");
         for (int k = 0; k < r->n_shapes; k++) {
             const rg2_check_shape *s = &r->shapes[k];
-            sb_printf(b, "  %2d %-24.24s %7d  %14.2e  %-7s  %s\n", k, s->label, s->patches, s->residual,
+            sb_printf(b, "  %2d %-*s %7d  %14.2e  %-7s  %s\n", k, wl, s->label, s->patches, s->residual,
                       s->patches ? verdict(s->residual, o->tol_exact) : "-", s->where);
         }
     }
