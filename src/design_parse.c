@@ -1052,6 +1052,18 @@ rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, c
         free(buf);
         return rg2__fail(err, RG2_EPARSE, "%s:%d:%d: NUL byte in the design text", name, line, col);
     }
+    /* "\u0000" in a string: cJSON's strings are C strings and would end there silently */
+    for (size_t i = 0; i + 1 < len; i++)
+        if (buf[i] == '\\') {
+            if (buf[i + 1] == 'u' && i + 5 < len && !strncmp(buf + i + 2, "0000", 4)) {
+                int line, col;
+                line_col(buf, i, &line, &col);
+                free(buf);
+                return rg2__fail(err, RG2_EPARSE, "%s:%d:%d: \\u0000 (a NUL character) in a string", name, line,
+                                 col);
+            }
+            i++; /* skip the escaped character: \\ then u0000 is a backslash and text */
+        }
     const char *end = NULL;
     cJSON *root = cJSON_ParseWithLengthOpts(buf, len + 1, &end, 1);
     if (!root) {
