@@ -1019,6 +1019,103 @@ RG2_HOT static void grid_patch(const rg2_patch *P, const tables *t, const rg2_gr
     }
 }
 
+/* Whether two homogeneous points are the same point up to a loose relative tolerance (1e-9 of
+ * their coordinates): a false "same" only sends a side to the reference evaluator below. */
+static inline int same_point(const double a[4], const double b[4])
+{
+    for (int k = 0; k < 3; k++) {
+        double x = a[k] * b[3], y = b[k] * a[3];
+        if (!(fabs(x - y) <= 1e-9 * (fabs(x) + fabs(y)) + 1e-300))
+            return 0;
+    }
+    return 1;
+}
+
+#if RG2_AVX512
+/* The sides whose two corners are the same point (same_point, two sides per vector: lanes 0-3 and
+ * 4-7 hold one homogeneous point each), branch-free: about 25 operations per patch against
+ * some thousand for the 8 x 8 normals (the scalar loop with early exits cost 2-4 % there; this
+ * is within the noise of this host, 0-3 %). */
+RG2_AVX512_FN static inline int corner_sides_avx512(const rg2_patch *P)
+{
+    __m256d A = _mm256_loadu_pd(P->h[0][0]), B = _mm256_loadu_pd(P->h[0][3]);
+    __m256d C = _mm256_loadu_pd(P->h[3][0]), D = _mm256_loadu_pd(P->h[3][3]);
+    __m512d X[2] = {_mm512_insertf64x4(_mm512_castpd256_pd512(A), C, 1), _mm512_insertf64x4(_mm512_castpd256_pd512(A), B, 1)};
+    __m512d Y[2] = {_mm512_insertf64x4(_mm512_castpd256_pd512(B), D, 1), _mm512_insertf64x4(_mm512_castpd256_pd512(C), D, 1)};
+    const __m512d tol = _mm512_set1_pd(1e-9), tiny = _mm512_set1_pd(1e-300);
+    int mask = 0;
+    for (int h = 0; h < 2; h++) { /* h 0: sides u = 0 (A, B) and u = 1 (C, D); h 1: v = 0 (A, C), v = 1 (B, D) */
+        __m512d yw = _mm512_permutex_pd(Y[h], 0xFF), xw = _mm512_permutex_pd(X[h], 0xFF);
+        __m512d x = _mm512_mul_pd(X[h], yw), y = _mm512_mul_pd(Y[h], xw);
+        __m512d lim = _mm512_fmadd_pd(tol, _mm512_add_pd(_mm512_abs_pd(x), _mm512_abs_pd(y)), tiny);
+        __mmask8 ok = _mm512_cmp_pd_mask(_mm512_abs_pd(_mm512_sub_pd(x, y)), lim, _CMP_LE_OQ);
+        mask |= ((ok & 0x0F) == 0x0F) << (2 * h) | ((ok & 0xF0) == 0xF0) << (2 * h + 1);
+    }
+    return mask;
+}
+#endif
+
+/* The sides of a bi-3 patch collapsed to one point (a pole): bit 0 u = 0, 1 u = 1, 2 v = 0,
+ * 3 v = 1. The corners first (two of them differ on every side of an ordinary patch). */
+static inline int collapsed_sides(const rg2_patch *P, const tables *t)
+{
+    int mask = 0, cand = 0xF;
+#if RG2_AVX512
+    if (t->avx512)
+        cand = corner_sides_avx512(P);
+#else
+    (void)t;
+#endif
+    if (!cand)
+        return 0;
+    for (int side = 0; side < 4; side++) {
+        if (!(cand >> side & 1))
+            continue;
+        int fixed = side < 2 ? 3 * side : 3 * (side - 2); /* the row (u sides) or column (v sides) */
+        const double *c0 = side < 2 ? P->h[fixed][0] : P->h[0][fixed];
+        const double *c3 = side < 2 ? P->h[fixed][3] : P->h[3][fixed];
+        if (!same_point(c0, c3))
+            continue;
+        int all = 1;
+        for (int q = 1; q < 3 && all; q++)
+            all = same_point(c0, side < 2 ? P->h[fixed][q] : P->h[q][fixed]);
+        mask |= all << side;
+    }
+    return mask;
+}
+
+/* On a collapsed side Su x Sv is rounding noise, which the fast kernels' relative test cannot
+ * tell from a tangent plane; the normal, K and H of the side's points are taken from
+ * rg2_patch_eval, whose tests know the noise level (the normal is then 0, K = H = 0, as the
+ * header promises), so the grid agrees with it there. Rare (pole patches only). */
+static void fix_collapsed(const rg2_patch *P, const tables *t, const rg2_grid_out *o, size_t first, int mask)
+{
+    int n = t->n, m = t->m, order = o->K || o->H ? 2 : 1;
+#if RG2_AVX512
+    if (t->stream)
+        _mm_sfence(); /* (the streaming stores of this patch before the plain ones over them) */
+#endif
+    for (int side = 0; side < 4; side++) {
+        if (!(mask >> side & 1))
+            continue;
+        int cnt = side < 2 ? m : n;
+        for (int q = 0; q < cnt; q++) {
+            int a = side == 0 ? 0 : side == 1 ? n - 1 : q, b = side == 2 ? 0 : side == 3 ? m - 1 : q;
+            double u = a == n - 1 ? 1.0 : (double)a / (double)(n - 1);
+            double v = b == m - 1 ? 1.0 : (double)b / (double)(m - 1);
+            rg2_eval e;
+            rg2_patch_eval(P, u, v, order, &e);
+            size_t at = first + (size_t)a * (size_t)m + (size_t)b;
+            if (o->normal)
+                memcpy(o->normal + 3 * at, e.n, sizeof e.n);
+            if (o->K)
+                o->K[at] = e.K;
+            if (o->H)
+                o->H[at] = e.H;
+        }
+    }
+}
+
 /* Patches k0 <= k < k1 of the array P, patch k at point index k * per of the outputs. */
 static void grid_range(const rg2_patch *P, const rg2_xpatch *xp, const rg2__xgrid *xt, const tables *t,
                        const rg2_grid_out *o, size_t k0, size_t k1, size_t per)
@@ -1034,6 +1131,9 @@ static void grid_range(const rg2_patch *P, const rg2_xpatch *xp, const rg2__xgri
                 _mm_prefetch((const char *)(P + k + RG2_PATCH_AHEAD) + 64 * q, _MM_HINT_T0);
 #endif
         grid_patch(P + k, t, o, k * per);
+        int mask;
+        if ((o->normal || o->K || o->H) && (mask = collapsed_sides(P + k, t)))
+            fix_collapsed(P + k, t, o, k * per, mask);
     }
 #if RG2_AVX512
     if (t->stream) /* streaming stores are weakly ordered: publish them before returning */
@@ -1203,13 +1303,21 @@ unsigned rg2_patch_point_normal(const rg2_patch *P, double u, double v, double p
         su[k] = hu[k] - hu[3] * p[k];
         sv[k] = hv[k] - hv[3] * p[k];
     }
-    rg2__scale_pair(su, sv);
+    /* the tests of rg2_patch_eval (su, sv here are w Su, w Sv; both tests are invariant under
+     * the common factor): |Su x Sv| > 1e-14 (|Su|^2 + |Sv|^2), and neither derivative at the
+     * level of its own rounding error (a collapsed edge, where one is noise) */
+    double ru = 0.0, rv = 0.0;
+    for (int k = 0; k < 3; k++) {
+        ru += fabs(hu[k]) + fabs(hu[3] * p[k]);
+        rv += fabs(hv[k]) + fabs(hv[3] * p[k]);
+    }
+    double t = rg2__scale_pair(su, sv);
     double c[3] = {su[1] * sv[2] - su[2] * sv[1], su[2] * sv[0] - su[0] * sv[2],
                    su[0] * sv[1] - su[1] * sv[0]};
     double l2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
-    double s2 = (su[0] * su[0] + su[1] * su[1] + su[2] * su[2]) *
-                (sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2]);
-    if (!(l2 > 1e-30 * s2)) {
+    double E = su[0] * su[0] + su[1] * su[1] + su[2] * su[2], G = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2];
+    int zero_d = sqrt(E) <= 1e-13 * ru * t || sqrt(G) <= 1e-13 * rv * t;
+    if (!(sqrt(l2) > 1e-14 * (E + G)) || zero_d) {
         nrm[0] = nrm[1] = nrm[2] = 0.0;
         return flags | RG2_EVAL_NORMAL_UNDEFINED | RG2_EVAL_CURVATURE_UNDEFINED;
     }
