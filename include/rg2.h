@@ -26,6 +26,19 @@
  *   - Objects that own memory are plain structs released by their *_free function, which
  *     accepts a zeroed struct (or NULL) and leaves the struct zeroed.
  *   - Homogeneous 4-tuples are (w x, w y, w z, w).
+ *   - Pointer arguments must not be NULL unless the function's comment says they may be (err
+ *     always may); indices (patch i, j, segment, junction) must lie in the ranges of the object
+ *     they index: functions without a status (evaluators returning void or a number) do not
+ *     check them. Functions with a status check their counts and sizes.
+ *   - Output structs (surfaces, meshes, scalars, tessellations, images) are filled from scratch:
+ *     pass a zeroed or freed struct, or the previous contents leak. rg2_surface_rebuild is the
+ *     one that reuses a built surface's memory.
+ *   - Thread safety: the library keeps no global state that calls modify (the grid evaluator's
+ *     worker pool is internal and serialises its own use); reading one object from several
+ *     threads at once is safe, writing it is not.
+ *   - The AVX-512 kernels are chosen at load time (GCC function multi-versioning, an ifunc):
+ *     ThreadSanitizer builds of the whole program cannot instrument that resolver; build the
+ *     library with -DRG2_NO_CLONES for them.
  */
 #ifndef RG2_H
 #define RG2_H
@@ -42,7 +55,12 @@ extern "C" {
 #define RG2_API
 #endif
 
+#define RG2_VERSION_MAJOR 0
+#define RG2_VERSION_MINOR 1
+#define RG2_VERSION_PATCH 0
 #define RG2_VERSION_STRING "0.1.0"
+/** RG2_VERSION_MAJOR * 10000 + MINOR * 100 + PATCH, for #if tests. */
+#define RG2_VERSION_NUMBER (RG2_VERSION_MAJOR * 10000 + RG2_VERSION_MINOR * 100 + RG2_VERSION_PATCH)
 #define RG2_PI 3.14159265358979323846
 
 /* ===================================================================================== */

@@ -298,11 +298,16 @@ rg2_status rg2__design_build(rg2_design *d, rg2_error *err)
 rg2_status rg2_design_parse(const char *json, size_t len, const char *name, rg2_design **out,
                             rg2_error *err)
 {
+    if (!out)
+        return rg2__fail(err, RG2_EINVAL, "design: NULL output pointer");
     *out = NULL;
     if (!name)
         name = "design";
     if (!json)
         return rg2__fail(err, RG2_EINVAL, "%s: no text", name);
+    if (len > RG2_TEXT_MAX_BYTES) /* (as rg2_design_load: also keeps len + 1 from wrapping) */
+        return rg2__fail(err, RG2_ELIMIT, "%s: %zu bytes of design text, more than the limit of %u", name, len,
+                         RG2_TEXT_MAX_BYTES);
     rg2_design *d = rg2__calloc(1, sizeof *d);
     if (!d)
         return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", name);

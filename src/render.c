@@ -804,16 +804,9 @@ static rg2_status check_input(const rg2_surface *surfs, int n, const rg2_mesh *m
     for (int s = 0; s < n; s++) {
         if (surfs[s].nu <= 0 || surfs[s].nv <= 0 || !surfs[s].patch)
             return rg2__fail(err, RG2_EINVAL, "render: surface %d has no patches", s);
-        size_t np = (size_t)surfs[s].nu * (size_t)surfs[s].nv;
-        for (size_t k = 0; k < np; k++) {
-            int du, dv;
-            rg2__patch_degree(&surfs[s], k, &du, &dv);
-            for (int q = 0; q < 4 * (du + 1) * (dv + 1); q++)
-                if (!isfinite(rg2__patch_ctrl(&surfs[s], k, q / 4 / (dv + 1), q / 4 % (dv + 1))[q % 4]))
-                    return rg2__fail(err, RG2_ENONFINITE,
-                                     "render: surface %d patch (%zu,%zu) has a non-finite control point", s,
-                                     k / (size_t)surfs[s].nv, k % (size_t)surfs[s].nv);
-        }
+        rg2_status st = rg2__surface_check_finite(&surfs[s], "render", s, err);
+        if (st)
+            return st;
     }
     return RG2_OK;
 }

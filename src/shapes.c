@@ -237,9 +237,9 @@ rg2_status rg2_partition_equal(rg2_partition *p, rg2_partition_kind kind, int cl
         return rg2__fail(err, RG2_EINVAL, "equal partition: kind must be angles or knots");
     if (n < 1)
         return rg2__fail(err, RG2_EINVAL, "equal partition: %d segments, need at least 1", n);
-    if (cap < n + 1)
-        return rg2__fail(err, RG2_ELIMIT, "equal partition: %d segments need %d values, room for %d",
-                         n, n + 1, cap);
+    if (cap <= n) /* (not cap < n + 1: n may be INT_MAX) */
+        return rg2__fail(err, RG2_ELIMIT, "equal partition: %d segments need %lld values, room for %d",
+                         n, (long long)n + 1, cap);
     if (!rg2__finite(lo) || !rg2__finite(hi))
         return rg2__fail(err, RG2_ENONFINITE, "equal partition: range is not finite");
     p->kind = kind;

@@ -1,6 +1,7 @@
 /* surface.c -- the Bi-cubic Construction (paper section 3, MATH.md section 4): a control
  * mesh of 4-tuples becomes a grid of rational bi-3 Bezier patches. */
 #include "internal.h"
+#include "xpatch_util.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -40,6 +41,16 @@ static rg2_status surface_alloc(rg2_surface *s, int nu, int nv, int with_tag, rg
 
 rg2_status rg2_surface_copy(const rg2_surface *src, rg2_surface *dst, rg2_error *err)
 {
+    if (!src || !dst)
+        return rg2__fail(err, RG2_EINVAL, "surface copy: NULL %s", src ? "destination" : "source");
+    if (src->nu < 0 || src->nv < 0 || ((size_t)src->nu * (size_t)src->nv > 0 && !src->patch))
+        return rg2__fail(err, RG2_EINVAL, "surface copy: the source is not a surface (%d x %d patches, patch array %s)",
+                         src->nu, src->nv, src->patch ? "set" : "NULL");
+    if (src->nu == 0 || src->nv == 0 || !src->patch) { /* an empty surface (e.g. after a failed build) */
+        memset(dst, 0, sizeof *dst);
+        rg2__ok(err);
+        return RG2_OK;
+    }
     rg2_status st = surface_alloc(dst, src->nu, src->nv, src->tag != NULL, err);
     if (st)
         return st;
@@ -61,6 +72,7 @@ rg2_status rg2_surface_copy(const rg2_surface *src, rg2_surface *dst, rg2_error 
         }
         memcpy(dst->xp, src->xp, np * sizeof(rg2_xpatch));
     }
+    rg2__ok(err);
     return RG2_OK;
 }
 
@@ -234,4 +246,18 @@ double rg2_surface_min_weight(const rg2_surface *s)
                     if (s->xp[k].du > 0 && s->xp[k].h[r][t][3] < mn)
                         mn = s->xp[k].h[r][t][3];
     return mn;
+}
+
+rg2_status rg2__surface_check_finite(const rg2_surface *s, const char *what, int index, rg2_error *err)
+{
+    size_t np = (size_t)s->nu * (size_t)s->nv;
+    for (size_t k = 0; k < np; k++) {
+        int du, dv;
+        rg2__patch_degree(s, k, &du, &dv);
+        for (int q = 0; q < 4 * (du + 1) * (dv + 1); q++)
+            if (!rg2__finite(rg2__patch_ctrl(s, k, q / 4 / (dv + 1), q / 4 % (dv + 1))[q % 4]))
+                return rg2__fail(err, RG2_ENONFINITE, "%s: surface %d patch (%zu,%zu) has a non-finite control point",
+                                 what, index, k / (size_t)s->nv, k % (size_t)s->nv);
+    }
+    return RG2_OK;
 }

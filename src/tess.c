@@ -162,6 +162,9 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
         return rg2__fail(err, RG2_EINVAL, "tessellate: surface has no patches");
     if (density < 1)
         return rg2__fail(err, RG2_EINVAL, "tessellate: density %d, must be >= 1", density);
+    rg2_status fst = rg2__surface_check_finite(s, "tessellate", 0, err);
+    if (fst)
+        return fst;
     int d = density, nu = s->nu, nv = s->nv, cu = s->closed_u != 0, cv = s->closed_v != 0;
     if ((double)nu * d + 1 > RG2_MAX_POINTS || (double)nv * d + 1 > RG2_MAX_POINTS ||
         ((double)nu * d + 1) * ((double)nv * d + 1) > RG2_MAX_POINTS)

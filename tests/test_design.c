@@ -560,6 +560,19 @@ static void seam_rules(void)
 #define TORUS_SHAPES "\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": 3, \"r\": 1}, \"s\": {\"kind\": \"sphere\"}}"
 #define TORUS_MESH "\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": 8}, \"v\": {\"arcs\": 6}}"
 
+/* In-memory text: the same size limit as files (and no wrap-around of len + 1). */
+static void parse_sizes(void)
+{
+    rg2_design *d = (rg2_design *)1;
+    rg2_error err;
+    const char *txt = "{}";
+    CHECK(rg2_design_parse(txt, (size_t)-1, "huge", &d, &err) == RG2_ELIMIT && !d && strstr(err.msg, "huge: "),
+          "SIZE_MAX bytes: %s", err.msg);
+    CHECK(rg2_design_parse(txt, (size_t)RG2_TEXT_MAX_BYTES + 1, "big", &d, &err) == RG2_ELIMIT && !d,
+          "past the text limit: %s", err.msg);
+    CHECK(rg2_design_parse(txt, 2, "x", NULL, &err) == RG2_EINVAL, "NULL out: %s", err.msg);
+}
+
 static void bad_inputs(void)
 {
     struct {
@@ -656,6 +669,7 @@ static void bad_inputs(void)
 
 int main(void)
 {
+    parse_sizes();
     printf("examples (exact-patch residual |F| / (|grad F| size), G2 seam gaps):\n");
     examples();
     printf("edit locality:\n");

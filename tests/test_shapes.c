@@ -6,6 +6,7 @@
 #include "expect_err.h"
 #include "harness.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -638,6 +639,9 @@ static void errors(void)
     rg2_mesh m;
     double eq[9], kn[4] = {0.2, 0.4, 0.6, 0.8};
     rg2_partition pu, pv = {RG2_PART_KNOTS, 0, 4, kn, 0}, pc;
+    CHECK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0.0, 0.0, INT_MAX, eq, 9, &err) == RG2_ELIMIT &&
+              strstr(err.msg, "2147483648 values"),
+          "INT_MAX segments: %s", err.msg);
     rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0.0, 0.0, 6, eq, 9, &err);
     rg2_partition_equal(&pc, RG2_PART_ANGLES, 1, 0.0, 0.0, 5, eq + 6 - 6, 9, &err);
     double e6[6] = {M_PI / 3, M_PI / 3, M_PI / 3, M_PI / 3, M_PI / 3, M_PI / 3};

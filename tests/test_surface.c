@@ -139,6 +139,22 @@ static void transpose_symmetry(void)
     rg2_mesh_free(&t);
 }
 
+/* rg2_surface_copy of an empty surface (what a failed build leaves) is an empty surface; a
+ * successful copy clears err; a negative patch count is invalid, not "out of memory". */
+static void copy_edge_cases(void)
+{
+    rg2_surface empty, c, bad;
+    memset(&empty, 0, sizeof empty);
+    rg2_error err = {RG2_EIO, "stale"};
+    CHECK(rg2_surface_copy(&empty, &c, &err) == RG2_OK && c.nu == 0 && !c.patch && err.code == RG2_OK && !err.msg[0],
+          "copy of an empty surface: %d '%s'", err.code, err.msg);
+    rg2_surface_free(&c);
+    memset(&bad, 0, sizeof bad);
+    bad.nu = -1;
+    bad.nv = 5;
+    CHECK(rg2_surface_copy(&bad, &c, &err) == RG2_EINVAL, "negative patch count: %s", err.msg);
+}
+
 static void mesh_errors(void)
 {
     rg2_mesh m;
@@ -356,6 +372,7 @@ static void degenerate_and_derivatives(void)
 
 int main(void)
 {
+    copy_edge_cases();
     torus_curvatures();
     degenerate_and_derivatives();
     random_surfaces();

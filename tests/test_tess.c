@@ -370,6 +370,12 @@ static void bad_input(void)
     CHECK(t.pos == NULL && t.tri == NULL, "failed tessellation left arrays");
     CHECK(rg2_tessellate(&s, 5000, 0, &t, &err) == RG2_ELIMIT, "huge density: %s", err.msg);
     rg2_tess_free(&t);
+    char where[32];
+    snprintf(where, sizeof where, "patch (%d,%d)", s.nu - 1, s.nv - 1);
+    s.patch[s.nu * s.nv - 1].h[1][2][0] = NAN; /* refused like render and export, not NaN vertices */
+    CHECK(rg2_tessellate(&s, 4, 0, &t, &err) == RG2_ENONFINITE && strstr(err.msg, where), "NaN control value: %s",
+          err.msg);
+    rg2_tess_free(&t);
     rg2_surface_free(&s);
 }
 
