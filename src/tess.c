@@ -45,8 +45,12 @@ static void cross3(const double a[3], const double b[3], double c[3])
  * vanishes (up to rounding noise, so the evaluator's flag cannot be trusted). METHOD: on a side v = 0
  * that collapses, Su(u, v) = v Suv(u, 0) + O(v^2), so Su x Sv / v -> Suv x Sv: the limit normal
  * is Suv x Sv normalised (the sign flips on v = 1, and u = 0 / 1 use Su x Suv likewise). The
- * curvatures there are taken 1e-6 inside the patch (they have no value on a collapsed side).
+ * curvatures there are taken EPS inside the patch (they have no value on a collapsed side): the
+ * rounding error of curvatures next to a pole grows as about 1e-14 / eps^2 (docs/poles.md) and
+ * the step's own error as eps, so eps = 3e-5 balances them near 1e-5 (1e-6 gave K = 1.055
+ * instead of 1 at the poles of the unit sphere; 3e-5 gives 1 to 1e-4, tests/test_tess.c).
  */
+#define POLE_STEP 3e-5
 static void degenerate_point(const rg2_surface *s, int i, int j, double u, double v, int side, int curvature,
                              rg2_eval *e)
 {
@@ -63,7 +67,7 @@ static void degenerate_point(const rg2_surface *s, int i, int j, double u, doubl
                 n[k] = -n[k];
     }
     rg2_eval in;
-    double du = u < 0.5 ? 1e-6 : -1e-6, dv = v < 0.5 ? 1e-6 : -1e-6;
+    double du = u < 0.5 ? POLE_STEP : -POLE_STEP, dv = v < 0.5 ? POLE_STEP : -POLE_STEP;
     rg2_surface_eval(s, i, j, u + du, v + dv, curvature ? 2 : 1, &in);
     double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     if (l > 0.0 && n[0] * in.n[0] + n[1] * in.n[1] + n[2] * in.n[2] > 0.0) {

@@ -358,6 +358,43 @@ static void cap_mesh(void)
     rg2_design_free(dz);
 }
 
+/* The unit sphere closed by bi-3 caps: the pole vertices carry the limit normal (n = p) and the
+ * sphere's curvatures (K = 1, H = -1), taken a short step inside the pole patches. */
+static void sphere_poles_kh(void)
+{
+    double a[6], v[4] = {0.2, 0.4, 0.6, 0.8};
+    for (int k = 0; k < 6; k++)
+        a[k] = RG2_PI / 3;
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    rg2_tess t;
+    CHECK_OK(rg2_polar_sphere_mesh(a, 6, 0.0, v, 4, NULL, &m, &err), &err);
+    CHECK_OK(rg2_cap_build(&m, NULL, &s, NULL, &err), &err);
+    CHECK_OK(rg2_tessellate(&s, 4, 1, &t, &err), &err);
+    double nerr = 0, kerr = 0, kpole = 0;
+    int poles = 0;
+    for (int i = 0; i < t.n_vertices; i++) {
+        const double *p = t.pos + 3 * i, *n = t.normal + 3 * i;
+        nerr = fmax(nerr, fabs(1.0 - (n[0] * p[0] + n[1] * p[1] + n[2] * p[2])));
+        double e = fmax(fabs(t.K[i] - 1.0), fabs(t.H[i] + 1.0));
+        kerr = fmax(kerr, e);
+        if (fabs(p[2]) > 1.0 - 1e-12) {
+            poles++;
+            kpole = fmax(kpole, e);
+        }
+    }
+    printf("capped unit sphere: %d pole vertices, normals n.p within %.1e of 1, K and H at the poles within %.1e "
+           "(elsewhere %.1e)\n",
+           poles, nerr, kpole, kerr);
+    CHECK(poles == 2, "capped sphere: %d pole vertices", poles);
+    CHECK(nerr <= 1e-13 && kpole <= 1e-3, "capped sphere poles: normal %.3g, K/H %.3g (the step inside was too short)",
+          nerr, kpole);
+    rg2_tess_free(&t);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 static void bad_input(void)
 {
     rg2_surface s, empty;
@@ -388,6 +425,7 @@ int main(void)
     }
     pole_mesh(2);
     cap_mesh();
+    sphere_poles_kh();
     bad_input();
     return rg2t_done("test_tess");
 }
