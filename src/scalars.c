@@ -13,8 +13,8 @@ static rg2_status check_count(int n, int closed, const char *what, rg2_error *er
 {
     int min = closed ? 3 : 4;
     if (n < min)
-        return rg2__fail(err, RG2_EINVAL, "%s: %d control points, an %s direction needs at least %d",
-                         what, n, closed ? "closed" : "open", min);
+        return rg2__fail(err, RG2_EINVAL, "%s: %d control points, a%s direction needs at least %d",
+                         what, n, closed ? " closed" : "n open", min);
     if (n > RG2_MAX_POINTS)
         return rg2__fail(err, RG2_ELIMIT, "%s: %d control points exceeds the limit %d", what, n,
                          RG2_MAX_POINTS);

@@ -134,7 +134,7 @@ static void visible_range(const rg2_partition *p, int *lo, int *hi)
 rg2_status rg2_partition_check(const rg2_partition *p, const char *what, rg2_error *err)
 {
     if (!what)
-        what = "partition";
+        what = "the";
     if (!p || p->n <= 0 || !p->values)
         return rg2__fail(err, RG2_EINVAL, "%s partition is empty (no %s given)", what,
                          p && !is_angles(p->kind) ? "knots" : "arcs");
