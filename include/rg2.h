@@ -723,7 +723,10 @@ RG2_API rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts,
  * (x, y, z interleaved), scalars 1 per point. For a surface, patch k = i * s->nv + j fills the
  * points [k * n * m, (k + 1) * n * m): seam points appear in both patches (tessellators merge
  * them). Every output array except pos may be NULL (not computed). Where Su x Sv vanishes
- * (collapsed edges, poles) the normal and K, H are 0, as in rg2_patch_eval. */
+ * (collapsed edges, poles) the normal and K, H are 0, as in rg2_patch_eval: the points of a
+ * collapsed side take rg2_patch_eval's values (its tests know the rounding noise there). The
+ * sides tested are those on a surface's open boundary, where the poles of rg2's constructions
+ * lie, and every side of a patch given alone (rg2_patch_grid). */
 
 #define RG2_GRID_MAX 16384 /**< most points per patch direction */
 

@@ -1031,43 +1031,11 @@ static inline int same_point(const double a[4], const double b[4])
     return 1;
 }
 
-#if RG2_AVX512
-/* The sides whose two corners are the same point (same_point, two sides per vector: lanes 0-3 and
- * 4-7 hold one homogeneous point each), branch-free: about 25 operations per patch against
- * some thousand for the 8 x 8 normals (the scalar loop with early exits cost 2-4 % there; this
- * is within the noise of this host, 0-3 %). */
-RG2_AVX512_FN static inline int corner_sides_avx512(const rg2_patch *P)
+/* Which of the sides in `cand` (bit 0 u = 0, 1 u = 1, 2 v = 0, 3 v = 1) of a bi-3 patch are
+ * collapsed to one point (a pole). The corners first (they differ on an ordinary side). */
+static int collapsed_sides(const rg2_patch *P, int cand)
 {
-    __m256d A = _mm256_loadu_pd(P->h[0][0]), B = _mm256_loadu_pd(P->h[0][3]);
-    __m256d C = _mm256_loadu_pd(P->h[3][0]), D = _mm256_loadu_pd(P->h[3][3]);
-    __m512d X[2] = {_mm512_insertf64x4(_mm512_castpd256_pd512(A), C, 1), _mm512_insertf64x4(_mm512_castpd256_pd512(A), B, 1)};
-    __m512d Y[2] = {_mm512_insertf64x4(_mm512_castpd256_pd512(B), D, 1), _mm512_insertf64x4(_mm512_castpd256_pd512(C), D, 1)};
-    const __m512d tol = _mm512_set1_pd(1e-9), tiny = _mm512_set1_pd(1e-300);
     int mask = 0;
-    for (int h = 0; h < 2; h++) { /* h 0: sides u = 0 (A, B) and u = 1 (C, D); h 1: v = 0 (A, C), v = 1 (B, D) */
-        __m512d yw = _mm512_permutex_pd(Y[h], 0xFF), xw = _mm512_permutex_pd(X[h], 0xFF);
-        __m512d x = _mm512_mul_pd(X[h], yw), y = _mm512_mul_pd(Y[h], xw);
-        __m512d lim = _mm512_fmadd_pd(tol, _mm512_add_pd(_mm512_abs_pd(x), _mm512_abs_pd(y)), tiny);
-        __mmask8 ok = _mm512_cmp_pd_mask(_mm512_abs_pd(_mm512_sub_pd(x, y)), lim, _CMP_LE_OQ);
-        mask |= ((ok & 0x0F) == 0x0F) << (2 * h) | ((ok & 0xF0) == 0xF0) << (2 * h + 1);
-    }
-    return mask;
-}
-#endif
-
-/* The sides of a bi-3 patch collapsed to one point (a pole): bit 0 u = 0, 1 u = 1, 2 v = 0,
- * 3 v = 1. The corners first (two of them differ on every side of an ordinary patch). */
-static inline int collapsed_sides(const rg2_patch *P, const tables *t)
-{
-    int mask = 0, cand = 0xF;
-#if RG2_AVX512
-    if (t->avx512)
-        cand = corner_sides_avx512(P);
-#else
-    (void)t;
-#endif
-    if (!cand)
-        return 0;
     for (int side = 0; side < 4; side++) {
         if (!(cand >> side & 1))
             continue;
@@ -1087,7 +1055,8 @@ static inline int collapsed_sides(const rg2_patch *P, const tables *t)
 /* On a collapsed side Su x Sv is rounding noise, which the fast kernels' relative test cannot
  * tell from a tangent plane; the normal, K and H of the side's points are taken from
  * rg2_patch_eval, whose tests know the noise level (the normal is then 0, K = H = 0, as the
- * header promises), so the grid agrees with it there. Rare (pole patches only). */
+ * header promises), so the grid agrees with it there. Rare (pole patches only). A per-patch
+ * test of all four sides cost the 8 x 8 normal kernel 4-7 %, hence only the boundary's. */
 static void fix_collapsed(const rg2_patch *P, const tables *t, const rg2_grid_out *o, size_t first, int mask)
 {
     int n = t->n, m = t->m, order = o->K || o->H ? 2 : 1;
@@ -1116,10 +1085,25 @@ static void fix_collapsed(const rg2_patch *P, const tables *t, const rg2_grid_ou
     }
 }
 
-/* Patches k0 <= k < k1 of the array P, patch k at point index k * per of the outputs. */
-static void grid_range(const rg2_patch *P, const rg2_xpatch *xp, const rg2__xgrid *xt, const tables *t,
-                       const rg2_grid_out *o, size_t k0, size_t k1, size_t per)
+/* The sides of patch k that lie on the open boundary of a patchwork of nu x nv patches (bits as
+ * collapsed_sides; every side of a lone patch, nu = 0): the poles of rg2's surfaces are there
+ * (polar meshes, caps, Moebius maps: all collapsed sides of the examples lie there, none inside),
+ * so the test costs nothing for the interior patches of a large surface. */
+static inline int boundary_sides(size_t k, int nu, int nv, int closed_u, int closed_v)
 {
+    if (nu <= 0)
+        return 0xF;
+    int i = (int)(k / (size_t)nv), j = (int)(k % (size_t)nv);
+    return (!closed_u && i == 0) | (!closed_u && i == nu - 1) << 1 | (!closed_v && j == 0) << 2 |
+           (!closed_v && j == nv - 1) << 3;
+}
+
+/* Patches k0 <= k < k1 of the array P, patch k at point index k * per of the outputs; S is the
+ * surface P belongs to (NULL for a lone patch), for its boundary (boundary_sides). */
+static void grid_range(const rg2_surface *S, const rg2_patch *P, const rg2_xpatch *xp, const rg2__xgrid *xt,
+                       const tables *t, const rg2_grid_out *o, size_t k0, size_t k1, size_t per)
+{
+    const int nrm = o->normal || o->K || o->H;
     for (size_t k = k0; k < k1; k++) {
         if (xp && xp[k].du > 0) { /* a higher-degree patch (xpatch.c) */
             rg2__xgrid_patch(&xp[k], xt, o, k * per);
@@ -1131,8 +1115,9 @@ static void grid_range(const rg2_patch *P, const rg2_xpatch *xp, const rg2__xgri
                 _mm_prefetch((const char *)(P + k + RG2_PATCH_AHEAD) + 64 * q, _MM_HINT_T0);
 #endif
         grid_patch(P + k, t, o, k * per);
-        int mask;
-        if ((o->normal || o->K || o->H) && (mask = collapsed_sides(P + k, t)))
+        int cand, mask;
+        if (nrm && (cand = S ? boundary_sides(k, S->nu, S->nv, S->closed_u, S->closed_v) : 0xF) &&
+            (mask = collapsed_sides(P + k, cand)))
             fix_collapsed(P + k, t, o, k * per, mask);
     }
 #if RG2_AVX512
@@ -1153,7 +1138,8 @@ typedef struct {
 static void grid_job_run(void *arg, uint32_t c)
 {
     const grid_job *j = arg;
-    grid_range(j->s->patch, j->s->xp, j->xt, j->t, j->o, c * j->np / j->nrun, (c + 1) * j->np / j->nrun, j->per);
+    grid_range(j->s, j->s->patch, j->s->xp, j->xt, j->t, j->o, c * j->np / j->nrun, (c + 1) * j->np / j->nrun,
+               j->per);
 }
 
 /* Whether an output of pts points at this order goes out with streaming stores. */
@@ -1186,7 +1172,7 @@ rg2_status rg2_patch_grid(const rg2_patch *P, int n, int m, const rg2_grid_out *
     if (st)
         return st;
     t.stream = stream_output((size_t)n * (size_t)m, t.order);
-    grid_range(P, NULL, NULL, &t, out, 0, 1, 0);
+    grid_range(NULL, P, NULL, NULL, &t, out, 0, 1, 0);
     tables_free(&t);
     rg2__ok(err);
     return RG2_OK;
