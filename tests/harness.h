@@ -73,5 +73,8 @@ double rg2t_surface_scale(const rg2_surface *s);
  * every exactness/G2 test of s must still pass through the higher-degree code paths. */
 rg2_status rg2t_elevate_some(rg2_surface *s, int du, int dv, int stride, int phase, rg2_error *err);
 rg2_status rg2t_torus(double R, double r, int nu, int nv, rg2_mesh *mesh, rg2_surface *out, rg2_error *err);
+/* The unit sphere as a polar mesh (6 arcs, v knots 0.2 .. 0.8) closed by bi-3 rotational caps:
+ * pole patches with sides collapsed to the poles (Su x Sv at rounding-noise level there). */
+rg2_status rg2t_capped_sphere(rg2_mesh *mesh, rg2_surface *out, rg2_error *err);
 
 #endif

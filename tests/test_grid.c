@@ -188,14 +188,10 @@ static void collapsed_edge(void)
  * and without K, H requested, and rg2_patch_point_normal must return rg2_patch_eval's flags. */
 static void capped_poles(void)
 {
-    double a[6], v[4] = {0.2, 0.4, 0.6, 0.8};
-    for (int k = 0; k < 6; k++)
-        a[k] = RG2_PI / 3;
     rg2_mesh m;
     rg2_surface s;
     rg2_error err;
-    CHECK_OK(rg2_polar_sphere_mesh(a, 6, 0.0, v, 4, NULL, &m, &err), &err);
-    CHECK_OK(rg2_cap_build(&m, NULL, &s, NULL, &err), &err);
+    CHECK_OK(rg2t_capped_sphere(&m, &s, &err), &err);
     for (int n = 3; n <= 9; n += 6) {
         size_t per = (size_t)n * n, np = (size_t)s.nu * s.nv;
         grid_buf g, h;

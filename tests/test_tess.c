@@ -362,15 +362,11 @@ static void cap_mesh(void)
  * sphere's curvatures (K = 1, H = -1), taken a short step inside the pole patches. */
 static void sphere_poles_kh(void)
 {
-    double a[6], v[4] = {0.2, 0.4, 0.6, 0.8};
-    for (int k = 0; k < 6; k++)
-        a[k] = RG2_PI / 3;
     rg2_mesh m;
     rg2_surface s;
     rg2_error err;
     rg2_tess t;
-    CHECK_OK(rg2_polar_sphere_mesh(a, 6, 0.0, v, 4, NULL, &m, &err), &err);
-    CHECK_OK(rg2_cap_build(&m, NULL, &s, NULL, &err), &err);
+    CHECK_OK(rg2t_capped_sphere(&m, &s, &err), &err);
     CHECK_OK(rg2_tessellate(&s, 4, 1, &t, &err), &err);
     double nerr = 0, kerr = 0, kpole = 0;
     int poles = 0;

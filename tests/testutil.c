@@ -223,3 +223,15 @@ rg2_status rg2t_elevate_some(rg2_surface *s, int du, int dv, int stride, int pha
     }
     return RG2_OK;
 }
+
+rg2_status rg2t_capped_sphere(rg2_mesh *mesh, rg2_surface *out, rg2_error *err)
+{
+    double a[6], v[4] = {0.2, 0.4, 0.6, 0.8};
+    for (int k = 0; k < 6; k++)
+        a[k] = RG2_PI / 3;
+    memset(out, 0, sizeof *out);
+    rg2_status st = rg2_polar_sphere_mesh(a, 6, 0.0, v, 4, NULL, mesh, err);
+    if (!st && (st = rg2_cap_build(mesh, NULL, out, NULL, err)))
+        rg2_mesh_free(mesh);
+    return st;
+}
