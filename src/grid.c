@@ -20,6 +20,7 @@
  * the separable scalar grid of xpatch.c. Threads: the pool of pool.c (runs of patches claimed
  * by the caller and the workers; the caller never waits for a worker that has not started).
  */
+#include "export_internal.h"
 #include "internal.h"
 
 #include <stdint.h>
@@ -1019,39 +1020,6 @@ RG2_HOT static void grid_patch(const rg2_patch *P, const tables *t, const rg2_gr
     }
 }
 
-/* Whether two homogeneous points are the same point up to a loose relative tolerance (1e-9 of
- * their coordinates): a false "same" only sends a side to the reference evaluator below. */
-static inline int same_point(const double a[4], const double b[4])
-{
-    for (int k = 0; k < 3; k++) {
-        double x = a[k] * b[3], y = b[k] * a[3];
-        if (!(fabs(x - y) <= 1e-9 * (fabs(x) + fabs(y)) + 1e-300))
-            return 0;
-    }
-    return 1;
-}
-
-/* Which of the sides in `cand` (bit 0 u = 0, 1 u = 1, 2 v = 0, 3 v = 1) of a bi-3 patch are
- * collapsed to one point (a pole). The corners first (they differ on an ordinary side). */
-static int collapsed_sides(const rg2_patch *P, int cand)
-{
-    int mask = 0;
-    for (int side = 0; side < 4; side++) {
-        if (!(cand >> side & 1))
-            continue;
-        int fixed = side < 2 ? 3 * side : 3 * (side - 2); /* the row (u sides) or column (v sides) */
-        const double *c0 = side < 2 ? P->h[fixed][0] : P->h[0][fixed];
-        const double *c3 = side < 2 ? P->h[fixed][3] : P->h[3][fixed];
-        if (!same_point(c0, c3))
-            continue;
-        int all = 1;
-        for (int q = 1; q < 3 && all; q++)
-            all = same_point(c0, side < 2 ? P->h[fixed][q] : P->h[q][fixed]);
-        mask |= all << side;
-    }
-    return mask;
-}
-
 /* On a collapsed side Su x Sv is rounding noise, which the fast kernels' relative test cannot
  * tell from a tangent plane; the normal, K and H of the side's points are taken from
  * rg2_patch_eval, whose tests know the noise level (the normal is then 0, K = H = 0, as the
@@ -1064,12 +1032,12 @@ static void fix_collapsed(const rg2_patch *P, const tables *t, const rg2_grid_ou
     if (t->stream)
         _mm_sfence(); /* (the streaming stores of this patch before the plain ones over them) */
 #endif
-    for (int side = 0; side < 4; side++) {
+    for (int side = 0; side < 4; side++) { /* sides as rg2__patch_side: 0 v=0, 1 u=1, 2 v=1, 3 u=0 */
         if (!(mask >> side & 1))
             continue;
-        int cnt = side < 2 ? m : n;
+        int cnt = side & 1 ? m : n;
         for (int q = 0; q < cnt; q++) {
-            int a = side == 0 ? 0 : side == 1 ? n - 1 : q, b = side == 2 ? 0 : side == 3 ? m - 1 : q;
+            int a = side == 1 ? n - 1 : side == 3 ? 0 : q, b = side == 0 ? 0 : side == 2 ? m - 1 : q;
             double u = a == n - 1 ? 1.0 : (double)a / (double)(n - 1);
             double v = b == m - 1 ? 1.0 : (double)b / (double)(m - 1);
             rg2_eval e;
@@ -1085,21 +1053,35 @@ static void fix_collapsed(const rg2_patch *P, const tables *t, const rg2_grid_ou
     }
 }
 
-/* The sides of patch k that lie on the open boundary of a patchwork of nu x nv patches (bits as
- * collapsed_sides; every side of a lone patch, nu = 0): the poles of rg2's surfaces are there
- * (polar meshes, caps, Moebius maps: all collapsed sides of the examples lie there, none inside),
- * so the test costs nothing for the interior patches of a large surface. */
-static inline int boundary_sides(size_t k, int nu, int nv, int closed_u, int closed_v)
+/* The collapsed sides of patch k (bits as rg2__patch_side) among those on the open boundary of
+ * the surface S, or among all four for a lone patch (S NULL): the poles of rg2's surfaces lie on
+ * the boundary (polar meshes, caps, Moebius maps: every collapsed side of the examples, none
+ * inside), so the test costs nothing for the interior patches of a large surface. "Collapsed"
+ * as for the exporters and the tessellation (rg2__patch_side_collapsed), with the tolerance of
+ * rg2__collapse_tol taken over this patch alone (the surface's box would cost a pass over all
+ * patches per call). */
+static int pole_sides(const rg2_surface *S, const rg2_patch *P, size_t k)
 {
-    if (nu <= 0)
-        return 0xF;
-    int i = (int)(k / (size_t)nv), j = (int)(k % (size_t)nv);
-    return (!closed_u && i == 0) | (!closed_u && i == nu - 1) << 1 | (!closed_v && j == 0) << 2 |
-           (!closed_v && j == nv - 1) << 3;
+    int cand = 0xF;
+    if (S) {
+        int i = (int)(k / (size_t)S->nv), j = (int)(k % (size_t)S->nv), ou = !S->closed_u, ov = !S->closed_v;
+        cand = (ov && j == 0) | (ou && i == S->nu - 1) << 1 | (ov && j == S->nv - 1) << 2 | (ou && i == 0) << 3;
+    }
+    if (!cand)
+        return 0;
+    rg2_surface one = {0}; /* a one-patch view, for the tolerance */
+    one.nu = one.nv = 1;
+    one.patch = (rg2_patch *)P;
+    double tol = rg2__collapse_tol(&one);
+    int mask = 0;
+    for (int side = 0; side < 4; side++)
+        if (cand >> side & 1 && rg2__patch_side_collapsed(P, side, tol))
+            mask |= 1 << side;
+    return mask;
 }
 
 /* Patches k0 <= k < k1 of the array P, patch k at point index k * per of the outputs; S is the
- * surface P belongs to (NULL for a lone patch), for its boundary (boundary_sides). */
+ * surface P belongs to (NULL for a lone patch), for its boundary (pole_sides). */
 static void grid_range(const rg2_surface *S, const rg2_patch *P, const rg2_xpatch *xp, const rg2__xgrid *xt,
                        const tables *t, const rg2_grid_out *o, size_t k0, size_t k1, size_t per)
 {
@@ -1115,9 +1097,8 @@ static void grid_range(const rg2_surface *S, const rg2_patch *P, const rg2_xpatc
                 _mm_prefetch((const char *)(P + k + RG2_PATCH_AHEAD) + 64 * q, _MM_HINT_T0);
 #endif
         grid_patch(P + k, t, o, k * per);
-        int cand, mask;
-        if (nrm && (cand = S ? boundary_sides(k, S->nu, S->nv, S->closed_u, S->closed_v) : 0xF) &&
-            (mask = collapsed_sides(P + k, cand)))
+        int mask;
+        if (nrm && (mask = pole_sides(S, P + k, k)))
             fix_collapsed(P + k, t, o, k * per, mask);
     }
 #if RG2_AVX512
