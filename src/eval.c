@@ -53,13 +53,6 @@ void rg2_patch_eval_h(const rg2_patch *P, double u, double v, double out[6][4])
     eval_h(P, u, v, 2, out);
 }
 
-static void cross3(const double a[3], const double b[3], double c[3])
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 static double dot3(const double a[3], const double b[3])
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -97,21 +90,14 @@ void rg2__eval_from_h(double H[6][4], int order, rg2_eval *e)
     memcpy(su, e->su, sizeof su);
     memcpy(sv, e->sv, sizeof sv);
     double t = rg2__scale_pair(su, sv);
-    double c[3];
-    cross3(su, sv, c);
-    double len = sqrt(dot3(c, c));
-    /* Relative to |su|^2 + |sv|^2, not |su||sv|: on a collapsed edge one derivative is
-     * rounding noise and |su x sv| ~ |su||sv| would not be small. */
-    double scale = dot3(su, su) + dot3(sv, sv);
-    /* A derivative (H' - W' p) / W at the level of its own rounding error is zero (a pole with
-     * a short transversal derivative would otherwise pass the relative test above). */
-    double ru = 0.0, rv = 0.0;
+    double ru = 0.0, rv = 0.0; /* the derivatives' rounding levels (rg2__normal_test) */
     for (int k = 0; k < 3; k++) {
         ru += fabs(H[1][k]) + fabs(H[1][3] * e->p[k]);
         rv += fabs(H[2][k]) + fabs(H[2][3] * e->p[k]);
     }
-    int zero_d = sqrt(dot3(su, su)) <= 1e-13 * ru * fabs(iW) * t || sqrt(dot3(sv, sv)) <= 1e-13 * rv * fabs(iW) * t;
-    if (!(len > 1e-14 * scale) || zero_d) {
+    double c[3], len;
+    int defined = rg2__normal_test(su, sv, ru * fabs(iW) * t, rv * fabs(iW) * t, c, &len);
+    if (!defined) {
         e->flags |= RG2_EVAL_NORMAL_UNDEFINED | RG2_EVAL_CURVATURE_UNDEFINED;
     } else {
         for (int k = 0; k < 3; k++)

@@ -1270,25 +1270,17 @@ unsigned rg2_patch_point_normal(const rg2_patch *P, double u, double v, double p
         su[k] = hu[k] - hu[3] * p[k];
         sv[k] = hv[k] - hv[3] * p[k];
     }
-    /* the tests of rg2_patch_eval (su, sv here are w Su, w Sv; both tests are invariant under
-     * the common factor): |Su x Sv| > 1e-14 (|Su|^2 + |Sv|^2), and neither derivative at the
-     * level of its own rounding error (a collapsed edge, where one is noise) */
+    /* the test of rg2_patch_eval (su, sv here are w Su, w Sv, and ru, rv carry the same w) */
     double ru = 0.0, rv = 0.0;
     for (int k = 0; k < 3; k++) {
         ru += fabs(hu[k]) + fabs(hu[3] * p[k]);
         rv += fabs(hv[k]) + fabs(hv[3] * p[k]);
     }
-    double t = rg2__scale_pair(su, sv);
-    double c[3] = {su[1] * sv[2] - su[2] * sv[1], su[2] * sv[0] - su[0] * sv[2],
-                   su[0] * sv[1] - su[1] * sv[0]};
-    double l2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
-    double E = su[0] * su[0] + su[1] * su[1] + su[2] * su[2], G = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2];
-    int zero_d = sqrt(E) <= 1e-13 * ru * t || sqrt(G) <= 1e-13 * rv * t;
-    if (!(sqrt(l2) > 1e-14 * (E + G)) || zero_d) {
+    double t = rg2__scale_pair(su, sv), c[3], len;
+    if (!rg2__normal_test(su, sv, ru * t, rv * t, c, &len)) {
         nrm[0] = nrm[1] = nrm[2] = 0.0;
         return flags | RG2_EVAL_NORMAL_UNDEFINED | RG2_EVAL_CURVATURE_UNDEFINED;
     }
-    double len = sqrt(l2);
     for (int k = 0; k < 3; k++)
         nrm[k] = c[k] / len;
     return flags;
