@@ -94,6 +94,18 @@ int rg2_cmd_build(int argc, char **argv)
             fprintf(stderr, "rg2 build: output '%s' is the design file itself; choose another name\n", out[k]);
             return RG2_EXIT_USAGE;
         }
+    for (int k = 0; k < n_out; k++) { /* a mistyped extension is refused before the build */
+        rg2_error ferr;
+        if (rg2_export_format_check(out[k], &ferr)) {
+            fprintf(stderr, "rg2 build: %s\n", ferr.msg);
+            return RG2_EXIT_USAGE;
+        }
+        for (int j = 0; j < k; j++)
+            if (!strcmp(out[j], out[k]) || rg2_cli_same_file(out[j], out[k])) {
+                fprintf(stderr, "rg2 build: output '%s' is listed twice\n", out[k]);
+                return RG2_EXIT_USAGE;
+            }
+    }
     int tty = !quiet && isatty(2);
     progress(tty, "rg2 build: reading and building %s", path);
     rg2_design *d;

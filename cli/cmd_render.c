@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 static void usage(FILE *f)
 {
@@ -159,6 +160,11 @@ int rg2_cmd_render(int argc, char **argv)
     }
     if (rg2_cli_same_file(path, out)) {
         fprintf(stderr, "rg2 render: output '%s' is the design file itself; choose another name\n", out);
+        return RG2_EXIT_USAGE;
+    }
+    const char *dot = strrchr(out, '.'), *slash = strrchr(out, '/');
+    if (!dot || (slash && dot < slash) || strcasecmp(dot, ".png")) {
+        fprintf(stderr, "rg2 render: output '%s': the picture is a PNG; give it a .png name\n", out);
         return RG2_EXIT_USAGE;
     }
     rg2_design *d = NULL;

@@ -474,7 +474,7 @@ static void print_summary(const rg2_shape *sh, const rg2_partition *pu, const rg
 /* --- rg2 shape ------------------------------------------------------------------------- */
 
 /* The numeric range a design file's numbers get (rg2_number_check): 0 on success, else the
- * exit code with the message printed. */
+ * usage error's exit code with the message printed (a bad option value, like --u-arcs 0). */
 static int check_numbers(const char *opt, const double *x, int n)
 {
     for (int k = 0; k < n; k++) {
@@ -484,8 +484,10 @@ static int check_numbers(const char *opt, const double *x, int n)
             snprintf(what, sizeof what, "%s item %d", opt, k);
         else
             snprintf(what, sizeof what, "%s", opt);
-        if (rg2_number_check(x[k], what, &err))
-            return rg2_cli_report("shape", &err);
+        if (rg2_number_check(x[k], what, &err)) {
+            rg2_cli_report("shape", &err);
+            return RG2_EXIT_USAGE;
+        }
     }
     return 0;
 }

@@ -814,6 +814,11 @@ RG2_API void rg2_tess_free(rg2_tess *t);
  *  patch), RG2_EINVAL (unknown extension, empty input). */
 RG2_API rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *path,
                                    const rg2_export_opts *opts, rg2_error *err);
+/** Whether rg2_export_file knows the format of path's extension, without writing anything (to
+ *  refuse a mistyped output name before a long build).
+ *  @return RG2_OK, or RG2_EINVAL (no path, no extension, unknown extension; the message lists
+ *  the known ones). */
+RG2_API rg2_status rg2_export_format_check(const char *path, rg2_error *err);
 
 
 /* ===================================================================================== */
@@ -901,7 +906,7 @@ enum {
     RG2_REQUIRE_G0 = 1u << 0,
     RG2_REQUIRE_G1 = 1u << 1,
     RG2_REQUIRE_G2 = 1u << 2,    /**< implies G0 and G1 */
-    RG2_REQUIRE_EXACT = 1u << 3, /**< every tagged patch on its shape */
+    RG2_REQUIRE_EXACT = 1u << 3, /**< every tagged patch on its shape, and at least one */
     RG2_REQUIRE_WEIGHTS = 1u << 4 /**< every homogeneous weight > 0 */
 };
 

@@ -560,7 +560,9 @@ unsigned rg2_check_failures(const rg2_check_report *r, unsigned require)
         f |= RG2_REQUIRE_G1;
     if ((require & RG2_REQUIRE_G2) && g2)
         f |= RG2_REQUIRE_G2;
-    if ((require & RG2_REQUIRE_EXACT) && (!(r->worst_residual <= o->tol_exact) || r->untagged_bad > 0))
+    /* nothing exact to measure (every patch a transition) does not keep the promise either */
+    if ((require & RG2_REQUIRE_EXACT) &&
+        (!(r->worst_residual <= o->tol_exact) || r->untagged_bad > 0 || r->exact_patches == 0))
         f |= RG2_REQUIRE_EXACT;
     if ((require & RG2_REQUIRE_WEIGHTS) && !(r->wmin > 0 && r->eval_wmin > 0))
         f |= RG2_REQUIRE_WEIGHTS;
@@ -643,6 +645,9 @@ static void format_text(const rg2_check_report *r, sbuf *b)
                       s->patches ? verdict(s->residual, o->tol_exact) : "-", s->where);
         }
     }
+    if (r->exact_patches == 0)
+        sb_printf(b, "  NO EXACT PATCH         no patch lies on a shape (every patch is a transition): "
+                     "the exact promise FAILS\n");
     unsigned f = rg2_check_failures(r, RG2_REQUIRE_G0 | RG2_REQUIRE_G1 | RG2_REQUIRE_G2);
     sb_printf(b, "seams %d, %d samples (%d per seam): %d at a pole (no normal there), %d not measured\n", r->seams,
               r->seam_samples, o->seam_samples + 1, r->pole_samples, r->unmeasured);

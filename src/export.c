@@ -637,6 +637,42 @@ rg2_status rg2__tess_all(const rg2_surface *surfs, int n_surfs, int density, int
     return RG2_OK;
 }
 
+enum { F_STEP, F_IGES, F_BV, F_BEZ, F_OBJ, F_STL, F_PLY, F_GLB, F_JSON };
+
+/* The export format of a path by its extension (case-insensitive). */
+static rg2_status export_format(const char *path, int *fmt, rg2_error *err)
+{
+    static const struct {
+        const char *ext;
+        int fmt;
+    } table[] = {{"step", F_STEP}, {"stp", F_STEP}, {"igs", F_IGES}, {"iges", F_IGES}, {"bv", F_BV},
+                 {"bez", F_BEZ},   {"obj", F_OBJ},  {"stl", F_STL},  {"ply", F_PLY},   {"glb", F_GLB},
+                 {"json", F_JSON}};
+    if (!path || !*path)
+        return rg2__fail(err, RG2_EINVAL, "export: no output path");
+    const char *ext = extension(path);
+    for (size_t k = 0; k < sizeof table / sizeof table[0]; k++)
+        if (!strcasecmp(ext, table[k].ext)) {
+            *fmt = table[k].fmt;
+            return RG2_OK;
+        }
+    if (!*ext)
+        return rg2__fail(err, RG2_EINVAL,
+                         "%s: the file name has no extension to choose the export format by (use .step "
+                         ".stp .igs .iges .bv .bez .obj .stl .ply .glb .json)",
+                         path);
+    return rg2__fail(err, RG2_EINVAL,
+                     "%s: unknown export format '.%s' (use .step .stp .igs .iges .bv .bez .obj "
+                     ".stl .ply .glb .json)",
+                     path, ext);
+}
+
+rg2_status rg2_export_format_check(const char *path, rg2_error *err)
+{
+    int fmt;
+    return export_format(path, &fmt, err);
+}
+
 rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *path,
                            const rg2_export_opts *opts, rg2_error *err)
 {
@@ -652,39 +688,11 @@ rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *pa
             def.density = 16;
         opts = &def;
     }
-    if (!path || !*path)
-        return rg2__fail(err, RG2_EINVAL, "export: no output path");
-    const char *ext = extension(path);
-    enum { F_STEP, F_IGES, F_BV, F_BEZ, F_OBJ, F_STL, F_PLY, F_GLB, F_JSON } fmt;
-    if (!strcasecmp(ext, "step") || !strcasecmp(ext, "stp"))
-        fmt = F_STEP;
-    else if (!strcasecmp(ext, "igs") || !strcasecmp(ext, "iges"))
-        fmt = F_IGES;
-    else if (!strcasecmp(ext, "bv"))
-        fmt = F_BV;
-    else if (!strcasecmp(ext, "bez"))
-        fmt = F_BEZ;
-    else if (!strcasecmp(ext, "obj"))
-        fmt = F_OBJ;
-    else if (!strcasecmp(ext, "stl"))
-        fmt = F_STL;
-    else if (!strcasecmp(ext, "ply"))
-        fmt = F_PLY;
-    else if (!strcasecmp(ext, "glb"))
-        fmt = F_GLB;
-    else if (!strcasecmp(ext, "json"))
-        fmt = F_JSON;
-    else if (!*ext)
-        return rg2__fail(err, RG2_EINVAL,
-                         "%s: the file name has no extension to choose the export format by (use .step "
-                         ".stp .igs .iges .bv .bez .obj .stl .ply .glb .json)",
-                         path);
-    else
-        return rg2__fail(err, RG2_EINVAL,
-                         "%s: unknown export format '.%s' (use .step .stp .igs .iges .bv .bez .obj "
-                         ".stl .ply .glb .json)",
-                         path, ext);
-    rg2_status st = rg2__check_nonempty(surfs, n_surfs, err);
+    int fmt;
+    rg2_status st = export_format(path, &fmt, err);
+    if (st)
+        return st;
+    st = rg2__check_nonempty(surfs, n_surfs, err);
     if (st)
         return st;
     if (fmt == F_STEP || fmt == F_IGES)

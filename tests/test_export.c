@@ -794,6 +794,17 @@ static void failures(const rg2_surface *s)
     CHECK(st == RG2_EINVAL, "directory as path: %s", rg2_status_str(st));
     st = export_one(s, "x.xyz", &err);
     CHECK(st == RG2_EINVAL && strstr(err.msg, ".xyz"), "unknown extension: %s", err.msg);
+    /* the same verdicts without writing: every known extension, any case; the unknown ones */
+    static const char *known[] = {"a.step", "a.STP", "d/a.igs", "a.IGES", "a.bv", "a.bez", "a.obj",
+                                  "a.Stl", "a.ply", "a.glb", "a.json"};
+    for (size_t k = 0; k < sizeof known / sizeof *known; k++)
+        CHECK(rg2_export_format_check(known[k], &err) == RG2_OK, "%s refused: %s", known[k], err.msg);
+    static const char *unknown[] = {"a.xyz", "a", "d.step/a", "a.", "", "a.step.tmp"};
+    for (size_t k = 0; k < sizeof unknown / sizeof *unknown; k++) {
+        st = rg2_export_format_check(unknown[k], &err);
+        CHECK(st == RG2_EINVAL && err.msg[0], "'%s' accepted (%s)", unknown[k], rg2_status_str(st));
+    }
+    CHECK(rg2_export_format_check(NULL, &err) == RG2_EINVAL, "NULL path accepted");
     st = rg2_export_file(s, 0, path_in("empty.step"), NULL, &err);
     CHECK(st == RG2_EINVAL && strstr(err.msg, "empty"), "empty input: %s", err.msg);
     rg2_surface none;

@@ -43,8 +43,13 @@ grep -q "exact on ring *48 patches" "$tmp/out" && grep -q "exact on ball *24 pat
 expect 0 "" "$rg2" mesh "$src/examples/fig1_torus.json" -o "$tmp/mesh.json"
 grep -q '"rg2 control mesh 1"' "$tmp/mesh.json" && grep -q '"patch_shape"' "$tmp/mesh.json" && ok || bad "mesh.json content"
 
-# a bad extension among several outputs: nothing stays written
-expect 1 "unknown export format" "$rg2" build -q "$src/examples/fig5_workflow.json" -o "$tmp/w.step" -o "$tmp/w.xyz"
+# a bad extension among several outputs: a usage error before the build, nothing written
+expect 2 "unknown export format '.xyz'" "$rg2" build -q "$src/examples/fig5_workflow.json" -o "$tmp/w.step" -o "$tmp/w.xyz"
+[ -e "$tmp/w.step" ] && bad "w.step written despite a bad -o" || ok
+expect 2 "has no extension" "$rg2" build -q "$src/examples/fig5_workflow.json" -o "$tmp/noext"
+expect 2 "listed twice" "$rg2" build -q "$src/examples/fig5_workflow.json" -o "$tmp/w.step" -o "$tmp/w.step"
+# a later output that cannot be written: the outputs already written are removed again
+expect 1 "$tmp/no/such/dir/w.igs" "$rg2" build -q "$src/examples/fig5_workflow.json" -o "$tmp/w.step" -o "$tmp/no/such/dir/w.igs"
 [ -e "$tmp/w.step" ] && bad "w.step left behind after a failed build" || ok
 
 # an unwritable output: exit 1 naming the path

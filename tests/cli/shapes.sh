@@ -62,9 +62,9 @@ expect 2 "not a finite number" -- "$RG2" shape torus --R abc
 expect 2 "--xform needs 16 numbers" -- "$RG2" shape torus --xform 1,2,3
 # the numeric range and placement checks of design files (rg2_number_check, rg2_mesh_check_range,
 # rg2_shape_mesh's weights): never a nan summary or a bare nan in --json
-expect 1 "--R: number 1e+200 is outside the supported range" -- "$RG2" shape torus --R 1e200
-expect 1 "--r: number 1e+299 is outside the supported range" -- "$RG2" shape torus --r 1e299 --R 1e99 --json
-expect 1 "--center item 0: number 1e+101 is outside" -- "$RG2" shape sphere --center 1e101,0,0
+expect 2 "--R: number 1e+200 is outside the supported range" -- "$RG2" shape torus --R 1e200
+expect 2 "--r: number 1e+299 is outside the supported range" -- "$RG2" shape torus --r 1e299 --R 1e99 --json
+expect 2 "--center item 0: number 1e+101 is outside" -- "$RG2" shape sphere --center 1e101,0,0
 expect 1 "sphere: coordinates up to" -- "$RG2" shape sphere --radius 1e60 --scale 1e60
 expect 1 "torus: coordinates up to 4.68015e-200, size 1.34027e-199: outside the supported range" -- "$RG2" shape torus --R 3e-100 --r 1e-100 --scale 1e-100
 expect 1 "--axis 0,0,0: the axis is the zero vector" -- "$RG2" shape cone --axis 0,0,0
