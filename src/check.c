@@ -304,18 +304,18 @@ static void seam_point(rg2_check_report *r, const rg2_surface *s, const seam_sid
     /* next to a pole: the limits are the rounding bounds of the two evaluations, where larger */
     int pole_patch = (Ls->poles | Rs->poles) != 0;
     eval_err bL, bR;
-    double lim1 = o->tol_g1, lim2 = o->tol_g2;
+    double round1 = 0, round2 = 0; /* rounding bounds of the two evaluations (0 off pole patches) */
     if (pole_patch) {
         eval_bound(s, Ls->i, Ls->j, Ls->u, Ls->v, L, &bL);
         eval_bound(s, Rs->i, Rs->j, Rs->u, Rs->v, R, &bR);
-        lim1 = fmax(lim1, bL.n + bR.n);
+        round1 = bL.n + bR.n;
     }
     double c[3];
     cross3(L->n, R->n, c);
     double angle = atan2(norm3(c), dot3(L->n, R->n));
     double t1[3] = {along[0] / la, along[1] / la, along[2] / la}, t2[3];
     cross3(L->n, t1, t2);
-    double kscale = fmax(fmax(fabs(L->k1), fabs(L->k2)), 1.0 / size), worst = 0, bound = 0;
+    double kscale = fmax(fmax(fabs(L->k1), fabs(L->k2)), 1.0 / size), worst = 0;
     for (int q = 0; q < 6; q++) {
         double ph = M_PI * q / 6.0, t[3];
         for (int k = 0; k < 3; k++)
@@ -324,10 +324,11 @@ static void seam_point(rg2_check_report *r, const rg2_surface *s, const seam_sid
         if (!(jump <= worst))
             worst = jump;
         if (pole_patch)
-            bound = fmax(bound, (kn_bound(L, &bL, t) + kn_bound(R, &bR, t)) / kscale);
+            round2 = fmax(round2, (kn_bound(L, &bL, t) + kn_bound(R, &bR, t)) / kscale);
     }
-    lim2 = fmax(lim2, bound);
-    if (!(lim1 <= NEAR_POLE_MAX_G1 && lim2 <= NEAR_POLE_MAX_G2)) {
+    /* the rounding bounds decide whether the sample is a measurement at all, whatever limits
+     * the caller chose (a looser --tol must not turn measured samples into unmeasured ones) */
+    if (!(round1 <= NEAR_POLE_MAX_G1 && round2 <= NEAR_POLE_MAX_G2)) {
         /* rounding hides any gap: within POLE_BLUR of the pole (a floating-point limit, reported),
          * elsewhere a failure */
         r->skipped++;
@@ -337,6 +338,7 @@ static void seam_point(rg2_check_report *r, const rg2_surface *s, const seam_sid
             r->unmeasured++;
         return;
     }
+    double lim1 = fmax(o->tol_g1, round1), lim2 = fmax(o->tol_g2, round2);
     if (lim1 > o->tol_g1 || lim2 > o->tol_g2)
         r->near_pole++;
     if (lim1 > o->tol_g1)

@@ -517,6 +517,58 @@ static void unmeasured_fails(void)
     }
 }
 
+/* Looser limits measure the same samples: with tol_g1 = tol_g2 = 1 nothing becomes unmeasured,
+ * every sample that was measured against its rounding bound is measured at the loose limits,
+ * the worst gaps cover those of the default report (its near-pole gaps included), and every
+ * promise still holds. (Limits above the near-pole ceilings 1e-4 rad / 1e-2 once turned every
+ * sample into "not measured" and failed G1 and G2.) */
+static void loose_limits(void)
+{
+    static const char *files[] = {"examples/torus_sphere.json", "examples/fig9_polar_sphere.json",
+                                  "examples/fig14_mobius.json", "examples/fig15_saddle_caps.json"};
+    for (size_t f = 0; f < sizeof files / sizeof *files; f++) {
+        rg2_design *d = NULL;
+        rg2_error err;
+        CHECK_OK(rg2_design_load(files[f], &d, &err), &err);
+        if (!d)
+            continue;
+        int ns = rg2_design_num_shapes(d), n = rg2_design_num_surfaces(d);
+        rg2_shape *shapes = calloc((size_t)ns + 1, sizeof *shapes);
+        for (int k = 0; k < ns; k++)
+            shapes[k] = *rg2_design_shape(d, k);
+        rg2_surface *all = calloc((size_t)n, sizeof *all); /* shallow copies, owned by d */
+        for (int k = 0; k < n; k++)
+            all[k] = *rg2_design_surface(d, k);
+        rg2_check_opts o;
+        rg2_check_opts_default(&o);
+        rg2_check_report def, loose;
+        CHECK_OK(rg2_check(all, n, shapes, NULL, ns, &o, &def, &err), &err);
+        o.tol_g1 = 1.0;
+        o.tol_g2 = 1.0;
+        CHECK_OK(rg2_check(all, n, shapes, NULL, ns, &o, &loose, &err), &err);
+        unsigned req = RG2_REQUIRE_G2 | RG2_REQUIRE_EXACT | RG2_REQUIRE_WEIGHTS;
+        printf("%s, limits 1 rad / 1: %d unmeasured, %d next to a pole, G1 %.2e rad, G2 %.2e (default limits: "
+               "%d next to a pole, G1 %.2e, G2 %.2e)\n",
+               files[f], loose.unmeasured, loose.near_pole, loose.g1.value, loose.g2.value, def.near_pole,
+               def.g1.value, def.g2.value);
+        CHECK(!rg2_check_failures(&def, req) && !rg2_check_failures(&loose, req),
+              "%s: failures %#x at the default limits, %#x at limits 1", files[f], rg2_check_failures(&def, req),
+              rg2_check_failures(&loose, req));
+        CHECK(loose.unmeasured == 0 && loose.near_pole == 0 && loose.pole_samples == def.pole_samples &&
+                  loose.skipped == def.skipped && loose.seam_samples == def.seam_samples,
+              "%s: limits 1 leave %d unmeasured, %d near a pole, %d skipped (default %d)", files[f], loose.unmeasured,
+              loose.near_pole, loose.skipped, def.skipped);
+        CHECK(loose.g1.value >= def.g1.value && loose.g2.value >= def.g2.value && loose.g0.value == def.g0.value,
+              "%s: loose G1 %.3g G2 %.3g below the default report's %.3g %.3g", files[f], loose.g1.value,
+              loose.g2.value, def.g1.value, def.g2.value);
+        rg2_check_report_free(&def);
+        rg2_check_report_free(&loose);
+        free(all);
+        free(shapes);
+        rg2_design_free(d);
+    }
+}
+
 int main(void)
 {
     harness_agreement();
@@ -527,5 +579,6 @@ int main(void)
     pole_sample_counts();
     defect_near_pole();
     unmeasured_fails();
+    loose_limits();
     return rg2t_done("test_check");
 }
