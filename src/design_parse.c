@@ -396,6 +396,17 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
             return st;
         static const char *const ka[] = {"arcs", "from", "to", "closed"};
         static const char *const kk[] = {"knots", "segments", "from", "to"};
+        /* a key of the other kind of direction: say which kind this one is (the closest-name
+         * suggestion would point at an unrelated key) */
+        static const char *const other[2][2] = {{"knots", "segments"}, {"arcs", "closed"}};
+        for (int k = 0; k < 2; k++)
+            if (get(obj, other[!angles][k]))
+                return fail(c, RG2_EPARSE, path,
+                            angles ? "'%s' is for polynomial (knot) directions; %s of a %s is a circle: give "
+                                     "'arcs' (a number, or opening angles in degrees) with 'from', 'to', 'closed'"
+                                   : "'%s' is for circle directions; %s of a %s is a polynomial (knot) direction: "
+                                     "give 'knots', or 'segments' with 'from' and 'to'",
+                            other[!angles][k], dir ? "v" : "u", desc->name);
         if ((st = check_keys(c, obj, path, angles ? ka : kk, 4)))
             return st;
         const cJSON *x;
@@ -516,6 +527,11 @@ static rg2_status mesh_ref(pctx *c, const cJSON *x, const char *path, int *idx)
             suggest(name, names, c->d->n_mesh, sug, sizeof sug);
             free(names);
         }
+        if (find_shape(c->d, name) >= 0) /* a shape label where a mesh belongs */
+            return fail(c, RG2_EPARSE, path,
+                        "'%s' is a shape label, not a mesh%s; make its control mesh first, e.g. "
+                        "\"%s_mesh\": {\"shape\": \"%s\"}, and use that mesh here",
+                        name, sug, name, name);
         return fail(c, RG2_EPARSE, path, "no mesh named '%s' defined before this one%s", name, sug);
     }
     return RG2_OK;
@@ -546,6 +562,10 @@ static rg2_status op_shape(pctx *c, const cJSON *obj, const char *path, rg2__dme
     if ((st = as_str(c, get(obj, "shape"), p, &label)))
         return st;
     int sh = find_shape(c->d, label);
+    if (sh < 0 && rg2__design_find_mesh(c->d, label) >= 0)
+        return fail(c, RG2_EPARSE, p,
+                    "'%s' is a mesh, not a shape label; \"shape\" takes a label of \"shapes\" (to work on "
+                    "the mesh, use it in cut, edit, transform, ...)", label);
     if (sh < 0) {
         char sug[128];
         suggest(label, (const char *const *)c->d->labels, c->d->n_shapes, sug, sizeof sug);

@@ -573,6 +573,7 @@ static void parse_sizes(void)
     CHECK(rg2_design_parse(txt, 2, "x", NULL, &err) == RG2_EINVAL, "NULL out: %s", err.msg);
 }
 
+
 static void bad_inputs(void)
 {
     struct {
@@ -597,7 +598,7 @@ static void bad_inputs(void)
         {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": [90, 90, 200]}}}}", RG2_EDOMAIN,
          "meshes.T.u"},
         {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"s\", \"v\": {\"arcs\": 4}}}}", RG2_EPARSE,
-         "meshes.T.v: unknown key 'arcs'"},
+         "meshes.T.v: 'arcs' is for circle directions; v of a sphere is a polynomial (knot) direction"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"C\": {\"cut\": \"T\", \"u\": [2, 40]}}}",
          RG2_EINVAL, "meshes.C: u range [2, 40]"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"C\": {\"cut\": \"T\", \"u\": [2, 4]}}}",
