@@ -721,6 +721,9 @@ static void bad_inputs(void)
          RG2_EINCOMPATIBLE, "mesh 'T' is closed in u"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"A\": {\"cut\": \"T\", \"u\": [0, 4]},"
          " \"M\": {\"merge\": [\"A\", \"A\"], \"along\": \"w\"}}}", RG2_EPARSE, "expected \"u\" or \"v\""},
+        {"{" TORUS_SHAPES ", \"meshes\": {\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 8}, \"v\": {\"knots\": [0.2, 0.5, 0.8]}},"
+         " \"C\": {\"shape\": \"s\", \"u\": {\"arcs\": 8}}, \"M\": {\"merge\": [\"P\", \"C\"], \"along\": \"v\"}}}",
+         RG2_EINCOMPATIBLE, "mesh 'P' has a polar point at its last end (row v = 4"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"points\": [{\"at\": [8, 0], \"move\": [0, 0, 1]}]}}}",
          RG2_EINVAL, "meshes.E.points[0].at: control point [8, 0] is outside the 8 x 6"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"points\": [{\"at\": [1, 1], \"W\": 0}]}}}",
