@@ -274,9 +274,18 @@ static int scalars_differ(const rg2_scalars *a, const rg2_scalars *b, char *msg,
     }
     int nw = rg2_scalars_num_w(a), off = a->closed ? 0 : 1;
     const double tol = 1e-12;
+    int ones_a = 1, ones_b = 1; /* all leg weights 1: a polynomial (knot) direction */
+    for (int i = 0; i < nw; i++) {
+        ones_a = ones_a && a->w[i] == 1.0;
+        ones_b = ones_b && b->w[i] == 1.0;
+    }
     for (int i = 0; i < nw; i++)
         if (!close_rel(a->w[i], b->w[i], tol)) {
-            snprintf(msg, cap, "leg weight w[%d] = %.17g vs %.17g", i - off, a->w[i], b->w[i]);
+            snprintf(msg, cap, "leg weight w[%d] = %.17g vs %.17g%s", i - off, a->w[i], b->w[i],
+                     ones_a != ones_b ? " (one is a polynomial direction, knots or a NURBS, with all leg weights 1, "
+                                        "the other a circle direction: a circle merges only with a circle of the "
+                                        "same arcs)"
+                                      : "");
             return 1;
         }
     for (int i = 0; i < a->n; i++) {
@@ -378,7 +387,7 @@ rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int clo
             return rg2__fail(err, RG2_ELIMIT, "%s: %d or more points along %s exceed the limit", what, n,
                              dir_name(dir));
         if (t > 0) {
-            char msg[200];
+            char msg[400];
             if (scalars_differ(dir_scalars(&in[0]->m, other), dir_scalars(&in[t]->m, other), msg,
                                sizeof msg))
                 return rg2__fail(err, RG2_EINCOMPATIBLE,
