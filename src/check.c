@@ -758,12 +758,17 @@ static void format_text(const rg2_check_report *r, sbuf *b)
                      "G1 and G2 FAIL\n", r->unmeasured);
     else if (has && r->seam_samples == r->pole_samples)
         sb_printf(b, "  NOT MEASURED           every sample lies on a pole: G1 and G2 FAIL\n");
-    if (r->folds || r->singular)
-        sb_printf(b, "  NOT REGULAR            the surface folds back over itself (its normal reverses) between %d "
-                     "pairs of neighbouring patch samples, and %d patch samples away from any pole have no normal; "
-                     "first at surface %d patch (%d,%d) u=%.3g v=%.3g, point (%.6g, %.6g, %.6g): G1 and G2 FAIL\n",
-                  r->folds, r->singular, r->fold_at.surf, r->fold_at.pi, r->fold_at.pj, r->fold_at.u, r->fold_at.v,
-                  r->fold_at.p[0], r->fold_at.p[1], r->fold_at.p[2]);
+    if (r->folds || r->singular) {
+        sb_printf(b, "  NOT REGULAR            ");
+        if (r->folds)
+            sb_printf(b, "the surface folds back over itself (its normal reverses) between %d pairs of neighbouring "
+                         "patch samples%s", r->folds, r->singular ? "; " : "");
+        if (r->singular)
+            sb_printf(b, "%d patch samples away from any pole have no normal (Su x Sv = 0)", r->singular);
+        sb_printf(b, "; first at surface %d patch (%d,%d) u=%.3g v=%.3g, point (%.6g, %.6g, %.6g): G1 and G2 FAIL\n",
+                  r->fold_at.surf, r->fold_at.pi, r->fold_at.pj, r->fold_at.u, r->fold_at.v, r->fold_at.p[0],
+                  r->fold_at.p[1], r->fold_at.p[2]);
+    }
     sb_printf(b, "homogeneous weights  control points [%.6g, %.6g], at samples min %.6g %s\n", r->wmin, r->wmax,
               r->eval_wmin, r->wmin > 0 ? "(all > 0)" : "(NON-POSITIVE)");
     sb_printf(b, "curvature            k [%.6g, %.6g]  H [%.6g, %.6g]  K [%.6g, %.6g]\n", r->kmin, r->kmax, r->Hmin,
