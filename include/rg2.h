@@ -901,7 +901,11 @@ RG2_API rg2_status rg2_render_png(const rg2_surface *surfs, int n, const rg2_mes
  * patch is not) have no normal and are not compared; an undefined normal anywhere else fails
  * G1 and G2. Next to a pole the normal and curvature lose digits like 1/v and 1/v^2: a sample
  * of a patch with a pole side whose first-order rounding bound exceeds tol_g1 / tol_g2 is
- * measured against that bound (reported apart: near_pole, g1_pole, g2_pole). */
+ * measured against that bound (reported apart: near_pole, g1_pole, g2_pole). Inside the
+ * patches, on the (patch_samples + 1)^2 grid, a sample away from a pole without a normal
+ * (singular) and a fold between neighbouring samples (the normal reverses: Su x Sv changes sign,
+ * found by halving the segment) also fail G1 and G2: seams alone cannot see a surface that
+ * runs back over itself inside a transition. */
 enum {
     RG2_REQUIRE_G0 = 1u << 0,
     RG2_REQUIRE_G1 = 1u << 1,
@@ -954,6 +958,16 @@ typedef struct {
                                 exceeds 1e-4 rad / 1e-2: not compared, no failure */
     double near_pole_tol1, near_pole_tol2; /**< the largest G1 (rad) / G2 limits they got */
     rg2_check_gap g1_pole, g2_pole; /**< their worst gap / own limit (pass: <= 1) */
+    int folds;             /**< pairs of neighbouring patch samples between which the surface
+                                folds back (Su x Sv changes sign: the normal reverses), e.g. two
+                                merged meshes that overlap: G1 and G2 fail when > 0 */
+    int singular;          /**< patch samples away from any pole with an undefined normal
+                                (Su x Sv = 0): G1 and G2 fail when > 0 */
+    struct {
+        int surf, pi, pj;  /**< the first fold or singular sample: surface, patch (i, j) */
+        double u, v;       /**< its parameters in the patch (a fold: between two samples) */
+        double p[3];       /**< a point there */
+    } fold_at;
     double wmin, wmax;     /**< homogeneous weights of all control points */
     double eval_wmin;      /**< smallest weight met at the samples */
     double kmin, kmax;     /**< principal curvatures (k2 min, k1 max) over the samples */

@@ -381,10 +381,59 @@ static void seams(rg2_check_report *r, const rg2_surface *s, int surf, int sampl
     }
 }
 
+/* Whether the surface folds back between two samples of patch (pi, pj) whose unit normals n0, n1
+ * point into opposite half-spaces (n0 . n1 < 0). A smooth bend by more than 90 degrees between
+ * the samples splits, on halving, into parts below 90 degrees; a fold (the Jacobian Su x Sv
+ * changes sign through zero on the segment) keeps opposite normals across the zero however
+ * short the part, or meets the zero itself. Halved FOLD_DEPTH times (a part 1e-12 of the
+ * sample spacing): turning by 90 degrees over such a part is a fold for any practical purpose. */
+#define FOLD_DEPTH 40
+static int folds_between(const rg2_surface *s, int pi, int pj, double u0, double v0, const double n0[3], double u1,
+                         double v1, const double n1[3])
+{
+    double a[3], b[3];
+    memcpy(a, n0, sizeof a);
+    memcpy(b, n1, sizeof b);
+    for (int k = 0; k < FOLD_DEPTH; k++) {
+        double um = 0.5 * (u0 + u1), vm = 0.5 * (v0 + v1);
+        rg2_eval e;
+        rg2_surface_eval(s, pi, pj, um, vm, 1, &e);
+        if (e.flags & RG2_EVAL_NORMAL_UNDEFINED)
+            return 1; /* the zero of Su x Sv itself */
+        if (dot3(a, e.n) < 0) {
+            u1 = um;
+            v1 = vm;
+            memcpy(b, e.n, sizeof b);
+        } else if (dot3(e.n, b) < 0) {
+            u0 = um;
+            v0 = vm;
+            memcpy(a, e.n, sizeof a);
+        } else
+            return 0; /* a bend: both halves turn by less than 90 degrees */
+    }
+    return 1;
+}
+
+/* A fold or a singular sample at (u, v) of patch (pi, pj): counted, the first one kept. */
+static void fold_note(rg2_check_report *r, int *count, int surf, int pi, int pj, double u, double v, const double p[3])
+{
+    if (r->folds == 0 && r->singular == 0) {
+        r->fold_at.surf = surf;
+        r->fold_at.pi = pi;
+        r->fold_at.pj = pj;
+        r->fold_at.u = u;
+        r->fold_at.v = v;
+        memcpy(r->fold_at.p, p, sizeof r->fold_at.p);
+    }
+    (*count)++;
+}
+
 /* Patch interiors: weights and curvature ranges at the samples, implicit residuals of tagged
- * patches against their shapes. */
+ * patches against their shapes, and regularity: a sample away from a pole with no normal
+ * (singular), or two neighbouring samples between which the surface folds back (folds_between).
+ * nrm holds two rows of S + 1 unit normals (u index a - 1 and a), with a defined-flag each. */
 static void patches(rg2_check_report *r, const rg2_surface *s, int surf, const rg2_shape *shapes, int n_shapes,
-                    const double *shape_size, int S)
+                    const double *shape_size, int S, double *nrm, unsigned char *def)
 {
     size_t np = (size_t)s->nu * (size_t)s->nv;
     for (size_t k = 0; k < np; k++) {
@@ -415,6 +464,25 @@ static void patches(rg2_check_report *r, const rg2_surface *s, int surf, const r
                     r->eval_wmin = H[0][3];
                 rg2_eval e;
                 rg2_surface_eval(s, pi, pj, u, v, 2, &e);
+                /* regularity: rows a - 1 (slot (a + 1) % 2) and a (slot a % 2) of unit normals */
+                double *nc = nrm + 3 * ((size_t)(a % 2) * (size_t)(S + 1) + (size_t)b);
+                unsigned char *dc = def + (size_t)(a % 2) * (size_t)(S + 1) + (size_t)b;
+                *dc = 0;
+                if (!on_collapsed(coll, u, v)) {
+                    if (e.flags & RG2_EVAL_NORMAL_UNDEFINED)
+                        fold_note(r, &r->singular, surf, pi, pj, u, v, e.p);
+                    else {
+                        memcpy(nc, e.n, 3 * sizeof *nc);
+                        *dc = 1;
+                        const double *nu = nrm + 3 * ((size_t)((a + 1) % 2) * (size_t)(S + 1) + (size_t)b);
+                        if (a > 0 && def[(size_t)((a + 1) % 2) * (size_t)(S + 1) + (size_t)b] && dot3(nu, nc) < 0 &&
+                            folds_between(s, pi, pj, (double)(a - 1) / S, v, nu, u, v, nc))
+                            fold_note(r, &r->folds, surf, pi, pj, u - 0.5 / S, v, e.p);
+                        if (b > 0 && dc[-1] && dot3(nc - 3, nc) < 0 &&
+                            folds_between(s, pi, pj, u, (double)(b - 1) / S, nc - 3, u, v, nc))
+                            fold_note(r, &r->folds, surf, pi, pj, u, v - 0.5 / S, e.p);
+                    }
+                }
                 if (!(e.flags & RG2_EVAL_CURVATURE_UNDEFINED) && !on_collapsed(coll, u, v)) {
                     r->kmin = fmin(r->kmin, e.k2);
                     r->kmax = fmax(r->kmax, e.k1);
@@ -524,10 +592,23 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
     out->wmax = -DBL_MAX;
     out->kmin = out->Hmin = out->Kmin = DBL_MAX;
     out->kmax = out->Hmax = out->Kmax = -DBL_MAX;
+    size_t row = (size_t)o->patch_samples + 1;
+    double *nrm = malloc(2 * row * 3 * sizeof *nrm);
+    unsigned char *ndef = malloc(2 * row);
+    if (!nrm || !ndef) {
+        free(nrm);
+        free(ndef);
+        free(shape_size);
+        free(shape_box);
+        rg2_check_report_free(out);
+        return rg2__fail(err, RG2_ENOMEM, "check: out of memory for %d samples per patch", o->patch_samples);
+    }
     for (int s = 0; s < n; s++) {
         seams(out, &surfs[s], s, o->seam_samples);
-        patches(out, &surfs[s], s, shapes, n_shapes, shape_size, o->patch_samples);
+        patches(out, &surfs[s], s, shapes, n_shapes, shape_size, o->patch_samples, nrm, ndef);
     }
+    free(nrm);
+    free(ndef);
     if (out->kmin > out->kmax)
         out->kmin = out->kmax = out->Hmin = out->Hmax = out->Kmin = out->Kmax = 0;
     for (int k = 0; k < n_shapes; k++)
@@ -553,6 +634,9 @@ unsigned rg2_check_failures(const rg2_check_report *r, unsigned require)
     const rg2_check_opts *o = &r->opts;
     /* no normal compared at all on a surface with seams, or one undefined away from a pole: not G1 */
     int none = r->unmeasured > 0 || (r->seams > 0 && r->seam_samples == r->pole_samples);
+    /* a surface that folds back over itself, or has no normal at a point away from a pole, has
+     * no continuous tangent plane there, whatever its seams measure: not G1 */
+    none = none || r->folds > 0 || r->singular > 0;
     int g0 = !(r->g0.value <= o->tol_g0);
     int g1 = g0 || none || !(r->g1.value <= o->tol_g1) || !(r->g1_pole.value <= 1.0);
     int g2 = g1 || !(r->g2.value <= o->tol_g2) || !(r->g2_pole.value <= 1.0);
@@ -676,6 +760,17 @@ static void format_text(const rg2_check_report *r, sbuf *b)
                      "G1 and G2 FAIL\n", r->unmeasured);
     else if (has && r->seam_samples == r->pole_samples)
         sb_printf(b, "  NOT MEASURED           every sample lies on a pole: G1 and G2 FAIL\n");
+    if (r->folds || r->singular) {
+        sb_printf(b, "  NOT REGULAR            ");
+        if (r->folds)
+            sb_printf(b, "the surface folds back over itself (its normal reverses) between %d pairs of neighbouring "
+                         "patch samples%s", r->folds, r->singular ? "; " : "");
+        if (r->singular)
+            sb_printf(b, "%d patch samples away from any pole have no normal (Su x Sv = 0)", r->singular);
+        sb_printf(b, "; first at surface %d patch (%d,%d) u=%.3g v=%.3g, point (%.6g, %.6g, %.6g): G1 and G2 FAIL\n",
+                  r->fold_at.surf, r->fold_at.pi, r->fold_at.pj, r->fold_at.u, r->fold_at.v, r->fold_at.p[0],
+                  r->fold_at.p[1], r->fold_at.p[2]);
+    }
     sb_printf(b, "homogeneous weights  control points [%.6g, %.6g], at samples min %.6g %s\n", r->wmin, r->wmax,
               r->eval_wmin, r->wmin > 0 ? "(all > 0)" : "(NON-POSITIVE)");
     sb_printf(b, "curvature            k [%.6g, %.6g]  H [%.6g, %.6g]  K [%.6g, %.6g]\n", r->kmin, r->kmax, r->Hmin,
@@ -728,6 +823,17 @@ static char *format_json(const rg2_check_report *r)
     cJSON_AddNumberToObject(j, "skipped", r->skipped);
     cJSON_AddNumberToObject(j, "pole_samples", r->pole_samples);
     cJSON_AddNumberToObject(j, "unmeasured", r->unmeasured);
+    cJSON *rg = cJSON_AddObjectToObject(j, "regularity");
+    cJSON_AddNumberToObject(rg, "folds", r->folds);
+    cJSON_AddNumberToObject(rg, "singular", r->singular);
+    if (r->folds || r->singular) {
+        cJSON_AddNumberToObject(rg, "surface", r->fold_at.surf);
+        int fp[2] = {r->fold_at.pi, r->fold_at.pj};
+        cJSON_AddItemToObject(rg, "patch", cJSON_CreateIntArray(fp, 2));
+        cJSON_AddNumberToObject(rg, "u", r->fold_at.u);
+        cJSON_AddNumberToObject(rg, "v", r->fold_at.v);
+        cJSON_AddItemToObject(rg, "point", cJSON_CreateDoubleArray(r->fold_at.p, 3));
+    }
     unsigned fg = rg2_check_failures(r, RG2_REQUIRE_G0 | RG2_REQUIRE_G1 | RG2_REQUIRE_G2);
     cJSON *g;
     cJSON_AddItemToObject(j, "g0_position", g = gap_json(&r->g0, o->tol_g0));

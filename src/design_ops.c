@@ -3,6 +3,7 @@
  * provenance of control points and scalars along. */
 #include "design_internal.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -273,9 +274,18 @@ static int scalars_differ(const rg2_scalars *a, const rg2_scalars *b, char *msg,
     }
     int nw = rg2_scalars_num_w(a), off = a->closed ? 0 : 1;
     const double tol = 1e-12;
+    int ones_a = 1, ones_b = 1; /* all leg weights 1: a polynomial (knot) direction */
+    for (int i = 0; i < nw; i++) {
+        ones_a = ones_a && a->w[i] == 1.0;
+        ones_b = ones_b && b->w[i] == 1.0;
+    }
     for (int i = 0; i < nw; i++)
         if (!close_rel(a->w[i], b->w[i], tol)) {
-            snprintf(msg, cap, "leg weight w[%d] = %.17g vs %.17g", i - off, a->w[i], b->w[i]);
+            snprintf(msg, cap, "leg weight w[%d] = %.17g vs %.17g%s", i - off, a->w[i], b->w[i],
+                     ones_a != ones_b ? " (one is a polynomial direction, knots or a NURBS, with all leg weights 1, "
+                                        "the other a circle direction: a circle merges only with a circle of the "
+                                        "same arcs)"
+                                      : "");
             return 1;
         }
     for (int i = 0; i < a->n; i++) {
@@ -305,10 +315,67 @@ static int scalars_differ(const rg2_scalars *a, const rg2_scalars *b, char *msg,
  * Rule "plain" keeps b and g as they are (only w_s is new): simpler, but the end patches of
  * both parts change (they depend on w_s through K).
  */
+/* Whether line idx across direction dir of m (dir 1: the u-row j = idx; dir 0: the v-column
+ * i = idx) is collapsed to one point: all its 4-tuples projectively equal to 1e-12 of the mesh
+ * size (as rg2_mesh_row_collapsed). */
+static int line_collapsed(const rg2_mesh *m, int dir, int idx)
+{
+    double size = 0.0;
+    for (int i = 0; i < m->nu; i++)
+        for (int j = 0; j < m->nv; j++) {
+            const double *p = rg2_mesh_at(m, i, j);
+            if (p[3] != 0.0)
+                for (int k = 0; k < 3; k++)
+                    size = fmax(size, fabs(p[k] / p[3]));
+        }
+    if (size == 0.0)
+        size = 1.0;
+    int n = dir ? m->nu : m->nv;
+    const double *p0 = dir ? rg2_mesh_at(m, 0, idx) : rg2_mesh_at(m, idx, 0);
+    if (!(p0[3] != 0.0))
+        return 0;
+    for (int k = 1; k < n; k++) {
+        const double *p = dir ? rg2_mesh_at(m, k, idx) : rg2_mesh_at(m, idx, k);
+        if (!(p[3] != 0.0))
+            return 0;
+        for (int d = 0; d < 3; d++)
+            if (!(fabs(p[d] / p[3] - p0[d] / p0[3]) <= 1e-12 * size))
+                return 0;
+    }
+    return 1;
+}
+
 rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int closed,
                          rg2__seam_rule rule, rg2__dmesh *out, const char *what, rg2_error *err)
 {
     int other = 1 - dir, n = 0;
+    /* A seam joins the last line of one mesh to the first of the next (and, closed, the last
+     * mesh back to the first). A polar end there (a line collapsed to the polar point) would put
+     * the pole inside the merged mesh: the transitions run from a ring into a point and the parts
+     * overlap, a surface no G2 promise describes. */
+    for (int t = 0; t < n_in; t++) {
+        const rg2_mesh *m = &in[t]->m;
+        int nd = dir_scalars(m, dir)->n;
+        if (dir_scalars(m, dir)->closed || nd < 1)
+            continue;
+        for (int end = 0; end < 2; end++) {
+            int joined = end == 0 ? (t > 0 || closed) : (t < n_in - 1 || closed);
+            int idx = end == 0 ? 0 : nd - 1;
+            if (!joined || !line_collapsed(m, dir, idx))
+                continue;
+            const double *p = dir ? rg2_mesh_at(m, 0, idx) : rg2_mesh_at(m, idx, 0);
+            return rg2__fail(err, RG2_EINCOMPATIBLE,
+                             "%s: mesh '%s' has a polar point at its %s end (%s %d collapsed to (%.6g, %.6g, "
+                             "%.6g)), where the merge along %s joins it to %s: a merge cannot join at a pole; "
+                             "order the meshes (or reverse '%s' along %s) so that its polar end is an end of "
+                             "the merged mesh",
+                             what, in[t]->name, end == 0 ? "first" : "last", dir ? "row v =" : "column u =", idx,
+                             p[0] / p[3], p[1] / p[3], p[2] / p[3], dir_name(dir),
+                             end == 0 ? (t > 0 ? "the mesh before it" : "the last mesh (closed)")
+                                      : (t < n_in - 1 ? "the mesh after it" : "the first mesh (closed)"),
+                             in[t]->name, dir_name(dir));
+        }
+    }
     for (int t = 0; t < n_in; t++) {
         const rg2_scalars *s = dir_scalars(&in[t]->m, dir);
         if (s->closed)
@@ -320,7 +387,7 @@ rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int clo
             return rg2__fail(err, RG2_ELIMIT, "%s: %d or more points along %s exceed the limit", what, n,
                              dir_name(dir));
         if (t > 0) {
-            char msg[200];
+            char msg[400];
             if (scalars_differ(dir_scalars(&in[0]->m, other), dir_scalars(&in[t]->m, other), msg,
                                sizeof msg))
                 return rg2__fail(err, RG2_EINCOMPATIBLE,

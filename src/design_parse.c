@@ -396,6 +396,17 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
             return st;
         static const char *const ka[] = {"arcs", "from", "to", "closed"};
         static const char *const kk[] = {"knots", "segments", "from", "to"};
+        /* a key of the other kind of direction: say which kind this one is (the closest-name
+         * suggestion would point at an unrelated key) */
+        static const char *const other[2][2] = {{"knots", "segments"}, {"arcs", "closed"}};
+        for (int k = 0; k < 2; k++)
+            if (get(obj, other[!angles][k]))
+                return fail(c, RG2_EPARSE, path,
+                            angles ? "'%s' is for polynomial (knot) directions; %s of a %s is a circle: give "
+                                     "'arcs' (a number, or opening angles in degrees) with 'from', 'to', 'closed'"
+                                   : "'%s' is for circle directions; %s of a %s is a polynomial (knot) direction: "
+                                     "give 'knots', or 'segments' with 'from' and 'to'",
+                            other[!angles][k], dir ? "v" : "u", desc->name);
         if ((st = check_keys(c, obj, path, angles ? ka : kk, 4)))
             return st;
         const cJSON *x;
@@ -497,8 +508,8 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
 /* meshes */
 
 static const char *const ops[] = {"shape", "cut", "merge", "transpose", "reverse", "edit", "transform", "morph",
-                                  "polar", "mobius", "cap"};
-#define N_OPS 11
+                                  "polar", "mobius", "cap", "nurbs"};
+#define N_OPS 12
 
 static rg2_status mesh_ref(pctx *c, const cJSON *x, const char *path, int *idx)
 {
@@ -516,6 +527,11 @@ static rg2_status mesh_ref(pctx *c, const cJSON *x, const char *path, int *idx)
             suggest(name, names, c->d->n_mesh, sug, sizeof sug);
             free(names);
         }
+        if (find_shape(c->d, name) >= 0) /* a shape label where a mesh belongs */
+            return fail(c, RG2_EPARSE, path,
+                        "'%s' is a shape label, not a mesh%s; make its control mesh first, e.g. "
+                        "\"%s_mesh\": {\"shape\": \"%s\"}, and use that mesh here",
+                        name, sug, name, name);
         return fail(c, RG2_EPARSE, path, "no mesh named '%s' defined before this one%s", name, sug);
     }
     return RG2_OK;
@@ -546,6 +562,10 @@ static rg2_status op_shape(pctx *c, const cJSON *obj, const char *path, rg2__dme
     if ((st = as_str(c, get(obj, "shape"), p, &label)))
         return st;
     int sh = find_shape(c->d, label);
+    if (sh < 0 && rg2__design_find_mesh(c->d, label) >= 0)
+        return fail(c, RG2_EPARSE, p,
+                    "'%s' is a mesh, not a shape label; \"shape\" takes a label of \"shapes\" (to work on "
+                    "the mesh, use it in cut, edit, transform, ...)", label);
     if (sh < 0) {
         char sug[128];
         suggest(label, (const char *const *)c->d->labels, c->d->n_shapes, sug, sizeof sug);
@@ -918,6 +938,7 @@ static rg2_status op_edit(pctx *c, const cJSON *obj, const char *path, rg2__dmes
 }
 
 static rg2_status op_polar(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out);
+static rg2_status op_nurbs(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out);
 static rg2_status op_mobius(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out);
 static rg2_status op_cap(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out);
 
@@ -966,7 +987,7 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
     if (op < 0)
         return fail(c, RG2_EPARSE, path,
                     "no operation: give one of shape, cut, merge, transpose, reverse, edit, transform, morph, "
-                    "polar, mobius, cap");
+                    "polar, mobius, cap, nurbs");
     if (rg2__design_find_mesh(c->d, name) >= 0)
         return fail(c, RG2_EPARSE, path, "a mesh named '%s' already exists", name);
     rg2__dmesh tmp;
@@ -982,7 +1003,8 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
     case 7: st = op_morph(c, obj, path, &tmp); break;
     case 8: st = op_polar(c, obj, path, &tmp); break;
     case 9: st = op_mobius(c, obj, path, &tmp); break;
-    default: st = op_cap(c, obj, path, &tmp); break;
+    case 10: st = op_cap(c, obj, path, &tmp); break;
+    default: st = op_nurbs(c, obj, path, &tmp); break;
     }
     if (st) {
         rg2__dmesh_free(&tmp); /* whatever the operation had allocated */
@@ -1166,6 +1188,113 @@ done:
 
 /* ------------------------------------------------------------------------------------- */
 /* poles operations (docs/poles.md): polar, mobius, cap */
+
+/* {"nurbs": {"nu": .., "nv": .., "points": [[x, y, z], ...], "weights": [...], "knots_u": [...],
+ * "knots_v": [...]}}: the control mesh of a bi-cubic NURBS (rg2_nurbs_mesh; the JSON of
+ * `rg2 shape nurbs`). Its points carry no shape (provenance -1): there is no implicit equation to
+ * measure them against, so its patches count as transitions, although every patch away from a
+ * seam or an edit is the NURBS itself. */
+/* "3" for an array of 3 items, else the JSON type ("a string"). */
+static const char *len_or_type(const cJSON *x, char *buf, size_t cap)
+{
+    if (!cJSON_IsArray(x))
+        return type_name(x);
+    snprintf(buf, cap, "%d", cJSON_GetArraySize(x));
+    return buf;
+}
+
+static rg2_status op_nurbs(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
+{
+    static const char *const keys[] = {"nurbs"};
+    static const char *const nk[] = {"nu", "nv", "points", "weights", "knots_u", "knots_v"};
+    rg2_status st = check_keys(c, obj, path, keys, 1);
+    if (st)
+        return st;
+    char p[300], q[340], got[32];
+    subpath(p, sizeof p, path, "nurbs");
+    const cJSON *spec = get(obj, "nurbs"), *x;
+    if ((st = as_obj(c, spec, p)) || (st = check_keys(c, spec, p, nk, 6)))
+        return st;
+    int n[2];
+    for (int k = 0; k < 2; k++) {
+        subpath(q, sizeof q, p, k ? "nv" : "nu");
+        if ((st = need(c, spec, k ? "nv" : "nu", p, &x)) || (st = as_int(c, x, q, &n[k])))
+            return st;
+        if (n[k] < 4 || n[k] > RG2_MAX_POINTS)
+            return fail(c, n[k] < 4 ? RG2_EINVAL : RG2_ELIMIT, q,
+                        "%d control points; a bi-cubic NURBS needs 4 to %d in each direction", n[k], RG2_MAX_POINTS);
+    }
+    size_t np = (size_t)n[0] * (size_t)n[1];
+    if (np > RG2_DESIGN_MAX_POINTS)
+        return fail(c, RG2_ELIMIT, p, "%d x %d control points, more than the limit of %d", n[0], n[1],
+                    RG2_DESIGN_MAX_POINTS);
+    const cJSON *pts, *wts = get(spec, "weights"), *kn[2];
+    if ((st = need(c, spec, "points", p, &pts)) || (st = need(c, spec, "knots_u", p, &kn[0])) ||
+        (st = need(c, spec, "knots_v", p, &kn[1])))
+        return st;
+    subpath(q, sizeof q, p, "points");
+    if (!cJSON_IsArray(pts) || (size_t)cJSON_GetArraySize(pts) != np)
+        return fail(c, RG2_EPARSE, q, "expected nu * nv = %zu points [x, y, z] (u-major: point (i, j) at i * nv + j), "
+                    "found %s", np, len_or_type(pts, got, sizeof got));
+    if (wts) {
+        subpath(q, sizeof q, p, "weights");
+        if (!cJSON_IsArray(wts) || (size_t)cJSON_GetArraySize(wts) != np)
+            return fail(c, RG2_EPARSE, q, "expected nu * nv = %zu weights, found %s", np,
+                        len_or_type(wts, got, sizeof got));
+    }
+    for (int k = 0; k < 2; k++) {
+        subpath(q, sizeof q, p, k ? "knots_v" : "knots_u");
+        if (!cJSON_IsArray(kn[k]) || cJSON_GetArraySize(kn[k]) != n[k] + 4)
+            return fail(c, RG2_EPARSE, q, "expected %s + 4 = %d knots, found %s", k ? "nv" : "nu", n[k] + 4,
+                        len_or_type(kn[k], got, sizeof got));
+    }
+    double *buf = rg2__calloc(np * 4 + (size_t)n[0] + (size_t)n[1] + 8, sizeof *buf);
+    if (!buf)
+        return fail(c, RG2_ENOMEM, p, "out of memory for %zu control points", np);
+    double *P = buf, *W = buf + 3 * np, *U = W + np, *V = U + n[0] + 4;
+    size_t k = 0;
+    for (const cJSON *it = pts->child; it && !st; it = it->next, k++) {
+        char r[360];
+        subpath(q, sizeof q, p, "points");
+        indexpath(r, sizeof r, q, (int)k);
+        st = as_nums(c, it, r, P + 3 * k, 3, 3, NULL);
+    }
+    if (!st && wts) {
+        subpath(q, sizeof q, p, "weights");
+        st = as_nums(c, wts, q, W, 0, (int)np, NULL);
+    }
+    for (int d = 0; d < 2 && !st; d++) {
+        subpath(q, sizeof q, p, d ? "knots_v" : "knots_u");
+        st = as_nums(c, kn[d], q, d ? V : U, 0, n[d] + 4, NULL);
+    }
+    rg2_mesh m = {0};
+    if (!st) {
+        rg2_nurbs nb = {n[0], n[1], P, wts ? W : NULL, U, V};
+        rg2_error e;
+        if ((st = rg2_nurbs_mesh(&nb, &m, &e))) /* its message names knots_u[k], weight (i, j), ... */
+            st = fail(c, st, p, "%s", e.msg);
+    }
+    free(buf);
+    if (st)
+        return st;
+    if ((st = rg2__dmesh_alloc(out, NULL, m.nu, m.nv, 0, 0, c->err))) {
+        rg2_mesh_free(&m);
+        return st;
+    }
+    rg2_mesh_free(&out->m);
+    out->m = m;
+    for (int i = 0; i < m.nu; i++)
+        for (int j = 0; j < m.nv; j++)
+            *rg2__dmesh_pp(out, i, j) = (rg2__pprov){-1, i, j};
+    for (int d = 0; d < 2; d++) {
+        const rg2_scalars *sc = d ? &m.sv : &m.su;
+        for (int i = 0; i < rg2_scalars_num_w(sc); i++)
+            out->leg[d][i] = -1;
+        for (int i = 0; i < sc->n; i++)
+            out->jun[d][i] = -1;
+    }
+    return RG2_OK;
+}
 
 static rg2_status op_polar(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
 {

@@ -3,6 +3,9 @@
  * and capped output surfaces. */
 #include "design_internal.h"
 
+#include <math.h>
+#include <stdio.h>
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -122,6 +125,26 @@ rg2_status rg2__op_mobius(rg2_design *d, const rg2__dmesh *in, int shape, const 
                 h[r] = Xi[4 * r] * poles[e][0] + Xi[4 * r + 1] * poles[e][1] + Xi[4 * r + 2] * poles[e][2] + Xi[4 * r + 3];
             for (int q = 0; q < 3; q++)
                 loc[e][q] = h[q] / h[3];
+            /* a pole off the reference sphere: name it as given, in world coordinates, with the
+             * nearest point of the sphere (rg2_mobius_poles_matrix's own message would speak of
+             * the unit sphere the placement maps it to) */
+            double l = sqrt(loc[e][0] * loc[e][0] + loc[e][1] * loc[e][1] + loc[e][2] * loc[e][2]);
+            if (rg2__finite(l) && l > 0 && !(fabs(l - 1.0) <= 1e-9)) {
+                double nq[4], u[4] = {loc[e][0] / l, loc[e][1] / l, loc[e][2] / l, 1.0};
+                for (int r = 0; r < 4; r++)
+                    nq[r] = X[4 * r] * u[0] + X[4 * r + 1] * u[1] + X[4 * r + 2] * u[2] + X[4 * r + 3] * u[3];
+                char ref[200];
+                if (shape >= 0)
+                    snprintf(ref, sizeof ref, "%s '%s'", rg2_shape_name(d->shapes[shape].kind), d->labels[shape]);
+                else
+                    snprintf(ref, sizeof ref, "unit sphere at the origin");
+                return rg2__fail(err, RG2_EDOMAIN,
+                                 "%s.poles.%s: (%.9g, %.9g, %.9g) is not on the reference %s (%.9g of the way "
+                                 "from its centre to its surface; it must lie on it to 1e-9): the nearest point "
+                                 "on it is (%.17g, %.17g, %.17g)",
+                                 what, e ? "north" : "south", poles[e][0], poles[e][1], poles[e][2], ref, l,
+                                 nq[0] / nq[3], nq[1] / nq[3], nq[2] / nq[3]);
+            }
         }
         if ((st = rg2_mobius_poles_matrix(loc[0], loc[1], M, err))) {
             rg2_error e = *err;

@@ -316,6 +316,8 @@ static void check_example(const char *path)
             CHECK(found, "%s: shape %s in the report", path, ex->string);
         }
         CHECK(listed == r.exact_patches, "%s surface %d: %d exact patches, %d listed", path, s, r.exact_patches, listed);
+        CHECK(r.folds == 0 && r.singular == 0, "%s surface %d: %d folds, %d singular samples", path, s, r.folds,
+              r.singular);
         /* exactness is a promise only where something is exact (Fig. 11 keeps nothing) */
         CHECK(!rg2_check_failures(&r, RG2_REQUIRE_G2 | RG2_REQUIRE_WEIGHTS |
                                           (r.exact_patches ? RG2_REQUIRE_EXACT : 0)),
@@ -569,6 +571,73 @@ static void loose_limits(void)
     }
 }
 
+/* Seams alone cannot see a surface that runs back over itself: a cylinder mesh merged with
+ * itself (tests/data/folded_merge.json, the second copy over the first) has G2 seams, but S_v
+ * vanishes inside the middle transitions and the normal reverses there. The check must find the
+ * fold, name where, and fail G1 and G2 (not G0). A bend by more than 90 degrees between two
+ * samples is no fold: a torus tube of 3 arcs of 120 degrees sampled at the patch corners only
+ * (normals 120 degrees apart) has none. */
+static void folds_fail(void)
+{
+    rg2_design *d = NULL;
+    rg2_error err;
+    CHECK_OK(rg2_design_load("tests/data/folded_merge.json", &d, &err), &err);
+    if (d) {
+        rg2_check_report r;
+        CHECK_OK(rg2_check(rg2_design_surface(d, 0), 1, NULL, NULL, 0, NULL, &r, &err), &err);
+        unsigned g1 = rg2_check_failures(&r, RG2_REQUIRE_G1), g2 = rg2_check_failures(&r, RG2_REQUIRE_G2);
+        printf("folded merge: G1 %.2e rad, G2 %.2e at the seams; %d folds, %d singular, first at patch (%d,%d) "
+               "u=%.3g v=%.3g; failures G1 %#x, G2 %#x\n",
+               r.g1.value, r.g2.value, r.folds, r.singular, r.fold_at.pi, r.fold_at.pj, r.fold_at.u, r.fold_at.v, g1,
+               g2);
+        CHECK(r.g1.value <= 1e-10 && r.g2.value <= 1e-8, "the seams themselves are G2 (%.3g, %.3g)", r.g1.value,
+              r.g2.value);
+        /* the transitions are v patches 3..5 of 9; the fold lies inside them */
+        CHECK(r.folds > 0 && r.fold_at.pj >= 3 && r.fold_at.pj <= 5 && r.fold_at.u >= 0 && r.fold_at.u <= 1 &&
+                  r.fold_at.v > 0 && r.fold_at.v < 1,
+              "fold found in a transition: %d folds at patch (%d,%d) v=%.3g", r.folds, r.fold_at.pi, r.fold_at.pj,
+              r.fold_at.v);
+        CHECK(g1 == RG2_REQUIRE_G1 && g2 == RG2_REQUIRE_G2 && !rg2_check_failures(&r, RG2_REQUIRE_G0),
+              "a fold fails G1 and G2, not G0 (failures %#x %#x)", g1, g2);
+        char *text = NULL, *json = NULL;
+        CHECK_OK(rg2_check_format(&r, 0, &text, &err), &err);
+        CHECK_OK(rg2_check_format(&r, 1, &json, &err), &err);
+        CHECK(text && strstr(text, "NOT REGULAR") && strstr(text, "folds back") && strstr(text, "patch (0,"),
+              "the table names the fold: %s", text ? text : "(none)");
+        cJSON *j = json ? cJSON_Parse(json) : NULL, *rg = cJSON_GetObjectItem(j, "regularity");
+        CHECK(rg && cJSON_GetObjectItem(rg, "folds")->valueint == r.folds && cJSON_GetObjectItem(rg, "patch") &&
+                  cJSON_IsFalse(cJSON_GetObjectItem(j, "g2")),
+              "the JSON report names the fold");
+        cJSON_Delete(j);
+        free(text);
+        free(json);
+        rg2_check_report_free(&r);
+        rg2_design_free(d);
+    }
+    rg2_shape t;
+    rg2_shape_init(&t, RG2_SHAPE_TORUS);
+    double au[8], av[3] = {2 * RG2_PI / 3, 2 * RG2_PI / 3, 2 * RG2_PI / 3};
+    for (int k = 0; k < 8; k++)
+        au[k] = RG2_PI / 4;
+    rg2_partition pu = {RG2_PART_ANGLES, 1, 8, au, 0.0}, pv = {RG2_PART_ANGLES, 1, 3, av, 0.0};
+    rg2_surface s;
+    CHECK_OK(rg2_shape_surface(&t, &pu, &pv, &s, NULL, &err), &err);
+    for (int S = 1; S <= 2; S++) {
+        rg2_check_opts o;
+        rg2_check_opts_default(&o);
+        o.patch_samples = S;
+        rg2_check_report r;
+        CHECK_OK(rg2_check(&s, 1, &t, NULL, 1, &o, &r, &err), &err);
+        printf("torus, 3 tube arcs of 120 degrees, %d samples per patch side: %d folds, %d singular; failures %#x "
+               "(G2 %.2e)\n",
+               S, r.folds, r.singular, rg2_check_failures(&r, RG2_REQUIRE_G2), r.g2.value);
+        CHECK(r.folds == 0 && r.singular == 0 && !rg2_check_failures(&r, RG2_REQUIRE_G2),
+              "a bend of 120 degrees between samples is no fold (%d folds)", r.folds);
+        rg2_check_report_free(&r);
+    }
+    rg2_surface_free(&s);
+}
+
 int main(void)
 {
     harness_agreement();
@@ -580,5 +649,6 @@ int main(void)
     defect_near_pole();
     unmeasured_fails();
     loose_limits();
+    folds_fail();
     return rg2t_done("test_check");
 }

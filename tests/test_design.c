@@ -573,6 +573,109 @@ static void parse_sizes(void)
     CHECK(rg2_design_parse(txt, 2, "x", NULL, &err) == RG2_EINVAL, "NULL out: %s", err.msg);
 }
 
+
+/* A bi-cubic NURBS wall (non-uniform u knots, one weight 1.5, a bulge) as a design mesh
+ * ("nurbs" operation), merged closed along u with half a cylinder whose heights are the wall's
+ * v knots: a D-shaped duct. The wall's v scalars agree with the cylinder's, the seams are G2, the
+ * cylinder patches stay exact, and the wall's own patches in the duct are the NURBS itself: the
+ * same points as the NURBS built alone (rg2_nurbs_mesh, checked against Cox-de Boor by
+ * test_nurbs). */
+#define WALL_SPEC \
+    "{\"nu\": 6, \"nv\": 7, \"points\": [[-0.666667, -1, -0.5], [-0.666667, -1, 0.0], [-0.666667, -1, 0.5], [" \
+    "-0.666667, -1, 1.0], [-0.666667, -1, 1.5], [-0.666667, -1, 2.0], [-0.666667, -1, 2.5], [-0.426667, -1, -" \
+    "0.5], [-0.426667, -1, 0.0], [-0.426667, -1.15, 0.5], [-0.426667, -1.15, 1.0], [-0.426667, -1.15, 1.5], [" \
+    "-0.426667, -1, 2.0], [-0.426667, -1, 2.5], [-0.151111, -1, -0.5], [-0.151111, -1, 0.0], [-0.151111, -1.1" \
+    "5, 0.5], [-0.151111, -1.15, 1.0], [-0.151111, -1.15, 1.5], [-0.151111, -1, 2.0], [-0.151111, -1, 2.5], [" \
+    "0.115556, -1, -0.5], [0.115556, -1, 0.0], [0.115556, -1.15, 0.5], [0.115556, -1.15, 1.0], [0.115556, -1." \
+    "15, 1.5], [0.115556, -1, 2.0], [0.115556, -1, 2.5], [0.408889, -1, -0.5], [0.408889, -1, 0.0], [0.408889" \
+    ", -1.15, 0.5], [0.408889, -1.15, 1.0], [0.408889, -1.15, 1.5], [0.408889, -1, 2.0], [0.408889, -1, 2.5]," \
+    " [0.666667, -1, -0.5], [0.666667, -1, 0.0], [0.666667, -1, 0.5], [0.666667, -1, 1.0], [0.666667, -1, 1.5" \
+    "], [0.666667, -1, 2.0], [0.666667, -1, 2.5]], \"weights\": [1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1," \
+    " 1, 1, 1.5, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1], \"knots_u\": [0, 1," \
+    " 2, 3, 3.7, 5.1, 6, 7, 8, 9], \"knots_v\": [-1.5, -1, -0.5, 0, 0.5, 1, 1.5, 2, 2.5, 3, 3.5]}"
+
+static void nurbs_pieces(void)
+{
+    const char *json = "{\"shapes\": {\"pipe\": {\"kind\": \"cylinder\", \"radius\": 1}},"
+                       " \"meshes\": {\"half\": {\"shape\": \"pipe\", \"u\": {\"arcs\": 4, \"from\": 0, \"to\": 180},"
+                       "                        \"v\": {\"segments\": 4, \"from\": 0, \"to\": 2}},"
+                       "  \"wall\": {\"nurbs\": " WALL_SPEC "},"
+                       "  \"duct\": {\"merge\": [\"half\", \"wall\"], \"along\": \"u\", \"closed\": true}},"
+                       " \"output\": [\"wall\", \"duct\"]}";
+    rg2_error err;
+    rg2_design *d = parse(json, &err);
+    cJSON *j = cJSON_Parse(WALL_SPEC);
+    if (!d || !j) {
+        CHECK(j != NULL, "wall spec parses");
+        cJSON_Delete(j);
+        rg2_design_free(d);
+        return;
+    }
+    /* the NURBS built alone */
+    int nu = cJSON_GetObjectItem(j, "nu")->valueint, nv = cJSON_GetObjectItem(j, "nv")->valueint, k = 0;
+    double P[6 * 7 * 3], W[6 * 7], U[10], V[11];
+    const cJSON *it;
+    cJSON_ArrayForEach(it, cJSON_GetObjectItem(j, "points"))
+    {
+        for (int q = 0; q < 3; q++)
+            P[3 * k + q] = cJSON_GetArrayItem(it, q)->valuedouble;
+        k++;
+    }
+    k = 0;
+    cJSON_ArrayForEach(it, cJSON_GetObjectItem(j, "weights")) W[k++] = it->valuedouble;
+    k = 0;
+    cJSON_ArrayForEach(it, cJSON_GetObjectItem(j, "knots_u")) U[k++] = it->valuedouble;
+    k = 0;
+    cJSON_ArrayForEach(it, cJSON_GetObjectItem(j, "knots_v")) V[k++] = it->valuedouble;
+    rg2_nurbs nb = {nu, nv, P, W, U, V};
+    rg2_mesh m;
+    rg2_surface alone;
+    CHECK_OK(rg2_nurbs_mesh(&nb, &m, &err), &err);
+    CHECK_OK(rg2_surface_build(&m, &alone, &err), &err);
+    const rg2_surface *wall = rg2_design_surface(d, 0), *duct = rg2_design_surface(d, 1);
+    CHECK(wall->nu == nu - 3 && wall->nv == nv - 3 && duct->nu == 13 && duct->nv == 4,
+          "wall %d x %d patches, duct %d x %d", wall->nu, wall->nv, duct->nu, duct->nv);
+    /* duct patches: 0 and 5..7, 11, 12 straddle the seams; 1..4 the half cylinder, 8..10 the wall */
+    double dev_wall = 0, dev_duct = 0, scale = rg2t_surface_scale(&alone);
+    for (int a = 0; a < alone.nu && a < wall->nu; a++)
+        for (int b = 0; b < alone.nv && b < wall->nv && b < duct->nv; b++)
+            for (int q = 0; q <= 16; q++) {
+                rg2_eval e0, e1, e2;
+                double s = (q % 4) / 3.0, t = (q / 4) / 4.0;
+                rg2_surface_eval(&alone, a, b, s, t, 0, &e0);
+                rg2_surface_eval(wall, a, b, s, t, 0, &e1);
+                rg2_surface_eval(duct, 8 + a, b, s, t, 0, &e2);
+                for (int c = 0; c < 3; c++) {
+                    dev_wall = fmax(dev_wall, fabs(e1.p[c] - e0.p[c]));
+                    dev_duct = fmax(dev_duct, fabs(e2.p[c] - e0.p[c]));
+                }
+            }
+    int exact = 0, wall_tagged = 0;
+    for (int a = 0; a < duct->nu; a++)
+        for (int b = 0; b < duct->nv; b++) {
+            int tag = duct->tag[a * duct->nv + b];
+            exact += tag >= 0 && a >= 1 && a <= 4;
+            wall_tagged += tag >= 0 && !(a >= 1 && a <= 4);
+        }
+    rg2t_seams sm;
+    rg2t_surface_seams(duct, 9, &sm);
+    int ns = rg2_design_num_shapes(d), n_exact;
+    double res = exact_residual(d, duct, 6, &n_exact);
+    printf("  NURBS wall + half cylinder: wall = NURBS alone to %.1e, in the duct to %.1e (of size %.2f); %d exact "
+           "cylinder patches (residual %.1e); seams %.1e rad, %.1e\n",
+           dev_wall, dev_duct, scale, exact, res, sm.angle, sm.curv);
+    CHECK(dev_wall <= 1e-15 * scale && dev_duct <= 1e-14 * scale, "the wall's patches are the NURBS (%.3g, %.3g)",
+          dev_wall, dev_duct);
+    CHECK(exact == 16 && wall_tagged == 0 && n_exact == 16 && ns == 1 && res <= 1e-13,
+          "16 exact cylinder patches (%d, %d tagged elsewhere, residual %.3g)", exact, wall_tagged, res);
+    CHECK(sm.pos <= 1e-14 && sm.angle <= 1e-12 && sm.curv <= 1e-10 && sm.skipped == 0,
+          "duct seams G2: %.3g %.3g %.3g (%d skipped)", sm.pos, sm.angle, sm.curv, sm.skipped);
+    rg2_surface_free(&alone);
+    rg2_mesh_free(&m);
+    cJSON_Delete(j);
+    rg2_design_free(d);
+}
+
 static void bad_inputs(void)
 {
     struct {
@@ -597,7 +700,12 @@ static void bad_inputs(void)
         {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": [90, 90, 200]}}}}", RG2_EDOMAIN,
          "meshes.T.u"},
         {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"s\", \"v\": {\"arcs\": 4}}}}", RG2_EPARSE,
-         "meshes.T.v: unknown key 'arcs'"},
+         "meshes.T.v: 'arcs' is for circle directions; v of a sphere is a polynomial (knot) direction"},
+        {"{" TORUS_SHAPES ", \"meshes\": {\"N\": {\"nurbs\": {\"nu\": 4, \"nv\": 4, \"points\": [[0, 0, 0]],"
+         " \"knots_u\": [0, 1, 2, 3, 4, 5, 6, 7], \"knots_v\": [0, 1, 2, 3, 4, 5, 6, 7]}}}}", RG2_EPARSE,
+         "meshes.N.nurbs.points: expected nu * nv = 16 points"},
+        {"{" TORUS_SHAPES ", \"meshes\": {\"N\": {\"nurbs\": {\"nu\": 3, \"nv\": 4}}}}", RG2_EINVAL,
+         "meshes.N.nurbs.nu: 3 control points; a bi-cubic NURBS needs 4"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"C\": {\"cut\": \"T\", \"u\": [2, 40]}}}",
          RG2_EINVAL, "meshes.C: u range [2, 40]"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"C\": {\"cut\": \"T\", \"u\": [2, 4]}}}",
@@ -613,6 +721,9 @@ static void bad_inputs(void)
          RG2_EINCOMPATIBLE, "mesh 'T' is closed in u"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"A\": {\"cut\": \"T\", \"u\": [0, 4]},"
          " \"M\": {\"merge\": [\"A\", \"A\"], \"along\": \"w\"}}}", RG2_EPARSE, "expected \"u\" or \"v\""},
+        {"{" TORUS_SHAPES ", \"meshes\": {\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 8}, \"v\": {\"knots\": [0.2, 0.5, 0.8]}},"
+         " \"C\": {\"shape\": \"s\", \"u\": {\"arcs\": 8}}, \"M\": {\"merge\": [\"P\", \"C\"], \"along\": \"v\"}}}",
+         RG2_EINCOMPATIBLE, "mesh 'P' has a polar point at its last end (row v = 4"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"points\": [{\"at\": [8, 0], \"move\": [0, 0, 1]}]}}}",
          RG2_EINVAL, "meshes.E.points[0].at: control point [8, 0] is outside the 8 x 6"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"points\": [{\"at\": [1, 1], \"W\": 0}]}}}",
@@ -682,6 +793,8 @@ int main(void)
     morph_ends();
     printf("merge seam rules:\n");
     seam_rules();
+    printf("NURBS meshes:\n");
+    nurbs_pieces();
     printf("bad input:\n");
     bad_inputs();
     return rg2t_done("test_design");

@@ -69,6 +69,12 @@ expect 3 "failed: g2" -- "$RG2" check "$thin" --require g2
 expect 3 "5304 not measured" -- "$RG2" check "$thin" --require g2
 expect 3 "NOT MEASURED" -- "$RG2" check "$thin" --require g2
 expect 0 "" -- "$RG2" check "$thin" --require g0
+# a mesh merged with itself folds back inside its transitions: the seams are G2, the surface is
+# not regular, and the table says where
+fold=$SRC/tests/data/folded_merge.json
+expect 3 "NOT REGULAR" -- "$RG2" check "$fold" --require g2
+expect 3 "failed: g1" -- "$RG2" check "$fold" --require g1
+expect 0 "" -- "$RG2" check "$fold" --require g0
 expect 0 "(17 per seam)" -- "$RG2" check "$ex"
 "$RG2" check --help | grep -q "17 samples" && ok || bad "check --help: samples per seam"
 out=$("$RG2" check "$ex" --json 2>&1)
