@@ -173,7 +173,7 @@ int rg2_cmd_render(int argc, char **argv)
     int n = 0, rc = rg2_cli_load_surfaces("render", path, &d, &surfs, &meshes, &n);
     if (!rc && only >= n) {
         fprintf(stderr, "rg2 render: --surface %d: the design has %d surface%s\n", only, n, n == 1 ? "" : "s");
-        rc = RG2_EXIT_FAIL;
+        rc = RG2_EXIT_USAGE; /* an option value out of its range, like --size */
     }
     if (!rc) {
         rg2_error err = {0};

@@ -34,6 +34,8 @@ expect 1 "cannot write" -- "$RG2" render "$ex" -o "$tmp/no/such/dir/x.png"
 expect 2 "give it a .png name" -- "$RG2" render "$ex" -o "$tmp/x.jpg"
 [ -e "$tmp/x.jpg" ] && bad "x.jpg written" || ok
 expect 2 "give it a .png name" -- "$RG2" render "$ex" -o "$tmp/png"
+expect 2 "--surface 7: the design has 1 surface" -- "$RG2" render "$ex" -o "$tmp/s.png" --surface 7
+[ -e "$tmp/s.png" ] && bad "s.png written" || ok
 
 i=0
 for mode in shaded mean gauss zebra; do
