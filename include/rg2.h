@@ -901,7 +901,9 @@ RG2_API rg2_status rg2_render_png(const rg2_surface *surfs, int n, const rg2_mes
  * patch is not) have no normal and are not compared; an undefined normal anywhere else fails
  * G1 and G2. Next to a pole the normal and curvature lose digits like 1/v and 1/v^2: a sample
  * of a patch with a pole side whose first-order rounding bound exceeds tol_g1 / tol_g2 is
- * measured against that bound (reported apart: near_pole, g1_pole, g2_pole). Inside the
+ * measured against that bound (reported apart: near_pole, g1_pole, g2_pole); so is a sample
+ * elsewhere whose gap exceeds the limit on an ill-conditioned patch (ill_conditioned, g1_ill,
+ * g2_ill), and one whose bound exceeds 1e-4 rad / 1e-2 there is unmeasured. Inside the
  * patches, on the (patch_samples + 1)^2 grid, a sample away from a pole without a normal
  * (singular) and a fold between neighbouring samples (the normal reverses: Su x Sv changes sign,
  * found by halving the segment) also fail G1 and G2: seams alone cannot see a surface that
@@ -958,6 +960,12 @@ typedef struct {
                                 exceeds 1e-4 rad / 1e-2: not compared, no failure */
     double near_pole_tol1, near_pole_tol2; /**< the largest G1 (rad) / G2 limits they got */
     rg2_check_gap g1_pole, g2_pole; /**< their worst gap / own limit (pass: <= 1) */
+    int ill_conditioned;   /**< samples of patches without a pole side whose gap exceeds tol_g1
+                                or tol_g2 and whose rounding bound exceeds it too and 1e-12
+                                rad / 1e-10 (an ill-conditioned patch, e.g. a shape flattened by
+                                its placement): measured against that bound */
+    double ill_tol1, ill_tol2; /**< the largest G1 (rad) / G2 limits they got */
+    rg2_check_gap g1_ill, g2_ill; /**< their worst gap / own limit (pass: <= 1) */
     int folds;             /**< pairs of neighbouring patch samples between which the surface
                                 folds back (Su x Sv changes sign: the normal reverses), e.g. two
                                 merged meshes that overlap: G1 and G2 fail when > 0 */

@@ -280,6 +280,11 @@ static double pole_distance(const seam_side *x)
 #define NEAR_POLE_MAX_G1 1e-4
 #define NEAR_POLE_MAX_G2 1e-2
 
+/* Away from poles, a patch is ill-conditioned at a sample when the rounding bound exceeds this
+ * (rad / relative): about 100 times the bounds of well-conditioned examples (~1e-14). */
+#define ILL_MIN_G1 1e-12
+#define ILL_MIN_G2 1e-10
+
 /* One seam point: L at the end of its transversal parameter, R at the start. */
 static void seam_point(rg2_check_report *r, const rg2_surface *s, const seam_side *Ls, const seam_side *Rs, int dir,
                        double size, const seam_at *at)
@@ -301,30 +306,39 @@ static void seam_point(rg2_check_report *r, const rg2_surface *s, const seam_sid
         r->unmeasured++;
         return;
     }
-    /* next to a pole: the limits are the rounding bounds of the two evaluations, where larger */
-    int pole_patch = (Ls->poles | Rs->poles) != 0;
-    eval_err bL, bR;
-    double round1 = 0, round2 = 0; /* rounding bounds of the two evaluations (0 off pole patches) */
-    if (pole_patch) {
-        eval_bound(s, Ls->i, Ls->j, Ls->u, Ls->v, L, &bL);
-        eval_bound(s, Rs->i, Rs->j, Rs->u, Rs->v, R, &bR);
-        round1 = bL.n + bR.n;
-    }
     double c[3];
     cross3(L->n, R->n, c);
     double angle = atan2(norm3(c), dot3(L->n, R->n));
-    double t1[3] = {along[0] / la, along[1] / la, along[2] / la}, t2[3];
+    double t1[3] = {along[0] / la, along[1] / la, along[2] / la}, t2[3], dirs[6][3];
     cross3(L->n, t1, t2);
     double kscale = fmax(fmax(fabs(L->k1), fabs(L->k2)), 1.0 / size), worst = 0;
     for (int q = 0; q < 6; q++) {
-        double ph = M_PI * q / 6.0, t[3];
+        double ph = M_PI * q / 6.0;
         for (int k = 0; k < 3; k++)
-            t[k] = cos(ph) * t1[k] + sin(ph) * t2[k];
-        double jump = fabs(kn_dir(L, t) - kn_dir(R, t)) / kscale;
+            dirs[q][k] = cos(ph) * t1[k] + sin(ph) * t2[k];
+        double jump = fabs(kn_dir(L, dirs[q]) - kn_dir(R, dirs[q])) / kscale;
         if (!(jump <= worst))
             worst = jump;
-        if (pole_patch)
-            round2 = fmax(round2, (kn_bound(L, &bL, t) + kn_bound(R, &bR, t)) / kscale);
+    }
+    /* the limits are the rounding bounds of the two evaluations where those are larger: next to
+     * a pole (the normal loses digits like 1/v, the curvature like 1/v^2) always; elsewhere when
+     * a gap exceeds its limit, on an ill-conditioned patch (a shape flattened by its placement,
+     * say; a well-conditioned sample within the limits needs no bound) */
+    int pole_patch = (Ls->poles | Rs->poles) != 0;
+    double round1 = 0, round2 = 0; /* rounding bounds of the two evaluations (0: not needed) */
+    if (pole_patch || !(angle <= o->tol_g1) || !(worst <= o->tol_g2)) {
+        eval_err bL, bR;
+        eval_bound(s, Ls->i, Ls->j, Ls->u, Ls->v, L, &bL);
+        eval_bound(s, Rs->i, Rs->j, Rs->u, Rs->v, R, &bR);
+        round1 = bL.n + bR.n;
+        for (int q = 0; q < 6; q++)
+            round2 = fmax(round2, (kn_bound(L, &bL, dirs[q]) + kn_bound(R, &bR, dirs[q])) / kscale);
+        if (!pole_patch) { /* a well-conditioned patch keeps the caller's limits, even 0 */
+            if (round1 <= ILL_MIN_G1)
+                round1 = 0;
+            if (round2 <= ILL_MIN_G2)
+                round2 = 0;
+        }
     }
     /* the rounding bounds decide whether the sample is a measurement at all, whatever limits
      * the caller chose (a looser --tol must not turn measured samples into unmeasured ones) */
@@ -340,13 +354,15 @@ static void seam_point(rg2_check_report *r, const rg2_surface *s, const seam_sid
     }
     double lim1 = fmax(o->tol_g1, round1), lim2 = fmax(o->tol_g2, round2);
     if (lim1 > o->tol_g1 || lim2 > o->tol_g2)
-        r->near_pole++;
+        (*(pole_patch ? &r->near_pole : &r->ill_conditioned))++;
+    rg2_check_gap *g1r = pole_patch ? &r->g1_pole : &r->g1_ill, *g2r = pole_patch ? &r->g2_pole : &r->g2_ill;
+    double *t1r = pole_patch ? &r->near_pole_tol1 : &r->ill_tol1, *t2r = pole_patch ? &r->near_pole_tol2 : &r->ill_tol2;
     if (lim1 > o->tol_g1)
-        near_update(&r->g1_pole, &r->near_pole_tol1, angle, lim1, at, L->p);
+        near_update(g1r, t1r, angle, lim1, at, L->p);
     else
         gap_update(&r->g1, angle, at, L->p);
     if (lim2 > o->tol_g2)
-        near_update(&r->g2_pole, &r->near_pole_tol2, worst, lim2, at, L->p);
+        near_update(g2r, t2r, worst, lim2, at, L->p);
     else
         gap_update(&r->g2, worst, at, L->p);
 }
@@ -638,8 +654,8 @@ unsigned rg2_check_failures(const rg2_check_report *r, unsigned require)
      * no continuous tangent plane there, whatever its seams measure: not G1 */
     none = none || r->folds > 0 || r->singular > 0;
     int g0 = !(r->g0.value <= o->tol_g0);
-    int g1 = g0 || none || !(r->g1.value <= o->tol_g1) || !(r->g1_pole.value <= 1.0);
-    int g2 = g1 || !(r->g2.value <= o->tol_g2) || !(r->g2_pole.value <= 1.0);
+    int g1 = g0 || none || !(r->g1.value <= o->tol_g1) || !(r->g1_pole.value <= 1.0) || !(r->g1_ill.value <= 1.0);
+    int g2 = g1 || !(r->g2.value <= o->tol_g2) || !(r->g2_pole.value <= 1.0) || !(r->g2_ill.value <= 1.0);
     if ((require & RG2_REQUIRE_G0) && g0)
         f |= RG2_REQUIRE_G0;
     if ((require & RG2_REQUIRE_G1) && g1)
@@ -712,6 +728,20 @@ static void gap_text(sbuf *b, const char *name, const char *unit, const rg2_chec
     sb_printf(b, "\n");
 }
 
+/* The samples measured against their own rounding bound (next to a pole, or ill-conditioned):
+ * how many, their largest limits, the worst gap / limit and where. */
+static void rounded_text(sbuf *b, const char *what, int n, double lim1, double lim2, const rg2_check_gap *g1,
+                         const rg2_check_gap *g2)
+{
+    sb_printf(b, "  %s %d samples measured against their rounding bound (limits up to %.1e rad G1, %.1e G2)\n", what, n,
+              lim1, lim2);
+    sb_printf(b, "    worst gap / limit    G1 %.2g %s, G2 %.2g %s", g1->value, verdict(g1->value, 1.0), g2->value,
+              verdict(g2->value, 1.0));
+    if (g2->value > 0)
+        gap_where(b, g2->value >= g1->value ? g2 : g1);
+    sb_printf(b, "\n");
+}
+
 static void format_text(const rg2_check_report *r, sbuf *b)
 {
     const rg2_check_opts *o = &r->opts;
@@ -741,15 +771,12 @@ static void format_text(const rg2_check_report *r, sbuf *b)
     gap_text(b, "G0 position gap", "rel", &r->g0, o->tol_g0, has ? !(f & RG2_REQUIRE_G0) : -1);
     gap_text(b, "G1 normal angle", "rad", &r->g1, o->tol_g1, has ? !(f & RG2_REQUIRE_G1) : -1);
     gap_text(b, "G2 curvature jump", "rel", &r->g2, o->tol_g2, has ? !(f & RG2_REQUIRE_G2) : -1);
-    if (r->near_pole) {
-        sb_printf(b, "  next to a pole         %d samples measured against their rounding bound (limits up to %.1e rad "
-                     "G1, %.1e G2)\n", r->near_pole, fmax(r->near_pole_tol1, o->tol_g1), fmax(r->near_pole_tol2, o->tol_g2));
-        sb_printf(b, "    worst gap / limit    G1 %.2g %s, G2 %.2g %s", r->g1_pole.value, verdict(r->g1_pole.value, 1.0),
-                  r->g2_pole.value, verdict(r->g2_pole.value, 1.0));
-        if (r->g2_pole.value > 0)
-            gap_where(b, r->g2_pole.value >= r->g1_pole.value ? &r->g2_pole : &r->g1_pole);
-        sb_printf(b, "\n");
-    }
+    if (r->near_pole)
+        rounded_text(b, "next to a pole        ", r->near_pole, fmax(r->near_pole_tol1, o->tol_g1),
+                     fmax(r->near_pole_tol2, o->tol_g2), &r->g1_pole, &r->g2_pole);
+    if (r->ill_conditioned)
+        rounded_text(b, "ill-conditioned       ", r->ill_conditioned, fmax(r->ill_tol1, o->tol_g1),
+                     fmax(r->ill_tol2, o->tol_g2), &r->g1_ill, &r->g2_ill);
     if (r->pole_unresolved)
         sb_printf(b, "  too close to a pole    %d samples within %.0e of a pole whose rounding bound exceeds %.0e rad / "
                      "%.0e: not compared (floating-point limit)\n", r->pole_unresolved, POLE_BLUR, NEAR_POLE_MAX_G1,
@@ -849,6 +876,12 @@ static char *format_json(const rg2_check_report *r)
     cJSON_AddNumberToObject(np, "g2_limit_max", fmax(r->near_pole_tol2, o->tol_g2));
     cJSON_AddItemToObject(np, "g1_gap_over_limit", gap_json(&r->g1_pole, 1.0));
     cJSON_AddItemToObject(np, "g2_gap_over_limit", gap_json(&r->g2_pole, 1.0));
+    cJSON *ic = cJSON_AddObjectToObject(j, "ill_conditioned");
+    cJSON_AddNumberToObject(ic, "samples", r->ill_conditioned);
+    cJSON_AddNumberToObject(ic, "g1_limit_max", fmax(r->ill_tol1, o->tol_g1));
+    cJSON_AddNumberToObject(ic, "g2_limit_max", fmax(r->ill_tol2, o->tol_g2));
+    cJSON_AddItemToObject(ic, "g1_gap_over_limit", gap_json(&r->g1_ill, 1.0));
+    cJSON_AddItemToObject(ic, "g2_gap_over_limit", gap_json(&r->g2_ill, 1.0));
     double w[3] = {r->wmin, r->wmax, r->eval_wmin}, k[6] = {r->kmin, r->kmax, r->Hmin, r->Hmax, r->Kmin, r->Kmax};
     cJSON_AddItemToObject(j, "weights", cJSON_CreateDoubleArray(w, 2));
     cJSON_AddNumberToObject(j, "min_weight_at_samples", w[2]);

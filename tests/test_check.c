@@ -638,6 +638,55 @@ static void folds_fail(void)
     rg2_surface_free(&s);
 }
 
+/* Away from poles, an ill-conditioned patch is measured against its rounding bound too: a
+ * torus flattened by 1e-6 in z (homogeneous z scaled, the exact image of the torus) turns its
+ * normal by 90 degrees within 1e-6 of the rim, where the evaluations' normals round to ~1e-9 rad;
+ * it passes G2 with those samples reported as ill-conditioned, and the bound is not vacuous (the
+ * worst gap reaches a measurable fraction of it). A small out-of-plane defect of one control
+ * point (1e-9 of the unflattened size) still fails G1. */
+static void ill_conditioned_flat(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(rg2t_torus(3, 1, 8, 6, &m, &s, &err), &err);
+    size_t np = (size_t)s.nu * s.nv;
+    for (size_t k = 0; k < np; k++)
+        for (int a = 0; a < 4; a++)
+            for (int b = 0; b < 4; b++)
+                s.patch[k].h[a][b][2] *= 1e-6;
+    rg2_check_opts o;
+    rg2_check_opts_default(&o);
+    rg2_check_report r;
+    CHECK_OK(rg2_check(&s, 1, NULL, NULL, 0, &o, &r, &err), &err);
+    unsigned f = rg2_check_failures(&r, RG2_REQUIRE_G2);
+    printf("torus flattened by 1e-6: G1 %.2e, G2 %.2e; %d ill-conditioned samples, limits up to %.2e rad / %.2e, "
+           "worst gap / limit %.3g / %.3g; %d unmeasured\n",
+           r.g1.value, r.g2.value, r.ill_conditioned, r.ill_tol1, r.ill_tol2, r.g1_ill.value, r.g2_ill.value,
+           r.unmeasured);
+    CHECK(!f && r.ill_conditioned > 0 && r.unmeasured == 0 && r.near_pole == 0, "flattened torus: failures %#x, %d "
+          "ill-conditioned, %d unmeasured", f, r.ill_conditioned, r.unmeasured);
+    CHECK(r.g1_ill.value > 1e-4 && r.ill_tol1 < 1e-5, "the bound is not vacuous: gap / limit %.3g, limit %.3g",
+          r.g1_ill.value, r.ill_tol1);
+    char *txt = NULL;
+    CHECK_OK(rg2_check_format(&r, 0, &txt, &err), &err);
+    CHECK(txt && strstr(txt, "ill-conditioned") && strstr(txt, "worst gap / limit") && !strstr(txt, "FAIL (limit") &&
+              !strstr(txt, "NOT "),
+          "text:\n%s", txt ? txt : "");
+    free(txt);
+    rg2_check_report_free(&r);
+    double *h = rg2_surface_patch(&s, 3, 2)->h[2][1];
+    h[2] += 1e-9 * h[3];
+    CHECK_OK(rg2_check(&s, 1, NULL, NULL, 0, &o, &r, &err), &err);
+    f = rg2_check_failures(&r, RG2_REQUIRE_G0 | RG2_REQUIRE_G1);
+    printf("  one control point moved by 1e-9 out of the plane: G1 %.2e rad, ill-conditioned gap / limit %.3g; "
+           "failures %#x\n", r.g1.value, r.g1_ill.value, f);
+    CHECK(f == RG2_REQUIRE_G1, "a defect on the flattened torus fails G1 (and only G1 of G0, G1): %#x", f);
+    rg2_check_report_free(&r);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 int main(void)
 {
     harness_agreement();
@@ -650,5 +699,6 @@ int main(void)
     unmeasured_fails();
     loose_limits();
     folds_fail();
+    ill_conditioned_flat();
     return rg2t_done("test_check");
 }
