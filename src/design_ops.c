@@ -315,36 +315,6 @@ static int scalars_differ(const rg2_scalars *a, const rg2_scalars *b, char *msg,
  * Rule "plain" keeps b and g as they are (only w_s is new): simpler, but the end patches of
  * both parts change (they depend on w_s through K).
  */
-/* Whether line idx across direction dir of m (dir 1: the u-row j = idx; dir 0: the v-column
- * i = idx) is collapsed to one point: all its 4-tuples projectively equal to 1e-12 of the mesh
- * size (as rg2_mesh_row_collapsed). */
-static int line_collapsed(const rg2_mesh *m, int dir, int idx)
-{
-    double size = 0.0;
-    for (int i = 0; i < m->nu; i++)
-        for (int j = 0; j < m->nv; j++) {
-            const double *p = rg2_mesh_at(m, i, j);
-            if (p[3] != 0.0)
-                for (int k = 0; k < 3; k++)
-                    size = fmax(size, fabs(p[k] / p[3]));
-        }
-    if (size == 0.0)
-        size = 1.0;
-    int n = dir ? m->nu : m->nv;
-    const double *p0 = dir ? rg2_mesh_at(m, 0, idx) : rg2_mesh_at(m, idx, 0);
-    if (!(p0[3] != 0.0))
-        return 0;
-    for (int k = 1; k < n; k++) {
-        const double *p = dir ? rg2_mesh_at(m, k, idx) : rg2_mesh_at(m, idx, k);
-        if (!(p[3] != 0.0))
-            return 0;
-        for (int d = 0; d < 3; d++)
-            if (!(fabs(p[d] / p[3] - p0[d] / p0[3]) <= 1e-12 * size))
-                return 0;
-    }
-    return 1;
-}
-
 rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int closed,
                          rg2__seam_rule rule, rg2__dmesh *out, const char *what, rg2_error *err)
 {
@@ -361,7 +331,7 @@ rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int clo
         for (int end = 0; end < 2; end++) {
             int joined = end == 0 ? (t > 0 || closed) : (t < n_in - 1 || closed);
             int idx = end == 0 ? 0 : nd - 1;
-            if (!joined || !line_collapsed(m, dir, idx))
+            if (!joined || !rg2__mesh_line_collapsed(m, dir, idx))
                 continue;
             const double *p = dir ? rg2_mesh_at(m, 0, idx) : rg2_mesh_at(m, idx, 0);
             return rg2__fail(err, RG2_EINCOMPATIBLE,

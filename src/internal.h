@@ -211,4 +211,9 @@ static inline void rg2__bern3(double t, double B[4], double D[4], double DD[4])
     }
 }
 
+/* Whether line idx across direction dir of m (dir 1: the u-row j = idx, all i; dir 0: the
+ * v-column i = idx, all j) is collapsed to one point: all its 4-tuples projectively equal to
+ * 1e-12 of the mesh size (its largest affine coordinate). rg2_mesh_row_collapsed is dir 1. */
+int rg2__mesh_line_collapsed(const rg2_mesh *m, int dir, int idx);
+
 #endif

@@ -108,33 +108,39 @@ done:
     return st;
 }
 
-int rg2_mesh_row_collapsed(const rg2_mesh *m, int j)
+int rg2__mesh_line_collapsed(const rg2_mesh *m, int dir, int idx)
 {
-    if (!m || !m->p || j < 0 || j >= m->nv || m->nu < 1)
+    int n = dir ? m->nu : m->nv, across = dir ? m->nv : m->nu;
+    if (!m->p || idx < 0 || idx >= across || n < 1)
         return 0;
     /* mesh size: largest affine coordinate over the mesh */
     double size = 0.0;
     for (int i = 0; i < m->nu; i++)
-        for (int jj = 0; jj < m->nv; jj++) {
-            const double *p = rg2_mesh_at(m, i, jj);
+        for (int j = 0; j < m->nv; j++) {
+            const double *p = rg2_mesh_at(m, i, j);
             if (p[3] != 0.0)
                 for (int k = 0; k < 3; k++)
                     size = fmax(size, fabs(p[k] / p[3]));
         }
     if (size == 0.0)
         size = 1.0;
-    const double *p0 = rg2_mesh_at(m, 0, j);
+    const double *p0 = dir ? rg2_mesh_at(m, 0, idx) : rg2_mesh_at(m, idx, 0);
     if (!(p0[3] != 0.0))
         return 0;
-    for (int i = 1; i < m->nu; i++) {
-        const double *p = rg2_mesh_at(m, i, j);
+    for (int k = 1; k < n; k++) {
+        const double *p = dir ? rg2_mesh_at(m, k, idx) : rg2_mesh_at(m, idx, k);
         if (!(p[3] != 0.0))
             return 0;
-        for (int k = 0; k < 3; k++)
-            if (!(fabs(p[k] / p[3] - p0[k] / p0[3]) <= 1e-12 * size))
+        for (int d = 0; d < 3; d++)
+            if (!(fabs(p[d] / p[3] - p0[d] / p0[3]) <= 1e-12 * size))
                 return 0;
     }
     return 1;
+}
+
+int rg2_mesh_row_collapsed(const rg2_mesh *m, int j)
+{
+    return m && rg2__mesh_line_collapsed(m, 1, j);
 }
 
 rg2_status rg2_polar_set_point(rg2_mesh *m, int end, const double p[4], rg2_error *err)
