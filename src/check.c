@@ -448,7 +448,7 @@ static void fold_note(rg2_check_report *r, int *count, int surf, int pi, int pj,
  * patches against their shapes, and regularity: a sample away from a pole with no normal
  * (singular), or two neighbouring samples between which the surface folds back (folds_between).
  * nrm holds two rows of S + 1 unit normals (u index a - 1 and a), with a defined-flag each. */
-static void patches(rg2_check_report *r, const rg2_surface *s, int surf, const rg2_shape *shapes, int n_shapes,
+static void patches(rg2_check_report *r, const rg2_surface *s, int surf, const rg2__implicit *imp, int n_shapes,
                     const double *shape_size, int S, double *nrm, unsigned char *def)
 {
     size_t np = (size_t)s->nu * (size_t)s->nv;
@@ -479,7 +479,7 @@ static void patches(rg2_check_report *r, const rg2_surface *s, int surf, const r
                 if (!(H[0][3] >= r->eval_wmin))
                     r->eval_wmin = H[0][3];
                 rg2_eval e;
-                rg2_surface_eval(s, pi, pj, u, v, 2, &e);
+                rg2__eval_from_h(H, 2, &e); /* = rg2_surface_eval(s, pi, pj, u, v, 2, &e), from the same H */
                 /* regularity: rows a - 1 (slot (a + 1) % 2) and a (slot a % 2) of unit normals */
                 double *nc = nrm + 3 * ((size_t)(a % 2) * (size_t)(S + 1) + (size_t)b);
                 unsigned char *dc = def + (size_t)(a % 2) * (size_t)(S + 1) + (size_t)b;
@@ -509,7 +509,7 @@ static void patches(rg2_check_report *r, const rg2_surface *s, int surf, const r
                 }
                 if (tag < 0 || tag >= n_shapes)
                     continue;
-                double g[3], f = rg2_shape_implicit(&shapes[tag], e.p, g), gn = norm3(g);
+                double g[3], f = rg2__implicit_eval(&imp[tag], e.p, g, NULL), gn = norm3(g);
                 if (!(gn > 0))
                     continue; /* singular point of the shape (apex): no distance estimate */
                 double res = fabs(f) / gn / shape_size[tag];
@@ -553,13 +553,16 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
     out->shapes = rg2__calloc((size_t)(n_shapes > 0 ? n_shapes : 1), sizeof *out->shapes);
     double *shape_size = rg2__calloc((size_t)(n_shapes > 0 ? n_shapes : 1), sizeof *shape_size);
     double *shape_box = rg2__calloc((size_t)(n_shapes > 0 ? n_shapes : 1), 6 * sizeof *shape_box);
-    if (!out->shapes || !shape_size || !shape_box) {
+    rg2__implicit *imp = rg2__calloc((size_t)(n_shapes > 0 ? n_shapes : 1), sizeof *imp);
+    if (!out->shapes || !shape_size || !shape_box || !imp) {
         free(shape_size);
         free(shape_box);
+        free(imp);
         rg2_check_report_free(out);
         return rg2__fail(err, RG2_ENOMEM, "check: out of memory for %d shapes", n_shapes);
     }
     for (int k = 0; k < n_shapes; k++) {
+        rg2__implicit_prep(&shapes[k], &imp[k]); /* the placement inverted once per shape */
         out->shapes[k].shape = k;
         const char *name = rg2_shape_name(shapes[k].kind);
         snprintf(out->shapes[k].label, sizeof out->shapes[k].label, "%s",
@@ -616,12 +619,13 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
         free(ndef);
         free(shape_size);
         free(shape_box);
+        free(imp);
         rg2_check_report_free(out);
         return rg2__fail(err, RG2_ENOMEM, "check: out of memory for %d samples per patch", o->patch_samples);
     }
     for (int s = 0; s < n; s++) {
         seams(out, &surfs[s], s, o->seam_samples);
-        patches(out, &surfs[s], s, shapes, n_shapes, shape_size, o->patch_samples, nrm, ndef);
+        patches(out, &surfs[s], s, imp, n_shapes, shape_size, o->patch_samples, nrm, ndef);
     }
     free(nrm);
     free(ndef);
@@ -632,6 +636,7 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
             out->worst_residual = out->shapes[k].residual;
     free(shape_size);
     free(shape_box);
+    free(imp);
     rg2__ok(err);
     return RG2_OK;
 }

@@ -216,4 +216,14 @@ static inline void rg2__bern3(double t, double B[4], double D[4], double DD[4])
  * 1e-12 of the mesh size (its largest affine coordinate). rg2_mesh_row_collapsed is dir 1. */
 int rg2__mesh_line_collapsed(const rg2_mesh *m, int dir, int idx);
 
+/* A shape's implicit function with its placement inverted once (rg2_shape_implicit2 inverts
+ * it per call): prep once per shape, then evaluate at many points, with the same bits. */
+typedef struct {
+    const rg2_shape *s;
+    double inv[16];
+    int ok; /* 0: invalid parameters or singular placement (every value NaN) */
+} rg2__implicit;
+void rg2__implicit_prep(const rg2_shape *s, rg2__implicit *p);
+double rg2__implicit_eval(const rg2__implicit *p, const double x[3], double grad[3], double hess[9]);
+
 #endif

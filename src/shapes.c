@@ -897,17 +897,24 @@ static jet local_implicit(const rg2_shape *s, jet x, jet y, jet z)
  * is f(phi(x)) with phi = M^{-1} as a projective map: y_i = N_i(x) / N_4(x), N = M^{-1} (x, 1).
  * The jets carry value, gradient and Hessian through the chain rule exactly.
  */
-double rg2_shape_implicit2(const rg2_shape *s, const double x[3], double grad[3], double hess[9])
+void rg2__implicit_prep(const rg2_shape *s, rg2__implicit *p)
 {
-    double C[4][4][4], inv[16];
+    double C[4][4][4];
+    p->s = s;
+    p->ok = !rg2_shape_coeffs(s, C, NULL) && !rg2_xform_invert(s->xform, p->inv, NULL);
+}
+
+double rg2__implicit_eval(const rg2__implicit *p, const double x[3], double grad[3], double hess[9])
+{
     jet f;
-    if (rg2_shape_coeffs(s, C, NULL) || rg2_xform_invert(s->xform, inv, NULL)) {
+    if (!p->ok) {
         f = jconst(NAN);
         for (int k = 0; k < 3; k++)
             f.g[k] = NAN;
         for (int k = 0; k < 9; k++)
             f.h[k] = NAN;
     } else {
+        const double *inv = p->inv;
         jet N[4];
         for (int i = 0; i < 4; i++) {
             N[i] = jconst(inv[4 * i + 3]);
@@ -920,13 +927,20 @@ double rg2_shape_implicit2(const rg2_shape *s, const double x[3], double grad[3]
         if (!affine)
             for (int i = 0; i < 3; i++)
                 N[i] = jdiv(N[i], N[3]);
-        f = local_implicit(s, N[0], N[1], N[2]);
+        f = local_implicit(p->s, N[0], N[1], N[2]);
     }
     if (grad)
         memcpy(grad, f.g, sizeof f.g);
     if (hess)
         memcpy(hess, f.h, sizeof f.h);
     return f.v;
+}
+
+double rg2_shape_implicit2(const rg2_shape *s, const double x[3], double grad[3], double hess[9])
+{
+    rg2__implicit p;
+    rg2__implicit_prep(s, &p);
+    return rg2__implicit_eval(&p, x, grad, hess);
 }
 
 double rg2_shape_implicit(const rg2_shape *s, const double x[3], double grad[3])
