@@ -2,7 +2,6 @@
  * rational bi-cubic patches and print a summary or a JSON dump of the mesh and patches. */
 #include "cli.h"
 
-#include <cjson/cJSON.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -199,112 +198,6 @@ static int make_partition(const char *shape, const rg2_shape_desc *d, int dir, d
     if (rg2_partition_equal(p, RG2_PART_KNOTS, 0, lo, hi, n, o->vals, MAXV, &err))
         return rg2_cli_report("shape", &err);
     return 0;
-}
-
-/* --- NURBS from JSON ----------------------------------------------------------------- */
-
-static int json_numbers(const cJSON *a, const char *what, double *out, int max, int width)
-{
-    if (!cJSON_IsArray(a)) {
-        fprintf(stderr, "rg2 shape: nurbs: \"%s\" must be an array\n", what);
-        return -1;
-    }
-    int n = 0, idx = 0;
-    const cJSON *it;
-    cJSON_ArrayForEach(it, a)
-    {
-        const cJSON *row = it;
-        int m = width > 1 ? cJSON_GetArraySize(row) : 1;
-        if (width > 1 && (!cJSON_IsArray(row) || m != width)) {
-            fprintf(stderr, "rg2 shape: nurbs: \"%s\"[%d] must be an array of %d numbers\n", what, idx, width);
-            return -1;
-        }
-        for (int k = 0; k < m; k++) {
-            const cJSON *x = width > 1 ? cJSON_GetArrayItem(row, k) : row;
-            if (!cJSON_IsNumber(x)) {
-                fprintf(stderr, "rg2 shape: nurbs: \"%s\"[%d] is not a number\n", what, idx);
-                return -1;
-            }
-            if (n == max) {
-                fprintf(stderr, "rg2 shape: nurbs: \"%s\" has more than %d numbers\n", what, max);
-                return -1;
-            }
-            char item[96];
-            rg2_error err;
-            snprintf(item, sizeof item, "nurbs: \"%s\"[%d]", what, idx);
-            if (rg2_number_check(x->valuedouble, item, &err)) {
-                rg2_cli_report("shape", &err);
-                return -1;
-            }
-            out[n++] = x->valuedouble;
-        }
-        idx++;
-    }
-    return n;
-}
-
-/* Parse the NURBS JSON text into arrays owned by the caller (free(*store)). */
-static int parse_nurbs(const char *text, const char *name, rg2_nurbs *nb, double **store)
-{
-    *store = NULL;
-    cJSON *root = cJSON_Parse(text);
-    if (!root) {
-        const char *at = cJSON_GetErrorPtr();
-        fprintf(stderr, "rg2 shape: nurbs: %s: malformed JSON near '%.20s'\n", name, at ? at : "");
-        return RG2_EXIT_FAIL;
-    }
-    int rc = RG2_EXIT_FAIL;
-    const cJSON *jnu = cJSON_GetObjectItemCaseSensitive(root, "nu");
-    const cJSON *jnv = cJSON_GetObjectItemCaseSensitive(root, "nv");
-    if (!cJSON_IsNumber(jnu) || !cJSON_IsNumber(jnv) || jnu->valueint < 4 || jnv->valueint < 4 ||
-        jnu->valueint > 100000 || jnv->valueint > 100000 ||
-        (long long)jnu->valueint * jnv->valueint > RG2_MAX_POINTS) {
-        fprintf(stderr, "rg2 shape: nurbs: %s: \"nu\" and \"nv\" must be integers 4..100000 "
-                        "(at most %d points)\n", name, RG2_MAX_POINTS);
-        goto out;
-    }
-    int nu = jnu->valueint, nv = jnv->valueint;
-    size_t np = (size_t)nu * (size_t)nv;
-    double *mem = malloc(sizeof(double) * (np * 4 + (size_t)nu + (size_t)nv + 8));
-    if (!mem) {
-        fprintf(stderr, "rg2 shape: nurbs: out of memory\n");
-        goto out;
-    }
-    *store = mem;
-    double *P = mem, *W = mem + 3 * np, *U = W + np, *V = U + nu + 4;
-    int k;
-    if ((k = json_numbers(cJSON_GetObjectItemCaseSensitive(root, "points"), "points", P, (int)np * 3, 3)) < 0)
-        goto out;
-    if (k != (int)np * 3) {
-        fprintf(stderr, "rg2 shape: nurbs: %s: %d points given, nu * nv = %zu needed\n", name, k / 3, np);
-        goto out;
-    }
-    const cJSON *jw = cJSON_GetObjectItemCaseSensitive(root, "weights");
-    if (jw) {
-        if ((k = json_numbers(jw, "weights", W, (int)np, 1)) < 0)
-            goto out;
-        if (k != (int)np) {
-            fprintf(stderr, "rg2 shape: nurbs: %s: %d weights given, nu * nv = %zu needed\n", name, k, np);
-            goto out;
-        }
-    }
-    if ((k = json_numbers(cJSON_GetObjectItemCaseSensitive(root, "knots_u"), "knots_u", U, nu + 4, 1)) < 0)
-        goto out;
-    if (k != nu + 4) {
-        fprintf(stderr, "rg2 shape: nurbs: %s: %d knots_u given, nu + 4 = %d needed\n", name, k, nu + 4);
-        goto out;
-    }
-    if ((k = json_numbers(cJSON_GetObjectItemCaseSensitive(root, "knots_v"), "knots_v", V, nv + 4, 1)) < 0)
-        goto out;
-    if (k != nv + 4) {
-        fprintf(stderr, "rg2 shape: nurbs: %s: %d knots_v given, nv + 4 = %d needed\n", name, k, nv + 4);
-        goto out;
-    }
-    nb->nu = nu, nb->nv = nv, nb->points = P, nb->weights = jw ? W : NULL, nb->knots_u = U, nb->knots_v = V;
-    rc = 0;
-out:
-    cJSON_Delete(root);
-    return rc;
 }
 
 /* --- output ---------------------------------------------------------------------------- */
@@ -667,7 +560,8 @@ int rg2_cmd_shape(int argc, char **argv)
     rg2_surface s = {0};
     rg2_weight_report rep;
     rg2_partition pu, pv;
-    double *store = NULL, resid = 0.0, size = 0.0;
+    double resid = 0.0, size = 0.0;
+    rg2_status st;
     if (is_nurbs) {
         if (!file == !spec) {
             fprintf(stderr, "rg2 shape: nurbs needs exactly one of --file F.json or --spec JSON\n");
@@ -679,12 +573,10 @@ int rg2_cmd_shape(int argc, char **argv)
             fprintf(stderr, "rg2 shape: nurbs: cannot read %s\n", rerr.msg);
             return RG2_EXIT_FAIL;
         }
-        rg2_nurbs nb;
-        rc = parse_nurbs(file ? text : spec, file ? file : "--spec", &nb, &store);
+        const char *src = file ? text : spec;
+        st = rg2_nurbs_parse(src, strlen(src), file ? file : "--spec", &m, &err);
         free(text);
-        if (rc)
-            goto out;
-        if (rg2_nurbs_mesh(&nb, &m, &err)) {
+        if (st) {
             rc = rg2_cli_report("shape", &err);
             goto out;
         }
@@ -721,7 +613,6 @@ int rg2_cmd_shape(int argc, char **argv)
                 "%d,%d); STEP/IGES export needs positive weights: use more arcs or knots\n",
                 rep.n_nonpositive, rep.min_weight, rep.patch_i, rep.patch_j);
 out:
-    free(store);
     rg2_surface_free(&s);
     rg2_mesh_free(&m);
     return rc;

@@ -522,6 +522,13 @@ typedef struct {
     const double *knots_v;  /**< nv + 4 */
 } rg2_nurbs;
 RG2_API rg2_status rg2_nurbs_mesh(const rg2_nurbs *nb, rg2_mesh *out, rg2_error *err);
+/** rg2_nurbs_mesh from a JSON text {"nu", "nv", "points": [[x, y, z], ...] (u-major),
+ *  "weights" (optional), "knots_u", "knots_v"}: the spec of `rg2 shape nurbs` and of a design
+ *  file's nurbs operation, read by the same code. `name` (a file name, say) starts the messages,
+ *  which name the offending item (name:line:col for malformed JSON, nurbs.points[k], knots_u[k]).
+ *  @return as rg2_design_parse for the text (RG2_EPARSE, RG2_ELIMIT), then as rg2_nurbs_mesh. */
+RG2_API rg2_status rg2_nurbs_parse(const char *json, size_t len, const char *name, rg2_mesh *out,
+                                   rg2_error *err);
 
 
 /* ===================================================================================== */

@@ -939,6 +939,7 @@ static rg2_status op_edit(pctx *c, const cJSON *obj, const char *path, rg2__dmes
 
 static rg2_status op_polar(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out);
 static rg2_status op_nurbs(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out);
+static rg2_status nurbs_spec(pctx *c, const cJSON *spec, const char *p, rg2_mesh *mout);
 static rg2_status op_mobius(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out);
 static rg2_status op_cap(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out);
 
@@ -1058,10 +1059,9 @@ static void line_col(const char *text, size_t off, int *line, int *col)
     }
 }
 
-rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, const char *name,
-                                  rg2_error *err)
+/* Parse a JSON text (a whole design file or a NURBS spec) into *root; the errors name name:line:col. */
+static rg2_status parse_text(const char *json, size_t len, const char *name, cJSON **root, rg2_error *err)
 {
-    pctx c = {d, name, err};
     char *buf = malloc(len + 1);
     if (!buf)
         return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", name);
@@ -1087,8 +1087,8 @@ rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, c
             i++; /* skip the escaped character: \\ then u0000 is a backslash and text */
         }
     const char *end = NULL;
-    cJSON *root = cJSON_ParseWithLengthOpts(buf, len + 1, &end, 1);
-    if (!root) {
+    *root = cJSON_ParseWithLengthOpts(buf, len + 1, &end, 1);
+    if (!*root) {
         size_t off = end ? (size_t)(end - buf) : 0;
         if (off > len)
             off = len;
@@ -1104,7 +1104,36 @@ rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, c
                          k ? "near '" : "at the end of the text", near, k ? "'" : "");
     }
     free(buf);
-    rg2_status st;
+    return RG2_OK;
+}
+
+rg2_status rg2_nurbs_parse(const char *json, size_t len, const char *name, rg2_mesh *out, rg2_error *err)
+{
+    if (!json || !name || !out)
+        return rg2__fail(err, RG2_EINVAL, "nurbs: no text, name or output");
+    memset(out, 0, sizeof *out);
+    if (len > RG2_TEXT_MAX_BYTES)
+        return rg2__fail(err, RG2_ELIMIT, "%s: %zu bytes, more than the limit of %u", name, len, RG2_TEXT_MAX_BYTES);
+    cJSON *root;
+    rg2_status st = parse_text(json, len, name, &root, err);
+    if (st)
+        return st;
+    pctx c = {NULL, name, err};
+    st = nurbs_spec(&c, root, "nurbs", out);
+    cJSON_Delete(root);
+    if (!st)
+        rg2__ok(err);
+    return st;
+}
+
+rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, const char *name,
+                                  rg2_error *err)
+{
+    pctx c = {d, name, err};
+    cJSON *root;
+    rg2_status st = parse_text(json, len, name, &root, err);
+    if (st)
+        return st;
     static const char *const top[] = {"format", "description", "shapes", "meshes", "output", "expect"};
     if ((st = as_obj(&c, root, "(top level)")) || (st = check_keys(&c, root, "(top level)", top, 6)))
         goto done;
@@ -1203,16 +1232,13 @@ static const char *len_or_type(const cJSON *x, char *buf, size_t cap)
     return buf;
 }
 
-static rg2_status op_nurbs(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
+/* A bi-cubic NURBS spec {nu, nv, points, weights?, knots_u, knots_v} at JSON path p into m. */
+static rg2_status nurbs_spec(pctx *c, const cJSON *spec, const char *p, rg2_mesh *mout)
 {
-    static const char *const keys[] = {"nurbs"};
     static const char *const nk[] = {"nu", "nv", "points", "weights", "knots_u", "knots_v"};
-    rg2_status st = check_keys(c, obj, path, keys, 1);
-    if (st)
-        return st;
-    char p[300], q[340], got[32];
-    subpath(p, sizeof p, path, "nurbs");
-    const cJSON *spec = get(obj, "nurbs"), *x;
+    char q[340], got[32];
+    const cJSON *x;
+    rg2_status st;
     if ((st = as_obj(c, spec, p)) || (st = check_keys(c, spec, p, nk, 6)))
         return st;
     int n[2];
@@ -1271,11 +1297,27 @@ static rg2_status op_nurbs(pctx *c, const cJSON *obj, const char *path, rg2__dme
     if (!st) {
         rg2_nurbs nb = {n[0], n[1], P, wts ? W : NULL, U, V};
         rg2_error e;
-        if ((st = rg2_nurbs_mesh(&nb, &m, &e))) /* its message names knots_u[k], weight (i, j), ... */
-            st = fail(c, st, p, "%s", e.msg);
+        if ((st = rg2_nurbs_mesh(&nb, &m, &e))) { /* its message names knots_u[k], weight (i, j), ... */
+            const char *msg = strncmp(e.msg, "nurbs: ", 7) ? e.msg : e.msg + 7; /* p ends in nurbs */
+            st = fail(c, st, p, "%s", msg);
+        }
     }
     free(buf);
+    if (!st)
+        *mout = m;
+    return st;
+}
+
+static rg2_status op_nurbs(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
+{
+    static const char *const keys[] = {"nurbs"};
+    rg2_status st = check_keys(c, obj, path, keys, 1);
     if (st)
+        return st;
+    char p[300];
+    subpath(p, sizeof p, path, "nurbs");
+    rg2_mesh m = {0};
+    if ((st = nurbs_spec(c, get(obj, "nurbs"), p, &m)))
         return st;
     if ((st = rg2__dmesh_alloc(out, NULL, m.nu, m.nv, 0, 0, c->err))) {
         rg2_mesh_free(&m);

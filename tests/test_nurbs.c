@@ -65,6 +65,51 @@ static void random_knots(rg2t_rng *r, int n, int style, double *U)
         U[1] = U[2], U[n + 2] = U[n + 1];
 }
 
+/* The JSON spec of nb (%.17g: every double round-trips) read by rg2_nurbs_parse gives the mesh
+ * of rg2_nurbs_mesh bit for bit. */
+static void parse_same(const rg2_nurbs *nb, const rg2_mesh *m, int trial)
+{
+    size_t np = (size_t)nb->nu * (size_t)nb->nv, cap = np * 160 + 4096, n = 0;
+    char *t = malloc(cap);
+    n += (size_t)snprintf(t + n, cap - n, "{\"nu\": %d, \"nv\": %d, \"points\": [", nb->nu, nb->nv);
+    for (size_t k = 0; k < np; k++)
+        n += (size_t)snprintf(t + n, cap - n, "%s[%.17g, %.17g, %.17g]", k ? ", " : "", nb->points[3 * k],
+                              nb->points[3 * k + 1], nb->points[3 * k + 2]);
+    n += (size_t)snprintf(t + n, cap - n, "]");
+    if (nb->weights) {
+        n += (size_t)snprintf(t + n, cap - n, ", \"weights\": [");
+        for (size_t k = 0; k < np; k++)
+            n += (size_t)snprintf(t + n, cap - n, "%s%.17g", k ? ", " : "", nb->weights[k]);
+        n += (size_t)snprintf(t + n, cap - n, "]");
+    }
+    for (int d = 0; d < 2; d++) {
+        const double *K = d ? nb->knots_v : nb->knots_u;
+        n += (size_t)snprintf(t + n, cap - n, ", \"knots_%c\": [", d ? 'v' : 'u');
+        for (int k = 0; k < (d ? nb->nv : nb->nu) + 4; k++)
+            n += (size_t)snprintf(t + n, cap - n, "%s%.17g", k ? ", " : "", K[k]);
+        n += (size_t)snprintf(t + n, cap - n, "]");
+    }
+    snprintf(t + n, cap - n, "}");
+    rg2_mesh q;
+    rg2_error err;
+    CHECK_OK(rg2_nurbs_parse(t, strlen(t), "spec", &q, &err), &err);
+    int same = q.nu == m->nu && q.nv == m->nv && !memcmp(q.p, m->p, np * 4 * sizeof(double));
+    for (int d = 0; d < 2 && same; d++) {
+        const rg2_scalars *a = d ? &q.sv : &q.su, *b = d ? &m->sv : &m->su;
+        same = a->n == b->n && a->closed == b->closed &&
+               !memcmp(a->w, b->w, (size_t)rg2_scalars_num_w(a) * sizeof(double)) &&
+               !memcmp(a->b, b->b, (size_t)a->n * sizeof(double)) && !memcmp(a->g, b->g, (size_t)a->n * sizeof(double));
+    }
+    CHECK(same, "trial %d: the parsed spec gives another mesh", trial);
+    rg2_mesh_free(&q);
+    if (trial == 0) { /* a cut text names where it ends */
+        rg2_status st = rg2_nurbs_parse(t, strlen(t) / 2, "spec", &q, &err);
+        CHECK(st == RG2_EPARSE && strstr(err.msg, "spec:1:") && strstr(err.msg, "malformed JSON"), "cut text: %s",
+              err.msg);
+    }
+    free(t);
+}
+
 static void random_nurbs(void)
 {
     rg2t_rng r;
@@ -91,6 +136,7 @@ static void random_nurbs(void)
         CHECK(st == RG2_OK, "trial %d: %s", trial, err.msg);
         if (st)
             continue;
+        parse_same(&nb, &m, trial);
         CHECK_OK(rg2_surface_build(&m, &s, &err), &err);
         CHECK(s.nu == nu - 3 && s.nv == nv - 3, "trial %d: %d x %d patches", trial, s.nu, s.nv);
         double L = rg2t_surface_scale(&s);

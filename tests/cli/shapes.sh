@@ -38,7 +38,7 @@ expect 0 '"shape": "nurbs"' -- "$RG2" shape nurbs --file "$tmp/n.json" --json
 expect 1 "cannot read" -- "$RG2" shape nurbs --file "$tmp/missing.json"
 expect 1 "malformed JSON" -- "$RG2" shape nurbs --spec '{"nu": 4,'
 expect 1 "the first or last span of the domain" -- "$RG2" shape nurbs --spec "$(printf '%s' "$N" | sed 's/0.4,1,1,1,1/0.4,0.4,1,1,1/')"
-expect 1 "knots_u given, nu + 4 = 8 needed" -- "$RG2" shape nurbs --spec "$(printf '%s' "$N" | sed 's/"knots_u":\[0,/"knots_u":[/')"
+expect 1 "nurbs.knots_u: expected nu + 4 = 8 knots, found 7" -- "$RG2" shape nurbs --spec "$(printf '%s' "$N" | sed 's/"knots_u":\[0,/"knots_u":[/')"
 expect 1 "nurbs: weight [0][1] = -1 must be finite and > 0" -- "$RG2" shape nurbs --spec "$(printf '%s' "$N" | sed 's/"knots_u"/"weights":[1,-1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1],"knots_u"/')"
 expect 2 "exactly one of --file" -- "$RG2" shape nurbs
 # bad input: each with its message
