@@ -273,6 +273,16 @@ static char *read_text(const char *path)
 /* Every example design: per output surface, the check's patch, exact-per-shape and transition
  * counts equal the design file's own "expect" block, and every surface is G2, exact and has
  * positive weights. */
+/* The shapes of a loaded design as one array for rg2_check (calloc'd, ns + 1 entries). */
+static rg2_shape *design_shapes(const rg2_design *d)
+{
+    int ns = rg2_design_num_shapes(d);
+    rg2_shape *shapes = calloc((size_t)ns + 1, sizeof *shapes);
+    for (int k = 0; k < ns; k++)
+        shapes[k] = *rg2_design_shape(d, k);
+    return shapes;
+}
+
 static void check_example(const char *path)
 {
     rg2_design *d = NULL;
@@ -386,9 +396,7 @@ static void pole_sample_counts(void)
         if (!d)
             continue;
         int ns = rg2_design_num_shapes(d), n = rg2_design_num_surfaces(d), poles = 0;
-        rg2_shape *shapes = calloc((size_t)ns + 1, sizeof *shapes);
-        for (int k = 0; k < ns; k++)
-            shapes[k] = *rg2_design_shape(d, k);
+        rg2_shape *shapes = design_shapes(d);
         for (size_t c = 0; c < sizeof counts / sizeof *counts; c++) {
             double g1 = 0, g2 = 0, r1 = 0, r2 = 0, l1 = 0, l2 = 0;
             int near = 0;
@@ -535,9 +543,7 @@ static void loose_limits(void)
         if (!d)
             continue;
         int ns = rg2_design_num_shapes(d), n = rg2_design_num_surfaces(d);
-        rg2_shape *shapes = calloc((size_t)ns + 1, sizeof *shapes);
-        for (int k = 0; k < ns; k++)
-            shapes[k] = *rg2_design_shape(d, k);
+        rg2_shape *shapes = design_shapes(d);
         rg2_surface *all = calloc((size_t)n, sizeof *all); /* shallow copies, owned by d */
         for (int k = 0; k < n; k++)
             all[k] = *rg2_design_surface(d, k);
