@@ -34,7 +34,8 @@ int rg2_cli_load_surfaces(const char *cmd, const char *path, rg2_design **d, rg2
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: rg2 check design.json [--json] [--require g0|g1|g2|exact|weights[,...]] [--samples N]\n\n"
+    fprintf(f, "usage: rg2 check design.json [--json] [--require g0|g1|g2|exact|weights[,...]] [--samples N]\n"
+               "                 [--tol KIND=X] [--threads N]\n\n"
                "Measures the built surfaces of a design: patches, exact pieces per shape with their worst\n"
                "implicit residual (|f| / |grad f| / shape size), transitions, the worst G0/G1/G2 gaps over\n"
                "all patch seams (position / size, normal angle in radians, normal-curvature jump relative\n"
@@ -48,6 +49,8 @@ static void usage(FILE *f)
                "                      (default 16: 17 samples)\n"
                "  --tol KIND=X        pass limit for g0, g1, g2 or exact (defaults 1e-12, 1e-10, 1e-8,\n"
                "                      1e-11); repeatable\n"
+               "  --threads N         threads, up to 64 used (default: all cores, or OMP_NUM_THREADS);\n"
+               "                      the report does not depend on it\n"
                "Exit codes: 0 ok, 1 invalid design, 2 usage error, 3 a required promise fails.\n");
 }
 
@@ -106,6 +109,16 @@ int rg2_cmd_check(int argc, char **argv)
                 return RG2_EXIT_USAGE;
             }
             o.seam_samples = (int)v;
+            i++;
+        } else if (!strcmp(a, "--threads")) {
+            /* the numbers rg2 render --threads takes; one message (a usage error of rg2 check) */
+            char *end = NULL;
+            double v = i + 1 < argc ? strtod(argv[i + 1], &end) : 0;
+            if (i + 1 >= argc || end == argv[i + 1] || *end || !(v >= 1 && v <= 1024) || v != (int)v) {
+                fprintf(stderr, "rg2 check: --threads needs an integer 1..1024\n");
+                return RG2_EXIT_USAGE;
+            }
+            o.threads = (int)v;
             i++;
         } else if (!strcmp(a, "--tol")) {
             const char *t = i + 1 < argc ? argv[++i] : "";

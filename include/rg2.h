@@ -927,6 +927,11 @@ typedef struct {
     int seam_samples;      /**< seam intervals: seam_samples + 1 samples per seam (default 16) */
     int patch_samples;     /**< samples per patch direction for residuals/curvature (default 12) */
     double tol_g0, tol_g1, tol_g2, tol_exact; /**< pass limits (defaults 1e-12, 1e-10, 1e-8, 1e-11) */
+    int threads;           /**< OpenMP threads: 0 = the OpenMP default (OMP_NUM_THREADS, else the
+                                cores; the default), 1 = serial, t > 1 = up to t (at most 64).
+                                The seams and the patches are measured in contiguous chunks into
+                                partial reports merged in order with the serial comparisons:
+                                the report is identical, bit for bit, for any thread count */
 } rg2_check_opts;
 
 typedef struct {
@@ -992,8 +997,9 @@ typedef struct {
 } rg2_check_report;
 
 RG2_API void rg2_check_opts_default(rg2_check_opts *o);
-/** Measure surfaces against shapes (nullable if n_shapes == 0; labels nullable). Release the
- *  report with rg2_check_report_free. @return RG2_EINVAL (no surfaces), RG2_ENOMEM. */
+/** Measure surfaces against shapes (nullable if n_shapes == 0; labels nullable), on
+ *  o->threads threads (o NULL: the defaults). Release the report with rg2_check_report_free.
+ *  @return RG2_EINVAL (no surfaces, samples out of range, threads < 0), RG2_ENOMEM. */
 RG2_API rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes,
                              const char *const *labels, int n_shapes, const rg2_check_opts *o,
                              rg2_check_report *out, rg2_error *err);

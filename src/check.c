@@ -19,6 +19,9 @@
  *   derivatives say there: its position gap counts, its normal and curvature are skipped (seams)
  *   or left out of the curvature range (patches). The same geometry then gives the same
  *   report in any patch degree.
+ *   Threads (opts.threads): the seams and the patches are measured in contiguous chunks, each
+ *   into its own partial report, merged in chunk order with the serial comparisons (see
+ *   part_merge): the report is the serial one bit for bit, for any thread count.
  */
 #include "export_internal.h"
 #include "xpatch_util.h"
@@ -37,6 +40,7 @@ void rg2_check_opts_default(rg2_check_opts *o)
     o->tol_g1 = 1e-10;
     o->tol_g2 = 1e-8;
     o->tol_exact = 1e-11;
+    o->threads = 0;
 }
 
 static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -367,33 +371,45 @@ static void seam_point(rg2_check_report *r, const rg2_surface *s, const seam_sid
         gap_update(&r->g2, worst, at, L->p);
 }
 
-static void seams(rg2_check_report *r, const rg2_surface *s, int surf, int samples)
+/* The seams of a surface in the order they are measured: per direction (u seams, then v
+ * seams), the seam rows a (from 1, or from 0 when the direction is closed; none for one closed
+ * patch: its seam is with itself), and b along each row. seam_rows counts the rows of dir. */
+static int seam_rows(const rg2_surface *s, int dir)
 {
-    double size = surface_size(s);
-    for (int dir = 0; dir < 2; dir++) {
-        int nA = dir == 0 ? s->nu : s->nv, nB = dir == 0 ? s->nv : s->nu;
-        int closed = dir == 0 ? s->closed_u : s->closed_v;
-        for (int a = closed ? 0 : 1; a < nA; a++) {
-            int am = (a + nA - 1) % nA;
-            if (am == a)
-                continue; /* one closed patch: its seam is with itself */
-            for (int b = 0; b < nB; b++) {
-                r->seams++;
-                seam_at at = {surf, dir, dir == 0 ? am : b, dir == 0 ? b : am, dir == 0 ? a : b, dir == 0 ? b : a, 0};
-                seam_side L = {.i = at.pi, .j = at.pj, .poles = pole_sides(s, at.pi, at.pj)};
-                seam_side R = {.i = at.qi, .j = at.qj, .poles = pole_sides(s, at.qi, at.qj)};
-                for (int k = 0; k <= samples; k++) {
-                    at.t = (double)k / samples;
-                    L.u = dir == 0 ? 1.0 : at.t;
-                    L.v = dir == 0 ? at.t : 1.0;
-                    R.u = dir == 0 ? 0.0 : at.t;
-                    R.v = dir == 0 ? at.t : 0.0;
-                    rg2_surface_eval(s, L.i, L.j, L.u, L.v, 2, &L.e);
-                    rg2_surface_eval(s, R.i, R.j, R.u, R.v, 2, &R.e);
-                    seam_point(r, s, &L, &R, dir, size, &at);
-                }
-            }
-        }
+    int nA = dir == 0 ? s->nu : s->nv, closed = dir == 0 ? s->closed_u : s->closed_v;
+    return closed ? (nA >= 2 ? nA : 0) : nA - 1;
+}
+
+static size_t seam_count(const rg2_surface *s)
+{
+    return (size_t)seam_rows(s, 0) * (size_t)s->nv + (size_t)seam_rows(s, 1) * (size_t)s->nu;
+}
+
+/* Seam k (0 .. seam_count - 1) of surface s: all samples along it. */
+static void seam_one(rg2_check_report *r, const rg2_surface *s, int surf, size_t k, double size, int samples)
+{
+    int dir = 0;
+    size_t n0 = (size_t)seam_rows(s, 0) * (size_t)s->nv;
+    if (k >= n0) {
+        dir = 1;
+        k -= n0;
+    }
+    int nA = dir == 0 ? s->nu : s->nv, nB = dir == 0 ? s->nv : s->nu;
+    int closed = dir == 0 ? s->closed_u : s->closed_v;
+    int a = (int)(k / (size_t)nB) + (closed ? 0 : 1), b = (int)(k % (size_t)nB), am = (a + nA - 1) % nA;
+    r->seams++;
+    seam_at at = {surf, dir, dir == 0 ? am : b, dir == 0 ? b : am, dir == 0 ? a : b, dir == 0 ? b : a, 0};
+    seam_side L = {.i = at.pi, .j = at.pj, .poles = pole_sides(s, at.pi, at.pj)};
+    seam_side R = {.i = at.qi, .j = at.qj, .poles = pole_sides(s, at.qi, at.qj)};
+    for (int q = 0; q <= samples; q++) {
+        at.t = (double)q / samples;
+        L.u = dir == 0 ? 1.0 : at.t;
+        L.v = dir == 0 ? at.t : 1.0;
+        R.u = dir == 0 ? 0.0 : at.t;
+        R.v = dir == 0 ? at.t : 0.0;
+        rg2_surface_eval(s, L.i, L.j, L.u, L.v, 2, &L.e);
+        rg2_surface_eval(s, R.i, R.j, R.u, R.v, 2, &R.e);
+        seam_point(r, s, &L, &R, dir, size, &at);
     }
 }
 
@@ -444,83 +460,298 @@ static void fold_note(rg2_check_report *r, int *count, int surf, int pi, int pj,
     (*count)++;
 }
 
-/* Patch interiors: weights and curvature ranges at the samples, implicit residuals of tagged
- * patches against their shapes, and regularity: a sample away from a pole with no normal
+/* Bits of the NaN weights a run of patches met (see part_merge): control weights for wmin and
+ * wmax, sampled denominators for eval_wmin. */
+enum { NAN_W = 1u, NAN_EVAL_W = 2u };
+
+/* Patch k of s, interior: weights and curvature ranges at the samples, implicit residuals of a
+ * tagged patch against its shape, and regularity: a sample away from a pole with no normal
  * (singular), or two neighbouring samples between which the surface folds back (folds_between).
- * nrm holds two rows of S + 1 unit normals (u index a - 1 and a), with a defined-flag each. */
-static void patches(rg2_check_report *r, const rg2_surface *s, int surf, const rg2__implicit *imp, int n_shapes,
-                    const double *shape_size, int S, double *nrm, unsigned char *def)
+ * nrm holds two rows of S + 1 unit normals (u index a - 1 and a), with a defined-flag each.
+ * *nan collects the NAN_* bits of the weights met. */
+static void patch_one(rg2_check_report *r, unsigned *nan, const rg2_surface *s, int surf, size_t k,
+                      const rg2__implicit *imp, int n_shapes, const double *shape_size, int S, double *nrm,
+                      unsigned char *def)
 {
-    size_t np = (size_t)s->nu * (size_t)s->nv;
-    for (size_t k = 0; k < np; k++) {
-        int tag = s->tag ? s->tag[k] : -1;
-        r->patches++;
-        if (tag < 0)
-            r->transitions++;
-        else if (tag >= n_shapes)
-            r->untagged_bad++;
-        else {
-            r->exact_patches++;
-            r->shapes[tag].patches++;
-        }
-        int du, dv, pi = (int)(k / (size_t)s->nv), pj = (int)(k % (size_t)s->nv);
-        unsigned coll = pole_sides(s, pi, pj);
-        rg2__patch_degree(s, k, &du, &dv);
-        for (int a = 0; a <= du; a++)
-            for (int b = 0; b <= dv; b++) {
-                double w = rg2__patch_ctrl(s, k, a, b)[3];
-                if (!(w >= r->wmin)) r->wmin = w;
-                if (!(w <= r->wmax)) r->wmax = w;
-            }
-        for (int a = 0; a <= S; a++)
-            for (int b = 0; b <= S; b++) {
-                double u = (double)a / S, v = (double)b / S, H[6][4];
-                rg2_surface_eval_h(s, pi, pj, u, v, H);
-                if (!(H[0][3] >= r->eval_wmin))
-                    r->eval_wmin = H[0][3];
-                rg2_eval e;
-                rg2__eval_from_h(H, 2, &e); /* = rg2_surface_eval(s, pi, pj, u, v, 2, &e), from the same H */
-                /* regularity: rows a - 1 (slot (a + 1) % 2) and a (slot a % 2) of unit normals */
-                double *nc = nrm + 3 * ((size_t)(a % 2) * (size_t)(S + 1) + (size_t)b);
-                unsigned char *dc = def + (size_t)(a % 2) * (size_t)(S + 1) + (size_t)b;
-                *dc = 0;
-                if (!on_collapsed(coll, u, v)) {
-                    if (e.flags & RG2_EVAL_NORMAL_UNDEFINED)
-                        fold_note(r, &r->singular, surf, pi, pj, u, v, e.p);
-                    else {
-                        memcpy(nc, e.n, 3 * sizeof *nc);
-                        *dc = 1;
-                        const double *nu = nrm + 3 * ((size_t)((a + 1) % 2) * (size_t)(S + 1) + (size_t)b);
-                        if (a > 0 && def[(size_t)((a + 1) % 2) * (size_t)(S + 1) + (size_t)b] && dot3(nu, nc) < 0 &&
-                            folds_between(s, pi, pj, (double)(a - 1) / S, v, nu, u, v, nc))
-                            fold_note(r, &r->folds, surf, pi, pj, u - 0.5 / S, v, e.p);
-                        if (b > 0 && dc[-1] && dot3(nc - 3, nc) < 0 &&
-                            folds_between(s, pi, pj, u, (double)(b - 1) / S, nc - 3, u, v, nc))
-                            fold_note(r, &r->folds, surf, pi, pj, u, v - 0.5 / S, e.p);
-                    }
-                }
-                if (!(e.flags & RG2_EVAL_CURVATURE_UNDEFINED) && !on_collapsed(coll, u, v)) {
-                    r->kmin = fmin(r->kmin, e.k2);
-                    r->kmax = fmax(r->kmax, e.k1);
-                    r->Hmin = fmin(r->Hmin, e.H);
-                    r->Hmax = fmax(r->Hmax, e.H);
-                    r->Kmin = fmin(r->Kmin, e.K);
-                    r->Kmax = fmax(r->Kmax, e.K);
-                }
-                if (tag < 0 || tag >= n_shapes)
-                    continue;
-                double g[3], f = rg2__implicit_eval(&imp[tag], e.p, g, NULL), gn = norm3(g);
-                if (!(gn > 0))
-                    continue; /* singular point of the shape (apex): no distance estimate */
-                double res = fabs(f) / gn / shape_size[tag];
-                rg2_check_shape *cs = &r->shapes[tag];
-                if (!isnan(cs->residual) && !(res <= cs->residual)) {
-                    cs->residual = res;
-                    snprintf(cs->where, sizeof cs->where, "surface %d patch (%d,%d) u=%.3g v=%.3g", surf, pi, pj,
-                             u, v);
-                }
-            }
+    int tag = s->tag ? s->tag[k] : -1;
+    r->patches++;
+    if (tag < 0)
+        r->transitions++;
+    else if (tag >= n_shapes)
+        r->untagged_bad++;
+    else {
+        r->exact_patches++;
+        r->shapes[tag].patches++;
     }
+    int du, dv, pi = (int)(k / (size_t)s->nv), pj = (int)(k % (size_t)s->nv);
+    unsigned coll = pole_sides(s, pi, pj);
+    rg2__patch_degree(s, k, &du, &dv);
+    for (int a = 0; a <= du; a++)
+        for (int b = 0; b <= dv; b++) {
+            double w = rg2__patch_ctrl(s, k, a, b)[3];
+            if (isnan(w)) *nan |= NAN_W;
+            if (!(w >= r->wmin)) r->wmin = w;
+            if (!(w <= r->wmax)) r->wmax = w;
+        }
+    for (int a = 0; a <= S; a++)
+        for (int b = 0; b <= S; b++) {
+            double u = (double)a / S, v = (double)b / S, H[6][4];
+            rg2_surface_eval_h(s, pi, pj, u, v, H);
+            if (isnan(H[0][3]))
+                *nan |= NAN_EVAL_W;
+            if (!(H[0][3] >= r->eval_wmin))
+                r->eval_wmin = H[0][3];
+            rg2_eval e;
+            rg2__eval_from_h(H, 2, &e); /* = rg2_surface_eval(s, pi, pj, u, v, 2, &e), from the same H */
+            /* regularity: rows a - 1 (slot (a + 1) % 2) and a (slot a % 2) of unit normals */
+            double *nc = nrm + 3 * ((size_t)(a % 2) * (size_t)(S + 1) + (size_t)b);
+            unsigned char *dc = def + (size_t)(a % 2) * (size_t)(S + 1) + (size_t)b;
+            *dc = 0;
+            if (!on_collapsed(coll, u, v)) {
+                if (e.flags & RG2_EVAL_NORMAL_UNDEFINED)
+                    fold_note(r, &r->singular, surf, pi, pj, u, v, e.p);
+                else {
+                    memcpy(nc, e.n, 3 * sizeof *nc);
+                    *dc = 1;
+                    const double *nu = nrm + 3 * ((size_t)((a + 1) % 2) * (size_t)(S + 1) + (size_t)b);
+                    if (a > 0 && def[(size_t)((a + 1) % 2) * (size_t)(S + 1) + (size_t)b] && dot3(nu, nc) < 0 &&
+                        folds_between(s, pi, pj, (double)(a - 1) / S, v, nu, u, v, nc))
+                        fold_note(r, &r->folds, surf, pi, pj, u - 0.5 / S, v, e.p);
+                    if (b > 0 && dc[-1] && dot3(nc - 3, nc) < 0 &&
+                        folds_between(s, pi, pj, u, (double)(b - 1) / S, nc - 3, u, v, nc))
+                        fold_note(r, &r->folds, surf, pi, pj, u, v - 0.5 / S, e.p);
+                }
+            }
+            if (!(e.flags & RG2_EVAL_CURVATURE_UNDEFINED) && !on_collapsed(coll, u, v)) {
+                r->kmin = fmin(r->kmin, e.k2);
+                r->kmax = fmax(r->kmax, e.k1);
+                r->Hmin = fmin(r->Hmin, e.H);
+                r->Hmax = fmax(r->Hmax, e.H);
+                r->Kmin = fmin(r->Kmin, e.K);
+                r->Kmax = fmax(r->Kmax, e.K);
+            }
+            if (tag < 0 || tag >= n_shapes)
+                continue;
+            double g[3], f = rg2__implicit_eval(&imp[tag], e.p, g, NULL), gn = norm3(g);
+            if (!(gn > 0))
+                continue; /* singular point of the shape (apex): no distance estimate */
+            double res = fabs(f) / gn / shape_size[tag];
+            rg2_check_shape *cs = &r->shapes[tag];
+            if (!isnan(cs->residual) && !(res <= cs->residual)) {
+                cs->residual = res;
+                snprintf(cs->where, sizeof cs->where, "surface %d patch (%d,%d) u=%.3g v=%.3g", surf, pi, pj,
+                         u, v);
+            }
+        }
+}
+
+/* ---------------------------------------------------------------- threads
+ *
+ * The seams and the patches of all surfaces form two flat lists, surface by surface in the
+ * serial order (seams and patches write disjoint fields of the report, so the serial code's
+ * order between them is immaterial). With threads each list is cut into contiguous chunks; a
+ * chunk measures its items into its own partial report, and the partials are merged in chunk
+ * order with the serial code's own comparisons. The report then equals the serial one bit for
+ * bit for any chunking, and so for any thread count:
+ *   counts (patches, seams, samples, skipped, near_pole, folds, ...): integer sums;
+ *   gaps (g0, g1, g2 and the next-to-a-pole and ill-conditioned ones) and shape residuals: the
+ *     partial's worst goes through the serial rule (strict >, a NaN sticks), which keeps the
+ *     first worst sample in the serial order, its location with it;
+ *   fold_at: the first fold or singular sample of the first chunk that has one;
+ *   largest limits (near_pole_tol*, ill_tol*) and curvature ranges: fmax / fmin as serially
+ *     (NaN ignored, each chunk from the serial start value);
+ *   weights (wmin, wmax, eval_wmin): the serial "if (!(w >= m)) m = w" lets the weight after a
+ *     NaN replace it, so a chunk starts from NaN (its first weight taken) and notes whether it
+ *     met a NaN (NAN_* bits): if it did, nothing before it counts and its value is taken, else
+ *     the same comparison merges it.
+ * No floating-point sum is taken anywhere. */
+#ifdef _OPENMP
+#include <omp.h>
+#define CHECK_OMP(x) _Pragma(x)
+#else
+#define CHECK_OMP(x)
+#endif
+#define CHECK_MAX_THREADS 64
+#define CHECK_CHUNKS_PER_THREAD 8 /* chunks of each list per thread: the dynamic schedule's slack */
+
+typedef struct {
+    const rg2_surface *surfs;
+    int n, n_shapes, seam_samples, patch_samples;
+    const size_t *seam_off, *patch_off; /* first seam / patch of each surface in the flat lists (n + 1) */
+    const double *size;                 /* surface_size of each surface */
+    const rg2__implicit *imp;
+    const double *shape_size;
+} check_job;
+
+typedef struct {
+    rg2_check_report r; /* the chunk's measurements (patch chunks: r.shapes, their own n_shapes entries) */
+    unsigned nan;       /* NAN_* bits of the weights the chunk met */
+    int is_seams;       /* a chunk of the seam list (else of the patch list) */
+    size_t lo, hi;      /* its items */
+    int oom;            /* its thread had no memory for the normals of a patch */
+} check_part;
+
+/* Seams lo .. hi - 1 of the flat list, into r. */
+static void run_seams(rg2_check_report *r, const check_job *J, size_t lo, size_t hi)
+{
+    int s = 0;
+    for (size_t g = lo; g < hi; g++) {
+        while (g >= J->seam_off[s + 1])
+            s++;
+        seam_one(r, &J->surfs[s], s, g - J->seam_off[s], J->size[s], J->seam_samples);
+    }
+}
+
+/* Patches lo .. hi - 1 of the flat list, into r (nrm, def: patch_one's rows of normals). */
+static void run_patches(rg2_check_report *r, unsigned *nan, const check_job *J, size_t lo, size_t hi, double *nrm,
+                        unsigned char *def)
+{
+    int s = 0;
+    for (size_t g = lo; g < hi; g++) {
+        while (g >= J->patch_off[s + 1])
+            s++;
+        patch_one(r, nan, &J->surfs[s], s, g - J->patch_off[s], J->imp, J->n_shapes, J->shape_size,
+                  J->patch_samples, nrm, def);
+    }
+}
+
+/* A chunk's worst gap after everything before it: gap_update with the chunk's worst. */
+static void gap_merge(rg2_check_gap *g, const rg2_check_gap *c)
+{
+    seam_at at = {c->surf, c->seam_dir, c->pi, c->pj, c->qi, c->qj, c->t};
+    gap_update(g, c->value, &at, c->p);
+}
+
+/* Smallest weight so far m after a chunk whose own run from NaN gave v (nan: it met a NaN). */
+static void low_merge(double *m, double v, int nan)
+{
+    if (nan || !(v >= *m))
+        *m = v;
+}
+
+static void high_merge(double *m, double v, int nan)
+{
+    if (nan || !(v <= *m))
+        *m = v;
+}
+
+/* Merge chunk c into r, the chunks before it already merged (see the comment above). */
+static void part_merge(rg2_check_report *r, const check_part *c)
+{
+    const rg2_check_report *x = &c->r;
+    if (c->is_seams) {
+        r->seams += x->seams;
+        r->seam_samples += x->seam_samples;
+        r->skipped += x->skipped;
+        r->pole_samples += x->pole_samples;
+        r->unmeasured += x->unmeasured;
+        r->near_pole += x->near_pole;
+        r->pole_unresolved += x->pole_unresolved;
+        r->ill_conditioned += x->ill_conditioned;
+        gap_merge(&r->g0, &x->g0);
+        gap_merge(&r->g1, &x->g1);
+        gap_merge(&r->g2, &x->g2);
+        gap_merge(&r->g1_pole, &x->g1_pole);
+        gap_merge(&r->g2_pole, &x->g2_pole);
+        gap_merge(&r->g1_ill, &x->g1_ill);
+        gap_merge(&r->g2_ill, &x->g2_ill);
+        r->near_pole_tol1 = fmax(r->near_pole_tol1, x->near_pole_tol1);
+        r->near_pole_tol2 = fmax(r->near_pole_tol2, x->near_pole_tol2);
+        r->ill_tol1 = fmax(r->ill_tol1, x->ill_tol1);
+        r->ill_tol2 = fmax(r->ill_tol2, x->ill_tol2);
+        return;
+    }
+    if (x->patches == 0)
+        return;
+    r->patches += x->patches;
+    r->transitions += x->transitions;
+    r->exact_patches += x->exact_patches;
+    r->untagged_bad += x->untagged_bad;
+    low_merge(&r->wmin, x->wmin, (c->nan & NAN_W) != 0);
+    high_merge(&r->wmax, x->wmax, (c->nan & NAN_W) != 0);
+    low_merge(&r->eval_wmin, x->eval_wmin, (c->nan & NAN_EVAL_W) != 0);
+    if (r->folds == 0 && r->singular == 0 && (x->folds || x->singular))
+        r->fold_at = x->fold_at;
+    r->folds += x->folds;
+    r->singular += x->singular;
+    r->kmin = fmin(r->kmin, x->kmin);
+    r->kmax = fmax(r->kmax, x->kmax);
+    r->Hmin = fmin(r->Hmin, x->Hmin);
+    r->Hmax = fmax(r->Hmax, x->Hmax);
+    r->Kmin = fmin(r->Kmin, x->Kmin);
+    r->Kmax = fmax(r->Kmax, x->Kmax);
+    for (int k = 0; k < r->n_shapes; k++) {
+        rg2_check_shape *cs = &r->shapes[k];
+        const rg2_check_shape *xs = &x->shapes[k];
+        cs->patches += xs->patches;
+        if (!isnan(cs->residual) && !(xs->residual <= cs->residual)) {
+            cs->residual = xs->residual;
+            memcpy(cs->where, xs->where, sizeof cs->where);
+        }
+    }
+}
+
+/* The measurements of J on nt threads (nt > 1) into r (its start values set): chunks, then
+ * their merge in order. */
+static rg2_status run_threads(rg2_check_report *r, const check_job *J, size_t n_seams, size_t n_patches, int nt,
+                              rg2_error *err)
+{
+    size_t per = (size_t)nt * CHECK_CHUNKS_PER_THREAD;
+    size_t cs = n_seams < per ? n_seams : per, cp = n_patches < per ? n_patches : per;
+    int nc = (int)(cs + cp);
+    if (nt > nc)
+        nt = nc;
+    check_part *parts = rg2__calloc((size_t)nc, sizeof *parts);
+    int oom = !parts;
+    /* patch chunks first: they are the heavier items, taken first by the dynamic schedule */
+    for (int c = 0; c < nc && !oom; c++) {
+        check_part *P = &parts[c];
+        P->r.opts = r->opts;
+        P->r.n_shapes = r->n_shapes;
+        P->is_seams = (size_t)c >= cp;
+        size_t q = P->is_seams ? (size_t)c - cp : (size_t)c, m = P->is_seams ? cs : cp;
+        size_t items = P->is_seams ? n_seams : n_patches;
+        P->lo = items * q / m; /* contiguous, in order, none empty (m <= items) */
+        P->hi = items * (q + 1) / m;
+        if (!P->is_seams) {
+            P->r.shapes = rg2__calloc((size_t)(r->n_shapes > 0 ? r->n_shapes : 1), sizeof *P->r.shapes);
+            oom = !P->r.shapes;
+            P->r.wmin = P->r.wmax = P->r.eval_wmin = NAN; /* the first weight is taken */
+            P->r.kmin = P->r.Hmin = P->r.Kmin = DBL_MAX;
+            P->r.kmax = P->r.Hmax = P->r.Kmax = -DBL_MAX;
+        }
+    }
+    if (!oom) {
+        size_t row = (size_t)J->patch_samples + 1;
+        CHECK_OMP("omp parallel num_threads(nt)")
+        {
+            double *nrm = malloc(2 * row * 3 * sizeof *nrm);
+            unsigned char *def = malloc(2 * row);
+            CHECK_OMP("omp for schedule(dynamic, 1)")
+            for (int c = 0; c < nc; c++) {
+                check_part *P = &parts[c];
+                if (P->is_seams)
+                    run_seams(&P->r, J, P->lo, P->hi);
+                else if (!nrm || !def)
+                    P->oom = 1;
+                else
+                    run_patches(&P->r, &P->nan, J, P->lo, P->hi, nrm, def);
+            }
+            free(nrm);
+            free(def);
+        }
+        for (int c = 0; c < nc; c++)
+            oom |= parts[c].oom;
+    }
+    /* in the lists' order: the seam chunks, then the patch chunks (disjoint fields) */
+    for (int c = 0; c < nc && !oom; c++)
+        part_merge(r, &parts[((size_t)c + cp) % (size_t)nc]);
+    for (int c = 0; parts && c < nc; c++)
+        free(parts[c].r.shapes);
+    free(parts);
+    if (oom)
+        return rg2__fail(err, RG2_ENOMEM, "check: out of memory for the partial reports of %d threads", nt);
+    return RG2_OK;
 }
 
 rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, const char *const *labels,
@@ -541,6 +772,8 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
     if (o->seam_samples < 1 || o->seam_samples > 10000 || o->patch_samples < 1 || o->patch_samples > 1000)
         return rg2__fail(err, RG2_EINVAL, "check: samples %d per seam / %d per patch outside 1..10000 / 1..1000",
                          o->seam_samples, o->patch_samples);
+    if (o->threads < 0)
+        return rg2__fail(err, RG2_EINVAL, "check: threads %d < 0 (0: the OpenMP default)", o->threads);
     for (int s = 0; s < n; s++) {
         if (surfs[s].nu <= 0 || surfs[s].nv <= 0 || !surfs[s].patch)
             return rg2__fail(err, RG2_EINVAL, "check: surface %d has no patches", s);
@@ -611,24 +844,51 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
     out->wmax = -DBL_MAX;
     out->kmin = out->Hmin = out->Kmin = DBL_MAX;
     out->kmax = out->Hmax = out->Kmax = -DBL_MAX;
-    size_t row = (size_t)o->patch_samples + 1;
-    double *nrm = malloc(2 * row * 3 * sizeof *nrm);
-    unsigned char *ndef = malloc(2 * row);
-    if (!nrm || !ndef) {
+    /* the flat lists of seams and patches, each surface's size */
+    size_t *seam_off = rg2__calloc((size_t)n + 1, sizeof *seam_off);
+    size_t *patch_off = rg2__calloc((size_t)n + 1, sizeof *patch_off);
+    double *size = rg2__calloc((size_t)n, sizeof *size);
+    rg2_status st = RG2_OK;
+    if (!seam_off || !patch_off || !size)
+        st = rg2__fail(err, RG2_ENOMEM, "check: out of memory for %d surfaces", n);
+    for (int s = 0; !st && s < n; s++) {
+        seam_off[s + 1] = seam_off[s] + seam_count(&surfs[s]);
+        patch_off[s + 1] = patch_off[s] + (size_t)surfs[s].nu * (size_t)surfs[s].nv;
+        size[s] = surface_size(&surfs[s]);
+    }
+    check_job J = {surfs, n, n_shapes, o->seam_samples, o->patch_samples, seam_off, patch_off, size, imp, shape_size};
+    int nt = 1;
+#ifdef _OPENMP
+    nt = o->threads > 0 ? o->threads : omp_get_max_threads();
+#endif
+    if (nt > CHECK_MAX_THREADS)
+        nt = CHECK_MAX_THREADS;
+    if (!st && nt > 1)
+        st = run_threads(out, &J, seam_off[n], patch_off[n], nt, err);
+    else if (!st) { /* serial: one run of each list, straight into the report */
+        size_t row = (size_t)o->patch_samples + 1;
+        double *nrm = malloc(2 * row * 3 * sizeof *nrm);
+        unsigned char *ndef = malloc(2 * row);
+        unsigned nan = 0;
+        if (!nrm || !ndef)
+            st = rg2__fail(err, RG2_ENOMEM, "check: out of memory for %d samples per patch", o->patch_samples);
+        else {
+            run_seams(out, &J, 0, seam_off[n]);
+            run_patches(out, &nan, &J, 0, patch_off[n], nrm, ndef);
+        }
         free(nrm);
         free(ndef);
+    }
+    free(seam_off);
+    free(patch_off);
+    free(size);
+    if (st) {
         free(shape_size);
         free(shape_box);
         free(imp);
         rg2_check_report_free(out);
-        return rg2__fail(err, RG2_ENOMEM, "check: out of memory for %d samples per patch", o->patch_samples);
+        return st;
     }
-    for (int s = 0; s < n; s++) {
-        seams(out, &surfs[s], s, o->seam_samples);
-        patches(out, &surfs[s], s, imp, n_shapes, shape_size, o->patch_samples, nrm, ndef);
-    }
-    free(nrm);
-    free(ndef);
     if (out->kmin > out->kmax)
         out->kmin = out->kmax = out->Hmin = out->Hmax = out->Kmin = out->Kmax = 0;
     for (int k = 0; k < n_shapes; k++)

@@ -93,6 +93,69 @@ static void mixed_same(const rg2_surface *s, const rg2_shape *shapes, const char
     rg2_surface_free(&x);
 }
 
+/* The text and JSON reports of rg2_check(surfs, ...) with o at `threads` threads (malloc'd;
+ * NULL when the check fails). */
+static char *report_text(const rg2_surface *surfs, int n, const rg2_shape *shapes, const char *const *labels, int ns,
+                         const rg2_check_opts *o, int threads, char **json)
+{
+    rg2_check_opts t = *o;
+    t.threads = threads;
+    rg2_check_report r;
+    rg2_error err;
+    char *text = NULL;
+    *json = NULL;
+    CHECK_OK(rg2_check(surfs, n, shapes, labels, ns, &t, &r, &err), &err);
+    CHECK_OK(rg2_check_format(&r, 0, &text, &err), &err);
+    CHECK_OK(rg2_check_format(&r, 1, json, &err), &err);
+    rg2_check_report_free(&r);
+    return text;
+}
+
+/* The first line where two reports differ (for the failure message). */
+static void first_difference(const char *a, const char *b, char *out, size_t size)
+{
+    size_t k = 0, back = 0;
+    while (a[k] && a[k] == b[k])
+        k++;
+    while (back < k && back < 40 && a[k - back - 1] != '\n')
+        back++;
+    snprintf(out, size, "at byte %zu: '%.120s' vs '%.120s'", k, a + k - back, b + k - back);
+}
+
+/* rg2_check's report is the same, byte for byte in text and JSON, on 1, 2, 3 and 8 threads
+ * (different chunkings of the seams and patches: the partial reports' merge must keep the
+ * serial order's first worst sample, first fold, counts and ranges). o NULL: the defaults. */
+static void same_on_threads(const rg2_surface *surfs, int n, const rg2_shape *shapes, const char *const *labels,
+                            int ns, const rg2_check_opts *o, const char *name)
+{
+    static const int threads[] = {2, 3, 8};
+    rg2_check_opts def;
+    if (!o) {
+        rg2_check_opts_default(&def);
+        o = &def;
+    }
+    char *j1, *t1 = report_text(surfs, n, shapes, labels, ns, o, 1, &j1);
+    int same = t1 && j1;
+    for (size_t k = 0; k < sizeof threads / sizeof *threads && t1 && j1; k++) {
+        char *jt, *tt = report_text(surfs, n, shapes, labels, ns, o, threads[k], &jt);
+        char where[400] = "";
+        if (tt && strcmp(t1, tt))
+            first_difference(t1, tt, where, sizeof where);
+        else if (jt && strcmp(j1, jt))
+            first_difference(j1, jt, where, sizeof where);
+        CHECK(tt && jt && !where[0], "%s: the report on %d threads differs from 1 thread's %s", name, threads[k],
+              where);
+        same &= tt && jt && !where[0];
+        free(tt);
+        free(jt);
+    }
+    if (same)
+        printf("%s: the same report on 1, 2, 3 and 8 threads (%zu bytes of text, %zu of JSON)\n", name, strlen(t1),
+               strlen(j1));
+    free(t1);
+    free(j1);
+}
+
 static void harness_agreement(void)
 {
     rg2_mesh m;
@@ -351,16 +414,16 @@ out:
 
 static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
-static void examples(void)
+/* The example designs, examples/NAME.json sorted by name, into names (malloc'd each): how many. */
+static int example_names(char **names, int max)
 {
     DIR *dir = opendir("examples");
     CHECK(dir != NULL, "examples/ directory (tests run in the source tree)");
     if (!dir)
-        return;
-    char *names[64];
+        return 0;
     int n = 0;
     struct dirent *de;
-    while ((de = readdir(dir)) && n < 64) {
+    while ((de = readdir(dir)) && n < max) {
         size_t len = strlen(de->d_name);
         if (len > 5 && !strcmp(de->d_name + len - 5, ".json")) {
             names[n] = malloc(len + 10);
@@ -371,6 +434,13 @@ static void examples(void)
     closedir(dir);
     qsort(names, (size_t)n, sizeof *names, cmp_str);
     CHECK(n >= 1, "%d example designs", n);
+    return n;
+}
+
+static void examples(void)
+{
+    char *names[64];
+    int n = example_names(names, 64);
     for (int k = 0; k < n; k++) {
         check_example(names[k]);
         free(names[k]);
@@ -520,6 +590,8 @@ static void unmeasured_fails(void)
         CHECK_OK(rg2_check_format(&r, 0, &text, &err), &err);
         CHECK(text && strstr(text, "NOT MEASURED") && strstr(text, "G1 normal angle") && strstr(text, "FAIL"),
               "%s: the table says what was not measured: %s", file, text ? text : "(none)");
+        same_on_threads(&s, 1, NULL, NULL, 0, NULL,
+                        f ? "fig1_torus scaled by 1e100 (unmeasured)" : "thin band (unmeasured)");
         free(text);
         rg2_check_report_free(&r);
         rg2_surface_free(&s);
@@ -605,6 +677,7 @@ static void folds_fail(void)
               r.fold_at.v);
         CHECK(g1 == RG2_REQUIRE_G1 && g2 == RG2_REQUIRE_G2 && !rg2_check_failures(&r, RG2_REQUIRE_G0),
               "a fold fails G1 and G2, not G0 (failures %#x %#x)", g1, g2);
+        same_on_threads(rg2_design_surface(d, 0), 1, NULL, NULL, 0, NULL, "folded merge");
         char *text = NULL, *json = NULL;
         CHECK_OK(rg2_check_format(&r, 0, &text, &err), &err);
         CHECK_OK(rg2_check_format(&r, 1, &json, &err), &err);
@@ -681,6 +754,7 @@ static void ill_conditioned_flat(void)
           "text:\n%s", txt ? txt : "");
     free(txt);
     rg2_check_report_free(&r);
+    same_on_threads(&s, 1, NULL, NULL, 0, &o, "torus flattened by 1e-6 (ill-conditioned)");
     double *h = rg2_surface_patch(&s, 3, 2)->h[2][1];
     h[2] += 1e-9 * h[3];
     CHECK_OK(rg2_check(&s, 1, NULL, NULL, 0, &o, &r, &err), &err);
@@ -689,6 +763,74 @@ static void ill_conditioned_flat(void)
            "failures %#x\n", r.g1.value, r.g1_ill.value, f);
     CHECK(f == RG2_REQUIRE_G1, "a defect on the flattened torus fails G1 (and only G1 of G0, G1): %#x", f);
     rg2_check_report_free(&r);
+    same_on_threads(&s, 1, NULL, NULL, 0, &o, "flattened torus with a defect");
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
+/* The same report on any thread count: every example (all its surfaces in one check, at the
+ * default samples and at 64 per seam / 5 per patch), a G1 join of 2 patches and 1 seam (fewer
+ * items than threads), and a torus with NaN control weights in some patches (the weights'
+ * serial rule lets the weight after a NaN replace it). Negative thread counts are refused.
+ * (The folded merge, the unmeasured designs and the ill-conditioned torus: in their tests.) */
+static void threads_identical(void)
+{
+    char *names[64];
+    int nd = example_names(names, 64);
+    for (int k = 0; k < nd; k++) {
+        rg2_design *d = NULL;
+        rg2_error err;
+        CHECK_OK(rg2_design_load(names[k], &d, &err), &err);
+        if (d) {
+            int ns = rg2_design_num_shapes(d), n = rg2_design_num_surfaces(d);
+            rg2_shape *shapes = design_shapes(d);
+            const char **labels = calloc((size_t)ns + 1, sizeof *labels);
+            rg2_surface *all = calloc((size_t)n, sizeof *all); /* shallow copies, owned by d */
+            for (int q = 0; q < ns; q++)
+                labels[q] = rg2_design_shape_label(d, q);
+            for (int q = 0; q < n; q++)
+                all[q] = *rg2_design_surface(d, q);
+            same_on_threads(all, n, shapes, labels, ns, NULL, names[k]);
+            rg2_check_opts o;
+            rg2_check_opts_default(&o);
+            o.seam_samples = 64;
+            o.patch_samples = 5;
+            char name[600];
+            snprintf(name, sizeof name, "%s, 64 / 5 samples", names[k]);
+            same_on_threads(all, n, shapes, labels, ns, &o, name);
+            free(all);
+            free(labels);
+            free(shapes);
+            rg2_design_free(d);
+        }
+        free(names[k]);
+    }
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_cyl_plane(2.0, 1.5, 2.0, &s, &err), &err);
+    same_on_threads(&s, 1, NULL, NULL, 0, NULL, "cylinder+plane (2 patches, 1 seam)");
+    rg2_check_opts o;
+    rg2_check_opts_default(&o);
+    o.threads = -1;
+    rg2_check_report r;
+    CHECK(rg2_check(&s, 1, NULL, NULL, 0, &o, &r, &err) == RG2_EINVAL && strstr(err.msg, "threads -1"),
+          "threads -1 refused: %s", err.msg);
+    rg2_surface_free(&s);
+
+    rg2_mesh m;
+    CHECK_OK(rg2t_torus(3, 1, 8, 6, &m, &s, &err), &err);
+    rg2_shape t;
+    rg2_shape_init(&t, RG2_SHAPE_TORUS);
+    s.tag = calloc((size_t)s.nu * s.nv, sizeof *s.tag);
+    same_on_threads(&s, 1, &t, NULL, 1, NULL, "torus 8 x 6");
+    s.patch[7].h[1][2][3] = NAN; /* inside the first chunks; later weights must replace it */
+    s.patch[29].h[0][0][3] = NAN;
+    s.patch[30].h[3][3][3] = NAN;
+    same_on_threads(&s, 1, &t, NULL, 1, NULL, "torus 8 x 6 with NaN weights in patches 7, 29, 30");
+    s.patch[47].h[2][2][3] = NAN; /* the last patch: the NaN stays */
+    same_on_threads(&s, 1, &t, NULL, 1, NULL, "torus 8 x 6 with a NaN weight in the last patch");
+    free(s.tag);
+    s.tag = NULL;
     rg2_surface_free(&s);
     rg2_mesh_free(&m);
 }
@@ -706,5 +848,6 @@ int main(void)
     loose_limits();
     folds_fail();
     ill_conditioned_flat();
+    threads_identical();
     return rg2t_done("test_check");
 }

@@ -94,6 +94,20 @@ expect 0 "16 at a pole (no normal there), 0 not measured" -- \
 expect 2 "--require '': needs a comma-separated list" -- "$RG2" check "$ex" --require ""
 expect 2 "--require 'g2,,exact': needs a comma-separated list" -- "$RG2" check "$ex" --require g2,,exact
 expect 2 "--tol" -- "$RG2" check "$ex" --tol g2
+# the report does not depend on the thread count (text and JSON, a pole design, a fold)
+"$RG2" check --help | grep -q -- "--threads N" && ok || bad "check --help: --threads"
+for f in "$ex" "$SRC/examples/fig9_polar_sphere.json" "$SRC/examples/fig14_mobius.json" "$fold"; do
+  for fmt in "" --json; do
+    "$RG2" check "$f" $fmt --threads 1 >"$tmp/c1.txt" 2>&1
+    "$RG2" check "$f" $fmt --threads 2 >"$tmp/c2.txt" 2>&1
+    [ -s "$tmp/c1.txt" ] && cmp -s "$tmp/c1.txt" "$tmp/c2.txt" && ok ||
+      bad "check $f $fmt: --threads 2 differs from --threads 1"
+  done
+done
+for n in 0 -1 x 1.5 2000; do
+  expect 2 "--threads needs an integer 1..1024" -- "$RG2" check "$ex" --threads $n
+done
+expect 2 "--threads needs an integer 1..1024" -- "$RG2" check "$ex" --threads
 # bad designs: exit 1 with the loader's message
 expect 1 "K = " -- "$RG2" check "$SRC/tests/data/bad_scalar.json"
 expect 1 "" -- "$RG2" render "$SRC/tests/data/bad_weight.json" -o "$tmp/bad.png"
