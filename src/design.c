@@ -235,10 +235,12 @@ rg2_status rg2_mesh_check_range(const rg2_mesh *m, const char *what, rg2_error *
     return RG2_OK;
 }
 
+/* The output meshes are built here, after the whole file is read: their messages name the mesh
+ * entry by its path (meshes.<name>), after the file name. */
 static rg2_status mesh_range(const rg2_mesh *m, const char *file, const char *name, rg2_error *err)
 {
     char what[300];
-    snprintf(what, sizeof what, "%s: mesh '%s'", file, name);
+    snprintf(what, sizeof what, "%s: meshes.%s", file, name);
     return rg2_mesh_check_range(m, what, err);
 }
 
@@ -249,9 +251,13 @@ rg2_status rg2__design_build(rg2_design *d, rg2_error *err)
         const rg2_mesh *m = &d->mesh[d->out[o]].m;
         patches += (size_t)rg2_scalars_num_segments(&m->su) * (size_t)rg2_scalars_num_segments(&m->sv);
     }
-    if (patches > RG2_DESIGN_MAX_PATCHES)
-        return rg2__fail(err, RG2_ELIMIT, "%s: the outputs have %zu patches, more than the limit of %d",
+    if (patches > RG2_DESIGN_MAX_PATCHES && d->out_key)
+        return rg2__fail(err, RG2_ELIMIT, "%s: output: the outputs have %zu patches, more than the limit of %d",
                          d->name, patches, RG2_DESIGN_MAX_PATCHES);
+    if (patches > RG2_DESIGN_MAX_PATCHES) /* no "output": the last mesh */
+        return rg2__fail(err, RG2_ELIMIT,
+                         "%s: meshes.%s: the output (the last mesh) has %zu patches, more than the limit of %d",
+                         d->name, d->mesh[d->out[0]].name, patches, RG2_DESIGN_MAX_PATCHES);
     d->surf = rg2__calloc((size_t)d->n_out, sizeof *d->surf);
     if (!d->surf)
         return rg2__fail(err, RG2_ENOMEM, "design: out of memory");
@@ -261,14 +267,15 @@ rg2_status rg2__design_build(rg2_design *d, rg2_error *err)
         rg2_status st = mesh_range(&dm->m, d->name, dm->name, err);
         if (st)
             return st;
-        st = dm->capped ? rg2__design_build_capped(d, dm, s, err) : rg2_surface_build(&dm->m, s, err);
-        if (dm->capped && !st) {
+        if (dm->capped) {
+            if ((st = rg2__design_build_capped(d, dm, s, err)))
+                return st;
             rg2__surface_normalize_weights(s); /* (rg2_surface_build does it for the uncapped) */
             continue;                          /* tagged by the caps module */
         }
-        if (st) {
+        if ((st = rg2_surface_build(&dm->m, s, err))) {
             rg2_error e = *err;
-            return rg2__fail(err, st, "%s: mesh '%s': %s", d->name, dm->name, e.msg);
+            return rg2__fail(err, st, "%s: meshes.%s: %s", d->name, dm->name, e.msg);
         }
         rg2__stencil sten[2];
         if ((st = rg2__stencil_make(&dm->m.su, &sten[0], err)))

@@ -30,6 +30,7 @@ typedef struct {
     int *jun[2];       /* n entries per direction */
     int capped;        /* built with polar caps (design_poles.c; an output property, not copied) */
     rg2_cap_opts cap;
+    int cap_src;       /* the capped mesh (index into rg2_design.mesh), for messages */
 } rg2__dmesh;
 
 struct rg2_design {
@@ -43,6 +44,7 @@ struct rg2_design {
     rg2__dmesh *mesh;
     int n_out;
     int *out;             /* indices into mesh */
+    int out_key;          /* the file lists its outputs ("output"); else the last mesh is the output */
     rg2_surface *surf;    /* n_out built surfaces with tags */
 };
 
@@ -64,14 +66,17 @@ int rg2__design_add_source(rg2_design *d, int shape, const rg2_mesh *base, rg2_e
 rg2__dmesh *rg2__design_new_mesh(rg2_design *d, rg2_error *err);
 int rg2__design_find_mesh(const rg2_design *d, const char *name);
 
-/* Operations (design_ops.c). `what` names the operation in messages (e.g. "meshes.A").
- * Each writes a new design mesh into *out (allocated by the callee, name set by caller). */
+/* Operations (design_ops.c). `what` is the JSON path of the mesh entry (e.g. "meshes.A"); every
+ * message starts with it or with the path of the offending item below it ("meshes.A.merge[1]",
+ * "shapes.t.matrix"), without the file name (the parser adds it). Each writes a new design mesh
+ * into *out (allocated by the callee, name set by caller). */
+/* vpath: the path of the v partition (its knots are checked against the shape's range). */
 rg2_status rg2__op_shape(rg2_design *d, int shape, const rg2_partition *pu, const rg2_partition *pv,
-                         rg2__dmesh *out, const char *what, rg2_error *err);
+                         rg2__dmesh *out, const char *what, const char *vpath, rg2_error *err);
 /* Keep points first[dir]..last[dir] (inclusive; closed directions may wrap: last may exceed
- * n - 1). A direction with first = -1 is kept as is. */
+ * n - 1). A direction with first = -1 is kept as is; what[dir] is the path of its range. */
 rg2_status rg2__op_cut(const rg2__dmesh *in, const int first[2], const int last[2],
-                       rg2__dmesh *out, const char *what, rg2_error *err);
+                       rg2__dmesh *out, const char *const what[2], rg2_error *err);
 rg2_status rg2__op_transpose(const rg2__dmesh *in, rg2__dmesh *out, const char *what,
                              rg2_error *err);
 /* Reverse direction dir: points in reverse order, legs reversed, junction scalars
@@ -94,15 +99,25 @@ rg2_status rg2__edit_pole(rg2__dmesh *m, int end, rg2__edit_kind kind, const dou
 /* Scalars: which = 'w' (leg index i), 'b' or 'g' (junction index i). */
 rg2_status rg2__edit_scalar(rg2__dmesh *m, int dir, char which, int i, double value,
                             const char *what, rg2_error *err);
+/* The first junction of s whose K is not > 0 (or not finite), or -1. */
+int rg2__bad_junction(const rg2_scalars *s);
+/* rg2_scalars_check of direction dir of a design mesh, the message "<what>: <when><dir> junction i
+ * has K = ..." (when: "" or e.g. "at t = 0.5, "); the core check's own message for anything else. */
+rg2_status rg2__dir_check(const rg2_scalars *s, int dir, const char *what, const char *when, rg2_error *err);
 
 /* Poles (design_poles.c, docs/poles.md): a polar configuration of a sphere, ellipsoid,
  * paraboloid or two-sheeted hyperboloid over interior knots v[0..m-1]; the Moebius map of a
  * reference sphere (shape index or -1 for the unit sphere; b for eq. 16, else the two poles in
  * world coordinates); a polar point edit (end 0 south, 1 north); a capped output surface. */
+/* kpath: the path of the knots v. rg2__polar_kind: RG2_EINVAL naming what.polar unless the shape
+ * has a polar configuration. */
+rg2_status rg2__polar_kind(const rg2_design *d, int shape, const char *what, rg2_error *err);
 rg2_status rg2__op_polar(rg2_design *d, int shape, const rg2_partition *pu, const double *v, int m,
-                         rg2__dmesh *out, const char *what, rg2_error *err);
+                         rg2__dmesh *out, const char *what, const char *kpath, rg2_error *err);
 rg2_status rg2__op_mobius(rg2_design *d, const rg2__dmesh *in, int shape, const double *b,
                           double poles[2][3], rg2__dmesh *out, const char *what, rg2_error *err);
+/* Its messages name the cap's entry ("meshes.C.cap: mesh 'T' cannot be capped: ...",
+ * "meshes.C.jet_weights: ..."), after the file name. */
 rg2_status rg2__design_build_capped(const rg2_design *d, const rg2__dmesh *dm, rg2_surface *s,
                                     rg2_error *err);
 

@@ -33,8 +33,7 @@ rg2_status rg2__dmesh_alloc(rg2__dmesh *d, const char *name, int nu, int nv, int
     }
     if (!ok) {
         rg2__dmesh_free(d);
-        return rg2__fail(err, RG2_ENOMEM, "mesh %s: out of memory for %d x %d points",
-                         name ? name : "", nu, nv);
+        return rg2__fail(err, RG2_ENOMEM, "out of memory for %d x %d control points", nu, nv);
     }
     return RG2_OK;
 }
@@ -80,12 +79,63 @@ rg2_status rg2__dmesh_copy(const rg2__dmesh *in, rg2__dmesh *out, rg2_error *err
 
 /* ------------------------------------------------------------------------------------- */
 
+/* Control points a partition gives its direction: a closed circle of N arcs N, an open direction
+ * of N segments N + 3 (its data-only ends). */
+static long long part_points(const rg2_partition *p)
+{
+    int segs = rg2_partition_num_segments(p);
+    return p->closed && (p->kind == RG2_PART_ANGLES) ? segs : segs + 3;
+}
+
+/* The shape placement's weights (rg2_shape_mesh refuses a placement that turns a positive
+ * control weight <= 0): name the shape's matrix, the mesh and the first such point, as the
+ * transform operation does (1: named in err; 0: no such point, err untouched). Recomputes the
+ * unplaced mesh (on the error path only). */
+static int placement_weights(const rg2_design *d, int shape, const rg2_partition *pu, const rg2_partition *pv,
+                             const char *what, rg2_error *err)
+{
+    rg2_shape u = d->shapes[shape];
+    const double *M = d->shapes[shape].xform;
+    rg2_xform_identity(u.xform);
+    rg2_mesh m = {0};
+    if (rg2_shape_mesh(&u, pu, pv, &m, NULL))
+        return 0;
+    for (int i = 0; i < m.nu; i++)
+        for (int j = 0; j < m.nv; j++) {
+            const double *p = rg2_mesh_at(&m, i, j);
+            double W = M[12] * p[0] + M[13] * p[1] + M[14] * p[2] + M[15] * p[3], before = p[3];
+            if (!(before > 0.0) || W > 0.0)
+                continue;
+            rg2_mesh_free(&m);
+            rg2__fail(err, rg2__finite(W) ? RG2_EWEIGHT : RG2_ENONFINITE,
+                      "shapes.%s.matrix: the placement gives control point [%d, %d] of %s the weight W = %.6g (%.6g "
+                      "unplaced); weights must stay > 0 (the placement matrix's last row must be positive on the "
+                      "whole mesh, or the surface passes through infinity)",
+                      d->labels[shape], i, j, what, W, before);
+            return 1;
+        }
+    rg2_mesh_free(&m);
+    return 0;
+}
+
 rg2_status rg2__op_shape(rg2_design *d, int shape, const rg2_partition *pu, const rg2_partition *pv,
-                         rg2__dmesh *out, const char *what, rg2_error *err)
+                         rg2__dmesh *out, const char *what, const char *vpath, rg2_error *err)
 {
     rg2_mesh base = {0};
-    rg2_status st = rg2_shape_mesh(&d->shapes[shape], pu, pv, &base, err);
+    const rg2_shape *sh = &d->shapes[shape];
+    rg2_status st = rg2__shape_check_range(sh, pv, err);
     if (st) {
+        rg2_error e = *err;
+        return rg2__fail(err, st, "%s: %s", vpath, e.msg);
+    }
+    long long nu = part_points(pu), nv = part_points(pv);
+    if (nu * nv > RG2_MAX_POINTS)
+        return rg2__fail(err, RG2_ELIMIT, "%s: the partitions give %lld x %lld control points, more than the limit "
+                         "of %d per mesh", what, nu, nv, RG2_MAX_POINTS);
+    st = rg2_shape_mesh(sh, pu, pv, &base, err);
+    if (st) {
+        if ((st == RG2_EWEIGHT || st == RG2_ENONFINITE) && placement_weights(d, shape, pu, pv, what, err))
+            return err->code;
         rg2_error e = *err;
         return rg2__fail(err, st, "%s: %s", what, e.msg);
     }
@@ -120,7 +170,7 @@ rg2_status rg2__op_shape(rg2_design *d, int shape, const rg2_partition *pu, cons
 /* cut */
 
 rg2_status rg2__op_cut(const rg2__dmesh *in, const int first[2], const int last[2],
-                       rg2__dmesh *out, const char *what, rg2_error *err)
+                       rg2__dmesh *out, const char *const what[2], rg2_error *err)
 {
     int n[2], cl[2], f[2];
     for (int k = 0; k < 2; k++) {
@@ -135,15 +185,14 @@ rg2_status rg2__op_cut(const rg2__dmesh *in, const int first[2], const int last[
         int maxlast = s->closed ? first[k] + s->n + 2 : s->n - 1;
         if (first[k] >= s->n || last[k] < first[k] || last[k] > maxlast)
             return rg2__fail(err, RG2_EINVAL,
-                             "%s: %s range [%d, %d] is outside the %d control points of mesh '%s' "
+                             "%s: range [%d, %d] is outside the %d control points of mesh '%s' in %s "
                              "(%s; need 0 <= first < %d, first <= last <= %d)",
-                             what, dir_name(k), first[k], last[k], s->n, in->name,
+                             what[k], first[k], last[k], s->n, in->name, dir_name(k),
                              s->closed ? "closed, last may wrap" : "open", s->n, maxlast);
         if (cnt < 4)
             return rg2__fail(err, RG2_EINVAL,
-                             "%s: %s range [%d, %d] keeps %d control points; an open direction "
-                             "needs at least 4",
-                             what, dir_name(k), first[k], last[k], cnt);
+                             "%s: range [%d, %d] keeps %d control points; an open direction needs at least 4",
+                             what[k], first[k], last[k], cnt);
         n[k] = cnt;
         cl[k] = 0;
         f[k] = first[k];
@@ -247,7 +296,7 @@ rg2_status rg2__op_reverse(const rg2__dmesh *in, int dir, rg2__dmesh *out, const
         b->w[s] = a->w[from];
         out->leg[dir][s] = in->leg[dir][from];
     }
-    st = rg2_scalars_check(b, what, err);
+    st = rg2__dir_check(b, dir, what, "", err);
     if (st)
         rg2__dmesh_free(out);
     return st;
@@ -335,11 +384,11 @@ rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int clo
                 continue;
             const double *p = dir ? rg2_mesh_at(m, 0, idx) : rg2_mesh_at(m, idx, 0);
             return rg2__fail(err, RG2_EINCOMPATIBLE,
-                             "%s: mesh '%s' has a polar point at its %s end (%s %d collapsed to (%.6g, %.6g, "
-                             "%.6g)), where the merge along %s joins it to %s: a merge cannot join at a pole; "
+                             "%s.merge[%d]: mesh '%s' has a polar point at its %s end (%s %d collapsed to (%.6g, "
+                             "%.6g, %.6g)), where the merge along %s joins it to %s: a merge cannot join at a pole; "
                              "order the meshes (or reverse '%s' along %s) so that its polar end is an end of "
                              "the merged mesh",
-                             what, in[t]->name, end == 0 ? "first" : "last", dir ? "row v =" : "column u =", idx,
+                             what, t, in[t]->name, end == 0 ? "first" : "last", dir ? "row v =" : "column u =", idx,
                              p[0] / p[3], p[1] / p[3], p[2] / p[3], dir_name(dir),
                              end == 0 ? (t > 0 ? "the mesh before it" : "the last mesh (closed)")
                                       : (t < n_in - 1 ? "the mesh after it" : "the first mesh (closed)"),
@@ -350,25 +399,22 @@ rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int clo
         const rg2_scalars *s = dir_scalars(&in[t]->m, dir);
         if (s->closed)
             return rg2__fail(err, RG2_EINCOMPATIBLE,
-                             "%s: mesh '%s' is closed in %s; cut it open before merging along %s",
-                             what, in[t]->name, dir_name(dir), dir_name(dir));
+                             "%s.merge[%d]: mesh '%s' is closed in %s; cut it open before merging along %s",
+                             what, t, in[t]->name, dir_name(dir), dir_name(dir));
         n += s->n;
         if (n > RG2_MAX_POINTS)
-            return rg2__fail(err, RG2_ELIMIT, "%s: %d or more points along %s exceed the limit", what, n,
-                             dir_name(dir));
+            return rg2__fail(err, RG2_ELIMIT, "%s.merge[%d]: the merged meshes reach %d control points along %s, "
+                             "more than the limit of %d", what, t, n, dir_name(dir), RG2_MAX_POINTS);
         if (t > 0) {
             char msg[400];
             if (scalars_differ(dir_scalars(&in[0]->m, other), dir_scalars(&in[t]->m, other), msg,
                                sizeof msg))
                 return rg2__fail(err, RG2_EINCOMPATIBLE,
-                                 "%s: meshes '%s' and '%s' do not agree in %s (the direction "
+                                 "%s.merge[%d]: meshes '%s' and '%s' do not agree in %s (the direction "
                                  "that must match when merging along %s): %s",
-                                 what, in[0]->name, in[t]->name, dir_name(other), dir_name(dir), msg);
+                                 what, t, in[0]->name, in[t]->name, dir_name(other), dir_name(dir), msg);
         }
     }
-    if (n > RG2_MAX_POINTS)
-        return rg2__fail(err, RG2_ELIMIT, "%s: %d points along %s exceed the limit", what, n,
-                         dir_name(dir));
     const rg2_scalars *so = dir_scalars(&in[0]->m, other);
     int nn[2], cc[2];
     nn[dir] = n;
@@ -462,7 +508,7 @@ rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int clo
         S->g[jr] = K - 2.0 * b * (3.0 * wn - 2.0) - 2.0 * b * b * (3.0 * ws - 2.0);
         out->jun[dir][jr] = -1;
     }
-    st = rg2_scalars_check(S, what, err);
+    st = rg2__dir_check(S, dir, what, "at a seam, ", err);
     if (st)
         rg2__dmesh_free(out);
     return st;
@@ -476,7 +522,7 @@ rg2_status rg2__op_transform(rg2_design *d, const rg2__dmesh *in, const double M
 {
     for (int k = 0; k < 16; k++)
         if (!rg2__finite(M[k]))
-            return rg2__fail(err, RG2_ENONFINITE, "%s: matrix entry %d is not finite", what, k);
+            return rg2__fail(err, RG2_ENONFINITE, "%s: the transform's matrix entry %d is not finite", what, k);
     rg2_status st = rg2__dmesh_copy(in, out, err);
     if (st)
         return st;
@@ -563,12 +609,12 @@ rg2_status rg2__op_morph(const rg2__dmesh *a, const rg2__dmesh *b, double t, rg2
                          const char *what, rg2_error *err)
 {
     if (!rg2__finite(t) || t < 0.0 || t > 1.0)
-        return rg2__fail(err, RG2_EDOMAIN, "%s: t = %g, must lie in [0, 1]", what, t);
+        return rg2__fail(err, RG2_EDOMAIN, "%s.t: t = %g, must lie in [0, 1]", what, t);
     for (int k = 0; k < 2; k++) {
         const rg2_scalars *sa = dir_scalars(&a->m, k), *sb = dir_scalars(&b->m, k);
         if (sa->n != sb->n || sa->closed != sb->closed)
             return rg2__fail(err, RG2_EINCOMPATIBLE,
-                             "%s: meshes '%s' (%d %s) and '%s' (%d %s) differ in %s; a morph needs "
+                             "%s.morph: meshes '%s' (%d %s) and '%s' (%d %s) differ in %s; a morph needs "
                              "meshes of equal structure",
                              what, a->name, sa->n, sa->closed ? "closed" : "open", b->name, sb->n,
                              sb->closed ? "closed" : "open", dir_name(k));
@@ -603,9 +649,10 @@ rg2_status rg2__op_morph(const rg2__dmesh *a, const rg2__dmesh *b, double t, rg2
             if (sa->b[i] != sb->b[i] || sa->g[i] != sb->g[i] || a->jun[k][i] != b->jun[k][i])
                 out->jun[k][i] = -1;
         }
-        char w[160];
-        snprintf(w, sizeof w, "%s at t = %g: %s", what, t, dir_name(k));
-        st = rg2_scalars_check(so, w, err);
+        char w[300], when[40];
+        snprintf(w, sizeof w, "%s.t", what);
+        snprintf(when, sizeof when, "at t = %g, ", t);
+        st = rg2__dir_check(so, k, w, when, err);
         if (st) {
             rg2__dmesh_free(out);
             return st;
@@ -699,4 +746,31 @@ rg2_status rg2__edit_scalar(rg2__dmesh *m, int dir, char which, int i, double va
         m->jun[dir][i] = -1;
     }
     return RG2_OK;
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* scalars of a design mesh */
+
+int rg2__bad_junction(const rg2_scalars *s)
+{
+    for (int i = 0; i < s->n; i++) {
+        double K = rg2_scalars_K(s, i);
+        if (!(K > 0.0) || !rg2__finite(K))
+            return i;
+    }
+    return -1;
+}
+
+rg2_status rg2__dir_check(const rg2_scalars *s, int dir, const char *what, const char *when, rg2_error *err)
+{
+    int i = rg2__bad_junction(s);
+    if (i >= 0)
+        return rg2__fail(err, RG2_EWEIGHT,
+                         "%s: %s%s junction %d has K = %g (from w[%d] = %g, w[%d] = %g, b = %g, g = %g); "
+                         "K must be > 0",
+                         what, when, dir_name(dir), i, rg2_scalars_K(s, i), i - 1, rg2_scalars_leg_w(s, i - 1), i,
+                         rg2_scalars_leg_w(s, i), s->b[i], s->g[i]);
+    char w[340];
+    snprintf(w, sizeof w, "%s: %s%s", what, when, dir_name(dir));
+    return rg2_scalars_check(s, w, err); /* (the operations keep w, b > 0: not reached) */
 }

@@ -186,9 +186,10 @@ static rg2_status as_obj(pctx *c, const cJSON *x, const char *path)
 static rg2_status as_nums(pctx *c, const cJSON *x, const char *path, double *out, int n, int max,
                           int *count)
 {
+    if (!cJSON_IsArray(x) && n)
+        return fail(c, RG2_EPARSE, path, "expected an array of %d numbers, found %s", n, type_name(x));
     if (!cJSON_IsArray(x))
-        return fail(c, RG2_EPARSE, path, "expected an array of %s numbers, found %s",
-                    n ? (n == 3 ? "3" : n == 16 ? "16" : "2") : "", type_name(x));
+        return fail(c, RG2_EPARSE, path, "expected an array of numbers, found %s", type_name(x));
     int len = cJSON_GetArraySize(x);
     if (n && len != n)
         return fail(c, RG2_EPARSE, path, "expected %d numbers, found %d", n, len);
@@ -354,9 +355,13 @@ static rg2_status parse_shape(pctx *c, const cJSON *obj, const char *label, cons
     rg2_error e;
     if ((st = rg2_shape_coeffs(&s, coef, &e)))
         return fail(c, st, path, "%s", e.msg);
-    if (any && (st = rg2_xform_invert(s.xform, inv, &e)))
-        return fail(c, st, path, "placement: %s", e.msg);
-    return rg2__design_add_shape(c->d, &s, label, c->err) < 0 ? c->err->code : RG2_OK;
+    if (any && (st = rg2_xform_invert(s.xform, inv, &e))) { /* (a zero scale is refused above: the matrix) */
+        subpath(p, sizeof p, path, "matrix");
+        return fail(c, st, get(obj, "matrix") ? p : path, "%s", e.msg);
+    }
+    if (rg2__design_add_shape(c->d, &s, label, c->err) < 0)
+        return fail(c, RG2_ENOMEM, path, "out of memory");
+    return RG2_OK;
 }
 
 static int find_shape(const rg2_design *d, const char *label)
@@ -499,8 +504,8 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
     pb->p.values = pb->values;
     pb->p.start = angles ? lo * M_PI / 180.0 : 0.0;
     rg2_error e;
-    if ((st = rg2_partition_check(&pb->p, dir ? "v" : "u", &e)))
-        return fail(c, st, path, "%s", e.msg);
+    if ((st = rg2_partition_check(&pb->p, dir ? "v" : "u", &e))) /* "u partition: ...": the path says it */
+        return fail(c, st, path, "%s", rg2__after(e.msg, dir ? "v partition: " : "u partition: "));
     return RG2_OK;
 }
 
@@ -577,16 +582,8 @@ static rg2_status op_shape(pctx *c, const cJSON *obj, const char *path, rg2__dme
         subpath(p, sizeof p, path, k ? "v" : "u");
         st = parse_partition(c, get(obj, k ? "v" : "u"), p, desc, k, &pb[k]);
     }
-    if (!st)
-        st = rg2__op_shape(c->d, sh, &pb[0].p, &pb[1].p, out, path, c->err);
-    if (st == RG2_EWEIGHT || st == RG2_ENONFINITE) { /* the placement's weights: name the shape's matrix */
-        rg2_error e = *c->err;
-        subpath(p, sizeof p, "shapes", label);
-        char q[320];
-        subpath(q, sizeof q, p, "matrix");
-        if (strstr(e.msg, "the placement gives"))
-            st = fail(c, st, q, "%s", e.msg);
-    }
+    if (!st) /* (p: the v partition's path) */
+        st = rg2__op_shape(c->d, sh, &pb[0].p, &pb[1].p, out, path, p, c->err);
     free(pb[0].values);
     free(pb[1].values);
     return st;
@@ -602,13 +599,16 @@ static rg2_status op_cut(pctx *c, const cJSON *obj, const char *path, rg2__dmesh
         return st;
     const rg2__dmesh *in = &c->d->mesh[src];
     int first[2] = {-1, -1}, last[2] = {-1, -1};
+    char dp[2][320];
+    const char *const dpath[2] = {dp[0], dp[1]};
     if (!get(obj, "u") && !get(obj, "v"))
         return fail(c, RG2_EPARSE, path, "a cut needs a range in 'u' or 'v'");
     for (int k = 0; k < 2; k++) {
         const cJSON *x = get(obj, k ? "v" : "u");
+        subpath(p, sizeof p, path, k ? "v" : "u");
+        fmtpath(dp[k], sizeof dp[k], "%s", p);
         if (!x)
             continue;
-        subpath(p, sizeof p, path, k ? "v" : "u");
         const rg2_scalars *s = k ? &in->m.sv : &in->m.su;
         if (cJSON_IsObject(x)) {
             static const char *const ok[] = {"open_at"};
@@ -625,7 +625,12 @@ static rg2_status op_cut(pctx *c, const cJSON *obj, const char *path, rg2__dmesh
             if (!s->closed)
                 return fail(c, RG2_EINVAL, q, "mesh '%s' is already open in %s", in->name, k ? "v" : "u");
             if (j < 0 || j >= s->n)
-                return fail(c, RG2_EINVAL, q, "junction %d is outside 0..%d", j, s->n - 1);
+                return fail(c, RG2_EINVAL, q, "junction %d is outside 0..%d of mesh '%s'", j, s->n - 1, in->name);
+            if (s->n < 4)
+                return fail(c, RG2_EINVAL, q,
+                            "mesh '%s' has %d control points in %s; opened, it needs at least 4 (an open "
+                            "direction's minimum)", in->name, s->n, k ? "v" : "u");
+            fmtpath(dp[k], sizeof dp[k], "%s", q);
             first[k] = j;
             last[k] = j + s->n - 1;
         } else {
@@ -642,7 +647,7 @@ static rg2_status op_cut(pctx *c, const cJSON *obj, const char *path, rg2__dmesh
                 return fail(c, RG2_EINVAL, p, "first index %d is negative", first[k]);
         }
     }
-    return rg2__op_cut(in, first, last, out, path, c->err);
+    return rg2__op_cut(in, first, last, out, dpath, c->err);
 }
 
 static rg2_status parse_dir(pctx *c, const cJSON *x, const char *path, int *dir)
@@ -845,7 +850,8 @@ static rg2_status edit_points(pctx *c, const cJSON *arr, const char *path, rg2__
             if ((st = as_nums(c, it, r, ij, 2, 2, NULL)))
                 return st;
             if (ij[0] != floor(ij[0]) || ij[1] != floor(ij[1]) || fabs(ij[0]) > 1e9 || fabs(ij[1]) > 1e9)
-                return fail(c, RG2_EPARSE, r, "expected integer indices");
+                return fail(c, RG2_EPARSE, r, "expected integer indices [i, j], found [%.17g, %.17g]", ij[0],
+                            ij[1]);
             int i = (int)ij[0], j = (int)ij[1];
             if (mv || to)
                 if ((st = rg2__edit_point(m, i, j, mv ? RG2__EDIT_MOVE : RG2__EDIT_TO, v, r, c->err)))
@@ -879,6 +885,11 @@ static rg2_status edit_scalars(pctx *c, const cJSON *arr, const char *path, rg2_
         subpath(q, sizeof q, p, leg ? "leg" : "junction");
         if ((st = as_int(c, leg ? leg : jun, q, &idx)))
             return st;
+        const rg2_scalars *sc = dir ? &m->m.sv : &m->m.su;
+        int lo = leg && !sc->closed ? -1 : 0, hi = sc->n - 1; /* (open: legs -1 and n - 1 are data-only) */
+        if (idx < lo || idx > hi)
+            return fail(c, RG2_EINVAL, q, "%s %s %d is outside %d..%d of mesh '%s'", dir ? "v" : "u",
+                        leg ? "leg" : "junction", idx, lo, hi, m->name);
         static const char which[3] = {'w', 'b', 'g'};
         int any = 0;
         for (int s = 0; s < 3; s++) {
@@ -888,7 +899,8 @@ static rg2_status edit_scalars(pctx *c, const cJSON *arr, const char *path, rg2_
                 continue;
             subpath(q, sizeof q, p, key);
             if ((s == 0) != (leg != NULL))
-                return fail(c, RG2_EPARSE, q, "'w' belongs to a 'leg', 'b' and 'g' to a 'junction'");
+                return fail(c, RG2_EPARSE, q, "'%s' goes with a '%s', not a '%s' ('w' belongs to a leg, 'b' and "
+                            "'g' to a junction)", key, s ? "junction" : "leg", leg ? "leg" : "junction");
             double v;
             if ((st = as_num(c, x, q, &v)) || (st = rg2__edit_scalar(m, dir, which[s], idx, v, q, c->err)))
                 return st;
@@ -922,14 +934,22 @@ static rg2_status op_edit(pctx *c, const cJSON *obj, const char *path, rg2__dmes
         subpath(p, sizeof p, path, "scalars");
         st = edit_scalars(c, x, p, out);
     }
-    if (!st) {
-        char w[320];
-        fmtpath(w, sizeof w, "%s: %s", c->file, path);
-        for (int k = 0; k < 2 && !st; k++) {
-            char ww[340];
-            fmtpath(ww, sizeof ww, "%s: %s", w, k ? "v" : "u");
-            st = rg2_scalars_check(k ? &out->m.sv : &out->m.su, ww, c->err);
+    for (int k = 0; k < 2 && !st; k++) { /* K > 0 after all the edits: name the last edit of the junction */
+        const rg2_scalars *sc = k ? &out->m.sv : &out->m.su;
+        int i = rg2__bad_junction(sc), blame = -1, e = 0;
+        for (const cJSON *it = cJSON_GetArrayItem(get(obj, "scalars"), 0); i >= 0 && it; it = it->next, e++) {
+            const cJSON *leg = get(it, "leg"), *jun = get(it, "junction");
+            int id = (int)(leg ? leg : jun)->valuedouble; /* (checked above) */
+            int l0 = sc->closed ? rg2__wrap(i - 1, sc->n, 1) : i - 1; /* junction i joins legs i - 1, i */
+            if (!strcmp(get(it, "dir")->valuestring, k ? "v" : "u") && (leg ? id == l0 || id == i : id == i))
+                blame = e;
         }
+        char w[340];
+        if (blame >= 0)
+            fmtpath(w, sizeof w, "%s: %s.scalars[%d]", c->file, path, blame);
+        else
+            fmtpath(w, sizeof w, "%s: %s", c->file, path);
+        st = rg2__dir_check(sc, k, w, "", c->err);
     }
     out->name = NULL;
     if (st)
@@ -1009,10 +1029,14 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
     }
     if (st) {
         rg2__dmesh_free(&tmp); /* whatever the operation had allocated */
-        /* operation messages from the ops module lack the file name: add it */
-        if (c->err && strncmp(c->err->msg, c->file, strlen(c->file))) {
+        /* the ops module's messages start with a JSON path but lack the file name; a message of the
+         * layers below that an operation passed on as it is (out of memory) lacks the path too */
+        if (strncmp(c->err->msg, c->file, strlen(c->file))) {
             rg2_error e = *c->err;
-            rg2__fail(c->err, st, "%s: %s", c->file, e.msg);
+            if (!strncmp(e.msg, "meshes.", 7) || !strncmp(e.msg, "shapes.", 7))
+                rg2__fail(c->err, st, "%s: %s", c->file, e.msg);
+            else
+                rg2__fail(c->err, st, "%s: %s: %s", c->file, path, e.msg);
         }
         return st;
     }
@@ -1159,7 +1183,7 @@ rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, c
         fmtpath(p, sizeof p, "shapes.%s", it->string);
         for (const cJSON *o = shapes->child; o != it; o = o->next)
             if (!strcmp(o->string, it->string)) {
-                st = fail(&c, RG2_EPARSE, p, "duplicate shape label");
+                st = fail(&c, RG2_EPARSE, p, "duplicate shape label '%s'", it->string);
                 goto done;
             }
         if ((st = parse_shape(&c, it, it->string, p)))
@@ -1192,6 +1216,7 @@ rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, c
         goto done;
     }
     d->n_out = n_out;
+    d->out_key = x != NULL;
     if (!x)
         d->out[0] = d->n_mesh - 1;
     else if (cJSON_IsArray(x)) {
@@ -1356,6 +1381,8 @@ static rg2_status op_polar(pctx *c, const cJSON *obj, const char *path, rg2__dme
         return fail(c, RG2_EPARSE, p, "no shape labelled '%s' in \"shapes\"%s", label, sug);
     }
     const rg2_shape_desc *desc = rg2_shape_describe(c->d->shapes[sh].kind);
+    if ((st = rg2__polar_kind(c->d, sh, path, c->err))) /* (before its partitions: a hypar's u is knots) */
+        return st;
     const cJSON *vo, *kn;
     subpath(p, sizeof p, path, "v");
     static const char *const vkeys[] = {"knots"};
@@ -1372,12 +1399,10 @@ static rg2_status op_polar(pctx *c, const cJSON *obj, const char *path, rg2__dme
         subpath(p, sizeof p, path, "u");
         st = parse_partition(c, get(obj, "u"), p, desc, 0, &pb);
     }
-    if (!st && pb.p.kind != RG2_PART_ANGLES)
-        st = fail(c, RG2_EPARSE, path, "a polar configuration needs a circle u-direction");
-    if (!st && !pb.p.closed)
+    if (!st && !pb.p.closed) /* (the u of the shapes with poles is a circle) */
         st = fail(c, RG2_EPARSE, p, "a polar configuration needs a closed u-direction (full circle)");
     if (!st)
-        st = rg2__op_polar(c->d, sh, &pb.p, v, m, out, path, c->err);
+        st = rg2__op_polar(c->d, sh, &pb.p, v, m, out, path, q, c->err);
     free(v);
     free(pb.values);
     return st;
@@ -1452,10 +1477,18 @@ static rg2_status op_cap(pctx *c, const cJSON *obj, const char *path, rg2__dmesh
         else
             return fail(c, RG2_EPARSE, p, "expected \"both\", \"south\" or \"north\", found '%s'", e);
     }
+    /* the options' ranges (rg2_cap_build checks them too, when the output is built) */
+    char q[320];
     if ((x = get(obj, "length"))) {
         subpath(p, sizeof p, path, "length");
         if ((st = as_nums(c, x, p, o.length, 2, 2, NULL)))
             return st;
+        for (int e = 0; e < 2; e++) {
+            indexpath(q, sizeof q, p, e);
+            if (!(o.length[e] >= 0.0))
+                return fail(c, RG2_EDOMAIN, q, "%s cap length %g, must be > 0 (or 0: automatic)",
+                            e ? "north" : "south", o.length[e]);
+        }
         o.vc[0] = o.vc[1] = 0.5;
     }
     if ((x = get(obj, "vc"))) {
@@ -1464,32 +1497,47 @@ static rg2_status op_cap(pctx *c, const cJSON *obj, const char *path, rg2__dmesh
             return fail(c, RG2_EPARSE, p, "'vc' needs 'length' (both are automatic otherwise)");
         if ((st = as_nums(c, x, p, o.vc, 2, 2, NULL)))
             return st;
+        for (int e = 0; e < 2; e++) {
+            indexpath(q, sizeof q, p, e);
+            if (o.length[e] != 0.0 && !(o.vc[e] >= 0.0 && o.vc[e] < 1.0))
+                return fail(c, RG2_EDOMAIN, q, "%s seam position v_c = %g, must lie in [0, 1)",
+                            e ? "north" : "south", o.vc[e]);
+        }
     }
     if ((x = get(obj, "samples"))) {
         subpath(p, sizeof p, path, "samples");
         if ((st = as_int(c, x, p, &o.samples)))
             return st;
+        if (o.samples < 2 || o.samples > 256)
+            return fail(c, RG2_EDOMAIN, p, "%d boundary samples per patch column, must be in 2..256", o.samples);
     }
     if ((x = get(obj, "jet_weights"))) {
         subpath(p, sizeof p, path, "jet_weights");
         if ((st = as_nums(c, x, p, o.jet_weight, 3, 3, NULL)))
             return st;
+        for (int e = 0; e < 3; e++) {
+            indexpath(q, sizeof q, p, e);
+            if (!(o.jet_weight[e] >= 0.0))
+                return fail(c, RG2_EDOMAIN, q, "weight %g (order %d of the boundary 2-jet), must be >= 0",
+                            o.jet_weight[e], e);
+        }
     }
     if ((x = get(obj, "quadratic"))) {
-        const char *q = NULL;
+        const char *qs = NULL;
         subpath(p, sizeof p, path, "quadratic");
-        if ((st = as_str(c, x, p, &q)))
+        if ((st = as_str(c, x, p, &qs)))
             return st;
-        if (!strcmp(q, "rotational"))
+        if (!strcmp(qs, "rotational"))
             o.quadratic = RG2_CAP_ROTATIONAL;
-        else if (!strcmp(q, "general"))
+        else if (!strcmp(qs, "general"))
             o.quadratic = RG2_CAP_GENERAL;
         else
-            return fail(c, RG2_EPARSE, p, "expected \"rotational\" (bi-3 caps) or \"general\" (degree 4/5 in u), found '%s'", q);
+            return fail(c, RG2_EPARSE, p, "expected \"rotational\" (bi-3 caps) or \"general\" (degree 4/5 in u), found '%s'", qs);
     }
     if ((st = rg2__dmesh_copy(&c->d->mesh[src], out, c->err)))
         return st;
     out->capped = 1;
     out->cap = o;
+    out->cap_src = src;
     return RG2_OK;
 }

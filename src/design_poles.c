@@ -16,6 +16,18 @@ static void collapse_row(rg2_mesh *m, int j)
         memcpy(rg2_mesh_at(m, i, j), rg2_mesh_at(m, 0, j), 4 * sizeof(double));
 }
 
+rg2_status rg2__polar_kind(const rg2_design *d, int shape, const char *what, rg2_error *err)
+{
+    rg2_shape_kind kind = d->shapes[shape].kind;
+    if (kind != RG2_SHAPE_SPHERE && kind != RG2_SHAPE_ELLIPSOID && kind != RG2_SHAPE_PARABOLOID &&
+        kind != RG2_SHAPE_HYPERBOLOID2)
+        return rg2__fail(err, RG2_EINVAL,
+                         "%s.polar: '%s' is a %s, which has no polar configuration (sphere, ellipsoid: both "
+                         "poles; paraboloid, hyperboloid2: the pole at v = 0)",
+                         what, d->labels[shape], rg2_shape_name(kind));
+    return RG2_OK;
+}
+
 /*
  * METHOD: a polar configuration is the shape's own family-2 mesh over the full knot vector of
  * the polar configuration (RG2_PART_KNOTS_FULL): sphere and ellipsoid v_{-1} = v_1/(v_1 - 1),
@@ -26,21 +38,18 @@ static void collapse_row(rg2_mesh *m, int j)
  * source too, so provenance sees the band patches as pieces of the shape.
  */
 rg2_status rg2__op_polar(rg2_design *d, int shape, const rg2_partition *pu, const double *v, int m,
-                         rg2__dmesh *out, const char *what, rg2_error *err)
+                         rg2__dmesh *out, const char *what, const char *kpath, rg2_error *err)
 {
     rg2_shape_kind kind = d->shapes[shape].kind;
     int both = kind == RG2_SHAPE_SPHERE || kind == RG2_SHAPE_ELLIPSOID;
-    if (!both && kind != RG2_SHAPE_PARABOLOID && kind != RG2_SHAPE_HYPERBOLOID2)
-        return rg2__fail(err, RG2_EINVAL,
-                         "%s: shape kind '%s' has no polar configuration (sphere, ellipsoid: both poles; "
-                         "paraboloid, hyperboloid2: the pole at v = 0)",
-                         what, rg2_shape_name(kind));
+    rg2_status st = rg2__polar_kind(d, shape, what, err);
+    if (st)
+        return st;
     if (m < 2)
-        return rg2__fail(err, RG2_EINVAL, "%s: %d knot(s); a polar configuration needs at least 2", what, m);
+        return rg2__fail(err, RG2_EINVAL, "%s: %d knot; a polar configuration needs at least 2", kpath, m);
     double *k = rg2__calloc((size_t)m + 4, sizeof(double));
     if (!k)
         return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", what);
-    rg2_status st = RG2_OK;
     int north = !both && v[m - 1] < 0.0; /* paraboloid, hyperboloid2: knots below 0, pole at the end */
     if (both) {
         st = rg2_polar_knots(v, m, k, err);
@@ -48,8 +57,7 @@ rg2_status rg2__op_polar(rg2_design *d, int shape, const rg2_partition *pu, cons
         for (int q = 0; q < m && !st; q++)
             if (!(north ? v[q] < 0.0 : v[q] > 0.0) || (q && !(v[q] > v[q - 1])))
                 st = rg2__fail(err, RG2_EDOMAIN,
-                               "knot v_%d = %.17g: the knots must increase and all lie on one side of the "
-                               "pole v = 0",
+                               "v_%d = %.17g: the knots must increase and all lie on one side of the pole v = 0",
                                q + 1, v[q]);
         if (!st && !north) {
             double dl = v[m - 1] - v[m - 2];
@@ -67,13 +75,13 @@ rg2_status rg2__op_polar(rg2_design *d, int shape, const rg2_partition *pu, cons
             k[m + 3] = -v[m - 1];
         }
     }
-    if (st) {
+    if (st) { /* (rg2_polar_knots: "polar knots: v_2 = ..."; the path names the knots) */
         rg2_error e = *err;
         free(k);
-        return rg2__fail(err, st, "%s: %s", what, e.msg);
+        return rg2__fail(err, st, "%s: %s", kpath, rg2__after(e.msg, "polar knots: "));
     }
     rg2_partition pv = {RG2_PART_KNOTS_FULL, 0, m + 4, k, 0.0};
-    st = rg2__op_shape(d, shape, pu, &pv, out, what, err);
+    st = rg2__op_shape(d, shape, pu, &pv, out, what, kpath, err);
     free(k);
     if (st)
         return st;
@@ -108,13 +116,16 @@ rg2_status rg2__op_mobius(rg2_design *d, const rg2__dmesh *in, int shape, const 
         else if (s->kind == RG2_SHAPE_ELLIPSOID)
             rg2_xform_scale(S, s->param[0], s->param[1], s->param[2]);
         else
-            return rg2__fail(err, RG2_EINVAL, "%s: the reference shape must be a sphere or an ellipsoid, not a %s",
-                             what, rg2_shape_name(s->kind));
+            return rg2__fail(err, RG2_EINVAL,
+                             "%s.sphere: '%s' is a %s; the reference shape must be a sphere or an ellipsoid", what,
+                             d->labels[shape], rg2_shape_name(s->kind));
         rg2_xform_mul(s->xform, S, X);
     }
     rg2_status st = rg2_xform_invert(X, Xi, err);
-    if (st)
-        return st;
+    if (st) {
+        rg2_error e = *err;
+        return rg2__fail(err, st, "%s.sphere: %s", what, e.msg);
+    }
     if (b) {
         rg2_mobius_matrix(*b, NULL, M);
     } else {
@@ -148,7 +159,8 @@ rg2_status rg2__op_mobius(rg2_design *d, const rg2__dmesh *in, int shape, const 
         }
         if ((st = rg2_mobius_poles_matrix(loc[0], loc[1], M, err))) {
             rg2_error e = *err;
-            return rg2__fail(err, st, "%s: %s (poles taken relative to the reference sphere)", what, e.msg);
+            return rg2__fail(err, st, "%s.poles: %s (poles taken relative to the reference sphere)", what,
+                             rg2__after(e.msg, "moebius: "));
         }
     }
     rg2_xform_mul(M, Xi, A);
@@ -161,9 +173,9 @@ rg2_status rg2__op_mobius(rg2_design *d, const rg2__dmesh *in, int shape, const 
                 double w = rg2_mesh_at(&out->m, i, j)[3];
                 rg2__dmesh_free(out);
                 return rg2__fail(err, RG2_EWEIGHT,
-                                 "%s: control point [%d][%d] gets weight %g; the Moebius map sends it through "
-                                 "infinity (move the poles less far, or refine the u partition)",
-                                 what, i, j, w);
+                                 "%s.%s: the Moebius map gives control point [%d, %d] the weight %g, sending it "
+                                 "through infinity (move the poles less far, or refine the u partition)",
+                                 what, b ? "b" : "poles", i, j, w);
             }
     return RG2_OK;
 }
@@ -172,11 +184,12 @@ rg2_status rg2__edit_pole(rg2__dmesh *m, int end, rg2__edit_kind kind, const dou
                           rg2_error *err)
 {
     if (m->m.sv.closed)
-        return rg2__fail(err, RG2_EINVAL, "%s: the mesh's v-direction is closed; it has no poles", what);
+        return rg2__fail(err, RG2_EINVAL, "%s: mesh '%s' is closed in v; it has no poles", what, m->name);
     int j = end ? m->m.nv - 1 : 0;
     if (!rg2_mesh_row_collapsed(&m->m, j))
-        return rg2__fail(err, RG2_EINVAL, "%s: row %d (the %s end) is not a polar point (not collapsed)", what, j,
-                         end ? "north" : "south");
+        return rg2__fail(err, RG2_EINVAL,
+                         "%s: row %d (the %s end) of mesh '%s' is not a polar point (not collapsed)", what, j,
+                         end ? "north" : "south", m->name);
     for (int i = 0; i < m->m.nu; i++) {
         rg2_status st = rg2__edit_point(m, i, j, kind, v, what, err);
         if (st)
@@ -193,13 +206,26 @@ rg2_status rg2__edit_pole(rg2__dmesh *m, int end, rg2__edit_kind kind, const dou
  * residual <= 1e-12: the fit is unique, so the cap map is the shape's own, e.g. the sphere),
  * else -1.
  */
+/* A failed cap names the cap's entry: its jet weights when they leave the fit rank-deficient
+ * (cap.c's messages start with "cap: ", that one then with "jet_weights "; the others are checked
+ * by the parser), else the mesh it caps. */
+static rg2_status cap_fail(const rg2_design *d, const rg2__dmesh *dm, rg2_status st, rg2_error *err)
+{
+    rg2_error e = *err;
+    const char *m = rg2__after(e.msg, "cap: "), *jet = rg2__after(m, "jet_weights ");
+    if (jet != m)
+        return rg2__fail(err, st, "%s: meshes.%s.jet_weights: %s", d->name, dm->name, jet);
+    return rg2__fail(err, st, "%s: meshes.%s.cap: mesh '%s' cannot be capped: %s", d->name, dm->name,
+                     d->mesh[dm->cap_src].name, m);
+}
+
 rg2_status rg2__design_build_capped(const rg2_design *d, const rg2__dmesh *dm, rg2_surface *s,
                                     rg2_error *err)
 {
     rg2_cap_info info;
     rg2_status st = rg2_cap_build(&dm->m, &dm->cap, s, &info, err);
     if (st)
-        return st;
+        return cap_fail(d, dm, st, err);
     rg2__stencil sten[2];
     if ((st = rg2__stencil_make(&dm->m.su, &sten[0], err)))
         goto fail;

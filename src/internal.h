@@ -6,6 +6,7 @@
 
 #include <math.h>
 #include <stdarg.h>
+#include <string.h>
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -225,5 +226,18 @@ typedef struct {
 } rg2__implicit;
 void rg2__implicit_prep(const rg2_shape *s, rg2__implicit *p);
 double rg2__implicit_eval(const rg2__implicit *p, const double x[3], double grad[3], double hess[9]);
+
+/* The shape's limits on the produced knots of its v partition (sphere and ellipsoid bands in
+ * (0, 1), hyperboloid1 v > 0, hyperboloid2 |v| < 1), as rg2_shape_mesh checks them: RG2_EDOMAIN
+ * naming the kind and the knot ("sphere: v knot 0 = 0 must lie in (0, 1) (...)"). */
+rg2_status rg2__shape_check_range(const rg2_shape *s, const rg2_partition *pv, rg2_error *err);
+
+/* msg past its leading `prefix` (a context a caller's own prefix replaces), or msg itself when it
+ * does not start with it. */
+static inline const char *rg2__after(const char *msg, const char *prefix)
+{
+    size_t n = strlen(prefix);
+    return strncmp(msg, prefix, n) ? msg : msg + n;
+}
 
 #endif

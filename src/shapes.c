@@ -650,7 +650,7 @@ rg2_status rg2_shape_coeffs(const rg2_shape *s, double C[4][4][4], rg2_error *er
 }
 
 /* Shape-specific limits on the produced parameter range of a knot direction. */
-static rg2_status check_range(const rg2_shape *s, const rg2_partition *pv, rg2_error *err)
+rg2_status rg2__shape_check_range(const rg2_shape *s, const rg2_partition *pv, rg2_error *err)
 {
     int lo, hi;
     visible_range(pv, &lo, &hi);
@@ -731,7 +731,7 @@ rg2_status rg2_shape_mesh(const rg2_shape *s, const rg2_partition *pu, const rg2
         return st;
     if ((st = rg2_partition_check(pu, "u", err)) || (st = rg2_partition_check(pv, "v", err)))
         return prefixed(err, st, d->name);
-    if ((st = check_range(s, pv, err)) || (st = check_xform(s->xform, d->name, err)))
+    if ((st = rg2__shape_check_range(s, pv, err)) || (st = check_xform(s->xform, d->name, err)))
         return st;
     st = rg2_product_mesh((const double(*)[4][4])C, pu, pv, out, err);
     if (st)

@@ -865,10 +865,10 @@ static void design_errors(void)
     } cases[] = {
         {"{\"shapes\": {\"t\": {\"kind\": \"torus\"}}, \"meshes\": {\"P\": {\"polar\": \"t\", \"u\": {\"arcs\": 8},"
          " \"v\": {\"knots\": [0.2, 0.5]}}}}",
-         RG2_EINVAL, "no polar configuration"},
+         RG2_EINVAL, "meshes.P.polar: 't' is a torus, which has no polar configuration"},
         {"{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 8},"
          " \"v\": {\"knots\": [0.5, 0.2]}}}}",
-         RG2_EDOMAIN, "meshes.P"},
+         RG2_EDOMAIN, "meshes.P.v.knots: v_2 = "},
         {"{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\", \"v\": {\"knots\": "
          "[0.2, 0.5]}}, \"M\": {\"mobius\": \"P\", \"b\": 1, \"poles\": {}}}}",
          RG2_EPARSE, "exactly one of 'b'"},
@@ -877,14 +877,14 @@ static void design_errors(void)
          RG2_EPARSE, "meshes.C.ends"},
         {"{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {\"A\": {\"shape\": \"c\"}, \"E\": {\"edit\": "
          "\"A\", \"points\": [{\"pole\": \"south\", \"move\": [0, 0, 1]}]}}}",
-         RG2_EINVAL, "not a polar point"},
+         RG2_EINVAL, "meshes.E.points[0].pole: row 0 (the south end) of mesh 'A' is not a polar point"},
         {"{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {\"A\": {\"shape\": \"c\", \"u\": {\"arcs\": 4, "
          "\"to\": 90}}, \"C\": {\"cap\": \"A\"}}}",
-         RG2_EINVAL, "closed ring"},
+         RG2_EINVAL, "meshes.C.cap: mesh 'A' cannot be capped: the body's u-direction is open"},
         {"{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 3}, "
          "\"v\": {\"knots\": [0.2, 0.5, 0.8]}}, \"M\": {\"mobius\": \"P\", \"poles\": {\"south\": [0, 0.999, "
          "-0.0447101778], \"north\": [0, 1, 0]}}}}",
-         RG2_EWEIGHT, "through infinity"},
+         RG2_EWEIGHT, "meshes.M.poles: the Moebius map gives control point"},
     };
     for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
         rg2_design *d = NULL;
