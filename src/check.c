@@ -460,16 +460,25 @@ static void fold_note(rg2_check_report *r, int *count, int surf, int pi, int pj,
     (*count)++;
 }
 
-/* Bits of the NaN weights a run of patches met (see part_merge): control weights for wmin and
- * wmax, sampled denominators for eval_wmin. */
-enum { NAN_W = 1u, NAN_EVAL_W = 2u };
+/* Smallest / largest value so far: a NaN sticks (it is reported, never hidden by the values
+ * after it). */
+static void low_update(double *m, double w)
+{
+    if (!isnan(*m) && !(w >= *m))
+        *m = w;
+}
+
+static void high_update(double *m, double w)
+{
+    if (!isnan(*m) && !(w <= *m))
+        *m = w;
+}
 
 /* Patch k of s, interior: weights and curvature ranges at the samples, implicit residuals of a
  * tagged patch against its shape, and regularity: a sample away from a pole with no normal
  * (singular), or two neighbouring samples between which the surface folds back (folds_between).
- * nrm holds two rows of S + 1 unit normals (u index a - 1 and a), with a defined-flag each.
- * *nan collects the NAN_* bits of the weights met. */
-static void patch_one(rg2_check_report *r, unsigned *nan, const rg2_surface *s, int surf, size_t k,
+ * nrm holds two rows of S + 1 unit normals (u index a - 1 and a), with a defined-flag each. */
+static void patch_one(rg2_check_report *r, const rg2_surface *s, int surf, size_t k,
                       const rg2__implicit *imp, int n_shapes, const double *shape_size, int S, double *nrm,
                       unsigned char *def)
 {
@@ -489,18 +498,14 @@ static void patch_one(rg2_check_report *r, unsigned *nan, const rg2_surface *s, 
     for (int a = 0; a <= du; a++)
         for (int b = 0; b <= dv; b++) {
             double w = rg2__patch_ctrl(s, k, a, b)[3];
-            if (isnan(w)) *nan |= NAN_W;
-            if (!(w >= r->wmin)) r->wmin = w;
-            if (!(w <= r->wmax)) r->wmax = w;
+            low_update(&r->wmin, w);
+            high_update(&r->wmax, w);
         }
     for (int a = 0; a <= S; a++)
         for (int b = 0; b <= S; b++) {
             double u = (double)a / S, v = (double)b / S, H[6][4];
             rg2_surface_eval_h(s, pi, pj, u, v, H);
-            if (isnan(H[0][3]))
-                *nan |= NAN_EVAL_W;
-            if (!(H[0][3] >= r->eval_wmin))
-                r->eval_wmin = H[0][3];
+            low_update(&r->eval_wmin, H[0][3]);
             rg2_eval e;
             rg2__eval_from_h(H, 2, &e); /* = rg2_surface_eval(s, pi, pj, u, v, 2, &e), from the same H */
             /* regularity: rows a - 1 (slot (a + 1) % 2) and a (slot a % 2) of unit normals */
@@ -560,10 +565,7 @@ static void patch_one(rg2_check_report *r, unsigned *nan, const rg2_surface *s, 
  *   fold_at: the first fold or singular sample of the first chunk that has one;
  *   largest limits (near_pole_tol*, ill_tol*) and curvature ranges: fmax / fmin as serially
  *     (NaN ignored, each chunk from the serial start value);
- *   weights (wmin, wmax, eval_wmin): the serial "if (!(w >= m)) m = w" lets the weight after a
- *     NaN replace it, so a chunk starts from NaN (its first weight taken) and notes whether it
- *     met a NaN (NAN_* bits): if it did, nothing before it counts and its value is taken, else
- *     the same comparison merges it.
+ *   weights (wmin, wmax, eval_wmin): low_update / high_update, as serially (a NaN sticks).
  * No floating-point sum is taken anywhere. */
 #ifdef _OPENMP
 #include <omp.h>
@@ -585,7 +587,6 @@ typedef struct {
 
 typedef struct {
     rg2_check_report r; /* the chunk's measurements (patch chunks: r.shapes, their own n_shapes entries) */
-    unsigned nan;       /* NAN_* bits of the weights the chunk met */
     int is_seams;       /* a chunk of the seam list (else of the patch list) */
     size_t lo, hi;      /* its items */
     int oom;            /* its thread had no memory for the normals of a patch */
@@ -603,14 +604,14 @@ static void run_seams(rg2_check_report *r, const check_job *J, size_t lo, size_t
 }
 
 /* Patches lo .. hi - 1 of the flat list, into r (nrm, def: patch_one's rows of normals). */
-static void run_patches(rg2_check_report *r, unsigned *nan, const check_job *J, size_t lo, size_t hi, double *nrm,
+static void run_patches(rg2_check_report *r, const check_job *J, size_t lo, size_t hi, double *nrm,
                         unsigned char *def)
 {
     int s = 0;
     for (size_t g = lo; g < hi; g++) {
         while (g >= J->patch_off[s + 1])
             s++;
-        patch_one(r, nan, &J->surfs[s], s, g - J->patch_off[s], J->imp, J->n_shapes, J->shape_size,
+        patch_one(r, &J->surfs[s], s, g - J->patch_off[s], J->imp, J->n_shapes, J->shape_size,
                   J->patch_samples, nrm, def);
     }
 }
@@ -620,19 +621,6 @@ static void gap_merge(rg2_check_gap *g, const rg2_check_gap *c)
 {
     seam_at at = {c->surf, c->seam_dir, c->pi, c->pj, c->qi, c->qj, c->t};
     gap_update(g, c->value, &at, c->p);
-}
-
-/* Smallest weight so far m after a chunk whose own run from NaN gave v (nan: it met a NaN). */
-static void low_merge(double *m, double v, int nan)
-{
-    if (nan || !(v >= *m))
-        *m = v;
-}
-
-static void high_merge(double *m, double v, int nan)
-{
-    if (nan || !(v <= *m))
-        *m = v;
 }
 
 /* Merge chunk c into r, the chunks before it already merged (see the comment above). */
@@ -667,9 +655,9 @@ static void part_merge(rg2_check_report *r, const check_part *c)
     r->transitions += x->transitions;
     r->exact_patches += x->exact_patches;
     r->untagged_bad += x->untagged_bad;
-    low_merge(&r->wmin, x->wmin, (c->nan & NAN_W) != 0);
-    high_merge(&r->wmax, x->wmax, (c->nan & NAN_W) != 0);
-    low_merge(&r->eval_wmin, x->eval_wmin, (c->nan & NAN_EVAL_W) != 0);
+    low_update(&r->wmin, x->wmin);
+    high_update(&r->wmax, x->wmax);
+    low_update(&r->eval_wmin, x->eval_wmin);
     if (r->folds == 0 && r->singular == 0 && (x->folds || x->singular))
         r->fold_at = x->fold_at;
     r->folds += x->folds;
@@ -716,7 +704,8 @@ static rg2_status run_threads(rg2_check_report *r, const check_job *J, size_t n_
         if (!P->is_seams) {
             P->r.shapes = rg2__calloc((size_t)(r->n_shapes > 0 ? r->n_shapes : 1), sizeof *P->r.shapes);
             oom = !P->r.shapes;
-            P->r.wmin = P->r.wmax = P->r.eval_wmin = NAN; /* the first weight is taken */
+            P->r.wmin = P->r.eval_wmin = DBL_MAX; /* as the serial start (rg2_check) */
+            P->r.wmax = -DBL_MAX;
             P->r.kmin = P->r.Hmin = P->r.Kmin = DBL_MAX;
             P->r.kmax = P->r.Hmax = P->r.Kmax = -DBL_MAX;
         }
@@ -725,8 +714,8 @@ static rg2_status run_threads(rg2_check_report *r, const check_job *J, size_t n_
         size_t row = (size_t)J->patch_samples + 1;
         CHECK_OMP("omp parallel num_threads(nt)")
         {
-            double *nrm = malloc(2 * row * 3 * sizeof *nrm);
-            unsigned char *def = malloc(2 * row);
+            double *nrm = rg2__calloc(2 * row * 3, sizeof *nrm);
+            unsigned char *def = rg2__calloc(2 * row, 1);
             CHECK_OMP("omp for schedule(dynamic, 1)")
             for (int c = 0; c < nc; c++) {
                 check_part *P = &parts[c];
@@ -735,7 +724,7 @@ static rg2_status run_threads(rg2_check_report *r, const check_job *J, size_t n_
                 else if (!nrm || !def)
                     P->oom = 1;
                 else
-                    run_patches(&P->r, &P->nan, J, P->lo, P->hi, nrm, def);
+                    run_patches(&P->r, J, P->lo, P->hi, nrm, def);
             }
             free(nrm);
             free(def);
@@ -867,14 +856,13 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
         st = run_threads(out, &J, seam_off[n], patch_off[n], nt, err);
     else if (!st) { /* serial: one run of each list, straight into the report */
         size_t row = (size_t)o->patch_samples + 1;
-        double *nrm = malloc(2 * row * 3 * sizeof *nrm);
-        unsigned char *ndef = malloc(2 * row);
-        unsigned nan = 0;
+        double *nrm = rg2__calloc(2 * row * 3, sizeof *nrm);
+        unsigned char *ndef = rg2__calloc(2 * row, 1);
         if (!nrm || !ndef)
             st = rg2__fail(err, RG2_ENOMEM, "check: out of memory for %d samples per patch", o->patch_samples);
         else {
             run_seams(out, &J, 0, seam_off[n]);
-            run_patches(out, &nan, &J, 0, patch_off[n], nrm, ndef);
+            run_patches(out, &J, 0, patch_off[n], nrm, ndef);
         }
         free(nrm);
         free(ndef);

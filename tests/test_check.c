@@ -770,8 +770,9 @@ static void ill_conditioned_flat(void)
 
 /* The same report on any thread count: every example (all its surfaces in one check, at the
  * default samples and at 64 per seam / 5 per patch), a G1 join of 2 patches and 1 seam (fewer
- * items than threads), and a torus with NaN control weights in some patches (the weights'
- * serial rule lets the weight after a NaN replace it). Negative thread counts are refused.
+ * items than threads), and a torus with NaN control weights in some patches: the NaN is reported
+ * (not hidden by the weights after it) and fails the weights requirement, on every thread count.
+ * Negative thread counts are refused.
  * (The folded merge, the unmeasured designs and the ill-conditioned torus: in their tests.) */
 static void threads_identical(void)
 {
@@ -823,11 +824,21 @@ static void threads_identical(void)
     rg2_shape_init(&t, RG2_SHAPE_TORUS);
     s.tag = calloc((size_t)s.nu * s.nv, sizeof *s.tag);
     same_on_threads(&s, 1, &t, NULL, 1, NULL, "torus 8 x 6");
-    s.patch[7].h[1][2][3] = NAN; /* inside the first chunks; later weights must replace it */
+    s.patch[7].h[1][2][3] = NAN; /* inside the first chunks; the weights after it must not hide it */
     s.patch[29].h[0][0][3] = NAN;
     s.patch[30].h[3][3][3] = NAN;
     same_on_threads(&s, 1, &t, NULL, 1, NULL, "torus 8 x 6 with NaN weights in patches 7, 29, 30");
-    s.patch[47].h[2][2][3] = NAN; /* the last patch: the NaN stays */
+    for (int th = 1; th <= 2; th++) {
+        rg2_check_opts_default(&o);
+        o.threads = th;
+        CHECK_OK(rg2_check(&s, 1, &t, NULL, 1, &o, &r, &err), &err);
+        CHECK(isnan(r.wmin) && isnan(r.wmax) && isnan(r.eval_wmin) &&
+                  (rg2_check_failures(&r, RG2_REQUIRE_WEIGHTS) & RG2_REQUIRE_WEIGHTS),
+              "%d thread(s): NaN weights in patch 7 reported (wmin %g, wmax %g, at samples %g) and failing",
+              th, r.wmin, r.wmax, r.eval_wmin);
+        rg2_check_report_free(&r);
+    }
+    s.patch[47].h[2][2][3] = NAN; /* the last patch too */
     same_on_threads(&s, 1, &t, NULL, 1, NULL, "torus 8 x 6 with a NaN weight in the last patch");
     free(s.tag);
     s.tag = NULL;
