@@ -19,25 +19,28 @@ rg2_status rg2_read_text(const char *path, char **out, size_t *len, rg2_error *e
     FILE *f = fopen(path, "rb");
     if (!f)
         return rg2__fail(err, RG2_EIO, "%s: cannot open: %s", path, strerror(errno));
+    /* the buffer grows to at most RG2_TEXT_MAX_BYTES + 2: room for one byte past the limit
+     * (a file of exactly the limit is read whole, one byte more is refused) and the NUL */
     size_t cap = 1 << 16, n = 0;
     char *buf = malloc(cap);
     while (buf) {
         n += fread(buf + n, 1, cap - n - 1, f);
         if (n < cap - 1)
             break;
-        if (cap >= RG2_TEXT_MAX_BYTES) {
+        if (n > RG2_TEXT_MAX_BYTES) {
             free(buf);
             fclose(f);
             return rg2__fail(err, RG2_ELIMIT, "%s: larger than %u bytes", path, RG2_TEXT_MAX_BYTES);
         }
-        char *nb = realloc(buf, cap * 2);
+        size_t nc = cap * 2 < (size_t)RG2_TEXT_MAX_BYTES + 2 ? cap * 2 : (size_t)RG2_TEXT_MAX_BYTES + 2;
+        char *nb = realloc(buf, nc);
         if (!nb) {
             free(buf);
             buf = NULL;
             break;
         }
         buf = nb;
-        cap *= 2;
+        cap = nc;
     }
     int bad = ferror(f);
     fclose(f);

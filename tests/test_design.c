@@ -1,10 +1,12 @@
 /* test_design.c -- design files: every example builds, its exact patches lie on their shapes,
  * its seams are G2 and its exact/transition counts are the intended ones; edits are local;
  * morphs reproduce their ends; bad designs fail with clear messages. */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp */
 #include "harness.h"
 
 #include <cjson/cJSON.h>
 #include <dirent.h>
+#include <unistd.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -574,6 +576,93 @@ static void parse_sizes(void)
 }
 
 
+/* Design files read through rg2_design_load / rg2_read_text: past the first 64 KiB buffer (the
+ * growth path), exactly at the documented 64 MiB limit (read whole and built) and one byte past
+ * it (refused, naming the file). The padding is trailing JSON whitespace, so each file must build
+ * the same surface as its text parsed from memory. */
+static int write_padded(const char *path, const char *text, size_t size)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return 0;
+    size_t n = strlen(text), left = size - n;
+    int ok = fwrite(text, 1, n, f) == n;
+    static char pad[1 << 16];
+    memset(pad, ' ', sizeof pad);
+    while (ok && left > 0) {
+        size_t k = left < sizeof pad ? left : sizeof pad;
+        ok = fwrite(pad, 1, k, f) == k;
+        left -= k;
+    }
+    return fclose(f) == 0 && ok;
+}
+
+static void text_files(void)
+{
+    const char *text = "{\"shapes\": {\"comment\": \"a comment among the shapes\","
+                       " \"t\": {\"kind\": \"torus\", \"R\": 3, \"r\": 1}},"
+                       " \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": 8}, \"v\": {\"arcs\": 6}}}}";
+    rg2_error err;
+    rg2_design *ref = parse(text, &err);
+    if (!ref)
+        return;
+    /* the "comment" key of "shapes" is no shape */
+    CHECK(rg2_design_num_shapes(ref) == 1 && !strcmp(rg2_design_shape_label(ref, 0), "t"),
+          "shapes with a comment: %d shapes, first '%s'", rg2_design_num_shapes(ref), rg2_design_shape_label(ref, 0));
+    char dir[] = "/tmp/rg2-design-XXXXXX";
+    if (!mkdtemp(dir)) {
+        CHECK(0, "mkdtemp failed");
+        rg2_design_free(ref);
+        return;
+    }
+    char path[96];
+    snprintf(path, sizeof path, "%s/d.json", dir);
+    const size_t sizes[3] = {100000, RG2_TEXT_MAX_BYTES, (size_t)RG2_TEXT_MAX_BYTES + 1};
+    for (int k = 0; k < 3; k++) {
+        CHECK(write_padded(path, text, sizes[k]), "cannot write %zu bytes to %s", sizes[k], path);
+        rg2_design *d = (rg2_design *)1;
+        rg2_status st = rg2_design_load(path, &d, &err);
+        if (k < 2) {
+            CHECK(st == RG2_OK, "a design file of %zu bytes: %s", sizes[k], err.msg);
+            if (st == RG2_OK) {
+                CHECK(same_surface(rg2_design_surface(d, 0), rg2_design_surface(ref, 0)),
+                      "a design file of %zu bytes builds another surface than its text", sizes[k]);
+                rg2_design_free(d);
+            }
+            char *buf = NULL;
+            size_t len = 0;
+            CHECK_OK(rg2_read_text(path, &buf, &len, &err), &err);
+            CHECK(buf && len == sizes[k] && buf[len] == 0 && !strncmp(buf, text, strlen(text)),
+                  "rg2_read_text of %zu bytes: length %zu", sizes[k], len);
+            free(buf);
+        } else {
+            char want[64];
+            snprintf(want, sizeof want, "larger than %u bytes", RG2_TEXT_MAX_BYTES);
+            CHECK(st == RG2_ELIMIT && d == NULL && strstr(err.msg, path) && strstr(err.msg, want),
+                  "a design file of %zu bytes: %s '%s'", sizes[k], rg2_status_str(st), err.msg);
+        }
+        remove(path);
+    }
+    rmdir(dir);
+    printf("  design files of 100000 and %u bytes (the limit) build the same surface as their text; %u + 1 refused\n",
+           RG2_TEXT_MAX_BYTES, RG2_TEXT_MAX_BYTES);
+    /* accessors out of range, and texts without a name or without text */
+    CHECK(rg2_design_point_shape(ref, 0, 0, 0) == 0 && rg2_design_point_shape(ref, 1, 0, 0) == -1 &&
+              rg2_design_point_shape(ref, 0, 8, 0) == -1 && rg2_design_point_shape(ref, 0, 0, -1) == -1 &&
+              rg2_design_point_shape(NULL, 0, 0, 0) == -1,
+          "point provenance out of range is -1");
+    CHECK(!rg2_design_surface(ref, 1) && !rg2_design_mesh(ref, -1) && !rg2_design_mesh_name(ref, 1) &&
+              !rg2_design_shape(ref, 1) && !rg2_design_shape_label(ref, -1) && rg2_design_num_surfaces(NULL) == 0 &&
+              rg2_design_num_shapes(NULL) == 0,
+          "accessors out of range give NULL / 0");
+    rg2_design_free(ref);
+    rg2_design *d = (rg2_design *)1;
+    CHECK(rg2_design_parse(NULL, 3, "nothing", &d, &err) == RG2_EINVAL && !d && !strcmp(err.msg, "nothing: no text"),
+          "NULL text: %s", err.msg);
+    CHECK(rg2_design_parse("[]", 2, NULL, &d, &err) == RG2_EPARSE && !d && !strncmp(err.msg, "design: ", 8),
+          "no name: messages say 'design': %s", err.msg);
+}
+
 /* A bi-cubic NURBS wall (non-uniform u knots, one weight 1.5, a bulge) as a design mesh
  * ("nurbs" operation), merged closed along u with half a cylinder whose heights are the wall's
  * v knots: a D-shaped duct. The wall's v scalars agree with the cylinder's, the seams are G2, the
@@ -757,6 +846,24 @@ static void bad_inputs(void)
          RG2_EPARSE, "'to' goes with a number of arcs"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"R\": {\"reverse\": \"T\"}}}", RG2_EPARSE,
          "meshes.R: missing key 'dir'"},
+        /* merges whose directions differ in kind or in one junction scalar name the first difference */
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"A\": {\"cut\": \"T\", \"u\": [0, 4]},"
+         " \"B\": {\"cut\": \"T\", \"u\": [4, 8], \"v\": [0, 5]}, \"M\": {\"merge\": [\"A\", \"B\"], \"along\": \"u\"}}}",
+         RG2_EINCOMPATIBLE, "meshes.M.merge[1]: meshes 'A' and 'B' do not agree in v (the direction that must match "
+                            "when merging along u): closed vs open"},
+        {"{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {"
+         "\"A\": {\"shape\": \"c\", \"u\": {\"arcs\": [60, 60, 60], \"from\": 0}, \"v\": {\"knots\": [0, 1, 2, 3, 4, 5]}},"
+         " \"B\": {\"shape\": \"c\", \"u\": {\"arcs\": [60, 60, 60], \"from\": 180}, \"v\": {\"knots\": [0, 1, 2, 4, 5, 6]}},"
+         " \"M\": {\"merge\": [\"A\", \"B\"], \"along\": \"u\"}}}",
+         RG2_EINCOMPATIBLE, "do not agree in v (the direction that must match when merging along u): junction scalar "
+                            "b[3] = 1 vs 2"},
+        {"{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {"
+         "\"A\": {\"shape\": \"c\", \"u\": {\"arcs\": [60, 60, 60], \"from\": 0}, \"v\": {\"knots\": [0, 1, 2, 3, 4, 5]}},"
+         " \"B0\": {\"shape\": \"c\", \"u\": {\"arcs\": [60, 60, 60], \"from\": 180}, \"v\": {\"knots\": [0, 1, 2, 3, 4, 5]}},"
+         " \"B\": {\"edit\": \"B0\", \"scalars\": [{\"dir\": \"v\", \"junction\": 2, \"g\": 0.5}]},"
+         " \"M\": {\"merge\": [\"A\", \"B\"], \"along\": \"u\"}}}",
+         RG2_EINCOMPATIBLE, "do not agree in v (the direction that must match when merging along u): junction scalar "
+                            "g[2] = 0 vs 0.5"},
     };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         rg2_design *d = (rg2_design *)1;
@@ -781,6 +888,8 @@ static void bad_inputs(void)
 int main(void)
 {
     parse_sizes();
+    printf("design files:\n");
+    text_files();
     printf("examples (exact-patch residual |F| / (|grad F| size), G2 seam gaps):\n");
     examples();
     printf("edit locality:\n");
