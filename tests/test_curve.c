@@ -224,6 +224,141 @@ static void circles(void)
     printf("circles: radius error %.2e, arc-map error %.2e (relative to R)\n", wr, wm);
 }
 
+/* Closed polynomial mode: rg2_scalars_from_knots(closed) on a closed control polygon is the
+ * periodic C2 cubic B-spline of those knots. Reference: Cox-de Boor on the periodic extension
+ * (control points p^{k mod n}, knots v_{k + n} = v_k + period); closed segment k spans
+ * [v_k, v_{k+1}] and is shaped by p^{k-1} .. p^{k+2}. */
+static void closed_knots(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 4242);
+    double worst = 0;
+    for (int trial = 0; trial < 20; trial++) {
+        int n = rg2t_int(&r, 3, 12), dim = 3;
+        double v[16], P[12 * 3];
+        v[0] = rg2t_uniform(&r, -2, 2);
+        for (int k = 1; k <= n; k++)
+            v[k] = v[k - 1] + rg2t_uniform(&r, 0.05, 2.0);
+        double T = v[n] - v[0];
+        for (int k = 0; k < n * dim; k++)
+            P[k] = rg2t_uniform(&r, -1, 1);
+        /* open B-spline over the extension: control points E_m = p^{(m - 1) mod n}, m = 0..n+2,
+         * knots U_m = v_{m - 3} (periodic), so span [v_k, v_{k+1}] = [U_{k+3}, U_{k+4}] uses
+         * E_{k..k+3} = p^{k-1}..p^{k+2} */
+        double E[16 * 3], U[24];
+        int ne = n + 3;
+        for (int m = 0; m < ne; m++)
+            memcpy(E + m * dim, P + ((m - 1 + n) % n) * dim, sizeof(double) * (size_t)dim);
+        for (int m = 0; m < ne + 4; m++) {
+            int q = m - 3, wrap = 0;
+            while (q < 0) q += n, wrap--;
+            while (q >= n) q -= n, wrap++;
+            U[m] = v[q] + wrap * T;
+        }
+        rg2_scalars s;
+        rg2_error err;
+        rg2_curve c;
+        CHECK_OK(rg2_scalars_from_knots(&s, v, n + 1, 1, &err), &err);
+        CHECK(s.closed && s.n == n, "closed knots: %d points, closed %d", s.n, s.closed);
+        for (int i = 0; i < n; i++) {
+            double d = v[i + 1] - v[i], dm = i ? v[i] - v[i - 1] : v[n] - v[n - 1];
+            CHECK(fabs(s.b[i] - d / dm) <= 1e-15 * (d / dm) && s.g[i] == 0.0, "closed knots: b[%d] = %.17g, g %.3g",
+                  i, s.b[i], s.g[i]);
+        }
+        CHECK_OK(rg2_curve_build(dim, P, &s, &c, &err), &err);
+        CHECK(c.n_segments == n, "closed knots: %d segments for %d points", c.n_segments, n);
+        for (int k = 0; k < c.n_segments; k++)
+            for (int q = 0; q <= 20; q++) {
+                double t = q / 20.0, a[3], b[3];
+                rg2_curve_eval(&c, k, t, a, NULL, NULL);
+                double x = v[k] + t * (v[k + 1] - v[k]); /* (t = 1: the next span, C2 there) */
+                de_boor(U, E, ne, dim, x, b);
+                for (int d = 0; d < dim; d++)
+                    worst = fmax(worst, fabs(a[d] - b[d]));
+            }
+        rg2_curve_free(&c);
+        rg2_scalars_free(&s);
+    }
+    CHECK(worst <= 1e-13, "closed polynomial mode vs periodic Cox-de Boor: %.3g", worst);
+    printf("closed polynomial mode vs periodic Cox-de Boor: max difference %.2e\n", worst);
+}
+
+/* rg2_curve_curvature: 1/R on circles of any radius, in the plane and tilted in space; the
+ * test's own wedge formula on random curves in 3D; 0 for dimensions other than 2 and 3. */
+static void curve_curvature(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 777);
+    double wc = 0, wr = 0;
+    for (int trial = 0; trial < 12; trial++) {
+        int m = rg2t_int(&r, 3, 9), dim = 2 + trial % 2;
+        double alpha[16], cs[32], pts[16 * 3];
+        partition(&r, m, 2 * M_PI, 0.2, alpha);
+        double R = pow(10.0, rg2t_uniform(&r, -3, 3));
+        rg2_scalars s;
+        rg2_error err;
+        rg2_curve c;
+        CHECK_OK(rg2_scalars_from_angles(&s, alpha, m, 1, &err), &err);
+        CHECK_OK(rg2_circle_coeffs(alpha, m, 1, rg2t_uniform(&r, -M_PI, M_PI), cs, &err), &err);
+        /* 3D: the circle in the plane spanned by e1 = (1, 1, 0)/sqrt 2 and e2 = (0, 0, 1) */
+        for (int i = 0; i < m; i++) {
+            double x = R * cs[2 * i], y = R * cs[2 * i + 1];
+            if (dim == 2) {
+                pts[2 * i] = x + 5 * R;
+                pts[2 * i + 1] = y - 2 * R;
+            } else {
+                pts[3 * i] = x / sqrt(2.0) + R;
+                pts[3 * i + 1] = x / sqrt(2.0);
+                pts[3 * i + 2] = y - 3 * R;
+            }
+        }
+        CHECK_OK(rg2_curve_build(dim, pts, &s, &c, &err), &err);
+        for (int k = 0; k < c.n_segments; k++)
+            for (int q = 0; q <= 16; q++)
+                wc = fmax(wc, fabs(rg2_curve_curvature(&c, k, q / 16.0) * R - 1.0));
+        rg2_curve_free(&c);
+        rg2_scalars_free(&s);
+    }
+    CHECK(wc <= 1e-12, "circle curvature * R - 1: %.3g", wc);
+    for (int trial = 0; trial < 10; trial++) {
+        int n = rg2t_int(&r, 4, 10);
+        rg2_scalars s;
+        rg2_error err;
+        rg2_curve c;
+        CHECK_OK(rg2_scalars_init(&s, n, 0, &err), &err);
+        for (int k = 0; k < rg2_scalars_num_w(&s); k++)
+            s.w[k] = rg2t_uniform(&r, 0.7, 1.4);
+        double p[10 * 3];
+        for (int k = 0; k < n * 3; k++)
+            p[k] = rg2t_uniform(&r, -1, 1);
+        CHECK_OK(rg2_curve_build(3, p, &s, &c, &err), &err);
+        for (int k = 0; k < c.n_segments; k++)
+            for (int q = 0; q <= 8; q++) {
+                double d1[3], d2[3], t = q / 8.0;
+                rg2_curve_eval(&c, k, t, NULL, d1, d2);
+                double own = curvature(d1, d2, 3), got = rg2_curve_curvature(&c, k, t);
+                wr = fmax(wr, fabs(got - own) / own);
+            }
+        rg2_curve_free(&c);
+        rg2_scalars_free(&s);
+    }
+    CHECK(wr <= 1e-12, "random space curves: curvature vs the wedge formula %.3g relative", wr);
+    /* dimensions 1 and 4: no curvature (0) */
+    double line[5] = {0, 1, 3, 4, 7}, quad[5 * 4] = {0, 0, 0, 0, 1, 0, 0, 1, 1, 1, 0, 0, 0, 1, 1, 0, 2, 2, 2, 2};
+    rg2_scalars s;
+    rg2_error err;
+    rg2_curve c1, c4;
+    CHECK_OK(rg2_scalars_init(&s, 5, 0, &err), &err);
+    CHECK_OK(rg2_curve_build(1, line, &s, &c1, &err), &err);
+    CHECK_OK(rg2_curve_build(4, quad, &s, &c4, &err), &err);
+    CHECK(rg2_curve_curvature(&c1, 0, 0.5) == 0.0 && rg2_curve_curvature(&c4, 1, 0.25) == 0.0,
+          "curvature of 1-d / 4-d curves: %g, %g", rg2_curve_curvature(&c1, 0, 0.5), rg2_curve_curvature(&c4, 1, 0.25));
+    rg2_curve_free(&c1);
+    rg2_curve_free(&c4);
+    rg2_scalars_free(&s);
+    printf("rg2_curve_curvature: circles |k R - 1| %.2e, random space curves %.2e relative\n", wc, wr);
+}
+
 static void errors(void)
 {
     rg2_scalars s;
@@ -279,6 +414,8 @@ int main(void)
     random_curves();
     polynomial_mode();
     circles();
+    closed_knots();
+    curve_curvature();
     errors();
     return rg2t_done("test_curve");
 }

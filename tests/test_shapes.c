@@ -597,6 +597,88 @@ static void full_partitions(void)
     rg2_surface_free(&s1);
 }
 
+/* Knot directions: rg2_partition_map is v_seg + t (v_seg+1 - v_seg), checked on a cylinder (z = v
+ * exactly) through the independent patch evaluator; out-of-range segments give NaN. The
+ * partition checks refuse what the layouts cannot mean, naming it. */
+static void knot_maps_and_checks(void)
+{
+    rg2_error err;
+    rg2_shape sh;
+    rg2_shape_init(&sh, RG2_SHAPE_CYLINDER);
+    sh.param[0] = 2.0;
+    double kv[4] = {-1.0, 0.5, 1.7, 2.0}, eq[7];
+    rg2_partition pu, pv = {RG2_PART_KNOTS, 0, 4, kv, 0.0};
+    CHECK_OK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0.0, 0.0, 6, eq, 7, &err), &err);
+    rg2_surface s;
+    CHECK_OK(rg2_shape_surface(&sh, &pu, &pv, &s, NULL, &err), &err);
+    double wz = 0, wr = 0;
+    for (int i = 0; i < s.nu; i++)
+        for (int j = 0; j < s.nv; j++)
+            for (int a = 0; a <= 8; a++) {
+                double t = a / 8.0;
+                rg2_eval e;
+                rg2_patch_eval(rg2_surface_patch(&s, i, j), 1.0 - t, t, 0, &e);
+                double z = rg2_partition_map(&pv, j, t);
+                CHECK(z == kv[j] + t * (kv[j + 1] - kv[j]), "knot map seg %d t %g: %.17g", j, t, z);
+                wz = fmax(wz, fabs(e.p[2] - z));
+                wr = fmax(wr, fabs(hypot(e.p[0], e.p[1]) - 2.0));
+            }
+    CHECK(s.nv == 3 && wz <= 2e-15 && wr <= 4e-15, /* a few ulps of the coordinates, 2 */ "cylinder over knots: height vs the knot map %.3g, radius %.3g",
+          wz, wr);
+    CHECK(isnan(rg2_partition_map(&pv, 3, 0.5)) && isnan(rg2_partition_map(&pv, -1, 0.5)) &&
+              isnan(rg2_partition_map(&pu, 6, 0.0)),
+          "segments outside the partition map to NaN");
+    rg2_surface_free(&s);
+
+    rg2_partition bad = pv;
+    bad.kind = (rg2_partition_kind)7;
+    expect_err(rg2_partition_check(&bad, "u", &err), RG2_EINVAL, &err, "u partition has unknown kind 7", "unknown kind");
+    CHECK(rg2_partition_num_segments(&bad) == 0, "unknown kind: %d segments", rg2_partition_num_segments(&bad));
+    double five[5] = {0.5, 0.5, 0.5, 0.5, 0.5};
+    rg2_partition pf = {RG2_PART_ANGLES_FULL, 1, 5, five, 0.0};
+    expect_err(rg2_partition_check(&pf, "u", &err), RG2_EINVAL, &err,
+               "u partition: a full (data-arc) angle list is open only", "closed full angles");
+    pf.closed = 0;
+    pf.n = 4;
+    expect_err(rg2_partition_check(&pf, "v", &err), RG2_EINVAL, &err,
+               "v partition: 4 arcs given with data arcs; need at least 5", "too few full angles");
+    pf.n = 5;
+    CHECK_OK(rg2_partition_check(&pf, "v", &err), &err);
+    CHECK(rg2_partition_num_segments(&pf) == 1, "5 full arcs: %d segments", rg2_partition_num_segments(&pf));
+    /* two arcs just below pi: they sum to 2 pi within the tolerance, but a closed circle needs 3 */
+    double two[2] = {nextafter(M_PI, 0.0), nextafter(M_PI, 0.0)};
+    rg2_partition p2 = {RG2_PART_ANGLES, 1, 2, two, 0.0};
+    expect_err(rg2_partition_check(&p2, "u", &err), RG2_EINVAL, &err,
+               "u partition: a closed circle needs at least 3 arcs", "closed circle of 2 arcs");
+    rg2_partition pe;
+    expect_err(rg2_partition_equal(&pe, RG2_PART_KNOTS_FULL, 0, 0, 1, 3, eq, 7, &err), RG2_EINVAL, &err,
+               "kind must be angles or knots", "equal partition of a full kind");
+    expect_err(rg2_partition_equal(&pe, RG2_PART_KNOTS, 0, 0, 1, 0, eq, 7, &err), RG2_EINVAL, &err,
+               "0 segments, need at least 1", "equal partition of 0 segments");
+    expect_err(rg2_partition_equal(&pe, RG2_PART_KNOTS, 0, 0, INFINITY, 3, eq, 7, &err), RG2_ENONFINITE, &err,
+               "range is not finite", "equal partition of an infinite range");
+
+    /* placement on the z axis and against it: +z is the identity rotation, -z the half turn
+     * about x (z -> -z, y -> -y), a zero axis keeps the orientation */
+    double P[16], c[3] = {1, 2, 3};
+    const double axes[3][3] = {{0, 0, 2}, {0, 0, -0.5}, {0, 0, 0}};
+    const double want_z[3] = {1, -1, 1}, want_y[3] = {1, -1, 1};
+    for (int k = 0; k < 3; k++) {
+        rg2_xform_place(P, c, axes[k]);
+        double e = 0;
+        for (int r = 0; r < 3; r++) {
+            e = fmax(e, fabs(P[4 * r + 3] - c[r]));
+            for (int q = 0; q < 3; q++) {
+                double w = r != q ? 0.0 : r == 0 ? 1.0 : r == 1 ? want_y[k] : want_z[k];
+                e = fmax(e, fabs(P[4 * r + q] - w));
+            }
+        }
+        e = fmax(e, fabs(P[12]) + fabs(P[13]) + fabs(P[14]) + fabs(P[15] - 1.0));
+        CHECK(e <= 1e-15, "xform_place axis (%g, %g, %g): off by %.3g", axes[k][0], axes[k][1], axes[k][2], e);
+    }
+    printf("knot maps: cylinder heights %.2e, radius %.2e; partition checks and z-axis placements\n", wz, wr);
+}
+
 /* The weight report flags H_rs,4 <= 0: a cyclide with c close to a over 3 x 3 arcs has
  * some negative Bezier weights (the conic's far middle points times a - c cu cv), though the
  * surface itself stays exact. */
@@ -803,6 +885,7 @@ int main(void)
     families();
     transforms();
     full_partitions();
+    knot_maps_and_checks();
     weight_warning();
     errors();
     return rg2t_done("test_shapes");
