@@ -893,6 +893,90 @@ static rg2_status elevated_torus(rg2_surface *s, rg2_error *err)
     return st;
 }
 
+/* ---------------------------------------------------------------- names, defaults, exponents */
+/* Names in STEP strings (apostrophes doubled, backslashes doubled, other bytes outside printable
+ * ASCII replaced) and IGES Hollerith strings (the raw count of characters); options left at 0 /
+ * NULL and no options at all give the documented defaults (name "rg2", density 16: the same
+ * bytes); a number of one significant digit past 1e16 is written with its decimal point. */
+static void names_and_defaults(const rg2_surface *s)
+{
+    rg2_error err;
+    rg2_export_opts o;
+    rg2_export_opts_default(&o);
+    o.name = "part 'A' \\ B \xc3\xa9"; /* part 'A' \ B e-acute (2 bytes of UTF-8) */
+    CHECK_OK(rg2_export_file(s, 1, path_in("it's a \\ test.step"), &o, &err), &err);
+    size_t len;
+    char *b = (char *)slurp(path_in("it's a \\ test.step"), &len);
+    CHECK(b && strstr(b, "FILE_NAME('it''s a \\\\ test.step',"), "STEP: file name string");
+    CHECK(b && strstr(b, "=PRODUCT('part ''A'' \\\\ B __','part ''A'' \\\\ B __',") &&
+              strstr(b, "=MANIFOLD_SURFACE_SHAPE_REPRESENTATION('part ''A'' \\\\ B __',"),
+          "STEP: product name string");
+    int odd = 0; /* every record's apostrophes pair up */
+    for (char *p = b; b && p && *p;) {
+        char *e = strchr(p, '\n');
+        int q = 0;
+        for (char *c = p; c < (e ? e : p + strlen(p)); c++)
+            q += *c == '\'';
+        odd += q % 2;
+        p = e ? e + 1 : NULL;
+    }
+    CHECK(b && odd == 0, "STEP: %d lines with an unpaired apostrophe", odd);
+    free(b);
+    CHECK_OK(rg2_export_file(s, 1, path_in("named.igs"), &o, &err), &err);
+    b = (char *)slurp(path_in("named.igs"), &len);
+    CHECK(b && strstr(b, ",15Hpart 'A' \\ B __,") && strstr(b, ",9Hnamed.igs,"), "IGES: Hollerith name and file name");
+    free(b);
+
+    /* defaults: name NULL and density 0 are "rg2" and 16, as are no options */
+    rg2_export_opts z;
+    memset(&z, 0, sizeof z);
+    rg2_export_opts_default(&o);
+    CHECK(o.density == 16 && !strcmp(o.name, "rg2") && o.layout == RG2_STEP_FACE_PER_PATCH && !o.ap242 &&
+              !o.iges_brep,
+          "rg2_export_opts_default");
+    CHECK_OK(rg2_export_file(s, 1, path_in("def.obj"), &o, &err), &err);
+    CHECK_OK(rg2_export_file(s, 1, path_in("zero.obj"), &z, &err), &err);
+    CHECK_OK(rg2_export_file(s, 1, path_in("null.obj"), NULL, &err), &err);
+    size_t l1, l2, l3;
+    unsigned char *a = slurp(path_in("def.obj"), &l1), *c = slurp(path_in("zero.obj"), &l2),
+                  *d = slurp(path_in("null.obj"), &l3);
+    int nv = 0;
+    for (size_t k = 0; a && k + 1 < l1; k++)
+        nv += (k == 0 || a[k - 1] == '\n') && a[k] == 'v' && a[k + 1] == ' ';
+    int want = s->nu * 16 * s->nv * 16; /* closed in both directions: (16 nu) x (16 nv) vertices */
+    CHECK(a && c && d && l1 == l2 && l1 == l3 && !memcmp(a, c, l1) && !memcmp(a, d, l1) && nv == want &&
+              strstr((char *)a, "rg2"),
+          "OBJ with name NULL / density 0 / no options: %zu, %zu, %zu bytes, %d vertices (density 16: %d)", l1, l2,
+          l3, nv, want);
+    free(a);
+    free(c);
+    free(d);
+    CHECK_OK(rg2_export_file(s, 1, path_in("zero.step"), &z, &err), &err);
+    b = (char *)slurp(path_in("zero.step"), &len);
+    CHECK(b && strstr(b, "=PRODUCT('rg2','rg2',"), "STEP with name NULL: product 'rg2'");
+    free(b);
+
+    /* a torus of size 1e20 with quarter arcs: vertices such as (4e20, 0, 0), whose %.17G form
+     * "4E+20" needs its decimal point ("4.E+20"); step_text checks every real of the files */
+    const char *json = "{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": 3e20, \"r\": 1e20}},"
+                       " \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": 4}, \"v\": {\"arcs\": 4}}}}";
+    rg2_design *dz = NULL;
+    CHECK_OK(rg2_design_parse(json, strlen(json), "big", &dz, &err), &err);
+    if (!dz)
+        return;
+    rg2_surface big = *rg2_design_surface(dz, 0); /* (a view: the design owns it) */
+    CHECK_OK(export_one(&big, "big.step", &err), &err);
+    b = (char *)slurp(path_in("big.step"), &len);
+    CHECK(b && strstr(b, "(4.E+20,0.,0.)"), "STEP: the vertex (4e20, 0, 0) written as (4.E+20,0.,0.)");
+    free(b);
+    CHECK_OK(export_one(&big, "big.igs", &err), &err);
+    b = (char *)slurp(path_in("big.igs"), &len);
+    CHECK(b && strstr(b, ",4.E+20,"), "IGES: 4e20 written as 4.E+20");
+    free(b);
+    step_text(&big);
+    rg2_design_free(dz);
+}
+
 int main(void)
 {
     snprintf(g_dir, sizeof g_dir, "/tmp/rg2_export_XXXXXX");
@@ -911,6 +995,7 @@ int main(void)
     glb_validate(&s, &t);
     patches_roundtrip(&s, 13.0, 4.0);
     step_text(&s);
+    names_and_defaults(&s);
     failures(&s);
     export_degrees(&s);
     rg2_surface x;

@@ -528,6 +528,151 @@ static void errors(void)
     rg2_mesh_free(&m);
 }
 
+/* Options that change what a picture shows, each against a picture it must equal or differ from:
+ * a colour range given equal to the robust one gives the same bytes; two ranges above every H
+ * clamp every surface pixel to the same colour (only their bar labels differ); the Gaussian
+ * colour bar is the diverging map itself (blue at the bottom, grey in the middle, red at the
+ * top); tint 0 is the picture of the untagged surface. And the option checks, by message. */
+static void options(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_revolve(3.0, 1.0, 6, 4, 1, 0, 0, &m, &s, &err), &err);
+    rg2_render_opts o;
+    rg2_render_opts_default(&o);
+    o.width = 240; /* > 2 x 110: room for the colour bar */
+    o.height = 160;
+    o.mode = RG2_RENDER_MEAN;
+    o.keep_pixels = 1;
+    rg2_image a, b, c;
+    size_t nb = (size_t)o.width * o.height * 3;
+    CHECK_OK(rg2_render(&s, 1, NULL, &o, &a, &err), &err);
+    double hmax = -HUGE_VAL;
+    for (int k = 0; a.pixels && k < o.width * o.height; k++)
+        if (a.pixels[k].surf >= 0)
+            hmax = fmax(hmax, a.pixels[k].H);
+    o.keep_pixels = 0;
+    o.range_set = 1;
+    o.range[0] = a.range[0];
+    o.range[1] = a.range[1];
+    CHECK_OK(rg2_render(&s, 1, NULL, &o, &b, &err), &err);
+    CHECK(b.range[0] == a.range[0] && b.range[1] == a.range[1] && !memcmp(a.rgb, b.rgb, nb),
+          "the robust range [%g, %g] given as the range: another picture", a.range[0], a.range[1]);
+    rg2_image_free(&b);
+    o.range[0] = hmax + 1;
+    o.range[1] = hmax + 2;
+    CHECK_OK(rg2_render(&s, 1, NULL, &o, &b, &err), &err);
+    o.range[0] = hmax + 5;
+    o.range[1] = hmax + 50;
+    CHECK_OK(rg2_render(&s, 1, NULL, &o, &c, &err), &err);
+    int vw = o.width - 110, same = 1, bar_same = 1, fg = 0;
+    for (int y = 0; y < o.height; y++)
+        for (int x = 0; x < o.width; x++) {
+            size_t k = 3 * ((size_t)y * o.width + x);
+            int eq = !memcmp(b.rgb + k, c.rgb + k, 3);
+            if (x < vw) {
+                same = same && eq;
+                fg += a.pixels[(size_t)y * o.width + x].surf >= 0;
+            } else
+                bar_same = bar_same && eq;
+        }
+    CHECK(b.range[0] == hmax + 1 && b.range[1] == hmax + 2 && c.range[0] == hmax + 5 && c.range[1] == hmax + 50,
+          "ranges given: [%g, %g], [%g, %g]", b.range[0], b.range[1], c.range[0], c.range[1]);
+    CHECK(fg > 1000 && same && !bar_same, "two ranges above H max %g: surface pixels the same %d (of %d), bar labels "
+                                          "differ %d", hmax, same, fg, !bar_same);
+    CHECK(memcmp(a.rgb, b.rgb, nb) != 0, "a range above every H leaves the picture unchanged");
+    rg2_image_free(&a);
+    rg2_image_free(&b);
+    rg2_image_free(&c);
+
+    /* the Gaussian colour bar: rows 40 (t = 1) .. height - 40 (t = 0), columns vw + 12 .. + 33 */
+    o.range_set = 0;
+    o.mode = RG2_RENDER_GAUSS;
+    CHECK_OK(rg2_render(&s, 1, NULL, &o, &a, &err), &err);
+    static const double blue[3] = {0.23, 0.30, 0.75}, grey[3] = {0.87, 0.87, 0.87}, red[3] = {0.71, 0.02, 0.15};
+    const int rows[3] = {o.height - 40, (o.height - 40 + 40) / 2, 40};
+    const double *want[3] = {blue, grey, red};
+    int bar_ok = 1;
+    for (int q = 0; q < 3; q++)
+        for (int x = vw + 12; x < vw + 12 + 22; x++)
+            for (int k = 0; k < 3; k++)
+                bar_ok = bar_ok && a.rgb[3 * ((size_t)rows[q] * o.width + x) + k] == (unsigned char)lround(255 * want[q][k]);
+    CHECK(bar_ok, "Gaussian colour bar: not the diverging map blue / grey / red at rows %d, %d, %d", rows[0], rows[1],
+          rows[2]);
+    o.colorbar = 0;
+    CHECK_OK(rg2_render(&s, 1, NULL, &o, &b, &err), &err);
+    int bar_gone = 1;
+    for (int x = vw + 12; x < vw + 12 + 22; x++)
+        bar_gone = bar_gone && memcmp(b.rgb + 3 * ((size_t)rows[1] * o.width + x), a.rgb + 3 * ((size_t)rows[1] * o.width + x), 3);
+    CHECK(bar_gone, "colorbar 0: the bar is still drawn");
+    rg2_image_free(&a);
+    rg2_image_free(&b);
+    o.colorbar = 1;
+
+    /* tint: a tagged surface untinted is the untagged surface */
+    o.mode = RG2_RENDER_SHADED;
+    s.tag = calloc((size_t)s.nu * s.nv, sizeof(int)); /* every patch exact on shape 0 */
+    CHECK_OK(rg2_render(&s, 1, NULL, &o, &a, &err), &err);
+    o.tint = 0;
+    CHECK_OK(rg2_render(&s, 1, NULL, &o, &b, &err), &err);
+    free(s.tag);
+    s.tag = NULL;
+    o.tint = 1;
+    CHECK_OK(rg2_render(&s, 1, NULL, &o, &c, &err), &err);
+    CHECK(memcmp(a.rgb, b.rgb, nb) != 0 && !memcmp(b.rgb, c.rgb, nb),
+          "tint 0: tinted picture unchanged %d, untinted differs from the untagged surface's %d",
+          !memcmp(a.rgb, b.rgb, nb), memcmp(b.rgb, c.rgb, nb) != 0);
+    rg2_image_free(&a);
+    rg2_image_free(&b);
+    rg2_image_free(&c);
+
+    /* option checks */
+    struct {
+        int field;
+        double value;
+        rg2_status code;
+        const char *msg;
+    } bad[] = {{0, 9, RG2_EINVAL, "render: unknown mode 9"},
+               {1, 0.5, RG2_EINVAL, "render: field of view 0.5 outside (1, 170) degrees"},
+               {2, NAN, RG2_ENONFINITE, "render: non-finite view (azimuth, elevation or distance)"},
+               {3, INFINITY, RG2_ENONFINITE, "render: non-finite view"},
+               {4, 0.5, RG2_EINVAL, "render: percentile 0.5 outside [0, 0.5)"},
+               {5, 0, RG2_EINVAL, "render: stripes 0 outside 1..1000"}};
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        rg2_render_opts_default(&o);
+        o.width = o.height = 32;
+        switch (bad[k].field) {
+        case 0: o.mode = (rg2_render_mode)(int)bad[k].value; break;
+        case 1: o.fov = bad[k].value; break;
+        case 2: o.azimuth = bad[k].value; break;
+        case 3: o.distance = bad[k].value; break;
+        case 4: o.percentile = bad[k].value; break;
+        default: o.mode = RG2_RENDER_ZEBRA, o.stripes = bad[k].value; break;
+        }
+        rg2_status st = rg2_render(&s, 1, NULL, &o, &a, &err);
+        CHECK(st == bad[k].code && strstr(err.msg, bad[k].msg), "bad option %zu: %s '%s', want '%s'", k,
+              rg2_status_str(st), err.msg, bad[k].msg);
+    }
+    rg2_render_opts_default(&o);
+    o.width = o.height = 32;
+    CHECK(rg2_render(&s, 1, NULL, &o, NULL, &err) == RG2_EINVAL && strstr(err.msg, "render: no output image"), "%s",
+          err.msg);
+    rg2_surface empty = s;
+    empty.nu = 0;
+    CHECK(rg2_render(&empty, 1, NULL, &o, &a, &err) == RG2_EINVAL && strstr(err.msg, "render: surface 0 has no patches"),
+          "%s", err.msg);
+    rg2_image none = {0};
+    CHECK(rg2_image_write_png(&none, "x.png", &err) == RG2_EINVAL && strstr(err.msg, "png: empty image"), "%s", err.msg);
+    CHECK_OK(rg2_render(&s, 1, NULL, &o, &a, &err), &err);
+    CHECK(rg2_image_write_png(&a, "", &err) == RG2_EINVAL && strstr(err.msg, "png: no output path"), "%s", err.msg);
+    rg2_image_free(&a);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+    printf("options: given colour ranges, the Gaussian colour bar, tint, and %zu refused options\n",
+           sizeof bad / sizeof bad[0]);
+}
+
 int main(void)
 {
     for (int mixed = 0; mixed < 2; mixed++) {
@@ -539,5 +684,6 @@ int main(void)
     zebra_kinks();
     png_valid_and_deterministic();
     errors();
+    options();
     return rg2t_done("test_render");
 }
