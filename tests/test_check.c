@@ -311,6 +311,34 @@ static void g1_join(void)
     rg2_check_report_free(&r);
     CHECK(rg2_check(&s, 0, NULL, NULL, 0, NULL, &r, &err) == RG2_EINVAL && strstr(err.msg, "no surfaces"), "%s",
           err.msg);
+    /* the other refused inputs, each by its message */
+    CHECK(rg2_check(&s, 1, NULL, NULL, 0, NULL, NULL, &err) == RG2_EINVAL && !strcmp(err.msg, "check: no report"),
+          "%s", err.msg);
+    CHECK(rg2_check(&s, 1, NULL, NULL, 2, NULL, &r, &err) == RG2_EINVAL &&
+              !strcmp(err.msg, "check: 2 shapes without a shape list"),
+          "%s", err.msg);
+    rg2_check_opts o;
+    rg2_check_opts_default(&o);
+    o.seam_samples = 10001;
+    CHECK(rg2_check(&s, 1, NULL, NULL, 0, &o, &r, &err) == RG2_EINVAL &&
+              !strcmp(err.msg, "check: samples 10001 per seam / 12 per patch outside 1..10000 / 1..1000"),
+          "%s", err.msg);
+    rg2_check_opts_default(&o);
+    o.patch_samples = 0;
+    CHECK(rg2_check(&s, 1, NULL, NULL, 0, &o, &r, &err) == RG2_EINVAL && strstr(err.msg, "per seam / 0 per patch"),
+          "%s", err.msg);
+    rg2_surface bad = s;
+    bad.nv = 0;
+    CHECK(rg2_check(&bad, 1, NULL, NULL, 0, NULL, &r, &err) == RG2_EINVAL && !strcmp(err.msg, "check: surface 0 has no patches"),
+          "%s", err.msg);
+    bad = s;
+    bad.bv = NULL;
+    CHECK(rg2_check(&bad, 1, NULL, NULL, 0, NULL, &r, &err) == RG2_EINVAL &&
+              !strcmp(err.msg, "check: surface 0 has no junction scalars"),
+          "%s", err.msg);
+    char *text = (char *)1;
+    CHECK(rg2_check_format(NULL, 0, &text, &err) == RG2_EINVAL && !strcmp(err.msg, "check: nothing to format"), "%s",
+          err.msg);
     rg2_surface_free(&s);
 }
 

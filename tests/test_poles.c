@@ -325,11 +325,74 @@ static void errors(void)
     double a2[3] = {1, 1, 1};
     CHECK(rg2_polar_sphere_mesh(a2, 3, 0.0, v, 2, NULL, &b, &err) == RG2_EDOMAIN && strstr(err.msg, "2 pi"),
           "arcs: %s", err.msg);
+    CHECK(rg2_polar_sphere_mesh(alpha, 2, 0.0, v, 2, NULL, &b, &err) == RG2_EINVAL &&
+              !strcmp(err.msg, "polar sphere: 2 arcs, a closed circle needs at least 3"),
+          "2 arcs: %s", err.msg);
+    double P[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    P[6] = NAN;
+    CHECK(rg2_polar_sphere_mesh(alpha, 3, 0.0, v, 2, P, &b, &err) == RG2_ENONFINITE &&
+              !strcmp(err.msg, "polar sphere: placement entry 6 is not finite"),
+          "NaN placement: %s", err.msg);
+    double vn[2] = {0.3, NAN}, kn[8];
+    CHECK(rg2_polar_knots(vn, 2, kn, &err) == RG2_ENONFINITE && !strcmp(err.msg, "polar knots: v_2 is not finite"),
+          "NaN knot: %s", err.msg);
+    CHECK(rg2_polar_knots(NULL, 2, kn, &err) == RG2_EINVAL, "no knots: %s", err.msg);
+    p[1] = INFINITY;
+    CHECK(rg2_polar_set_point(&m, 0, p, &err) == RG2_ENONFINITE && !strcmp(err.msg, "polar point: component 1 is not finite"),
+          "infinite polar point: %s", err.msg);
+    p[1] = 0;
+    rg2_mesh closed;
+    CHECK_OK(rg2_mesh_init(&closed, 4, 4, 1, 1, &err), &err);
+    CHECK(rg2_polar_set_point(&closed, 0, p, &err) == RG2_EINVAL && strstr(err.msg, "v-direction is closed"), "%s",
+          err.msg);
+    rg2_mesh_free(&closed);
+    rg2_mesh none = {0};
+    CHECK(rg2_polar_set_point(&none, 0, p, &err) == RG2_EINVAL && !strcmp(err.msg, "polar point: empty mesh"), "%s",
+          err.msg);
+    CHECK(rg2_mesh_mobius(&none, c0, 1.0, M, &err) == RG2_EINVAL && !strcmp(err.msg, "moebius: empty mesh"), "%s",
+          err.msg);
+    double cn[3] = {0, NAN, 0};
+    CHECK(rg2_mesh_mobius(&m, cn, 1.0, M, &err) == RG2_ENONFINITE && !strcmp(err.msg, "moebius: center component 1 is not finite"),
+          "%s", err.msg);
+    double Mn[16];
+    rg2_mobius_matrix(0.5, NULL, Mn);
+    Mn[3] = INFINITY;
+    CHECK(rg2_mesh_mobius(&m, c0, 1.0, Mn, &err) == RG2_ENONFINITE && !strcmp(err.msg, "moebius: matrix entry 3 is not finite"),
+          "%s", err.msg);
+    double sp[3] = {0, 0, -1}, np_[3] = {0, NAN, 1};
+    CHECK(rg2_mobius_poles_matrix(sp, np_, M, &err) == RG2_ENONFINITE &&
+              !strcmp(err.msg, "moebius: north pole component 1 is not finite"),
+          "%s", err.msg);
     rg2_mesh_free(&m);
+}
+
+/* rg2_mobius_matrix with a rotation R applied after eq. (16): the poles go to R times their
+ * eq. (16) images, and the map stays a Lorentz map of the sphere's 4-tuples. */
+static void mobius_rotated(void)
+{
+    const double b = 0.4, c = cos(0.7), s = sin(0.7);
+    const double R[9] = {c, -s, 0, s, c, 0, 0, 0, 1}; /* 0.7 rad about z */
+    double M[16];
+    rg2_mobius_matrix(b, R, M);
+    double B2 = 1 + b * b, e = 0;
+    const double pole[2][4] = {{0, 0, -1, 1}, {0, 0, 1, 1}};
+    const double img[2][3] = {{2 * b / B2, 0, (b * b - 1) / B2}, {-2 * b / B2, 0, (1 - b * b) / B2}};
+    for (int k = 0; k < 2; k++) {
+        double q[4], want[3];
+        apply(M, pole[k], q);
+        for (int r = 0; r < 3; r++)
+            want[r] = R[3 * r] * img[k][0] + R[3 * r + 1] * img[k][1] + R[3 * r + 2] * img[k][2];
+        for (int r = 0; r < 3; r++)
+            e = fmax(e, fabs(q[r] / q[3] - want[r]));
+    }
+    double ld = lorentz_defect(M);
+    CHECK(e <= 1e-15 && ld <= 1e-15, "rotated Moebius matrix: poles off by %.3g, Lorentz defect %.3g", e, ld);
+    printf("rotated Moebius matrix: poles %.2e from R times eq. (16), Lorentz defect %.2e\n", e, ld);
 }
 
 int main(void)
 {
+    mobius_rotated();
     polar_knots();
     polar_sphere_band();
     mobius_b();

@@ -183,6 +183,30 @@ static void mesh_errors(void)
           err.msg);
     rg2_mesh_free(&m);
     CHECK(rg2_mesh_init(&m, 5000, 5000, 0, 0, &err) == RG2_ELIMIT, "huge mesh refused: %s", err.msg);
+    /* the direction that is too small is named, for v as for u */
+    CHECK(rg2_mesh_init(&m, 5, 3, 0, 0, &err) == RG2_EINVAL && !m.p && !m.su.w &&
+              !strcmp(err.msg, "mesh v: scalars: 3 control points, an open direction needs at least 4"),
+          "v with 3 points: %s", err.msg);
+    CHECK(rg2_mesh_init(&m, 2, 5, 1, 0, &err) == RG2_EINVAL &&
+              !strcmp(err.msg, "mesh u: scalars: 2 control points, a closed direction needs at least 3"),
+          "closed u with 2 points: %s", err.msg);
+    /* scalars that do not match the points, and a NaN weight */
+    CHECK_OK(rg2_mesh_init(&m, 4, 4, 0, 0, &err), &err);
+    for (int k = 0; k < 64; k++)
+        m.p[k] = 1.0;
+    rg2_scalars_free(&m.su);
+    CHECK_OK(rg2_scalars_init(&m.su, 5, 0, &err), &err);
+    CHECK(rg2_surface_build(&m, &s, &err) == RG2_EINVAL && !strcmp(err.msg, "mesh: 4 x 4 points but scalars for 5 x 4"),
+          "mismatched scalars: %s", err.msg);
+    rg2_mesh_at(&m, 1, 2)[3] = NAN;
+    int wi = -1, wj = -1;
+    CHECK(rg2_mesh_check_weights(&m, &wi, &wj, &err) == RG2_ENONFINITE && wi == 1 && wj == 2 &&
+              !strcmp(err.msg, "control point [1, 2] has weight W = nan"),
+          "NaN weight: (%d, %d) %s", wi, wj, err.msg);
+    rg2_mesh_free(&m);
+    CHECK(!strcmp(rg2_status_str(RG2_OK), "ok") && !strcmp(rg2_status_str((rg2_status)99), "unknown status") &&
+              !strcmp(rg2_status_str(RG2_ELIMIT), "size limit exceeded"),
+          "status texts");
 }
 
 /* The surfaces a and b are the same bit for bit (patches, junction scalars, counts, closure). */
