@@ -31,8 +31,9 @@ int rg2_cmd_check(int argc, char **argv);
 int rg2_cli_load_surfaces(const char *cmd, const char *path, rg2_design **d, rg2_surface **surfs,
                           rg2_mesh **meshes, int *n);
 
-/* Parse "a,b,c" into at most max doubles; returns the count or -1 (message printed). */
-int rg2_cli_parse_list(const char *opt, const char *s, double *out, int max);
+/* Parse "a,b,c" into at most max doubles; returns the count or -1 (message printed, starting
+ * "rg2 <cmd>: <opt>:"). */
+int rg2_cli_parse_list(const char *cmd, const char *opt, const char *s, double *out, int max);
 /* Print "rg2 <cmd>: <status text>: <message>" to stderr; returns RG2_EXIT_FAIL. */
 int rg2_cli_report(const char *cmd, const rg2_error *err);
 /* 1 if the paths name the same existing file (an output that would overwrite an input). */

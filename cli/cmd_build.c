@@ -67,7 +67,7 @@ int rg2_cmd_build(int argc, char **argv)
             quiet = 1;
         else if (!strcmp(a, "--density")) {
             double v;
-            if (i + 1 >= argc || rg2_cli_parse_list("--density", argv[i + 1], &v, 1) != 1 || v < 1 ||
+            if (i + 1 >= argc || rg2_cli_parse_list("build", "--density", argv[i + 1], &v, 1) != 1 || v < 1 ||
                 v > 1024 || v != (int)v) {
                 fprintf(stderr, "rg2 build: --density needs an integer 1..1024\n");
                 return RG2_EXIT_USAGE;

@@ -103,7 +103,7 @@ int rg2_cmd_check(int argc, char **argv)
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--samples")) {
             double v;
-            if (i + 1 >= argc || rg2_cli_parse_list("--samples", argv[i + 1], &v, 1) != 1 || v < 1 || v > 10000 ||
+            if (i + 1 >= argc || rg2_cli_parse_list("check", "--samples", argv[i + 1], &v, 1) != 1 || v < 1 || v > 10000 ||
                 v != (int)v) {
                 fprintf(stderr, "rg2 check: --samples needs an integer 1..10000\n");
                 return RG2_EXIT_USAGE;
@@ -130,7 +130,7 @@ int rg2_cmd_check(int argc, char **argv)
                           : !strncmp(t, "g2=", 3)          ? &o.tol_g2
                           : !strncmp(t, "exact=", 6)       ? &o.tol_exact
                                                            : NULL;
-            if (!dst || rg2_cli_parse_list("--tol", eq + 1, &v, 1) != 1 || v < 0) {
+            if (!dst || rg2_cli_parse_list("check", "--tol", eq + 1, &v, 1) != 1 || v < 0) {
                 fprintf(stderr, "rg2 check: --tol needs g0=X, g1=X, g2=X or exact=X with X >= 0\n");
                 return RG2_EXIT_USAGE;
             }

@@ -78,44 +78,51 @@ int rg2_cmd_curve(int argc, char **argv)
             closed = 1;
         } else if (!strcmp(a, "--arcs")) {
             NEED();
-            int n = atoi(val);
-            if (n < 3 || n > MAXV - 1) {
+            char *end;
+            long n = strtol(val, &end, 10);
+            if (end == val || *end || n < 3 || n > MAXV - 1) {
                 fprintf(stderr, "rg2 curve: --arcs %s: need 3..%d arcs\n", val, MAXV - 1);
                 return RG2_EXIT_USAGE;
             }
             for (int k = 0; k < n; k++)
-                angles[k] = 360.0 / n;
-            n_angles = n;
+                angles[k] = 360.0 / (double)n;
+            n_angles = (int)n;
         } else if (!strcmp(a, "--angles")) {
             NEED();
-            if ((n_angles = rg2_cli_parse_list(a, val, angles, MAXV)) < 0)
+            if ((n_angles = rg2_cli_parse_list("curve", a, val, angles, MAXV)) < 0)
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--radius")) {
             NEED();
-            if (rg2_cli_parse_list(a, val, &radius, 1) != 1)
+            if (rg2_cli_parse_list("curve", a, val, &radius, 1) != 1)
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--start")) {
             NEED();
-            if (rg2_cli_parse_list(a, val, &start, 1) != 1)
+            if (rg2_cli_parse_list("curve", a, val, &start, 1) != 1)
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--dim")) {
             NEED();
-            dim = atoi(val);
+            char *end;
+            long d = strtol(val, &end, 10);
+            if (end == val || *end || d < 1 || d > 4) {
+                fprintf(stderr, "rg2 curve: --dim %s: need an integer 1..4\n", val);
+                return RG2_EXIT_USAGE;
+            }
+            dim = (int)d;
         } else if (!strcmp(a, "--points")) {
             NEED();
-            if ((n_pts = rg2_cli_parse_list(a, val, pts, MAXV * 4)) < 0)
+            if ((n_pts = rg2_cli_parse_list("curve", a, val, pts, MAXV * 4)) < 0)
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--w")) {
             NEED();
-            if ((nw = rg2_cli_parse_list(a, val, w, MAXV)) < 0)
+            if ((nw = rg2_cli_parse_list("curve", a, val, w, MAXV)) < 0)
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--b")) {
             NEED();
-            if ((nb = rg2_cli_parse_list(a, val, b, MAXV)) < 0)
+            if ((nb = rg2_cli_parse_list("curve", a, val, b, MAXV)) < 0)
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--g")) {
             NEED();
-            if ((ng = rg2_cli_parse_list(a, val, g, MAXV)) < 0)
+            if ((ng = rg2_cli_parse_list("curve", a, val, g, MAXV)) < 0)
                 return RG2_EXIT_USAGE;
         } else {
             fprintf(stderr, "rg2 curve: unknown option '%s' (see rg2 curve --help)\n", a);
@@ -129,8 +136,8 @@ int rg2_cmd_curve(int argc, char **argv)
     double *cp = NULL;
     int rc = RG2_EXIT_OK, n;
     if (n_pts >= 0) {
-        if (dim < 1 || dim > 4 || n_pts % dim) {
-            fprintf(stderr, "rg2 curve: --points has %d numbers, not a multiple of --dim %d (1..4)\n", n_pts, dim);
+        if (n_pts % dim) {
+            fprintf(stderr, "rg2 curve: --points has %d numbers, not a multiple of --dim %d\n", n_pts, dim);
             return RG2_EXIT_USAGE;
         }
         n = n_pts / dim;

@@ -31,7 +31,7 @@ static void usage(FILE *f)
 
 static int number(const char *opt, int argc, char **argv, int *i, double *v)
 {
-    if (*i + 1 >= argc || rg2_cli_parse_list(opt, argv[*i + 1], v, 1) != 1) {
+    if (*i + 1 >= argc || rg2_cli_parse_list("render", opt, argv[*i + 1], v, 1) != 1) {
         fprintf(stderr, "rg2 render: %s needs a number\n", opt);
         return -1;
     }
@@ -125,7 +125,7 @@ int rg2_cmd_render(int argc, char **argv)
             }
             only = (int)v;
         } else if (!strcmp(a, "--range")) {
-            if (i + 1 >= argc || rg2_cli_parse_list("--range", argv[i + 1], o.range, 2) != 2) {
+            if (i + 1 >= argc || rg2_cli_parse_list("render", "--range", argv[i + 1], o.range, 2) != 2) {
                 fprintf(stderr, "rg2 render: --range needs lo,hi\n");
                 return RG2_EXIT_USAGE;
             }

@@ -387,7 +387,7 @@ static int check_numbers(const char *opt, const double *x, int n)
 
 static int parse_one(const char *opt, const char *val, double *out)
 {
-    return rg2_cli_parse_list(opt, val, out, 1) == 1 ? 0 : -1;
+    return rg2_cli_parse_list("shape", opt, val, out, 1) == 1 ? 0 : -1;
 }
 
 int rg2_cmd_shape(int argc, char **argv)
@@ -468,7 +468,7 @@ int rg2_cmd_shape(int argc, char **argv)
                 else
                     o->segments = (int)n;
             } else if (!strcmp(what, "angles") || !strcmp(what, "knots")) {
-                if ((o->n_vals = rg2_cli_parse_list(a, val, o->vals, MAXV)) < 0)
+                if ((o->n_vals = rg2_cli_parse_list("shape", a, val, o->vals, MAXV)) < 0)
                     return RG2_EXIT_USAGE;
                 if ((rc = check_numbers(a, o->vals, o->n_vals)))
                     return rc;
@@ -486,7 +486,7 @@ int rg2_cmd_shape(int argc, char **argv)
                     return rc;
                 o->has_sweep = 1;
             } else if (!strcmp(what, "range")) {
-                if (rg2_cli_parse_list(a, val, o->range, 2) != 2) {
+                if (rg2_cli_parse_list("shape", a, val, o->range, 2) != 2) {
                     fprintf(stderr, "rg2 shape: %s needs two numbers A,B\n", a);
                     return RG2_EXIT_USAGE;
                 }
@@ -498,7 +498,7 @@ int rg2_cmd_shape(int argc, char **argv)
                 return RG2_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--scale")) {
-            int n = rg2_cli_parse_list(a, val, scale, 3);
+            int n = rg2_cli_parse_list("shape", a, val, scale, 3);
             if (n == 1)
                 scale[1] = scale[2] = scale[0];
             else if (n != 3) {
@@ -513,7 +513,7 @@ int rg2_cmd_shape(int argc, char **argv)
             }
         } else if (!strcmp(a, "--axis") || !strcmp(a, "--center") || !strcmp(a, "--centre")) {
             double *x = a[2] == 'a' ? axis : centre;
-            if (rg2_cli_parse_list(a, val, x, 3) != 3) {
+            if (rg2_cli_parse_list("shape", a, val, x, 3) != 3) {
                 fprintf(stderr, "rg2 shape: %s needs three numbers X,Y,Z\n", a);
                 return RG2_EXIT_USAGE;
             }
@@ -524,7 +524,7 @@ int rg2_cmd_shape(int argc, char **argv)
                 return RG2_EXIT_FAIL;
             }
         } else if (!strcmp(a, "--xform")) {
-            if (rg2_cli_parse_list(a, val, xf, 16) != 16) {
+            if (rg2_cli_parse_list("shape", a, val, xf, 16) != 16) {
                 fprintf(stderr, "rg2 shape: --xform needs 16 numbers (row-major 4x4)\n");
                 return RG2_EXIT_USAGE;
             }

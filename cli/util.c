@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <sys/stat.h>
 
-int rg2_cli_parse_list(const char *opt, const char *s, double *out, int max)
+int rg2_cli_parse_list(const char *cmd, const char *opt, const char *s, double *out, int max)
 {
     int n = 0;
     const char *p = s;
@@ -16,11 +16,11 @@ int rg2_cli_parse_list(const char *opt, const char *s, double *out, int max)
         errno = 0;
         double x = strtod(p, &end);
         if (end == p || errno == ERANGE || !isfinite(x)) {
-            fprintf(stderr, "rg2: %s: item %d of '%s' is not a finite number\n", opt, n, s);
+            fprintf(stderr, "rg2 %s: %s: item %d of '%s' is not a finite number\n", cmd, opt, n, s);
             return -1;
         }
         if (n == max) {
-            fprintf(stderr, "rg2: %s: more than %d values\n", opt, max);
+            fprintf(stderr, "rg2 %s: %s: more than %d value%s\n", cmd, opt, max, max == 1 ? "" : "s");
             return -1;
         }
         out[n++] = x;
@@ -30,7 +30,7 @@ int rg2_cli_parse_list(const char *opt, const char *s, double *out, int max)
         if (*p == ',' || *p == ';')
             p++;
         else if (*p) {
-            fprintf(stderr, "rg2: %s: unexpected '%c' after item %d of '%s'\n", opt, *p, n - 1, s);
+            fprintf(stderr, "rg2 %s: %s: unexpected '%c' after item %d of '%s'\n", cmd, opt, *p, n - 1, s);
             return -1;
         }
     }

@@ -17,4 +17,38 @@ expect 2 "need 6 weights" -- "$RG2" curve --points "0,0;1,0;2,1;3,0;4,2" --w 1,1
 expect 2 "unknown option" -- "$RG2" curve --bogus
 # the JSON output is exact: the 90-degree circle's middle weight (1 + 2 cos 45)/3
 "$RG2" curve --arcs 4 --json | grep -q '0.80473785412436' && ok || bad "exact circle weight"
+expect 2 "usage: rg2" -- "$RG2"
+# nums JSON FIRST COUNT: COUNT numbers of the JSON text from the FIRST (1-based), in order
+nums() { echo "$1" | grep -o -- '-\?[0-9][0-9.eE+-]*' | sed -n "$2,$(($2 + $3 - 1))p" | tr '\n' ' '; }
+# close "GOT" "WANT": as many numbers, each within 1e-14 relative (and absolute below 1)
+close() {
+  awk -v g="$1" -v w="$2" 'BEGIN { n = split(g, a, " "); m = split(w, b, " "); if (n != m) exit 1
+    for (k = 1; k <= n; k++) { d = a[k] - b[k]; if (d < 0) d = -d; s = b[k] < 0 ? -b[k] : b[k]
+      if (d > 1e-14 * (s > 1 ? s : 1)) exit 1 } }'
+}
+# --open: 5 arcs of 30 degrees for 4 points, one produced arc, [30, 60] degrees, of radius 2:
+# end points 2 (cos 30, sin 30) and 2 (cos 60, sin 60), middle weight (1 + 2 cos 15)/3
+j=$("$RG2" curve --angles 30,30,30,30,30 --open --radius 2 --json)
+[ "$(echo "$j" | grep -c '"w"')" = 1 ] && echo "$j" | grep -q '"closed": false' && ok || bad "--open: one open segment: $j"
+close "$(nums "$j" 2 4)" "1 0.97728388419271217 0.97728388419271217 1" && ok || bad "--open: 30-degree weights: $j"
+close "$(nums "$j" 6 2)" "1.7320508075688772 1" && ok || bad "--open: the arc starts at 30 degrees: $j"
+close "$(nums "$j" 12 2)" "1 1.7320508075688772" && ok || bad "--open: the arc ends at 60 degrees: $j"
+# --start 45 --radius 3: junction 0 at 45 degrees on the circle of radius 3, junction 1 at 135
+j=$("$RG2" curve --arcs 4 --start 45 --radius 3 --json)
+close "$(nums "$j" 6 2) $(nums "$j" 12 2)" "2.1213203435596424 2.1213203435596424 -2.1213203435596424 2.1213203435596424" &&
+  ok || bad "--start 45: first arc: $j"
+# --dim 1: the uniform cubic B-spline of 0, 1, 3, 4, 7: segment 1 is (P0 + 4 P1 + P2) / 6 .. with
+# Bezier points (2 P1 + P2) / 3, (P1 + 2 P2) / 3
+j=$("$RG2" curve --points "0;1;3;4;7" --dim 1 --json)
+echo "$j" | tr -d ' \n' | grep -q '"points":\[\[1.1666666666666667\],\[1.6666666666666667\],\[2.3333333333333335\],\[2.83333333333333[0-9]*\]\]' &&
+  [ "$(echo "$j" | grep -c '"w"')" = 2 ] && ok || bad "--dim 1 B-spline: $j"
+# --closed: 4 points, 4 segments; --b changes the curve (b = 1 everywhere is the uniform B-spline)
+j=$("$RG2" curve --points "0,0;1,0;1,1;0,1" --closed --json)
+[ "$(echo "$j" | grep -c '"w"')" = 4 ] && echo "$j" | grep -q '"closed": true' &&
+  echo "$j" | tr -d ' \n' | grep -q '"points":\[\[0.16666666666666666,0.16666666666666666\],\[0.33333333333333331,0\]' &&
+  ok || bad "--closed uniform B-spline: $j"
+jb=$("$RG2" curve --points "0,0;1,0;1,1;0,1" --closed --b 1,2,1,1 --json)
+[ "$j" != "$jb" ] && ok || bad "--b 1,2,1,1 changes nothing"
+jg=$("$RG2" curve --points "0,0;1,0;1,1;0,1" --closed --b 1,1,1,1 --g 0,0,0,0 --w 1,1,1,1 --json)
+[ "$j" = "$jg" ] && ok || bad "the default scalars given explicitly give another curve"
 finish

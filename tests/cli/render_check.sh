@@ -43,6 +43,33 @@ for mode in shaded mean gauss zebra; do
   expect 0 "" -- "$RG2" render "$ex" -o "$tmp/$mode.png" --mode $mode --size $((120 + i))x96 --boundaries --mesh
   png_is "$tmp/$mode.png" $((120 + i)) 96
 done
+# options, each against a picture it must equal or differ from (232 x 120: room for the colour bar)
+pic() { local out=$1; shift; "$RG2" render "$ex" -o "$tmp/$out.png" --size 232x120 "$@" || bad "render $*"; }
+same() { cmp -s "$tmp/$1.png" "$tmp/$2.png" && ok || bad "$1.png and $2.png differ: $3"; }
+differ() { cmp -s "$tmp/$1.png" "$tmp/$2.png" && bad "$1.png and $2.png are the same: $3" || ok; }
+pic sh; pic sh_view --azimuth 35 --elevation 25; pic sh_az --azimuth 40; pic sh_notint --no-tint
+pic sh_nobar --no-colorbar; pic sh_s0 --surface 0
+same sh sh_view "--azimuth 35 --elevation 25 are the defaults"
+differ sh sh_az "--azimuth 40 turns the view"
+differ sh sh_notint "--no-tint: exact pieces are tinted by default"
+same sh sh_nobar "--no-colorbar: shaded pictures have no colour bar"
+same sh sh_s0 "--surface 0 of a one-surface design is the design"
+pic me --mode mean; pic me_notint --mode mean --no-tint; pic me_nobar --mode mean --no-colorbar
+same me me_notint "--no-tint: curvature pictures are not tinted"
+differ me me_nobar "--no-colorbar: the mean-curvature bar is drawn by default"
+# every H of the design lies below 100 (rg2 check: H in [-1.0081, 1.25022]): any range above
+# clamps every pixel to the lowest colour, the same picture without the bar's labels
+pic r1 --mode mean --no-colorbar --range 100,200; pic r2 --mode mean --no-colorbar --range 300,4000
+pic r3 --mode mean --no-colorbar --range -0.5,0.5
+same r1 r2 "ranges above every H clamp alike"
+differ r1 r3 "a range inside the curvatures colours the surface"
+differ r3 me_nobar "--range -0.5,0.5 is not the robust range"
+# a two-surface design: each surface alone differs from both together and from the other
+f9=$SRC/examples/fig9_polar_sphere.json
+"$RG2" render "$f9" -o "$tmp/f9.png" --size 96x64 && "$RG2" render "$f9" -o "$tmp/f9_0.png" --size 96x64 --surface 0 &&
+  "$RG2" render "$f9" -o "$tmp/f9_1.png" --size 96x64 --surface 1 || bad "render fig9 --surface"
+differ f9 f9_0 "--surface 0 of two"; differ f9 f9_1 "--surface 1 of two"; differ f9_0 f9_1 "--surface 0 and 1"
+expect 2 "--surface 2: the design has 2 surfaces" -- "$RG2" render "$f9" -o "$tmp/f9_2.png" --surface 2
 # same bytes for 1 and 2 threads
 "$RG2" render "$ex" -o "$tmp/t1.png" --mode zebra --size 160x120 --threads 1 &&
   "$RG2" render "$ex" -o "$tmp/t2.png" --mode zebra --size 160x120 --threads 2 &&
