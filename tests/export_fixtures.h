@@ -94,4 +94,41 @@ static inline rg2_status fx_pole(int nu, int nv, rg2_surface *out, rg2_error *er
     return st;
 }
 
+/* fx_pole with the directions exchanged, built from the transposed mesh: u the open profile
+ * (the first patch column's u = 0 side collapses to the pole), v the closed circle. */
+static inline rg2_status fx_pole_t(int nu, int nv, rg2_surface *out, rg2_error *err)
+{
+    double av[32], csv[64], knots[40];
+    rg2_mesh m;
+    memset(&m, 0, sizeof m);
+    for (int j = 0; j < nv; j++)
+        av[j] = 2 * M_PI / nv;
+    for (int k = 0; k < nu + 2; k++)
+        knots[k] = k;
+    rg2_status st = rg2_mesh_init(&m, nu, nv, 0, 1, err);
+    if (!st)
+        st = rg2_circle_coeffs(av, nv, 1, 0.0, csv, err);
+    if (!st) {
+        rg2_scalars_free(&m.su);
+        rg2_scalars_free(&m.sv);
+        st = rg2_scalars_from_knots(&m.su, knots, nu + 2, 0, err);
+    }
+    if (!st)
+        st = rg2_scalars_from_angles(&m.sv, av, nv, 1, err);
+    if (!st) {
+        for (int i = 0; i < nu; i++)
+            for (int j = 0; j < nv; j++) {
+                double *p = rg2_mesh_at(&m, i, j);
+                double rad = 4.0 * (i - 1), z = 0.5 * (i - 1) * (i - 1);
+                p[0] = rad * csv[2 * j];
+                p[1] = rad * csv[2 * j + 1];
+                p[2] = z;
+                p[3] = 1.0;
+            }
+        st = rg2_surface_build(&m, out, err);
+    }
+    rg2_mesh_free(&m);
+    return st;
+}
+
 #endif

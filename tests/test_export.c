@@ -893,6 +893,68 @@ static rg2_status elevated_torus(rg2_surface *s, rg2_error *err)
     return st;
 }
 
+/* ---------------------------------------------------------------- poles on a u side */
+static void step_counts(const char *path, int *faces, int *edges, int *verts)
+{
+    size_t len;
+    char *b = (char *)slurp(path, &len);
+    *faces = *edges = *verts = 0;
+    for (char *p = b; p && (p = strchr(p, '=')); p++) {
+        *faces += !strncmp(p + 1, "ADVANCED_FACE(", 14);
+        *edges += !strncmp(p + 1, "EDGE_CURVE(", 11);
+        *verts += !strncmp(p + 1, "VERTEX_POINT(", 13);
+    }
+    free(b);
+}
+
+/* The pole surface and its transpose (built from the transposed mesh): the same patches with u
+ * and v exchanged, and B-reps of the same topology in STEP and IGES (both layouts): the
+ * collapsed side is a v = 0 side in one and a u = 0 side in the other. */
+static void transposed_pole(void)
+{
+    rg2_surface a, b;
+    rg2_error err;
+    CHECK_OK(fx_pole(6, 7, &a, &err), &err);
+    CHECK_OK(fx_pole_t(7, 6, &b, &err), &err);
+    double d = 0;
+    for (int i = 0; i < a.nu && a.nu == b.nv && a.nv == b.nu; i++)
+        for (int j = 0; j < a.nv; j++)
+            for (int r = 0; r < 4; r++)
+                for (int t = 0; t < 4; t++)
+                    for (int k = 0; k < 4; k++)
+                        d = fmax(d, fabs(rg2_surface_patch(&a, i, j)->h[r][t][k] - rg2_surface_patch(&b, j, i)->h[t][r][k]));
+    CHECK(a.nu == b.nv && a.nv == b.nu && b.closed_v && !b.closed_u && d <= 1e-13,
+          "transposed pole: %d x %d vs %d x %d patches, %.3g apart", a.nu, a.nv, b.nu, b.nv, d);
+    rg2_export_opts o;
+    rg2_export_opts_default(&o);
+    for (int layout = 0; layout < 2; layout++) {
+        o.layout = layout ? RG2_STEP_FACE_PER_MESH : RG2_STEP_FACE_PER_PATCH;
+        o.iges_brep = 0;
+        CHECK_OK(rg2_export_file(&a, 1, path_in("pa.step"), &o, &err), &err);
+        CHECK_OK(rg2_export_file(&b, 1, path_in("pb.step"), &o, &err), &err);
+        int f[2], e[2], v[2];
+        step_counts(path_in("pa.step"), &f[0], &e[0], &v[0]);
+        step_counts(path_in("pb.step"), &f[1], &e[1], &v[1]);
+        /* per patch: nu * nv faces; edges: u lines (nu + 1) * nv... less the collapsed ones */
+        int want_f = layout ? 1 : a.nu * a.nv;
+        CHECK(f[0] == want_f && f[1] == want_f && e[0] == e[1] && v[0] == v[1] && e[0] > 0,
+              "STEP %s: faces %d / %d (want %d), edges %d / %d, vertices %d / %d", layout ? "per mesh" : "per patch",
+              f[0], f[1], want_f, e[0], e[1], v[0], v[1]);
+        o.iges_brep = 1;
+        CHECK_OK(rg2_export_file(&a, 1, path_in("pa.igs"), &o, &err), &err);
+        CHECK_OK(rg2_export_file(&b, 1, path_in("pb.igs"), &o, &err), &err);
+        int ta[1000], tb[1000];
+        int bad = iges_scan(path_in("pa.igs"), ta) + iges_scan(path_in("pb.igs"), tb), broken = 0;
+        int loops = iges_loops_close(path_in("pb.igs"), &broken);
+        CHECK(bad == 0 && ta[126] == e[0] && tb[126] == e[1] && ta[510] == tb[510] && loops == want_f && broken == 0,
+              "IGES B-rep %s: %d malformed records, model curves %d / %d (STEP edges %d), faces %d / %d, %d loops "
+              "(%d not closing)",
+              layout ? "per mesh" : "per patch", bad, ta[126], tb[126], e[0], ta[510], tb[510], loops, broken);
+    }
+    rg2_surface_free(&a);
+    rg2_surface_free(&b);
+}
+
 /* ---------------------------------------------------------------- names, defaults, exponents */
 /* Names in STEP strings (apostrophes doubled, backslashes doubled, other bytes outside printable
  * ASCII replaced) and IGES Hollerith strings (the raw count of characters); options left at 0 /
@@ -996,6 +1058,7 @@ int main(void)
     patches_roundtrip(&s, 13.0, 4.0);
     step_text(&s);
     names_and_defaults(&s);
+    transposed_pole();
     failures(&s);
     export_degrees(&s);
     rg2_surface x;

@@ -72,22 +72,28 @@ struct Expect {
 };
 
 // Patches of the first row whose v = 0 side (end 0), or of the last row whose v = 1 side
-// (end 1), collapses to a point (a pole).
-int collapsed_sides(const rg2_surface *s, int end)
+// (end 1), collapses to a point (a pole); with dir 1 the same for the u = 0 sides of the first
+// column and the u = 1 sides of the last.
+int collapsed_sides(const rg2_surface *s, int end, int dir = 0)
 {
-    if (s->closed_v)
+    if (dir ? s->closed_u : s->closed_v)
         return 0;
     double tol = 1e-11 * rg2t_surface_scale(s);
-    int n = 0;
-    for (int i = 0; i < s->nu; i++) {
+    int n = 0, along = dir ? s->nv : s->nu;
+    for (int i = 0; i < along; i++) {
         rg2_xpatch P;
-        rg2_surface_patch_get(s, i, end ? s->nv - 1 : 0, &P);
-        int c0 = end ? P.dv : 0;
+        if (dir)
+            rg2_surface_patch_get(s, end ? s->nu - 1 : 0, i, &P);
+        else
+            rg2_surface_patch_get(s, i, end ? s->nv - 1 : 0, &P);
+        int c0 = end ? (dir ? P.du : P.dv) : 0, na = dir ? P.dv : P.du;
         bool c = true;
-        for (int a = 1; a <= P.du; a++)
-            for (int d = 0; d < 3; d++)
-                if (std::fabs(P.h[a][c0][d] / P.h[a][c0][3] - P.h[0][c0][d] / P.h[0][c0][3]) > tol)
+        for (int a = 1; a <= na; a++)
+            for (int d = 0; d < 3; d++) {
+                const double *q = dir ? P.h[c0][a] : P.h[a][c0], *q0 = dir ? P.h[c0][0] : P.h[0][c0];
+                if (std::fabs(q[d] / q[3] - q0[d] / q0[3]) > tol)
                     c = false;
+            }
         n += c;
     }
     return n;
@@ -96,16 +102,17 @@ int collapsed_sides(const rg2_surface *s, int end)
 Expect expect_of(const rg2_surface *s, bool per_mesh)
 {
     int cb0 = collapsed_sides(s, 0), cb1 = collapsed_sides(s, 1);
+    int cu0 = collapsed_sides(s, 0, 1), cu1 = collapsed_sides(s, 1, 1);
     Expect e;
     if (per_mesh) {
         e.faces = 1;
         e.shared = (s->closed_u ? 1 : 0) + (s->closed_v ? 1 : 0);
         e.free_edges = (s->closed_u ? 0 : 2) + (s->closed_v ? 0 : 2) - (cb0 == s->nu ? 1 : 0) -
-                       (cb1 == s->nu ? 1 : 0);
+                       (cb1 == s->nu ? 1 : 0) - (cu0 == s->nv ? 1 : 0) - (cu1 == s->nv ? 1 : 0);
     } else {
         e.faces = s->nu * s->nv;
         e.shared = (s->nu - 1 + s->closed_u) * s->nv + (s->nv - 1 + s->closed_v) * s->nu;
-        e.free_edges = (s->closed_u ? 0 : 2 * s->nv) + (s->closed_v ? 0 : 2 * s->nu) - cb0 - cb1;
+        e.free_edges = (s->closed_u ? 0 : 2 * s->nv) + (s->closed_v ? 0 : 2 * s->nu) - cb0 - cb1 - cu0 - cu1;
     }
     return e;
 }
@@ -595,6 +602,11 @@ int main()
     CHECK_OK(fx_torus(13.0, 4.0, 8, 6, &torus, &err), &err);
     CHECK_OK(fx_random(20261122, 7, 6, &random, &err), &err);
     CHECK_OK(fx_pole(6, 7, &pole, &err), &err);
+    rg2_surface pole_t; // the same, u and v exchanged: the pole on a u = 0 side
+    memset(&pole_t, 0, sizeof pole_t);
+    CHECK_OK(fx_pole_t(7, 6, &pole_t, &err), &err);
+    CHECK(collapsed_sides(&pole, 0) == 6 && collapsed_sides(&pole_t, 0, 1) == 6 && collapsed_sides(&pole_t, 0) == 0,
+          "pole sides: %d at v = 0, transposed %d at u = 0", collapsed_sides(&pole, 0), collapsed_sides(&pole_t, 0, 1));
     /* a complete sphere: polar mesh + bi-3 caps (both ends collapsed, docs/poles.md) */
     rg2_surface capped;
     memset(&capped, 0, sizeof capped);
@@ -652,6 +664,7 @@ int main()
     Case cases[] = {{"torus", &torus, rg2t_surface_scale(&torus), torus_13_4},
                     {"random", &random, rg2t_surface_scale(&random)},
                     {"pole", &pole, rg2t_surface_scale(&pole)},
+                    {"pole transposed", &pole_t, rg2t_surface_scale(&pole_t)},
                     {"capped sphere", &capped, rg2t_surface_scale(&capped)},
                     {"torus elevated", &torus_x, rg2t_surface_scale(&torus_x), torus_13_4, false},
                     {"pole elevated", &pole_x, rg2t_surface_scale(&pole_x), nullptr, false},
@@ -752,6 +765,7 @@ int main()
     rg2_surface_free(&torus);
     rg2_surface_free(&random);
     rg2_surface_free(&pole);
+    rg2_surface_free(&pole_t);
     rg2_surface_free(&capped);
     rg2_surface_free(&torus_x);
     rg2_surface_free(&pole_x);
