@@ -71,6 +71,10 @@ expect 1 "--axis 0,0,0: the axis is the zero vector" -- "$RG2" shape cone --axis
 expect 1 "the placement gives control point" -- "$RG2" shape torus --xform 1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,-1
 expect 1 "ellipsoid: v knot 1 = 1 must lie in (0, 1)" -- "$RG2" shape ellipsoid --v-knots 0.5,1,1.5
 expect 1 "torus: coordinates up to" -- "$RG2" shape torus --R 1e90 --r 1e89
+expect 0 "usage: rg2 shape NAME" -- "$RG2" shape torus --R 2 --help
+# --samples N: the residual over (N + 1) x (N + 1) samples per patch (default 8)
+expect 0 "over 4 x 4 samples per patch" -- "$RG2" shape torus --samples 3
+expect 0 "over 9 x 9 samples per patch" -- "$RG2" shape torus
 for args in "torus" "cone --v-range 0,1 --v-segments 2" "sphere --v-knots 0.01,0.5,0.99" "torus --scale 1e-50" \
             "torus --R 1e50 --r 1e49"; do
   if "$RG2" shape $args --json | python3 -c 'import json, math, sys
