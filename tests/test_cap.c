@@ -570,6 +570,18 @@ static void cap_errors(void)
     rg2_cap_opts_default(&o);
     o.ends = 0;
     CHECK(rg2_cap_build(&m, &o, &s, NULL, &err) == RG2_EINVAL, "no ends: %s", err.msg);
+    rg2_cap_opts_default(&o);
+    o.jet_weight[1] = -1;
+    CHECK(rg2_cap_build(&m, &o, &s, NULL, &err) == RG2_EDOMAIN &&
+              !strcmp(err.msg, "cap: jet weight 1 is -1, must be finite and >= 0"),
+          "negative jet weight: %s", err.msg);
+    o.jet_weight[1] = NAN;
+    CHECK(rg2_cap_build(&m, &o, &s, NULL, &err) == RG2_EDOMAIN && strstr(err.msg, "cap: jet weight 1 is nan"),
+          "NaN jet weight: %s", err.msg);
+    rg2_mesh none;
+    memset(&none, 0, sizeof none);
+    CHECK(rg2_cap_build(&none, NULL, &s, NULL, &err) == RG2_EINVAL && !strcmp(err.msg, "cap: empty body mesh"),
+          "empty body: %s", err.msg);
     CHECK(s.patch == NULL, "failed builds leave an empty surface");
     rg2_mesh_free(&m);
 }
@@ -885,6 +897,23 @@ static void design_errors(void)
          "\"v\": {\"knots\": [0.2, 0.5, 0.8]}}, \"M\": {\"mobius\": \"P\", \"poles\": {\"south\": [0, 0.999, "
          "-0.0447101778], \"north\": [0, 1, 0]}}}}",
          RG2_EWEIGHT, "meshes.M.poles: the Moebius map gives control point"},
+        /* a polar mesh whose u scalars were edited is no longer a circle partition: each way of
+         * leaving it is named */
+        {"{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 8},"
+         " \"v\": {\"knots\": [0.2, 0.4, 0.6, 0.8]}}, \"E\": {\"edit\": \"P\", \"scalars\": [{\"dir\": \"u\", \"leg\": 0,"
+         " \"w\": 0.95}]}, \"C\": {\"cap\": \"E\"}}}",
+         RG2_EINCOMPATIBLE, "meshes.C.cap: mesh 'E' cannot be capped: the body's u arcs (from the leg weights) sum to "
+                            "6.2773086093770889 rad, not 2 pi: the u-direction is not a full circle"},
+        {"{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 8},"
+         " \"v\": {\"knots\": [0.2, 0.4, 0.6, 0.8]}}, \"E\": {\"edit\": \"P\", \"scalars\": [{\"dir\": \"u\", \"junction\": 1,"
+         " \"b\": 1.1}]}, \"C\": {\"cap\": \"E\"}}}",
+         RG2_EINCOMPATIBLE, "body u junction 1 has b = 1.1000000000000001, g = 0.30448186995485299 but its arcs need "
+                            "b = 1, g = 0.30448186995485299: the u-direction is not a circle partition"},
+        {"{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 8},"
+         " \"v\": {\"knots\": [0.2, 0.4, 0.6, 0.8]}}, \"E\": {\"edit\": \"P\", \"scalars\": [{\"dir\": \"u\", \"junction\": 1,"
+         " \"g\": 0.1}]}, \"C\": {\"cap\": \"E\"}}}",
+         RG2_EINCOMPATIBLE, "body u junction 1 has b = 1, g = 0.10000000000000001 but its arcs need b = 1, "
+                            "g = 0.30448186995485299"},
     };
     for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
         rg2_design *d = NULL;

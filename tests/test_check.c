@@ -794,6 +794,26 @@ static void ill_conditioned_flat(void)
     same_on_threads(&s, 1, NULL, NULL, 0, &o, "flattened torus with a defect");
     rg2_surface_free(&s);
     rg2_mesh_free(&m);
+    /* flattened by 1e-10 the rim's rounding bounds pass 1e-4 rad: those samples are no
+     * measurement (away from any pole), and G1, G2 fail on them, whatever the gaps measured */
+    CHECK_OK(rg2t_torus(3, 1, 8, 6, &m, &s, &err), &err);
+    for (size_t k = 0; k < np; k++)
+        for (int a = 0; a < 4; a++)
+            for (int b = 0; b < 4; b++)
+                s.patch[k].h[a][b][2] *= 1e-10;
+    CHECK_OK(rg2_check(&s, 1, NULL, NULL, 0, &o, &r, &err), &err);
+    f = rg2_check_failures(&r, RG2_REQUIRE_G0 | RG2_REQUIRE_G1 | RG2_REQUIRE_G2);
+    CHECK_OK(rg2_check_format(&r, 0, &txt, &err), &err);
+    printf("torus flattened by 1e-10: %d of %d samples unmeasured, %d next to a pole unresolved; failures %#x\n",
+           r.unmeasured, r.seam_samples, r.pole_unresolved, f);
+    CHECK(r.unmeasured > 0 && r.pole_unresolved == 0 && r.skipped >= r.unmeasured &&
+              f == (RG2_REQUIRE_G1 | RG2_REQUIRE_G2) && txt &&
+              strstr(txt, "samples away from any pole could not be measured") && strstr(txt, "G1 and G2 FAIL"),
+          "torus flattened by 1e-10: %d unmeasured, failures %#x, text:\n%s", r.unmeasured, f, txt ? txt : "");
+    free(txt);
+    rg2_check_report_free(&r);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
 }
 
 /* The same report on any thread count: every example (all its surfaces in one check, at the
