@@ -407,6 +407,27 @@ static void errors(void)
     knots[3] = NAN;
     CHECK(rg2_scalars_from_knots(&s, knots, 7, 0, &err) == RG2_ENONFINITE && strstr(err.msg, "knot 3"),
           "NaN knot named: %s", err.msg);
+    double a4[4] = {M_PI / 2, NAN, M_PI / 2, M_PI / 2};
+    CHECK(rg2_scalars_from_angles(&s, a4, 4, 1, &err) == RG2_ENONFINITE &&
+              !strcmp(err.msg, "arcs: angle of arc 1 is not finite"),
+          "NaN angle named: %s", err.msg);
+    a4[1] = M_PI;
+    CHECK(rg2_circle_coeffs(a4, 4, 1, 0.0, cs, &err) == RG2_EDOMAIN &&
+              strstr(err.msg, "arcs: arc 1 has opening angle 3.1415926535897931 rad; it must lie in (0, pi)"),
+          "circle arc of pi named: %s", err.msg);
+    a4[1] = M_PI / 2;
+    CHECK(rg2_circle_coeffs(a4, 4, 1, NAN, cs, &err) == RG2_ENONFINITE && !strcmp(err.msg, "arcs: start angle is not finite"),
+          "NaN start angle: %s", err.msg);
+    CHECK(rg2_scalars_from_knots(&s, knots, 3, 1, &err) == RG2_EINVAL &&
+              !strcmp(err.msg, "knots: 2 control points, a closed direction needs at least 3"),
+          "2 closed knots intervals: %s", err.msg);
+    CHECK_OK(rg2_scalars_init(&s, 4, 1, &err), &err);
+    s.g[1] = NAN;
+    CHECK(rg2_scalars_check(&s, "v", &err) == RG2_ENONFINITE && !strcmp(err.msg, "v: scalar g[1] is not finite"),
+          "NaN g named: %s", err.msg);
+    s.g[1] = 0;
+    CHECK(rg2_scalars_check(&s, NULL, &err) == RG2_OK, "a NULL prefix: %s", err.msg);
+    rg2_scalars_free(&s);
 }
 
 int main(void)

@@ -627,6 +627,38 @@ static void options(void)
     rg2_image_free(&b);
     rg2_image_free(&c);
 
+    /* straight down and straight up (elevation +-90: the view's up is y): the torus about z is
+     * a ring around the image centre, the same mask turned by 90 degrees (an exact torus of
+     * revolution in a square image), seen from below the mirror image of the view from above
+     * (up to the few silhouette pixels whose centres the exact outline passes within rounding) */
+    rg2_render_opts_default(&o);
+    o.width = o.height = 64;
+    o.keep_pixels = 1;
+    rg2_image top, bottom;
+    o.elevation = 90;
+    CHECK_OK(rg2_render(&s, 1, NULL, &o, &top, &err), &err);
+    o.elevation = -90;
+    CHECK_OK(rg2_render(&s, 1, NULL, &o, &bottom, &err), &err);
+    int W = 64, rot_diff = 0, mx = 0, my = 0, ring = 0;
+    for (int y = 0; top.pixels && bottom.pixels && y < W; y++)
+        for (int x = 0; x < W; x++) {
+            int f = top.pixels[y * W + x].surf >= 0;
+            rot_diff += f != (top.pixels[x * W + (W - 1 - y)].surf >= 0);
+            my += f != (bottom.pixels[(W - 1 - y) * W + x].surf >= 0);
+            mx += f != (bottom.pixels[y * W + (W - 1 - x)].surf >= 0);
+            ring += f;
+        }
+    int hole = top.pixels && top.pixels[32 * W + 32].surf < 0 && top.pixels[31 * W + 31].surf < 0;
+    int mirror_diff = mx < my ? mx : my;
+    CHECK(top.pixels && ring > 500 && hole && rot_diff <= 16 && mirror_diff <= 16,
+          "torus from straight above: %d ring pixels, hole %d, %d differ turned by 90 degrees, %d / %d from below "
+          "mirrored in x / y",
+          ring, hole, rot_diff, mx, my);
+    printf("torus from straight above / below: %d ring pixels, %d / %d mask pixels off the symmetries\n", ring,
+           rot_diff, mirror_diff);
+    rg2_image_free(&top);
+    rg2_image_free(&bottom);
+
     /* option checks */
     struct {
         int field;
