@@ -926,8 +926,60 @@ static void design_errors(void)
     }
 }
 
+/* The cap options spelled out: "ends": "both" and "quadratic": "rotational" are the defaults
+ * (the same patches bit for bit); "south" / "north" add the 3 cap rows at that end only, the
+ * body rows unchanged, and their pole patches collapse to that end's pole. */
+static void cap_option_values(void)
+{
+    const char *fmt = "{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\","
+                      " \"u\": {\"arcs\": 6}, \"v\": {\"knots\": [0.2, 0.4, 0.6, 0.8]}}, \"C\": {\"cap\": \"P\"%s}},"
+                      " \"output\": [\"P\", \"C\"]}";
+    const char *opts[5] = {"", ", \"ends\": \"both\"", ", \"quadratic\": \"rotational\"", ", \"ends\": \"south\"",
+                           ", \"ends\": \"north\""};
+    rg2_design *d[5] = {NULL};
+    for (int k = 0; k < 5; k++) {
+        char json[1024];
+        snprintf(json, sizeof json, fmt, opts[k]);
+        rg2_error err;
+        CHECK_OK(rg2_design_parse(json, strlen(json), "caps", &d[k], &err), &err);
+    }
+    if (!d[0] || !d[1] || !d[2] || !d[3] || !d[4]) {
+        for (int k = 0; k < 5; k++)
+            rg2_design_free(d[k]);
+        return;
+    }
+    const rg2_surface *band = rg2_design_surface(d[0], 0), *c0 = rg2_design_surface(d[0], 1);
+    for (int k = 1; k <= 2; k++) {
+        const rg2_surface *c = rg2_design_surface(d[k], 1);
+        CHECK(c->nu == c0->nu && c->nv == c0->nv && !c->xp &&
+                  !memcmp(c->patch, c0->patch, sizeof(rg2_patch) * (size_t)c->nu * c->nv),
+              "cap%s differs from the default cap", opts[k]);
+    }
+    CHECK(c0->nv == band->nv + 6, "both ends: %d rows for a band of %d", c0->nv, band->nv);
+    for (int k = 3; k <= 4; k++) {
+        const rg2_surface *c = rg2_design_surface(d[k], 1);
+        int south = k == 3, off = south ? 3 : 0, body_same = c->nv == band->nv + 3;
+        for (int i = 0; body_same && i < c->nu; i++)
+            for (int j = 0; j < band->nv; j++)
+                body_same = body_same && !memcmp(rg2_surface_patch(c, i, j + off), rg2_surface_patch(band, i, j),
+                                                 sizeof(rg2_patch));
+        /* the pole: the capped end's side of its end row is one point, (0, 0, -1) or (0, 0, 1) */
+        double worst = 0;
+        for (int i = 0; i < c->nu; i++) {
+            rg2_eval e;
+            rg2_surface_eval(c, i, south ? 0 : c->nv - 1, 0.5, south ? 0.0 : 1.0, 0, &e);
+            worst = fmax(worst, fabs(e.p[0]) + fabs(e.p[1]) + fabs(e.p[2] - (south ? -1.0 : 1.0)));
+        }
+        CHECK(body_same && worst <= 1e-14, "cap%s: %d rows (band %d), body unchanged %d, pole off by %.3g", opts[k],
+              c->nv, band->nv, body_same, worst);
+    }
+    for (int k = 0; k < 5; k++)
+        rg2_design_free(d[k]);
+}
+
 int main(void)
 {
+    cap_option_values();
     sphere_caps(RG2_CAP_ROTATIONAL);
     sphere_caps(RG2_CAP_GENERAL);
     quadric_caps();
