@@ -171,15 +171,6 @@ int rg2__xpatch_net(const rg2_xpatch *X, double (*out)[4])
     return (X->du + 1) * (X->dv + 1);
 }
 
-void rg2__patch_side(const rg2_patch *P, int side, double out[4][4])
-{
-    rg2_xpatch X;
-    double c[RG2_MAX_DEGREE + 1][4];
-    rg2_xpatch_from_patch(P, &X);
-    rg2__xpatch_side(&X, side, c);
-    memcpy(out, c, sizeof(double[4][4]));
-}
-
 int rg2__patch_side_collapsed(const rg2_patch *P, int side, double tol)
 {
     rg2_xpatch X;

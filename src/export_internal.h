@@ -38,9 +38,8 @@ rg2_status rg2__check_weights(const rg2_surface *surfs, int n_surfs, const char 
 /* Check surfs != NULL, n_surfs >= 1 and every surface has at least one patch. */
 rg2_status rg2__check_nonempty(const rg2_surface *surfs, int n_surfs, rg2_error *err);
 
-/* Sides of a patch, counter-clockwise in (u, v): 0 v=0, 1 u=1, 2 v=1, 3 u=0. */
-/* Homogeneous control points of side `side` of P in increasing parameter order. */
-void rg2__patch_side(const rg2_patch *P, int side, double out[4][4]);
+/* Sides of a patch, counter-clockwise in (u, v): 0 v=0, 1 u=1, 2 v=1, 3 u=0 (the control points
+ * of a side: rg2__xpatch_side). */
 /* Whether side `side` of P collapses to a point (all four affine points within tol). */
 int rg2__patch_side_collapsed(const rg2_patch *P, int side, double tol);
 /* The same for a patch of any degree: side `side` of X (du + 1 points on sides 0 and 2,

@@ -1032,7 +1032,7 @@ static void fix_collapsed(const rg2_patch *P, const tables *t, const rg2_grid_ou
     if (t->stream)
         _mm_sfence(); /* (the streaming stores of this patch before the plain ones over them) */
 #endif
-    for (int side = 0; side < 4; side++) { /* sides as rg2__patch_side: 0 v=0, 1 u=1, 2 v=1, 3 u=0 */
+    for (int side = 0; side < 4; side++) { /* sides as rg2__xpatch_side: 0 v=0, 1 u=1, 2 v=1, 3 u=0 */
         if (!(mask >> side & 1))
             continue;
         int cnt = side & 1 ? m : n;
@@ -1053,7 +1053,7 @@ static void fix_collapsed(const rg2_patch *P, const tables *t, const rg2_grid_ou
     }
 }
 
-/* The collapsed sides of patch k (bits as rg2__patch_side) among those on the open boundary of
+/* The collapsed sides of patch k (bits as rg2__xpatch_side) among those on the open boundary of
  * the surface S, or among all four for a lone patch (S NULL): the poles of rg2's surfaces lie on
  * the boundary (polar meshes, caps, Moebius maps: every collapsed side of the examples, none
  * inside), so the test costs nothing for the interior patches of a large surface. "Collapsed"
