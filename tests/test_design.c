@@ -5,6 +5,7 @@
 #include "harness.h"
 
 #include <cjson/cJSON.h>
+#include <errno.h>
 #include <dirent.h>
 #include <unistd.h>
 #include <math.h>
@@ -642,6 +643,18 @@ static void text_files(void)
                   "a design file of %zu bytes: %s '%s'", sizes[k], rg2_status_str(st), err.msg);
         }
         remove(path);
+    }
+    /* the control mesh JSON onto a full disk (its temporary file a link to /dev/full) */
+    if (access("/dev/full", W_OK) == 0) {
+        char tmp[120];
+        snprintf(path, sizeof path, "%s/m.json", dir);
+        snprintf(tmp, sizeof tmp, "%s.tmp", path);
+        CHECK(symlink("/dev/full", tmp) == 0, "symlink %s", tmp);
+        rg2_status st = rg2_design_write_mesh(ref, path, &err);
+        CHECK(st == RG2_EIO && strstr(err.msg, path) && strstr(err.msg, "write failed") &&
+                  strstr(err.msg, strerror(ENOSPC)) && access(path, F_OK) != 0 && access(tmp, F_OK) != 0,
+              "control mesh on a full disk: %s '%s'", rg2_status_str(st), err.msg);
+        remove(tmp);
     }
     rmdir(dir);
     printf("  design files of 100000 and %u bytes (the limit) build the same surface as their text; %u + 1 refused\n",

@@ -9,6 +9,7 @@
 #include "export_fixtures.h"
 
 #include <cjson/cJSON.h>
+#include <errno.h>
 #include <dirent.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -893,6 +894,33 @@ static rg2_status elevated_torus(rg2_surface *s, rg2_error *err)
     return st;
 }
 
+/* ---------------------------------------------------------------- a full disk */
+/* Every writer through a full disk: the temporary file is a link to /dev/full, so the writes
+ * fail with ENOSPC when they are flushed. The error names the file and the reason, neither the
+ * output nor its temporary file is left behind. */
+static void full_disk(const rg2_surface *s)
+{
+    if (access("/dev/full", W_OK) != 0)
+        return;
+    static const char *names[] = {"full.step", "full.igs", "full.bv", "full.bez", "full.obj", "full.stl",
+                                  "full.ply", "full.glb", "full.json"};
+    int before = count_files();
+    for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) {
+        char *out = path_in(names[k]), tmp[300];
+        snprintf(tmp, sizeof tmp, "%s.tmp", out);
+        CHECK(symlink("/dev/full", tmp) == 0, "symlink %s", tmp);
+        rg2_error err;
+        rg2_status st = export_one(s, names[k], &err);
+        CHECK(st == RG2_EIO && strstr(err.msg, out) && strstr(err.msg, "write failed") &&
+                  strstr(err.msg, strerror(ENOSPC)),
+              "%s on a full disk: %s '%s'", names[k], rg2_status_str(st), err.msg);
+        struct stat sb;
+        CHECK(lstat(out, &sb) != 0 && lstat(tmp, &sb) != 0, "%s on a full disk: a file left behind", names[k]);
+        remove(tmp);
+    }
+    CHECK(count_files() == before, "full disk: %d files before, %d after", before, count_files());
+}
+
 /* ---------------------------------------------------------------- poles on a u side */
 static void step_counts(const char *path, int *faces, int *edges, int *verts)
 {
@@ -1059,6 +1087,7 @@ int main(void)
     step_text(&s);
     names_and_defaults(&s);
     transposed_pole();
+    full_disk(&s);
     failures(&s);
     export_degrees(&s);
     rg2_surface x;

@@ -18,6 +18,10 @@ expect 2 "unknown option" -- "$RG2" curve --bogus
 # the JSON output is exact: the 90-degree circle's middle weight (1 + 2 cos 45)/3
 "$RG2" curve --arcs 4 --json | grep -q '0.80473785412436' && ok || bad "exact circle weight"
 expect 2 "usage: rg2" -- "$RG2"
+expect 0 "usage: rg2 demo" -- "$RG2" demo --help
+# no partition given: the unit circle in 4 arcs of 90 degrees
+[ "$("$RG2" curve --json)" = "$("$RG2" curve --arcs 4 --json)" ] && [ -n "$("$RG2" curve --json)" ] && ok ||
+  bad "rg2 curve without arcs is not the circle in 4 arcs"
 # nums JSON FIRST COUNT: COUNT numbers of the JSON text from the FIRST (1-based), in order
 nums() { echo "$1" | grep -o -- '-\?[0-9][0-9.eE+-]*' | sed -n "$2,$(($2 + $3 - 1))p" | tr '\n' ' '; }
 # close "GOT" "WANT": as many numbers, each within 1e-14 relative (and absolute below 1)
