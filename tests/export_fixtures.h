@@ -56,35 +56,36 @@ static inline rg2_status fx_random(uint64_t seed, int nu, int nv, rg2_surface *o
     return st;
 }
 
-/* Surface of revolution about z: u a circle of nu arcs, v an open uniform cubic profile with
- * radii -1, 0, 1, 2, ... (mirrored through the axis) so that the v = 0 side of the first patch
- * row collapses to the point on the axis: a pole. */
-static inline rg2_status fx_pole(int nu, int nv, rg2_surface *out, rg2_error *err)
+/* Surface of revolution about z: a circle of nc arcs and an open uniform cubic profile of np
+ * control points with radii -1, 0, 1, 2, ... (mirrored through the axis) so that the side of the
+ * first patch row (column) at the profile's start collapses to the point on the axis: a pole.
+ * t = 0: u the circle, v the profile; t = 1: the transposed mesh (u the profile). */
+static inline rg2_status fx_revolved(int nc, int np, int t, rg2_surface *out, rg2_error *err)
 {
-    double au[32], csu[64], knots[40];
+    double ac[32], cs[64], knots[40];
     rg2_mesh m;
     memset(&m, 0, sizeof m);
-    for (int i = 0; i < nu; i++)
-        au[i] = 2 * M_PI / nu;
-    for (int k = 0; k < nv + 2; k++)
+    for (int i = 0; i < nc; i++)
+        ac[i] = 2 * M_PI / nc;
+    for (int k = 0; k < np + 2; k++)
         knots[k] = k;
-    rg2_status st = rg2_mesh_init(&m, nu, nv, 1, 0, err);
+    rg2_status st = t ? rg2_mesh_init(&m, np, nc, 0, 1, err) : rg2_mesh_init(&m, nc, np, 1, 0, err);
     if (!st)
-        st = rg2_circle_coeffs(au, nu, 1, 0.0, csu, err);
+        st = rg2_circle_coeffs(ac, nc, 1, 0.0, cs, err);
     if (!st) {
         rg2_scalars_free(&m.su);
         rg2_scalars_free(&m.sv);
-        st = rg2_scalars_from_angles(&m.su, au, nu, 1, err);
+        st = rg2_scalars_from_angles(t ? &m.sv : &m.su, ac, nc, 1, err);
     }
     if (!st)
-        st = rg2_scalars_from_knots(&m.sv, knots, nv + 2, 0, err);
+        st = rg2_scalars_from_knots(t ? &m.su : &m.sv, knots, np + 2, 0, err);
     if (!st) {
-        for (int i = 0; i < nu; i++)
-            for (int j = 0; j < nv; j++) {
-                double *p = rg2_mesh_at(&m, i, j);
-                double rad = 4.0 * (j - 1), z = 0.5 * (j - 1) * (j - 1);
-                p[0] = rad * csu[2 * i];
-                p[1] = rad * csu[2 * i + 1];
+        for (int c = 0; c < nc; c++)
+            for (int q = 0; q < np; q++) {
+                double *p = t ? rg2_mesh_at(&m, q, c) : rg2_mesh_at(&m, c, q);
+                double rad = 4.0 * (q - 1), z = 0.5 * (q - 1) * (q - 1);
+                p[0] = rad * cs[2 * c];
+                p[1] = rad * cs[2 * c + 1];
                 p[2] = z;
                 p[3] = 1.0;
             }
@@ -94,41 +95,18 @@ static inline rg2_status fx_pole(int nu, int nv, rg2_surface *out, rg2_error *er
     return st;
 }
 
-/* fx_pole with the directions exchanged, built from the transposed mesh: u the open profile
- * (the first patch column's u = 0 side collapses to the pole), v the closed circle. */
+/* u a circle of nu arcs, v the profile of nv points: the v = 0 side of the first patch row is
+ * the pole. */
+static inline rg2_status fx_pole(int nu, int nv, rg2_surface *out, rg2_error *err)
+{
+    return fx_revolved(nu, nv, 0, out, err);
+}
+
+/* fx_pole with the directions exchanged, built from the transposed mesh: u the open profile of
+ * nu points (the first patch column's u = 0 side collapses to the pole), v the circle of nv arcs. */
 static inline rg2_status fx_pole_t(int nu, int nv, rg2_surface *out, rg2_error *err)
 {
-    double av[32], csv[64], knots[40];
-    rg2_mesh m;
-    memset(&m, 0, sizeof m);
-    for (int j = 0; j < nv; j++)
-        av[j] = 2 * M_PI / nv;
-    for (int k = 0; k < nu + 2; k++)
-        knots[k] = k;
-    rg2_status st = rg2_mesh_init(&m, nu, nv, 0, 1, err);
-    if (!st)
-        st = rg2_circle_coeffs(av, nv, 1, 0.0, csv, err);
-    if (!st) {
-        rg2_scalars_free(&m.su);
-        rg2_scalars_free(&m.sv);
-        st = rg2_scalars_from_knots(&m.su, knots, nu + 2, 0, err);
-    }
-    if (!st)
-        st = rg2_scalars_from_angles(&m.sv, av, nv, 1, err);
-    if (!st) {
-        for (int i = 0; i < nu; i++)
-            for (int j = 0; j < nv; j++) {
-                double *p = rg2_mesh_at(&m, i, j);
-                double rad = 4.0 * (i - 1), z = 0.5 * (i - 1) * (i - 1);
-                p[0] = rad * csv[2 * j];
-                p[1] = rad * csv[2 * j + 1];
-                p[2] = z;
-                p[3] = 1.0;
-            }
-        st = rg2_surface_build(&m, out, err);
-    }
-    rg2_mesh_free(&m);
-    return st;
+    return fx_revolved(nv, nu, 1, out, err);
 }
 
 #endif
