@@ -92,9 +92,29 @@ typedef struct {
     int stream; /* large output: non-temporal stores (bypass the caches) */
     double *bu, *ddu;                  /* n * 4 each */
     double *hu;                        /* n * 4: 3 B^2_q(u), q < 3 (then 0), see USUM3 */
+    double *ht;                        /* n * 8: the rows' Horner constants (row_consts) */
+    int arev;                          /* rows a >= arev (u > 1/2) take the reversed Horner form */
     double *bv[4], *hv[4], *ddv[4];    /* m each; hv: 3 B^2_q(v), q < 3 (see vsumh; hv[3] unused) */
     double *mem;
 } tables;
+
+/* The Horner constants of a row at u. Along u, sum_r B_r(u) c_r = lambda (c0 + 3 c1 t + 3 c2 t^2 +
+ * c3 t^3) with t = u / (1 - u) and lambda = (1 - u)^3, evaluated as ((c3 t/3 + c2) t + c1) 3t + c0
+ * (3 multiply-adds instead of 4; the binomials ride on t/3 and 3t); the hodograph
+ * sum_q 3 B^2_q(u) d_q = mu (d0 + 2 d1 t + d2 t^2), mu = 3 (1 - u)^2, as (d2 t/2 + d1) 2t + d0 (2
+ * instead of 3). Past u = 1/2 the same forms run in s = (1 - u) / u on the reversed coefficients,
+ * with lambda = u^3 and mu = 3 u^2, so that t, s <= 1: the rounding error stays that of the
+ * Bernstein sums (Horner's bound is sum |a_i| t^i, here the Bernstein bound over lambda). The
+ * kernels drop lambda and mu: positions are h / w of the same scaled sums, and the normal is the
+ * direction of (mu a) x (lambda b), a and b the tangents; the second order scales back with
+ * mu / lambda, 1 / lambda and 2 mu. ht: t/3, t, 3t, t/2, 2t, mu / lambda, 1 / lambda, 2 mu. */
+static void row_consts(double u, double ht[8])
+{
+    double s = 1.0 - u, t = u <= 0.5 ? u / s : s / u, l = u <= 0.5 ? s : u; /* l: 1 - u, or u */
+    double lambda = l * l * l, mu = 3.0 * l * l;
+    ht[0] = t / 3.0, ht[1] = t, ht[2] = 3.0 * t, ht[3] = 0.5 * t, ht[4] = 2.0 * t;
+    ht[5] = 3.0 / l, ht[6] = 1.0 / lambda, ht[7] = 2.0 * mu;
+}
 
 static void tables_free(tables *t)
 {
@@ -106,7 +126,7 @@ static rg2_status tables_make(tables *t, int n, int m, int order, rg2_error *err
 {
     memset(t, 0, sizeof *t);
     size_t m8 = ((size_t)m + 7) & ~(size_t)7; /* v columns padded with zeros to whole 8-lane vectors */
-    size_t per = (size_t)n * 4 * 3 + m8 * 12;
+    size_t per = (size_t)n * 4 * 3 + (size_t)n * 8 + m8 * 12;
     t->mem = rg2__calloc(per, sizeof(double));
     if (!t->mem)
         return rg2__fail(err, RG2_ENOMEM, "grid: out of memory for %d x %d tables", n, m);
@@ -121,6 +141,8 @@ static rg2_status tables_make(tables *t, int n, int m, int order, rg2_error *err
     t->bu = q, q += (size_t)n * 4;
     t->ddu = q, q += (size_t)n * 4;
     t->hu = q, q += (size_t)n * 4;
+    t->ht = q, q += (size_t)n * 8;
+    t->arev = n;
     for (int s = 0; s < 4; s++) {
         t->bv[s] = q, q += m8;
         t->hv[s] = q, q += m8;
@@ -133,6 +155,9 @@ static rg2_status tables_make(tables *t, int n, int m, int order, rg2_error *err
         hq[0] = 3.0 * s * s;
         hq[1] = 6.0 * u * s;
         hq[2] = 3.0 * u * u;
+        if (u > 0.5 && t->arev == n)
+            t->arev = a;
+        row_consts(u, t->ht + 8 * a);
     }
     for (int b = 0; b < m; b++) {
         double v = b == m - 1 ? 1.0 : (double)b / (double)(m - 1);
@@ -191,20 +216,24 @@ static inline void vsumh(double dh[4][3][4], double *const hv[4], int b0, int cn
         }
 }
 
-/* sum_r U[r] c[r][k][i], the u-sum of a point (U: row constants). */
+/* The u-sums of a point as the Horner forms of row_consts (T: the row's constants; rev: the
+ * reversed form past u = 1/2), over lambda; the hodograph's over mu, on the differences
+ * c_q+1 - c_q, formed the same way in every kernel so that the bits agree. */
+#define HOR3(a0, a1, a2, a3) ((((a3)*T[0] + (a2)) * T[1] + (a1)) * T[2] + (a0))
+#define HOR2(d0, d1, d2) (((d2)*T[3] + (d1)) * T[4] + (d0))
+#define RSUMP(c, k)                                                                                    \
+    (rev ? HOR3(c[3][k][i], c[2][k][i], c[1][k][i], c[0][k][i]) : HOR3(c[0][k][i], c[1][k][i], c[2][k][i], c[3][k][i]))
+#define DIF(c, k, q) (c[(q) + 1][k][i] - c[q][k][i])
+#define RSUMHP(c, k) (rev ? HOR2(DIF(c, k, 2), DIF(c, k, 1), DIF(c, k, 0)) : HOR2(DIF(c, k, 0), DIF(c, k, 1), DIF(c, k, 2)))
+/* sum_r U[r] c[r][k][i] (U: the row's B'' values) */
 #define USUM(U, c, k) (U[0] * c[0][k][i] + U[1] * c[1][k][i] + U[2] * c[2][k][i] + U[3] * c[3][k][i])
-/* The u-derivative by the hodograph: d/du sum_r B_r(u) c_r = sum_q 3 B^2_q(u) (c_q+1 - c_q), three
- * multiply-adds per point instead of four (U: the row's hu table entries). Every kernel forms the
- * differences c_q+1 - c_q the same way (in registers: arrays of them would take L1 sets that the
- * 512-byte strided column sums of narrow blocks already fill), so the bits agree. */
-#define USUM3(U, c, k)                                                                                 \
-    (U[0] * (c[1][k][i] - c[0][k][i]) + U[1] * (c[2][k][i] - c[1][k][i]) + U[2] * (c[3][k][i] - c[2][k][i]))
 
 /* Positions of one row segment of cnt points. */
-static inline void seg_pos(const double *restrict U, double c[4][4][BLK], int cnt, double *restrict pos)
+static inline void seg_pos(const double *restrict T, double c[4][4][BLK], int cnt, double *restrict pos,
+                           const int rev)
 {
     for (int i = 0; i < cnt; i++) {
-        double X = USUM(U, c, 0), Y = USUM(U, c, 1), Z = USUM(U, c, 2), W = USUM(U, c, 3);
+        double X = RSUMP(c, 0), Y = RSUMP(c, 1), Z = RSUMP(c, 2), W = RSUMP(c, 3);
         double iw = 1.0 / W;
         pos[3 * i] = X * iw;
         pos[3 * i + 1] = Y * iw;
@@ -212,18 +241,17 @@ static inline void seg_pos(const double *restrict U, double c[4][4][BLK], int cn
     }
 }
 
-/* Unit normal n of su x sv, 0 where |su x sv|^2 <= 1e-30 |su|^2 |sv|^2 (branch-free); returns 1
- * where defined, else 0, with E = su . su and G = sv . sv. Shared by both portable kernels, so
- * positions and normals do not depend on which outputs were requested (bitwise). */
-static inline double normal1(const double su[3], const double sv[3], double n[3], double *E, double *G)
+/* Unit normal n of a x b, 0 where |a x b|^2 <= 1e-30 |a|^2 |b|^2 (branch-free; invariant under
+ * positive scalings of a and b); returns 1 where defined, else 0. Shared by both portable kernels,
+ * so positions and normals do not depend on which outputs were requested (bitwise). */
+static inline double normal1(const double a[3], const double b[3], double n[3])
 {
-    double cx = su[1] * sv[2] - su[2] * sv[1];
-    double cy = su[2] * sv[0] - su[0] * sv[2];
-    double cz = su[0] * sv[1] - su[1] * sv[0];
+    double cx = a[1] * b[2] - a[2] * b[1];
+    double cy = a[2] * b[0] - a[0] * b[2];
+    double cz = a[0] * b[1] - a[1] * b[0];
     double l2 = cx * cx + cy * cy + cz * cz;
-    *E = su[0] * su[0] + su[1] * su[1] + su[2] * su[2];
-    *G = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2];
-    double ok = (double)(l2 > 1e-30 * (*E * *G));
+    double E = a[0] * a[0] + a[1] * a[1] + a[2] * a[2], G = b[0] * b[0] + b[1] * b[1] + b[2] * b[2];
+    double ok = (double)(l2 > 1e-30 * (E * G));
     double il = ok / sqrt(l2 + (1.0 - ok));
     n[0] = cx * il;
     n[1] = cy * il;
@@ -231,28 +259,29 @@ static inline double normal1(const double su[3], const double sv[3], double n[3]
     return ok;
 }
 
-/* Positions and unit normals of one row segment. */
-static inline void seg_pos_normal(const double *restrict U, const double *restrict HU, double c0[4][4][BLK],
-                                  double c1[4][4][BLK], int cnt, double *restrict pos, double *restrict nrm)
+/* Positions and unit normals of one row segment: the normal of the tangents over their scales
+ * (a = hu' - hu'_w p, b = hv' - hv'_w p, see row_consts). */
+static inline void seg_pos_normal(const double *restrict T, double c0[4][4][BLK], double c1[4][4][BLK], int cnt,
+                                  double *restrict pos, double *restrict nrm, const int rev)
 {
     for (int i = 0; i < cnt; i++) {
         double h[4], hu[4], hv[4];
 #pragma GCC unroll 4
         for (int k = 0; k < 4; k++) {
-            h[k] = USUM(U, c0, k);
-            hu[k] = USUM3(HU, c0, k);
-            hv[k] = USUM(U, c1, k);
+            h[k] = RSUMP(c0, k);
+            hu[k] = RSUMHP(c0, k);
+            hv[k] = RSUMP(c1, k);
         }
         double iw = 1.0 / h[3];
-        double p[3], su[3], sv[3];
+        double p[3], a[3], b[3];
 #pragma GCC unroll 3
         for (int k = 0; k < 3; k++) {
             p[k] = h[k] * iw;
-            su[k] = (hu[k] - hu[3] * p[k]) * iw;
-            sv[k] = (hv[k] - hv[3] * p[k]) * iw;
+            a[k] = hu[k] - hu[3] * p[k];
+            b[k] = hv[k] - hv[3] * p[k];
         }
-        double n[3], E, G;
-        normal1(su, sv, n, &E, &G);
+        double n[3];
+        normal1(a, b, n);
         pos[3 * i] = p[0];
         pos[3 * i + 1] = p[1];
         pos[3 * i + 2] = p[2];
@@ -285,40 +314,46 @@ typedef struct {
     _Alignas(64) double H[BLK];
 } soa_full;
 
-/* The formulas of rg2_patch_eval for the points 0 <= i < cnt of a row segment. */
-RG2_HOT static void full_soa(const double *restrict U, const double *restrict DDU, const double *restrict HU,
-                             double c0[4][4][BLK], double c1[4][4][BLK], double c2[4][4][BLK], int cnt,
-                             soa_full *restrict S)
+/* The formulas of rg2_patch_eval for the points 0 <= i < cnt of a row segment, from the scaled
+ * u-sums of row_consts as full_avx512 (which gives the formulas); huu is the Bernstein sum (DDU). */
+static inline __attribute__((always_inline)) void
+full_soa_rev(const double *restrict T, const double *restrict DDU, double c0[4][4][BLK], double c1[4][4][BLK],
+             double c2[4][4][BLK], int cnt, soa_full *restrict S, const int rev)
 {
     double(*p)[BLK] = S->p, (*su)[BLK] = S->su, (*sv)[BLK] = S->sv, (*suu)[BLK] = S->suu;
     double(*suv)[BLK] = S->suv, (*svv)[BLK] = S->svv, (*nn)[BLK] = S->nn, *KK = S->K, *HH = S->H;
+    const double fu = T[5], rl = T[6], m2 = T[7];
     for (int i = 0; i < cnt; i++) {
         double h[4], hu[4], hv[4], huu[4], huv[4], hvv[4];
 #pragma GCC unroll 4
         for (int k = 0; k < 4; k++) {
-            h[k] = USUM(U, c0, k);
-            hu[k] = USUM3(HU, c0, k);
-            hv[k] = USUM(U, c1, k);
+            h[k] = RSUMP(c0, k);
+            hu[k] = RSUMHP(c0, k);
+            hv[k] = RSUMP(c1, k);
             huu[k] = USUM(DDU, c0, k);
-            huv[k] = USUM3(HU, c1, k);
-            hvv[k] = USUM(U, c2, k);
+            huv[k] = RSUMHP(c1, k);
+            hvv[k] = RSUMP(c2, k);
         }
-        double iw = 1.0 / h[3];
-        double P[3], Su[3], Sv[3], Suu[3], Suv[3], Svv[3];
+        double iw = 1.0 / h[3], iwu = iw * fu, iwl = iw * rl;
+        double P[3], A[3], B[3], Su[3], Sv[3], Suu[3], Suv[3], Svv[3];
 #pragma GCC unroll 3
         for (int k = 0; k < 3; k++) {
             P[k] = h[k] * iw;
-            Su[k] = (hu[k] - hu[3] * P[k]) * iw;
-            Sv[k] = (hv[k] - hv[3] * P[k]) * iw;
-            Suu[k] = (huu[k] - 2.0 * hu[3] * Su[k] - huu[3] * P[k]) * iw;
-            Suv[k] = (huv[k] - hu[3] * Sv[k] - hv[3] * Su[k] - huv[3] * P[k]) * iw;
+            A[k] = hu[k] - hu[3] * P[k];
+            B[k] = hv[k] - hv[3] * P[k];
+            Su[k] = A[k] * iwu;
+            Sv[k] = B[k] * iw;
+            Suu[k] = (huu[k] - m2 * hu[3] * Su[k] - huu[3] * P[k]) * iwl;
+            Suv[k] = (fu * (huv[k] - hu[3] * Sv[k] - huv[3] * P[k]) - hv[3] * Su[k]) * iw;
             Svv[k] = (hvv[k] - 2.0 * hv[3] * Sv[k] - hvv[3] * P[k]) * iw;
         }
         /* where the normal is undefined (ok = 0): n = 0, L = M = N = 0 and K = H = 0 over a
          * denominator >= 1 */
-        double nv[3], E, G;
-        double ok = normal1(Su, Sv, nv, &E, &G);
+        double nv[3];
+        double ok = normal1(A, B, nv);
+        double E = Su[0] * Su[0] + Su[1] * Su[1] + Su[2] * Su[2];
         double F = Su[0] * Sv[0] + Su[1] * Sv[1] + Su[2] * Sv[2];
+        double G = Sv[0] * Sv[0] + Sv[1] * Sv[1] + Sv[2] * Sv[2];
         double n0 = nv[0], n1 = nv[1], n2 = nv[2];
         double L = Suu[0] * n0 + Suu[1] * n1 + Suu[2] * n2;
         double M = Suv[0] * n0 + Suv[1] * n1 + Suv[2] * n2;
@@ -342,6 +377,15 @@ RG2_HOT static void full_soa(const double *restrict U, const double *restrict DD
     }
 }
 
+RG2_HOT static void full_soa(const double *restrict T, const double *restrict DDU, double c0[4][4][BLK],
+                             double c1[4][4][BLK], double c2[4][4][BLK], int cnt, soa_full *restrict S, int rev)
+{
+    if (rev)
+        full_soa_rev(T, DDU, c0, c1, c2, cnt, S, 1);
+    else
+        full_soa_rev(T, DDU, c0, c1, c2, cnt, S, 0);
+}
+
 /* Copy a computed row segment to the requested outputs at point index `at`. */
 static void full_out(const soa_full *S, int cnt, const rg2_grid_out *o, size_t at)
 {
@@ -360,8 +404,12 @@ static void full_out(const soa_full *S, int cnt, const rg2_grid_out *o, size_t a
     if (o->H)
         memcpy(o->H + at, S->H, sizeof(double) * (size_t)cnt);
 }
+#undef HOR3
+#undef HOR2
+#undef RSUMP
+#undef DIF
+#undef RSUMHP
 #undef USUM
-#undef USUM3
 
 #if RG2_AVX512
 #define RG2_AVX512_FN __attribute__((target("avx512f,avx512dq,fma,prfchw")))
@@ -391,28 +439,21 @@ RG2_AVX512_FN static inline __m512d rsqrt8(__m512d x, int hw)
     return y;
 }
 
-/* sum_r U[r] c[r][k][i..i+7] */
-RG2_AVX512_FN static inline __m512d usum8(const __m512d U[4], double c[4][4][BLK], int k, int i)
+/* The row's Horner forms (row_consts): T holds t/3, t, 3t, t/2, 2t broadcast. */
+RG2_AVX512_FN static inline __m512d hor3(__m512d c0, __m512d c1, __m512d c2, __m512d c3, const __m512d T[5])
 {
-    __m512d acc = _mm512_mul_pd(U[0], _mm512_load_pd(&c[0][k][i]));
-    acc = _mm512_fmadd_pd(U[1], _mm512_load_pd(&c[1][k][i]), acc);
-    acc = _mm512_fmadd_pd(U[2], _mm512_load_pd(&c[2][k][i]), acc);
-    return _mm512_fmadd_pd(U[3], _mm512_load_pd(&c[3][k][i]), acc);
+    return _mm512_fmadd_pd(_mm512_fmadd_pd(_mm512_fmadd_pd(c3, T[0], c2), T[1], c1), T[2], c0);
 }
 
-/* c[q+1][k][i..i+7] - c[q][k][i..i+7], the differences of USUM3 */
-RG2_AVX512_FN static inline __m512d cdiff8(double c[4][4][BLK], int q, int k, int i)
+RG2_AVX512_FN static inline __m512d hor2(__m512d d0, __m512d d1, __m512d d2, const __m512d T[5])
 {
-    return _mm512_sub_pd(_mm512_load_pd(&c[q + 1][k][i]), _mm512_load_pd(&c[q][k][i]));
+    return _mm512_fmadd_pd(_mm512_fmadd_pd(d2, T[3], d1), T[4], d0);
 }
 
-/* sum_q U[q] (c[q+1][k] - c[q][k]) at i..i+7: the hodograph's u-sum (USUM3) */
-RG2_AVX512_FN static inline __m512d usum8h(const __m512d U[3], double c[4][4][BLK], int k, int i)
-{
-    __m512d acc = _mm512_mul_pd(U[0], cdiff8(c, 0, k, i));
-    acc = _mm512_fmadd_pd(U[1], cdiff8(c, 1, k, i), acc);
-    return _mm512_fmadd_pd(U[2], cdiff8(c, 2, k, i), acc);
-}
+/* The u-sums of a row (sum_r B_r(u) c[r][k], over lambda) and of its hodograph (over mu) from column
+ * sums in registers; rev: the reversed form past u = 1/2 (a constant in every caller). */
+#define RSUM(rev, c, k, T) ((rev) ? hor3(c[3][k], c[2][k], c[1][k], c[0][k], T) : hor3(c[0][k], c[1][k], c[2][k], c[3][k], T))
+#define RSUMH(rev, d, k, T) ((rev) ? hor2(d[2][k], d[1][k], d[0][k], T) : hor2(d[0][k], d[1][k], d[2][k], T))
 
 /* a . b for 8 points */
 RG2_AVX512_FN static inline __m512d dot8(const __m512d a[3], const __m512d b[3])
@@ -420,24 +461,50 @@ RG2_AVX512_FN static inline __m512d dot8(const __m512d a[3], const __m512d b[3])
     return _mm512_fmadd_pd(a[2], b[2], _mm512_fmadd_pd(a[1], b[1], _mm512_mul_pd(a[0], b[0])));
 }
 
-/* Unit normal n = a x b / |a x b|, 0 where |a x b|^2 <= 1e-30 (a.a) (b.b); returns the mask of
- * points where it is defined. a, b are w Su and w Sv (hu - hu_w p, hv - hv_w p with p = h / w,
- * one multiply-add per component: the tangents of rg2_patch_eval without its last division by
- * the weight, which the normalisation cancels; the test is invariant under the scaling too).
- * (The earlier w hu - hu_w h, w hv - hv_w h kept the reciprocal off the normal's dependency
- * chain but took two operations per component: the one-operation form is 1.06-1.10x faster
- * for 8 x 8 patches, 1.01-1.05x for 64-point rows, AMD Zen 5, and as accurate.)
+/* Unit normal n = a x b / |a x b|, 0 where |a x b|^2 <= 1e-30 (a.a) (b.b), in two phases: cross8
+ * stores c = a x b (3 vectors) and |c|^2 (NaN where the normal is undefined) at nb (32 doubles),
+ * unit8 turns them into unit normals and returns the mask of points where they are defined. The
+ * row kernels form all the cross products of a row (or of a few short rows) before the first
+ * square root, so that the long latency of the square root and division no longer holds up the
+ * next points' sums, and the normals of a row are stored together (streaming stores: 1.15x for
+ * 8 x 8 patches in main memory, AMD Zen 4). a, b are the tangents over a positive scale
+ * (hu - hu_w p, hv - hv_w p with p = h / w and the scaled sums of row_consts, one multiply-add
+ * per component), which the normalisation cancels and the test is invariant under.
  * The test is taken as |a x b|^2 > 1e-30 (a.b)^2: by Lagrange's identity (a.a)(b.b) =
  * |a x b|^2 + (a.b)^2 the two differ by the factor 1 - 1e-30 (and rounding), and one dot product
  * takes the place of two. Shared by all AVX-512 kernels (same bits). */
-RG2_AVX512_FN static inline __mmask8 normal8(const __m512d su[3], const __m512d sv[3], __m512d n[3], int hw)
+RG2_AVX512_FN static inline void cross8(const __m512d a[3], const __m512d b[3], double *nb)
 {
-    __m512d c[3] = {_mm512_fmsub_pd(su[1], sv[2], _mm512_mul_pd(su[2], sv[1])),
-                    _mm512_fmsub_pd(su[2], sv[0], _mm512_mul_pd(su[0], sv[2])),
-                    _mm512_fmsub_pd(su[0], sv[1], _mm512_mul_pd(su[1], sv[0]))};
-    __m512d l2 = dot8(c, c), F = dot8(su, sv);
+    __m512d c[3] = {_mm512_fmsub_pd(a[1], b[2], _mm512_mul_pd(a[2], b[1])),
+                    _mm512_fmsub_pd(a[2], b[0], _mm512_mul_pd(a[0], b[2])),
+                    _mm512_fmsub_pd(a[0], b[1], _mm512_mul_pd(a[1], b[0]))};
+    __m512d l2 = dot8(c, c), F = dot8(a, b);
     __mmask8 ok = _mm512_cmp_pd_mask(l2, _mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(1e-30), F), F), _CMP_GT_OQ);
+    for (int k = 0; k < 3; k++)
+        _mm512_store_pd(nb + 8 * k, c[k]);
+    _mm512_store_pd(nb + 24, _mm512_mask_mov_pd(_mm512_set1_pd(__builtin_nan("")), ok, l2));
+}
+
+RG2_AVX512_FN static inline __mmask8 unit8(const double *nb, __m512d n[3], int hw)
+{
+    __m512d l2 = _mm512_load_pd(nb + 24);
+    __mmask8 ok = _mm512_cmp_pd_mask(l2, l2, _CMP_ORD_Q);
     __m512d il = _mm512_maskz_mov_pd(ok, rsqrt8(l2, hw)); /* (lanes not ok: whatever rsqrt8 gave, zeroed) */
+    for (int k = 0; k < 3; k++)
+        n[k] = _mm512_mul_pd(_mm512_load_pd(nb + 8 * k), il);
+    return ok;
+}
+
+/* Both phases at once, in registers (the second-order kernel): the same operations on the lanes
+ * where the normal is defined, the others zeroed, so the same bits. */
+RG2_AVX512_FN static inline __mmask8 normal8(const __m512d a[3], const __m512d b[3], __m512d n[3], int hw)
+{
+    __m512d c[3] = {_mm512_fmsub_pd(a[1], b[2], _mm512_mul_pd(a[2], b[1])),
+                    _mm512_fmsub_pd(a[2], b[0], _mm512_mul_pd(a[0], b[2])),
+                    _mm512_fmsub_pd(a[0], b[1], _mm512_mul_pd(a[1], b[0]))};
+    __m512d l2 = dot8(c, c), F = dot8(a, b);
+    __mmask8 ok = _mm512_cmp_pd_mask(l2, _mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(1e-30), F), F), _CMP_GT_OQ);
+    __m512d il = _mm512_maskz_mov_pd(ok, rsqrt8(l2, hw));
     for (int k = 0; k < 3; k++)
         n[k] = _mm512_mul_pd(c[k], il);
     return ok;
@@ -480,7 +547,8 @@ _Static_assert(RG2_POS_ROWS >= 1 && RG2_POS_ROWS <= 4, "seg_pos_cxr_avx512 holds
 
 /* 8 interleaved points (24 doubles) at dst: q < 8 stores only 3 q doubles (masked); plain
  * stores first ask for the lines `ahead` doubles further on. */
-RG2_AVX512_FN static inline void put8a(double *dst, const __m512d o[3], int q, int st, size_t ahead)
+RG2_AVX512_FN static inline __attribute__((always_inline)) void put8a(double *dst, const __m512d o[3], int q, int st,
+                                                                      size_t ahead)
 {
     if (st != ST_STREAM) /* (prefetches never fault, past the array's end included) */
         for (int k = 0; k < 3; k++)
@@ -499,7 +567,7 @@ RG2_AVX512_FN static inline void put8a(double *dst, const __m512d o[3], int q, i
     }
 }
 
-RG2_AVX512_FN static inline void put8(double *dst, const __m512d o[3], int q, int st)
+RG2_AVX512_FN static inline __attribute__((always_inline)) void put8(double *dst, const __m512d o[3], int q, int st)
 {
     put8a(dst, o, q, st, RG2_PREFETCHW_AHEAD);
 }
@@ -595,28 +663,18 @@ RG2_AVX512_FN static inline void vsum_narrow(const rg2_patch *P, double *const b
             c[r][k] = colsum8(P, V, r, k);
 }
 
-/* sum_r U[r] c[r][k] (8 columns' sums as vectors) */
-RG2_AVX512_FN static inline __m512d usumv(const __m512d U[4], __m512d c[4][4], int k)
-{
-    __m512d acc = _mm512_mul_pd(U[0], c[0][k]);
-    acc = _mm512_fmadd_pd(U[1], c[1][k], acc);
-    acc = _mm512_fmadd_pd(U[2], c[2][k], acc);
-    return _mm512_fmadd_pd(U[3], c[3][k], acc);
-}
-
-/* sum_q U[q] d[q][k] (8 columns' differences as vectors) */
-RG2_AVX512_FN static inline __m512d usumvh(const __m512d U[3], __m512d d[3][4], int k)
-{
-    __m512d acc = _mm512_mul_pd(U[0], d[0][k]);
-    acc = _mm512_fmadd_pd(U[1], d[1][k], acc);
-    return _mm512_fmadd_pd(U[2], d[2][k], acc);
-}
-
 /* The 4 Bernstein values of a row broadcast to vectors. */
 RG2_AVX512_FN static inline void bcast4(const double *U, __m512d u[4])
 {
     for (int r = 0; r < 4; r++)
         u[r] = _mm512_set1_pd(U[r]);
+}
+
+/* A row's Horner constants t/3, t, 3t, t/2, 2t broadcast to vectors. */
+RG2_AVX512_FN static inline void bcastT(const double *HT, __m512d T[5])
+{
+    for (int q = 0; q < 5; q++)
+        T[q] = _mm512_set1_pd(HT[q]);
 }
 
 /* Columns i..i+7 of a block's column sums as vectors. */
@@ -635,46 +693,46 @@ RG2_AVX512_FN static inline void cdiff_v(__m512d c[4][4], __m512d d[3][4])
             d[q][k] = _mm512_sub_pd(c[q + 1][k], c[q][k]);
 }
 
-/* Positions of 8 points of a row (u: its Bernstein values) from their column sums c, interleaved
+/* Positions of 8 points of a row (T: its Horner constants) from their column sums c, interleaved
  * x, y, z in o[0..2]. */
-RG2_AVX512_FN static inline void pos8(const __m512d u[4], __m512d c[4][4], __m512d o[3], int hw)
+RG2_AVX512_FN static inline __attribute__((always_inline)) void pos8(const __m512d T[5], __m512d c[4][4],
+                                                                     __m512d o[3], int hw, const int rev)
 {
-    __m512d iw = recip8(usumv(u, c, 3), hw);
-    xyz8(_mm512_mul_pd(usumv(u, c, 0), iw), _mm512_mul_pd(usumv(u, c, 1), iw), _mm512_mul_pd(usumv(u, c, 2), iw),
-         o);
+    __m512d iw = recip8(RSUM(rev, c, 3, T), hw);
+    xyz8(_mm512_mul_pd(RSUM(rev, c, 0, T), iw), _mm512_mul_pd(RSUM(rev, c, 1, T), iw),
+         _mm512_mul_pd(RSUM(rev, c, 2, T), iw), o);
 }
 
-/* Positions and unit normals of 8 points of a row (u, hu: its Bernstein values and hodograph
- * weights) from their column sums c0, their differences dc and the v-derivative column sums c1,
- * interleaved in po and no; the expressions of full_avx512 (bitwise the same positions and
- * normals). */
-RG2_AVX512_FN static inline void pos_normal8(const __m512d u[4], const __m512d hu[3], __m512d c0[4][4],
-                                             __m512d dc[3][4], __m512d c1[4][4], __m512d po[3], __m512d no[3],
-                                             int hw)
+/* Positions and unit normals of 8 points of a row (T: its Horner constants) from their column sums
+ * c0, their differences dc and the v-derivative column sums c1: positions interleaved in po, the
+ * cross product of the tangents (over their common scale) to nb (cross8). The expressions of
+ * full_avx512 (bitwise the same positions and normals). */
+RG2_AVX512_FN static inline __attribute__((always_inline)) void
+pos_cross8(const __m512d T[5], __m512d c0[4][4], __m512d dc[3][4], __m512d c1[4][4], __m512d po[3], double *nb,
+           int hw, const int rev)
 {
-    __m512d w = usumv(u, c0, 3), iw = recip8(w, hw);
-    __m512d hu3 = usumvh(hu, dc, 3), hv3 = usumv(u, c1, 3);
-    __m512d p[3], a[3], b[3], n[3];
+    __m512d iw = recip8(RSUM(rev, c0, 3, T), hw);
+    __m512d hu3 = RSUMH(rev, dc, 3, T), hv3 = RSUM(rev, c1, 3, T);
+    __m512d p[3], a[3], b[3];
     for (int k = 0; k < 3; k++) {
-        p[k] = _mm512_mul_pd(usumv(u, c0, k), iw);
-        a[k] = _mm512_fnmadd_pd(hu3, p[k], usumvh(hu, dc, k));
-        b[k] = _mm512_fnmadd_pd(hv3, p[k], usumv(u, c1, k));
+        p[k] = _mm512_mul_pd(RSUM(rev, c0, k, T), iw);
+        a[k] = _mm512_fnmadd_pd(hu3, p[k], RSUMH(rev, dc, k, T));
+        b[k] = _mm512_fnmadd_pd(hv3, p[k], RSUM(rev, c1, k, T));
     }
-    normal8(a, b, n, hw);
+    cross8(a, b, nb);
     xyz8(p[0], p[1], p[2], po);
-    xyz8(n[0], n[1], n[2], no);
 }
 
 /* Positions of one row segment of cnt points at dst (short rows: see seg_pos_cxr_avx512). */
-RG2_AVX512_FN static inline void seg_pos_avx512(const double *U, double c[4][4][BLK], int cnt, double *dst,
-                                                int st, int hw)
+RG2_AVX512_FN static inline __attribute__((always_inline)) void
+seg_pos_avx512(const double *HT, double c[4][4][BLK], int cnt, double *dst, int st, int hw, const int rev)
 {
-    __m512d u[4];
-    bcast4(U, u);
+    __m512d T[5];
+    bcastT(HT, T);
     for (int i = 0; i < cnt; i += 8) { /* the last vector may be partial: padded, masked store */
         __m512d cv[4][4], o[3];
         csum_at(c, i, cv);
-        pos8(u, cv, o, hw);
+        pos8(T, cv, o, hw, rev);
         put8(dst + 3 * i, o, cnt - i < 8 ? cnt - i : 8, st);
     }
 }
@@ -691,42 +749,34 @@ RG2_AVX512_FN static void interleave_csum(double c[4][4][BLK], int cnt, double c
         }
 }
 
-/* Positions of R rows of cnt points (row k: Bernstein values U + 4 k, output at dst + k stride),
- * from the interleaved column sums cx (x, y, z) and c (for w): the sums and products of
- * seg_pos_avx512 lane by lane (the same bits), with 1 / w spread to the x, y, z lanes by 3
- * permutes instead of interleaving the results by 6 (pays off from about 16 rows per block:
+/* Positions of R rows of cnt points (row k: Horner constants HT + 8 k, output at dst + k stride,
+ * all in the form rev), from the interleaved column sums cx (x, y, z) and c (for w): the sums and
+ * products of seg_pos_avx512 lane by lane (the same bits), with 1 / w spread to the x, y, z lanes
+ * by 3 permutes instead of interleaving the results by 6 (pays off from about 16 rows per block:
  * interleave_csum costs 24 permutes per 8 columns). With R > 1 each column sum is loaded once for
  * all R rows and their reciprocal chains overlap; plain stores ask for the lines `ahead` doubles
  * on (with R rows per pass: R rows on, the next pass's). */
 RG2_AVX512_FN static inline __attribute__((always_inline)) void
-seg_pos_cxr_avx512(const double *U, double c[4][4][BLK], double cx[4][3 * BLK], int cnt, double *dst,
-                   size_t stride, size_t ahead, int st, int hw, const int R)
+seg_pos_cxr_avx512(const double *HT, double c[4][4][BLK], double cx[4][3 * BLK], int cnt, double *dst,
+                   size_t stride, size_t ahead, int st, int hw, const int R, const int rev)
 {
     const __m512i sel[3] = {_mm512_set_epi64(2, 2, 1, 1, 1, 0, 0, 0), _mm512_set_epi64(5, 4, 4, 4, 3, 3, 3, 2),
                             _mm512_set_epi64(7, 7, 7, 6, 6, 6, 5, 5)};
-    __m512d u[4][4];
+    __m512d T[4][5];
     for (int k = 0; k < R; k++)
-        bcast4(U + 4 * k, u[k]);
+        bcastT(HT + 8 * k, T[k]);
     for (int i = 0; i < cnt; i += 8) {
-        __m512d c3[4], iw[4], o[4][3];
+        __m512d c3[4][1], iw[4], o[4][3];
         for (int r = 0; r < 4; r++)
-            c3[r] = _mm512_load_pd(&c[r][3][i]);
-        for (int k = 0; k < R; k++) {
-            __m512d w = _mm512_mul_pd(u[k][0], c3[0]);
-            for (int r = 1; r < 4; r++)
-                w = _mm512_fmadd_pd(u[k][r], c3[r], w);
-            iw[k] = recip8(w, hw);
-        }
+            c3[r][0] = _mm512_load_pd(&c[r][3][i]);
+        for (int k = 0; k < R; k++)
+            iw[k] = recip8(RSUM(rev, c3, 0, T[k]), hw);
         for (int j = 0; j < 3; j++) {
             const double *q = &cx[0][3 * i + 8 * j];
-            __m512d x[4] = {_mm512_load_pd(q), _mm512_load_pd(q + 3 * BLK), _mm512_load_pd(q + 6 * BLK),
-                            _mm512_load_pd(q + 9 * BLK)};
-            for (int k = 0; k < R; k++) {
-                __m512d a = _mm512_mul_pd(u[k][0], x[0]);
-                for (int r = 1; r < 4; r++)
-                    a = _mm512_fmadd_pd(u[k][r], x[r], a);
-                o[k][j] = _mm512_mul_pd(a, _mm512_permutexvar_pd(sel[j], iw[k]));
-            }
+            __m512d x[4][1] = {{_mm512_load_pd(q)}, {_mm512_load_pd(q + 3 * BLK)}, {_mm512_load_pd(q + 6 * BLK)},
+                               {_mm512_load_pd(q + 9 * BLK)}};
+            for (int k = 0; k < R; k++)
+                o[k][j] = _mm512_mul_pd(RSUM(rev, x, 0, T[k]), _mm512_permutexvar_pd(sel[j], iw[k]));
         }
         int q = cnt - i < 8 ? cnt - i : 8;
         for (int k = 0; k < R; k++)
@@ -751,60 +801,80 @@ RG2_AVX512_FN static inline void patch_pos_narrow_avx512(const rg2_patch *P, con
     __m512d c[4][4];
     vsum_narrow(P, t->bv, c);
     for (int a = 0; a < n; a++) {
-        const double *U = t->bu + 4 * a;
-        __m512d u[4], o[3];
-        bcast4(U, u);
-        pos8(u, c, o, hw);
+        __m512d T[5], o[3];
+        bcastT(t->ht + 8 * a, T);
+        if (a < t->arev)
+            pos8(T, c, o, hw, 0);
+        else
+            pos8(T, c, o, hw, 1);
         put8(pos + 3 * m * a, o, m, st);
     }
 }
 
 /* Positions and unit normals of a patch at most 8 points wide (as patch_pos_narrow_avx512), by
- * pos_normal8 as in seg_pos_normal_avx512 (the same bits). */
+ * pos_cross8 and unit8 as in seg_cross_avx512 and seg_unit_avx512 (the same bits): the cross
+ * products of up to 8 rows, then their normals. */
 RG2_AVX512_FN static inline void patch_normal_narrow_avx512(const rg2_patch *P, const tables *t, double *pos,
                                                             double *nrm, int hw)
 {
     const int n = t->n, m = t->m;
     const int st = narrow_mode(t, pos) == ST_STREAM && !((uintptr_t)nrm & 63) ? ST_STREAM : ST_PLAIN;
+    _Alignas(64) double nb[8][32];
     __m512d c0[4][4], dc[3][4], c1[4][4];
     vsum_narrow(P, t->bv, c0);
     cdiff_v(c0, dc);
     vsumh_narrow(P, t->hv, c1);
-    for (int a = 0; a < n; a++) {
-        const double *U = t->bu + 4 * a, *HU = t->hu + 4 * a;
-        __m512d u[4], hu[3], po[3], no[3];
-        bcast4(U, u);
-        for (int q = 0; q < 3; q++)
-            hu[q] = _mm512_set1_pd(HU[q]);
-        pos_normal8(u, hu, c0, dc, c1, po, no, hw);
-        put8(pos + 3 * m * a, po, m, st);
-        put8(nrm + 3 * m * a, no, m, st);
+    for (int a0 = 0; a0 < n; a0 += 8) {
+        int na = n - a0 < 8 ? n - a0 : 8;
+        for (int a = a0; a < a0 + na; a++) {
+            __m512d T[5], po[3];
+            bcastT(t->ht + 8 * a, T);
+            if (a < t->arev)
+                pos_cross8(T, c0, dc, c1, po, nb[a - a0], hw, 0);
+            else
+                pos_cross8(T, c0, dc, c1, po, nb[a - a0], hw, 1);
+            put8(pos + 3 * m * a, po, m, st);
+        }
+        for (int a = a0; a < a0 + na; a++) {
+            __m512d nn[3], no[3];
+            unit8(nb[a - a0], nn, hw);
+            xyz8(nn[0], nn[1], nn[2], no);
+            put8(nrm + 3 * m * a, no, m, st);
+        }
     }
 }
 
-/* Positions and unit normals of one row segment. */
-RG2_AVX512_FN static inline void seg_pos_normal_avx512(const double *U, const double *HU, double c0[4][4][BLK],
-                                                       double c1[4][4][BLK], int cnt, double *pd, double *nd,
-                                                       int st, int hw)
+/* The first phase of positions and unit normals for one row segment: positions at pd, the cross
+ * products to nb (one entry of 32 doubles per 8 points; pos_cross8). */
+RG2_AVX512_FN static inline __attribute__((always_inline)) void
+seg_cross_avx512(const double *HT, double c0[4][4][BLK], double c1[4][4][BLK], int cnt, double *pd,
+                 double (*nb)[32], int st, int hw, const int rev)
 {
-    __m512d u[4], hu[3];
-    bcast4(U, u);
-    for (int q = 0; q < 3; q++)
-        hu[q] = _mm512_set1_pd(HU[q]);
+    __m512d T[5];
+    bcastT(HT, T);
     for (int i = 0; i < cnt; i += 8) {
-        __m512d v0[4][4], vd[3][4], v1[4][4], po[3], no[3];
+        __m512d v0[4][4], vd[3][4], v1[4][4], po[3];
         csum_at(c0, i, v0);
         cdiff_v(v0, vd);
         csum_at(c1, i, v1);
-        pos_normal8(u, hu, v0, vd, v1, po, no, hw);
-        int q = cnt - i < 8 ? cnt - i : 8;
-        put8(pd + 3 * i, po, q, st);
-        put8(nd + 3 * i, no, q, st);
+        pos_cross8(T, v0, vd, v1, po, nb[i / 8], hw, rev);
+        put8(pd + 3 * i, po, cnt - i < 8 ? cnt - i : 8, st);
+    }
+}
+
+/* The second phase: the unit normals of the segment from nb, at nd. */
+RG2_AVX512_FN static inline void seg_unit_avx512(double (*nb)[32], int cnt, double *nd, int st, int hw)
+{
+    for (int i = 0; i < cnt; i += 8) {
+        __m512d nn[3], no[3];
+        unit8(nb[i / 8], nn, hw);
+        xyz8(nn[0], nn[1], nn[2], no);
+        put8(nd + 3 * i, no, cnt - i < 8 ? cnt - i : 8, st);
     }
 }
 
 /* x, y, z of 8 points (q of them) interleaved at dst, when the output is requested. */
-RG2_AVX512_FN static inline void out3(double *dst, const __m512d v[3], int q)
+RG2_AVX512_FN static inline __attribute__((always_inline)) void out3(double *dst, const __m512d v[3], int q)
 {
     if (dst) {
         __m512d o[3];
@@ -813,43 +883,64 @@ RG2_AVX512_FN static inline void out3(double *dst, const __m512d v[3], int q)
     }
 }
 
-/* The second-order formulas (as full_soa) for all 8-lane vectors covering 0..cnt-1 (vsum pads
- * the column sums with zeros; lanes past cnt are computed but not stored), each requested output
- * interleaved and stored as soon as it is computed (point index `at` of the outputs). */
-RG2_AVX512_FN static inline void full_avx512(const double *U, const double *DDU, const double *HU,
-                                             double c0[4][4][BLK], double c1[4][4][BLK], double c2[4][4][BLK],
-                                             int cnt, const rg2_grid_out *o, size_t at, int hw)
+/* The column sums of one component k at columns i..i+7 (c[r][k]) and their differences. */
+RG2_AVX512_FN static inline void csum_k(double c[4][4][BLK], int k, int i, __m512d v[4][1], __m512d d[3][1])
 {
-    __m512d u[4], ddu[4], hq[3];
-    bcast4(U, u);
-    bcast4(DDU, ddu);
+    for (int r = 0; r < 4; r++)
+        v[r][0] = _mm512_load_pd(&c[r][k][i]);
     for (int q = 0; q < 3; q++)
-        hq[q] = _mm512_set1_pd(HU[q]);
+        d[q][0] = _mm512_sub_pd(v[q + 1][0], v[q][0]);
+}
+
+/* The second-order formulas for all 8-lane vectors covering 0..cnt-1 (vsum pads the column sums
+ * with zeros; lanes past cnt are computed but not stored), each requested output interleaved and
+ * stored as soon as it is computed (point index `at` of the outputs). The sums along u are the
+ * scaled ones of row_consts (Horner), whose positions and normals are bitwise those of pos8 and
+ * pos_cross8; with w = lambda w', hu = mu hu', hv = lambda hv', huv = mu huv', hvv = lambda hvv'
+ * (huu: the Bernstein sum itself, DDU) the quotient rule of rg2_patch_eval becomes
+ *   Su = a' iw' mu/lambda, Sv = b' iw', Suu = (huu - 2 mu hu'_w Su - huu_w p) iw' / lambda,
+ *   Suv = (mu/lambda (huv' - hu'_w Sv - huv'_w p) - hv'_w Su) iw', Svv = (hvv' - 2 hv'_w Sv - hvv'_w p) iw'
+ * with a' = hu' - hu'_w p, b' = hv' - hv'_w p and iw' = 1 / w'. */
+RG2_AVX512_FN static __attribute__((noinline)) void
+full_avx512(const double *HT, const double *DDU, double c0[4][4][BLK], double c1[4][4][BLK], double c2[4][4][BLK],
+            int cnt, const rg2_grid_out *o, size_t at, int hw, const int rev)
+{
+    __m512d T[5], ddu[4];
+    bcastT(HT, T);
+    bcast4(DDU, ddu);
+    const __m512d fu = _mm512_set1_pd(HT[5]), rl = _mm512_set1_pd(HT[6]), m2 = _mm512_set1_pd(HT[7]);
     const __m512d one = _mm512_set1_pd(1.0), two = _mm512_set1_pd(2.0), half = _mm512_set1_pd(0.5);
     for (int i = 0; i < cnt; i += 8) {
         __m512d h[4], hu[4], hv[4], huu[4], huv[4], hvv[4];
         for (int k = 0; k < 4; k++) {
-            h[k] = usum8(u, c0, k, i);
-            hu[k] = usum8h(hq, c0, k, i);
-            hv[k] = usum8(u, c1, k, i);
-            huu[k] = usum8(ddu, c0, k, i);
-            huv[k] = usum8h(hq, c1, k, i);
-            hvv[k] = usum8(u, c2, k, i);
+            __m512d v[4][1], d[3][1];
+            csum_k(c0, k, i, v, d);
+            h[k] = RSUM(rev, v, 0, T);
+            hu[k] = RSUMH(rev, d, 0, T);
+            huu[k] = _mm512_fmadd_pd(ddu[3], v[3][0],
+                                     _mm512_fmadd_pd(ddu[2], v[2][0], _mm512_fmadd_pd(ddu[1], v[1][0], _mm512_mul_pd(ddu[0], v[0][0]))));
+            csum_k(c1, k, i, v, d);
+            hv[k] = RSUM(rev, v, 0, T);
+            huv[k] = RSUMH(rev, d, 0, T);
+            for (int r = 0; r < 4; r++)
+                v[r][0] = _mm512_load_pd(&c2[r][k][i]);
+            hvv[k] = RSUM(rev, v, 0, T);
         }
-        __m512d iw = recip8(h[3], hw);
+        __m512d iw = recip8(h[3], hw), iwu = _mm512_mul_pd(iw, fu), iwl = _mm512_mul_pd(iw, rl);
+        __m512d m2hu = _mm512_mul_pd(m2, hu[3]), hv2 = _mm512_mul_pd(two, hv[3]);
         __m512d P[3], A[3], B[3], Su[3], Sv[3], Suu[3], Suv[3], Svv[3];
         for (int k = 0; k < 3; k++) {
             P[k] = _mm512_mul_pd(h[k], iw);
             A[k] = _mm512_fnmadd_pd(hu[3], P[k], hu[k]);
             B[k] = _mm512_fnmadd_pd(hv[3], P[k], hv[k]);
-            Su[k] = _mm512_mul_pd(A[k], iw);
+            Su[k] = _mm512_mul_pd(A[k], iwu);
             Sv[k] = _mm512_mul_pd(B[k], iw);
-            __m512d t = _mm512_fnmadd_pd(_mm512_mul_pd(two, hu[3]), Su[k], huu[k]);
-            Suu[k] = _mm512_mul_pd(_mm512_fnmadd_pd(huu[3], P[k], t), iw);
+            __m512d t = _mm512_fnmadd_pd(m2hu, Su[k], huu[k]);
+            Suu[k] = _mm512_mul_pd(_mm512_fnmadd_pd(huu[3], P[k], t), iwl);
             t = _mm512_fnmadd_pd(hu[3], Sv[k], huv[k]);
-            t = _mm512_fnmadd_pd(hv[3], Su[k], t);
-            Suv[k] = _mm512_mul_pd(_mm512_fnmadd_pd(huv[3], P[k], t), iw);
-            t = _mm512_fnmadd_pd(_mm512_mul_pd(two, hv[3]), Sv[k], hvv[k]);
+            t = _mm512_fnmadd_pd(huv[3], P[k], t);
+            Suv[k] = _mm512_mul_pd(_mm512_fmsub_pd(fu, t, _mm512_mul_pd(hv[3], Su[k])), iw);
+            t = _mm512_fnmadd_pd(hv2, Sv[k], hvv[k]);
             Svv[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hvv[3], P[k], t), iw);
         }
         __m512d nn[3];
@@ -900,6 +991,73 @@ static inline int store_mode(const tables *t, const double *dst, int cnt)
     return cnt >= 32 ? ST_STAGED : ST_PLAIN;
 }
 
+/* Rows a0 <= a < a1 of one block of columns (b0, cnt: its column sums c0, c1, c2 and the
+ * interleaved cx when use_cx), all of one Horner form (rev). */
+RG2_AVX512_FN static inline __attribute__((always_inline)) void
+rows_avx512(const tables *t, const rg2_grid_out *o, size_t first, int b0, int cnt, int a0, int a1,
+            double c0[4][4][BLK], double c1[4][4][BLK], double c2[4][4][BLK], double cx[4][3 * BLK], int use_cx,
+            double *pbuf, double *nbuf, double (*nb)[32], const int hw, const int rev)
+{
+    const size_t stride = 3 * (size_t)t->m; /* doubles from a row to the next */
+    for (int a = a0; a < a1; a++) {
+        size_t at = first + (size_t)a * (size_t)t->m + (size_t)b0;
+        const double *HT = t->ht + 8 * a;
+        double *pos = o->pos + 3 * at;
+        if (t->order == 0 && use_cx && !t->stream && a + RG2_POS_ROWS <= a1) { /* rows together */
+            /* prefetchw: the same columns of the next pass */
+            seg_pos_cxr_avx512(HT, c0, cx, cnt, pos, stride, RG2_POS_ROWS * stride, ST_PLAIN, hw, RG2_POS_ROWS, rev);
+            a += RG2_POS_ROWS - 1;
+        } else if (t->order == 0) {
+            int st = store_mode(t, pos, cnt);
+            double *dst = st == ST_STAGED ? pbuf : pos;
+            if (use_cx && st == ST_STREAM)
+                seg_pos_cxr_avx512(HT, c0, cx, cnt, dst, 0, 0, ST_STREAM, hw, 1, rev);
+            else if (use_cx)
+                seg_pos_cxr_avx512(HT, c0, cx, cnt, dst, 0, RG2_PREFETCHW_AHEAD, ST_PLAIN, hw, 1, rev);
+            else if (st == ST_STREAM)
+                seg_pos_avx512(HT, c0, cnt, dst, ST_STREAM, hw, rev);
+            else
+                seg_pos_avx512(HT, c0, cnt, dst, ST_PLAIN, hw, rev);
+            if (st == ST_STAGED)
+                stream_copy(pos, pbuf, 3 * cnt);
+        } else if (t->order == 1) {
+            /* R rows of at most 8 vectors in all: their positions and cross products, then their
+             * normals (see cross8); rows that go through the staging buffers one at a time */
+            int nvec = (cnt + 7) / 8, R = 8 / nvec;
+            if (R > a1 - a)
+                R = a1 - a;
+            if (store_mode(t, pos, cnt) == ST_STAGED)
+                R = 1;
+            double *nrm = o->normal + 3 * at;
+            for (int k = 0; k < R; k++) {
+                double *pk = pos + k * stride;
+                int st = store_mode(t, pk, cnt);
+                if (st == ST_STREAM && !((uintptr_t)(nrm + k * stride) & 63))
+                    seg_cross_avx512(HT + 8 * k, c0, c1, cnt, pk, nb + k * nvec, ST_STREAM, hw, rev);
+                else if (st == ST_STAGED) {
+                    seg_cross_avx512(HT + 8 * k, c0, c1, cnt, pbuf, nb + k * nvec, ST_PLAIN, hw, rev);
+                    stream_copy(pk, pbuf, 3 * cnt);
+                } else
+                    seg_cross_avx512(HT + 8 * k, c0, c1, cnt, pk, nb + k * nvec, ST_PLAIN, hw, rev);
+            }
+            for (int k = 0; k < R; k++) {
+                double *pk = pos + k * stride, *nk = nrm + k * stride;
+                int st = store_mode(t, pk, cnt);
+                if (st == ST_STREAM && !((uintptr_t)nk & 63))
+                    seg_unit_avx512(nb + k * nvec, cnt, nk, ST_STREAM, hw);
+                else if (st == ST_STAGED) {
+                    seg_unit_avx512(nb + k * nvec, cnt, nbuf, ST_PLAIN, hw);
+                    stream_copy(nk, nbuf, 3 * cnt);
+                } else
+                    seg_unit_avx512(nb + k * nvec, cnt, nk, ST_PLAIN, hw);
+            }
+            a += R - 1;
+        } else {
+            full_avx512(HT, t->ddu + 4 * a, c0, c1, c2, cnt, o, at, hw, rev);
+        }
+    }
+}
+
 /* grid_patch with the AVX-512 kernels; hw: divisions and square roots by the hardware (a
  * constant in both calls of grid_patch_avx512, so each gets kernels of its own). */
 RG2_AVX512_FN static inline __attribute__((always_inline)) void
@@ -911,6 +1069,7 @@ grid_patch_avx512_hw(const rg2_patch *P, const tables *t, const rg2_grid_out *o,
     _Alignas(64) double pbuf[3 * BLK];
     _Alignas(64) double nbuf[3 * BLK];
     _Alignas(64) double cx[4][3 * BLK];
+    _Alignas(64) double nb[8][32];
     if (t->m <= 8 && t->order <= 1) { /* narrow patches: whole rows in registers */
         if (t->order == 0)
             patch_pos_narrow_avx512(P, t, o->pos + 3 * first, hw);
@@ -931,43 +1090,8 @@ grid_patch_avx512_hw(const rg2_patch *P, const tables *t, const rg2_grid_out *o,
             vsumh_avx512(dh, t->hv, b0, cnt, c1);
         if (t->order >= 2)
             vsum_avx512(P, t->ddv, b0, cnt, c2);
-        for (int a = 0; a < t->n; a++) {
-            size_t at = first + (size_t)a * (size_t)t->m + (size_t)b0;
-            const double *U = t->bu + 4 * a, *HU = t->hu + 4 * a;
-            double *pos = o->pos + 3 * at;
-            if (t->order == 0 && use_cx && !t->stream && a + RG2_POS_ROWS <= t->n) { /* rows together */
-                size_t stride = 3 * (size_t)t->m; /* prefetchw: the same columns of the next pass */
-                seg_pos_cxr_avx512(U, c0, cx, cnt, pos, stride, RG2_POS_ROWS * stride, ST_PLAIN, hw, RG2_POS_ROWS);
-                a += RG2_POS_ROWS - 1;
-            } else if (t->order == 0) {
-                int st = store_mode(t, pos, cnt);
-                double *dst = st == ST_STAGED ? pbuf : pos;
-                if (use_cx && st == ST_STREAM)
-                    seg_pos_cxr_avx512(U, c0, cx, cnt, dst, 0, 0, ST_STREAM, hw, 1);
-                else if (use_cx)
-                    seg_pos_cxr_avx512(U, c0, cx, cnt, dst, 0, RG2_PREFETCHW_AHEAD, ST_PLAIN, hw, 1);
-                else if (st == ST_STREAM)
-                    seg_pos_avx512(U, c0, cnt, dst, ST_STREAM, hw);
-                else
-                    seg_pos_avx512(U, c0, cnt, dst, ST_PLAIN, hw);
-                if (st == ST_STAGED)
-                    stream_copy(pos, pbuf, 3 * cnt);
-            } else if (t->order == 1) {
-                double *nrm = o->normal + 3 * at;
-                int st = store_mode(t, pos, cnt);
-                if (st == ST_STREAM && !((uintptr_t)nrm & 63))
-                    seg_pos_normal_avx512(U, HU, c0, c1, cnt, pos, nrm, ST_STREAM, hw);
-                else if (st == ST_PLAIN)
-                    seg_pos_normal_avx512(U, HU, c0, c1, cnt, pos, nrm, ST_PLAIN, hw);
-                else {
-                    seg_pos_normal_avx512(U, HU, c0, c1, cnt, pbuf, nbuf, ST_PLAIN, hw);
-                    stream_copy(pos, pbuf, 3 * cnt);
-                    stream_copy(nrm, nbuf, 3 * cnt);
-                }
-            } else {
-                full_avx512(U, t->ddu + 4 * a, HU, c0, c1, c2, cnt, o, at, hw);
-            }
-        }
+        rows_avx512(t, o, first, b0, cnt, 0, t->arev, c0, c1, c2, cx, use_cx, pbuf, nbuf, nb, hw, 0);
+        rows_avx512(t, o, first, b0, cnt, t->arev, t->n, c0, c1, c2, cx, use_cx, pbuf, nbuf, nb, hw, 1);
     }
 }
 
@@ -1007,13 +1131,18 @@ RG2_HOT static void grid_patch(const rg2_patch *P, const tables *t, const rg2_gr
             vsum(P, t->ddv, b0, cnt, c2);
         for (int a = 0; a < t->n; a++) {
             size_t at = first + (size_t)a * (size_t)t->m + (size_t)b0;
-            const double *U = t->bu + 4 * a, *DDU = t->ddu + 4 * a, *HU = t->hu + 4 * a;
-            if (t->order == 0)
-                seg_pos(U, c0, cnt, o->pos + 3 * at);
+            const double *T = t->ht + 8 * a;
+            int rev = a >= t->arev;
+            if (t->order == 0 && rev)
+                seg_pos(T, c0, cnt, o->pos + 3 * at, 1);
+            else if (t->order == 0)
+                seg_pos(T, c0, cnt, o->pos + 3 * at, 0);
+            else if (t->order == 1 && rev)
+                seg_pos_normal(T, c0, c1, cnt, o->pos + 3 * at, o->normal + 3 * at, 1);
             else if (t->order == 1)
-                seg_pos_normal(U, HU, c0, c1, cnt, o->pos + 3 * at, o->normal + 3 * at);
+                seg_pos_normal(T, c0, c1, cnt, o->pos + 3 * at, o->normal + 3 * at, 0);
             else {
-                full_soa(U, DDU, HU, c0, c1, c2, cnt, S);
+                full_soa(T, t->ddu + 4 * a, c0, c1, c2, cnt, S, rev);
                 full_out(S, cnt, o, at);
             }
         }
