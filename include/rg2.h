@@ -719,11 +719,12 @@ RG2_API rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts,
 
 /* Fast evaluation of patches on regular parameter grids: n x m points per patch at
  * u_a = a / (n - 1), v_b = b / (m - 1) (both ends included), with separable Bernstein tables
- * computed once per call, vectorised inner loops (AVX-512 / AVX2 / baseline chosen at run
- * time on x86-64) and OpenMP over patches. Results agree with rg2_patch_eval to ~1e-15
- * relative (tests require <= 1e-14); they do not depend on the thread count, and positions and
- * normals do not depend on which other outputs are requested (both bitwise). Outputs larger
- * than 32 MB are written with streaming (cache-bypassing) stores where available.
+ * computed once per call (Horner forms along u), vectorised inner loops (AVX-512 / AVX2 /
+ * baseline chosen at run time on x86-64) and a pool of threads over patches. Results agree
+ * with rg2_patch_eval to ~1e-15 relative (tests require <= 1e-14); they do not depend on the
+ * thread count, and positions and normals do not depend on which other outputs are requested
+ * (both bitwise). Outputs larger than 8 MB per thread of the call are written with streaming
+ * (cache-bypassing) stores where available.
  * docs/performance.md has the measured speed against SISL and OpenCASCADE.
  *
  * Layout: point (a, b) of a patch is index a * m + b; vector quantities are 3 doubles per point

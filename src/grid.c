@@ -2,17 +2,19 @@
  * unit normals, derivatives, curvatures) and a fast per-point evaluator.
  *
  * METHOD: separable evaluation. The Bernstein values (and derivatives) at the grid
- * parameters are tabulated once per call: per u index as 4-vectors, per v index as four
- * structure-of-arrays columns. Per block of up to BLK columns of a patch, the column sums
- * c_r(v_b) = sum_s h_rs B_s(v_b) (16 numbers per column; with B' and B'' when derivatives are
- * wanted) are formed once; every point of every row is then sum_r B_r(u_a) c_r(v_b): 16
- * multiply-adds per homogeneous value, in the summation order of rg2_patch_eval (first
- * derivatives by the hodograph: three terms on differences, of the column sums in u and of the
- * control points in v; second derivatives by B''), in a
+ * parameters are tabulated once per call: per v index as four structure-of-arrays columns, per
+ * u index as the constants of Horner forms (row_consts). Per block of up to BLK columns of a
+ * patch, the column sums c_r(v_b) = sum_s h_rs B_s(v_b) (16 numbers per column; with B' and B''
+ * when derivatives are wanted) are formed once, in the order of rg2_patch_eval; every point of
+ * every row is then sum_r B_r(u_a) c_r(v_b) over a row constant, as ((c3 t/3 + c2) t + c1) 3t + c0
+ * in t = u / (1 - u) (reversed past u = 1/2): 3 multiply-adds per homogeneous value instead of 4
+ * (first derivatives by the hodograph: 2 instead of 3 on differences of the column sums in u, 3
+ * terms on differences of the control points in v; second derivatives by B''), in a
  * branch-free loop over the columns that the compiler vectorises (x86-64 with GCC: AVX-512 /
  * AVX2 / baseline clones chosen at load time). On AVX-512 CPUs hand-written kernels take whole
  * patches (grid_patch_avx512): rcp14 / rsqrt14 and two Newton steps instead of divisions and
  * square roots (except on AMD CPUs, whose divider runs beside the multiply-adds: grid_hwdiv),
+ * normals in two phases per group of rows (cross products, then square roots: cross8),
  * permutes for the x, y, z interleave, plain stores with prefetchw for outputs in
  * the caches and streaming stores past RG2_STREAM_BYTES (see docs/performance.md). The quotient rule and the
  * curvature formulas are those of rg2_patch_eval (eval.c), which stays the independent
@@ -51,13 +53,16 @@
 #define RG2_AVX512 0
 #endif
 
-/* Outputs with normals (or more) larger than this (bytes) per thread of the call, and positions
- * alone larger than twice this, are written with streaming stores on the AVX-512 path; smaller
- * ones with plain stores and prefetchw ahead of them (RG2_PREFETCHW_AHEAD), and they stay in
- * the caches for the consumer. Measured on the Intel machine (2 MiB L2 per core, large shared L3), each in the caches'
- * steady state: positions alone, plain + prefetchw faster than streaming by 1.25x at 4.7 MB and
- * 1.1x at 11.8 and 15.7 MB, streaming faster by 1.45x at 23.6 MB and 2x at 75 MB; positions +
- * normals (two arrays), streaming 1.3x faster at 9.4 MB, equal at 23.6 MB. */
+/* Outputs larger than this (bytes) per thread of the call are written with streaming stores on
+ * the AVX-512 path; smaller ones with plain stores and prefetchw ahead of them
+ * (RG2_PREFETCHW_AHEAD), and they stay in the caches for the consumer. Measured on the Intel
+ * machine (2 MiB L2 per core, large shared L3), each in the caches' steady state: positions alone,
+ * plain + prefetchw faster than streaming by 1.25x at 4.7 MB and 1.1x at 11.8 and 15.7 MB,
+ * streaming faster by 1.45x at 23.6 MB and 2x at 75 MB; positions + normals (two arrays),
+ * streaming 1.3x faster at 9.4 MB, equal at 23.6 MB. Positions alone streamed past twice this
+ * until the AMD Zen 4 machine, whose 32 MB L3 the host shares with other guests: 11.8 MB of
+ * positions (the merged design) ran at 416-762 M points/s with plain stores (medians of 31
+ * alternating calls; the fastest 790-1190) and 1007-1077 streamed (fastest 1040-1175). */
 #ifndef RG2_STREAM_BYTES
 #define RG2_STREAM_BYTES ((size_t)8 << 20)
 #endif
@@ -1255,7 +1260,7 @@ static void grid_job_run(void *arg, uint32_t c)
 /* Whether an output of pts points at this order goes out with streaming stores. */
 static int stream_output(size_t pts, int order)
 {
-    return order ? pts * 48 > RG2_STREAM_BYTES : pts * 24 > 2 * RG2_STREAM_BYTES;
+    return pts * (order ? 48 : 24) > RG2_STREAM_BYTES;
 }
 
 static rg2_status check_args(int n, int m, const rg2_grid_out *out, rg2_error *err)
