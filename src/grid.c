@@ -13,7 +13,7 @@
  * branch-free loop over the columns that the compiler vectorises (x86-64 with GCC: AVX-512 /
  * AVX2 / baseline clones chosen at load time). On AVX-512 CPUs hand-written kernels take whole
  * patches (grid_patch_avx512): rcp14 / rsqrt14 and two Newton steps instead of divisions and
- * square roots (except on AMD CPUs, whose divider runs beside the multiply-adds: grid_hwdiv),
+ * square roots (but divisions on AMD CPUs, whose divider runs beside the multiply-adds: grid_hwdiv),
  * normals in two phases per group of rows (cross products, then square roots: cross8),
  * permutes for the x, y, z interleave, plain stores with prefetchw for outputs in
  * the caches and streaming stores past RG2_STREAM_BYTES (see docs/performance.md). The quotient rule and the
@@ -73,11 +73,12 @@
 int rg2__grid_portable = 0;
 int rg2__grid_hwdiv = -1;
 
-/* Whether the AVX-512 kernels divide and take square roots by the hardware instead of rcp14 /
- * rsqrt14 and Newton steps: on AMD CPUs, whose divider runs beside the multiply-add pipes the
- * kernels keep busy (Zen 5, measured: positions 0.99-1.08x in L3 and 1.07x for 8 x 8 patches in
- * main memory, with normals 1.03-1.11x; the results correctly rounded where the Newton steps
- * leave about 1 ulp); not on Intel's (Sapphire Rapids: slower, docs/performance.md).
+/* Whether the AVX-512 kernels divide by the hardware (1 / w, 1 / (EG - F^2)) instead of rcp14 and
+ * Newton steps: on AMD CPUs, whose divider runs beside the multiply-add pipes the kernels keep
+ * busy (Zen 5, measured: positions 0.99-1.08x in L3 and 1.07x for 8 x 8 patches in main memory;
+ * the results correctly rounded where the Newton steps leave about 1 ulp); not on Intel's
+ * (Sapphire Rapids: slower, docs/performance.md). The normalisation's 1 / sqrt takes Newton
+ * steps on every CPU (rsqrt8).
  * rg2__grid_hwdiv (a test hook) forces 0 or 1. */
 static int grid_hwdiv(void)
 {
@@ -93,7 +94,7 @@ static int grid_hwdiv(void)
 typedef struct {
     int n, m, order;
     int avx512; /* use the AVX-512 kernels (this CPU has them) */
-    int hwdiv;  /* ... with divisions and square roots by the hardware (grid_hwdiv) */
+    int hwdiv;  /* ... with divisions by the hardware (grid_hwdiv) */
     int stream; /* large output: non-temporal stores (bypass the caches) */
     double *bu, *ddu;                  /* n * 4 each */
     double *hu;                        /* n * 4: 3 B^2_q(u), q < 3 (then 0), see USUM3 */
@@ -432,12 +433,13 @@ RG2_AVX512_FN static inline __m512d recip8(__m512d x, int hw)
     return _mm512_fmadd_pd(y, _mm512_fnmadd_pd(x, y, one), y);
 }
 
-/* 1 / sqrt(x) to ~1 ulp: rsqrt14 then two Newton steps y (3/2 - (x/2) y^2), 3 operations each. */
-RG2_AVX512_FN static inline __m512d rsqrt8(__m512d x, int hw)
+/* 1 / sqrt(x) to ~1 ulp: rsqrt14 then two Newton steps y (3/2 - (x/2) y^2), 3 operations each, on
+ * every CPU: on AMD Zen 4 the square root and division took 24 cycles of the divider per 8 points
+ * (15 and 9) beside the 1 / w of the positions, and the Newton steps made the normals 1.04-1.07x
+ * faster (medians of 25 alternating calls, torus, merged-size and free-form grids). */
+RG2_AVX512_FN static inline __m512d rsqrt8(__m512d x)
 {
     const __m512d c15 = _mm512_set1_pd(1.5);
-    if (hw) /* with hw: 1 / sqrt(x) by the square root and the division */
-        return _mm512_div_pd(_mm512_set1_pd(1.0), _mm512_sqrt_pd(x));
     __m512d hx = _mm512_mul_pd(_mm512_set1_pd(0.5), x), y = _mm512_rsqrt14_pd(x);
     for (int it = 0; it < 2; it++)
         y = _mm512_mul_pd(y, _mm512_fnmadd_pd(_mm512_mul_pd(hx, y), y, c15));
@@ -490,11 +492,11 @@ RG2_AVX512_FN static inline void cross8(const __m512d a[3], const __m512d b[3], 
     _mm512_store_pd(nb + 24, _mm512_mask_mov_pd(_mm512_set1_pd(__builtin_nan("")), ok, l2));
 }
 
-RG2_AVX512_FN static inline __mmask8 unit8(const double *nb, __m512d n[3], int hw)
+RG2_AVX512_FN static inline __mmask8 unit8(const double *nb, __m512d n[3])
 {
     __m512d l2 = _mm512_load_pd(nb + 24);
     __mmask8 ok = _mm512_cmp_pd_mask(l2, l2, _CMP_ORD_Q);
-    __m512d il = _mm512_maskz_mov_pd(ok, rsqrt8(l2, hw)); /* (lanes not ok: whatever rsqrt8 gave, zeroed) */
+    __m512d il = _mm512_maskz_mov_pd(ok, rsqrt8(l2)); /* (lanes not ok: whatever rsqrt8 gave, zeroed) */
     for (int k = 0; k < 3; k++)
         n[k] = _mm512_mul_pd(_mm512_load_pd(nb + 8 * k), il);
     return ok;
@@ -502,14 +504,14 @@ RG2_AVX512_FN static inline __mmask8 unit8(const double *nb, __m512d n[3], int h
 
 /* Both phases at once, in registers (the second-order kernel): the same operations on the lanes
  * where the normal is defined, the others zeroed, so the same bits. */
-RG2_AVX512_FN static inline __mmask8 normal8(const __m512d a[3], const __m512d b[3], __m512d n[3], int hw)
+RG2_AVX512_FN static inline __mmask8 normal8(const __m512d a[3], const __m512d b[3], __m512d n[3])
 {
     __m512d c[3] = {_mm512_fmsub_pd(a[1], b[2], _mm512_mul_pd(a[2], b[1])),
                     _mm512_fmsub_pd(a[2], b[0], _mm512_mul_pd(a[0], b[2])),
                     _mm512_fmsub_pd(a[0], b[1], _mm512_mul_pd(a[1], b[0]))};
     __m512d l2 = dot8(c, c), F = dot8(a, b);
     __mmask8 ok = _mm512_cmp_pd_mask(l2, _mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(1e-30), F), F), _CMP_GT_OQ);
-    __m512d il = _mm512_maskz_mov_pd(ok, rsqrt8(l2, hw));
+    __m512d il = _mm512_maskz_mov_pd(ok, rsqrt8(l2));
     for (int k = 0; k < 3; k++)
         n[k] = _mm512_mul_pd(c[k], il);
     return ok;
@@ -842,7 +844,7 @@ RG2_AVX512_FN static inline void patch_normal_narrow_avx512(const rg2_patch *P, 
         }
         for (int a = a0; a < a0 + na; a++) {
             __m512d nn[3], no[3];
-            unit8(nb[a - a0], nn, hw);
+            unit8(nb[a - a0], nn);
             xyz8(nn[0], nn[1], nn[2], no);
             put8(nrm + 3 * m * a, no, m, st);
         }
@@ -868,11 +870,11 @@ seg_cross_avx512(const double *HT, double c0[4][4][BLK], double c1[4][4][BLK], i
 }
 
 /* The second phase: the unit normals of the segment from nb, at nd. */
-RG2_AVX512_FN static inline void seg_unit_avx512(double (*nb)[32], int cnt, double *nd, int st, int hw)
+RG2_AVX512_FN static inline void seg_unit_avx512(double (*nb)[32], int cnt, double *nd, int st)
 {
     for (int i = 0; i < cnt; i += 8) {
         __m512d nn[3], no[3];
-        unit8(nb[i / 8], nn, hw);
+        unit8(nb[i / 8], nn);
         xyz8(nn[0], nn[1], nn[2], no);
         put8(nd + 3 * i, no, cnt - i < 8 ? cnt - i : 8, st);
     }
@@ -949,7 +951,7 @@ full_avx512(const double *HT, const double *DDU, double c0[4][4][BLK], double c1
             Svv[k] = _mm512_mul_pd(_mm512_fnmadd_pd(hvv[3], P[k], t), iw);
         }
         __m512d nn[3];
-        __mmask8 ok = normal8(A, B, nn, hw);
+        __mmask8 ok = normal8(A, B, nn);
         __m512d E = dot8(Su, Su), F = dot8(Su, Sv), G = dot8(Sv, Sv);
         __m512d L = dot8(Suu, nn), M = dot8(Suv, nn), N = dot8(Svv, nn);
         __m512d det = _mm512_mask_blend_pd(ok, one, _mm512_fmsub_pd(E, G, _mm512_mul_pd(F, F)));
@@ -1049,12 +1051,12 @@ rows_avx512(const tables *t, const rg2_grid_out *o, size_t first, int b0, int cn
                 double *pk = pos + k * stride, *nk = nrm + k * stride;
                 int st = store_mode(t, pk, cnt);
                 if (st == ST_STREAM && !((uintptr_t)nk & 63))
-                    seg_unit_avx512(nb + k * nvec, cnt, nk, ST_STREAM, hw);
+                    seg_unit_avx512(nb + k * nvec, cnt, nk, ST_STREAM);
                 else if (st == ST_STAGED) {
-                    seg_unit_avx512(nb + k * nvec, cnt, nbuf, ST_PLAIN, hw);
+                    seg_unit_avx512(nb + k * nvec, cnt, nbuf, ST_PLAIN);
                     stream_copy(nk, nbuf, 3 * cnt);
                 } else
-                    seg_unit_avx512(nb + k * nvec, cnt, nk, ST_PLAIN, hw);
+                    seg_unit_avx512(nb + k * nvec, cnt, nk, ST_PLAIN);
             }
             a += R - 1;
         } else {
@@ -1063,7 +1065,7 @@ rows_avx512(const tables *t, const rg2_grid_out *o, size_t first, int b0, int cn
     }
 }
 
-/* grid_patch with the AVX-512 kernels; hw: divisions and square roots by the hardware (a
+/* grid_patch with the AVX-512 kernels; hw: divisions by the hardware (a
  * constant in both calls of grid_patch_avx512, so each gets kernels of its own). */
 RG2_AVX512_FN static inline __attribute__((always_inline)) void
 grid_patch_avx512_hw(const rg2_patch *P, const tables *t, const rg2_grid_out *o, size_t first, const int hw)
