@@ -69,7 +69,8 @@
 
 #define BLK 64 /* points per block in the full kernel (structure-of-arrays temporaries) */
 
-/* Bernstein tables of one call: u as rows of 4, v as 4 columns of m values. */
+/* Test hooks (tests/test_grid.c): the portable kernels on any CPU; the division mode (-1: as
+ * grid_hwdiv decides). */
 int rg2__grid_portable = 0;
 int rg2__grid_hwdiv = -1;
 
@@ -96,8 +97,7 @@ typedef struct {
     int avx512; /* use the AVX-512 kernels (this CPU has them) */
     int hwdiv;  /* ... with divisions by the hardware (grid_hwdiv) */
     int stream; /* large output: non-temporal stores (bypass the caches) */
-    double *bu, *ddu;                  /* n * 4 each */
-    double *hu;                        /* n * 4: 3 B^2_q(u), q < 3 (then 0), see USUM3 */
+    double *ddu;                       /* n * 4: B_r''(u) of each row */
     double *ht;                        /* n * 8: the rows' Horner constants (row_consts) */
     int arev;                          /* rows a >= arev (u > 1/2) take the reversed Horner form */
     double *bv[4], *hv[4], *ddv[4];    /* m each; hv: 3 B^2_q(v), q < 3 (see vsumh; hv[3] unused) */
@@ -132,7 +132,7 @@ static rg2_status tables_make(tables *t, int n, int m, int order, rg2_error *err
 {
     memset(t, 0, sizeof *t);
     size_t m8 = ((size_t)m + 7) & ~(size_t)7; /* v columns padded with zeros to whole 8-lane vectors */
-    size_t per = (size_t)n * 4 * 3 + (size_t)n * 8 + m8 * 12;
+    size_t per = (size_t)n * 4 + (size_t)n * 8 + m8 * 12;
     t->mem = rg2__calloc(per, sizeof(double));
     if (!t->mem)
         return rg2__fail(err, RG2_ENOMEM, "grid: out of memory for %d x %d tables", n, m);
@@ -144,9 +144,7 @@ static rg2_status tables_make(tables *t, int n, int m, int order, rg2_error *err
     t->hwdiv = t->avx512 && grid_hwdiv();
 #endif
     double *q = t->mem;
-    t->bu = q, q += (size_t)n * 4;
     t->ddu = q, q += (size_t)n * 4;
-    t->hu = q, q += (size_t)n * 4;
     t->ht = q, q += (size_t)n * 8;
     t->arev = n;
     for (int s = 0; s < 4; s++) {
@@ -156,11 +154,8 @@ static rg2_status tables_make(tables *t, int n, int m, int order, rg2_error *err
     }
     for (int a = 0; a < n; a++) {
         double u = a == n - 1 ? 1.0 : (double)a / (double)(n - 1);
-        rg2__bern3(u, t->bu + 4 * a, NULL, t->ddu + 4 * a);
-        double s = 1.0 - u, *hq = t->hu + 4 * a; /* d/du sum_r B_r c_r = sum_q 3 B^2_q (c_q+1 - c_q) */
-        hq[0] = 3.0 * s * s;
-        hq[1] = 6.0 * u * s;
-        hq[2] = 3.0 * u * u;
+        double B[4];
+        rg2__bern3(u, B, NULL, t->ddu + 4 * a);
         if (u > 0.5 && t->arev == n)
             t->arev = a;
         row_consts(u, t->ht + 8 * a);
@@ -197,7 +192,7 @@ static inline void vsum(const rg2_patch *P, double *const bv[4], int b0, int cnt
         }
 }
 
-/* The v-derivative column sums by the hodograph, as USUM3 in u: sum_s h_rs B_s'(v) =
+/* The v-derivative column sums by the hodograph, as in u (RSUMH): sum_s h_rs B_s'(v) =
  * sum_q 3 B^2_q(v) (h_r,q+1 - h_rs), from the control point differences of a patch. */
 static inline void hdiff(const rg2_patch *P, double dh[4][3][4])
 {
@@ -692,7 +687,7 @@ RG2_AVX512_FN static inline void csum_at(double c[4][4][BLK], int i, __m512d v[4
             v[r][k] = _mm512_load_pd(&c[r][k][i]);
 }
 
-/* The differences of consecutive column sums as vectors (USUM3). */
+/* The differences of consecutive column sums as vectors (the hodograph's, RSUMH). */
 RG2_AVX512_FN static inline void cdiff_v(__m512d c[4][4], __m512d d[3][4])
 {
     for (int q = 0; q < 3; q++)
