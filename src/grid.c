@@ -1024,34 +1024,30 @@ rows_avx512(const tables *t, const rg2_grid_out *o, size_t first, int b0, int cn
                 stream_copy(pos, pbuf, 3 * cnt);
         } else if (t->order == 1) {
             /* R rows of at most 8 vectors in all: their positions and cross products, then their
-             * normals (see cross8); rows that go through the staging buffers one at a time */
+             * normals (see cross8); each array's rows stored as store_mode says (a staged row
+             * goes through the buffer and out before the next row) */
             int nvec = (cnt + 7) / 8, R = 8 / nvec;
             if (R > a1 - a)
                 R = a1 - a;
-            if (store_mode(t, pos, cnt) == ST_STAGED)
-                R = 1;
             double *nrm = o->normal + 3 * at;
             for (int k = 0; k < R; k++) {
                 double *pk = pos + k * stride;
                 int st = store_mode(t, pk, cnt);
-                if (st == ST_STREAM && !((uintptr_t)(nrm + k * stride) & 63))
-                    seg_cross_avx512(HT + 8 * k, c0, c1, cnt, pk, nb + k * nvec, ST_STREAM, hw, rev);
-                else if (st == ST_STAGED) {
-                    seg_cross_avx512(HT + 8 * k, c0, c1, cnt, pbuf, nb + k * nvec, ST_PLAIN, hw, rev);
-                    stream_copy(pk, pbuf, 3 * cnt);
-                } else
-                    seg_cross_avx512(HT + 8 * k, c0, c1, cnt, pk, nb + k * nvec, ST_PLAIN, hw, rev);
+                double *d = st == ST_STAGED ? pbuf : pk;
+                if (st == ST_STREAM)
+                    seg_cross_avx512(HT + 8 * k, c0, c1, cnt, d, nb + k * nvec, ST_STREAM, hw, rev);
+                else
+                    seg_cross_avx512(HT + 8 * k, c0, c1, cnt, d, nb + k * nvec, ST_PLAIN, hw, rev);
+                if (d != pk)
+                    stream_copy(pk, d, 3 * cnt);
             }
             for (int k = 0; k < R; k++) {
-                double *pk = pos + k * stride, *nk = nrm + k * stride;
-                int st = store_mode(t, pk, cnt);
-                if (st == ST_STREAM && !((uintptr_t)nk & 63))
-                    seg_unit_avx512(nb + k * nvec, cnt, nk, ST_STREAM);
-                else if (st == ST_STAGED) {
-                    seg_unit_avx512(nb + k * nvec, cnt, nbuf, ST_PLAIN);
-                    stream_copy(nk, nbuf, 3 * cnt);
-                } else
-                    seg_unit_avx512(nb + k * nvec, cnt, nk, ST_PLAIN);
+                double *nk = nrm + k * stride;
+                int st = store_mode(t, nk, cnt);
+                double *d = st == ST_STAGED ? nbuf : nk;
+                seg_unit_avx512(nb + k * nvec, cnt, d, st == ST_STREAM ? ST_STREAM : ST_PLAIN);
+                if (d != nk)
+                    stream_copy(nk, d, 3 * cnt);
             }
             a += R - 1;
         } else {
