@@ -687,6 +687,26 @@ RG2_AVX512_FN static inline void csum_at(double c[4][4][BLK], int i, __m512d v[4
             v[r][k] = _mm512_load_pd(&c[r][k][i]);
 }
 
+/* Columns i..i+7 of a block's column sum differences (cdiff_block) as vectors. */
+RG2_AVX512_FN static inline void cdiff_at(double d[3][4][BLK], int i, __m512d v[3][4])
+{
+    for (int q = 0; q < 3; q++)
+        for (int k = 0; k < 4; k++)
+            v[q][k] = _mm512_load_pd(&d[q][k][i]);
+}
+
+/* The differences of consecutive column sums of a block, d[q][k] = c[q + 1][k] - c[q][k] (the
+ * hodograph's, RSUMH), once per block for the normal rows instead of once per row: 12
+ * subtractions fewer per 8 points, normals 1.03-1.07x on 64- and 256-point rows (AMD Zen 4,
+ * medians of 61 alternating calls; the same bits). */
+RG2_AVX512_FN static void cdiff_block(double c[4][4][BLK], int cnt, double d[3][4][BLK])
+{
+    for (int i = 0; i < cnt; i += 8)
+        for (int q = 0; q < 3; q++)
+            for (int k = 0; k < 4; k++)
+                _mm512_store_pd(&d[q][k][i], _mm512_sub_pd(_mm512_load_pd(&c[q + 1][k][i]), _mm512_load_pd(&c[q][k][i])));
+}
+
 /* The differences of consecutive column sums as vectors (the hodograph's, RSUMH). */
 RG2_AVX512_FN static inline void cdiff_v(__m512d c[4][4], __m512d d[3][4])
 {
@@ -849,15 +869,15 @@ RG2_AVX512_FN static inline void patch_normal_narrow_avx512(const rg2_patch *P, 
 /* The first phase of positions and unit normals for one row segment: positions at pd, the cross
  * products to nb (one entry of 32 doubles per 8 points; pos_cross8). */
 RG2_AVX512_FN static inline __attribute__((always_inline)) void
-seg_cross_avx512(const double *HT, double c0[4][4][BLK], double c1[4][4][BLK], int cnt, double *pd,
-                 double (*nb)[32], int st, int hw, const int rev)
+seg_cross_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BLK], double c1[4][4][BLK], int cnt,
+                 double *pd, double (*nb)[32], int st, int hw, const int rev)
 {
     __m512d T[5];
     bcastT(HT, T);
     for (int i = 0; i < cnt; i += 8) {
         __m512d v0[4][4], vd[3][4], v1[4][4], po[3];
         csum_at(c0, i, v0);
-        cdiff_v(v0, vd);
+        cdiff_at(d0, i, vd);
         csum_at(c1, i, v1);
         pos_cross8(T, v0, vd, v1, po, nb[i / 8], hw, rev);
         put8(pd + 3 * i, po, cnt - i < 8 ? cnt - i : 8, st);
@@ -997,7 +1017,8 @@ static inline int store_mode(const tables *t, const double *dst, int cnt)
  * interleaved cx when use_cx), all of one Horner form (rev). */
 RG2_AVX512_FN static inline __attribute__((always_inline)) void
 rows_avx512(const tables *t, const rg2_grid_out *o, size_t first, int b0, int cnt, int a0, int a1,
-            double c0[4][4][BLK], double c1[4][4][BLK], double c2[4][4][BLK], double cx[4][3 * BLK], int use_cx,
+            double c0[4][4][BLK], double d0[3][4][BLK], double c1[4][4][BLK], double c2[4][4][BLK],
+            double cx[4][3 * BLK], int use_cx,
             double *pbuf, double *nbuf, double (*nb)[32], const int hw, const int rev)
 {
     const size_t stride = 3 * (size_t)t->m; /* doubles from a row to the next */
@@ -1035,9 +1056,9 @@ rows_avx512(const tables *t, const rg2_grid_out *o, size_t first, int b0, int cn
                 int st = store_mode(t, pk, cnt);
                 double *d = st == ST_STAGED ? pbuf : pk;
                 if (st == ST_STREAM)
-                    seg_cross_avx512(HT + 8 * k, c0, c1, cnt, d, nb + k * nvec, ST_STREAM, hw, rev);
+                    seg_cross_avx512(HT + 8 * k, c0, d0, c1, cnt, d, nb + k * nvec, ST_STREAM, hw, rev);
                 else
-                    seg_cross_avx512(HT + 8 * k, c0, c1, cnt, d, nb + k * nvec, ST_PLAIN, hw, rev);
+                    seg_cross_avx512(HT + 8 * k, c0, d0, c1, cnt, d, nb + k * nvec, ST_PLAIN, hw, rev);
                 if (d != pk)
                     stream_copy(pk, d, 3 * cnt);
             }
@@ -1067,6 +1088,7 @@ grid_patch_avx512_hw(const rg2_patch *P, const tables *t, const rg2_grid_out *o,
     _Alignas(64) double pbuf[3 * BLK];
     _Alignas(64) double nbuf[3 * BLK];
     _Alignas(64) double cx[4][3 * BLK];
+    _Alignas(64) double d0[3][4][BLK];
     _Alignas(64) double nb[8][32];
     if (t->m <= 8 && t->order <= 1) { /* narrow patches: whole rows in registers */
         if (t->order == 0)
@@ -1086,10 +1108,12 @@ grid_patch_avx512_hw(const rg2_patch *P, const tables *t, const rg2_grid_out *o,
             interleave_csum(c0, cnt, cx);
         if (t->order >= 1)
             vsumh_avx512(dh, t->hv, b0, cnt, c1);
+        if (t->order == 1)
+            cdiff_block(c0, cnt, d0);
         if (t->order >= 2)
             vsum_avx512(P, t->ddv, b0, cnt, c2);
-        rows_avx512(t, o, first, b0, cnt, 0, t->arev, c0, c1, c2, cx, use_cx, pbuf, nbuf, nb, hw, 0);
-        rows_avx512(t, o, first, b0, cnt, t->arev, t->n, c0, c1, c2, cx, use_cx, pbuf, nbuf, nb, hw, 1);
+        rows_avx512(t, o, first, b0, cnt, 0, t->arev, c0, d0, c1, c2, cx, use_cx, pbuf, nbuf, nb, hw, 0);
+        rows_avx512(t, o, first, b0, cnt, t->arev, t->n, c0, d0, c1, c2, cx, use_cx, pbuf, nbuf, nb, hw, 1);
     }
 }
 
