@@ -182,6 +182,61 @@ static void collapsed_edge(void)
     free(g.mem);
 }
 
+/* The wide normal rows skip the per-point test of an undefined normal where |a x b|^2 is above a
+ * bound of the patch (cross_threshold in grid.c); their answers must stay those of the
+ * second-order kernel, which tests every point. Nearly degenerate patches (control points on a
+ * line, moved off it by delta: |a x b|^2 / (a.b)^2 ~ delta^2 crosses the test's 1e-30), patches
+ * whose bound does not apply (a negative weight) or is out of range (huge, tiny coordinates):
+ * positions and normals with and without K bitwise the same, and both answers occur. */
+static void normal_test_bound(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 17);
+    const int n = 11, m = 37; /* wide rows (m > 8), a partial last vector */
+    const double deltas[] = {1e-2, 1e-8, 1e-14, 3e-15, 1e-15, 3e-16, 1e-16, 0.0};
+    const double scales[] = {1.0, 1e100, 1e-100};
+    int undefined = 0, defined = 0, cases = 0, same = 1;
+    for (int c = 0; c < 4; c++)
+        for (size_t di = 0; di < sizeof deltas / sizeof deltas[0]; di++)
+            for (size_t si = 0; si < sizeof scales / sizeof scales[0]; si++) {
+                rg2_patch P;
+                for (int i = 0; i < 4; i++)
+                    for (int j = 0; j < 4; j++) {
+                        double W = c == 3 && i == 1 && j == 2 ? -0.3 : rg2t_uniform(&r, 0.5, 2.0);
+                        double t = i + 3 * j + rg2t_uniform(&r, -0.3, 0.3); /* on the line (1, 2, 3) t */
+                        double x[3] = {t, 2 * t, 3 * t};
+                        for (int k = 0; k < 3; k++)
+                            x[k] += deltas[di] * rg2t_uniform(&r, -1.0, 1.0) * (c == 2 ? t * t : 1.0);
+                        for (int k = 0; k < 3; k++)
+                            P.h[i][j][k] = W * x[k] * scales[si];
+                        P.h[i][j][3] = W;
+                    }
+                grid_buf g;
+                buf_alloc(&g, (size_t)n * m);
+                double *pos = malloc(6 * sizeof(double) * n * m), *nrm = pos + 3 * n * m;
+                rg2_grid_out o1 = {.pos = pos, .normal = nrm};
+                rg2_error err;
+                CHECK_OK(rg2_patch_grid(&P, n, m, &g.o, &err), &err);
+                CHECK_OK(rg2_patch_grid(&P, n, m, &o1, &err), &err);
+                int eq = !memcmp(pos, g.o.pos, 3 * sizeof(double) * n * m) &&
+                         !memcmp(nrm, g.o.normal, 3 * sizeof(double) * n * m);
+                CHECK(eq, "test bound: case %d, delta %g, scale %g: normals differ from the second-order kernel's", c,
+                      deltas[di], scales[si]);
+                same &= eq;
+                for (int i = 0; i < n * m; i++)
+                    if (nrm[3 * i] == 0 && nrm[3 * i + 1] == 0 && nrm[3 * i + 2] == 0)
+                        undefined++;
+                    else
+                        defined++;
+                cases++;
+                free(pos);
+                free(g.mem);
+            }
+    CHECK(undefined > 0 && defined > 0, "test bound: %d undefined and %d defined normals", undefined, defined);
+    printf("  undefined-normal test bound: %d nearly degenerate patches, %d undefined and %d defined normals, %s\n",
+           cases, undefined, defined, same ? "bitwise as the second-order kernel" : "DIFFERENT");
+}
+
 /* The poles of a capped sphere: the pole patches' collapsed sides have Su x Sv at rounding-noise
  * level (not exactly 0), where the kernels' relative test alone would give tangent "normals" and
  * curvatures of 1e31. The grid must agree with rg2_patch_eval there (normal 0, K = H = 0), with
@@ -445,6 +500,7 @@ int main(void)
                                                 : "AVX-512 (where available), hardware division");
         random_patches();
         collapsed_edge();
+        normal_test_bound();
         capped_poles();
         torus();
         large_output();
