@@ -60,6 +60,33 @@ static long peak_rss_kb(void)
     return ru.ru_maxrss;
 }
 
+/* CPU time the hypervisor gave to other guests while this machine's CPUs wanted to run ("steal",
+ * /proc/stat) and all CPU time, in clock ticks, summed over the CPUs; 0, 0 where unknown. On a
+ * shared host the peers and rg2 lose different shares of their speed to it, so the report gives
+ * it for each part of the run. */
+static void host_ticks(double *steal, double *total)
+{
+    *steal = *total = 0;
+    FILE *f = fopen("/proc/stat", "r");
+    if (!f)
+        return;
+    double v[8] = {0};
+    if (fscanf(f, "cpu %lf %lf %lf %lf %lf %lf %lf %lf", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6], &v[7]) == 8) {
+        *steal = v[7];
+        for (int k = 0; k < 8; k++)
+            *total += v[k];
+    }
+    fclose(f);
+}
+
+/* The share of CPU time stolen since host_ticks gave s0, t0, in percent (-1: unknown). */
+static double steal_percent(double s0, double t0)
+{
+    double s1, t1;
+    host_ticks(&s1, &t1);
+    return t1 > t0 ? 100.0 * (s1 - s0) / (t1 - t0) : -1.0;
+}
+
 static void die_rg2(const char *what, const rg2_error *err)
 {
     fprintf(stderr, "rg2_bench: %s: %s\n", what, err->msg);
@@ -706,6 +733,8 @@ static cJSON *run_case(bcase *c)
            c->pts * 48e-6, cache_level(c->pts * 48.0));
     fflush(stdout);
     bench_clock = CLOCK_THREAD_CPUTIME_ID; /* every method here runs on this one thread */
+    double steal0, total0;
+    host_ticks(&steal0, &total0);
     for (int rep = 0; rep < reps; rep++)
         for (int k = 0; k < nm; k++) {
             result r;
@@ -714,6 +743,7 @@ static cJSON *run_case(bcase *c)
                 chk[k] = check_result(c, methods[k].level, &r);
         }
     bench_clock = CLOCK_MONOTONIC;
+    double steal = steal_percent(steal0, total0);
     cJSON *jc = cJSON_CreateObject();
     cJSON_AddStringToObject(jc, "name", c->name);
     cJSON_AddStringToObject(jc, "surface", c->what);
@@ -728,6 +758,10 @@ static cJSON *run_case(bcase *c)
     double mpts[N_METHODS];
     cJSON_AddStringToObject(jc, "clock", "CPU time of the calling thread (CLOCK_THREAD_CPUTIME_ID)");
     printf("   times: CPU time of the calling thread (time slices lost to other processes do not count)\n");
+    if (steal >= 0) {
+        printf("   host: %.1f %% of this machine's CPU time went to other guests during this case (steal)\n", steal);
+        cJSON_AddNumberToObject(jc, "host_steal_percent", steal);
+    }
     printf("   %-42s %-24s %10s %10s  %-9s %-9s %-9s %s\n", "method", "output", "median ms", "M pts/s",
            "pos err", "nrm err", "K,H err", "check");
     for (int k = 0; k < nm; k++) {
@@ -792,6 +826,89 @@ static void *spinner(void *unused)
     return NULL;
 }
 
+/* The host's parallelism at this moment: a fixed loop of vector multiply-adds (12 independent
+ * chains, no memory: the grid kernels' kind of work) on one thread, then on two threads at once;
+ * returns 2 t1 / t2, about 2 when the machine's two vCPUs run on two cores, about 1 when the
+ * host has put them on the two hardware threads of one core (they then share its multiply-add
+ * pipes: seen here for minutes at a time, 2 x 3.2 ms alone against 6.0 ms together) or lets one
+ * wait: then no code gets 2 threads' worth of arithmetic. Neither the host's steal time nor a
+ * scalar loop shows the shared core; this does. Median of 5 (each thread times its own loop,
+ * both starting together, so the second vCPU's wake-up does not count). */
+#if defined(__GNUC__) && defined(__x86_64__)
+__attribute__((noinline, target("avx512f"))) static double fma_chains_avx512(void)
+{
+    __m512d a[12], m = _mm512_set1_pd(0.999999), c = _mm512_set1_pd(1e-9);
+    for (int k = 0; k < 12; k++)
+        a[k] = _mm512_set1_pd(k);
+    for (long i = 0; i < 100000; i++) {
+        for (int k = 0; k < 12; k++)
+            a[k] = _mm512_fmadd_pd(a[k], m, c);
+        __asm__("" : "+v"(a[0]), "+v"(a[1]), "+v"(a[2]), "+v"(a[3]), "+v"(a[4]), "+v"(a[5]));
+        __asm__("" : "+v"(a[6]), "+v"(a[7]), "+v"(a[8]), "+v"(a[9]), "+v"(a[10]), "+v"(a[11]));
+    }
+    double s = 0;
+    for (int k = 0; k < 12; k++)
+        s += _mm512_reduce_add_pd(a[k]);
+    return s;
+}
+#define HAVE_FMA_CHAINS_AVX512 1
+#endif
+
+/* One run of the multiply-add loop; with a start line (both threads at once), its own time. */
+typedef struct {
+    atomic_int *start; /* NULL: alone */
+    double t, sum;
+} fma_run;
+
+__attribute__((noinline)) static void *fma_loop(void *arg)
+{
+    fma_run *r = arg;
+    if (r->start) { /* both threads begin together, whenever the second vCPU is woken */
+        atomic_fetch_add(r->start, 1);
+        while (atomic_load(r->start) < 2)
+            ;
+    }
+    double t0 = bench_seconds(CLOCK_MONOTONIC);
+#ifdef HAVE_FMA_CHAINS_AVX512
+    if (__builtin_cpu_supports("avx512f")) {
+        r->sum = fma_chains_avx512();
+        r->t = bench_seconds(CLOCK_MONOTONIC) - t0;
+        return NULL;
+    }
+#endif
+    double a[8] = {1, 2, 3, 4, 5, 6, 7, 8}, m = 0.999999, c = 1e-9;
+    for (long i = 0; i < 1000000; i++)
+        for (int k = 0; k < 8; k++)
+            a[k] = fma(a[k], m, c);
+    r->sum = 0;
+    for (int k = 0; k < 8; k++)
+        r->sum += a[k];
+    r->t = bench_seconds(CLOCK_MONOTONIC) - t0;
+    return NULL;
+}
+
+/* t1 / t_a + t1 / t_b: the two threads' speeds together, each over its speed alone. */
+static double host_parallelism(void)
+{
+    double r[5];
+    for (int k = 0; k < 5; k++) {
+        fma_run alone = {NULL, 0, 0};
+        fma_loop(&alone);
+        atomic_int start = 0;
+        fma_run a = {&start, 0, 0}, b = {&start, 0, 0};
+        pthread_t th;
+        if (pthread_create(&th, NULL, fma_loop, &b)) {
+            r[k] = 1.0;
+            continue;
+        }
+        fma_loop(&a);
+        pthread_join(th, NULL);
+        sink += alone.sum + a.sum + b.sum;
+        r[k] = alone.t / a.t + alone.t / b.t;
+    }
+    return bench_median(r, 5);
+}
+
 /* Median time of 1- and 2-thread calls (alternating pairs) while another thread spins. */
 static void busy_core_times(const rg2_surface *torus, int n, const rg2_grid_out *o, int reps, double *m1,
                             double *m2)
@@ -827,8 +944,12 @@ static cJSON *threads_and_sizes(const rg2_surface *torus)
     int sizes[] = {32, 64, 256};
     printf("\n== rg2 grid on the torus: 1 vs 2 threads (single calls alternating), and the write ceiling at "
            "each output size\n");
-    printf("   %-9s %-24s %12s %12s %8s %8s %8s %9s %14s %10s  %s\n", "per patch", "output", "1 thr Mpt/s",
-           "2 thr Mpt/s", "2t/1t", "(paired)", "(fastest)", "(2nd busy)", "ceiling Mpt/s", "1t/ceil", "output fits");
+    printf("   (steal %%: CPU time of this machine's 2 vCPUs that went to other guests while the 1- and 2-thread calls "
+           "ran;\n    host 2t: what 2 threads of pure vector multiply-adds got over 1, the lower of before and after those "
+           "calls:\n    about 1 when the host runs both vCPUs on one core, about 2 on two)\n");
+    printf("   %-9s %-24s %12s %12s %8s %8s %8s %9s %14s %10s  %-17s %s %s\n", "per patch", "output", "1 thr Mpt/s",
+           "2 thr Mpt/s", "2t/1t", "(paired)", "(fastest)", "(2nd busy)", "ceiling Mpt/s", "1t/ceil", "output fits",
+           "steal %", "host 2t");
     for (int si = 0; si < 3; si++) {
         int n = sizes[si];
         size_t pts = (size_t)torus->nu * torus->nv * n * n;
@@ -851,6 +972,8 @@ static cJSON *threads_and_sizes(const rg2_surface *torus)
                 for (int th = 1; th <= 2; th++)
                     if (rg2_surface_grid(torus, n, n, th, &o, &err))
                         die_rg2("rg2_surface_grid", &err);
+            double steal0, total0, par0 = host_parallelism();
+            host_ticks(&steal0, &total0);
             for (int rep = 0; rep < reps; rep++) { /* interleaved */
                 /* 1 and 2 threads alternating, each timed call right after an untimed one with
                  * the same thread count: an application evaluates into the same arrays with the
@@ -869,6 +992,7 @@ static cJSON *threads_and_sizes(const rg2_surface *torus)
                     best[th - 1] = rep == 0 ? t : fmin(best[th - 1], t);
                 }
             }
+            double steal = steal_percent(steal0, total0), par = fmin(par0, host_parallelism());
             /* the ceiling in its own loop: between the grid calls it would let the pool's worker
              * fall asleep, and every 2-thread call would then pay a wake-up (milliseconds when
              * the machine is loaded); alternated with 1-thread grid calls for the same load */
@@ -900,9 +1024,9 @@ static cJSON *threads_and_sizes(const rg2_surface *torus)
             double paired = bench_median(pr, reps);
             free(pr);
             double obytes = (double)pts * (level == 0 ? 24 : level == 1 ? 48 : 64);
-            printf("   %4d^2    %-24s %12.1f %12.1f %7.2fx %7.2fx %7.2fx %8.2fx %14.1f %9.2f   %.1f MB, %s\n", n,
-                   level_name[level], m1, m2, m2 / m1, paired, b2 / b1, bt1 / bt2, level < 2 ? mc : NAN,
-                   level < 2 ? m3 / mc : NAN, obytes * 1e-6, cache_level(obytes));
+            printf("   %4d^2    %-24s %12.1f %12.1f %7.2fx %7.2fx %7.2fx %8.2fx %14.1f %9.2f   %.1f MB, %-6s %5.1f %7.2fx\n",
+                   n, level_name[level], m1, m2, m2 / m1, paired, b2 / b1, bt1 / bt2, level < 2 ? mc : NAN,
+                   level < 2 ? m3 / mc : NAN, obytes * 1e-6, cache_level(obytes), steal, par);
             cJSON *o2 = cJSON_CreateObject();
             cJSON_AddNumberToObject(o2, "points_per_patch_side", n);
             cJSON_AddStringToObject(o2, "output", level_name[level]);
@@ -914,6 +1038,9 @@ static cJSON *threads_and_sizes(const rg2_surface *torus)
             cJSON_AddNumberToObject(o2, "speedup_2_threads_paired", paired);
             cJSON_AddNumberToObject(o2, "speedup_2_threads_fastest_calls", b2 / b1);
             cJSON_AddNumberToObject(o2, "speedup_2_threads_second_core_busy", bt1 / bt2);
+            if (steal >= 0)
+                cJSON_AddNumberToObject(o2, "host_steal_percent", steal);
+            cJSON_AddNumberToObject(o2, "host_parallelism_2_threads", par);
             if (level < 2) {
                 cJSON_AddNumberToObject(o2, "ceiling_mpoints_per_s", mc);
                 cJSON_AddNumberToObject(o2, "fraction_of_ceiling_1_thread", m3 / mc);
