@@ -12,6 +12,8 @@ def main(path):
         print(f"\n#### {c['name']}: {c['surface']}\n")
         print(f"{int(c['patches'])} patches x {int(c['points_per_patch'])} points = {int(c['points'])} points, "
               f"{c['repetitions']} interleaved repetitions; every output checked against the {c['checked_against']}.")
+        if 'host_steal_percent' in c:
+            print(f"Host: {c['host_steal_percent']:.1f} % of the machine's CPU time went to other guests (steal) during this case.")
         if 'positions_fit' in c:
             print(f"Output {c['points'] * 24e-6:.1f} MB of positions (fits {c['positions_fit']}), "
                   f"{c['points'] * 48e-6:.1f} MB with normals (fits {c['normals_fit']}).")
@@ -34,11 +36,13 @@ def main(path):
             print(f"| {r['pair']} | {r['ratio']:.2f}x | {t} | {met} | {b} |")
     if 'grid_scaling' in d:
         paired = any('speedup_2_threads_paired' in r for r in d['grid_scaling']['threads'])
+        host = any('host_parallelism_2_threads' in r for r in d['grid_scaling']['threads'])
         print("\n| points per patch | output | 1 thread M pts/s | 2 threads M pts/s | 2t / 1t (medians) | "
               + ("2t / 1t (paired calls) | " if paired else "")
               + "2t / 1t (fastest calls) | 2t / 1t, second core busy | write ceiling M pts/s | 1 thread / ceiling | "
-              "output MB, fits |")
-        print("|---|---|---:|---:|---:|" + ("---:|" if paired else "") + "---:|---:|---:|---:|---|")
+              "output MB, fits |" + (" steal % | host 2t / 1t (probe) |" if host else ""))
+        print("|---|---|---:|---:|---:|" + ("---:|" if paired else "") + "---:|---:|---:|---:|---|"
+              + ("---:|---:|" if host else ""))
         for r in d['grid_scaling']['threads']:
             c = f"{r['ceiling_mpoints_per_s']:.1f}" if 'ceiling_mpoints_per_s' in r else '-'
             f = f"{r['fraction_of_ceiling_1_thread']:.2f}" if 'fraction_of_ceiling_1_thread' in r else '-'
@@ -47,7 +51,9 @@ def main(path):
                   + (f"{r['speedup_2_threads_paired']:.2f}x | " if paired else "")
                   + f"{r['speedup_2_threads_fastest_calls']:.2f}x | "
                   f"{r['speedup_2_threads_second_core_busy']:.2f}x | {c} | {f} | "
-                  f"{r['output_bytes'] * 1e-6:.1f}, {r.get('output_fits', '')} |")
+                  f"{r['output_bytes'] * 1e-6:.1f}, {r.get('output_fits', '')} |"
+                  + (f" {r.get('host_steal_percent', float('nan')):.1f} | {r.get('host_parallelism_2_threads', float('nan')):.2f}x |"
+                     if host else ""))
     if 'construction' in d:
         cs = d['construction']
         rb = 'rebuild_per_control_point_spread_100_to_1000' in cs
