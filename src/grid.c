@@ -14,7 +14,9 @@
  * AVX2 / baseline clones chosen at load time). On AVX-512 CPUs hand-written kernels take whole
  * patches (grid_patch_avx512): rcp14 / rsqrt14 and two Newton steps instead of divisions and
  * square roots (but divisions on AMD CPUs, whose divider runs beside the multiply-adds: grid_hwdiv),
- * normals in two phases per group of rows (cross products, then square roots: cross8),
+ * normals in two phases per group of rows (cross products, then square roots: cross8; rows
+ * wider than 8 points skip the undefined-normal test where a bound of the patch settles it:
+ * cross_threshold),
  * permutes for the x, y, z interleave, plain stores with prefetchw for outputs in
  * the caches and streaming stores past RG2_STREAM_BYTES (see docs/performance.md). The quotient rule and the
  * curvature formulas are those of rg2_patch_eval (eval.c), which stays the independent
