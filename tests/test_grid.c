@@ -232,6 +232,25 @@ static void normal_test_bound(void)
                 free(pos);
                 free(g.mem);
             }
+    /* non-finite control points: every point fails the bound's comparison, the test decides */
+    for (int c = 0; c < 2; c++) {
+        rg2_patch P;
+        random_patch(&r, &P);
+        P.h[1][2][c == 0 ? 0 : 3] = c == 0 ? __builtin_nan("") : __builtin_inf();
+        grid_buf g;
+        buf_alloc(&g, (size_t)n * m);
+        double *pos = malloc(6 * sizeof(double) * n * m), *nrm = pos + 3 * n * m;
+        rg2_grid_out o1 = {.pos = pos, .normal = nrm};
+        rg2_error err;
+        CHECK_OK(rg2_patch_grid(&P, n, m, &g.o, &err), &err);
+        CHECK_OK(rg2_patch_grid(&P, n, m, &o1, &err), &err);
+        int eq = !memcmp(pos, g.o.pos, 3 * sizeof(double) * n * m) &&
+                 !memcmp(nrm, g.o.normal, 3 * sizeof(double) * n * m);
+        CHECK(eq, "test bound: %s control point: normals differ from the second-order kernel's", c ? "inf" : "NaN");
+        same &= eq;
+        free(pos);
+        free(g.mem);
+    }
     CHECK(undefined > 0 && defined > 0, "test bound: %d undefined and %d defined normals", undefined, defined);
     printf("  undefined-normal test bound: %d nearly degenerate patches, %d undefined and %d defined normals, %s\n",
            cases, undefined, defined, same ? "bitwise as the second-order kernel" : "DIFFERENT");
