@@ -188,6 +188,28 @@ static void collapsed_edge(void)
  * line, moved off it by delta: |a x b|^2 / (a.b)^2 ~ delta^2 crosses the test's 1e-30), patches
  * whose bound does not apply (a negative weight) or is out of range (huge, tiny coordinates):
  * positions and normals with and without K bitwise the same, and both answers occur. */
+/* Patch P on an n x m grid with positions and normals only, and with every output: whether the
+ * positions and normals are bitwise the same; counts the zero (undefined) normals. */
+static int same_as_second_order(const rg2_patch *P, int n, int m, int *undefined, int *defined)
+{
+    grid_buf g;
+    buf_alloc(&g, (size_t)n * m);
+    double *pos = malloc(6 * sizeof(double) * n * m), *nrm = pos + 3 * n * m;
+    rg2_grid_out o1 = {.pos = pos, .normal = nrm};
+    rg2_error err;
+    CHECK_OK(rg2_patch_grid(P, n, m, &g.o, &err), &err);
+    CHECK_OK(rg2_patch_grid(P, n, m, &o1, &err), &err);
+    int eq = !memcmp(pos, g.o.pos, 3 * sizeof(double) * n * m) && !memcmp(nrm, g.o.normal, 3 * sizeof(double) * n * m);
+    for (int i = 0; i < n * m; i++)
+        if (nrm[3 * i] == 0 && nrm[3 * i + 1] == 0 && nrm[3 * i + 2] == 0)
+            (*undefined)++;
+        else
+            (*defined)++;
+    free(pos);
+    free(g.mem);
+    return eq;
+}
+
 static void normal_test_bound(void)
 {
     rg2t_rng r;
@@ -211,48 +233,24 @@ static void normal_test_bound(void)
                             P.h[i][j][k] = W * x[k] * scales[si];
                         P.h[i][j][3] = W;
                     }
-                grid_buf g;
-                buf_alloc(&g, (size_t)n * m);
-                double *pos = malloc(6 * sizeof(double) * n * m), *nrm = pos + 3 * n * m;
-                rg2_grid_out o1 = {.pos = pos, .normal = nrm};
-                rg2_error err;
-                CHECK_OK(rg2_patch_grid(&P, n, m, &g.o, &err), &err);
-                CHECK_OK(rg2_patch_grid(&P, n, m, &o1, &err), &err);
-                int eq = !memcmp(pos, g.o.pos, 3 * sizeof(double) * n * m) &&
-                         !memcmp(nrm, g.o.normal, 3 * sizeof(double) * n * m);
+                int eq = same_as_second_order(&P, n, m, &undefined, &defined);
                 CHECK(eq, "test bound: case %d, delta %g, scale %g: normals differ from the second-order kernel's", c,
                       deltas[di], scales[si]);
                 same &= eq;
-                for (int i = 0; i < n * m; i++)
-                    if (nrm[3 * i] == 0 && nrm[3 * i + 1] == 0 && nrm[3 * i + 2] == 0)
-                        undefined++;
-                    else
-                        defined++;
                 cases++;
-                free(pos);
-                free(g.mem);
             }
+    CHECK(undefined > 0 && defined > 0, "test bound: %d undefined and %d defined normals", undefined, defined);
     /* non-finite control points: every point fails the bound's comparison, the test decides */
     for (int c = 0; c < 2; c++) {
         rg2_patch P;
         random_patch(&r, &P);
         P.h[1][2][c == 0 ? 0 : 3] = c == 0 ? __builtin_nan("") : __builtin_inf();
-        grid_buf g;
-        buf_alloc(&g, (size_t)n * m);
-        double *pos = malloc(6 * sizeof(double) * n * m), *nrm = pos + 3 * n * m;
-        rg2_grid_out o1 = {.pos = pos, .normal = nrm};
-        rg2_error err;
-        CHECK_OK(rg2_patch_grid(&P, n, m, &g.o, &err), &err);
-        CHECK_OK(rg2_patch_grid(&P, n, m, &o1, &err), &err);
-        int eq = !memcmp(pos, g.o.pos, 3 * sizeof(double) * n * m) &&
-                 !memcmp(nrm, g.o.normal, 3 * sizeof(double) * n * m);
+        int u = 0, d = 0, eq = same_as_second_order(&P, n, m, &u, &d);
         CHECK(eq, "test bound: %s control point: normals differ from the second-order kernel's", c ? "inf" : "NaN");
         same &= eq;
-        free(pos);
-        free(g.mem);
     }
-    CHECK(undefined > 0 && defined > 0, "test bound: %d undefined and %d defined normals", undefined, defined);
-    printf("  undefined-normal test bound: %d nearly degenerate patches, %d undefined and %d defined normals, %s\n",
+    printf("  undefined-normal test bound: %d nearly degenerate patches, %d undefined and %d defined normals, "
+           "non-finite control points: %s\n",
            cases, undefined, defined, same ? "bitwise as the second-order kernel" : "DIFFERENT");
 }
 
