@@ -738,8 +738,8 @@ RG2_AVX512_FN static inline void cdiff_at(double d[3][4][BLK], int i, __m512d v[
 
 /* The differences of consecutive column sums of a block, d[q][k] = c[q + 1][k] - c[q][k] (the
  * hodograph's, RSUMH), once per block for the normal rows instead of once per row: 12
- * subtractions fewer per 8 points, normals 1.03-1.07x on 64- and 256-point rows (AMD Zen 4,
- * medians of 61 alternating calls; the same bits). */
+ * subtractions fewer per 8 points, normals 1.03-1.09x on 16- to 256-point rows (AMD Zen 4,
+ * medians of 31-61 alternating calls; the same bits). */
 RG2_AVX512_FN static void cdiff_block(double c[4][4][BLK], int cnt, double d[3][4][BLK])
 {
     for (int i = 0; i < cnt; i += 8)
