@@ -14,6 +14,7 @@
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <sisl.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -937,119 +938,183 @@ static void busy_core_times(const rg2_surface *torus, int n, const rg2_grid_out 
     free(t);
 }
 
+/* One row of the 1 vs 2 threads table, measured once (one round). */
+typedef struct {
+    double m1, m2;       /* M points/s, medians of the 1- and 2-thread calls */
+    double paired;       /* median of the ratios of paired calls */
+    double fastest;      /* ratio of the fastest calls */
+    double busy;         /* 2t / 1t with the second core busy */
+    double mc, frac;     /* the write ceiling (M points/s) and 1 thread's fraction of it; NaN for K, H */
+    double steal, par;   /* host steal % during the calls; the host probe (lower of before and after) */
+} thread_row;
+
+static void threads_row(const rg2_surface *torus, int n, int level, double *pos, double *nrm, double *K, double *H,
+                        thread_row *row)
+{
+    size_t pts = (size_t)torus->nu * torus->nv * n * n;
+    /* calls of 0.02-1 ms below 256^2: enough of them to span about 0.1 s */
+    int reps = quick ? 5 : n >= 256 ? 9 : n >= 64 ? 101 : 301;
+    rg2_grid_out o = {.pos = pos, .normal = level ? nrm : NULL, .K = level > 1 ? K : NULL, .H = level > 1 ? H : NULL};
+    double *t1 = xmalloc(sizeof(double) * (size_t)reps * 5), *t2 = t1 + reps, *tc = t2 + reps, *t3 = tc + reps;
+    double *pr = t3 + reps;
+    double best[2] = {0, 0};
+    rg2_error err;
+    /* untimed calls first, as in run_grid: the output in the caches' steady state and the
+     * pool's worker created before the first timed 2-thread call; for 20 ms at least,
+     * so that the worker's vCPU is running (the first configuration of a run measured
+     * 1.79x after 3 warm-up calls, 1.91x when run again right after) */
+    double w0 = now();
+    for (int w = 0; w < 3 || now() - w0 < 0.02; w++)
+        for (int th = 1; th <= 2; th++)
+            if (rg2_surface_grid(torus, n, n, th, &o, &err))
+                die_rg2("rg2_surface_grid", &err);
+    double steal0, total0, par0 = host_parallelism();
+    host_ticks(&steal0, &total0);
+    for (int rep = 0; rep < reps; rep++) { /* interleaved */
+        /* 1 and 2 threads alternating, each timed call right after an untimed one with
+         * the same thread count: an application evaluates into the same arrays with the
+         * same threads call after call, each thread then finding its part of them in its
+         * own core's cache, while a call right after one with the other thread count
+         * first fetches half of its lines from the other core (32^2 positions, 1 thread:
+         * 37 instead of 29 us when the two alternated call by call) */
+        for (int th = 1; th <= 2; th++) {
+            if (rg2_surface_grid(torus, n, n, th, &o, &err))
+                die_rg2("rg2_surface_grid", &err);
+            double t0 = now();
+            if (rg2_surface_grid(torus, n, n, th, &o, &err))
+                die_rg2("rg2_surface_grid", &err);
+            double t = now() - t0;
+            (th == 1 ? t1 : t2)[rep] = t;
+            best[th - 1] = rep == 0 ? t : fmin(best[th - 1], t);
+        }
+    }
+    row->steal = steal_percent(steal0, total0);
+    row->par = fmin(par0, host_parallelism());
+    /* the ceiling in its own loop: between the grid calls it would let the pool's worker
+     * fall asleep, and every 2-thread call would then pay a wake-up (milliseconds when
+     * the machine is loaded); alternated with 1-thread grid calls for the same load */
+    for (int rep = 0; rep < reps; rep++) {
+        double *bufs[2] = {pos, nrm};
+        size_t bytes[2] = {pts * 24, pts * 24};
+        tc[rep] = ceiling_time(bufs, bytes, level ? 2 : 1);
+        for (int w = 0; w < 3; w++) /* steady state, as in run_grid */
+            if (rg2_surface_grid(torus, n, n, 1, &o, &err))
+                die_rg2("rg2_surface_grid", &err);
+        double t0 = now();
+        if (rg2_surface_grid(torus, n, n, 1, &o, &err))
+            die_rg2("rg2_surface_grid", &err);
+        t3[rep] = now() - t0;
+    }
+    /* the same with the second core busy: the pool's caller never waits for a worker that
+     * has no core, so 2 threads should cost no more than 1 */
+    double bt1, bt2;
+    busy_core_times(torus, n, &o, reps, &bt1, &bt2);
+    row->m1 = pts / bench_median(t1, reps) / 1e6;
+    row->m2 = pts / bench_median(t2, reps) / 1e6;
+    double mc = pts / bench_median(tc, reps) / 1e6, m3 = pts / bench_median(t3, reps) / 1e6;
+    row->mc = level < 2 ? mc : NAN;
+    row->frac = level < 2 ? m3 / mc : NAN;
+    row->fastest = best[0] / best[1]; /* fastest single calls */
+    row->busy = bt1 / bt2;
+    /* the ratio of each 1-thread call to the 2-thread call right after it (tens of
+     * microseconds apart), then the median: the speedup at one moment, which the ratio
+     * of the two medians is not when the host's load drifts during the loop */
+    for (int rep = 0; rep < reps; rep++)
+        pr[rep] = t1[rep] / t2[rep];
+    row->paired = bench_median(pr, reps);
+    free(t1);
+}
+
+#define THREAD_ROUNDS 3
+
+/* The median over `rounds` rounds of the double at offset `field` of thread_row. */
+static double round_median(const thread_row *r, int rounds, size_t field)
+{
+    double v[THREAD_ROUNDS];
+    for (int k = 0; k < rounds; k++)
+        v[k] = *(const double *)((const char *)&r[k] + field);
+    return bench_median(v, rounds);
+}
+
+
 static cJSON *threads_and_sizes(const rg2_surface *torus)
 {
     cJSON *j = cJSON_CreateObject();
     cJSON *jt = cJSON_AddArrayToObject(j, "threads");
-    int sizes[] = {32, 64, 256};
+    int sizes[] = {32, 64, 256}, rounds = quick ? 1 : THREAD_ROUNDS;
+    thread_row rows[3][3][THREAD_ROUNDS];
+    /* the whole table `rounds` times over, and each figure the median of its rounds: a row
+     * measured in one stretch of 0.1-1 s took the host's state of that stretch (on the AMD Zen 4
+     * machine the same row gave 1.59x in one run and 1.83x and 1.85x in the next minutes, the
+     * host probe at 1.97-2.00 in all three) */
+    for (int round = 0; round < rounds; round++)
+        for (int si = 0; si < 3; si++) {
+            int n = sizes[si];
+            size_t pts = (size_t)torus->nu * torus->nv * n * n;
+            double *pos = xalloc64(pts * 24), *nrm = xalloc64(pts * 24), *K = xalloc64(pts * 8), *H = xalloc64(pts * 8);
+            memset(pos, 0, pts * 24), memset(nrm, 0, pts * 24), memset(K, 0, pts * 8), memset(H, 0, pts * 8);
+            for (int level = 0; level < 3; level++)
+                threads_row(torus, n, level, pos, nrm, K, H, &rows[si][level][round]);
+            free(pos), free(nrm), free(K), free(H);
+        }
     printf("\n== rg2 grid on the torus: 1 vs 2 threads (single calls alternating), and the write ceiling at "
            "each output size\n");
-    printf("   (steal %%: CPU time of this machine's 2 vCPUs that went to other guests while the 1- and 2-thread calls "
-           "ran;\n    host 2t: what 2 threads of pure vector multiply-adds got over 1, the lower of before and after those "
-           "calls:\n    about 1 when the host runs both vCPUs on one core, about 2 on two)\n");
-    printf("   %-9s %-24s %12s %12s %8s %8s %8s %9s %14s %10s  %-17s %s %s\n", "per patch", "output", "1 thr Mpt/s",
-           "2 thr Mpt/s", "2t/1t", "(paired)", "(fastest)", "(2nd busy)", "ceiling Mpt/s", "1t/ceil", "output fits",
-           "steal %", "host 2t");
-    for (int si = 0; si < 3; si++) {
-        int n = sizes[si];
-        size_t pts = (size_t)torus->nu * torus->nv * n * n;
-        double *pos = xalloc64(pts * 24), *nrm = xalloc64(pts * 24), *K = xalloc64(pts * 8), *H = xalloc64(pts * 8);
-        memset(pos, 0, pts * 24), memset(nrm, 0, pts * 24), memset(K, 0, pts * 8), memset(H, 0, pts * 8);
-        /* calls of 0.02-1 ms below 256^2: enough of them to span about 0.1 s */
-        int reps = quick ? 5 : n >= 256 ? 9 : n >= 64 ? 101 : 301;
+    printf("   (each figure the median of %d rounds of the whole table, spread over the run; paired: the median "
+           "ratio of\n    a 1-thread call to the 2-thread call right after it, and in brackets that of each round;\n",
+           rounds);
+    printf("    steal %%: CPU time of this machine's 2 vCPUs that went to other guests while the 1- and 2-thread "
+           "calls ran,\n    the most of the rounds; host 2t: what 2 threads of pure vector multiply-adds got over 1, "
+           "the lowest\n    of before and after those calls in all rounds: about 1 when the host runs both vCPUs on one "
+           "core, about 2 on two)\n");
+    printf("   %-9s %-24s %12s %12s %8s %8s %-16s %9s %10s %14s %10s  %-17s %s %s\n", "per patch", "output",
+           "1 thr Mpt/s", "2 thr Mpt/s", "2t/1t", "(paired)", "(rounds)", "(fastest)", "(2nd busy)", "ceiling Mpt/s",
+           "1t/ceil", "output fits", "steal %", "host 2t");
+    for (int si = 0; si < 3; si++)
         for (int level = 0; level < 3; level++) {
-            rg2_grid_out o = {.pos = pos, .normal = level ? nrm : NULL, .K = level > 1 ? K : NULL,
-                              .H = level > 1 ? H : NULL};
-            double *t1 = xmalloc(sizeof(double) * (size_t)reps * 4), *t2 = t1 + reps, *tc = t2 + reps, *t3 = tc + reps;
-            double best[2] = {0, 0};
-            rg2_error err;
-            /* untimed calls first, as in run_grid: the output in the caches' steady state and the
-             * pool's worker created before the first timed 2-thread call; for 20 ms at least,
-             * so that the worker's vCPU is running (the first configuration of a run measured
-             * 1.79x after 3 warm-up calls, 1.91x when run again right after) */
-            double w0 = now();
-            for (int w = 0; w < 3 || now() - w0 < 0.02; w++)
-                for (int th = 1; th <= 2; th++)
-                    if (rg2_surface_grid(torus, n, n, th, &o, &err))
-                        die_rg2("rg2_surface_grid", &err);
-            double steal0, total0, par0 = host_parallelism();
-            host_ticks(&steal0, &total0);
-            for (int rep = 0; rep < reps; rep++) { /* interleaved */
-                /* 1 and 2 threads alternating, each timed call right after an untimed one with
-                 * the same thread count: an application evaluates into the same arrays with the
-                 * same threads call after call, each thread then finding its part of them in its
-                 * own core's cache, while a call right after one with the other thread count
-                 * first fetches half of its lines from the other core (32^2 positions, 1 thread:
-                 * 37 instead of 29 us when the two alternated call by call) */
-                for (int th = 1; th <= 2; th++) {
-                    if (rg2_surface_grid(torus, n, n, th, &o, &err))
-                        die_rg2("rg2_surface_grid", &err);
-                    double t0 = now();
-                    if (rg2_surface_grid(torus, n, n, th, &o, &err))
-                        die_rg2("rg2_surface_grid", &err);
-                    double t = now() - t0;
-                    (th == 1 ? t1 : t2)[rep] = t;
-                    best[th - 1] = rep == 0 ? t : fmin(best[th - 1], t);
-                }
+            const thread_row *r = rows[si][level];
+            int n = sizes[si];
+            size_t pts = (size_t)torus->nu * torus->nv * n * n;
+#define MED(f) round_median(r, rounds, offsetof(thread_row, f))
+            thread_row md = {MED(m1), MED(m2), MED(paired), MED(fastest), MED(busy), MED(mc), MED(frac), r[0].steal,
+                             r[0].par};
+#undef MED
+            for (int k = 1; k < rounds; k++) {
+                md.steal = fmax(md.steal, r[k].steal);
+                md.par = fmin(md.par, r[k].par);
             }
-            double steal = steal_percent(steal0, total0), par = fmin(par0, host_parallelism());
-            /* the ceiling in its own loop: between the grid calls it would let the pool's worker
-             * fall asleep, and every 2-thread call would then pay a wake-up (milliseconds when
-             * the machine is loaded); alternated with 1-thread grid calls for the same load */
-            for (int rep = 0; rep < reps; rep++) {
-                double *bufs[2] = {pos, nrm};
-                size_t bytes[2] = {pts * 24, pts * 24};
-                tc[rep] = ceiling_time(bufs, bytes, level ? 2 : 1);
-                for (int w = 0; w < 3; w++) /* steady state, as in run_grid */
-                    if (rg2_surface_grid(torus, n, n, 1, &o, &err))
-                        die_rg2("rg2_surface_grid", &err);
-                double t0 = now();
-                if (rg2_surface_grid(torus, n, n, 1, &o, &err))
-                    die_rg2("rg2_surface_grid", &err);
-                t3[rep] = now() - t0;
-            }
-            /* the same with the second core busy: the pool's caller never waits for a worker that
-             * has no core, so 2 threads should cost no more than 1 */
-            double bt1, bt2;
-            busy_core_times(torus, n, &o, reps, &bt1, &bt2);
-            double m1 = pts / bench_median(t1, reps) / 1e6, m2 = pts / bench_median(t2, reps) / 1e6;
-            double mc = pts / bench_median(tc, reps) / 1e6, m3 = pts / bench_median(t3, reps) / 1e6;
-            double b1 = pts / best[0] / 1e6, b2 = pts / best[1] / 1e6; /* fastest single calls */
-            /* the ratio of each 1-thread call to the 2-thread call right after it (tens of
-             * microseconds apart), then the median: the speedup at one moment, which the ratio
-             * of the two medians is not when the host's load drifts during the loop */
-            double *pr = xmalloc(sizeof(double) * (size_t)reps);
-            for (int rep = 0; rep < reps; rep++)
-                pr[rep] = t1[rep] / t2[rep];
-            double paired = bench_median(pr, reps);
-            free(pr);
+            char each[64] = "", *e = each;
+            for (int k = 0; k < rounds; k++)
+                e += snprintf(e, sizeof each - (size_t)(e - each), "%s%.2f", k ? " " : "(", r[k].paired);
+            snprintf(e, sizeof each - (size_t)(e - each), ")");
             double obytes = (double)pts * (level == 0 ? 24 : level == 1 ? 48 : 64);
-            printf("   %4d^2    %-24s %12.1f %12.1f %7.2fx %7.2fx %7.2fx %8.2fx %14.1f %9.2f   %.1f MB, %-6s %5.1f %7.2fx\n",
-                   n, level_name[level], m1, m2, m2 / m1, paired, b2 / b1, bt1 / bt2, level < 2 ? mc : NAN,
-                   level < 2 ? m3 / mc : NAN, obytes * 1e-6, cache_level(obytes), steal, par);
+            printf("   %4d^2    %-24s %12.1f %12.1f %7.2fx %7.2fx %-16s %8.2fx %9.2fx %14.1f %10.2f   %.1f MB, %-6s "
+                   "%5.1f %7.2fx\n",
+                   n, level_name[level], md.m1, md.m2, md.m2 / md.m1, md.paired, each, md.fastest, md.busy, md.mc,
+                   md.frac, obytes * 1e-6, cache_level(obytes), md.steal, md.par);
             cJSON *o2 = cJSON_CreateObject();
             cJSON_AddNumberToObject(o2, "points_per_patch_side", n);
             cJSON_AddStringToObject(o2, "output", level_name[level]);
             cJSON_AddNumberToObject(o2, "output_bytes", obytes);
             cJSON_AddStringToObject(o2, "output_fits", cache_level(obytes));
-            cJSON_AddNumberToObject(o2, "mpoints_per_s_1_thread", m1);
-            cJSON_AddNumberToObject(o2, "mpoints_per_s_2_threads", m2);
-            cJSON_AddNumberToObject(o2, "speedup_2_threads", m2 / m1);
-            cJSON_AddNumberToObject(o2, "speedup_2_threads_paired", paired);
-            cJSON_AddNumberToObject(o2, "speedup_2_threads_fastest_calls", b2 / b1);
-            cJSON_AddNumberToObject(o2, "speedup_2_threads_second_core_busy", bt1 / bt2);
-            if (steal >= 0)
-                cJSON_AddNumberToObject(o2, "host_steal_percent", steal);
-            cJSON_AddNumberToObject(o2, "host_parallelism_2_threads", par);
+            cJSON_AddNumberToObject(o2, "rounds", rounds);
+            cJSON_AddNumberToObject(o2, "mpoints_per_s_1_thread", md.m1);
+            cJSON_AddNumberToObject(o2, "mpoints_per_s_2_threads", md.m2);
+            cJSON_AddNumberToObject(o2, "speedup_2_threads", md.m2 / md.m1);
+            cJSON_AddNumberToObject(o2, "speedup_2_threads_paired", md.paired);
+            cJSON *jr = cJSON_AddArrayToObject(o2, "speedup_2_threads_paired_rounds");
+            for (int k = 0; k < rounds; k++)
+                cJSON_AddItemToArray(jr, cJSON_CreateNumber(r[k].paired));
+            cJSON_AddNumberToObject(o2, "speedup_2_threads_fastest_calls", md.fastest);
+            cJSON_AddNumberToObject(o2, "speedup_2_threads_second_core_busy", md.busy);
+            if (md.steal >= 0)
+                cJSON_AddNumberToObject(o2, "host_steal_percent", md.steal);
+            cJSON_AddNumberToObject(o2, "host_parallelism_2_threads", md.par);
             if (level < 2) {
-                cJSON_AddNumberToObject(o2, "ceiling_mpoints_per_s", mc);
-                cJSON_AddNumberToObject(o2, "fraction_of_ceiling_1_thread", m3 / mc);
+                cJSON_AddNumberToObject(o2, "ceiling_mpoints_per_s", md.mc);
+                cJSON_AddNumberToObject(o2, "fraction_of_ceiling_1_thread", md.frac);
             }
             cJSON_AddItemToArray(jt, o2);
-            free(t1);
         }
-        free(pos), free(nrm), free(K), free(H);
-            }
     return j;
 }
 

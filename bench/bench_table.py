@@ -37,11 +37,17 @@ def main(path):
     if 'grid_scaling' in d:
         paired = any('speedup_2_threads_paired' in r for r in d['grid_scaling']['threads'])
         host = any('host_parallelism_2_threads' in r for r in d['grid_scaling']['threads'])
+        rounds = any('speedup_2_threads_paired_rounds' in r for r in d['grid_scaling']['threads'])
+        if rounds:
+            print(f"\nEach figure the median of {int(d['grid_scaling']['threads'][0]['rounds'])} rounds of the whole "
+                  "table; the paired ratio of each round in brackets.")
         print("\n| points per patch | output | 1 thread M pts/s | 2 threads M pts/s | 2t / 1t (medians) | "
               + ("2t / 1t (paired calls) | " if paired else "")
+              + ("rounds | " if rounds else "")
               + "2t / 1t (fastest calls) | 2t / 1t, second core busy | write ceiling M pts/s | 1 thread / ceiling | "
               "output MB, fits |" + (" steal % | host 2t / 1t (probe) |" if host else ""))
-        print("|---|---|---:|---:|---:|" + ("---:|" if paired else "") + "---:|---:|---:|---:|---|"
+        print("|---|---|---:|---:|---:|" + ("---:|" if paired else "") + ("---|" if rounds else "")
+              + "---:|---:|---:|---:|---|"
               + ("---:|---:|" if host else ""))
         for r in d['grid_scaling']['threads']:
             c = f"{r['ceiling_mpoints_per_s']:.1f}" if 'ceiling_mpoints_per_s' in r else '-'
@@ -49,6 +55,8 @@ def main(path):
             print(f"| {r['points_per_patch_side']}^2 | {r['output']} | {r['mpoints_per_s_1_thread']:.1f} | "
                   f"{r['mpoints_per_s_2_threads']:.1f} | {r['speedup_2_threads']:.2f}x | "
                   + (f"{r['speedup_2_threads_paired']:.2f}x | " if paired else "")
+                  + ("(" + " ".join(f"{x:.2f}" for x in r.get('speedup_2_threads_paired_rounds', [])) + ") | "
+                     if rounds else "")
                   + f"{r['speedup_2_threads_fastest_calls']:.2f}x | "
                   f"{r['speedup_2_threads_second_core_busy']:.2f}x | {c} | {f} | "
                   f"{r['output_bytes'] * 1e-6:.1f}, {r.get('output_fits', '')} |"
