@@ -1045,8 +1045,8 @@ static cJSON *threads_and_sizes(const rg2_surface *torus)
     thread_row rows[3][3][THREAD_ROUNDS];
     /* the whole table `rounds` times over, and each figure the median of its rounds: a row
      * measured in one stretch of 0.1-1 s took the host's state of that stretch (on the AMD Zen 4
-     * machine the same row gave 1.59x in one run and 1.83x and 1.85x in the next minutes, the
-     * host probe at 1.97-2.00 in all three) */
+     * machine the same row, 64^2 with normals, gave 1.57x in one run and 1.83x and 1.85x in the
+     * runs right before and after it, the host probe at 1.97-2.00 in all three) */
     for (int round = 0; round < rounds; round++)
         for (int si = 0; si < 3; si++) {
             int n = sizes[si];
