@@ -1036,7 +1036,6 @@ static double round_median(const thread_row *r, int rounds, size_t field)
     return bench_median(v, rounds);
 }
 
-
 static cJSON *threads_and_sizes(const rg2_surface *torus)
 {
     cJSON *j = cJSON_CreateObject();
