@@ -1085,11 +1085,14 @@ static cJSON *threads_and_sizes(const rg2_surface *torus)
             for (int k = 0; k < rounds; k++)
                 e += snprintf(e, sizeof each - (size_t)(e - each), "%s%.2f", k ? " " : "(", r[k].paired);
             snprintf(e, sizeof each - (size_t)(e - each), ")");
+            char steal[16] = "-"; /* (unknown: no /proc/stat, or no tick during a short --quick row) */
+            if (md.steal >= 0)
+                snprintf(steal, sizeof steal, "%.1f", md.steal);
             double obytes = (double)pts * (level == 0 ? 24 : level == 1 ? 48 : 64);
             printf("   %4d^2    %-24s %12.1f %12.1f %7.2fx %7.2fx %-16s %8.2fx %9.2fx %14.1f %10.2f   %.1f MB, %-6s "
-                   "%5.1f %7.2fx\n",
+                   "%5s %7.2fx\n",
                    n, level_name[level], md.m1, md.m2, md.m2 / md.m1, md.paired, each, md.fastest, md.busy, md.mc,
-                   md.frac, obytes * 1e-6, cache_level(obytes), md.steal, md.par);
+                   md.frac, obytes * 1e-6, cache_level(obytes), steal, md.par);
             cJSON *o2 = cJSON_CreateObject();
             cJSON_AddNumberToObject(o2, "points_per_patch_side", n);
             cJSON_AddStringToObject(o2, "output", level_name[level]);
