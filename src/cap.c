@@ -761,7 +761,7 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
     inf.rows_after = ra;
     /* assemble: cap rows, body rows, cap rows */
     int nv = S.nv + rb + ra;
-    out->patch = rg2__calloc((size_t)S.nu * (size_t)nv, sizeof(rg2_patch));
+    out->patch = rg2__calloc_big((size_t)S.nu * (size_t)nv, sizeof(rg2_patch));
     out->bu = rg2__calloc((size_t)S.nu, sizeof(double));
     out->gu = rg2__calloc((size_t)S.nu, sizeof(double));
     out->bv = rg2__calloc((size_t)nv, sizeof(double));

@@ -1,7 +1,6 @@
 /* status.c -- status codes and error messages. */
 #include "internal.h"
 
-#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -43,13 +42,4 @@ void rg2__ok(rg2_error *err)
         err->code = RG2_OK;
         err->msg[0] = '\0';
     }
-}
-
-void *rg2__calloc(size_t n, size_t size)
-{
-    if (n == 0)
-        n = 1;
-    if (size != 0 && n > SIZE_MAX / size)
-        return NULL;
-    return calloc(n, size);
 }

@@ -23,7 +23,7 @@ void rg2_surface_free(rg2_surface *s)
 static rg2_status surface_alloc(rg2_surface *s, int nu, int nv, int with_tag, rg2_error *err)
 {
     memset(s, 0, sizeof *s);
-    s->patch = rg2__calloc((size_t)nu * (size_t)nv, sizeof(rg2_patch));
+    s->patch = rg2__calloc_big((size_t)nu * (size_t)nv, sizeof(rg2_patch));
     s->bu = rg2__calloc((size_t)nu, sizeof(double));
     s->gu = rg2__calloc((size_t)nu, sizeof(double));
     s->bv = rg2__calloc((size_t)nv, sizeof(double));
