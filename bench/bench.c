@@ -910,8 +910,10 @@ static double host_parallelism(void)
     return bench_median(r, 5);
 }
 
+#define WARM_CALLS 4 /* untimed calls before each timed one of the threads table, in-cache sizes */
+
 /* Median time of 1- and 2-thread calls (alternating pairs) while another thread spins. */
-static void busy_core_times(const rg2_surface *torus, int n, const rg2_grid_out *o, int reps, double *m1,
+static void busy_core_times(const rg2_surface *torus, int n, const rg2_grid_out *o, int reps, int warm, double *m1,
                             double *m2)
 {
     double *t = xmalloc(sizeof(double) * 2 * (size_t)reps);
@@ -923,9 +925,10 @@ static void busy_core_times(const rg2_surface *torus, int n, const rg2_grid_out 
     }
     rg2_error err;
     for (int rep = 0; rep < reps; rep++)
-        for (int th = 1; th <= 2; th++) { /* as in threads_and_sizes: untimed call, timed call */
-            if (rg2_surface_grid(torus, n, n, th, o, &err))
-                die_rg2("rg2_surface_grid", &err);
+        for (int th = 1; th <= 2; th++) { /* as in threads_row: untimed calls, timed call */
+            for (int w = 0; w < warm; w++)
+                if (rg2_surface_grid(torus, n, n, th, o, &err))
+                    die_rg2("rg2_surface_grid", &err);
             double t0 = now();
             if (rg2_surface_grid(torus, n, n, th, o, &err))
                 die_rg2("rg2_surface_grid", &err);
@@ -946,17 +949,42 @@ typedef struct {
     double busy;         /* 2t / 1t with the second core busy */
     double mc, frac;     /* the write ceiling (M points/s) and 1 thread's fraction of it; NaN for K, H */
     double steal, par;   /* host steal % during the calls; the host probe (lower of before and after) */
+    double alone0, alone1; /* M points/s of 1-thread calls pinned to the first and second CPU */
+    double eff;          /* 2 threads over the two CPUs' speeds alone added up */
 } thread_row;
+
+static int cpus[2], ncpus; /* the first two CPUs the bench may run on */
+
+/* M points/s of 1-thread calls with the caller pinned to CPU cpu (NaN if it cannot be pinned).
+ * Pinned only around these calls: the pool's worker, created earlier, keeps its own affinity. */
+static double alone_on(int cpu, const rg2_surface *torus, int n, const rg2_grid_out *o, int reps, double *t)
+{
+    size_t pts = (size_t)torus->nu * torus->nv * n * n;
+    rg2_error err;
+    if (bench_pin(cpu))
+        return NAN;
+    for (int w = 0; w < 3; w++) /* its lines into this core's cache, as in run_grid */
+        if (rg2_surface_grid(torus, n, n, 1, o, &err))
+            die_rg2("rg2_surface_grid", &err);
+    for (int rep = 0; rep < reps; rep++) {
+        double t0 = now();
+        if (rg2_surface_grid(torus, n, n, 1, o, &err))
+            die_rg2("rg2_surface_grid", &err);
+        t[rep] = now() - t0;
+    }
+    bench_unpin();
+    return pts / bench_median(t, reps) / 1e6;
+}
 
 static void threads_row(const rg2_surface *torus, int n, int level, double *pos, double *nrm, double *K, double *H,
                         thread_row *row)
 {
     size_t pts = (size_t)torus->nu * torus->nv * n * n;
     /* calls of 0.02-1 ms below 256^2: enough of them to span about 0.1 s */
-    int reps = quick ? 5 : n >= 256 ? 9 : n >= 64 ? 101 : 301;
+    int reps = quick ? 5 : n >= 256 ? 9 : n >= 64 ? 101 : 301, warm = n >= 256 ? 1 : WARM_CALLS;
     rg2_grid_out o = {.pos = pos, .normal = level ? nrm : NULL, .K = level > 1 ? K : NULL, .H = level > 1 ? H : NULL};
-    double *t1 = xmalloc(sizeof(double) * (size_t)reps * 5), *t2 = t1 + reps, *tc = t2 + reps, *t3 = tc + reps;
-    double *pr = t3 + reps;
+    double *t1 = xmalloc(sizeof(double) * (size_t)reps * 6), *t2 = t1 + reps, *tc = t2 + reps, *t3 = tc + reps;
+    double *pr = t3 + reps, *ta = pr + reps;
     double best[2] = {0, 0};
     rg2_error err;
     /* untimed calls first, as in run_grid: the output in the caches' steady state and the
@@ -971,15 +999,19 @@ static void threads_row(const rg2_surface *torus, int n, int level, double *pos,
     double steal0, total0, par0 = host_parallelism();
     host_ticks(&steal0, &total0);
     for (int rep = 0; rep < reps; rep++) { /* interleaved */
-        /* 1 and 2 threads alternating, each timed call right after an untimed one with
-         * the same thread count: an application evaluates into the same arrays with the
-         * same threads call after call, each thread then finding its part of them in its
-         * own core's cache, while a call right after one with the other thread count
-         * first fetches half of its lines from the other core (32^2 positions, 1 thread:
-         * 37 instead of 29 us when the two alternated call by call) */
+        /* 1 and 2 threads alternating, each timed call right after untimed ones with the
+         * same thread count: an application evaluates into the same arrays with the same
+         * threads call after call, each thread then finding its part of them in its own
+         * core's cache, while a call right after one with the other thread count first
+         * fetches half of its lines from the other core (32^2 positions, 1 thread: 37
+         * instead of 29 us when the two alternated call by call). Outputs that stay in the
+         * caches take WARM_CALLS calls to come back to that state: on the AMD Zen 5 machine
+         * 2 threads made 1.28x one at 32^2 positions after 1 untimed call, 1.53x after 2,
+         * 1.65x after 4, 1.62x after 8 (64^2: 1.48x, 1.57x, 1.76x, 1.78x) */
         for (int th = 1; th <= 2; th++) {
-            if (rg2_surface_grid(torus, n, n, th, &o, &err))
-                die_rg2("rg2_surface_grid", &err);
+            for (int w = 0; w < warm; w++)
+                if (rg2_surface_grid(torus, n, n, th, &o, &err))
+                    die_rg2("rg2_surface_grid", &err);
             double t0 = now();
             if (rg2_surface_grid(torus, n, n, th, &o, &err))
                 die_rg2("rg2_surface_grid", &err);
@@ -1008,7 +1040,13 @@ static void threads_row(const rg2_surface *torus, int n, int level, double *pos,
     /* the same with the second core busy: the pool's caller never waits for a worker that
      * has no core, so 2 threads should cost no more than 1 */
     double bt1, bt2;
-    busy_core_times(torus, n, &o, reps, &bt1, &bt2);
+    busy_core_times(torus, n, &o, reps, warm, &bt1, &bt2);
+    /* each CPU alone: a host may give the two vCPUs unequal shares of their cores (on the AMD
+     * Zen 5 machine the second ran these kernels 20-35 % slower, the first vCPU's core likely
+     * not shared, the second's with another guest); 2 threads then make at most the two speeds
+     * added up, and the pool's efficiency is how much of that sum they got */
+    row->alone0 = ncpus == 2 ? alone_on(cpus[0], torus, n, &o, reps, ta) : NAN;
+    row->alone1 = ncpus == 2 ? alone_on(cpus[1], torus, n, &o, reps, ta) : NAN;
     row->m1 = pts / bench_median(t1, reps) / 1e6;
     row->m2 = pts / bench_median(t2, reps) / 1e6;
     double mc = pts / bench_median(tc, reps) / 1e6, m3 = pts / bench_median(t3, reps) / 1e6;
@@ -1022,6 +1060,7 @@ static void threads_row(const rg2_surface *torus, int n, int level, double *pos,
     for (int rep = 0; rep < reps; rep++)
         pr[rep] = t1[rep] / t2[rep];
     row->paired = bench_median(pr, reps);
+    row->eff = row->m2 / (row->alone0 + row->alone1);
     free(t1);
 }
 
@@ -1041,6 +1080,7 @@ static cJSON *threads_and_sizes(const rg2_surface *torus)
     cJSON *j = cJSON_CreateObject();
     cJSON *jt = cJSON_AddArrayToObject(j, "threads");
     int sizes[] = {32, 64, 256}, rounds = quick ? 1 : THREAD_ROUNDS;
+    ncpus = bench_cpus(cpus, 2);
     thread_row rows[3][3][THREAD_ROUNDS];
     /* the whole table `rounds` times over, and each figure the median of its rounds: a row
      * measured in one stretch of 0.1-1 s took the host's state of that stretch (on the AMD Zen 4
@@ -1064,18 +1104,26 @@ static cJSON *threads_and_sizes(const rg2_surface *torus)
     printf("    steal %%: CPU time of this machine's 2 vCPUs that went to other guests while the 1- and 2-thread "
            "calls ran,\n    the most of the rounds; host 2t: what 2 threads of pure vector multiply-adds got over 1, "
            "the lowest\n    of before and after those calls in all rounds: about 1 when the host runs both vCPUs on one "
-           "core, about 2 on two)\n");
-    printf("   %-9s %-24s %12s %12s %8s %8s %-16s %9s %10s %14s %10s  %-17s %s %s\n", "per patch", "output",
-           "1 thr Mpt/s", "2 thr Mpt/s", "2t/1t", "(paired)", "(rounds)", "(fastest)", "(2nd busy)", "ceiling Mpt/s",
-           "1t/ceil", "output fits", "steal %", "host 2t");
+           "core, about 2 on two;\n    cpu N alone: M points/s of 1-thread calls pinned to that CPU; 2t/sum: 2 threads over those "
+           "two speeds added up,\n    what 2 threads can make at most when the host gives the two vCPUs unequal "
+           "shares of their cores)\n");
+    char a0[16] = "cpu ? alone", a1[16] = "cpu ? alone";
+    if (ncpus == 2) {
+        snprintf(a0, sizeof a0, "cpu %d alone", cpus[0]);
+        snprintf(a1, sizeof a1, "cpu %d alone", cpus[1]);
+    }
+    printf("   %-9s %-24s %12s %12s %8s %8s %-16s %10s %14s %10s  %-17s %s %s %12s %12s %7s\n", "per patch", "output",
+           "1 thr Mpt/s", "2 thr Mpt/s", "2t/1t", "(paired)", "(rounds)", "(2nd busy)", "ceiling Mpt/s", "1t/ceil",
+           "output fits", "steal %", "host 2t", a0, a1, "2t/sum");
     for (int si = 0; si < 3; si++)
         for (int level = 0; level < 3; level++) {
             const thread_row *r = rows[si][level];
             int n = sizes[si];
             size_t pts = (size_t)torus->nu * torus->nv * n * n;
 #define MED(f) round_median(r, rounds, offsetof(thread_row, f))
-            thread_row md = {MED(m1), MED(m2), MED(paired), MED(fastest), MED(busy), MED(mc), MED(frac), r[0].steal,
-                             r[0].par};
+            thread_row md = {MED(m1),     MED(m2),     MED(paired), MED(fastest), MED(busy),
+                             MED(mc),     MED(frac),   r[0].steal,  r[0].par,     MED(alone0),
+                             MED(alone1), MED(eff)};
 #undef MED
             for (int k = 1; k < rounds; k++) {
                 md.steal = fmax(md.steal, r[k].steal);
@@ -1089,10 +1137,10 @@ static cJSON *threads_and_sizes(const rg2_surface *torus)
             if (md.steal >= 0)
                 snprintf(steal, sizeof steal, "%.1f", md.steal);
             double obytes = (double)pts * (level == 0 ? 24 : level == 1 ? 48 : 64);
-            printf("   %4d^2    %-24s %12.1f %12.1f %7.2fx %7.2fx %-16s %8.2fx %9.2fx %14.1f %10.2f   %.1f MB, %-6s "
-                   "%5s %7.2fx\n",
-                   n, level_name[level], md.m1, md.m2, md.m2 / md.m1, md.paired, each, md.fastest, md.busy, md.mc,
-                   md.frac, obytes * 1e-6, cache_level(obytes), steal, md.par);
+            printf("   %4d^2    %-24s %12.1f %12.1f %7.2fx %7.2fx %-16s %9.2fx %14.1f %10.2f   %.1f MB, %-6s "
+                   "%5s %7.2fx %12.1f %12.1f %7.2f\n",
+                   n, level_name[level], md.m1, md.m2, md.m2 / md.m1, md.paired, each, md.busy, md.mc, md.frac,
+                   obytes * 1e-6, cache_level(obytes), steal, md.par, md.alone0, md.alone1, md.eff);
             cJSON *o2 = cJSON_CreateObject();
             cJSON_AddNumberToObject(o2, "points_per_patch_side", n);
             cJSON_AddStringToObject(o2, "output", level_name[level]);
@@ -1111,6 +1159,17 @@ static cJSON *threads_and_sizes(const rg2_surface *torus)
             if (md.steal >= 0)
                 cJSON_AddNumberToObject(o2, "host_steal_percent", md.steal);
             cJSON_AddNumberToObject(o2, "host_parallelism_2_threads", md.par);
+            if (ncpus == 2) {
+                cJSON *ja = cJSON_AddArrayToObject(o2, "mpoints_per_s_1_thread_pinned");
+                double al[2] = {md.alone0, md.alone1};
+                for (int c = 0; c < 2; c++) {
+                    cJSON *jc = cJSON_CreateObject();
+                    cJSON_AddNumberToObject(jc, "cpu", cpus[c]);
+                    cJSON_AddNumberToObject(jc, "mpoints_per_s", al[c]);
+                    cJSON_AddItemToArray(ja, jc);
+                }
+                cJSON_AddNumberToObject(o2, "efficiency_2_threads_of_both_cpus_alone", md.eff);
+            }
             if (level < 2) {
                 cJSON_AddNumberToObject(o2, "ceiling_mpoints_per_s", md.mc);
                 cJSON_AddNumberToObject(o2, "fraction_of_ceiling_1_thread", md.frac);

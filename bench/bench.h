@@ -39,6 +39,13 @@ void occt_free(occt_surf *s);
 void occt_eval(occt_surf *s, occt_method meth, const grid_params *g, double *pos, double *nrm, double *K,
                double *H);
 
+/* affinity.c: the CPUs the calling thread may run on (at most max; 0 where unknown); pin the
+ * calling thread to one of them (0 on success); give it back the affinity it had before the
+ * first bench_pin. */
+int bench_cpus(int *cpu, int max);
+int bench_pin(int cpu);
+void bench_unpin(void);
+
 #ifdef __cplusplus
 }
 #endif
