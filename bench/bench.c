@@ -262,7 +262,9 @@ static const char *cache_level(double bytes)
         l3 = sysconf(_SC_LEVEL3_CACHE_SIZE);
     if (l2 <= 0)
         l2 = 2L << 20;
-    if (l3 <= 0)
+    /* an L3 reported past 64 MB is a socket's (an AMD EPYC Zen 5 guest reported 508 MB): a core
+     * complex shares 32 MB */
+    if (l3 <= 0 || l3 > 64L << 20)
         l3 = 32L << 20;
     return bytes <= (double)l2 ? "L2" : bytes <= 0.5 * (double)l3 ? "L3" : "memory";
 }

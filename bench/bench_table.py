@@ -38,6 +38,9 @@ def main(path):
         paired = any('speedup_2_threads_paired' in r for r in d['grid_scaling']['threads'])
         host = any('host_parallelism_2_threads' in r for r in d['grid_scaling']['threads'])
         rounds = any('speedup_2_threads_paired_rounds' in r for r in d['grid_scaling']['threads'])
+        alone = [r['mpoints_per_s_1_thread_pinned'] for r in d['grid_scaling']['threads']
+                 if 'mpoints_per_s_1_thread_pinned' in r]
+        cpus = [int(c['cpu']) for c in alone[0]] if alone else []
         if rounds:
             print(f"\nEach figure the median of {int(d['grid_scaling']['threads'][0]['rounds'])} rounds of the whole "
                   "table; the paired ratio of each round in brackets.")
@@ -45,10 +48,12 @@ def main(path):
               + ("2t / 1t (paired calls) | " if paired else "")
               + ("rounds | " if rounds else "")
               + "2t / 1t (fastest calls) | 2t / 1t, second core busy | write ceiling M pts/s | 1 thread / ceiling | "
-              "output MB, fits |" + (" steal % | host 2t / 1t (probe) |" if host else ""))
+              "output MB, fits |" + (" steal % | host 2t / 1t (probe) |" if host else "")
+              + "".join(f" 1 thread on CPU {c} M pts/s |" for c in cpus)
+              + (" 2 threads / (CPUs alone added up) |" if cpus else ""))
         print("|---|---|---:|---:|---:|" + ("---:|" if paired else "") + ("---|" if rounds else "")
               + "---:|---:|---:|---:|---|"
-              + ("---:|---:|" if host else ""))
+              + ("---:|---:|" if host else "") + "---:|" * len(cpus) + ("---:|" if cpus else ""))
         for r in d['grid_scaling']['threads']:
             c = f"{r['ceiling_mpoints_per_s']:.1f}" if 'ceiling_mpoints_per_s' in r else '-'
             f = f"{r['fraction_of_ceiling_1_thread']:.2f}" if 'fraction_of_ceiling_1_thread' in r else '-'
@@ -61,7 +66,10 @@ def main(path):
                   f"{r['speedup_2_threads_second_core_busy']:.2f}x | {c} | {f} | "
                   f"{r['output_bytes'] * 1e-6:.1f}, {r.get('output_fits', '')} |"
                   + (f" {r.get('host_steal_percent', float('nan')):.1f} | {r.get('host_parallelism_2_threads', float('nan')):.2f}x |"
-                     if host else ""))
+                     if host else "")
+                  + "".join(f" {c['mpoints_per_s']:.1f} |" for c in r.get('mpoints_per_s_1_thread_pinned', []))
+                  + (f" {r['efficiency_2_threads_of_both_cpus_alone']:.2f} |"
+                     if 'efficiency_2_threads_of_both_cpus_alone' in r else ""))
     if 'construction' in d:
         cs = d['construction']
         rb = 'rebuild_per_control_point_spread_100_to_1000' in cs
