@@ -6,6 +6,12 @@
  * building such a surface 1.4 s of faults. Arrays from RG2_BIG_BYTES up are therefore aligned to
  * 2 MiB and advised as transparent huge pages: one fault per 2 MiB, and fewer TLB misses when the
  * grid evaluator walks the patches. Everything here is freed with free().
+ *
+ * Advised only when the kernel has free blocks of 2 MiB or more for twice the array
+ * (/proc/buddyinfo): a huge-page fault with none at hand compacts memory in the call itself
+ * (the transparent_hugepage defrag setting "madvise", Debian's default), and on a KVM guest
+ * where a 4 KiB fault was cheap that made the 1000 x 1000 build take 1.1-1.2 s instead of 0.24
+ * (docs/performance.md).
  */
 #define _DEFAULT_SOURCE /* madvise, posix_memalign */
 #include "internal.h"
@@ -15,7 +21,9 @@
 #include <string.h>
 
 #if defined(__linux__)
+#include <stdio.h>
 #include <sys/mman.h>
+#include <unistd.h>
 #endif
 
 #define HUGE_PAGE ((size_t)2 << 20)
@@ -32,6 +40,45 @@ void *rg2__calloc(size_t n, size_t size)
     return calloc(n, size);
 }
 
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+/* Bytes the kernel holds free in blocks of HUGE_PAGE or more, summed over its zones
+ * (/proc/buddyinfo: per zone the count of free blocks of 2^k pages, k = 0, 1, ...); 0 if unknown. */
+static size_t free_huge_bytes(void)
+{
+    long page = sysconf(_SC_PAGESIZE);
+    FILE *f = fopen("/proc/buddyinfo", "r");
+    if (!f || page <= 0) {
+        if (f)
+            fclose(f);
+        return 0;
+    }
+    size_t total = 0;
+    char line[512];
+    while (fgets(line, sizeof line, f)) {
+        char *p = strstr(line, "zone");
+        if (!p)
+            continue;
+        p += 4;
+        while (*p == ' ') /* the zone's name */
+            p++;
+        while (*p && *p != ' ')
+            p++;
+        for (int k = 0; k < 20; k++) {
+            char *end;
+            unsigned long long c = strtoull(p, &end, 10);
+            if (end == p)
+                break;
+            size_t block = (size_t)page << k;
+            if (block >= HUGE_PAGE && c <= SIZE_MAX / block && total <= SIZE_MAX - c * block)
+                total += (size_t)c * block;
+            p = end;
+        }
+    }
+    fclose(f);
+    return total;
+}
+#endif
+
 void *rg2__calloc_big(size_t n, size_t size)
 {
     if (n == 0)
@@ -44,7 +91,8 @@ void *rg2__calloc_big(size_t n, size_t size)
         size_t whole = (bytes + HUGE_PAGE - 1) & ~(HUGE_PAGE - 1); /* the last huge page too */
         void *p = NULL;
         if (posix_memalign(&p, HUGE_PAGE, whole) == 0) {
-            (void)madvise(p, whole, MADV_HUGEPAGE); /* advice: without THP, 4 KiB pages */
+            if (free_huge_bytes() / 2 >= whole) /* advice: without THP, 4 KiB pages */
+                (void)madvise(p, whole, MADV_HUGEPAGE);
             memset(p, 0, bytes);
             return p;
         }
