@@ -5,6 +5,7 @@
 #include "harness.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -504,8 +505,89 @@ static void errors(void)
           "total size past memory sizes: %s", err.msg);
 }
 
+/* The tables cache (grid.c): the same bits whether a call's tables were made for it or taken
+ * from the cache, for more sizes than the cache keeps (the first 8 are kept, the others made
+ * every time), and from three application threads calling at once in different orders. Runs
+ * first, so that the cache starts empty. */
+#define CACHE_SIZES 12
+static const int cache_nm[CACHE_SIZES][2] = {{5, 7}, {8, 8}, {9, 3}, {16, 16}, {17, 33}, {32, 32},
+                                              {2, 2}, {64, 64}, {3, 100}, {100, 3}, {40, 41}, {7, 5}};
+typedef struct {
+    const rg2_patch *P;
+    grid_buf *ref;
+    int start, bad;
+} cache_thread;
+
+static int same_grid(const grid_buf *a, const grid_buf *b, size_t pts)
+{
+    return !memcmp(a->mem, b->mem, pts * 23 * sizeof(double));
+}
+
+static void *cache_worker(void *arg)
+{
+    cache_thread *c = arg;
+    rg2_error err;
+    for (int it = 0; it < 30; it++)
+        for (int q = 0; q < CACHE_SIZES; q++) {
+            int k = (c->start + q * (it % 2 ? 5 : 7)) % CACHE_SIZES, n = cache_nm[k][0], m = cache_nm[k][1];
+            size_t pts = (size_t)n * m;
+            grid_buf g;
+            buf_alloc(&g, pts);
+            if (rg2_patch_grid(c->P, n, m, &g.o, &err) || !same_grid(&g, &c->ref[k], pts))
+                c->bad++;
+            free(g.mem);
+        }
+    return NULL;
+}
+
+static void tables_cache(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 4242);
+    rg2_patch P;
+    random_patch(&r, &P);
+    rg2_error err;
+    grid_buf ref[CACHE_SIZES];
+    int kept = 0;
+    for (int k = 0; k < CACHE_SIZES; k++) {
+        int n = cache_nm[k][0], m = cache_nm[k][1];
+        size_t pts = (size_t)n * m;
+        CHECK(!rg2__grid_tables_cached(n, m), "%d x %d: cached before its first call", n, m);
+        buf_alloc(&ref[k], pts);
+        CHECK_OK(rg2_patch_grid(&P, n, m, &ref[k].o, &err), &err); /* tables made (and kept) */
+        kept += rg2__grid_tables_cached(n, m);
+    }
+    CHECK(kept == 8, "%d of %d sizes kept, expected the cache's 8", kept, CACHE_SIZES);
+    for (int k = 0; k < CACHE_SIZES; k++) { /* from the cache (the first 8), made again (the rest) */
+        int n = cache_nm[k][0], m = cache_nm[k][1];
+        size_t pts = (size_t)n * m;
+        grid_buf g;
+        buf_alloc(&g, pts);
+        CHECK_OK(rg2_patch_grid(&P, n, m, &g.o, &err), &err);
+        CHECK(same_grid(&g, &ref[k], pts), "%d x %d (%s): not the bits of the first call", n, m,
+              k < 8 ? "cached tables" : "tables made again");
+        free(g.mem);
+    }
+    cache_thread ct[3];
+    pthread_t tid[3];
+    for (int t = 0; t < 3; t++) {
+        ct[t] = (cache_thread){&P, ref, 4 * t, 0};
+        CHECK(!pthread_create(&tid[t], NULL, cache_worker, &ct[t]), "thread %d not started", t);
+    }
+    for (int t = 0; t < 3; t++) {
+        pthread_join(tid[t], NULL);
+        CHECK(ct[t].bad == 0, "thread %d: %d of %d calls differ from the first call's bits", t, ct[t].bad,
+              30 * CACHE_SIZES);
+    }
+    for (int k = 0; k < CACHE_SIZES; k++)
+        free(ref[k].mem);
+    printf("tables cache: %d sizes, 8 kept; the same bits from kept and made tables, and from 3 threads x %d "
+           "calls\n", CACHE_SIZES, 30 * CACHE_SIZES);
+}
+
 int main(void)
 {
+    tables_cache();
     /* every kernel family: the AVX-512 ones (where the CPU has them) with Newton steps and with
      * the hardware's divisions and square roots, then the portable ones */
     for (int family = 0; family < 3; family++) {
