@@ -1154,6 +1154,11 @@ rows_avx512(const tables *t, const rg2_grid_out *o, size_t first, int b0, int cn
             /* prefetchw: the same columns of the next pass */
             seg_pos_cxr_avx512(HT, c0, cx, cnt, pos, stride, RG2_POS_ROWS * stride, ST_PLAIN, hw, RG2_POS_ROWS, rev);
             a += RG2_POS_ROWS - 1;
+        } else if (t->order == 0 && use_cx && a + RG2_POS_ROWS <= a1 && store_mode(t, pos, cnt) == ST_STREAM &&
+                   !(t->m & 7)) {
+            /* rows together, streamed (each row's start aligned as the first's: 24 m bytes apart) */
+            seg_pos_cxr_avx512(HT, c0, cx, cnt, pos, stride, 0, ST_STREAM, hw, RG2_POS_ROWS, rev);
+            a += RG2_POS_ROWS - 1;
         } else if (t->order == 0) {
             int st = store_mode(t, pos, cnt);
             double *dst = st == ST_STAGED ? pbuf : pos;
