@@ -1044,9 +1044,9 @@ static void threads_row(const rg2_surface *torus, int n, int level, double *pos,
     double bt1, bt2;
     busy_core_times(torus, n, &o, reps, warm, &bt1, &bt2);
     /* each CPU alone: a host may give the two vCPUs unequal shares of their cores (on the AMD
-     * Zen 5 machine the second ran these kernels 20-35 % slower, the first vCPU's core likely
-     * not shared, the second's with another guest); 2 threads then make at most the two speeds
-     * added up, and the pool's efficiency is how much of that sum they got */
+     * Zen 5 machine the second ran these kernels 18-35 % slower at times); 2 threads then make
+     * at most the two speeds added up, and the pool's efficiency is how much of that sum they
+     * got */
     row->alone0 = ncpus == 2 ? alone_on(cpus[0], torus, n, &o, reps, ta) : NAN;
     row->alone1 = ncpus == 2 ? alone_on(cpus[1], torus, n, &o, reps, ta) : NAN;
     row->m1 = pts / bench_median(t1, reps) / 1e6;
