@@ -1264,7 +1264,7 @@ static cJSON *construction(void)
     }
     printf("   linearity: from 100^2 to 1000^2 control points (100x more) the time per control point stays within\n"
            "   a factor %.2f for rg2_surface_rebuild, %.2f for rg2_surface_build (1 thread; the build's extra is\n"
-           "   the page faults and zeroing of fresh memory, on 2 MiB pages from 4 MiB of patches up)\n",
+           "   the page faults and zeroing of fresh memory, on 2 MiB pages from 2 MiB of patches up)\n",
            spread[1], spread[0]);
     cJSON *root = cJSON_CreateObject();
     cJSON_AddItemToObject(root, "sizes", arr);

@@ -49,7 +49,7 @@ void rg2__ok(rg2_error *err);
 
 /* Overflow-checked allocation of n * size bytes (zeroed); NULL on failure or overflow. */
 void *rg2__calloc(size_t n, size_t size);
-/* The same for large arrays (src/alloc.c): from 4 MiB up, 2 MiB-aligned on transparent huge
+/* The same for large arrays (src/alloc.c): from 2 MiB up, 2 MiB-aligned on transparent huge
  * pages where the system has them. Freed with free(). */
 void *rg2__calloc_big(size_t n, size_t size);
 

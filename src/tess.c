@@ -177,12 +177,12 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
     int nu_d = nu * d, nv_d = nv * d;
     int GU = nu_d + (cu ? 0 : 1), GV = nv_d + (cv ? 0 : 1);
     size_t ng = (size_t)GU * (size_t)GV;
-    tess_sample *g = rg2__calloc(ng, sizeof *g);
-    int *gpatch = rg2__calloc(ng, sizeof(int));
-    int *parent = rg2__calloc(ng, sizeof(int));
-    int *id = rg2__calloc(ng, sizeof(int));
+    tess_sample *g = rg2__calloc_big(ng, sizeof *g);
+    int *gpatch = rg2__calloc_big(ng, sizeof(int));
+    int *parent = rg2__calloc_big(ng, sizeof(int));
+    int *id = rg2__calloc_big(ng, sizeof(int));
     size_t max_tri = 2 * (size_t)nu * (size_t)nv * (size_t)d * (size_t)d;
-    out->tri = rg2__calloc(3 * max_tri, sizeof(int));
+    out->tri = rg2__calloc_big(3 * max_tri, sizeof(int));
     int failed = 0;
     if (!g || !gpatch || !parent || !id || !out->tri) {
         failed = 1;
@@ -240,13 +240,13 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
     int nvert = 0;
     for (size_t k = 0; k < ng; k++)
         id[k] = rg2__uf_find(parent, (int)k) == (int)k ? nvert++ : -1;
-    out->pos = rg2__calloc(3 * (size_t)nvert, sizeof(double));
-    out->normal = rg2__calloc(3 * (size_t)nvert, sizeof(double));
-    out->patch = rg2__calloc((size_t)nvert, sizeof(int));
-    out->uv = rg2__calloc(2 * (size_t)nvert, sizeof(double));
+    out->pos = rg2__calloc_big(3 * (size_t)nvert, sizeof(double));
+    out->normal = rg2__calloc_big(3 * (size_t)nvert, sizeof(double));
+    out->patch = rg2__calloc_big((size_t)nvert, sizeof(int));
+    out->uv = rg2__calloc_big(2 * (size_t)nvert, sizeof(double));
     if (curvature) {
-        out->K = rg2__calloc((size_t)nvert, sizeof(double));
-        out->H = rg2__calloc((size_t)nvert, sizeof(double));
+        out->K = rg2__calloc_big((size_t)nvert, sizeof(double));
+        out->H = rg2__calloc_big((size_t)nvert, sizeof(double));
     }
     if (!out->pos || !out->normal || !out->patch || !out->uv || (curvature && (!out->K || !out->H))) {
         failed = 1;

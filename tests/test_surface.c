@@ -293,7 +293,7 @@ static void rebuild(void)
     printf("rebuild: 12 meshes x 3 edits equal to rg2_surface_build bit for bit, %d of 36 in place\n", reused);
 }
 
-/* A surface of more than 4 MiB of patches (10379 patches, 5.3 MB): its patch array comes from
+/* A surface of more than 2 MiB of patches (10379 patches, 5.3 MB): its patch array comes from
  * the huge-page allocator (src/alloc.c), 2 MiB-aligned on Linux. The build writes every byte of
  * it: rebuilt over patch memory filled with garbage, it is the fresh build bit for bit; its copy
  * is too. */
