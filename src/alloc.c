@@ -83,12 +83,8 @@ static size_t free_huge_bytes(void)
 
 void *rg2__calloc_big(size_t n, size_t size)
 {
-    if (n == 0)
-        n = 1;
-    if (size != 0 && n > SIZE_MAX / size)
-        return NULL;
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-    size_t bytes = n * size;
+    size_t bytes = size != 0 && n <= SIZE_MAX / size ? n * size : 0; /* (0: overflow, see below) */
     if (bytes >= RG2_BIG_BYTES && bytes <= SIZE_MAX - HUGE_PAGE) {
         size_t whole = (bytes + HUGE_PAGE - 1) & ~(HUGE_PAGE - 1); /* the last huge page too */
         void *p = NULL;
@@ -100,5 +96,5 @@ void *rg2__calloc_big(size_t n, size_t size)
         }
     }
 #endif
-    return calloc(n, size);
+    return rg2__calloc(n, size); /* small, overflowing (NULL) or no huge pages */
 }
