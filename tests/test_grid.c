@@ -388,8 +388,9 @@ static void large_output(void)
     rg2_patch P;
     random_patch(&r, &P);
     /* 34.6 MB of positions; 34.8 MB of positions + normals (rows misaligned and aligned); then
-     * 64-byte aligned arrays with rows of whole vectors (25.2 and 28.3 MB) */
-    const int sizes[4] = {1201, 851, 1024, 768};
+     * 64-byte aligned arrays with rows of whole vectors (25.2 and 30.7 MB; 800 points a row: 12
+     * blocks of 64 and one of 32) */
+    const int sizes[4] = {1201, 851, 1024, 800};
     for (int cfg = 0; cfg < 4; cfg++) {
         int n = sizes[cfg], level = cfg & 1;
         size_t pts = (size_t)n * n, bytes = pts * 3 * sizeof(double);
@@ -409,6 +410,17 @@ static void large_output(void)
         }
         CHECK(dp <= 1e-14 && dn <= 1e-14, "large output (%d x %d, level %d): position %.3g normal %.3g", n, n, level,
               dp, dn);
+        if (cfg == 3) { /* past RG2_SPREAD_BYTES: the same bits with the normals stored in a second phase */
+            double *pos2 = aligned_alloc(64, bytes), *nrm2 = aligned_alloc(64, bytes);
+            rg2_grid_out o2 = {.pos = pos2, .normal = nrm2};
+            rg2__grid_spread = 0;
+            CHECK_OK(rg2_patch_grid(&P, n, n, &o2, &err), &err);
+            rg2__grid_spread = -1;
+            CHECK(memcmp(pos2, pos, bytes) == 0 && memcmp(nrm2, nrm, bytes) == 0,
+                  "large output (%d x %d): spread normals bitwise as in two phases", n, n);
+            free(pos2);
+            free(nrm2);
+        }
         free(pos);
         free(nrm);
     }
