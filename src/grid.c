@@ -971,7 +971,8 @@ RG2_AVX512_FN static inline void patch_pos_narrow_avx512(const rg2_patch *P, con
 
 /* Positions and unit normals of a patch at most 8 points wide (as patch_pos_narrow_avx512), by
  * pos_cross8 and unit8 as in seg_cross_avx512 and seg_unit_avx512 (the same bits): the cross
- * products of up to 8 rows, then their normals. */
+ * products of up to 8 rows, then their normals; with t->spread each row's normals after the next
+ * row's positions, as in seg_cross_unit_avx512 (8 x 8 patches, 119 MB: 1.01-1.10x, AMD Zen 5). */
 RG2_AVX512_FN static inline void patch_normal_narrow_avx512(const rg2_patch *P, const tables *t, double *pos,
                                                             double *nrm, int hw)
 {
@@ -983,6 +984,28 @@ RG2_AVX512_FN static inline void patch_normal_narrow_avx512(const rg2_patch *P, 
     vsum_narrow(P, t->bv, c0);
     cdiff_v(c0, dc);
     vsumh_narrow(P, t->hv, c1);
+    if (t->spread && st == ST_STREAM) {
+        for (int a = 0; a < n; a++) {
+            __m512d T[5], po[3];
+            bcastT(t->ht + 8 * a, T);
+            if (a < t->arev)
+                pos_cross8(T, c0, dc, c1, po, nb[a & 1], thr, 0, 0, hw, 0);
+            else
+                pos_cross8(T, c0, dc, c1, po, nb[a & 1], thr, 0, 0, hw, 1);
+            put8(pos + 3 * m * a, po, m, st);
+            if (a) {
+                __m512d nn[3], no[3];
+                unit8(nb[(a - 1) & 1], nn);
+                xyz8(nn[0], nn[1], nn[2], no);
+                put8(nrm + 3 * m * (a - 1), no, m, st);
+            }
+        }
+        __m512d nn[3], no[3];
+        unit8(nb[(n - 1) & 1], nn);
+        xyz8(nn[0], nn[1], nn[2], no);
+        put8(nrm + 3 * m * (n - 1), no, m, st);
+        return;
+    }
     for (int a0 = 0; a0 < n; a0 += 8) {
         int na = n - a0 < 8 ? n - a0 : 8;
         for (int a = a0; a < a0 + na; a++) {

@@ -429,7 +429,8 @@ static void large_output(void)
 /* Patches at most 8 points wide take kernels of their own on AVX-512 (whole rows in registers):
  * against rg2_patch_eval, the same bits as the wide kernels give with every output requested, 1 vs
  * 2 threads; with 64-byte aligned arrays of 8 x 8 patches past the streaming thresholds (17.6 MB of
- * positions, 35 MB with normals: streaming stores straight into the rows), misaligned arrays of the
+ * positions, 35 MB with normals: streaming stores straight into the rows, the normals spread among
+ * the positions or, by the test hook, in a second phase), misaligned arrays of the
  * same (plain stores) and rows shorter than a vector (masked stores). */
 static void narrow_patches(void)
 {
@@ -456,14 +457,16 @@ static void narrow_patches(void)
         rg2_grid_out full = {.pos = pos, .normal = nrm, .K = K};
         CHECK_OK(rg2_surface_grid(&s, n, m, 1, &full, &err), &err);
         rg2_grid_out o0 = {.pos = pos3}, o1 = {.pos = pos2, .normal = nrm2};
-        for (int th = 1; th <= 2; th++) {
-            CHECK_OK(rg2_surface_grid(&s, n, m, th, &o0, &err), &err);
-            CHECK_OK(rg2_surface_grid(&s, n, m, th, &o1, &err), &err);
+        for (int th = 1; th <= 4; th++) { /* 3, 4: 1, 2 threads with the normals in a second phase */
+            rg2__grid_spread = th > 2 ? 0 : -1;
+            CHECK_OK(rg2_surface_grid(&s, n, m, 2 - th % 2, &o0, &err), &err);
+            CHECK_OK(rg2_surface_grid(&s, n, m, 2 - th % 2, &o1, &err), &err);
+            rg2__grid_spread = -1;
             CHECK(memcmp(pos3, pos, 3 * pts * sizeof(double)) == 0 &&
                       memcmp(pos2, pos, 3 * pts * sizeof(double)) == 0 &&
                       memcmp(nrm2, nrm, 3 * pts * sizeof(double)) == 0,
-                  "narrow %d x %d, %d patches, %d thread(s): positions and normals bitwise as with every output",
-                  n, m, np, th);
+                  "narrow %d x %d, %d patches, %d thread(s)%s: positions and normals bitwise as with every output",
+                  n, m, np, 2 - th % 2, th > 2 ? ", two phases" : "");
         }
         diffs d = {0};
         for (int k = 0; k < s.nu * s.nv; k += 37)
