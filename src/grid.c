@@ -72,11 +72,11 @@
 #endif
 
 /* Streamed positions + normals larger than this (bytes) per thread store each 8 points' normals
- * right after their positions (seg_cross_unit_avx512) instead of a row's positions, then its
+ * after the next 8 positions (seg_cross_unit_avx512) instead of a row's positions, then its
  * normals: the two streams then leave the core at an even rate, and the stores stall less
  * (AMD Zen 5, medians of 21-101 alternating calls, either vCPU: 256 x 256 per patch, 151 MB,
- * 1.04-1.21x; 512 x 512 1.19-1.25x; 64 x 128, 18.9 MB, 1.02-1.03x; but 64 x 64, 9.4 MB,
- * 0.97-0.98x, hence the threshold). */
+ * 1.03-1.22x; 512 x 512 1.19-1.25x; 64 x 128, 18.9 MB, 1.02-1.03x; but 64 x 64, 9.4 MB,
+ * 0.97-0.99x, hence the threshold). */
 #ifndef RG2_SPREAD_BYTES
 #define RG2_SPREAD_BYTES ((size_t)16 << 20)
 #endif
