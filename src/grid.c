@@ -15,7 +15,7 @@
  * AVX2 / baseline clones chosen at load time). On AVX-512 CPUs hand-written kernels take whole
  * patches (grid_patch_avx512): rcp14 / rsqrt14 and two Newton steps instead of divisions and
  * square roots (but divisions on AMD CPUs, whose divider runs beside the multiply-adds: grid_hwdiv),
- * normals in two phases per group of rows (cross products, then square roots: cross8; rows
+ * normals in two phases per group of rows (cross products, then square roots: cross8r; rows
  * wider than 8 points skip the undefined-normal test where a bound of the patch settles it:
  * cross_threshold),
  * permutes for the x, y, z interleave, plain stores with prefetchw for outputs in
@@ -71,24 +71,13 @@
 #define RG2_STREAM_BYTES ((size_t)8 << 20)
 #endif
 
-/* Streamed positions + normals larger than this (bytes) per thread store each 8 points' normals
- * after the next 8 positions (seg_cross_unit_avx512) instead of a row's positions, then its
- * normals: the two streams then leave the core at an even rate, and the stores stall less
- * (AMD Zen 5, medians of 21-101 alternating calls, either vCPU: 256 x 256 per patch, 151 MB,
- * 1.03-1.22x; 512 x 512 1.19-1.25x; 64 x 128, 18.9 MB, 1.02-1.03x; but 64 x 64, 9.4 MB,
- * 0.97-0.99x, hence the threshold). */
-#ifndef RG2_SPREAD_BYTES
-#define RG2_SPREAD_BYTES ((size_t)16 << 20)
-#endif
-
 #define BLK 64 /* points per block in the full kernel (structure-of-arrays temporaries) */
 
 /* Test hooks (tests/test_grid.c): the portable kernels on any CPU; the division mode (-1: as
- * grid_hwdiv decides); the spread normals of large outputs (-1: by RG2_SPREAD_BYTES, 0 never,
- * 1 whenever streamed). */
+ * grid_hwdiv decides); the spread normals of streamed outputs (tables.spread; 0: never). */
 int rg2__grid_portable = 0;
 int rg2__grid_hwdiv = -1;
-int rg2__grid_spread = -1;
+int rg2__grid_spread = 1;
 
 /* Whether the AVX-512 kernels divide by the hardware (1 / w, 1 / (EG - F^2)) instead of rcp14 and
  * Newton steps: on AMD CPUs, whose divider runs beside the multiply-add pipes the kernels keep
@@ -113,7 +102,7 @@ typedef struct {
     int avx512; /* use the AVX-512 kernels (this CPU has them) */
     int hwdiv;  /* ... with divisions by the hardware (grid_hwdiv) */
     int stream; /* large output: non-temporal stores (bypass the caches) */
-    int spread; /* ... past RG2_SPREAD_BYTES with normals: each 8 normals after their positions */
+    int spread; /* ... with normals: each 8 normals of a wide row after the next 8 positions */
     double *ddu;                       /* n * 4: B_r''(u) of each row */
     double *ht;                        /* n * 8: the rows' Horner constants (row_consts) */
     int arev;                          /* rows a >= arev (u > 1/2) take the reversed Horner form */
@@ -560,9 +549,10 @@ RG2_AVX512_FN static inline __m512d dot8(const __m512d a[3], const __m512d b[3])
     return _mm512_fmadd_pd(a[2], b[2], _mm512_fmadd_pd(a[1], b[1], _mm512_mul_pd(a[0], b[0])));
 }
 
-/* Unit normal n = a x b / |a x b|, 0 where |a x b|^2 <= 1e-30 (a.a) (b.b), in two phases: cross8
- * stores c = a x b (3 vectors) and |c|^2 (NaN where the normal is undefined) at nb (32 doubles),
- * unit8 turns them into unit normals and returns the mask of points where they are defined. The
+/* Unit normal n = a x b / |a x b|, 0 where |a x b|^2 <= 1e-30 (a.a) (b.b), in two phases: cross8r
+ * gives c = a x b (3 vectors) and returns |c|^2 (NaN where the normal is undefined), which the
+ * two-phase kernels store at nb (32 doubles, pos_cross8); unit8r (unit8 from nb) turns them into
+ * unit normals and returns the mask of points where they are defined. The
  * row kernels form all the cross products of a row (or of a few short rows) before the first
  * square root, so that the long latency of the square root and division no longer holds up the
  * next points' sums, and the normals of a row are stored together (streaming stores: 1.15x for
@@ -577,26 +567,23 @@ RG2_AVX512_FN static inline __m512d dot8(const __m512d a[3], const __m512d b[3])
  * pass the test without it (a.b and the products: 5 multiply-adds per 8 points, normals 1.02-1.11x
  * on 16- to 256-point rows, AMD Zen 4); the lanes are decided as by the test, so the same bits.
  * 8 x 8 patches test every point: there the bound cost as much as it saved. */
-RG2_AVX512_FN static inline void cross8(const __m512d a[3], const __m512d b[3], double *nb, __m512d thr,
-                                        __mmask8 pad, const int bounded)
+RG2_AVX512_FN static inline __m512d cross8r(const __m512d a[3], const __m512d b[3], __m512d c[3], __m512d thr,
+                                            __mmask8 pad, const int bounded)
 {
-    __m512d c[3] = {_mm512_fmsub_pd(a[1], b[2], _mm512_mul_pd(a[2], b[1])),
-                    _mm512_fmsub_pd(a[2], b[0], _mm512_mul_pd(a[0], b[2])),
-                    _mm512_fmsub_pd(a[0], b[1], _mm512_mul_pd(a[1], b[0]))};
+    c[0] = _mm512_fmsub_pd(a[1], b[2], _mm512_mul_pd(a[2], b[1]));
+    c[1] = _mm512_fmsub_pd(a[2], b[0], _mm512_mul_pd(a[0], b[2]));
+    c[2] = _mm512_fmsub_pd(a[0], b[1], _mm512_mul_pd(a[1], b[0]));
     __m512d l2 = dot8(c, c);
-    for (int k = 0; k < 3; k++)
-        _mm512_store_pd(nb + 8 * k, c[k]);
-    if (bounded && __builtin_expect((__mmask8)(_mm512_cmp_pd_mask(l2, thr, _CMP_GT_OQ) | pad) == 0xff, 1)) {
-        _mm512_store_pd(nb + 24, l2);
-        return;
-    }
+    if (bounded && __builtin_expect((__mmask8)(_mm512_cmp_pd_mask(l2, thr, _CMP_GT_OQ) | pad) == 0xff, 1))
+        return l2;
     __m512d F = dot8(a, b);
     __mmask8 ok = _mm512_cmp_pd_mask(l2, _mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(1e-30), F), F), _CMP_GT_OQ);
-    _mm512_store_pd(nb + 24, _mm512_mask_mov_pd(_mm512_set1_pd(__builtin_nan("")), ok, l2));
+    return _mm512_mask_mov_pd(_mm512_set1_pd(__builtin_nan("")), ok, l2);
 }
 
+
 /* A bound thr >= 1e-30 (a.b)^2 over all points of patch P, for the tangents a, b of pos_cross8
- * (the scaled sums of row_consts): points with |a x b|^2 > thr pass cross8's test whatever a.b is.
+ * (the scaled sums of row_consts): points with |a x b|^2 > thr pass cross8r's test whatever a.b is.
  * M = max |h[r][s][k]| (all four components), w_min = min h[r][s][3]. The column sums are
  * Bernstein sums, at most M; their differences 2 M; the v-derivative ones (weights 3 B^2_q(v),
  * summing to 3, on differences) 6 M. Along u the scaled sums c0 + 3 c1 t + 3 c2 t^2 + c3 t^3 and
@@ -623,29 +610,29 @@ RG2_AVX512_FN static inline __m512d cross_threshold(const rg2_patch *P)
     return _mm512_set1_pd(thr);
 }
 
-RG2_AVX512_FN static inline __mmask8 unit8(const double *nb, __m512d n[3])
+RG2_AVX512_FN static inline __mmask8 unit8r(const __m512d c[3], __m512d l2, __m512d n[3])
 {
-    __m512d l2 = _mm512_load_pd(nb + 24);
     __mmask8 ok = _mm512_cmp_pd_mask(l2, l2, _CMP_ORD_Q);
     __m512d il = _mm512_maskz_mov_pd(ok, rsqrt8(l2)); /* (lanes not ok: whatever rsqrt8 gave, zeroed) */
     for (int k = 0; k < 3; k++)
-        n[k] = _mm512_mul_pd(_mm512_load_pd(nb + 8 * k), il);
+        n[k] = _mm512_mul_pd(c[k], il);
     return ok;
 }
 
-/* Both phases at once, in registers (the second-order kernel): the same operations on the lanes
- * where the normal is defined, the others zeroed, so the same bits. */
+RG2_AVX512_FN static inline __mmask8 unit8(const double *nb, __m512d n[3])
+{
+    __m512d c[3];
+    for (int k = 0; k < 3; k++)
+        c[k] = _mm512_load_pd(nb + 8 * k);
+    return unit8r(c, _mm512_load_pd(nb + 24), n);
+}
+
+/* Both phases at once, in registers (the second-order kernel): every point tested, so the same
+ * bits. */
 RG2_AVX512_FN static inline __mmask8 normal8(const __m512d a[3], const __m512d b[3], __m512d n[3])
 {
-    __m512d c[3] = {_mm512_fmsub_pd(a[1], b[2], _mm512_mul_pd(a[2], b[1])),
-                    _mm512_fmsub_pd(a[2], b[0], _mm512_mul_pd(a[0], b[2])),
-                    _mm512_fmsub_pd(a[0], b[1], _mm512_mul_pd(a[1], b[0]))};
-    __m512d l2 = dot8(c, c), F = dot8(a, b);
-    __mmask8 ok = _mm512_cmp_pd_mask(l2, _mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(1e-30), F), F), _CMP_GT_OQ);
-    __m512d il = _mm512_maskz_mov_pd(ok, rsqrt8(l2));
-    for (int k = 0; k < 3; k++)
-        n[k] = _mm512_mul_pd(c[k], il);
-    return ok;
+    __m512d c[3], l2 = cross8r(a, b, c, _mm512_setzero_pd(), 0, 0);
+    return unit8r(c, l2, n);
 }
 
 /* Points x, y, z of 8 lanes interleaved as 24 doubles in o[0..2]. One single-source permute per
@@ -863,11 +850,11 @@ RG2_AVX512_FN static inline __attribute__((always_inline)) void pos8(const __m51
 
 /* Positions and unit normals of 8 points of a row (T: its Horner constants) from their column sums
  * c0, their differences dc and the v-derivative column sums c1: positions interleaved in po, the
- * cross product of the tangents (over their common scale) to nb (cross8). The expressions of
- * full_avx512 (bitwise the same positions and normals). */
-RG2_AVX512_FN static inline __attribute__((always_inline)) void
-pos_cross8(const __m512d T[5], __m512d c0[4][4], __m512d dc[3][4], __m512d c1[4][4], __m512d po[3], double *nb,
-           __m512d thr, __mmask8 pad, const int bounded, int hw, const int rev)
+ * cross product of the tangents (over their common scale) to cr, |cr|^2 returned (cross8r). The
+ * expressions of full_avx512 (bitwise the same positions and normals). */
+RG2_AVX512_FN static inline __attribute__((always_inline)) __m512d
+pos_cross8r(const __m512d T[5], __m512d c0[4][4], __m512d dc[3][4], __m512d c1[4][4], __m512d po[3], __m512d cr[3],
+            __m512d thr, __mmask8 pad, const int bounded, int hw, const int rev)
 {
     __m512d iw = recip8(RSUM(rev, c0, 3, T), hw);
     __m512d hu3 = RSUMH(rev, dc, 3, T), hv3 = RSUM(rev, c1, 3, T);
@@ -877,8 +864,20 @@ pos_cross8(const __m512d T[5], __m512d c0[4][4], __m512d dc[3][4], __m512d c1[4]
         a[k] = _mm512_fnmadd_pd(hu3, p[k], RSUMH(rev, dc, k, T));
         b[k] = _mm512_fnmadd_pd(hv3, p[k], RSUM(rev, c1, k, T));
     }
-    cross8(a, b, nb, thr, pad, bounded);
+    __m512d l2 = cross8r(a, b, cr, thr, pad, bounded);
     xyz8(p[0], p[1], p[2], po);
+    return l2;
+}
+
+/* pos_cross8r with the cross product and its squared length stored at nb (unit8 reads them). */
+RG2_AVX512_FN static inline __attribute__((always_inline)) void
+pos_cross8(const __m512d T[5], __m512d c0[4][4], __m512d dc[3][4], __m512d c1[4][4], __m512d po[3], double *nb,
+           __m512d thr, __mmask8 pad, const int bounded, int hw, const int rev)
+{
+    __m512d c[3], l2 = pos_cross8r(T, c0, dc, c1, po, c, thr, pad, bounded, hw, rev);
+    for (int k = 0; k < 3; k++)
+        _mm512_store_pd(nb + 8 * k, c[k]);
+    _mm512_store_pd(nb + 24, l2);
 }
 
 /* Positions of one row segment of cnt points at dst (short rows: see seg_pos_cxr_avx512). */
@@ -971,8 +970,9 @@ RG2_AVX512_FN static inline void patch_pos_narrow_avx512(const rg2_patch *P, con
 
 /* Positions and unit normals of a patch at most 8 points wide (as patch_pos_narrow_avx512), by
  * pos_cross8 and unit8 as in seg_cross_avx512 and seg_unit_avx512 (the same bits): the cross
- * products of up to 8 rows, then their normals; with t->spread each row's normals after the next
- * row's positions, as in seg_cross_unit_avx512 (8 x 8 patches, 119 MB: 1.01-1.10x, AMD Zen 5). */
+ * products of up to 8 rows, then their normals. (Each row's normals after the next row's positions,
+ * as seg_cross_unit_avx512 does for wide rows, was 0.92-1.10x for the 119 MB of a 200 x 200 mesh's
+ * 8 x 8 patches and 0.93-0.95x at 24 MB, AMD Zen 5: not taken.) */
 RG2_AVX512_FN static inline void patch_normal_narrow_avx512(const rg2_patch *P, const tables *t, double *pos,
                                                             double *nrm, int hw)
 {
@@ -980,32 +980,10 @@ RG2_AVX512_FN static inline void patch_normal_narrow_avx512(const rg2_patch *P, 
     const int st = narrow_mode(t, pos) == ST_STREAM && !((uintptr_t)nrm & 63) ? ST_STREAM : ST_PLAIN;
     _Alignas(64) double nb[8][32];
     __m512d c0[4][4], dc[3][4], c1[4][4];
-    const __m512d thr = _mm512_setzero_pd(); /* (unused: every point tested, see cross8) */
+    const __m512d thr = _mm512_setzero_pd(); /* (unused: every point tested, see cross8r) */
     vsum_narrow(P, t->bv, c0);
     cdiff_v(c0, dc);
     vsumh_narrow(P, t->hv, c1);
-    if (t->spread && st == ST_STREAM) {
-        for (int a = 0; a < n; a++) {
-            __m512d T[5], po[3];
-            bcastT(t->ht + 8 * a, T);
-            if (a < t->arev)
-                pos_cross8(T, c0, dc, c1, po, nb[a & 1], thr, 0, 0, hw, 0);
-            else
-                pos_cross8(T, c0, dc, c1, po, nb[a & 1], thr, 0, 0, hw, 1);
-            put8(pos + 3 * m * a, po, m, st);
-            if (a) {
-                __m512d nn[3], no[3];
-                unit8(nb[(a - 1) & 1], nn);
-                xyz8(nn[0], nn[1], nn[2], no);
-                put8(nrm + 3 * m * (a - 1), no, m, st);
-            }
-        }
-        __m512d nn[3], no[3];
-        unit8(nb[(n - 1) & 1], nn);
-        xyz8(nn[0], nn[1], nn[2], no);
-        put8(nrm + 3 * m * (n - 1), no, m, st);
-        return;
-    }
     for (int a0 = 0; a0 < n; a0 += 8) {
         int na = n - a0 < 8 ? n - a0 : 8;
         for (int a = a0; a < a0 + na; a++) {
@@ -1044,32 +1022,37 @@ seg_cross_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BLK], d
     }
 }
 
-/* Both phases for one row segment of whole vectors streamed straight out (t->spread): the cross
- * products of 8 points into a buffer of two entries, each 8 normals formed and stored after the
- * next 8 positions (the square root's latency still off the next sums' path), so that positions
- * and normals leave at an even rate. pos_cross8 and unit8 as in the two phases: the same bits. */
+/* Both phases for one row segment of whole vectors streamed straight out (t->spread): each 8
+ * normals formed and stored after the next 8 positions (the square root's latency still off the
+ * next sums' path), so that positions and normals leave at an even rate, and the cross products
+ * wait in registers, not in an L1 buffer: plain stores between the streaming ones stall behind
+ * them. Against a row's positions, then its normals (AMD Zen 5, medians of 15-101 alternating
+ * calls, either vCPU; torus, 48 patches): 64 x 64 per patch (9.4 MB) 1.01-1.08x, 128 x 128
+ * 1.09-1.13x, 256 x 256 1.08-1.19x. pos_cross8r and unit8r as in the two phases: the same bits. */
 RG2_AVX512_FN static inline __attribute__((always_inline)) void
 seg_cross_unit_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BLK], double c1[4][4][BLK],
                       int cnt, double *pd, double *nd, __m512d thr, int hw, const int rev)
 {
-    __m512d T[5];
+    __m512d T[5], pc[3], pl2 = _mm512_setzero_pd(); /* the previous 8 points' cross products */
     bcastT(HT, T);
-    _Alignas(64) double nb[2][32];
     for (int i = 0; i < cnt; i += 8) {
-        __m512d v0[4][4], vd[3][4], v1[4][4], po[3], nn[3], no[3];
+        __m512d v0[4][4], vd[3][4], v1[4][4], po[3], nn[3], no[3], c[3];
         csum_at(c0, i, v0);
         cdiff_at(d0, i, vd);
         csum_at(c1, i, v1);
-        pos_cross8(T, v0, vd, v1, po, nb[(i >> 3) & 1], thr, 0, 1, hw, rev);
+        __m512d l2 = pos_cross8r(T, v0, vd, v1, po, c, thr, 0, 1, hw, rev);
         put8(pd + 3 * i, po, 8, ST_STREAM);
         if (i) {
-            unit8(nb[((i >> 3) - 1) & 1], nn);
+            unit8r(pc, pl2, nn);
             xyz8(nn[0], nn[1], nn[2], no);
             put8(nd + 3 * (i - 8), no, 8, ST_STREAM);
         }
+        for (int k = 0; k < 3; k++)
+            pc[k] = c[k];
+        pl2 = l2;
     }
     __m512d nn[3], no[3];
-    unit8(nb[((cnt >> 3) - 1) & 1], nn);
+    unit8r(pc, pl2, nn);
     xyz8(nn[0], nn[1], nn[2], no);
     put8(nd + 3 * (cnt - 8), no, 8, ST_STREAM);
 }
@@ -1240,7 +1223,7 @@ rows_avx512(const tables *t, const rg2_grid_out *o, size_t first, int b0, int cn
                 stream_copy(pos, pbuf, 3 * cnt);
         } else if (t->order == 1) {
             /* R rows of at most 8 vectors in all: their positions and cross products, then their
-             * normals (see cross8); each array's rows stored as store_mode says (a staged row
+             * normals (see cross8r); each array's rows stored as store_mode says (a staged row
              * goes through the buffer and out before the next row) */
             int nvec = (cnt + 7) / 8, R = 8 / nvec;
             if (R > a1 - a)
@@ -1482,12 +1465,10 @@ static int stream_output(size_t pts, int order)
     return pts * (order ? 48 : 24) > RG2_STREAM_BYTES;
 }
 
-/* Whether it goes out with spread normals (tables.spread). */
+/* Whether it goes out with spread normals (tables.spread, seg_cross_unit_avx512). */
 static int spread_output(size_t pts, int order)
 {
-    if (order != 1 || !stream_output(pts, order))
-        return 0;
-    return rg2__grid_spread >= 0 ? rg2__grid_spread : pts * 48 > RG2_SPREAD_BYTES;
+    return order == 1 && rg2__grid_spread && stream_output(pts, order);
 }
 
 static rg2_status check_args(int n, int m, const rg2_grid_out *out, rg2_error *err)

@@ -410,12 +410,12 @@ static void large_output(void)
         }
         CHECK(dp <= 1e-14 && dn <= 1e-14, "large output (%d x %d, level %d): position %.3g normal %.3g", n, n, level,
               dp, dn);
-        if (cfg == 3) { /* past RG2_SPREAD_BYTES: the same bits with the normals stored in a second phase */
+        if (cfg == 3) { /* spread normals: the same bits as with the normals stored in a second phase */
             double *pos2 = aligned_alloc(64, bytes), *nrm2 = aligned_alloc(64, bytes);
             rg2_grid_out o2 = {.pos = pos2, .normal = nrm2};
             rg2__grid_spread = 0;
             CHECK_OK(rg2_patch_grid(&P, n, n, &o2, &err), &err);
-            rg2__grid_spread = -1;
+            rg2__grid_spread = 1;
             CHECK(memcmp(pos2, pos, bytes) == 0 && memcmp(nrm2, nrm, bytes) == 0,
                   "large output (%d x %d): spread normals bitwise as in two phases", n, n);
             free(pos2);
@@ -429,8 +429,7 @@ static void large_output(void)
 /* Patches at most 8 points wide take kernels of their own on AVX-512 (whole rows in registers):
  * against rg2_patch_eval, the same bits as the wide kernels give with every output requested, 1 vs
  * 2 threads; with 64-byte aligned arrays of 8 x 8 patches past the streaming thresholds (17.6 MB of
- * positions, 35 MB with normals: streaming stores straight into the rows, the normals spread among
- * the positions or, by the test hook, in a second phase), misaligned arrays of the
+ * positions, 35 MB with normals: streaming stores straight into the rows), misaligned arrays of the
  * same (plain stores) and rows shorter than a vector (masked stores). */
 static void narrow_patches(void)
 {
@@ -457,16 +456,14 @@ static void narrow_patches(void)
         rg2_grid_out full = {.pos = pos, .normal = nrm, .K = K};
         CHECK_OK(rg2_surface_grid(&s, n, m, 1, &full, &err), &err);
         rg2_grid_out o0 = {.pos = pos3}, o1 = {.pos = pos2, .normal = nrm2};
-        for (int th = 1; th <= 4; th++) { /* 3, 4: 1, 2 threads with the normals in a second phase */
-            rg2__grid_spread = th > 2 ? 0 : -1;
-            CHECK_OK(rg2_surface_grid(&s, n, m, 2 - th % 2, &o0, &err), &err);
-            CHECK_OK(rg2_surface_grid(&s, n, m, 2 - th % 2, &o1, &err), &err);
-            rg2__grid_spread = -1;
+        for (int th = 1; th <= 2; th++) {
+            CHECK_OK(rg2_surface_grid(&s, n, m, th, &o0, &err), &err);
+            CHECK_OK(rg2_surface_grid(&s, n, m, th, &o1, &err), &err);
             CHECK(memcmp(pos3, pos, 3 * pts * sizeof(double)) == 0 &&
                       memcmp(pos2, pos, 3 * pts * sizeof(double)) == 0 &&
                       memcmp(nrm2, nrm, 3 * pts * sizeof(double)) == 0,
-                  "narrow %d x %d, %d patches, %d thread(s)%s: positions and normals bitwise as with every output",
-                  n, m, np, 2 - th % 2, th > 2 ? ", two phases" : "");
+                  "narrow %d x %d, %d patches, %d thread(s): positions and normals bitwise as with every output",
+                  n, m, np, th);
         }
         diffs d = {0};
         for (int k = 0; k < s.nu * s.nv; k += 37)
