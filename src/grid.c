@@ -19,7 +19,8 @@
  * wider than 8 points skip the undefined-normal test where a bound of the patch settles it:
  * cross_threshold),
  * permutes for the x, y, z interleave, plain stores with prefetchw for outputs in
- * the caches and streaming stores past RG2_STREAM_BYTES (see docs/performance.md). The quotient rule and the
+ * the caches and streaming stores past RG2_STREAM_BYTES, there each 8 normals of a wide row right
+ * after the next 8 positions (seg_cross_unit_avx512; see docs/performance.md). The quotient rule and the
  * curvature formulas are those of rg2_patch_eval (eval.c), which stays the independent
  * reference; tests/test_grid.c holds the two to 1e-14. Patches of higher degree (s->xp) take
  * the separable scalar grid of xpatch.c. Threads: the pool of pool.c (runs of patches claimed
@@ -556,7 +557,8 @@ RG2_AVX512_FN static inline __m512d dot8(const __m512d a[3], const __m512d b[3])
  * row kernels form all the cross products of a row (or of a few short rows) before the first
  * square root, so that the long latency of the square root and division no longer holds up the
  * next points' sums, and the normals of a row are stored together (streaming stores: 1.15x for
- * 8 x 8 patches in main memory, AMD Zen 4). a, b are the tangents over a positive scale
+ * 8 x 8 patches in main memory, AMD Zen 4; streamed wide rows now interleave the two phases 8
+ * points apart, seg_cross_unit_avx512). a, b are the tangents over a positive scale
  * (hu - hu_w p, hv - hv_w p with p = h / w and the scaled sums of row_consts, one multiply-add
  * per component), which the normalisation cancels and the test is invariant under.
  * The test is taken as |a x b|^2 > 1e-30 (a.b)^2: by Lagrange's identity (a.a)(b.b) =
@@ -580,7 +582,6 @@ RG2_AVX512_FN static inline __m512d cross8r(const __m512d a[3], const __m512d b[
     __mmask8 ok = _mm512_cmp_pd_mask(l2, _mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(1e-30), F), F), _CMP_GT_OQ);
     return _mm512_mask_mov_pd(_mm512_set1_pd(__builtin_nan("")), ok, l2);
 }
-
 
 /* A bound thr >= 1e-30 (a.b)^2 over all points of patch P, for the tangents a, b of pos_cross8
  * (the scaled sums of row_consts): points with |a x b|^2 > thr pass cross8r's test whatever a.b is.
