@@ -1460,16 +1460,12 @@ static void grid_job_run(void *arg, uint32_t c)
                j->per);
 }
 
-/* Whether an output of pts points at this order goes out with streaming stores. */
-static int stream_output(size_t pts, int order)
+/* How an output of pts points (per thread) at the tables' order goes out: with streaming stores
+ * past RG2_STREAM_BYTES (tables.stream), there with spread normals (tables.spread). */
+static void set_stores(tables *t, size_t pts)
 {
-    return pts * (order ? 48 : 24) > RG2_STREAM_BYTES;
-}
-
-/* Whether it goes out with spread normals (tables.spread, seg_cross_unit_avx512). */
-static int spread_output(size_t pts, int order)
-{
-    return order == 1 && rg2__grid_spread && stream_output(pts, order);
+    t->stream = pts * (t->order ? 48 : 24) > RG2_STREAM_BYTES;
+    t->spread = t->stream && t->order == 1 && rg2__grid_spread;
 }
 
 static rg2_status check_args(int n, int m, const rg2_grid_out *out, rg2_error *err)
@@ -1495,8 +1491,7 @@ rg2_status rg2_patch_grid(const rg2_patch *P, int n, int m, const rg2_grid_out *
     st = tables_get(&t, n, m, out_order(out), err);
     if (st)
         return st;
-    t.stream = stream_output((size_t)n * (size_t)m, t.order);
-    t.spread = spread_output((size_t)n * (size_t)m, t.order);
+    set_stores(&t, (size_t)n * (size_t)m);
     grid_range(NULL, P, NULL, NULL, &t, out, 0, 1, 0);
     tables_put(&t);
     rg2__ok(err);
@@ -1541,8 +1536,7 @@ rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads, con
     /* streaming by each thread's share of the output: with 2 threads, outputs of 8-16 MB (with
      * normals) fit the caches' share of both cores, and streaming them to memory instead made 2
      * threads only 1.4x 1 thread (AMD EPYC, 32 MB L3; 1.8-1.9x with plain stores) */
-    t.stream = stream_output(np * per / (size_t)nt, t.order);
-    t.spread = spread_output(np * per / (size_t)nt, t.order);
+    set_stores(&t, np * per / (size_t)nt);
     /* contiguous runs of patches, RG2_RUNS_PER_THREAD per thread, claimed one at a time by the
      * caller and the pool's workers (a busy core takes fewer, a worker without a core none);
      * prefetching and the closing store fence are per run, not per patch */
