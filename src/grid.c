@@ -15,12 +15,12 @@
  * AVX2 / baseline clones chosen at load time). On AVX-512 CPUs hand-written kernels take whole
  * patches (grid_patch_avx512): rcp14 / rsqrt14 and two Newton steps instead of divisions and
  * square roots (but divisions on AMD CPUs, whose divider runs beside the multiply-adds: grid_hwdiv),
- * normals in two phases per group of rows (cross products, then square roots: cross8r; rows
- * wider than 8 points skip the undefined-normal test where a bound of the patch settles it:
- * cross_threshold),
+ * normals in two phases (cross products, then square roots: cross8r), for rows wider than 8
+ * points each 8 normals right after the next 8 positions (seg_cross_unit_avx512; see
+ * docs/performance.md), and rows wider than 8 points skip the undefined-normal test where a
+ * bound of the patch settles it (cross_threshold),
  * permutes for the x, y, z interleave, plain stores with prefetchw for outputs in
- * the caches and streaming stores past RG2_STREAM_BYTES, there each 8 normals of a wide row right
- * after the next 8 positions (seg_cross_unit_avx512; see docs/performance.md). The quotient rule and the
+ * the caches and streaming stores past RG2_STREAM_BYTES. The quotient rule and the
  * curvature formulas are those of rg2_patch_eval (eval.c), which stays the independent
  * reference; tests/test_grid.c holds the two to 1e-14. Patches of higher degree (s->xp) take
  * the separable scalar grid of xpatch.c. Threads: the pool of pool.c (runs of patches claimed
@@ -75,7 +75,7 @@
 #define BLK 64 /* points per block in the full kernel (structure-of-arrays temporaries) */
 
 /* Test hooks (tests/test_grid.c): the portable kernels on any CPU; the division mode (-1: as
- * grid_hwdiv decides); the spread normals of streamed outputs (tables.spread; 0: never). */
+ * grid_hwdiv decides); the spread normals of wide rows (tables.spread; 0: never, two phases). */
 int rg2__grid_portable = 0;
 int rg2__grid_hwdiv = -1;
 int rg2__grid_spread = 1;
@@ -103,7 +103,7 @@ typedef struct {
     int avx512; /* use the AVX-512 kernels (this CPU has them) */
     int hwdiv;  /* ... with divisions by the hardware (grid_hwdiv) */
     int stream; /* large output: non-temporal stores (bypass the caches) */
-    int spread; /* ... with normals: each 8 normals of a wide row after the next 8 positions */
+    int spread; /* with normals: each 8 normals of a wide row after the next 8 positions */
     double *ddu;                       /* n * 4: B_r''(u) of each row */
     double *ht;                        /* n * 8: the rows' Horner constants (row_consts) */
     int arev;                          /* rows a >= arev (u > 1/2) take the reversed Horner form */
@@ -557,8 +557,8 @@ RG2_AVX512_FN static inline __m512d dot8(const __m512d a[3], const __m512d b[3])
  * row kernels form all the cross products of a row (or of a few short rows) before the first
  * square root, so that the long latency of the square root and division no longer holds up the
  * next points' sums, and the normals of a row are stored together (streaming stores: 1.15x for
- * 8 x 8 patches in main memory, AMD Zen 4; streamed wide rows now interleave the two phases 8
- * points apart, seg_cross_unit_avx512). a, b are the tangents over a positive scale
+ * 8 x 8 patches in main memory, AMD Zen 4; rows wider than 8 points now interleave the two
+ * phases 8 points apart, seg_cross_unit_avx512). a, b are the tangents over a positive scale
  * (hu - hu_w p, hv - hv_w p with p = h / w and the scaled sums of row_consts, one multiply-add
  * per component), which the normalisation cancels and the test is invariant under.
  * The test is taken as |a x b|^2 > 1e-30 (a.b)^2: by Lagrange's identity (a.a)(b.b) =
@@ -1023,39 +1023,48 @@ seg_cross_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BLK], d
     }
 }
 
-/* Both phases for one row segment of whole vectors streamed straight out (t->spread): each 8
- * normals formed and stored after the next 8 positions (the square root's latency still off the
- * next sums' path), so that positions and normals leave at an even rate, and the cross products
- * wait in registers, not in an L1 buffer: plain stores between the streaming ones stall behind
- * them. Against a row's positions, then its normals (AMD Zen 5, medians of 15-101 alternating
- * calls, either vCPU; torus, 48 patches): 64 x 64 per patch (9.4 MB) 1.01-1.08x, 128 x 128
- * 1.09-1.13x, 256 x 256 1.08-1.19x. pos_cross8r and unit8r as in the two phases: the same bits. */
+/* Both phases for one row segment (t->spread), streamed straight out (st ST_STREAM: whole vectors)
+ * or with plain stores (ST_PLAIN: the last vector masked past cnt): each 8 normals formed and
+ * stored after the next 8 positions (the square root's latency still off the next sums' path),
+ * so that positions and normals leave at an even rate, and the cross products wait in
+ * registers, not in an L1 buffer: plain stores between the streaming ones stall behind them.
+ * Against a row's positions, then its normals (AMD Zen 5, medians of 15-101 alternating calls,
+ * either vCPU; torus, 48 patches), streamed: 64 x 64 per patch (9.4 MB) 1.01-1.08x, 128 x 128
+ * 1.09-1.13x, 256 x 256 1.08-1.19x; plain stores, 1 thread: 16 x 16 to 48 x 48 1.02-1.09x;
+ * 2 threads (a share of 4.7 MB each at 64 x 64, plain stores) 1.00-1.07x, and 1.18-1.23x in a
+ * phase where the host's L3 held less. pos_cross8r and unit8r as in the two phases: the same
+ * bits. */
 RG2_AVX512_FN static inline __attribute__((always_inline)) void
 seg_cross_unit_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BLK], double c1[4][4][BLK],
-                      int cnt, double *pd, double *nd, __m512d thr, int hw, const int rev)
+                      int cnt, double *pd, double *nd, __m512d thr, int hw, const int rev, const int st)
 {
-    __m512d T[5], pc[3], pl2 = _mm512_setzero_pd(); /* the previous 8 points' cross products */
+    __m512d T[5], pl2 = _mm512_setzero_pd(), pc[3] = {pl2, pl2, pl2}; /* the previous 8 points' cross products */
     bcastT(HT, T);
-    for (int i = 0; i < cnt; i += 8) {
+    int i = 0;
+    for (;;) {
         __m512d v0[4][4], vd[3][4], v1[4][4], po[3], nn[3], no[3], c[3];
+        int q = cnt - i < 8 ? cnt - i : 8;
         csum_at(c0, i, v0);
         cdiff_at(d0, i, vd);
         csum_at(c1, i, v1);
-        __m512d l2 = pos_cross8r(T, v0, vd, v1, po, c, thr, 0, 1, hw, rev);
-        put8(pd + 3 * i, po, 8, ST_STREAM);
+        __m512d l2 = pos_cross8r(T, v0, vd, v1, po, c, thr, q < 8 ? (__mmask8)(0xff << q) : 0, 1, hw, rev);
+        put8(pd + 3 * i, po, q, st);
         if (i) {
             unit8r(pc, pl2, nn);
             xyz8(nn[0], nn[1], nn[2], no);
-            put8(nd + 3 * (i - 8), no, 8, ST_STREAM);
+            put8(nd + 3 * (i - 8), no, 8, st);
         }
         for (int k = 0; k < 3; k++)
             pc[k] = c[k];
         pl2 = l2;
+        if (i + 8 >= cnt)
+            break;
+        i += 8;
     }
     __m512d nn[3], no[3];
     unit8r(pc, pl2, nn);
     xyz8(nn[0], nn[1], nn[2], no);
-    put8(nd + 3 * (cnt - 8), no, 8, ST_STREAM);
+    put8(nd + 3 * i, no, cnt - i, st);
 }
 
 /* The second phase: the unit normals of the segment from nb, at nd. */
@@ -1223,17 +1232,21 @@ rows_avx512(const tables *t, const rg2_grid_out *o, size_t first, int b0, int cn
             if (st == ST_STAGED)
                 stream_copy(pos, pbuf, 3 * cnt);
         } else if (t->order == 1) {
+            double *nrm = o->normal + 3 * at;
+            int sp = store_mode(t, pos, cnt);
+            if (t->spread && sp != ST_STAGED && store_mode(t, nrm, cnt) == sp) { /* this row, both phases */
+                if (sp == ST_STREAM)
+                    seg_cross_unit_avx512(HT, c0, d0, c1, cnt, pos, nrm, thr, hw, rev, ST_STREAM);
+                else
+                    seg_cross_unit_avx512(HT, c0, d0, c1, cnt, pos, nrm, thr, hw, rev, ST_PLAIN);
+                continue;
+            }
             /* R rows of at most 8 vectors in all: their positions and cross products, then their
              * normals (see cross8r); each array's rows stored as store_mode says (a staged row
              * goes through the buffer and out before the next row) */
             int nvec = (cnt + 7) / 8, R = 8 / nvec;
             if (R > a1 - a)
                 R = a1 - a;
-            double *nrm = o->normal + 3 * at;
-            if (t->spread && R == 1 && store_mode(t, pos, cnt) == ST_STREAM && store_mode(t, nrm, cnt) == ST_STREAM) {
-                seg_cross_unit_avx512(HT, c0, d0, c1, cnt, pos, nrm, thr, hw, rev);
-                continue;
-            }
             for (int k = 0; k < R; k++) {
                 double *pk = pos + k * stride;
                 int st = store_mode(t, pk, cnt);
@@ -1461,11 +1474,11 @@ static void grid_job_run(void *arg, uint32_t c)
 }
 
 /* How an output of pts points (per thread) at the tables' order goes out: with streaming stores
- * past RG2_STREAM_BYTES (tables.stream), there with spread normals (tables.spread). */
+ * past RG2_STREAM_BYTES (tables.stream); normals spread (tables.spread). */
 static void set_stores(tables *t, size_t pts)
 {
     t->stream = pts * (t->order ? 48 : 24) > RG2_STREAM_BYTES;
-    t->spread = t->stream && t->order == 1 && rg2__grid_spread;
+    t->spread = t->order == 1 && rg2__grid_spread;
 }
 
 static rg2_status check_args(int n, int m, const rg2_grid_out *out, rg2_error *err)

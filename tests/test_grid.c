@@ -354,6 +354,21 @@ static void torus(void)
     size_t bytes = per * np * 23 * sizeof(double);
     CHECK(memcmp(g1.mem, g2.mem, bytes) == 0 && memcmp(g1.mem, g.mem, bytes) == 0,
           "1, 2 and default threads give identical bits");
+    /* normals spread (each 8 after the next 8 positions, plain stores) vs in two phases: the same
+     * bits, for rows of whole vectors, with a partial last one and shorter than one */
+    const int sizes[5][2] = {{33, 20}, {17, 9}, {12, 64}, {40, 100}, {9, 13}};
+    for (int q = 0; q < 5; q++) {
+        size_t c3 = 3 * (size_t)sizes[q][0] * (size_t)sizes[q][1] * np;
+        double *sb = malloc(4 * c3 * sizeof(double));
+        rg2_grid_out sp = {.pos = sb, .normal = sb + c3}, tp = {.pos = sb + 2 * c3, .normal = sb + 3 * c3};
+        CHECK_OK(rg2_surface_grid(&s, sizes[q][0], sizes[q][1], 1, &sp, &err), &err);
+        rg2__grid_spread = 0;
+        CHECK_OK(rg2_surface_grid(&s, sizes[q][0], sizes[q][1], 1, &tp, &err), &err);
+        rg2__grid_spread = 1;
+        CHECK(memcmp(sb, sb + 2 * c3, 2 * c3 * sizeof(double)) == 0,
+              "%d x %d: spread normals bitwise as in two phases", sizes[q][0], sizes[q][1]);
+        free(sb);
+    }
     /* the position-only and position+normal kernels (other code paths): 1 vs 3 threads */
     for (int level = 0; level < 2; level++) {
         rg2_grid_out a = {.pos = g1.o.pos, .normal = level ? g1.o.normal : NULL};
