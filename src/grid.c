@@ -1024,16 +1024,17 @@ seg_cross_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BLK], d
 }
 
 /* Both phases for one row segment (t->spread), streamed straight out (st ST_STREAM: whole vectors)
- * or with plain stores (ST_PLAIN: the last vector masked past cnt): each 8 normals formed and
+ * or with plain stores (ST_PLAIN: the last vector masked past cnt; also into the L1 buffers that
+ * a streamed row not starting on a cache line goes out through): each 8 normals formed and
  * stored after the next 8 positions (the square root's latency still off the next sums' path),
  * so that positions and normals leave at an even rate, and the cross products wait in
  * registers, not in an L1 buffer: plain stores between the streaming ones stall behind them.
  * Against a row's positions, then its normals (AMD Zen 5, medians of 15-101 alternating calls,
  * either vCPU; torus, 48 patches), streamed: 64 x 64 per patch (9.4 MB) 1.01-1.08x, 128 x 128
  * 1.09-1.13x, 256 x 256 1.08-1.19x; plain stores, 1 thread: 16 x 16 to 48 x 48 1.02-1.09x;
- * 2 threads (a share of 4.7 MB each at 64 x 64, plain stores) 1.00-1.07x, and 1.18-1.23x in a
- * phase where the host's L3 held less. pos_cross8r and unit8r as in the two phases: the same
- * bits. */
+ * 2 threads (a share of 4.7 MB each at 64 x 64, plain stores) 1.00-1.10x, and 1.18-1.23x in a
+ * phase where the host's L3 held less; through the buffers (65 x 65 to 257 x 257) 1.06-1.42x.
+ * pos_cross8r and unit8r as in the two phases: the same bits. */
 RG2_AVX512_FN static inline __attribute__((always_inline)) void
 seg_cross_unit_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BLK], double c1[4][4][BLK],
                       int cnt, double *pd, double *nd, __m512d thr, int hw, const int rev, const int st)
@@ -1234,11 +1235,16 @@ rows_avx512(const tables *t, const rg2_grid_out *o, size_t first, int b0, int cn
         } else if (t->order == 1) {
             double *nrm = o->normal + 3 * at;
             int sp = store_mode(t, pos, cnt);
-            if (t->spread && sp != ST_STAGED && store_mode(t, nrm, cnt) == sp) { /* this row, both phases */
-                if (sp == ST_STREAM)
+            if (t->spread && store_mode(t, nrm, cnt) == sp) { /* this row, both phases */
+                if (sp == ST_STREAM) {
                     seg_cross_unit_avx512(HT, c0, d0, c1, cnt, pos, nrm, thr, hw, rev, ST_STREAM);
-                else
+                } else if (sp == ST_PLAIN) {
                     seg_cross_unit_avx512(HT, c0, d0, c1, cnt, pos, nrm, thr, hw, rev, ST_PLAIN);
+                } else { /* through the buffers */
+                    seg_cross_unit_avx512(HT, c0, d0, c1, cnt, pbuf, nbuf, thr, hw, rev, ST_PLAIN);
+                    stream_copy(pos, pbuf, 3 * cnt);
+                    stream_copy(nrm, nbuf, 3 * cnt);
+                }
                 continue;
             }
             /* R rows of at most 8 vectors in all: their positions and cross products, then their

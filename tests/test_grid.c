@@ -425,8 +425,10 @@ static void large_output(void)
         }
         CHECK(dp <= 1e-14 && dn <= 1e-14, "large output (%d x %d, level %d): position %.3g normal %.3g", n, n, level,
               dp, dn);
-        if (cfg == 3) { /* spread normals: the same bits as with the normals stored in a second phase */
-            double *pos2 = aligned_alloc(64, bytes), *nrm2 = aligned_alloc(64, bytes);
+        if (level) { /* spread normals (streamed straight out, or through a buffer when rows are
+                      * misaligned): the same bits as with the normals stored in a second phase */
+            double *pos2 = cfg < 2 ? malloc(bytes) : aligned_alloc(64, bytes);
+            double *nrm2 = cfg < 2 ? malloc(bytes) : aligned_alloc(64, bytes);
             rg2_grid_out o2 = {.pos = pos2, .normal = nrm2};
             rg2__grid_spread = 0;
             CHECK_OK(rg2_patch_grid(&P, n, n, &o2, &err), &err);
