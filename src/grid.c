@@ -20,7 +20,8 @@
  * docs/performance.md), and rows wider than 8 points skip the undefined-normal test where a
  * bound of the patch settles it (cross_threshold),
  * permutes for the x, y, z interleave, plain stores with prefetchw for outputs in
- * the caches and streaming stores past RG2_STREAM_BYTES. The quotient rule and the
+ * the caches and streaming stores past RG2_STREAM_BYTES (rows that do not start on a cache line
+ * shifted to the lines as they are stored: shifter). The quotient rule and the
  * curvature formulas are those of rg2_patch_eval (eval.c), which stays the independent
  * reference; tests/test_grid.c holds the two to 1e-14. Patches of higher degree (s->xp) take
  * the separable scalar grid of xpatch.c. Threads: the pool of pool.c (runs of patches claimed
@@ -72,13 +73,24 @@
 #define RG2_STREAM_BYTES ((size_t)8 << 20)
 #endif
 
-#define BLK 64 /* points per block in the full kernel (structure-of-arrays temporaries) */
+#define BSTEP 64       /* columns per block (column sums, structure-of-arrays temporaries) */
+#define BLK (BSTEP + 8) /* the most: the last block also takes up to 8 columns left over */
+
+/* The columns of the block starting at column b0 of m: BSTEP, the last block what is left, and up
+ * to 8 columns left over after a full block join it (a block of 1 column after 64, as for
+ * 65 or 129 points a row, cost every row a call of its own and two more partial cache lines). */
+static inline int block_cols(int m, int b0)
+{
+    return m - b0 <= BLK ? m - b0 : BSTEP;
+}
 
 /* Test hooks (tests/test_grid.c): the portable kernels on any CPU; the division mode (-1: as
- * grid_hwdiv decides); the spread normals of wide rows (tables.spread; 0: never, two phases). */
+ * grid_hwdiv decides); the spread normals of wide rows (tables.spread; 0: never, two phases);
+ * the output size per thread past which stores stream (SIZE_MAX: never). */
 int rg2__grid_portable = 0;
 int rg2__grid_hwdiv = -1;
 int rg2__grid_spread = 1;
+size_t rg2__grid_stream_bytes = RG2_STREAM_BYTES;
 
 /* Whether the AVX-512 kernels divide by the hardware (1 / w, 1 / (EG - F^2)) instead of rcp14 and
  * Newton steps: on AMD CPUs, whose divider runs beside the multiply-add pipes the kernels keep
@@ -653,8 +665,10 @@ RG2_AVX512_FN static inline void xyz8(__m512d x, __m512d y, __m512d z, __m512d o
 }
 
 /* How a row segment reaches memory: plain stores, streaming stores straight into a 64-byte
- * aligned destination of whole vectors, or plain stores to an L1 buffer then streamed out. */
-enum { ST_PLAIN, ST_STREAM, ST_STAGED };
+ * aligned destination of whole vectors, or streaming stores of the vectors shifted to the cache
+ * lines of any other destination (shifter; the kernels that do not shift, the two-phase normals,
+ * store such rows to an L1 buffer and stream it out). */
+enum { ST_PLAIN, ST_STREAM, ST_SHIFT };
 
 /* Plain stores ask for the lines this far ahead (doubles) with prefetchw, so that the reads for
  * ownership are under way before the stores reach them (+25 % for 4.7 MB of positions in L3). */
@@ -709,6 +723,61 @@ RG2_AVX512_FN static void stream_copy(double *dst, const double *src, int n)
         _mm512_stream_pd(dst + h, _mm512_loadu_pd(src + h));
     for (; h < n; h++)
         dst[h] = src[h];
+}
+
+/* A row segment streamed to a destination that does not start on a cache line, or does not end
+ * on one (ST_SHIFT): the interleaved output vectors are shifted by the destination's
+ * misalignment s (doubles) as they come, each by one two-source permute with the previous one, so
+ * that the whole lines go out as streaming stores at the pace they are computed and the partial
+ * lines at both ends (shared with the neighbouring segments) as masked plain stores. */
+typedef struct {
+    double *a;     /* the 64-byte aligned address at or before the segment's start */
+    __m512i idx;   /* lanes 8 - s .. 15 - s of (previous, current) */
+    __m512d prev;  /* the vector pushed last */
+    long s, len, j; /* misalignment (doubles), doubles to store, aligned vectors stored so far */
+} shifter;
+
+RG2_AVX512_FN static inline void shift_init(shifter *w, double *dst, int len)
+{
+    w->s = (long)(((uintptr_t)dst >> 3) & 7);
+    w->a = dst - w->s;
+    w->len = len;
+    w->j = 0;
+    w->idx = _mm512_add_epi64(_mm512_set1_epi64(8 - w->s), _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0));
+    w->prev = _mm512_setzero_pd();
+}
+
+/* The next aligned vector of the destination: lane l holds dst[8 j + l - s]. */
+RG2_AVX512_FN static inline __attribute__((always_inline)) void shift_store(shifter *w, __m512d v)
+{
+    long lo = 8 * w->j - w->s; /* the destination index of lane 0 */
+    if (lo >= 0 && lo + 8 <= w->len) {
+        _mm512_stream_pd(w->a + 8 * w->j, v);
+    } else {
+        unsigned m = 0xff;
+        if (lo < 0)
+            m &= 0xffu << -lo;
+        if (lo + 8 > w->len)
+            m &= lo < w->len ? (1u << (w->len - lo)) - 1u : 0u;
+        if (m)
+            _mm512_mask_store_pd(w->a + 8 * w->j, (__mmask8)m, v);
+    }
+    w->j++;
+}
+
+/* 8 interleaved points (24 doubles) into the shifted stream. */
+RG2_AVX512_FN static inline __attribute__((always_inline)) void shift_put8(shifter *w, const __m512d o[3])
+{
+    for (int k = 0; k < 3; k++) {
+        shift_store(w, _mm512_permutex2var_pd(w->prev, w->idx, o[k]));
+        w->prev = o[k];
+    }
+}
+
+/* The lanes of the last vector pushed that fall into the next aligned vector. */
+RG2_AVX512_FN static inline void shift_end(shifter *w)
+{
+    shift_store(w, _mm512_permutex2var_pd(w->prev, w->idx, w->prev));
 }
 
 /* sum_s h[r][s][k] V[s] for 8 columns: the products rounded before the sums (no FMA), as
@@ -887,12 +956,20 @@ seg_pos_avx512(const double *HT, double c[4][4][BLK], int cnt, double *dst, int 
 {
     __m512d T[5];
     bcastT(HT, T);
+    shifter w;
+    if (st == ST_SHIFT)
+        shift_init(&w, dst, 3 * cnt);
     for (int i = 0; i < cnt; i += 8) { /* the last vector may be partial: padded, masked store */
         __m512d cv[4][4], o[3];
         csum_at(c, i, cv);
         pos8(T, cv, o, hw, rev);
-        put8(dst + 3 * i, o, cnt - i < 8 ? cnt - i : 8, st);
+        if (st == ST_SHIFT)
+            shift_put8(&w, o);
+        else
+            put8(dst + 3 * i, o, cnt - i < 8 ? cnt - i : 8, st);
     }
+    if (st == ST_SHIFT)
+        shift_end(&w);
 }
 
 /* The x, y, z column sums of a block interleaved like the output: cx[r][3 b + k] = c[r][k][b]. */
@@ -923,6 +1000,9 @@ seg_pos_cxr_avx512(const double *HT, double c[4][4][BLK], double cx[4][3 * BLK],
     __m512d T[4][5];
     for (int k = 0; k < R; k++)
         bcastT(HT + 8 * k, T[k]);
+    shifter w; /* (st ST_SHIFT: R is 1) */
+    if (st == ST_SHIFT)
+        shift_init(&w, dst, 3 * cnt);
     for (int i = 0; i < cnt; i += 8) {
         __m512d c3[4][1], iw[4], o[4][3];
         for (int r = 0; r < 4; r++)
@@ -937,9 +1017,14 @@ seg_pos_cxr_avx512(const double *HT, double c[4][4][BLK], double cx[4][3 * BLK],
                 o[k][j] = _mm512_mul_pd(RSUM(rev, x, 0, T[k]), _mm512_permutexvar_pd(sel[j], iw[k]));
         }
         int q = cnt - i < 8 ? cnt - i : 8;
-        for (int k = 0; k < R; k++)
-            put8a(dst + k * stride + 3 * i, o[k], q, st, ahead);
+        if (st == ST_SHIFT)
+            shift_put8(&w, o[0]);
+        else
+            for (int k = 0; k < R; k++)
+                put8a(dst + k * stride + 3 * i, o[k], q, st, ahead);
     }
+    if (st == ST_SHIFT)
+        shift_end(&w);
 }
 
 /* Store mode of a patch at most 8 points wide written at dst: streaming needs whole aligned
@@ -1024,8 +1109,8 @@ seg_cross_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BLK], d
 }
 
 /* Both phases for one row segment (t->spread), streamed straight out (st ST_STREAM: whole vectors)
- * or with plain stores (ST_PLAIN: the last vector masked past cnt; also into the L1 buffers that
- * a streamed row not starting on a cache line goes out through): each 8 normals formed and
+ * or shifted to the cache lines (ST_SHIFT: shifter), or with plain stores (ST_PLAIN: the last
+ * vector masked past cnt): each 8 normals formed and
  * stored after the next 8 positions (the square root's latency still off the next sums' path),
  * so that positions and normals leave at an even rate, and the cross products wait in
  * registers, not in an L1 buffer: plain stores between the streaming ones stall behind them.
@@ -1041,6 +1126,11 @@ seg_cross_unit_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BL
 {
     __m512d T[5], pl2 = _mm512_setzero_pd(), pc[3] = {pl2, pl2, pl2}; /* the previous 8 points' cross products */
     bcastT(HT, T);
+    shifter wp, wn;
+    if (st == ST_SHIFT) {
+        shift_init(&wp, pd, 3 * cnt);
+        shift_init(&wn, nd, 3 * cnt);
+    }
     int i = 0;
     for (;;) {
         __m512d v0[4][4], vd[3][4], v1[4][4], po[3], nn[3], no[3], c[3];
@@ -1049,11 +1139,17 @@ seg_cross_unit_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BL
         cdiff_at(d0, i, vd);
         csum_at(c1, i, v1);
         __m512d l2 = pos_cross8r(T, v0, vd, v1, po, c, thr, q < 8 ? (__mmask8)(0xff << q) : 0, 1, hw, rev);
-        put8(pd + 3 * i, po, q, st);
+        if (st == ST_SHIFT)
+            shift_put8(&wp, po);
+        else
+            put8(pd + 3 * i, po, q, st);
         if (i) {
             unit8r(pc, pl2, nn);
             xyz8(nn[0], nn[1], nn[2], no);
-            put8(nd + 3 * (i - 8), no, 8, st);
+            if (st == ST_SHIFT)
+                shift_put8(&wn, no);
+            else
+                put8(nd + 3 * (i - 8), no, 8, st);
         }
         for (int k = 0; k < 3; k++)
             pc[k] = c[k];
@@ -1065,7 +1161,13 @@ seg_cross_unit_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BL
     __m512d nn[3], no[3];
     unit8r(pc, pl2, nn);
     xyz8(nn[0], nn[1], nn[2], no);
-    put8(nd + 3 * i, no, cnt - i, st);
+    if (st == ST_SHIFT) {
+        shift_put8(&wn, no);
+        shift_end(&wp);
+        shift_end(&wn);
+    } else {
+        put8(nd + 3 * i, no, cnt - i, st);
+    }
 }
 
 /* The second phase: the unit normals of the segment from nb, at nd. */
@@ -1192,9 +1294,44 @@ static inline int store_mode(const tables *t, const double *dst, int cnt)
         return ST_PLAIN;
     if (!((uintptr_t)dst & 63) && !(cnt & 7))
         return ST_STREAM;
-    /* misaligned: through a buffer, streaming only rows of whole cache lines' worth (short
-     * rows would leave mostly partial lines, which streaming makes slower) */
-    return cnt >= 32 ? ST_STAGED : ST_PLAIN;
+    /* otherwise shifted, streaming only rows of whole cache lines' worth (short rows would leave
+     * mostly partial lines, which streaming makes slower) */
+    return cnt >= 32 ? ST_SHIFT : ST_PLAIN;
+}
+
+/* Streaming stores into a page whose address translation the TLB does not hold wait for the
+ * page walk, and so do the stores queued behind them. In the Zen 5 guest of docs/performance.md
+ * (a virtual machine: two-level walks) that held the streamed kernels with normals up by a
+ * quarter and more. So they first touch the pages that a later row segment (RG2_ROWS_AHEAD rows
+ * on) or patch (grid_range) will fill, by a prefetch of the first line of each page it touches.
+ * Against none (torus, 48 patches; medians of 9-31 alternating calls, either vCPU): with normals
+ * 1.05-1.08x at 64 x 64 per patch, 1.05-1.12x at 128 x 128, 1.13-1.46x at 256 x 256, 1.19-1.23x at
+ * 257 x 257 (shifted rows); the free-form mesh's 38809 patches of 8 x 8 points 1.40-1.63x with
+ * normals, 1.07-1.27x positions alone. Rows of positions streamed several at a time
+ * (seg_pos_cxr_avx512, rows of whole lines), which run at the memory's pace already, went
+ * 0.71-0.86x with it: they go without. A shifted segment (shifter) stores its last line with
+ * plain stores: that line is asked for too, so that its read for ownership is done before the
+ * store (torus, 97 x 97 to 257 x 257 per patch: positions 0.99-1.28x, normals 1.02-1.32x; 1, 2, 4
+ * or 8 rows ahead alike). */
+#ifndef RG2_ROWS_AHEAD
+#define RG2_ROWS_AHEAD 2
+#endif
+static inline void prefetch_pages(const double *p, size_t n, int last)
+{
+    const char *c = (const char *)p, *e = (const char *)(p + n) - 1;
+    __builtin_prefetch(c, 1, 3);
+    for (uintptr_t q = ((uintptr_t)c | 4095) + 1; q <= (uintptr_t)e; q += 4096)
+        __builtin_prefetch((const void *)q, 1, 3);
+    if (last)
+        __builtin_prefetch(e, 1, 3);
+}
+
+/* prefetch_pages for the row segment RG2_ROWS_AHEAD rows after the one at row (row a < a1, m
+ * points a row, cnt in the segment), stored as st. */
+static inline void prefetch_row(const double *row, int a, int a1, int m, int cnt, int st)
+{
+    if (st != ST_PLAIN && a + RG2_ROWS_AHEAD < a1)
+        prefetch_pages(row + 3 * (size_t)RG2_ROWS_AHEAD * (size_t)m, 3 * (size_t)cnt, st == ST_SHIFT);
 }
 
 /* Rows a0 <= a < a1 of one block of columns (b0, cnt: its column sums c0, c1, c2 and the
@@ -1221,42 +1358,44 @@ rows_avx512(const tables *t, const rg2_grid_out *o, size_t first, int b0, int cn
             a += RG2_POS_ROWS - 1;
         } else if (t->order == 0) {
             int st = store_mode(t, pos, cnt);
-            double *dst = st == ST_STAGED ? pbuf : pos;
+            prefetch_row(pos, a, a1, t->m, cnt, st);
             if (use_cx && st == ST_STREAM)
-                seg_pos_cxr_avx512(HT, c0, cx, cnt, dst, 0, 0, ST_STREAM, hw, 1, rev);
+                seg_pos_cxr_avx512(HT, c0, cx, cnt, pos, 0, 0, ST_STREAM, hw, 1, rev);
+            else if (use_cx && st == ST_SHIFT)
+                seg_pos_cxr_avx512(HT, c0, cx, cnt, pos, 0, 0, ST_SHIFT, hw, 1, rev);
             else if (use_cx)
-                seg_pos_cxr_avx512(HT, c0, cx, cnt, dst, 0, RG2_PREFETCHW_AHEAD, ST_PLAIN, hw, 1, rev);
+                seg_pos_cxr_avx512(HT, c0, cx, cnt, pos, 0, RG2_PREFETCHW_AHEAD, ST_PLAIN, hw, 1, rev);
             else if (st == ST_STREAM)
-                seg_pos_avx512(HT, c0, cnt, dst, ST_STREAM, hw, rev);
+                seg_pos_avx512(HT, c0, cnt, pos, ST_STREAM, hw, rev);
+            else if (st == ST_SHIFT)
+                seg_pos_avx512(HT, c0, cnt, pos, ST_SHIFT, hw, rev);
             else
-                seg_pos_avx512(HT, c0, cnt, dst, ST_PLAIN, hw, rev);
-            if (st == ST_STAGED)
-                stream_copy(pos, pbuf, 3 * cnt);
+                seg_pos_avx512(HT, c0, cnt, pos, ST_PLAIN, hw, rev);
         } else if (t->order == 1) {
             double *nrm = o->normal + 3 * at;
             int sp = store_mode(t, pos, cnt);
             if (t->spread && store_mode(t, nrm, cnt) == sp) { /* this row, both phases */
+                prefetch_row(pos, a, a1, t->m, cnt, sp);
+                prefetch_row(nrm, a, a1, t->m, cnt, sp);
                 if (sp == ST_STREAM) {
                     seg_cross_unit_avx512(HT, c0, d0, c1, cnt, pos, nrm, thr, hw, rev, ST_STREAM);
                 } else if (sp == ST_PLAIN) {
                     seg_cross_unit_avx512(HT, c0, d0, c1, cnt, pos, nrm, thr, hw, rev, ST_PLAIN);
-                } else { /* through the buffers */
-                    seg_cross_unit_avx512(HT, c0, d0, c1, cnt, pbuf, nbuf, thr, hw, rev, ST_PLAIN);
-                    stream_copy(pos, pbuf, 3 * cnt);
-                    stream_copy(nrm, nbuf, 3 * cnt);
+                } else {
+                    seg_cross_unit_avx512(HT, c0, d0, c1, cnt, pos, nrm, thr, hw, rev, ST_SHIFT);
                 }
                 continue;
             }
             /* R rows of at most 8 vectors in all: their positions and cross products, then their
              * normals (see cross8r); each array's rows stored as store_mode says (a staged row
              * goes through the buffer and out before the next row) */
-            int nvec = (cnt + 7) / 8, R = 8 / nvec;
+            int nvec = (cnt + 7) / 8, R = nvec >= 8 ? 1 : 8 / nvec;
             if (R > a1 - a)
                 R = a1 - a;
             for (int k = 0; k < R; k++) {
                 double *pk = pos + k * stride;
                 int st = store_mode(t, pk, cnt);
-                double *d = st == ST_STAGED ? pbuf : pk;
+                double *d = st == ST_SHIFT ? pbuf : pk;
                 if (st == ST_STREAM)
                     seg_cross_avx512(HT + 8 * k, c0, d0, c1, cnt, d, nb + k * nvec, thr, ST_STREAM, hw, rev);
                 else
@@ -1267,7 +1406,7 @@ rows_avx512(const tables *t, const rg2_grid_out *o, size_t first, int b0, int cn
             for (int k = 0; k < R; k++) {
                 double *nk = nrm + k * stride;
                 int st = store_mode(t, nk, cnt);
-                double *d = st == ST_STAGED ? nbuf : nk;
+                double *d = st == ST_SHIFT ? nbuf : nk;
                 seg_unit_avx512(nb + k * nvec, cnt, d, st == ST_STREAM ? ST_STREAM : ST_PLAIN);
                 if (d != nk)
                     stream_copy(nk, d, 3 * cnt);
@@ -1291,7 +1430,7 @@ grid_patch_avx512_hw(const rg2_patch *P, const tables *t, const rg2_grid_out *o,
     _Alignas(64) double nbuf[3 * BLK];
     _Alignas(64) double cx[4][3 * BLK];
     _Alignas(64) double d0[3][4][BLK];
-    _Alignas(64) double nb[8][32];
+    _Alignas(64) double nb[BLK / 8][32];
     if (t->m <= 8 && t->order <= 1) { /* narrow patches: whole rows in registers */
         if (t->order == 0)
             patch_pos_narrow_avx512(P, t, o->pos + 3 * first, hw);
@@ -1305,8 +1444,8 @@ grid_patch_avx512_hw(const rg2_patch *P, const tables *t, const rg2_grid_out *o,
         hdiff_avx(P, dh);
     if (t->order == 1)
         thr = cross_threshold(P);
-    for (int b0 = 0; b0 < t->m; b0 += BLK) {
-        int cnt = t->m - b0 < BLK ? t->m - b0 : BLK;
+    for (int b0 = 0, cnt; b0 < t->m; b0 += cnt) {
+        cnt = block_cols(t->m, b0);
         vsum_avx512(P, t->bv, b0, cnt, c0);
         int use_cx = t->order == 0 && t->n >= 16;
         if (use_cx)
@@ -1349,8 +1488,8 @@ RG2_HOT static void grid_patch(const rg2_patch *P, const tables *t, const rg2_gr
     double dh[4][3][4];
     if (t->order >= 1)
         hdiff(P, dh);
-    for (int b0 = 0; b0 < t->m; b0 += BLK) {
-        int cnt = t->m - b0 < BLK ? t->m - b0 : BLK;
+    for (int b0 = 0, cnt; b0 < t->m; b0 += cnt) {
+        cnt = block_cols(t->m, b0);
         vsum(P, t->bv, b0, cnt, c0);
         if (t->order >= 1)
             vsumh(dh, t->hv, b0, cnt, c1);
@@ -1451,6 +1590,12 @@ static void grid_range(const rg2_surface *S, const rg2_patch *P, const rg2_xpatc
         if (k + RG2_PATCH_AHEAD < k1) /* a later patch's 8 cache lines while this one computes */
             for (int q = 0; q < 8; q++)
                 _mm_prefetch((const char *)(P + k + RG2_PATCH_AHEAD) + 64 * q, _MM_HINT_T0);
+        if (t->stream && t->m <= 8 && t->order <= 1 && k + RG2_ROWS_AHEAD < k1) { /* streamed narrow patches */
+            size_t at = 3 * (k + RG2_ROWS_AHEAD) * per; /* (see prefetch_pages) */
+            prefetch_pages(o->pos + at, 3 * per, 0);
+            if (t->order)
+                prefetch_pages(o->normal + at, 3 * per, 0);
+        }
 #endif
         grid_patch(P + k, t, o, k * per);
         int mask;
@@ -1483,7 +1628,7 @@ static void grid_job_run(void *arg, uint32_t c)
  * past RG2_STREAM_BYTES (tables.stream); normals spread (tables.spread). */
 static void set_stores(tables *t, size_t pts)
 {
-    t->stream = pts * (t->order ? 48 : 24) > RG2_STREAM_BYTES;
+    t->stream = pts * (t->order ? 48 : 24) > rg2__grid_stream_bytes;
     t->spread = t->order == 1 && rg2__grid_spread;
 }
 

@@ -109,12 +109,12 @@ static void random_patches(void)
     uint64_t seed = 88;
     rg2t_seed(&r, seed);
     printf("random rational patches, seed %llu\n", (unsigned long long)seed);
-    const int sizes[][2] = {{2, 2}, {7, 5}, {3, 130}, {17, 64}, {9, 65}};
+    const int sizes[][2] = {{2, 2}, {7, 5}, {3, 130}, {17, 64}, {9, 65}, {5, 72}, {4, 137}};
     diffs all = {0};
-    for (int trial = 0; trial < 20; trial++) {
+    for (int trial = 0; trial < 21; trial++) {
         rg2_patch P;
         random_patch(&r, &P);
-        int n = sizes[trial % 5][0], m = sizes[trial % 5][1];
+        int n = sizes[trial % 7][0], m = sizes[trial % 7][1];
         grid_buf g;
         buf_alloc(&g, (size_t)n * m);
         rg2_error err;
@@ -395,7 +395,8 @@ static void torus(void)
 }
 
 /* Outputs past 8 MB take the streaming-store paths (straight into 64-byte aligned rows of whole
- * vectors, or through a buffer): still equal to rg2_patch_eval. */
+ * vectors, or shifted to the cache lines): still equal to rg2_patch_eval, and bit for bit to
+ * plain stores. */
 static void large_output(void)
 {
     rg2t_rng r;
@@ -425,22 +426,50 @@ static void large_output(void)
         }
         CHECK(dp <= 1e-14 && dn <= 1e-14, "large output (%d x %d, level %d): position %.3g normal %.3g", n, n, level,
               dp, dn);
-        if (level) { /* spread normals (streamed straight out, or through a buffer when rows are
-                      * misaligned): the same bits as with the normals stored in a second phase */
-            double *pos2 = cfg < 2 ? malloc(bytes) : aligned_alloc(64, bytes);
-            double *nrm2 = cfg < 2 ? malloc(bytes) : aligned_alloc(64, bytes);
-            rg2_grid_out o2 = {.pos = pos2, .normal = nrm2};
+        /* the same bits as with plain stores (streaming off), and with normals as with the
+         * normals in two phases (spread off; misaligned rows through a buffer) */
+        double *pos2 = cfg < 2 ? malloc(bytes) : aligned_alloc(64, bytes);
+        double *nrm2 = !level ? NULL : cfg < 2 ? malloc(bytes) : aligned_alloc(64, bytes);
+        rg2_grid_out o2 = {.pos = pos2, .normal = nrm2};
+        size_t stream_bytes = rg2__grid_stream_bytes;
+        rg2__grid_stream_bytes = SIZE_MAX;
+        CHECK_OK(rg2_patch_grid(&P, n, n, &o2, &err), &err);
+        rg2__grid_stream_bytes = stream_bytes;
+        CHECK(memcmp(pos2, pos, bytes) == 0 && (!level || memcmp(nrm2, nrm, bytes) == 0),
+              "large output (%d x %d, level %d): streamed bitwise as with plain stores", n, n, level);
+        if (level) {
             rg2__grid_spread = 0;
             CHECK_OK(rg2_patch_grid(&P, n, n, &o2, &err), &err);
             rg2__grid_spread = 1;
             CHECK(memcmp(pos2, pos, bytes) == 0 && memcmp(nrm2, nrm, bytes) == 0,
                   "large output (%d x %d): spread normals bitwise as in two phases", n, n);
-            free(pos2);
-            free(nrm2);
         }
+        free(pos2);
+        free(nrm2);
         free(pos);
         free(nrm);
     }
+    /* a patchwork streamed by 2 threads, rows not on cache lines (48 patches of 129 x 129 points,
+     * 38 MB with normals): bitwise as 1 thread with plain stores */
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(rg2t_torus(3.0, 1.0, 8, 6, NULL, &s, &err), &err);
+    const int n = 129;
+    size_t pts = (size_t)n * n * (size_t)s.nu * (size_t)s.nv, bytes = pts * 3 * sizeof(double);
+    double *buf = malloc(4 * bytes);
+    for (int level = 0; level < 2; level++) {
+        rg2_grid_out a = {.pos = buf, .normal = level ? buf + 3 * pts : NULL};
+        rg2_grid_out b = {.pos = buf + 6 * pts, .normal = level ? buf + 9 * pts : NULL};
+        CHECK_OK(rg2_surface_grid(&s, n, n, 2, &a, &err), &err);
+        size_t stream_bytes = rg2__grid_stream_bytes;
+        rg2__grid_stream_bytes = SIZE_MAX;
+        CHECK_OK(rg2_surface_grid(&s, n, n, 1, &b, &err), &err);
+        rg2__grid_stream_bytes = stream_bytes;
+        CHECK(memcmp(a.pos, b.pos, bytes) == 0 && (!level || memcmp(a.normal, b.normal, bytes) == 0),
+              "torus %d x %d per patch, level %d: 2 threads streamed bitwise as 1 with plain stores", n, n, level);
+    }
+    free(buf);
+    rg2_surface_free(&s);
 }
 
 /* Patches at most 8 points wide take kernels of their own on AVX-512 (whole rows in registers):
