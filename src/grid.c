@@ -950,7 +950,8 @@ pos_cross8(const __m512d T[5], __m512d c0[4][4], __m512d dc[3][4], __m512d c1[4]
     _mm512_store_pd(nb + 24, l2);
 }
 
-/* Positions of one row segment of cnt points at dst (short rows: see seg_pos_cxr_avx512). */
+/* Positions of one row segment of cnt points at dst, stored as st (short rows: see
+ * seg_pos_cxr_avx512). */
 RG2_AVX512_FN static inline __attribute__((always_inline)) void
 seg_pos_avx512(const double *HT, double c[4][4][BLK], int cnt, double *dst, int st, int hw, const int rev)
 {
@@ -990,7 +991,7 @@ RG2_AVX512_FN static void interleave_csum(double c[4][4][BLK], int cnt, double c
  * by 3 permutes instead of interleaving the results by 6 (pays off from about 16 rows per block:
  * interleave_csum costs 24 permutes per 8 columns). With R > 1 each column sum is loaded once for
  * all R rows and their reciprocal chains overlap; plain stores ask for the lines `ahead` doubles
- * on (with R rows per pass: R rows on, the next pass's). */
+ * on (with R rows per pass: R rows on, the next pass's); st ST_SHIFT takes one row. */
 RG2_AVX512_FN static inline __attribute__((always_inline)) void
 seg_pos_cxr_avx512(const double *HT, double c[4][4][BLK], double cx[4][3 * BLK], int cnt, double *dst,
                    size_t stride, size_t ahead, int st, int hw, const int R, const int rev)
@@ -1108,18 +1109,19 @@ seg_cross_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BLK], d
     }
 }
 
-/* Both phases for one row segment (t->spread), streamed straight out (st ST_STREAM: whole vectors)
- * or shifted to the cache lines (ST_SHIFT: shifter), or with plain stores (ST_PLAIN: the last
- * vector masked past cnt): each 8 normals formed and
- * stored after the next 8 positions (the square root's latency still off the next sums' path),
- * so that positions and normals leave at an even rate, and the cross products wait in
- * registers, not in an L1 buffer: plain stores between the streaming ones stall behind them.
- * Against a row's positions, then its normals (AMD Zen 5, medians of 15-101 alternating calls,
- * either vCPU; torus, 48 patches), streamed: 64 x 64 per patch (9.4 MB) 1.01-1.08x, 128 x 128
- * 1.09-1.13x, 256 x 256 1.08-1.19x; plain stores, 1 thread: 16 x 16 to 48 x 48 1.02-1.09x;
- * 2 threads (a share of 4.7 MB each at 64 x 64, plain stores) 1.00-1.10x, and 1.18-1.23x in a
- * phase where the host's L3 held less; through the buffers (65 x 65 to 257 x 257) 1.06-1.42x.
- * pos_cross8r and unit8r as in the two phases: the same bits. */
+/* Both phases for one row segment (t->spread), streamed straight out (st ST_STREAM: whole
+ * vectors), shifted to the cache lines (ST_SHIFT: shifter) or with plain stores (ST_PLAIN: the
+ * last vector masked past cnt): each 8 normals formed and stored after the next 8 positions (the
+ * square root's latency still off the next sums' path), so that positions and normals leave at
+ * an even rate, and the cross products wait in registers, not in an L1 buffer: plain stores
+ * between the streaming ones stall behind them. Against a row's positions, then its normals (AMD
+ * Zen 5, medians of 9-101 alternating calls, either vCPU; torus, 48 patches), streamed: 64 x 64
+ * per patch (9.4 MB) 1.01-1.08x, 128 x 128 1.09-1.13x, 256 x 256 1.08-1.19x; plain stores, 1
+ * thread: 16 x 16 to 48 x 48 1.02-1.16x; 2 threads (a share of 4.7 MB each at 64 x 64, plain
+ * stores) 1.00-1.10x, and 1.18-1.23x in a phase where the host's L3 held less; rows not on cache
+ * lines (65 x 65 to 257 x 257), both through an L1 buffer, 1.06-1.42x, and shifted instead of
+ * through the buffer another 1.03-1.30x. pos_cross8r and unit8r as in the two phases: the same
+ * bits. */
 RG2_AVX512_FN static inline __attribute__((always_inline)) void
 seg_cross_unit_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BLK], double c1[4][4][BLK],
                       int cnt, double *pd, double *nd, __m512d thr, int hw, const int rev, const int st)
@@ -1386,9 +1388,10 @@ rows_avx512(const tables *t, const rg2_grid_out *o, size_t first, int b0, int cn
                 }
                 continue;
             }
-            /* R rows of at most 8 vectors in all: their positions and cross products, then their
-             * normals (see cross8r); each array's rows stored as store_mode says (a staged row
-             * goes through the buffer and out before the next row) */
+            /* (spread off, or the arrays stored differently) R rows of at most 8 vectors in all:
+             * their positions and cross products, then their normals (see cross8r); each array's
+             * rows stored as store_mode says (a shifted row goes through the buffer and out
+             * before the next row) */
             int nvec = (cnt + 7) / 8, R = nvec >= 8 ? 1 : 8 / nvec;
             if (R > a1 - a)
                 R = a1 - a;
