@@ -449,27 +449,33 @@ static void large_output(void)
         free(pos);
         free(nrm);
     }
-    /* a patchwork streamed by 2 threads, rows not on cache lines (48 patches of 129 x 129 points,
-     * 38 MB with normals): bitwise as 1 thread with plain stores */
-    rg2_surface s;
-    rg2_error err;
-    CHECK_OK(rg2t_torus(3.0, 1.0, 8, 6, NULL, &s, &err), &err);
-    const int n = 129;
-    size_t pts = (size_t)n * n * (size_t)s.nu * (size_t)s.nv, bytes = pts * 3 * sizeof(double);
-    double *buf = malloc(4 * bytes);
-    for (int level = 0; level < 2; level++) {
-        rg2_grid_out a = {.pos = buf, .normal = level ? buf + 3 * pts : NULL};
-        rg2_grid_out b = {.pos = buf + 6 * pts, .normal = level ? buf + 9 * pts : NULL};
-        CHECK_OK(rg2_surface_grid(&s, n, n, 2, &a, &err), &err);
-        size_t stream_bytes = rg2__grid_stream_bytes;
-        rg2__grid_stream_bytes = SIZE_MAX;
-        CHECK_OK(rg2_surface_grid(&s, n, n, 1, &b, &err), &err);
-        rg2__grid_stream_bytes = stream_bytes;
-        CHECK(memcmp(a.pos, b.pos, bytes) == 0 && (!level || memcmp(a.normal, b.normal, bytes) == 0),
-              "torus %d x %d per patch, level %d: 2 threads streamed bitwise as 1 with plain stores", n, n, level);
+    /* patchworks streamed with rows not on cache lines, bitwise as 1 thread with plain stores: 48
+     * patches of 129 x 129 points (two blocks a row; 38 MB with normals) by 2 threads; 120 of 65 x
+     * 65 and, from a start 8 bytes past a cache line, of 72 x 72 (one block a row, so each row
+     * hands the line it shares to the next: 12-30 MB), by 1 */
+    const int cases[3][5] = {{8, 6, 129, 2, 0}, {12, 10, 65, 1, 0}, {12, 10, 72, 1, 1}}; /* nu nv n threads offset */
+    for (int c = 0; c < 3; c++) {
+        rg2_surface s;
+        rg2_error err;
+        CHECK_OK(rg2t_torus(3.0, 1.0, cases[c][0], cases[c][1], NULL, &s, &err), &err);
+        const int n = cases[c][2], off = cases[c][4];
+        size_t pts = (size_t)n * n * (size_t)s.nu * (size_t)s.nv, bytes = pts * 3 * sizeof(double);
+        double *buf = aligned_alloc(64, 4 * bytes + 64);
+        for (int level = 0; level < 2; level++) {
+            rg2_grid_out a = {.pos = buf + off, .normal = level ? buf + off + 3 * pts : NULL};
+            rg2_grid_out b = {.pos = buf + 6 * pts + off, .normal = level ? buf + off + 9 * pts : NULL};
+            CHECK_OK(rg2_surface_grid(&s, n, n, cases[c][3], &a, &err), &err);
+            size_t stream_bytes = rg2__grid_stream_bytes;
+            rg2__grid_stream_bytes = SIZE_MAX;
+            CHECK_OK(rg2_surface_grid(&s, n, n, 1, &b, &err), &err);
+            rg2__grid_stream_bytes = stream_bytes;
+            CHECK(memcmp(a.pos, b.pos, bytes) == 0 && (!level || memcmp(a.normal, b.normal, bytes) == 0),
+                  "torus %d x %d per patch, level %d, %d threads: streamed bitwise as plain stores", n, n, level,
+                  cases[c][3]);
+        }
+        free(buf);
+        rg2_surface_free(&s);
     }
-    free(buf);
-    rg2_surface_free(&s);
 }
 
 /* Patches at most 8 points wide take kernels of their own on AVX-512 (whole rows in registers):
