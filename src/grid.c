@@ -1616,8 +1616,10 @@ static void grid_range(const rg2_surface *S, const rg2_patch *P, const rg2_xpatc
         if (k + RG2_PATCH_AHEAD < k1) /* a later patch's 8 cache lines while this one computes */
             for (int q = 0; q < 8; q++)
                 _mm_prefetch((const char *)(P + k + RG2_PATCH_AHEAD) + 64 * q, _MM_HINT_T0);
-        if (t->stream && t->m <= 8 && t->order <= 1 && k + RG2_ROWS_AHEAD < k1) { /* streamed narrow patches */
-            size_t at = 3 * (k + RG2_ROWS_AHEAD) * per; /* (see prefetch_pages) */
+        if (t->stream && t->m <= 8 && t->order <= 1 && per <= 256 && k + RG2_ROWS_AHEAD < k1) {
+            /* streamed narrow patches of at most 6 KB an array: the pages of a later one (see
+             * prefetch_pages) */
+            size_t at = 3 * (k + RG2_ROWS_AHEAD) * per;
             prefetch_pages(o->pos + at, 3 * per, 0);
             if (t->order)
                 prefetch_pages(o->normal + at, 3 * per, 0);
