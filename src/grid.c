@@ -665,10 +665,12 @@ RG2_AVX512_FN static inline void xyz8(__m512d x, __m512d y, __m512d z, __m512d o
 }
 
 /* How a row segment reaches memory: plain stores, streaming stores straight into a 64-byte
- * aligned destination of whole vectors, or streaming stores of the vectors shifted to the cache
- * lines of any other destination (shifter; the kernels that do not shift, the two-phase normals,
- * store such rows to an L1 buffer and stream it out). */
-enum { ST_PLAIN, ST_STREAM, ST_SHIFT };
+ * aligned destination of whole vectors (ST_STREAM_PF: the same, but the first line of each page,
+ * which the caller asked for ahead with prefetch_pages, as a plain store: stream_line), or
+ * streaming stores of the vectors shifted to the cache lines of any other destination (shifter;
+ * the kernels that do not shift, the two-phase normals, store such rows to an L1 buffer and
+ * stream it out). */
+enum { ST_PLAIN, ST_STREAM, ST_SHIFT, ST_STREAM_PF };
 
 /* Plain stores ask for the lines this far ahead (doubles) with prefetchw, so that the reads for
  * ownership are under way before the stores reach them (+25 % for 4.7 MB of positions in L3). */
@@ -685,18 +687,34 @@ _Static_assert(RG2_POS_ROWS >= 1 && RG2_POS_ROWS <= 4, "seg_pos_cxr_avx512 holds
 #define RG2_PATCH_AHEAD 1
 #endif
 
+/* One whole cache line of output at dst (64-byte aligned) for ST_STREAM_PF: streamed, except the
+ * first line of a page, which goes out as a plain store. The caller asked for that line ahead of
+ * time (prefetch_pages) for the page's address translation, so the caches hold it, and a
+ * streaming store to a line the caches hold has to evict it first (see prefetch_pages). */
+RG2_AVX512_FN static inline __attribute__((always_inline)) void stream_line(double *dst, __m512d v)
+{
+    if (__builtin_expect(((uintptr_t)dst & 4095) < 64, 0))
+        _mm512_store_pd(dst, v);
+    else
+        _mm512_stream_pd(dst, v);
+}
+
 /* 8 interleaved points (24 doubles) at dst: q < 8 stores only 3 q doubles (masked); plain
  * stores first ask for the lines `ahead` doubles further on. */
 RG2_AVX512_FN static inline __attribute__((always_inline)) void put8a(double *dst, const __m512d o[3], int q, int st,
                                                                       size_t ahead)
 {
-    if (st != ST_STREAM) /* (prefetches never fault, past the array's end included) */
+    if (st == ST_PLAIN) /* (prefetches never fault, past the array's end included) */
         for (int k = 0; k < 3; k++)
             __builtin_prefetch(dst + ahead + 8 * k, 1, 3);
     if (st == ST_STREAM) {
         _mm512_stream_pd(dst, o[0]);
         _mm512_stream_pd(dst + 8, o[1]);
         _mm512_stream_pd(dst + 16, o[2]);
+    } else if (st == ST_STREAM_PF) {
+        stream_line(dst, o[0]);
+        stream_line(dst + 8, o[1]);
+        stream_line(dst + 16, o[2]);
     } else if (q == 8) {
         _mm512_storeu_pd(dst, o[0]);
         _mm512_storeu_pd(dst + 8, o[1]);
@@ -1322,11 +1340,18 @@ static inline int store_mode(const tables *t, const double *dst, int cnt)
  * 1.05-1.08x at 64 x 64 per patch, 1.05-1.12x at 128 x 128, 1.13-1.46x at 256 x 256, 1.19-1.23x at
  * 257 x 257 (shifted rows); the free-form mesh's 38809 patches of 8 x 8 points 1.40-1.63x with
  * normals, 1.07-1.27x positions alone. Rows of positions streamed several at a time
- * (seg_pos_cxr_avx512, rows of whole lines), which run at the memory's pace already, went
- * 0.71-0.86x with it: they go without. A shifted segment (shifter) stores its last line with
- * plain stores: that line is asked for too, so that its read for ownership is done before the
- * store (torus, 97 x 97 to 257 x 257 per patch: positions 0.99-1.28x, normals 1.02-1.32x; 1, 2, 4
- * or 8 rows ahead alike). */
+ * (seg_pos_cxr_avx512, rows of whole lines) went 0.71-0.91x with it, as long as the prefetched
+ * line was streamed too: a streaming store to a line that the caches hold evicts it first. With
+ * that line stored plain (ST_STREAM_PF) they went 0.93-1.39x against none (medians of 7-61
+ * alternating calls, either vCPU; 14 of 16 at 1.02x or more): the merged design's 120 patches
+ * of 64 x 64 points (11.8 MB) 0.93-1.23x, the torus at 256 x 256 1.03-1.16x, the merged design
+ * at 256 x 256 1.19-1.39x in a slow phase of the host's memory. The spread normals went
+ * 1.01-1.06x with it against the prefetched line streamed (torus, 64 x 64 to 256 x 256). The
+ * shifted rows and the narrow patches keep streaming it (plain: positions 0.85-0.96x shifted,
+ * normals 0.89-0.94x narrow). A shifted segment (shifter) stores its last line with plain
+ * stores: that line is asked for too, so that its read for ownership is done before the store
+ * (torus, 97 x 97 to 257 x 257 per patch: positions 0.99-1.28x, normals 1.02-1.32x; 1, 2, 4 or 8
+ * rows ahead alike). */
 #ifndef RG2_ROWS_AHEAD
 #define RG2_ROWS_AHEAD 2
 #endif
@@ -1375,7 +1400,10 @@ rows_avx512(const tables *t, const rg2_grid_out *o, size_t first, int b0, int cn
         } else if (t->order == 0 && use_cx && a + RG2_POS_ROWS <= a1 && store_mode(t, pos, cnt) == ST_STREAM &&
                    !(t->m & 7)) {
             /* rows together, streamed (each row's start aligned as the first's: 24 m bytes apart) */
-            seg_pos_cxr_avx512(HT, c0, cx, cnt, pos, stride, 0, ST_STREAM, NULL, hw, RG2_POS_ROWS, rev);
+            if (a + 2 * RG2_POS_ROWS <= a1) /* the pages of the next pass's rows */
+                for (int k = RG2_POS_ROWS; k < 2 * RG2_POS_ROWS; k++)
+                    prefetch_pages(pos + k * stride, 3 * (size_t)cnt, 0);
+            seg_pos_cxr_avx512(HT, c0, cx, cnt, pos, stride, 0, ST_STREAM_PF, NULL, hw, RG2_POS_ROWS, rev);
             a += RG2_POS_ROWS - 1;
         } else if (t->order == 0) {
             int st = store_mode(t, pos, cnt);
@@ -1401,7 +1429,7 @@ rows_avx512(const tables *t, const rg2_grid_out *o, size_t first, int b0, int cn
                 prefetch_row(pos, a, a1, t->m, cnt, sp);
                 prefetch_row(nrm, a, a1, t->m, cnt, sp);
                 if (sp == ST_STREAM) {
-                    seg_cross_unit_avx512(HT, c0, d0, c1, cnt, pos, nrm, thr, hw, rev, ST_STREAM, NULL, NULL);
+                    seg_cross_unit_avx512(HT, c0, d0, c1, cnt, pos, nrm, thr, hw, rev, ST_STREAM_PF, NULL, NULL);
                 } else if (sp == ST_PLAIN) {
                     seg_cross_unit_avx512(HT, c0, d0, c1, cnt, pos, nrm, thr, hw, rev, ST_PLAIN, NULL, NULL);
                 } else {
