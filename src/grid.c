@@ -86,23 +86,20 @@ static inline int block_cols(int m, int b0)
 
 /* Test hooks (tests/test_grid.c): the portable kernels on any CPU; the division mode (-1: as
  * grid_hwdiv decides); the spread normals of wide rows (tables.spread; 0: never, two phases);
- * the output size per thread past which stores stream (SIZE_MAX: never). */
+ * the output size per thread past which stores stream (SIZE_MAX: never); whether streamed
+ * outputs touch their pages ahead (-1: as grid_pages decides). */
 int rg2__grid_portable = 0;
 int rg2__grid_hwdiv = -1;
 int rg2__grid_spread = 1;
 size_t rg2__grid_stream_bytes = RG2_STREAM_BYTES;
+int rg2__grid_pages = -1;
 
-/* Whether the AVX-512 kernels divide by the hardware (1 / w, 1 / (EG - F^2)) instead of rcp14 and
- * Newton steps: on AMD CPUs, whose divider runs beside the multiply-add pipes the kernels keep
- * busy (Zen 5, measured: positions 0.99-1.08x in L3 and 1.07x for 8 x 8 patches in main memory;
- * the results correctly rounded where the Newton steps leave about 1 ulp); not on Intel's
- * (Sapphire Rapids: slower, docs/performance.md). The normalisation's 1 / sqrt takes Newton
- * steps on every CPU (rsqrt8).
- * rg2__grid_hwdiv (a test hook) forces 0 or 1. */
-static int grid_hwdiv(void)
+/* hook if it is 0 or 1 (a test forcing a choice), else whether the CPU is AMD's: the kernels'
+ * choices below were measured to differ between AMD's cores and Intel's. */
+static int amd_or(int hook)
 {
-    if (rg2__grid_hwdiv >= 0)
-        return rg2__grid_hwdiv;
+    if (hook >= 0)
+        return hook;
 #if RG2_AVX512
     return __builtin_cpu_is("amd");
 #else
@@ -110,11 +107,36 @@ static int grid_hwdiv(void)
 #endif
 }
 
+/* Whether the AVX-512 kernels divide by the hardware (1 / w, 1 / (EG - F^2)) instead of rcp14 and
+ * Newton steps: on AMD CPUs, whose divider runs beside the multiply-add pipes the kernels keep
+ * busy (Zen 5, measured: positions 0.99-1.08x in L3 and 1.07x for 8 x 8 patches in main memory;
+ * the results correctly rounded where the Newton steps leave about 1 ulp); not on Intel's
+ * (Sapphire Rapids: slower in earlier stops; 0.99-1.05x in the fourteenth, docs/performance.md).
+ * The normalisation's 1 / sqrt takes Newton steps on every CPU (rsqrt8).
+ * rg2__grid_hwdiv (a test hook) forces 0 or 1. */
+static int grid_hwdiv(void)
+{
+    return amd_or(rg2__grid_hwdiv);
+}
+
+/* Whether streamed outputs touch their pages ahead of the streaming stores (prefetch_pages): on
+ * AMD CPUs, where it was measured to pay (Zen 5 guest: 1.05-1.63x, see prefetch_pages); not on
+ * Intel's, where the prefetches themselves wait for the page walks (Sapphire Rapids class KVM
+ * guest, fourteenth stop, medians of 21-41 alternating calls: without them the merged design's
+ * positions 1.16-1.19x, with normals 1.10x; the torus with normals 1.10x at 64 x 64 per patch,
+ * positions 1.23x and normals 1.13x at 256 x 256; the free-form mesh's 8 x 8 patches positions
+ * 1.20x, normals 1.08x). rg2__grid_pages (a test hook) forces 0 or 1. */
+static int grid_pages(void)
+{
+    return amd_or(rg2__grid_pages);
+}
+
 typedef struct {
     int n, m, order;
     int avx512; /* use the AVX-512 kernels (this CPU has them) */
     int hwdiv;  /* ... with divisions by the hardware (grid_hwdiv) */
     int stream; /* large output: non-temporal stores (bypass the caches) */
+    int pages;  /* ... touching the pages ahead of them (prefetch_pages) */
     int spread; /* with normals: each 8 normals of a wide row after the next 8 positions */
     double *ddu;                       /* n * 4: B_r''(u) of each row */
     double *ht;                        /* n * 8: the rows' Horner constants (row_consts) */
@@ -1351,7 +1373,7 @@ static inline int store_mode(const tables *t, const double *dst, int cnt)
  * normals 0.89-0.94x narrow). A shifted segment (shifter) stores its last line with plain
  * stores: that line is asked for too, so that its read for ownership is done before the store
  * (torus, 97 x 97 to 257 x 257 per patch: positions 0.99-1.28x, normals 1.02-1.32x; 1, 2, 4 or 8
- * rows ahead alike). */
+ * rows ahead alike). All of this on AMD CPUs only (grid_pages: on Intel's it costs). */
 #ifndef RG2_ROWS_AHEAD
 #define RG2_ROWS_AHEAD 2
 #endif
@@ -1365,12 +1387,12 @@ static inline void prefetch_pages(const double *p, size_t n, int last)
         __builtin_prefetch(e, 1, 3);
 }
 
-/* prefetch_pages for the row segment RG2_ROWS_AHEAD rows after the one at row (row a < a1, m
- * points a row, cnt in the segment), stored as st. */
-static inline void prefetch_row(const double *row, int a, int a1, int m, int cnt, int st)
+/* prefetch_pages for the row segment RG2_ROWS_AHEAD rows after the one at row (row a < a1, cnt
+ * points in the segment), stored as st, where the tables say so (tables.pages). */
+static inline void prefetch_row(const tables *t, const double *row, int a, int a1, int cnt, int st)
 {
-    if (st != ST_PLAIN && a + RG2_ROWS_AHEAD < a1)
-        prefetch_pages(row + 3 * (size_t)RG2_ROWS_AHEAD * (size_t)m, 3 * (size_t)cnt, st == ST_SHIFT);
+    if (t->pages && st != ST_PLAIN && a + RG2_ROWS_AHEAD < a1)
+        prefetch_pages(row + 3 * (size_t)RG2_ROWS_AHEAD * (size_t)t->m, 3 * (size_t)cnt, st == ST_SHIFT);
 }
 
 /* Rows a0 <= a < a1 of one block of columns (b0, cnt: its column sums c0, c1, c2 and the
@@ -1400,14 +1422,17 @@ rows_avx512(const tables *t, const rg2_grid_out *o, size_t first, int b0, int cn
         } else if (t->order == 0 && use_cx && a + RG2_POS_ROWS <= a1 && store_mode(t, pos, cnt) == ST_STREAM &&
                    !(t->m & 7)) {
             /* rows together, streamed (each row's start aligned as the first's: 24 m bytes apart) */
-            if (a + 2 * RG2_POS_ROWS <= a1) /* the pages of the next pass's rows */
+            if (t->pages && a + 2 * RG2_POS_ROWS <= a1) /* the pages of the next pass's rows */
                 for (int k = RG2_POS_ROWS; k < 2 * RG2_POS_ROWS; k++)
                     prefetch_pages(pos + k * stride, 3 * (size_t)cnt, 0);
-            seg_pos_cxr_avx512(HT, c0, cx, cnt, pos, stride, 0, ST_STREAM_PF, NULL, hw, RG2_POS_ROWS, rev);
+            if (t->pages)
+                seg_pos_cxr_avx512(HT, c0, cx, cnt, pos, stride, 0, ST_STREAM_PF, NULL, hw, RG2_POS_ROWS, rev);
+            else
+                seg_pos_cxr_avx512(HT, c0, cx, cnt, pos, stride, 0, ST_STREAM, NULL, hw, RG2_POS_ROWS, rev);
             a += RG2_POS_ROWS - 1;
         } else if (t->order == 0) {
             int st = store_mode(t, pos, cnt);
-            prefetch_row(pos, a, a1, t->m, cnt, st);
+            prefetch_row(t, pos, a, a1, cnt, st);
             if (st == ST_SHIFT)
                 shift_init(&wp, pos, 3 * cnt, keep);
             if (use_cx && st == ST_STREAM)
@@ -1426,10 +1451,12 @@ rows_avx512(const tables *t, const rg2_grid_out *o, size_t first, int b0, int cn
             double *nrm = o->normal + 3 * at;
             int sp = store_mode(t, pos, cnt);
             if (t->spread && store_mode(t, nrm, cnt) == sp) { /* this row, both phases */
-                prefetch_row(pos, a, a1, t->m, cnt, sp);
-                prefetch_row(nrm, a, a1, t->m, cnt, sp);
-                if (sp == ST_STREAM) {
+                prefetch_row(t, pos, a, a1, cnt, sp);
+                prefetch_row(t, nrm, a, a1, cnt, sp);
+                if (sp == ST_STREAM && t->pages) {
                     seg_cross_unit_avx512(HT, c0, d0, c1, cnt, pos, nrm, thr, hw, rev, ST_STREAM_PF, NULL, NULL);
+                } else if (sp == ST_STREAM) {
+                    seg_cross_unit_avx512(HT, c0, d0, c1, cnt, pos, nrm, thr, hw, rev, ST_STREAM, NULL, NULL);
                 } else if (sp == ST_PLAIN) {
                     seg_cross_unit_avx512(HT, c0, d0, c1, cnt, pos, nrm, thr, hw, rev, ST_PLAIN, NULL, NULL);
                 } else {
@@ -1644,7 +1671,7 @@ static void grid_range(const rg2_surface *S, const rg2_patch *P, const rg2_xpatc
         if (k + RG2_PATCH_AHEAD < k1) /* a later patch's 8 cache lines while this one computes */
             for (int q = 0; q < 8; q++)
                 _mm_prefetch((const char *)(P + k + RG2_PATCH_AHEAD) + 64 * q, _MM_HINT_T0);
-        if (t->stream && t->m <= 8 && t->order <= 1 && per <= 256 && k + RG2_ROWS_AHEAD < k1) {
+        if (t->pages && t->m <= 8 && t->order <= 1 && per <= 256 && k + RG2_ROWS_AHEAD < k1) {
             /* streamed narrow patches of at most 6 KB an array: the pages of a later one (see
              * prefetch_pages) */
             size_t at = 3 * (k + RG2_ROWS_AHEAD) * per;
@@ -1685,6 +1712,7 @@ static void grid_job_run(void *arg, uint32_t c)
 static void set_stores(tables *t, size_t pts)
 {
     t->stream = pts * (t->order ? 48 : 24) > rg2__grid_stream_bytes;
+    t->pages = t->stream && grid_pages();
     t->spread = t->order == 1 && rg2__grid_spread;
 }
 

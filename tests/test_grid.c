@@ -658,9 +658,10 @@ int main(void)
         int portable = family == 2;
         rg2__grid_portable = portable;
         rg2__grid_hwdiv = family;
+        rg2__grid_pages = family; /* streamed outputs with and without their pages touched ahead */
         printf("-- %s kernels\n", portable       ? "portable"
-                                  : family == 0 ? "AVX-512 (where available), Newton steps"
-                                                : "AVX-512 (where available), hardware division");
+                                  : family == 0 ? "AVX-512 (where available), Newton steps, pages not touched ahead"
+                                                : "AVX-512 (where available), hardware division, pages touched ahead");
         random_patches();
         collapsed_edge();
         normal_test_bound();
