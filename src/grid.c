@@ -670,13 +670,28 @@ RG2_AVX512_FN static inline __mmask8 normal8(const __m512d a[3], const __m512d b
     return unit8r(c, l2, n);
 }
 
-/* Points x, y, z of 8 lanes interleaved as 24 doubles in o[0..2]. One single-source permute per
- * input puts each value in the lane it takes in its output vector (px = x0 x3 x6 x1 x4 x7 x2 x5,
- * py = y5 y0 y3 y6 y1 y4 y7 y2, pz = z2 z5 z0 z3 z6 z1 z4 z7), and each output is two blends of
- * them: 3 permutes and 6 blends instead of 6 two-source permutes (the shuffle pipes were a limit
- * of the 8 x 8 normal kernel: +3-6 % there, +3-5 % for 64-point rows with normals, AMD Zen 5). */
-RG2_AVX512_FN static inline void xyz8(__m512d x, __m512d y, __m512d z, __m512d o[3])
+/* Points x, y, z of 8 lanes interleaved as 24 doubles in o[0..2], in the kernels' form for AMD's
+ * cores or Intel's (amd: the hw of grid_hwdiv, a constant in every kernel). On AMD one
+ * single-source permute per input puts each value in the lane it takes in its output vector
+ * (px = x0 x3 x6 x1 x4 x7 x2 x5, py = y5 y0 y3 y6 y1 y4 y7 y2, pz = z2 z5 z0 z3 z6 z1 z4 z7), and
+ * each output is two blends of them: 3 permutes and 6 blends instead of 6 two-source permutes
+ * (the shuffle pipes were a limit of the 8 x 8 normal kernel: +3-6 % there, +3-5 % for 64-point
+ * rows with normals, AMD Zen 5). On Intel, where blends and multiply-adds share the two 512-bit
+ * ports, the 6 two-source permutes (3 instructions fewer) are faster: normals 0.98-1.10x, 1.02x in
+ * the middle of 18 pairs (torus, merged design, free-form mesh; medians of 31-61 alternating
+ * calls, Sapphire Rapids class, fourteenth stop). The same bits either way. */
+RG2_AVX512_FN static inline __attribute__((always_inline)) void xyz8(__m512d x, __m512d y, __m512d z, __m512d o[3],
+                                                                     const int amd)
 {
+    if (!amd) { /* o[j] from x and y, then z: lanes 0-7 of the first source, 8-15 of the second */
+        const __m512i a0 = _mm512_set_epi64(10, 2, 0, 9, 1, 0, 8, 0), b0 = _mm512_set_epi64(7, 6, 9, 4, 3, 8, 1, 0);
+        const __m512i a1 = _mm512_set_epi64(5, 0, 12, 4, 0, 11, 3, 0), b1 = _mm512_set_epi64(7, 12, 5, 4, 11, 2, 1, 10);
+        const __m512i a2 = _mm512_set_epi64(0, 15, 7, 0, 14, 6, 0, 13), b2 = _mm512_set_epi64(15, 6, 5, 14, 3, 2, 13, 0);
+        o[0] = _mm512_permutex2var_pd(_mm512_permutex2var_pd(x, a0, y), b0, z);
+        o[1] = _mm512_permutex2var_pd(_mm512_permutex2var_pd(x, a1, y), b1, z);
+        o[2] = _mm512_permutex2var_pd(_mm512_permutex2var_pd(x, a2, y), b2, z);
+        return;
+    }
     const __m512i ix = _mm512_set_epi64(5, 2, 7, 4, 1, 6, 3, 0), iy = _mm512_set_epi64(2, 7, 4, 1, 6, 3, 0, 5);
     const __m512i iz = _mm512_set_epi64(7, 4, 1, 6, 3, 0, 5, 2);
     __m512d px = _mm512_permutexvar_pd(ix, x), py = _mm512_permutexvar_pd(iy, y), pz = _mm512_permutexvar_pd(iz, z);
@@ -976,7 +991,7 @@ RG2_AVX512_FN static inline __attribute__((always_inline)) void pos8(const __m51
 {
     __m512d iw = recip8(RSUM(rev, c, 3, T), hw);
     xyz8(_mm512_mul_pd(RSUM(rev, c, 0, T), iw), _mm512_mul_pd(RSUM(rev, c, 1, T), iw),
-         _mm512_mul_pd(RSUM(rev, c, 2, T), iw), o);
+         _mm512_mul_pd(RSUM(rev, c, 2, T), iw), o, hw);
 }
 
 /* Positions and unit normals of 8 points of a row (T: its Horner constants) from their column sums
@@ -996,7 +1011,7 @@ pos_cross8r(const __m512d T[5], __m512d c0[4][4], __m512d dc[3][4], __m512d c1[4
         b[k] = _mm512_fnmadd_pd(hv3, p[k], RSUM(rev, c1, k, T));
     }
     __m512d l2 = cross8r(a, b, cr, thr, pad, bounded);
-    xyz8(p[0], p[1], p[2], po);
+    xyz8(p[0], p[1], p[2], po, hw);
     return l2;
 }
 
@@ -1033,12 +1048,12 @@ seg_pos_avx512(const double *HT, double c[4][4][BLK], int cnt, double *dst, int 
 }
 
 /* The x, y, z column sums of a block interleaved like the output: cx[r][3 b + k] = c[r][k][b]. */
-RG2_AVX512_FN static void interleave_csum(double c[4][4][BLK], int cnt, double cx[4][3 * BLK])
+RG2_AVX512_FN static void interleave_csum(double c[4][4][BLK], int cnt, double cx[4][3 * BLK], int hw)
 {
     for (int r = 0; r < 4; r++)
         for (int i = 0; i < cnt; i += 8) {
             __m512d o[3];
-            xyz8(_mm512_load_pd(&c[r][0][i]), _mm512_load_pd(&c[r][1][i]), _mm512_load_pd(&c[r][2][i]), o);
+            xyz8(_mm512_load_pd(&c[r][0][i]), _mm512_load_pd(&c[r][1][i]), _mm512_load_pd(&c[r][2][i]), o, hw);
             for (int j = 0; j < 3; j++)
                 _mm512_store_pd(&cx[r][3 * i + 8 * j], o[j]);
         }
@@ -1141,7 +1156,7 @@ RG2_AVX512_FN static inline void patch_normal_narrow_avx512(const rg2_patch *P, 
         for (int a = a0; a < a0 + na; a++) {
             __m512d nn[3], no[3];
             unit8(nb[a - a0], nn);
-            xyz8(nn[0], nn[1], nn[2], no);
+            xyz8(nn[0], nn[1], nn[2], no, hw);
             put8(nrm + 3 * m * a, no, m, st);
         }
     }
@@ -1199,7 +1214,7 @@ seg_cross_unit_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BL
             put8(pd + 3 * i, po, q, st);
         if (i) {
             unit8r(pc, pl2, nn);
-            xyz8(nn[0], nn[1], nn[2], no);
+            xyz8(nn[0], nn[1], nn[2], no, hw);
             if (st == ST_SHIFT)
                 shift_put8(wn, no);
             else
@@ -1214,7 +1229,7 @@ seg_cross_unit_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BL
     }
     __m512d nn[3], no[3];
     unit8r(pc, pl2, nn);
-    xyz8(nn[0], nn[1], nn[2], no);
+    xyz8(nn[0], nn[1], nn[2], no, hw);
     if (st == ST_SHIFT) {
         shift_put8(wn, no);
         shift_end(wp);
@@ -1225,22 +1240,22 @@ seg_cross_unit_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BL
 }
 
 /* The second phase: the unit normals of the segment from nb, at nd. */
-RG2_AVX512_FN static inline void seg_unit_avx512(double (*nb)[32], int cnt, double *nd, int st)
+RG2_AVX512_FN static inline void seg_unit_avx512(double (*nb)[32], int cnt, double *nd, int st, int hw)
 {
     for (int i = 0; i < cnt; i += 8) {
         __m512d nn[3], no[3];
         unit8(nb[i / 8], nn);
-        xyz8(nn[0], nn[1], nn[2], no);
+        xyz8(nn[0], nn[1], nn[2], no, hw);
         put8(nd + 3 * i, no, cnt - i < 8 ? cnt - i : 8, st);
     }
 }
 
 /* x, y, z of 8 points (q of them) interleaved at dst, when the output is requested. */
-RG2_AVX512_FN static inline __attribute__((always_inline)) void out3(double *dst, const __m512d v[3], int q)
+RG2_AVX512_FN static inline __attribute__((always_inline)) void out3(double *dst, const __m512d v[3], int q, int hw)
 {
     if (dst) {
         __m512d o[3];
-        xyz8(v[0], v[1], v[2], o);
+        xyz8(v[0], v[1], v[2], o, hw);
         put8(dst, o, q, ST_PLAIN);
     }
 }
@@ -1316,13 +1331,13 @@ full_avx512(const double *HT, const double *DDU, double c0[4][4][BLK], double c1
         __m512d H = _mm512_mul_pd(Hn, _mm512_mul_pd(half, idet));
         int q = cnt - i < 8 ? cnt - i : 8;
         size_t o3 = 3 * (at + (size_t)i);
-        out3(o->pos + o3, P, q);
-        out3(o->normal ? o->normal + o3 : NULL, nn, q);
-        out3(o->du ? o->du + o3 : NULL, Su, q);
-        out3(o->dv ? o->dv + o3 : NULL, Sv, q);
-        out3(o->duu ? o->duu + o3 : NULL, Suu, q);
-        out3(o->duv ? o->duv + o3 : NULL, Suv, q);
-        out3(o->dvv ? o->dvv + o3 : NULL, Svv, q);
+        out3(o->pos + o3, P, q, hw);
+        out3(o->normal ? o->normal + o3 : NULL, nn, q, hw);
+        out3(o->du ? o->du + o3 : NULL, Su, q, hw);
+        out3(o->dv ? o->dv + o3 : NULL, Sv, q, hw);
+        out3(o->duu ? o->duu + o3 : NULL, Suu, q, hw);
+        out3(o->duv ? o->duv + o3 : NULL, Suv, q, hw);
+        out3(o->dvv ? o->dvv + o3 : NULL, Svv, q, hw);
         __mmask8 mq = (__mmask8)((1u << q) - 1u);
         if (o->K)
             _mm512_mask_storeu_pd(o->K + at + i, mq, K);
@@ -1488,7 +1503,7 @@ rows_avx512(const tables *t, const rg2_grid_out *o, size_t first, int b0, int cn
                 double *nk = nrm + k * stride;
                 int st = store_mode(t, nk, cnt);
                 double *d = st == ST_SHIFT ? nbuf : nk;
-                seg_unit_avx512(nb + k * nvec, cnt, d, st == ST_STREAM ? ST_STREAM : ST_PLAIN);
+                seg_unit_avx512(nb + k * nvec, cnt, d, st == ST_STREAM ? ST_STREAM : ST_PLAIN, hw);
                 if (d != nk)
                     stream_copy(nk, d, 3 * cnt);
             }
@@ -1530,7 +1545,7 @@ grid_patch_avx512_hw(const rg2_patch *P, const tables *t, const rg2_grid_out *o,
         vsum_avx512(P, t->bv, b0, cnt, c0);
         int use_cx = t->order == 0 && t->n >= 16;
         if (use_cx)
-            interleave_csum(c0, cnt, cx);
+            interleave_csum(c0, cnt, cx, hw);
         if (t->order >= 1)
             vsumh_avx512(dh, t->hv, b0, cnt, c1);
         if (t->order == 1)
