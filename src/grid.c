@@ -125,7 +125,8 @@ static int grid_hwdiv(void)
  * guest, fourteenth stop, medians of 21-41 alternating calls: without them the merged design's
  * positions 1.16-1.19x, with normals 1.10x; the torus with normals 1.10x at 64 x 64 per patch,
  * positions 1.23x and normals 1.13x at 256 x 256; the free-form mesh's 8 x 8 patches positions
- * 1.20x, normals 1.08x). rg2__grid_pages (a test hook) forces 0 or 1. */
+ * 1.20x, normals 1.08x). Rows of positions streamed four at a time go with it (rows_avx512).
+ * rg2__grid_pages (a test hook) forces 0 or 1. */
 static int grid_pages(void)
 {
     return amd_or(rg2__grid_pages);
@@ -1434,16 +1435,16 @@ rows_avx512(const tables *t, const rg2_grid_out *o, size_t first, int b0, int cn
             /* prefetchw: the same columns of the next pass */
             seg_pos_cxr_avx512(HT, c0, cx, cnt, pos, stride, RG2_POS_ROWS * stride, ST_PLAIN, NULL, hw, RG2_POS_ROWS, rev);
             a += RG2_POS_ROWS - 1;
-        } else if (t->order == 0 && use_cx && a + RG2_POS_ROWS <= a1 && store_mode(t, pos, cnt) == ST_STREAM &&
-                   !(t->m & 7)) {
-            /* rows together, streamed (each row's start aligned as the first's: 24 m bytes apart) */
-            if (t->pages && a + 2 * RG2_POS_ROWS <= a1) /* the pages of the next pass's rows */
+        } else if (t->order == 0 && use_cx && t->pages && a + RG2_POS_ROWS <= a1 &&
+                   store_mode(t, pos, cnt) == ST_STREAM && !(t->m & 7)) {
+            /* rows together, streamed (each row's start aligned as the first's: 24 m bytes apart),
+             * where the pages are touched ahead (AMD); on Intel one row at a time streams faster
+             * (merged design and torus at 256 x 256 per patch: 1.03-1.07x in six pairs of medians
+             * of 31-41 alternating calls, either vCPU, fourteenth stop) */
+            if (a + 2 * RG2_POS_ROWS <= a1) /* the pages of the next pass's rows */
                 for (int k = RG2_POS_ROWS; k < 2 * RG2_POS_ROWS; k++)
                     prefetch_pages(pos + k * stride, 3 * (size_t)cnt, 0);
-            if (t->pages)
-                seg_pos_cxr_avx512(HT, c0, cx, cnt, pos, stride, 0, ST_STREAM_PF, NULL, hw, RG2_POS_ROWS, rev);
-            else
-                seg_pos_cxr_avx512(HT, c0, cx, cnt, pos, stride, 0, ST_STREAM, NULL, hw, RG2_POS_ROWS, rev);
+            seg_pos_cxr_avx512(HT, c0, cx, cnt, pos, stride, 0, ST_STREAM_PF, NULL, hw, RG2_POS_ROWS, rev);
             a += RG2_POS_ROWS - 1;
         } else if (t->order == 0) {
             int st = store_mode(t, pos, cnt);
