@@ -1127,11 +1127,25 @@ RG2_AVX512_FN static inline void patch_pos_narrow_avx512(const rg2_patch *P, con
     }
 }
 
+/* The unit normals of 8 points from their cross products c and |c|^2 (unit8r), interleaved and
+ * stored at dst as st (q points). */
+RG2_AVX512_FN static inline __attribute__((always_inline)) void unit_put8(const __m512d c[3], __m512d l2, double *dst,
+                                                                          int q, int st, int hw)
+{
+    __m512d nn[3], no[3];
+    unit8r(c, l2, nn);
+    xyz8(nn[0], nn[1], nn[2], no, hw);
+    put8(dst, no, q, st);
+}
+
 /* Positions and unit normals of a patch at most 8 points wide (as patch_pos_narrow_avx512), by
  * pos_cross8 and unit8 as in seg_cross_avx512 and seg_unit_avx512 (the same bits): the cross
- * products of up to 8 rows, then their normals. (Each row's normals after the next row's positions,
- * as seg_cross_unit_avx512 does for wide rows, was 0.92-1.10x for the 119 MB of a 200 x 200 mesh's
- * 8 x 8 patches and 0.93-0.95x at 24 MB, AMD Zen 5: not taken.) */
+ * products of up to 8 rows, then their normals. Streamed on Intel CPUs (!hw), each row's normals
+ * go out after the next row's positions instead, the cross products kept in registers, as
+ * seg_cross_unit_avx512 does for wide rows: the free-form mesh's 8 x 8 patches (43 and 119 MB)
+ * 1.02-1.08x (medians of 31-41 alternating calls, either vCPU, Sapphire Rapids class, fourteenth
+ * stop), the same bits. Not with plain stores there (0.90-0.98x at 4 MB), nor on AMD (Zen 5:
+ * 0.92-1.10x at 119 MB, 0.93-0.95x at 24 MB). */
 RG2_AVX512_FN static inline void patch_normal_narrow_avx512(const rg2_patch *P, const tables *t, double *pos,
                                                             double *nrm, int hw)
 {
@@ -1143,6 +1157,25 @@ RG2_AVX512_FN static inline void patch_normal_narrow_avx512(const rg2_patch *P, 
     vsum_narrow(P, t->bv, c0);
     cdiff_v(c0, dc);
     vsumh_narrow(P, t->hv, c1);
+    if (!hw && st == ST_STREAM) {
+        __m512d pc[3], pl2 = _mm512_setzero_pd(); /* the previous row's cross products */
+        for (int a = 0; a < n; a++) {
+            __m512d T[5], po[3], c[3], l2;
+            bcastT(t->ht + 8 * a, T);
+            if (a < t->arev)
+                l2 = pos_cross8r(T, c0, dc, c1, po, c, thr, 0, 0, hw, 0);
+            else
+                l2 = pos_cross8r(T, c0, dc, c1, po, c, thr, 0, 0, hw, 1);
+            put8(pos + 3 * m * a, po, m, st);
+            if (a)
+                unit_put8(pc, pl2, nrm + 3 * m * (a - 1), m, st, hw);
+            for (int k = 0; k < 3; k++)
+                pc[k] = c[k];
+            pl2 = l2;
+        }
+        unit_put8(pc, pl2, nrm + 3 * m * (n - 1), m, st, hw);
+        return;
+    }
     for (int a0 = 0; a0 < n; a0 += 8) {
         int na = n - a0 < 8 ? n - a0 : 8;
         for (int a = a0; a < a0 + na; a++) {
