@@ -21,7 +21,9 @@
  * bound of the patch settles it (cross_threshold),
  * permutes for the x, y, z interleave, plain stores with prefetchw for outputs in
  * the caches and streaming stores past RG2_STREAM_BYTES (rows that do not start on a cache line
- * shifted to the lines as they are stored: shifter). The quotient rule and the
+ * shifted to the lines as they are stored: shifter); the kernels take AMD's form or Intel's by
+ * the CPU (amd_or: divisions, interleave, pages touched ahead of the streaming stores, each
+ * chosen as measured on both; the same bits either way). The quotient rule and the
  * curvature formulas are those of rg2_patch_eval (eval.c), which stays the independent
  * reference; tests/test_grid.c holds the two to 1e-14. Patches of higher degree (s->xp) take
  * the separable scalar grid of xpatch.c. Threads: the pool of pool.c (runs of patches claimed
