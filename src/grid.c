@@ -1129,15 +1129,33 @@ RG2_AVX512_FN static inline void patch_pos_narrow_avx512(const rg2_patch *P, con
     }
 }
 
-/* The unit normals of 8 points from their cross products c and |c|^2 (unit8r), interleaved and
- * stored at dst as st (q points). */
+/* The unit normals of 8 points from their cross products c and |c|^2 (unit8r), interleaved (in
+ * no; unit_put8: stored at dst as st, q points). */
+RG2_AVX512_FN static inline __attribute__((always_inline)) void unit_xyz8(const __m512d c[3], __m512d l2, __m512d no[3],
+                                                                          int hw)
+{
+    __m512d nn[3];
+    unit8r(c, l2, nn);
+    xyz8(nn[0], nn[1], nn[2], no, hw);
+}
+
 RG2_AVX512_FN static inline __attribute__((always_inline)) void unit_put8(const __m512d c[3], __m512d l2, double *dst,
                                                                           int q, int st, int hw)
 {
-    __m512d nn[3], no[3];
-    unit8r(c, l2, nn);
-    xyz8(nn[0], nn[1], nn[2], no, hw);
+    __m512d no[3];
+    unit_xyz8(c, l2, no, hw);
     put8(dst, no, q, st);
+}
+
+/* The second phase: the unit normals of the segment from nb, at nd. */
+RG2_AVX512_FN static inline void seg_unit_avx512(double (*nb)[32], int cnt, double *nd, int st, int hw)
+{
+    for (int i = 0; i < cnt; i += 8) {
+        __m512d nn[3], no[3];
+        unit8(nb[i / 8], nn);
+        xyz8(nn[0], nn[1], nn[2], no, hw);
+        put8(nd + 3 * i, no, cnt - i < 8 ? cnt - i : 8, st);
+    }
 }
 
 /* Positions and unit normals of a patch at most 8 points wide (as patch_pos_narrow_avx512), by
@@ -1189,12 +1207,8 @@ RG2_AVX512_FN static inline void patch_normal_narrow_avx512(const rg2_patch *P, 
                 pos_cross8(T, c0, dc, c1, po, nb[a - a0], thr, 0, 0, hw, 1);
             put8(pos + 3 * m * a, po, m, st);
         }
-        for (int a = a0; a < a0 + na; a++) {
-            __m512d nn[3], no[3];
-            unit8(nb[a - a0], nn);
-            xyz8(nn[0], nn[1], nn[2], no, hw);
-            put8(nrm + 3 * m * a, no, m, st);
-        }
+        for (int a = a0; a < a0 + na; a++)
+            seg_unit_avx512(nb + (a - a0), m, nrm + 3 * m * a, st, hw);
     }
 }
 
@@ -1238,7 +1252,7 @@ seg_cross_unit_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BL
     bcastT(HT, T);
     int i = 0;
     for (;;) {
-        __m512d v0[4][4], vd[3][4], v1[4][4], po[3], nn[3], no[3], c[3];
+        __m512d v0[4][4], vd[3][4], v1[4][4], po[3], no[3], c[3];
         int q = cnt - i < 8 ? cnt - i : 8;
         csum_at(c0, i, v0);
         cdiff_at(d0, i, vd);
@@ -1249,8 +1263,7 @@ seg_cross_unit_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BL
         else
             put8(pd + 3 * i, po, q, st);
         if (i) {
-            unit8r(pc, pl2, nn);
-            xyz8(nn[0], nn[1], nn[2], no, hw);
+            unit_xyz8(pc, pl2, no, hw);
             if (st == ST_SHIFT)
                 shift_put8(wn, no);
             else
@@ -1263,26 +1276,14 @@ seg_cross_unit_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BL
             break;
         i += 8;
     }
-    __m512d nn[3], no[3];
-    unit8r(pc, pl2, nn);
-    xyz8(nn[0], nn[1], nn[2], no, hw);
+    __m512d no[3];
+    unit_xyz8(pc, pl2, no, hw);
     if (st == ST_SHIFT) {
         shift_put8(wn, no);
         shift_end(wp);
         shift_end(wn);
     } else {
         put8(nd + 3 * i, no, cnt - i, st);
-    }
-}
-
-/* The second phase: the unit normals of the segment from nb, at nd. */
-RG2_AVX512_FN static inline void seg_unit_avx512(double (*nb)[32], int cnt, double *nd, int st, int hw)
-{
-    for (int i = 0; i < cnt; i += 8) {
-        __m512d nn[3], no[3];
-        unit8(nb[i / 8], nn);
-        xyz8(nn[0], nn[1], nn[2], no, hw);
-        put8(nd + 3 * i, no, cnt - i < 8 ? cnt - i : 8, st);
     }
 }
 
