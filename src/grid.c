@@ -657,14 +657,6 @@ RG2_AVX512_FN static inline __mmask8 unit8r(const __m512d c[3], __m512d l2, __m5
     return ok;
 }
 
-RG2_AVX512_FN static inline __mmask8 unit8(const double *nb, __m512d n[3])
-{
-    __m512d c[3];
-    for (int k = 0; k < 3; k++)
-        c[k] = _mm512_load_pd(nb + 8 * k);
-    return unit8r(c, _mm512_load_pd(nb + 24), n);
-}
-
 /* Both phases at once, in registers (the second-order kernel): every point tested, so the same
  * bits. */
 RG2_AVX512_FN static inline __mmask8 normal8(const __m512d a[3], const __m512d b[3], __m512d n[3])
@@ -1018,7 +1010,7 @@ pos_cross8r(const __m512d T[5], __m512d c0[4][4], __m512d dc[3][4], __m512d c1[4
     return l2;
 }
 
-/* pos_cross8r with the cross product and its squared length stored at nb (unit8 reads them). */
+/* pos_cross8r with the cross product and its squared length stored at nb (seg_unit_avx512 reads them). */
 RG2_AVX512_FN static inline __attribute__((always_inline)) void
 pos_cross8(const __m512d T[5], __m512d c0[4][4], __m512d dc[3][4], __m512d c1[4][4], __m512d po[3], double *nb,
            __m512d thr, __mmask8 pad, const int bounded, int hw, const int rev)
@@ -1151,15 +1143,14 @@ RG2_AVX512_FN static inline __attribute__((always_inline)) void unit_put8(const 
 RG2_AVX512_FN static inline void seg_unit_avx512(double (*nb)[32], int cnt, double *nd, int st, int hw)
 {
     for (int i = 0; i < cnt; i += 8) {
-        __m512d nn[3], no[3];
-        unit8(nb[i / 8], nn);
-        xyz8(nn[0], nn[1], nn[2], no, hw);
-        put8(nd + 3 * i, no, cnt - i < 8 ? cnt - i : 8, st);
+        const double *b = nb[i / 8];
+        __m512d c[3] = {_mm512_load_pd(b), _mm512_load_pd(b + 8), _mm512_load_pd(b + 16)};
+        unit_put8(c, _mm512_load_pd(b + 24), nd + 3 * i, cnt - i < 8 ? cnt - i : 8, st, hw);
     }
 }
 
 /* Positions and unit normals of a patch at most 8 points wide (as patch_pos_narrow_avx512), by
- * pos_cross8 and unit8 as in seg_cross_avx512 and seg_unit_avx512 (the same bits): the cross
+ * pos_cross8 and seg_unit_avx512 as in seg_cross_avx512 (the same bits): the cross
  * products of up to 8 rows, then their normals. Streamed on Intel CPUs (!hw), each row's normals
  * go out after the next row's positions instead, the cross products kept in registers, as
  * seg_cross_unit_avx512 does for wide rows: the free-form mesh's 8 x 8 patches (43 and 119 MB)
