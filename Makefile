@@ -3,6 +3,7 @@
 #   make test   install what is missing, build under ASan+UBSan, run every test
 #   make bench  build optimised and run the benchmark against SISL and OpenCASCADE
 #   make check-memory  the rg2 command under valgrind on every example and bad input (make test runs it)
+#   make check-portable  build with clang, and with GCC without OpenMP or AVX-512; run the tests (make test runs it)
 #   make fuzz   build the libFuzzer harnesses (clang) into build-fuzz/ and run each FUZZ_SECONDS
 #   make check-freecad  FreeCAD opens our STEP / IGES (installs freecad-python3, ~930 MB; not in make test)
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
@@ -10,7 +11,7 @@ MAKEFLAGS += --no-print-directory
 DESIGN ?= examples/torus_sphere.json
 FUZZ_SECONDS ?= 60
 
-.PHONY: all build run test bench clean check-memory check-freecad fuzz
+.PHONY: all build run test bench clean check-memory check-portable check-freecad fuzz
 
 all: build
 
@@ -29,6 +30,7 @@ test:
 	@cmake --build build-test -j$(JOBS)
 	@cd build-test && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j$(JOBS)
 	@$(MAKE) --no-print-directory check-memory
+	@$(MAKE) --no-print-directory check-portable
 
 # valgrind needs a build without sanitizers: build/ (Release, with debug info for the reports)
 check-memory:
@@ -36,6 +38,11 @@ check-memory:
 	@cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_FLAGS=-g -DRG2_BUILD_TESTS=OFF >/dev/null
 	@cmake --build build -j$(JOBS)
 	@scripts/check_memory.sh build/rg2 .
+
+# the library, the command and the tests with clang, and with GCC on the portable paths
+check-portable:
+	@scripts/deps.sh test
+	@scripts/check_portable.sh . build-portable
 
 check-freecad: build
 	@scripts/deps.sh freecad
@@ -53,4 +60,4 @@ bench:
 	@build-bench/bench/rg2_bench out/bench.json
 
 clean:
-	rm -rf build build-test build-bench build-fuzz out
+	rm -rf build build-test build-bench build-fuzz build-portable out

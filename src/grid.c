@@ -116,10 +116,12 @@ static int amd_or(int hook)
  * (Sapphire Rapids: slower in earlier stops; 0.99-1.05x in the fourteenth, docs/performance.md).
  * The normalisation's 1 / sqrt takes Newton steps on every CPU (rsqrt8).
  * rg2__grid_hwdiv (a test hook) forces 0 or 1. */
+#if RG2_AVX512
 static int grid_hwdiv(void)
 {
     return amd_or(rg2__grid_hwdiv);
 }
+#endif
 
 /* Whether streamed outputs touch their pages ahead of the streaming stores (prefetch_pages): on
  * AMD CPUs, where it was measured to pay (Zen 5 guest: 1.05-1.63x, see prefetch_pages); not on

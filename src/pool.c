@@ -29,6 +29,7 @@
  * right behind), then sleep on a condition variable. One job runs at a time; a call that finds
  * the pool busy (another thread of the application is in a grid call) runs its chunks alone.
  */
+#define _POSIX_C_SOURCE 200809L /* clock_gettime, CLOCK_MONOTONIC under -std=c11 (any compiler, OpenMP or not) */
 #include "internal.h"
 
 #if RG2_HAVE_PTHREAD

@@ -2,6 +2,7 @@
  * and its writes are visible when rg2__pool_run returns, for any thread and chunk count, after
  * the workers fell asleep, with several application threads calling at once, and in a forked
  * child; rg2_surface_grid gives the same bits through all of it. */
+#define _POSIX_C_SOURCE 200809L /* nanosleep under -std=c11 */
 #include "../src/internal.h"
 #include "harness.h"
 
