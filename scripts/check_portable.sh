@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # make check-portable (make test runs it): the library, the rg2 command and the tests built two
 # more ways, warnings as errors, and every test run on each:
-#   clang   the compiler many embedders use (its OpenMP through libomp when installed)
+#   clang   the compiler many embedders use (its OpenMP through libomp, which deps.sh installs)
 #   plain   GCC without OpenMP and without the AVX-512 kernels and clones (RG2_OPENMP=OFF,
 #           -DRG2_NO_CLONES): the portable paths, one thread
 # Usage: scripts/check_portable.sh <source-dir> <build-root>
