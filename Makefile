@@ -28,7 +28,7 @@ test:
 	@scripts/deps.sh test
 	@cmake -S . -B build-test -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRG2_SANITIZE=ON -DRG2_BUILD_TESTS=ON >/dev/null
 	@cmake --build build-test -j$(JOBS)
-	@cd build-test && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j$(JOBS)
+	@cd build-test && ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp ctest --output-on-failure -j$(JOBS)
 	@$(MAKE) --no-print-directory check-memory
 	@$(MAKE) --no-print-directory check-portable
 

@@ -723,7 +723,8 @@ RG2_API rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts,
  * baseline chosen at run time on x86-64) and a pool of threads over patches. Results agree
  * with rg2_patch_eval to ~1e-15 relative (tests require <= 1e-14); they do not depend on the
  * thread count, and positions and normals do not depend on which other outputs are requested
- * (both bitwise). Outputs larger than 8 MB per thread of the call are written with streaming
+ * (both bitwise; a NaN that non-finite control points produce is a NaN either way, its sign and
+ * payload not specified). Outputs larger than 8 MB per thread of the call are written with streaming
  * (cache-bypassing) stores where available.
  * docs/performance.md has the measured speed against SISL and OpenCASCADE.
  *
