@@ -183,14 +183,6 @@ static void collapsed_edge(void)
     free(g.mem);
 }
 
-/* The wide normal rows skip the per-point test of an undefined normal where |a x b|^2 is above a
- * bound of the patch (cross_threshold in grid.c); their answers must stay those of the
- * second-order kernel, which tests every point. Nearly degenerate patches (control points on a
- * line, moved off it by delta: |a x b|^2 / (a.b)^2 ~ delta^2 crosses the test's 1e-30), patches
- * whose bound does not apply (a negative weight) or is out of range (huge, tiny coordinates):
- * positions and normals with and without K bitwise the same, and both answers occur. */
-/* Patch P on an n x m grid with positions and normals only, and with every output: whether the
- * positions and normals are bitwise the same; counts the zero (undefined) normals. */
 /* a and b bit for bit, except that a NaN matches any NaN: the sign and payload of a NaN that
  * arithmetic produces are the compiler's choice (clang's sanitizer build negates a NaN operand
  * where its plain build and GCC's fold the negation into the multiply-add). */
@@ -202,6 +194,14 @@ static int same_bits(const double *a, const double *b, size_t count)
     return 1;
 }
 
+/* The wide normal rows skip the per-point test of an undefined normal where |a x b|^2 is above a
+ * bound of the patch (cross_threshold in grid.c); their answers must stay those of the
+ * second-order kernel, which tests every point. Nearly degenerate patches (control points on a
+ * line, moved off it by delta: |a x b|^2 / (a.b)^2 ~ delta^2 crosses the test's 1e-30), patches
+ * whose bound does not apply (a negative weight) or is out of range (huge, tiny coordinates):
+ * positions and normals with and without K bitwise the same, and both answers occur. */
+/* Patch P on an n x m grid with positions and normals only, and with every output: whether the
+ * positions and normals are bitwise the same; counts the zero (undefined) normals. */
 static int same_as_second_order(const rg2_patch *P, int n, int m, int *undefined, int *defined)
 {
     grid_buf g;
