@@ -84,9 +84,10 @@ rg2_status rg2_surface_copy(const rg2_surface *src, rg2_surface *dst, rg2_error 
  * for every mesh column j; then columns: b_rs = sum_c cv[l][s][c] R[r][jv+c]. Homogeneous
  * control points H_rs = omega_r omega'_s b_rs with omega = (1, w, w, 1). With AVX-512 each patch
  * is made whole in registers from its 4 x 4 mesh points, both stages over 8 values a vector, the
- * rows stage again for each patch (build 1.6x and rebuild 2.2x faster at 1000 x 1000 on the
- * Intel Xeon machine, docs/performance.md); the same operations in the same order per value, so
- * the same bits as the portable path (tests/test_surface.c compares them).
+ * rows stage again for each patch, streamed past RG2_BUILD_STREAM_BYTES (build 2x and rebuild 3x
+ * faster at 1000 x 1000 on the Intel Xeon machine, docs/performance.md); the same operations in
+ * the same order per value, so the same bits as the portable path (tests/test_surface.c compares
+ * them).
  *
  * build_into: out holds a surface (or zeros); its arrays are kept when its patch counts are those
  * of m (no fresh memory, so no page faults: an editing loop), else freed and allocated anew. On
@@ -150,18 +151,16 @@ static inline void columns_at(double (*R)[4], size_t stride, const int jc[4], co
 #if defined(__GNUC__) && defined(__x86_64__) && !defined(RG2_NO_CLONES)
 #include <immintrin.h>
 
-/* The patch's 4 x 4 control points of m: Q[a][4 c + d] is value d of point (first_u + a, first_v + c). */
+/* The patch's 4 x 4 control points of m gathered where its columns wrap around a closed v:
+ * Q[a][4 c + d] is value d of point (first_u + a, first_v + c). */
 static inline void mesh_patch_points(const rg2_mesh *m, const rg2__stencil *su, const rg2__stencil *sv, int k,
                                      int l, double Q[4][16])
 {
-    int j0 = sv->first[l];
     for (int a = 0; a < 4; a++) {
         int i = rg2__wrap(su->first[k] + a, m->nu, su->closed);
-        if (j0 >= 0 && j0 + 3 < m->nv)
-            memcpy(Q[a], rg2_mesh_at(m, i, j0), 16 * sizeof(double));
-        else
-            for (int c = 0; c < 4; c++)
-                memcpy(Q[a] + 4 * c, rg2_mesh_at(m, i, rg2__wrap(j0 + c, m->nv, sv->closed)), 4 * sizeof(double));
+        for (int c = 0; c < 4; c++)
+            memcpy(Q[a] + 4 * c, rg2_mesh_at(m, i, rg2__wrap(sv->first[l] + c, m->nv, sv->closed)),
+                   4 * sizeof(double));
     }
 }
 
