@@ -164,10 +164,10 @@ static inline void mesh_patch_points(const rg2_mesh *m, const rg2__stencil *su, 
     }
 }
 
-/* Patch (k, l) of the surface of m with AVX-512: the same multiplications and additions, value by value, in the
- * same order as rows_at and columns_at (so the same bits; the sums start from +0 as theirs do),
- * the finiteness test and normalize_weights' range test on the registers. 0 if a control value
- * is not finite (P as computed), else 1 (P normalized). */
+/* Patch (k, l) of the surface of m with AVX-512: the same multiplications and additions, value by
+ * value, in the same order as rows_at and columns_at (so the same bits; the sums start from +0 as
+ * theirs do), the finiteness test and normalize_weights' range test on the registers; stream:
+ * streaming stores. 0 if a control value is not finite (P as computed), else 1 (P normalized). */
 __attribute__((target("avx512f"))) static int mesh_patch_avx512(const rg2_mesh *m, const rg2__stencil *su,
                                                                 const rg2__stencil *sv, int k, int l,
                                                                 rg2_patch *P, int stream)
