@@ -107,8 +107,8 @@ static void normalize_weights(double *h, int n)
         h[q] *= t;
 }
 
-/* Rows stage at mesh column j for u-segment k: R[r * stride][q] = sum_a cu[k][r][a] p^{first + a, j}[q]. */
-static inline void rows_at(const rg2_mesh *m, const rg2__stencil *su, int k, int j, double (*R)[4], size_t stride)
+/* Rows stage at mesh column j for u-segment k: R[r * nv + j][q] = sum_a cu[k][r][a] p^{first + a, j}[q]. */
+static inline void rows_at(const rg2_mesh *m, const rg2__stencil *su, int k, int j, double (*R)[4])
 {
     for (int r = 0; r < 4; r++) {
         double acc[4] = {0, 0, 0, 0};
@@ -120,13 +120,13 @@ static inline void rows_at(const rg2_mesh *m, const rg2__stencil *su, int k, int
             for (int q = 0; q < 4; q++)
                 acc[q] += c * p[q];
         }
-        memcpy(R[r * stride], acc, sizeof acc);
+        memcpy(R[(size_t)r * (size_t)m->nv + (size_t)j], acc, sizeof acc);
     }
 }
 
-/* Columns stage of patch (k, l) from the rows R[r * stride + jc[c]] of its four mesh columns,
- * times the weights omega_r omega'_s. */
-static inline void columns_at(double (*R)[4], size_t stride, const int jc[4], const rg2__stencil *su, int k,
+/* Columns stage of patch (k, l) from the rows R[r * nv + jc[c]] of its four mesh columns (nv of
+ * them in all), times the weights omega_r omega'_s. */
+static inline void columns_at(double (*R)[4], size_t nv, const int jc[4], const rg2__stencil *su, int k,
                               const rg2__stencil *sv, int l, rg2_patch *P)
 {
     double omu[4] = {1.0, su->w[k], su->w[k], 1.0};
@@ -138,7 +138,7 @@ static inline void columns_at(double (*R)[4], size_t stride, const int jc[4], co
                 double cc = sv->c[l][s][c];
                 if (cc == 0.0)
                     continue;
-                const double *q = R[r * stride + (size_t)jc[c]];
+                const double *q = R[(size_t)r * nv + (size_t)jc[c]];
                 for (int d = 0; d < 4; d++)
                     acc[d] += cc * q[d];
             }
@@ -280,7 +280,7 @@ static int build_row(const rg2_mesh *m, const rg2__stencil *su, const rg2__stenc
     (void)stream;
 #endif
     for (int j = 0; j < nv; j++)
-        rows_at(m, su, k, j, R + j, (size_t)nv);
+        rows_at(m, su, k, j, R);
     for (int l = 0; l < sv->n_segments; l++) {
         int jc[4];
         for (int c = 0; c < 4; c++)
