@@ -27,13 +27,14 @@ def main(path):
             print(f"| {m['method']} | {m['output']} | {m['median_s'] * 1e3:.3f} | {m['mpoints_per_s']:.1f} | "
                   f"{e(m['max_pos_err_rel'])} | {e(m['max_normal_err'])} | "
                   f"{e(max(m['max_K_err_rel'], m['max_H_err_rel']))} | {ok} |")
-        print("\n| ratio (same run, medians, 1 thread) | value | target | | write ceiling allows |")
-        print("|---|---:|---:|---|---:|")
+        print("\n| ratio (same run, medians, 1 thread) | value | target | | write ceiling allows | with patch reads |")
+        print("|---|---:|---:|---|---:|---:|")
         for r in c['ratios']:
             t = f">= {r['target']:g}x" if 'target' in r else ''
             met = ('met' if r['met'] else 'missed') if 'target' in r else ''
             b = f"{r['write_ceiling_bound']:.1f}x" if 'write_ceiling_bound' in r else ''
-            print(f"| {r['pair']} | {r['ratio']:.2f}x | {t} | {met} | {b} |")
+            tb = f"{r['traffic_bound']:.1f}x" if 'traffic_bound' in r else ''
+            print(f"| {r['pair']} | {r['ratio']:.2f}x | {t} | {met} | {b} | {tb} |")
     if 'grid_scaling' in d:
         paired = any('speedup_2_threads_paired' in r for r in d['grid_scaling']['threads'])
         host = any('host_parallelism_2_threads' in r for r in d['grid_scaling']['threads'])
