@@ -92,6 +92,9 @@ def main(path):
     if 'ceiling_fastest_way_counts' in d:
         w = ', '.join(f"{k} {v}" for k, v in d['ceiling_fastest_way_counts'].items())
         print(f"\nWrite ceiling: the fastest way of writing, counted over all ceiling measurements: {w}.")
+    if 'traffic_fastest_way_counts' in d:
+        w = ', '.join(f"{k} {v}" for k, v in d['traffic_fastest_way_counts'].items())
+        print(f"Patch reads + writes: the fastest way, counted likewise: {w}.")
 
 
 if __name__ == '__main__':
