@@ -31,7 +31,7 @@ def main(path):
         print("|---|---:|---:|---|---:|---:|")
         for r in c['ratios']:
             t = f">= {r['target']:g}x" if 'target' in r else ''
-            met = ('met' if r['met'] else 'missed') if 'target' in r else ''
+            met = ('met' if r['met'] else 'missed' if r.get('reachable', True) else 'out of reach') if 'target' in r else ''
             b = f"{r['write_ceiling_bound']:.1f}x" if 'write_ceiling_bound' in r else ''
             tb = f"{r['traffic_bound']:.1f}x" if 'traffic_bound' in r else ''
             print(f"| {r['pair']} | {r['ratio']:.2f}x | {t} | {met} | {b} | {tb} |")
