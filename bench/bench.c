@@ -228,12 +228,12 @@ static double traffic_time(const rg2_patch *P, size_t np, double *const *out, in
 {
     double best = INFINITY;
     int win = 0;
-    for (int way = 0; way < N_TW; way++) {
 #if BENCH_X86
-        int vec = !(per & 7) && __builtin_cpu_supports("avx512f");
+    int vec = !(per & 7) && __builtin_cpu_supports("avx512f");
 #else
-        int vec = 0;
+    int vec = 0;
 #endif
+    for (int way = 0; way < N_TW; way++) {
         if (way != TW_PLAIN && !vec)
             continue;
         double t = 0;
