@@ -9,6 +9,11 @@
  *   +arith     the same with a fixed amount of dependent vector arithmetic per patch row
  *              (--arith N: N multiply-add rounds per row), computed into the stored values
  *   arith      the arithmetic alone, stores to one L1-resident patch buffer
+ *   net        read+write with 288 bytes read per patch instead of 512: the 9 of its 16
+ *              control points that a patch would own in a Bezier net shared with its
+ *              neighbours, here contiguous (the most such a layout could save on reads)
+ *   L1 read    read+write with every patch's loads taken from 16 patches that stay in L1
+ *              (the same loads without their memory traffic)
  * Usage: rg2_traffic [--reps R] [--arith N]. x86-64 with AVX-512F only (else it says so). */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
@@ -22,7 +27,8 @@
 #include <immintrin.h>
 #define TR_FN __attribute__((target("avx512f,fma")))
 
-enum { NPATCH = 197 * 197, IN_D = 64, OUT_D = 192 }; /* doubles per patch read and written */
+enum { NPATCH = 197 * 197, IN_D = 64, OUT_D = 192, NET_D = 36 }; /* doubles per patch read and written */
+enum { M_WRITE, M_READ, M_ARITH_RW, M_ARITH, M_NET, M_L1READ, NMODE };
 
 /* One pass of a mode over all patches; returns a value that depends on everything computed. */
 TR_FN static double pass(int mode, int arith, const double *in, double *out, double *l1)
@@ -30,11 +36,18 @@ TR_FN static double pass(int mode, int arith, const double *in, double *out, dou
     __m512d sink = _mm512_setzero_pd();
     for (size_t k = 0; k < NPATCH; k++) {
         __m512d v = _mm512_set1_pd(1.0);
-        if (mode == 1 || mode == 2)
+        if (mode == M_READ || mode == M_ARITH_RW || mode == M_L1READ) {
+            const double *p = in + (mode == M_L1READ ? k & 15 : k) * IN_D;
             for (int q = 0; q < 8; q++)
-                v = _mm512_add_pd(v, _mm512_load_pd(in + k * IN_D + 8 * q));
-        double *d = mode == 3 ? l1 : out + k * OUT_D;
-        if (mode <= 1) {
+                v = _mm512_add_pd(v, _mm512_load_pd(p + 8 * q));
+        } else if (mode == M_NET) {
+            const double *p = in + k * NET_D;
+            for (int q = 0; q < 4; q++)
+                v = _mm512_add_pd(v, _mm512_loadu_pd(p + 8 * q));
+            v = _mm512_add_pd(v, _mm512_zextpd256_pd512(_mm256_loadu_pd(p + 32)));
+        }
+        double *d = mode == M_ARITH ? l1 : out + k * OUT_D;
+        if (mode == M_WRITE || mode == M_READ || mode == M_NET || mode == M_L1READ) {
             for (int q = 0; q < 24; q++)
                 _mm512_stream_pd(d + 8 * q, v);
         } else {
@@ -46,7 +59,7 @@ TR_FN static double pass(int mode, int arith, const double *in, double *out, dou
                     for (int q = 0; q < 8; q++)
                         a[q] = _mm512_fmadd_pd(a[q], v, a[(q + 1) & 7]);
                 for (int q = 0; q < 3; q++) {
-                    if (mode == 2)
+                    if (mode == M_ARITH_RW)
                         _mm512_stream_pd(d + 24 * row + 8 * q, a[q]);
                     else
                         _mm512_store_pd(d + 24 * row + 8 * q, a[q]);
@@ -85,7 +98,7 @@ int main(int argc, char **argv)
     double *in = aligned_alloc(64, sizeof(double) * IN_D * NPATCH);
     double *out = aligned_alloc(64, sizeof(double) * OUT_D * NPATCH);
     double *l1 = aligned_alloc(64, sizeof(double) * OUT_D);
-    double *t = malloc(sizeof(double) * 4 * (size_t)reps);
+    double *t = malloc(sizeof(double) * NMODE * (size_t)reps);
     if (!in || !out || !l1 || !t) {
         fprintf(stderr, "rg2_traffic: out of memory\n");
         return 1;
@@ -95,23 +108,24 @@ int main(int argc, char **argv)
     memset(out, 1, sizeof(double) * OUT_D * NPATCH);
     double chk = 0;
     for (int r = 0; r < reps; r++)
-        for (int m = 0; m < 4; m++) {
+        for (int m = 0; m < NMODE; m++) {
             chk += pass(m, arith, in, out, l1); /* untimed: warm */
             double t0 = bench_seconds(CLOCK_THREAD_CPUTIME_ID);
             chk += pass(m, arith, in, out, l1);
             t[m * reps + r] = bench_seconds(CLOCK_THREAD_CPUTIME_ID) - t0;
         }
-    const char *name[4] = {"write (streaming stores)", "read 512 B + write per patch", "read + write + arithmetic",
-                           "arithmetic alone (L1)"};
-    double med[4], pts = 64.0 * NPATCH;
+    const char *name[NMODE] = {"write (streaming stores)",     "read 512 B + write per patch",
+                               "read + write + arithmetic",    "arithmetic alone (L1)",
+                               "read 288 B (shared net) + write", "read from L1 + write"};
+    double med[NMODE], pts = 64.0 * NPATCH;
     printf("rg2_traffic: %d patches, 512 B read and 1536 B written per patch (%.1f MB + %.1f MB), "
            "%d repetitions, --arith %d\n",
            NPATCH, 512e-6 * NPATCH, 1536e-6 * NPATCH, reps, arith);
-    for (int m = 0; m < 4; m++) {
+    for (int m = 0; m < NMODE; m++) {
         med[m] = bench_median(t + m * reps, reps);
         printf("  %-30s %8.3f ms  %7.1f M points/s  %6.1f ns per patch", name[m], 1e3 * med[m], 1e-6 * pts / med[m],
                1e9 * med[m] / NPATCH);
-        if (m < 3)
+        if (m != M_ARITH)
             printf("  %.2f of the write ceiling", med[0] / med[m]);
         printf("\n");
     }
