@@ -7,11 +7,11 @@ Runs build-bench/bench/rg2_bench --quick --only CASE under `valgrind --tool=call
 each method's inclusive instruction count (the method's function and everything it calls) by the
 points it evaluated. Unlike the timings, these counts do not depend on the host's clock or on
 what the machine's other guests do: the same binary and input give the same counts. They count
-work, not time: a 512-bit or a scalar instruction counts one, and memory stalls do not count.
-valgrind emulates no AVX-512, so rg2 runs its AVX2 kernels (x86-64-v3 clones) here; the AVX-512
-kernels of a native run execute fewer instructions.
+work, not time: a vector or a scalar instruction counts one, and memory stalls do not count.
+valgrind emulates no AVX-512, so rg2 runs its AVX2 kernels (x86-64-v3 clones) here; the
+hand-written AVX-512 kernels that a native run takes on an AVX-512 CPU are not counted.
 
-The torus takes about 2.5 minutes, the merged design about 6, the free-form mesh about 20.
+The torus takes about 2.5 minutes, the merged design about 6, the free-form mesh about 30.
 """
 import json
 import os
