@@ -1791,17 +1791,18 @@ static void set_stores(tables *t, size_t pts)
 
 typedef struct {
     _Alignas(64) atomic_flag busy;
-    int way;       /* the current run's way: 0 streaming, 1 plain */
+    _Atomic int way; /* the current run's way: 0 streaming, 1 plain */
     unsigned run;  /* calls of the current run so far */
     unsigned left; /* calls until the next exploring run (0: none yet, warming up) */
+    int exploring;  /* the current run explores the other way */
     unsigned scale; /* the exploring runs' spacing: doubled (up to 16) while they lose by 1.25x */
     unsigned seed;
     unsigned n[2];   /* timed calls of each way */
     double est[2];   /* seconds per point */
 } store_tuner;
 
-static store_tuner tuners[TUNE_BANDS] = {{ATOMIC_FLAG_INIT, 0, 0, 0, 1, 1, {0, 0}, {0, 0}},
-                                         {ATOMIC_FLAG_INIT, 0, 0, 0, 1, 1, {0, 0}, {0, 0}}};
+static store_tuner tuners[TUNE_BANDS] = {{ATOMIC_FLAG_INIT, 0, 0, 0, 0, 1, 1, {0, 0}, {0, 0}},
+                                         {ATOMIC_FLAG_INIT, 0, 0, 0, 0, 1, 1, {0, 0}, {0, 0}}};
 int rg2__grid_tune = 1;
 
 /* The tuner of a call storing bytes per thread (its tables' order), or NULL: outside the bands,
@@ -1822,35 +1823,50 @@ static int tune_pick(store_tuner *u, tables *t)
 {
     int timed = 0;
     if (!atomic_flag_test_and_set_explicit(&u->busy, memory_order_acquire)) {
-        int way = u->way;
+        int cur = u->way, way = cur;
         if (u->left == 0) { /* warming up: TUNE_RUN calls of each way */
-            if (u->run >= TUNE_RUN && u->n[!way] == 0)
-                way = !way;
+            if (u->run >= TUNE_RUN && u->n[!cur] == 0)
+                way = !cur;
             else if (u->run >= TUNE_RUN)
                 u->left = 32;
         }
-        if (u->left) {
-            int best = u->est[1] < u->est[0];
-            if (way != best && u->run >= TUNE_RUN) { /* the end of an exploring run */
-                way = best;
-                u->scale = u->est[way] * 1.25 < u->est[!way] ? (u->scale < 16 ? 2 * u->scale : 16) : 1;
-            } else if (way == best && --u->left == 0) {
-                way = !best;
+        if (u->left && u->run >= TUNE_RUN) {
+            /* the other way takes over when faster by 3 % (no switching back and forth, each
+             * switch's first call untimed, on estimates within their noise) */
+            int other = u->est[!cur] < 0.97 * u->est[cur];
+            if (u->exploring) { /* the end of an exploring run */
+                u->exploring = 0;
+                u->scale = u->est[cur] > 1.25 * u->est[!cur] ? (u->scale < 16 ? 2 * u->scale : 16) : 1;
+                way = u->est[cur] < 0.97 * u->est[!cur] ? cur : !cur;
+            } else if (other) {
+                way = !cur;
+            } else if (--u->left == 0) {
+                way = !cur;
+                u->exploring = 1;
                 u->seed = u->seed * 1103515245u + 12345u;
                 u->left = u->scale * (32 + (u->seed >> 16) % 32);
             }
         }
-        if (way != u->way)
-            u->way = way, u->run = 0;
+        if (way != cur) {
+            atomic_store_explicit(&u->way, way, memory_order_relaxed);
+            u->run = 0;
+        }
         timed = u->run++ > 0;
         atomic_flag_clear_explicit(&u->busy, memory_order_release);
         if (timed) /* (the call's record takes the flag again; a call in between only costs a sample) */
             t->stream = !way;
     }
-    if (!timed) /* not timed: the way the tuner is on (a racy read of an int; either way is right) */
-        t->stream = !__atomic_load_n(&u->way, __ATOMIC_RELAXED);
+    if (!timed) /* not timed: the way the tuner is on (either way stores the same bits) */
+        t->stream = !atomic_load_explicit(&u->way, memory_order_relaxed);
     t->pages = t->stream && grid_pages();
     return timed;
+}
+
+int rg2__grid_avx512(void)
+{
+    tables t = {0};
+    tables_mode(&t, 0);
+    return t.avx512;
 }
 
 int rg2__grid_tune_state(int band, double est[2], unsigned n[2])

@@ -136,6 +136,8 @@ extern int rg2__grid_tune; /* test and benchmark hook: 0 keeps the fixed streami
 /* The store tuner of band 0 or 1 (grid.c): its estimates (seconds per point) and samples of
  * streaming [0] and plain [1] stores; returns the way it takes (1 plain), -1 while warming up. */
 int rg2__grid_tune_state(int band, double est[2], unsigned n[2]);
+/* Test hook: whether grid calls take the AVX-512 kernels (built in, on this CPU, not forced portable). */
+int rg2__grid_avx512(void);
 extern int rg2__surface_portable; /* test hook: 1 builds surfaces on the portable path (surface.c) */
 /* Test hook: whether the grid's tables cache (grid.c) holds the tables of n x m points. */
 int rg2__grid_tables_cached(int n, int m);

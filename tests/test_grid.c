@@ -492,8 +492,8 @@ static void large_output(void)
 
 /* The store tuner (grid.c): positions of 8-16 MB per thread, single thread, with the tuner on
  * (its default). Every call stores the same bits as with plain stores and the tuner off, whichever
- * way it took; on AVX-512 CPUs the tuner has timed calls of both ways and chosen one of them; on
- * others (the portable kernels) it has never run. */
+ * way it took; with the AVX-512 kernels the tuner has timed calls of both ways and chosen one of
+ * them; with the portable ones (other CPUs, builds without them) it has never run. */
 static void store_tuner(void)
 {
     rg2_surface s;
@@ -521,7 +521,7 @@ static void store_tuner(void)
     CHECK(same == calls, "store tuner: %d of %d calls stored other bits than plain stores", calls - same, calls);
     int way = rg2__grid_tune_state(0, est, n1);
     unsigned d0 = n1[0] - n0[0], d1 = n1[1] - n0[1];
-    int avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+    int avx512 = rg2__grid_avx512();
     if (avx512)
         CHECK(way >= 0 && d0 >= 3 && d1 >= 3 && est[0] > 0 && est[1] > 0,
               "store tuner: way %d after %d calls, timed streaming %u, plain %u (estimates %.3g, %.3g s/point)", way,
