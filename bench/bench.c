@@ -6,7 +6,6 @@
  * Usage: rg2_bench [out.json] [--quick]
  */
 #define _POSIX_C_SOURCE 200809L
-#include "../src/internal.h" /* the grid's store tuner state (rg2__grid_tune_state) */
 #include "bench.h"
 #include "timing.h"
 #include "harness.h"
@@ -866,20 +865,6 @@ static cJSON *run_case(bcase *c)
     if (steal >= 0) {
         printf("   host: %.1f %% of this machine's CPU time went to other guests during this case (steal)\n", steal);
         cJSON_AddNumberToObject(jc, "host_steal_percent", steal);
-    }
-    double pbytes = c->pts * 24.0, sb = (double)rg2__grid_stream_bytes;
-    if (pbytes > sb && pbytes <= 4 * sb) { /* the grid's positions chose their stores by timing (grid.c) */
-        double est[2];
-        unsigned ns[2];
-        int way = rg2__grid_tune_state(pbytes > 2 * sb, est, ns);
-        printf("   store tuner (positions): %s stores (timed calls: streaming %u at %.0f M pts/s, plain %u at %.0f)\n",
-               way < 0 ? "still warming up," : way ? "plain" : "streaming", ns[0], 1e-6 / est[0], ns[1], 1e-6 / est[1]);
-        cJSON *jt = cJSON_AddObjectToObject(jc, "store_tuner");
-        cJSON_AddStringToObject(jt, "positions_stores", way < 0 ? "warming up" : way ? "plain" : "streaming");
-        cJSON_AddNumberToObject(jt, "streaming_mpoints_per_s", 1e-6 / est[0]);
-        cJSON_AddNumberToObject(jt, "plain_mpoints_per_s", 1e-6 / est[1]);
-        cJSON_AddNumberToObject(jt, "streaming_calls", ns[0]);
-        cJSON_AddNumberToObject(jt, "plain_calls", ns[1]);
     }
     printf("   %-42s %-24s %10s %10s  %-9s %-9s %-9s %s\n", "method", "output", "median ms", "M pts/s",
            "pos err", "nrm err", "K,H err", "check");

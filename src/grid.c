@@ -29,7 +29,6 @@
  * the separable scalar grid of xpatch.c. Threads: the pool of pool.c (runs of patches claimed
  * by the caller and the workers; the caller never waits for a worker that has not started).
  */
-#define _POSIX_C_SOURCE 200809L /* clock_gettime, CLOCK_MONOTONIC under -std=c11 (the store tuner) */
 #include "export_internal.h"
 #include "internal.h"
 
@@ -37,7 +36,6 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #ifdef RG2_HAVE_OPENMP
 #include <omp.h>
@@ -1766,136 +1764,6 @@ static void set_stores(tables *t, size_t pts)
     t->spread = t->order == 1 && rg2__grid_spread;
 }
 
-/* The store tuner. Positions of 1-4 times RG2_STREAM_BYTES per thread are where neither way of
- * storing wins on every machine, nor on one machine at every hour. Plain stores win when the
- * caller writes the same arrays again and they stay in the L3 cache from one call to the next
- * (no memory traffic at all); streaming stores, when the L3 cannot keep them. On the Intel
- * machine (105 MB of L3 shared with the host's other guests) plain stores wrote the merged
- * design's 11.8 MB 1.07-1.20x faster than streaming in quiet hours and 0.70-0.91x as fast in busy
- * ones; on an AMD Zen 4 guest (32 MB of L3) 0.41-0.71x as fast (docs/performance-history.md).
- * There rg2_surface_grid times its own calls and takes the faster way. Its calls come in runs of
- * one way; the first call of a run is not timed (after streaming, a plain call finds nothing of
- * its arrays in the caches, which is what plain stores live on; after plain stores a streaming
- * call first evicts them). The tuner first runs each way TUNE_RUN calls, then keeps the way with
- * the lower estimate (seconds per point), and after every 32-63 calls (pseudo-random, so that no
- * calling pattern always or never meets it) runs the other way TUNE_RUN calls, so that it sees
- * the host's load change; while those runs lose by more than 1.25x their spacing doubles, up to
- * 16 times (where streaming is twice as fast, exploring then costs about 0.3 % of the time). Estimates: the fastest timed call of the first run, then each timed
- * call moves its way's estimate a quarter of the way to what it measured. Both ways store the
- * same bits; only the time differs. One tuner per band (per thread 1-2 and 2-4 times
- * RG2_STREAM_BYTES), shared by every size in it, behind a try-lock: a call that finds it held
- * takes the tuner's current way untimed. rg2__grid_tune = 0 (a test and benchmark hook) keeps
- * the fixed threshold. */
-#define TUNE_RUN 4
-#define TUNE_BANDS 2
-
-typedef struct {
-    _Alignas(64) atomic_flag busy;
-    _Atomic int way; /* the current run's way: 0 streaming, 1 plain */
-    unsigned run;  /* calls of the current run so far */
-    unsigned left; /* calls until the next exploring run (0: none yet, warming up) */
-    int exploring;  /* the current run explores the other way */
-    unsigned scale; /* the exploring runs' spacing: doubled (up to 16) while they lose by 1.25x */
-    unsigned seed;
-    unsigned n[2];   /* timed calls of each way */
-    double est[2];   /* seconds per point */
-} store_tuner;
-
-static store_tuner tuners[TUNE_BANDS] = {{ATOMIC_FLAG_INIT, 0, 0, 0, 0, 1, 1, {0, 0}, {0, 0}},
-                                         {ATOMIC_FLAG_INIT, 0, 0, 0, 0, 1, 1, {0, 0}, {0, 0}}};
-int rg2__grid_tune = 1;
-
-/* The tuner of a call storing bytes per thread (its tables' order), or NULL: outside the bands,
- * with normals (their two arrays streamed were faster from 9.4 MB on, see RG2_STREAM_BYTES),
- * on the portable kernels (which store plainly), or with the tuner off. */
-static store_tuner *tuner_for(const tables *t, size_t bytes)
-{
-    size_t lo = rg2__grid_stream_bytes;
-    if (!rg2__grid_tune || t->order || !t->avx512 || lo == 0 || lo > SIZE_MAX / 4 || bytes <= lo ||
-        bytes > 4 * lo)
-        return NULL;
-    return &tuners[bytes > 2 * lo];
-}
-
-/* The way this call stores (t->stream, t->pages), chosen by tuner u; returns whether to time it
- * (it continues a run, and the tuner is this call's). */
-static int tune_pick(store_tuner *u, tables *t)
-{
-    int timed = 0;
-    if (!atomic_flag_test_and_set_explicit(&u->busy, memory_order_acquire)) {
-        int cur = u->way, way = cur;
-        if (u->left == 0) { /* warming up: TUNE_RUN calls of each way */
-            if (u->run >= TUNE_RUN && u->n[!cur] == 0)
-                way = !cur;
-            else if (u->run >= TUNE_RUN)
-                u->left = 32;
-        }
-        if (u->left && u->run >= TUNE_RUN) {
-            /* the other way takes over when faster by 3 % (no switching back and forth, each
-             * switch's first call untimed, on estimates within their noise) */
-            int other = u->est[!cur] < 0.97 * u->est[cur];
-            if (u->exploring) { /* the end of an exploring run */
-                u->exploring = 0;
-                u->scale = u->est[cur] > 1.25 * u->est[!cur] ? (u->scale < 16 ? 2 * u->scale : 16) : 1;
-                way = u->est[cur] < 0.97 * u->est[!cur] ? cur : !cur;
-            } else if (other) {
-                way = !cur;
-            } else if (--u->left == 0) {
-                way = !cur;
-                u->exploring = 1;
-                u->seed = u->seed * 1103515245u + 12345u;
-                u->left = u->scale * (32 + (u->seed >> 16) % 32);
-            }
-        }
-        if (way != cur) {
-            atomic_store_explicit(&u->way, way, memory_order_relaxed);
-            u->run = 0;
-        }
-        timed = u->run++ > 0;
-        atomic_flag_clear_explicit(&u->busy, memory_order_release);
-        if (timed) /* (the call's record takes the flag again; a call in between only costs a sample) */
-            t->stream = !way;
-    }
-    if (!timed) /* not timed: the way the tuner is on (either way stores the same bits) */
-        t->stream = !atomic_load_explicit(&u->way, memory_order_relaxed);
-    t->pages = t->stream && grid_pages();
-    return timed;
-}
-
-int rg2__grid_avx512(void)
-{
-    tables t = {0};
-    tables_mode(&t, 0);
-    return t.avx512;
-}
-
-int rg2__grid_tune_state(int band, double est[2], unsigned n[2])
-{
-    if (band < 0 || band >= TUNE_BANDS)
-        return -1;
-    store_tuner *u = &tuners[band];
-    while (atomic_flag_test_and_set_explicit(&u->busy, memory_order_acquire))
-        ;
-    for (int w = 0; w < 2; w++)
-        est[w] = u->est[w], n[w] = u->n[w];
-    int way = u->left ? u->way : -1;
-    atomic_flag_clear_explicit(&u->busy, memory_order_release);
-    return way;
-}
-
-/* Record a timed call of tuner u that stored as t->stream and took sec seconds for pts points. */
-static void tune_record(store_tuner *u, const tables *t, double sec, size_t pts)
-{
-    double x = sec / (double)pts;
-    if (!(x > 0) || atomic_flag_test_and_set_explicit(&u->busy, memory_order_acquire))
-        return;
-    int way = !t->stream;
-    double e = u->est[way];
-    u->est[way] = u->n[way] == 0 ? x : u->left == 0 ? (x < e ? x : e) : e + 0.25 * (x - e);
-    u->n[way]++;
-    atomic_flag_clear_explicit(&u->busy, memory_order_release);
-}
-
 static rg2_status check_args(int n, int m, const rg2_grid_out *out, rg2_error *err)
 {
     if (!out || !out->pos)
@@ -1964,14 +1832,7 @@ rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads, con
     /* streaming by each thread's share of the output: with 2 threads, outputs of 8-16 MB (with
      * normals) fit the caches' share of both cores, and streaming them to memory instead made 2
      * threads only 1.4x 1 thread (AMD EPYC, 32 MB L3; 1.8-1.9x with plain stores) */
-    size_t share = np * per / (size_t)nt;
-    set_stores(&t, share);
-    store_tuner *tu = s->xp ? NULL : tuner_for(&t, share * 24);
-    struct timespec t0;
-    if (tu && !tune_pick(tu, &t))
-        tu = NULL; /* (not timed) */
-    if (tu)
-        clock_gettime(CLOCK_MONOTONIC, &t0);
+    set_stores(&t, np * per / (size_t)nt);
     /* contiguous runs of patches, RG2_RUNS_PER_THREAD per thread, claimed one at a time by the
      * caller and the pool's workers (a busy core takes fewer, a worker without a core none);
      * prefetching and the closing store fence are per run, not per patch */
@@ -1991,11 +1852,6 @@ rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads, con
     }
     grid_job job = {s, &xt, &t, out, np, per, nrun};
     rg2__pool_run(nt, (uint32_t)nrun, grid_job_run, &job);
-    if (tu) {
-        struct timespec t1;
-        clock_gettime(CLOCK_MONOTONIC, &t1);
-        tune_record(tu, &t, (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec), np * per);
-    }
     rg2__xgrid_free(&xt);
     tables_put(&t);
     rg2__ok(err);

@@ -132,12 +132,6 @@ extern int rg2__grid_hwdiv; /* test hook: -1 by CPU, 0 Newton steps, 1 hardware 
 extern int rg2__grid_spread; /* test hook: 0 keeps the normals of wide rows in two phases (grid.c) */
 extern size_t rg2__grid_stream_bytes; /* test hook: outputs past this per thread stream (grid.c) */
 extern int rg2__grid_pages; /* test hook: -1 by CPU, 0/1 streamed outputs touch their pages ahead (grid.c) */
-extern int rg2__grid_tune; /* test and benchmark hook: 0 keeps the fixed streaming threshold (grid.c store tuner) */
-/* The store tuner of band 0 or 1 (grid.c): its estimates (seconds per point) and samples of
- * streaming [0] and plain [1] stores; returns the way it takes (1 plain), -1 while warming up. */
-int rg2__grid_tune_state(int band, double est[2], unsigned n[2]);
-/* Test hook: whether grid calls take the AVX-512 kernels (built in, on this CPU, not forced portable). */
-int rg2__grid_avx512(void);
 extern int rg2__surface_portable; /* test hook: 1 builds surfaces on the portable path (surface.c) */
 /* Test hook: whether the grid's tables cache (grid.c) holds the tables of n x m points. */
 int rg2__grid_tables_cached(int n, int m);

@@ -490,51 +490,6 @@ static void large_output(void)
     }
 }
 
-/* The store tuner (grid.c): positions of 8-16 MB per thread, single thread, with the tuner on
- * (its default). Every call stores the same bits as with plain stores and the tuner off, whichever
- * way it took; with the AVX-512 kernels the tuner has timed calls of both ways and chosen one of
- * them; with the portable ones (other CPUs, builds without them) it has never run. */
-static void store_tuner(void)
-{
-    rg2_surface s;
-    rg2_error err;
-    CHECK_OK(rg2t_torus(3.0, 1.0, 12, 10, NULL, &s, &err), &err); /* 120 x 64 x 64 points: 11.8 MB */
-    const int n = 64, calls = 24;
-    size_t pts = (size_t)n * n * (size_t)s.nu * (size_t)s.nv, bytes = pts * 3 * sizeof(double);
-    double *ref = aligned_alloc(64, bytes), *pos = aligned_alloc(64, bytes);
-    rg2_grid_out a = {.pos = ref}, b = {.pos = pos};
-    double est[2];
-    unsigned n0[2], n1[2];
-    rg2__grid_tune_state(0, est, n0);
-    rg2__grid_tune = 0;
-    size_t stream_bytes = rg2__grid_stream_bytes;
-    rg2__grid_stream_bytes = SIZE_MAX;
-    CHECK_OK(rg2_surface_grid(&s, n, n, 1, &a, &err), &err);
-    rg2__grid_stream_bytes = stream_bytes;
-    rg2__grid_tune = 1;
-    int same = 0;
-    for (int k = 0; k < calls; k++) {
-        memset(pos, 0, bytes);
-        CHECK_OK(rg2_surface_grid(&s, n, n, 1, &b, &err), &err);
-        same += memcmp(pos, ref, bytes) == 0;
-    }
-    CHECK(same == calls, "store tuner: %d of %d calls stored other bits than plain stores", calls - same, calls);
-    int way = rg2__grid_tune_state(0, est, n1);
-    unsigned d0 = n1[0] - n0[0], d1 = n1[1] - n0[1];
-    int avx512 = rg2__grid_avx512();
-    if (avx512)
-        CHECK(way >= 0 && d0 >= 3 && d1 >= 3 && est[0] > 0 && est[1] > 0,
-              "store tuner: way %d after %d calls, timed streaming %u, plain %u (estimates %.3g, %.3g s/point)", way,
-              calls, d0, d1, est[0], est[1]);
-    else
-        CHECK(d0 == 0 && d1 == 0, "store tuner: ran (timed %u, %u calls) without AVX-512 kernels", d0, d1);
-    printf("store tuner: %d calls, all bitwise as plain stores; %s (timed: streaming %u, plain %u)\n", calls,
-           !avx512 ? "off (portable kernels)" : way ? "plain stores chosen" : "streaming chosen", d0, d1);
-    free(ref);
-    free(pos);
-    rg2_surface_free(&s);
-}
-
 /* Patches at most 8 points wide take kernels of their own on AVX-512 (whole rows in registers):
  * against rg2_patch_eval, the same bits as the wide kernels give with every output requested, 1 vs
  * 2 threads; with 64-byte aligned arrays of 8 x 8 patches past the streaming thresholds (17.6 MB of
@@ -709,8 +664,6 @@ static void tables_cache(void)
 int main(void)
 {
     tables_cache();
-    store_tuner();
-    rg2__grid_tune = 0; /* from here the fixed threshold: streamed outputs stream, as the tests below ask */
     /* every kernel family: the AVX-512 ones (where the CPU has them) with Newton steps and with
      * the hardware's divisions and square roots, then the portable ones */
     for (int family = 0; family < 3; family++) {
