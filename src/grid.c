@@ -1096,11 +1096,92 @@ seg_pos_cxr_avx512(const double *HT, double c[4][4][BLK], double cx[4][3 * BLK],
         shift_end(w);
 }
 
-/* Store mode of a patch at most 8 points wide written at dst: streaming needs whole aligned
- * vectors, so rows of exactly 8 points from a 64-byte aligned start. */
+/* Store mode of a patch at most 8 points wide written at dst: streamed when the rows are exactly
+ * 8 points, straight from a 64-byte aligned start, and shifted to the cache lines from any other
+ * (nshift: the patch's rows follow each other in memory, so only its first and last lines are
+ * partial). Such arrays were stored plainly before, every line waiting on its read for ownership:
+ * shifted, the free-form mesh's 38809 patches of 8 x 8 points from a start 16 bytes past a line
+ * ran 1.07-1.22x (positions, 0.88-0.91 of an aligned start against 0.77-0.83) and 1.02-1.32x with
+ * normals (0.88-1.02 against 0.81-0.90; medians of 15-21 calls alternating the three ways, five
+ * rounds, Intel machine). */
 static inline int narrow_mode(const tables *t, const double *dst)
 {
-    return t->stream && t->m == 8 && !((uintptr_t)dst & 63) ? ST_STREAM : ST_PLAIN;
+    if (!t->stream || t->m != 8)
+        return ST_PLAIN;
+    return (uintptr_t)dst & 63 ? ST_SHIFT : ST_STREAM;
+}
+
+/* A patch of rows of exactly 8 points, streamed from a start s doubles past a cache line
+ * (ST_SHIFT): its n rows are one run of 3 n vectors, shifted by s as a shifter does (lane l of the
+ * aligned vector j holds dst[8 j + l - s]) but without the shifter's bookkeeping. Only the first
+ * and the last line are partial, stored plainly and shared with the neighbouring patches. */
+typedef struct {
+    double *a;   /* the 64-byte aligned address at or before the start */
+    __m512i idx; /* lanes 8 - s .. 15 - s of (previous, current) */
+    __m512d prev;
+    unsigned s;
+} nshift;
+
+/* A plain store that waits on its read for ownership holds up the streamed ones behind it. So
+ * each patch asks for the line shared by the patches this many on and the one after (prefetchw),
+ * for that read to be done when its stores come. */
+#ifndef RG2_NARROW_AHEAD
+#define RG2_NARROW_AHEAD 2
+#endif
+
+RG2_AVX512_FN static inline __attribute__((always_inline)) void nshift_init(nshift *w, double *dst, int n)
+{
+    w->s = (unsigned)(((uintptr_t)dst >> 3) & 7);
+    w->a = dst - w->s;
+    w->idx = _mm512_add_epi64(_mm512_set1_epi64(8 - (long long)w->s), _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0));
+    w->prev = _mm512_setzero_pd();
+    __builtin_prefetch(dst + RG2_NARROW_AHEAD * 24 * (size_t)n, 1, 3);
+}
+
+/* Row r's 8 points (24 doubles, interleaved in o). */
+RG2_AVX512_FN static inline __attribute__((always_inline)) void nshift_row(nshift *w, const __m512d o[3], int r)
+{
+    __m512d v0 = _mm512_permutex2var_pd(w->prev, w->idx, o[0]);
+    double *d = w->a + 24 * r;
+    if (r)
+        _mm512_stream_pd(d, v0);
+    else
+        _mm512_mask_store_pd(d, (__mmask8)(0xffu << w->s), v0);
+    _mm512_stream_pd(d + 8, _mm512_permutex2var_pd(o[0], w->idx, o[1]));
+    _mm512_stream_pd(d + 16, _mm512_permutex2var_pd(o[1], w->idx, o[2]));
+    w->prev = o[2];
+}
+
+/* After the last of n rows: the lanes of the last vector that fall into the next line. */
+RG2_AVX512_FN static inline __attribute__((always_inline)) void nshift_end(nshift *w, int n)
+{
+    _mm512_mask_store_pd(w->a + 24 * n, (__mmask8)((1u << w->s) - 1u),
+                         _mm512_permutex2var_pd(w->prev, w->idx, w->prev));
+}
+
+/* The rows of patch_pos_narrow_avx512 from the column sums c, stored as st or (shift) into one
+ * shifted run. */
+RG2_AVX512_FN static inline __attribute__((always_inline)) void
+pos_narrow_rows(const tables *t, __m512d c[4][4], double *pos, int st, int hw, const int shift)
+{
+    const int n = t->n, m = t->m;
+    nshift w;
+    if (shift)
+        nshift_init(&w, pos, n);
+    for (int a = 0; a < n; a++) {
+        __m512d T[5], o[3];
+        bcastT(t->ht + 8 * a, T);
+        if (a < t->arev)
+            pos8(T, c, o, hw, 0);
+        else
+            pos8(T, c, o, hw, 1);
+        if (shift)
+            nshift_row(&w, o, a);
+        else
+            put8(pos + 3 * m * a, o, m, st);
+    }
+    if (shift)
+        nshift_end(&w, n);
 }
 
 /* Positions of a patch at most 8 points wide (m <= 8, every row one vector), written at pos: the
@@ -1109,18 +1190,13 @@ static inline int narrow_mode(const tables *t, const double *dst)
 RG2_AVX512_FN static inline void patch_pos_narrow_avx512(const rg2_patch *P, const tables *t, double *pos,
                                                         int hw)
 {
-    const int n = t->n, m = t->m, st = narrow_mode(t, pos);
+    const int st = narrow_mode(t, pos);
     __m512d c[4][4];
     vsum_narrow(P, t->bv, c);
-    for (int a = 0; a < n; a++) {
-        __m512d T[5], o[3];
-        bcastT(t->ht + 8 * a, T);
-        if (a < t->arev)
-            pos8(T, c, o, hw, 0);
-        else
-            pos8(T, c, o, hw, 1);
-        put8(pos + 3 * m * a, o, m, st);
-    }
+    if (st == ST_SHIFT)
+        pos_narrow_rows(t, c, pos, st, hw, 1);
+    else
+        pos_narrow_rows(t, c, pos, st, hw, 0);
 }
 
 /* The unit normals of 8 points from their cross products c and |c|^2 (unit8r), interleaved (in
@@ -1151,6 +1227,52 @@ RG2_AVX512_FN static inline void seg_unit_avx512(double (*nb)[32], int cnt, doub
     }
 }
 
+/* The rows of patch_normal_narrow_avx512 with each row's normals after the next row's positions,
+ * the cross products kept in registers; stored as st or (shift) into one shifted run an array. */
+RG2_AVX512_FN static inline __attribute__((always_inline)) void
+normal_narrow_lagged(const tables *t, __m512d c0[4][4], __m512d dc[3][4], __m512d c1[4][4], double *pos,
+                     double *nrm, int st, int hw, const int shift)
+{
+    const int n = t->n, m = t->m;
+    const __m512d thr = _mm512_setzero_pd(); /* (unused: every point tested, see cross8r) */
+    __m512d pc[3], pl2 = _mm512_setzero_pd(), no[3]; /* the previous row's cross products */
+    nshift wp, wn;
+    if (shift) {
+        nshift_init(&wp, pos, n);
+        nshift_init(&wn, nrm, n);
+    }
+    for (int a = 0; a < n; a++) {
+        __m512d T[5], po[3], c[3], l2;
+        bcastT(t->ht + 8 * a, T);
+        if (a < t->arev)
+            l2 = pos_cross8r(T, c0, dc, c1, po, c, thr, 0, 0, hw, 0);
+        else
+            l2 = pos_cross8r(T, c0, dc, c1, po, c, thr, 0, 0, hw, 1);
+        if (shift)
+            nshift_row(&wp, po, a);
+        else
+            put8(pos + 3 * m * a, po, m, st);
+        if (a) {
+            unit_xyz8(pc, pl2, no, hw);
+            if (shift)
+                nshift_row(&wn, no, a - 1);
+            else
+                put8(nrm + 3 * m * (a - 1), no, m, st);
+        }
+        for (int k = 0; k < 3; k++)
+            pc[k] = c[k];
+        pl2 = l2;
+    }
+    unit_xyz8(pc, pl2, no, hw);
+    if (shift) {
+        nshift_row(&wn, no, n - 1);
+        nshift_end(&wp, n);
+        nshift_end(&wn, n);
+    } else {
+        put8(nrm + 3 * m * (n - 1), no, m, st);
+    }
+}
+
 /* Positions and unit normals of a patch at most 8 points wide (as patch_pos_narrow_avx512), by
  * pos_cross8 and seg_unit_avx512 as in seg_cross_avx512 (the same bits): the cross
  * products of up to 8 rows, then their normals. Streamed on Intel CPUs (!hw), each row's normals
@@ -1158,35 +1280,26 @@ RG2_AVX512_FN static inline void seg_unit_avx512(double (*nb)[32], int cnt, doub
  * seg_cross_unit_avx512 does for wide rows: the free-form mesh's 8 x 8 patches (43 and 119 MB)
  * 1.02-1.08x (medians of 31-41 alternating calls, either vCPU, Sapphire Rapids class, fourteenth
  * stop), the same bits. Not with plain stores there (0.90-0.98x at 4 MB), nor on AMD (Zen 5:
- * 0.92-1.10x at 119 MB, 0.93-0.95x at 24 MB). */
+ * 0.92-1.10x at 119 MB, 0.93-0.95x at 24 MB). Shifted arrays (nshift) take the Intel order on
+ * every CPU (measured on Intel only). */
 RG2_AVX512_FN static inline void patch_normal_narrow_avx512(const rg2_patch *P, const tables *t, double *pos,
                                                             double *nrm, int hw)
 {
     const int n = t->n, m = t->m;
-    const int st = narrow_mode(t, pos) == ST_STREAM && !((uintptr_t)nrm & 63) ? ST_STREAM : ST_PLAIN;
+    /* both arrays streamed straight, or both shifted (nshift takes an aligned start too) */
+    const int st = narrow_mode(t, pos) == narrow_mode(t, nrm) ? narrow_mode(t, pos) : ST_SHIFT;
     _Alignas(64) double nb[8][32];
     __m512d c0[4][4], dc[3][4], c1[4][4];
     const __m512d thr = _mm512_setzero_pd(); /* (unused: every point tested, see cross8r) */
     vsum_narrow(P, t->bv, c0);
     cdiff_v(c0, dc);
     vsumh_narrow(P, t->hv, c1);
+    if (st == ST_SHIFT) {
+        normal_narrow_lagged(t, c0, dc, c1, pos, nrm, st, hw, 1);
+        return;
+    }
     if (!hw && st == ST_STREAM) {
-        __m512d pc[3], pl2 = _mm512_setzero_pd(); /* the previous row's cross products */
-        for (int a = 0; a < n; a++) {
-            __m512d T[5], po[3], c[3], l2;
-            bcastT(t->ht + 8 * a, T);
-            if (a < t->arev)
-                l2 = pos_cross8r(T, c0, dc, c1, po, c, thr, 0, 0, hw, 0);
-            else
-                l2 = pos_cross8r(T, c0, dc, c1, po, c, thr, 0, 0, hw, 1);
-            put8(pos + 3 * m * a, po, m, st);
-            if (a)
-                unit_put8(pc, pl2, nrm + 3 * m * (a - 1), m, st, hw);
-            for (int k = 0; k < 3; k++)
-                pc[k] = c[k];
-            pl2 = l2;
-        }
-        unit_put8(pc, pl2, nrm + 3 * m * (n - 1), m, st, hw);
+        normal_narrow_lagged(t, c0, dc, c1, pos, nrm, st, hw, 0);
         return;
     }
     for (int a0 = 0; a0 < n; a0 += 8) {

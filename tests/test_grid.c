@@ -494,7 +494,8 @@ static void large_output(void)
  * against rg2_patch_eval, the same bits as the wide kernels give with every output requested, 1 vs
  * 2 threads; with 64-byte aligned arrays of 8 x 8 patches past the streaming thresholds (17.6 MB of
  * positions, 35 MB with normals: streaming stores straight into the rows), misaligned arrays of the
- * same (plain stores) and rows shorter than a vector (masked stores). */
+ * same (streamed, shifted to the cache lines), aligned positions with misaligned normals (both
+ * shifted) and rows shorter than a vector (masked stores). */
 static void narrow_patches(void)
 {
     enum { NP = 11500 };
@@ -504,17 +505,19 @@ static void narrow_patches(void)
     for (int k = 0; k < NP; k++)
         random_patch(&r, &P[k]);
     const struct {
-        int n, m, np, misalign;
-    } cfg[] = {{8, 8, NP, 0}, {8, 8, NP, 1}, {9, 5, 700, 1}, {3, 7, 700, 0}, {6, 2, 700, 0}};
+        int n, m, np, misalign, nrm_misalign;
+    } cfg[] = {{8, 8, NP, 0, 0},    {8, 8, NP, 1, 0},    {8, 8, NP, 0, 5},
+               {9, 5, 700, 1, 0},   {3, 7, 700, 0, 0},   {6, 2, 700, 0, 0}};
     for (size_t c = 0; c < sizeof cfg / sizeof cfg[0]; c++) {
-        int n = cfg[c].n, m = cfg[c].m, np = cfg[c].np;
+        int n = cfg[c].n, m = cfg[c].m, np = cfg[c].np, nm = cfg[c].nrm_misalign;
         rg2_surface s;
         memset(&s, 0, sizeof s);
         s.nu = np / 100, s.nv = 100, s.patch = P;
         size_t pts = (size_t)s.nu * s.nv * n * m, vec = 3 * pts + 8;
-        double *mem = aligned_alloc(64, ((5 * vec + pts + 8 + 7) & ~(size_t)7) * sizeof(double));
-        double *pos = mem + cfg[c].misalign, *nrm = pos + vec, *pos2 = nrm + vec, *nrm2 = pos2 + vec;
-        double *pos3 = nrm2 + vec, *K = pos3 + vec;
+        double *mem = aligned_alloc(64, ((5 * vec + pts + 24 + 7) & ~(size_t)7) * sizeof(double));
+        /* (the normal arrays nm doubles further on than the position arrays' alignment) */
+        double *pos = mem + cfg[c].misalign, *nrm = pos + vec + nm, *pos2 = nrm + vec - nm;
+        double *nrm2 = pos2 + vec + nm, *pos3 = nrm2 + vec - nm, *K = pos3 + vec;
         rg2_error err;
         /* every output the wide kernels give (K asks for the second order) */
         rg2_grid_out full = {.pos = pos, .normal = nrm, .K = K};
@@ -536,7 +539,8 @@ static void narrow_patches(void)
               n, m, d.pos, d.normal);
         printf("  narrow %d x %d per patch, %d patches (%.1f MB of positions%s): vs rg2_patch_eval position "
                "%.2e, normal %.2e\n",
-               n, m, np, 24e-6 * (double)pts, cfg[c].misalign ? ", misaligned" : "", d.pos, d.normal);
+               n, m, np, 24e-6 * (double)pts, cfg[c].misalign ? ", misaligned" : nm ? ", normals misaligned" : "",
+               d.pos, d.normal);
         /* K without the normals it is made from: the second-order kernel stores only what is asked */
         memset(nrm2, 0, 3 * pts * sizeof(double));
         rg2_grid_out ok = {.pos = pos3, .K = nrm2};
