@@ -1122,11 +1122,11 @@ typedef struct {
     unsigned s;
 } nshift;
 
-/* A plain store that waits on its read for ownership holds up the streamed ones behind it. So
- * each patch asks for the line shared by the patches this many on and the one after (prefetchw),
- * for that read to be done when its stores come. */
-#ifndef RG2_NARROW_AHEAD
-#define RG2_NARROW_AHEAD 2
+/* A plain store that waits on its read for ownership holds up the streamed ones behind it. So a
+ * shifted patch asks for the partial lines of the patch this many on (prefetchw: nshift_init, and
+ * grid_range for wider rows), for those reads to be done when their stores come. */
+#ifndef RG2_SHIFT_AHEAD
+#define RG2_SHIFT_AHEAD 2
 #endif
 
 RG2_AVX512_FN static inline __attribute__((always_inline)) void nshift_init(nshift *w, double *dst, int n)
@@ -1135,7 +1135,7 @@ RG2_AVX512_FN static inline __attribute__((always_inline)) void nshift_init(nshi
     w->a = dst - w->s;
     w->idx = _mm512_add_epi64(_mm512_set1_epi64(8 - (long long)w->s), _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0));
     w->prev = _mm512_setzero_pd();
-    __builtin_prefetch(dst + RG2_NARROW_AHEAD * 24 * (size_t)n, 1, 3);
+    __builtin_prefetch(dst + RG2_SHIFT_AHEAD * 24 * (size_t)n, 1, 3);
 }
 
 /* Row r's 8 points (24 doubles, interleaved in o). */
@@ -1510,8 +1510,11 @@ static inline int store_mode(const tables *t, const double *dst, int cnt)
      * mostly partial lines, which streaming makes slower). The row, not the segment: the last
      * block of a long row may hold only 9-31 columns, and storing those plainly between streamed
      * ones made the whole row wait on reads for ownership (73-95 points a row, rows not on cache
-     * lines: the merged design at 90 x 90 per patch ran at 0.27-0.45x of 88 x 88, Intel machine) */
-    return t->m >= 32 ? ST_SHIFT : ST_PLAIN;
+     * lines: the merged design at 90 x 90 per patch ran at 0.27-0.45x of 88 x 88, Intel machine).
+     * Positions from 16 points a row: their rows hand on the lines they share, and grid_range asks
+     * for the rest ahead (free-form mesh at 14 to 31 points a row: 1.14-1.46x against plain
+     * stores; 10 and 12: 0.68-1.22x; with normals 0.86-0.96x at 16 and 24, Intel machine) */
+    return t->m >= 32 || (t->order == 0 && t->m >= 16) ? ST_SHIFT : ST_PLAIN;
 }
 
 /* Streaming stores into a page whose address translation the TLB does not hold wait for the
@@ -1832,6 +1835,16 @@ static void grid_range(const rg2_surface *S, const rg2_patch *P, const rg2_xpatc
         if (k + RG2_PATCH_AHEAD < k1) /* a later patch's 8 cache lines while this one computes */
             for (int q = 0; q < 8; q++)
                 _mm_prefetch((const char *)(P + k + RG2_PATCH_AHEAD) + 64 * q, _MM_HINT_T0);
+        if (t->stream && !t->pages && t->order == 0 && t->m >= 16 && t->m <= BLK && k + RG2_SHIFT_AHEAD < k1) {
+            /* shifted positions in rows of one block: the partial lines of a later patch, where
+             * its two runs of rows (the two Horner forms) begin, each handing on the lines inside
+             * it (RG2_SHIFT_AHEAD; where the pages are touched ahead, prefetch_row asks for them) */
+            const double *b = o->pos + 3 * (k + RG2_SHIFT_AHEAD) * per, *h = b + 3 * (size_t)t->arev * (size_t)t->m;
+            if ((uintptr_t)b & 63)
+                __builtin_prefetch(b, 1, 3);
+            if ((uintptr_t)h & 63)
+                __builtin_prefetch(h, 1, 3);
+        }
         if (t->pages && t->m <= 8 && t->order <= 1 && per <= 256 && k + RG2_ROWS_AHEAD < k1) {
             /* streamed narrow patches of at most 6 KB an array: the pages of a later one (see
              * prefetch_pages) */

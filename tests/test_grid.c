@@ -464,9 +464,13 @@ static void large_output(void)
      * patches of 129 x 129 points (two blocks a row; 38 MB with normals) by 2 threads; 120 of 65 x
      * 65 and, from a start 8 bytes past a cache line, of 72 x 72 (one block a row, so each row
      * hands the line it shares to the next: 12-30 MB), by 1; 48 of 90 x 90 (a block of 64 and one
-     * of 26 a row, both shifted: 9.3 MB of positions), by 1 */
-    const int cases[4][5] = {{8, 6, 129, 2, 0}, {12, 10, 65, 1, 0}, {12, 10, 72, 1, 1}, {8, 6, 90, 1, 0}}; /* nu nv n threads offset */
-    for (int c = 0; c < 4; c++) {
+     * of 26 a row, both shifted: 9.3 MB of positions), by 1; rows of 16-31 points, whose positions
+     * stream shifted too, at any size (the threshold set to 0): 120 of 20 x 20 from a start 8
+     * bytes past a line, by 1, and of 16 x 16 from 24 bytes past, by 2 */
+    const int cases[][6] = {{8, 6, 129, 2, 0, 0}, {12, 10, 65, 1, 0, 0}, {12, 10, 72, 1, 1, 0},
+                            {8, 6, 90, 1, 0, 0},  {12, 10, 20, 1, 1, 1}, {12, 10, 16, 2, 3, 1}};
+    /* nu nv n threads offset stream-always */
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         rg2_surface s;
         rg2_error err;
         CHECK_OK(rg2t_torus(3.0, 1.0, cases[c][0], cases[c][1], NULL, &s, &err), &err);
@@ -476,8 +480,10 @@ static void large_output(void)
         for (int level = 0; level < 2; level++) {
             rg2_grid_out a = {.pos = buf + off, .normal = level ? buf + off + 3 * pts : NULL};
             rg2_grid_out b = {.pos = buf + 6 * pts + off, .normal = level ? buf + off + 9 * pts : NULL};
-            CHECK_OK(rg2_surface_grid(&s, n, n, cases[c][3], &a, &err), &err);
             size_t stream_bytes = rg2__grid_stream_bytes;
+            if (cases[c][5])
+                rg2__grid_stream_bytes = 0;
+            CHECK_OK(rg2_surface_grid(&s, n, n, cases[c][3], &a, &err), &err);
             rg2__grid_stream_bytes = SIZE_MAX;
             CHECK_OK(rg2_surface_grid(&s, n, n, 1, &b, &err), &err);
             rg2__grid_stream_bytes = stream_bytes;
