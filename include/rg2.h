@@ -740,7 +740,8 @@ RG2_API rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts,
  * a 64-byte boundary (aligned_alloc(64, ...)) and rows of a multiple of 8 points stream fastest,
  * others take extra shuffles (0.7-0.85x on AMD Zen 5, docs/performance.md; on the Intel Xeon
  * machine, arrays 16 bytes past a line as large malloc blocks start: positions 0.69-0.97x at
- * 64 x 64 points per patch and 0.88-0.91x at 8 x 8, with normals 0.76-0.90x and 0.88-1.02x).
+ * 64 x 64 points per patch, 0.85-0.95x at 16 x 16 and 24 x 24, 0.88-0.91x at 8 x 8; with normals
+ * 0.76-0.90x at 64 x 64 and 0.88-1.02x at 8 x 8).
  * The results are the same bits either way. */
 
 #define RG2_GRID_MAX 16384 /**< most points per patch direction */
