@@ -1152,11 +1152,13 @@ RG2_AVX512_FN static inline __attribute__((always_inline)) void nshift_row(nshif
     w->prev = o[2];
 }
 
-/* After the last of n rows: the lanes of the last vector that fall into the next line. */
+/* After the last of n rows: the lanes of the last vector that fall into the next line (none from
+ * an aligned start, whose run ends on a line: no store at the array's end then). */
 RG2_AVX512_FN static inline __attribute__((always_inline)) void nshift_end(nshift *w, int n)
 {
-    _mm512_mask_store_pd(w->a + 24 * n, (__mmask8)((1u << w->s) - 1u),
-                         _mm512_permutex2var_pd(w->prev, w->idx, w->prev));
+    if (w->s)
+        _mm512_mask_store_pd(w->a + 24 * n, (__mmask8)((1u << w->s) - 1u),
+                             _mm512_permutex2var_pd(w->prev, w->idx, w->prev));
 }
 
 /* The rows of patch_pos_narrow_avx512 from the column sums c, stored as st or (shift) into one
