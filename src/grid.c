@@ -1275,34 +1275,20 @@ normal_narrow_lagged(const tables *t, __m512d c0[4][4], __m512d dc[3][4], __m512
     }
 }
 
-/* Positions and unit normals of a patch at most 8 points wide (as patch_pos_narrow_avx512), by
- * pos_cross8 and seg_unit_avx512 as in seg_cross_avx512 (the same bits): the cross
- * products of up to 8 rows, then their normals. Streamed on Intel CPUs (!hw), each row's normals
- * go out after the next row's positions instead, the cross products kept in registers, as
- * seg_cross_unit_avx512 does for wide rows: the free-form mesh's 8 x 8 patches (43 and 119 MB)
- * 1.02-1.08x (medians of 31-41 alternating calls, either vCPU, Sapphire Rapids class, fourteenth
- * stop), the same bits. Not with plain stores there (0.90-0.98x at 4 MB), nor on AMD (Zen 5:
- * 0.92-1.10x at 119 MB, 0.93-0.95x at 24 MB). Shifted arrays (nshift) take the Intel order on
- * every CPU (measured on Intel only). */
-RG2_AVX512_FN static inline void patch_normal_narrow_avx512(const rg2_patch *P, const tables *t, double *pos,
-                                                            double *nrm, int hw)
+/* The rows of patch_normal_narrow_avx512 in blocks of up to 8: the block's positions and cross
+ * products (pos_cross8, to nb), then its normals (as seg_unit_avx512 does); stored as st or (shift)
+ * into one shifted run an array. */
+RG2_AVX512_FN static inline __attribute__((always_inline)) void
+normal_narrow_blocked(const tables *t, __m512d c0[4][4], __m512d dc[3][4], __m512d c1[4][4], double *pos,
+                      double *nrm, int st, int hw, const int shift)
 {
     const int n = t->n, m = t->m;
-    /* both arrays streamed straight, or both shifted (nshift takes an aligned start too) */
-    const int st = narrow_mode(t, pos) == narrow_mode(t, nrm) ? narrow_mode(t, pos) : ST_SHIFT;
-    _Alignas(64) double nb[8][32];
-    __m512d c0[4][4], dc[3][4], c1[4][4];
     const __m512d thr = _mm512_setzero_pd(); /* (unused: every point tested, see cross8r) */
-    vsum_narrow(P, t->bv, c0);
-    cdiff_v(c0, dc);
-    vsumh_narrow(P, t->hv, c1);
-    if (st == ST_SHIFT) {
-        normal_narrow_lagged(t, c0, dc, c1, pos, nrm, st, hw, 1);
-        return;
-    }
-    if (!hw && st == ST_STREAM) {
-        normal_narrow_lagged(t, c0, dc, c1, pos, nrm, st, hw, 0);
-        return;
+    _Alignas(64) double nb[8][32];
+    nshift wp, wn;
+    if (shift) {
+        nshift_init(&wp, pos, n);
+        nshift_init(&wn, nrm, n);
     }
     for (int a0 = 0; a0 < n; a0 += 8) {
         int na = n - a0 < 8 ? n - a0 : 8;
@@ -1313,11 +1299,54 @@ RG2_AVX512_FN static inline void patch_normal_narrow_avx512(const rg2_patch *P, 
                 pos_cross8(T, c0, dc, c1, po, nb[a - a0], thr, 0, 0, hw, 0);
             else
                 pos_cross8(T, c0, dc, c1, po, nb[a - a0], thr, 0, 0, hw, 1);
-            put8(pos + 3 * m * a, po, m, st);
+            if (shift)
+                nshift_row(&wp, po, a);
+            else
+                put8(pos + 3 * m * a, po, m, st);
         }
-        for (int a = a0; a < a0 + na; a++)
-            seg_unit_avx512(nb + (a - a0), m, nrm + 3 * m * a, st, hw);
+        for (int a = a0; a < a0 + na; a++) {
+            const double *b = nb[a - a0];
+            __m512d c[3] = {_mm512_load_pd(b), _mm512_load_pd(b + 8), _mm512_load_pd(b + 16)}, no[3];
+            unit_xyz8(c, _mm512_load_pd(b + 24), no, hw);
+            if (shift)
+                nshift_row(&wn, no, a);
+            else
+                put8(nrm + 3 * m * a, no, m, st);
+        }
     }
+    if (shift) {
+        nshift_end(&wp, n);
+        nshift_end(&wn, n);
+    }
+}
+
+/* Positions and unit normals of a patch at most 8 points wide (as patch_pos_narrow_avx512), by
+ * pos_cross8 and seg_unit_avx512 as in seg_cross_avx512 (the same bits): the cross
+ * products of up to 8 rows, then their normals (normal_narrow_blocked). Streamed on Intel CPUs
+ * (!hw), each row's normals go out after the next row's positions instead (normal_narrow_lagged),
+ * the cross products kept in registers, as seg_cross_unit_avx512 does for wide rows: the free-form
+ * mesh's 8 x 8 patches (43 and 119 MB) 1.02-1.08x (medians of 31-41 alternating calls, either
+ * vCPU, Sapphire Rapids class, fourteenth stop), the same bits. Not with plain stores there
+ * (0.90-0.98x at 4 MB), nor on AMD (Zen 5: 0.92-1.10x at 119 MB, 0.93-0.95x at 24 MB). Shifted
+ * arrays (nshift) likewise: on AMD blocked, 1.03-1.06x against lagged (Zen 5, 119 MB from 8, 16
+ * and 48 bytes past a line; medians of 9-11 alternating calls, six rounds), Intel lagged. */
+RG2_AVX512_FN static inline void patch_normal_narrow_avx512(const rg2_patch *P, const tables *t, double *pos,
+                                                            double *nrm, int hw)
+{
+    /* both arrays streamed straight, or both shifted (nshift takes an aligned start too) */
+    const int st = narrow_mode(t, pos) == narrow_mode(t, nrm) ? narrow_mode(t, pos) : ST_SHIFT;
+    __m512d c0[4][4], dc[3][4], c1[4][4];
+    vsum_narrow(P, t->bv, c0);
+    cdiff_v(c0, dc);
+    vsumh_narrow(P, t->hv, c1);
+    if (st == ST_SHIFT && hw)
+        normal_narrow_blocked(t, c0, dc, c1, pos, nrm, st, hw, 1);
+    else if (st == ST_SHIFT)
+        normal_narrow_lagged(t, c0, dc, c1, pos, nrm, st, hw, 1);
+    else if (!hw && st == ST_STREAM)
+        normal_narrow_lagged(t, c0, dc, c1, pos, nrm, st, hw, 0);
+    else
+        normal_narrow_blocked(t, c0, dc, c1, pos, nrm, st, hw, 0);
 }
 
 /* The first phase of positions and unit normals for one row segment: positions at pd, the cross
