@@ -1544,8 +1544,11 @@ static inline int store_mode(const tables *t, const double *dst, int cnt)
      * lines: the merged design at 90 x 90 per patch ran at 0.27-0.45x of 88 x 88, Intel machine).
      * Positions from 16 points a row: their rows hand on the lines they share, and grid_range asks
      * for the rest ahead (free-form mesh at 14 to 31 points a row: 1.14-1.46x against plain
-     * stores; 10 and 12: 0.68-1.22x; with normals 0.86-0.96x at 16 and 24, Intel machine) */
-    return t->m >= 32 || (t->order == 0 && t->m >= 16) ? ST_SHIFT : ST_PLAIN;
+     * stores; 10 and 12: 0.68-1.22x; with normals 0.86-0.96x at 16 and 24, Intel machine). On AMD
+     * (where the pages are touched ahead) from 24 points: 16-21 points ran at 0.73-1.00x of plain
+     * stores, 22 and 23 at 0.96-1.04x, 24-31 at 1.03-1.14x (AMD Zen 5, medians of 7 calls
+     * alternating both ways in either order; 0.62-0.82x at 16-31 on a vCPU whose core was busy) */
+    return t->m >= 32 || (t->order == 0 && t->m >= (t->pages ? 24 : 16)) ? ST_SHIFT : ST_PLAIN;
 }
 
 /* Streaming stores into a page whose address translation the TLB does not hold wait for the
