@@ -738,10 +738,13 @@ RG2_API rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts,
  * lie, and every side of a patch given alone (rg2_patch_grid).
  * Speed: outputs past 8 MB per thread bypass the caches (streaming stores); arrays that start on
  * a 64-byte boundary (aligned_alloc(64, ...)) and rows of a multiple of 8 points stream fastest,
- * others take extra shuffles (0.7-0.85x on AMD Zen 5, docs/performance.md; on the Intel Xeon
- * machine, arrays 16 bytes past a line as large malloc blocks start: positions 0.69-0.97x at
- * 64 x 64 points per patch, 0.85-0.95x at 16 x 16 and 24 x 24, 0.88-0.91x at 8 x 8; with normals
- * 0.76-0.90x at 64 x 64 and 0.88-1.02x at 8 x 8).
+ * others take extra shuffles (docs/performance.md). For arrays 16 bytes past a line, as large
+ * malloc blocks start, against aligned ones: on the Intel Xeon machine positions 0.69-0.97x at
+ * 64 x 64 points per patch, 0.85-0.95x at 16 x 16 and 24 x 24, 0.88-0.91x at 8 x 8, with normals
+ * 0.76-0.90x at 64 x 64 and 0.88-1.02x at 8 x 8; on AMD Zen 5 positions 0.80-0.97x at 32 x 32 to
+ * 64 x 64, 0.78-0.84x at 24 x 24, 0.60-0.62x at 16 x 16, 0.90-0.92x at 8 x 8, with normals
+ * 0.71-0.83x at 32 x 32 to 64 x 64 and 0.99-1.01x at 8 x 8. Rows of 65 points (seam points
+ * shared) run at 0.89-0.93 of rows of 64 on AMD Zen 5 (positions; with normals 0.75-0.80).
  * The results are the same bits either way. */
 
 #define RG2_GRID_MAX 16384 /**< most points per patch direction */
