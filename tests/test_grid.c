@@ -465,10 +465,12 @@ static void large_output(void)
      * 65 and, from a start 8 bytes past a cache line, of 72 x 72 (one block a row, so each row
      * hands the line it shares to the next: 12-30 MB), by 1; 48 of 90 x 90 (a block of 64 and one
      * of 26 a row, both shifted: 9.3 MB of positions), by 1; rows of 16-31 points, whose positions
-     * stream shifted too, at any size (the threshold set to 0): 120 of 20 x 20 from a start 8
-     * bytes past a line, by 1, and of 16 x 16 from 24 bytes past, by 2 */
+     * stream shifted too (from 24 points where the pages are touched ahead, the AMD rule; plain
+     * below), at any size (the threshold set to 0): 120 of 20 x 20 from a start 8 bytes past a
+     * line, by 1, of 16 x 16 from 24 bytes past, by 2, and of 26 x 26 from 8 bytes past, by 1 */
     const int cases[][6] = {{8, 6, 129, 2, 0, 0}, {12, 10, 65, 1, 0, 0}, {12, 10, 72, 1, 1, 0},
-                            {8, 6, 90, 1, 0, 0},  {12, 10, 20, 1, 1, 1}, {12, 10, 16, 2, 3, 1}};
+                            {8, 6, 90, 1, 0, 0},  {12, 10, 20, 1, 1, 1}, {12, 10, 16, 2, 3, 1},
+                            {12, 10, 26, 1, 1, 1}};
     /* nu nv n threads offset stream-always */
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         rg2_surface s;
