@@ -743,8 +743,8 @@ RG2_API rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts,
  * 64 x 64 points per patch, 0.85-0.95x at 16 x 16 and 24 x 24, 0.88-0.91x at 8 x 8, with normals
  * 0.76-0.90x at 64 x 64 and 0.88-1.02x at 8 x 8; on AMD Zen 5 positions 0.80-0.97x at 32 x 32 to
  * 64 x 64, 0.78-0.84x at 24 x 24, 0.60-0.62x at 16 x 16, 0.90-0.92x at 8 x 8, with normals
- * 0.71-0.83x at 32 x 32 to 64 x 64 and 0.99-1.01x at 8 x 8. Rows of 65 points (seam points
- * shared) run at 0.89-0.93 of rows of 64 on AMD Zen 5 (positions; with normals 0.75-0.80).
+ * 0.78-0.87x at 32 x 32 to 64 x 64 and 0.99-1.01x at 8 x 8. Rows of 65 points (seam points
+ * shared) run at 0.89-0.93 of rows of 64 on AMD Zen 5 (positions; with normals 0.72-0.81).
  * The results are the same bits either way. */
 
 #define RG2_GRID_MAX 16384 /**< most points per patch direction */

@@ -852,7 +852,10 @@ RG2_AVX512_FN static inline __attribute__((always_inline)) void shift_put8(shift
  * 150 MB: 33 points a row 1.20-1.26x, 65 points 1.38x, 129 points 1.14-1.18x, 257 points
  * 1.03-1.09x, 24, 40 and 64 points even, 28 points 0.96x (AMD Zen 5, old and new builds
  * alternating, medians of 7 calls, three to five rounds; not measured on Intel). The spread
- * normals went 0.90-0.96x with it, so they keep shift_put8. */
+ * normals take it for their positions (64 points a row from 16 bytes past a line 1.04-1.09x, 65
+ * points from an aligned start 1.05-1.07x, medians of 7 calls, four rounds), not for the normals
+ * themselves: with it there too they went 0.80-0.88x (and 0.90-0.96x with it in every shifted
+ * store). */
 RG2_AVX512_FN static inline __attribute__((always_inline)) void shift_put8_pos(shifter *w, const __m512d o[3])
 {
     long lo = 8 * w->j - w->s;
@@ -1417,7 +1420,7 @@ seg_cross_unit_avx512(const double *HT, double c0[4][4][BLK], double d0[3][4][BL
         csum_at(c1, i, v1);
         __m512d l2 = pos_cross8r(T, v0, vd, v1, po, c, thr, q < 8 ? (__mmask8)(0xff << q) : 0, 1, hw, rev);
         if (st == ST_SHIFT)
-            shift_put8(wp, po);
+            shift_put8_pos(wp, po);
         else
             put8(pd + 3 * i, po, q, st);
         if (i) {
