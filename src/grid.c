@@ -41,8 +41,12 @@
 #include <omp.h>
 #endif
 
-/* Function multi-versioning on x86-64 ELF with GCC: the hot kernels get AVX-512, AVX2 and
- * baseline clones; the loader picks one per machine, so the library stays portable. */
+/* Function multi-versioning on x86-64 ELF with GCC: the hot kernels and the per-point
+ * evaluators get AVX-512, AVX2 and baseline clones; the loader picks one per machine, so the
+ * library stays portable. The clones give the same bits as the baseline: -ffp-contract=off, and
+ * none of them holds a multiply-add (checked with objdump; GCC's vectoriser can form vfmaddsub
+ * from a - b * c, c + d * e pairs even so, as it did in a clone of rg2_patch_eval's curvatures,
+ * which is therefore not cloned). */
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__ELF__) &&     \
     !defined(RG2_NO_CLONES) && !defined(__AVX2__)
 #define RG2_HOT __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
@@ -2058,7 +2062,7 @@ static inline double usum1(const double U[4], double c[4][4], int k)
     return U[0] * c[0][k] + U[1] * c[1][k] + U[2] * c[2][k] + U[3] * c[3][k];
 }
 
-void rg2_patch_point(const rg2_patch *P, double u, double v, double p[3])
+RG2_HOT void rg2_patch_point(const rg2_patch *P, double u, double v, double p[3])
 {
     double Bu[4], Bv[4], c[4][4];
     rg2__bern3(u, Bu, NULL, NULL);
@@ -2069,7 +2073,7 @@ void rg2_patch_point(const rg2_patch *P, double u, double v, double p[3])
         p[k] = usum1(Bu, c, k) * iw;
 }
 
-unsigned rg2_patch_point_normal(const rg2_patch *P, double u, double v, double p[3], double nrm[3])
+RG2_HOT unsigned rg2_patch_point_normal(const rg2_patch *P, double u, double v, double p[3], double nrm[3])
 {
     double Bu[4], Du[4], Bv[4], Dv[4], c0[4][4], c1[4][4];
     rg2__bern3(u, Bu, Du, NULL);

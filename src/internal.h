@@ -168,8 +168,11 @@ rg2_status rg2__surface_check_finite(const rg2_surface *s, const char *what, int
 static inline double rg2__scale_pair(double a[3], double b[3])
 {
     double m = 0.0;
-    for (int k = 0; k < 3; k++)
-        m = fmax(m, fmax(fabs(a[k]), fabs(b[k])));
+    for (int k = 0; k < 3; k++) { /* m = fmax(m, fmax(|a_k|, |b_k|)), inline (no libm call) */
+        double x = fabs(a[k]), y = fabs(b[k]);
+        x = y > x || x != x ? y : x;
+        m = x > m || m != m ? x : m;
+    }
     if (!(m > 0x1p-128 && m < 0x1p128) && m > 0.0 && m <= 1.79e308) {
         int e = ilogb(m);
         double t = ldexp(1.0, e < -1000 ? 1000 : -e); /* (subnormal m: 2^1000, not past the range) */
