@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The target_clones copies of the library's functions (RG2_HOT, src/grid.c: AVX-512, AVX2 and
 # baseline) must hold no multiply-add: the library is built with -ffp-contract=off so that every
-# clone rounds as the baseline does (the grid promises the same bits whatever outputs are asked,
-# and the per-point paths the same bits on every CPU), but GCC's vectoriser has formed a
+# clone rounds as the baseline does (the grid's promise of the same bits whatever outputs are
+# asked rests on it on CPUs that take the clones), but GCC's vectoriser has formed a
 # vfmaddsub in a clone despite it (rg2_patch_eval's curvatures, twenty-fourth stop). The
 # hand-written AVX-512 kernels use multiply-adds on purpose; they are not clones.
 # usage: clones.sh LIBRARY EXPECT (EXPECT 1: a GCC x86-64 build with clones, tests/CMakeLists.txt)
