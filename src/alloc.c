@@ -89,9 +89,19 @@ static size_t free_huge_bytes(void)
 
 void *rg2__calloc_big(size_t n, size_t size)
 {
+    return rg2__calloc_big_from(n, size, RG2_BIG_BYTES);
+}
+
+void *rg2__calloc_big_from(size_t n, size_t size, size_t from)
+{
+    return rg2__alloc_big(n, size, from, 1);
+}
+
+void *rg2__alloc_big(size_t n, size_t size, size_t from, int zero)
+{
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     size_t bytes = size != 0 && n <= SIZE_MAX / size ? n * size : 0; /* (0: overflow, see below) */
-    if (bytes >= RG2_BIG_BYTES && bytes <= SIZE_MAX - HUGE_PAGE) {
+    if (bytes != 0 && bytes >= from && bytes <= SIZE_MAX - HUGE_PAGE) {
         size_t whole = (bytes + HUGE_PAGE - 1) & ~(HUGE_PAGE - 1); /* the last huge page too */
         void *p = NULL;
         if (posix_memalign(&p, HUGE_PAGE, whole) == 0) {
@@ -100,10 +110,15 @@ void *rg2__calloc_big(size_t n, size_t size)
 #ifdef MADV_POPULATE_WRITE
             (void)madvise(p, whole, MADV_POPULATE_WRITE); /* (Linux 5.14; before, EINVAL: the memset faults) */
 #endif
-            memset(p, 0, bytes);
+            if (zero)
+                memset(p, 0, bytes);
             return p;
         }
     }
+#else
+    (void)from;
 #endif
+    if (!zero && size != 0 && n <= SIZE_MAX / size)
+        return malloc(n * size != 0 ? n * size : 1);
     return rg2__calloc(n, size); /* small, overflowing (NULL) or no huge pages */
 }

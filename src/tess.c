@@ -11,19 +11,9 @@ void rg2_tess_free(rg2_tess *t)
 {
     if (!t)
         return;
-    free(t->pos);
-    free(t->normal);
-    free(t->K);
-    free(t->H);
-    free(t->patch);
-    free(t->uv);
-    free(t->tri);
+    free(t->pos); /* the one block that holds every array (rg2_tessellate) */
     memset(t, 0, sizeof *t);
 }
-
-typedef struct {
-    double p[3], n[3], K, H;
-} tess_sample;
 
 static void normalize3(double v[3])
 {
@@ -82,14 +72,16 @@ static void degenerate_point(const rg2_surface *s, int i, int j, double u, doubl
 
 /*
  * Per-patch sampling of patch (i, j) of s (bi-3 or of higher degree): (d + 1)^2 points at
- * u = a / d, v = b / d, stored at a * (d + 1) + b. `collapsed` has bit k set when side k
- * (0 v=0, 1 u=1, 2 v=1, 3 u=0) is collapsed. This is the only place that evaluates the
- * surface: the grid evaluator (rg2_patch_grid, grid.c; the separable higher-degree grid of
- * xpatch.c for a higher-degree patch) for every point, then the points on collapsed sides again by rg2_surface_eval
- * and degenerate_point. `scratch` holds 8 (d + 1)^2 doubles. Returns non-zero on failure.
+ * u = a / d, v = b / d, point a * (d + 1) + b of the arrays at `scratch`: positions (3 per
+ * point), unit normals (3), then K and H with `curvature`; `scratch` holds 8 (d + 1)^2 doubles.
+ * `collapsed` has bit k set when side k (0 v=0, 1 u=1, 2 v=1, 3 u=0) is collapsed. This is the
+ * only place that evaluates the surface: the grid evaluator (rg2_patch_grid, grid.c; the
+ * separable higher-degree grid of xpatch.c for a higher-degree patch) for every point, then the
+ * points on collapsed sides again by rg2_surface_eval and degenerate_point. Returns non-zero on
+ * failure.
  */
 static int sample_patch(const rg2_surface *s, int i, int j, int d, int curvature, unsigned collapsed,
-                        double *scratch, tess_sample *out)
+                        double *scratch)
 {
     size_t np = (size_t)(d + 1) * (size_t)(d + 1);
     rg2_grid_out go = {.pos = scratch, .normal = scratch + 3 * np};
@@ -99,12 +91,6 @@ static int sample_patch(const rg2_surface *s, int i, int j, int d, int curvature
     }
     if (rg2__surface_patch_grid(s, i, j, d + 1, d + 1, &go, NULL))
         return 1;
-    for (size_t k = 0; k < np; k++) {
-        memcpy(out[k].p, go.pos + 3 * k, sizeof out[k].p);
-        memcpy(out[k].n, go.normal + 3 * k, sizeof out[k].n);
-        out[k].K = curvature ? go.K[k] : 0.0;
-        out[k].H = curvature ? go.H[k] : 0.0;
-    }
     if (!collapsed)
         return 0;
     for (int a = 0; a <= d; a++) {
@@ -125,11 +111,13 @@ static int sample_patch(const rg2_surface *s, int i, int j, int d, int curvature
             rg2_eval e;
             rg2_surface_eval(s, i, j, u, v, 2, &e);
             degenerate_point(s, i, j, u, v, side, curvature, &e);
-            tess_sample *o = &out[a * (d + 1) + b];
-            memcpy(o->p, e.p, sizeof e.p);
-            memcpy(o->n, e.n, sizeof e.n);
-            o->K = curvature ? e.K : 0.0;
-            o->H = curvature ? e.H : 0.0;
+            size_t k = (size_t)a * (size_t)(d + 1) + (size_t)b;
+            memcpy(go.pos + 3 * k, e.p, sizeof e.p);
+            memcpy(go.normal + 3 * k, e.n, sizeof e.n);
+            if (curvature) {
+                go.K[k] = e.K;
+                go.H[k] = e.H;
+            }
         }
     }
     return 0;
@@ -151,12 +139,27 @@ static double dist2(const double *a, const double *b)
     return d0 * d0 + d1 * d1 + d2 * d2;
 }
 
+/* Bytes from which rg2_tessellate's block (and its temporaries) go on huge pages: a mesh's arrays
+ * of 0.5-2 MiB took a page fault per 4 KiB page at every call, since glibc gives freed memory of
+ * that size back to the kernel (docs/performance.md, "Tessellation"). */
+#define TESS_BIG_BYTES ((size_t)512 << 10)
+
+/* Round n bytes up to a cache line. */
+static size_t line_up(size_t n)
+{
+    return (n + 63) & ~(size_t)63;
+}
+
 /*
  * METHOD: the surface's grid points (I, J), I = 0..nu d, J = 0..nv d, closing lines folded
  * onto line 0, each belong to exactly one patch (the one with i = min(I / d, nu - 1)), which
  * evaluates it; the patch on the other side of a seam uses the same vertex. Sides detected
  * as collapsed (rg2__surface_side_collapsed, patches of any degree) merge their grid points
- * (union-find) into one vertex; triangles that then repeat a vertex are dropped.
+ * (union-find) into one vertex; triangles that then repeat a vertex are dropped. The vertices
+ * are numbered before the sampling (the merging depends on the grid indices only), so each
+ * patch writes its points straight into the output, which is one block: every array of the
+ * mesh at a page fault per 2 MiB at most, where separate arrays of a few hundred KB cost a fault
+ * per 4 KiB page at every call.
  */
 rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_tess *out,
                           rg2_error *err)
@@ -176,108 +179,182 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
                          nu, nv, d, RG2_MAX_POINTS);
     int nu_d = nu * d, nv_d = nv * d;
     int GU = nu_d + (cu ? 0 : 1), GV = nv_d + (cv ? 0 : 1);
-    size_t ng = (size_t)GU * (size_t)GV;
-    tess_sample *g = rg2__calloc_big(ng, sizeof *g);
-    int *gpatch = rg2__calloc_big(ng, sizeof(int));
-    int *parent = rg2__calloc_big(ng, sizeof(int));
-    int *id = rg2__calloc_big(ng, sizeof(int));
-    size_t max_tri = 2 * (size_t)nu * (size_t)nv * (size_t)d * (size_t)d;
-    out->tri = rg2__calloc_big(3 * max_tri, sizeof(int));
-    int failed = 0;
-    if (!g || !gpatch || !parent || !id || !out->tri) {
+    size_t ng = (size_t)GU * (size_t)GV, np = (size_t)nu * (size_t)nv;
+    size_t max_tri = 2 * np * (size_t)d * (size_t)d;
+    double tol = rg2__collapse_tol(s);
+    unsigned *coll = rg2__calloc(np, sizeof *coll);
+    int *parent = NULL, *id = NULL, failed = 0, any = 0;
+    char *block = NULL;
+    if (!coll) {
         failed = 1;
         goto done;
     }
-    double tol = rg2__collapse_tol(s);
+    for (size_t p = 0; p < np; p++) {
+        coll[p] = rg2__surface_collapsed_sides(s, (int)(p / (size_t)nv), (int)(p % (size_t)nv), tol);
+        any |= coll[p] != 0;
+    }
+    /* Vertex numbers: grid point k is vertex k, or with collapsed sides, vertex id[k] (the
+     * number of its set's root, in the order of the roots). */
+    int nvert = (int)ng;
+    if (any) {
+        parent = rg2__calloc_big_from(ng, sizeof(int), TESS_BIG_BYTES);
+        id = rg2__calloc_big_from(ng, sizeof(int), TESS_BIG_BYTES);
+        if (!parent || !id) {
+            failed = 1;
+            goto done;
+        }
+        for (size_t k = 0; k < ng; k++)
+            parent[k] = (int)k;
+        for (int i = 0; i < nu; i++)
+            for (int j = 0; j < nv; j++)
+                for (int side = 0; side < 4; side++) {
+                    if (!(coll[(size_t)i * (size_t)nv + (size_t)j] & (1u << side)))
+                        continue;
+                    for (int t = 0; t <= d; t++) {
+                        int I, J, I0, J0;
+                        switch (side) {
+                        case 0: I = i * d + t; J = j * d; I0 = i * d; J0 = J; break;
+                        case 1: I = (i + 1) * d; J = j * d + t; I0 = I; J0 = j * d; break;
+                        case 2: I = i * d + t; J = (j + 1) * d; I0 = i * d; J0 = J; break;
+                        default: I = i * d; J = j * d + t; I0 = I; J0 = j * d; break;
+                        }
+                        rg2__uf_union(parent, gidx(I, J, nu_d, nv_d, cu, cv, GV),
+                                      gidx(I0, J0, nu_d, nv_d, cu, cv, GV));
+                    }
+                }
+        nvert = 0;
+        for (size_t k = 0; k < ng; k++)
+            id[k] = rg2__uf_find(parent, (int)k) == (int)k ? nvert++ : -1;
+        for (size_t k = 0; k < ng; k++) /* (parent[k] == k still marks the roots) */
+            if (id[k] < 0)
+                id[k] = id[rg2__uf_find(parent, (int)k)];
+    }
+    /* The block: pos, normal, [K, H], uv (doubles), patch, tri (ints), each on a cache line. */
+    size_t nvs = (size_t)nvert, b_pos = line_up(3 * nvs * sizeof(double)), b_kh = line_up(nvs * sizeof(double));
+    size_t b_uv = line_up(2 * nvs * sizeof(double)), b_patch = line_up(nvs * sizeof(int));
+    size_t b_tri = line_up(3 * max_tri * sizeof(int));
+    size_t total = 2 * b_pos + (curvature ? 2 * b_kh : 0) + b_uv + b_patch + b_tri;
+    block = rg2__alloc_big(total, 1, TESS_BIG_BYTES, 0); /* every array written below */
+    if (!block) {
+        failed = 1;
+        goto done;
+    }
+    {
+        char *c = block;
+        out->pos = (double *)c;
+        c += b_pos;
+        out->normal = (double *)c;
+        c += b_pos;
+        if (curvature) {
+            out->K = (double *)c;
+            c += b_kh;
+            out->H = (double *)c;
+            c += b_kh;
+        }
+        out->uv = (double *)c;
+        c += b_uv;
+        out->patch = (int *)c;
+        c += b_patch;
+        out->tri = (int *)c;
+    }
+    out->n_vertices = nvert;
+    size_t npp = (size_t)(d + 1) * (size_t)(d + 1);
 #ifdef RG2_HAVE_OPENMP
-#pragma omp parallel for schedule(dynamic) if (nu * nv > 16)
+#pragma omp parallel if (np > 16)
 #endif
-    for (int p = 0; p < nu * nv; p++) {
-        int i = p / nv, j = p % nv;
-        size_t npp = (size_t)(d + 1) * (size_t)(d + 1);
-        tess_sample *buf = malloc(sizeof(tess_sample) * npp);
-        double *scratch = malloc(sizeof(double) * 8 * npp);
-        if (!buf || !scratch ||
-            sample_patch(s, i, j, d, curvature, rg2__surface_collapsed_sides(s, i, j, tol), scratch, buf)) {
-            free(buf);
-            free(scratch);
+    {
+        double *scratch = malloc(sizeof(double) * 8 * npp); /* one per thread */
+#ifdef RG2_HAVE_OPENMP
+#pragma omp for schedule(dynamic)
+#endif
+        for (int p = 0; p < nu * nv; p++) {
+            int i = p / nv, j = p % nv;
+            if (!scratch || sample_patch(s, i, j, d, curvature, coll[p], scratch)) {
 #ifdef RG2_HAVE_OPENMP
 #pragma omp atomic write
 #endif
-            failed = 1;
-            continue;
-        }
-        int a1 = (i == nu - 1 && !cu) ? d : d - 1, b1 = (j == nv - 1 && !cv) ? d : d - 1;
-        for (int a = 0; a <= a1; a++)
-            for (int b = 0; b <= b1; b++) {
-                size_t k = (size_t)(i * d + a) * (size_t)GV + (size_t)(j * d + b);
-                g[k] = buf[a * (d + 1) + b];
-                gpatch[k] = p;
+                failed = 1;
+                continue;
             }
-        free(buf);
+            const double *sp = scratch, *sn = scratch + 3 * npp, *sK = scratch + 6 * npp, *sH = scratch + 7 * npp;
+            int a1 = (i == nu - 1 && !cu) ? d : d - 1, b1 = (j == nv - 1 && !cv) ? d : d - 1;
+            for (int a = 0; a <= a1; a++) {
+                size_t k0 = (size_t)(i * d + a) * (size_t)GV + (size_t)(j * d), q0 = (size_t)a * (size_t)(d + 1);
+                double ua = a == d ? 1.0 : (double)a / d;
+                if (!parent) { /* vertex k: the row's points at once */
+                    size_t cnt = (size_t)b1 + 1;
+                    memcpy(out->pos + 3 * k0, sp + 3 * q0, 3 * cnt * sizeof(double));
+                    memcpy(out->normal + 3 * k0, sn + 3 * q0, 3 * cnt * sizeof(double));
+                    if (curvature) {
+                        memcpy(out->K + k0, sK + q0, cnt * sizeof(double));
+                        memcpy(out->H + k0, sH + q0, cnt * sizeof(double));
+                    }
+                    for (int b = 0; b <= b1; b++) {
+                        out->patch[k0 + (size_t)b] = p;
+                        out->uv[2 * (k0 + (size_t)b)] = ua;
+                        out->uv[2 * (k0 + (size_t)b) + 1] = b == d ? 1.0 : (double)b / d;
+                    }
+                    continue;
+                }
+                for (int b = 0; b <= b1; b++) {
+                    size_t k = k0 + (size_t)b, q = q0 + (size_t)b;
+                    if (parent[k] != (int)k) /* merged into another grid point's vertex */
+                        continue;
+                    size_t v = (size_t)id[k];
+                    memcpy(out->pos + 3 * v, sp + 3 * q, 3 * sizeof(double));
+                    memcpy(out->normal + 3 * v, sn + 3 * q, 3 * sizeof(double));
+                    if (curvature) {
+                        out->K[v] = sK[q];
+                        out->H[v] = sH[q];
+                    }
+                    out->patch[v] = p;
+                    out->uv[2 * v] = ua;
+                    out->uv[2 * v + 1] = b == d ? 1.0 : (double)b / d;
+                }
+            }
+        }
         free(scratch);
     }
     if (failed)
         goto done;
-    for (size_t k = 0; k < ng; k++)
-        parent[k] = (int)k;
-    for (int i = 0; i < nu; i++)
-        for (int j = 0; j < nv; j++)
-            for (int side = 0; side < 4; side++) {
-                if (!rg2__surface_side_collapsed(s, i, j, side, tol))
-                    continue;
-                for (int t = 0; t <= d; t++) {
-                    int I, J, I0, J0;
-                    switch (side) {
-                    case 0: I = i * d + t; J = j * d; I0 = i * d; J0 = J; break;
-                    case 1: I = (i + 1) * d; J = j * d + t; I0 = I; J0 = j * d; break;
-                    case 2: I = i * d + t; J = (j + 1) * d; I0 = i * d; J0 = J; break;
-                    default: I = i * d; J = j * d + t; I0 = I; J0 = j * d; break;
-                    }
-                    rg2__uf_union(parent, gidx(I, J, nu_d, nv_d, cu, cv, GV), gidx(I0, J0, nu_d, nv_d, cu, cv, GV));
-                }
-            }
-    int nvert = 0;
-    for (size_t k = 0; k < ng; k++)
-        id[k] = rg2__uf_find(parent, (int)k) == (int)k ? nvert++ : -1;
-    out->pos = rg2__calloc_big(3 * (size_t)nvert, sizeof(double));
-    out->normal = rg2__calloc_big(3 * (size_t)nvert, sizeof(double));
-    out->patch = rg2__calloc_big((size_t)nvert, sizeof(int));
-    out->uv = rg2__calloc_big(2 * (size_t)nvert, sizeof(double));
-    if (curvature) {
-        out->K = rg2__calloc_big((size_t)nvert, sizeof(double));
-        out->H = rg2__calloc_big((size_t)nvert, sizeof(double));
-    }
-    if (!out->pos || !out->normal || !out->patch || !out->uv || (curvature && (!out->K || !out->H))) {
+    /* Triangles: each row of quads into its own slots (2 nv d triangles) on the threads, the
+     * rows' counts kept; then the rows moved together where triangles were dropped. */
+    int *rowcnt = rg2__calloc((size_t)nu_d, sizeof(int));
+    if (!rowcnt) {
         failed = 1;
         goto done;
     }
-    out->n_vertices = nvert;
-    for (size_t k = 0; k < ng; k++) {
-        if (id[k] < 0)
+    /* Without merged vertices and with two grid lines at least in a closed direction, a quad's
+     * four corners are distinct vertices (their grid indices) and no triangle is dropped. */
+    int plain = !id && (nu_d > 1 || !cu) && (nv_d > 1 || !cv);
+#ifdef RG2_HAVE_OPENMP
+#pragma omp parallel for schedule(static) if (ng > 16384)
+#endif
+    for (int I = 0; I < nu_d; I++) {
+        int *tri = out->tri + (size_t)6 * (size_t)nv_d * (size_t)I, cnt = 0;
+        if (plain) { /* the same triangles as below, without branches */
+            int r0 = I * GV, r1 = (cu && I + 1 == nu_d ? 0 : I + 1) * GV;
+            for (int J = 0; J < nv_d; J++) {
+                int J1 = cv && J + 1 == nv_d ? 0 : J + 1;
+                int v00 = r0 + J, v10 = r1 + J, v11 = r1 + J1, v01 = r0 + J1;
+                int m = -(int)(dist2(out->pos + 3 * v00, out->pos + 3 * v11) <=
+                               dist2(out->pos + 3 * v10, out->pos + 3 * v01)); /* all ones: the v00-v11 diagonal */
+                int *o = tri + 6 * J;
+                o[0] = v00;
+                o[1] = v10;
+                o[2] = v01 ^ ((v11 ^ v01) & m);
+                o[3] = v10 ^ ((v00 ^ v10) & m);
+                o[4] = v11;
+                o[5] = v01;
+            }
+            rowcnt[I] = 2 * nv_d;
             continue;
-        int v = id[k], I = (int)(k / (size_t)GV), J = (int)(k % (size_t)GV);
-        memcpy(out->pos + 3 * v, g[k].p, sizeof g[k].p);
-        memcpy(out->normal + 3 * v, g[k].n, sizeof g[k].n);
-        if (curvature) {
-            out->K[v] = g[k].K;
-            out->H[v] = g[k].H;
         }
-        int p = gpatch[k], a = I - (p / nv) * d, b = J - (p % nv) * d;
-        out->patch[v] = p;
-        out->uv[2 * v] = a == d ? 1.0 : (double)a / d;
-        out->uv[2 * v + 1] = b == d ? 1.0 : (double)b / d;
-    }
-    for (size_t k = 0; k < ng; k++)
-        if (id[k] < 0)
-            id[k] = id[rg2__uf_find(parent, (int)k)];
-    size_t nt = 0;
-    for (int I = 0; I < nu_d; I++)
         for (int J = 0; J < nv_d; J++) {
-            int v00 = id[gidx(I, J, nu_d, nv_d, cu, cv, GV)];
-            int v10 = id[gidx(I + 1, J, nu_d, nv_d, cu, cv, GV)];
-            int v11 = id[gidx(I + 1, J + 1, nu_d, nv_d, cu, cv, GV)];
-            int v01 = id[gidx(I, J + 1, nu_d, nv_d, cu, cv, GV)];
+            int g00 = gidx(I, J, nu_d, nv_d, cu, cv, GV), g10 = gidx(I + 1, J, nu_d, nv_d, cu, cv, GV);
+            int g11 = gidx(I + 1, J + 1, nu_d, nv_d, cu, cv, GV), g01 = gidx(I, J + 1, nu_d, nv_d, cu, cv, GV);
+            int v00 = id ? id[g00] : g00, v10 = id ? id[g10] : g10, v11 = id ? id[g11] : g11;
+            int v01 = id ? id[g01] : g01;
             int q[2][3];
             if (dist2(out->pos + 3 * v00, out->pos + 3 * v11) <= dist2(out->pos + 3 * v10, out->pos + 3 * v01)) {
                 int t0[2][3] = {{v00, v10, v11}, {v00, v11, v01}};
@@ -289,17 +366,28 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
             for (int t = 0; t < 2; t++) {
                 if (q[t][0] == q[t][1] || q[t][1] == q[t][2] || q[t][0] == q[t][2])
                     continue;
-                memcpy(out->tri + 3 * nt, q[t], sizeof q[t]);
-                nt++;
+                memcpy(tri + 3 * cnt, q[t], sizeof q[t]);
+                cnt++;
             }
         }
+        rowcnt[I] = cnt;
+    }
+    size_t nt = 0;
+    for (int I = 0; I < nu_d; I++) {
+        size_t at = (size_t)2 * (size_t)nv_d * (size_t)I;
+        if (at != nt)
+            memmove(out->tri + 3 * nt, out->tri + 3 * at, (size_t)rowcnt[I] * 3 * sizeof(int));
+        nt += (size_t)rowcnt[I];
+    }
+    free(rowcnt);
     out->n_triangles = (int)nt;
 done:
-    free(g);
-    free(gpatch);
+    free(coll);
     free(parent);
     free(id);
     if (failed) {
+        if (block)
+            out->pos = (double *)block;
         rg2_tess_free(out);
         return rg2__fail(err, RG2_ENOMEM, "tessellate: out of memory for %d x %d patches at density %d",
                          nu, nv, d);

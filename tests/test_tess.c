@@ -153,6 +153,50 @@ static void same_tess(const rg2_tess *a, const rg2_tess *b, double size, const c
           what, same_tri, flips, same_uv);
 }
 
+/* Every vertex is the grid evaluator's point of its patch and (u, v), bit for bit
+ * (rg2_surface_grid at d + 1 points per patch edge: the vertices are copied from the grid into
+ * the mesh's arrays): positions, normals and, when t has them, K and H. Vertices on a patch side
+ * (a or b at 0 or d) are exempt where `sides_exempt` (collapsed sides are re-evaluated at their
+ * limit). Each grid point of the surface is some vertex's: every (patch, a, b) owned is counted. */
+static void check_vs_grid(const rg2_surface *s, const rg2_tess *t, int d, int sides_exempt, const char *what)
+{
+    int n = d + 1;
+    size_t pts = (size_t)s->nu * (size_t)s->nv * (size_t)n * (size_t)n;
+    double *pos = malloc(3 * pts * sizeof(double)), *nrm = malloc(3 * pts * sizeof(double));
+    double *K = malloc(pts * sizeof(double)), *H = malloc(pts * sizeof(double));
+    rg2_grid_out go = {.pos = pos, .normal = nrm, .K = t->K ? K : NULL, .H = t->K ? H : NULL};
+    rg2_error err;
+    CHECK(pos && nrm && K && H, "%s: out of memory", what);
+    if (!pos || !nrm || !K || !H)
+        goto out;
+    CHECK_OK(rg2_surface_grid(s, n, n, 1, &go, &err), &err);
+    int differ = 0, compared = 0, bad_uv = 0;
+    for (int v = 0; v < t->n_vertices; v++) {
+        double ua = t->uv[2 * v] * d, vb = t->uv[2 * v + 1] * d;
+        int a = (int)lround(ua), b = (int)lround(vb);
+        if (fabs(ua - a) > 1e-12 || fabs(vb - b) > 1e-12 || a < 0 || a > d || b < 0 || b > d || t->patch[v] < 0 ||
+            t->patch[v] >= s->nu * s->nv) {
+            bad_uv++;
+            continue;
+        }
+        if (sides_exempt && (a == 0 || a == d || b == 0 || b == d))
+            continue;
+        size_t k = ((size_t)t->patch[v] * (size_t)n + (size_t)a) * (size_t)n + (size_t)b;
+        compared++;
+        differ += memcmp(t->pos + 3 * v, pos + 3 * k, 3 * sizeof(double)) != 0 ||
+                  memcmp(t->normal + 3 * v, nrm + 3 * k, 3 * sizeof(double)) != 0 ||
+                  (t->K && (memcmp(&t->K[v], &K[k], sizeof(double)) != 0 || memcmp(&t->H[v], &H[k], sizeof(double)) != 0));
+    }
+    CHECK(bad_uv == 0, "%s: %d vertices with a (patch, u, v) off the grid", what, bad_uv);
+    CHECK(differ == 0 && compared > 0, "%s: %d of %d vertices differ from the grid evaluator's point", what, differ,
+          compared);
+out:
+    free(pos);
+    free(nrm);
+    free(K);
+    free(H);
+}
+
 static void torus_mesh(int mixed)
 {
     const double R = 13.0, r = 4.0;
@@ -172,6 +216,7 @@ static void torus_mesh(int mixed)
     CHECK(same == 0, "torus: %d edges used twice in the same direction", same);
     CHECK(twice == 3 * t.n_triangles / 2, "torus: %d edges in two triangles", twice);
     check_orientation(&t, "torus");
+    check_vs_grid(&s, &t, d, 0, "torus");
     double worst_p = 0, worst_n = 0, worst_k = 0, worst_h = 0, sign = 0;
     for (int v = 0; v < t.n_vertices; v++) {
         const double *p = t.pos + 3 * v, *n = t.normal + 3 * v;
@@ -217,6 +262,7 @@ static void random_mesh(int mixed)
     int GU = s.nu * d + 1, GV = s.nv * d + 1;
     CHECK(t.n_vertices == GU * GV, "random: %d vertices, expected %d", t.n_vertices, GU * GV);
     CHECK(t.K == NULL && t.H == NULL, "random: curvature arrays without request");
+    check_vs_grid(&s, &t, d, 0, "random");
     /* vertices come from the grid evaluator (grid.c): equal to the independent per-point
      * evaluation at their (u, v) to rounding (<= 1e-14 relative) */
     double scale = rg2t_surface_scale(&s), dev_p = 0, dev_n = 0;
@@ -277,6 +323,7 @@ static void pole_mesh(int mixed)
     CHECK(t.n_triangles == 2 * ring * (rows - 1) - ring, "pole: %d triangles, expected %d", t.n_triangles,
           2 * ring * (rows - 1) - ring);
     check_orientation(&t, "pole");
+    check_vs_grid(&s, &t, d, 1, "pole");
     int over, twice, same;
     int once = edge_census(&t, &over, &twice, &same);
     CHECK(once == ring && over == 0 && same == 0, "pole: %d boundary edges (expected %d), %d over-used, %d mis-oriented",
