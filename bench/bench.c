@@ -31,7 +31,8 @@
 #endif
 
 static int quick = 0;            /* --quick: fewer repetitions (smoke test) */
-static const char *only = NULL;  /* --only PART: one of torus, merged, freeform, scaling, construction */
+static const char *only = NULL;  /* --only PART: one of torus, merged, tessellation, freeform, scaling,
+                                    construction */
 
 static int want(const char *part) { return !only || !strcmp(only, part); }
 
@@ -1387,6 +1388,121 @@ static cJSON *construction(void)
     return root;
 }
 
+/* ---- tessellation ------------------------------------------------------------------------- */
+
+/* One timed batch (>= 20 ms of calls, wall time) of rg2_tessellate at density d on th threads;
+ * seconds per call. */
+static double tess_batch(const rg2_surface *s, int d, int th)
+{
+#ifdef _OPENMP
+    omp_set_num_threads(th);
+#else
+    (void)th;
+#endif
+    rg2_error err;
+    double t0 = bench_seconds(CLOCK_MONOTONIC), tb, tfree = 0;
+    int calls = 0;
+    do {
+        rg2_tess T;
+        if (rg2_tessellate(s, d, 0, &T, &err))
+            die_rg2("rg2_tessellate", &err);
+        double tf = bench_seconds(CLOCK_MONOTONIC);
+        rg2_tess_free(&T);
+        tfree += bench_seconds(CLOCK_MONOTONIC) - tf;
+        calls++;
+    } while ((tb = bench_seconds(CLOCK_MONOTONIC) - t0) < 0.02);
+    return (tb - tfree) / calls;
+}
+
+/* The tessellation of surface s (rg2_tessellate: the meshes of the OBJ/STL/PLY/glTF exporters)
+ * at densities 8 ... 64, 1 and 2 threads, against the grid evaluation of the same points
+ * (rg2_surface_grid, positions and unit normals, 1 thread): what the mesh's vertex numbering,
+ * copies and triangles cost on top of the evaluation. Checked: every vertex bitwise equal to the
+ * grid's point of its patch and (u, v). */
+static cJSON *tessellation(const rg2_surface *s)
+{
+    int dens[] = {8, 16, 32, 64}, nd = 4, reps = quick ? 3 : 7;
+    size_t np = (size_t)s->nu * (size_t)s->nv;
+    double *t = xmalloc(sizeof(double) * (size_t)(nd * 3 * reps));
+    printf("\n== tessellation (rg2_tessellate, positions + unit normals + triangles, seams shared) of the merged\n"
+           "   surface, %zu patches, against rg2_surface_grid of the same points (1 thread); wall time, medians\n"
+           "   of %d interleaved batches of >= 20 ms\n", np, reps);
+    for (int q = 0; q < nd; q++) { /* check */
+        int n = dens[q] + 1;
+        size_t pts = np * (size_t)n * (size_t)n;
+        double *pos = xmalloc(sizeof(double) * 3 * pts), *nrm = xmalloc(sizeof(double) * 3 * pts);
+        rg2_grid_out go = {.pos = pos, .normal = nrm};
+        rg2_error err;
+        rg2_tess T;
+        if (rg2_surface_grid(s, n, n, 1, &go, &err) || rg2_tessellate(s, dens[q], 0, &T, &err))
+            die_rg2("tessellation check", &err);
+        size_t bad = 0;
+        for (int v = 0; v < T.n_vertices; v++) {
+            int a = (int)lround(T.uv[2 * v] * dens[q]), b = (int)lround(T.uv[2 * v + 1] * dens[q]);
+            size_t k = ((size_t)T.patch[v] * (size_t)n + (size_t)a) * (size_t)n + (size_t)b;
+            bad += memcmp(T.pos + 3 * v, pos + 3 * k, 3 * sizeof(double)) != 0 ||
+                   memcmp(T.normal + 3 * v, nrm + 3 * k, 3 * sizeof(double)) != 0;
+        }
+        if (bad || T.n_triangles <= 0) {
+            fprintf(stderr, "rg2_bench: tessellation at density %d: %zu vertices differ from the grid\n", dens[q], bad);
+            exit(1);
+        }
+        rg2_tess_free(&T);
+        free(pos);
+        free(nrm);
+    }
+    for (int rep = 0; rep < reps; rep++)
+        for (int q = 0; q < nd; q++) {
+            t[(q * 3 + 0) * reps + rep] = tess_batch(s, dens[q], 1);
+            t[(q * 3 + 1) * reps + rep] = tess_batch(s, dens[q], 2);
+            int n = dens[q] + 1;
+            size_t pts = np * (size_t)n * (size_t)n;
+            double *pos = xmalloc(sizeof(double) * 3 * pts), *nrm = xmalloc(sizeof(double) * 3 * pts);
+            rg2_grid_out go = {.pos = pos, .normal = nrm};
+            rg2_error err;
+            memset(pos, 1, sizeof(double) * 3 * pts);
+            memset(nrm, 1, sizeof(double) * 3 * pts);
+            double t0 = bench_seconds(CLOCK_MONOTONIC), tb;
+            int calls = 0;
+            do {
+                if (rg2_surface_grid(s, n, n, 1, &go, &err))
+                    die_rg2("rg2_surface_grid", &err);
+                calls++;
+            } while ((tb = bench_seconds(CLOCK_MONOTONIC) - t0) < 0.02);
+            t[(q * 3 + 2) * reps + rep] = tb / calls;
+            free(pos);
+            free(nrm);
+        }
+#ifdef _OPENMP
+    omp_set_num_threads(2);
+#endif
+    printf("   %-8s %10s %11s %13s %13s %13s %16s\n", "density", "vertices", "triangles", "tess 1t ms",
+           "tess 2t ms", "grid 1t ms", "tess 1t / grid");
+    cJSON *arr = cJSON_CreateArray();
+    for (int q = 0; q < nd; q++) {
+        rg2_tess T;
+        rg2_error err;
+        if (rg2_tessellate(s, dens[q], 0, &T, &err))
+            die_rg2("rg2_tessellate", &err);
+        double m1 = bench_median(t + (q * 3) * reps, reps), m2 = bench_median(t + (q * 3 + 1) * reps, reps);
+        double g1 = bench_median(t + (q * 3 + 2) * reps, reps);
+        printf("   %-8d %10d %11d %13.3f %13.3f %13.3f %16.2f\n", dens[q], T.n_vertices, T.n_triangles, m1 * 1e3,
+               m2 * 1e3, g1 * 1e3, m1 / g1);
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddNumberToObject(o, "density", dens[q]);
+        cJSON_AddNumberToObject(o, "vertices", T.n_vertices);
+        cJSON_AddNumberToObject(o, "triangles", T.n_triangles);
+        cJSON_AddNumberToObject(o, "median_s_1_thread", m1);
+        cJSON_AddNumberToObject(o, "median_s_2_threads", m2);
+        cJSON_AddNumberToObject(o, "grid_median_s_1_thread", g1);
+        cJSON_AddNumberToObject(o, "mvertices_per_s_1_thread", T.n_vertices / m1 / 1e6);
+        cJSON_AddItemToArray(arr, o);
+        rg2_tess_free(&T);
+    }
+    free(t);
+    return arr;
+}
+
 /* ---- main ------------------------------------------------------------------------------- */
 
 static void cpu_model(char *buf, size_t len)
@@ -1433,7 +1549,7 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--only") && i + 1 < argc)
             only = argv[++i];
         else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            printf("usage: rg2_bench [out.json] [--quick] [--only torus|merged|freeform|scaling|construction]\n");
+            printf("usage: rg2_bench [out.json] [--quick] [--only torus|merged|tessellation|freeform|scaling|construction]\n");
             return 0;
         } else
             out = argv[i];
@@ -1462,7 +1578,7 @@ int main(int argc, char **argv)
         case_free(&torus);
     }
 
-    if (want("merged")) {
+    if (want("merged") || want("tessellation")) {
 #ifdef RG2_BENCH_DESIGN
     bcase merged = {.name = "merged", .what = "merged design " RG2_BENCH_DESIGN " (surface 0)"};
     {
@@ -1476,9 +1592,15 @@ int main(int argc, char **argv)
                                               "half torus rows + cylinder rows (8 x 12 control points)"};
     merged_surface(&merged.s);
 #endif
-    case_setup(&merged, 64, 9);
-    cJSON_AddItemToArray(jcases, run_case(&merged));
-    case_free(&merged);
+    if (want("merged")) {
+        case_setup(&merged, 64, 9);
+        cJSON_AddItemToArray(jcases, run_case(&merged));
+    }
+    cJSON_AddItemToObject(root, "tessellation", tessellation(&merged.s));
+    if (want("merged"))
+        case_free(&merged);
+    else
+        rg2_surface_free(&merged.s);
     }
 
     if (want("freeform")) {
