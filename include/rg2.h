@@ -821,7 +821,7 @@ typedef struct {
 /** Tessellate a surface with `density` samples per patch edge (density >= 1; quads split
  *  along the shorter diagonal). curvature != 0 fills K and H. Collapsed patch edges (all four
  *  control points of a side equal, e.g. a pole) give one vertex and no degenerate triangles.
- *  Release with rg2_tess_free.
+ *  Release with rg2_tess_free: the arrays are one allocation (never free them one by one).
  *  @return RG2_EINVAL (no patches, density < 1), RG2_ELIMIT (over RG2_MAX_POINTS vertices
  *  per direction), RG2_ENOMEM. */
 RG2_API rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_tess *out,
