@@ -141,7 +141,7 @@ static double dist2(const double *a, const double *b)
 
 /* Bytes from which rg2_tessellate's block (and its temporaries) go on huge pages: a mesh's arrays
  * of 0.5-2 MiB took a page fault per 4 KiB page at every call, since glibc gives freed memory of
- * that size back to the kernel (docs/performance.md, "Tessellation"). */
+ * that size back to the kernel (docs/performance.md, "Tessellation in one block"). */
 #define TESS_BIG_BYTES ((size_t)512 << 10)
 
 /* Round n bytes up to a cache line. */
