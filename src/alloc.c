@@ -92,12 +92,7 @@ static size_t free_huge_bytes(void)
 
 void *rg2__calloc_big(size_t n, size_t size)
 {
-    return rg2__calloc_big_from(n, size, RG2_BIG_BYTES);
-}
-
-void *rg2__calloc_big_from(size_t n, size_t size, size_t from)
-{
-    return rg2__alloc_big(n, size, from, 1);
+    return rg2__alloc_big(n, size, RG2_BIG_BYTES, 1);
 }
 
 void *rg2__alloc_big(size_t n, size_t size, size_t from, int zero)

@@ -52,9 +52,8 @@ void *rg2__calloc(size_t n, size_t size);
 /* The same for large arrays (src/alloc.c): from 2 MiB up, 2 MiB-aligned on transparent huge
  * pages where the system has them. Freed with free(). */
 void *rg2__calloc_big(size_t n, size_t size);
-/* rg2__calloc_big from `from` bytes up instead of 2 MiB (arrays allocated and freed at every call). */
-void *rg2__calloc_big_from(size_t n, size_t size, size_t from);
-/* The same without zeroing when zero is 0 (memory the caller overwrites; NULL on overflow). */
+/* The same from `from` bytes up instead of 2 MiB (arrays allocated and freed at every call),
+ * zeroed only when zero is non-zero (else memory the caller overwrites); NULL on overflow. */
 void *rg2__alloc_big(size_t n, size_t size, size_t from, int zero);
 
 /* Run fn(arg, c) for the chunks c = 0..n-1 on up to nthreads threads (src/pool.c): the caller

@@ -197,8 +197,8 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
      * number of its set's root, in the order of the roots). */
     int nvert = (int)ng;
     if (any) {
-        parent = rg2__calloc_big_from(ng, sizeof(int), TESS_BIG_BYTES);
-        id = rg2__calloc_big_from(ng, sizeof(int), TESS_BIG_BYTES);
+        parent = rg2__alloc_big(ng, sizeof(int), TESS_BIG_BYTES, 0); /* (both written whole below) */
+        id = rg2__alloc_big(ng, sizeof(int), TESS_BIG_BYTES, 0);
         if (!parent || !id) {
             failed = 1;
             goto done;
