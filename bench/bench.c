@@ -1390,9 +1390,9 @@ static cJSON *construction(void)
 
 /* ---- tessellation ------------------------------------------------------------------------- */
 
-/* One timed batch (>= 20 ms of calls, wall time) of rg2_tessellate at density d on th threads;
- * seconds per call. */
-static double tess_batch(const rg2_surface *s, int d, int th)
+/* One timed batch (>= 20 ms of calls, wall time) of rg2_tessellate at density d on th threads,
+ * or with again != 0 of rg2_retessellate into one mesh (an editing loop); seconds per call. */
+static double tess_batch(const rg2_surface *s, int d, int th, int again)
 {
 #ifdef _OPENMP
     omp_set_num_threads(th);
@@ -1400,33 +1400,46 @@ static double tess_batch(const rg2_surface *s, int d, int th)
     (void)th;
 #endif
     rg2_error err;
+    rg2_tess R = {0};
+    if (again && rg2_retessellate(s, d, 0, &R, &err)) /* the mesh an editing loop already has */
+        die_rg2("rg2_retessellate", &err);
     double t0 = bench_seconds(CLOCK_MONOTONIC), tb, tfree = 0;
     int calls = 0;
     do {
-        rg2_tess T;
-        if (rg2_tessellate(s, d, 0, &T, &err))
-            die_rg2("rg2_tessellate", &err);
-        double tf = bench_seconds(CLOCK_MONOTONIC);
-        rg2_tess_free(&T);
-        tfree += bench_seconds(CLOCK_MONOTONIC) - tf;
+        if (again) {
+            if (rg2_retessellate(s, d, 0, &R, &err))
+                die_rg2("rg2_retessellate", &err);
+        } else {
+            rg2_tess T;
+            if (rg2_tessellate(s, d, 0, &T, &err))
+                die_rg2("rg2_tessellate", &err);
+            double tf = bench_seconds(CLOCK_MONOTONIC);
+            rg2_tess_free(&T);
+            tfree += bench_seconds(CLOCK_MONOTONIC) - tf;
+        }
         calls++;
     } while ((tb = bench_seconds(CLOCK_MONOTONIC) - t0) < 0.02);
+    rg2_tess_free(&R);
     return (tb - tfree) / calls;
 }
 
-/* The tessellation of surface s (rg2_tessellate: the meshes of the OBJ/STL/PLY/glTF exporters)
- * at densities 8 ... 64, 1 and 2 threads, against the grid evaluation of the same points
- * (rg2_surface_grid, positions and unit normals, 1 thread): what the mesh's vertex numbering,
- * copies and triangles cost on top of the evaluation. Checked: every vertex bitwise equal to the
- * grid's point of its patch and (u, v). */
+/* The tessellation of surface s (rg2_tessellate: the meshes of the OBJ/STL/PLY/glTF exporters;
+ * rg2_retessellate: again into the same mesh) at densities 8 ... 64, 1 and 2 threads, against
+ * the grid evaluation of the same points (rg2_surface_grid, positions and unit normals,
+ * 1 thread): what the mesh's vertex numbering, copies, triangles and fresh memory cost on top of
+ * the evaluation. Checked: every vertex bitwise equal to the grid's point of its patch and
+ * (u, v), and rg2_retessellate's mesh bitwise rg2_tessellate's. */
 static cJSON *tessellation(const rg2_surface *s)
 {
-    int dens[] = {8, 16, 32, 64}, nd = 4, reps = quick ? 3 : 7;
+    enum { TESS1, TESS2, AGAIN1, AGAIN2, GRID1, NT };
+    int dens[] = {8, 16, 32, 64}, nd = 4, reps = quick ? 3 : 7, nvert[4], ntri[4];
     size_t np = (size_t)s->nu * (size_t)s->nv;
-    double *t = xmalloc(sizeof(double) * (size_t)(nd * 3 * reps));
+    double *t = xmalloc(sizeof(double) * (size_t)(nd * NT * reps));
     printf("\n== tessellation (rg2_tessellate, positions + unit normals + triangles, seams shared) of the merged\n"
-           "   surface, %zu patches, against rg2_surface_grid of the same points (1 thread); wall time, medians\n"
-           "   of %d interleaved batches of >= 20 ms\n", np, reps);
+           "   surface, %zu patches, and again into the same mesh (rg2_retessellate, as an editing loop does),\n"
+           "   against rg2_surface_grid of the same points (1 thread); wall time, medians of %d interleaved\n"
+           "   batches of >= 20 ms\n", np, reps);
+    rg2_tess R = {0};
     for (int q = 0; q < nd; q++) { /* check */
         int n = dens[q] + 1;
         size_t pts = np * (size_t)n * (size_t)n;
@@ -1434,10 +1447,11 @@ static cJSON *tessellation(const rg2_surface *s)
         rg2_grid_out go = {.pos = pos, .normal = nrm};
         rg2_error err;
         rg2_tess T;
-        if (rg2_surface_grid(s, n, n, 1, &go, &err) || rg2_tessellate(s, dens[q], 0, &T, &err))
+        if (rg2_surface_grid(s, n, n, 1, &go, &err) || rg2_tessellate(s, dens[q], 0, &T, &err) ||
+            rg2_retessellate(s, dens[nd - 1 - q], 0, &R, &err) || rg2_retessellate(s, dens[q], 0, &R, &err))
             die_rg2("tessellation check", &err);
-        size_t bad = 0;
-        for (int v = 0; v < T.n_vertices; v++) {
+        size_t bad = 0, nv = (size_t)T.n_vertices;
+        for (size_t v = 0; v < nv; v++) {
             int a = (int)lround(T.uv[2 * v] * dens[q]), b = (int)lround(T.uv[2 * v + 1] * dens[q]);
             size_t k = ((size_t)T.patch[v] * (size_t)n + (size_t)a) * (size_t)n + (size_t)b;
             bad += memcmp(T.pos + 3 * v, pos + 3 * k, 3 * sizeof(double)) != 0 ||
@@ -1447,14 +1461,27 @@ static cJSON *tessellation(const rg2_surface *s)
             fprintf(stderr, "rg2_bench: tessellation at density %d: %zu vertices differ from the grid\n", dens[q], bad);
             exit(1);
         }
+        if (R.n_vertices != T.n_vertices || R.n_triangles != T.n_triangles ||
+            memcmp(R.pos, T.pos, 3 * nv * sizeof(double)) || memcmp(R.normal, T.normal, 3 * nv * sizeof(double)) ||
+            memcmp(R.uv, T.uv, 2 * nv * sizeof(double)) || memcmp(R.patch, T.patch, nv * sizeof(int)) ||
+            memcmp(R.tri, T.tri, 3 * (size_t)T.n_triangles * sizeof(int))) {
+            fprintf(stderr, "rg2_bench: rg2_retessellate at density %d differs from rg2_tessellate\n", dens[q]);
+            exit(1);
+        }
+        nvert[q] = T.n_vertices;
+        ntri[q] = T.n_triangles;
         rg2_tess_free(&T);
         free(pos);
         free(nrm);
     }
+    rg2_tess_free(&R);
     for (int rep = 0; rep < reps; rep++)
         for (int q = 0; q < nd; q++) {
-            t[(q * 3 + 0) * reps + rep] = tess_batch(s, dens[q], 1);
-            t[(q * 3 + 1) * reps + rep] = tess_batch(s, dens[q], 2);
+            double *tq = t + (size_t)(q * NT) * (size_t)reps + (size_t)rep;
+            tq[TESS1 * reps] = tess_batch(s, dens[q], 1, 0);
+            tq[TESS2 * reps] = tess_batch(s, dens[q], 2, 0);
+            tq[AGAIN1 * reps] = tess_batch(s, dens[q], 1, 1);
+            tq[AGAIN2 * reps] = tess_batch(s, dens[q], 2, 1);
             int n = dens[q] + 1;
             size_t pts = np * (size_t)n * (size_t)n;
             double *pos = xmalloc(sizeof(double) * 3 * pts), *nrm = xmalloc(sizeof(double) * 3 * pts);
@@ -1469,35 +1496,35 @@ static cJSON *tessellation(const rg2_surface *s)
                     die_rg2("rg2_surface_grid", &err);
                 calls++;
             } while ((tb = bench_seconds(CLOCK_MONOTONIC) - t0) < 0.02);
-            t[(q * 3 + 2) * reps + rep] = tb / calls;
+            tq[GRID1 * reps] = tb / calls;
             free(pos);
             free(nrm);
         }
 #ifdef _OPENMP
     omp_set_num_threads(2);
 #endif
-    printf("   %-8s %10s %11s %13s %13s %13s %16s\n", "density", "vertices", "triangles", "tess 1t ms",
-           "tess 2t ms", "grid 1t ms", "tess 1t / grid");
+    printf("   %-8s %10s %11s %11s %11s %12s %12s %11s %11s %12s\n", "density", "vertices", "triangles", "tess 1t ms",
+           "tess 2t ms", "again 1t ms", "again 2t ms", "grid 1t ms", "tess / grid", "again / grid");
     cJSON *arr = cJSON_CreateArray();
     for (int q = 0; q < nd; q++) {
-        rg2_tess T;
-        rg2_error err;
-        if (rg2_tessellate(s, dens[q], 0, &T, &err))
-            die_rg2("rg2_tessellate", &err);
-        double m1 = bench_median(t + (q * 3) * reps, reps), m2 = bench_median(t + (q * 3 + 1) * reps, reps);
-        double g1 = bench_median(t + (q * 3 + 2) * reps, reps);
-        printf("   %-8d %10d %11d %13.3f %13.3f %13.3f %16.2f\n", dens[q], T.n_vertices, T.n_triangles, m1 * 1e3,
-               m2 * 1e3, g1 * 1e3, m1 / g1);
+        double m[NT];
+        for (int k = 0; k < NT; k++)
+            m[k] = bench_median(t + (size_t)(q * NT + k) * (size_t)reps, reps);
+        printf("   %-8d %10d %11d %11.3f %11.3f %12.3f %12.3f %11.3f %11.2f %12.2f\n", dens[q], nvert[q], ntri[q],
+               m[TESS1] * 1e3, m[TESS2] * 1e3, m[AGAIN1] * 1e3, m[AGAIN2] * 1e3, m[GRID1] * 1e3, m[TESS1] / m[GRID1],
+               m[AGAIN1] / m[GRID1]);
         cJSON *o = cJSON_CreateObject();
         cJSON_AddNumberToObject(o, "density", dens[q]);
-        cJSON_AddNumberToObject(o, "vertices", T.n_vertices);
-        cJSON_AddNumberToObject(o, "triangles", T.n_triangles);
-        cJSON_AddNumberToObject(o, "median_s_1_thread", m1);
-        cJSON_AddNumberToObject(o, "median_s_2_threads", m2);
-        cJSON_AddNumberToObject(o, "grid_median_s_1_thread", g1);
-        cJSON_AddNumberToObject(o, "mvertices_per_s_1_thread", T.n_vertices / m1 / 1e6);
+        cJSON_AddNumberToObject(o, "vertices", nvert[q]);
+        cJSON_AddNumberToObject(o, "triangles", ntri[q]);
+        cJSON_AddNumberToObject(o, "median_s_1_thread", m[TESS1]);
+        cJSON_AddNumberToObject(o, "median_s_2_threads", m[TESS2]);
+        cJSON_AddNumberToObject(o, "again_median_s_1_thread", m[AGAIN1]);
+        cJSON_AddNumberToObject(o, "again_median_s_2_threads", m[AGAIN2]);
+        cJSON_AddNumberToObject(o, "grid_median_s_1_thread", m[GRID1]);
+        cJSON_AddNumberToObject(o, "mvertices_per_s_1_thread", nvert[q] / m[TESS1] / 1e6);
+        cJSON_AddNumberToObject(o, "again_mvertices_per_s_1_thread", nvert[q] / m[AGAIN1] / 1e6);
         cJSON_AddItemToArray(arr, o);
-        rg2_tess_free(&T);
     }
     free(t);
     return arr;

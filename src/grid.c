@@ -41,18 +41,7 @@
 #include <omp.h>
 #endif
 
-/* Function multi-versioning on x86-64 ELF with GCC: the hot kernels and the per-point
- * evaluators get AVX-512, AVX2 and baseline clones; the loader picks one per machine, so the
- * library stays portable. The clones give the same bits as the baseline: -ffp-contract=off, and
- * none of them holds a multiply-add (tests/clones.sh checks the built library; GCC's vectoriser
- * can form a vfmaddsub even so, as it did in a clone of rg2_patch_eval's curvatures, which is
- * therefore not cloned). */
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__ELF__) &&     \
-    !defined(RG2_NO_CLONES) && !defined(__AVX2__)
-#define RG2_HOT __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define RG2_HOT
-#endif
+/* RG2_HOT (src/internal.h): the hot kernels and the per-point evaluators are multi-versioned. */
 
 /* Hand-written AVX-512 kernels for positions, normals and the second-order quantities
  * (reciprocals by rcp14/rsqrt14 and two Newton steps instead of divisions, interleaving

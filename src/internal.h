@@ -8,6 +8,20 @@
 #include <stdarg.h>
 #include <string.h>
 
+/* Function multi-versioning on x86-64 ELF with GCC: the hot kernels and the per-point
+ * evaluators (src/grid.c) and the tessellation's diagonal test (src/tess.c) get AVX-512, AVX2
+ * and baseline clones; the loader picks one per machine, so the library stays portable. The
+ * clones give the same bits as the baseline: -ffp-contract=off, and none of them holds a
+ * multiply-add (tests/clones.sh checks the built library; GCC's vectoriser can form a
+ * vfmaddsub even so, as it did in a clone of rg2_patch_eval's curvatures, which is therefore
+ * not cloned). */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__ELF__) &&     \
+    !defined(RG2_NO_CLONES) && !defined(__AVX2__)
+#define RG2_HOT __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define RG2_HOT
+#endif
+
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif

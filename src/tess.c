@@ -144,10 +144,45 @@ static double dist2(const double *a, const double *b)
  * that size back to the kernel (docs/performance.md, "Tessellation in one block"). */
 #define TESS_BIG_BYTES ((size_t)512 << 10)
 
+/* Grid points from which the sampling and the triangles run on threads (see rg2_tessellate). */
+#define TESS_THREADS_FROM 65536
+
+/* Quads whose diagonals are compared at once (a stack array per thread). */
+#define TRI_CHUNK 256
+
+/* mk[t] = all ones where quad t of two grid rows (p0: v00, v01; p1: v10, v11, points t and
+ * t + 1) has the v00-v11 diagonal no longer than v10-v01 (dist2's arithmetic, vectorized). */
+RG2_HOT static void diagonals(const double *restrict p0, const double *restrict p1, int n, int *restrict mk)
+{
+    for (int t = 0; t < n; t++) {
+        const double *a = p0 + 3 * t, *b = p1 + 3 * t;
+        double x0 = a[0] - b[3], x1 = a[1] - b[4], x2 = a[2] - b[5]; /* v00 - v11 */
+        double y0 = b[0] - a[3], y1 = b[1] - a[4], y2 = b[2] - a[5]; /* v10 - v01 */
+        mk[t] = -(int)(x0 * x0 + x1 * x1 + x2 * x2 <= y0 * y0 + y1 * y1 + y2 * y2);
+    }
+}
+
 /* Round n bytes up to a cache line. */
 static size_t line_up(size_t n)
 {
     return (n + 63) & ~(size_t)63;
+}
+
+static rg2_status check_args(const rg2_surface *s, int density, rg2_error *err)
+{
+    if (!s || s->nu < 1 || s->nv < 1 || !s->patch)
+        return rg2__fail(err, RG2_EINVAL, "tessellate: surface has no patches");
+    if (density < 1)
+        return rg2__fail(err, RG2_EINVAL, "tessellate: density %d, must be >= 1", density);
+    rg2_status fst = rg2__surface_check_finite(s, "tessellate", 0, err);
+    if (fst)
+        return fst;
+    int d = density, nu = s->nu, nv = s->nv;
+    if ((double)nu * d + 1 > RG2_MAX_POINTS || (double)nv * d + 1 > RG2_MAX_POINTS ||
+        ((double)nu * d + 1) * ((double)nv * d + 1) > RG2_MAX_POINTS)
+        return rg2__fail(err, RG2_ELIMIT, "tessellate: %d x %d patches at density %d exceed %d vertices",
+                         nu, nv, d, RG2_MAX_POINTS);
+    return RG2_OK;
 }
 
 /*
@@ -159,24 +194,21 @@ static size_t line_up(size_t n)
  * are numbered before the sampling (the merging depends on the grid indices only), so each
  * patch writes its points straight into the output, which is one block: every array of the
  * mesh at a page fault per 2 MiB at most, where separate arrays of a few hundred KB cost a fault
- * per 4 KiB page at every call.
+ * per 4 KiB page at every call. rg2_retessellate writes into the previous mesh's block when it is
+ * large enough: no fresh pages at all (docs/export.md).
+ *
+ * rg2_tessellate into out (zeroed), taking over old (a previous mesh's block of oldcap bytes, or
+ * NULL): the new mesh goes into it when it is large enough, else it is freed.
  */
-rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_tess *out,
-                          rg2_error *err)
+static rg2_status tessellate(const rg2_surface *s, int density, int curvature, rg2_tess *out, char *old,
+                             size_t oldcap, rg2_error *err)
 {
-    memset(out, 0, sizeof *out);
-    if (!s || s->nu < 1 || s->nv < 1 || !s->patch)
-        return rg2__fail(err, RG2_EINVAL, "tessellate: surface has no patches");
-    if (density < 1)
-        return rg2__fail(err, RG2_EINVAL, "tessellate: density %d, must be >= 1", density);
-    rg2_status fst = rg2__surface_check_finite(s, "tessellate", 0, err);
-    if (fst)
-        return fst;
+    rg2_status st = check_args(s, density, err);
+    if (st) {
+        free(old);
+        return st;
+    }
     int d = density, nu = s->nu, nv = s->nv, cu = s->closed_u != 0, cv = s->closed_v != 0;
-    if ((double)nu * d + 1 > RG2_MAX_POINTS || (double)nv * d + 1 > RG2_MAX_POINTS ||
-        ((double)nu * d + 1) * ((double)nv * d + 1) > RG2_MAX_POINTS)
-        return rg2__fail(err, RG2_ELIMIT, "tessellate: %d x %d patches at density %d exceed %d vertices",
-                         nu, nv, d, RG2_MAX_POINTS);
     int nu_d = nu * d, nv_d = nv * d;
     int GU = nu_d + (cu ? 0 : 1), GV = nv_d + (cv ? 0 : 1);
     size_t ng = (size_t)GU * (size_t)GV, np = (size_t)nu * (size_t)nv;
@@ -234,7 +266,15 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
     size_t b_uv = line_up(2 * nvs * sizeof(double)), b_patch = line_up(nvs * sizeof(int));
     size_t b_tri = line_up(3 * max_tri * sizeof(int));
     size_t total = 2 * b_pos + (curvature ? 2 * b_kh : 0) + b_uv + b_patch + b_tri;
-    block = rg2__alloc_big(total, 1, TESS_BIG_BYTES, 0); /* every array written below */
+    if (old && oldcap >= total) { /* the previous mesh's block: no fresh pages */
+        block = old;
+        total = oldcap;
+    } else {
+        free(old);
+        block = rg2__alloc_big(total, 1, TESS_BIG_BYTES, 0); /* every array written below */
+    }
+    old = NULL;
+    out->capacity = total;
     if (!block) {
         failed = 1;
         goto done;
@@ -259,8 +299,19 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
     }
     out->n_vertices = nvert;
     size_t npp = (size_t)(d + 1) * (size_t)(d + 1);
+    /* the parameters b / d, b = 0..d, divided once (a division per vertex took half the copying) */
+    double *par = malloc(sizeof(double) * (size_t)(d + 1));
+    if (!par) {
+        failed = 1;
+        goto done;
+    }
+    for (int b = 0; b <= d; b++)
+        par[b] = b == d ? 1.0 : (double)b / d;
+    /* Threads from 64K grid points up (here and for the triangles): below, waking the second
+     * thread cost more than it saved (the bundled design at density 16, 31K vertices, took 0.41-0.49
+     * ms on two threads and 0.31-0.33 ms on one; docs/export.md). */
 #ifdef RG2_HAVE_OPENMP
-#pragma omp parallel if (np > 16)
+#pragma omp parallel if (np > 16 && np * npp > TESS_THREADS_FROM)
 #endif
     {
         double *scratch = malloc(sizeof(double) * 8 * npp); /* one per thread */
@@ -280,7 +331,7 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
             int a1 = (i == nu - 1 && !cu) ? d : d - 1, b1 = (j == nv - 1 && !cv) ? d : d - 1;
             for (int a = 0; a <= a1; a++) {
                 size_t k0 = (size_t)(i * d + a) * (size_t)GV + (size_t)(j * d), q0 = (size_t)a * (size_t)(d + 1);
-                double ua = a == d ? 1.0 : (double)a / d;
+                double ua = par[a];
                 if (!parent) { /* vertex k: the row's points at once */
                     size_t cnt = (size_t)b1 + 1;
                     memcpy(out->pos + 3 * k0, sp + 3 * q0, 3 * cnt * sizeof(double));
@@ -292,7 +343,7 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
                     for (int b = 0; b <= b1; b++) {
                         out->patch[k0 + (size_t)b] = p;
                         out->uv[2 * (k0 + (size_t)b)] = ua;
-                        out->uv[2 * (k0 + (size_t)b) + 1] = b == d ? 1.0 : (double)b / d;
+                        out->uv[2 * (k0 + (size_t)b) + 1] = par[b];
                     }
                     continue;
                 }
@@ -309,12 +360,13 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
                     }
                     out->patch[v] = p;
                     out->uv[2 * v] = ua;
-                    out->uv[2 * v + 1] = b == d ? 1.0 : (double)b / d;
+                    out->uv[2 * v + 1] = par[b];
                 }
             }
         }
         free(scratch);
     }
+    free(par);
     if (failed)
         goto done;
     /* Triangles: each row of quads into its own slots (2 nv d triangles) on the threads, the
@@ -328,24 +380,30 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
      * four corners are distinct vertices (their grid indices) and no triangle is dropped. */
     int plain = !id && (nu_d > 1 || !cu) && (nv_d > 1 || !cv);
 #ifdef RG2_HAVE_OPENMP
-#pragma omp parallel for schedule(static) if (ng > 16384)
+#pragma omp parallel for schedule(static) if (ng > TESS_THREADS_FROM)
 #endif
     for (int I = 0; I < nu_d; I++) {
         int *tri = out->tri + (size_t)6 * (size_t)nv_d * (size_t)I, cnt = 0;
         if (plain) { /* the same triangles as below, without branches */
             int r0 = I * GV, r1 = (cu && I + 1 == nu_d ? 0 : I + 1) * GV;
-            for (int J = 0; J < nv_d; J++) {
-                int J1 = cv && J + 1 == nv_d ? 0 : J + 1;
-                int v00 = r0 + J, v10 = r1 + J, v11 = r1 + J1, v01 = r0 + J1;
-                int m = -(int)(dist2(out->pos + 3 * v00, out->pos + 3 * v11) <=
-                               dist2(out->pos + 3 * v10, out->pos + 3 * v01)); /* all ones: the v00-v11 diagonal */
-                int *o = tri + 6 * J;
-                o[0] = v00;
-                o[1] = v10;
-                o[2] = v01 ^ ((v11 ^ v01) & m);
-                o[3] = v10 ^ ((v00 ^ v10) & m);
-                o[4] = v11;
-                o[5] = v01;
+            const double *p0 = out->pos + 3 * (size_t)r0, *p1 = out->pos + 3 * (size_t)r1;
+            for (int J0 = 0; J0 < nv_d; J0 += TRI_CHUNK) {
+                int n = nv_d - J0 < TRI_CHUNK ? nv_d - J0 : TRI_CHUNK, mk[TRI_CHUNK];
+                int nw = cv && J0 + n == nv_d ? n - 1 : n; /* quads whose v01 is not the wrapped one */
+                diagonals(p0 + 3 * (size_t)J0, p1 + 3 * (size_t)J0, nw, mk);
+                if (nw < n) /* the last quad of a closed row: v01, v11 on grid column 0 */
+                    mk[nw] = -(int)(dist2(p0 + 3 * (size_t)(J0 + nw), p1) <= dist2(p1 + 3 * (size_t)(J0 + nw), p0));
+                for (int t = 0; t < n; t++) {
+                    int J = J0 + t, J1 = cv && J + 1 == nv_d ? 0 : J + 1, m = mk[t]; /* m all ones: v00-v11 */
+                    int v00 = r0 + J, v10 = r1 + J, v11 = r1 + J1, v01 = r0 + J1;
+                    int *o = tri + 6 * J;
+                    o[0] = v00;
+                    o[1] = v10;
+                    o[2] = v01 ^ ((v11 ^ v01) & m);
+                    o[3] = v10 ^ ((v00 ^ v10) & m);
+                    o[4] = v11;
+                    o[5] = v01;
+                }
             }
             rowcnt[I] = 2 * nv_d;
             continue;
@@ -382,6 +440,7 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
     free(rowcnt);
     out->n_triangles = (int)nt;
 done:
+    free(old); /* (not yet taken over: failed before the block) */
     free(coll);
     free(parent);
     free(id);
@@ -394,4 +453,19 @@ done:
     }
     rg2__ok(err);
     return RG2_OK;
+}
+
+rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_tess *out,
+                          rg2_error *err)
+{
+    memset(out, 0, sizeof *out);
+    return tessellate(s, density, curvature, out, NULL, 0, err);
+}
+
+rg2_status rg2_retessellate(const rg2_surface *s, int density, int curvature, rg2_tess *t, rg2_error *err)
+{
+    char *old = (char *)t->pos; /* (NULL in a zeroed struct) */
+    size_t cap = t->capacity;
+    memset(t, 0, sizeof *t);
+    return tessellate(s, density, curvature, t, old, cap, err);
 }

@@ -69,9 +69,15 @@ int rg2__surface_side_collapsed(const rg2_surface *s, int i, int j, int side, do
 
 unsigned rg2__surface_collapsed_sides(const rg2_surface *s, int i, int j, double tol)
 {
+    const rg2_xpatch *x = rg2_surface_xpatch(s, i, j);
+    rg2_xpatch X;
+    if (!x) { /* a bi-3 patch: converted once for its four sides */
+        rg2_xpatch_from_patch(rg2_surface_patch(s, i, j), &X);
+        x = &X;
+    }
     unsigned c = 0;
     for (int side = 0; side < 4; side++)
-        if (rg2__surface_side_collapsed(s, i, j, side, tol))
+        if (rg2__xpatch_side_collapsed(x, side, tol))
             c |= 1u << side;
     return c;
 }

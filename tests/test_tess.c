@@ -438,6 +438,73 @@ static void sphere_poles_kh(void)
     rg2_mesh_free(&m);
 }
 
+/* Bitwise the same mesh: counts, every array (K and H when asked). */
+static void identical(const rg2_tess *a, const rg2_tess *b, int curvature, const char *what)
+{
+    CHECK(a->n_vertices == b->n_vertices && a->n_triangles == b->n_triangles, "%s: %d/%d vertices, %d/%d triangles",
+          what, a->n_vertices, b->n_vertices, a->n_triangles, b->n_triangles);
+    if (a->n_vertices != b->n_vertices || a->n_triangles != b->n_triangles)
+        return;
+    size_t nv = (size_t)a->n_vertices, nt = (size_t)a->n_triangles;
+    size_t d3 = 3 * nv * sizeof(double);
+    int same = !memcmp(a->pos, b->pos, d3) && !memcmp(a->normal, b->normal, d3) &&
+               !memcmp(a->uv, b->uv, 2 * nv * sizeof(double)) && !memcmp(a->patch, b->patch, nv * sizeof(int)) &&
+               !memcmp(a->tri, b->tri, 3 * nt * sizeof(int));
+    if (curvature)
+        same = same && a->K && b->K && !memcmp(a->K, b->K, nv * sizeof(double)) &&
+               !memcmp(a->H, b->H, nv * sizeof(double));
+    else
+        same = same && !a->K && !a->H;
+    CHECK(same, "%s: differs from rg2_tessellate's mesh", what);
+}
+
+/* rg2_retessellate into one mesh again and again (torus, pole, random; densities up and down;
+ * with and without curvatures): each result bit for bit rg2_tessellate's, the allocation kept
+ * when it is large enough, a failure leaving the mesh empty (the leak checkers see the rest). */
+static void retessellate(void)
+{
+    rg2_surface s[3];
+    rg2_error err;
+    CHECK_OK(fx_torus(13.0, 4.0, 8, 6, &s[0], &err), &err);
+    CHECK_OK(fx_pole(6, 7, &s[1], &err), &err);
+    CHECK_OK(fx_random(7, 8, 7, &s[2], &err), &err);
+    static const struct {
+        int surf, d, curvature, reuse; /* reuse: the previous allocation must be kept */
+    } step[] = {{0, 8, 1, 0}, {0, 8, 1, 1}, {0, 5, 0, 1}, {1, 6, 1, 1}, {2, 3, 0, 1}, {0, 12, 1, 0},
+                {2, 5, 1, 1}, {1, 2, 0, 1}, {1, 6, 1, 1}, {0, 1, 0, 1}};
+    rg2_tess t = {0};
+    int n = (int)(sizeof step / sizeof step[0]), reused = 0;
+    for (int k = 0; k < n; k++) {
+        char what[64];
+        snprintf(what, sizeof what, "retessellate step %d (surface %d, density %d)", k, step[k].surf, step[k].d);
+        void *before = t.pos;
+        size_t cap = t.capacity;
+        rg2_tess fresh;
+        CHECK_OK(rg2_retessellate(&s[step[k].surf], step[k].d, step[k].curvature, &t, &err), &err);
+        CHECK_OK(rg2_tessellate(&s[step[k].surf], step[k].d, step[k].curvature, &fresh, &err), &err);
+        identical(&t, &fresh, step[k].curvature, what);
+        if (step[k].reuse)
+            CHECK(t.pos == before && t.capacity == cap, "%s: the allocation of %zu bytes was not reused", what, cap);
+        reused += t.pos == before;
+        CHECK(t.capacity >= fresh.capacity, "%s: capacity %zu below the mesh's %zu bytes", what, t.capacity,
+              fresh.capacity);
+        rg2_tess_free(&fresh);
+    }
+    printf("rg2_retessellate: %d meshes into one, each bit for bit rg2_tessellate's, the allocation reused in %d\n",
+           n, reused);
+    CHECK(rg2_retessellate(&s[0], 0, 0, &t, &err) == RG2_EINVAL && strstr(err.msg, "density"),
+          "retessellate, density 0: %s", err.msg);
+    CHECK(t.pos == NULL && t.tri == NULL && t.capacity == 0 && t.n_vertices == 0, "failed retessellate left a mesh");
+    CHECK_OK(rg2_retessellate(&s[1], 4, 1, &t, &err), &err); /* from the emptied struct */
+    rg2_tess fresh;
+    CHECK_OK(rg2_tessellate(&s[1], 4, 1, &fresh, &err), &err);
+    identical(&t, &fresh, 1, "retessellate after a failure");
+    rg2_tess_free(&fresh);
+    rg2_tess_free(&t);
+    for (int k = 0; k < 3; k++)
+        rg2_surface_free(&s[k]);
+}
+
 static void bad_input(void)
 {
     rg2_surface s, empty;
@@ -469,6 +536,7 @@ int main(void)
     pole_mesh(2);
     cap_mesh();
     sphere_poles_kh();
+    retessellate();
     bad_input();
     return rg2t_done("test_tess");
 }
