@@ -4,8 +4,13 @@
 #include "export_internal.h"
 #include "xpatch_util.h"
 
+#include <stdatomic.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef RG2_HAVE_OPENMP
+#include <omp.h>
+#endif
 
 void rg2_tess_free(rg2_tess *t)
 {
@@ -144,8 +149,8 @@ static double dist2(const double *a, const double *b)
  * that size back to the kernel (docs/performance.md, "Tessellation in one block"). */
 #define TESS_BIG_BYTES ((size_t)512 << 10)
 
-/* Grid points from which the sampling and the triangles run on threads (see rg2_tessellate). */
-#define TESS_THREADS_FROM 65536
+/* Grid points from which the sampling and the triangles run on threads (see tessellate). */
+#define TESS_THREADS_FROM 4096
 
 /* Quads whose diagonals are compared at once (a stack array per thread). */
 #define TRI_CHUNK 256
@@ -183,6 +188,147 @@ static rg2_status check_args(const rg2_surface *s, int density, rg2_error *err)
         return rg2__fail(err, RG2_ELIMIT, "tessellate: %d x %d patches at density %d exceed %d vertices",
                          nu, nv, d, RG2_MAX_POINTS);
     return RG2_OK;
+}
+
+/* One tessellation's state for the pool's chunks (src/pool.c). */
+typedef struct {
+    const rg2_surface *s;
+    rg2_tess *out;
+    const unsigned *coll; /* collapsed sides per patch */
+    const int *parent, *id; /* NULL without collapsed sides */
+    const double *par;      /* b / d, b = 0..d */
+    int *rowcnt;            /* triangles per row of quads */
+    int d, nu, nv, cu, cv, GV, nu_d, nv_d, curvature, plain;
+    size_t npp;      /* grid points per patch */
+    uint32_t nchunk; /* of the current pass */
+    _Atomic int failed;
+} tess_job;
+
+/* Sample patch p into scratch (8 npp doubles) and write its grid points into the mesh. */
+static int sample_into(tess_job *T, int p, double *scratch)
+{
+    rg2_tess *out = T->out;
+    int d = T->d, nu = T->nu, nv = T->nv, i = p / nv, j = p % nv, GV = T->GV;
+    size_t npp = T->npp;
+    if (sample_patch(T->s, i, j, d, T->curvature, T->coll[p], scratch))
+        return 1;
+    const double *sp = scratch, *sn = scratch + 3 * npp, *sK = scratch + 6 * npp, *sH = scratch + 7 * npp;
+    const int *parent = T->parent, *id = T->id;
+    const double *par = T->par;
+    int a1 = (i == nu - 1 && !T->cu) ? d : d - 1, b1 = (j == nv - 1 && !T->cv) ? d : d - 1;
+    for (int a = 0; a <= a1; a++) {
+        size_t k0 = (size_t)(i * d + a) * (size_t)GV + (size_t)(j * d), q0 = (size_t)a * (size_t)(d + 1);
+        double ua = par[a];
+        if (!parent) { /* vertex k: the row's points at once */
+            size_t cnt = (size_t)b1 + 1;
+            memcpy(out->pos + 3 * k0, sp + 3 * q0, 3 * cnt * sizeof(double));
+            memcpy(out->normal + 3 * k0, sn + 3 * q0, 3 * cnt * sizeof(double));
+            if (T->curvature) {
+                memcpy(out->K + k0, sK + q0, cnt * sizeof(double));
+                memcpy(out->H + k0, sH + q0, cnt * sizeof(double));
+            }
+            for (int b = 0; b <= b1; b++) {
+                out->patch[k0 + (size_t)b] = p;
+                out->uv[2 * (k0 + (size_t)b)] = ua;
+                out->uv[2 * (k0 + (size_t)b) + 1] = par[b];
+            }
+            continue;
+        }
+        for (int b = 0; b <= b1; b++) {
+            size_t k = k0 + (size_t)b, q = q0 + (size_t)b;
+            if (parent[k] != (int)k) /* merged into another grid point's vertex */
+                continue;
+            size_t v = (size_t)id[k];
+            memcpy(out->pos + 3 * v, sp + 3 * q, 3 * sizeof(double));
+            memcpy(out->normal + 3 * v, sn + 3 * q, 3 * sizeof(double));
+            if (T->curvature) {
+                out->K[v] = sK[q];
+                out->H[v] = sH[q];
+            }
+            out->patch[v] = p;
+            out->uv[2 * v] = ua;
+            out->uv[2 * v + 1] = par[b];
+        }
+    }
+    return 0;
+}
+
+/* Chunk c of the sampling: a contiguous run of patches, with one scratch array. */
+static void sample_chunk(void *arg, uint32_t c)
+{
+    tess_job *T = arg;
+    size_t np = (size_t)T->nu * (size_t)T->nv;
+    int p0 = (int)(np * c / T->nchunk), p1 = (int)(np * (c + 1) / T->nchunk);
+    double *scratch = malloc(sizeof(double) * 8 * T->npp);
+    for (int p = p0; p < p1; p++)
+        if (!scratch || sample_into(T, p, scratch)) {
+            atomic_store(&T->failed, 1);
+            break;
+        }
+    free(scratch);
+}
+
+/* The triangles of row I of quads into its slots; rowcnt[I] = how many. */
+static void tri_row(tess_job *T, int I)
+{
+    const rg2_tess *out = T->out;
+    int nu_d = T->nu_d, nv_d = T->nv_d, cu = T->cu, cv = T->cv, GV = T->GV;
+    int *tri = out->tri + (size_t)6 * (size_t)nv_d * (size_t)I, cnt = 0;
+    if (T->plain) { /* the same triangles as below, without branches */
+        int r0 = I * GV, r1 = (cu && I + 1 == nu_d ? 0 : I + 1) * GV;
+        const double *p0 = out->pos + 3 * (size_t)r0, *p1 = out->pos + 3 * (size_t)r1;
+        for (int J0 = 0; J0 < nv_d; J0 += TRI_CHUNK) {
+            int n = nv_d - J0 < TRI_CHUNK ? nv_d - J0 : TRI_CHUNK, mk[TRI_CHUNK];
+            int nw = cv && J0 + n == nv_d ? n - 1 : n; /* quads whose v01 is not the wrapped one */
+            diagonals(p0 + 3 * (size_t)J0, p1 + 3 * (size_t)J0, nw, mk);
+            if (nw < n) /* the last quad of a closed row: v01, v11 on grid column 0 */
+                mk[nw] = -(int)(dist2(p0 + 3 * (size_t)(J0 + nw), p1) <= dist2(p1 + 3 * (size_t)(J0 + nw), p0));
+            for (int t = 0; t < n; t++) {
+                int J = J0 + t, J1 = cv && J + 1 == nv_d ? 0 : J + 1, m = mk[t]; /* m all ones: v00-v11 */
+                int v00 = r0 + J, v10 = r1 + J, v11 = r1 + J1, v01 = r0 + J1;
+                int *o = tri + 6 * J;
+                o[0] = v00;
+                o[1] = v10;
+                o[2] = v01 ^ ((v11 ^ v01) & m);
+                o[3] = v10 ^ ((v00 ^ v10) & m);
+                o[4] = v11;
+                o[5] = v01;
+            }
+        }
+        T->rowcnt[I] = 2 * nv_d;
+        return;
+    }
+    const int *id = T->id;
+    for (int J = 0; J < nv_d; J++) {
+        int g00 = gidx(I, J, nu_d, nv_d, cu, cv, GV), g10 = gidx(I + 1, J, nu_d, nv_d, cu, cv, GV);
+        int g11 = gidx(I + 1, J + 1, nu_d, nv_d, cu, cv, GV), g01 = gidx(I, J + 1, nu_d, nv_d, cu, cv, GV);
+        int v00 = id ? id[g00] : g00, v10 = id ? id[g10] : g10, v11 = id ? id[g11] : g11;
+        int v01 = id ? id[g01] : g01;
+        int q[2][3];
+        if (dist2(out->pos + 3 * v00, out->pos + 3 * v11) <= dist2(out->pos + 3 * v10, out->pos + 3 * v01)) {
+            int t0[2][3] = {{v00, v10, v11}, {v00, v11, v01}};
+            memcpy(q, t0, sizeof q);
+        } else {
+            int t1[2][3] = {{v00, v10, v01}, {v10, v11, v01}};
+            memcpy(q, t1, sizeof q);
+        }
+        for (int t = 0; t < 2; t++) {
+            if (q[t][0] == q[t][1] || q[t][1] == q[t][2] || q[t][0] == q[t][2])
+                continue;
+            memcpy(tri + 3 * cnt, q[t], sizeof q[t]);
+            cnt++;
+        }
+    }
+    T->rowcnt[I] = cnt;
+}
+
+/* Chunk c of the triangles: a contiguous run of rows of quads. */
+static void tri_chunk(void *arg, uint32_t c)
+{
+    tess_job *T = arg;
+    int I0 = (int)((size_t)T->nu_d * c / T->nchunk), I1 = (int)((size_t)T->nu_d * (c + 1) / T->nchunk);
+    for (int I = I0; I < I1; I++)
+        tri_row(T, I);
 }
 
 /*
@@ -307,129 +453,40 @@ static rg2_status tessellate(const rg2_surface *s, int density, int curvature, r
     }
     for (int b = 0; b <= d; b++)
         par[b] = b == d ? 1.0 : (double)b / d;
-    /* Threads from 64K grid points up (here and for the triangles): below, waking the second
-     * thread cost more than it saved (the bundled design at density 16, 31K vertices, took 0.41-0.49
-     * ms on two threads and 0.31-0.33 ms on one; docs/export.md). */
+    /* Threads: the grid's pool (src/pool.c), whose workers spin a while between calls. An OpenMP
+     * region woke its second thread for longer than it saved: the bundled design at density 16
+     * (31K vertices) took 0.41-0.49 ms on two OpenMP threads, 0.31-0.33 ms on one, and 0.16-0.17
+     * ms on the pool's two (again into the same mesh; docs/export.md). */
+    int nth = 1;
 #ifdef RG2_HAVE_OPENMP
-#pragma omp parallel if (np > 16 && np * npp > TESS_THREADS_FROM)
+    if (np * npp > TESS_THREADS_FROM)
+        nth = omp_get_max_threads();
 #endif
-    {
-        double *scratch = malloc(sizeof(double) * 8 * npp); /* one per thread */
-#ifdef RG2_HAVE_OPENMP
-#pragma omp for schedule(dynamic)
-#endif
-        for (int p = 0; p < nu * nv; p++) {
-            int i = p / nv, j = p % nv;
-            if (!scratch || sample_patch(s, i, j, d, curvature, coll[p], scratch)) {
-#ifdef RG2_HAVE_OPENMP
-#pragma omp atomic write
-#endif
-                failed = 1;
-                continue;
-            }
-            const double *sp = scratch, *sn = scratch + 3 * npp, *sK = scratch + 6 * npp, *sH = scratch + 7 * npp;
-            int a1 = (i == nu - 1 && !cu) ? d : d - 1, b1 = (j == nv - 1 && !cv) ? d : d - 1;
-            for (int a = 0; a <= a1; a++) {
-                size_t k0 = (size_t)(i * d + a) * (size_t)GV + (size_t)(j * d), q0 = (size_t)a * (size_t)(d + 1);
-                double ua = par[a];
-                if (!parent) { /* vertex k: the row's points at once */
-                    size_t cnt = (size_t)b1 + 1;
-                    memcpy(out->pos + 3 * k0, sp + 3 * q0, 3 * cnt * sizeof(double));
-                    memcpy(out->normal + 3 * k0, sn + 3 * q0, 3 * cnt * sizeof(double));
-                    if (curvature) {
-                        memcpy(out->K + k0, sK + q0, cnt * sizeof(double));
-                        memcpy(out->H + k0, sH + q0, cnt * sizeof(double));
-                    }
-                    for (int b = 0; b <= b1; b++) {
-                        out->patch[k0 + (size_t)b] = p;
-                        out->uv[2 * (k0 + (size_t)b)] = ua;
-                        out->uv[2 * (k0 + (size_t)b) + 1] = par[b];
-                    }
-                    continue;
-                }
-                for (int b = 0; b <= b1; b++) {
-                    size_t k = k0 + (size_t)b, q = q0 + (size_t)b;
-                    if (parent[k] != (int)k) /* merged into another grid point's vertex */
-                        continue;
-                    size_t v = (size_t)id[k];
-                    memcpy(out->pos + 3 * v, sp + 3 * q, 3 * sizeof(double));
-                    memcpy(out->normal + 3 * v, sn + 3 * q, 3 * sizeof(double));
-                    if (curvature) {
-                        out->K[v] = sK[q];
-                        out->H[v] = sH[q];
-                    }
-                    out->patch[v] = p;
-                    out->uv[2 * v] = ua;
-                    out->uv[2 * v + 1] = par[b];
-                }
-            }
-        }
-        free(scratch);
-    }
-    free(par);
-    if (failed)
-        goto done;
-    /* Triangles: each row of quads into its own slots (2 nv d triangles) on the threads, the
-     * rows' counts kept; then the rows moved together where triangles were dropped. */
+    if (nth > 64)
+        nth = 64;
+    /* Triangles: each row of quads into its own slots (2 nv d triangles), the rows' counts kept;
+     * then the rows moved together where triangles were dropped. */
     int *rowcnt = rg2__calloc((size_t)nu_d, sizeof(int));
     if (!rowcnt) {
+        free(par);
         failed = 1;
         goto done;
     }
     /* Without merged vertices and with two grid lines at least in a closed direction, a quad's
      * four corners are distinct vertices (their grid indices) and no triangle is dropped. */
-    int plain = !id && (nu_d > 1 || !cu) && (nv_d > 1 || !cv);
-#ifdef RG2_HAVE_OPENMP
-#pragma omp parallel for schedule(static) if (ng > TESS_THREADS_FROM)
-#endif
-    for (int I = 0; I < nu_d; I++) {
-        int *tri = out->tri + (size_t)6 * (size_t)nv_d * (size_t)I, cnt = 0;
-        if (plain) { /* the same triangles as below, without branches */
-            int r0 = I * GV, r1 = (cu && I + 1 == nu_d ? 0 : I + 1) * GV;
-            const double *p0 = out->pos + 3 * (size_t)r0, *p1 = out->pos + 3 * (size_t)r1;
-            for (int J0 = 0; J0 < nv_d; J0 += TRI_CHUNK) {
-                int n = nv_d - J0 < TRI_CHUNK ? nv_d - J0 : TRI_CHUNK, mk[TRI_CHUNK];
-                int nw = cv && J0 + n == nv_d ? n - 1 : n; /* quads whose v01 is not the wrapped one */
-                diagonals(p0 + 3 * (size_t)J0, p1 + 3 * (size_t)J0, nw, mk);
-                if (nw < n) /* the last quad of a closed row: v01, v11 on grid column 0 */
-                    mk[nw] = -(int)(dist2(p0 + 3 * (size_t)(J0 + nw), p1) <= dist2(p1 + 3 * (size_t)(J0 + nw), p0));
-                for (int t = 0; t < n; t++) {
-                    int J = J0 + t, J1 = cv && J + 1 == nv_d ? 0 : J + 1, m = mk[t]; /* m all ones: v00-v11 */
-                    int v00 = r0 + J, v10 = r1 + J, v11 = r1 + J1, v01 = r0 + J1;
-                    int *o = tri + 6 * J;
-                    o[0] = v00;
-                    o[1] = v10;
-                    o[2] = v01 ^ ((v11 ^ v01) & m);
-                    o[3] = v10 ^ ((v00 ^ v10) & m);
-                    o[4] = v11;
-                    o[5] = v01;
-                }
-            }
-            rowcnt[I] = 2 * nv_d;
-            continue;
-        }
-        for (int J = 0; J < nv_d; J++) {
-            int g00 = gidx(I, J, nu_d, nv_d, cu, cv, GV), g10 = gidx(I + 1, J, nu_d, nv_d, cu, cv, GV);
-            int g11 = gidx(I + 1, J + 1, nu_d, nv_d, cu, cv, GV), g01 = gidx(I, J + 1, nu_d, nv_d, cu, cv, GV);
-            int v00 = id ? id[g00] : g00, v10 = id ? id[g10] : g10, v11 = id ? id[g11] : g11;
-            int v01 = id ? id[g01] : g01;
-            int q[2][3];
-            if (dist2(out->pos + 3 * v00, out->pos + 3 * v11) <= dist2(out->pos + 3 * v10, out->pos + 3 * v01)) {
-                int t0[2][3] = {{v00, v10, v11}, {v00, v11, v01}};
-                memcpy(q, t0, sizeof q);
-            } else {
-                int t1[2][3] = {{v00, v10, v01}, {v10, v11, v01}};
-                memcpy(q, t1, sizeof q);
-            }
-            for (int t = 0; t < 2; t++) {
-                if (q[t][0] == q[t][1] || q[t][1] == q[t][2] || q[t][0] == q[t][2])
-                    continue;
-                memcpy(tri + 3 * cnt, q[t], sizeof q[t]);
-                cnt++;
-            }
-        }
-        rowcnt[I] = cnt;
+    tess_job job = {.s = s, .out = out, .coll = coll, .parent = parent, .id = id, .par = par, .rowcnt = rowcnt,
+                    .d = d, .nu = nu, .nv = nv, .cu = cu, .cv = cv, .GV = GV, .nu_d = nu_d, .nv_d = nv_d,
+                    .curvature = curvature, .plain = !id && (nu_d > 1 || !cu) && (nv_d > 1 || !cv), .npp = npp};
+    job.nchunk = nth == 1 ? 1 : (uint32_t)(np < (size_t)(8 * nth) ? np : (size_t)(8 * nth));
+    rg2__pool_run(nth, job.nchunk, sample_chunk, &job);
+    free(par);
+    if (atomic_load(&job.failed)) {
+        free(rowcnt);
+        failed = 1;
+        goto done;
     }
+    job.nchunk = nth == 1 ? 1 : (uint32_t)(nu_d < 8 * nth ? nu_d : 8 * nth);
+    rg2__pool_run(nth, job.nchunk, tri_chunk, &job);
     size_t nt = 0;
     for (int I = 0; I < nu_d; I++) {
         size_t at = (size_t)2 * (size_t)nv_d * (size_t)I;
