@@ -831,7 +831,7 @@ RG2_API rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvatu
 /** rg2_tessellate into a mesh that already exists (from rg2_tessellate, _retessellate, or all
  *  zeros), for editing loops (move a control point, rg2_surface_rebuild, re-tessellate) and
  *  animations: when t's allocation holds the new mesh, it is reused (no fresh pages: the bundled
- *  120-patch design at density 64, 45 MB, in 5.3-6.4 ms instead of 8.1-9.2 ms on one thread,
+ *  120-patch design at density 64, 45 MB, in 4.5-5.9 ms instead of 7.0-8.4 ms on one thread,
  *  docs/export.md), else it is freed and allocated anew. The result equals rg2_tessellate's bit
  *  for bit. On failure t is left empty (freed), with the errors of rg2_tessellate. */
 RG2_API rg2_status rg2_retessellate(const rg2_surface *s, int density, int curvature, rg2_tess *t,

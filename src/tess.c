@@ -456,7 +456,8 @@ static rg2_status tessellate(const rg2_surface *s, int density, int curvature, r
     /* Threads: the grid's pool (src/pool.c), whose workers spin a while between calls. An OpenMP
      * region woke its second thread for longer than it saved: the bundled design at density 16
      * (31K vertices) took 0.41-0.49 ms on two OpenMP threads, 0.31-0.33 ms on one, and 0.16-0.17
-     * ms on the pool's two (again into the same mesh; docs/export.md). */
+     * ms on the pool's two (again into the same mesh; docs/performance.md, "Tessellating again,
+     * on the pool"). */
     int nth = 1;
 #ifdef RG2_HAVE_OPENMP
     if (np * npp > TESS_THREADS_FROM)
