@@ -33,9 +33,9 @@
  *   - Output structs (surfaces, meshes, scalars, tessellations, images) are filled from scratch:
  *     pass a zeroed or freed struct, or the previous contents leak. rg2_surface_rebuild and
  *     rg2_retessellate are the ones that reuse a built surface's or mesh's memory.
- *   - Thread safety: the library keeps no global state that calls modify (the grid evaluator's
- *     worker pool is internal and serialises its own use); reading one object from several
- *     threads at once is safe, writing it is not.
+ *   - Thread safety: the library keeps no global state that calls modify (the worker pool of
+ *     the grid evaluator and the tessellation is internal and serialises its own use); reading
+ *     one object from several threads at once is safe, writing it is not.
  *   - The AVX-512 kernels are chosen at load time (GCC function multi-versioning, an ifunc):
  *     ThreadSanitizer builds of the whole program cannot instrument that resolver; build the
  *     library with -DRG2_NO_CLONES for them.

@@ -1,4 +1,5 @@
-/* pool.c -- a persistent pool of worker threads for short parallel calls (the grid evaluator).
+/* pool.c -- a persistent pool of worker threads for short parallel calls (the grid evaluator,
+ * the tessellation).
  *
  * rg2_surface_grid's calls are short (0.05-1 ms). An OpenMP parallel region joins every thread
  * of its team at its end: when another process holds the second core, the OpenMP worker reaches
