@@ -10,28 +10,61 @@
 
 /* ---------------------------------------------------------------- little-endian output */
 
-static void le_u32(FILE *f, uint32_t x)
+/* Binary output through a buffer: one fwrite per 16 KB instead of one per value (stdio locks the
+ * stream at every call; the STL of 983 040 triangles took 0.30 s, docs/export.md). */
+typedef struct {
+    FILE *f;
+    size_t n;
+    unsigned char b[16384];
+} le_out;
+
+static void le_flush(le_out *w)
+{
+    if (w->n)
+        fwrite(w->b, 1, w->n, w->f);
+    w->n = 0;
+}
+
+static void le_bytes(le_out *w, const void *p, size_t len)
+{
+    if (len > sizeof w->b - w->n)
+        le_flush(w);
+    if (len >= sizeof w->b) {
+        fwrite(p, 1, len, w->f);
+        return;
+    }
+    memcpy(w->b + w->n, p, len);
+    w->n += len;
+}
+
+static void le_u32(le_out *w, uint32_t x)
 {
     unsigned char b[4] = {(unsigned char)x, (unsigned char)(x >> 8), (unsigned char)(x >> 16),
                           (unsigned char)(x >> 24)};
-    fwrite(b, 1, 4, f);
+    le_bytes(w, b, 4);
 }
 
-static void le_u16(FILE *f, unsigned x)
+static void le_u16(le_out *w, unsigned x)
 {
     unsigned char b[2] = {(unsigned char)x, (unsigned char)(x >> 8)};
-    fwrite(b, 1, 2, f);
+    le_bytes(w, b, 2);
 }
 
-static void le_f32(FILE *f, double x)
+static void le_u8(le_out *w, unsigned x)
+{
+    unsigned char b = (unsigned char)x;
+    le_bytes(w, &b, 1);
+}
+
+static void le_f32(le_out *w, double x)
 {
     float v = (float)x;
     uint32_t u;
     memcpy(&u, &v, 4);
-    le_u32(f, u);
+    le_u32(w, u);
 }
 
-static void le_i32(FILE *f, int x) { le_u32(f, (uint32_t)x); }
+static void le_i32(le_out *w, int x) { le_u32(w, (uint32_t)x); }
 
 static size_t total_triangles(const rg2_tess *t, int n)
 {
@@ -88,13 +121,13 @@ rg2_status rg2__write_stl(const rg2_tess *t, int n, const rg2_export_opts *o, rg
     if (nt > UINT32_MAX)
         return rg2__fail(err, RG2_ELIMIT, "%s: %zu triangles exceed binary STL's 32-bit count", out->path,
                          nt);
-    FILE *f = out->f;
+    le_out w = {.f = out->f}, *f = &w;
     char header[80];
     memset(header, ' ', sizeof header);
     char text[80];
     int len = snprintf(text, sizeof text, "rg2 %s binary STL: %s", rg2_version(), o->name);
     memcpy(header, text, (size_t)(len < 80 ? len : 79));
-    fwrite(header, 1, 80, f);
+    le_bytes(f, header, 80);
     le_u32(f, (uint32_t)nt);
     for (int k = 0; k < n; k++)
         for (int q = 0; q < t[k].n_triangles; q++) {
@@ -117,6 +150,7 @@ rg2_status rg2__write_stl(const rg2_tess *t, int n, const rg2_export_opts *o, rg
                     le_f32(f, t[k].pos[3 * c[v] + m]);
             le_u16(f, 0);
         }
+    le_flush(f);
     return RG2_OK;
 }
 
@@ -128,14 +162,14 @@ rg2_status rg2__write_ply(const rg2_tess *t, int n, const rg2_export_opts *o, rg
     size_t nv = total_vertices(t, n), nt = total_triangles(t, n);
     if (nv > INT32_MAX)
         return rg2__fail(err, RG2_ELIMIT, "%s: %zu vertices exceed PLY's int indices", out->path, nv);
-    FILE *f = out->f;
-    fprintf(f, "ply\nformat binary_little_endian 1.0\ncomment rg2 %s: %s\n"
+    fprintf(out->f, "ply\nformat binary_little_endian 1.0\ncomment rg2 %s: %s\n"
                "comment exact points, unit normals, Gaussian and mean curvature of the surface\n"
                "element vertex %zu\nproperty float x\nproperty float y\nproperty float z\n"
                "property float nx\nproperty float ny\nproperty float nz\n"
                "property float gaussian_curvature\nproperty float mean_curvature\n"
                "element face %zu\nproperty list uchar int vertex_indices\nend_header\n",
             rg2_version(), o->name, nv, nt);
+    le_out w = {.f = out->f}, *f = &w;
     for (int k = 0; k < n; k++)
         for (int v = 0; v < t[k].n_vertices; v++) {
             for (int m = 0; m < 3; m++)
@@ -148,12 +182,13 @@ rg2_status rg2__write_ply(const rg2_tess *t, int n, const rg2_export_opts *o, rg
     size_t base = 0;
     for (int k = 0; k < n; k++) {
         for (int q = 0; q < t[k].n_triangles; q++) {
-            fputc(3, f);
+            le_u8(f, 3);
             for (int m = 0; m < 3; m++)
                 le_i32(f, (int)(base + (size_t)t[k].tri[3 * q + m]));
         }
         base += (size_t)t[k].n_vertices;
     }
+    le_flush(f);
     return RG2_OK;
 }
 
@@ -258,18 +293,18 @@ rg2_status rg2__write_glb(const rg2_tess *t, int n, const rg2_export_opts *o, rg
         free(json);
         return rg2__fail(err, RG2_ELIMIT, "%s: %zu bytes exceed the 4 GiB glb limit", out->path, total);
     }
-    FILE *f = out->f;
-    fwrite("glTF", 1, 4, f);
+    le_out w = {.f = out->f}, *f = &w;
+    le_bytes(f, "glTF", 4);
     le_u32(f, 2);
     le_u32(f, (uint32_t)total);
     le_u32(f, (uint32_t)(jlen + jpad));
-    fwrite("JSON", 1, 4, f);
-    fwrite(json, 1, jlen, f);
+    le_bytes(f, "JSON", 4);
+    le_bytes(f, json, jlen);
     for (size_t q = 0; q < jpad; q++)
-        fputc(' ', f);
+        le_u8(f, ' ');
     free(json);
     le_u32(f, (uint32_t)offset);
-    fwrite("BIN\0", 1, 4, f);
+    le_bytes(f, "BIN\0", 4);
     for (int k = 0; k < n; k++) {
         for (int v = 0; v < 3 * t[k].n_vertices; v++)
             le_f32(f, t[k].pos[v]);
@@ -278,5 +313,6 @@ rg2_status rg2__write_glb(const rg2_tess *t, int n, const rg2_export_opts *o, rg
         for (int q = 0; q < 3 * t[k].n_triangles; q++)
             le_u32(f, (uint32_t)t[k].tri[q]);
     }
+    le_flush(f);
     return RG2_OK;
 }
