@@ -6,8 +6,10 @@
  * vertex shared by the faces on both sides, each edge's curve a SURFACE_CURVE with the exact
  * pcurve (a side of the parameter rectangle) on every face it bounds, loops counter-clockwise in
  * (u, v), product structure, mm units. */
+#define _POSIX_C_SOURCE 200809L /* open_memstream */
 #include "export_internal.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -227,47 +229,185 @@ static int put_shell(stepw *w, const int *faces, int n, int closed)
     return id;
 }
 
-/* One face per patch, sharing edges and vertices through rg2__topo. Returns the shell id. */
+/*
+ * Items 0..n-1 written by emit(w, ctx, k), which returns the item's entity id (negative: out of
+ * memory) and uses count[k] entity ids, on the threads: STEP_BLOCK items a block, each block
+ * formatted from its first entity id on into a memory stream, STEP_BATCH blocks at a time (a
+ * stream per block of the batch, kept for the next batch, so its pages are faulted in once),
+ * copied into w's file in order: the same bytes as writing the items one after the other. The
+ * reals' 17 digits (printf's) are nearly all of a big export's time. Returns 0, -1 out of
+ * memory, -2 an item that used other than count[k] ids (a bug: references would be wrong).
+ */
+typedef int (*step_emit)(stepw *w, void *ctx, int k);
+#define STEP_BLOCK 256
+#define STEP_BATCH 8
+
+static int emit_all(stepw *w, int n, const int *count, step_emit emit, void *ctx, int *id)
+{
+    if (n <= STEP_BLOCK) { /* one block: straight into the file */
+        for (int k = 0; k < n; k++) {
+            int next = w->next;
+            if ((id[k] = emit(w, ctx, k)) < 0)
+                return -1;
+            if (w->next != next + count[k])
+                return -2;
+        }
+        return 0;
+    }
+    char *buf[STEP_BATCH] = {0};
+    size_t len[STEP_BATCH] = {0};
+    FILE *m[STEP_BATCH] = {0};
+    int nblk = (n + STEP_BLOCK - 1) / STEP_BLOCK, bad = 0;
+    for (int b = 0; b < STEP_BATCH && b < nblk; b++)
+        if (!(m[b] = open_memstream(&buf[b], &len[b])))
+            bad = -1;
+    for (int b0 = 0; b0 < nblk && !bad; b0 += STEP_BATCH) {
+        int nb = nblk - b0 < STEP_BATCH ? nblk - b0 : STEP_BATCH, start[STEP_BATCH + 1];
+        start[0] = w->next;
+        for (int b = 0; b < nb; b++) { /* each block's first entity id */
+            start[b + 1] = start[b];
+            for (int k = (b0 + b) * STEP_BLOCK; k < n && k < (b0 + b + 1) * STEP_BLOCK; k++)
+                start[b + 1] += count[k];
+        }
+        long used[STEP_BATCH];
+#ifdef RG2_HAVE_OPENMP
+#pragma omp parallel for schedule(dynamic, 1)
+#endif
+        for (int b = 0; b < nb; b++) {
+            stepw wb = {m[b], start[b], w->ctx2d};
+            int fail = fseek(m[b], 0, SEEK_SET) ? -1 : 0;
+            int k1 = (b0 + b + 1) * STEP_BLOCK < n ? (b0 + b + 1) * STEP_BLOCK : n;
+            for (int k = (b0 + b) * STEP_BLOCK; k < k1 && !fail; k++) {
+                int next = wb.next;
+                if ((id[k] = emit(&wb, ctx, k)) < 0)
+                    fail = -1;
+                else if (wb.next != next + count[k])
+                    fail = -2;
+            }
+            if (!fail && (fflush(m[b]) || (used[b] = ftell(m[b])) < 0))
+                fail = -1;
+            if (fail) {
+#ifdef RG2_HAVE_OPENMP
+#pragma omp atomic write
+#endif
+                bad = fail;
+            }
+        }
+        for (int b = 0; b < nb && !bad; b++) /* (buf[b] as of the fflush) */
+            fwrite(buf[b], 1, (size_t)used[b], w->f);
+        if (!bad)
+            w->next = start[nb];
+    }
+    for (int b = 0; b < STEP_BATCH; b++) {
+        if (m[b])
+            fclose(m[b]);
+        free(buf[b]);
+    }
+    return bad;
+}
+
+/* Degrees of patch (i, j): its own for a higher-degree patch, else 3. */
+static void patch_degree(const rg2_surface *s, int i, int j, int *du, int *dv)
+{
+    const rg2_xpatch *x = rg2_surface_xpatch(s, i, j);
+    *du = x ? x->du : 3;
+    *dv = x ? x->dv : 3;
+}
+
+/* What the items of shell_per_patch's parallel parts read. */
+typedef struct {
+    const rg2_surface *s;
+    const rg2__topo *t;
+    const int *vid, *sid, *nuse, *user, *uside, *line;
+} patch_shell;
+
+static int emit_vertex(stepw *w, void *ctx, int v)
+{
+    const patch_shell *c = ctx;
+    int corner = c->t->vcorner[v], nv = c->s->nv;
+    double h[4];
+    rg2__corner_point(c->s, corner / (nv + 1), corner % (nv + 1), h);
+    return put_vertex(w, h);
+}
+
+static int emit_surface(stepw *w, void *ctx, int p)
+{
+    const patch_shell *c = ctx;
+    rg2_xpatch X;
+    double h[(RG2_MAX_DEGREE + 1) * (RG2_MAX_DEGREE + 1)][4];
+    rg2_surface_patch_get(c->s, p / c->s->nv, p % c->s->nv, &X);
+    rg2__xpatch_net(&X, h);
+    return put_surface(w, (const double(*)[4])h, X.du + 1, X.dv + 1, X.du, X.dv, 0, 0);
+}
+
+/* Edge e: its curve through the side's control points, the SURFACE_CURVE with its pcurves on
+ * the faces it bounds, the EDGE_CURVE between its vertices. */
+static int emit_edge(stepw *w, void *ctx, int e)
+{
+    const patch_shell *c = ctx;
+    const rg2__topo *t = c->t;
+    int nv = c->s->nv, p = t->edef[2 * e], side = t->edef[2 * e + 1], i = p / nv, j = p % nv;
+    rg2_xpatch X;
+    double h[RG2_MAX_DEGREE + 1][4];
+    rg2_surface_patch_get(c->s, i, j, &X);
+    int n = rg2__xpatch_side(&X, side, h);
+    int I0 = side == 1 ? i + 1 : i, J0 = side == 2 ? j + 1 : j;
+    int I1 = (side == 0 || side == 2) ? i + 1 : I0, J1 = (side == 1 || side == 3) ? j + 1 : J0;
+    int curve = put_curve(w, (const double(*)[4])h, n, n - 1);
+    if (curve < 0)
+        return -1;
+    /* every edge runs in +u or +v on both sides with knots (0, 1): the pcurve on a patch
+     * is its side's boundary line of the unit square */
+    int surf[2], rep[2];
+    for (int k = 0; k < c->nuse[e]; k++) {
+        surf[k] = c->sid[c->user[2 * e + k]];
+        rep[k] = c->line[c->uside[2 * e + k]];
+    }
+    curve = put_surface_curve(w, curve, c->nuse[e], surf, rep);
+    return put_edge(w, c->vid[t->vert[I0 * (nv + 1) + J0]], c->vid[t->vert[I1 * (nv + 1) + J1]], curve);
+}
+
+/* One face per patch, sharing edges and vertices through rg2__topo. Returns the shell id. The
+ * vertices, the surfaces and the edges are written on the threads (emit_all). */
 static rg2_status shell_per_patch(stepw *w, const rg2_surface *s, int *shell, rg2_error *err)
 {
     rg2__topo t;
     rg2_status st = rg2__topo_build(s, &t, err);
     if (st)
         return st;
-    int nu = s->nu, nv = s->nv;
+    int nu = s->nu, nv = s->nv, np = nu * nv;
     int *vid = malloc(sizeof(int) * (size_t)(t.n_vertices ? t.n_vertices : 1));
     int *eid = malloc(sizeof(int) * (size_t)(t.n_edges ? t.n_edges : 1));
-    int *fid = malloc(sizeof(int) * (size_t)nu * (size_t)nv);
-    int *sid = malloc(sizeof(int) * (size_t)nu * (size_t)nv);
-    size_t ne = (size_t)(t.n_edges ? t.n_edges : 1);
+    int *fid = malloc(sizeof(int) * (size_t)np);
+    int *sid = malloc(sizeof(int) * (size_t)np);
+    size_t ne = (size_t)(t.n_edges ? t.n_edges : 1), nmax = (size_t)np > ne ? (size_t)np : ne;
+    if (nmax < (size_t)t.n_vertices)
+        nmax = (size_t)t.n_vertices;
     int *nuse = malloc(sizeof(int) * ne), *user = malloc(sizeof(int) * 2 * ne), *uside = malloc(sizeof(int) * 2 * ne);
-    if (!vid || !eid || !fid || !sid || !nuse || !user || !uside) {
+    int *count = malloc(sizeof(int) * nmax);
+    int line[4], emitted = 0;
+    patch_shell ctx = {s, &t, vid, sid, nuse, user, uside, line};
+    if (!vid || !eid || !fid || !sid || !nuse || !user || !uside || !count) {
         st = rg2__fail(err, RG2_ENOMEM, "STEP: out of memory for %d x %d patches", nu, nv);
         goto done;
     }
-    for (int v = 0; v < t.n_vertices; v++) {
-        int c = t.vcorner[v];
-        double h[4];
-        rg2__corner_point(s, c / (nv + 1), c % (nv + 1), h);
-        vid[v] = put_vertex(w, h);
-    }
+    for (int v = 0; v < t.n_vertices; v++)
+        count[v] = 2; /* CARTESIAN_POINT, VERTEX_POINT */
+    emitted = emit_all(w, t.n_vertices, count, emit_vertex, &ctx, vid);
     /* the surfaces first: each edge's pcurves refer to the surfaces of the faces it bounds */
-    for (int i = 0; i < nu; i++)
-        for (int j = 0; j < nv; j++) {
-            rg2_xpatch X;
-            double h[(RG2_MAX_DEGREE + 1) * (RG2_MAX_DEGREE + 1)][4];
-            rg2_surface_patch_get(s, i, j, &X);
-            rg2__xpatch_net(&X, h);
-            sid[i * nv + j] = put_surface(w, (const double(*)[4])h, X.du + 1, X.dv + 1, X.du, X.dv, 0, 0);
-            if (sid[i * nv + j] < 0) {
-                st = rg2__fail(err, RG2_ENOMEM, "STEP: out of memory");
-                goto done;
-            }
-        }
+    for (int p = 0; p < np && !emitted; p++) {
+        int du, dv;
+        patch_degree(s, p / nv, p % nv, &du, &dv);
+        count[p] = (du + 1) * (dv + 1) + 1; /* the control points, the surface */
+    }
+    if (!emitted)
+        emitted = emit_all(w, np, count, emit_surface, &ctx, sid);
+    if (emitted)
+        goto failed;
     /* the (at most 2) patch sides using each edge, in grid order */
     for (int e = 0; e < t.n_edges; e++)
         nuse[e] = 0;
-    for (int p = 0; p < nu * nv; p++)
+    for (int p = 0; p < np; p++)
         for (int side = 0; side < 4; side++) {
             int e, f;
             rg2__topo_side(&t, p / nv, p % nv, side, &e, &f);
@@ -276,34 +416,19 @@ static rg2_status shell_per_patch(stepw *w, const rg2_surface *s, int *shell, rg
                 uside[2 * e + nuse[e]++] = side;
             }
         }
-    int line[4]; /* every patch's parameter square is [0, 1]^2 */
-    put_side_lines(w, 1, 1, line);
+    put_side_lines(w, 1, 1, line); /* every patch's parameter square is [0, 1]^2 */
     int closed = 1;
     for (int e = 0; e < t.n_edges; e++) {
-        int p = t.edef[2 * e], side = t.edef[2 * e + 1], i = p / nv, j = p % nv;
-        rg2_xpatch X;
-        double h[RG2_MAX_DEGREE + 1][4];
-        rg2_surface_patch_get(s, i, j, &X);
-        int n = rg2__xpatch_side(&X, side, h);
-        int I0 = side == 1 ? i + 1 : i, J0 = side == 2 ? j + 1 : j;
-        int I1 = (side == 0 || side == 2) ? i + 1 : I0, J1 = (side == 1 || side == 3) ? j + 1 : J0;
-        int c = put_curve(w, (const double(*)[4])h, n, n - 1);
-        if (c < 0) {
-            st = rg2__fail(err, RG2_ENOMEM, "STEP: out of memory");
-            goto done;
-        }
-        /* every edge runs in +u or +v on both sides with knots (0, 1): the pcurve on a patch
-         * is its side's boundary line of the unit square */
-        int surf[2], rep[2];
-        for (int k = 0; k < nuse[e]; k++) {
-            surf[k] = sid[user[2 * e + k]];
-            rep[k] = line[uside[2 * e + k]];
-        }
-        c = put_surface_curve(w, c, nuse[e], surf, rep);
-        eid[e] = put_edge(w, vid[t.vert[I0 * (nv + 1) + J0]], vid[t.vert[I1 * (nv + 1) + J1]], c);
+        int p = t.edef[2 * e], side = t.edef[2 * e + 1], du, dv;
+        patch_degree(s, p / nv, p % nv, &du, &dv);
+        /* the curve's points and itself, its pcurves, the SURFACE_CURVE, the EDGE_CURVE */
+        count[e] = ((side & 1) ? dv : du) + 2 + nuse[e] + 2;
         if (t.uses[e] != 2)
             closed = 0;
     }
+    emitted = emit_all(w, t.n_edges, count, emit_edge, &ctx, eid);
+    if (emitted)
+        goto failed;
     for (int i = 0; i < nu; i++)
         for (int j = 0; j < nv; j++) {
             int edge[4], fwd[4], n = 0;
@@ -317,7 +442,11 @@ static rg2_status shell_per_patch(stepw *w, const rg2_surface *s, int *shell, rg
             }
             fid[i * nv + j] = put_face(w, sid[i * nv + j], edge, fwd, n);
         }
-    *shell = put_shell(w, fid, nu * nv, closed);
+    *shell = put_shell(w, fid, np, closed);
+    goto done;
+failed:
+    st = emitted == -2 ? rg2__fail(err, RG2_EINVAL, "STEP: internal error: entity numbers out of step")
+                       : rg2__fail(err, RG2_ENOMEM, "STEP: out of memory");
 done:
     free(vid);
     free(eid);
@@ -326,6 +455,7 @@ done:
     free(nuse);
     free(user);
     free(uside);
+    free(count);
     rg2__topo_free(&t);
     return st;
 }

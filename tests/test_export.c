@@ -541,6 +541,65 @@ static int iges_loops_close(const char *path, int *broken)
     return nv == 1 ? loops : -1;
 }
 
+/* A surface of 47 x 47 patches, some of higher degree: its STEP vertices, surfaces and edges
+ * are formatted on the threads in several batches of blocks (src/step.c, emit_all), which must
+ * come out as writing them one after the other does: every entity once, numbered 1, 2, 3, ...
+ * in the order of the file, and every reference to an entity written before it. */
+static void step_big_in_order(void)
+{
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(fx_random(20261204, 50, 50, &s, &err), &err);
+    CHECK_OK(rg2t_elevate_some(&s, 5, 3, 7, 1, &err), &err);
+    CHECK_OK(rg2_export_file(&s, 1, path_in("big.step"), NULL, &err), &err);
+    size_t len;
+    char *b = (char *)slurp(path_in("big.step"), &len);
+    CHECK(b != NULL, "big STEP not read");
+    if (!b) {
+        rg2_surface_free(&s);
+        return;
+    }
+    int expect = 1, out_of_order = 0, forward = 0, faces = 0, id = 0;
+    /* Line by line with memchr and digits read by hand: AddressSanitizer's strstr, strchr and
+     * sscanf take the length of the whole remaining 10 MB text at every call (minutes). */
+    const char *p = b, *stop = b + len;
+    while (p < stop) {
+        const char *nl = memchr(p, '\n', (size_t)(stop - p));
+        const char *eol = nl ? nl : stop;
+        const char *q = p;
+        if (*q == '#') { /* an entity starts: "#id=..." */
+            int n = 0;
+            for (q++; q < eol && *q >= '0' && *q <= '9'; q++)
+                n = 10 * n + (*q - '0');
+            if (q < eol && *q == '=') {
+                id = n;
+                out_of_order += id != expect;
+                expect = id + 1;
+                faces += eol - q > 14 && !memcmp(q + 1, "ADVANCED_FACE", 13);
+                q++;
+            } else {
+                q = p;
+            }
+        }
+        for (; q < eol; q++) /* references on this line of entity id */
+            if (*q == '#') {
+                int ref = 0;
+                for (q++; q < eol && *q >= '0' && *q <= '9'; q++)
+                    ref = 10 * ref + (*q - '0');
+                forward += ref >= id;
+            }
+        p = eol + 1;
+    }
+    CHECK(out_of_order == 0 && forward == 0 && faces == s.nu * s.nv,
+          "big STEP: %d entities out of order, %d references forward, %d faces (expected %d)", out_of_order, forward,
+          faces, s.nu * s.nv);
+    printf("STEP of %d x %d patches (written on the threads): %d entities, %d out of order, %d references "
+           "forward\n",
+           s.nu, s.nv, expect - 1, out_of_order, forward);
+    free(b);
+    rg2_surface_free(&s);
+}
+
 static void step_text(const rg2_surface *s)
 {
     rg2_error err;
@@ -1097,6 +1156,7 @@ int main(void)
     glb_validate(&s, &t);
     patches_roundtrip(&s, 13.0, 4.0);
     step_text(&s);
+    step_big_in_order();
     names_and_defaults(&s);
     transposed_pole();
     full_disk(&s);

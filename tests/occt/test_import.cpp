@@ -756,6 +756,19 @@ int main()
         check_file(c, dir, "igs", RG2_STEP_FACE_PER_MESH, 0);
         check_file(c, dir, "igs", RG2_STEP_FACE_PER_MESH, 0, 1);
     }
+    // a surface big enough that the STEP writer formats its vertices, surfaces and edges on the
+    // threads, in several batches of blocks (src/step.c, emit_all), with patches of other degrees
+    // among them (their entity counts differ)
+    {
+        rg2_surface big;
+        memset(&big, 0, sizeof big);
+        CHECK_OK(fx_random(20261204, 50, 50, &big, &err), &err);
+        for (int k = 0; k < 4; k++)
+            CHECK_OK(rg2t_elevate_some(&big, xdeg[k][0], xdeg[k][1], 5 * xstride[k], k, &err), &err);
+        Case c = {"random 47 x 47, elevated in places", &big, rg2t_surface_scale(&big), nullptr, false};
+        check_file(c, dir, "step", RG2_STEP_FACE_PER_PATCH, 0);
+        rg2_surface_free(&big);
+    }
     printf("worst through OpenCASCADE: point %.2e relative (exact shapes %.2e), normal angle %.2e rad, "
            "normal curvature %.2e rel (%d shared edges, %d samples), max tolerance %.2e, STEP and IGES B-rep pcurves off the parameter rectangle %.2e\n",
            g_worst.point, g_worst.exact, g_worst.angle, g_worst.curv, g_worst.edges, g_worst.samples, g_worst.tol,
