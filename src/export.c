@@ -105,6 +105,48 @@ void rg2__real(char buf[40], double x)
     }
 }
 
+#define WRITE_ROUND 16 /* blocks formatted per round (8 per thread on the 2-core machines) */
+
+int rg2__write_blocks(FILE *f, int n, int block, rg2__block_fn fn, void *ctx)
+{
+    if (n <= block)
+        return fn(f, ctx, 0, 0, n);
+    char *buf[WRITE_ROUND] = {0};
+    size_t len[WRITE_ROUND] = {0};
+    FILE *m[WRITE_ROUND] = {0};
+    int nblk = (n - 1) / block + 1, bad = 0;
+    for (int r = 0; r < WRITE_ROUND && r < nblk; r++)
+        if (!(m[r] = open_memstream(&buf[r], &len[r])))
+            bad = -1;
+    for (int b0 = 0; b0 < nblk && !bad; b0 += WRITE_ROUND) {
+        int nb = nblk - b0 < WRITE_ROUND ? nblk - b0 : WRITE_ROUND;
+        long used[WRITE_ROUND];
+#ifdef RG2_HAVE_OPENMP
+#pragma omp parallel for schedule(dynamic, 1)
+#endif
+        for (int r = 0; r < nb; r++) {
+            int b = b0 + r, k0 = b * block, k1 = k0 + block < n ? k0 + block : n;
+            int st = fseek(m[r], 0, SEEK_SET) ? -1 : fn(m[r], ctx, b, k0, k1);
+            if (!st && (fflush(m[r]) || (used[r] = ftell(m[r])) < 0))
+                st = -1;
+            if (st) {
+#ifdef RG2_HAVE_OPENMP
+#pragma omp atomic write
+#endif
+                bad = st;
+            }
+        }
+        for (int r = 0; r < nb && !bad; r++) /* (buf[r] as of the fflush) */
+            fwrite(buf[r], 1, (size_t)used[r], f);
+    }
+    for (int r = 0; r < WRITE_ROUND; r++) {
+        if (m[r])
+            fclose(m[r]);
+        free(buf[r]);
+    }
+    return bad;
+}
+
 rg2_status rg2__check_nonempty(const rg2_surface *surfs, int n_surfs, rg2_error *err)
 {
     if (!surfs || n_surfs < 1)

@@ -20,6 +20,16 @@ rg2_status rg2__out_open(rg2__out *o, const char *path, rg2_error *err);
  * write error) close and remove the temporary file. Returns the final status. */
 rg2_status rg2__out_close(rg2__out *o, rg2_status st, rg2_error *err);
 
+/* Items 0..n-1 written to f in order, formatted on the threads: blocks of `block` items, block b
+ * (items k0..k1-1) formatted by fn(m, ctx, b, k0, k1) into a memory stream m of its own, a few
+ * blocks per thread at a time (the streams kept from one round to the next, so their pages are
+ * faulted in once), then copied into f block by block: the same bytes as formatting the items
+ * one after the other into f. For text whose numbers printf formats (17 digits: nearly all of a
+ * big export's time). fn returns 0 or a negative code, which stops the writing and is returned
+ * (-1 also when a stream fails). n <= block: fn(f, ctx, 0, 0, n) straight into f. */
+typedef int (*rg2__block_fn)(FILE *m, void *ctx, int b, int k0, int k1);
+int rg2__write_blocks(FILE *f, int n, int block, rg2__block_fn fn, void *ctx);
+
 /* Union-find over int arrays (parent[a] == a for roots); the smaller index becomes the root. */
 int rg2__uf_find(int *parent, int a);
 void rg2__uf_union(int *parent, int a, int b);

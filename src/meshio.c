@@ -84,68 +84,53 @@ static size_t total_vertices(const rg2_tess *t, int n)
 
 /* ---------------------------------------------------------------- OBJ */
 
-/* OBJ's lines are formatted on the threads (printf's 17 digits are nearly all of the time: the
- * bundled design at density 64, 3 million numbers, took 0.7 s on one thread), OBJ_LINES lines
- * per block into a buffer of its own, OBJ_BLOCKS blocks at a time, and written in order. */
-#define OBJ_LINES 2048
-#define OBJ_BLOCKS 16
-#define OBJ_LINE_MAX 160 /* the longest line: "f" and six 20-digit numbers, 131 bytes */
+/* OBJ's lines are formatted on the threads (rg2__write_blocks; printf's 17 digits are nearly all
+ * of the time: the bundled design at density 64, 3 million numbers, took 0.7 s on one thread). */
+#define OBJ_LINES 2048 /* per block */
 
 enum { OBJ_V, OBJ_VN, OBJ_F };
 
-static size_t obj_line(char *p, const rg2_tess *t, int kind, size_t i, size_t base)
-{
-    if (kind != OBJ_F) {
-        const double *x = (kind == OBJ_V ? t->pos : t->normal) + 3 * i;
-        return (size_t)snprintf(p, OBJ_LINE_MAX, "%s %.17g %.17g %.17g\n", kind == OBJ_V ? "v" : "vn", x[0], x[1],
-                                x[2]);
-    }
-    const int *c = t->tri + 3 * i;
-    size_t a = base + (size_t)c[0], b = base + (size_t)c[1], d = base + (size_t)c[2];
-    return (size_t)snprintf(p, OBJ_LINE_MAX, "f %zu//%zu %zu//%zu %zu//%zu\n", a, a, b, b, d, d);
-}
+typedef struct {
+    const rg2_tess *t;
+    int kind;
+    size_t base; /* OBJ number of the surface's first vertex */
+} obj_part;
 
-/* The n lines of one kind of surface t (vertex numbers from base) into f; buf holds
- * OBJ_BLOCKS * OBJ_LINES * OBJ_LINE_MAX bytes. */
-static void obj_lines(FILE *f, const rg2_tess *t, int kind, size_t n, size_t base, char *buf)
+static int obj_block(FILE *m, void *arg, int b, int k0, int k1)
 {
-    const size_t bytes = (size_t)OBJ_LINES * OBJ_LINE_MAX;
-    for (size_t first = 0; first < n; first += (size_t)OBJ_BLOCKS * OBJ_LINES) {
-        size_t len[OBJ_BLOCKS], left = n - first;
-        int nb = (int)((left < (size_t)OBJ_BLOCKS * OBJ_LINES ? left : (size_t)OBJ_BLOCKS * OBJ_LINES) + OBJ_LINES - 1) /
-                 OBJ_LINES;
-#ifdef RG2_HAVE_OPENMP
-#pragma omp parallel for schedule(dynamic, 1) if (nb > 1)
-#endif
-        for (int b = 0; b < nb; b++) {
-            size_t i0 = first + (size_t)b * OBJ_LINES, i1 = i0 + OBJ_LINES < n ? i0 + OBJ_LINES : n, l = 0;
-            for (size_t i = i0; i < i1; i++)
-                l += obj_line(buf + (size_t)b * bytes + l, t, kind, i, base);
-            len[b] = l;
+    (void)b;
+    const obj_part *o = arg;
+    const rg2_tess *t = o->t;
+    for (int i = k0; i < k1; i++) {
+        if (o->kind != OBJ_F) {
+            const double *x = (o->kind == OBJ_V ? t->pos : t->normal) + 3 * (size_t)i;
+            fprintf(m, "%s %.17g %.17g %.17g\n", o->kind == OBJ_V ? "v" : "vn", x[0], x[1], x[2]);
+        } else {
+            const int *c = t->tri + 3 * (size_t)i;
+            size_t a = o->base + (size_t)c[0], bb = o->base + (size_t)c[1], d = o->base + (size_t)c[2];
+            fprintf(m, "f %zu//%zu %zu//%zu %zu//%zu\n", a, a, bb, bb, d, d);
         }
-        for (int b = 0; b < nb; b++)
-            fwrite(buf + (size_t)b * bytes, 1, len[b], f);
     }
+    return 0;
 }
 
 rg2_status rg2__write_obj(const rg2_tess *t, int n, const rg2_export_opts *o, rg2__out *out,
                           rg2_error *err)
 {
-    char *buf = malloc((size_t)OBJ_BLOCKS * OBJ_LINES * OBJ_LINE_MAX);
-    if (!buf)
-        return rg2__fail(err, RG2_ENOMEM, "%s: out of memory for the OBJ text", out->path);
     FILE *f = out->f;
     fprintf(f, "# rg2 %s: %s, %zu vertices, %zu triangles (exact points and normals)\n", rg2_version(),
             o->name, total_vertices(t, n), total_triangles(t, n));
     size_t base = 1;
     for (int k = 0; k < n; k++) {
         fprintf(f, "o surface_%d\n", k);
-        obj_lines(f, &t[k], OBJ_V, (size_t)t[k].n_vertices, base, buf);
-        obj_lines(f, &t[k], OBJ_VN, (size_t)t[k].n_vertices, base, buf);
-        obj_lines(f, &t[k], OBJ_F, (size_t)t[k].n_triangles, base, buf);
+        for (int kind = OBJ_V; kind <= OBJ_F; kind++) {
+            obj_part part = {&t[k], kind, base};
+            if (rg2__write_blocks(f, kind == OBJ_F ? t[k].n_triangles : t[k].n_vertices, OBJ_LINES, obj_block,
+                                  &part))
+                return rg2__fail(err, RG2_ENOMEM, "%s: out of memory for the OBJ text", out->path);
+        }
         base += (size_t)t[k].n_vertices;
     }
-    free(buf);
     return RG2_OK;
 }
 

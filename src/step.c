@@ -6,10 +6,8 @@
  * vertex shared by the faces on both sides, each edge's curve a SURFACE_CURVE with the exact
  * pcurve (a side of the parameter rectangle) on every face it bounds, loops counter-clockwise in
  * (u, v), product structure, mm units. */
-#define _POSIX_C_SOURCE 200809L /* open_memstream */
 #include "export_internal.h"
 
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -231,79 +229,53 @@ static int put_shell(stepw *w, const int *faces, int n, int closed)
 
 /*
  * Items 0..n-1 written by emit(w, ctx, k), which returns the item's entity id (negative: out of
- * memory) and uses count[k] entity ids, on the threads: STEP_BLOCK items a block, each block
- * formatted from its first entity id on into a memory stream, STEP_BATCH blocks at a time (a
- * stream per block of the batch, kept for the next batch, so its pages are faulted in once),
- * copied into w's file in order: the same bytes as writing the items one after the other. The
- * reals' 17 digits (printf's) are nearly all of a big export's time. Returns 0, -1 out of
+ * memory) and uses count[k] entity ids, on the threads (rg2__write_blocks, STEP_BLOCK items a
+ * block, each block numbering its entities from its own first id on). Returns 0, -1 out of
  * memory, -2 an item that used other than count[k] ids (a bug: references would be wrong).
  */
 typedef int (*step_emit)(stepw *w, void *ctx, int k);
 #define STEP_BLOCK 256
-#define STEP_BATCH 8
+
+typedef struct {
+    stepw *w;
+    const int *count, *start; /* start[b]: block b's first entity id */
+    step_emit emit;
+    void *ctx;
+    int *id;
+} step_items;
+
+static int step_block(FILE *m, void *arg, int b, int k0, int k1)
+{
+    step_items *it = arg;
+    stepw wb = {m, it->start[b], it->w->ctx2d};
+    for (int k = k0; k < k1; k++) {
+        int next = wb.next;
+        if ((it->id[k] = it->emit(&wb, it->ctx, k)) < 0)
+            return -1;
+        if (wb.next != next + it->count[k])
+            return -2;
+    }
+    return 0;
+}
 
 static int emit_all(stepw *w, int n, const int *count, step_emit emit, void *ctx, int *id)
 {
-    if (n <= STEP_BLOCK) { /* one block: straight into the file */
-        for (int k = 0; k < n; k++) {
-            int next = w->next;
-            if ((id[k] = emit(w, ctx, k)) < 0)
-                return -1;
-            if (w->next != next + count[k])
-                return -2;
-        }
-        return 0;
+    int nblk = n > 0 ? (n - 1) / STEP_BLOCK + 1 : 1;
+    int *start = malloc(sizeof(int) * ((size_t)nblk + 1));
+    if (!start)
+        return -1;
+    start[0] = w->next;
+    for (int b = 0; b < nblk; b++) { /* each block's first entity id */
+        start[b + 1] = start[b];
+        for (int k = b * STEP_BLOCK; k < n && k < (b + 1) * STEP_BLOCK; k++)
+            start[b + 1] += count[k];
     }
-    char *buf[STEP_BATCH] = {0};
-    size_t len[STEP_BATCH] = {0};
-    FILE *m[STEP_BATCH] = {0};
-    int nblk = (n + STEP_BLOCK - 1) / STEP_BLOCK, bad = 0;
-    for (int b = 0; b < STEP_BATCH && b < nblk; b++)
-        if (!(m[b] = open_memstream(&buf[b], &len[b])))
-            bad = -1;
-    for (int b0 = 0; b0 < nblk && !bad; b0 += STEP_BATCH) {
-        int nb = nblk - b0 < STEP_BATCH ? nblk - b0 : STEP_BATCH, start[STEP_BATCH + 1];
-        start[0] = w->next;
-        for (int b = 0; b < nb; b++) { /* each block's first entity id */
-            start[b + 1] = start[b];
-            for (int k = (b0 + b) * STEP_BLOCK; k < n && k < (b0 + b + 1) * STEP_BLOCK; k++)
-                start[b + 1] += count[k];
-        }
-        long used[STEP_BATCH];
-#ifdef RG2_HAVE_OPENMP
-#pragma omp parallel for schedule(dynamic, 1)
-#endif
-        for (int b = 0; b < nb; b++) {
-            stepw wb = {m[b], start[b], w->ctx2d};
-            int fail = fseek(m[b], 0, SEEK_SET) ? -1 : 0;
-            int k1 = (b0 + b + 1) * STEP_BLOCK < n ? (b0 + b + 1) * STEP_BLOCK : n;
-            for (int k = (b0 + b) * STEP_BLOCK; k < k1 && !fail; k++) {
-                int next = wb.next;
-                if ((id[k] = emit(&wb, ctx, k)) < 0)
-                    fail = -1;
-                else if (wb.next != next + count[k])
-                    fail = -2;
-            }
-            if (!fail && (fflush(m[b]) || (used[b] = ftell(m[b])) < 0))
-                fail = -1;
-            if (fail) {
-#ifdef RG2_HAVE_OPENMP
-#pragma omp atomic write
-#endif
-                bad = fail;
-            }
-        }
-        for (int b = 0; b < nb && !bad; b++) /* (buf[b] as of the fflush) */
-            fwrite(buf[b], 1, (size_t)used[b], w->f);
-        if (!bad)
-            w->next = start[nb];
-    }
-    for (int b = 0; b < STEP_BATCH; b++) {
-        if (m[b])
-            fclose(m[b]);
-        free(buf[b]);
-    }
-    return bad;
+    step_items it = {w, count, start, emit, ctx, id};
+    int st = rg2__write_blocks(w->f, n, STEP_BLOCK, step_block, &it);
+    if (!st)
+        w->next = start[nblk];
+    free(start);
+    return st;
 }
 
 /* Degrees of patch (i, j): its own for a higher-degree patch, else 3. */
