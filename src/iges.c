@@ -4,9 +4,14 @@
  * or (iges_brep) per surface a B-rep shell (514) of one face (510) per patch, or of one face on
  * the merged net, with shared edges (504, model curves 126) and vertices (502) and exact pcurves
  * (110); fixed 80-column
- * records, global section in mm with resolution 1e-6 (shared/spec/INTEROP.md section 3). */
+ * records, global section in mm with resolution 1e-6 (shared/spec/INTEROP.md section 3).
+ * The parameter data of the many small entities (patches, edges) are formatted on the threads in
+ * blocks (emit_items), a long list of reals in chunks (pw_reals); the directory entries are kept
+ * until every entity's parameter records are counted, then formatted on the threads too: the
+ * same bytes as one thread's. */
 #include "export_internal.h"
 
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -18,42 +23,132 @@ typedef struct {
     int failed;
 } ibuf;
 
-static void ib_put(ibuf *b, const char *line80)
+static int ib_reserve(ibuf *b, size_t more)
 {
     if (b->failed)
-        return;
-    if (b->len + 82 > b->cap) {
+        return 0;
+    if (b->len + more > b->cap) {
         size_t cap = b->cap ? 2 * b->cap : 8192;
+        while (cap < b->len + more)
+            cap *= 2;
         char *s = realloc(b->s, cap);
         if (!s) {
             b->failed = 1;
-            return;
+            return 0;
         }
         b->s = s;
         b->cap = cap;
     }
+    return 1;
+}
+
+static void ib_put(ibuf *b, const char *line80)
+{
+    if (!ib_reserve(b, 82))
+        return;
     memcpy(b->s + b->len, line80, 80);
     b->s[b->len + 80] = '\n';
     b->len += 81;
     b->nlines++;
 }
 
-/* Parameter-data writer: tokens of one entity packed into columns 1-64. */
+/* The parameter section as the buffers it was written in, in order (blocks formatted on the
+ * threads join it without being copied). */
+typedef struct {
+    char **s;
+    size_t *len;
+    int n, cap;
+} ichunks;
+
+/* Hand b's text to the end of c (b keeps its line count, and becomes empty); 0 out of memory. */
+static int chunk_push(ichunks *c, ibuf *b)
+{
+    if (!b->len)
+        return 1;
+    if (c->n == c->cap) {
+        int cap = c->cap ? 2 * c->cap : 64;
+        char **s = realloc(c->s, sizeof(char *) * (size_t)cap);
+        if (s)
+            c->s = s;
+        size_t *len = s ? realloc(c->len, sizeof(size_t) * (size_t)cap) : NULL;
+        if (!len)
+            return 0;
+        c->len = len;
+        c->cap = cap;
+    }
+    c->s[c->n] = b->s;
+    c->len[c->n++] = b->len;
+    b->s = NULL;
+    b->len = b->cap = 0;
+    return 1;
+}
+
+static void chunks_free(ichunks *c)
+{
+    for (int k = 0; k < c->n; k++)
+        free(c->s[k]);
+    free(c->s);
+    free(c->len);
+}
+
+/* x right-aligned in 7 columns (the low 7 digits past 9 999 999, which the record limit
+ * refuses anyway). */
+static void put7(char *p, int x)
+{
+    unsigned u = (unsigned)x;
+    for (int c = 6; c >= 0; c--) {
+        p[c] = (c == 6 || u) ? (char)('0' + u % 10) : ' ';
+        u /= 10;
+    }
+}
+
+/* The directory entry of an entity, kept until the parameter data are all written (an entity's
+ * parameter lines are known only then when entities are formatted on the threads). */
+typedef struct {
+    int type, form, pstart, pcount;
+    const char *status, *label;
+} idir;
+
+typedef struct {
+    idir *d;
+    int cap;
+} idirs;
+
+static int dir_reserve(idirs *D, int n)
+{
+    if (n <= D->cap)
+        return 1;
+    int cap = D->cap ? D->cap : 64;
+    while (cap < n)
+        cap = cap > INT_MAX / 2 ? n : 2 * cap;
+    idir *d = realloc(D->d, sizeof(idir) * (size_t)cap);
+    if (!d)
+        return 0;
+    D->d = d;
+    D->cap = cap;
+    return 1;
+}
+
+/* Parameter-data writer: tokens of one entity packed into columns 1-64; each record numbered
+ * from its buffer's first line (1), renumbered when a block's buffer joins the file's. */
 typedef struct {
     ibuf *P;
     char line[72];
     int col;
-    int de; /* DE pointer of the entity being written */
+    int de;      /* DE pointer of the entity being written */
+    idirs *dir;  /* directory entries by entity index */
+    int qlo, qhi; /* the entities this writer ended */
+    ichunks *chunks; /* the file's writer: where P's text and the blocks' go */
 } pwriter;
 
 static void pw_flush(pwriter *w)
 {
-    char rec[81];
+    char rec[80];
     memset(rec, ' ', 80);
     memcpy(rec, w->line, (size_t)w->col);
-    char tail[32]; /* 15 characters used; room for any int */
-    snprintf(tail, sizeof tail, "%7dP%7d", w->de, w->P->nlines + 1);
-    memcpy(rec + 65, tail, 15);
+    put7(rec + 65, w->de);
+    rec[72] = 'P';
+    put7(rec + 73, w->P->nlines + 1);
     ib_put(w->P, rec);
     w->col = 0;
 }
@@ -102,6 +197,37 @@ static void pw_knots(pwriter *w, int n_spans, int deg)
     }
 }
 
+#define REALS_CHUNK 8192 /* reals formatted on the threads at a time (pw_reals) */
+
+/* The reals x[0..n-1] as tokens, each followed by ','. A long list (the net of a surface as one
+ * entity) is formatted on the threads REALS_CHUNK at a time, then packed in order: the same
+ * bytes. Returns 0, or -1 out of memory (the buffer marked failed). */
+static int pw_reals(pwriter *w, const double *x, size_t n)
+{
+    if (n < 2048) {
+        for (size_t k = 0; k < n; k++)
+            pw_real(w, x[k], ',');
+        return 0;
+    }
+    char(*tok)[40] = malloc(sizeof(char[40]) * REALS_CHUNK);
+    if (!tok) {
+        w->P->failed = 1;
+        return -1;
+    }
+    for (size_t k0 = 0; k0 < n; k0 += REALS_CHUNK) {
+        int m = n - k0 < REALS_CHUNK ? (int)(n - k0) : REALS_CHUNK;
+#ifdef RG2_HAVE_OPENMP
+#pragma omp parallel for schedule(static)
+#endif
+        for (int k = 0; k < m; k++)
+            rg2__real(tok[k], x[k0 + (size_t)k]);
+        for (int k = 0; k < m; k++)
+            pw_tok(w, tok[k], ',');
+    }
+    free(tok);
+    return 0;
+}
+
 /*
  * Entity 128 of degree (du, dv), piecewise Bezier, of a net of NU x NV homogeneous poles
  * h[a * NV + b] (a along u). IGES lists weights and poles with the u index fastest.
@@ -109,8 +235,15 @@ static void pw_knots(pwriter *w, int n_spans, int deg)
 static void put_128(pwriter *w, const double (*h)[4], int NU, int NV, int du, int dv, int closed_u,
                     int closed_v)
 {
+    size_t np = (size_t)NU * (size_t)NV;
+    double small[4 * (RG2_MAX_DEGREE + 1) * (RG2_MAX_DEGREE + 1)];
+    double *x = np <= (RG2_MAX_DEGREE + 1) * (RG2_MAX_DEGREE + 1) ? small : malloc(sizeof(double) * 4 * np);
+    if (!x) {
+        w->P->failed = 1;
+        return;
+    }
     int rational = 0;
-    for (int a = 0; a < NU * NV; a++)
+    for (size_t a = 0; a < np; a++)
         if (h[a][3] != 1.0)
             rational = 1;
     pw_int(w, 128);
@@ -125,13 +258,18 @@ static void put_128(pwriter *w, const double (*h)[4], int NU, int NV, int du, in
     pw_int(w, 0);
     pw_knots(w, (NU - 1) / du, du);
     pw_knots(w, (NV - 1) / dv, dv);
+    double *wt = x, *xyz = x + np; /* weights, then points, u fastest */
     for (int b = 0; b < NV; b++)
-        for (int a = 0; a < NU; a++)
-            pw_real(w, h[a * NV + b][3], ',');
-    for (int b = 0; b < NV; b++)
-        for (int a = 0; a < NU; a++)
+        for (int a = 0; a < NU; a++) {
+            const double *p = h[(size_t)a * (size_t)NV + (size_t)b];
+            size_t k = (size_t)b * (size_t)NU + (size_t)a;
+            wt[k] = p[3];
             for (int d = 0; d < 3; d++)
-                pw_real(w, h[a * NV + b][d] / h[a * NV + b][3], ',');
+                xyz[3 * k + (size_t)d] = p[d] / p[3];
+        }
+    pw_reals(w, x, 4 * np);
+    if (x != small)
+        free(x);
     pw_real(w, 0.0, ',');
     pw_real(w, (double)((NU - 1) / du), ',');
     pw_real(w, 0.0, ',');
@@ -140,38 +278,91 @@ static void put_128(pwriter *w, const double (*h)[4], int NU, int NV, int du, in
         pw_flush(w);
 }
 
-/* The two directory-entry records of an entity: status "00000000" (independent) or
- * "00010000" (physically dependent: referenced by another entity), label and subscript. */
-static void put_de_full(ibuf *D, int type, int pstart, int pcount, int form, const char *status, const char *label,
-                        int index)
-{
-    char rec[96];
-    snprintf(rec, sizeof rec, "%8d%8d%8d%8d%8d%8d%8d%8d%8sD%7d", type, pstart, 0, 0, 0, 0, 0, 0, status,
-             D->nlines + 1);
-    ib_put(D, rec);
-    snprintf(rec, sizeof rec, "%8d%8d%8d%8d%8d%8s%8s%8s%8dD%7d", type, 0, 0, pcount, form, "", "", label, index,
-             D->nlines + 1);
-    ib_put(D, rec);
-}
-
-static void put_de(ibuf *D, int type, int pstart, int pcount, int index)
-{
-    put_de_full(D, type, pstart, pcount, 0, "00000000", "RG2SURF", index);
-}
-
-/* ---------------------------------------------------------------- B-rep shell (iges_brep) */
+/* ---------------------------------------------------------------- entities */
 
 /* The DE pointer of the q-th entity of the file. */
 static int de_of(int q) { return 2 * q + 1; }
 
-/* Close the parameter data of entity q (type, form) and write its directory entry. */
-static void end_entity(pwriter *w, ibuf *D, int start, int type, int form, const char *status, const char *label,
-                       int q)
+/* Start entity q's parameter data; returns its first line (of the writer's buffer). */
+static int begin_entity(pwriter *w, int q)
+{
+    w->de = de_of(q);
+    return w->P->nlines + 1;
+}
+
+/* Close the parameter data of entity q (from line start on) and keep its directory entry:
+ * status "00000000" (independent) or "00010000" (physically dependent: referenced by another
+ * entity), label. */
+static void end_entity(pwriter *w, int start, int type, int form, const char *status, const char *label, int q)
 {
     if (w->col > 0)
         pw_flush(w);
-    put_de_full(D, type, start, w->P->nlines + 1 - start, form, status, label, q);
+    if (!dir_reserve(w->dir, q + 1)) {
+        w->P->failed = 1;
+        return;
+    }
+    w->dir->d[q] = (idir){type, form, start, w->P->nlines + 1 - start, status, label};
+    w->qlo = q < w->qlo ? q : w->qlo;
+    w->qhi = q > w->qhi ? q : w->qhi;
 }
+
+#define IGES_BLOCK 64 /* items formatted per block (a block per thread at a time) */
+#define IGES_ROUND 16 /* blocks per round */
+
+/* Items 0..n-1, each writing the entities fn(w, ctx, k), all below entity q_end, formatted on
+ * the threads: blocks of IGES_BLOCK items into buffers of their own (the directory entries of
+ * distinct entities, kept in w->dir, reserved first), joined to w's buffer in order with their
+ * lines renumbered: the same bytes as writing the items one after the other. */
+typedef void (*iges_item)(pwriter *w, void *ctx, int k);
+
+static void emit_items(pwriter *w, int n, int q_end, iges_item fn, void *ctx)
+{
+    if (w->P->failed)
+        return;
+    if (!dir_reserve(w->dir, q_end) || !chunk_push(w->chunks, w->P)) {
+        w->P->failed = 1;
+        return;
+    }
+    if (n <= IGES_BLOCK) {
+        for (int k = 0; k < n; k++)
+            fn(w, ctx, k);
+        return;
+    }
+    ibuf buf[IGES_ROUND] = {{0}};
+    pwriter bw[IGES_ROUND];
+    int nblk = (n - 1) / IGES_BLOCK + 1;
+    for (int b0 = 0; b0 < nblk && !w->P->failed; b0 += IGES_ROUND) {
+        int nb = nblk - b0 < IGES_ROUND ? nblk - b0 : IGES_ROUND;
+#ifdef RG2_HAVE_OPENMP
+#pragma omp parallel for schedule(dynamic, 1)
+#endif
+        for (int r = 0; r < nb; r++) {
+            int k0 = (b0 + r) * IGES_BLOCK, k1 = k0 + IGES_BLOCK < n ? k0 + IGES_BLOCK : n;
+            buf[r].nlines = 0;
+            bw[r] = (pwriter){&buf[r], {0}, 0, 0, w->dir, INT_MAX, -1, NULL};
+            if (ib_reserve(&buf[r], (size_t)1 << 18)) /* (untouched pages cost nothing) */
+                for (int k = k0; k < k1 && !buf[r].failed; k++)
+                    fn(&bw[r], ctx, k);
+        }
+        for (int r = 0; r < nb; r++) {
+            ibuf *P = w->P;
+            int off = P->nlines;
+            for (int q = bw[r].qlo; q <= bw[r].qhi; q++)
+                w->dir->d[q].pstart += off;
+            for (int l = 0; l < buf[r].nlines; l++)
+                put7(buf[r].s + (size_t)l * 81 + 73, off + l + 1);
+            P->nlines += buf[r].nlines;
+            if (buf[r].failed || !chunk_push(w->chunks, &buf[r])) {
+                P->failed = 1;
+                break;
+            }
+        }
+    }
+    for (int r = 0; r < IGES_ROUND; r++)
+        free(buf[r].s);
+}
+
+/* ---------------------------------------------------------------- B-rep shell (iges_brep) */
 
 /* Entity 126 (rational B-spline curve), piecewise Bezier of degree deg through the n
  * homogeneous poles h (n = deg spans + 1), parameter 0 .. spans: an edge's model-space curve. */
@@ -199,10 +390,9 @@ static void put_126(pwriter *w, const double (*h)[4], int n, int deg)
 }
 
 /* 514: a shell of the faces with DE pointers face_de[0..n-1], each with its surface's sense. */
-static void put_514(pwriter *w, ibuf *D, int q, const int *face_q, int n, int closed)
+static void put_514(pwriter *w, int q, const int *face_q, int n, int closed)
 {
-    int start = w->P->nlines + 1;
-    w->de = de_of(q);
+    int start = begin_entity(w, q);
     pw_int(w, 514);
     pw_int(w, n);
     for (int k = 0; k < n; k++) {
@@ -210,29 +400,34 @@ static void put_514(pwriter *w, ibuf *D, int q, const int *face_q, int n, int cl
         pw_int(w, 1);
     }
     pw_end(w);
-    end_entity(w, D, start, 514, closed ? 1 : 2, "00000000", "RG2SHELL", q);
+    end_entity(w, start, 514, closed ? 1 : 2, "00000000", "RG2SHELL", q);
 }
 
 /* 502: the vertices, homogeneous points h[0..n-1]. */
-static void put_502(pwriter *w, ibuf *D, int q, const double (*h)[4], int n)
+static void put_502(pwriter *w, int q, const double (*h)[4], int n)
 {
-    int start = w->P->nlines + 1;
-    w->de = de_of(q);
+    int start = begin_entity(w, q);
     pw_int(w, 502);
     pw_int(w, n);
+    double *x = malloc(sizeof(double) * 3 * (size_t)(n ? n : 1));
+    if (!x) {
+        w->P->failed = 1;
+        return;
+    }
     for (int v = 0; v < n; v++)
         for (int d = 0; d < 3; d++)
-            pw_real(w, h[v][d] / h[v][3], ',');
+            x[3 * v + d] = h[v][d] / h[v][3];
+    pw_reals(w, x, 3 * (size_t)n);
+    free(x);
     pw_end(w);
-    end_entity(w, D, start, 502, 1, "00010000", "RG2VERT", q);
+    end_entity(w, start, 502, 1, "00010000", "RG2VERT", q);
 }
 
 /* 504: edge e runs along the curve entity q_curve + e from vertex ends[e][0] to ends[e][1] of
  * the vertex list q_vl (0-based indices). */
-static void put_504(pwriter *w, ibuf *D, int q, int q_vl, int q_curve, const int (*ends)[2], int n)
+static void put_504(pwriter *w, int q, int q_vl, int q_curve, const int (*ends)[2], int n)
 {
-    int start = w->P->nlines + 1;
-    w->de = de_of(q);
+    int start = begin_entity(w, q);
     pw_int(w, 504);
     pw_int(w, n);
     for (int e = 0; e < n; e++) {
@@ -243,30 +438,27 @@ static void put_504(pwriter *w, ibuf *D, int q, int q_vl, int q_curve, const int
         pw_int(w, ends[e][1] + 1);
     }
     pw_end(w);
-    end_entity(w, D, start, 504, 1, "00010000", "RG2EDGE", q);
+    end_entity(w, start, 504, 1, "00010000", "RG2EDGE", q);
 }
 
 /* 126 at entity q: an edge's model curve, poles h[0..n-1] of degree deg. */
-static void put_126_entity(pwriter *w, ibuf *D, int q, const double (*h)[4], int n, int deg)
+static void put_126_entity(pwriter *w, int q, const double (*h)[4], int n, int deg)
 {
-    int start = w->P->nlines + 1;
-    w->de = de_of(q);
+    int start = begin_entity(w, q);
     put_126(w, h, n, deg);
-    end_entity(w, D, start, 126, 0, "00010000", "RG2CURVE", q);
+    end_entity(w, start, 126, 0, "00010000", "RG2CURVE", q);
 }
 
 /* 128 at entity q (a face's surface), 508 at q + 1 (its loop: the n uses of edges edge[k] of the
  * list q_el, orientation fwd[k], pcurve entity line_q[k]) and 510 at q + 2 (the face). */
-static void put_face_entities(pwriter *w, ibuf *D, int q, const double (*h)[4], int NU, int NV, int du, int dv,
+static void put_face_entities(pwriter *w, int q, const double (*h)[4], int NU, int NV, int du, int dv,
                               int closed_u, int closed_v, int q_el, const int *edge, const int *fwd,
                               const int *line_q, int n)
 {
-    int start = w->P->nlines + 1;
-    w->de = de_of(q);
+    int start = begin_entity(w, q);
     put_128(w, h, NU, NV, du, dv, closed_u, closed_v);
-    put_de_full(D, 128, start, w->P->nlines + 1 - start, 0, "00010000", "RG2SURF", q);
-    start = w->P->nlines + 1;
-    w->de = de_of(q + 1);
+    end_entity(w, start, 128, 0, "00010000", "RG2SURF", q);
+    start = begin_entity(w, q + 1);
     pw_int(w, 508);
     pw_int(w, n);
     for (int k = 0; k < n; k++) {
@@ -279,16 +471,58 @@ static void put_face_entities(pwriter *w, ibuf *D, int q, const double (*h)[4], 
         pw_int(w, de_of(line_q[k]));
     }
     pw_end(w);
-    end_entity(w, D, start, 508, 1, "00010000", "RG2LOOP", q + 1);
-    start = w->P->nlines + 1;
-    w->de = de_of(q + 2);
+    end_entity(w, start, 508, 1, "00010000", "RG2LOOP", q + 1);
+    start = begin_entity(w, q + 2);
     pw_int(w, 510);
     pw_int(w, de_of(q));
     pw_int(w, 1);
     pw_int(w, 1); /* the loop is the outer one */
     pw_int(w, de_of(q + 1));
     pw_end(w);
-    end_entity(w, D, start, 510, 1, "00010000", "RG2FACE", q + 2);
+    end_entity(w, start, 510, 1, "00010000", "RG2FACE", q + 2);
+}
+
+/* What the items of brep_shell read. */
+typedef struct {
+    const rg2_surface *s;
+    const rg2__topo *t;
+    const int *line;
+    int q_curve, q_el, q_patch;
+} shell_items;
+
+/* Edge e's model curve, from its defining patch side. */
+static void shell_edge(pwriter *w, void *ctx, int e)
+{
+    const shell_items *c = ctx;
+    int p = c->t->edef[2 * e], nv = c->s->nv;
+    rg2_xpatch X;
+    double h[RG2_MAX_DEGREE + 1][4];
+    rg2_surface_patch_get(c->s, p / nv, p % nv, &X);
+    int n = rg2__xpatch_side(&X, c->t->edef[2 * e + 1], h);
+    put_126_entity(w, c->q_curve + e, (const double(*)[4])h, n, n - 1);
+}
+
+/* Patch p's surface, loop and face. */
+static void shell_face(pwriter *w, void *ctx, int p)
+{
+    const shell_items *c = ctx;
+    int nv = c->s->nv;
+    rg2_xpatch X;
+    double h[(RG2_MAX_DEGREE + 1) * (RG2_MAX_DEGREE + 1)][4];
+    rg2_surface_patch_get(c->s, p / nv, p % nv, &X);
+    rg2__xpatch_net(&X, h);
+    int edge[4], fwd[4], lq[4], n = 0;
+    for (int side = 0; side < 4; side++) {
+        int e, f;
+        rg2__topo_side(c->t, p / nv, p % nv, side, &e, &f);
+        if (e < 0)
+            continue;
+        edge[n] = e;
+        fwd[n] = f;
+        lq[n++] = c->line[side];
+    }
+    put_face_entities(w, c->q_patch + 3 * p, (const double(*)[4])h, X.du + 1, X.dv + 1, X.du, X.dv, 0, 0, c->q_el,
+                      edge, fwd, lq, n);
 }
 
 /* The B-rep entities of one surface, face per patch, from entity index *q on:
@@ -297,7 +531,7 @@ static void put_face_entities(pwriter *w, ibuf *D, int q, const double (*h)[4], 
  * corner, shared by the faces on both sides; collapsed sides left out of their loops). The
  * loops run counter-clockwise in (u, v); each edge use carries its pcurve, line[side] (the
  * file's four 110 lines along the sides of [0, 1]^2 in the loop's direction). */
-static rg2_status brep_shell(pwriter *w, ibuf *D, const rg2_surface *s, const int line[4], int *q,
+static rg2_status brep_shell(pwriter *w, const rg2_surface *s, const int line[4], int *q,
                              rg2_error *err)
 {
     rg2__topo t;
@@ -319,10 +553,10 @@ static rg2_status brep_shell(pwriter *w, ibuf *D, const rg2_surface *s, const in
     }
     for (int p = 0; p < np; p++)
         face_q[p] = q_patch + 3 * p + 2;
-    put_514(w, D, q_shell, face_q, np, closed);
+    put_514(w, q_shell, face_q, np, closed);
     for (int v = 0; v < t.n_vertices; v++)
         rg2__corner_point(s, t.vcorner[v] / (nv + 1), t.vcorner[v] % (nv + 1), vh[v]);
-    put_502(w, D, q_vl, (const double(*)[4])vh, t.n_vertices);
+    put_502(w, q_vl, (const double(*)[4])vh, t.n_vertices);
     for (int e = 0; e < t.n_edges; e++) { /* the same corners as the STEP writer's */
         int p = t.edef[2 * e], side = t.edef[2 * e + 1], i = p / nv, j = p % nv;
         int I0 = side == 1 ? i + 1 : i, J0 = side == 2 ? j + 1 : j;
@@ -330,33 +564,10 @@ static rg2_status brep_shell(pwriter *w, ibuf *D, const rg2_surface *s, const in
         ends[e][0] = t.vert[I0 * (nv + 1) + J0];
         ends[e][1] = t.vert[I1 * (nv + 1) + J1];
     }
-    put_504(w, D, q_el, q_vl, q_curve, (const int(*)[2])ends, t.n_edges);
-    for (int e = 0; e < t.n_edges; e++) {
-        int p = t.edef[2 * e];
-        rg2_xpatch X;
-        double h[RG2_MAX_DEGREE + 1][4];
-        rg2_surface_patch_get(s, p / nv, p % nv, &X);
-        int n = rg2__xpatch_side(&X, t.edef[2 * e + 1], h);
-        put_126_entity(w, D, q_curve + e, (const double(*)[4])h, n, n - 1);
-    }
-    for (int p = 0; p < np; p++) {
-        rg2_xpatch X;
-        double h[(RG2_MAX_DEGREE + 1) * (RG2_MAX_DEGREE + 1)][4];
-        rg2_surface_patch_get(s, p / nv, p % nv, &X);
-        rg2__xpatch_net(&X, h);
-        int edge[4], fwd[4], lq[4], n = 0;
-        for (int side = 0; side < 4; side++) {
-            int e, f;
-            rg2__topo_side(&t, p / nv, p % nv, side, &e, &f);
-            if (e < 0)
-                continue;
-            edge[n] = e;
-            fwd[n] = f;
-            lq[n++] = line[side];
-        }
-        put_face_entities(w, D, q_patch + 3 * p, (const double(*)[4])h, X.du + 1, X.dv + 1, X.du, X.dv, 0, 0, q_el,
-                          edge, fwd, lq, n);
-    }
+    put_504(w, q_el, q_vl, q_curve, (const int(*)[2])ends, t.n_edges);
+    shell_items c = {s, &t, line, q_curve, q_el, q_patch};
+    emit_items(w, t.n_edges, q_patch, shell_edge, &c);
+    emit_items(w, np, q_patch + 3 * np, shell_face, &c);
     *q = q_patch + 3 * np;
 done:
     free(face_q);
@@ -368,12 +579,11 @@ done:
 
 /* The four pcurves of a face on [0, U1] x [0, V1]: 110 lines along its sides, counter-clockwise
  * (v=0 in +u, u=U1 in +v, v=V1 in -u, u=0 in -v), as entities q .. q + 3. */
-static void brep_lines(pwriter *w, ibuf *D, int q, double U1, double V1)
+static void brep_lines(pwriter *w, int q, double U1, double V1)
 {
     const double ends[4][4] = {{0, 0, U1, 0}, {U1, 0, U1, V1}, {U1, V1, 0, V1}, {0, V1, 0, 0}};
     for (int k = 0; k < 4; k++) {
-        int start = w->P->nlines + 1;
-        w->de = de_of(q + k);
+        int start = begin_entity(w, q + k);
         pw_int(w, 110);
         pw_real(w, ends[k][0], ',');
         pw_real(w, ends[k][1], ',');
@@ -381,7 +591,7 @@ static void brep_lines(pwriter *w, ibuf *D, int q, double U1, double V1)
         pw_real(w, ends[k][2], ',');
         pw_real(w, ends[k][3], ',');
         pw_real(w, 0.0, ';');
-        end_entity(w, D, start, 110, 0, "00010000", "RG2PCURV", q + k);
+        end_entity(w, start, 110, 0, "00010000", "RG2PCURV", q + k);
     }
 }
 
@@ -389,7 +599,7 @@ static void brep_lines(pwriter *w, ibuf *D, int q, double U1, double V1)
  * index *q on: 514 shell, 502 vertex list, 504 edge list, 126 per edge, the face's four 110
  * lines on [0, nu] x [0, nv], 128, 508, 510; the topology of rg2__mesh_topo (the STEP writer's):
  * a closed direction's seam edge is used twice by the loop, once with each of its lines. */
-static rg2_status brep_mesh_shell(pwriter *w, ibuf *D, const rg2_surface *s, int *q, rg2_error *err)
+static rg2_status brep_mesh_shell(pwriter *w, const rg2_surface *s, int *q, rg2_error *err)
 {
     rg2__mesh_topo t;
     rg2_status st = rg2__mesh_topo_build(s, &t, err);
@@ -398,25 +608,25 @@ static rg2_status brep_mesh_shell(pwriter *w, ibuf *D, const rg2_surface *s, int
     int q_shell = *q, q_vl = q_shell + 1, q_el = q_shell + 2, q_curve = q_shell + 3;
     int q_line = q_curve + t.n_edges, q_face = q_line + 4;
     int face_q = q_face + 2;
-    put_514(w, D, q_shell, &face_q, 1, t.closed);
+    put_514(w, q_shell, &face_q, 1, t.closed);
     double vh[4][4];
     for (int v = 0; v < t.n_vertices; v++) {
         int c = t.vcorner[v];
         memcpy(vh[v], t.h[(size_t)(c == 1 || c == 2 ? t.NU - 1 : 0) * (size_t)t.NV + (size_t)(c >= 2 ? t.NV - 1 : 0)],
                sizeof(double[4]));
     }
-    put_502(w, D, q_vl, (const double(*)[4])vh, t.n_vertices);
+    put_502(w, q_vl, (const double(*)[4])vh, t.n_vertices);
     int ends[4][2];
     for (int e = 0; e < t.n_edges; e++) {
         ends[e][0] = t.vert[rg2__side_ends[t.eside[e]][0]];
         ends[e][1] = t.vert[rg2__side_ends[t.eside[e]][1]];
     }
-    put_504(w, D, q_el, q_vl, q_curve, (const int(*)[2])ends, t.n_edges);
+    put_504(w, q_el, q_vl, q_curve, (const int(*)[2])ends, t.n_edges);
     for (int e = 0; e < t.n_edges; e++) {
         int sd = t.eside[e], n = rg2__net_side(&t, sd);
-        put_126_entity(w, D, q_curve + e, (const double(*)[4])t.side, n, (sd & 1) ? t.dv : t.du);
+        put_126_entity(w, q_curve + e, (const double(*)[4])t.side, n, (sd & 1) ? t.dv : t.du);
     }
-    brep_lines(w, D, q_line, (double)s->nu, (double)s->nv);
+    brep_lines(w, q_line, (double)s->nu, (double)s->nv);
     int edge[4], fwd[4], lq[4], n = 0;
     for (int sd = 0; sd < 4; sd++) {
         if (t.edge[sd] < 0)
@@ -425,7 +635,7 @@ static rg2_status brep_mesh_shell(pwriter *w, ibuf *D, const rg2_surface *s, int
         fwd[n] = sd < 2;
         lq[n++] = q_line + sd;
     }
-    put_face_entities(w, D, q_face, (const double(*)[4])t.h, t.NU, t.NV, t.du, t.dv, s->closed_u, s->closed_v, q_el,
+    put_face_entities(w, q_face, (const double(*)[4])t.h, t.NU, t.NV, t.du, t.dv, s->closed_u, s->closed_v, q_el,
                       edge, fwd, lq, n);
     *q = q_face + 3;
     rg2__mesh_topo_free(&t);
@@ -487,17 +697,55 @@ static void put_section_line(FILE *f, const char *text, char letter, int seq)
 
 int rg2__iges_max_records = 9999999;
 
+/* Plain layout, face per patch: patch k of surface s as entity q0 + k. */
+typedef struct {
+    const rg2_surface *s;
+    int q0;
+} patch_items;
+
+static void plain_patch(pwriter *w, void *ctx, int p)
+{
+    const patch_items *c = ctx;
+    int nv = c->s->nv, q = c->q0 + p;
+    rg2_xpatch X;
+    double h[(RG2_MAX_DEGREE + 1) * (RG2_MAX_DEGREE + 1)][4];
+    rg2_surface_patch_get(c->s, p / nv, p % nv, &X);
+    rg2__xpatch_net(&X, h);
+    int start = begin_entity(w, q);
+    put_128(w, (const double(*)[4])h, X.du + 1, X.dv + 1, X.du, X.dv, 0, 0);
+    end_entity(w, start, 128, 0, "00000000", "RG2SURF", q);
+}
+
+/* The directory section: entities k0..k1-1 of dir, two records each (numbered 2 q + 1, 2 q + 2). */
+static int dir_block(FILE *m, void *ctx, int b, int k0, int k1)
+{
+    (void)b;
+    const idir *d = ctx;
+    char rec[96];
+    for (int q = k0; q < k1; q++) {
+        snprintf(rec, sizeof rec, "%8d%8d%8d%8d%8d%8d%8d%8d%8sD%7d\n", d[q].type, d[q].pstart, 0, 0, 0, 0, 0, 0,
+                 d[q].status, 2 * q + 1);
+        fwrite(rec, 1, 81, m);
+        snprintf(rec, sizeof rec, "%8d%8d%8d%8d%8d%8s%8s%8s%8dD%7d\n", d[q].type, 0, 0, d[q].pcount, d[q].form, "",
+                 "", d[q].label, q, 2 * q + 2);
+        fwrite(rec, 1, 81, m);
+    }
+    return 0; /* (write errors: the file's, at its close; a memory stream's, at its flush) */
+}
+
 rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opts *o, rg2__out *out,
                            rg2_error *err)
 {
-    ibuf D = {0}, P = {0}, G = {0};
-    pwriter w = {&P, {0}, 0, 0};
+    ibuf P = {0}, G = {0};
+    idirs D = {0};
+    ichunks C = {0};
+    pwriter w = {&P, {0}, 0, 0, &D, INT_MAX, -1, &C};
     double maxc = 0.0;
     int entity = 0, line[4] = {0, 1, 2, 3};
     rg2_status st = RG2_OK;
     int per_mesh = o->layout == RG2_STEP_FACE_PER_MESH;
     if (o->iges_brep && !per_mesh) { /* every patch face shares the lines of [0, 1]^2 */
-        brep_lines(&w, &D, 0, 1.0, 1.0);
+        brep_lines(&w, 0, 1.0, 1.0);
         entity = 4;
     }
     for (int k = 0; k < n && !P.failed; k++) {
@@ -513,7 +761,7 @@ rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opt
                     }
         }
         if (o->iges_brep) {
-            st = per_mesh ? brep_mesh_shell(&w, &D, s, &entity, err) : brep_shell(&w, &D, s, line, &entity, err);
+            st = per_mesh ? brep_mesh_shell(&w, s, &entity, err) : brep_shell(&w, s, line, &entity, err);
             if (st)
                 goto done;
         } else if (per_mesh) {
@@ -523,24 +771,15 @@ rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opt
                 P.failed = 1;
                 break;
             }
-            int start = P.nlines + 1;
-            w.de = 2 * entity + 1;
+            int start = begin_entity(&w, entity);
             put_128(&w, (const double(*)[4])h, NU, NV, du, dv, s->closed_u, s->closed_v);
-            put_de(&D, 128, start, P.nlines + 1 - start, entity);
+            end_entity(&w, start, 128, 0, "00000000", "RG2SURF", entity);
             entity++;
             free(h);
         } else {
-            for (int p = 0; p < s->nu * s->nv; p++) {
-                int start = P.nlines + 1;
-                w.de = 2 * entity + 1;
-                rg2_xpatch X;
-                double h[(RG2_MAX_DEGREE + 1) * (RG2_MAX_DEGREE + 1)][4];
-                rg2_surface_patch_get(s, p / s->nv, p % s->nv, &X);
-                rg2__xpatch_net(&X, h);
-                put_128(&w, (const double(*)[4])h, X.du + 1, X.dv + 1, X.du, X.dv, 0, 0);
-                put_de(&D, 128, start, P.nlines + 1 - start, entity);
-                entity++;
-            }
+            patch_items c = {s, entity};
+            emit_items(&w, s->nu * s->nv, entity + s->nu * s->nv, plain_patch, &c);
+            entity += s->nu * s->nv;
         }
     }
     char stamp[32];
@@ -559,17 +798,17 @@ rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opt
                         "1.", "2", "2HMM", "1", "0.01", stamp, "1.E-06", maxs, "0H", "0H", "11", "0",
                         stamp};
     put_global(&G, gt, (int)(sizeof gt / sizeof gt[0]));
-    if (D.failed || P.failed || G.failed) {
+    if (P.failed || G.failed || !chunk_push(&C, &P)) {
         st = rg2__fail(err, RG2_ENOMEM, "IGES: out of memory");
         goto done;
     }
     /* each record carries its sequence number in 7 columns (and directory entries point to each
      * other by them): past 9,999,999 records in a section the file cannot be written */
-    if (D.nlines > rg2__iges_max_records || P.nlines > rg2__iges_max_records) {
+    if (2 * entity > rg2__iges_max_records || P.nlines > rg2__iges_max_records) {
         st = rg2__fail(err, RG2_ELIMIT,
                        "IGES: %d directory and %d parameter records, more than the %d that IGES's 7-digit "
                        "sequence numbers allow (size limit exceeded); write STEP, or fewer patches",
-                       D.nlines, P.nlines, rg2__iges_max_records);
+                       2 * entity, P.nlines, rg2__iges_max_records);
         goto done;
     }
     put_section_line(out->f,
@@ -577,13 +816,18 @@ rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opt
                                   : "rg2: rational bi-cubic G2 spline surfaces, IGES 5.3 entity 128",
                      'S', 1);
     fwrite(G.s, 1, G.len, out->f);
-    fwrite(D.s, 1, D.len, out->f);
-    fwrite(P.s, 1, P.len, out->f);
+    if (rg2__write_blocks(out->f, entity, 4096, dir_block, D.d)) {
+        st = rg2__fail(err, RG2_ENOMEM, "IGES: out of memory");
+        goto done;
+    }
+    for (int k = 0; k < C.n; k++)
+        fwrite(C.s[k], 1, C.len[k], out->f);
     char tl[80];
-    snprintf(tl, sizeof tl, "S%7dG%7dD%7dP%7d", 1, G.nlines, D.nlines, P.nlines);
+    snprintf(tl, sizeof tl, "S%7dG%7dD%7dP%7d", 1, G.nlines, 2 * entity, P.nlines);
     put_section_line(out->f, tl, 'T', 1);
 done:
-    free(D.s);
+    free(D.d);
+    chunks_free(&C);
     free(P.s);
     free(G.s);
     return st;

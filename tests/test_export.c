@@ -5,7 +5,7 @@
  * loops; and the failure cases (unwritable path, non-positive weight, empty input, unknown
  * extension, more IGES records than its sequence numbers hold) leave no file behind. */
 #define _POSIX_C_SOURCE 200809L
-#include "../src/internal.h"
+#include "../src/export_internal.h"
 #include "export_fixtures.h"
 
 #include <cjson/cJSON.h>
@@ -600,6 +600,176 @@ static void step_big_in_order(void)
     rg2_surface_free(&s);
 }
 
+/* The numbers of an IGES record's parameter columns 1-64 appended to v[*n..cap) (tokens never
+ * span records); copies each token before strtod (AddressSanitizer's interceptors would measure
+ * the whole remaining text at every call). */
+static void iges_record_nums(const char *rec, double *v, int *n, int cap)
+{
+    char tok[72];
+    int t = 0;
+    for (int c = 0; c < 64; c++) {
+        char ch = rec[c];
+        if (ch == ',' || ch == ';') {
+            tok[t] = 0;
+            if (t && *n < cap)
+                v[(*n)++] = strtod(tok, NULL);
+            t = 0;
+        } else if (ch != ' ') {
+            tok[t++] = ch;
+        }
+    }
+}
+
+static int iges_int(const char *p, int w) /* the integer in w columns */
+{
+    char b[16];
+    memcpy(b, p, (size_t)w);
+    b[w] = 0;
+    return atoi(b);
+}
+
+/* Mismatches between the numbers v[0..n-1] of an entity 128 and the NU x NV net h (a along u)
+ * of degrees (du, dv): its type, degrees and count, then its weights and points (u fastest). */
+static int cmp_128(const double *v, int n, const double (*h)[4], int NU, int NV, int du, int dv)
+{
+    int w0 = 10 + (NU + du + 1) + (NV + dv + 1), nn = NU * NV, bad = 0; /* after ints and knots */
+    if (n != w0 + 4 * nn + 4 || v[0] != 128 || v[3] != du || v[4] != dv)
+        return 1;
+    for (int b = 0; b < NV; b++)
+        for (int a = 0; a < NU; a++) {
+            const double *p = h[a * NV + b];
+            int k = b * NU + a;
+            bad += v[w0 + k] != p[3];
+            for (int c = 0; c < 3; c++)
+                bad += v[w0 + nn + 3 * k + c] != p[c] / p[3];
+        }
+    return bad;
+}
+
+/* The directory and parameter sections of an IGES file agree: entity q's parameter records
+ * (its DE record's start and count) carry its DE pointer 2 q + 1, start where entity q - 1's
+ * end, and the last ends the section. Returns the disagreements (-1 unreadable) and the
+ * entity count. With s, the numbers of every entity are read back (*mismatch counts those
+ * that differ): check 1, the plain face-per-patch layout (entity q is patch q's 128); check 2,
+ * the plain face-per-mesh layout (entity 0 is the merged net's); check 3, the B-rep face-per-patch
+ * layout (entity 5 is the vertex list, the corners of rg2__topo_build's vertices). Linear in the
+ * file. */
+static int iges_sections_agree(const char *path, int *entities, const rg2_surface *s, int check, int *mismatch)
+{
+    size_t len;
+    char *b = (char *)slurp(path, &len);
+    *entities = 0;
+    *mismatch = 0;
+    int NU = 0, NV = 0, du = 0, dv = 0;
+    double(*net)[4] = check == 2 ? rg2__merged_net(s, &NU, &NV, &du, &dv) : NULL;
+    rg2__topo t = {0};
+    rg2_error err;
+    if (check == 3 && rg2__topo_build(s, &t, &err))
+        return -1;
+    int cap = 64 + 8 * (check == 2 ? NU * NV : check == 3 ? t.n_vertices : 36);
+    double *v = malloc(sizeof(double) * (size_t)cap);
+    if (!b || len % 81 || !v || (check == 2 && !net)) {
+        free(b);
+        free(v);
+        free(net);
+        rg2__topo_free(&t);
+        return -1;
+    }
+    int nrec = (int)(len / 81), d0 = -1, p0 = -1, nd = 0, np = 0, bad = 0;
+    for (int r = 0; r < nrec; r++) {
+        char sec = b[(size_t)r * 81 + 72];
+        if (sec == 'D' && !nd++)
+            d0 = r;
+        if (sec == 'P' && !np++)
+            p0 = r;
+    }
+    if (d0 < 0 || p0 < 0 || nd % 2) {
+        free(b);
+        free(v);
+        free(net);
+        rg2__topo_free(&t);
+        return -1;
+    }
+    *entities = nd / 2;
+    int next = 1;
+    for (int q = 0; q < nd / 2; q++) {
+        const char *d = b + (size_t)(d0 + 2 * q) * 81;
+        int start = iges_int(d + 8, 8), count = iges_int(d + 81 + 24, 8);
+        if (start != next || count < 1 || start + count - 1 > np) {
+            bad++;
+            break;
+        }
+        next = start + count;
+        int n = 0;
+        for (int l = start; l < next; l++) {
+            const char *rec = b + (size_t)(p0 + l - 1) * 81;
+            bad += iges_int(rec + 65, 7) != 2 * q + 1;
+            if (check)
+                iges_record_nums(rec, v, &n, cap);
+        }
+        if (check == 3 && q == 5) { /* 502, count, then the points */
+            *mismatch += n != 2 + 3 * t.n_vertices || v[0] != 502 || v[1] != t.n_vertices;
+            for (int k = 0; k < t.n_vertices && n == 2 + 3 * t.n_vertices; k++) {
+                double h[4];
+                rg2__corner_point(s, t.vcorner[k] / (s->nv + 1), t.vcorner[k] % (s->nv + 1), h);
+                for (int c = 0; c < 3; c++)
+                    *mismatch += v[2 + 3 * k + c] != h[c] / h[3];
+            }
+        } else if (check == 2) {
+            *mismatch += q > 0 ? 1 : cmp_128(v, n, (const double(*)[4])net, NU, NV, du, dv);
+        } else if (check == 1) {
+            rg2_xpatch X;
+            double h[36][4];
+            if (q >= s->nu * s->nv) {
+                (*mismatch)++;
+                continue;
+            }
+            rg2_surface_patch_get(s, q / s->nv, q % s->nv, &X);
+            rg2__xpatch_net(&X, h);
+            *mismatch += cmp_128(v, n, (const double(*)[4])h, X.du + 1, X.dv + 1, X.du, X.dv);
+        }
+    }
+    bad += next != np + 1;
+    free(b);
+    free(v);
+    free(net);
+    rg2__topo_free(&t);
+    return bad;
+}
+
+/* IGES of the same surface, whose entities are formatted on the threads in several rounds of
+ * blocks (src/iges.c, emit_items; the vertex list and a whole-mesh net through pw_reals): the
+ * records well formed and numbered, the directory pointing at each entity's parameter records,
+ * and every patch's weights and points read back exactly. */
+static void iges_big(void)
+{
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(fx_random(20261204, 50, 50, &s, &err), &err);
+    CHECK_OK(rg2t_elevate_some(&s, 5, 3, 7, 1, &err), &err);
+    /* plain and B-rep, face per patch and per mesh */
+    const char *name[4] = {"big.igs", "bigb.igs", "bigm.igs", "bigbm.igs"};
+    int np = s.nu * s.nv;
+    for (int k = 0; k < 4; k++) {
+        rg2_export_opts o;
+        rg2_export_opts_default(&o);
+        o.iges_brep = k & 1;
+        o.layout = k & 2 ? RG2_STEP_FACE_PER_MESH : RG2_STEP_FACE_PER_PATCH;
+        CHECK_OK(rg2_export_file(&s, 1, path_in(name[k]), &o, &err), &err);
+        int types[1000], badline = iges_scan(path_in(name[k]), types);
+        int n, mismatch, bad = iges_sections_agree(path_in(name[k]), &n, &s, (int[]){1, 3, 2, 0}[k], &mismatch);
+        int faces = k & 1 ? types[510] : types[128], want = k & 2 ? 1 : np;
+        CHECK(badline == 0 && bad == 0 && mismatch == 0 && faces == want,
+              "big IGES %s: %d malformed records, %d directory/parameter disagreements, %d numbers not read "
+              "back, %d faces (expected %d)",
+              name[k], badline, bad, mismatch, faces, want);
+        printf("IGES %s of %d x %d patches (written on the threads): %d entities, %d malformed records, %d "
+               "disagreements, %d numbers not read back\n",
+               name[k], s.nu, s.nv, n, badline, bad, mismatch);
+    }
+    rg2_surface_free(&s);
+}
+
 static void step_text(const rg2_surface *s)
 {
     rg2_error err;
@@ -1157,6 +1327,7 @@ int main(void)
     patches_roundtrip(&s, 13.0, 4.0);
     step_text(&s);
     step_big_in_order();
+    iges_big();
     names_and_defaults(&s);
     transposed_pole();
     full_disk(&s);

@@ -756,9 +756,9 @@ int main()
         check_file(c, dir, "igs", RG2_STEP_FACE_PER_MESH, 0);
         check_file(c, dir, "igs", RG2_STEP_FACE_PER_MESH, 0, 1);
     }
-    // a surface big enough that the STEP writer formats its vertices, surfaces and edges on the
-    // threads, in several batches of blocks (src/step.c, emit_all), with patches of other degrees
-    // among them (their entity counts differ)
+    // a surface big enough that the STEP and IGES writers format their entities on the threads,
+    // in several batches of blocks (src/step.c, emit_all), with patches of other degrees among
+    // them (their entity counts differ)
     {
         rg2_surface big;
         memset(&big, 0, sizeof big);
@@ -767,6 +767,10 @@ int main()
             CHECK_OK(rg2t_elevate_some(&big, xdeg[k][0], xdeg[k][1], 5 * xstride[k], k, &err), &err);
         Case c = {"random 47 x 47, elevated in places", &big, rg2t_surface_scale(&big), nullptr, false};
         check_file(c, dir, "step", RG2_STEP_FACE_PER_PATCH, 0);
+        // src/iges.c: the B-rep's edges and faces through emit_items, its vertex list and the
+        // merged net through pw_reals (test_export reads the plain layout's numbers back)
+        check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0, 1);
+        check_file(c, dir, "igs", RG2_STEP_FACE_PER_MESH, 0);
         rg2_surface_free(&big);
     }
     printf("worst through OpenCASCADE: point %.2e relative (exact shapes %.2e), normal angle %.2e rad, "
