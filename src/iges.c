@@ -6,11 +6,13 @@
  * (110); fixed 80-column
  * records, global section in mm with resolution 1e-6 (shared/spec/INTEROP.md section 3).
  * The parameter data of the many small entities (patches, edges) are formatted on the threads in
- * blocks (emit_items), a long list of reals in chunks (pw_reals); the directory entries are kept
- * until every entity's parameter records are counted, then formatted on the threads too: the
- * same bytes as one thread's. */
+ * blocks (emit_items), a long list of reals in chunks (pw_reals), and written as they come; the
+ * directory entries are kept until every entity's parameter records are counted, then formatted
+ * on the threads too, into the place left for them (rg2__write_iges): the same bytes as one
+ * thread's. */
 #include "export_internal.h"
 
+#include <errno.h>
 #include <limits.h>
 #include <stdlib.h>
 #include <string.h>
@@ -52,45 +54,6 @@ static void ib_put(ibuf *b, const char *line80)
     b->nlines++;
 }
 
-/* The parameter section as the buffers it was written in, in order (blocks formatted on the
- * threads join it without being copied). */
-typedef struct {
-    char **s;
-    size_t *len;
-    int n, cap;
-} ichunks;
-
-/* Hand b's text to the end of c (b keeps its line count, and becomes empty); 0 out of memory. */
-static int chunk_push(ichunks *c, ibuf *b)
-{
-    if (!b->len)
-        return 1;
-    if (c->n == c->cap) {
-        int cap = c->cap ? 2 * c->cap : 64;
-        char **s = realloc(c->s, sizeof(char *) * (size_t)cap);
-        if (s)
-            c->s = s;
-        size_t *len = s ? realloc(c->len, sizeof(size_t) * (size_t)cap) : NULL;
-        if (!len)
-            return 0;
-        c->len = len;
-        c->cap = cap;
-    }
-    c->s[c->n] = b->s;
-    c->len[c->n++] = b->len;
-    b->s = NULL;
-    b->len = b->cap = 0;
-    return 1;
-}
-
-static void chunks_free(ichunks *c)
-{
-    for (int k = 0; k < c->n; k++)
-        free(c->s[k]);
-    free(c->s);
-    free(c->len);
-}
-
 /* x right-aligned in 7 columns (the low 7 digits past 9 999 999, which the record limit
  * refuses anyway). */
 static void put7(char *p, int x)
@@ -129,8 +92,10 @@ static int dir_reserve(idirs *D, int n)
     return 1;
 }
 
-/* Parameter-data writer: tokens of one entity packed into columns 1-64; each record numbered
- * from its buffer's first line (1), renumbered when a block's buffer joins the file's. */
+/* Parameter-data writer: tokens of one entity packed into columns 1-64. The file's writer (f
+ * set) numbers its records from the section's first and passes them to f a megabyte at a time;
+ * a block's writer (f NULL) numbers them from its buffer's first, renumbered when the block
+ * goes to the file. */
 typedef struct {
     ibuf *P;
     char line[72];
@@ -138,8 +103,19 @@ typedef struct {
     int de;      /* DE pointer of the entity being written */
     idirs *dir;  /* directory entries by entity index */
     int qlo, qhi; /* the entities this writer ended */
-    ichunks *chunks; /* the file's writer: where P's text and the blocks' go */
+    FILE *f;      /* the file (the file's writer), or NULL (a block's) */
 } pwriter;
+
+#define STAGE_BYTES ((size_t)1 << 20) /* the file's writer's records gathered before a write */
+
+/* The file writer's gathered records to the file (write errors: at the file's close). */
+static void pw_drain(pwriter *w)
+{
+    if (w->f && w->P->len) {
+        fwrite(w->P->s, 1, w->P->len, w->f);
+        w->P->len = 0;
+    }
+}
 
 static void pw_flush(pwriter *w)
 {
@@ -151,6 +127,8 @@ static void pw_flush(pwriter *w)
     put7(rec + 73, w->P->nlines + 1);
     ib_put(w->P, rec);
     w->col = 0;
+    if (w->P->len >= STAGE_BYTES)
+        pw_drain(w);
 }
 
 /* Add a token followed by its delimiter (',' or ';'). */
@@ -310,19 +288,21 @@ static void end_entity(pwriter *w, int start, int type, int form, const char *st
 #define IGES_ROUND 16 /* blocks per round */
 
 /* Items 0..n-1, each writing the entities fn(w, ctx, k), all below entity q_end, formatted on
- * the threads: blocks of IGES_BLOCK items into buffers of their own (the directory entries of
- * distinct entities, kept in w->dir, reserved first), joined to w's buffer in order with their
- * lines renumbered: the same bytes as writing the items one after the other. */
+ * the threads: blocks of IGES_BLOCK items into buffers of their own (kept from one round to the
+ * next; the directory entries of distinct entities, kept in w->dir, reserved first), written to
+ * the file in order with their records renumbered: the same bytes as writing the items one
+ * after the other. w is the file's writer. */
 typedef void (*iges_item)(pwriter *w, void *ctx, int k);
 
 static void emit_items(pwriter *w, int n, int q_end, iges_item fn, void *ctx)
 {
     if (w->P->failed)
         return;
-    if (!dir_reserve(w->dir, q_end) || !chunk_push(w->chunks, w->P)) {
+    if (!dir_reserve(w->dir, q_end)) {
         w->P->failed = 1;
         return;
     }
+    pw_drain(w);
     if (n <= IGES_BLOCK) {
         for (int k = 0; k < n; k++)
             fn(w, ctx, k);
@@ -338,24 +318,26 @@ static void emit_items(pwriter *w, int n, int q_end, iges_item fn, void *ctx)
 #endif
         for (int r = 0; r < nb; r++) {
             int k0 = (b0 + r) * IGES_BLOCK, k1 = k0 + IGES_BLOCK < n ? k0 + IGES_BLOCK : n;
+            buf[r].len = 0;
             buf[r].nlines = 0;
             bw[r] = (pwriter){&buf[r], {0}, 0, 0, w->dir, INT_MAX, -1, NULL};
-            if (ib_reserve(&buf[r], (size_t)1 << 18)) /* (untouched pages cost nothing) */
-                for (int k = k0; k < k1 && !buf[r].failed; k++)
-                    fn(&bw[r], ctx, k);
+            for (int k = k0; k < k1 && !buf[r].failed; k++)
+                fn(&bw[r], ctx, k);
         }
         for (int r = 0; r < nb; r++) {
             ibuf *P = w->P;
             int off = P->nlines;
+            if (buf[r].failed) {
+                P->failed = 1;
+                break;
+            }
             for (int q = bw[r].qlo; q <= bw[r].qhi; q++)
                 w->dir->d[q].pstart += off;
             for (int l = 0; l < buf[r].nlines; l++)
                 put7(buf[r].s + (size_t)l * 81 + 73, off + l + 1);
             P->nlines += buf[r].nlines;
-            if (buf[r].failed || !chunk_push(w->chunks, &buf[r])) {
-                P->failed = 1;
-                break;
-            }
+            if (buf[r].len)
+                fwrite(buf[r].s, 1, buf[r].len, w->f);
         }
     }
     for (int r = 0; r < IGES_ROUND; r++)
@@ -733,22 +715,59 @@ static int dir_block(FILE *m, void *ctx, int b, int k0, int k1)
     return 0; /* (write errors: the file's, at its close; a memory stream's, at its flush) */
 }
 
+/* The entities surface s takes in the file (*count): one per patch (plain, face per patch), one
+ * (plain, face per mesh), or its shell's (B-rep; the topology built here and again when written:
+ * 514, 502, 504, a 126 per edge, then 128, 508, 510 per patch, or the face's four 110 and one
+ * 128, 508, 510). */
+static rg2_status surface_entities(const rg2_surface *s, int brep, int per_mesh, int *count, rg2_error *err)
+{
+    int np = s->nu * s->nv;
+    rg2_status st = RG2_OK;
+    if (!brep) {
+        *count = per_mesh ? 1 : np;
+    } else if (per_mesh) {
+        rg2__mesh_topo t;
+        if (!(st = rg2__mesh_topo_build(s, &t, err)))
+            *count = 3 + t.n_edges + 4 + 3;
+        rg2__mesh_topo_free(&t);
+    } else {
+        rg2__topo t;
+        if (!(st = rg2__topo_build(s, &t, err)))
+            *count = 3 + t.n_edges + 3 * np;
+        rg2__topo_free(&t);
+    }
+    return st;
+}
+
+/* A seek that failed: in flushing what was written (a full disk), or itself. */
+static rg2_status seek_failed(const rg2__out *out, rg2_error *err)
+{
+    int e = errno;
+    if (ferror(out->f))
+        return rg2__fail(err, RG2_EIO, "%s: write failed: %s", out->path, strerror(e));
+    return rg2__fail(err, RG2_EIO, "%s: cannot seek in %s: %s", out->path, out->tmp, strerror(e));
+}
+
+/*
+ * METHOD: the directory section comes before the parameter section but is known only with it.
+ * The entities are counted first, so the directory's size (two records each) is known: the
+ * start and global sections are written, the directory's place is skipped, the parameter
+ * records are written as they are formatted (no copy of the file in memory), then the
+ * terminate section, and last the directory in its place.
+ */
 rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opts *o, rg2__out *out,
                            rg2_error *err)
 {
     ibuf P = {0}, G = {0};
     idirs D = {0};
-    ichunks C = {0};
-    pwriter w = {&P, {0}, 0, 0, &D, INT_MAX, -1, &C};
+    pwriter w = {&P, {0}, 0, 0, &D, INT_MAX, -1, out->f};
     double maxc = 0.0;
-    int entity = 0, line[4] = {0, 1, 2, 3};
+    int entity = 0, total = 0, line[4] = {0, 1, 2, 3};
     rg2_status st = RG2_OK;
     int per_mesh = o->layout == RG2_STEP_FACE_PER_MESH;
-    if (o->iges_brep && !per_mesh) { /* every patch face shares the lines of [0, 1]^2 */
-        brep_lines(&w, 0, 1.0, 1.0);
-        entity = 4;
-    }
-    for (int k = 0; k < n && !P.failed; k++) {
+    if (o->iges_brep && !per_mesh)
+        total = 4;
+    for (int k = 0; k < n; k++) {
         const rg2_surface *s = &surfs[k];
         for (int p = 0; p < s->nu * s->nv; p++) {
             rg2_xpatch X;
@@ -760,6 +779,54 @@ rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opt
                         maxc = x > maxc ? x : maxc;
                     }
         }
+        int c = 0;
+        if ((st = surface_entities(s, o->iges_brep, per_mesh, &c, err)))
+            return st;
+        /* each record carries its sequence number in 7 columns (and directory entries point to
+         * each other by them): past 9,999,999 records in a section the file cannot be written */
+        if (c > rg2__iges_max_records / 2 - total)
+            return rg2__fail(err, RG2_ELIMIT,
+                             "IGES: at least %lld directory records, more than the %d that IGES's 7-digit "
+                             "sequence numbers allow (size limit exceeded); write STEP, or fewer patches",
+                             2 * ((long long)total + c), rg2__iges_max_records);
+        total += c;
+    }
+    char stamp[32];
+    rg2__utc_stamp(stamp, sizeof stamp, "15H%Y%m%d.%H%M%S");
+    const char *base = strrchr(out->path, '/');
+    base = base ? base + 1 : out->path;
+    char hname[80], hfile[80], hsys[80], hver[80], maxs[40];
+    hollerith(hname, sizeof hname, o->name);
+    hollerith(hfile, sizeof hfile, base);
+    hollerith(hsys, sizeof hsys, "rg2");
+    char ver[32];
+    snprintf(ver, sizeof ver, "rg2 %s", rg2_version());
+    hollerith(hver, sizeof hver, ver);
+    rg2__real(maxs, maxc);
+    const char *gt[] = {"1H,", "1H;", hname, hfile, hsys, hver, "32", "38", "6", "308", "15", hname,
+                        "1.", "2", "2HMM", "1", "0.01", stamp, "1.E-06", maxs, "0H", "0H", "11", "0",
+                        stamp};
+    put_global(&G, gt, (int)(sizeof gt / sizeof gt[0]));
+    if (G.failed || !dir_reserve(&D, total)) {
+        st = rg2__fail(err, RG2_ENOMEM, "IGES: out of memory");
+        goto done;
+    }
+    put_section_line(out->f,
+                     o->iges_brep ? "rg2: rational bi-cubic G2 spline surfaces, IGES 5.3 B-rep shells (514)"
+                                  : "rg2: rational bi-cubic G2 spline surfaces, IGES 5.3 entity 128",
+                     'S', 1);
+    fwrite(G.s, 1, G.len, out->f);
+    long d_at = ftell(out->f); /* (IGES's limits keep the file under 2 GB) */
+    if (d_at < 0 || fseek(out->f, d_at + 162L * total, SEEK_SET)) {
+        st = seek_failed(out, err);
+        goto done;
+    }
+    if (o->iges_brep && !per_mesh) { /* every patch face shares the lines of [0, 1]^2 */
+        brep_lines(&w, 0, 1.0, 1.0);
+        entity = 4;
+    }
+    for (int k = 0; k < n && !P.failed; k++) {
+        const rg2_surface *s = &surfs[k];
         if (o->iges_brep) {
             st = per_mesh ? brep_mesh_shell(&w, s, &entity, err) : brep_shell(&w, s, line, &entity, err);
             if (st)
@@ -782,52 +849,33 @@ rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opt
             entity += s->nu * s->nv;
         }
     }
-    char stamp[32];
-    rg2__utc_stamp(stamp, sizeof stamp, "15H%Y%m%d.%H%M%S");
-    const char *base = strrchr(out->path, '/');
-    base = base ? base + 1 : out->path;
-    char hname[80], hfile[80], hsys[80], hver[80], maxs[40];
-    hollerith(hname, sizeof hname, o->name);
-    hollerith(hfile, sizeof hfile, base);
-    hollerith(hsys, sizeof hsys, "rg2");
-    char ver[32];
-    snprintf(ver, sizeof ver, "rg2 %s", rg2_version());
-    hollerith(hver, sizeof hver, ver);
-    rg2__real(maxs, maxc);
-    const char *gt[] = {"1H,", "1H;", hname, hfile, hsys, hver, "32", "38", "6", "308", "15", hname,
-                        "1.", "2", "2HMM", "1", "0.01", stamp, "1.E-06", maxs, "0H", "0H", "11", "0",
-                        stamp};
-    put_global(&G, gt, (int)(sizeof gt / sizeof gt[0]));
-    if (P.failed || G.failed || !chunk_push(&C, &P)) {
+    pw_drain(&w);
+    if (P.failed) {
         st = rg2__fail(err, RG2_ENOMEM, "IGES: out of memory");
         goto done;
     }
-    /* each record carries its sequence number in 7 columns (and directory entries point to each
-     * other by them): past 9,999,999 records in a section the file cannot be written */
-    if (2 * entity > rg2__iges_max_records || P.nlines > rg2__iges_max_records) {
+    if (entity != total) { /* (a bug: the directory's place would not fit) */
+        st = rg2__fail(err, RG2_EINVAL, "IGES: internal error: %d entities written, %d counted", entity, total);
+        goto done;
+    }
+    if (P.nlines > rg2__iges_max_records) {
         st = rg2__fail(err, RG2_ELIMIT,
                        "IGES: %d directory and %d parameter records, more than the %d that IGES's 7-digit "
                        "sequence numbers allow (size limit exceeded); write STEP, or fewer patches",
                        2 * entity, P.nlines, rg2__iges_max_records);
         goto done;
     }
-    put_section_line(out->f,
-                     o->iges_brep ? "rg2: rational bi-cubic G2 spline surfaces, IGES 5.3 B-rep shells (514)"
-                                  : "rg2: rational bi-cubic G2 spline surfaces, IGES 5.3 entity 128",
-                     'S', 1);
-    fwrite(G.s, 1, G.len, out->f);
-    if (rg2__write_blocks(out->f, entity, 4096, dir_block, D.d)) {
-        st = rg2__fail(err, RG2_ENOMEM, "IGES: out of memory");
-        goto done;
-    }
-    for (int k = 0; k < C.n; k++)
-        fwrite(C.s[k], 1, C.len[k], out->f);
     char tl[80];
     snprintf(tl, sizeof tl, "S%7dG%7dD%7dP%7d", 1, G.nlines, 2 * entity, P.nlines);
     put_section_line(out->f, tl, 'T', 1);
+    if (fseek(out->f, d_at, SEEK_SET)) {
+        st = seek_failed(out, err);
+        goto done;
+    }
+    if (rg2__write_blocks(out->f, entity, 4096, dir_block, D.d))
+        st = rg2__fail(err, RG2_ENOMEM, "IGES: out of memory");
 done:
     free(D.d);
-    chunks_free(&C);
     free(P.s);
     free(G.s);
     return st;
