@@ -85,49 +85,6 @@ static int put_curve(stepw *w, const double (*h)[4], int n, int deg)
     return id;
 }
 
-/* A rational B-spline surface of degree (du, dv), piecewise Bezier, from a net of NU x NV
- * homogeneous poles h[a * NV + b], u outer. */
-static int put_surface(stepw *w, const double (*h)[4], int NU, int NV, int du, int dv, int closed_u,
-                       int closed_v)
-{
-    int *pt = malloc(sizeof(int) * (size_t)NU * (size_t)NV);
-    if (!pt)
-        return -1;
-    for (int a = 0; a < NU * NV; a++)
-        pt[a] = put_point(w, h[a]);
-    int id = new_id(w);
-    fprintf(w->f, "#%d=( BOUNDED_SURFACE() B_SPLINE_SURFACE(%d,%d,(", id, du, dv);
-    for (int a = 0; a < NU; a++) {
-        fputs(a ? ",\n(" : "(", w->f);
-        for (int b = 0; b < NV; b++)
-            fprintf(w->f, "%s#%d%s", b ? "," : "", pt[a * NV + b], (b % 12 == 11 && b + 1 < NV) ? "\n" : "");
-        fputc(')', w->f);
-    }
-    fprintf(w->f, "),.UNSPECIFIED.,%s,%s,.F.)\n B_SPLINE_SURFACE_WITH_KNOTS(", closed_u ? ".T." : ".F.",
-            closed_v ? ".T." : ".F.");
-    /* u multiplicities, v multiplicities, u knots, v knots */
-    put_mults(w->f, (NU - 1) / du, du);
-    fputc(',', w->f);
-    put_mults(w->f, (NV - 1) / dv, dv);
-    fputc(',', w->f);
-    put_knot_values(w->f, (NU - 1) / du);
-    fputc(',', w->f);
-    put_knot_values(w->f, (NV - 1) / dv);
-    fputs(",.PIECEWISE_BEZIER_KNOTS.)\n GEOMETRIC_REPRESENTATION_ITEM() RATIONAL_B_SPLINE_SURFACE((", w->f);
-    for (int a = 0; a < NU; a++) {
-        fputs(a ? ",\n(" : "(", w->f);
-        for (int b = 0; b < NV; b++) {
-            if (b)
-                fputs(b % 8 == 0 ? ",\n" : ",", w->f);
-            put_real(w->f, h[a * NV + b][3]);
-        }
-        fputc(')', w->f);
-    }
-    fputs(")) REPRESENTATION_ITEM('') SURFACE() );\n", w->f);
-    free(pt);
-    return id;
-}
-
 static int put_vertex(stepw *w, const double h[4])
 {
     int p = put_point(w, h);
@@ -229,7 +186,7 @@ static int put_shell(stepw *w, const int *faces, int n, int closed)
 
 /*
  * Items 0..n-1 written by emit(w, ctx, k), which returns the item's entity id (negative: out of
- * memory) and uses count[k] entity ids, on the threads (rg2__write_blocks, STEP_BLOCK items a
+ * memory) and uses count[k] entity ids (one each if count is NULL), on the threads (rg2__write_blocks, STEP_BLOCK items a
  * block, each block numbering its entities from its own first id on). Returns 0, -1 out of
  * memory, -2 an item that used other than count[k] ids (a bug: references would be wrong).
  */
@@ -252,7 +209,7 @@ static int step_block(FILE *m, void *arg, int b, int k0, int k1)
         int next = wb.next;
         if ((it->id[k] = it->emit(&wb, it->ctx, k)) < 0)
             return -1;
-        if (wb.next != next + it->count[k])
+        if (wb.next != next + (it->count ? it->count[k] : 1))
             return -2;
     }
     return 0;
@@ -268,7 +225,7 @@ static int emit_all(stepw *w, int n, const int *count, step_emit emit, void *ctx
     for (int b = 0; b < nblk; b++) { /* each block's first entity id */
         start[b + 1] = start[b];
         for (int k = b * STEP_BLOCK; k < n && k < (b + 1) * STEP_BLOCK; k++)
-            start[b + 1] += count[k];
+            start[b + 1] += count ? count[k] : 1;
     }
     step_items it = {w, count, start, emit, ctx, id};
     int st = rg2__write_blocks(w->f, n, STEP_BLOCK, step_block, &it);
@@ -276,6 +233,86 @@ static int emit_all(stepw *w, int n, const int *count, step_emit emit, void *ctx
         w->next = start[nblk];
     free(start);
     return st;
+}
+
+#define NET_BIG 4096 /* control points from which a net's points and lists go on the threads */
+
+/* A net's control points h[k] as entities (one each, ids into pt[k]). */
+static int emit_point(stepw *w, void *ctx, int k) { return put_point(w, ((const double(*)[4])ctx)[k]); }
+
+/* Rows k0..k1-1 of a net's control point ids (weights: its weights) as in the surface entity
+ * (rg2__write_blocks' block function). */
+typedef struct {
+    const double (*h)[4];
+    const int *pt;
+    int NV, weights;
+} net_rows;
+
+static int put_rows(FILE *f, void *ctx, int blk, int k0, int k1)
+{
+    (void)blk;
+    const net_rows *r = ctx;
+    int NV = r->NV;
+    for (int a = k0; a < k1; a++) {
+        fputs(a ? ",\n(" : "(", f);
+        for (int b = 0; b < NV; b++)
+            if (r->weights) {
+                if (b)
+                    fputs(b % 8 == 0 ? ",\n" : ",", f);
+                put_real(f, r->h[a * NV + b][3]);
+            } else {
+                fprintf(f, "%s#%d%s", b ? "," : "", r->pt[a * NV + b], (b % 12 == 11 && b + 1 < NV) ? "\n" : "");
+            }
+        fputc(')', f);
+    }
+    return 0;
+}
+
+/* All NU rows, a big net's on the threads (NET_BIG / NV rows a block). */
+static int put_all_rows(stepw *w, const double (*h)[4], const int *pt, int NU, int NV, int weights)
+{
+    net_rows r = {h, pt, NV, weights};
+    if (NU * NV < NET_BIG)
+        return put_rows(w->f, &r, 0, 0, NU);
+    return rg2__write_blocks(w->f, NU, NET_BIG / NV > 1 ? NET_BIG / NV : 1, put_rows, &r);
+}
+
+/* A rational B-spline surface of degree (du, dv), piecewise Bezier, from a net of NU x NV
+ * homogeneous poles h[a * NV + b], u outer; a big net's points, pole list and weights formatted
+ * on the threads (the surface of the face-per-mesh layout). Returns its id, or -1 out of memory,
+ * -2 entity numbers out of step (emit_all). */
+static int put_surface(stepw *w, const double (*h)[4], int NU, int NV, int du, int dv, int closed_u,
+                       int closed_v)
+{
+    int *pt = malloc(sizeof(int) * (size_t)NU * (size_t)NV), st = 0;
+    if (!pt)
+        return -1;
+    if (NU * NV < NET_BIG)
+        for (int a = 0; a < NU * NV; a++)
+            pt[a] = put_point(w, h[a]);
+    else if ((st = emit_all(w, NU * NV, NULL, emit_point, (void *)h, pt))) {
+        free(pt);
+        return st;
+    }
+    int id = new_id(w);
+    fprintf(w->f, "#%d=( BOUNDED_SURFACE() B_SPLINE_SURFACE(%d,%d,(", id, du, dv);
+    st = put_all_rows(w, h, pt, NU, NV, 0);
+    fprintf(w->f, "),.UNSPECIFIED.,%s,%s,.F.)\n B_SPLINE_SURFACE_WITH_KNOTS(", closed_u ? ".T." : ".F.",
+            closed_v ? ".T." : ".F.");
+    /* u multiplicities, v multiplicities, u knots, v knots */
+    put_mults(w->f, (NU - 1) / du, du);
+    fputc(',', w->f);
+    put_mults(w->f, (NV - 1) / dv, dv);
+    fputc(',', w->f);
+    put_knot_values(w->f, (NU - 1) / du);
+    fputc(',', w->f);
+    put_knot_values(w->f, (NV - 1) / dv);
+    fputs(",.PIECEWISE_BEZIER_KNOTS.)\n GEOMETRIC_REPRESENTATION_ITEM() RATIONAL_B_SPLINE_SURFACE((", w->f);
+    if (!st)
+        st = put_all_rows(w, h, pt, NU, NV, 1);
+    fputs(")) REPRESENTATION_ITEM('') SURFACE() );\n", w->f);
+    free(pt);
+    return st ? st : id;
 }
 
 /* Degrees of patch (i, j): its own for a higher-degree patch, else 3. */
@@ -448,6 +485,10 @@ static rg2_status shell_per_mesh(stepw *w, const rg2_surface *s, int *shell, rg2
                                    (size_t)(c >= 2 ? t.NV - 1 : 0)]);
     }
     int surf = put_surface(w, (const double(*)[4])t.h, t.NU, t.NV, t.du, t.dv, s->closed_u, s->closed_v);
+    if (surf == -2) {
+        rg2__mesh_topo_free(&t);
+        return rg2__fail(err, RG2_EINVAL, "STEP: internal error: entity numbers out of step");
+    }
     if (surf < 0)
         goto oom;
     int line[4]; /* the parameter rectangle [0, nu] x [0, nv] (knots 0, 1, ..., as the edge curves') */

@@ -767,6 +767,7 @@ int main()
             CHECK_OK(rg2t_elevate_some(&big, xdeg[k][0], xdeg[k][1], 5 * xstride[k], k, &err), &err);
         Case c = {"random 47 x 47, elevated in places", &big, rg2t_surface_scale(&big), nullptr, false};
         check_file(c, dir, "step", RG2_STEP_FACE_PER_PATCH, 0);
+        check_file(c, dir, "step", RG2_STEP_FACE_PER_MESH, 0); // its net's points on the threads
         // src/iges.c: the B-rep's edges and faces through emit_items, its vertex list and the
         // merged net through pw_reals (test_export reads the plain layout's numbers back)
         check_file(c, dir, "igs", RG2_STEP_FACE_PER_PATCH, 0, 1);
