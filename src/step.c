@@ -186,9 +186,10 @@ static int put_shell(stepw *w, const int *faces, int n, int closed)
 
 /*
  * Items 0..n-1 written by emit(w, ctx, k), which returns the item's entity id (negative: out of
- * memory) and uses count[k] entity ids (one each if count is NULL), on the threads (rg2__write_blocks, STEP_BLOCK items a
- * block, each block numbering its entities from its own first id on). Returns 0, -1 out of
- * memory, -2 an item that used other than count[k] ids (a bug: references would be wrong).
+ * memory) and uses count[k] entity ids (one each if count is NULL), on the threads
+ * (rg2__write_blocks, STEP_BLOCK items a block, each block numbering its entities from its own
+ * first id on). Returns 0, -1 out of memory, -2 an item that used other than count[k] ids (a
+ * bug: references would be wrong).
  */
 typedef int (*step_emit)(stepw *w, void *ctx, int k);
 #define STEP_BLOCK 256
