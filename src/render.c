@@ -395,6 +395,11 @@ static rg2_status rasterise(const rg2_surface *surfs, int n, const camera *c, zc
                         const vtx *v01 = &g[a * (B + 1) + b + 1], *v11 = &g[(a + 1) * (B + 1) + b + 1];
                         if (v00->z <= znear || v10->z <= znear || v01->z <= znear || v11->z <= znear)
                             continue;
+                        /* a quad wholly above or below the band: raster_tri would draw nothing */
+                        double qy0 = fmin(fmin(v00->sy, v10->sy), fmin(v01->sy, v11->sy));
+                        double qy1 = fmax(fmax(v00->sy, v10->sy), fmax(v01->sy, v11->sy));
+                        if (ceil(qy1 - 0.5) < y0 || floor(qy0 - 0.5) > y1 - 1)
+                            continue;
                         float u0 = (float)a / A, u1 = (float)(a + 1) / A, w0 = (float)b / B, w1 = (float)(b + 1) / B;
                         float t1[3][2] = {{u0, w0}, {u1, w0}, {u1, w1}};
                         float t2[3][2] = {{u0, w0}, {u1, w1}, {u0, w1}};
