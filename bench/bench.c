@@ -32,7 +32,7 @@
 
 static int quick = 0;            /* --quick: fewer repetitions (smoke test) */
 static const char *only = NULL;  /* --only PART: one of torus, merged, tessellation, freeform, scaling,
-                                    construction */
+                                    construction, files */
 
 static int want(const char *part) { return !only || !strcmp(only, part); }
 
@@ -1551,6 +1551,120 @@ static void cpu_model(char *buf, size_t len)
     fclose(f);
 }
 
+/* ---- files -------------------------------------------------------------------------------- */
+
+/* Writing the free-form surface (200 x 200 control points, 197 x 197 patches) to files: rg2's
+ * STEP and IGES of it as one B-spline surface (the face-per-mesh layout, the net of 592 x 592
+ * poles) against OpenCASCADE's STEPControl_Writer and IGESControl_Writer of the same surface as
+ * one face, and rg2's face-per-patch files (38 809 faces sharing their edges; no peer writes
+ * those from a surface). Wall time of the whole call, file written and closed, medians of
+ * interleaved repetitions, into a directory in memory (/dev/shm) where there is one, so that the
+ * disk's write-back does not time the writers. Checked: OpenCASCADE reads rg2's one-surface
+ * files back as one face of 592 x 592 poles. */
+enum { F_RG2_STEP, F_OCCT_STEP, F_RG2_IGES, F_OCCT_IGES, F_RG2_STEP_P, F_RG2_IGES_P, F_RG2_IGES_B, NF };
+static const char *const f_name[NF] = {"rg2 STEP, one surface (face per mesh)", "OCCT STEPControl_Writer, one face",
+                                       "rg2 IGES, one surface (entity 128)", "OCCT IGESControl_Writer, one face",
+                                       "rg2 STEP, face per patch (shared edges)", "rg2 IGES, entity 128 per patch",
+                                       "rg2 IGES, B-rep shell, face per patch"};
+static const char *const f_file[NF] = {"rm.step", "om.step", "rm.igs", "om.igs", "rp.step", "rp.igs", "rb.igs"};
+
+static double file_write(const rg2_surface *s, occt_surf *o, int m, const char *path, long *bytes)
+{
+    double t0 = bench_seconds(CLOCK_MONOTONIC);
+    int bad;
+    if (m == F_OCCT_STEP || m == F_OCCT_IGES) {
+        bad = occt_write(o, path, m == F_OCCT_IGES);
+    } else {
+        rg2_export_opts eo;
+        rg2_export_opts_default(&eo);
+        eo.layout = (m == F_RG2_STEP || m == F_RG2_IGES) ? RG2_STEP_FACE_PER_MESH : RG2_STEP_FACE_PER_PATCH;
+        eo.iges_brep = m == F_RG2_IGES_B;
+        rg2_error err;
+        bad = rg2_export_file(s, 1, path, &eo, &err) != RG2_OK;
+        if (bad)
+            fprintf(stderr, "rg2_bench: %s: %s\n", path, err.msg);
+    }
+    double t = bench_seconds(CLOCK_MONOTONIC) - t0;
+    FILE *f = bad ? NULL : fopen(path, "rb");
+    if (!f || fseek(f, 0, SEEK_END) || (*bytes = ftell(f)) <= 0) {
+        fprintf(stderr, "rg2_bench: %s: %s was not written\n", f_name[m], path);
+        exit(1);
+    }
+    fclose(f);
+    return t;
+}
+
+static cJSON *files(void)
+{
+    int reps = quick ? 1 : 3;
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    freeform_mesh(200, 200, 42, &m);
+    if (rg2_surface_build(&m, &s, &err))
+        die_rg2("free-form surface", &err);
+    rg2_mesh_free(&m);
+    bspline b;
+    bspline_from(&s, &b);
+    occt_surf *o = occt_make(&b);
+    char dir[64];
+    snprintf(dir, sizeof dir, "%s/rg2_bench_XXXXXX", access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp");
+    if (!mkdtemp(dir)) {
+        perror("rg2_bench: mkdtemp");
+        exit(1);
+    }
+    printf("\n== files: the free-form surface (%d x %d patches) written to STEP and IGES, into %s; wall\n"
+           "   time of the whole call, medians of %d interleaved repetitions\n",
+           s.nu, s.nv, dir, reps);
+    double *t = xmalloc(sizeof(double) * NF * (size_t)reps);
+    long bytes[NF] = {0};
+    int faces[2] = {0}, nu[2] = {0}, nv[2] = {0};
+    for (int r = 0; r < reps; r++)
+        for (int k = 0; k < NF; k++) {
+            char path[128];
+            snprintf(path, sizeof path, "%s/%s", dir, f_file[k]);
+            t[k * reps + r] = file_write(&s, o, k, path, &bytes[k]);
+            if (r == 0 && (k == F_RG2_STEP || k == F_RG2_IGES)) /* read back by OpenCASCADE */
+                faces[k == F_RG2_IGES] = occt_read_poles(path, k == F_RG2_IGES, &nu[k == F_RG2_IGES], &nv[k == F_RG2_IGES]);
+            remove(path);
+        }
+    rmdir(dir);
+    int ok = 1;
+    for (int q = 0; q < 2; q++)
+        ok &= faces[q] == 1 && nu[q] == b.in1 && nv[q] == b.in2;
+    printf("   OpenCASCADE reads rg2's one-surface files back: STEP %d face(s) of %d x %d poles, IGES %d of %d x %d "
+           "(%d x %d written): %s\n",
+           faces[0], nu[0], nv[0], faces[1], nu[1], nv[1], b.in1, b.in2, ok ? "ok" : "WRONG");
+    cJSON *j = cJSON_CreateObject(), *jm = cJSON_AddArrayToObject(j, "methods");
+    cJSON_AddStringToObject(j, "surface", "free-form open mesh 200 x 200 control points");
+    cJSON_AddNumberToObject(j, "patches", (double)s.nu * s.nv);
+    cJSON_AddStringToObject(j, "directory", dir);
+    cJSON_AddBoolToObject(j, "read_back_ok", ok);
+    double med[NF];
+    for (int k = 0; k < NF; k++) {
+        med[k] = bench_median(t + k * reps, reps);
+        printf("   %-44s %8.3f s  %7.1f MB\n", f_name[k], med[k], bytes[k] / 1e6);
+        cJSON *x = cJSON_CreateObject();
+        cJSON_AddStringToObject(x, "method", f_name[k]);
+        cJSON_AddNumberToObject(x, "median_s", med[k]);
+        cJSON_AddNumberToObject(x, "bytes", (double)bytes[k]);
+        cJSON_AddItemToArray(jm, x);
+    }
+    printf("   OCCT STEP / rg2 STEP (one surface): %.1fx; OCCT IGES / rg2 IGES: %.1fx\n",
+           med[F_OCCT_STEP] / med[F_RG2_STEP], med[F_OCCT_IGES] / med[F_RG2_IGES]);
+    cJSON_AddNumberToObject(j, "ratio_occt_step_to_rg2", med[F_OCCT_STEP] / med[F_RG2_STEP]);
+    cJSON_AddNumberToObject(j, "ratio_occt_iges_to_rg2", med[F_OCCT_IGES] / med[F_RG2_IGES]);
+    if (!ok) {
+        fprintf(stderr, "rg2_bench: OpenCASCADE did not read rg2's files back as written\n");
+        exit(1);
+    }
+    free(t);
+    occt_free(o);
+    bspline_free(&b);
+    rg2_surface_free(&s);
+    return j;
+}
+
 static int write_json(cJSON *root, const char *path)
 {
     char *txt = cJSON_Print(root);
@@ -1576,7 +1690,7 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--only") && i + 1 < argc)
             only = argv[++i];
         else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            printf("usage: rg2_bench [out.json] [--quick] [--only torus|merged|tessellation|freeform|scaling|construction]\n");
+            printf("usage: rg2_bench [out.json] [--quick] [--only torus|merged|tessellation|freeform|scaling|construction|files]\n");
             return 0;
         } else
             out = argv[i];
@@ -1656,6 +1770,8 @@ int main(int argc, char **argv)
     }
     if (want("construction"))
         cJSON_AddItemToObject(root, "construction", construction());
+    if (want("files"))
+        cJSON_AddItemToObject(root, "files", files());
     long rss = peak_rss_kb();
     cJSON_AddNumberToObject(root, "peak_rss_kb", (double)rss);
     printf("\npeak memory (getrusage ru_maxrss): %.1f MB\n", rss / 1024.0);

@@ -39,6 +39,12 @@ void occt_free(occt_surf *s);
 void occt_eval(occt_surf *s, occt_method meth, const grid_params *g, double *pos, double *nrm, double *K,
                double *H);
 
+/* The surface as one face written by OpenCASCADE's STEPControl_Writer (iges 0) or
+ * IGESControl_Writer (iges 1); 0 or -1. A file read back by OpenCASCADE: its number of faces
+ * (-1 unreadable) and the first face's B-spline pole counts (0 if not a B-spline). */
+int occt_write(occt_surf *s, const char *path, int iges);
+int occt_read_poles(const char *path, int iges, int *nu, int *nv);
+
 /* affinity.c: the CPUs the calling thread may run on (at most max; 0 where unknown); pin the
  * calling thread to one of them (0 on success); give it back the affinity it had before the
  * first bench_pin. */

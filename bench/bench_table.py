@@ -102,6 +102,15 @@ def main(path):
                   f"{r['median_s_1_thread'] * 1e3:.3f} | {r['median_s_2_threads'] * 1e3:.3f} | {a}"
                   f"{g * 1e3:.3f} | {r['median_s_1_thread'] / g:.2f} |"
                   + (f" {r['again_median_s_1_thread'] / g:.2f} |" if again else ""))
+    if 'files' in d:
+        fs = d['files']
+        print(f"\n| writing the {fs['surface']} ({int(fs['patches'])} patches) | seconds | MB |")
+        print("|---|---:|---:|")
+        for r in fs['methods']:
+            print(f"| {r['method']} | {r['median_s']:.3f} | {r['bytes'] * 1e-6:.1f} |")
+        print(f"\nOpenCASCADE's writers against rg2's for the same surface as one face: STEP "
+              f"{fs['ratio_occt_step_to_rg2']:.1f}x, IGES {fs['ratio_occt_iges_to_rg2']:.1f}x the time; OpenCASCADE "
+              f"read rg2's files back as written: {'yes' if fs['read_back_ok'] else 'NO'}.")
     print(f"\nPeak memory (getrusage ru_maxrss): {d['peak_rss_kb'] / 1024:.0f} MB.")
     if 'ceiling_fastest_way_counts' in d:
         w = ', '.join(f"{k} {v}" for k, v in d['ceiling_fastest_way_counts'].items())

@@ -1,7 +1,22 @@
 // occt.cpp -- the OpenCASCADE side of rg2_bench: a Geom_BSplineSurface from the same
 // poles, weights and knots, evaluated per point through Geom_BSplineSurface, GeomAdaptor_Surface
-// (span cache) and GeomLProp_SLProps. Plain C interface for bench.c.
+// (span cache) and GeomLProp_SLProps, and written as one face to STEP and IGES (and rg2's files
+// read back). Plain C interface for bench.c.
 #include "bench.h"
+
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRep_Tool.hxx>
+#include <IFSelect_ReturnStatus.hxx>
+#include <IGESControl_Reader.hxx>
+#include <IGESControl_Writer.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_Printer.hxx>
+#include <STEPControl_Reader.hxx>
+#include <STEPControl_Writer.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Face.hxx>
 
 #include <GeomAdaptor_Surface.hxx>
 #include <GeomLProp_SLProps.hxx>
@@ -116,4 +131,59 @@ extern "C" void occt_eval(occt_surf *s, occt_method meth, const grid_params *g, 
                 }
             }
     delete props;
+}
+
+static void quiet()
+{
+    static bool done = false;
+    if (!done) { // the data exchange's progress messages would interleave with the tables
+        Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_Printer));
+        done = true;
+    }
+}
+
+extern "C" int occt_write(occt_surf *s, const char *path, int iges)
+{
+    quiet();
+    TopoDS_Face f = BRepBuilderAPI_MakeFace(s->bs, 1e-7);
+    if (iges) {
+        IGESControl_Writer w("MM", 0);
+        if (!w.AddShape(f))
+            return -1;
+        w.ComputeModel();
+        return w.Write(path) ? 0 : -1;
+    }
+    STEPControl_Writer w;
+    if (w.Transfer(f, STEPControl_AsIs) != IFSelect_RetDone)
+        return -1;
+    return w.Write(path) == IFSelect_RetDone ? 0 : -1;
+}
+
+extern "C" int occt_read_poles(const char *path, int iges, int *nu, int *nv)
+{
+    quiet();
+    TopoDS_Shape shape;
+    if (iges) {
+        IGESControl_Reader r;
+        if (r.ReadFile(path) != IFSelect_RetDone)
+            return -1;
+        r.TransferRoots();
+        shape = r.OneShape();
+    } else {
+        STEPControl_Reader r;
+        if (r.ReadFile(path) != IFSelect_RetDone)
+            return -1;
+        r.TransferRoots();
+        shape = r.OneShape();
+    }
+    int faces = 0;
+    *nu = *nv = 0;
+    for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next(), faces++) {
+        Handle(Geom_BSplineSurface) b = Handle(Geom_BSplineSurface)::DownCast(BRep_Tool::Surface(TopoDS::Face(e.Current())));
+        if (!b.IsNull() && faces == 0) {
+            *nu = b->NbUPoles();
+            *nv = b->NbVPoles();
+        }
+    }
+    return faces;
 }
