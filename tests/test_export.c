@@ -2,8 +2,10 @@
  * PLY round-trips against the tessellation, .glb validated structurally (header, chunk
  * lengths, accessor and index bounds, min/max), .bv / .bez / .json patches exactly, STEP
  * numbers, complex-instance order and one pcurve per edge use, IGES record layout and B-rep
- * loops; and the failure cases (unwritable path, non-positive weight, empty input, unknown
- * extension, more IGES records than its sequence numbers hold) leave no file behind. */
+ * loops; a big surface's STEP entities in file order and its four IGES forms read back
+ * (directory pointers, every number); and the failure cases (unwritable path, non-positive
+ * weight, empty input, unknown extension, more IGES records than its sequence numbers hold)
+ * leave no file behind. */
 #define _POSIX_C_SOURCE 200809L
 #include "../src/export_internal.h"
 #include "export_fixtures.h"
@@ -680,14 +682,10 @@ static int iges_sections_agree(const char *path, int *entities, const rg2_surfac
         return -1;
     int cap = 64 + 8 * (check == 2 ? NU * NV : check == 3 ? t.n_vertices : 36);
     double *v = malloc(sizeof(double) * (size_t)cap);
-    if (!b || len % 81 || !v || (check == 2 && !net)) {
-        free(b);
-        free(v);
-        free(net);
-        rg2__topo_free(&t);
-        return -1;
-    }
-    int nrec = (int)(len / 81), d0 = -1, p0 = -1, nd = 0, np = 0, bad = 0;
+    int nrec = 0, d0 = -1, p0 = -1, nd = 0, np = 0, bad = -1;
+    if (!b || len % 81 || !v || (check == 2 && !net))
+        goto done;
+    nrec = (int)(len / 81);
     for (int r = 0; r < nrec; r++) {
         char sec = b[(size_t)r * 81 + 72];
         if (sec == 'D' && !nd++)
@@ -695,13 +693,9 @@ static int iges_sections_agree(const char *path, int *entities, const rg2_surfac
         if (sec == 'P' && !np++)
             p0 = r;
     }
-    if (d0 < 0 || p0 < 0 || nd % 2) {
-        free(b);
-        free(v);
-        free(net);
-        rg2__topo_free(&t);
-        return -1;
-    }
+    if (d0 < 0 || p0 < 0 || nd % 2)
+        goto done;
+    bad = 0;
     *entities = nd / 2;
     int next = 1;
     for (int q = 0; q < nd / 2; q++) {
@@ -742,6 +736,7 @@ static int iges_sections_agree(const char *path, int *entities, const rg2_surfac
         }
     }
     bad += next != np + 1;
+done:
     free(b);
     free(v);
     free(net);
