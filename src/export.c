@@ -107,9 +107,11 @@ void rg2__real(char buf[40], double x)
 
 #define WRITE_ROUND 16 /* blocks formatted per round (8 per thread on the 2-core machines) */
 
-int rg2__write_blocks(FILE *f, int n, int block, rg2__block_fn fn, void *ctx)
+int rg2__write_blocks(FILE *f, int n, int block, rg2__block_fn fn, rg2__block_fix fix, void *ctx)
 {
-    if (n <= block)
+    if (n <= 0)
+        return 0;
+    if (n <= block && !fix)
         return fn(f, ctx, 0, 0, n);
     char *buf[WRITE_ROUND] = {0};
     size_t len[WRITE_ROUND] = {0};
@@ -136,8 +138,11 @@ int rg2__write_blocks(FILE *f, int n, int block, rg2__block_fn fn, void *ctx)
                 bad = st;
             }
         }
-        for (int r = 0; r < nb && !bad; r++) /* (buf[r] as of the fflush) */
+        for (int r = 0; r < nb && !bad; r++) { /* (buf[r] as of the fflush) */
+            if (fix)
+                fix(ctx, b0 + r, buf[r], (size_t)used[r]);
             fwrite(buf[r], 1, (size_t)used[r], f);
+        }
     }
     for (int r = 0; r < WRITE_ROUND; r++) {
         if (m[r])

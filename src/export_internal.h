@@ -26,9 +26,13 @@ rg2_status rg2__out_close(rg2__out *o, rg2_status st, rg2_error *err);
  * faulted in once), then copied into f block by block: the same bytes as formatting the items
  * one after the other into f. For text whose numbers printf formats (17 digits: nearly all of a
  * big export's time). fn returns 0 or a negative code, which stops the writing and is returned
- * (-1 also when a stream fails). n <= block: fn(f, ctx, 0, 0, n) straight into f. */
+ * (-1 also when a stream fails). With fix, each block's text (len bytes) is handed to
+ * fix(ctx, b, text, len) in block order, on the calling thread, right before it is copied (to
+ * number what only the blocks before it determine); without, n <= block: fn(f, ctx, 0, 0, n)
+ * straight into f. */
 typedef int (*rg2__block_fn)(FILE *m, void *ctx, int b, int k0, int k1);
-int rg2__write_blocks(FILE *f, int n, int block, rg2__block_fn fn, void *ctx);
+typedef void (*rg2__block_fix)(void *ctx, int b, char *text, size_t len);
+int rg2__write_blocks(FILE *f, int n, int block, rg2__block_fn fn, rg2__block_fix fix, void *ctx);
 
 /* Union-find over int arrays (parent[a] == a for roots); the smaller index becomes the root. */
 int rg2__uf_find(int *parent, int a);

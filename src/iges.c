@@ -22,7 +22,7 @@ typedef struct {
     char *s;
     size_t len, cap;
     int nlines;
-    int failed;
+    int failed; /* 1 out of memory, 2 (emit_items) a block's records out of step */
 } ibuf;
 
 static int ib_reserve(ibuf *b, size_t more)
@@ -92,10 +92,10 @@ static int dir_reserve(idirs *D, int n)
     return 1;
 }
 
-/* Parameter-data writer: tokens of one entity packed into columns 1-64. The file's writer (f
- * set) numbers its records from the section's first and passes them to f a megabyte at a time;
- * a block's writer (f NULL) numbers them from its buffer's first, renumbered when the block
- * goes to the file. */
+/* Parameter-data writer: tokens of one entity packed into columns 1-64, the records gathered in
+ * P and passed to f a megabyte at a time. The file's writer numbers its records from the
+ * section's first; a block's writer (emit_items; f its memory stream) from the block's first,
+ * renumbered when the block goes to the file. */
 typedef struct {
     ibuf *P;
     char line[72];
@@ -103,15 +103,15 @@ typedef struct {
     int de;      /* DE pointer of the entity being written */
     idirs *dir;  /* directory entries by entity index */
     int qlo, qhi; /* the entities this writer ended */
-    FILE *f;      /* the file (the file's writer), or NULL (a block's) */
+    FILE *f;      /* the file, or a block's memory stream */
 } pwriter;
 
 #define STAGE_BYTES ((size_t)1 << 20) /* the file's writer's records gathered before a write */
 
-/* The file writer's gathered records to the file (write errors: at the file's close). */
+/* The gathered records to f (write errors: at the file's close, or the memory stream's flush). */
 static void pw_drain(pwriter *w)
 {
-    if (w->f && w->P->len) {
+    if (w->P->len) {
         fwrite(w->P->s, 1, w->P->len, w->f);
         w->P->len = 0;
     }
@@ -284,64 +284,67 @@ static void end_entity(pwriter *w, int start, int type, int form, const char *st
     w->qhi = q > w->qhi ? q : w->qhi;
 }
 
-#define IGES_BLOCK 64 /* items formatted per block (a block per thread at a time) */
-#define IGES_ROUND 16 /* blocks per round */
+#define IGES_BLOCK 64 /* items formatted per block */
 
 /* Items 0..n-1, each writing the entities fn(w, ctx, k), all below entity q_end, formatted on
- * the threads: blocks of IGES_BLOCK items into buffers of their own (kept from one round to the
- * next; the directory entries of distinct entities, kept in w->dir, reserved first), written to
- * the file in order with their records renumbered: the same bytes as writing the items one
- * after the other. w is the file's writer. */
+ * the threads (rg2__write_blocks: blocks of IGES_BLOCK items, a writer of their own each, its
+ * records numbered from 1; the directory entries of distinct entities, in w->dir, reserved
+ * first) and renumbered as each block goes to the file (iges_fix): the same bytes as writing the
+ * items one after the other. w is the file's writer. */
 typedef void (*iges_item)(pwriter *w, void *ctx, int k);
+
+typedef struct {
+    pwriter *w;
+    iges_item fn;
+    void *ctx;
+    int (*blk)[3]; /* per block: its records, its first and last entity */
+} iges_blocks;
+
+static int iges_block(FILE *m, void *arg, int b, int k0, int k1)
+{
+    iges_blocks *c = arg;
+    ibuf buf = {0};
+    pwriter bw = {&buf, {0}, 0, 0, c->w->dir, INT_MAX, -1, m};
+    for (int k = k0; k < k1 && !buf.failed; k++)
+        c->fn(&bw, c->ctx, k);
+    pw_drain(&bw);
+    c->blk[b][0] = buf.nlines;
+    c->blk[b][1] = bw.qlo;
+    c->blk[b][2] = bw.qhi;
+    free(buf.s);
+    return buf.failed ? -1 : 0;
+}
+
+/* Block b's records follow the file's so far: their sequence numbers and its entities' first
+ * records moved on by as many. */
+static void iges_fix(void *arg, int b, char *text, size_t len)
+{
+    iges_blocks *c = arg;
+    ibuf *P = c->w->P;
+    int off = P->nlines;
+    if (len != (size_t)c->blk[b][0] * 81) { /* (a bug: fails the export, never writes past text) */
+        P->failed = 2;
+        return;
+    }
+    for (int l = 0; l < c->blk[b][0]; l++)
+        put7(text + (size_t)l * 81 + 73, off + l + 1);
+    for (int q = c->blk[b][1]; q <= c->blk[b][2]; q++)
+        c->w->dir->d[q].pstart += off;
+    P->nlines += c->blk[b][0];
+}
 
 static void emit_items(pwriter *w, int n, int q_end, iges_item fn, void *ctx)
 {
-    if (w->P->failed)
+    if (w->P->failed || n <= 0)
         return;
-    if (!dir_reserve(w->dir, q_end)) {
-        w->P->failed = 1;
-        return;
-    }
-    pw_drain(w);
-    if (n <= IGES_BLOCK) {
-        for (int k = 0; k < n; k++)
-            fn(w, ctx, k);
-        return;
-    }
-    ibuf buf[IGES_ROUND] = {{0}};
-    pwriter bw[IGES_ROUND];
     int nblk = (n - 1) / IGES_BLOCK + 1;
-    for (int b0 = 0; b0 < nblk && !w->P->failed; b0 += IGES_ROUND) {
-        int nb = nblk - b0 < IGES_ROUND ? nblk - b0 : IGES_ROUND;
-#ifdef RG2_HAVE_OPENMP
-#pragma omp parallel for schedule(dynamic, 1)
-#endif
-        for (int r = 0; r < nb; r++) {
-            int k0 = (b0 + r) * IGES_BLOCK, k1 = k0 + IGES_BLOCK < n ? k0 + IGES_BLOCK : n;
-            buf[r].len = 0;
-            buf[r].nlines = 0;
-            bw[r] = (pwriter){&buf[r], {0}, 0, 0, w->dir, INT_MAX, -1, NULL};
-            for (int k = k0; k < k1 && !buf[r].failed; k++)
-                fn(&bw[r], ctx, k);
-        }
-        for (int r = 0; r < nb; r++) {
-            ibuf *P = w->P;
-            int off = P->nlines;
-            if (buf[r].failed) {
-                P->failed = 1;
-                break;
-            }
-            for (int q = bw[r].qlo; q <= bw[r].qhi; q++)
-                w->dir->d[q].pstart += off;
-            for (int l = 0; l < buf[r].nlines; l++)
-                put7(buf[r].s + (size_t)l * 81 + 73, off + l + 1);
-            P->nlines += buf[r].nlines;
-            if (buf[r].len)
-                fwrite(buf[r].s, 1, buf[r].len, w->f);
-        }
-    }
-    for (int r = 0; r < IGES_ROUND; r++)
-        free(buf[r].s);
+    iges_blocks c = {w, fn, ctx, malloc(sizeof(int[3]) * (size_t)nblk)};
+    if (!c.blk || !dir_reserve(w->dir, q_end))
+        w->P->failed = 1;
+    pw_drain(w);
+    if (!w->P->failed && rg2__write_blocks(w->f, n, IGES_BLOCK, iges_block, iges_fix, &c) && !w->P->failed)
+        w->P->failed = 1;
+    free(c.blk);
 }
 
 /* ---------------------------------------------------------------- B-rep shell (iges_brep) */
@@ -851,7 +854,8 @@ rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opt
     }
     pw_drain(&w);
     if (P.failed) {
-        st = rg2__fail(err, RG2_ENOMEM, "IGES: out of memory");
+        st = P.failed == 2 ? rg2__fail(err, RG2_EINVAL, "IGES: internal error: a block's records out of step")
+                           : rg2__fail(err, RG2_ENOMEM, "IGES: out of memory");
         goto done;
     }
     if (entity != total) { /* (a bug: the directory's place would not fit) */
@@ -872,7 +876,7 @@ rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opt
         st = seek_failed(out, err);
         goto done;
     }
-    if (rg2__write_blocks(out->f, entity, 4096, dir_block, D.d))
+    if (rg2__write_blocks(out->f, entity, 4096, dir_block, NULL, D.d))
         st = rg2__fail(err, RG2_ENOMEM, "IGES: out of memory");
 done:
     free(D.d);

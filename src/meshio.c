@@ -126,7 +126,7 @@ rg2_status rg2__write_obj(const rg2_tess *t, int n, const rg2_export_opts *o, rg
         for (int kind = OBJ_V; kind <= OBJ_F; kind++) {
             obj_part part = {&t[k], kind, base};
             if (rg2__write_blocks(f, kind == OBJ_F ? t[k].n_triangles : t[k].n_vertices, OBJ_LINES, obj_block,
-                                  &part))
+                                  NULL, &part))
                 return rg2__fail(err, RG2_ENOMEM, "%s: out of memory for the OBJ text", out->path);
         }
         base += (size_t)t[k].n_vertices;

@@ -229,7 +229,7 @@ static int emit_all(stepw *w, int n, const int *count, step_emit emit, void *ctx
             start[b + 1] += count ? count[k] : 1;
     }
     step_items it = {w, count, start, emit, ctx, id};
-    int st = rg2__write_blocks(w->f, n, STEP_BLOCK, step_block, &it);
+    int st = rg2__write_blocks(w->f, n, STEP_BLOCK, step_block, NULL, &it);
     if (!st)
         w->next = start[nblk];
     free(start);
@@ -275,7 +275,7 @@ static int put_all_rows(stepw *w, const double (*h)[4], const int *pt, int NU, i
     net_rows r = {h, pt, NV, weights};
     if (NU * NV < NET_BIG)
         return put_rows(w->f, &r, 0, 0, NU);
-    return rg2__write_blocks(w->f, NU, NET_BIG / NV > 1 ? NET_BIG / NV : 1, put_rows, &r);
+    return rg2__write_blocks(w->f, NU, NET_BIG / NV > 1 ? NET_BIG / NV : 1, put_rows, NULL, &r);
 }
 
 /* A rational B-spline surface of degree (du, dv), piecewise Bezier, from a net of NU x NV
