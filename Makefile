@@ -5,13 +5,14 @@
 #   make check-memory  the rg2 command under valgrind on every example and bad input (make test runs it)
 #   make check-portable  build with clang, and with GCC without OpenMP or AVX-512; run the tests (make test runs it)
 #   make fuzz   build the libFuzzer harnesses (clang) into build-fuzz/ and run each FUZZ_SECONDS
+#   make gallery  render every example design into docs/pictures/gallery/ and write docs/gallery.md
 #   make check-freecad  FreeCAD opens our STEP / IGES (installs freecad-python3, ~930 MB; not in make test)
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 MAKEFLAGS += --no-print-directory
 DESIGN ?= examples/torus_sphere.json
 FUZZ_SECONDS ?= 60
 
-.PHONY: all build run test bench clean check-memory check-portable check-freecad fuzz
+.PHONY: all build run test bench clean check-memory check-portable check-freecad fuzz gallery
 
 all: build
 
@@ -43,6 +44,9 @@ check-memory:
 check-portable:
 	@scripts/deps.sh test
 	@scripts/check_portable.sh . build-portable
+
+gallery: build
+	@scripts/gallery.py build/rg2 docs
 
 check-freecad: build
 	@scripts/deps.sh freecad
