@@ -27,7 +27,7 @@ DEFAULT = [("shaded", ["--boundaries"], "shaded, patch boundaries; exact pieces 
 
 def run(cmd):
     r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    if r.returncode not in (0, 3):
+    if r.returncode != 0:
         sys.exit("gallery: %s failed (exit %d): %s" % (" ".join(cmd), r.returncode, r.stderr.strip()))
     return r.stdout
 
