@@ -24,8 +24,7 @@ n=0
 for pic in $(pictures "$tmp/gallery.md"); do
   n=$((n + 1))
   [ -f "docs/$pic" ] || bad "docs/$pic (shown in docs/gallery.md) is not committed"
-  hdr=$(od -An -tx1 -N26 "$tmp/$pic" 2>/dev/null | tr -d ' \n')
-  [ "$hdr" = "$(printf '89504e470d0a1a0a0000000d49484452%08x%08x0802' 400 300)" ] && ok || bad "$tmp/$pic is not a 400 x 300 RGB PNG"
+  png_is "$tmp/$pic" 400 300
 done
 [ "$n" -ge "$(echo "$designs" | wc -l)" ] && ok || bad "only $n pictures"
 finish

@@ -12,4 +12,15 @@ expect() {
   if [ "$rc" != "$code" ]; then bad "$* -> exit $rc, expected $code: $out"; return; fi
   case "$out" in *"$sub"*) ok ;; *) bad "$* -> output lacks '$sub': $out" ;; esac
 }
+# png_is FILE W H: the PNG signature and IHDR: width, height, bit depth 8, colour type 2 (RGB)
+png_is() {
+  local f=$1 w=$2 h=$3
+  [ -f "$f" ] || { bad "$f missing"; return; }
+  local hdr
+  hdr=$(od -An -tx1 -N26 "$f" | tr -d ' \n')
+  local want
+  want=$(printf '89504e470d0a1a0a0000000d49484452%08x%08x0802' "$w" "$h")
+  [ "$hdr" = "$want" ] && ok || bad "$f header $hdr, expected $want"
+}
+
 finish() { echo "$(basename "$0" .sh): $pass passed, $fail failed"; [ "$fail" = 0 ]; }

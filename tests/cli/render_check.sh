@@ -9,17 +9,6 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 ex=$SRC/examples/torus_sphere.json
 
-# PNG header: signature, IHDR width/height, bit depth 8, colour type 2 (RGB)
-png_is() {
-  local f=$1 w=$2 h=$3
-  [ -f "$f" ] || { bad "$f missing"; return; }
-  local hdr
-  hdr=$(od -An -tx1 -N26 "$f" | tr -d ' \n')
-  local want
-  want=$(printf '89504e470d0a1a0a0000000d49484452%08x%08x0802' "$w" "$h")
-  [ "$hdr" = "$want" ] && ok || bad "$f header $hdr, expected $want"
-}
-
 for cmd in render check; do
   "$RG2" $cmd --help 2>&1 | grep -q "usage: rg2 $cmd" && ok || bad "$cmd --help"
   expect 2 "usage" -- "$RG2" $cmd
