@@ -25,6 +25,8 @@ static void usage(FILE *f)
                "  --no-tint           shaded: do not tint exact pieces by their shape\n"
                "  --no-colorbar       curvature modes: no colour bar\n"
                "  --surface K         only output surface K (0-based) of the design\n"
+               "  --apart             lay the output surfaces out apart, in a grid across the view\n"
+               "                      (surface 0 top left); for outputs that overlap\n"
                "  --threads N         OpenMP threads (default: all); the picture does not depend on it\n"
                "Exit codes: 0 ok, 1 invalid design or write error, 2 usage error.\n");
 }
@@ -139,6 +141,8 @@ int rg2_cmd_render(int argc, char **argv)
             o.boundaries = 1;
         else if (!strcmp(a, "--mesh"))
             o.mesh = 1;
+        else if (!strcmp(a, "--apart"))
+            o.apart = 1;
         else if (!strcmp(a, "--no-tint"))
             o.tint = 0;
         else if (!strcmp(a, "--no-colorbar"))

@@ -288,6 +288,11 @@ static inline const rg2_xpatch *rg2_surface_xpatch(const rg2_surface *s, int i, 
 RG2_API void rg2_surface_patch_get(const rg2_surface *s, int i, int j, rg2_xpatch *out);
 /** Highest u- and v-degree over all patches (3, 3 for an all-bi-3 surface). */
 RG2_API void rg2_surface_degree(const rg2_surface *s, int *du, int *dv);
+/** Apply a row-major 4x4 matrix to every homogeneous control point of every patch, as
+ *  rg2_mesh_transform does to a mesh: exact for any projective map, and the same surface as
+ *  rg2_surface_build of the transformed mesh (the construction is linear in the 4-tuples). A
+ *  rigid motion or scaling keeps the weights; tags and junction scalars are kept. */
+RG2_API void rg2_surface_transform(rg2_surface *s, const double M[16]);
 /** Smallest homogeneous weight over all control points of all patches. */
 RG2_API double rg2_surface_min_weight(const rg2_surface *s);
 
@@ -875,6 +880,9 @@ typedef struct {
     double distance;       /**< eye distance from the view centre (middle of the scene's extent
                                 across the view); <= 0 fits the view to the scene */
     double fov;            /**< vertical field of view in degrees (default 30) */
+    int apart;             /**< n > 1: lay the surfaces out apart, in a grid across the view
+                                (ceil(sqrt(n)) columns, surface 0 top left), each moved by a
+                                translation; for outputs that overlap (default 0: as placed) */
     int boundaries;        /**< draw patch boundaries (seams) as thin dark lines */
     int mesh;              /**< overlay the control meshes (needs meshes != NULL) */
     int tint;              /**< shaded: tint patches by shape tag (default 1) */

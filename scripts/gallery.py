@@ -16,10 +16,11 @@ import subprocess
 import sys
 
 SIZE = "400x300"
-# Designs whose output surfaces lie on top of each other are shown one surface per picture.
+# Designs whose output surfaces lie on top of each other are laid out apart (rg2 render --apart).
 PICTURES = {
-    "fig1_torus": [("e", ["--surface", "2", "--boundaries", "--mesh"], "(e): mesh (d), one point pulled out"),
-                   ("f", ["--surface", "3", "--mode", "mean"], "(f): mesh (g), two points lifted; mean curvature")],
+    "fig1_torus": [("shaded", ["--apart", "--boundaries"],
+                    "(a), (c) above, (e), (f) below (--apart): shaded, patch boundaries"),
+                   ("mean", ["--apart", "--mode", "mean"], "mean curvature: only (e) and (f) leave the torus")],
 }
 DEFAULT = [("shaded", ["--boundaries"], "shaded, patch boundaries; exact pieces tinted by shape"),
            ("mean", ["--mode", "mean"], "mean curvature")]

@@ -147,24 +147,30 @@ static rg2_status scene_points(const rg2_surface *surfs, int n, const rg2_mesh *
 /* The view: direction from (azimuth, elevation), up = +z. Fit: centre the samples' extent
  * across the view and put the eye at the smallest distance where every sample lies inside
  * 92% of the field (exact for the fixed direction, perspective included). */
-static void camera_setup(camera *c, const rg2_render_opts *o, int vw, const double *pts, size_t npts)
+static void view_frame(const rg2_render_opts *o, double dir[3], double f[3], double r[3], double up[3])
 {
     double az = o->azimuth * M_PI / 180.0, el = o->elevation * M_PI / 180.0;
-    double dir[3] = {cos(el) * cos(az), cos(el) * sin(az), sin(el)}; /* centre -> eye */
+    dir[0] = cos(el) * cos(az), dir[1] = cos(el) * sin(az), dir[2] = sin(el); /* centre -> eye */
+    for (int k = 0; k < 3; k++)
+        f[k] = -dir[k];
+    double z[3] = {0, 0, 1};
+    cross3(f, z, r);
+    if (dot3(r, r) < 1e-20) { /* looking straight up or down: y is up */
+        double y[3] = {0, 1, 0};
+        cross3(f, y, r);
+    }
+    unit3(r);
+    cross3(r, f, up);
+}
+
+static void camera_setup(camera *c, const rg2_render_opts *o, int vw, const double *pts, size_t npts)
+{
+    double dir[3];
+    view_frame(o, dir, c->f, c->r, c->up);
     c->vw = vw;
     c->h = o->height;
     c->ty = tan(0.5 * o->fov * M_PI / 180.0);
     c->tx = c->ty * (double)vw / (double)o->height;
-    for (int k = 0; k < 3; k++)
-        c->f[k] = -dir[k];
-    double z[3] = {0, 0, 1};
-    cross3(c->f, z, c->r);
-    if (dot3(c->r, c->r) < 1e-20) { /* looking straight up or down: y is up */
-        double y[3] = {0, 1, 0};
-        cross3(c->f, y, c->r);
-    }
-    unit3(c->r);
-    cross3(c->r, c->f, c->up);
     /* extents in the camera frame */
     double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
     for (size_t k = 0; k < npts; k++) {
@@ -901,6 +907,68 @@ static void edges(const camera *c, const rg2_pixel *pix, int boundaries, rg2_ima
         }
 }
 
+/* opts.apart: moved copies of the surfaces (and meshes), laid out in a grid of cells across the
+ * view, ceil(sqrt(n)) columns along the camera's right vector and rows along its up vector,
+ * surface 0 top left. Every cell has the size of the largest surface's extent across the view
+ * (from the same samples that fit the view) and a gap of a tenth of it; each surface is moved
+ * by a translation, so its shape, normals and curvatures are the same. */
+static rg2_status render_apart(const rg2_surface *surfs, int n, const rg2_mesh *meshes, const rg2_render_opts *o,
+                               rg2_image *out, rg2_error *err)
+{
+    double dir[3], f[3], r[3], up[3];
+    view_frame(o, dir, f, r, up);
+    double *box = rg2__calloc((size_t)n, 4 * sizeof *box); /* lo, hi along r, then along up */
+    rg2_surface *cs = rg2__calloc((size_t)n, sizeof *cs);
+    rg2_mesh *cm = o->mesh ? rg2__calloc((size_t)n, sizeof *cm) : NULL;
+    rg2_status st = RG2_OK;
+    if (!box || !cs || (o->mesh && !cm)) {
+        st = rg2__fail(err, RG2_ENOMEM, "render: out of memory for %d surfaces laid apart", n);
+        goto done;
+    }
+    double cw = 0, ch = 0;
+    for (int s = 0; s < n; s++) {
+        double *pts = NULL, *b = box + 4 * s;
+        size_t npts = 0;
+        if ((st = scene_points(surfs + s, 1, meshes ? meshes + s : NULL, o->mesh, &pts, &npts, err)))
+            goto done;
+        b[0] = b[2] = DBL_MAX, b[1] = b[3] = -DBL_MAX;
+        for (size_t k = 0; k < npts; k++) {
+            double x = dot3(pts + 3 * k, r), y = dot3(pts + 3 * k, up);
+            b[0] = fmin(b[0], x), b[1] = fmax(b[1], x), b[2] = fmin(b[2], y), b[3] = fmax(b[3], y);
+        }
+        free(pts);
+        cw = fmax(cw, b[1] - b[0]), ch = fmax(ch, b[3] - b[2]);
+    }
+    double cell = fmax(cw, ch) > 0 ? fmax(cw, ch) : 1.0;
+    cw = 1.1 * fmax(cw, 1e-3 * cell), ch = 1.1 * fmax(ch, 1e-3 * cell);
+    int cols = (int)ceil(sqrt((double)n));
+    for (int s = 0; s < n; s++) {
+        if ((st = rg2_surface_copy(&surfs[s], &cs[s], err)))
+            goto done;
+        if (o->mesh && (st = rg2_mesh_copy(&meshes[s], &cm[s], err)))
+            goto done;
+        const double *b = box + 4 * s;
+        double dx = (s % cols) * cw - 0.5 * (b[0] + b[1]), dy = -(s / cols) * ch - 0.5 * (b[2] + b[3]), M[16];
+        rg2_xform_translate(M, dx * r[0] + dy * up[0], dx * r[1] + dy * up[1], dx * r[2] + dy * up[2]);
+        rg2_surface_transform(&cs[s], M);
+        if (o->mesh)
+            rg2_mesh_transform(&cm[s], M);
+    }
+    rg2_render_opts oo = *o;
+    oo.apart = 0;
+    st = rg2_render(cs, n, cm, &oo, out, err);
+done:
+    for (int s = 0; s < n && cs; s++) {
+        rg2_surface_free(&cs[s]);
+        if (cm)
+            rg2_mesh_free(&cm[s]);
+    }
+    free(cs);
+    free(cm);
+    free(box);
+    return st;
+}
+
 rg2_status rg2_render(const rg2_surface *surfs, int n, const rg2_mesh *meshes, const rg2_render_opts *o,
                       rg2_image *out, rg2_error *err)
 {
@@ -915,6 +983,8 @@ rg2_status rg2_render(const rg2_surface *surfs, int n, const rg2_mesh *meshes, c
     rg2_status st = check_input(surfs, n, meshes, o, err);
     if (st)
         return st;
+    if (o->apart && n > 1)
+        return render_apart(surfs, n, meshes, o, out, err);
     int nt = 1;
 #ifdef _OPENMP
     nt = o->threads > 0 ? o->threads : omp_get_max_threads();

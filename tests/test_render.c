@@ -705,6 +705,117 @@ static void options(void)
            sizeof bad / sizeof bad[0]);
 }
 
+/* opts.apart: copies of one sphere band laid out in a grid across the view. Each copy's pixels
+ * are exact points of a unit sphere (the centre p - n or p + n is one point to 1e-12); the
+ * copies' pixels lie in disjoint boxes of the picture, the centres moved across the view only
+ * (none nearer the eye), in ceil(sqrt(n)) columns with surface 0 top left; every copy shows about as many pixels. One surface apart is
+ * the picture as placed, byte for byte. */
+static void apart(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_revolve(0.0, 1.0, 6, 4, 0, -M_PI / 3, M_PI / 6, &m, &s, &err), &err);
+    rg2_surface S[4] = {s, s, s, s};
+    rg2_mesh Ms[4] = {m, m, m, m};
+    rg2_render_opts o;
+    rg2_render_opts_default(&o);
+    o.width = 240;
+    o.height = 180;
+    o.keep_pixels = 1;
+    o.apart = 1;
+    double az = o.azimuth * M_PI / 180, el = o.elevation * M_PI / 180;
+    double dir[3] = {cos(el) * cos(az), cos(el) * sin(az), sin(el)}, r[3] = {-dir[1], dir[0], 0}, up[3];
+    double rn = sqrt(r[0] * r[0] + r[1] * r[1]);
+    r[0] /= rn, r[1] /= rn;
+    up[0] = -r[1] * dir[2], up[1] = r[0] * dir[2], up[2] = r[1] * dir[0] - r[0] * dir[1]; /* r x f, f = -dir */
+    for (int n = 2; n <= 4; n += 2) {
+        rg2_image img;
+        CHECK_OK(rg2_render(S, n, NULL, &o, &img, &err), &err);
+        double c[4][3] = {{0}}, spread = 0;
+        int count[4] = {0};
+        for (int sgn = -1; sgn <= 1; sgn += 2) { /* the centre candidate p + sgn n that is one point */
+            double cc[4][3], sp = 0;
+            int seen[4] = {0};
+            for (int k = 0; k < img.width * img.height; k++) {
+                const rg2_pixel *p = &img.pixels[k];
+                if (p->surf < 0)
+                    continue;
+                for (int q = 0; q < 3; q++) {
+                    double x = p->p[q] + sgn * p->n[q];
+                    if (!seen[p->surf])
+                        cc[p->surf][q] = x;
+                    sp = fmax(sp, fabs(x - cc[p->surf][q]));
+                }
+                seen[p->surf]++;
+            }
+            if (sgn < 0 || sp < spread) {
+                spread = sp;
+                memcpy(c, cc, sizeof c);
+                memcpy(count, seen, sizeof count);
+            }
+        }
+        int box[4][4]; /* pixel bounding box of each copy: x0, x1, y0, y1 */
+        for (int a = 0; a < n; a++)
+            box[a][0] = box[a][2] = 1 << 30, box[a][1] = box[a][3] = -1;
+        for (int k = 0; k < img.width * img.height; k++) {
+            int a = img.pixels[k].surf, px = k % img.width, py = k / img.width;
+            if (a < 0)
+                continue;
+            box[a][0] = px < box[a][0] ? px : box[a][0], box[a][1] = px > box[a][1] ? px : box[a][1];
+            box[a][2] = py < box[a][2] ? py : box[a][2], box[a][3] = py > box[a][3] ? py : box[a][3];
+        }
+        int disjoint = 1;
+        for (int a = 0; a < n; a++)
+            for (int b = 0; b < a; b++)
+                disjoint &= box[a][1] < box[b][0] || box[b][1] < box[a][0] || box[a][3] < box[b][2] ||
+                            box[b][3] < box[a][2];
+        int lo = count[0], hi = count[0];
+        for (int a = 1; a < n; a++)
+            lo = count[a] < lo ? count[a] : lo, hi = count[a] > hi ? count[a] : hi;
+        double nearest = HUGE_VAL, depth = 0, x[4], y[4];
+        for (int a = 0; a < n; a++) {
+            x[a] = c[a][0] * r[0] + c[a][1] * r[1] + c[a][2] * r[2];
+            y[a] = c[a][0] * up[0] + c[a][1] * up[1] + c[a][2] * up[2];
+            for (int b = 0; b < a; b++) {
+                double d2 = 0, dd = 0;
+                for (int q = 0; q < 3; q++)
+                    d2 += (c[a][q] - c[b][q]) * (c[a][q] - c[b][q]), dd += (c[a][q] - c[b][q]) * dir[q];
+                nearest = fmin(nearest, sqrt(d2));
+                depth = fmax(depth, fabs(dd));
+            }
+        }
+        int layout = n == 2 ? x[0] < x[1] - 2 && fabs(y[0] - y[1]) < 1e-9
+                            : x[0] < x[1] - 2 && x[2] < x[3] - 2 && fabs(x[0] - x[2]) < 1e-9 &&
+                                  fabs(x[1] - x[3]) < 1e-9 && y[0] > y[2] + 1 && fabs(y[0] - y[1]) < 1e-9 &&
+                                  fabs(y[2] - y[3]) < 1e-9;
+        printf("apart: %d copies of a sphere band: %d..%d pixels each, centre per copy to %.2e, nearest "
+               "centres %.3f apart, depth difference %.1e\n",
+               n, lo, hi, spread, nearest, depth);
+        CHECK(lo > 800 && hi <= lo * 5 / 4, "%d copies show %d..%d pixels each", n, lo, hi);
+        CHECK(spread <= 1e-12, "every pixel of a copy lies on its unit sphere: centre to %.3g", spread);
+        CHECK(disjoint && depth <= 1e-9, "%d copies: pixel boxes disjoint (%d), depth difference %.3g", n, disjoint,
+              depth);
+        CHECK(layout, "%d copies in ceil(sqrt(n)) columns, surface 0 top left", n);
+        rg2_image_free(&img);
+    }
+    /* with the mesh overlay, and one surface: as placed */
+    o.keep_pixels = 0;
+    o.mesh = 1;
+    rg2_image a, b;
+    CHECK_OK(rg2_render(S, 3, Ms, &o, &a, &err), &err);
+    CHECK(a.foreground > 1500, "3 copies with their meshes: %d surface pixels", a.foreground);
+    rg2_image_free(&a);
+    CHECK_OK(rg2_render(S, 1, Ms, &o, &a, &err), &err);
+    o.apart = 0;
+    CHECK_OK(rg2_render(S, 1, Ms, &o, &b, &err), &err);
+    CHECK(!memcmp(a.rgb, b.rgb, (size_t)o.width * o.height * 3), "one surface apart: the picture as placed");
+    rg2_image_free(&a);
+    rg2_image_free(&b);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 int main(void)
 {
     for (int mixed = 0; mixed < 2; mixed++) {
@@ -717,5 +828,6 @@ int main(void)
     png_valid_and_deterministic();
     errors();
     options();
+    apart();
     return rg2t_done("test_render");
 }

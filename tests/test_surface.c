@@ -2,6 +2,7 @@
  * measured geometrically and parametrically, for all closed/open combinations. */
 #include "../src/internal.h"
 #include "harness.h"
+#include "xmix.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -221,6 +222,21 @@ static int same_surface(const rg2_surface *a, const rg2_surface *b)
            !memcmp(a->gv, b->gv, a->nv * sizeof(double)) && !a->tag == !b->tag && !a->xp == !b->xp;
 }
 
+/* A random mesh: random scalars, points in [-1, 1]^3, weights in [0.6, 1.6]. */
+static void random_mesh(rg2t_rng *r, int nu, int nv, int cu, int cv, rg2_mesh *m)
+{
+    rg2_error err;
+    CHECK_OK(rg2_mesh_init(m, nu, nv, cu, cv, &err), &err);
+    random_scalars(r, &m->su);
+    random_scalars(r, &m->sv);
+    for (int k = 0; k < nu * nv; k++) {
+        double W = rg2t_uniform(r, 0.6, 1.6);
+        for (int q = 0; q < 3; q++)
+            m->p[4 * k + q] = W * rg2t_uniform(r, -1, 1);
+        m->p[4 * k + 3] = W;
+    }
+}
+
 /* rg2_surface_rebuild: the result of rg2_surface_build bit for bit, into the old memory when the
  * patch counts stay (an editing loop), into new memory otherwise; old tags and higher-degree
  * patches dropped; on failure the surface is left empty (ASan sees any leak). */
@@ -236,15 +252,7 @@ static void rebuild(void)
         int cu = trial & 1, cv = (trial >> 1) & 1;
         int nu = rg2t_int(&r, cu ? 3 : 4, 9), nv = rg2t_int(&r, cv ? 3 : 4, 9);
         rg2_mesh m;
-        CHECK_OK(rg2_mesh_init(&m, nu, nv, cu, cv, &err), &err);
-        random_scalars(&r, &m.su);
-        random_scalars(&r, &m.sv);
-        for (int k = 0; k < nu * nv; k++) {
-            double W = rg2t_uniform(&r, 0.6, 1.6);
-            for (int q = 0; q < 3; q++)
-                m.p[4 * k + q] = W * rg2t_uniform(&r, -1, 1);
-            m.p[4 * k + 3] = W;
-        }
+        random_mesh(&r, nu, nv, cu, cv, &m);
         if (trial % 3 == 2) { /* the previous surface carries tags and higher-degree slots */
             size_t np = (size_t)s.nu * (size_t)s.nv;
             s.tag = calloc(np ? np : 1, sizeof(int));
@@ -525,6 +533,102 @@ static void construction_paths(void)
            compared, overflows, avx512 ? "on this CPU" : "not in this build or CPU: the portable path twice");
 }
 
+/* rg2_surface_transform: the homogeneous values and derivatives of every patch (bi-3 and, after
+ * xmix_elevate, higher degree) become M times the old ones; a bi-3 surface transformed equals the
+ * construction of the transformed mesh; a rigid motion keeps K and H and turns the normal. */
+static void transform(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 4242);
+    rg2_error err;
+    double worst_h = 0, worst_build = 0, worst_kh = 0, worst_n = 0;
+    int xpatches = 0;
+    for (int trial = 0; trial < 8; trial++) {
+        int cu = trial & 1, cv = (trial >> 1) & 1, projective = trial & 4;
+        int nu = rg2t_int(&r, cu ? 3 : 5, 9), nv = rg2t_int(&r, cv ? 3 : 5, 9);
+        rg2_mesh m, mt;
+        random_mesh(&r, nu, nv, cu, cv, &m);
+        double M[16], T[16], R[16];
+        rg2_xform_rotate(R, rg2t_uniform(&r, -1, 1), rg2t_uniform(&r, -1, 1), 1, rg2t_uniform(&r, -3, 3));
+        rg2_xform_translate(T, rg2t_uniform(&r, -5, 5), rg2t_uniform(&r, -5, 5), rg2t_uniform(&r, -5, 5));
+        rg2_xform_mul(T, R, M);
+        if (projective) /* w' = w + 0.1 x - 0.05 y + 0.08 z stays > 0.6 W (1 - 0.23) */
+            M[12] = 0.1, M[13] = -0.05, M[14] = 0.08;
+        CHECK_OK(rg2_mesh_copy(&m, &mt, &err), &err);
+        rg2_mesh_transform(&mt, M);
+        rg2_surface s, st, sb;
+        CHECK_OK(rg2_surface_build(&m, &s, &err), &err);
+        CHECK_OK(rg2_surface_build(&mt, &sb, &err), &err);
+        CHECK_OK(rg2_surface_copy(&s, &st, &err), &err);
+        rg2_surface_transform(&st, M);
+        size_t np = (size_t)s.nu * (size_t)s.nv;
+        double big = 0, diff = 0;
+        for (size_t k = 0; k < np; k++)
+            for (int a = 0; a < 4; a++)
+                for (int b = 0; b < 4; b++)
+                    for (int q = 0; q < 4; q++) {
+                        big = fmax(big, fabs(sb.patch[k].h[a][b][q]));
+                        diff = fmax(diff, fabs(st.patch[k].h[a][b][q] - sb.patch[k].h[a][b][q]));
+                    }
+        worst_build = fmax(worst_build, diff / big);
+        if (trial & 2) { /* higher-degree patches: transformed through their own control points */
+            rg2_surface_free(&st);
+            CHECK_OK(xmix_elevate(&s, &err), &err);
+            CHECK_OK(rg2_surface_copy(&s, &st, &err), &err);
+            rg2_surface_transform(&st, M);
+            xpatches += xmix_count(&st);
+        }
+        for (int i = 0; i < s.nu; i++)
+            for (int j = 0; j < s.nv; j++) {
+                rg2_xpatch X; /* errors relative to the transformed patch's largest control value */
+                rg2_surface_patch_get(&st, i, j, &X);
+                double cp = 0;
+                for (int a = 0; a <= X.du; a++)
+                    for (int b = 0; b <= X.dv; b++)
+                        for (int q = 0; q < 4; q++)
+                            cp = fmax(cp, fabs(X.h[a][b][q]));
+                for (int t = 0; t < 4; t++) {
+                    double u = rg2t_uniform(&r, 0, 1), v = rg2t_uniform(&r, 0, 1), a[6][4], b[6][4];
+                    rg2_surface_eval_h(&s, i, j, u, v, a);
+                    rg2_surface_eval_h(&st, i, j, u, v, b);
+                    for (int d = 0; d < 6; d++) {
+                        for (int q = 0; q < 4; q++) {
+                            double want = M[4 * q] * a[d][0] + M[4 * q + 1] * a[d][1] + M[4 * q + 2] * a[d][2] +
+                                          M[4 * q + 3] * a[d][3];
+                            worst_h = fmax(worst_h, fabs(b[d][q] - want) / cp);
+                        }
+                    }
+                    if (projective)
+                        continue;
+                    rg2_eval e0, e1;
+                    rg2_surface_eval(&s, i, j, u, v, 2, &e0);
+                    rg2_surface_eval(&st, i, j, u, v, 2, &e1);
+                    if (!isfinite(e0.K) || !isfinite(e0.H) || fabs(e0.K) > 1e6 || fabs(e0.H) > 1e3)
+                        continue; /* near a degenerate point of the random surface */
+                    worst_kh = fmax(worst_kh, fabs(e1.K - e0.K) / fmax(1, fabs(e0.K)));
+                    worst_kh = fmax(worst_kh, fabs(e1.H - e0.H) / fmax(1, fabs(e0.H)));
+                    for (int q = 0; q < 3; q++)
+                        worst_n = fmax(worst_n, fabs(e1.n[q] - (R[4 * q] * e0.n[0] + R[4 * q + 1] * e0.n[1] +
+                                                               R[4 * q + 2] * e0.n[2])));
+                }
+            }
+        rg2_surface_free(&s);
+        rg2_surface_free(&st);
+        rg2_surface_free(&sb);
+        rg2_mesh_free(&m);
+        rg2_mesh_free(&mt);
+    }
+    printf("transform: 8 surfaces (4 projective maps, %d higher-degree patches): homogeneous values and "
+           "derivatives %.2e (of the largest control value), against the transformed mesh's construction %.2e; rigid: K, H %.2e, normal %.2e\n",
+           xpatches, worst_h, worst_build, worst_kh, worst_n);
+    CHECK(xpatches > 0, "the transformed surfaces hold %d higher-degree patches", xpatches);
+    CHECK(worst_h <= 1e-13, "transformed patches: M times the homogeneous values and derivatives to %.3g of the "
+          "largest control value", worst_h);
+    CHECK(worst_build <= 1e-14, "transformed surface = construction of the transformed mesh to %.3g", worst_build);
+    CHECK(worst_kh <= 1e-9 && worst_n <= 1e-10, "rigid motion: K, H kept to %.3g, normal turned to %.3g", worst_kh,
+          worst_n);
+}
+
 int main(void)
 {
     construction_paths();
@@ -537,5 +641,6 @@ int main(void)
     mesh_errors();
     rebuild();
     big_surface();
+    transform();
     return rg2t_done("test_surface");
 }

@@ -59,6 +59,15 @@ f9=$SRC/examples/fig9_polar_sphere.json
   "$RG2" render "$f9" -o "$tmp/f9_1.png" --size 96x64 --surface 1 || bad "render fig9 --surface"
 differ f9 f9_0 "--surface 0 of two"; differ f9 f9_1 "--surface 1 of two"; differ f9_0 f9_1 "--surface 0 and 1"
 expect 2 "--surface 2: the design has 2 surfaces" -- "$RG2" render "$f9" -o "$tmp/f9_2.png" --surface 2
+# --apart: Fig. 1's four overlapping tori laid out apart differ from them on top of each other;
+# one surface apart is the surface as placed (test_render measures the layout itself)
+f1=$SRC/examples/fig1_torus.json
+"$RG2" render "$f1" -o "$tmp/f1.png" --size 96x64 && "$RG2" render "$f1" -o "$tmp/f1_apart.png" --size 96x64 --apart &&
+  "$RG2" render "$f1" -o "$tmp/f1_s2.png" --size 96x64 --surface 2 &&
+  "$RG2" render "$f1" -o "$tmp/f1_s2_apart.png" --size 96x64 --surface 2 --apart || bad "render fig1 --apart"
+differ f1 f1_apart "--apart lays the four tori out"
+same f1_s2 f1_s2_apart "--apart with one surface"
+png_is "$tmp/f1_apart.png" 96 64
 # same bytes for 1 and 2 threads
 "$RG2" render "$ex" -o "$tmp/t1.png" --mode zebra --size 160x120 --threads 1 &&
   "$RG2" render "$ex" -o "$tmp/t2.png" --mode zebra --size 160x120 --threads 2 &&
