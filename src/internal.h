@@ -176,6 +176,8 @@ void rg2__xgrid_patch(const rg2_xpatch *x, const rg2__xgrid *t, const rg2_grid_o
 void rg2__surface_normalize_weights(rg2_surface *s);
 /* RG2_ENONFINITE naming "<what>: surface <index> patch (i,j)" if a control value is not finite. */
 rg2_status rg2__surface_check_finite(const rg2_surface *s, const char *what, int index, rg2_error *err);
+/* p = M p for a homogeneous 4-tuple p (row-major M), as rg2_mesh_transform does per point. */
+void rg2__xform_apply(const double M[16], double p[4]);
 
 /* Two tangent vectors a, b scaled in place by one power of two 2^-e (exact), when the largest
  * |component| m lies outside [2^-128, 2^128]: then m becomes 1 <= m < 2 and the squares and

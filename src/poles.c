@@ -35,14 +35,6 @@ rg2_status rg2_polar_knots(const double *v, int m, double *knots, rg2_error *err
     return RG2_OK;
 }
 
-static void apply4(const double *M, double p[4])
-{
-    double q[4];
-    for (int r = 0; r < 4; r++)
-        q[r] = M[4 * r] * p[0] + M[4 * r + 1] * p[1] + M[4 * r + 2] * p[2] + M[4 * r + 3] * p[3];
-    memcpy(p, q, sizeof q);
-}
-
 /*
  * METHOD: family 2 (MATH.md section 5), h = (2v(1-v) cu, 2v(1-v) su, 2v - 1, 2v^2 - 2v + 1).
  * Control 4-tuple (i, j) = products of the circle coefficients (C_i, S_i) and the blossoms
@@ -99,7 +91,7 @@ rg2_status rg2_polar_sphere_mesh(const double *alpha, int n_alpha, double theta0
                 p[3] = w;
             }
             if (M)
-                apply4(M, p);
+                rg2__xform_apply(M, p);
         }
     }
 done:

@@ -1085,15 +1085,19 @@ rg2_status rg2_xform_invert(const double M[16], double inv[16], rg2_error *err)
     return RG2_OK;
 }
 
+void rg2__xform_apply(const double M[16], double p[4])
+{
+    double q[4];
+    for (int r = 0; r < 4; r++)
+        q[r] = M[4 * r] * p[0] + M[4 * r + 1] * p[1] + M[4 * r + 2] * p[2] + M[4 * r + 3] * p[3];
+    memcpy(p, q, sizeof q);
+}
+
 void rg2_mesh_transform(rg2_mesh *m, const double M[16])
 {
     size_t np = (size_t)m->nu * (size_t)m->nv;
-    for (size_t k = 0; k < np; k++) {
-        double *p = m->p + 4 * k, q[4];
-        for (int r = 0; r < 4; r++)
-            q[r] = M[4 * r] * p[0] + M[4 * r + 1] * p[1] + M[4 * r + 2] * p[2] + M[4 * r + 3] * p[3];
-        memcpy(p, q, sizeof q);
-    }
+    for (size_t k = 0; k < np; k++)
+        rg2__xform_apply(M, m->p + 4 * k);
 }
 
 /* ------------------------------------------------------------------------------------- */

@@ -400,14 +400,6 @@ rg2_status rg2_surface_rebuild(const rg2_mesh *m, rg2_surface *s, rg2_error *err
     return build_into(m, s, err);
 }
 
-static void transform4(const double M[16], double *p)
-{
-    double q[4];
-    for (int r = 0; r < 4; r++)
-        q[r] = M[4 * r] * p[0] + M[4 * r + 1] * p[1] + M[4 * r + 2] * p[2] + M[4 * r + 3] * p[3];
-    memcpy(p, q, sizeof q);
-}
-
 void rg2_surface_transform(rg2_surface *s, const double M[16])
 {
     size_t np = (size_t)s->nu * (size_t)s->nv;
@@ -416,11 +408,11 @@ void rg2_surface_transform(rg2_surface *s, const double M[16])
             rg2_xpatch *x = s->xp + k;
             for (int r = 0; r <= x->du; r++)
                 for (int t = 0; t <= x->dv; t++)
-                    transform4(M, x->h[r][t]);
+                    rg2__xform_apply(M, x->h[r][t]);
         } else
             for (int r = 0; r < 4; r++)
                 for (int t = 0; t < 4; t++)
-                    transform4(M, s->patch[k].h[r][t]);
+                    rg2__xform_apply(M, s->patch[k].h[r][t]);
     }
 }
 
