@@ -881,8 +881,9 @@ typedef struct {
                                 across the view); <= 0 fits the view to the scene */
     double fov;            /**< vertical field of view in degrees (default 30) */
     int apart;             /**< n > 1: lay the surfaces out apart, in a grid across the view
-                                (ceil(sqrt(n)) columns, surface 0 top left), each moved by a
-                                translation; for outputs that overlap (default 0: as placed) */
+                                (ceil(sqrt(n)) columns, surface 0 top left, all at one depth),
+                                each moved by a translation; for outputs that overlap (default
+                                0: as placed) */
     int boundaries;        /**< draw patch boundaries (seams) as thin dark lines */
     int mesh;              /**< overlay the control meshes (needs meshes != NULL) */
     int tint;              /**< shaded: tint patches by shape tag (default 1) */

@@ -909,15 +909,16 @@ static void edges(const camera *c, const rg2_pixel *pix, int boundaries, rg2_ima
 
 /* opts.apart: moved copies of the surfaces (and meshes), laid out in a grid of cells across the
  * view, ceil(sqrt(n)) columns along the camera's right vector and rows along its up vector,
- * surface 0 top left. Every cell has the size of the largest surface's extent across the view
- * (from the same samples that fit the view) and a gap of a tenth of it; each surface is moved
- * by a translation, so its shape, normals and curvatures are the same. */
+ * surface 0 top left, each centred at the same depth (so perspective draws them alike). Every
+ * cell has the size of the largest surface's extent across the view (from the same samples that
+ * fit the view) and a gap of a tenth of it; each surface is moved by a translation, so its
+ * shape, normals and curvatures are the same. */
 static rg2_status render_apart(const rg2_surface *surfs, int n, const rg2_mesh *meshes, const rg2_render_opts *o,
                                rg2_image *out, rg2_error *err)
 {
     double dir[3], f[3], r[3], up[3];
     view_frame(o, dir, f, r, up);
-    double *box = rg2__calloc((size_t)n, 4 * sizeof *box); /* lo, hi along r, then along up */
+    double *box = rg2__calloc((size_t)n, 6 * sizeof *box); /* lo, hi along r, up, dir */
     rg2_surface *cs = rg2__calloc((size_t)n, sizeof *cs);
     rg2_mesh *cm = o->mesh ? rg2__calloc((size_t)n, sizeof *cm) : NULL;
     rg2_status st = RG2_OK;
@@ -925,19 +926,22 @@ static rg2_status render_apart(const rg2_surface *surfs, int n, const rg2_mesh *
         st = rg2__fail(err, RG2_ENOMEM, "render: out of memory for %d surfaces laid apart", n);
         goto done;
     }
-    double cw = 0, ch = 0;
+    double cw = 0, ch = 0, depth = 0;
     for (int s = 0; s < n; s++) {
-        double *pts = NULL, *b = box + 4 * s;
+        double *pts = NULL, *b = box + 6 * s;
         size_t npts = 0;
         if ((st = scene_points(surfs + s, 1, meshes ? meshes + s : NULL, o->mesh, &pts, &npts, err)))
             goto done;
-        b[0] = b[2] = DBL_MAX, b[1] = b[3] = -DBL_MAX;
-        for (size_t k = 0; k < npts; k++) {
-            double x = dot3(pts + 3 * k, r), y = dot3(pts + 3 * k, up);
-            b[0] = fmin(b[0], x), b[1] = fmax(b[1], x), b[2] = fmin(b[2], y), b[3] = fmax(b[3], y);
+        const double *axis[3] = {r, up, dir};
+        for (int a = 0; a < 3; a++) {
+            b[2 * a] = DBL_MAX, b[2 * a + 1] = -DBL_MAX;
+            for (size_t k = 0; k < npts; k++) {
+                double x = dot3(pts + 3 * k, axis[a]);
+                b[2 * a] = fmin(b[2 * a], x), b[2 * a + 1] = fmax(b[2 * a + 1], x);
+            }
         }
         free(pts);
-        cw = fmax(cw, b[1] - b[0]), ch = fmax(ch, b[3] - b[2]);
+        cw = fmax(cw, b[1] - b[0]), ch = fmax(ch, b[3] - b[2]), depth += 0.5 * (b[4] + b[5]) / n;
     }
     double cell = fmax(cw, ch) > 0 ? fmax(cw, ch) : 1.0;
     cw = 1.1 * fmax(cw, 1e-3 * cell), ch = 1.1 * fmax(ch, 1e-3 * cell);
@@ -947,9 +951,12 @@ static rg2_status render_apart(const rg2_surface *surfs, int n, const rg2_mesh *
             goto done;
         if (o->mesh && (st = rg2_mesh_copy(&meshes[s], &cm[s], err)))
             goto done;
-        const double *b = box + 4 * s;
-        double dx = (s % cols) * cw - 0.5 * (b[0] + b[1]), dy = -(s / cols) * ch - 0.5 * (b[2] + b[3]), M[16];
-        rg2_xform_translate(M, dx * r[0] + dy * up[0], dx * r[1] + dy * up[1], dx * r[2] + dy * up[2]);
+        const double *b = box + 6 * s;
+        double dx = (s % cols) * cw - 0.5 * (b[0] + b[1]), dy = -(s / cols) * ch - 0.5 * (b[2] + b[3]);
+        double dz = depth - 0.5 * (b[4] + b[5]), t[3], M[16];
+        for (int k = 0; k < 3; k++)
+            t[k] = dx * r[k] + dy * up[k] + dz * dir[k];
+        rg2_xform_translate(M, t[0], t[1], t[2]);
         rg2_surface_transform(&cs[s], M);
         if (o->mesh)
             rg2_mesh_transform(&cm[s], M);

@@ -705,19 +705,18 @@ static void options(void)
            sizeof bad / sizeof bad[0]);
 }
 
-/* opts.apart: copies of one sphere band laid out in a grid across the view. Each copy's pixels
- * are exact points of a unit sphere (the centre p - n or p + n is one point to 1e-12); the
- * copies' pixels lie in disjoint boxes of the picture, the centres moved across the view only
- * (none nearer the eye), in ceil(sqrt(n)) columns with surface 0 top left; every copy shows about as many pixels. One surface apart is
- * the picture as placed, byte for byte. */
+/* opts.apart: copies of one sphere band, every other one placed 4 further from the eye, laid out
+ * in a grid across the view. Each copy's pixels are exact points of a unit sphere (the centre
+ * p - n or p + n is one point to 1e-12); the copies' pixels lie in disjoint boxes of the
+ * picture, the centres at one depth, in ceil(sqrt(n)) columns with surface 0 top left; every
+ * copy shows about as many pixels (the far ones are brought to the same depth). One surface
+ * apart is the picture as placed, byte for byte. */
 static void apart(void)
 {
     rg2_mesh m;
     rg2_surface s;
     rg2_error err;
     CHECK_OK(scene_revolve(0.0, 1.0, 6, 4, 0, -M_PI / 3, M_PI / 6, &m, &s, &err), &err);
-    rg2_surface S[4] = {s, s, s, s};
-    rg2_mesh Ms[4] = {m, m, m, m};
     rg2_render_opts o;
     rg2_render_opts_default(&o);
     o.width = 240;
@@ -725,7 +724,13 @@ static void apart(void)
     o.keep_pixels = 1;
     o.apart = 1;
     double az = o.azimuth * M_PI / 180, el = o.elevation * M_PI / 180;
-    double dir[3] = {cos(el) * cos(az), cos(el) * sin(az), sin(el)}, r[3] = {-dir[1], dir[0], 0}, up[3];
+    double dir[3] = {cos(el) * cos(az), cos(el) * sin(az), sin(el)}, r[3] = {-dir[1], dir[0], 0}, up[3], T[16];
+    rg2_surface far;
+    CHECK_OK(rg2_surface_copy(&s, &far, &err), &err);
+    rg2_xform_translate(T, -4 * dir[0], -4 * dir[1], -4 * dir[2]); /* dir points to the eye */
+    rg2_surface_transform(&far, T);
+    rg2_surface S[4] = {s, far, s, far};
+    rg2_mesh Ms[4] = {m, m, m, m};
     double rn = sqrt(r[0] * r[0] + r[1] * r[1]);
     r[0] /= rn, r[1] /= rn;
     up[0] = -r[1] * dir[2], up[1] = r[0] * dir[2], up[2] = r[1] * dir[0] - r[0] * dir[1]; /* r x f, f = -dir */
@@ -789,7 +794,7 @@ static void apart(void)
                             : x[0] < x[1] - 2 && x[2] < x[3] - 2 && fabs(x[0] - x[2]) < 1e-9 &&
                                   fabs(x[1] - x[3]) < 1e-9 && y[0] > y[2] + 1 && fabs(y[0] - y[1]) < 1e-9 &&
                                   fabs(y[2] - y[3]) < 1e-9;
-        printf("apart: %d copies of a sphere band: %d..%d pixels each, centre per copy to %.2e, nearest "
+        printf("apart: %d copies of a sphere band (every other one 4 further): %d..%d pixels each, centre per copy to %.2e, nearest "
                "centres %.3f apart, depth difference %.1e\n",
                n, lo, hi, spread, nearest, depth);
         CHECK(lo > 800 && hi <= lo * 5 / 4, "%d copies show %d..%d pixels each", n, lo, hi);
@@ -813,6 +818,7 @@ static void apart(void)
     rg2_image_free(&a);
     rg2_image_free(&b);
     rg2_surface_free(&s);
+    rg2_surface_free(&far);
     rg2_mesh_free(&m);
 }
 
