@@ -1,6 +1,7 @@
 /* rg2 render -- per-pixel exact pictures of a design (rg2_render_png). */
 #include "cli.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -53,6 +54,54 @@ static int ranged(const char *opt, int argc, char **argv, int *i, double *v, dou
         return -1;
     }
     return 0;
+}
+
+/* Axis-aligned box of a surface's control points (those of positive weight; the surface lies in
+ * their convex hull where all weights are positive). */
+static void control_box(const rg2_surface *S, double lo[3], double hi[3])
+{
+    for (int k = 0; k < 3; k++)
+        lo[k] = HUGE_VAL, hi[k] = -HUGE_VAL;
+    for (int i = 0; i < S->nu; i++)
+        for (int j = 0; j < S->nv; j++) {
+            rg2_xpatch X;
+            rg2_surface_patch_get(S, i, j, &X);
+            for (int a = 0; a <= X.du; a++)
+                for (int b = 0; b <= X.dv; b++)
+                    for (int k = 0; k < 3 && X.h[a][b][3] > 0; k++) {
+                        double x = X.h[a][b][k] / X.h[a][b][3];
+                        lo[k] = fmin(lo[k], x), hi[k] = fmax(hi[k], x);
+                    }
+        }
+}
+
+/* Two output surfaces whose control boxes overlap by half or more along every axis (relative to
+ * the smaller extent) are drawn on top of each other: say so, and how to see them. */
+static void overlap_note(const rg2_surface *surfs, int n)
+{
+    double(*box)[2][3] = calloc((size_t)n, sizeof *box);
+    if (!box)
+        return;
+    for (int s = 0; s < n; s++)
+        control_box(&surfs[s], box[s][0], box[s][1]);
+    for (int a = 0; a < n; a++)
+        for (int b = 0; b < a; b++) {
+            int over = 1;
+            for (int k = 0; k < 3 && over; k++) {
+                double ea = box[a][1][k] - box[a][0][k], eb = box[b][1][k] - box[b][0][k];
+                double common = fmin(box[a][1][k], box[b][1][k]) - fmax(box[a][0][k], box[b][0][k]);
+                over = common >= 0.5 * fmin(ea, eb);
+            }
+            if (over) {
+                fprintf(stderr,
+                        "rg2 render: note: output surfaces %d and %d overlap, and are drawn on top of each "
+                        "other; --apart lays the surfaces out side by side, --surface K draws one\n",
+                        b, a);
+                free(box);
+                return;
+            }
+        }
+    free(box);
 }
 
 int rg2_cmd_render(int argc, char **argv)
@@ -179,6 +228,8 @@ int rg2_cmd_render(int argc, char **argv)
         fprintf(stderr, "rg2 render: --surface %d: the design has %d surface%s\n", only, n, n == 1 ? "" : "s");
         rc = RG2_EXIT_USAGE; /* an option value out of its range, like --size */
     }
+    if (!rc && only < 0 && !o.apart && n > 1)
+        overlap_note(surfs, n);
     if (!rc) {
         rg2_error err = {0};
         if (only >= 0 && rg2_render_png(surfs + only, 1, meshes + only, &o, out, &err))

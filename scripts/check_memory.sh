@@ -40,6 +40,7 @@ run 0 "$rg2" info --map "$ex"
 run 0 "$rg2" mesh "$ex" -o "$tmp/mesh.json"
 run 0 "$rg2" build -q "$ex" --face-per-mesh --ap242 -o "$tmp/m.step" -o "$tmp/m.igs" -o "$tmp/m.obj" -o "$tmp/m.ply" -o "$tmp/m.bez"
 run 0 "$rg2" build -q "$src/examples/fig9_polar_sphere.json" --iges-brep -o "$tmp/b.igs"
+if has render; then run 0 "$rg2" render "$src/examples/fig1_torus.json" -o "$tmp/apart.png" --size 64x48 --apart --mesh; fi
 run 0 "$rg2" build -q "$src/examples/fig9_polar_sphere.json" --iges-brep --face-per-mesh -o "$tmp/bm.igs"
 run 0 "$rg2" demo
 run 0 "$rg2" shapes

@@ -61,10 +61,17 @@ differ f9 f9_0 "--surface 0 of two"; differ f9 f9_1 "--surface 1 of two"; differ
 expect 2 "--surface 2: the design has 2 surfaces" -- "$RG2" render "$f9" -o "$tmp/f9_2.png" --surface 2
 # --apart: Fig. 1's four overlapping tori laid out apart differ from them on top of each other;
 # one surface apart is the surface as placed (test_render measures the layout itself)
+# (drawn as placed, overlapping outputs get a note on stderr pointing to --apart; fig9's two
+# spheres side by side do not)
 f1=$SRC/examples/fig1_torus.json
-"$RG2" render "$f1" -o "$tmp/f1.png" --size 96x64 && "$RG2" render "$f1" -o "$tmp/f1_apart.png" --size 96x64 --apart &&
-  "$RG2" render "$f1" -o "$tmp/f1_s2.png" --size 96x64 --surface 2 &&
+"$RG2" render "$f1" -o "$tmp/f1.png" --size 96x64 2>"$tmp/f1.err" &&
+  "$RG2" render "$f1" -o "$tmp/f1_apart.png" --size 96x64 --apart 2>"$tmp/f1_apart.err" &&
+  "$RG2" render "$f1" -o "$tmp/f1_s2.png" --size 96x64 --surface 2 2>"$tmp/f1_s2.err" &&
   "$RG2" render "$f1" -o "$tmp/f1_s2_apart.png" --size 96x64 --surface 2 --apart || bad "render fig1 --apart"
+grep -q "note: output surfaces 0 and 1 overlap.*--apart" "$tmp/f1.err" && ok || bad "fig1 as placed: no overlap note"
+[ ! -s "$tmp/f1_apart.err" ] && [ ! -s "$tmp/f1_s2.err" ] && ok || bad "overlap note with --apart or --surface"
+"$RG2" render "$f9" -o "$tmp/f9n.png" --size 96x64 2>"$tmp/f9.err" && [ ! -s "$tmp/f9.err" ] && ok ||
+  bad "fig9 (surfaces side by side): $(cat "$tmp/f9.err")"
 differ f1 f1_apart "--apart lays the four tori out"
 same f1_s2 f1_s2_apart "--apart with one surface"
 png_is "$tmp/f1_apart.png" 96 64
