@@ -56,25 +56,6 @@ static int ranged(const char *opt, int argc, char **argv, int *i, double *v, dou
     return 0;
 }
 
-/* Axis-aligned box of a surface's control points (those of positive weight; the surface lies in
- * their convex hull where all weights are positive). */
-static void control_box(const rg2_surface *S, double lo[3], double hi[3])
-{
-    for (int k = 0; k < 3; k++)
-        lo[k] = HUGE_VAL, hi[k] = -HUGE_VAL;
-    for (int i = 0; i < S->nu; i++)
-        for (int j = 0; j < S->nv; j++) {
-            rg2_xpatch X;
-            rg2_surface_patch_get(S, i, j, &X);
-            for (int a = 0; a <= X.du; a++)
-                for (int b = 0; b <= X.dv; b++)
-                    for (int k = 0; k < 3 && X.h[a][b][3] > 0; k++) {
-                        double x = X.h[a][b][k] / X.h[a][b][3];
-                        lo[k] = fmin(lo[k], x), hi[k] = fmax(hi[k], x);
-                    }
-        }
-}
-
 /* Two output surfaces whose control boxes overlap by half or more along every axis (relative to
  * the smaller extent) are drawn on top of each other: say so, and how to see them. */
 static void overlap_note(const rg2_surface *surfs, int n)
@@ -83,10 +64,11 @@ static void overlap_note(const rg2_surface *surfs, int n)
     if (!box)
         return;
     for (int s = 0; s < n; s++)
-        control_box(&surfs[s], box[s][0], box[s][1]);
+        if (!rg2_surface_box(&surfs[s], box[s][0], box[s][1]))
+            box[s][0][0] = NAN; /* no control point of positive weight: compared with none */
     for (int a = 0; a < n; a++)
         for (int b = 0; b < a; b++) {
-            int over = 1;
+            int over = !isnan(box[a][0][0]) && !isnan(box[b][0][0]);
             for (int k = 0; k < 3 && over; k++) {
                 double ea = box[a][1][k] - box[a][0][k], eb = box[b][1][k] - box[b][0][k];
                 double common = fmin(box[a][1][k], box[b][1][k]) - fmax(box[a][0][k], box[b][0][k]);

@@ -293,6 +293,9 @@ RG2_API void rg2_surface_degree(const rg2_surface *s, int *du, int *dv);
  *  rg2_surface_build of the transformed mesh (the construction is linear in the 4-tuples). A
  *  rigid motion or scaling keeps the weights; tags and junction scalars are kept. */
 RG2_API void rg2_surface_transform(rg2_surface *s, const double M[16]);
+/** Box [lo, hi] of the affine control points of positive weight of every patch (where all
+ *  weights are positive the surface lies inside it). Returns 0, and an empty box, when none. */
+RG2_API int rg2_surface_box(const rg2_surface *s, double lo[3], double hi[3]);
 /** Smallest homogeneous weight over all control points of all patches. */
 RG2_API double rg2_surface_min_weight(const rg2_surface *s);
 

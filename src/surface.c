@@ -416,6 +416,11 @@ void rg2_surface_transform(rg2_surface *s, const double M[16])
     }
 }
 
+int rg2_surface_box(const rg2_surface *s, double lo[3], double hi[3])
+{
+    return rg2__surface_ctrl_box(s, 1, lo, hi);
+}
+
 double rg2_surface_min_weight(const rg2_surface *s)
 {
     double mn = INFINITY;

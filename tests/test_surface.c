@@ -542,6 +542,7 @@ static void transform(void)
     rg2t_seed(&r, 4242);
     rg2_error err;
     double worst_h = 0, worst_build = 0, worst_kh = 0, worst_n = 0;
+    int box_same = 0, boxed = 0, box_pts = 0;
     int xpatches = 0;
     for (int trial = 0; trial < 8; trial++) {
         int cu = trial & 1, cv = (trial >> 1) & 1, projective = trial & 4;
@@ -612,6 +613,29 @@ static void transform(void)
                                                                R[4 * q + 2] * e0.n[2])));
                 }
             }
+        /* rg2_surface_box: the box of the positive-weight control points, found independently;
+         * the surface inside it where every weight is positive */
+        double lo[3], hi[3], wlo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, whi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+        CHECK(rg2_surface_box(&st, lo, hi), "trial %d: the box has points", trial);
+        for (int i = 0; i < st.nu; i++)
+            for (int j = 0; j < st.nv; j++) {
+                rg2_xpatch X;
+                rg2_surface_patch_get(&st, i, j, &X);
+                for (int a = 0; a <= X.du; a++)
+                    for (int b = 0; b <= X.dv; b++)
+                        for (int q = 0; q < 3 && X.h[a][b][3] > 0; q++)
+                            wlo[q] = fmin(wlo[q], X.h[a][b][q] / X.h[a][b][3]),
+                            whi[q] = fmax(whi[q], X.h[a][b][q] / X.h[a][b][3]);
+                for (int t = 0; t < 4 && rg2_surface_min_weight(&st) > 0; t++) {
+                    rg2_eval e;
+                    rg2_surface_eval(&st, i, j, rg2t_uniform(&r, 0, 1), rg2t_uniform(&r, 0, 1), 0, &e);
+                    for (int q = 0; q < 3; q++)
+                        boxed += e.p[q] >= lo[q] - 1e-12 * (hi[q] - lo[q]) && e.p[q] <= hi[q] + 1e-12 * (hi[q] - lo[q]),
+                            box_pts++;
+                }
+            }
+        for (int q = 0; q < 3; q++)
+            box_same += lo[q] == wlo[q] && hi[q] == whi[q];
         rg2_surface_free(&s);
         rg2_surface_free(&st);
         rg2_surface_free(&sb);
@@ -621,6 +645,10 @@ static void transform(void)
     printf("transform: 8 surfaces (4 projective maps, %d higher-degree patches): homogeneous values and "
            "derivatives %.2e (of the largest control value), against the transformed mesh's construction %.2e; rigid: K, H %.2e, normal %.2e\n",
            xpatches, worst_h, worst_build, worst_kh, worst_n);
+    printf("surface box: %d of 24 sides equal to the control points' own, %d of %d surface points inside\n",
+           box_same, boxed, box_pts);
+    CHECK(box_same == 24 && box_pts > 0 && boxed == box_pts, "rg2_surface_box: %d of 24 sides, %d of %d points inside",
+          box_same, boxed, box_pts);
     CHECK(xpatches > 0, "the transformed surfaces hold %d higher-degree patches", xpatches);
     CHECK(worst_h <= 1e-13, "transformed patches: M times the homogeneous values and derivatives to %.3g of the "
           "largest control value", worst_h);
