@@ -162,7 +162,7 @@ rg2_status rg2_partition_check(const rg2_partition *p, const char *what, rg2_err
             double a = p->values[k];
             if (!(a > 0.0 && a < M_PI))
                 return rg2__fail(err, RG2_EDOMAIN,
-                                 "%s partition: arc %d has opening angle %.17g rad (%.6g deg); it "
+                                 "%s partition: arc %d has opening angle %.17g rad (%.10g deg); it "
                                  "must lie in (0, pi)",
                                  what, k - off, a, a * 180.0 / M_PI);
             if (a < RG2_MIN_ARC)
