@@ -21,6 +21,14 @@ static rg2_status check_count(int n, int closed, const char *what, rg2_error *er
     return RG2_OK;
 }
 
+/* An opening angle outside (0, pi), in radians and in the degrees the user likely gave. */
+static rg2_status bad_arc(int k, double a, rg2_error *err)
+{
+    return rg2__fail(err, RG2_EDOMAIN,
+                     "arcs: arc %d has opening angle %.17g rad (%.10g deg); it must lie in (0, pi)", k, a,
+                     a * 180.0 / M_PI);
+}
+
 rg2_status rg2_scalars_init(rg2_scalars *s, int n, int closed, rg2_error *err)
 {
     memset(s, 0, sizeof *s);
@@ -170,9 +178,7 @@ rg2_status rg2_scalars_from_angles(rg2_scalars *s, const double *alpha, int n_al
         if (!rg2__finite(alpha[k]))
             return rg2__fail(err, RG2_ENONFINITE, "arcs: angle of arc %d is not finite", k - off);
         if (!(alpha[k] > 0.0 && alpha[k] < M_PI))
-            return rg2__fail(err, RG2_EDOMAIN,
-                             "arcs: arc %d has opening angle %.17g rad; it must lie in (0, pi)",
-                             k - off, alpha[k]);
+            return bad_arc(k - off, alpha[k], err);
     }
     st = rg2_scalars_init(s, n, closed, err);
     if (st)
@@ -210,9 +216,7 @@ rg2_status rg2_circle_coeffs(const double *alpha, int n_alpha, int closed, doubl
     double sum = 0.0;
     for (int k = 0; k < n_alpha; k++) {
         if (!rg2__finite(alpha[k]) || !(alpha[k] > 0.0 && alpha[k] < M_PI))
-            return rg2__fail(err, RG2_EDOMAIN,
-                             "arcs: arc %d has opening angle %.17g rad; it must lie in (0, pi)",
-                             k - off, alpha[k]);
+            return bad_arc(k - off, alpha[k], err);
         sum += alpha[k];
     }
     if (!rg2__finite(theta0))
@@ -220,8 +224,8 @@ rg2_status rg2_circle_coeffs(const double *alpha, int n_alpha, int closed, doubl
     if (closed && fabs(sum - 2.0 * M_PI) > 1e-12 * 2.0 * M_PI)
         return rg2__fail(err, RG2_EDOMAIN,
                          "arcs: a closed circle needs opening angles that sum to 2 pi; these sum to "
-                         "%.17g",
-                         sum);
+                         "%.17g rad (%.10g deg)",
+                         sum, sum * 180.0 / M_PI);
     /* Junction i sits at theta_i (start of arc i). Its control point is the intersection of
      * the lines through (b1, b2) of arcs i-1 and i; in a frame rotated by theta_i the line of
      * arc i is {x : x . m_i = c_i}, m_i = (cos beta_i, sin beta_i),

@@ -413,8 +413,12 @@ static void errors(void)
           "NaN angle named: %s", err.msg);
     a4[1] = M_PI;
     CHECK(rg2_circle_coeffs(a4, 4, 1, 0.0, cs, &err) == RG2_EDOMAIN &&
-              strstr(err.msg, "arcs: arc 1 has opening angle 3.1415926535897931 rad; it must lie in (0, pi)"),
+              strstr(err.msg, "arcs: arc 1 has opening angle 3.1415926535897931 rad (180 deg); it must lie in (0, pi)"),
           "circle arc of pi named: %s", err.msg);
+    a4[1] = 80.0 * M_PI / 180.0; /* a closed circle of 350 degrees */
+    CHECK(rg2_circle_coeffs(a4, 4, 1, 0.0, cs, &err) == RG2_EDOMAIN &&
+              strstr(err.msg, "sum to 2 pi; these sum to 6.1086523819801535 rad (350 deg)"),
+          "closed circle short of 2 pi named in degrees: %s", err.msg);
     a4[1] = M_PI / 2;
     CHECK(rg2_circle_coeffs(a4, 4, 1, NAN, cs, &err) == RG2_ENONFINITE && !strcmp(err.msg, "arcs: start angle is not finite"),
           "NaN start angle: %s", err.msg);
