@@ -147,7 +147,8 @@ RG2_API rg2_status rg2_scalars_from_knots(rg2_scalars *s, const double *knots, i
  *          the scalars, but a closed circle needs sum = 2 pi (see rg2_circle_coeffs).
  *  Open: n_alpha = n + 1 arcs alpha_{-1}..alpha_{n-1} (stored alpha[i+1] = alpha_i); the
  *        produced segments 1..n-3 are exactly arcs 1..n-3.
- *  @return RG2_EDOMAIN for an angle outside (0, pi), naming it. */
+ *  @return RG2_ENONFINITE for a NaN or infinite angle, RG2_EDOMAIN for an angle outside
+ *          (0, pi), naming it. */
 RG2_API rg2_status rg2_scalars_from_angles(rg2_scalars *s, const double *alpha, int n_alpha,
                                            int closed, rg2_error *err);
 
@@ -159,7 +160,9 @@ RG2_API rg2_status rg2_scalars_from_angles(rg2_scalars *s, const double *alpha, 
  *  p^i of the conic arcs. theta0 is the angle of junction 0 (start of arc 0); arc i spans
  *  [theta_i, theta_i + alpha_i]. Layout of alpha as in rg2_scalars_from_angles.
  *  cs receives n pairs: cs[2i] = C_i, cs[2i+1] = S_i (n = n_alpha closed, n_alpha - 1 open).
- *  Closed partitions must sum to 2 pi (to 1e-12 relative). */
+ *  Closed partitions must sum to 2 pi (to 1e-12 relative).
+ *  @return RG2_ENONFINITE for a NaN or infinite angle or theta0, RG2_EDOMAIN for an angle
+ *          outside (0, pi) or a closed sum other than 2 pi, naming the arc or the sum. */
 RG2_API rg2_status rg2_circle_coeffs(const double *alpha, int n_alpha, int closed, double theta0,
                                      double *cs, rg2_error *err);
 

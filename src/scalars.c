@@ -215,7 +215,9 @@ rg2_status rg2_circle_coeffs(const double *alpha, int n_alpha, int closed, doubl
     int off = closed ? 0 : 1;
     double sum = 0.0;
     for (int k = 0; k < n_alpha; k++) {
-        if (!rg2__finite(alpha[k]) || !(alpha[k] > 0.0 && alpha[k] < M_PI))
+        if (!rg2__finite(alpha[k]))
+            return rg2__fail(err, RG2_ENONFINITE, "arcs: angle of arc %d is not finite", k - off);
+        if (!(alpha[k] > 0.0 && alpha[k] < M_PI))
             return bad_arc(k - off, alpha[k], err);
         sum += alpha[k];
     }

@@ -415,6 +415,9 @@ static void errors(void)
     CHECK(rg2_circle_coeffs(a4, 4, 1, 0.0, cs, &err) == RG2_EDOMAIN &&
               strstr(err.msg, "arcs: arc 1 has opening angle 3.1415926535897931 rad (180 deg); it must lie in (0, pi)"),
           "circle arc of pi named: %s", err.msg);
+    a4[1] = INFINITY; /* as rg2_scalars_from_angles names it */
+    CHECK(rg2_circle_coeffs(a4, 4, 1, 0.0, cs, &err) == RG2_ENONFINITE && !strcmp(err.msg, "arcs: angle of arc 1 is not finite"),
+          "circle arc of inf named: %s", err.msg);
     a4[1] = 80.0 * M_PI / 180.0; /* a closed circle of 350 degrees */
     CHECK(rg2_circle_coeffs(a4, 4, 1, 0.0, cs, &err) == RG2_EDOMAIN &&
               strstr(err.msg, "sum to 2 pi; these sum to 6.1086523819801535 rad (350 deg)"),
