@@ -656,7 +656,8 @@ RG2_API rg2_status rg2_mobius_poles_matrix(const double south[3], const double n
  *  scale(radius). An exact sphere mesh stays exact (same sphere, poles moved); a free-form
  *  sphere-like mesh moves with its poles.
  *  @return RG2_EWEIGHT if a resulting weight is not > 0 (naming the control point), then the
- *  mesh is unchanged; RG2_EDOMAIN for radius <= 0. */
+ *  mesh is unchanged; RG2_EDOMAIN for radius <= 0; RG2_ENONFINITE for a NaN or infinite
+ *  radius, center or matrix entry. */
 RG2_API rg2_status rg2_mesh_mobius(rg2_mesh *m, const double center[3], double radius,
                                    const double M[16], rg2_error *err);
 
@@ -882,7 +883,7 @@ typedef struct {
                                 125 bytes of memory per pixel (8192 x 8192: 8.4 GB) */
     rg2_render_mode mode;
     double azimuth;        /**< degrees about +z, 0 looks from +x towards the centre (default 35) */
-    double elevation;      /**< degrees above the xy plane (default 25) */
+    double elevation;      /**< degrees above the xy plane, -90..90 (default 25) */
     double distance;       /**< eye distance from the view centre (middle of the scene's extent
                                 across the view); <= 0 fits the view to the scene */
     double fov;            /**< vertical field of view in degrees (default 30) */
@@ -924,7 +925,8 @@ typedef struct {
 RG2_API void rg2_render_opts_default(rg2_render_opts *o);
 /** Render n surfaces (meshes: nullable, n control meshes for the overlay) into out.
  *  Release with rg2_image_free.
- *  @return RG2_EINVAL (no surfaces, bad size/range/mode, mesh overlay without meshes),
+ *  @return RG2_EINVAL (no surfaces, bad size/range/mode, elevation outside [-90, 90],
+ *  threads < 0, mesh overlay without meshes),
  *  RG2_ENONFINITE (non-finite control point, naming it), RG2_ENOMEM. */
 RG2_API rg2_status rg2_render(const rg2_surface *surfs, int n, const rg2_mesh *meshes,
                               const rg2_render_opts *o, rg2_image *out, rg2_error *err);
@@ -1036,7 +1038,8 @@ typedef struct {
 RG2_API void rg2_check_opts_default(rg2_check_opts *o);
 /** Measure surfaces against shapes (nullable if n_shapes == 0; labels nullable), on
  *  o->threads threads (o NULL: the defaults). Release the report with rg2_check_report_free.
- *  @return RG2_EINVAL (no surfaces, samples out of range, threads < 0), RG2_ENOMEM. */
+ *  @return RG2_EINVAL (no surfaces, samples out of range, threads < 0, a tolerance that is
+ *  not a finite number >= 0), RG2_ENOMEM. */
 RG2_API rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes,
                              const char *const *labels, int n_shapes, const rg2_check_opts *o,
                              rg2_check_report *out, rg2_error *err);

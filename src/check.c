@@ -763,6 +763,11 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
                          o->seam_samples, o->patch_samples);
     if (o->threads < 0)
         return rg2__fail(err, RG2_EINVAL, "check: threads %d < 0 (0: the OpenMP default)", o->threads);
+    const double tol[4] = {o->tol_g0, o->tol_g1, o->tol_g2, o->tol_exact};
+    static const char *const tol_name[4] = {"tol_g0", "tol_g1", "tol_g2", "tol_exact"};
+    for (int k = 0; k < 4; k++) /* (a NaN or negative limit would fail its promise whatever the surface) */
+        if (!isfinite(tol[k]) || !(tol[k] >= 0))
+            return rg2__fail(err, RG2_EINVAL, "check: %s = %g, must be a finite number >= 0", tol_name[k], tol[k]);
     for (int s = 0; s < n; s++) {
         if (surfs[s].nu <= 0 || surfs[s].nv <= 0 || !surfs[s].patch)
             return rg2__fail(err, RG2_EINVAL, "check: surface %d has no patches", s);

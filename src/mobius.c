@@ -137,7 +137,9 @@ rg2_status rg2_mesh_mobius(rg2_mesh *m, const double center[3], double radius, c
 {
     if (!m || !m->p)
         return rg2__fail(err, RG2_EINVAL, "moebius: empty mesh");
-    if (!rg2__finite(radius) || !(radius > 0.0))
+    if (!rg2__finite(radius))
+        return rg2__fail(err, RG2_ENONFINITE, "moebius: sphere radius is not finite");
+    if (!(radius > 0.0))
         return rg2__fail(err, RG2_EDOMAIN, "moebius: sphere radius %g, must be > 0", radius);
     for (int k = 0; k < 3; k++)
         if (!rg2__finite(center[k]))

@@ -804,6 +804,8 @@ static rg2_status check_input(const rg2_surface *surfs, int n, const rg2_mesh *m
         return rg2__fail(err, RG2_EINVAL, "render: field of view %g outside (1, 170) degrees", o->fov);
     if (!isfinite(o->azimuth) || !isfinite(o->elevation) || !isfinite(o->distance))
         return rg2__fail(err, RG2_ENONFINITE, "render: non-finite view (azimuth, elevation or distance)");
+    if (!(o->elevation >= -90.0 && o->elevation <= 90.0))
+        return rg2__fail(err, RG2_EINVAL, "render: elevation %g outside [-90, 90] degrees", o->elevation);
     if (o->range_set && !(isfinite(o->range[0]) && isfinite(o->range[1]) && o->range[0] < o->range[1]))
         return rg2__fail(err, RG2_EINVAL, "render: colour range %g,%g is not lo < hi", o->range[0], o->range[1]);
     if (!(o->percentile >= 0 && o->percentile < 0.5))
@@ -812,6 +814,8 @@ static rg2_status check_input(const rg2_surface *surfs, int n, const rg2_mesh *m
         return rg2__fail(err, RG2_EINVAL, "render: stripes %g outside 1..1000", o->stripes);
     if (o->mesh && !meshes)
         return rg2__fail(err, RG2_EINVAL, "render: control mesh overlay requested without meshes");
+    if (o->threads < 0)
+        return rg2__fail(err, RG2_EINVAL, "render: threads %d < 0 (0: the OpenMP default)", o->threads);
     for (int s = 0; s < n; s++) {
         if (surfs[s].nu <= 0 || surfs[s].nv <= 0 || !surfs[s].patch)
             return rg2__fail(err, RG2_EINVAL, "render: surface %d has no patches", s);

@@ -323,6 +323,16 @@ static void g1_join(void)
     CHECK(rg2_check(&s, 1, NULL, NULL, 0, &o, &r, &err) == RG2_EINVAL &&
               !strcmp(err.msg, "check: samples 10001 per seam / 12 per patch outside 1..10000 / 1..1000"),
           "%s", err.msg);
+    const double bad_tol[3] = {NAN, -1e-9, INFINITY};
+    for (int k = 0; k < 3; k++) {
+        char want[96];
+        rg2_check_opts_default(&o);
+        double *t = k == 0 ? &o.tol_g0 : k == 1 ? &o.tol_g2 : &o.tol_exact;
+        *t = bad_tol[k];
+        snprintf(want, sizeof want, "check: %s = %g, must be a finite number >= 0",
+                 k == 0 ? "tol_g0" : k == 1 ? "tol_g2" : "tol_exact", bad_tol[k]);
+        CHECK(rg2_check(&s, 1, NULL, NULL, 0, &o, &r, &err) == RG2_EINVAL && !strcmp(err.msg, want), "%s", err.msg);
+    }
     rg2_check_opts_default(&o);
     o.patch_samples = 0;
     CHECK(rg2_check(&s, 1, NULL, NULL, 0, &o, &r, &err) == RG2_EINVAL && strstr(err.msg, "per seam / 0 per patch"),

@@ -313,6 +313,8 @@ static void errors(void)
     st = rg2_mesh_mobius(&m, c0, 1.0, M, &err);
     CHECK(st == RG2_EWEIGHT && strstr(err.msg, "weight") && m.p[3] == before, "weight through zero: %s", err.msg);
     CHECK(rg2_mesh_mobius(&m, c0, 0.0, M, &err) == RG2_EDOMAIN, "radius 0: %s", err.msg);
+    CHECK(rg2_mesh_mobius(&m, c0, NAN, M, &err) == RG2_ENONFINITE && !strcmp(err.msg, "moebius: sphere radius is not finite"),
+          "radius NaN: %s", err.msg);
     double p[4] = {0, 0, 1, 0};
     CHECK(rg2_polar_set_point(&m, 0, p, &err) == RG2_EWEIGHT, "polar weight 0: %s", err.msg);
     CHECK(rg2_polar_set_point(&m, 2, p, &err) == RG2_EINVAL, "end 2: %s", err.msg);

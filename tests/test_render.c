@@ -670,7 +670,10 @@ static void options(void)
                {2, NAN, RG2_ENONFINITE, "render: non-finite view (azimuth, elevation or distance)"},
                {3, INFINITY, RG2_ENONFINITE, "render: non-finite view"},
                {4, 0.5, RG2_EINVAL, "render: percentile 0.5 outside [0, 0.5)"},
-               {5, 0, RG2_EINVAL, "render: stripes 0 outside 1..1000"}};
+               {5, 0, RG2_EINVAL, "render: stripes 0 outside 1..1000"},
+               {6, 95, RG2_EINVAL, "render: elevation 95 outside [-90, 90] degrees"},
+               {6, -90.5, RG2_EINVAL, "render: elevation -90.5 outside [-90, 90] degrees"},
+               {7, -1, RG2_EINVAL, "render: threads -1 < 0 (0: the OpenMP default)"}};
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         rg2_render_opts_default(&o);
         o.width = o.height = 32;
@@ -680,6 +683,8 @@ static void options(void)
         case 2: o.azimuth = bad[k].value; break;
         case 3: o.distance = bad[k].value; break;
         case 4: o.percentile = bad[k].value; break;
+        case 6: o.elevation = bad[k].value; break;
+        case 7: o.threads = (int)bad[k].value; break;
         default: o.mode = RG2_RENDER_ZEBRA, o.stripes = bad[k].value; break;
         }
         rg2_status st = rg2_render(&s, 1, NULL, &o, &a, &err);
