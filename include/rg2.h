@@ -719,9 +719,10 @@ RG2_API void rg2_cap_opts_default(rg2_cap_opts *o);
  *  is G2; the pole is a collapsed patch edge (normal undefined exactly there, its limit is
  *  unique). The body needs a closed u-direction with circle scalars (arc partition) and an
  *  open v-direction. opts and info are nullable. Free out with rg2_surface_free.
- *  @return RG2_EINVAL (u open, v closed, no body patch row), RG2_EINCOMPATIBLE (u scalars are
- *  not a circle partition), RG2_EDOMAIN (boundary ring collapsed or too small, rank-deficient
- *  fit, bad option), or the errors of rg2_surface_build. */
+ *  @return RG2_EINVAL (u open, v closed, no body patch row, ends or quadratic not one of their
+ *  values), RG2_EINCOMPATIBLE (u scalars are not a circle partition), RG2_EDOMAIN (boundary
+ *  ring collapsed or too small, rank-deficient fit, bad option), or the errors of
+ *  rg2_surface_build. */
 RG2_API rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts,
                                  rg2_surface *out, rg2_cap_info *info, rg2_error *err);
 

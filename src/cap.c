@@ -633,6 +633,9 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
     if (!(o.ends & (RG2_CAP_SOUTH | RG2_CAP_NORTH)) || (o.ends & ~(RG2_CAP_SOUTH | RG2_CAP_NORTH)))
         return rg2__fail(err, RG2_EINVAL, "cap: ends = %d, must be a non-empty combination of south (1) and north (2)",
                          o.ends);
+    if (o.quadratic != RG2_CAP_ROTATIONAL && o.quadratic != RG2_CAP_GENERAL)
+        return rg2__fail(err, RG2_EINVAL, "cap: quadratic = %d, must be RG2_CAP_ROTATIONAL (0) or RG2_CAP_GENERAL (1)",
+                         o.quadratic);
     if (o.samples < 2 || o.samples > 256)
         return rg2__fail(err, RG2_EDOMAIN, "cap: %d boundary samples per column, must be in 2..256", o.samples);
     for (int k = 0; k < 3; k++)

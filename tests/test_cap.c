@@ -571,6 +571,11 @@ static void cap_errors(void)
     o.ends = 0;
     CHECK(rg2_cap_build(&m, &o, &s, NULL, &err) == RG2_EINVAL, "no ends: %s", err.msg);
     rg2_cap_opts_default(&o);
+    o.quadratic = 5; /* was taken as rotational */
+    CHECK(rg2_cap_build(&m, &o, &s, NULL, &err) == RG2_EINVAL &&
+              !strcmp(err.msg, "cap: quadratic = 5, must be RG2_CAP_ROTATIONAL (0) or RG2_CAP_GENERAL (1)"),
+          "quadratic 5: %s", err.msg);
+    rg2_cap_opts_default(&o);
     o.jet_weight[1] = -1;
     CHECK(rg2_cap_build(&m, &o, &s, NULL, &err) == RG2_EDOMAIN &&
               !strcmp(err.msg, "cap: jet weight 1 is -1, must be finite and >= 0"),
