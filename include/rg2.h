@@ -811,8 +811,9 @@ typedef struct {
                                  per patch or, with the face-per-mesh layout, one on the
                                  merged net; edges and vertices shared, exact pcurves) instead
                                  of untrimmed surfaces */
-    int density;            /**< meshes: samples per patch edge (default 16) */
-    const char *name;       /**< product / object name (default "rg2") */
+    int density;            /**< meshes: samples per patch edge (default 16; < 1: 16) */
+    const char *name;       /**< product / object name (default "rg2"; NULL: "rg2"); control
+                                 characters are written as '_' */
 } rg2_export_opts;
 
 RG2_API void rg2_export_opts_default(rg2_export_opts *o);
@@ -853,7 +854,7 @@ RG2_API void rg2_tess_free(rg2_tess *t);
 /** Write surfaces to path; the format follows the extension: .step/.stp, .igs/.iges, .bv,
  *  .bez (geomview BEZ334), .obj, .stl, .ply, .glb, .json (docs/export.md). Writes path.tmp then renames: a failed export leaves no file.
  *  @return RG2_EIO (unwritable), RG2_EWEIGHT (non-positive weight for STEP/IGES, naming the
- *  patch), RG2_EINVAL (unknown extension, empty input). */
+ *  patch), RG2_EINVAL (unknown extension, empty input, a layout other than the two). */
 RG2_API rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *path,
                                    const rg2_export_opts *opts, rg2_error *err);
 /** Whether rg2_export_file knows the format of path's extension, without writing anything (to

@@ -711,6 +711,27 @@ rg2_status rg2_export_format_check(const char *path, rg2_error *err)
     return export_format(path, &fmt, err);
 }
 
+/* A copy of name with every control character (a newline, say) replaced by '_', or NULL if it
+ * has none. In the OBJ and PLY headers the name sits in a comment line that a newline would end;
+ * STEP and IGES map such characters themselves. */
+static char *name_without_controls(const char *name, int *nomem)
+{
+    size_t n = strlen(name), k = 0;
+    while (k < n && (unsigned char)name[k] >= 32 && name[k] != 127)
+        k++;
+    *nomem = 0;
+    if (k == n)
+        return NULL;
+    char *c = malloc(n + 1);
+    if (!c) {
+        *nomem = 1;
+        return NULL;
+    }
+    for (k = 0; k <= n; k++)
+        c[k] = k < n && ((unsigned char)name[k] < 32 || name[k] == 127) ? '_' : name[k];
+    return c;
+}
+
 rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *path,
                            const rg2_export_opts *opts, rg2_error *err)
 {
@@ -726,6 +747,10 @@ rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *pa
             def.density = 16;
         opts = &def;
     }
+    if (opts->layout != RG2_STEP_FACE_PER_PATCH && opts->layout != RG2_STEP_FACE_PER_MESH)
+        return rg2__fail(err, RG2_EINVAL,
+                         "export: layout %d, must be RG2_STEP_FACE_PER_PATCH (0) or RG2_STEP_FACE_PER_MESH (1)",
+                         (int)opts->layout);
     int fmt;
     rg2_status st = export_format(path, &fmt, err);
     if (st)
@@ -747,10 +772,23 @@ rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *pa
         if (st)
             return st;
     }
+    int nomem;
+    char *clean = name_without_controls(opts->name, &nomem);
+    if (nomem) {
+        rg2__tess_all_free(tess, n_surfs);
+        return rg2__fail(err, RG2_ENOMEM, "export: out of memory");
+    }
+    if (clean) {
+        if (opts != &def)
+            def = *opts;
+        def.name = clean;
+        opts = &def;
+    }
     rg2__out out;
     st = rg2__out_open(&out, path, err);
     if (st) {
         rg2__tess_all_free(tess, n_surfs);
+        free(clean);
         return st;
     }
     switch (fmt) {
@@ -765,6 +803,7 @@ rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *pa
     case F_JSON: st = write_json(surfs, n_surfs, opts, &out, err); break;
     }
     rg2__tess_all_free(tess, n_surfs);
+    free(clean);
     st = rg2__out_close(&out, st, err);
     if (st == RG2_OK)
         rg2__ok(err);

@@ -1037,6 +1037,12 @@ static void failures(const rg2_surface *s)
     CHECK(st == RG2_EINVAL, "directory as path: %s", rg2_status_str(st));
     st = export_one(s, "x.xyz", &err);
     CHECK(st == RG2_EINVAL && strstr(err.msg, ".xyz"), "unknown extension: %s", err.msg);
+    rg2_export_opts lo;
+    rg2_export_opts_default(&lo);
+    lo.layout = (rg2_step_layout)7; /* was written as face per patch */
+    st = rg2_export_file(s, 1, path_in("layout.step"), &lo, &err);
+    CHECK(st == RG2_EINVAL && !strcmp(err.msg, "export: layout 7, must be RG2_STEP_FACE_PER_PATCH (0) or RG2_STEP_FACE_PER_MESH (1)"),
+          "layout 7: %s: %s", rg2_status_str(st), err.msg);
     /* the same verdicts without writing: every known extension, any case; the unknown ones */
     static const char *known[] = {"a.step", "a.STP", "d/a.igs", "a.IGES", "a.bv", "a.bez", "a.obj",
                                   "a.Stl", "a.ply", "a.glb", "a.json"};
@@ -1257,6 +1263,37 @@ static void names_and_defaults(const rg2_surface *s)
     CHECK_OK(rg2_export_file(s, 1, path_in("named.igs"), &o, &err), &err);
     b = (char *)slurp(path_in("named.igs"), &len);
     CHECK(b && strstr(b, ",15Hpart 'A' \\ B __,") && strstr(b, ",9Hnamed.igs,"), "IGES: Hollerith name and file name");
+    free(b);
+
+    /* control characters in the name: a newline would end the OBJ and PLY header comments */
+    rg2_export_opts_default(&o);
+    o.name = "two\nlines\tand\x7f";
+    o.density = 2;
+    CHECK_OK(rg2_export_file(s, 1, path_in("ctl.obj"), &o, &err), &err);
+    CHECK_OK(rg2_export_file(s, 1, path_in("ctl.ply"), &o, &err), &err);
+    CHECK_OK(rg2_export_file(s, 1, path_in("ctl.step"), &o, &err), &err);
+    b = (char *)slurp(path_in("ctl.obj"), &len);
+    CHECK(b && strstr(b, ": two_lines_and_, ") && !strncmp(strchr(b, '\n') + 1, "o surface_0\n", 12),
+          "OBJ: name on the comment line, then the object: %.80s", b ? b : "");
+    free(b);
+    b = (char *)slurp(path_in("ctl.ply"), &len);
+    int bad_header = !b, lines = 0;
+    static const char *const kw[] = {"ply\n", "format ", "comment ", "element ", "property ", "end_header\n"};
+    for (char *p = b; p && !bad_header;) { /* every header line starts with a PLY keyword */
+        int ok = 0;
+        for (size_t k = 0; k < sizeof kw / sizeof kw[0]; k++)
+            ok |= !strncmp(p, kw[k], strlen(kw[k]));
+        bad_header = !ok;
+        lines++;
+        if (!strncmp(p, "end_header\n", 11))
+            break;
+        p = strchr(p, '\n');
+        p = p ? p + 1 : NULL;
+    }
+    CHECK(!bad_header && b && strstr(b, "two_lines_and_"), "PLY header: line %d is not a PLY keyword", lines);
+    free(b);
+    b = (char *)slurp(path_in("ctl.step"), &len);
+    CHECK(b && strstr(b, "=PRODUCT('two_lines_and_','two_lines_and_',"), "STEP: control characters as '_'");
     free(b);
 
     /* defaults: name NULL and density 0 are "rg2" and 16, as are no options */
