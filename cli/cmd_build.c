@@ -15,7 +15,7 @@ static void usage(FILE *f)
                "Reads a design file (docs/design-format.md), builds its output meshes into G2 rational\n"
                "bi-cubic surfaces and writes them. The format follows each -o extension: .step/.stp,\n"
                ".igs/.iges, .bv, .bez, .obj, .stl, .ply, .glb, .json. Several -o are allowed. A failed build\n"
-               "writes nothing.\n"
+               "writes nothing and leaves files already there as they were.\n"
                "  --face-per-mesh   STEP/IGES: one B-spline surface per mesh instead of one face per patch\n"
                "  --ap242           STEP: write AP242 instead of AP214\n"
                "  --iges-brep       IGES: a B-rep shell per mesh (faces, shared edges and vertices;\n"
@@ -124,25 +124,20 @@ int rg2_cmd_build(int argc, char **argv)
     }
     for (int k = 0; k < ns; k++)
         surfs[k] = *rg2_design_surface(d, k); /* shallow views; the design owns the data */
-    int rc = RG2_EXIT_OK, written = 0;
-    for (int k = 0; k < n_out && rc == RG2_EXIT_OK; k++) {
-        progress(tty, "rg2 build: writing %s", out[k]);
-        if (rg2_export_file(surfs, ns, out[k], &opts, &err)) {
-            progress(tty, NULL, NULL);
-            const char *at = strstr(err.msg, ": surface ");
-            int sk;
-            if (at && sscanf(at, ": surface %d", &sk) == 1 && sk >= 0 && sk < ns) {
-                size_t len = strlen(err.msg); /* say which mesh surface k is */
-                snprintf(err.msg + len, sizeof err.msg - len, " (surface %d is mesh '%s')", sk,
-                         rg2_design_mesh_name(d, sk));
-            }
-            rc = rg2_cli_report("build", &err);
-        } else
-            written++;
+    int rc = RG2_EXIT_OK;
+    progress(tty, n_out > 1 ? "rg2 build: writing %s and the other outputs" : "rg2 build: writing %s", out[0]);
+    /* all or nothing: the files are renamed into place only when every one is written */
+    if (rg2_export_files(surfs, ns, out, n_out, &opts, NULL, &err)) {
+        progress(tty, NULL, NULL);
+        const char *at = strstr(err.msg, ": surface ");
+        int sk;
+        if (at && sscanf(at, ": surface %d", &sk) == 1 && sk >= 0 && sk < ns) {
+            size_t len = strlen(err.msg); /* say which mesh surface k is */
+            snprintf(err.msg + len, sizeof err.msg - len, " (surface %d is mesh '%s')", sk,
+                     rg2_design_mesh_name(d, sk));
+        }
+        rc = rg2_cli_report("build", &err);
     }
-    if (rc != RG2_EXIT_OK) /* all or nothing: drop the outputs this run wrote */
-        for (int k = 0; k < written; k++)
-            remove(out[k]);
     progress(tty, NULL, NULL);
     free(surfs);
     rg2_design_free(d);

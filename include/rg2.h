@@ -857,6 +857,16 @@ RG2_API void rg2_tess_free(rg2_tess *t);
  *  patch), RG2_EINVAL (unknown extension, empty input, a layout other than the two). */
 RG2_API rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *path,
                                    const rg2_export_opts *opts, rg2_error *err);
+/** Write the same surfaces to several files as one: each is written completely to its
+ *  path.tmp first, and only when all are written are they renamed to their paths. If any fails
+ *  (an unknown extension, a non-positive weight for STEP/IGES, an unwritable directory), none of
+ *  the paths is touched: files already there stay as they were. *failed (if not NULL) is the
+ *  index of the path that failed, -1 on success. A rename failing after others succeeded (in
+ *  practice only when a path's directory changes under the call) leaves the earlier ones renamed.
+ *  @return the statuses of rg2_export_file; RG2_EINVAL also for n_paths < 1. */
+RG2_API rg2_status rg2_export_files(const rg2_surface *surfs, int n_surfs, const char *const *paths,
+                                    int n_paths, const rg2_export_opts *opts, int *failed,
+                                    rg2_error *err);
 /** Whether rg2_export_file knows the format of path's extension, without writing anything (to
  *  refuse a mistyped output name before a long build).
  *  @return RG2_OK, or RG2_EINVAL (no path, no extension, unknown extension; the message lists

@@ -473,28 +473,13 @@ rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, rg2_erro
     cJSON_Delete(root);
     if (!text)
         return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", path);
-    size_t n = strlen(path);
-    char *tmp = malloc(n + 5);
-    if (!tmp) {
-        cJSON_free(text);
-        return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", path);
+    rg2__out out;
+    rg2_status st = rg2__out_open(&out, path, err);
+    if (st == RG2_OK) {
+        fputs(text, out.f); /* a failed write sets the stream's error flag, which the close reports */
+        fputc('\n', out.f);
+        st = rg2__out_close(&out, RG2_OK, err);
     }
-    memcpy(tmp, path, n);
-    memcpy(tmp + n, ".tmp", 5);
-    FILE *f = fopen(tmp, "wb");
-    rg2_status st = RG2_OK;
-    if (!f)
-        st = rg2__fail(err, RG2_EIO, "%s: cannot write: %s", path, strerror(errno));
-    else {
-        size_t tl = strlen(text);
-        int bad = fwrite(text, 1, tl, f) != tl || fputc('\n', f) == EOF;
-        bad = fclose(f) != 0 || bad;
-        if (bad || rename(tmp, path) != 0) {
-            st = rg2__fail(err, RG2_EIO, "%s: write failed: %s", path, strerror(errno));
-            remove(tmp);
-        }
-    }
-    free(tmp);
     cJSON_free(text);
     if (!st)
         rg2__ok(err);

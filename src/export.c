@@ -22,56 +22,6 @@ void rg2_export_opts_default(rg2_export_opts *o)
     o->name = "rg2";
 }
 
-/* ---------------------------------------------------------------- output files */
-
-rg2_status rg2__out_open(rg2__out *o, const char *path, rg2_error *err)
-{
-    memset(o, 0, sizeof *o);
-    size_t n = strlen(path);
-    o->tmp = malloc(n + 5);
-    if (!o->tmp)
-        return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", path);
-    memcpy(o->tmp, path, n);
-    memcpy(o->tmp + n, ".tmp", 5);
-    o->path = path;
-    o->f = fopen(o->tmp, "wb");
-    if (!o->f) {
-        rg2_status st = rg2__fail(err, RG2_EIO, "%s: cannot write: %s", path, strerror(errno));
-        free(o->tmp);
-        o->tmp = NULL;
-        return st;
-    }
-    return RG2_OK;
-}
-
-rg2_status rg2__out_close(rg2__out *o, rg2_status st, rg2_error *err)
-{
-    if (!o->f)
-        return st;
-    if (st == RG2_OK) {
-        int bad = fflush(o->f) != 0 || ferror(o->f);
-        int saved = errno;
-        if (fclose(o->f) != 0 && !bad) {
-            bad = 1;
-            saved = errno;
-        }
-        o->f = NULL;
-        if (bad)
-            st = rg2__fail(err, RG2_EIO, "%s: write failed: %s", o->path, strerror(saved));
-        else if (rename(o->tmp, o->path) != 0)
-            st = rg2__fail(err, RG2_EIO, "%s: cannot rename from %s: %s", o->path, o->tmp,
-                           strerror(errno));
-    } else {
-        fclose(o->f);
-        o->f = NULL;
-    }
-    if (st != RG2_OK)
-        remove(o->tmp);
-    free(o->tmp);
-    o->tmp = NULL;
-    return st;
-}
-
 /* ---------------------------------------------------------------- numbers and checks */
 
 void rg2__utc_stamp(char *buf, size_t cap, const char *fmt)
@@ -732,9 +682,12 @@ static char *name_without_controls(const char *name, int *nomem)
     return c;
 }
 
-rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *path,
-                           const rg2_export_opts *opts, rg2_error *err)
+/* Write path.tmp in path's format; on success the complete file waits there in *out for
+ * rg2__out_commit, on failure nothing is left. */
+static rg2_status export_staged(const rg2_surface *surfs, int n_surfs, const char *path,
+                                const rg2_export_opts *opts, rg2__out *out, rg2_error *err)
 {
+    memset(out, 0, sizeof *out);
     rg2_export_opts def;
     if (!opts) {
         rg2_export_opts_default(&def);
@@ -784,27 +737,84 @@ rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *pa
         def.name = clean;
         opts = &def;
     }
-    rg2__out out;
-    st = rg2__out_open(&out, path, err);
+    st = rg2__out_open(out, path, err);
     if (st) {
         rg2__tess_all_free(tess, n_surfs);
         free(clean);
         return st;
     }
     switch (fmt) {
-    case F_STEP: st = rg2__write_step(surfs, n_surfs, opts, &out, err); break;
-    case F_IGES: st = rg2__write_iges(surfs, n_surfs, opts, &out, err); break;
-    case F_BV: st = rg2__write_bv(surfs, n_surfs, &out, err); break;
-    case F_BEZ: st = rg2__write_bez(surfs, n_surfs, &out, err); break;
-    case F_OBJ: st = rg2__write_obj(tess, n_surfs, opts, &out, err); break;
-    case F_STL: st = rg2__write_stl(tess, n_surfs, opts, &out, err); break;
-    case F_PLY: st = rg2__write_ply(tess, n_surfs, opts, &out, err); break;
-    case F_GLB: st = rg2__write_glb(tess, n_surfs, opts, &out, err); break;
-    case F_JSON: st = write_json(surfs, n_surfs, opts, &out, err); break;
+    case F_STEP: st = rg2__write_step(surfs, n_surfs, opts, out, err); break;
+    case F_IGES: st = rg2__write_iges(surfs, n_surfs, opts, out, err); break;
+    case F_BV: st = rg2__write_bv(surfs, n_surfs, out, err); break;
+    case F_BEZ: st = rg2__write_bez(surfs, n_surfs, out, err); break;
+    case F_OBJ: st = rg2__write_obj(tess, n_surfs, opts, out, err); break;
+    case F_STL: st = rg2__write_stl(tess, n_surfs, opts, out, err); break;
+    case F_PLY: st = rg2__write_ply(tess, n_surfs, opts, out, err); break;
+    case F_GLB: st = rg2__write_glb(tess, n_surfs, opts, out, err); break;
+    case F_JSON: st = write_json(surfs, n_surfs, opts, out, err); break;
     }
     rg2__tess_all_free(tess, n_surfs);
     free(clean);
-    st = rg2__out_close(&out, st, err);
+    return rg2__out_finish(out, st, err);
+}
+
+rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *path,
+                           const rg2_export_opts *opts, rg2_error *err)
+{
+    rg2__out out;
+    rg2_status st = export_staged(surfs, n_surfs, path, opts, &out, err);
+    if (st == RG2_OK)
+        st = rg2__out_commit(&out, err);
+    if (st == RG2_OK)
+        rg2__ok(err);
+    return st;
+}
+
+rg2_status rg2_export_files(const rg2_surface *surfs, int n_surfs, const char *const *paths, int n_paths,
+                            const rg2_export_opts *opts, int *failed, rg2_error *err)
+{
+    if (failed)
+        *failed = -1;
+    if (n_paths < 1 || !paths)
+        return rg2__fail(err, RG2_EINVAL, "export: no output paths (%d)", n_paths);
+    for (int k = 0; k < n_paths; k++) { /* a mistyped extension fails before anything is written */
+        int fmt;
+        rg2_status st = export_format(paths[k], &fmt, err);
+        if (st) {
+            if (failed)
+                *failed = k;
+            return st;
+        }
+    }
+    rg2__out *outs = calloc((size_t)n_paths, sizeof *outs);
+    if (!outs)
+        return rg2__fail(err, RG2_ENOMEM, "export: out of memory");
+    rg2_status st = RG2_OK;
+    int staged = 0;
+    for (; staged < n_paths; staged++) {
+        st = export_staged(surfs, n_surfs, paths[staged], opts, &outs[staged], err);
+        if (st)
+            break;
+    }
+    if (st) { /* all or nothing: no path is touched, so files there before stay as they were */
+        if (failed)
+            *failed = staged;
+        for (int k = 0; k < staged; k++)
+            rg2__out_discard(&outs[k]);
+        free(outs);
+        return st;
+    }
+    for (int k = 0; k < n_paths; k++) { /* every file is complete: rename them */
+        if (st) {
+            rg2__out_discard(&outs[k]);
+            continue;
+        }
+        st = rg2__out_commit(&outs[k], err);
+        if (st && failed)
+            *failed = k;
+    }
+    free(outs);
     if (st == RG2_OK)
         rg2__ok(err);
     return st;

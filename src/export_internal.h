@@ -7,19 +7,6 @@
 
 #include <stdio.h>
 
-/* An output file being written: data goes to path.tmp, which rg2__out_close renames to
- * path on success and removes on failure, so a failed export leaves no file. */
-typedef struct {
-    FILE *f;
-    const char *path;
-    char *tmp;
-} rg2__out;
-
-rg2_status rg2__out_open(rg2__out *o, const char *path, rg2_error *err);
-/* Finish: if st == RG2_OK, flush, check for write errors and rename; otherwise (or on a
- * write error) close and remove the temporary file. Returns the final status. */
-rg2_status rg2__out_close(rg2__out *o, rg2_status st, rg2_error *err);
-
 /* Items 0..n-1 written to f in order, formatted on the threads: blocks of `block` items, block b
  * (items k0..k1-1) formatted by fn(m, ctx, b, k0, k1) into a memory stream m of its own, a few
  * blocks per thread at a time (the streams kept from one round to the next, so their pages are

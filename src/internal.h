@@ -5,6 +5,7 @@
 #include "rg2.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdarg.h>
 #include <string.h>
 
@@ -69,6 +70,26 @@ void *rg2__calloc_big(size_t n, size_t size);
 /* The same from `from` bytes up instead of 2 MiB (arrays allocated and freed at every call),
  * zeroed only when zero is non-zero (else memory the caller overwrites); NULL on overflow. */
 void *rg2__alloc_big(size_t n, size_t size, size_t from, int zero);
+
+/* An output file written whole or not at all (src/outfile.c): data goes to path.tmp (f),
+ * renamed to path when complete, removed on failure, so a failed write leaves no file. */
+typedef struct {
+    FILE *f;
+    const char *path;
+    char *tmp;
+} rg2__out;
+
+rg2_status rg2__out_open(rg2__out *o, const char *path, rg2_error *err);
+/* Finish writing: if st == RG2_OK, flush and check for write errors (the complete file stays
+ * at o->tmp for rg2__out_commit); otherwise, or on a write error, remove it. Returns the final
+ * status. */
+rg2_status rg2__out_finish(rg2__out *o, rg2_status st, rg2_error *err);
+/* Rename a finished file to its path. */
+rg2_status rg2__out_commit(rg2__out *o, rg2_error *err);
+/* Close (if open) and remove the temporary file. */
+void rg2__out_discard(rg2__out *o);
+/* rg2__out_finish, then rg2__out_commit on success. */
+rg2_status rg2__out_close(rg2__out *o, rg2_status st, rg2_error *err);
 
 /* Run fn(arg, c) for the chunks c = 0..n-1 on up to nthreads threads (src/pool.c): the caller
  * and persistent workers claim chunks, each from its own contiguous home block first, then from

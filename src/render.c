@@ -1122,18 +1122,11 @@ rg2_status rg2_image_write_png(const rg2_image *img, const char *path, rg2_error
         return rg2__fail(err, RG2_EINVAL, "png: empty image");
     if (!path || !*path)
         return rg2__fail(err, RG2_EINVAL, "png: no output path");
-    size_t len = strlen(path);
-    char *tmp = malloc(len + 5);
-    if (!tmp)
-        return rg2__fail(err, RG2_ENOMEM, "png: out of memory");
-    memcpy(tmp, path, len);
-    memcpy(tmp + len, ".tmp", 5);
-    FILE *f = fopen(tmp, "wb");
-    if (!f) {
-        rg2_status st = rg2__fail(err, RG2_EIO, "png: cannot write '%s': %s", tmp, strerror(errno));
-        free(tmp);
-        return st;
-    }
+    rg2__out out;
+    rg2_status ost = rg2__out_open(&out, path, err);
+    if (ost)
+        return ost;
+    FILE *f = out.f;
     png_fail pf = {"", 0};
     errno = 0;
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &pf, png_on_error, png_on_warning);
@@ -1156,34 +1149,23 @@ rg2_status rg2_image_write_png(const rg2_image *img, const char *path, rg2_error
     }
     png_destroy_write_struct(&png, &info);
     free(rows);
-    if (ok && fflush(f) != 0) {
-        ok = 0;
-        pf.errnum = errno;
-    }
-    if (fclose(f) != 0 && ok) {
-        ok = 0;
-        pf.errnum = errno;
-    }
     if (!allocated) {
-        remove(tmp);
-        free(tmp);
+        rg2__out_discard(&out);
         return rg2__fail(err, RG2_ENOMEM, "png: out of memory");
     }
-    if (!ok || rename(tmp, path) != 0) {
-        int en = ok ? errno : pf.errnum;
-        remove(tmp);
+    if (!ok) {
+        rg2__out_discard(&out);
         char why[256];
-        if (pf.msg[0] && en)
-            snprintf(why, sizeof why, "%s (%s)", pf.msg, strerror(en));
+        if (pf.msg[0] && pf.errnum)
+            snprintf(why, sizeof why, "%s (%s)", pf.msg, strerror(pf.errnum));
         else
-            snprintf(why, sizeof why, "%s", pf.msg[0] ? pf.msg : en ? strerror(en) : "unknown error");
-        rg2_status st = rg2__fail(err, RG2_EIO, "png: writing '%s' failed: %s", path, why);
-        free(tmp);
-        return st;
+            snprintf(why, sizeof why, "%s", pf.msg[0] ? pf.msg : pf.errnum ? strerror(pf.errnum) : "unknown error");
+        return rg2__fail(err, RG2_EIO, "png: writing '%s' failed: %s", path, why);
     }
-    free(tmp);
-    rg2__ok(err);
-    return RG2_OK;
+    ost = rg2__out_close(&out, RG2_OK, err); /* flushes: a full disk is reported here */
+    if (ost == RG2_OK)
+        rg2__ok(err);
+    return ost;
 }
 
 rg2_status rg2_render_png(const rg2_surface *surfs, int n, const rg2_mesh *meshes, const rg2_render_opts *o,

@@ -1093,6 +1093,60 @@ static void failures(const rg2_surface *s)
     CHECK(!exists(path_in("neg.step.tmp")) && !exists(path_in("neg.step")), "neg.step or its .tmp left behind");
 }
 
+/* Several files as one (rg2_export_files): on success every path holds what rg2_export_file
+ * writes; when any output fails (a negative weight for STEP, an unwritable directory, an unknown
+ * extension), no path is touched: files that were there keep their bytes, none is added and no
+ * .tmp is left. */
+static void several_files(const rg2_surface *s)
+{
+    rg2_error err;
+    int failed = 7;
+    const char *ok_paths[] = {path_in("m1.obj"), path_in("m1.step"), path_in("m1.igs")};
+    CHECK_OK(rg2_export_files(s, 1, ok_paths, 3, NULL, &failed, &err), &err);
+    CHECK(failed == -1, "success gave failed = %d", failed);
+    for (int k = 0; k < 3; k++) { /* the same bytes as one file at a time (STEP/IGES: but the stamp) */
+        char one[16];
+        snprintf(one, sizeof one, "m2%s", strrchr(ok_paths[k], '.')); /* a name of the same length */
+        CHECK_OK(rg2_export_file(s, 1, path_in(one), NULL, &err), &err);
+        size_t la, lb;
+        unsigned char *a = slurp(ok_paths[k], &la), *b = slurp(path_in(one), &lb);
+        CHECK(a && b && la == lb, "%s: %zu bytes, one at a time %zu", ok_paths[k], la, lb);
+        if (k == 0)
+            CHECK(a && b && !memcmp(a, b, la), "%s differs from the file written alone", ok_paths[k]);
+        free(a);
+        free(b);
+        remove(path_in(one));
+    }
+    /* an old file, then a failing set: it keeps its bytes */
+    FILE *f = fopen(path_in("old.obj"), "w");
+    CHECK(f && fputs("old\n", f) >= 0 && fclose(f) == 0, "cannot write old.obj");
+    rg2_surface bad;
+    CHECK_OK(rg2_surface_copy(s, &bad, &err), &err);
+    double *h = rg2_surface_patch(&bad, 1, 0)->h[2][1];
+    for (int k = 0; k < 4; k++)
+        h[k] *= -0.5; /* the same point, a negative weight: fine for meshes, refused by STEP */
+    int before = count_files();
+    const char *sets[3][3] = {{path_in("old.obj"), path_in("new.stl"), path_in("new.step")},
+                              {path_in("old.obj"), path_in("new.glb"), "/nonexistent-rg2-dir/x.igs"},
+                              {path_in("old.obj"), path_in("new.ply"), path_in("new.xyz")}};
+    const rg2_status want[3] = {RG2_EWEIGHT, RG2_EIO, RG2_EINVAL};
+    for (int k = 0; k < 3; k++) {
+        rg2_status st = rg2_export_files(k == 1 ? s : &bad, 1, sets[k], 3, NULL, &failed, &err);
+        size_t n;
+        unsigned char *old = slurp(path_in("old.obj"), &n);
+        CHECK(st == want[k] && failed == 2 && strstr(err.msg, strrchr(sets[k][2], '/') + 1), "set %d: %s (failed %d) '%s'",
+              k, rg2_status_str(st), failed, err.msg);
+        CHECK(old && n == 4 && !memcmp(old, "old\n", 4), "set %d: a failed set changed old.obj (%zu bytes)", k, n);
+        CHECK(count_files() == before, "set %d: %d files before, %d after", k, before, count_files());
+        free(old);
+    }
+    CHECK(rg2_export_files(s, 1, ok_paths, 0, NULL, &failed, &err) == RG2_EINVAL, "no paths: %s", err.msg);
+    rg2_surface_free(&bad);
+    for (int k = 0; k < 3; k++)
+        remove(ok_paths[k]);
+    remove(path_in("old.obj"));
+}
+
 /* The failures again where the offending point is in a higher-degree patch, beyond the bi-3
  * index range: the weight and finiteness checks read every patch at its own degrees. */
 static void xfailures(const rg2_surface *x)
@@ -1376,6 +1430,7 @@ int main(void)
     transposed_pole();
     full_disk(&s);
     failures(&s);
+    several_files(&s);
     export_degrees(&s);
     rg2_surface x;
     CHECK_OK(elevated_torus(&x, &err), &err);

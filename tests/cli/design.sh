@@ -36,6 +36,13 @@ expect 0 "" "$rg2" build -q "$src/examples/torus_sphere.json" -o "$tmp/ts.igs" -
 n514=$(awk 'substr($0,73,1)=="D" && substr($0,74)%2==1 && $1==514' "$tmp/ts.igs" | wc -l)
 n510=$(awk 'substr($0,73,1)=="D" && substr($0,74)%2==1 && $1==510' "$tmp/ts.igs" | wc -l)
 [ "$n514" -eq 1 ] && [ "$n510" -eq 120 ] && ok || bad "ts.igs B-rep: $n514 shells, $n510 faces"
+# a failed set of outputs leaves files that were there as they were (none is overwritten before
+# every output is written), whichever output fails
+cp "$tmp/ts.step" "$tmp/prev.step"
+expect 1 "/nonexistent-rg2-dir/b.igs: cannot write" "$rg2" build -q "$src/examples/fig1_torus.json" -o "$tmp/ts.step" -o /nonexistent-rg2-dir/b.igs
+cmp -s "$tmp/ts.step" "$tmp/prev.step" && ok || bad "a failed build changed the ts.step that was there"
+expect 1 "/nonexistent-rg2-dir/b.igs: cannot write" "$rg2" build -q "$src/examples/fig1_torus.json" -o /nonexistent-rg2-dir/b.igs -o "$tmp/ts.step"
+cmp -s "$tmp/ts.step" "$tmp/prev.step" && ok || bad "a failed build changed the ts.step that was there (failing output first)"
 ls "$tmp" | grep -q '\.tmp$' && bad "temporary file left behind" || ok
 expect 0 "" "$rg2" info --map "$src/examples/torus_sphere.json"
 grep -q "exact on ring *48 patches" "$tmp/out" && grep -q "exact on ball *24 patches" "$tmp/out" &&
