@@ -570,7 +570,8 @@ RG2_API rg2_status rg2_read_text(const char *path, char **out, size_t *len, rg2_
 RG2_API rg2_status rg2_number_check(double x, const char *what, rg2_error *err);
 /** The supported range of a mesh's design points p_{1..3} / p_4: coordinates up to
  *  the largest supported magnitude, bounding-box diagonal at least the smallest (what every
- *  output mesh of a design must satisfy). RG2_EDOMAIN, the message starting with `what` (nullable). */
+ *  output mesh of a design must satisfy; points of weight p_4 = 0, at infinity, have no
+ *  coordinates and are skipped). RG2_EDOMAIN, the message starting with `what` (nullable). */
 RG2_API rg2_status rg2_mesh_check_range(const rg2_mesh *m, const char *what, rg2_error *err);
 
 /** Read and build a design file. On failure *out is NULL and err names the offending item

@@ -216,7 +216,8 @@ rg2_status rg2_mesh_check_range(const rg2_mesh *m, const char *what, rg2_error *
         what = "mesh";
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t k = 0; k < (size_t)m->nu * (size_t)m->nv; k++)
-        for (int q = 0; q < 3; q++) {
+        for (int q = 0; q < 3 && m->p[4 * k + 3] != 0.0; q++) { /* W = 0: a point at infinity (a
+                                  hyperboloid's mirrored data knot at v = 0), no coordinates */
             double x = m->p[4 * k + q] / m->p[4 * k + 3];
             lo[q] = fmin(lo[q], x);
             hi[q] = fmax(hi[q], x);

@@ -52,6 +52,10 @@ expect 1 "past 2 pi" -- "$RG2" shape cylinder --u-arcs 5 --u-sweep 400
 expect 1 "knot 2 (= 0.5) is not greater than knot 1" -- "$RG2" shape sphere --v-knots 0.2,0.5,0.5
 expect 1 "v knot 0 = -1 must be > 0" -- "$RG2" shape hyperboloid1 --v-knots -1,1
 expect 1 "|v| < 1" -- "$RG2" shape hyperboloid2 --v-range 0,1.5
+# v knots 1, 2, 3: the mirrored data knot lies at v = 0, a control point of weight 0 (at infinity,
+# no coordinates) that the range check once divided by ("coordinates up to inf")
+expect 0 "all positive" -- "$RG2" shape hyperboloid1 --v-knots 1,2,3
+expect 0 "all positive" -- "$RG2" shape hyperboloid1 --v-knots 0.5,1
 expect 1 "k = 0 gives a plane" -- "$RG2" shape cone --k 0
 expect 1 "--scale 0: scale factors must be non-zero" -- "$RG2" shape torus --scale 0
 expect 2 "v is a circle direction" -- "$RG2" shape torus --v-knots 1,2
