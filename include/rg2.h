@@ -840,7 +840,10 @@ typedef struct {
  *  control points of a side equal, e.g. a pole) give one vertex and no degenerate triangles.
  *  Release with rg2_tess_free: the arrays are one allocation (never free them one by one).
  *  @return RG2_EINVAL (no patches, density < 1), RG2_ELIMIT (over RG2_MAX_POINTS vertices
- *  per direction), RG2_ENOMEM. */
+ *  in all or per direction), RG2_ENONFINITE (a control value not finite, naming the patch),
+ *  RG2_EDOMAIN (control points beyond 1e60 or spanning less than 1e-60, the supported numeric
+ *  range of docs/robustness.md: past about 1e+-75 the normals and curvatures overflow),
+ *  RG2_ENOMEM. */
 RG2_API rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_tess *out,
                                   rg2_error *err);
 /** rg2_tessellate into a mesh that already exists (from rg2_tessellate, _retessellate, or all
@@ -855,7 +858,11 @@ RG2_API void rg2_tess_free(rg2_tess *t);
 /** Write surfaces to path; the format follows the extension: .step/.stp, .igs/.iges, .bv,
  *  .bez (geomview BEZ334), .obj, .stl, .ply, .glb, .json (docs/export.md). Writes path.tmp then renames: a failed export leaves no file.
  *  @return RG2_EIO (unwritable), RG2_EWEIGHT (non-positive weight for STEP/IGES, naming the
- *  patch), RG2_EINVAL (unknown extension, empty input, a layout other than the two). */
+ *  patch), RG2_ENONFINITE (a control value not finite, in every format), RG2_EINVAL (unknown
+ *  extension, empty input, a layout other than the two), RG2_EDOMAIN (STL, PLY and glTF store
+ *  floats: surfaces reaching beyond FLT_MAX, 3.4e38, or spanning less than FLT_MIN / FLT_EPSILON,
+ *  about 1e-31; and the range of rg2_tessellate), RG2_ELIMIT (too many vertices or records for
+ *  the format), RG2_ENOMEM. */
 RG2_API rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *path,
                                    const rg2_export_opts *opts, rg2_error *err);
 /** Write the same surfaces to several files as one: each is written completely to its

@@ -214,19 +214,14 @@ rg2_status rg2_mesh_check_range(const rg2_mesh *m, const char *what, rg2_error *
 {
     if (!what)
         what = "mesh";
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    rg2__box box;
+    rg2__box_init(&box);
     for (size_t k = 0; k < (size_t)m->nu * (size_t)m->nv; k++)
-        for (int q = 0; q < 3 && m->p[4 * k + 3] != 0.0; q++) { /* W = 0: a point at infinity (a
-                                  hyperboloid's mirrored data knot at v = 0), no coordinates */
-            double x = m->p[4 * k + q] / m->p[4 * k + 3];
-            lo[q] = fmin(lo[q], x);
-            hi[q] = fmax(hi[q], x);
-        }
-    double big = 0.0, diag = 0.0;
-    for (int q = 0; q < 3; q++) {
-        big = fmax(big, fmax(fabs(lo[q]), fabs(hi[q])));
-        diag = hypot(diag, hi[q] - lo[q]);
-    }
+        if (m->p[4 * k + 3] != 0.0) /* W = 0: a point at infinity (a hyperboloid's mirrored data
+                                       knot at v = 0), no coordinates */
+            rg2__box_add(&box, &m->p[4 * k], m->p[4 * k + 3]);
+    double big, diag;
+    rg2__box_extent(&box, &big, &diag);
     if (!(big <= RG2_DESIGN_MAX_COORD) || !(diag >= RG2_DESIGN_MIN_SIZE))
         return rg2__fail(err, RG2_EDOMAIN,
                          "%s: coordinates up to %g, size %g: outside the supported range "

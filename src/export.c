@@ -8,6 +8,8 @@
 #include <cjson/cJSON.h>
 #include <ctype.h>
 #include <errno.h>
+#include <float.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -116,30 +118,33 @@ rg2_status rg2__check_nonempty(const rg2_surface *surfs, int n_surfs, rg2_error 
 rg2_status rg2__check_weights(const rg2_surface *surfs, int n_surfs, const char *format,
                               rg2_error *err)
 {
-    for (int k = 0; k < n_surfs; k++) {
-        const rg2_surface *s = &surfs[k];
-        for (int i = 0; i < s->nu; i++)
-            for (int j = 0; j < s->nv; j++) {
-                rg2_xpatch P;
-                rg2_surface_patch_get(s, i, j, &P);
-                for (int r = 0; r <= P.du; r++)
-                    for (int t = 0; t <= P.dv; t++) {
-                        const double *h = P.h[r][t];
-                        if (!(rg2__finite(h[0]) && rg2__finite(h[1]) && rg2__finite(h[2]) &&
-                              rg2__finite(h[3])))
-                            return rg2__fail(err, RG2_ENONFINITE,
-                                             "%s: surface %d patch (%d, %d) control point [%d][%d] "
-                                             "is not finite",
-                                             format, k, i, j, r, t);
-                        if (!(h[3] > 0.0))
-                            return rg2__fail(err, RG2_EWEIGHT,
-                                             "%s: surface %d patch (%d, %d) control point [%d][%d] has "
-                                             "weight %g; %s needs every weight > 0 (importers drop "
-                                             "the face or ignore the weights)",
-                                             format, k, i, j, r, t, h[3], format);
-                    }
-            }
-    }
+    /* two passes: a non-finite value anywhere is named before any weight (the mesh formats
+     * refuse only the former; a negative weight first once hid a later NaN from them) */
+    for (int pass = 0; pass < 2; pass++)
+        for (int k = 0; k < n_surfs; k++) {
+            const rg2_surface *s = &surfs[k];
+            for (int i = 0; i < s->nu; i++)
+                for (int j = 0; j < s->nv; j++) {
+                    rg2_xpatch P;
+                    rg2_surface_patch_get(s, i, j, &P);
+                    for (int r = 0; r <= P.du; r++)
+                        for (int t = 0; t <= P.dv; t++) {
+                            const double *h = P.h[r][t];
+                            if (pass == 0 && !(rg2__finite(h[0]) && rg2__finite(h[1]) && rg2__finite(h[2]) &&
+                                               rg2__finite(h[3])))
+                                return rg2__fail(err, RG2_ENONFINITE,
+                                                 "%s: surface %d patch (%d, %d) control point [%d][%d] "
+                                                 "is not finite",
+                                                 format, k, i, j, r, t);
+                            if (pass == 1 && !(h[3] > 0.0))
+                                return rg2__fail(err, RG2_EWEIGHT,
+                                                 "%s: surface %d patch (%d, %d) control point [%d][%d] has "
+                                                 "weight %g; %s needs every weight > 0 (importers drop "
+                                                 "the face or ignore the weights)",
+                                                 format, k, i, j, r, t, h[3], format);
+                        }
+                }
+        }
     return RG2_OK;
 }
 
@@ -682,6 +687,32 @@ static char *name_without_controls(const char *name, int *nomem)
     return c;
 }
 
+/* STL, PLY and glTF store float coordinates: a surface beyond FLT_MAX would be written as
+ * infinities (and glTF's min/max as null), one spanning less than FLT_MIN / FLT_EPSILON as
+ * zeros or a few denormal values. */
+static rg2_status check_float_range(const rg2_tess *t, int n, const char *path, const char *format,
+                                    rg2_error *err)
+{
+    rg2__box box;
+    rg2__box_init(&box);
+    for (int k = 0; k < n; k++)
+        for (size_t v = 0; v < (size_t)t[k].n_vertices; v++)
+            rg2__box_add(&box, &t[k].pos[3 * v], 1.0);
+    double big, diag;
+    rg2__box_extent(&box, &big, &diag);
+    if (big > FLT_MAX)
+        return rg2__fail(err, RG2_EDOMAIN,
+                         "%s: %s stores float coordinates, up to %g; the surfaces reach %g (write OBJ, "
+                         "STEP or IGES, or scale the design)",
+                         path, format, (double)FLT_MAX, big);
+    if (diag < FLT_MIN / FLT_EPSILON)
+        return rg2__fail(err, RG2_EDOMAIN,
+                         "%s: %s stores float coordinates, which resolve sizes from %g; the surfaces span "
+                         "%g (write OBJ, STEP or IGES, or scale the design)",
+                         path, format, (double)(FLT_MIN / FLT_EPSILON), diag);
+    return RG2_OK;
+}
+
 /* Write path.tmp in path's format; on success the complete file waits there in *out for
  * rg2__out_commit, on failure nothing is left. */
 static rg2_status export_staged(const rg2_surface *surfs, int n_surfs, const char *path,
@@ -724,6 +755,12 @@ static rg2_status export_staged(const rg2_surface *surfs, int n_surfs, const cha
         st = rg2__tess_all(surfs, n_surfs, opts->density, fmt == F_PLY, &tess, err);
         if (st)
             return st;
+        if (fmt != F_OBJ)
+            st = check_float_range(tess, n_surfs, path, fmt == F_STL ? "STL" : fmt == F_PLY ? "PLY" : "glTF", err);
+        if (st) {
+            rg2__tess_all_free(tess, n_surfs);
+            return st;
+        }
     }
     int nomem;
     char *clean = name_without_controls(opts->name, &nomem);

@@ -32,8 +32,9 @@ void rg2__utc_stamp(char *buf, size_t cap, const char *fmt);
  * '.' and an upper-case 'E' when there is an exponent ("13.", "1.E-07", "-0.25"). */
 void rg2__real(char buf[40], double x);
 
-/* Check that every homogeneous weight is > 0 and every coordinate finite; the message
- * names the surface, patch and control point ("surface 0 patch (2, 3) point [1][0]"). */
+/* Check that every coordinate is finite (RG2_ENONFINITE, checked over all surfaces first) and
+ * every homogeneous weight > 0 (RG2_EWEIGHT); the message names the surface, patch and control
+ * point ("surface 0 patch (2, 3) point [1][0]"). */
 rg2_status rg2__check_weights(const rg2_surface *surfs, int n_surfs, const char *format,
                               rg2_error *err);
 /* Check surfs != NULL, n_surfs >= 1 and every surface has at least one patch. */

@@ -197,6 +197,38 @@ void rg2__xgrid_patch(const rg2_xpatch *x, const rg2__xgrid *t, const rg2_grid_o
 void rg2__surface_normalize_weights(rg2_surface *s);
 /* RG2_ENONFINITE naming "<what>: surface <index> patch (i,j)" if a control value is not finite. */
 rg2_status rg2__surface_check_finite(const rg2_surface *s, const char *what, int index, rg2_error *err);
+/* A bounding box grown point by point: its largest |coordinate| and its diagonal. */
+typedef struct {
+    double lo[3], hi[3];
+} rg2__box;
+static inline void rg2__box_init(rg2__box *b)
+{
+    for (int q = 0; q < 3; q++) {
+        b->lo[q] = INFINITY;
+        b->hi[q] = -INFINITY;
+    }
+}
+/* Add the point x / w (w = 1 for a Euclidean point). */
+static inline void rg2__box_add(rg2__box *b, const double *x, double w)
+{
+    for (int q = 0; q < 3; q++) {
+        b->lo[q] = fmin(b->lo[q], x[q] / w);
+        b->hi[q] = fmax(b->hi[q], x[q] / w);
+    }
+}
+static inline void rg2__box_extent(const rg2__box *b, double *big, double *diag)
+{
+    *big = *diag = 0.0;
+    for (int q = 0; q < 3; q++) {
+        *big = fmax(*big, fmax(fabs(b->lo[q]), fabs(b->hi[q])));
+        *diag = hypot(*diag, b->hi[q] - b->lo[q]);
+    }
+}
+/* RG2_EDOMAIN naming "<what>: surface <index>" if its control points (weight 0 skipped) reach
+ * beyond RG2_DESIGN_MAX_COORD or span less than RG2_DESIGN_MIN_SIZE: past about 1e+-75 the
+ * grid kernels' normal and curvature formulas leave the double range (a torus of size 1e80
+ * tessellated to NaN normals). */
+rg2_status rg2__surface_check_range(const rg2_surface *s, const char *what, int index, rg2_error *err);
 /* p = M p for a homogeneous 4-tuple p (row-major M), as rg2_mesh_transform does per point. */
 void rg2__xform_apply(const double M[16], double p[4]);
 

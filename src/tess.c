@@ -180,6 +180,8 @@ static rg2_status check_args(const rg2_surface *s, int density, rg2_error *err)
     if (density < 1)
         return rg2__fail(err, RG2_EINVAL, "tessellate: density %d, must be >= 1", density);
     rg2_status fst = rg2__surface_check_finite(s, "tessellate", 0, err);
+    if (!fst)
+        fst = rg2__surface_check_range(s, "tessellate", 0, err);
     if (fst)
         return fst;
     int d = density, nu = s->nu, nv = s->nv;

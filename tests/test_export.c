@@ -1085,6 +1085,17 @@ static void failures(const rg2_surface *s)
     h[3] = 0.0;
     st = export_one(&bad, "zero.step", &err);
     CHECK(st == RG2_EWEIGHT && strstr(err.msg, "patch (2, 1)"), "zero weight: %s", err.msg);
+    /* a NaN in a later patch than the zero weight: every format refuses it (the patch formats
+     * wrote "nan" when the weight was found first, and the .json did not parse) */
+    char where[32];
+    snprintf(where, sizeof where, "patch (%d, %d)", bad.nu - 1, bad.nv - 1);
+    rg2_surface_patch(&bad, bad.nu - 1, bad.nv - 1)->h[1][1][0] = NAN;
+    const char *later[] = {"nan.json", "nan.bv", "nan.bez", "nan.step", "nan.obj"};
+    for (int k = 0; k < 5; k++) {
+        st = export_one(&bad, later[k], &err);
+        CHECK(st == RG2_ENONFINITE && (k == 4 || strstr(err.msg, where)), "%s, NaN after a zero weight: %s '%s'",
+              later[k], rg2_status_str(st), err.msg);
+    }
     h[0] = NAN;
     st = export_one(&bad, "nan.obj", &err);
     CHECK(st == RG2_ENONFINITE, "NaN: %s", err.msg);
@@ -1145,6 +1156,47 @@ static void several_files(const rg2_surface *s)
     for (int k = 0; k < 3; k++)
         remove(ok_paths[k]);
     remove(path_in("old.obj"));
+}
+
+/* STL, PLY and glTF store floats: a torus of size 4e45 (inside the supported 1e60) was written
+ * as infinities with status ok (glTF min/max null), one of size 1e-50 as zeros; both are refused
+ * naming the format, and leave no file; OBJ (17 digits) and STEP take them. Sizes 1e-30 and 1e30
+ * are written, every float finite. */
+static void float_range(void)
+{
+    rg2_error err;
+    const double scale[] = {1e45, 1e-50, 1e30, 1e-30};
+    const char *fmt[] = {"stl", "ply", "glb", "obj"}, *name[] = {"STL", "PLY", "glTF", "OBJ"};
+    for (int q = 0; q < 4; q++) {
+        rg2_surface s;
+        CHECK_OK(fx_torus(3.0 * scale[q], 1.0 * scale[q], 4, 4, &s, &err), &err);
+        for (int f = 0; f < 4; f++) {
+            char file[32];
+            snprintf(file, sizeof file, "fr%d.%s", q, fmt[f]);
+            rg2_status st = rg2_export_file(&s, 1, path_in(file), NULL, &err);
+            if (q < 2 && f < 3)
+                CHECK(st == RG2_EDOMAIN && strstr(err.msg, name[f]) && strstr(err.msg, "float") && !exists(path_in(file)),
+                      "%s at size %g: %s '%s'", file, scale[q], rg2_status_str(st), err.msg);
+            else
+                CHECK(st == RG2_OK && exists(path_in(file)), "%s at size %g: %s '%s'", file, scale[q],
+                      rg2_status_str(st), err.msg);
+            if (st == RG2_OK && f == 0) { /* binary STL: 80 + 4 bytes, then 50 per triangle */
+                size_t len;
+                unsigned char *b = slurp(path_in(file), &len);
+                int bad = 0;
+                for (size_t o = 84; b && o + 50 <= len; o += 50)
+                    for (int c = 0; c < 12; c++) {
+                        float x;
+                        memcpy(&x, b + o + 4 * c, 4);
+                        bad += !isfinite(x);
+                    }
+                CHECK(b && !bad, "%s: %d non-finite floats", file, bad);
+                free(b);
+            }
+            remove(path_in(file));
+        }
+        rg2_surface_free(&s);
+    }
 }
 
 /* The failures again where the offending point is in a higher-degree patch, beyond the bi-3
@@ -1431,6 +1483,7 @@ int main(void)
     full_disk(&s);
     failures(&s);
     several_files(&s);
+    float_range();
     export_degrees(&s);
     rg2_surface x;
     CHECK_OK(elevated_torus(&x, &err), &err);

@@ -524,6 +524,35 @@ static void bad_input(void)
           err.msg);
     rg2_tess_free(&t);
     rg2_surface_free(&s);
+    /* sizes: up to the supported 1e60 (and down to 1e-60) every normal, K and H is finite and
+     * the normals are those of the unit torus; a torus of size 1e80 gave NaN normals with status
+     * ok, and is refused now, as is one of size 1e-80 */
+    const double scale[] = {1e-59, 1e-30, 1e30, 2e59, 1e80, 1e-80};
+    rg2_tess unit;
+    CHECK_OK(fx_torus(3.0, 1.0, 4, 4, &s, &err), &err);
+    CHECK_OK(rg2_tessellate(&s, 8, 1, &unit, &err), &err);
+    rg2_surface_free(&s);
+    for (int q = 0; q < 6; q++) {
+        CHECK_OK(fx_torus(3.0 * scale[q], 1.0 * scale[q], 4, 4, &s, &err), &err);
+        rg2_status st = rg2_tessellate(&s, 8, 1, &t, &err);
+        if (q >= 4) {
+            CHECK(st == RG2_EDOMAIN && strstr(err.msg, "surface 0") && strstr(err.msg, "scale it"),
+                  "torus of size %g: %s '%s'", scale[q], rg2_status_str(st), err.msg);
+        } else if (st == RG2_OK) {
+            double dn = 0.0, dk = 0.0;
+            for (int v = 0; v < t.n_vertices && v < unit.n_vertices; v++) {
+                for (int c = 0; c < 3; c++)
+                    dn = fmax(dn, fabs(t.normal[3 * v + c] - unit.normal[3 * v + c]));
+                dk = fmax(dk, fabs(t.K[v] * scale[q] * scale[q] - unit.K[v]) + fabs(t.H[v] * scale[q] - unit.H[v]));
+            }
+            CHECK(t.n_vertices == unit.n_vertices && dn < 1e-14 && dk < 1e-13,
+                  "torus of size %g: normals %.3g, K and H %.3g from the unit torus's", scale[q], dn, dk);
+        } else
+            CHECK(0, "torus of size %g refused: %s", scale[q], err.msg);
+        rg2_tess_free(&t);
+        rg2_surface_free(&s);
+    }
+    rg2_tess_free(&unit);
 }
 
 int main(void)
