@@ -29,6 +29,14 @@ void rg2_export_opts_default(rg2_export_opts *o)
 void rg2__utc_stamp(char *buf, size_t cap, const char *fmt)
 {
     time_t now = time(NULL);
+    const char *sde = getenv("SOURCE_DATE_EPOCH"); /* reproducible files (reproducible-builds.org) */
+    if (sde && *sde) {
+        char *end;
+        errno = 0;
+        long long t = strtoll(sde, &end, 10);
+        if (!*end && !errno && t >= 0)
+            now = (time_t)t;
+    }
     struct tm tmv;
     if (!gmtime_r(&now, &tmv) || strftime(buf, cap, fmt, &tmv) == 0) {
         memset(&tmv, 0, sizeof tmv);
@@ -80,7 +88,9 @@ int rg2__write_blocks(FILE *f, int n, int block, rg2__block_fn fn, rg2__block_fi
 #endif
         for (int r = 0; r < nb; r++) {
             int b = b0 + r, k0 = b * block, k1 = k0 + block < n ? k0 + block : n;
+            void *loc = rg2__c_numeric_begin(); /* this thread's numbers in the C locale */
             int st = fseek(m[r], 0, SEEK_SET) ? -1 : fn(m[r], ctx, b, k0, k1);
+            rg2__c_numeric_end(loc);
             if (!st && (fflush(m[r]) || (used[r] = ftell(m[r])) < 0))
                 st = -1;
             if (st) {
@@ -780,6 +790,7 @@ static rg2_status export_staged(const rg2_surface *surfs, int n_surfs, const cha
         free(clean);
         return st;
     }
+    void *loc = rg2__c_numeric_begin(); /* the threads of rg2__write_blocks switch for themselves */
     switch (fmt) {
     case F_STEP: st = rg2__write_step(surfs, n_surfs, opts, out, err); break;
     case F_IGES: st = rg2__write_iges(surfs, n_surfs, opts, out, err); break;
@@ -791,6 +802,7 @@ static rg2_status export_staged(const rg2_surface *surfs, int n_surfs, const cha
     case F_GLB: st = rg2__write_glb(tess, n_surfs, opts, out, err); break;
     case F_JSON: st = write_json(surfs, n_surfs, opts, out, err); break;
     }
+    rg2__c_numeric_end(loc);
     rg2__tess_all_free(tess, n_surfs);
     free(clean);
     return rg2__out_finish(out, st, err);

@@ -195,10 +195,17 @@ static int pw_reals(pwriter *w, const double *x, size_t n)
     for (size_t k0 = 0; k0 < n; k0 += REALS_CHUNK) {
         int m = n - k0 < REALS_CHUNK ? (int)(n - k0) : REALS_CHUNK;
 #ifdef RG2_HAVE_OPENMP
-#pragma omp parallel for schedule(static)
+#pragma omp parallel
 #endif
-        for (int k = 0; k < m; k++)
-            rg2__real(tok[k], x[k0 + (size_t)k]);
+        {
+            void *loc = rg2__c_numeric_begin(); /* each thread's numbers in the C locale */
+#ifdef RG2_HAVE_OPENMP
+#pragma omp for schedule(static)
+#endif
+            for (int k = 0; k < m; k++)
+                rg2__real(tok[k], x[k0 + (size_t)k]);
+            rg2__c_numeric_end(loc);
+        }
         for (int k = 0; k < m; k++)
             pw_tok(w, tok[k], ',');
     }

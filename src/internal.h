@@ -197,6 +197,11 @@ void rg2__xgrid_patch(const rg2_xpatch *x, const rg2__xgrid *t, const rg2_grid_o
 void rg2__surface_normalize_weights(rg2_surface *s);
 /* RG2_ENONFINITE naming "<what>: surface <index> patch (i,j)" if a control value is not finite. */
 rg2_status rg2__surface_check_finite(const rg2_surface *s, const char *what, int index, rg2_error *err);
+/* Switch this thread to the "C" locale for numbers written into files (src/clocale.c); pass
+ * the returned value to rg2__c_numeric_end to switch back. */
+void *rg2__c_numeric_begin(void);
+void rg2__c_numeric_end(void *old);
+
 /* A bounding box grown point by point: its largest |coordinate| and its diagonal. */
 typedef struct {
     double lo[3], hi[3];

@@ -1,0 +1,78 @@
+/* test_locale.c -- the files rg2 writes do not depend on the host program's locale. printf's
+ * decimal point follows LC_NUMERIC: a program that called setlocale(LC_ALL, "") under a German
+ * locale got "3,5" in STEP (a second list item), IGES (wrong token counts), OBJ and the JSON
+ * dump. Every format is written under de_DE.UTF-8 (compiled into a temporary directory with
+ * localedef; scripts/deps.sh test installs the locales package that holds its source) and under
+ * "C", large enough that the numbers are formatted on the threads too, and the files must be
+ * the same bytes (SOURCE_DATE_EPOCH fixes the STEP and IGES time stamps). */
+#define _GNU_SOURCE
+#include "harness.h"
+
+#include <locale.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+int main(void)
+{
+    char dir[] = "/tmp/rg2-locale-XXXXXX", cmd[256];
+    CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+    snprintf(cmd, sizeof cmd, "localedef -i de_DE -f UTF-8 %s/de_DE.UTF-8 >/dev/null 2>&1", dir);
+    int rc = system(cmd); /* exit 1 is a warning only */
+    setenv("LOCPATH", dir, 1);
+    setenv("SOURCE_DATE_EPOCH", "1700000000", 1);
+    char probe[16] = "";
+    if (setlocale(LC_ALL, "de_DE.UTF-8"))
+        snprintf(probe, sizeof probe, "%.1f", 3.5);
+    CHECK(!strcmp(probe, "3,5"), "the de_DE.UTF-8 locale (localedef exit %d) formats 3.5 as '%s', not '3,5': is the "
+          "Debian package 'locales' installed? (scripts/deps.sh test installs it)", rc, probe);
+    setlocale(LC_ALL, "C");
+
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(rg2t_torus(3.0, 1.0, 48, 32, NULL, &s, &err), &err);
+    struct {
+        const char *ext;
+        int layout, brep;
+    } fmt[] = {{"step", 0, 0}, {"step", 1, 0}, {"igs", 0, 0}, {"igs", 1, 0}, {"igs", 0, 1},
+               {"obj", 0, 0},  {"json", 0, 0}, {"bv", 0, 0},  {"bez", 0, 0}};
+    int nf = (int)(sizeof fmt / sizeof fmt[0]);
+    for (int k = 0; k < nf; k++) {
+        char path[2][128];
+        char *b[2];
+        size_t len[2];
+        for (int l = 0; l < 2; l++) {
+            setlocale(LC_ALL, l ? "de_DE.UTF-8" : "C");
+            snprintf(path[l], sizeof path[l], "%s/t%d_%d.%s", dir, k, l, fmt[k].ext);
+            rg2_export_opts o;
+            rg2_export_opts_default(&o);
+            o.layout = (rg2_step_layout)fmt[k].layout;
+            o.iges_brep = fmt[k].brep;
+            o.density = 4; /* OBJ: 24 576 vertices, 12 blocks of lines on the threads */
+            CHECK_OK(rg2_export_file(&s, 1, path[l], &o, &err), &err);
+            CHECK_OK(rg2_read_text(path[l], &b[l], &len[l], &err), &err);
+        }
+        setlocale(LC_ALL, "C");
+        /* the names differ in their last digit only: the same length, so the same bytes but there */
+        size_t diff = 0, first = (size_t)-1;
+        for (size_t q = 0; b[0] && b[1] && len[0] == len[1] && q < len[0]; q++)
+            if (b[0][q] != b[1][q]) {
+                diff++;
+                if (first == (size_t)-1)
+                    first = q;
+            }
+        int names = !strcmp(fmt[k].ext, "step") || !strcmp(fmt[k].ext, "igs");
+        CHECK(b[0] && b[1] && len[0] == len[1] && diff <= (size_t)names,
+              "%s (layout %d, brep %d) under de_DE: %zu bytes, under C %zu, %zu bytes differ (first at %zu: '%.40s')",
+              fmt[k].ext, fmt[k].layout, fmt[k].brep, len[1], len[0], diff, first,
+              b[1] && first < len[1] ? b[1] + first - (first > 10 ? 10 : 0) : "");
+        free(b[0]);
+        free(b[1]);
+        remove(path[0]);
+        remove(path[1]);
+    }
+    rg2_surface_free(&s);
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    CHECK(system(cmd) == 0, "%s", cmd);
+    return rg2t_done("test_locale");
+}
