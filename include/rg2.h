@@ -524,7 +524,10 @@ RG2_API rg2_status rg2_xform_invert(const double M[16], double inv[16], rg2_erro
  * increasing knots (a repeated interior knot is refused with RG2_EDOMAIN naming it); the end
  * knots may be clamped (repeated) or not: clamped ends are unclamped exactly by blossoming the
  * end pieces at virtual knots continuing the end intervals. Patch (i, j) of the built surface
- * is the NURBS over [U_{i+3}, U_{i+4}] x [V_{j+3}, V_{j+4}] with linear parameter maps. */
+ * is the NURBS over [U_{i+3}, U_{i+4}] x [V_{j+3}, V_{j+4}] with linear parameter maps.
+ * Weights that differ much near a clamped end make those extrapolated points cancel: when the
+ * estimated rounding error exceeds 1e-10 of the coordinates' scale the NURBS is refused with
+ * RG2_EDOMAIN naming two weights (docs/shapes.md). */
 typedef struct {
     int nu, nv;             /**< control points (>= 4 each) */
     const double *points;   /**< nu * nv * 3: points[(i * nv + j) * 3 + d] */

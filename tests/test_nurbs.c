@@ -180,6 +180,145 @@ static void random_nurbs(void)
 }
 
 
+/* Largest distance (max norm) of the built surface from Cox-de Boor over n + 1 x n + 1 samples
+ * per patch, relative to the scale max(largest coordinate, bounding-box diagonal) of the
+ * control points; *corner: the same at the four domain corners only. Infinity if the surface
+ * does not build. */
+static double import_error(const rg2_nurbs *nb, const rg2_mesh *m, int n, double *corner)
+{
+    int np = nb->nu * nb->nv;
+    double X = 0.0, lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int k = 0; k < 3 * np; k++) {
+        X = fmax(X, fabs(nb->points[k]));
+        lo[k % 3] = fmin(lo[k % 3], nb->points[k]);
+        hi[k % 3] = fmax(hi[k % 3], nb->points[k]);
+    }
+    double L = fmax(X, sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                            (hi[2] - lo[2]) * (hi[2] - lo[2])));
+    rg2_surface s;
+    rg2_error err;
+    *corner = INFINITY;
+    if (rg2_surface_build(m, &s, &err))
+        return INFINITY;
+    double worst = 0.0;
+    *corner = 0.0;
+    const double *U = nb->knots_u, *V = nb->knots_v;
+    for (int i = 0; i < s.nu; i++)
+        for (int j = 0; j < s.nv; j++)
+            for (int a = 0; a <= n; a++)
+                for (int b = 0; b <= n; b++) {
+                    double tu = (double)a / n, tv = (double)b / n, q[3], p[3];
+                    nurbs_point(nb, i + 3, j + 3, U[i + 3] + tu * (U[i + 4] - U[i + 3]),
+                                V[j + 3] + tv * (V[j + 4] - V[j + 3]), q);
+                    rg2_patch_point(rg2_surface_patch(&s, i, j), tu, tv, p);
+                    double d = fmax(fabs(p[0] - q[0]), fmax(fabs(p[1] - q[1]), fabs(p[2] - q[2]))) / L;
+                    if (!(d <= worst))
+                        worst = d;
+                    int at_corner = ((a == 0 && i == 0) || (a == n && i == s.nu - 1)) &&
+                                    ((b == 0 && j == 0) || (b == n && j == s.nv - 1));
+                    if (at_corner && !(d <= *corner))
+                        *corner = d;
+                }
+    rg2_surface_free(&s);
+    return worst;
+}
+
+/* Weights that differ much near a clamped end (the numeric review's 5 x 5 NURBS: points
+ * (i, j, ((7i + 3j) mod 5) 0.3), weights r where i + j is odd and 1/r where even, and weights
+ * r^((i+j)/8)): every NURBS rg2_nurbs_mesh accepts is the NURBS to 1e-10 of its scale (dense
+ * samples against Cox-de Boor); the others are refused with RG2_EDOMAIN naming two weights.
+ * Unclamped knots need no extrapolation: accepted and exact for every ratio. Before the
+ * refusal, r = 1e3 was 8e-10 off, 1e7 0.04, and from 1e10 patch weights were negative. */
+static void clamped_weights(void)
+{
+    double P[75], W[25];
+    double Uc[9] = {0, 0, 0, 0, 1, 2, 2, 2, 2}, Uf[9] = {-3, -2, -1, 0, 1, 2, 3, 4, 5};
+    for (int i = 0; i < 5; i++)
+        for (int j = 0; j < 5; j++) {
+            P[(i * 5 + j) * 3] = i;
+            P[(i * 5 + j) * 3 + 1] = j;
+            P[(i * 5 + j) * 3 + 2] = ((i * 7 + j * 3) % 5) * 0.3;
+        }
+    printf("weights near clamped ends (5 x 5, error relative to the scale; - = refused)\n");
+    for (int style = 0; style < 2; style++) {
+        double first_refused = INFINITY;
+        printf("  %s:", style ? "r^((i+j)/8)" : "alternating r, 1/r");
+        for (int e = 0; e <= 8; e++) {
+            double r = pow(10.0, e);
+            for (int k = 0; k < 25; k++)
+                W[k] = style ? pow(r, (k / 5 + k % 5) / 8.0) : ((k / 5 + k % 5) % 2 ? r : 1.0 / r);
+            for (int clamped = 1; clamped >= 0; clamped--) {
+                rg2_nurbs nb = {5, 5, P, W, clamped ? Uc : Uf, clamped ? Uc : Uf};
+                rg2_mesh m;
+                rg2_error err;
+                rg2_status st = rg2_nurbs_mesh(&nb, &m, &err);
+                if (st) {
+                    CHECK(clamped, "unclamped, r = %g refused: %s", r, err.msg);
+                    CHECK(st == RG2_EDOMAIN && strstr(err.msg, "weights [") && strstr(err.msg, "clamped end"),
+                          "r = %g: %s %s", r, rg2_status_str(st), err.msg);
+                    if (clamped && e <= 1)
+                        CHECK(0, "r = %g refused: %s", r, err.msg);
+                    first_refused = fmin(first_refused, r);
+                    if (clamped)
+                        printf(" 1e%d -", e);
+                    continue;
+                }
+                double corner, d = import_error(&nb, &m, 32, &corner);
+                rg2_mesh_free(&m);
+                if (clamped)
+                    printf(" 1e%d %.1e", e, d);
+                CHECK(d <= (clamped ? 1e-10 : 1e-13), "%s r = %g: %.3g from Cox-de Boor",
+                      clamped ? "clamped" : "unclamped", r, d);
+                if (clamped) /* a clamped corner is the corner control point */
+                    CHECK(corner <= 1e-10, "r = %g: clamped corner %.3g off", r, corner);
+                CHECK(!(r > first_refused && clamped), "r = %g accepted, %g refused", r, first_refused);
+            }
+        }
+        printf("\n");
+        if (style) /* gradual growth cancels nothing: accepted and exact up to a ratio of 1e8 */
+            CHECK(first_refused == INFINITY, "growing weights refused from r = %g", first_refused);
+        else
+            CHECK(first_refused < INFINITY, "alternating weights: no ratio refused");
+    }
+
+    /* random clamped NURBS with weights e^U(-L, L): accepted ones are accurate */
+    rg2t_rng rng;
+    rg2t_seed(&rng, 77);
+    int accepted = 0, refused = 0;
+    double worst = 0.0;
+    for (int trial = 0; trial < 80; trial++) {
+        int nu = rg2t_int(&rng, 4, 7), nv = rg2t_int(&rng, 4, 7);
+        double L = (trial % 4 == 0) ? 0.5 : (trial % 4 == 1) ? 3.0 : (trial % 4 == 2) ? 8.0 : 20.0;
+        double Q[7 * 7 * 3], Wr[7 * 7], U[11], V[11];
+        for (int k = 0; k < nu * nv; k++) {
+            Q[3 * k] = k / nv + rg2t_uniform(&rng, -0.5, 0.5);
+            Q[3 * k + 1] = k % nv + rg2t_uniform(&rng, -0.5, 0.5);
+            Q[3 * k + 2] = rg2t_uniform(&rng, -1, 1);
+            Wr[k] = exp(rg2t_uniform(&rng, -L, L));
+        }
+        random_knots(&rng, nu, 0, U);
+        random_knots(&rng, nv, 0, V);
+        rg2_nurbs nb = {nu, nv, Q, Wr, U, V};
+        rg2_mesh m;
+        rg2_error err;
+        rg2_status st = rg2_nurbs_mesh(&nb, &m, &err);
+        if (st) {
+            CHECK(st == RG2_EDOMAIN && strstr(err.msg, "weights ["), "trial %d: %s", trial, err.msg);
+            CHECK(L > 0.5, "trial %d: weights within e^0.5 refused: %s", trial, err.msg);
+            refused++;
+            continue;
+        }
+        double corner, d = import_error(&nb, &m, 16, &corner);
+        rg2_mesh_free(&m);
+        worst = fmax(worst, d);
+        accepted++;
+    }
+    printf("  random weights e^U(-L, L), L = 0.5 .. 20: %d accepted (worst %.2e of the scale), %d refused\n",
+           accepted, worst, refused);
+    CHECK(worst <= 1e-10, "accepted random clamped NURBS %.3g from Cox-de Boor", worst);
+    CHECK(accepted >= 20 && refused >= 20, "%d accepted, %d refused", accepted, refused);
+}
+
 static void errors(void)
 {
     double P[6 * 5 * 3], W[30];
@@ -221,6 +360,7 @@ static void errors(void)
 int main(void)
 {
     random_nurbs();
+    clamped_weights();
     errors();
     return rg2t_done("test_nurbs");
 }
