@@ -195,7 +195,20 @@ rg2_status rg2__edit_pole(rg2__dmesh *m, int end, rg2__edit_kind kind, const dou
         if (st)
             return st;
     }
-    collapse_row(&m->m, j);
+    /* one position for the whole row (each point's own rounding could differ in the last bit),
+     * each point keeping its own weight: a row collapsed only projectively (a NURBS pole with
+     * weights 1, 1.5, 2, ...) keeps the weights the surface depends on; copying point 0 over
+     * the row made them all 1, so even a zero move changed the surface */
+    const double *p0 = rg2_mesh_at(&m->m, 0, j);
+    for (int i = 1; i < m->m.nu; i++) {
+        double *p = rg2_mesh_at(&m->m, i, j), q[4] = {0.0, 0.0, 0.0, p[3]};
+        for (int k = 0; k < 3; k++)
+            q[k] = p[3] == p0[3] ? p0[k] : p[3] * (p0[k] / p0[3]);
+        if (memcmp(p, q, sizeof q)) {
+            memcpy(p, q, sizeof q);
+            rg2__dmesh_pp(m, i, j)->src = -1;
+        }
+    }
     return RG2_OK;
 }
 

@@ -778,6 +778,50 @@ static void nurbs_pieces(void)
     rg2_design_free(d);
 }
 
+/* A pole edit keeps each point's weight: a NURBS whose south row is one point with weights 1,
+ * 1.5, 2, 2.5, 3 (collapsed projectively). Copying point 0 over the row made every weight 1, so a
+ * zero move changed the surface (by up to 0.25); now the zero move builds the same patches bit
+ * for bit, and a move of (0, 0, 0.5) keeps the weights and moves the whole row. */
+static void pole_edit_weights(void)
+{
+    static const char *fmt = "{\"shapes\": {}, \"meshes\": {\"a\": {\"nurbs\": {\"nu\": 5, \"nv\": 5, \"points\": ["
+                             "[0, 0, 0], [0.0, 1.0, 0.0], [0.0, 2.0, 0.0], [0.0, 3.0, 0.0], [0.0, 4.0, 0.0], "
+                             "[0, 0, 0], [1.0, 1.0, 0.3], [1.0, 2.0, 0.6], [1.0, 3.0, 0.9], [1.0, 4.0, 1.2], "
+                             "[0, 0, 0], [2.0, 1.0, 0.6], [2.0, 2.0, 1.2], [2.0, 3.0, 1.8], [2.0, 4.0, 2.4], "
+                             "[0, 0, 0], [3.0, 1.0, 0.9], [3.0, 2.0, 1.8], [3.0, 3.0, 2.7], [3.0, 4.0, 3.6], "
+                             "[0, 0, 0], [4.0, 1.0, 1.2], [4.0, 2.0, 2.4], [4.0, 3.0, 3.6], [4.0, 4.0, 4.8]], "
+                             "\"weights\": [1.0, 1.0, 1.0, 1.0, 1.0, 1.5, 1.0, 1.0, 1.0, 1.0, 2.0, 1.0, 1.0, 1.0, 1.0, 2.5, 1.0, 1.0, 1.0, 1.0, 3.0, 1.0, 1.0, 1.0, 1.0], "
+                             "\"knots_u\": [0, 1, 2, 3, 4, 5, 6, 7, 8], \"knots_v\": [0, 1, 2, 3, 4, 5, 6, 7, 8]}}, "
+                             "\"b\": {\"edit\": \"a\", \"points\": [{\"pole\": \"south\", \"move\": [0, 0, %s]}]}}, "
+                             "\"output\": [\"%s\"]}";
+    char json[3][4096];
+    const char *dz[3] = {"0", "0", "0.5"}, *out[3] = {"a", "b", "b"};
+    rg2_design *d[3] = {NULL, NULL, NULL};
+    rg2_error err;
+    for (int k = 0; k < 3; k++) {
+        snprintf(json[k], sizeof json[k], fmt, dz[k], out[k]);
+        CHECK_OK(rg2_design_parse(json[k], strlen(json[k]), "pole-weights", &d[k], &err), &err);
+    }
+    if (!d[0] || !d[1] || !d[2])
+        return;
+    const rg2_surface *s0 = rg2_design_surface(d[0], 0), *s1 = rg2_design_surface(d[1], 0);
+    size_t diff = 0;
+    for (int p = 0; p < s0->nu * s0->nv && s0->nu == s1->nu && s0->nv == s1->nv; p++)
+        diff += memcmp(&s0->patch[p], &s1->patch[p], sizeof s0->patch[p]) != 0;
+    CHECK(s0->nu == s1->nu && s0->nv == s1->nv && diff == 0, "a zero pole move changed %zu of %d patches", diff,
+          s0->nu * s0->nv);
+    const rg2_mesh *m = rg2_design_mesh(d[2], 0);
+    int bad = 0;
+    for (int i = 0; i < m->nu; i++) {
+        const double *p = rg2_mesh_at(m, i, 0);
+        bad += p[3] != 1.0 + 0.5 * i || p[0] != 0.0 || p[1] != 0.0 || fabs(p[2] / p[3] - 0.5) > 1e-15;
+    }
+    CHECK(m->nu == 5 && bad == 0, "a pole moved by (0, 0, 0.5): %d of the row's points lost their weight or position",
+          bad);
+    for (int k = 0; k < 3; k++)
+        rg2_design_free(d[k]);
+}
+
 static void bad_inputs(void)
 {
     struct {
@@ -917,6 +961,7 @@ int main(void)
     seam_rules();
     printf("NURBS meshes:\n");
     nurbs_pieces();
+    pole_edit_weights();
     printf("bad input:\n");
     bad_inputs();
     return rg2t_done("test_design");
