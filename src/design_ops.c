@@ -768,7 +768,8 @@ rg2_status rg2__dir_check(const rg2_scalars *s, int dir, const char *what, const
         return rg2__fail(err, RG2_EWEIGHT,
                          "%s: %s%s junction %d has K = %g (from w[%d] = %g, w[%d] = %g, b = %g, g = %g); "
                          "K must be > 0",
-                         what, when, dir_name(dir), i, rg2_scalars_K(s, i), i - 1, rg2_scalars_leg_w(s, i - 1), i,
+                         what, when, dir_name(dir), i, rg2_scalars_K(s, i), rg2__prev_leg(s, i),
+                         rg2_scalars_leg_w(s, i - 1), i,
                          rg2_scalars_leg_w(s, i), s->b[i], s->g[i]);
     char w[340];
     snprintf(w, sizeof w, "%s: %s%s", what, when, dir_name(dir));

@@ -197,6 +197,10 @@ void rg2__xgrid_patch(const rg2_xpatch *x, const rg2__xgrid *t, const rg2_grid_o
 void rg2__surface_normalize_weights(rg2_surface *s);
 /* RG2_ENONFINITE naming "<what>: surface <index> patch (i,j)" if a control value is not finite. */
 rg2_status rg2__surface_check_finite(const rg2_surface *s, const char *what, int index, rg2_error *err);
+/* The leg before junction i as users number legs: i - 1, wrapped in a closed direction (junction
+ * 0 of a closed u follows leg n - 1, not -1; open directions have the data-only leg -1). */
+int rg2__prev_leg(const rg2_scalars *s, int i);
+
 /* Switch this thread to the "C" locale for numbers written into files (src/clocale.c); pass
  * the returned value to rg2__c_numeric_end to switch back. */
 void *rg2__c_numeric_begin(void);

@@ -81,6 +81,11 @@ double rg2_scalars_leg_w(const rg2_scalars *s, int i)
     return s->w[i + 1];
 }
 
+int rg2__prev_leg(const rg2_scalars *s, int i)
+{
+    return s->closed ? rg2__wrap(i - 1, s->n, 1) : i - 1;
+}
+
 double rg2_scalars_K(const rg2_scalars *s, int i)
 {
     int j = rg2__wrap(i, s->n, s->closed);
@@ -121,7 +126,7 @@ rg2_status rg2_scalars_check(const rg2_scalars *s, const char *what, rg2_error *
             return rg2__fail(err, RG2_EWEIGHT,
                              "%s: junction %d has K = %g (from w[%d] = %g, w[%d] = %g, b = %g, g = %g);"
                              " K must be > 0",
-                             what, i, K, i - 1, rg2_scalars_leg_w(s, i - 1), i,
+                             what, i, K, rg2__prev_leg(s, i), rg2_scalars_leg_w(s, i - 1), i,
                              rg2_scalars_leg_w(s, i), s->b[i], s->g[i]);
     }
     rg2__ok(err);
