@@ -600,7 +600,8 @@ RG2_API const char *rg2_design_mesh_name(const rg2_design *d, int k);
 RG2_API int rg2_design_point_shape(const rg2_design *d, int k, int i, int j);
 /** Write the output control meshes as JSON (design coordinates d = p_{1..3} / p_4, weights
  *  W = p_4, scalars w, b, g, provenance and patch tags; docs/design-format.md). Writes
- *  path.tmp, then renames. @return RG2_EIO if the file cannot be written. */
+ *  path.tmp, then renames. @return RG2_EIO if the file cannot be written (nothing is left),
+ *  RG2_ENOMEM. */
 RG2_API rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, rg2_error *err);
 
 
@@ -725,8 +726,9 @@ RG2_API void rg2_cap_opts_default(rg2_cap_opts *o);
  *  open v-direction. opts and info are nullable. Free out with rg2_surface_free.
  *  @return RG2_EINVAL (u open, v closed, no body patch row, ends or quadratic not one of their
  *  values), RG2_EINCOMPATIBLE (u scalars are not a circle partition), RG2_EDOMAIN (boundary
- *  ring collapsed or too small, rank-deficient fit, bad option), or the errors of
- *  rg2_surface_build. */
+ *  ring collapsed or too small, rank-deficient fit, bad option), RG2_EWEIGHT (a boundary ring
+ *  weight <= 0), RG2_ELIMIT (more than INT_MAX / 12 boundary samples), RG2_ENOMEM, or the
+ *  errors of rg2_surface_build. */
 RG2_API rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts,
                                  rg2_surface *out, rg2_cap_info *info, rg2_error *err);
 
@@ -954,7 +956,9 @@ RG2_API void rg2_render_opts_default(rg2_render_opts *o);
 RG2_API rg2_status rg2_render(const rg2_surface *surfs, int n, const rg2_mesh *meshes,
                               const rg2_render_opts *o, rg2_image *out, rg2_error *err);
 RG2_API void rg2_image_free(rg2_image *img);
-/** Write an RGB image as 8-bit PNG (libpng): path.tmp, then rename. @return RG2_EIO. */
+/** Write an RGB image as 8-bit PNG (libpng): path.tmp, then rename (a failed write leaves no
+ *  file). @return RG2_EIO (unwritable, disk full), RG2_EINVAL (empty image, no path),
+ *  RG2_ENOMEM. */
 RG2_API rg2_status rg2_image_write_png(const rg2_image *img, const char *path, rg2_error *err);
 /** rg2_render followed by rg2_image_write_png. */
 RG2_API rg2_status rg2_render_png(const rg2_surface *surfs, int n, const rg2_mesh *meshes,

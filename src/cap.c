@@ -3,6 +3,7 @@
  * interval, and C2 rows in v joining the pole 2-jet of the cap map to the body's 2-jet. */
 #include "internal.h"
 
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -252,6 +253,10 @@ static int body_row(const rg2_surface *S, int e) { return e ? S->nv - 1 : 0; }
 static rg2_status sample_end(const rg2_surface *S, const ucircle *uc, int e, int ns, fitdata *fd,
                              rg2_error *err)
 {
+    if ((double)S->nu * ns * 12.0 > INT_MAX) /* the fit's rows (12 per sample) are counted in int */
+        return rg2__fail(err, RG2_ELIMIT,
+                         "cap: %d columns x %d samples give %.0f fit rows, more than %d (use fewer samples)",
+                         S->nu, ns, (double)S->nu * ns * 12.0, INT_MAX);
     fd->n = S->nu * ns;
     fd->smp = rg2__calloc((size_t)fd->n, sizeof(sample));
     if (!fd->smp)
