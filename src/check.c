@@ -976,11 +976,15 @@ static void gap_where(sbuf *b, const rg2_check_gap *g)
               g->seam_dir == 0 ? "u" : "v", g->pi, g->pj, g->qi, g->qj, g->t, g->p[0], g->p[1], g->p[2]);
 }
 
-/* One gap row; pass: the row's promise holds (-1: no seams, no verdict). */
-static void gap_text(sbuf *b, const char *name, const char *unit, const rg2_check_gap *g, double tol, int pass)
+/* One gap row; pass: the row's promise holds (-1: no seams, no verdict); why: the reason a row
+ * fails whose own value is within its limit (a value below its limit marked FAIL, unexplained,
+ * read as a contradiction). */
+static void gap_text(sbuf *b, const char *name, const char *unit, const rg2_check_gap *g, double tol, int pass,
+                     const char *why)
 {
-    sb_printf(b, "  %-22s %9.2e %-5s %-4s (limit %.0e)", name, g->value, unit,
-              pass < 0 ? "-" : pass ? "ok" : "FAIL", tol);
+    sb_printf(b, "  %-22s %9.2e %-5s %-4s (limit %.0e%s%s)", name, g->value, unit,
+              pass < 0 ? "-" : pass ? "ok" : "FAIL", tol, !pass && g->value <= tol ? "; " : "",
+              !pass && g->value <= tol ? why : "");
     if (pass >= 0 && g->value > 0)
         gap_where(b, g);
     sb_printf(b, "\n");
@@ -1026,9 +1030,15 @@ static void format_text(const rg2_check_report *r, sbuf *b)
     sb_printf(b, "seams %d, %d samples (%d per seam): %d at a pole (no normal there), %d not measured\n", r->seams,
               r->seam_samples, o->seam_samples + 1, r->pole_samples, r->unmeasured);
     int has = r->seams > 0;
-    gap_text(b, "G0 position gap", "rel", &r->g0, o->tol_g0, has ? !(f & RG2_REQUIRE_G0) : -1);
-    gap_text(b, "G1 normal angle", "rad", &r->g1, o->tol_g1, has ? !(f & RG2_REQUIRE_G1) : -1);
-    gap_text(b, "G2 curvature jump", "rel", &r->g2, o->tol_g2, has ? !(f & RG2_REQUIRE_G2) : -1);
+    const char *rounded = "a sample over its rounding bound, below";
+    const char *why1 = (f & RG2_REQUIRE_G0)                              ? "G0 fails, so G1 cannot hold"
+                       : r->unmeasured || r->seam_samples == r->pole_samples ? "samples not measured, below"
+                       : r->folds || r->singular                        ? "not regular, below"
+                                                                         : rounded;
+    gap_text(b, "G0 position gap", "rel", &r->g0, o->tol_g0, has ? !(f & RG2_REQUIRE_G0) : -1, "");
+    gap_text(b, "G1 normal angle", "rad", &r->g1, o->tol_g1, has ? !(f & RG2_REQUIRE_G1) : -1, why1);
+    gap_text(b, "G2 curvature jump", "rel", &r->g2, o->tol_g2, has ? !(f & RG2_REQUIRE_G2) : -1,
+             (f & RG2_REQUIRE_G1) ? "G1 fails, so G2 cannot hold" : rounded);
     if (r->near_pole)
         rounded_text(b, "next to a pole        ", r->near_pole, fmax(r->near_pole_tol1, o->tol_g1),
                      fmax(r->near_pole_tol2, o->tol_g2), &r->g1_pole, &r->g2_pole);

@@ -721,6 +721,10 @@ static void folds_fail(void)
         CHECK_OK(rg2_check_format(&r, 1, &json, &err), &err);
         CHECK(text && strstr(text, "NOT REGULAR") && strstr(text, "folds back") && strstr(text, "patch (0,"),
               "the table names the fold: %s", text ? text : "(none)");
+        /* the seam rows are within their limits yet FAIL: each says why */
+        CHECK(text && strstr(text, "FAIL (limit 1e-10; not regular, below)") &&
+                  strstr(text, "FAIL (limit 1e-08; G1 fails, so G2 cannot hold)"),
+              "the G1 and G2 rows give the reason they fail: %s", text ? text : "(none)");
         cJSON *j = json ? cJSON_Parse(json) : NULL, *rg = cJSON_GetObjectItem(j, "regularity");
         CHECK(rg && cJSON_GetObjectItem(rg, "folds")->valueint == r.folds && cJSON_GetObjectItem(rg, "patch") &&
                   cJSON_IsFalse(cJSON_GetObjectItem(j, "g2")),
