@@ -645,7 +645,7 @@ RG2_API rg2_status rg2_polar_set_point(rg2_mesh *m, int end, const double p[4], 
  *  sphere's 4-tuples it induces (divided by 1 + b^2): a rotation about the y-axis taking the
  *  south pole (0,0,-1) to (2b, 0, b^2 - 1) / (1 + b^2) and the north pole to
  *  (-2b, 0, 1 - b^2) / (1 + b^2). R (nullable, row-major 3x3 rotation) is applied after it.
- *  Writes the row-major 4x4 matrix to M. */
+ *  Writes the row-major 4x4 matrix to M; finite for every finite b. */
 RG2_API void rg2_mobius_matrix(double b, const double *R, double M[16]);
 
 /** The general Moebius transformation of the unit sphere (a Lorentz map of its 4-tuples,

@@ -182,9 +182,12 @@ double rg2_curve_curvature(const rg2_curve *c, int seg, double t)
         return 0.0;
     double a[3] = {0}, b[3] = {0};
     rg2_curve_eval(c, seg, t, NULL, a, b);
+    /* the curve scaled by s = 2^-e into the range where |a|^3 and the cross product stay finite
+     * (a pentagon of radius 1e78 gave inf, 1e-150 NaN); its curvature is that of the curve / s */
+    double s = rg2__scale_pair(a, b);
     double cx = a[1] * b[2] - a[2] * b[1], cy = a[2] * b[0] - a[0] * b[2], cz = a[0] * b[1] - a[1] * b[0];
     double na = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
     if (na == 0.0)
         return 0.0;
-    return sqrt(cx * cx + cy * cy + cz * cz) / (na * na * na);
+    return sqrt(cx * cx + cy * cy + cz * cz) / (na * na * na) * s;
 }

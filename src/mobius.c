@@ -37,9 +37,13 @@ static void embed3(const double R[9], double M[16])
  */
 void rg2_mobius_matrix(double b, const double *R, double M[16])
 {
-    double s = 1.0 + b * b;
-    double B[16] = {(1.0 - b * b) / s, 0, -2.0 * b / s, 0, 0, 1, 0, 0, 2.0 * b / s, 0, (1.0 - b * b) / s, 0,
-                    0, 0, 0, 1};
+    double s = 1.0 + b * b, co = (1.0 - b * b) / s, si = 2.0 * b / s;
+    if (fabs(b) > 1e150) { /* b^2 overflows (b = 1e300 gave NaN): the same rotation in 1 / b */
+        double c = 1.0 / b;
+        co = (c * c - 1.0) / (1.0 + c * c);
+        si = 2.0 * c / (1.0 + c * c);
+    }
+    double B[16] = {co, 0, -si, 0, 0, 1, 0, 0, si, 0, co, 0, 0, 0, 0, 1};
     if (R) {
         double E[16];
         embed3(R, E);
@@ -95,8 +99,12 @@ rg2_status rg2_mobius_poles_matrix(const double south[3], const double north[3],
     memcpy(s, south, sizeof s);
     unit3(n);
     unit3(s);
+    /* poles less than 90 degrees apart: 1 - c = |n - s|^2 / 2 without cancellation (poles 1e-8
+     * apart gave c = 1 exactly and an infinite boost, reported as "matrix entry 0 is not finite";
+     * 1e-6 apart, 1 - c kept 4 digits) */
     double c = fmin(fmax(dot3(n, s), -1.0), 1.0);
-    double sh = sqrt((1.0 + c) / (1.0 - c)), ch = sqrt(1.0 + sh * sh);
+    double dn[3] = {n[0] - s[0], n[1] - s[1], n[2] - s[2]}, omc = c > 0.0 ? 0.5 * dot3(dn, dn) : 1.0 - c;
+    double sh = sqrt((c > 0.0 ? 2.0 - omc : 1.0 + c) / omc), ch = sqrt(1.0 + sh * sh);
     double B[16] = {ch, 0, 0, sh, 0, 1, 0, 0, 0, 0, 1, 0, sh, 0, 0, ch};
     /* target frame f1 ~ n + s, f2 ~ n - s, f3 = f1 x f2; source frame (1,0,0), (0,0,1), (0,-1,0) */
     double f1[3], f2[3] = {d[0], d[1], d[2]}, f3[3];
@@ -112,11 +120,21 @@ rg2_status rg2_mobius_poles_matrix(const double south[3], const double north[3],
         for (int k = 0; k < 3; k++)
             f1[k] = ax[k] - t * f2[k];
     }
-    /* make f1 exactly perpendicular to f2 */
-    double t = dot3(f1, f2);
-    for (int k = 0; k < 3; k++)
-        f1[k] -= t * f2[k];
-    unit3(f1);
+    /* make the frame exactly orthogonal, correcting the less accurate of the two: n - s for poles
+     * less than 90 degrees apart (its component along n + s cancels: for poles 1e-8 apart it
+     * rounded to 0, and f1 made perpendicular to that f2 put both images 5e-9 off), else n + s */
+    if (c > 0.0) {
+        unit3(f1);
+        double t = dot3(f1, f2);
+        for (int k = 0; k < 3; k++)
+            f2[k] -= t * f1[k];
+        unit3(f2);
+    } else {
+        double t = dot3(f1, f2);
+        for (int k = 0; k < 3; k++)
+            f1[k] -= t * f2[k];
+        unit3(f1);
+    }
     cross3(f1, f2, f3);
     /* R = F E^T with E = [e1 e2 e3] = [(1,0,0) (0,0,1) (0,-1,0)] */
     double R[9];

@@ -320,6 +320,34 @@ static void curve_curvature(void)
         rg2_scalars_free(&s);
     }
     CHECK(wc <= 1e-12, "circle curvature * R - 1: %.3g", wc);
+    /* any size: a pentagon scaled by 2^a has exactly 2^-a times the curvature (|a|^3 overflowed
+     * from a radius of 1e78, giving inf, and NaN at 1e103 and 1e-150) */
+    {
+        double pts[15], pa[15], k1 = 0.0;
+        rg2_scalars s;
+        rg2_error err;
+        CHECK_OK(rg2_scalars_init(&s, 5, 1, &err), &err);
+        for (int i = 0; i < 5; i++) {
+            pts[3 * i] = cos(i * 2 * M_PI / 5);
+            pts[3 * i + 1] = sin(i * 2 * M_PI / 5);
+            pts[3 * i + 2] = 0.25 * i;
+        }
+        int off = 0;
+        for (int a = 0, n = 0; n < 41; a = ++n <= 20 ? -50 * n : 50 * (n - 20)) { /* 0 first, then -50.. and 50.. */
+            for (int q = 0; q < 15; q++)
+                pa[q] = ldexp(pts[q], a);
+            rg2_curve c;
+            CHECK_OK(rg2_curve_build(3, pa, &s, &c, &err), &err);
+            double k = rg2_curve_curvature(&c, 2, 0.3);
+            if (a == 0)
+                k1 = k;
+            rg2_curve_free(&c);
+            pa[0] = ldexp(k, a); /* back at size 1 */
+            off += !(isfinite(k) && k > 0.0) || (k1 > 0.0 && pa[0] != k1);
+        }
+        CHECK(k1 > 0.0 && off == 0, "pentagons scaled by 2^-1000 .. 2^1000: %d curvatures off (size 1: %.17g)", off, k1);
+        rg2_scalars_free(&s);
+    }
     for (int trial = 0; trial < 10; trial++) {
         int n = rg2t_int(&r, 4, 10);
         rg2_scalars s;

@@ -301,6 +301,18 @@ static void errors(void)
     double s[3] = {0, 0, -1}, nb[3] = {0, 0, 1.1}, M[16];
     CHECK(rg2_mobius_poles_matrix(s, nb, M, &err) == RG2_EDOMAIN && strstr(err.msg, "north"), "%s", err.msg);
     CHECK(rg2_mobius_poles_matrix(s, s, M, &err) == RG2_EDOMAIN && strstr(err.msg, "coincide"), "%s", err.msg);
+    /* close poles (but not coincident): a finite matrix taking the poles where asked. 1e-8 apart
+     * gave c = 1 and an infinite boost; 1e-6 apart 1 - c kept four digits (poles 1e-12 off) */
+    for (double sep = 1e-2; sep > 2e-9; sep /= 10.0) {
+        double a = sep, sp[3] = {0, 0, -1}, np_[3] = {sin(a), 0, -cos(a)}, Mc[16], S4[4] = {0, 0, -1, 1},
+               N4[4] = {0, 0, 1, 1}, x[4], y[4];
+        CHECK_OK(rg2_mobius_poles_matrix(sp, np_, Mc, &err), &err);
+        apply(Mc, S4, x);
+        apply(Mc, N4, y);
+        double xs[3] = {x[0] / x[3], x[1] / x[3], x[2] / x[3]}, yn[3] = {y[0] / y[3], y[1] / y[3], y[2] / y[3]};
+        double e = fmax(pt_dist3(xs, sp), pt_dist3(yn, np_));
+        CHECK(e <= 1e-15, "poles %.0e rad apart mapped %.3g off", sep, e);
+    }
     double alpha[3] = {2 * M_PI / 3, 2 * M_PI / 3, 2 * M_PI / 3}, v[2] = {0.3, 0.7};
     rg2_mesh m;
     CHECK_OK(rg2_polar_sphere_mesh(alpha, 3, 0.0, v, 2, NULL, &m, &err), &err);
@@ -356,6 +368,19 @@ static void errors(void)
     double cn[3] = {0, NAN, 0};
     CHECK(rg2_mesh_mobius(&m, cn, 1.0, M, &err) == RG2_ENONFINITE && !strcmp(err.msg, "moebius: center component 1 is not finite"),
           "%s", err.msg);
+    /* any finite b: past 1e150 b^2 overflowed (b = 1e300 gave a NaN matrix); the rotation's
+     * entries stay those of eq. (16), which tend to -1 and 2 / b */
+    const double huge[4] = {1e151, -1e200, 1e300, 1e308};
+    for (int k = 0; k < 4; k++) {
+        double Mh[16];
+        rg2_mobius_matrix(huge[k], NULL, Mh);
+        int fin = 1;
+        for (int q = 0; q < 16; q++)
+            fin &= isfinite(Mh[q]);
+        CHECK(fin && Mh[0] == -1.0 && Mh[10] == -1.0 && fabs(Mh[8] - 2.0 / huge[k]) <= 1e-15 * fabs(2.0 / huge[k]) &&
+                  lorentz_defect(Mh) < 1e-15,
+              "moebius b = %g: M[0] %g, M[8] %g (2 / b = %g)", huge[k], Mh[0], Mh[8], 2.0 / huge[k]);
+    }
     double Mn[16];
     rg2_mobius_matrix(0.5, NULL, Mn);
     Mn[3] = INFINITY;
