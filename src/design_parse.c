@@ -1005,10 +1005,21 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
                             ops[op], ops[k]);
             op = k;
         }
-    if (op < 0)
+    if (op < 0) {
+        /* a misspelt operation ("merg"): name it and the operation it is closest to */
+        for (const cJSON *it = obj->child; it; it = it->next) {
+            char sug[128] = "";
+            if (strcmp(it->string, "comment"))
+                suggest(it->string, ops, N_OPS, sug, sizeof sug);
+            if (sug[0])
+                return fail(c, RG2_EPARSE, path, "unknown key '%s'%s; a mesh needs one operation: shape, cut, "
+                            "merge, transpose, reverse, edit, transform, morph, polar, mobius, cap, nurbs",
+                            it->string, sug);
+        }
         return fail(c, RG2_EPARSE, path,
                     "no operation: give one of shape, cut, merge, transpose, reverse, edit, transform, morph, "
                     "polar, mobius, cap, nurbs");
+    }
     if (rg2__design_find_mesh(c->d, name) >= 0)
         return fail(c, RG2_EPARSE, path, "a mesh named '%s' already exists", name);
     rg2__dmesh tmp;
