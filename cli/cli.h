@@ -14,6 +14,11 @@ typedef struct {
     int (*run)(int argc, char **argv); /* argv[0] is the command name */
 } rg2_cli_command;
 
+/* Limits a design file has (README "Size limits"), kept by rg2 shape and rg2 curve too: arcs or
+ * knot intervals per direction, and patches of one output. */
+#define RG2_CLI_MAX_ARCS 100000
+#define RG2_CLI_MAX_PATCHES 1000000
+
 /* Exit codes of the rg2 command. */
 enum { RG2_EXIT_OK = 0, RG2_EXIT_FAIL = 1, RG2_EXIT_USAGE = 2, RG2_EXIT_CHECK = 3 };
 

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define MAXV 4096
+#define MAXV (RG2_CLI_MAX_ARCS + 1) /* values of a list: n arcs, or n + 1 knots */
 
 static void help(void)
 {

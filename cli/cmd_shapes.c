@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define MAXV 4096
+#define MAXV (RG2_CLI_MAX_ARCS + 1) /* values of a list: n arcs, or n + 1 knots */
 
 static void print_shape_list_text(void)
 {
@@ -594,6 +594,13 @@ int rg2_cmd_shape(int argc, char **argv)
             rc = rg2_cli_report("shape", &err);
             goto out;
         }
+    }
+    size_t patches = (size_t)rg2_scalars_num_segments(&m.su) * (size_t)rg2_scalars_num_segments(&m.sv);
+    if (patches > RG2_CLI_MAX_PATCHES) { /* a design's limit, checked before the patches take memory */
+        fprintf(stderr, "rg2 shape: %s: %zu patches, more than the limit of %d (as in a design file)\n",
+                is_nurbs ? "nurbs" : d->name, patches, RG2_CLI_MAX_PATCHES);
+        rc = RG2_EXIT_FAIL;
+        goto out;
     }
     /* the range every output mesh of a design must stay in (rg2 build refuses the same) */
     if (rg2_mesh_check_range(&m, is_nurbs ? "nurbs" : d->name, &err) || rg2_surface_build(&m, &s, &err)) {

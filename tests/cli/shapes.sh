@@ -62,6 +62,10 @@ expect 2 "v is a circle direction" -- "$RG2" shape torus --v-knots 1,2
 expect 2 "u is a polynomial direction" -- "$RG2" shape hypar --u-arcs 4
 expect 2 "needs --u-sweep" -- "$RG2" shape torus --u-open
 expect 2 "torus takes --R --r" -- "$RG2" shape torus --radius 2
+# the design file's limits: 100000 arcs or intervals per direction, 1000000 patches
+expect 0 "v: polynomial, 4200 segments" -- "$RG2" shape cylinder --u-arcs 3 --v-segments 4200 --samples 1
+expect 2 "--v-segments 100001: need an integer 1..100000" -- "$RG2" shape cylinder --v-segments 100001
+expect 1 "cylinder: 2000000 patches, more than the limit of 1000000" -- "$RG2" shape cylinder --u-arcs 100 --v-segments 20000
 expect 2 "not a finite number" -- "$RG2" shape torus --R abc
 expect 2 "--xform needs 16 numbers" -- "$RG2" shape torus --xform 1,2,3
 # the numeric range and placement checks of design files (rg2_number_check, rg2_mesh_check_range,
