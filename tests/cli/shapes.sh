@@ -66,6 +66,11 @@ expect 2 "torus takes --R --r" -- "$RG2" shape torus --radius 2
 expect 0 "v: polynomial, 4200 segments" -- "$RG2" shape cylinder --u-arcs 3 --v-segments 4200 --samples 1
 expect 2 "--v-segments 100001: need an integer 1..100000" -- "$RG2" shape cylinder --v-segments 100001
 expect 1 "cylinder: 2000000 patches, more than the limit of 1000000" -- "$RG2" shape cylinder --u-arcs 100 --v-segments 20000
+# the smallest arc, 0.005 rad (0.286479 deg), is in the help: 1256 arcs make a circle, 1257 do not
+expect 0 "[0.286479, 180) (0.005 rad up to pi, excluded), so a full circle has 3 to 1256 arcs" -- "$RG2" shape --help
+expect 0 "1256 arcs" -- "$RG2" shape torus --u-arcs 1256 --v-arcs 3 --samples 1
+expect 1 "below the smallest supported arc of 0.005 rad (0.286479 deg)" -- "$RG2" shape torus --u-arcs 1257 --v-arcs 3
+grep -q "lies in \[0.286479, 180) degrees" "$SRC/docs/design-format.md" && ok || bad "design-format.md lacks the smallest arc"
 expect 2 "not a finite number" -- "$RG2" shape torus --R abc
 expect 2 "--xform needs 16 numbers" -- "$RG2" shape torus --xform 1,2,3
 # the numeric range and placement checks of design files (rg2_number_check, rg2_mesh_check_range,
