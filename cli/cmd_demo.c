@@ -11,7 +11,8 @@ int rg2_cmd_demo(int argc, char **argv)
     if (argc > 1 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
         printf("usage: rg2 demo\n\nPrints the exact Bezier form of a unit circle in 4 arcs and builds a torus\n"
                "(R = 3, r = 1; 8 x 6 arcs) from its control mesh, reporting the patches and the\n"
-               "largest deviation from the torus over 32 x 32 samples per patch.\n");
+               "largest deviation from the torus over 33 x 33 samples per patch (a 32 x 32 grid, ends\n"
+               "included).\n");
         return 0;
     }
     if (argc > 1) {

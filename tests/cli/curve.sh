@@ -19,6 +19,9 @@ expect 2 "unknown option" -- "$RG2" curve --bogus
 "$RG2" curve --arcs 4 --json | grep -q '0.80473785412436' && ok || bad "exact circle weight"
 expect 2 "usage: rg2" -- "$RG2"
 expect 0 "usage: rg2 demo" -- "$RG2" demo --help
+# the help and the output name the same sample count
+expect 0 "over 33 x 33 samples per patch" -- "$RG2" demo --help
+expect 0 "over 33 x 33 samples per patch" -- "$RG2" demo
 # up to 100000 arcs, the design file's limit
 expect 0 "5000 rational cubic Bezier segments" -- "$RG2" curve --arcs 5000
 expect 2 "need 3..100000 arcs" -- "$RG2" curve --arcs 100001
