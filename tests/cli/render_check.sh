@@ -140,6 +140,9 @@ for n in 0 -1 x 1.5 2000; do
   expect 2 "--threads needs an integer 1..1024" -- "$RG2" check "$ex" --threads $n
 done
 expect 2 "--threads needs an integer 1..1024" -- "$RG2" check "$ex" --threads
+# render.md gives one memory figure per pixel (it gave 125 and 140 bytes)
+per_pixel=$(tr '\n' ' ' <"$SRC/docs/render.md" | grep -o 'about [0-9]* bytes' | sort -u | tr '\n' ' ')
+[ "$per_pixel" = "about 131 bytes " ] && ok || bad "docs/render.md: bytes per pixel: $per_pixel"
 # bad designs: exit 1 with the loader's message
 expect 1 "K = " -- "$RG2" check "$SRC/tests/data/bad_scalar.json"
 expect 1 "" -- "$RG2" render "$SRC/tests/data/bad_weight.json" -o "$tmp/bad.png"
