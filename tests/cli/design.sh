@@ -31,6 +31,10 @@ done
 expect 0 "" "$rg2" build -q "$src/examples/torus_sphere.json" -o "$tmp/ts.step" -o "$tmp/ts.json"
 [ -s "$tmp/ts.step" ] && head -1 "$tmp/ts.step" | grep -q "ISO-10303-21" && ok || bad "ts.step not written"
 [ -s "$tmp/ts.json" ] && ok || bad "ts.json not written"
+# export.md shows the .json dump's keys in the order the file has them
+file_keys=$(grep -oE '"[a-z_]+":' "$tmp/ts.json" | tr -d '":' | awk '!seen[$0]++' | tr '\n' ' ')
+doc_keys=$(grep '^| `.json`' "$src/docs/export.md" | grep -oE '(^|[^:])"[a-z_]+"' | grep -oE '[a-z_]+' | tr '\n' ' ')
+[ "$file_keys" = "$doc_keys" ] && ok || bad "export.md .json keys '$doc_keys', the file has '$file_keys'"
 # IGES as B-rep shells: one 514 per output surface (torus_sphere: 1), faces 510 per patch (120)
 expect 0 "" "$rg2" build -q "$src/examples/torus_sphere.json" -o "$tmp/ts.igs" --iges-brep
 n514=$(awk 'substr($0,73,1)=="D" && substr($0,74)%2==1 && $1==514' "$tmp/ts.igs" | wc -l)
