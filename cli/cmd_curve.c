@@ -165,9 +165,19 @@ int rg2_cmd_curve(int argc, char **argv)
                 angles[k] = 90.0;
             n_angles = 4;
         }
+        closed = !open;
+        /* counted in arcs, as given (the library counts control points: n, or n - 1 open) */
+        if (n_angles < (closed ? 3 : 5)) {
+            fprintf(stderr,
+                    closed ? "rg2 curve: %d arc%s given; a closed circle (the default without --open) needs at "
+                             "least 3 arcs\n"
+                           : "rg2 curve: --open: %d arc%s given; an open curve needs at least 5 arcs (the "
+                             "first and last two carry data only, so 5 arcs give one segment)\n",
+                    n_angles, n_angles == 1 ? "" : "s");
+            return RG2_EXIT_FAIL;
+        }
         for (int k = 0; k < n_angles; k++)
             angles[k] *= M_PI / 180.0;
-        closed = !open;
         if (rg2_scalars_from_angles(&s, angles, n_angles, closed, &err))
             return rg2_cli_report("curve", &err);
         n = s.n;

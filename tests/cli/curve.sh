@@ -25,6 +25,10 @@ expect 0 "over 33 x 33 samples per patch" -- "$RG2" demo
 # up to 100000 arcs, the design file's limit
 expect 0 "5000 rational cubic Bezier segments" -- "$RG2" curve --arcs 5000
 expect 2 "need 3..100000 arcs" -- "$RG2" curve --arcs 100001
+# too few arcs: the message counts arcs, not the library's control points
+expect 1 "rg2 curve: 2 arcs given; a closed circle (the default without --open) needs at least 3 arcs" -- "$RG2" curve --angles 100,120
+expect 1 "rg2 curve: --open: 4 arcs given; an open curve needs at least 5 arcs" -- "$RG2" curve --arcs 4 --open
+expect 0 "1 rational cubic Bezier segments" -- "$RG2" curve --arcs 5 --open
 # no partition given: the unit circle in 4 arcs of 90 degrees
 [ "$("$RG2" curve --json)" = "$("$RG2" curve --arcs 4 --json)" ] && [ -n "$("$RG2" curve --json)" ] && ok ||
   bad "rg2 curve without arcs is not the circle in 4 arcs"
