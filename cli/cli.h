@@ -39,6 +39,14 @@ int rg2_cli_load_surfaces(const char *cmd, const char *path, rg2_design **d, rg2
 /* Parse "a,b,c" into at most max doubles; returns the count or -1 (message printed, starting
  * "rg2 <cmd>: <opt>:"). */
 int rg2_cli_parse_list(const char *cmd, const char *opt, const char *s, double *out, int max);
+/* Exactly n numbers "a,b,..." (rg2_cli_parse_list); 0, or -1 with one line printed: a bad
+ * item's, or "rg2 <cmd>: <opt> needs <need>". */
+int rg2_cli_parse_n(const char *cmd, const char *opt, const char *s, double *out, int n, const char *need);
+/* One number of a single-number option (s NULL: the value is missing): 0, or -1 with one line
+ * printed, "rg2 <cmd>: <opt> needs <rule>, not '<s>'". A subnormal number is accepted. */
+int rg2_cli_number(const char *cmd, const char *opt, const char *s, const char *rule, double *v);
+/* An integer lo..hi of an option (s NULL: missing): 0, or -1 with one line printed. */
+int rg2_cli_int(const char *cmd, const char *opt, const char *s, int lo, int hi, int *v);
 /* Print "rg2 <cmd>: <status text>: <message>" to stderr; returns RG2_EXIT_FAIL. */
 int rg2_cli_report(const char *cmd, const rg2_error *err);
 /* 1 if the paths name the same existing file (an output that would overwrite an input). */

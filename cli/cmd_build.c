@@ -66,14 +66,8 @@ int rg2_cmd_build(int argc, char **argv)
         else if (!strcmp(a, "-q") || !strcmp(a, "--quiet"))
             quiet = 1;
         else if (!strcmp(a, "--density")) {
-            double v;
-            if (i + 1 >= argc || rg2_cli_parse_list("build", "--density", argv[i + 1], &v, 1) != 1 || v < 1 ||
-                v > 1024 || v != (int)v) {
-                fprintf(stderr, "rg2 build: --density needs an integer 1..1024\n");
+            if (rg2_cli_int("build", a, i + 1 < argc ? argv[++i] : NULL, 1, 1024, &opts.density))
                 return RG2_EXIT_USAGE;
-            }
-            opts.density = (int)v;
-            i++;
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "rg2 build: unknown option '%s'\n", a);
             usage(stderr);

@@ -102,24 +102,12 @@ int rg2_cmd_check(int argc, char **argv)
             if (i + 1 >= argc || parse_require(argv[++i], &req))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--samples")) {
-            double v;
-            if (i + 1 >= argc || rg2_cli_parse_list("check", "--samples", argv[i + 1], &v, 1) != 1 || v < 1 || v > 10000 ||
-                v != (int)v) {
-                fprintf(stderr, "rg2 check: --samples needs an integer 1..10000\n");
+            if (rg2_cli_int("check", a, i + 1 < argc ? argv[++i] : NULL, 1, 10000, &o.seam_samples))
                 return RG2_EXIT_USAGE;
-            }
-            o.seam_samples = (int)v;
-            i++;
         } else if (!strcmp(a, "--threads")) {
-            /* the numbers rg2 render --threads takes; one message (a usage error of rg2 check) */
-            char *end = NULL;
-            double v = i + 1 < argc ? strtod(argv[i + 1], &end) : 0;
-            if (i + 1 >= argc || end == argv[i + 1] || *end || !(v >= 1 && v <= 1024) || v != (int)v) {
-                fprintf(stderr, "rg2 check: --threads needs an integer 1..1024\n");
+            /* the numbers rg2 render --threads takes */
+            if (rg2_cli_int("check", a, i + 1 < argc ? argv[++i] : NULL, 1, 1024, &o.threads))
                 return RG2_EXIT_USAGE;
-            }
-            o.threads = (int)v;
-            i++;
         } else if (!strcmp(a, "--tol")) {
             const char *t = i + 1 < argc ? argv[++i] : "";
             const char *eq = strchr(t, '=');
@@ -130,8 +118,16 @@ int rg2_cmd_check(int argc, char **argv)
                           : !strncmp(t, "g2=", 3)          ? &o.tol_g2
                           : !strncmp(t, "exact=", 6)       ? &o.tol_exact
                                                            : NULL;
-            if (!dst || rg2_cli_parse_list("check", "--tol", eq + 1, &v, 1) != 1 || v < 0) {
-                fprintf(stderr, "rg2 check: --tol needs g0=X, g1=X, g2=X or exact=X with X >= 0\n");
+            if (!dst) {
+                fprintf(stderr, "rg2 check: --tol needs g0=X, g1=X, g2=X or exact=X with X >= 0, not '%s'\n", t);
+                return RG2_EXIT_USAGE;
+            }
+            char kind[16];
+            snprintf(kind, sizeof kind, "--tol %.*s", (int)(eq - t), t);
+            if (rg2_cli_number("check", kind, eq + 1, "a number >= 0", &v))
+                return RG2_EXIT_USAGE;
+            if (v < 0) {
+                fprintf(stderr, "rg2 check: %s needs a number >= 0, not '%s'\n", kind, eq + 1);
                 return RG2_EXIT_USAGE;
             }
             *dst = v;

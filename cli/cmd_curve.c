@@ -93,11 +93,11 @@ int rg2_cmd_curve(int argc, char **argv)
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--radius")) {
             NEED();
-            if (rg2_cli_parse_list("curve", a, val, &radius, 1) != 1)
+            if (rg2_cli_number("curve", a, val, "a number", &radius))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--start")) {
             NEED();
-            if (rg2_cli_parse_list("curve", a, val, &start, 1) != 1)
+            if (rg2_cli_number("curve", a, val, "a number", &start))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--dim")) {
             NEED();

@@ -34,10 +34,8 @@ static void usage(FILE *f)
 
 static int number(const char *opt, int argc, char **argv, int *i, double *v)
 {
-    if (*i + 1 >= argc || rg2_cli_parse_list("render", opt, argv[*i + 1], v, 1) != 1) {
-        fprintf(stderr, "rg2 render: %s needs a number\n", opt);
+    if (rg2_cli_number("render", opt, *i + 1 < argc ? argv[*i + 1] : NULL, "a number", v))
         return -1;
-    }
     (*i)++;
     return 0;
 }
@@ -90,11 +88,12 @@ int rg2_cmd_render(int argc, char **argv)
 {
     const char *path = NULL, *out = NULL;
     int only = -1;
+    double only_v = -1; /* --surface as given, checked against the design's count once loaded */
+    const char *only_arg = NULL;
     rg2_render_opts o;
     rg2_render_opts_default(&o);
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
-        double v;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             usage(stdout);
             return RG2_EXIT_OK;
@@ -137,7 +136,7 @@ int rg2_cmd_render(int argc, char **argv)
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--distance")) {
             if (ranged(a, argc, argv, &i, &o.distance, 0, 1, 1e100, 0,
-                       "the eye distance must be > 0 (leave it out to fit the view)"))
+                       "the eye distance must be > 0 and at most 1e100 (leave it out to fit the view)"))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--fov")) {
             if (ranged(a, argc, argv, &i, &o.fov, 1, 1, 170, 1, "the field of view must lie in (1, 170) degrees"))
@@ -146,22 +145,21 @@ int rg2_cmd_render(int argc, char **argv)
             if (ranged(a, argc, argv, &i, &o.stripes, 1, 0, 1000, 0, "needs 1..1000 stripe pairs"))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--threads")) {
-            if (number(a, argc, argv, &i, &v) || v < 1 || v > 1024 || v != (int)v) {
-                fprintf(stderr, "rg2 render: --threads needs an integer 1..1024\n");
+            if (rg2_cli_int("render", a, i + 1 < argc ? argv[++i] : NULL, 1, 1024, &o.threads))
                 return RG2_EXIT_USAGE;
-            }
-            o.threads = (int)v;
         } else if (!strcmp(a, "--surface")) {
-            if (number(a, argc, argv, &i, &v) || v < 0 || v > 1e6 || v != (int)v) {
-                fprintf(stderr, "rg2 render: --surface needs a surface index >= 0\n");
+            /* any index >= 0 here; the design's count bounds it once loaded */
+            const char *rule = "a surface index (an integer >= 0)";
+            only_arg = i + 1 < argc ? argv[++i] : NULL;
+            if (rg2_cli_number("render", a, only_arg, rule, &only_v))
+                return RG2_EXIT_USAGE;
+            if (only_v < 0 || only_v != floor(only_v)) {
+                fprintf(stderr, "rg2 render: --surface needs %s, not '%s'\n", rule, only_arg);
                 return RG2_EXIT_USAGE;
             }
-            only = (int)v;
         } else if (!strcmp(a, "--range")) {
-            if (i + 1 >= argc || rg2_cli_parse_list("render", "--range", argv[i + 1], o.range, 2) != 2) {
-                fprintf(stderr, "rg2 render: --range needs lo,hi\n");
+            if (rg2_cli_parse_n("render", "--range", i + 1 < argc ? argv[i + 1] : "", o.range, 2, "lo,hi"))
                 return RG2_EXIT_USAGE;
-            }
             if (!(o.range[0] < o.range[1])) {
                 fprintf(stderr, "rg2 render: --range %s: needs lo < hi\n", argv[i + 1]);
                 return RG2_EXIT_USAGE;
@@ -206,10 +204,12 @@ int rg2_cmd_render(int argc, char **argv)
     rg2_surface *surfs = NULL;
     rg2_mesh *meshes = NULL;
     int n = 0, rc = rg2_cli_load_surfaces("render", path, &d, &surfs, &meshes, &n);
-    if (!rc && only >= n) {
-        fprintf(stderr, "rg2 render: --surface %d: the design has %d surface%s\n", only, n, n == 1 ? "" : "s");
+    if (!rc && only_v >= n) {
+        fprintf(stderr, "rg2 render: --surface %s: the design has %d surface%s (0..%d)\n", only_arg, n,
+                n == 1 ? "" : "s", n - 1);
         rc = RG2_EXIT_USAGE; /* an option value out of its range, like --size */
-    }
+    } else if (only_v >= 0)
+        only = (int)only_v;
     if (!rc && only < 0 && !o.apart && n > 1)
         overlap_note(surfs, n);
     if (!rc) {

@@ -388,7 +388,7 @@ static int check_numbers(const char *opt, const double *x, int n)
 
 static int parse_one(const char *opt, const char *val, double *out)
 {
-    return rg2_cli_parse_list("shape", opt, val, out, 1) == 1 ? 0 : -1;
+    return rg2_cli_number("shape", opt, val, "a number", out);
 }
 
 int rg2_cmd_shape(int argc, char **argv)
@@ -487,10 +487,8 @@ int rg2_cmd_shape(int argc, char **argv)
                     return rc;
                 o->has_sweep = 1;
             } else if (!strcmp(what, "range")) {
-                if (rg2_cli_parse_list("shape", a, val, o->range, 2) != 2) {
-                    fprintf(stderr, "rg2 shape: %s needs two numbers A,B\n", a);
+                if (rg2_cli_parse_n("shape", a, val, o->range, 2, "two numbers A,B"))
                     return RG2_EXIT_USAGE;
-                }
                 if ((rc = check_numbers(a, o->range, 2)))
                     return rc;
                 o->has_range = 1;
@@ -500,6 +498,8 @@ int rg2_cmd_shape(int argc, char **argv)
             }
         } else if (!strcmp(a, "--scale")) {
             int n = rg2_cli_parse_list("shape", a, val, scale, 3);
+            if (n < 0) /* (its message printed) */
+                return RG2_EXIT_USAGE;
             if (n == 1)
                 scale[1] = scale[2] = scale[0];
             else if (n != 3) {
@@ -514,10 +514,8 @@ int rg2_cmd_shape(int argc, char **argv)
             }
         } else if (!strcmp(a, "--axis") || !strcmp(a, "--center") || !strcmp(a, "--centre")) {
             double *x = a[2] == 'a' ? axis : centre;
-            if (rg2_cli_parse_list("shape", a, val, x, 3) != 3) {
-                fprintf(stderr, "rg2 shape: %s needs three numbers X,Y,Z\n", a);
+            if (rg2_cli_parse_n("shape", a, val, x, 3, "three numbers X,Y,Z"))
                 return RG2_EXIT_USAGE;
-            }
             if ((rc = check_numbers(a, x, 3)))
                 return rc;
             if (x == axis && axis[0] == 0.0 && axis[1] == 0.0 && axis[2] == 0.0) {
@@ -525,10 +523,8 @@ int rg2_cmd_shape(int argc, char **argv)
                 return RG2_EXIT_FAIL;
             }
         } else if (!strcmp(a, "--xform")) {
-            if (rg2_cli_parse_list("shape", a, val, xf, 16) != 16) {
-                fprintf(stderr, "rg2 shape: --xform needs 16 numbers (row-major 4x4)\n");
+            if (rg2_cli_parse_n("shape", a, val, xf, 16, "16 numbers (row-major 4x4)"))
                 return RG2_EXIT_USAGE;
-            }
             if ((rc = check_numbers(a, xf, 16)))
                 return rc;
             has_xform = 1;

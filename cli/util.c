@@ -7,16 +7,29 @@
 #include <stdlib.h>
 #include <sys/stat.h>
 
+/* strtod with the rules of every numeric option: 0 for a finite number (a subnormal one too:
+ * glibc sets ERANGE on underflow, but the value is finite), 1 for none or NaN / infinity, 2 for
+ * a literal past the double range (1e999). */
+static int scan(const char *p, char **end, double *x)
+{
+    errno = 0;
+    *x = strtod(p, end);
+    if (*end == p || !isfinite(*x))
+        return errno == ERANGE && *end != p ? 2 : 1;
+    return errno == ERANGE && fabs(*x) > 1.0 ? 2 : 0;
+}
+
 int rg2_cli_parse_list(const char *cmd, const char *opt, const char *s, double *out, int max)
 {
     int n = 0;
     const char *p = s;
     while (*p) {
         char *end;
-        errno = 0;
-        double x = strtod(p, &end);
-        if (end == p || errno == ERANGE || !isfinite(x)) {
-            fprintf(stderr, "rg2 %s: %s: item %d of '%s' is not a finite number\n", cmd, opt, n, s);
+        double x;
+        int bad = scan(p, &end, &x);
+        if (bad) {
+            fprintf(stderr, "rg2 %s: %s: item %d of '%s' %s\n", cmd, opt, n, s,
+                    bad == 2 ? "is past the double range (about 1.8e308)" : "is not a finite number");
             return -1;
         }
         if (n == max) {
@@ -35,6 +48,45 @@ int rg2_cli_parse_list(const char *cmd, const char *opt, const char *s, double *
         }
     }
     return n;
+}
+
+int rg2_cli_parse_n(const char *cmd, const char *opt, const char *s, double *out, int n, const char *need)
+{
+    int k = rg2_cli_parse_list(cmd, opt, s, out, n);
+    if (k == n)
+        return 0;
+    if (k >= 0) /* (a bad item has its own message) */
+        fprintf(stderr, "rg2 %s: %s needs %s\n", cmd, opt, need);
+    return -1;
+}
+
+int rg2_cli_number(const char *cmd, const char *opt, const char *s, const char *rule, double *v)
+{
+    char *end = NULL;
+    int bad = s ? scan(s, &end, v) : 1;
+    if (!bad && *end)
+        bad = 1;
+    if (!bad)
+        return 0;
+    if (!s)
+        fprintf(stderr, "rg2 %s: %s needs %s\n", cmd, opt, rule);
+    else
+        fprintf(stderr, "rg2 %s: %s needs %s, not '%s'%s\n", cmd, opt, rule, s,
+                bad == 2 ? " (past the double range, about 1.8e308)" : "");
+    return -1;
+}
+
+int rg2_cli_int(const char *cmd, const char *opt, const char *s, int lo, int hi, int *v)
+{
+    double x = 0.0;
+    char *end = NULL;
+    if (!s || scan(s, &end, &x) || *end || x < lo || x > hi || x != (int)x) {
+        fprintf(stderr, "rg2 %s: %s needs an integer %d..%d%s%s%s\n", cmd, opt, lo, hi, s ? ", not '" : "",
+                s ? s : "", s ? "'" : "");
+        return -1;
+    }
+    *v = (int)x;
+    return 0;
 }
 
 int rg2_cli_report(const char *cmd, const rg2_error *err)

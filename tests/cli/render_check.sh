@@ -140,6 +140,13 @@ for n in 0 -1 x 1.5 2000; do
   expect 2 "--threads needs an integer 1..1024" -- "$RG2" check "$ex" --threads $n
 done
 expect 2 "--threads needs an integer 1..1024" -- "$RG2" check "$ex" --threads
+# a bad single number: one line naming the value (it printed an item message and then a second line)
+for args in "render $ex -o $tmp/one.png --azimuth abc" "build -q $ex -o $tmp/one.obj --density 4x" "check $ex --tol g1=x"; do
+  out=$("$RG2" $args 2>&1); rc=$?
+  [ "$rc" = 2 ] && [ "$(printf '%s\n' "$out" | wc -l)" = 1 ] && ok || bad "rg2 $args: exit $rc, not one line: $out"
+done
+# a subnormal tolerance is a finite number >= 0 (it was called 'not a finite number')
+expect 0 "" -- "$RG2" check "$ex" --tol g1=1e-310
 # render.md gives one memory figure per pixel (it gave 125 and 140 bytes)
 per_pixel=$(tr '\n' ' ' <"$SRC/docs/render.md" | grep -o 'about [0-9]* bytes' | sort -u | tr '\n' ' ')
 [ "$per_pixel" = "about 131 bytes " ] && ok || bad "docs/render.md: bytes per pixel: $per_pixel"

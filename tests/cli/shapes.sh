@@ -71,7 +71,7 @@ expect 0 "[0.286479, 180) (0.005 rad up to pi, excluded), so a full circle has 3
 expect 0 "1256 arcs" -- "$RG2" shape torus --u-arcs 1256 --v-arcs 3 --samples 1
 expect 1 "below the smallest supported arc of 0.005 rad (0.286479 deg)" -- "$RG2" shape torus --u-arcs 1257 --v-arcs 3
 grep -q "lies in \[0.286479, 180) degrees" "$SRC/docs/design-format.md" && ok || bad "design-format.md lacks the smallest arc"
-expect 2 "not a finite number" -- "$RG2" shape torus --R abc
+expect 2 "--R needs a number, not 'abc'" -- "$RG2" shape torus --R abc
 expect 2 "--xform needs 16 numbers" -- "$RG2" shape torus --xform 1,2,3
 # the numeric range and placement checks of design files (rg2_number_check, rg2_mesh_check_range,
 # rg2_shape_mesh's weights): never a nan summary or a bare nan in --json
