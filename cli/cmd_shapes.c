@@ -73,6 +73,10 @@ int rg2_cmd_shapes(int argc, char **argv)
                    "(and defaults), direction kinds,\nhomogeneous parameterization and implicit "
                    "equation. Build one with 'rg2 shape NAME'.\n");
             return 0;
+        } else if (argv[i][0] != '-') { /* a shape name: 'rg2 shape NAME' builds it */
+            fprintf(stderr, "rg2 shapes: unexpected argument '%s' (rg2 shapes lists every shape; to build one: "
+                            "rg2 shape %s)\n", argv[i], argv[i]);
+            return RG2_EXIT_USAGE;
         } else {
             fprintf(stderr, "rg2 shapes: unknown option '%s'\n", argv[i]);
             return RG2_EXIT_USAGE;
@@ -408,7 +412,13 @@ int rg2_cmd_shape(int argc, char **argv)
     if (!is_nurbs) {
         rg2_shape_kind kind;
         if (rg2_shape_from_name(name, &kind, &err)) {
-            fprintf(stderr, "rg2 shape: %s (or nurbs)\n", err.msg);
+            const char *names[RG2_SHAPE_COUNT + 1];
+            for (int k = 0; k < RG2_SHAPE_COUNT; k++)
+                names[k] = rg2_shape_describe((rg2_shape_kind)k)->name;
+            names[RG2_SHAPE_COUNT] = "nurbs";
+            const char *close = rg2_cli_closest(name, names, RG2_SHAPE_COUNT + 1);
+            fprintf(stderr, "rg2 shape: %s (or nurbs)%s%s%s\n", err.msg, close ? "; did you mean '" : "",
+                    close ? close : "", close ? "'?" : "");
             return RG2_EXIT_USAGE;
         }
         rg2_shape_init(&sh, kind);

@@ -43,6 +43,10 @@ expect 1 "nurbs: weight [0][1] = -1 must be finite and > 0" -- "$RG2" shape nurb
 expect 2 "exactly one of --file" -- "$RG2" shape nurbs
 # bad input: each with its message
 expect 2 "unknown shape 'donut'" -- "$RG2" shape donut
+# a misspelt shape names the closest; 'rg2 shapes NAME' points to 'rg2 shape NAME'
+expect 2 "unknown shape 'tours'" -- "$RG2" shape tours
+expect 2 "did you mean 'torus'?" -- "$RG2" shape tours
+expect 2 "rg2 shapes: unexpected argument 'torus' (rg2 shapes lists every shape; to build one: rg2 shape torus)" -- "$RG2" shapes torus
 expect 1 "r = 2 must be < R = 1" -- "$RG2" shape torus --R 1 --r 2
 expect 1 "b^2 = a^2 - c^2" -- "$RG2" shape cyclide --a 1 --c 2
 expect 1 "parameter radius = -1 must be > 0" -- "$RG2" shape sphere --radius -1
