@@ -53,5 +53,12 @@ const char *rg2_cli_closest(const char *word, const char *const *names, int n);
 int rg2_cli_report(const char *cmd, const rg2_error *err);
 /* 1 if the paths name the same existing file (an output that would overwrite an input). */
 int rg2_cli_same_file(const char *a, const char *b);
+/* 1 if the names mean the same file, existing or not (rg2_cli_same_file, or the same real
+ * directory and last component: "a.step" and "./a.step"). */
+int rg2_cli_same_path(const char *a, const char *b);
+/* The outputs of a command that reads the design file: 0, or RG2_EXIT_USAGE with a message when
+ * one is the design file, the design file is one's temporary "<output>.tmp", or two are the
+ * same file. */
+int rg2_cli_check_outputs(const char *cmd, const char *design, const char *const *out, int n);
 
 #endif

@@ -83,22 +83,14 @@ int rg2_cmd_build(int argc, char **argv)
         usage(stderr);
         return RG2_EXIT_USAGE;
     }
-    for (int k = 0; k < n_out; k++)
-        if (rg2_cli_same_file(path, out[k])) {
-            fprintf(stderr, "rg2 build: output '%s' is the design file itself; choose another name\n", out[k]);
-            return RG2_EXIT_USAGE;
-        }
+    if (rg2_cli_check_outputs("build", path, out, n_out))
+        return RG2_EXIT_USAGE;
     for (int k = 0; k < n_out; k++) { /* a mistyped extension is refused before the build */
         rg2_error ferr;
         if (rg2_export_format_check(out[k], &ferr)) {
             fprintf(stderr, "rg2 build: %s\n", ferr.msg);
             return RG2_EXIT_USAGE;
         }
-        for (int j = 0; j < k; j++)
-            if (!strcmp(out[j], out[k]) || rg2_cli_same_file(out[j], out[k])) {
-                fprintf(stderr, "rg2 build: output '%s' is listed twice\n", out[k]);
-                return RG2_EXIT_USAGE;
-            }
     }
     int tty = !quiet && isatty(2);
     progress(tty, "rg2 build: reading and building %s", path);

@@ -42,10 +42,8 @@ int rg2_cmd_mesh(int argc, char **argv)
         usage(stderr);
         return RG2_EXIT_USAGE;
     }
-    if (rg2_cli_same_file(path, out)) {
-        fprintf(stderr, "rg2 mesh: output '%s' is the design file itself; choose another name\n", out);
+    if (rg2_cli_check_outputs("mesh", path, &out, 1))
         return RG2_EXIT_USAGE;
-    }
     rg2_design *d;
     rg2_error err;
     if (rg2_design_load(path, &d, &err))

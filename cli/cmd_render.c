@@ -191,10 +191,8 @@ int rg2_cmd_render(int argc, char **argv)
         usage(stderr);
         return RG2_EXIT_USAGE;
     }
-    if (rg2_cli_same_file(path, out)) {
-        fprintf(stderr, "rg2 render: output '%s' is the design file itself; choose another name\n", out);
+    if (rg2_cli_check_outputs("render", path, &out, 1))
         return RG2_EXIT_USAGE;
-    }
     const char *dot = strrchr(out, '.'), *slash = strrchr(out, '/');
     if (!dot || (slash && dot < slash) || strcasecmp(dot, ".png")) {
         fprintf(stderr, "rg2 render: output '%s': the picture is a PNG; give it a .png name\n", out);

@@ -1,4 +1,5 @@
 /* util.c -- argument helpers shared by the subcommands. */
+#define _XOPEN_SOURCE 700 /* realpath */
 #include "cli.h"
 
 #include <errno.h>
@@ -6,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <limits.h>
 #include <sys/stat.h>
 
 /* strtod with the rules of every numeric option: 0 for a finite number (a subnormal one too:
@@ -135,4 +137,71 @@ int rg2_cli_same_file(const char *a, const char *b)
     if (stat(a, &sa) || stat(b, &sb))
         return 0;
     return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
+/* The path the name p means, for comparing names of files that may not exist yet: the real
+ * path of its directory (when that exists) and its last component, else p with "." and empty
+ * components dropped lexically. 0, or -1 if it does not fit. */
+static int canonical(const char *p, char *out, size_t cap)
+{
+    const char *slash = strrchr(p, '/');
+    char dir[PATH_MAX], real[PATH_MAX];
+    size_t n = slash ? (size_t)(slash - p) + 1 : 0;
+    if (n >= sizeof dir)
+        return -1;
+    memcpy(dir, slash ? p : ".", slash ? n : 2);
+    dir[slash ? n : 1] = 0;
+    const char *base = slash ? slash + 1 : p;
+    if (realpath(dir, real))
+        return snprintf(out, cap, "%s/%s", real, base) < (int)cap ? 0 : -1;
+    size_t k = 0; /* lexical: "a//b/./c" is "a/b/c" */
+    for (const char *q = p; *q;) {
+        const char *e = strchr(q, '/');
+        size_t len = e ? (size_t)(e - q) : strlen(q);
+        if (len && !(len == 1 && q[0] == '.')) {
+            if (k + len + 2 > cap)
+                return -1;
+            if (k || p[0] == '/')
+                out[k++] = '/';
+            memcpy(out + k, q, len);
+            k += len;
+        }
+        q += len + (e != NULL);
+    }
+    out[k] = 0;
+    return 0;
+}
+
+int rg2_cli_same_path(const char *a, const char *b)
+{
+    char ca[PATH_MAX + 256], cb[PATH_MAX + 256];
+    if (rg2_cli_same_file(a, b) || !strcmp(a, b))
+        return 1;
+    return !canonical(a, ca, sizeof ca) && !canonical(b, cb, sizeof cb) && !strcmp(ca, cb);
+}
+
+int rg2_cli_check_outputs(const char *cmd, const char *design, const char *const *out, int n)
+{
+    for (int k = 0; k < n; k++) {
+        char tmp[PATH_MAX + 8];
+        if (rg2_cli_same_path(design, out[k])) {
+            fprintf(stderr, "rg2 %s: output '%s' is the design file itself; choose another name\n", cmd, out[k]);
+            return RG2_EXIT_USAGE;
+        }
+        /* every output is written to <output>.tmp first: that would overwrite the design */
+        if (snprintf(tmp, sizeof tmp, "%s.tmp", out[k]) < (int)sizeof tmp && rg2_cli_same_path(design, tmp)) {
+            fprintf(stderr, "rg2 %s: the design file '%s' is the temporary file of output '%s' (written "
+                            "first, then renamed); rename the design file or choose another output name\n",
+                    cmd, design, out[k]);
+            return RG2_EXIT_USAGE;
+        }
+        for (int j = 0; j < k; j++)
+            if (rg2_cli_same_path(out[j], out[k])) {
+                fprintf(stderr, "rg2 %s: output '%s' is listed twice%s%s%s\n", cmd, out[k],
+                        strcmp(out[j], out[k]) ? " (as '" : "", strcmp(out[j], out[k]) ? out[j] : "",
+                        strcmp(out[j], out[k]) ? "')" : "");
+                return RG2_EXIT_USAGE;
+            }
+    }
+    return RG2_EXIT_OK;
 }

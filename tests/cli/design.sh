@@ -59,6 +59,20 @@ expect 2 "unknown export format '.xyz'" "$rg2" build -q "$src/examples/fig5_work
 [ -e "$tmp/w.step" ] && bad "w.step written despite a bad -o" || ok
 expect 2 "has no extension" "$rg2" build -q "$src/examples/fig5_workflow.json" -o "$tmp/noext"
 expect 2 "listed twice" "$rg2" build -q "$src/examples/fig5_workflow.json" -o "$tmp/w.step" -o "$tmp/w.step"
+# the same output named two ways is refused whether or not the file exists yet
+mkdir "$tmp/dup"
+abs_rg2=$(cd "$(dirname "$rg2")" && pwd)/$(basename "$rg2") abs_src=$(cd "$src" && pwd)
+expect 2 "output './a.step' is listed twice (as 'a.step')" bash -c "cd '$tmp/dup' && '$abs_rg2' build -q '$abs_src/examples/fig5_workflow.json' -o a.step -o ./a.step"
+expect 2 "is listed twice" "$rg2" build -q "$src/examples/fig5_workflow.json" -o "$tmp/dup/b.step" -o "$tmp/dup//b.step"
+[ -z "$(ls -A "$tmp/dup")" ] && ok || bad "a refused duplicate output wrote $(ls -A "$tmp/dup")"
+# a design file named <output>.tmp would be overwritten by the output's temporary file: refused
+cp "$src/examples/fig1_torus.json" "$tmp/dup/o.json.tmp"
+expect 2 "the design file '$tmp/dup/o.json.tmp' is the temporary file of output '$tmp/dup/o.json'" "$rg2" build -q "$tmp/dup/o.json.tmp" -o "$tmp/dup/o.json"
+expect 2 "is the temporary file of output" "$rg2" mesh "$tmp/dup/o.json.tmp" -o "$tmp/dup/./o.json"
+cp "$src/examples/fig1_torus.json" "$tmp/dup/p.png.tmp"
+expect 2 "is the temporary file of output" "$rg2" render "$tmp/dup/p.png.tmp" -o "$tmp/dup/p.png"
+cmp -s "$src/examples/fig1_torus.json" "$tmp/dup/o.json.tmp" && cmp -s "$src/examples/fig1_torus.json" "$tmp/dup/p.png.tmp" &&
+  [ "$(ls "$tmp/dup" | tr '\n' ' ')" = "o.json.tmp p.png.tmp " ] && ok || bad "a design file named <output>.tmp was changed, or outputs written: $(ls "$tmp/dup")"
 # a later output that cannot be written: the outputs already written are removed again
 expect 1 "$tmp/no/such/dir/w.igs" "$rg2" build -q "$src/examples/fig5_workflow.json" -o "$tmp/w.step" -o "$tmp/no/such/dir/w.igs"
 [ -e "$tmp/w.step" ] && bad "w.step left behind after a failed build" || ok
