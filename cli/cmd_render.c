@@ -98,8 +98,8 @@ int rg2_cmd_render(int argc, char **argv)
             usage(stdout);
             return RG2_EXIT_OK;
         } else if (!strcmp(a, "-o")) {
-            if (i + 1 >= argc) {
-                fprintf(stderr, "rg2 render: -o needs a file name\n");
+            if (i + 1 >= argc || out) { /* one picture per run, as rg2 mesh writes one file */
+                fprintf(stderr, "rg2 render: %s\n", out ? "only one -o (one picture per run)" : "-o needs a file name");
                 return RG2_EXIT_USAGE;
             }
             out = argv[++i];
