@@ -49,6 +49,8 @@ int rg2_cli_number(const char *cmd, const char *opt, const char *s, const char *
 int rg2_cli_int(const char *cmd, const char *opt, const char *s, int lo, int hi, int *v);
 /* The name closest to word (edit distance at most 3 and about half its length), or NULL. */
 const char *rg2_cli_closest(const char *word, const char *const *names, int n);
+/* 1 if the file name's extension is ext (".png"), in any case. */
+int rg2_cli_has_ext(const char *path, const char *ext);
 /* Print "rg2 <cmd>: <status text>: <message>" to stderr; returns RG2_EXIT_FAIL. */
 int rg2_cli_report(const char *cmd, const rg2_error *err);
 /* 1 if the paths name the same existing file (an output that would overwrite an input). */

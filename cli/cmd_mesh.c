@@ -10,7 +10,8 @@ static void usage(FILE *f)
                "Reads and builds a design file and writes its output control meshes for other tools:\n"
                "design points d = (p1, p2, p3) / p4 and weights W = p4 (paper eq. 11), the scalars\n"
                "w, b, g of both directions, and which shape every point, scalar and patch came from\n"
-               "(docs/design-format.md, \"The mesh file\"). Nothing is written if the design is invalid.\n"
+               "(docs/design-format.md, \"The mesh file\"); the output name ends in .json. Nothing is\n"
+               "written if the design is invalid.\n"
                "Exit codes: 0 ok, 1 invalid design or unwritable output, 2 usage error.\n");
 }
 
@@ -44,6 +45,11 @@ int rg2_cmd_mesh(int argc, char **argv)
     }
     if (rg2_cli_check_outputs("mesh", path, &out, 1))
         return RG2_EXIT_USAGE;
+    if (!rg2_cli_has_ext(out, ".json")) {
+        fprintf(stderr, "rg2 mesh: output '%s': the control mesh is JSON; give it a .json name (rg2 build writes "
+                        "the surfaces as STEP, IGES, ...)\n", out);
+        return RG2_EXIT_USAGE;
+    }
     rg2_design *d;
     rg2_error err;
     if (rg2_design_load(path, &d, &err))

@@ -5,7 +5,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 static void usage(FILE *f)
 {
@@ -193,8 +192,7 @@ int rg2_cmd_render(int argc, char **argv)
     }
     if (rg2_cli_check_outputs("render", path, &out, 1))
         return RG2_EXIT_USAGE;
-    const char *dot = strrchr(out, '.'), *slash = strrchr(out, '/');
-    if (!dot || (slash && dot < slash) || strcasecmp(dot, ".png")) {
+    if (!rg2_cli_has_ext(out, ".png")) {
         fprintf(stderr, "rg2 render: output '%s': the picture is a PNG; give it a .png name\n", out);
         return RG2_EXIT_USAGE;
     }

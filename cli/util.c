@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <limits.h>
 #include <sys/stat.h>
 
@@ -123,6 +124,12 @@ const char *rg2_cli_closest(const char *word, const char *const *names, int n)
         }
     }
     return best;
+}
+
+int rg2_cli_has_ext(const char *path, const char *ext)
+{
+    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
+    return dot && !(slash && dot < slash) && !strcasecmp(dot, ext);
 }
 
 int rg2_cli_report(const char *cmd, const rg2_error *err)
