@@ -12,6 +12,8 @@ typedef struct {
     const char *name;
     const char *help;
     int (*run)(int argc, char **argv); /* argv[0] is the command name */
+    const char *flags; /* its "--" options that take no value, space-separated; every other
+                        * "--name=value" is passed to it as "--name" "value" */
 } rg2_cli_command;
 
 /* Limits a design file has (README "Size limits"), kept by rg2 shape and rg2 curve too: arcs or

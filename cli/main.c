@@ -9,16 +9,68 @@
 #include <unistd.h>
 
 static const rg2_cli_command commands[] = {
-    {"build", "build a design file into surfaces and write them (STEP, IGES, ...)", rg2_cmd_build},
-    {"check", "report exactness and G0/G1/G2 gaps of a design; fail on a broken promise", rg2_cmd_check},
-    {"render", "render a design as a PNG: shaded, curvature maps, zebra stripes", rg2_cmd_render},
-    {"info", "show a design's meshes, patch counts, exact pieces and transitions", rg2_cmd_info},
-    {"mesh", "write a design's control mesh (d, W, scalars) as JSON", rg2_cmd_mesh},
-    {"shapes", "list the exact basic shapes with their parameters", rg2_cmd_shapes},
-    {"shape", "build an exact shape or a bi-cubic NURBS into patches", rg2_cmd_shape},
-    {"curve", "print the exact Bezier segments of a circle or a control polygon", rg2_cmd_curve},
-    {"demo", "print a circle's Bezier form and a torus surface summary", rg2_cmd_demo},
+    {"build", "build a design file into surfaces and write them (STEP, IGES, ...)", rg2_cmd_build,
+     "--face-per-mesh --ap242 --iges-brep --quiet --help"},
+    {"check", "report exactness and G0/G1/G2 gaps of a design; fail on a broken promise", rg2_cmd_check,
+     "--json --help"},
+    {"render", "render a design as a PNG: shaded, curvature maps, zebra stripes", rg2_cmd_render,
+     "--boundaries --mesh --apart --no-tint --no-colorbar --help"},
+    {"info", "show a design's meshes, patch counts, exact pieces and transitions", rg2_cmd_info, "--map --help"},
+    {"mesh", "write a design's control mesh (d, W, scalars) as JSON", rg2_cmd_mesh, "--help"},
+    {"shapes", "list the exact basic shapes with their parameters", rg2_cmd_shapes, "--json --help"},
+    {"shape", "build an exact shape or a bi-cubic NURBS into patches", rg2_cmd_shape,
+     "--json --help --u-open --v-open --u-closed --v-closed"},
+    {"curve", "print the exact Bezier segments of a circle or a control polygon", rg2_cmd_curve,
+     "--json --open --closed --help"},
+    {"demo", "print a circle's Bezier form and a torus surface summary", rg2_cmd_demo, "--help"},
 };
+
+/* The arguments with every "--name=value" split into "--name" "value" (the form GNU tools
+ * accept); a flag given a value is a usage error. Returns the new argc, or -1 (message printed;
+ * *out NULL when out of memory). The strings are in *out and *names; free both lists with
+ * free_split. */
+static int split_values(const rg2_cli_command *c, int argc, char **argv, char ***out, char ***names)
+{
+    *out = calloc((size_t)argc * 2 + 1, sizeof **out);
+    *names = calloc((size_t)argc + 1, sizeof **names);
+    if (!*out || !*names) {
+        fprintf(stderr, "rg2: out of memory\n");
+        return -1;
+    }
+    int n = 0, nn = 0;
+    for (int i = 0; i < argc; i++) {
+        const char *eq = strncmp(argv[i], "--", 2) ? NULL : strchr(argv[i], '=');
+        if (!eq || i == 0) {
+            (*out)[n++] = argv[i];
+            continue;
+        }
+        size_t len = (size_t)(eq - argv[i]);
+        char *name = malloc(len + 1);
+        if (!name) {
+            fprintf(stderr, "rg2: out of memory\n");
+            return -1;
+        }
+        memcpy(name, argv[i], len);
+        name[len] = 0;
+        (*names)[nn++] = name;
+        for (const char *f = strstr(c->flags, name); f; f = strstr(f + 1, name))
+            if ((f == c->flags || f[-1] == ' ') && (f[len] == ' ' || !f[len])) {
+                fprintf(stderr, "rg2 %s: %s takes no value ('%s')\n", c->name, name, argv[i]);
+                return -1;
+            }
+        (*out)[n++] = name;
+        (*out)[n++] = (char *)(eq + 1);
+    }
+    return n;
+}
+
+static void free_split(char **out, char **names)
+{
+    for (int k = 0; names && names[k]; k++)
+        free(names[k]);
+    free(names);
+    free(out);
+}
 
 static void usage(FILE *f)
 {
@@ -95,9 +147,16 @@ int main(int argc, char **argv)
     }
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
         if (!strcmp(argv[1], commands[i].name)) {
-            guard_outputs(argc, argv);
-            int rc = commands[i].run(argc - 1, argv + 1);
+            char **args, **names;
+            int n = split_values(&commands[i], argc - 1, argv + 1, &args, &names);
+            if (n < 0) {
+                free_split(args, names);
+                return RG2_EXIT_USAGE;
+            }
+            guard_outputs(n, args);
+            int rc = commands[i].run(n, args);
             free_guards();
+            free_split(args, names);
             return rc;
         }
     fprintf(stderr, "rg2: unknown command '%s'\n", argv[1]);

@@ -150,6 +150,16 @@ expect 0 "" -- "$RG2" check "$ex" --tol g1=1e-310
 # render.md gives one memory figure per pixel (it gave 125 and 140 bytes)
 per_pixel=$(tr '\n' ' ' <"$SRC/docs/render.md" | grep -o 'about [0-9]* bytes' | sort -u | tr '\n' ' ')
 [ "$per_pixel" = "about 131 bytes " ] && ok || bad "docs/render.md: bytes per pixel: $per_pixel"
+# --name=value is --name value, in every subcommand; a flag given a value is a usage error
+expect 0 "" -- "$RG2" render "$ex" -o "$tmp/eq.png" --size=64x48 --azimuth=10 --mode=gauss
+png_is "$tmp/eq.png" 64 48
+expect 0 "" -- "$RG2" check "$ex" --tol=g1=1e-3 --samples=4 --threads=1
+expect 0 "" -- "$RG2" build -q "$ex" -o "$tmp/eq.obj" --density=2
+expect 0 "torus R = 3, r = 2" -- "$RG2" shape torus --r=2 --u-arcs=5
+expect 0 "3 rational cubic Bezier segments" -- "$RG2" curve --angles=120,120,120
+expect 2 "rg2 render: --apart takes no value ('--apart=1')" -- "$RG2" render "$ex" -o "$tmp/eq2.png" --apart=1
+expect 2 "rg2 render: unknown option '--frob'" -- "$RG2" render "$ex" -o "$tmp/eq2.png" --frob=1
+[ ! -e "$tmp/eq2.png" ] && ok || bad "a refused --name=value wrote a picture"
 # bad designs: exit 1 with the loader's message
 expect 1 "K = " -- "$RG2" check "$SRC/tests/data/bad_scalar.json"
 expect 1 "" -- "$RG2" render "$SRC/tests/data/bad_weight.json" -o "$tmp/bad.png"
