@@ -1121,6 +1121,14 @@ static rg2_status parse_text(const char *json, size_t len, const char *name, cJS
             }
             i++; /* skip the escaped character: \\ then u0000 is a backslash and text */
         }
+    size_t blank = 0; /* an empty file (or only white space) is not a syntax error to hunt for */
+    while (blank < len && strchr(" \t\r\n", buf[blank]))
+        blank++;
+    if (blank == len) {
+        free(buf);
+        return rg2__fail(err, RG2_EPARSE, "%s is empty%s: there is no JSON object in it", name,
+                         len ? " (only white space)" : "");
+    }
     const char *end = NULL;
     *root = cJSON_ParseWithLengthOpts(buf, len + 1, &end, 1);
     if (!*root) {
