@@ -623,9 +623,10 @@ int rg2_cmd_shape(int argc, char **argv)
         print_summary(is_nurbs ? NULL : &sh, &pu, &pv, &m, &s, &rep, resid, size, samples);
     if (rep.flags & RG2_SHAPE_WARN_WEIGHT)
         fprintf(stderr,
-                "rg2 shape: warning: %d patches have homogeneous weights <= 0 (min %.6g at patch "
+                "rg2 shape: warning: %d %s homogeneous weights <= 0 (min %.6g at patch "
                 "%d,%d); STEP/IGES export needs positive weights: use more arcs or knots\n",
-                rep.n_nonpositive, rep.min_weight, rep.patch_i, rep.patch_j);
+                rep.n_nonpositive, rep.n_nonpositive == 1 ? "patch has" : "patches have", rep.min_weight, rep.patch_i,
+                rep.patch_j);
 out:
     rg2_surface_free(&s);
     rg2_mesh_free(&m);

@@ -21,7 +21,7 @@ case "$out" in *"max |f|/|grad f| = "*) r=$(printf '%s\n' "$out" | sed -n 's/.*(
   awk -v r="$r" 'BEGIN { exit !(r + 0 <= 1e-13) }' && ok || bad "cyclide residual $r" ;;
   *) bad "cyclide summary: $out" ;; esac
 # weights: warning on stderr, exit 0
-expect 0 "warning: 1 patches have homogeneous weights <= 0" -- "$RG2" shape cyclide --a 1 --c 0.8 --mu 0.97 --u-arcs 3 --v-arcs 3
+expect 0 "warning: 1 patch has homogeneous weights <= 0" -- "$RG2" shape cyclide --a 1 --c 0.8 --mu 0.97 --u-arcs 3 --v-arcs 3
 # JSON dump: patches with 4x4 homogeneous points, exact torus weight (1 + 2 cos 30)/3 in the mesh scalars
 expect 0 '"patches": [' -- "$RG2" shape torus --u-arcs 3 --v-arcs 3 --json
 "$RG2" shape torus --u-arcs 4 --v-arcs 4 --json | grep -q '0.80473785412436' && ok || bad "exact circle weight in JSON"
