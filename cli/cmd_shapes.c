@@ -100,7 +100,7 @@ static void help_shape(void)
         "Direction options (D = u or v). Circle directions, angles in degrees; every arc lies in\n"
         "[0.286479, 180) (0.005 rad up to pi, excluded), so a full circle has 3 to 1256 arcs:\n"
         "  --D-arcs N          N equal arcs: the full circle (closed), or --D-sweep DEG (open)\n"
-        "  --D-angles A,B,...  opening angles; closed if they sum to 360\n"
+        "  --D-angles A,B,...  opening angles; closed if they sum to 360 (to 12 digits)\n"
         "  --D-start DEG       angle where the first arc starts (default 0)\n"
         "  --D-sweep DEG       open partial circle of this total angle\n"
         "  --D-open / --D-closed  force open or closed\n"
@@ -154,7 +154,15 @@ static int make_partition(const char *shape, const rg2_shape_desc *d, int dir, d
             p->n = o->n_vals;
             p->values = o->vals;
             p->start = start;
-            p->closed = o->closed ? 1 : o->open ? 0 : fabs(sum - 360.0) <= 1e-9 * 360.0;
+            double gap = fabs(sum - 360.0);
+            if (!o->closed && !o->open && gap > RG2_CLOSED_SUM_TOL * 360.0 && gap <= RG2_NEAR_FULL_DEG) {
+                fprintf(stderr,
+                        "rg2 shape: %s: the %d --%s-angles sum to %.10g degrees, %.3g from a full circle: for a "
+                        "closed circle give them to 12 digits (or --%s-arcs %d); for an open ring add --%s-open\n",
+                        shape, o->n_vals, D, sum, gap, D, o->n_vals, D);
+                return RG2_EXIT_FAIL;
+            }
+            p->closed = o->closed ? 1 : o->open ? 0 : gap <= RG2_CLOSED_SUM_TOL * 360.0;
             return 0;
         }
         int n = o->arcs, open = o->has_sweep || o->open;

@@ -62,6 +62,12 @@ extern "C" {
 /** RG2_VERSION_MAJOR * 10000 + MINOR * 100 + PATCH, for #if tests. */
 #define RG2_VERSION_NUMBER (RG2_VERSION_MAJOR * 10000 + RG2_VERSION_MINOR * 100 + RG2_VERSION_PATCH)
 #define RG2_PI 3.14159265358979323846
+/** The arcs of a closed circle must sum to 2 pi to this relative tolerance; design files and
+ *  `rg2 shape --u-angles` call a list of arcs closed when it sums to 360 degrees within it, and
+ *  refuse a sum within RG2_NEAR_FULL_DEG of 360 but outside it (a mistyped full circle: open
+ *  with a hairline gap, or closed and refused) unless closedness is stated. */
+#define RG2_CLOSED_SUM_TOL 1e-12
+#define RG2_NEAR_FULL_DEG 0.01
 
 /* ===================================================================================== */
 /** @name Status and errors */

@@ -472,8 +472,15 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
                 sum += pb->values[k];
                 pb->values[k] *= M_PI / 180.0;
             }
+            double gap = fabs(sum - 360.0);
+            if (!have_closed && gap > RG2_CLOSED_SUM_TOL * 360.0 && gap <= RG2_NEAR_FULL_DEG)
+                return fail(c, RG2_EDOMAIN, p,
+                            "the %d arcs sum to %.10g degrees, %.3g from a full circle: for a closed circle "
+                            "give the angles to 12 digits (or \"arcs\": %d for equal arcs); for an open ring "
+                            "say \"closed\": false",
+                            n, sum, gap, n);
             if (!have_closed)
-                closed = fabs(sum - 360.0) <= 1e-9 * 360.0;
+                closed = gap <= RG2_CLOSED_SUM_TOL * 360.0;
         }
     } else {
         if (angles && !have_closed)

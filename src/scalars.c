@@ -228,7 +228,7 @@ rg2_status rg2_circle_coeffs(const double *alpha, int n_alpha, int closed, doubl
     }
     if (!rg2__finite(theta0))
         return rg2__fail(err, RG2_ENONFINITE, "arcs: start angle is not finite");
-    if (closed && fabs(sum - 2.0 * M_PI) > 1e-12 * 2.0 * M_PI)
+    if (closed && fabs(sum - 2.0 * M_PI) > RG2_CLOSED_SUM_TOL * 2.0 * M_PI)
         return rg2__fail(err, RG2_EDOMAIN,
                          "arcs: a closed circle needs opening angles that sum to 2 pi; these sum to "
                          "%.17g rad (%.10g deg)",

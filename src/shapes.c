@@ -177,12 +177,12 @@ rg2_status rg2_partition_check(const rg2_partition *p, const char *what, rg2_err
         double sum = 0.0;
         for (int k = lo; k < hi; k++)
             sum += p->values[k];
-        if (p->closed && fabs(sum - TWO_PI) > 1e-12 * TWO_PI)
+        if (p->closed && fabs(sum - TWO_PI) > RG2_CLOSED_SUM_TOL * TWO_PI)
             return rg2__fail(err, RG2_EDOMAIN,
                              "%s partition: the %d arcs of a closed circle sum to %.17g rad (%.10g "
                              "deg); they must sum to 2 pi",
                              what, p->n, sum, sum * 180.0 / M_PI);
-        if (!p->closed && sum > TWO_PI * (1.0 + 1e-12))
+        if (!p->closed && sum > TWO_PI * (1.0 + RG2_CLOSED_SUM_TOL))
             return rg2__fail(err, RG2_EDOMAIN,
                              "%s partition: the open arcs sum to %.17g rad (%.10g deg), past 2 pi "
                              "(the surface would overlap itself)",
