@@ -1087,7 +1087,7 @@ static void failures(const rg2_surface *s)
     CHECK(st == RG2_EWEIGHT && strstr(err.msg, "patch (2, 1)"), "zero weight: %s", err.msg);
     /* a NaN in a later patch than the zero weight: every format refuses it (the patch formats
      * wrote "nan" when the weight was found first, and the .json did not parse) */
-    char where[32];
+    char where[48];
     snprintf(where, sizeof where, "patch (%d, %d)", bad.nu - 1, bad.nv - 1);
     rg2_surface_patch(&bad, bad.nu - 1, bad.nv - 1)->h[1][1][0] = NAN;
     const char *later[] = {"nan.json", "nan.bv", "nan.bez", "nan.step", "nan.obj"};
