@@ -171,18 +171,12 @@ static rg2_status check_clamped_rounding(const rg2_nurbs *nb, const double *A, c
 {
     int nu = nb->nu, nv = nb->nv;
     size_t np = (size_t)nu * (size_t)nv;
-    double X = 0.0, lo[3], hi[3];
-    for (int d = 0; d < 3; d++)
-        lo[d] = hi[d] = nb->points[d];
+    rg2__box box;
+    rg2__box_init(&box);
     for (size_t k = 0; k < np; k++)
-        for (int d = 0; d < 3; d++) {
-            double x = nb->points[3 * k + d];
-            X = fmax(X, fabs(x));
-            lo[d] = fmin(lo[d], x);
-            hi[d] = fmax(hi[d], x);
-        }
-    double size = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                       (hi[2] - lo[2]) * (hi[2] - lo[2]));
+        rg2__box_add(&box, &nb->points[3 * k], 1.0);
+    double X, size;
+    rg2__box_extent(&box, &X, &size);
     double worst = 0.0;
     int wi = 0, wj = 0;
     for (int i = 0; i < nu - 3; i++)
