@@ -191,8 +191,8 @@ rg2_status rg2__op_cut(const rg2__dmesh *in, const int first[2], const int last[
                              s->closed ? "closed, last may wrap" : "open", s->n, maxlast);
         if (cnt < 4)
             return rg2__fail(err, RG2_EINVAL,
-                             "%s: range [%d, %d] keeps %d control points; an open direction needs at least 4",
-                             what[k], first[k], last[k], cnt);
+                             "%s: range [%d, %d] keeps %d control point%s; an open direction needs at least 4",
+                             what[k], first[k], last[k], cnt, cnt == 1 ? "" : "s");
         n[k] = cnt;
         cl[k] = 0;
         f[k] = first[k];
@@ -609,7 +609,7 @@ rg2_status rg2__op_morph(const rg2__dmesh *a, const rg2__dmesh *b, double t, rg2
                          const char *what, rg2_error *err)
 {
     if (!rg2__finite(t) || t < 0.0 || t > 1.0)
-        return rg2__fail(err, RG2_EDOMAIN, "%s.t: t = %g, must lie in [0, 1]", what, t);
+        return rg2__fail(err, RG2_EDOMAIN, "%s.t: t = %.17g, must lie in [0, 1]", what, t);
     for (int k = 0; k < 2; k++) {
         const rg2_scalars *sa = dir_scalars(&a->m, k), *sb = dir_scalars(&b->m, k);
         if (sa->n != sb->n || sa->closed != sb->closed)

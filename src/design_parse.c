@@ -774,8 +774,12 @@ static rg2_status op_morph(pctx *c, const cJSON *obj, const char *path, rg2__dme
     char p[300];
     const cJSON *x = get(obj, "morph"), *y;
     subpath(p, sizeof p, path, "morph");
-    if (!cJSON_IsArray(x) || cJSON_GetArraySize(x) != 2)
-        return fail(c, RG2_EPARSE, p, "expected an array of 2 mesh names, found %s", type_name(x));
+    if (!cJSON_IsArray(x) || cJSON_GetArraySize(x) != 2) {
+        char n[32];
+        snprintf(n, sizeof n, "%d", cJSON_GetArraySize(x));
+        return fail(c, RG2_EPARSE, p, "expected an array of 2 mesh names, found %s%s", cJSON_IsArray(x) ? "an array of " : "",
+                    cJSON_IsArray(x) ? n : type_name(x));
+    }
     int a, b;
     char q[320];
     fmtpath(q, sizeof q, "%s[0]", p);
@@ -788,8 +792,15 @@ static rg2_status op_morph(pctx *c, const cJSON *obj, const char *path, rg2__dme
     subpath(p, sizeof p, path, "t");
     if ((st = need(c, obj, "t", path, &y)) || (st = as_num(c, y, p, &t)))
         return st;
-    if (t < 0.0 || t > 1.0)
-        return fail(c, RG2_EDOMAIN, p, "t = %g, must lie in [0, 1]", t);
+    if (t < 0.0 || t > 1.0) {
+        char tt[32]; /* the fewest digits that read back as t: 1.000001, not 1 (%g) or 1.0000009999999999 */
+        for (int d = 6; d <= 17; d++) {
+            snprintf(tt, sizeof tt, "%.*g", d, t);
+            if (strtod(tt, NULL) == t)
+                break;
+        }
+        return fail(c, RG2_EDOMAIN, p, "t = %s, must lie in [0, 1]", tt);
+    }
     return rg2__op_morph(&c->d->mesh[a], &c->d->mesh[b], t, out, path, c->err);
 }
 
@@ -844,7 +855,8 @@ static rg2_status edit_points(pctx *c, const cJSON *arr, const char *path, rg2__
         /* "at": [i, j] or [[i, j], ...] */
         subpath(q, sizeof q, p, "at");
         if (!cJSON_IsArray(at) || cJSON_GetArraySize(at) < 1)
-            return fail(c, RG2_EPARSE, q, "expected [i, j] or a list of [i, j], found %s", type_name(at));
+            return fail(c, RG2_EPARSE, q, "expected [i, j] or a list of [i, j], found %s",
+                        cJSON_IsArray(at) ? "an empty array" : type_name(at));
         int multi = cJSON_IsArray(at->child);
         int idx = 0;
         for (const cJSON *it = multi ? at->child : at; it; it = multi ? it->next : NULL, idx++) {
