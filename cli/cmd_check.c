@@ -99,7 +99,11 @@ int rg2_cmd_check(int argc, char **argv)
         } else if (!strcmp(a, "--json"))
             json = 1;
         else if (!strcmp(a, "--require")) {
-            if (i + 1 >= argc || parse_require(argv[++i], &req))
+            if (i + 1 >= argc) {
+                fprintf(stderr, "rg2 check: --require needs a comma-separated list of g0, g1, g2, exact, weights\n");
+                return RG2_EXIT_USAGE;
+            }
+            if (parse_require(argv[++i], &req))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--samples")) {
             if (rg2_cli_int("check", a, i + 1 < argc ? argv[++i] : NULL, 1, 10000, &o.seam_samples))

@@ -159,8 +159,8 @@ int rg2_cmd_render(int argc, char **argv)
         } else if (!strcmp(a, "--range")) {
             if (rg2_cli_parse_n("render", "--range", i + 1 < argc ? argv[i + 1] : "", o.range, 2, "lo,hi"))
                 return RG2_EXIT_USAGE;
-            if (!(o.range[0] < o.range[1])) {
-                fprintf(stderr, "rg2 render: --range %s: needs lo < hi\n", argv[i + 1]);
+            if (!(o.range[0] < o.range[1]) || !isfinite(o.range[1] - o.range[0])) {
+                fprintf(stderr, "rg2 render: --range %s: needs lo < hi, with hi - lo a finite number\n", argv[i + 1]);
                 return RG2_EXIT_USAGE;
             }
             o.range_set = 1;

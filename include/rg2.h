@@ -931,7 +931,7 @@ typedef struct {
     double percentile;     /**< robust range: clip this fraction at each end (default 0.02) */
     double stripes;        /**< zebra: stripe pairs per half turn (default 12) */
     int keep_pixels;       /**< fill rg2_image.pixels with the per-pixel exact data */
-    int threads;           /**< OpenMP threads; 0 = the OpenMP default */
+    int threads;           /**< OpenMP threads, 0..1024; 0 = the OpenMP default */
 } rg2_render_opts;
 
 /** Exact data of one pixel (rg2_render_opts.keep_pixels). surf < 0 marks background. */
@@ -956,8 +956,8 @@ typedef struct {
 RG2_API void rg2_render_opts_default(rg2_render_opts *o);
 /** Render n surfaces (meshes: nullable, n control meshes for the overlay) into out.
  *  Release with rg2_image_free.
- *  @return RG2_EINVAL (no surfaces, bad size/range/mode, elevation outside [-90, 90],
- *  threads < 0, mesh overlay without meshes),
+ *  @return RG2_EINVAL (no surfaces, bad size/range/mode, a colour range wider than the largest
+ *  double, elevation outside [-90, 90], threads outside 0..1024, mesh overlay without meshes),
  *  RG2_ENONFINITE (non-finite control point, naming it), RG2_ENOMEM. */
 RG2_API rg2_status rg2_render(const rg2_surface *surfs, int n, const rg2_mesh *meshes,
                               const rg2_render_opts *o, rg2_image *out, rg2_error *err);

@@ -538,8 +538,9 @@ static void patch_one(rg2_check_report *r, const rg2_surface *s, int surf, size_
             if (tag < 0 || tag >= n_shapes)
                 continue;
             double g[3], f = rg2__implicit_eval(&imp[tag], e.p, g, NULL), gn = norm3(g);
-            if (!(gn > 0))
-                continue; /* singular point of the shape (apex): no distance estimate */
+            if (gn == 0.0)
+                continue; /* singular point of the shape (apex): no distance estimate; a NaN point
+                             (gradient NaN) goes on and makes the residual NaN, which fails */
             double res = fabs(f) / gn / shape_size[tag];
             rg2_check_shape *cs = &r->shapes[tag];
             if (!isnan(cs->residual) && !(res <= cs->residual)) {
@@ -884,8 +885,8 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
     }
     if (out->kmin > out->kmax)
         out->kmin = out->kmax = out->Hmin = out->Hmax = out->Kmin = out->Kmax = 0;
-    for (int k = 0; k < n_shapes; k++)
-        if (!(out->shapes[k].residual <= out->worst_residual))
+    for (int k = 0; k < n_shapes; k++) /* a NaN sticks: a later shape's number replaced it */
+        if (!isnan(out->worst_residual) && !(out->shapes[k].residual <= out->worst_residual))
             out->worst_residual = out->shapes[k].residual;
     free(shape_size);
     free(shape_box);

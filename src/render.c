@@ -149,7 +149,8 @@ static rg2_status scene_points(const rg2_surface *surfs, int n, const rg2_mesh *
  * 92% of the field (exact for the fixed direction, perspective included). */
 static void view_frame(const rg2_render_opts *o, double dir[3], double f[3], double r[3], double up[3])
 {
-    double az = o->azimuth * M_PI / 180.0, el = o->elevation * M_PI / 180.0;
+    /* the azimuth reduced first: 1e308 degrees overflowed to an infinite angle, an empty picture */
+    double az = fmod(o->azimuth, 360.0) * M_PI / 180.0, el = o->elevation * M_PI / 180.0;
     dir[0] = cos(el) * cos(az), dir[1] = cos(el) * sin(az), dir[2] = sin(el); /* centre -> eye */
     for (int k = 0; k < 3; k++)
         f[k] = -dir[k];
@@ -808,14 +809,17 @@ static rg2_status check_input(const rg2_surface *surfs, int n, const rg2_mesh *m
         return rg2__fail(err, RG2_EINVAL, "render: elevation %g outside [-90, 90] degrees", o->elevation);
     if (o->range_set && !(isfinite(o->range[0]) && isfinite(o->range[1]) && o->range[0] < o->range[1]))
         return rg2__fail(err, RG2_EINVAL, "render: colour range %g,%g is not lo < hi", o->range[0], o->range[1]);
+    if (o->range_set && !isfinite(o->range[1] - o->range[0])) /* -1e308,1e308 painted all one colour */
+        return rg2__fail(err, RG2_EINVAL, "render: colour range %g,%g is wider than the largest double", o->range[0],
+                         o->range[1]);
     if (!(o->percentile >= 0 && o->percentile < 0.5))
         return rg2__fail(err, RG2_EINVAL, "render: percentile %g outside [0, 0.5)", o->percentile);
     if (o->mode == RG2_RENDER_ZEBRA && !(o->stripes >= 1 && o->stripes <= 1000))
         return rg2__fail(err, RG2_EINVAL, "render: stripes %g outside 1..1000", o->stripes);
     if (o->mesh && !meshes)
         return rg2__fail(err, RG2_EINVAL, "render: control mesh overlay requested without meshes");
-    if (o->threads < 0)
-        return rg2__fail(err, RG2_EINVAL, "render: threads %d < 0 (0: the OpenMP default)", o->threads);
+    if (o->threads < 0 || o->threads > 1024) /* 100000 overflowed the stack inside OpenMP */
+        return rg2__fail(err, RG2_EINVAL, "render: threads %d outside 0..1024 (0: the OpenMP default)", o->threads);
     for (int s = 0; s < n; s++) {
         if (surfs[s].nu <= 0 || surfs[s].nv <= 0 || !surfs[s].patch)
             return rg2__fail(err, RG2_EINVAL, "render: surface %d has no patches", s);

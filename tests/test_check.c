@@ -756,6 +756,36 @@ static void folds_fail(void)
               "a bend of 120 degrees between samples is no fold (%d folds)", r.folds);
         rg2_check_report_free(&r);
     }
+    /* a NaN control value in an exact-tagged patch: its samples have no distance from the shape,
+     * and the exact promise fails (the NaN gradient was skipped like an apex's, and exact passed) */
+    rg2_design *dn = NULL;
+    CHECK_OK(rg2_design_load("examples/torus_sphere.json", &dn, &err), &err);
+    if (dn) {
+        rg2_surface c;
+        CHECK_OK(rg2_surface_copy(rg2_design_surface(dn, 0), &c, &err), &err);
+        int k = 0;
+        while (k < c.nu * c.nv - 1 && c.tag[k] < 0)
+            k++;
+        int ns = rg2_design_num_shapes(dn);
+        const char *lab[8];
+        rg2_shape sh[8];
+        for (int q = 0; q < ns && q < 8; q++) {
+            lab[q] = rg2_design_shape_label(dn, q);
+            sh[q] = *rg2_design_shape(dn, q);
+        }
+        rg2_check_report r;
+        CHECK_OK(rg2_check(&c, 1, sh, lab, ns, NULL, &r, &err), &err);
+        CHECK(!rg2_check_failures(&r, RG2_REQUIRE_EXACT), "the design itself is exact");
+        rg2_check_report_free(&r);
+        c.patch[k].h[1][1][3] = NAN;
+        CHECK_OK(rg2_check(&c, 1, sh, lab, ns, NULL, &r, &err), &err);
+        CHECK(rg2_check_failures(&r, RG2_REQUIRE_EXACT) == RG2_REQUIRE_EXACT && isnan(r.shapes[c.tag[k]].residual),
+              "a NaN weight in exact patch %d: exact failures %#x, residual %g", k,
+              rg2_check_failures(&r, RG2_REQUIRE_EXACT), r.shapes[c.tag[k]].residual);
+        rg2_check_report_free(&r);
+        rg2_surface_free(&c);
+        rg2_design_free(dn);
+    }
     rg2_surface_free(&s);
 }
 

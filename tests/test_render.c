@@ -673,7 +673,11 @@ static void options(void)
                {5, 0, RG2_EINVAL, "render: stripes 0 outside 1..1000"},
                {6, 95, RG2_EINVAL, "render: elevation 95 outside [-90, 90] degrees"},
                {6, -90.5, RG2_EINVAL, "render: elevation -90.5 outside [-90, 90] degrees"},
-               {7, -1, RG2_EINVAL, "render: threads -1 < 0 (0: the OpenMP default)"}};
+               {7, -1, RG2_EINVAL, "render: threads -1 outside 0..1024 (0: the OpenMP default)"},
+               /* 100000 threads overflowed the stack inside OpenMP */
+               {7, 100000, RG2_EINVAL, "render: threads 100000 outside 0..1024"},
+               /* a range whose width overflows painted the surface one colour */
+               {8, 1e308, RG2_EINVAL, "render: colour range -1e+308,1e+308 is wider than the largest double"}};
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         rg2_render_opts_default(&o);
         o.width = o.height = 32;
@@ -685,11 +689,34 @@ static void options(void)
         case 4: o.percentile = bad[k].value; break;
         case 6: o.elevation = bad[k].value; break;
         case 7: o.threads = (int)bad[k].value; break;
+        case 8:
+            o.mode = RG2_RENDER_GAUSS, o.range_set = 1;
+            o.range[0] = -bad[k].value, o.range[1] = bad[k].value;
+            break;
         default: o.mode = RG2_RENDER_ZEBRA, o.stripes = bad[k].value; break;
         }
         rg2_status st = rg2_render(&s, 1, NULL, &o, &a, &err);
         CHECK(st == bad[k].code && strstr(err.msg, bad[k].msg), "bad option %zu: %s '%s', want '%s'", k,
               rg2_status_str(st), err.msg, bad[k].msg);
+    }
+    /* an azimuth of 1e308 degrees is the angle fmod(1e308, 360): the same picture, not an empty
+     * one (the angle in radians overflowed to inf) */
+    {
+        rg2_image h, r;
+        rg2_render_opts_default(&o);
+        o.width = o.height = 32;
+        o.keep_pixels = 1;
+        o.azimuth = 1e308;
+        CHECK_OK(rg2_render(&s, 1, NULL, &o, &h, &err), &err);
+        o.azimuth = fmod(1e308, 360.0);
+        CHECK_OK(rg2_render(&s, 1, NULL, &o, &r, &err), &err);
+        int alike = h.rgb && r.rgb && !memcmp(h.rgb, r.rgb, 32 * 32 * 3), surface_px = 0;
+        for (int k = 0; h.pixels && k < 32 * 32; k++)
+            surface_px += h.pixels[k].surf >= 0;
+        CHECK(alike && surface_px > 0, "azimuth 1e308: %s the picture at %.17g degrees, %d surface pixels",
+              alike ? "the same as" : "differs from", fmod(1e308, 360.0), surface_px);
+        rg2_image_free(&h);
+        rg2_image_free(&r);
     }
     rg2_render_opts_default(&o);
     o.width = o.height = 32;
