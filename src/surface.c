@@ -455,19 +455,8 @@ rg2_status rg2__surface_check_finite(const rg2_surface *s, const char *what, int
 
 rg2_status rg2__surface_check_range(const rg2_surface *s, const char *what, int index, rg2_error *err)
 {
-    rg2__box box;
-    rg2__box_init(&box);
-    size_t np = (size_t)s->nu * (size_t)s->nv;
-    for (size_t k = 0; k < np; k++) {
-        int du, dv;
-        rg2__patch_degree(s, k, &du, &dv);
-        for (int a = 0; a <= du; a++)
-            for (int b = 0; b <= dv; b++) {
-                const double *h = rg2__patch_ctrl(s, k, a, b);
-                if (h[3] != 0.0) /* weight 0: at infinity, no coordinates */
-                    rg2__box_add(&box, h, h[3]);
-            }
-    }
+    rg2__box box; /* (points of weight 0, at infinity, have no coordinates and are skipped) */
+    rg2__surface_ctrl_box(s, 0, box.lo, box.hi);
     double big, diag;
     rg2__box_extent(&box, &big, &diag);
     if (!(big <= RG2_DESIGN_MAX_COORD) || !(diag >= RG2_DESIGN_MIN_SIZE))
