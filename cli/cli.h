@@ -49,8 +49,6 @@ int rg2_cli_parse_n(const char *cmd, const char *opt, const char *s, double *out
 int rg2_cli_number(const char *cmd, const char *opt, const char *s, const char *rule, double *v);
 /* An integer lo..hi of an option (s NULL: missing): 0, or -1 with one line printed. */
 int rg2_cli_int(const char *cmd, const char *opt, const char *s, int lo, int hi, int *v);
-/* The name closest to word (edit distance at most 3 and about half its length), or NULL. */
-const char *rg2_cli_closest(const char *word, const char *const *names, int n);
 /* 1 if the file name's extension is ext (".png"), in any case. */
 int rg2_cli_has_ext(const char *path, const char *ext);
 /* Print "rg2 <cmd>: <status text>: <message>" to stderr; returns RG2_EXIT_FAIL. */

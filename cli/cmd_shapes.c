@@ -424,7 +424,7 @@ int rg2_cmd_shape(int argc, char **argv)
             for (int k = 0; k < RG2_SHAPE_COUNT; k++)
                 names[k] = rg2_shape_describe((rg2_shape_kind)k)->name;
             names[RG2_SHAPE_COUNT] = "nurbs";
-            const char *close = rg2_cli_closest(name, names, RG2_SHAPE_COUNT + 1);
+            const char *close = rg2_closest_name(name, names, RG2_SHAPE_COUNT + 1);
             fprintf(stderr, "rg2 shape: %s (or nurbs)%s%s%s\n", err.msg, close ? "; did you mean '" : "",
                     close ? close : "", close ? "'?" : "");
             return RG2_EXIT_USAGE;

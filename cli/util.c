@@ -93,39 +93,6 @@ int rg2_cli_int(const char *cmd, const char *opt, const char *s, int lo, int hi,
     return 0;
 }
 
-const char *rg2_cli_closest(const char *word, const char *const *names, int n)
-{
-    const char *best = NULL;
-    int best_d = 4, lim = (int)strlen(word) / 2 + 1; /* as the design parser suggests keys */
-    size_t lw = strlen(word);
-    if (lw > 63)
-        return NULL;
-    for (int k = 0; k < n; k++) {
-        size_t ln = strlen(names[k]);
-        if (ln > 63)
-            continue;
-        int d[64][64]; /* Levenshtein distance of the prefixes word[0..i), names[k][0..j) */
-        for (size_t i = 0; i <= lw; i++)
-            for (size_t j = 0; j <= ln; j++) {
-                if (!i || !j) {
-                    d[i][j] = (int)(i + j);
-                    continue;
-                }
-                int v = d[i - 1][j - 1] + (word[i - 1] != names[k][j - 1]);
-                if (d[i - 1][j] + 1 < v)
-                    v = d[i - 1][j] + 1;
-                if (d[i][j - 1] + 1 < v)
-                    v = d[i][j - 1] + 1;
-                d[i][j] = v;
-            }
-        if (d[lw][ln] < best_d && d[lw][ln] <= lim) {
-            best_d = d[lw][ln];
-            best = names[k];
-        }
-    }
-    return best;
-}
-
 int rg2_cli_has_ext(const char *path, const char *ext)
 {
     const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');

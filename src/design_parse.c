@@ -52,8 +52,7 @@ static int edit_distance(const char *a, const char *b)
     return row[lb];
 }
 
-/* " (did you mean 'x'?)" for the closest of names, or "" if none is close. */
-static void suggest(const char *word, const char *const *names, int n, char *out, size_t cap)
+const char *rg2_closest_name(const char *word, const char *const *names, int n)
 {
     int best = -1, bd = 1 << 30;
     for (int k = 0; k < n; k++) {
@@ -64,8 +63,15 @@ static void suggest(const char *word, const char *const *names, int n, char *out
         }
     }
     int lim = (int)strlen(word) / 2 + 1;
-    if (best >= 0 && bd <= (lim < 3 ? lim : 3))
-        snprintf(out, cap, " (did you mean '%s'?)", names[best]);
+    return best >= 0 && bd <= (lim < 3 ? lim : 3) ? names[best] : NULL;
+}
+
+/* " (did you mean 'x'?)" for the closest of names, or "" if none is close. */
+static void suggest(const char *word, const char *const *names, int n, char *out, size_t cap)
+{
+    const char *best = rg2_closest_name(word, names, n);
+    if (best)
+        snprintf(out, cap, " (did you mean '%s'?)", best);
     else
         out[0] = 0;
 }

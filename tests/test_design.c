@@ -822,6 +822,16 @@ static void pole_edit_weights(void)
         rg2_design_free(d[k]);
 }
 
+/* rg2_closest_name: the parser's "did you mean" rule, shared with the command line */
+static void closest_names(void)
+{
+    const char *const ops[] = {"shape", "cut", "merge", "transpose", "reverse", "edit"};
+    CHECK(rg2_closest_name("merg", ops, 6) == ops[2], "merg -> %s", rg2_closest_name("merg", ops, 6));
+    CHECK(rg2_closest_name("trnaspose", ops, 6) == ops[3], "trnaspose");
+    CHECK(rg2_closest_name("xyz", ops, 6) == NULL, "xyz is close to nothing");
+    CHECK(rg2_closest_name("cut", ops, 0) == NULL, "no names");
+}
+
 static void bad_inputs(void)
 {
     struct {
@@ -962,6 +972,7 @@ int main(void)
     printf("NURBS meshes:\n");
     nurbs_pieces();
     pole_edit_weights();
+    closest_names();
     printf("bad input:\n");
     bad_inputs();
     return rg2t_done("test_design");
