@@ -47,9 +47,9 @@ static rg2_status ucircle_make(const rg2_scalars *su, ucircle *uc, rg2_error *er
         double w = su->w[i], cb = (3.0 * w - 1.0) / 2.0;
         if (!(cb > -1.0 && cb < 1.0)) {
             st = rg2__fail(err, RG2_EINCOMPATIBLE,
-                           "cap: body u leg %d has weight %.17g; a circle arc needs 1/3 < w < 1 "
+                           "cap: body u leg %d has weight %s; a circle arc needs 1/3 < w < 1 "
                            "(the body's u-direction must be a circle partition)",
-                           i, w);
+                           i, rg2__num(w).s);
             goto done;
         }
         alpha[i] = 2.0 * acos(cb);
@@ -57,9 +57,9 @@ static rg2_status ucircle_make(const rg2_scalars *su, ucircle *uc, rg2_error *er
     }
     if (!(fabs(sum - 2.0 * M_PI) <= 1e-8 * 2.0 * M_PI)) {
         st = rg2__fail(err, RG2_EINCOMPATIBLE,
-                       "cap: the body's u arcs (from the leg weights) sum to %.17g rad, not 2 pi: "
+                       "cap: the body's u arcs (from the leg weights) sum to %s rad, not 2 pi: "
                        "the u-direction is not a full circle",
-                       sum);
+                       rg2__num(sum).s);
         goto done;
     }
     for (int i = 0; i < n; i++)
@@ -69,9 +69,9 @@ static rg2_status ucircle_make(const rg2_scalars *su, ucircle *uc, rg2_error *er
         double b = sin(bi) / sin(bm), g = 2.0 * b * sin(bi) * (tan(0.5 * bi) + tan(0.5 * bm));
         if (!(fabs(b - su->b[i]) <= 1e-8 * fmax(1.0, b) && fabs(g - su->g[i]) <= 1e-8 * fmax(1.0, fabs(g)))) {
             st = rg2__fail(err, RG2_EINCOMPATIBLE,
-                           "cap: body u junction %d has b = %.17g, g = %.17g but its arcs need b = %.17g, "
-                           "g = %.17g: the u-direction is not a circle partition",
-                           i, su->b[i], su->g[i], b, g);
+                           "cap: body u junction %d has b = %s, g = %s but its arcs need b = %s, "
+                           "g = %s: the u-direction is not a circle partition",
+                           i, rg2__num(su->b[i]).s, rg2__num(su->g[i]).s, rg2__num(b).s, rg2__num(g).s);
             goto done;
         }
     }
@@ -651,8 +651,8 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
         if (o.length[e] != 0.0 && (!rg2__finite(o.length[e]) || !(o.length[e] > 0.0) ||
                                    !(o.vc[e] >= 0.0 && o.vc[e] < 1.0)))
             return rg2__fail(err, RG2_EDOMAIN,
-                             "cap: %s cap length %g and v_c %g: need length > 0 and 0 <= v_c < 1",
-                             end_name(e), o.length[e], o.vc[e]);
+                             "cap: %s cap length %g and v_c %s: need length > 0 and 0 <= v_c < 1",
+                             end_name(e), o.length[e], rg2__num(o.vc[e]).s);
     if (!body->su.closed)
         return rg2__fail(err, RG2_EINVAL,
                          "cap: the body's u-direction is open; a cap closes a closed ring (closed u)");

@@ -330,7 +330,7 @@ static int scalars_differ(const rg2_scalars *a, const rg2_scalars *b, char *msg,
     }
     for (int i = 0; i < nw; i++)
         if (!close_rel(a->w[i], b->w[i], tol)) {
-            snprintf(msg, cap, "leg weight w[%d] = %.17g vs %.17g%s", i - off, a->w[i], b->w[i],
+            snprintf(msg, cap, "leg weight w[%d] = %s vs %s%s", i - off, rg2__num(a->w[i]).s, rg2__num(b->w[i]).s,
                      ones_a != ones_b ? " (one is a polynomial direction, knots or a NURBS, with all leg weights 1, "
                                         "the other a circle direction: a circle merges only with a circle of the "
                                         "same arcs)"
@@ -339,11 +339,11 @@ static int scalars_differ(const rg2_scalars *a, const rg2_scalars *b, char *msg,
         }
     for (int i = 0; i < a->n; i++) {
         if (!close_rel(a->b[i], b->b[i], tol)) {
-            snprintf(msg, cap, "junction scalar b[%d] = %.17g vs %.17g", i, a->b[i], b->b[i]);
+            snprintf(msg, cap, "junction scalar b[%d] = %s vs %s", i, rg2__num(a->b[i]).s, rg2__num(b->b[i]).s);
             return 1;
         }
         if (!close_rel(a->g[i], b->g[i], tol)) {
-            snprintf(msg, cap, "junction scalar g[%d] = %.17g vs %.17g", i, a->g[i], b->g[i]);
+            snprintf(msg, cap, "junction scalar g[%d] = %s vs %s", i, rg2__num(a->g[i]).s, rg2__num(b->g[i]).s);
             return 1;
         }
     }
@@ -609,7 +609,7 @@ rg2_status rg2__op_morph(const rg2__dmesh *a, const rg2__dmesh *b, double t, rg2
                          const char *what, rg2_error *err)
 {
     if (!rg2__finite(t) || t < 0.0 || t > 1.0)
-        return rg2__fail(err, RG2_EDOMAIN, "%s.t: t = %.17g, must lie in [0, 1]", what, t);
+        return rg2__fail(err, RG2_EDOMAIN, "%s.t: t = %s, must lie in [0, 1]", what, rg2__num(t).s);
     for (int k = 0; k < 2; k++) {
         const rg2_scalars *sa = dir_scalars(&a->m, k), *sb = dir_scalars(&b->m, k);
         if (sa->n != sb->n || sa->closed != sb->closed)

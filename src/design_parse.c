@@ -159,7 +159,7 @@ static rg2_status as_int(pctx *c, const cJSON *x, const char *path, int *out)
     if (st)
         return st;
     if (v != floor(v) || fabs(v) > 1e9)
-        return fail(c, RG2_EPARSE, path, "expected an integer, found %.17g", v);
+        return fail(c, RG2_EPARSE, path, "expected an integer, found %s", rg2__num(v).s);
     *out = (int)v;
     return RG2_OK;
 }
@@ -499,13 +499,15 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
         if (angles) {
             double span = closed ? 360.0 : hi - lo;
             if (!(span > 0.0))
-                return fail(c, RG2_EDOMAIN, path, "arc range from %g to %g degrees is empty", lo, hi);
+                return fail(c, RG2_EDOMAIN, path, "arc range from %s to %s degrees is empty", rg2__num(lo).s,
+                            rg2__num(hi).s);
             for (int k = 0; k < nseg; k++)
                 pb->values[k] = closed ? 2.0 * M_PI / nseg : span * (M_PI / 180.0) / nseg;
             n = nseg;
         } else {
             if (!(hi > lo))
-                return fail(c, RG2_EDOMAIN, path, "knot range from %g to %g is empty", lo, hi);
+                return fail(c, RG2_EDOMAIN, path, "knot range from %s to %s is empty", rg2__num(lo).s,
+                            rg2__num(hi).s);
             for (int k = 0; k <= nseg; k++)
                 pb->values[k] = k == nseg ? hi : lo + (hi - lo) * k / nseg;
             n = nseg + 1;
@@ -652,8 +654,8 @@ static rg2_status op_cut(pctx *c, const cJSON *obj, const char *path, rg2__dmesh
                 return st;
             for (int q = 0; q < 2; q++)
                 if (r[q] != floor(r[q]) || fabs(r[q]) > 1e9)
-                    return fail(c, RG2_EPARSE, p, "expected integer indices [first, last], found %.17g",
-                                r[q]);
+                    return fail(c, RG2_EPARSE, p, "expected integer indices [first, last], found %s",
+                                rg2__num(r[q]).s);
             first[k] = (int)r[0];
             last[k] = (int)r[1];
             if (first[k] < 0)
@@ -798,15 +800,8 @@ static rg2_status op_morph(pctx *c, const cJSON *obj, const char *path, rg2__dme
     subpath(p, sizeof p, path, "t");
     if ((st = need(c, obj, "t", path, &y)) || (st = as_num(c, y, p, &t)))
         return st;
-    if (t < 0.0 || t > 1.0) {
-        char tt[32]; /* the fewest digits that read back as t: 1.000001, not 1 (%g) or 1.0000009999999999 */
-        for (int d = 6; d <= 17; d++) {
-            snprintf(tt, sizeof tt, "%.*g", d, t);
-            if (strtod(tt, NULL) == t)
-                break;
-        }
-        return fail(c, RG2_EDOMAIN, p, "t = %s, must lie in [0, 1]", tt);
-    }
+    if (t < 0.0 || t > 1.0) /* 1.000001, not 1 (%g) or 1.0000009999999999 */
+        return fail(c, RG2_EDOMAIN, p, "t = %s, must lie in [0, 1]", rg2__num(t).s);
     return rg2__op_morph(&c->d->mesh[a], &c->d->mesh[b], t, out, path, c->err);
 }
 
@@ -875,8 +870,8 @@ static rg2_status edit_points(pctx *c, const cJSON *arr, const char *path, rg2__
             if ((st = as_nums(c, it, r, ij, 2, 2, NULL)))
                 return st;
             if (ij[0] != floor(ij[0]) || ij[1] != floor(ij[1]) || fabs(ij[0]) > 1e9 || fabs(ij[1]) > 1e9)
-                return fail(c, RG2_EPARSE, r, "expected integer indices [i, j], found [%.17g, %.17g]", ij[0],
-                            ij[1]);
+                return fail(c, RG2_EPARSE, r, "expected integer indices [i, j], found [%s, %s]",
+                            rg2__num(ij[0]).s, rg2__num(ij[1]).s);
             int i = (int)ij[0], j = (int)ij[1];
             if (mv || to)
                 if ((st = rg2__edit_point(m, i, j, mv ? RG2__EDIT_MOVE : RG2__EDIT_TO, v, r, c->err)))
@@ -1544,8 +1539,8 @@ static rg2_status op_cap(pctx *c, const cJSON *obj, const char *path, rg2__dmesh
         for (int e = 0; e < 2; e++) {
             indexpath(q, sizeof q, p, e);
             if (o.length[e] != 0.0 && !(o.vc[e] >= 0.0 && o.vc[e] < 1.0))
-                return fail(c, RG2_EDOMAIN, q, "%s seam position v_c = %g, must lie in [0, 1)",
-                            e ? "north" : "south", o.vc[e]);
+                return fail(c, RG2_EDOMAIN, q, "%s seam position v_c = %s, must lie in [0, 1)",
+                            e ? "north" : "south", rg2__num(o.vc[e]).s);
         }
     }
     if ((x = get(obj, "samples"))) {

@@ -57,8 +57,8 @@ rg2_status rg2__op_polar(rg2_design *d, int shape, const rg2_partition *pu, cons
         for (int q = 0; q < m && !st; q++)
             if (!(north ? v[q] < 0.0 : v[q] > 0.0) || (q && !(v[q] > v[q - 1])))
                 st = rg2__fail(err, RG2_EDOMAIN,
-                               "v_%d = %.17g: the knots must increase and all lie on one side of the pole v = 0",
-                               q + 1, v[q]);
+                               "v_%d = %s: the knots must increase and all lie on one side of the pole v = 0",
+                               q + 1, rg2__num(v[q]).s);
         if (!st && !north) {
             double dl = v[m - 1] - v[m - 2];
             k[0] = -v[0];
@@ -152,9 +152,9 @@ rg2_status rg2__op_mobius(rg2_design *d, const rg2__dmesh *in, int shape, const 
                 return rg2__fail(err, RG2_EDOMAIN,
                                  "%s.poles.%s: (%.9g, %.9g, %.9g) is not on the reference %s (%.9g of the way "
                                  "from its centre to its surface; it must lie on it to 1e-9): the nearest point "
-                                 "on it is (%.17g, %.17g, %.17g)",
+                                 "on it is (%s, %s, %s)",
                                  what, e ? "north" : "south", poles[e][0], poles[e][1], poles[e][2], ref, l,
-                                 nq[0] / nq[3], nq[1] / nq[3], nq[2] / nq[3]);
+                                 rg2__num(nq[0] / nq[3]).s, rg2__num(nq[1] / nq[3]).s, rg2__num(nq[2] / nq[3]).s);
             }
         }
         if ((st = rg2_mobius_poles_matrix(loc[0], loc[1], M, err))) {

@@ -62,6 +62,14 @@ rg2_status rg2__fail(rg2_error *err, rg2_status code, const char *fmt, ...)
 /* Set err to RG2_OK with an empty message. */
 void rg2__ok(rg2_error *err);
 
+/* A double for a message: the fewest significant digits (up to 17) that read back as exactly x,
+ * so a knot of 0.45 reads "0.45", not "0.45000000000000001". Use as rg2__num(x).s inside the
+ * call's argument list (the text lives until the end of that full expression). */
+typedef struct {
+    char s[32];
+} rg2__numtext;
+rg2__numtext rg2__num(double x);
+
 /* Overflow-checked allocation of n * size bytes (zeroed); NULL on failure or overflow. */
 void *rg2__calloc(size_t n, size_t size);
 /* The same for large arrays (src/alloc.c): from 2 MiB up, 2 MiB-aligned on transparent huge

@@ -87,8 +87,8 @@ rg2_status rg2_mobius_poles_matrix(const double south[3], const double north[3],
         double l = sqrt(dot3(pts[e], pts[e]));
         if (!(fabs(l - 1.0) <= 1e-9))
             return rg2__fail(err, RG2_EDOMAIN,
-                             "moebius: %s pole (%g, %g, %g) is not on the unit sphere (|p| = %.17g)",
-                             e ? "north" : "south", pts[e][0], pts[e][1], pts[e][2], l);
+                             "moebius: %s pole (%g, %g, %g) is not on the unit sphere (|p| = %s)",
+                             e ? "north" : "south", pts[e][0], pts[e][1], pts[e][2], rg2__num(l).s);
     }
     double d[3] = {north[0] - south[0], north[1] - south[1], north[2] - south[2]};
     if (!(sqrt(dot3(d, d)) > 1e-9))

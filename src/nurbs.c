@@ -46,21 +46,21 @@ static rg2_status knots_prepare(const double *U, int n, const char *what, double
     for (int k = 1; k < nk; k++)
         if (U[k] < U[k - 1])
             return rg2__fail(err, RG2_EDOMAIN,
-                             "nurbs: %s[%d] = %.17g is smaller than %s[%d] = %.17g; knots must not "
+                             "nurbs: %s[%d] = %s is smaller than %s[%d] = %s; knots must not "
                              "decrease",
-                             what, k, U[k], what, k - 1, U[k - 1]);
+                             what, k, rg2__num(U[k]).s, what, k - 1, rg2__num(U[k - 1]).s);
     for (int k = 4; k <= n; k++)
         if (!(U[k] > U[k - 1])) {
             if (k == 4 || k == n)
                 return rg2__fail(err, RG2_EDOMAIN,
-                                 "nurbs: %s[%d] = %s[%d] = %.17g: the first or last span of the "
+                                 "nurbs: %s[%d] = %s[%d] = %s: the first or last span of the "
                                  "domain [%s[3], %s[%d]] has zero length",
-                                 what, k - 1, what, k, U[k], what, what, n);
+                                 what, k - 1, what, k, rg2__num(U[k]).s, what, what, n);
             return rg2__fail(err, RG2_EDOMAIN,
-                             "nurbs: interior knot %s[%d] = %.17g is repeated (equals %s[%d]); "
+                             "nurbs: interior knot %s[%d] = %s is repeated (equals %s[%d]); "
                              "rg2 needs distinct interior knots (a repeated knot lowers the "
                              "continuity): split the NURBS into pieces at this knot",
-                             what, k, U[k], what, k - 1);
+                             what, k, rg2__num(U[k]).s, what, k - 1);
         }
     memcpy(Unew, U, sizeof(double) * (size_t)nk);
     *fix_lo = !(U[1] < U[2] && U[2] < U[3]);
@@ -293,8 +293,8 @@ rg2_status rg2_nurbs_mesh(const rg2_nurbs *nb, rg2_mesh *out, rg2_error *err)
                     goto fail;
                 }
             if (nb->weights && !(nb->weights[k] > 0.0 && rg2__finite(nb->weights[k]))) {
-                st = rg2__fail(err, RG2_EWEIGHT, "nurbs: weight [%d][%d] = %.17g must be finite and > 0",
-                               i, j, nb->weights[k]);
+                st = rg2__fail(err, RG2_EWEIGHT, "nurbs: weight [%d][%d] = %s must be finite and > 0",
+                               i, j, rg2__num(nb->weights[k]).s);
                 goto fail;
             }
         }

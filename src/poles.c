@@ -19,11 +19,11 @@ rg2_status rg2_polar_knots(const double *v, int m, double *knots, rg2_error *err
             return rg2__fail(err, RG2_ENONFINITE, "polar knots: v_%d is not finite", k + 1);
         if (!(v[k] > 0.0 && v[k] < 1.0))
             return rg2__fail(err, RG2_EDOMAIN,
-                             "polar knots: v_%d = %.17g must lie strictly between the poles 0 and 1",
-                             k + 1, v[k]);
+                             "polar knots: v_%d = %s must lie strictly between the poles 0 and 1",
+                             k + 1, rg2__num(v[k]).s);
         if (k > 0 && !(v[k] > v[k - 1]))
-            return rg2__fail(err, RG2_EDOMAIN, "polar knots: v_%d = %.17g is not above v_%d = %.17g",
-                             k + 1, v[k], k, v[k - 1]);
+            return rg2__fail(err, RG2_EDOMAIN, "polar knots: v_%d = %s is not above v_%d = %s",
+                             k + 1, rg2__num(v[k]).s, k, rg2__num(v[k - 1]).s);
     }
     knots[0] = v[0] / (v[0] - 1.0);
     knots[1] = 0.0;

@@ -802,13 +802,16 @@ static rg2_status check_input(const rg2_surface *surfs, int n, const rg2_mesh *m
     if (o->mode < RG2_RENDER_SHADED || o->mode > RG2_RENDER_ZEBRA)
         return rg2__fail(err, RG2_EINVAL, "render: unknown mode %d", (int)o->mode);
     if (!(o->fov > 1.0 && o->fov < 170.0))
-        return rg2__fail(err, RG2_EINVAL, "render: field of view %g outside (1, 170) degrees", o->fov);
+        return rg2__fail(err, RG2_EINVAL, "render: field of view %s outside (1, 170) degrees",
+                         rg2__num(o->fov).s);
     if (!isfinite(o->azimuth) || !isfinite(o->elevation) || !isfinite(o->distance))
         return rg2__fail(err, RG2_ENONFINITE, "render: non-finite view (azimuth, elevation or distance)");
     if (!(o->elevation >= -90.0 && o->elevation <= 90.0))
-        return rg2__fail(err, RG2_EINVAL, "render: elevation %g outside [-90, 90] degrees", o->elevation);
+        return rg2__fail(err, RG2_EINVAL, "render: elevation %s outside [-90, 90] degrees",
+                         rg2__num(o->elevation).s);
     if (o->range_set && !(isfinite(o->range[0]) && isfinite(o->range[1]) && o->range[0] < o->range[1]))
-        return rg2__fail(err, RG2_EINVAL, "render: colour range %g,%g is not lo < hi", o->range[0], o->range[1]);
+        return rg2__fail(err, RG2_EINVAL, "render: colour range %s,%s is not lo < hi", rg2__num(o->range[0]).s,
+                         rg2__num(o->range[1]).s);
     if (o->range_set && !isfinite(o->range[1] - o->range[0])) /* -1e308,1e308 painted all one colour */
         return rg2__fail(err, RG2_EINVAL, "render: colour range %g,%g is wider than the largest double", o->range[0],
                          o->range[1]);

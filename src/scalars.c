@@ -25,7 +25,7 @@ static rg2_status check_count(int n, int closed, const char *what, rg2_error *er
 static rg2_status bad_arc(int k, double a, rg2_error *err)
 {
     return rg2__fail(err, RG2_EDOMAIN,
-                     "arcs: arc %d has opening angle %.17g rad (%.10g deg); it must lie in (0, pi)", k, a,
+                     "arcs: arc %d has opening angle %s rad (%.10g deg); it must lie in (0, pi)", k, rg2__num(a).s,
                      a * 180.0 / M_PI);
 }
 
@@ -147,9 +147,9 @@ rg2_status rg2_scalars_from_knots(rg2_scalars *s, const double *knots, int n_kno
     for (int k = 0; k + 1 < n_knots; k++)
         if (!(knots[k + 1] > knots[k]))
             return rg2__fail(err, RG2_EDOMAIN,
-                             "knots: interval %d [%.17g, %.17g] has zero or negative length "
+                             "knots: interval %d [%s, %s] has zero or negative length "
                              "(repeated knots are not supported: split the spline there)",
-                             k, knots[k], knots[k + 1]);
+                             k, rg2__num(knots[k]).s, rg2__num(knots[k + 1]).s);
     st = rg2_scalars_init(s, n, closed, err);
     if (st)
         return st;
@@ -231,8 +231,8 @@ rg2_status rg2_circle_coeffs(const double *alpha, int n_alpha, int closed, doubl
     if (closed && fabs(sum - 2.0 * M_PI) > RG2_CLOSED_SUM_TOL * 2.0 * M_PI)
         return rg2__fail(err, RG2_EDOMAIN,
                          "arcs: a closed circle needs opening angles that sum to 2 pi; these sum to "
-                         "%.17g rad (%.10g deg)",
-                         sum, sum * 180.0 / M_PI);
+                         "%s rad (%.10g deg)",
+                         rg2__num(sum).s, sum * 180.0 / M_PI);
     /* Junction i sits at theta_i (start of arc i). Its control point is the intersection of
      * the lines through (b1, b2) of arcs i-1 and i; in a frame rotated by theta_i the line of
      * arc i is {x : x . m_i = c_i}, m_i = (cos beta_i, sin beta_i),

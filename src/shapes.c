@@ -162,9 +162,9 @@ rg2_status rg2_partition_check(const rg2_partition *p, const char *what, rg2_err
             double a = p->values[k];
             if (!(a > 0.0 && a < M_PI))
                 return rg2__fail(err, RG2_EDOMAIN,
-                                 "%s partition: arc %d has opening angle %.17g rad (%.10g deg); it "
+                                 "%s partition: arc %d has opening angle %s rad (%.10g deg); it "
                                  "must lie in (0, pi)",
-                                 what, k - off, a, a * 180.0 / M_PI);
+                                 what, k - off, rg2__num(a).s, a * 180.0 / M_PI);
             if (a < RG2_MIN_ARC)
                 return rg2__fail(err, RG2_EDOMAIN,
                                  "%s partition: arc %d has opening angle %.6g rad (%.6g deg), below the "
@@ -179,14 +179,14 @@ rg2_status rg2_partition_check(const rg2_partition *p, const char *what, rg2_err
             sum += p->values[k];
         if (p->closed && fabs(sum - TWO_PI) > RG2_CLOSED_SUM_TOL * TWO_PI)
             return rg2__fail(err, RG2_EDOMAIN,
-                             "%s partition: the %d arcs of a closed circle sum to %.17g rad (%.10g "
+                             "%s partition: the %d arcs of a closed circle sum to %s rad (%.10g "
                              "deg); they must sum to 2 pi",
-                             what, p->n, sum, sum * 180.0 / M_PI);
+                             what, p->n, rg2__num(sum).s, sum * 180.0 / M_PI);
         if (!p->closed && sum > TWO_PI * (1.0 + RG2_CLOSED_SUM_TOL))
             return rg2__fail(err, RG2_EDOMAIN,
-                             "%s partition: the open arcs sum to %.17g rad (%.10g deg), past 2 pi "
+                             "%s partition: the open arcs sum to %s rad (%.10g deg), past 2 pi "
                              "(the surface would overlap itself)",
-                             what, sum, sum * 180.0 / M_PI);
+                             what, rg2__num(sum).s, sum * 180.0 / M_PI);
         if (p->closed && p->n < 3)
             return rg2__fail(err, RG2_EINVAL, "%s partition: a closed circle needs at least 3 arcs",
                              what);
@@ -203,9 +203,9 @@ rg2_status rg2_partition_check(const rg2_partition *p, const char *what, rg2_err
         for (int k = 1; k < p->n; k++)
             if (!(p->values[k] > p->values[k - 1]))
                 return rg2__fail(err, RG2_EDOMAIN,
-                                 "%s partition: knot %d (= %.17g) is not greater than knot %d (= "
-                                 "%.17g); knots must increase strictly",
-                                 what, k - off, p->values[k], k - 1 - off, p->values[k - 1]);
+                                 "%s partition: knot %d (= %s) is not greater than knot %d (= "
+                                 "%s); knots must increase strictly",
+                                 what, k - off, rg2__num(p->values[k]).s, k - 1 - off, rg2__num(p->values[k - 1]).s);
     }
     rg2__ok(err);
     return RG2_OK;
@@ -519,7 +519,7 @@ rg2_status rg2_family3_mesh(const double A[4][4][4], const rg2_partition *pu,
 static rg2_status need_positive(const char *shape, const char *name, double x, rg2_error *err)
 {
     if (!(x > 0.0))
-        return rg2__fail(err, RG2_EDOMAIN, "%s: parameter %s = %.17g must be > 0", shape, name, x);
+        return rg2__fail(err, RG2_EDOMAIN, "%s: parameter %s = %s must be > 0", shape, name, rg2__num(x).s);
     return RG2_OK;
 }
 
@@ -542,9 +542,9 @@ rg2_status rg2_shape_coeffs(const rg2_shape *s, double C[4][4][4], rg2_error *er
             return st;
         if (!(r < R))
             return rg2__fail(err, RG2_EDOMAIN,
-                             "torus: r = %.17g must be < R = %.17g (horn and spindle tori are "
+                             "torus: r = %s must be < R = %s (horn and spindle tori are "
                              "singular; build them with rg2_family1_mesh)",
-                             r, R);
+                             rg2__num(r).s, rg2__num(R).s);
         C[0][1][0] = R, C[0][1][1] = r;
         C[1][2][0] = R, C[1][2][1] = r;
         C[2][0][2] = r;
@@ -556,12 +556,12 @@ rg2_status rg2_shape_coeffs(const rg2_shape *s, double C[4][4][4], rg2_error *er
         if ((st = need_positive(d->name, "a", a, err)))
             return st;
         if (!(c >= 0.0))
-            return rg2__fail(err, RG2_EDOMAIN, "cyclide: parameter c = %.17g must be >= 0", c);
+            return rg2__fail(err, RG2_EDOMAIN, "cyclide: parameter c = %s must be >= 0", rg2__num(c).s);
         double b2 = a * a - c * c;
         if (!(b2 > 0.0))
             return rg2__fail(err, RG2_EDOMAIN,
-                             "cyclide: b^2 = a^2 - c^2 = %.17g <= 0 (a = %.17g, c = %.17g); need c < a",
-                             b2, a, c);
+                             "cyclide: b^2 = a^2 - c^2 = %s <= 0 (a = %s, c = %s); need c < a",
+                             rg2__num(b2).s, rg2__num(a).s, rg2__num(c).s);
         if ((st = need_positive(d->name, "mu", mu, err)))
             return st;
         double b = sqrt(b2);
@@ -661,10 +661,10 @@ rg2_status rg2__shape_check_range(const rg2_shape *s, const rg2_partition *pv, r
         for (int k = lo; k < hi; k++)
             if (!(pv->values[k] > 0.0 && pv->values[k] < 1.0))
                 return rg2__fail(err, RG2_EDOMAIN,
-                                 "%s: v knot %d = %.17g must lie in (0, 1) (v = 0 is the south pole, "
+                                 "%s: v knot %d = %s must lie in (0, 1) (v = 0 is the south pole, "
                                  "v = 1 the north pole; a knot at or past a pole puts the pole inside "
                                  "the band: close the sphere with the polar operation)",
-                                 rg2_shape_name(s->kind), k, pv->values[k]);
+                                 rg2_shape_name(s->kind), k, rg2__num(pv->values[k]).s);
         return RG2_OK;
     }
     if (s->kind != RG2_SHAPE_HYPERBOLOID1 && s->kind != RG2_SHAPE_HYPERBOLOID2)
@@ -673,14 +673,14 @@ rg2_status rg2__shape_check_range(const rg2_shape *s, const rg2_partition *pv, r
         double v = pv->values[k];
         if (s->kind == RG2_SHAPE_HYPERBOLOID1 && !(v > 0.0))
             return rg2__fail(err, RG2_EDOMAIN,
-                             "hyperboloid1: v knot %d = %.17g must be > 0 (the weight 2v vanishes "
+                             "hyperboloid1: v knot %d = %s must be > 0 (the weight 2v vanishes "
                              "at v = 0, the point at infinity)",
-                             k - off, v);
+                             k - off, rg2__num(v).s);
         if (s->kind == RG2_SHAPE_HYPERBOLOID2 && !(fabs(v) < 1.0))
             return rg2__fail(err, RG2_EDOMAIN,
-                             "hyperboloid2: v knot %d = %.17g must satisfy |v| < 1 (the weight "
+                             "hyperboloid2: v knot %d = %s must satisfy |v| < 1 (the weight "
                              "1 - v^2 vanishes at |v| = 1, the points at infinity)",
-                             k - off, v);
+                             k - off, rg2__num(v).s);
     }
     return RG2_OK;
 }

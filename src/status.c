@@ -1,6 +1,7 @@
 /* status.c -- status codes and error messages. */
 #include "internal.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -34,6 +35,26 @@ rg2_status rg2__fail(rg2_error *err, rg2_status code, const char *fmt, ...)
         err->code = code;
     }
     return code;
+}
+
+rg2__numtext rg2__num(double x)
+{
+    rg2__numtext t;
+    if (!isfinite(x)) {
+        snprintf(t.s, sizeof t.s, "%g", x);
+        return t;
+    }
+    /* Start at the integer digits (below 1e17, where %.17g would not switch to an exponent
+     * either), so 90 reads "90", not "9e+01". */
+    snprintf(t.s, sizeof t.s, "%.16e", x);
+    const char *e = strchr(t.s, 'e');
+    int x10 = e ? atoi(e + 1) : 0;
+    for (int p = x10 >= 0 && x10 < 17 ? x10 + 1 : 1; p <= 17; p++) {
+        snprintf(t.s, sizeof t.s, "%.*g", p, x);
+        if (strtod(t.s, NULL) == x)
+            break;
+    }
+    return t;
 }
 
 void rg2__ok(rg2_error *err)

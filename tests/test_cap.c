@@ -908,17 +908,17 @@ static void design_errors(void)
          " \"v\": {\"knots\": [0.2, 0.4, 0.6, 0.8]}}, \"E\": {\"edit\": \"P\", \"scalars\": [{\"dir\": \"u\", \"leg\": 0,"
          " \"w\": 0.95}]}, \"C\": {\"cap\": \"E\"}}}",
          RG2_EINCOMPATIBLE, "meshes.C.cap: mesh 'E' cannot be capped: the body's u arcs (from the leg weights) sum to "
-                            "6.2773086093770889 rad, not 2 pi: the u-direction is not a full circle"},
+                            "6.277308609377089 rad, not 2 pi: the u-direction is not a full circle"},
         {"{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 8},"
          " \"v\": {\"knots\": [0.2, 0.4, 0.6, 0.8]}}, \"E\": {\"edit\": \"P\", \"scalars\": [{\"dir\": \"u\", \"junction\": 1,"
          " \"b\": 1.1}]}, \"C\": {\"cap\": \"E\"}}}",
-         RG2_EINCOMPATIBLE, "body u junction 1 has b = 1.1000000000000001, g = 0.30448186995485299 but its arcs need "
-                            "b = 1, g = 0.30448186995485299: the u-direction is not a circle partition"},
+         RG2_EINCOMPATIBLE, "body u junction 1 has b = 1.1, g = 0.304481869954853 but its arcs need "
+                            "b = 1, g = 0.304481869954853: the u-direction is not a circle partition"},
         {"{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 8},"
          " \"v\": {\"knots\": [0.2, 0.4, 0.6, 0.8]}}, \"E\": {\"edit\": \"P\", \"scalars\": [{\"dir\": \"u\", \"junction\": 1,"
          " \"g\": 0.1}]}, \"C\": {\"cap\": \"E\"}}}",
-         RG2_EINCOMPATIBLE, "body u junction 1 has b = 1, g = 0.10000000000000001 but its arcs need b = 1, "
-                            "g = 0.30448186995485299"},
+         RG2_EINCOMPATIBLE, "body u junction 1 has b = 1, g = 0.1 but its arcs need b = 1, "
+                            "g = 0.304481869954853"},
     };
     for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
         rg2_design *d = NULL;

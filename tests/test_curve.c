@@ -432,6 +432,18 @@ static void errors(void)
     double knots[7] = {0, 1, 2, 2, 3, 4, 5};
     CHECK(rg2_scalars_from_knots(&s, knots, 7, 0, &err) == RG2_EDOMAIN && strstr(err.msg, "interval 2"),
           "zero-length knot interval named: %s", err.msg);
+    /* The message shows each knot with the fewest digits that read back as it (0.45, not
+     * 0.45000000000000001; 1e+20 and 90 as such, not 9e+01). */
+    double kd[7] = {0, 0.45, 0.45, 90, 1e20, 2e20, 3e20};
+    CHECK(rg2_scalars_from_knots(&s, kd, 7, 0, &err) == RG2_EDOMAIN && strstr(err.msg, "interval 1 [0.45, 0.45]"),
+          "knots shown shortest: %s", err.msg);
+    kd[2] = 90, kd[3] = 90;
+    CHECK(rg2_scalars_from_knots(&s, kd, 7, 0, &err) == RG2_EDOMAIN && strstr(err.msg, "interval 2 [90, 90]"),
+          "knot 90 shown as 90: %s", err.msg);
+    kd[1] = 0.1, kd[2] = 1.0 / 3.0, kd[3] = 1.0 / 3.0;
+    CHECK(rg2_scalars_from_knots(&s, kd, 7, 0, &err) == RG2_EDOMAIN &&
+              strstr(err.msg, "interval 2 [0.3333333333333333, 0.3333333333333333]"),
+          "a third keeps its 16 digits: %s", err.msg);
     knots[3] = NAN;
     CHECK(rg2_scalars_from_knots(&s, knots, 7, 0, &err) == RG2_ENONFINITE && strstr(err.msg, "knot 3"),
           "NaN knot named: %s", err.msg);
@@ -441,7 +453,7 @@ static void errors(void)
           "NaN angle named: %s", err.msg);
     a4[1] = M_PI;
     CHECK(rg2_circle_coeffs(a4, 4, 1, 0.0, cs, &err) == RG2_EDOMAIN &&
-              strstr(err.msg, "arcs: arc 1 has opening angle 3.1415926535897931 rad (180 deg); it must lie in (0, pi)"),
+              strstr(err.msg, "arcs: arc 1 has opening angle 3.141592653589793 rad (180 deg); it must lie in (0, pi)"),
           "circle arc of pi named: %s", err.msg);
     a4[1] = INFINITY; /* as rg2_scalars_from_angles names it */
     CHECK(rg2_circle_coeffs(a4, 4, 1, 0.0, cs, &err) == RG2_ENONFINITE && !strcmp(err.msg, "arcs: angle of arc 1 is not finite"),
