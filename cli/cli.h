@@ -51,6 +51,9 @@ int rg2_cli_number(const char *cmd, const char *opt, const char *s, const char *
 int rg2_cli_int(const char *cmd, const char *opt, const char *s, int lo, int hi, int *v);
 /* 1 if the file name's extension is ext (".png"), in any case. */
 int rg2_cli_has_ext(const char *path, const char *ext);
+/* Say on stderr that an option given has no effect in this run (it is not an error: scripts
+ * pass one option set to several commands): "rg2 CMD: note: OPT has no effect (WHY)". */
+void rg2_cli_no_effect(const char *cmd, const char *opt, const char *why);
 /* Print "rg2 <cmd>: <status text>: <message>" to stderr; returns RG2_EXIT_FAIL. */
 int rg2_cli_report(const char *cmd, const rg2_error *err);
 /* 1 if the paths name the same existing file (an output that would overwrite an input). */

@@ -39,7 +39,7 @@ static void progress(int on, const char *fmt, const char *arg)
 int rg2_cmd_build(int argc, char **argv)
 {
     const char *path = NULL, *out[MAX_OUT];
-    int n_out = 0, quiet = 0;
+    int n_out = 0, quiet = 0, density_set = 0;
     rg2_export_opts opts;
     rg2_export_opts_default(&opts);
     for (int i = 1; i < argc; i++) {
@@ -68,6 +68,7 @@ int rg2_cmd_build(int argc, char **argv)
         else if (!strcmp(a, "--density")) {
             if (rg2_cli_int("build", a, i + 1 < argc ? argv[++i] : NULL, 1, 1024, &opts.density))
                 return RG2_EXIT_USAGE;
+            density_set = 1;
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "rg2 build: unknown option '%s'\n", a);
             usage(stderr);
@@ -91,6 +92,23 @@ int rg2_cmd_build(int argc, char **argv)
             fprintf(stderr, "rg2 build: %s\n", ferr.msg);
             return RG2_EXIT_USAGE;
         }
+    }
+    if (!quiet) { /* options that no output uses: a note, not an error */
+        int step = 0, iges = 0, tri = 0;
+        for (int k = 0; k < n_out; k++) {
+            step |= rg2_cli_has_ext(out[k], ".step") || rg2_cli_has_ext(out[k], ".stp");
+            iges |= rg2_cli_has_ext(out[k], ".igs") || rg2_cli_has_ext(out[k], ".iges");
+            tri |= rg2_cli_has_ext(out[k], ".obj") || rg2_cli_has_ext(out[k], ".stl") ||
+                   rg2_cli_has_ext(out[k], ".ply") || rg2_cli_has_ext(out[k], ".glb");
+        }
+        if (opts.layout == RG2_STEP_FACE_PER_MESH && !step && !iges)
+            rg2_cli_no_effect("build", "--face-per-mesh", "no STEP or IGES output");
+        if (opts.ap242 && !step)
+            rg2_cli_no_effect("build", "--ap242", "no STEP output");
+        if (opts.iges_brep && !iges)
+            rg2_cli_no_effect("build", "--iges-brep", "no IGES output");
+        if (density_set && !tri)
+            rg2_cli_no_effect("build", "--density", "no triangle mesh output: .obj, .stl, .ply or .glb");
     }
     int tty = !quiet && isatty(2);
     progress(tty, "rg2 build: reading and building %s", path);

@@ -86,7 +86,7 @@ static void overlap_note(const rg2_surface *surfs, int n)
 int rg2_cmd_render(int argc, char **argv)
 {
     const char *path = NULL, *out = NULL;
-    int only = -1;
+    int only = -1, stripes_set = 0, tint_set = 0, colorbar_set = 0;
     double only_v = -1; /* --surface as given, checked against the design's count once loaded */
     const char *only_arg = NULL;
     rg2_render_opts o;
@@ -143,6 +143,7 @@ int rg2_cmd_render(int argc, char **argv)
         } else if (!strcmp(a, "--stripes")) {
             if (ranged(a, argc, argv, &i, &o.stripes, 1, 0, 1000, 0, "needs 1..1000 stripe pairs"))
                 return RG2_EXIT_USAGE;
+            stripes_set = 1;
         } else if (!strcmp(a, "--threads")) {
             if (rg2_cli_int("render", a, i + 1 < argc ? argv[++i] : NULL, 1, 1024, &o.threads))
                 return RG2_EXIT_USAGE;
@@ -172,9 +173,9 @@ int rg2_cmd_render(int argc, char **argv)
         else if (!strcmp(a, "--apart"))
             o.apart = 1;
         else if (!strcmp(a, "--no-tint"))
-            o.tint = 0;
+            o.tint = 0, tint_set = 1;
         else if (!strcmp(a, "--no-colorbar"))
-            o.colorbar = 0;
+            o.colorbar = 0, colorbar_set = 1;
         else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "rg2 render: unknown option '%s'\n", a);
             usage(stderr);
@@ -196,6 +197,15 @@ int rg2_cmd_render(int argc, char **argv)
         fprintf(stderr, "rg2 render: output '%s': the picture is a PNG; give it a .png name\n", out);
         return RG2_EXIT_USAGE;
     }
+    int curv = o.mode == RG2_RENDER_MEAN || o.mode == RG2_RENDER_GAUSS;
+    if (stripes_set && o.mode != RG2_RENDER_ZEBRA) /* options this mode does not use: a note */
+        rg2_cli_no_effect("render", "--stripes", "it sets the zebra mode's stripes");
+    if (o.range_set && !curv)
+        rg2_cli_no_effect("render", "--range", "it sets the mean and gauss modes' colours");
+    if (colorbar_set && !curv)
+        rg2_cli_no_effect("render", "--no-colorbar", "only the mean and gauss modes draw a colour bar");
+    if (tint_set && o.mode != RG2_RENDER_SHADED)
+        rg2_cli_no_effect("render", "--no-tint", "only the shaded mode tints");
     rg2_design *d = NULL;
     rg2_surface *surfs = NULL;
     rg2_mesh *meshes = NULL;

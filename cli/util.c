@@ -99,6 +99,11 @@ int rg2_cli_has_ext(const char *path, const char *ext)
     return dot && !(slash && dot < slash) && !strcasecmp(dot, ext);
 }
 
+void rg2_cli_no_effect(const char *cmd, const char *opt, const char *why)
+{
+    fprintf(stderr, "rg2 %s: note: %s has no effect (%s)\n", cmd, opt, why);
+}
+
 int rg2_cli_report(const char *cmd, const rg2_error *err)
 {
     fprintf(stderr, "rg2 %s: %s: %s\n", cmd, rg2_status_str(err->code), err->msg);

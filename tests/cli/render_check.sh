@@ -44,6 +44,20 @@ differ sh sh_notint "--no-tint: exact pieces are tinted by default"
 same sh sh_nobar "--no-colorbar: shaded pictures have no colour bar"
 same sh sh_s0 "--surface 0 of a one-surface design is the design"
 pic me --mode mean; pic me_notint --mode mean --no-tint; pic me_nobar --mode mean --no-colorbar
+# an option the mode (or the outputs) does not use: a note naming it, exit 0, nothing else changes
+expect 0 "note: --no-tint has no effect (only the shaded mode tints)" -- "$RG2" render "$ex" -o "$tmp/n1.png" --size 64x48 --mode mean --no-tint
+expect 0 "note: --stripes has no effect" -- "$RG2" render "$ex" -o "$tmp/n2.png" --size 64x48 --stripes 4
+expect 0 "note: --range has no effect" -- "$RG2" render "$ex" -o "$tmp/n3.png" --size 64x48 --mode zebra --range 0,1
+expect 0 "note: --no-colorbar has no effect" -- "$RG2" render "$ex" -o "$tmp/n4.png" --size 64x48 --no-colorbar
+out=$("$RG2" render "$ex" -o "$tmp/n5.png" --size 64x48 --mode zebra --stripes 4 --no-colorbar --range 0,1 2>&1)
+case "$out" in *"--stripes has no effect"*) bad "zebra uses --stripes: $out" ;; *) ok ;; esac
+expect 0 "note: --iges-brep has no effect (no IGES output)" -- "$RG2" build "$ex" -o "$tmp/n.obj" --iges-brep
+expect 0 "note: --ap242 has no effect (no STEP output)" -- "$RG2" build "$ex" -o "$tmp/n.igs" --ap242
+expect 0 "note: --density has no effect" -- "$RG2" build "$ex" -o "$tmp/n.step" --density 4
+out=$("$RG2" build "$ex" -o "$tmp/n.step" -o "$tmp/n.igs" -o "$tmp/n.stl" --ap242 --iges-brep --density 4 --face-per-mesh 2>&1)
+[ -z "$out" ] && ok || bad "options every output uses gave: $out"
+out=$("$RG2" build -q "$ex" -o "$tmp/n.obj" --iges-brep 2>&1)
+[ -z "$out" ] && ok || bad "-q keeps notes quiet: $out"
 same me me_notint "--no-tint: curvature pictures are not tinted"
 differ me me_nobar "--no-colorbar: the mean-curvature bar is drawn by default"
 # every H of the design lies below 100 (rg2 check: H in [-1.0081, 1.25022]): any range above
