@@ -756,10 +756,13 @@ static rg2_status export_staged(const rg2_surface *surfs, int n_surfs, const cha
         st = rg2__check_weights(surfs, n_surfs, fmt == F_STEP ? "STEP" : "IGES", err);
     else
         st = rg2__check_weights(surfs, n_surfs, "export", err) == RG2_ENONFINITE ? RG2_ENONFINITE : RG2_OK;
-    if (st) { /* name the file too: "out.step: STEP: surface 0 patch (2, 0) ..." */
+    if (st && err) { /* name the file too: "out.step: STEP: surface 0 patch (2, 0) ..." (err is
+                        nullable: without a report there is no message to prefix) */
         rg2_error e = *err;
         return rg2__fail(err, st, "%s: %s", path, e.msg);
     }
+    if (st)
+        return st;
     rg2_tess *tess = NULL;
     if (fmt == F_OBJ || fmt == F_STL || fmt == F_PLY || fmt == F_GLB) {
         st = rg2__tess_all(surfs, n_surfs, opts->density, fmt == F_PLY, &tess, err);

@@ -1082,6 +1082,13 @@ static void failures(const rg2_surface *s)
         st = export_one(&bad, names[k], &err);
         CHECK(st == RG2_EWEIGHT && strstr(err.msg, "patch (2, 1)"), "%s: %s: %s", names[k], rg2_status_str(st), err.msg);
     }
+    /* err is nullable (rg2.h): the same verdicts without a report (the message was prefixed
+     * with the file name through *err, a NULL dereference) */
+    st = rg2_export_file(&bad, 1, path_in("neg_noerr.step"), NULL, NULL);
+    CHECK(st == RG2_EWEIGHT, "negative weight, err NULL: %s", rg2_status_str(st));
+    const char *neg_paths[] = {path_in("neg_noerr.igs")};
+    st = rg2_export_files(&bad, 1, neg_paths, 1, NULL, NULL, NULL);
+    CHECK(st == RG2_EWEIGHT, "rg2_export_files, negative weight, err NULL: %s", rg2_status_str(st));
     h[3] = 0.0;
     st = export_one(&bad, "zero.step", &err);
     CHECK(st == RG2_EWEIGHT && strstr(err.msg, "patch (2, 1)"), "zero weight: %s", err.msg);
@@ -1099,6 +1106,8 @@ static void failures(const rg2_surface *s)
     h[0] = NAN;
     st = export_one(&bad, "nan.obj", &err);
     CHECK(st == RG2_ENONFINITE, "NaN: %s", err.msg);
+    st = rg2_export_file(&bad, 1, path_in("nan_noerr.obj"), NULL, NULL);
+    CHECK(st == RG2_ENONFINITE, "NaN, err NULL: %s", rg2_status_str(st));
     rg2_surface_free(&bad);
     CHECK(count_files() == before, "failed exports left %d files", count_files() - before);
     CHECK(!exists(path_in("neg.step.tmp")) && !exists(path_in("neg.step")), "neg.step or its .tmp left behind");
