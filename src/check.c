@@ -545,8 +545,10 @@ static void patch_one(rg2_check_report *r, const rg2_surface *s, int surf, size_
             rg2_check_shape *cs = &r->shapes[tag];
             if (!isnan(cs->residual) && !(res <= cs->residual)) {
                 cs->residual = res;
+                void *loc = rg2__c_numeric_begin(); /* "u=0.5", whatever the host's locale (this thread) */
                 snprintf(cs->where, sizeof cs->where, "surface %d patch (%d,%d) u=%.3g v=%.3g", surf, pi, pj,
                          u, v);
+                rg2__c_numeric_end(loc);
             }
         }
 }
@@ -1172,6 +1174,9 @@ rg2_status rg2_check_format(const rg2_check_report *r, int json, char **text, rg
     if (!r || !text)
         return rg2__fail(err, RG2_EINVAL, "check: nothing to format");
     *text = NULL;
+    /* the table's numbers in the "C" locale, as in the files rg2 writes: under a German locale
+     * "(0,5, 1,5, 2)" was no longer a point of three coordinates (cJSON writes its numbers so) */
+    void *loc = rg2__c_numeric_begin();
     if (json) {
         char *c = format_json(r);
         if (!c)
@@ -1189,11 +1194,13 @@ rg2_status rg2_check_format(const rg2_check_report *r, int json, char **text, rg
         sbuf b = {0};
         format_text(r, &b);
         if (b.oom) {
+            rg2__c_numeric_end(loc);
             free(b.s);
             return rg2__fail(err, RG2_ENOMEM, "check: out of memory formatting the table");
         }
         *text = b.s;
     }
+    rg2__c_numeric_end(loc);
     if (!*text)
         return rg2__fail(err, RG2_ENOMEM, "check: out of memory formatting the report");
     rg2__ok(err);

@@ -72,6 +72,57 @@ int main(void)
         remove(path[1]);
     }
     rg2_surface_free(&s);
+
+    /* rg2_check_format: the report's numbers (the table's gaps, the points "(x, y, z)" whose commas
+     * separate coordinates, the JSON's "where" of the worst residual) in the "C" locale too */
+    rg2_design *d;
+    CHECK_OK(rg2_design_load("examples/fig1_torus.json", &d, &err), &err);
+    if (d) {
+        int ns = rg2_design_num_surfaces(d), nsh = rg2_design_num_shapes(d);
+        rg2_surface *ss = calloc((size_t)ns, sizeof *ss);
+        rg2_shape *sh = calloc((size_t)nsh, sizeof *sh);
+        for (int k = 0; ss && k < ns; k++)
+            ss[k] = *rg2_design_surface(d, k);
+        for (int k = 0; sh && k < nsh; k++)
+            sh[k] = *rg2_design_shape(d, k);
+        char *text[2][2] = {{NULL, NULL}, {NULL, NULL}};
+        for (int l = 0; l < 2 && ss && sh; l++) {
+            setlocale(LC_ALL, l ? "de_DE.UTF-8" : "C");
+            rg2_check_opts co;
+            rg2_check_opts_default(&co);
+            for (int t = 0; t < 2; t++) { /* serial, then on threads (the residuals' "where") */
+                co.threads = t ? 2 : 1;
+                rg2_check_report r;
+                CHECK_OK(rg2_check(ss, ns, sh, NULL, nsh, &co, &r, &err), &err);
+                for (int json = 0; json < 2; json++) {
+                    char *x = NULL;
+                    CHECK_OK(rg2_check_format(&r, json, &x, &err), &err);
+                    if (t == 0)
+                        text[l][json] = x;
+                    else {
+                        CHECK(x && text[l][json] && !strcmp(x, text[l][json]), "check report (%s) differs on threads",
+                              json ? "JSON" : "text");
+                        free(x);
+                    }
+                }
+                rg2_check_report_free(&r);
+            }
+        }
+        setlocale(LC_ALL, "C");
+        for (int json = 0; json < 2; json++) {
+            const char *a = text[0][json], *b = text[1][json];
+            size_t q = 0;
+            while (a && b && a[q] && a[q] == b[q])
+                q++;
+            CHECK(a && b && !strcmp(a, b), "check report (%s) under de_DE differs from C at byte %zu: '%.60s' vs '%.60s'",
+                  json ? "JSON" : "text", q, a ? a + (q > 20 ? q - 20 : 0) : "", b ? b + (q > 20 ? q - 20 : 0) : "");
+            free(text[0][json]);
+            free(text[1][json]);
+        }
+        free(ss);
+        free(sh);
+        rg2_design_free(d);
+    }
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
     CHECK(system(cmd) == 0, "%s", cmd);
     return rg2t_done("test_locale");
