@@ -591,7 +591,7 @@ static rg2_status write_json(const rg2_surface *surfs, int n, const rg2_export_o
         return rg2__fail(err, RG2_ENOMEM, "%s: out of memory building JSON", out->path);
     fputs(text, out->f);
     fputc('\n', out->f);
-    free(text);
+    cJSON_free(text); /* cJSON's allocator: the host may have set its own (cJSON_InitHooks) */
     return RG2_OK;
 }
 

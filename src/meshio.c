@@ -312,7 +312,7 @@ rg2_status rg2__write_glb(const rg2_tess *t, int n, const rg2_export_opts *o, rg
     size_t jlen = strlen(json), jpad = (4 - jlen % 4) % 4;
     size_t total = 12 + 8 + jlen + jpad + 8 + offset;
     if (total > UINT32_MAX) {
-        free(json);
+        cJSON_free(json);
         return rg2__fail(err, RG2_ELIMIT, "%s: %zu bytes exceed the 4 GiB glb limit", out->path, total);
     }
     le_out w = {.f = out->f}, *f = &w;
@@ -324,7 +324,7 @@ rg2_status rg2__write_glb(const rg2_tess *t, int n, const rg2_export_opts *o, rg
     le_bytes(f, json, jlen);
     for (size_t q = 0; q < jpad; q++)
         le_u8(f, ' ');
-    free(json);
+    cJSON_free(json); /* cJSON's allocator: the host may have set its own (cJSON_InitHooks) */
     le_u32(f, (uint32_t)offset);
     le_bytes(f, "BIN\0", 4);
     for (int k = 0; k < n; k++) {

@@ -1461,6 +1461,40 @@ static void names_and_defaults(const rg2_surface *s)
     rg2_design_free(dz);
 }
 
+/* A host program that uses cJSON itself with its own allocator (cJSON_InitHooks: one cJSON for
+ * the whole process): what cJSON_Print returns goes back through cJSON_free. The .json and .glb
+ * writers passed it to free(), which aborted ("double free or corruption") with these hooks. */
+static unsigned g_hook_blocks;
+static void *hook_malloc(size_t n)
+{
+    unsigned char *p = malloc(n + 16);
+    if (!p)
+        return NULL;
+    g_hook_blocks++;
+    return p + 16;
+}
+static void hook_free(void *p)
+{
+    if (p) {
+        g_hook_blocks--;
+        free((unsigned char *)p - 16);
+    }
+}
+
+static void cjson_hooks(const rg2_surface *s)
+{
+    cJSON_Hooks h = {hook_malloc, hook_free};
+    cJSON_InitHooks(&h);
+    const char *names[] = {"hooks.json", "hooks.glb"};
+    for (int k = 0; k < 2; k++) {
+        rg2_error err;
+        rg2_status st = export_one(s, names[k], &err);
+        CHECK(st == RG2_OK, "%s with the host's cJSON hooks: %s", names[k], err.msg);
+    }
+    cJSON_InitHooks(NULL);
+    CHECK(g_hook_blocks == 0, "%u blocks of the host's cJSON allocator not given back", g_hook_blocks);
+}
+
 int main(void)
 {
     snprintf(g_dir, sizeof g_dir, "/tmp/rg2_export_XXXXXX");
@@ -1491,6 +1525,7 @@ int main(void)
     transposed_pole();
     full_disk(&s);
     failures(&s);
+    cjson_hooks(&s);
     several_files(&s);
     float_range();
     export_degrees(&s);
