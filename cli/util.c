@@ -162,16 +162,8 @@ int rg2_cli_same_path(const char *a, const char *b)
 int rg2_cli_check_outputs(const char *cmd, const char *design, const char *const *out, int n)
 {
     for (int k = 0; k < n; k++) {
-        char tmp[PATH_MAX + 8];
         if (rg2_cli_same_path(design, out[k])) {
             fprintf(stderr, "rg2 %s: output '%s' is the design file itself; choose another name\n", cmd, out[k]);
-            return RG2_EXIT_USAGE;
-        }
-        /* every output is written to <output>.tmp first: that would overwrite the design */
-        if (snprintf(tmp, sizeof tmp, "%s.tmp", out[k]) < (int)sizeof tmp && rg2_cli_same_path(design, tmp)) {
-            fprintf(stderr, "rg2 %s: the design file '%s' is the temporary file of output '%s' (written "
-                            "first, then renamed); rename the design file or choose another output name\n",
-                    cmd, design, out[k]);
             return RG2_EXIT_USAGE;
         }
         for (int j = 0; j < k; j++)

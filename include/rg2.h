@@ -609,8 +609,8 @@ RG2_API const char *rg2_design_mesh_name(const rg2_design *d, int k);
  *  blended or is out of range. */
 RG2_API int rg2_design_point_shape(const rg2_design *d, int k, int i, int j);
 /** Write the output control meshes as JSON (design coordinates d = p_{1..3} / p_4, weights
- *  W = p_4, scalars w, b, g, provenance and patch tags; docs/design-format.md). Writes
- *  path.tmp, then renames. @return RG2_EIO if the file cannot be written (nothing is left),
+ *  W = p_4, scalars w, b, g, provenance and patch tags; docs/design-format.md). Writes a
+ *  temporary file next to path, then renames (as rg2_export_file). @return RG2_EIO if the file cannot be written (nothing is left),
  *  RG2_ENOMEM. */
 RG2_API rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, rg2_error *err);
 
@@ -871,7 +871,10 @@ RG2_API rg2_status rg2_retessellate(const rg2_surface *s, int density, int curva
                                     rg2_error *err);
 RG2_API void rg2_tess_free(rg2_tess *t);
 /** Write surfaces to path; the format follows the extension: .step/.stp, .igs/.iges, .bv,
- *  .bez (geomview BEZ334), .obj, .stl, .ply, .glb, .json (docs/export.md). Writes path.tmp then renames: a failed export leaves no file.
+ *  .bez (geomview BEZ334), .obj, .stl, .ply, .glb, .json (docs/export.md). Writes a new temporary file next to path,
+ *  "<path>.<pid>.tmp" (created exclusively, never through a symbolic link; a counter is added
+ *  when another thread writes the same path), then renames it to path: a failed export leaves
+ *  no file, and concurrent writers of one path leave one writer's whole file.
  *  @return RG2_EIO (unwritable), RG2_EWEIGHT (non-positive weight for STEP/IGES, naming the
  *  patch), RG2_ENONFINITE (a control value not finite, in every format), RG2_EINVAL (unknown
  *  extension, empty input, a layout other than the two), RG2_EDOMAIN (STL, PLY and glTF store
@@ -880,13 +883,14 @@ RG2_API void rg2_tess_free(rg2_tess *t);
  *  the format), RG2_ENOMEM. */
 RG2_API rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *path,
                                    const rg2_export_opts *opts, rg2_error *err);
-/** Write the same surfaces to several files as one: each is written completely to its
- *  path.tmp first, and only when all are written are they renamed to their paths. If any fails
+/** Write the same surfaces to several files as one: each is written completely to a
+ *  temporary file next to its path first (as rg2_export_file), and only when all are written are they renamed to their paths. If any fails
  *  (an unknown extension, a non-positive weight for STEP/IGES, an unwritable directory), none of
  *  the paths is touched: files already there stay as they were. *failed (if not NULL) is the
  *  index of the path that failed, -1 on success. A rename failing after others succeeded (in
  *  practice only when a path's directory changes under the call) leaves the earlier ones renamed.
- *  @return the statuses of rg2_export_file; RG2_EINVAL also for n_paths < 1. */
+ *  @return the statuses of rg2_export_file; RG2_EINVAL also for n_paths < 1 and for a path given
+ *  twice. */
 RG2_API rg2_status rg2_export_files(const rg2_surface *surfs, int n_surfs, const char *const *paths,
                                     int n_paths, const rg2_export_opts *opts, int *failed,
                                     rg2_error *err);
@@ -966,8 +970,8 @@ RG2_API void rg2_render_opts_default(rg2_render_opts *o);
 RG2_API rg2_status rg2_render(const rg2_surface *surfs, int n, const rg2_mesh *meshes,
                               const rg2_render_opts *o, rg2_image *out, rg2_error *err);
 RG2_API void rg2_image_free(rg2_image *img);
-/** Write an RGB image as 8-bit PNG (libpng): path.tmp, then rename (a failed write leaves no
- *  file). @return RG2_EIO (unwritable, disk full), RG2_EINVAL (empty image, no path),
+/** Write an RGB image as 8-bit PNG (libpng) to a temporary file next to path, then rename (as
+ *  rg2_export_file; a failed write leaves no file). @return RG2_EIO (unwritable, disk full), RG2_EINVAL (empty image, no path),
  *  RG2_ENOMEM. */
 RG2_API rg2_status rg2_image_write_png(const rg2_image *img, const char *path, rg2_error *err);
 /** rg2_render followed by rg2_image_write_png. */

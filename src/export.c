@@ -838,6 +838,12 @@ rg2_status rg2_export_files(const rg2_surface *surfs, int n_surfs, const char *c
                 *failed = k;
             return st;
         }
+        for (int j = 0; j < k; j++)
+            if (!strcmp(paths[j], paths[k])) { /* the second file would replace the first */
+                if (failed)
+                    *failed = k;
+                return rg2__fail(err, RG2_EINVAL, "%s: output path given twice (outputs %d and %d)", paths[k], j, k);
+            }
     }
     rg2__out *outs = calloc((size_t)n_paths, sizeof *outs);
     if (!outs)

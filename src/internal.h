@@ -79,8 +79,9 @@ void *rg2__calloc_big(size_t n, size_t size);
  * zeroed only when zero is non-zero (else memory the caller overwrites); NULL on overflow. */
 void *rg2__alloc_big(size_t n, size_t size, size_t from, int zero);
 
-/* An output file written whole or not at all (src/outfile.c): data goes to path.tmp (f),
- * renamed to path when complete, removed on failure, so a failed write leaves no file. */
+/* An output file written whole or not at all (src/outfile.c): data goes to a new temporary
+ * file next to path, "<path>.<pid>.tmp" (f), renamed to path when complete, removed on
+ * failure, so a failed write leaves no file. */
 typedef struct {
     FILE *f;
     const char *path;

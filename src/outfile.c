@@ -1,26 +1,52 @@
-/* outfile.c -- output files written whole or not at all: the data goes to "<path>.tmp", which
- * is renamed to path only when every byte is written (and, for several files written as one,
- * only when every file is; rg2_export_files). Used by every writer: the exports, the design's
- * control mesh and the pictures. */
+/* outfile.c -- output files written whole or not at all: the data goes to a temporary file
+ * next to path, "<path>.<pid>.tmp", which is renamed to path only when every byte is written
+ * (and, for several files written as one, only when every file is; rg2_export_files). Used by
+ * every writer: the exports, the design's control mesh and the pictures.
+ *
+ * The temporary file is created new (O_EXCL, never through a symbolic link, closed on exec):
+ * a symlink planted at the name cannot redirect the write to another file, and two writers of
+ * the same path (threads or processes) each get a file of their own, so the path ends up with
+ * one writer's whole file, never a mix. The process id keeps processes apart; within one
+ * process a name in use gets a counter ("<path>.<pid>.1.tmp", ...). */
+#define _POSIX_C_SOURCE 200809L /* O_NOFOLLOW, O_CLOEXEC */
 #include "internal.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
+
+#define OUT_TRIES 1000 /* names tried within one process before giving up */
 
 rg2_status rg2__out_open(rg2__out *o, const char *path, rg2_error *err)
 {
     memset(o, 0, sizeof *o);
-    size_t n = strlen(path);
-    o->tmp = malloc(n + 5);
+    size_t cap = strlen(path) + 48;
+    o->tmp = malloc(cap);
     if (!o->tmp)
         return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", path);
-    memcpy(o->tmp, path, n);
-    memcpy(o->tmp + n, ".tmp", 5);
     o->path = path;
-    o->f = fopen(o->tmp, "wb");
+    long pid = (long)getpid();
+    int fd = -1;
+    for (int k = 0; k < OUT_TRIES && fd < 0; k++) {
+        if (k)
+            snprintf(o->tmp, cap, "%s.%ld.%d.tmp", path, pid, k);
+        else
+            snprintf(o->tmp, cap, "%s.%ld.tmp", path, pid);
+        fd = open(o->tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+        if (fd < 0 && errno != EEXIST)
+            break;
+    }
+    if (fd >= 0 && !(o->f = fdopen(fd, "wb"))) {
+        int saved = errno;
+        close(fd);
+        remove(o->tmp);
+        errno = saved;
+    }
     if (!o->f) {
-        rg2_status st = rg2__fail(err, RG2_EIO, "%s: cannot write: %s", path, strerror(errno));
+        rg2_status st = rg2__fail(err, RG2_EIO, "%s: cannot write: %s", path,
+                                  errno == EEXIST ? "too many temporary files of this name in use" : strerror(errno));
         free(o->tmp);
         o->tmp = NULL;
         return st;

@@ -37,6 +37,9 @@ extern int rg2t_passed, rg2t_failed;
 
 /* Print the summary line "name: N passed, M failed" and return the exit code. */
 int rg2t_done(const char *name);
+/* A full disk for the writers: files this process writes fail past `bytes` with EFBIG
+ * (RLIMIT_FSIZE, with SIGXFSZ ignored); bytes < 0 lifts the limit again. 0 on success. */
+int rg2t_file_limit(long long bytes);
 
 /* Deterministic random numbers (splitmix64); every test prints its seed. */
 typedef struct {

@@ -16,6 +16,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <sys/stat.h>
+#include <pthread.h>
 #include <unistd.h>
 
 static char g_dir[64];
@@ -1110,7 +1111,9 @@ static void failures(const rg2_surface *s)
     CHECK(st == RG2_ENONFINITE, "NaN, err NULL: %s", rg2_status_str(st));
     rg2_surface_free(&bad);
     CHECK(count_files() == before, "failed exports left %d files", count_files() - before);
-    CHECK(!exists(path_in("neg.step.tmp")) && !exists(path_in("neg.step")), "neg.step or its .tmp left behind");
+    char negtmp[40];
+    snprintf(negtmp, sizeof negtmp, "neg.step.%ld.tmp", (long)getpid());
+    CHECK(!exists(path_in(negtmp)) && !exists(path_in("neg.step")), "neg.step or its temporary file left behind");
 }
 
 /* Several files as one (rg2_export_files): on success every path holds what rg2_export_file
@@ -1258,30 +1261,121 @@ static rg2_status elevated_torus(rg2_surface *s, rg2_error *err)
 }
 
 /* ---------------------------------------------------------------- a full disk */
-/* Every writer through a full disk: the temporary file is a link to /dev/full, so the writes
- * fail with ENOSPC when they are flushed. The error names the file and the reason, neither the
+/* Every writer through a full disk: files of this process fail past 100 bytes (EFBIG), so the
+ * writes fail when they are flushed. The error names the file and the reason, neither the
  * output nor its temporary file is left behind. */
 static void full_disk(const rg2_surface *s)
 {
-    if (access("/dev/full", W_OK) != 0)
-        return;
     static const char *names[] = {"full.step", "full.igs", "full.bv", "full.bez", "full.obj", "full.stl",
                                   "full.ply", "full.glb", "full.json"};
     int before = count_files();
     for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) {
-        char *out = path_in(names[k]), tmp[300];
-        snprintf(tmp, sizeof tmp, "%s.tmp", out);
-        CHECK(symlink("/dev/full", tmp) == 0, "symlink %s", tmp);
+        char *out = path_in(names[k]);
         rg2_error err;
+        CHECK(rg2t_file_limit(100) == 0, "file size limit");
         rg2_status st = export_one(s, names[k], &err);
+        rg2t_file_limit(-1);
         CHECK(st == RG2_EIO && strstr(err.msg, out) && strstr(err.msg, "write failed") &&
-                  strstr(err.msg, strerror(ENOSPC)),
+                  strstr(err.msg, strerror(EFBIG)),
               "%s on a full disk: %s '%s'", names[k], rg2_status_str(st), err.msg);
         struct stat sb;
-        CHECK(lstat(out, &sb) != 0 && lstat(tmp, &sb) != 0, "%s on a full disk: a file left behind", names[k]);
-        remove(tmp);
+        CHECK(lstat(out, &sb) != 0, "%s on a full disk: the output left behind", names[k]);
     }
     CHECK(count_files() == before, "full disk: %d files before, %d after", before, count_files());
+}
+
+/* ---------------------------------------------------------------- temporary files */
+/* The temporary file is created new next to the output, never through a symbolic link: a
+ * link planted at its name ("<path>.<pid>.tmp", the first name tried) is left alone and its
+ * target keeps its bytes (the old "<path>.tmp", opened with fopen, wrote through it). Two
+ * threads writing one path each get a file of their own: the path ends with one writer's whole
+ * file, never a mix, and both succeed. A path given twice to rg2_export_files is refused. */
+typedef struct {
+    const rg2_surface *s;
+    const char *path;
+    rg2_status st;
+} same_path_job;
+
+static void *same_path_writer(void *arg)
+{
+    same_path_job *j = arg;
+    rg2_export_opts o;
+    rg2_export_opts_default(&o);
+    o.density = 24; /* ~0.9 MB of OBJ: long enough for the two writes to overlap */
+    j->st = rg2_export_file(j->s, 1, j->path, &o, NULL);
+    return NULL;
+}
+
+static void temp_files(const rg2_surface *s)
+{
+    rg2_error err;
+    int before = count_files();
+    /* a planted symbolic link at the temporary file's name */
+    char *out = path_in("planted.obj"), *victim = path_in("victim.txt"), link[300];
+    FILE *v = fopen(victim, "w");
+    CHECK(v && fputs("victim\n", v) >= 0 && fclose(v) == 0, "write %s", victim);
+    snprintf(link, sizeof link, "%s.%ld.tmp", out, (long)getpid());
+    CHECK(symlink(victim, link) == 0, "symlink %s", link);
+    CHECK_OK(export_one(s, "planted.obj", &err), &err);
+    size_t len;
+    unsigned char *vb = slurp(victim, &len);
+    struct stat sb;
+    CHECK(vb && len == 7 && !memcmp(vb, "victim\n", 7), "the link's target was written (%zu bytes)", len);
+    free(vb);
+    CHECK(lstat(out, &sb) == 0 && S_ISREG(sb.st_mode) && sb.st_size > 1000, "%s is not the written file", out);
+    CHECK(lstat(link, &sb) == 0 && S_ISLNK(sb.st_mode), "the planted link was removed or replaced");
+    remove(link);
+    remove(victim);
+    remove(out);
+    /* two threads, two different surfaces, one path; each result must be one writer's whole file */
+    rg2_surface other;
+    CHECK_OK(fx_torus(7.0, 2.0, 6, 4, &other, &err), &err);
+    char *ref[2] = {path_in("ref0.obj"), path_in("ref1.obj")}, *shared = path_in("shared.obj");
+    unsigned char *rb[2];
+    size_t rl[2];
+    for (int k = 0; k < 2; k++) {
+        same_path_job j = {k ? &other : s, ref[k], RG2_EINVAL};
+        same_path_writer(&j);
+        CHECK_OK(j.st, &err);
+        rb[k] = slurp(ref[k], &rl[k]);
+    }
+    int mixed = 0, failed = 0, wins[2] = {0, 0};
+    for (int round = 0; round < 8; round++) {
+        same_path_job j[2] = {{s, shared, RG2_EINVAL}, {&other, shared, RG2_EINVAL}};
+        pthread_t th[2];
+        for (int k = 0; k < 2; k++)
+            pthread_create(&th[k], NULL, same_path_writer, &j[k]);
+        for (int k = 0; k < 2; k++)
+            pthread_join(th[k], NULL);
+        failed += j[0].st != RG2_OK || j[1].st != RG2_OK;
+        size_t sl;
+        unsigned char *sbuf = slurp(shared, &sl);
+        int which = -1;
+        for (int k = 0; k < 2; k++)
+            if (sbuf && rb[k] && sl == rl[k] && !memcmp(sbuf, rb[k], sl))
+                which = k;
+        if (which < 0)
+            mixed++;
+        else
+            wins[which]++;
+        free(sbuf);
+    }
+    CHECK(!failed && !mixed, "one path from two threads: %d rounds failed, %d left a mixed file", failed, mixed);
+    printf("  one path written by two threads at once, 8 rounds: each time one writer's whole file (%d / %d); "
+           "a link planted at the temporary name left alone\n", wins[0], wins[1]);
+    for (int k = 0; k < 2; k++) {
+        free(rb[k]);
+        remove(ref[k]);
+    }
+    remove(shared);
+    rg2_surface_free(&other);
+    /* the same path twice in one call */
+    const char *twice[3] = {path_in("a.obj"), path_in("b.stl"), path_in("a.obj")};
+    int bad = -2;
+    CHECK(rg2_export_files(s, 1, twice, 3, NULL, &bad, &err) == RG2_EINVAL && bad == 2 &&
+              strstr(err.msg, "given twice (outputs 0 and 2)"),
+          "a path given twice: %d '%s'", bad, err.msg);
+    CHECK(count_files() == before, "temporary files: %d files before, %d after", before, count_files());
 }
 
 /* ---------------------------------------------------------------- poles on a u side */
@@ -1524,6 +1618,7 @@ int main(void)
     names_and_defaults(&s);
     transposed_pole();
     full_disk(&s);
+    temp_files(&s);
     failures(&s);
     cjson_hooks(&s);
     several_files(&s);

@@ -1,9 +1,12 @@
 /* testutil.c -- shared test helpers: counting checks, random numbers, seam measurements. */
+#define _POSIX_C_SOURCE 200809L /* setrlimit, sigaction */
 #include "harness.h"
 
 #include <math.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 
 int rg2t_passed = 0, rg2t_failed = 0;
 
@@ -11,6 +14,21 @@ int rg2t_done(const char *name)
 {
     printf("%s: %d passed, %d failed\n", name, rg2t_passed, rg2t_failed);
     return rg2t_failed ? 1 : 0;
+}
+
+int rg2t_file_limit(long long bytes)
+{
+    static struct rlimit saved;
+    static int have;
+    if (bytes < 0)
+        return have ? setrlimit(RLIMIT_FSIZE, &saved) : 0;
+    if (!have && getrlimit(RLIMIT_FSIZE, &saved) != 0)
+        return -1;
+    have = 1;
+    signal(SIGXFSZ, SIG_IGN); /* the write returns EFBIG instead of killing the process */
+    struct rlimit l = saved;
+    l.rlim_cur = (rlim_t)bytes;
+    return setrlimit(RLIMIT_FSIZE, &l);
 }
 
 void rg2t_seed(rg2t_rng *r, uint64_t seed) { r->s = seed; }

@@ -32,7 +32,7 @@ while IFS=$'\t' read -r file code msg args; do
     bad "$what: left files behind: $(ls -A "$tmp")"
   elif [ -f "$in" ] && [ "$(md5sum <"$in")" != "$sum_before" ]; then
     bad "$what: changed the input file"
-  elif [ -e "$in.tmp" ] || [ -e /nonexistent-rg2-dir ]; then
+  elif compgen -G "$in.*tmp" >/dev/null || [ -e /nonexistent-rg2-dir ]; then
     bad "$what: left a temporary file"
   else
     ok

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# An interrupted rg2 leaves nothing half-written: outputs go to "<path>.tmp" and are renamed when
-# complete; SIGTERM / SIGHUP while a large STEP file is being written must remove the .tmp file.
+# An interrupted rg2 leaves nothing half-written: outputs go to "<path>.<pid>.tmp" and are renamed
+# when complete; SIGTERM / SIGHUP while a large STEP file is being written must remove that file.
 # (SIGINT is handled the same way, but a background job of a script ignores it, and rg2 keeps an
 # ignored signal ignored, as nohup expects.)
 # Usage: bash interrupt.sh <path-to-rg2> <source-dir>
@@ -16,7 +16,7 @@ for sig in TERM HUP; do
   pid=$!
   seen=0
   for _ in $(seq 600); do
-    if [ -e "$out.tmp" ]; then seen=1; break; fi
+    if [ -e "$out.$pid.tmp" ]; then seen=1; break; fi
     kill -0 "$pid" 2>/dev/null || break
     sleep 0.1
   done
@@ -24,7 +24,7 @@ for sig in TERM HUP; do
     kill -"$sig" "$pid"
     wait "$pid"
     rc=$?
-    if [ -e "$out.tmp" ] || [ -e "$out" ]; then
+    if compgen -G "$out*" >/dev/null; then
       echo "FAIL: SIG$sig during the write left $(ls "$tmp" | tr '\n' ' ')" >&2; fails=$((fails + 1))
     elif [ "$rc" -lt 128 ]; then
       echo "FAIL: SIG$sig: exit $rc, expected death by the signal" >&2; fails=$((fails + 1))
