@@ -36,6 +36,16 @@
  *   - Thread safety: the library keeps no global state that calls modify (the worker pool of
  *     the grid evaluator and the tessellation is internal and serialises its own use); reading
  *     one object from several threads at once is safe, writing it is not.
+ *   - Floating point: call rg2 in the C default environment, round to nearest with exceptions
+ *     not trapping. The numerics rely on IEEE non-stop arithmetic (an infinity or NaN that is
+ *     tested and discarded, vector lanes past the last point): a host that enables traps
+ *     (feenableexcept) gets SIGFPE; it must hold them around rg2 calls (feholdexcept before,
+ *     fesetenv after). Under another rounding mode the results stay accurate, but the grid's
+ *     promise of the same bits for any thread count holds only for round to nearest (worker
+ *     threads keep the environment they were created in).
+ *   - fork: the grid's worker pool is rebuilt in a child, but libgomp's is not: a child of a
+ *     process that ran rg2_render or rg2_check with more than one thread must call them with
+ *     threads = 1 (else they wait forever; a libgomp limitation).
  *   - The AVX-512 kernels are chosen at load time (GCC function multi-versioning, an ifunc):
  *     ThreadSanitizer builds of the whole program cannot instrument that resolver; build the
  *     library with -DRG2_NO_CLONES for them.
