@@ -54,7 +54,7 @@ int rg2__design_add_shape(rg2_design *d, const rg2_shape *s, const char *label, 
     return d->n_shapes++;
 }
 
-int rg2__design_add_source(rg2_design *d, int shape, const rg2_mesh *base, rg2_error *err)
+int rg2__design_add_source(rg2_design *d, int shape, rg2_mesh *base, rg2_error *err)
 {
     if (!grow((void **)&d->src, &d->cap_src, d->n_src + 1, sizeof *d->src)) {
         rg2__fail(err, RG2_ENOMEM, "design: out of memory for source meshes");
@@ -67,7 +67,50 @@ int rg2__design_add_source(rg2_design *d, int shape, const rg2_mesh *base, rg2_e
         rg2__stencil_free(&s->st[0]);
         return -1;
     }
-    s->base = *base; /* takes ownership */
+    s->own_st = 1;
+    s->nu = s->wu = base->nu;
+    s->nv = s->wv = base->nv;
+    s->closed[0] = base->su.closed;
+    s->closed[1] = base->sv.closed;
+    s->p = base->p; /* takes the points; the scalars live on in the stencils */
+    base->p = NULL;
+    rg2_mesh_free(base);
+    return d->n_src++;
+}
+
+int rg2__design_add_source_xform(rg2_design *d, int shape, int from, const double M[16], int i0, int j0, int wu,
+                                 int wv, rg2_error *err)
+{
+    if (!grow((void **)&d->src, &d->cap_src, d->n_src + 1, sizeof *d->src)) {
+        rg2__fail(err, RG2_ENOMEM, "design: out of memory for source meshes");
+        return -1;
+    }
+    const rg2__source *F = &d->src[from];
+    double *p = rg2__calloc((size_t)wu * (size_t)wv, 4 * sizeof *p);
+    if (!p) {
+        rg2__fail(err, RG2_ENOMEM, "design: out of memory for a transformed source of %d x %d points", wu, wv);
+        return -1;
+    }
+    for (int a = 0; a < wu; a++)
+        for (int b = 0; b < wv; b++) {
+            int i = F->closed[0] ? (i0 + a) % F->nu : i0 + a, j = F->closed[1] ? (j0 + b) % F->nv : j0 + b;
+            const double *q = rg2__source_at(F, i, j);
+            double *o = p + ((size_t)a * (size_t)wv + (size_t)b) * 4;
+            if (q) {
+                memcpy(o, q, 4 * sizeof *o);
+                rg2__xform_apply(M, o); /* as rg2_mesh_transform does to the mesh's copy of the point */
+            } else /* (not stored by `from`, so no mesh point comes from there) */
+                o[0] = o[1] = o[2] = o[3] = NAN;
+        }
+    rg2__source *s = &d->src[d->n_src];
+    *s = *F; /* shape, grid size and the shared stencils */
+    s->shape = shape;
+    s->i0 = i0;
+    s->j0 = j0;
+    s->wu = wu;
+    s->wv = wv;
+    s->p = p;
+    s->own_st = 0;
     return d->n_src++;
 }
 
@@ -98,9 +141,11 @@ void rg2_design_free(rg2_design *d)
     free(d->labels);
     free(d->shapes);
     for (int k = 0; k < d->n_src; k++) {
-        rg2_mesh_free(&d->src[k].base);
-        rg2__stencil_free(&d->src[k].st[0]);
-        rg2__stencil_free(&d->src[k].st[1]);
+        free(d->src[k].p);
+        if (d->src[k].own_st) {
+            rg2__stencil_free(&d->src[k].st[0]);
+            rg2__stencil_free(&d->src[k].st[1]);
+        }
     }
     free(d->src);
     for (int k = 0; k < d->n_mesh; k++)
@@ -162,7 +207,6 @@ int rg2__patch_tag(const rg2_design *d, const rg2__dmesh *dm, const rg2__stencil
     if (p0->src < 0)
         return -1;
     const rg2__source *S = &d->src[p0->src];
-    const rg2_mesh *B = &S->base;
     for (int o = 0; o < 8; o++) {
         int tr = o & 1, ru = (o >> 1) & 1, rv = (o >> 2) & 1, ok = 1;
         for (int a = 0; a < 4 && ok; a++)
@@ -171,12 +215,13 @@ int rg2__patch_tag(const rg2_design *d, const rg2__dmesh *dm, const rg2__stencil
                 const rg2__pprov *q = rg2__dmesh_pp(dm, mi, mj);
                 int du = ru ? -a : a, dv = rv ? -b : b;
                 int ei = p0->i + (tr ? dv : du), ej = p0->j + (tr ? du : dv);
-                if (B->su.closed)
-                    ei = rg2__wrap(ei, B->nu, 1);
-                if (B->sv.closed)
-                    ej = rg2__wrap(ej, B->nv, 1);
-                if (ei < 0 || ej < 0 || ei >= B->nu || ej >= B->nv || q->src != p0->src || q->i != ei ||
-                    q->j != ej || memcmp(rg2_mesh_at(m, mi, mj), rg2_mesh_at(B, ei, ej), 4 * sizeof(double)))
+                if (S->closed[0])
+                    ei = rg2__wrap(ei, S->nu, 1);
+                if (S->closed[1])
+                    ej = rg2__wrap(ej, S->nv, 1);
+                const double *sp = ei < 0 || ej < 0 || ei >= S->nu || ej >= S->nv ? NULL : rg2__source_at(S, ei, ej);
+                if (!sp || q->src != p0->src || q->i != ei || q->j != ej ||
+                    memcmp(rg2_mesh_at(m, mi, mj), sp, 4 * sizeof(double)))
                     ok = 0;
             }
         if (!ok)

@@ -13,12 +13,32 @@ typedef struct {
 
 /* A source: the control mesh of one shape over one pair of partitions, as the shape module
  * produced it (or a transformed copy). Patches whose 4x4 control block is a consecutive block
- * of a source and whose construction stencils agree with the source's are pieces of its shape. */
+ * of a source and whose construction stencils agree with the source's are pieces of its shape.
+ * The source is an nu x nv grid (closed[d]: direction d wraps); of its points it stores the
+ * window of wu x wv points starting at (i0, j0) (wrapping in a closed direction): a shape's
+ * mesh stores them all, a transformed copy only those the transformed mesh refers to (a chain
+ * of transforms of a small cut of a big shape mesh copied the whole big mesh each time). */
 typedef struct {
-    int shape;        /* index into rg2_design.shapes */
-    rg2_mesh base;
-    rg2__stencil st[2]; /* u and v stencils of base */
+    int shape;          /* index into rg2_design.shapes */
+    int nu, nv, closed[2];
+    int i0, j0, wu, wv; /* the stored window */
+    double *p;          /* wu * wv homogeneous 4-tuples, (a, b) at p[(a * wv + b) * 4] */
+    rg2__stencil st[2]; /* u and v stencils of the source's scalars */
+    int own_st;         /* st allocated here (else shared with the source it was transformed from) */
 } rg2__source;
+
+/* Point (i, j) (0 <= i < nu, 0 <= j < nv) of a source, or NULL outside its stored window. */
+static inline double *rg2__source_at(const rg2__source *S, int i, int j)
+{
+    int a = i - S->i0, b = j - S->j0;
+    if (S->closed[0] && a < 0)
+        a += S->nu;
+    if (S->closed[1] && b < 0)
+        b += S->nv;
+    if (a < 0 || a >= S->wu || b < 0 || b >= S->wv)
+        return NULL;
+    return S->p + ((size_t)a * (size_t)S->wv + (size_t)b) * 4;
+}
 
 /* A design mesh: a control mesh with provenance. Scalar provenance (shape index or -1) is
  * kept per stored weight (leg) and per junction of each direction, for reporting. */
@@ -62,7 +82,14 @@ static inline rg2__pprov *rg2__dmesh_pp(const rg2__dmesh *d, int i, int j)
 
 /* Registries of the design (grow arrays); return the new index or -1 (err set). */
 int rg2__design_add_shape(rg2_design *d, const rg2_shape *s, const char *label, rg2_error *err);
-int rg2__design_add_source(rg2_design *d, int shape, const rg2_mesh *base, rg2_error *err);
+/* A shape's mesh as a source: takes base (its points and scalars) on success; the caller frees
+ * it on failure. */
+int rg2__design_add_source(rg2_design *d, int shape, rg2_mesh *base, rg2_error *err);
+/* The copy of source `from` under the projective map M, as shape `shape`, storing only the points
+ * a mesh refers to: those in the window of wu x wv points from (i0, j0) (wrapping in a closed
+ * direction), which must lie in the stored window of `from`. Shares from's stencils. */
+int rg2__design_add_source_xform(rg2_design *d, int shape, int from, const double M[16], int i0, int j0, int wu,
+                                 int wv, rg2_error *err);
 rg2__dmesh *rg2__design_new_mesh(rg2_design *d, rg2_error *err);
 int rg2__design_find_mesh(const rg2_design *d, const char *name);
 

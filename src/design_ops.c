@@ -139,20 +139,23 @@ rg2_status rg2__op_shape(rg2_design *d, int shape, const rg2_partition *pu, cons
         rg2_error e = *err;
         return rg2__fail(err, st, "%s: %s", what, e.msg);
     }
+    /* the design mesh is a copy of base with provenance; the source then owns base */
+    const rg2_mesh *b = &base;
+    st = rg2__dmesh_alloc(out, NULL, b->nu, b->nv, b->su.closed, b->sv.closed, err);
+    if (!st) {
+        rg2_mesh_free(&out->m);
+        st = rg2_mesh_copy(b, &out->m, err);
+    }
+    if (st) {
+        rg2_mesh_free(&base);
+        return st;
+    }
     int src = rg2__design_add_source(d, shape, &base, err);
     if (src < 0) {
         rg2_mesh_free(&base);
         return err->code;
     }
-    /* the source owns base now; the design mesh is a copy with provenance */
-    const rg2_mesh *b = &d->src[src].base;
-    st = rg2__dmesh_alloc(out, NULL, b->nu, b->nv, b->su.closed, b->sv.closed, err);
-    if (st)
-        return st;
-    rg2_mesh_free(&out->m);
-    st = rg2_mesh_copy(b, &out->m, err);
-    if (st)
-        return st;
+    b = &out->m;
     for (int i = 0; i < b->nu; i++)
         for (int j = 0; j < b->nv; j++)
             *rg2__dmesh_pp(out, i, j) = (rg2__pprov){src, i, j};
@@ -517,6 +520,41 @@ rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int clo
 /* ------------------------------------------------------------------------------------- */
 /* transform */
 
+/* The indices a mesh refers to in one direction of a source of n points: their range, and (closed
+ * direction) their range shifted by n / 2 mod n, which is the shorter one when they wrap past
+ * n - 1 to 0 and lie within half the circle. */
+typedef struct {
+    int any;
+    int lo[2], hi[2], slo[2], shi[2];
+} src_window;
+
+static void window_add(src_window *w, const rg2__source *S, int i, int j)
+{
+    int x[2] = {i, j}, n[2] = {S->nu, S->nv};
+    for (int k = 0; k < 2; k++) {
+        int sx = (x[k] + n[k] / 2) % n[k];
+        if (!w->any || x[k] < w->lo[k]) w->lo[k] = x[k];
+        if (!w->any || x[k] > w->hi[k]) w->hi[k] = x[k];
+        if (!w->any || sx < w->slo[k]) w->slo[k] = sx;
+        if (!w->any || sx > w->shi[k]) w->shi[k] = sx;
+    }
+    w->any = 1;
+}
+
+static void window_get(const src_window *w, const rg2__source *S, int *i0, int *j0, int *wu, int *wv)
+{
+    int n[2] = {S->nu, S->nv}, first[2], count[2];
+    for (int k = 0; k < 2; k++) {
+        first[k] = w->lo[k];
+        count[k] = w->hi[k] - w->lo[k] + 1;
+        if (S->closed[k] && w->shi[k] - w->slo[k] + 1 < count[k]) {
+            count[k] = w->shi[k] - w->slo[k] + 1;
+            first[k] = (w->slo[k] - n[k] / 2 + n[k]) % n[k];
+        }
+    }
+    *i0 = first[0], *j0 = first[1], *wu = count[0], *wv = count[1];
+}
+
 rg2_status rg2__op_transform(rg2_design *d, const rg2__dmesh *in, const double M[16],
                              rg2__dmesh *out, const char *what, rg2_error *err)
 {
@@ -527,12 +565,16 @@ rg2_status rg2__op_transform(rg2_design *d, const rg2__dmesh *in, const double M
     if (st)
         return st;
     rg2_mesh_transform(&out->m, M);
-    /* every source (and shape) the mesh uses gets a transformed copy */
+    /* every source (and shape) the mesh uses gets a transformed copy: of the points the mesh refers
+     * to only (the window of their indices), so that a chain of transforms of a small cut of a big
+     * shape mesh does not copy the big mesh each time */
     int n0 = d->n_src;
     int *map = rg2__calloc((size_t)n0 + 1, sizeof(int)), *smap = rg2__calloc((size_t)d->n_shapes + 1, sizeof(int));
-    if (!map || !smap) {
+    src_window *win = rg2__calloc((size_t)n0 + 1, sizeof *win);
+    if (!map || !smap || !win) {
         free(map);
         free(smap);
+        free(win);
         rg2__dmesh_free(out);
         return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", what);
     }
@@ -542,6 +584,9 @@ rg2_status rg2__op_transform(rg2_design *d, const rg2__dmesh *in, const double M
     for (int k = 0; k < nsh0; k++)
         smap[k] = -1;
     size_t np = (size_t)out->m.nu * (size_t)out->m.nv;
+    for (size_t q = 0; q < np; q++)
+        if (out->pp[q].src >= 0)
+            window_add(&win[out->pp[q].src], &d->src[out->pp[q].src], out->pp[q].i, out->pp[q].j);
     for (size_t q = 0; q < np; q++) {
         int s = out->pp[q].src;
         if (s < 0 || map[s] >= 0)
@@ -556,15 +601,11 @@ rg2_status rg2__op_transform(rg2_design *d, const rg2__dmesh *in, const double M
             if (smap[sh] < 0)
                 goto fail;
         }
-        rg2_mesh base = {0};
-        if ((st = rg2_mesh_copy(&d->src[s].base, &base, err)))
+        int i0, j0, wu, wv;
+        window_get(&win[s], &d->src[s], &i0, &j0, &wu, &wv);
+        map[s] = rg2__design_add_source_xform(d, smap[sh], s, M, i0, j0, wu, wv, err);
+        if (map[s] < 0)
             goto fail;
-        rg2_mesh_transform(&base, M);
-        map[s] = rg2__design_add_source(d, smap[sh], &base, err);
-        if (map[s] < 0) {
-            rg2_mesh_free(&base);
-            goto fail;
-        }
     }
     for (size_t q = 0; q < np; q++)
         if (out->pp[q].src >= 0)
@@ -580,10 +621,12 @@ rg2_status rg2__op_transform(rg2_design *d, const rg2__dmesh *in, const double M
     }
     free(map);
     free(smap);
+    free(win);
     return RG2_OK;
 fail:
     free(map);
     free(smap);
+    free(win);
     rg2__dmesh_free(out);
     return err ? err->code : RG2_ENOMEM;
 }

@@ -16,6 +16,13 @@ static void collapse_row(rg2_mesh *m, int j)
         memcpy(rg2_mesh_at(m, i, j), rg2_mesh_at(m, 0, j), 4 * sizeof(double));
 }
 
+/* The same on a shape's source (which stores all its points). */
+static void collapse_source_row(rg2__source *S, int j)
+{
+    for (int i = 1; i < S->nu; i++)
+        memcpy(rg2__source_at(S, i, j), rg2__source_at(S, 0, j), 4 * sizeof(double));
+}
+
 rg2_status rg2__polar_kind(const rg2_design *d, int shape, const char *what, rg2_error *err)
 {
     rg2_shape_kind kind = d->shapes[shape].kind;
@@ -85,12 +92,12 @@ rg2_status rg2__op_polar(rg2_design *d, int shape, const rg2_partition *pu, cons
     free(k);
     if (st)
         return st;
-    rg2_mesh *base = &d->src[d->n_src - 1].base;
+    rg2__source *base = &d->src[d->n_src - 1];
     for (int e = 0; e < 2; e++) {
         if (!both && e != north)
             continue;
         int j = e ? base->nv - 1 : 0;
-        collapse_row(base, j);
+        collapse_source_row(base, j);
         collapse_row(&out->m, j);
     }
     return RG2_OK;
