@@ -5,6 +5,7 @@
 
 #include <cjson/cJSON.h>
 #include <errno.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -36,6 +37,69 @@ static char *dupstr(const char *s)
     return r;
 }
 
+/* FNV-1a */
+static size_t name_hash(const char *s)
+{
+    uint64_t h = 1469598103934665603ull;
+    for (; *s; s++)
+        h = (h ^ (unsigned char)*s) * 1099511628211ull;
+    return (size_t)(h ^ (h >> 32));
+}
+
+static int names_find(const rg2__names *t, const char *key)
+{
+    if (!t->cap)
+        return -1;
+    for (size_t h = name_hash(key) & (t->cap - 1);; h = (h + 1) & (t->cap - 1)) {
+        if (!t->key[h])
+            return -1;
+        if (!strcmp(t->key[h], key))
+            return t->idx[h];
+    }
+}
+
+static void names_put(rg2__names *t, const char *key, int idx)
+{
+    size_t h = name_hash(key) & (t->cap - 1);
+    while (t->key[h] && strcmp(t->key[h], key))
+        h = (h + 1) & (t->cap - 1);
+    if (t->key[h])
+        return; /* the first one stays */
+    t->key[h] = key;
+    t->idx[h] = idx;
+    t->n++;
+}
+
+/* Index key as idx unless already there. Returns 0, or -1 out of memory. */
+static int names_add(rg2__names *t, const char *key, int idx)
+{
+    if (2 * (t->n + 1) > t->cap) {
+        rg2__names g = {t->cap ? 2 * t->cap : 64, 0, NULL, NULL};
+        g.key = rg2__calloc(g.cap, sizeof *g.key);
+        g.idx = rg2__calloc(g.cap, sizeof *g.idx);
+        if (!g.key || !g.idx) {
+            free(g.key);
+            free(g.idx);
+            return -1;
+        }
+        for (size_t k = 0; k < t->cap; k++)
+            if (t->key[k])
+                names_put(&g, t->key[k], t->idx[k]);
+        free(t->key);
+        free(t->idx);
+        *t = g;
+    }
+    names_put(t, key, idx);
+    return 0;
+}
+
+static void names_free(rg2__names *t)
+{
+    free(t->key);
+    free(t->idx);
+    memset(t, 0, sizeof *t);
+}
+
 int rg2__design_add_shape(rg2_design *d, const rg2_shape *s, const char *label, rg2_error *err)
 {
     int cap = d->cap_shapes;
@@ -45,7 +109,8 @@ int rg2__design_add_shape(rg2_design *d, const rg2_shape *s, const char *label, 
         return -1;
     }
     char *l = dupstr(label);
-    if (!l) {
+    if (!l || names_add(&d->shape_index, l, d->n_shapes)) {
+        free(l);
         rg2__fail(err, RG2_ENOMEM, "design: out of memory for shapes");
         return -1;
     }
@@ -124,12 +189,26 @@ rg2__dmesh *rg2__design_new_mesh(rg2_design *d, rg2_error *err)
     return &d->mesh[d->n_mesh];
 }
 
+int rg2__design_commit_mesh(rg2_design *d, rg2_error *err)
+{
+    rg2__dmesh *m = &d->mesh[d->n_mesh];
+    if (m->name && names_add(&d->mesh_index, m->name, d->n_mesh)) {
+        rg2__fail(err, RG2_ENOMEM, "design: out of memory for meshes");
+        return -1;
+    }
+    d->mesh_points += (size_t)m->m.nu * (size_t)m->m.nv;
+    d->n_mesh++;
+    return 0;
+}
+
 int rg2__design_find_mesh(const rg2_design *d, const char *name)
 {
-    for (int k = 0; k < d->n_mesh; k++)
-        if (d->mesh[k].name && !strcmp(d->mesh[k].name, name))
-            return k;
-    return -1;
+    return names_find(&d->mesh_index, name);
+}
+
+int rg2__design_find_shape(const rg2_design *d, const char *label)
+{
+    return names_find(&d->shape_index, label);
 }
 
 void rg2_design_free(rg2_design *d)
@@ -157,6 +236,8 @@ void rg2_design_free(rg2_design *d)
     free(d->surf);
     free(d->out);
     free(d->name);
+    names_free(&d->mesh_index);
+    names_free(&d->shape_index);
     free(d);
 }
 

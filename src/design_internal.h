@@ -53,6 +53,14 @@ typedef struct {
     int cap_src;       /* the capped mesh (index into rg2_design.mesh), for messages */
 } rg2__dmesh;
 
+/* A hash index of names (mesh names, shape labels) to their registry index; the keys are the
+ * registries' own strings. The first name entered wins (the registries' linear search did so). */
+typedef struct {
+    size_t cap, n; /* cap: 0 or a power of two */
+    const char **key;
+    int *idx;
+} rg2__names;
+
 struct rg2_design {
     char *name;
     int n_shapes, cap_shapes;
@@ -66,6 +74,9 @@ struct rg2_design {
     int *out;             /* indices into mesh */
     int out_key;          /* the file lists its outputs ("output"); else the last mesh is the output */
     rg2_surface *surf;    /* n_out built surfaces with tags */
+    rg2__names mesh_index, shape_index; /* mesh names and shape labels (a design of many meshes
+                                           looked each name up by a linear search: quadratic) */
+    size_t mesh_points;   /* control points of all the meshes */
 };
 
 /* Seam rules of merge (docs/design-format.md). */
@@ -91,7 +102,11 @@ int rg2__design_add_source(rg2_design *d, int shape, rg2_mesh *base, rg2_error *
 int rg2__design_add_source_xform(rg2_design *d, int shape, int from, const double M[16], int i0, int j0, int wu,
                                  int wv, rg2_error *err);
 rg2__dmesh *rg2__design_new_mesh(rg2_design *d, rg2_error *err);
+/* Enter the new mesh d->mesh[d->n_mesh] (its name set) into the registry: index its name, count
+ * its points, n_mesh + 1. Returns 0, or -1 out of memory (err set; nothing entered). */
+int rg2__design_commit_mesh(rg2_design *d, rg2_error *err);
 int rg2__design_find_mesh(const rg2_design *d, const char *name);
+int rg2__design_find_shape(const rg2_design *d, const char *label);
 
 /* Operations (design_ops.c). `what` is the JSON path of the mesh entry (e.g. "meshes.A"); every
  * message starts with it or with the path of the offending item below it ("meshes.A.merge[1]",

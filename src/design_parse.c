@@ -372,10 +372,7 @@ static rg2_status parse_shape(pctx *c, const cJSON *obj, const char *label, cons
 
 static int find_shape(const rg2_design *d, const char *label)
 {
-    for (int k = 0; k < d->n_shapes; k++)
-        if (!strcmp(d->labels[k], label))
-            return k;
-    return -1;
+    return rg2__design_find_shape(d, label);
 }
 
 /* ------------------------------------------------------------------------------------- */
@@ -1075,9 +1072,7 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
         rg2__dmesh_free(&tmp);
         return st;
     }
-    size_t total = (size_t)tmp.m.nu * (size_t)tmp.m.nv;
-    for (int k = 0; k < c->d->n_mesh; k++)
-        total += (size_t)c->d->mesh[k].m.nu * (size_t)c->d->mesh[k].m.nv;
+    size_t total = (size_t)tmp.m.nu * (size_t)tmp.m.nv + c->d->mesh_points;
     if (total > RG2_DESIGN_MAX_POINTS) {
         rg2__dmesh_free(&tmp);
         return fail(c, RG2_ELIMIT, path, "the design's meshes reach %zu control points, more than the "
@@ -1095,7 +1090,10 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
         return fail(c, RG2_ENOMEM, path, "out of memory");
     }
     strcpy(slot->name, name);
-    c->d->n_mesh++;
+    if (rg2__design_commit_mesh(c->d, c->err)) {
+        rg2__dmesh_free(slot);
+        return fail(c, RG2_ENOMEM, path, "out of memory");
+    }
     return RG2_OK;
 }
 
@@ -1215,16 +1213,20 @@ rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, c
     const cJSON *shapes, *meshes;
     if ((st = need(&c, root, "shapes", "(top level)", &shapes)) || (st = as_obj(&c, shapes, "shapes")))
         goto done;
+    int comments = 0; /* a "comment" text before: a later "comment" shape is a duplicate too */
     for (const cJSON *it = shapes->child; it; it = it->next) {
-        if (!strcmp(it->string, "comment") && cJSON_IsString(it))
+        int is_comment = !strcmp(it->string, "comment");
+        if (is_comment && cJSON_IsString(it)) {
+            comments++;
             continue;
+        }
         char p[300];
         fmtpath(p, sizeof p, "shapes.%s", it->string);
-        for (const cJSON *o = shapes->child; o != it; o = o->next)
-            if (!strcmp(o->string, it->string)) {
-                st = fail(&c, RG2_EPARSE, p, "duplicate shape label '%s'", it->string);
-                goto done;
-            }
+        /* every label before this one is a shape already (or failed the parse) */
+        if (find_shape(d, it->string) >= 0 || (is_comment && comments)) {
+            st = fail(&c, RG2_EPARSE, p, "duplicate shape label '%s'", it->string);
+            goto done;
+        }
         if ((st = parse_shape(&c, it, it->string, p)))
             goto done;
     }
@@ -1260,18 +1262,26 @@ rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, c
         d->out[0] = d->n_mesh - 1;
     else if (cJSON_IsArray(x)) {
         int k = 0;
+        int *listed = rg2__calloc((size_t)d->n_mesh, sizeof *listed); /* output index + 1 of each mesh */
+        if (!listed) {
+            st = fail(&c, RG2_ENOMEM, "output", "out of memory");
+            goto done;
+        }
         for (const cJSON *it = x->child; it; it = it->next, k++) {
             char p[40];
             fmtpath(p, sizeof p, "output[%d]", k);
             if ((st = mesh_ref(&c, it, p, &d->out[k])))
-                goto done;
-            for (int j = 0; j < k; j++)
-                if (d->out[j] == d->out[k]) { /* the same surface twice in every export */
-                    st = fail(&c, RG2_EPARSE, p, "mesh '%s' is listed twice (also output[%d])",
-                              d->mesh[d->out[k]].name, j);
-                    goto done;
-                }
+                break;
+            if (listed[d->out[k]]) { /* the same surface twice in every export */
+                st = fail(&c, RG2_EPARSE, p, "mesh '%s' is listed twice (also output[%d])",
+                          d->mesh[d->out[k]].name, listed[d->out[k]] - 1);
+                break;
+            }
+            listed[d->out[k]] = k + 1;
         }
+        free(listed);
+        if (st)
+            goto done;
     } else if ((st = mesh_ref(&c, x, "output", &d->out[0])))
         goto done;
 done:

@@ -3,7 +3,7 @@
  * morphs reproduce their ends; bad designs fail with clear messages. */
 #define _POSIX_C_SOURCE 200809L /* mkdtemp */
 #include "harness.h"
-#include "../src/design_internal.h" /* the sources' stored windows */
+#include "../src/design_internal.h" /* the sources' stored windows, the name index */
 
 #include <cjson/cJSON.h>
 #include <errno.h>
@@ -1009,6 +1009,45 @@ static void transform_windows(void)
     rg2_design_free(d);
 }
 
+/* Mesh names and shape labels are looked up by a hash index (a linear search made a design of
+ * 64 000 meshes take 43 s to read): every name of a long chain resolves to its own mesh. */
+static void many_names(void)
+{
+    enum { N = 3000 };
+    size_t cap = 200 + (size_t)N * 80;
+    char *json = malloc(cap);
+    if (!json)
+        return;
+    size_t n = (size_t)snprintf(json, cap, "{\"shapes\": {\"t\": {\"kind\": \"torus\"}");
+    for (int k = 0; k < N; k++)
+        n += (size_t)snprintf(json + n, cap - n, ", \"s%d\": {\"kind\": \"sphere\"}", k);
+    n += (size_t)snprintf(json + n, cap - n, "}, \"meshes\": {\"m0\": {\"shape\": \"t\"}");
+    for (int k = 1; k < N; k++)
+        n += (size_t)snprintf(json + n, cap - n, ", \"m%d\": {\"transpose\": \"m%d\"}", k, k - 1);
+    snprintf(json + n, cap - n, "}, \"output\": [\"m%d\", \"m0\"]}", N - 1);
+    rg2_error err;
+    rg2_design *d = parse(json, &err);
+    free(json);
+    if (!d)
+        return;
+    int bad = 0;
+    char name[32];
+    for (int k = 0; k < N; k++) {
+        snprintf(name, sizeof name, "m%d", k);
+        bad += rg2__design_find_mesh(d, name) != k;
+        snprintf(name, sizeof name, "s%d", k);
+        bad += rg2__design_find_shape(d, name) != k + 1;
+    }
+    CHECK(bad == 0 && d->n_mesh == N && d->mesh_index.n == N && d->shape_index.n == N + 1 &&
+              rg2__design_find_mesh(d, "m") < 0 && rg2__design_find_shape(d, "s") < 0,
+          "%d names resolve wrongly (%d meshes, %zu indexed; %zu shapes indexed)", bad, d->n_mesh, d->mesh_index.n,
+          d->shape_index.n);
+    CHECK(d->mesh_points == (size_t)N * 48, "the meshes hold %zu points, expected %d", d->mesh_points, N * 48);
+    const rg2_mesh *m = rg2_design_mesh(d, 0);
+    CHECK(m->nu == 6 && m->nv == 8, "m%d (an odd number of transposes of 8 x 6) is %d x %d", N - 1, m->nu, m->nv);
+    rg2_design_free(d);
+}
+
 int main(void)
 {
     parse_sizes();
@@ -1032,6 +1071,7 @@ int main(void)
     closest_names();
     printf("transforms and long operation lists:\n");
     transform_windows();
+    many_names();
     printf("bad input:\n");
     bad_inputs();
     return rg2t_done("test_design");
