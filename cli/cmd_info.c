@@ -27,6 +27,12 @@ static void print_degrees(const rg2_surface *s)
         printf(")");
 }
 
+static int cmp_int(const void *a, const void *b)
+{
+    int x = *(const int *)a, y = *(const int *)b;
+    return (x > y) - (x < y);
+}
+
 static void usage(FILE *f)
 {
     fprintf(f, "usage: rg2 info [--map] design.json\n\n"
@@ -78,8 +84,12 @@ int rg2_cmd_info(int argc, char **argv)
             printf(" %s=%g", desc->param_names[p], s->param[p]);
         printf("\n");
     }
-    int *count = calloc((size_t)ns + 1, sizeof(int));
-    if (!count) {
+    /* counts per shape, reset after each surface through the list of the shapes it has (a
+     * design of many one-shape surfaces went through every shape for every surface) */
+    int *count = calloc((size_t)ns + 1, sizeof(int)), *seen = calloc((size_t)ns + 1, sizeof(int));
+    if (!count || !seen) {
+        free(count);
+        free(seen);
         rg2_design_free(d);
         fprintf(stderr, "rg2 info: out of memory\n");
         return RG2_EXIT_FAIL;
@@ -87,17 +97,24 @@ int rg2_cmd_info(int argc, char **argv)
     for (int o = 0; o < rg2_design_num_surfaces(d); o++) {
         const rg2_mesh *m = rg2_design_mesh(d, o);
         const rg2_surface *s = rg2_design_surface(d, o);
-        memset(count, 0, sizeof(int) * ((size_t)ns + 1));
-        for (int k = 0; k < s->nu * s->nv; k++)
-            count[s->tag[k] < 0 ? ns : s->tag[k]]++;
+        int nseen = 0;
+        count[ns] = 0;
+        for (int k = 0; k < s->nu * s->nv; k++) {
+            int t = s->tag[k] < 0 ? ns : s->tag[k];
+            if (t < ns && !count[t])
+                seen[nseen++] = t;
+            count[t]++;
+        }
+        qsort(seen, (size_t)nseen, sizeof *seen, cmp_int);
         printf("surface %d: mesh '%s': %d x %d control points (u %s, v %s) -> %d x %d = %d patches", o,
                rg2_design_mesh_name(d, o), m->nu, m->nv, m->su.closed ? "closed" : "open",
                m->sv.closed ? "closed" : "open", s->nu, s->nv, s->nu * s->nv);
         print_degrees(s);
         printf("\n");
-        for (int k = 0; k < ns; k++)
-            if (count[k])
-                printf("  exact on %-16s %d patches\n", rg2_design_shape_label(d, k), count[k]);
+        for (int q = 0; q < nseen; q++) {
+            printf("  exact on %-16s %d patches\n", rg2_design_shape_label(d, seen[q]), count[seen[q]]);
+            count[seen[q]] = 0;
+        }
         printf("  %-25s %d patches\n", "transition", count[ns]);
         printf("  smallest patch weight %.6g%s\n", rg2_surface_min_weight(s),
                rg2_surface_min_weight(s) > 0 ? "" : " (not positive: STEP/IGES export will refuse it)");
@@ -112,6 +129,7 @@ int rg2_cmd_info(int argc, char **argv)
             }
     }
     free(count);
+    free(seen);
     rg2_design_free(d);
     return RG2_EXIT_OK;
 }
