@@ -99,48 +99,77 @@ static void pixel_ray(const camera *c, int px, int py, double d[3])
 }
 
 /* Sample points of every patch (7 x 7 each) and, when overlaid, the mesh points: what the
- * view has to show. *pts is malloc'd (3 doubles per point). */
-static rg2_status scene_points(const rg2_surface *surfs, int n, const rg2_mesh *meshes, int with_mesh, double **pts,
-                               size_t *npts, rg2_error *err)
+ * view has to show. They are handed to fn in a fixed order (surface by surface, patch by patch,
+ * then the surface's mesh points), a block at a time, as they come: the grids of SCENE_CHUNK
+ * patches are evaluated on the threads, then passed on in order, so nothing depends on the
+ * thread count. (They were all stored first: 1.2 KB a patch, 290 MB for 250 000 patches, more
+ * than the surfaces themselves.) No point at all is an error. */
+typedef void (*scene_fn)(void *ctx, const double *p, size_t m);
+#define SCENE_S 6
+#define SCENE_CHUNK 16384
+
+static rg2_status scene_visit(const rg2_surface *surfs, int n, const rg2_mesh *meshes, int with_mesh, int nt,
+                              scene_fn fn, void *ctx, rg2_error *err)
 {
-    enum { S = 6 };
-    size_t cap = 0, m = 0;
-    for (int s = 0; s < n; s++) {
-        cap += (size_t)surfs[s].nu * (size_t)surfs[s].nv * (S + 1) * (S + 1);
-        if (with_mesh)
-            cap += (size_t)meshes[s].nu * (size_t)meshes[s].nv;
+    enum { Q = (SCENE_S + 1) * (SCENE_S + 1) };
+    int most = 1; /* patches a chunk */
+    for (int s = 0; s < n; s++)
+        if (surfs[s].nu * surfs[s].nv > most)
+            most = surfs[s].nu * surfs[s].nv;
+    if (most > SCENE_CHUNK)
+        most = SCENE_CHUNK;
+    double *buf = malloc(sizeof(double) * 3 * Q * (size_t)most);
+    unsigned char *ok = malloc((size_t)most);
+    if (!buf || !ok) {
+        free(buf);
+        free(ok);
+        return rg2__fail(err, RG2_ENOMEM, "render: out of memory for the view samples");
     }
-    double *P = rg2__calloc(cap, 3 * sizeof *P);
-    if (!P)
-        return rg2__fail(err, RG2_ENOMEM, "render: out of memory for %zu view samples", cap);
+    size_t total = 0;
+    (void)nt;
     for (int s = 0; s < n; s++) {
-        for (int k = 0; k < surfs[s].nu * surfs[s].nv; k++) {
-            double g[3 * (S + 1) * (S + 1)];
-            rg2_grid_out go = {.pos = g};
-            if (rg2__surface_patch_grid(&surfs[s], k / surfs[s].nv, k % surfs[s].nv, S + 1, S + 1, &go, NULL) != RG2_OK)
-                continue;
-            for (int q = 0; q < (S + 1) * (S + 1); q++)
-                if (isfinite(g[3 * q]) && isfinite(g[3 * q + 1]) && isfinite(g[3 * q + 2]))
-                    memcpy(P + 3 * m++, g + 3 * q, 3 * sizeof *g);
+        const rg2_surface *S = &surfs[s];
+        int np = S->nu * S->nv;
+        for (int k0 = 0; k0 < np; k0 += SCENE_CHUNK) {
+            int m = np - k0 < SCENE_CHUNK ? np - k0 : SCENE_CHUNK;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(nt) if (m > 64)
+#endif
+            for (int q = 0; q < m; q++) {
+                rg2_grid_out go = {.pos = buf + (size_t)3 * Q * q};
+                ok[q] = rg2__surface_patch_grid(S, (k0 + q) / S->nv, (k0 + q) % S->nv, SCENE_S + 1, SCENE_S + 1,
+                                                &go, NULL) == RG2_OK;
+            }
+            for (int q = 0; q < m; q++) {
+                if (!ok[q])
+                    continue;
+                double *g = buf + (size_t)3 * Q * q;
+                size_t c = 0;
+                for (int t = 0; t < Q; t++)
+                    if (isfinite(g[3 * t]) && isfinite(g[3 * t + 1]) && isfinite(g[3 * t + 2]))
+                        memmove(g + 3 * c++, g + 3 * t, 3 * sizeof *g);
+                if (c)
+                    fn(ctx, g, c);
+                total += c;
+            }
         }
         if (with_mesh) {
             const rg2_mesh *me = &meshes[s];
             for (int i = 0; i < me->nu; i++)
                 for (int j = 0; j < me->nv; j++) {
                     const double *h = rg2_mesh_at(me, i, j);
-                    if (h[3] > 0 && isfinite(h[0] / h[3]) && isfinite(h[1] / h[3]) && isfinite(h[2] / h[3]))
-                        for (int k = 0; k < 3; k++)
-                            P[3 * m + k] = h[k] / h[3];
-                    m += h[3] > 0 && isfinite(h[0] / h[3]) && isfinite(h[1] / h[3]) && isfinite(h[2] / h[3]);
+                    if (h[3] > 0 && isfinite(h[0] / h[3]) && isfinite(h[1] / h[3]) && isfinite(h[2] / h[3])) {
+                        double x[3] = {h[0] / h[3], h[1] / h[3], h[2] / h[3]};
+                        fn(ctx, x, 1);
+                        total++;
+                    }
                 }
         }
     }
-    if (m == 0) {
-        free(P);
+    free(buf);
+    free(ok);
+    if (total == 0)
         return rg2__fail(err, RG2_EINVAL, "render: no finite surface point to look at");
-    }
-    *pts = P;
-    *npts = m;
     return RG2_OK;
 }
 
@@ -164,7 +193,42 @@ static void view_frame(const rg2_render_opts *o, double dir[3], double f[3], dou
     cross3(r, f, up);
 }
 
-static void camera_setup(camera *c, const rg2_render_opts *o, int vw, const double *pts, size_t npts)
+/* camera_setup's two passes over the scene's points: their extent in the camera frame, then
+ * the eye distance that fits them all. */
+typedef struct {
+    const camera *c;
+    const double *dir;
+    double lo[3], hi[3];   /* pass 1 */
+    double cx, cy, cz, dist; /* pass 2 */
+} view_fit;
+
+static void fit_extent(void *ctx, const double *pts, size_t npts)
+{
+    view_fit *v = ctx;
+    for (size_t k = 0; k < npts; k++) {
+        const double *p = pts + 3 * k;
+        double q[3] = {dot3(p, v->c->r), dot3(p, v->c->up), dot3(p, v->dir)};
+        for (int d = 0; d < 3; d++) {
+            if (q[d] < v->lo[d]) v->lo[d] = q[d];
+            if (q[d] > v->hi[d]) v->hi[d] = q[d];
+        }
+    }
+}
+
+static void fit_distance(void *ctx, const double *pts, size_t npts)
+{
+    view_fit *v = ctx;
+    const camera *c = v->c;
+    for (size_t k = 0; k < npts; k++) {
+        const double *p = pts + 3 * k;
+        double x = fabs(dot3(p, c->r) - v->cx), y = fabs(dot3(p, c->up) - v->cy), zz = dot3(p, v->dir) - v->cz;
+        double need = zz + fmax(x / (0.92 * c->tx), y / (0.92 * c->ty));
+        if (need > v->dist) v->dist = need;
+    }
+}
+
+static rg2_status camera_setup(camera *c, const rg2_render_opts *o, int vw, const rg2_surface *surfs, int n,
+                               const rg2_mesh *meshes, int nt, rg2_error *err)
 {
     double dir[3];
     view_frame(o, dir, c->f, c->r, c->up);
@@ -173,15 +237,11 @@ static void camera_setup(camera *c, const rg2_render_opts *o, int vw, const doub
     c->ty = tan(0.5 * o->fov * M_PI / 180.0);
     c->tx = c->ty * (double)vw / (double)o->height;
     /* extents in the camera frame */
-    double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
-    for (size_t k = 0; k < npts; k++) {
-        const double *p = pts + 3 * k;
-        double q[3] = {dot3(p, c->r), dot3(p, c->up), dot3(p, dir)};
-        for (int d = 0; d < 3; d++) {
-            if (q[d] < lo[d]) lo[d] = q[d];
-            if (q[d] > hi[d]) hi[d] = q[d];
-        }
-    }
+    view_fit v = {c, dir, {DBL_MAX, DBL_MAX, DBL_MAX}, {-DBL_MAX, -DBL_MAX, -DBL_MAX}, 0, 0, 0, 0};
+    rg2_status st = scene_visit(surfs, n, meshes, o->mesh, nt, fit_extent, &v, err);
+    if (st)
+        return st;
+    double *lo = v.lo, *hi = v.hi;
     double cx = 0.5 * (lo[0] + hi[0]), cy = 0.5 * (lo[1] + hi[1]), cz = 0.5 * (lo[2] + hi[2]);
     double centre[3], r2 = 0;
     for (int k = 0; k < 3; k++) {
@@ -191,17 +251,14 @@ static void camera_setup(camera *c, const rg2_render_opts *o, int vw, const doub
     c->scale = sqrt(r2) > 0 ? sqrt(r2) : 1.0;
     double dist = o->distance;
     if (!(dist > 0)) {
-        dist = 0;
-        for (size_t k = 0; k < npts; k++) {
-            const double *p = pts + 3 * k;
-            double x = fabs(dot3(p, c->r) - cx), y = fabs(dot3(p, c->up) - cy), zz = dot3(p, dir) - cz;
-            double need = zz + fmax(x / (0.92 * c->tx), y / (0.92 * c->ty));
-            if (need > dist) dist = need;
-        }
-        dist = fmax(dist, (hi[2] - cz) + 0.05 * c->scale);
+        v.cx = cx, v.cy = cy, v.cz = cz, v.dist = 0;
+        if ((st = scene_visit(surfs, n, meshes, o->mesh, nt, fit_distance, &v, err)))
+            return st;
+        dist = fmax(v.dist, (hi[2] - cz) + 0.05 * c->scale);
     }
     for (int k = 0; k < 3; k++)
         c->eye[k] = centre[k] + dist * dir[k];
+    return RG2_OK;
 }
 
 /* ---------------------------------------------------------------- rasterisation */
@@ -314,7 +371,12 @@ static int *grid_densities(const rg2_surface *surfs, int n, const camera *c, siz
 static rg2_status rasterise(const rg2_surface *surfs, int n, const camera *c, zcell *zb, int W, int nt,
                             rg2_error *err)
 {
-    enum { CHUNK = 64 };
+    /* A chunk of patches is gridded on the threads, then rasterised by bands of rows on the
+     * threads: up to CHUNK patches or RASTER_VERTS grid points a chunk. (At 64 patches a chunk,
+     * the tiny patches of a big design (250 000 of them) made thousands of parallel regions, each
+     * a few microseconds of work: on a busy machine a thread waiting at their barriers for one
+     * descheduled made the picture 6 to 10 times slower than on one thread.) */
+    enum { CHUNK = 4096, RASTER_VERTS = 1 << 19 };
     size_t *doff = rg2__calloc((size_t)n, sizeof *doff);
     int *dens = doff ? grid_densities(surfs, n, c, doff) : NULL;
     int *Nu = rg2__calloc(CHUNK, sizeof *Nu), *Nv = rg2__calloc(CHUNK, sizeof *Nv);
@@ -332,7 +394,7 @@ static rg2_status rasterise(const rg2_surface *surfs, int n, const camera *c, zc
     while (s < n) {
         /* gather a chunk of patches */
         int m = 0;
-        while (m < CHUNK && s < n) {
+        while (m < CHUNK && s < n && (m == 0 || off[m] < RASTER_VERTS)) {
             size_t np = (size_t)surfs[s].nu * (size_t)surfs[s].nv;
             if (k >= np) {
                 s++;
@@ -924,6 +986,22 @@ static void edges(const camera *c, const rg2_pixel *pix, int boundaries, rg2_ima
  * cell has the size of the largest surface's extent across the view (from the same samples that
  * fit the view) and a gap of a tenth of it; each surface is moved by a translation, so its
  * shape, normals and curvatures are the same. */
+/* render_apart's box of one surface's points along three axes (lo, hi each). */
+typedef struct {
+    const double *axis[3];
+    double *b;
+} apart_box;
+
+static void box_add(void *ctx, const double *pts, size_t npts)
+{
+    apart_box *ab = ctx;
+    for (int a = 0; a < 3; a++)
+        for (size_t k = 0; k < npts; k++) {
+            double x = dot3(pts + 3 * k, ab->axis[a]);
+            ab->b[2 * a] = fmin(ab->b[2 * a], x), ab->b[2 * a + 1] = fmax(ab->b[2 * a + 1], x);
+        }
+}
+
 static rg2_status render_apart(const rg2_surface *surfs, int n, const rg2_mesh *meshes, const rg2_render_opts *o,
                                rg2_image *out, rg2_error *err)
 {
@@ -938,20 +1016,17 @@ static rg2_status render_apart(const rg2_surface *surfs, int n, const rg2_mesh *
         goto done;
     }
     double cw = 0, ch = 0, depth = 0;
+    int nt = 1;
+#ifdef _OPENMP
+    nt = o->threads > 0 ? o->threads : omp_get_max_threads();
+#endif
     for (int s = 0; s < n; s++) {
-        double *pts = NULL, *b = box + 6 * s;
-        size_t npts = 0;
-        if ((st = scene_points(surfs + s, 1, meshes ? meshes + s : NULL, o->mesh, &pts, &npts, err)))
-            goto done;
-        const double *axis[3] = {r, up, dir};
-        for (int a = 0; a < 3; a++) {
+        double *b = box + 6 * s;
+        apart_box ab = {{r, up, dir}, b};
+        for (int a = 0; a < 3; a++)
             b[2 * a] = DBL_MAX, b[2 * a + 1] = -DBL_MAX;
-            for (size_t k = 0; k < npts; k++) {
-                double x = dot3(pts + 3 * k, axis[a]);
-                b[2 * a] = fmin(b[2 * a], x), b[2 * a + 1] = fmax(b[2 * a + 1], x);
-            }
-        }
-        free(pts);
+        if ((st = scene_visit(surfs + s, 1, meshes ? meshes + s : NULL, o->mesh, nt, box_add, &ab, err)))
+            goto done;
         cw = fmax(cw, b[1] - b[0]), ch = fmax(ch, b[3] - b[2]), depth += 0.5 * (b[4] + b[5]) / n;
     }
     double cell = fmax(cw, ch) > 0 ? fmax(cw, ch) : 1.0;
@@ -1009,13 +1084,9 @@ rg2_status rg2_render(const rg2_surface *surfs, int n, const rg2_mesh *meshes, c
 #endif
     int W = o->width, H = o->height, curv = o->mode == RG2_RENDER_MEAN || o->mode == RG2_RENDER_GAUSS;
     int vw = (curv && o->colorbar && W > 2 * BAR_MARGIN) ? W - BAR_MARGIN : W;
-    double *pts = NULL;
-    size_t npts = 0;
-    if ((st = scene_points(surfs, n, meshes, o->mesh, &pts, &npts, err)))
-        return st;
     camera cam;
-    camera_setup(&cam, o, vw, pts, npts);
-    free(pts);
+    if ((st = camera_setup(&cam, o, vw, surfs, n, meshes, nt, err)))
+        return st;
 
     size_t np = (size_t)W * (size_t)H;
     /* on huge pages (src/alloc.c): at 1600 x 1200 these are 260 MB, whose 4 KiB page faults
