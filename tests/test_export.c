@@ -1589,6 +1589,72 @@ static void cjson_hooks(const rg2_surface *s)
     CHECK(g_hook_blocks == 0, "%u blocks of the host's cJSON allocator not given back", g_hook_blocks);
 }
 
+/* The JSON patch dump is written as it is formatted (it was a cJSON tree of the whole dump, then
+ * its printed text: 3 times the file at the peak). Two design surfaces, the first of more patches
+ * than one formatting block (256), with tags, a name cJSON has to escape, and patches of degree
+ * (5, 3) in the second: read back, everything equals the surfaces, exactly. */
+static void json_dump_stream(void)
+{
+    const char *json =
+        "{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": 3, \"r\": 1}, \"b\": {\"kind\": \"paraboloid\"},"
+        " \"c\": {\"kind\": \"cylinder\"}},"
+        " \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": 24}, \"v\": {\"arcs\": 12}},"
+        " \"E\": {\"edit\": \"T\", \"points\": [{\"at\": [3, 4], \"move\": [0, 0, 0.3]}]},"
+        " \"B\": {\"polar\": \"b\", \"u\": {\"arcs\": 8}, \"v\": {\"knots\": [0.3, 0.6, 0.9, 1.2]}},"
+        " \"C\": {\"shape\": \"c\", \"u\": {\"arcs\": 8}, \"v\": {\"segments\": 3, \"from\": 3, \"to\": 4.8}},"
+        " \"BC\": {\"merge\": [\"B\", \"C\"], \"along\": \"v\"},"
+        " \"cap\": {\"cap\": \"BC\", \"ends\": \"north\", \"quadratic\": \"general\"}},"
+        " \"output\": [\"E\", \"cap\"]}";
+    rg2_design *d = NULL;
+    rg2_error err;
+    CHECK_OK(rg2_design_parse(json, strlen(json), "dump", &d, &err), &err);
+    if (!d)
+        return;
+    rg2_surface surfs[2] = {*rg2_design_surface(d, 0), *rg2_design_surface(d, 1)};
+    rg2_export_opts o;
+    rg2_export_opts_default(&o);
+    o.name = "a \"quoted\" \\ name";
+    CHECK_OK(rg2_export_file(surfs, 2, path_in("two.json"), &o, &err), &err);
+    size_t len;
+    unsigned char *b = slurp(path_in("two.json"), &len);
+    cJSON *j = b ? cJSON_Parse((char *)b) : NULL;
+    const cJSON *arr = cJSON_GetObjectItemCaseSensitive(j, "surfaces"), *nm = cJSON_GetObjectItemCaseSensitive(j, "name");
+    int bad = cJSON_GetArraySize(arr) != 2 || !cJSON_IsString(nm) || strcmp(nm->valuestring, o.name) ||
+              num(j, "version") != 2, high = 0;
+    for (int k = 0; k < 2 && !bad; k++) {
+        const rg2_surface *s = &surfs[k];
+        int np = s->nu * s->nv;
+        const cJSON *sf = cJSON_GetArrayItem(arr, k), *pa = cJSON_GetObjectItemCaseSensitive(sf, "patches");
+        const cJSON *tg = cJSON_GetObjectItemCaseSensitive(sf, "tag"), *jdu = cJSON_GetObjectItemCaseSensitive(sf, "du"),
+                    *jdv = cJSON_GetObjectItemCaseSensitive(sf, "dv"), *bu = cJSON_GetObjectItemCaseSensitive(sf, "bu");
+        bad += num(sf, "nu") != s->nu || num(sf, "nv") != s->nv || cJSON_GetArraySize(pa) != np ||
+               cJSON_GetArraySize(tg) != np || cJSON_GetArraySize(jdu) != np || cJSON_GetArraySize(jdv) != np ||
+               cJSON_GetArraySize(bu) != s->nu || cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(sf, "closed_u")) != s->closed_u;
+        for (int i = 0; i < s->nu && !bad; i++)
+            bad += cJSON_GetArrayItem(bu, i)->valuedouble != s->bu[i];
+        const cJSON *jp = pa ? pa->child : NULL, *t = tg ? tg->child : NULL, *a = jdu ? jdu->child : NULL,
+                    *c = jdv ? jdv->child : NULL;
+        for (int p = 0; p < np && !bad; p++, jp = jp->next, t = t->next, a = a->next, c = c->next) {
+            rg2_xpatch X;
+            rg2_surface_patch_get(s, p / s->nv, p % s->nv, &X);
+            high += X.du > 3;
+            bad += t->valueint != s->tag[p] || a->valueint != X.du || c->valueint != X.dv ||
+                   cJSON_GetArraySize(jp) != 4 * (X.du + 1) * (X.dv + 1);
+            int q = 0;
+            for (const cJSON *x = jp->child; x && !bad; x = x->next, q++)
+                bad += x->valuedouble != X.h[q / (4 * (X.dv + 1))][q / 4 % (X.dv + 1)][q % 4];
+        }
+    }
+    CHECK(j && bad == 0 && surfs[0].nu * surfs[0].nv > 256 && high > 0,
+          "JSON dump of 2 surfaces (%d and %d patches, %d of a higher degree): %d mismatches", surfs[0].nu * surfs[0].nv,
+          surfs[1].nu * surfs[1].nv, high, bad);
+    CHECK(len > 0 && b[len - 1] == '\n' && !strncmp((char *)b, "{\n\t\"surfaces\":\t[{\n\t\t\t\"nu\":\t24,\n", 30),
+          "JSON dump layout: starts '%.30s'", b ? (char *)b : "");
+    cJSON_Delete(j);
+    free(b);
+    rg2_design_free(d);
+}
+
 int main(void)
 {
     snprintf(g_dir, sizeof g_dir, "/tmp/rg2_export_XXXXXX");
@@ -1624,6 +1690,7 @@ int main(void)
     several_files(&s);
     float_range();
     export_degrees(&s);
+    json_dump_stream();
     rg2_surface x;
     CHECK_OK(elevated_torus(&x, &err), &err);
     patches_roundtrip(&x, 13.0, 4.0);
