@@ -62,8 +62,7 @@ int rg2_cli_same_file(const char *a, const char *b);
  * directory and last component: "a.step" and "./a.step"). */
 int rg2_cli_same_path(const char *a, const char *b);
 /* The outputs of a command that reads the design file: 0, or RG2_EXIT_USAGE with a message when
- * one is the design file, the design file is one's temporary "<output>.tmp", or two are the
- * same file. */
+ * one is the design file or two are the same file. */
 int rg2_cli_check_outputs(const char *cmd, const char *design, const char *const *out, int n);
 
 #endif

@@ -80,8 +80,8 @@ static void usage(FILE *f)
     fprintf(f, "\n'rg2 <command> --help' describes a command.\n");
 }
 
-/* Every output is written to "<path>.<pid>.tmp" and renamed when complete (src/outfile.c; the
- * rg2 command writes each path once, so the library's first name is its name). An interrupted run
+/* Every output is written to a new temporary file and renamed when complete; the rg2 command
+ * writes each path once, from one thread, so rg2_temp_name says which file that will be. An interrupted run
  * (Ctrl-C, kill, a closed terminal) removes those temporary files before it dies, so nothing
  * half-written is left behind; the paths are taken from the -o options up front, as only
  * async-signal-safe calls (unlink, raise) may run in the handler. */
@@ -101,11 +101,14 @@ static void guard_outputs(int argc, char **argv)
 {
     for (int i = 1; i + 1 < argc && n_tmp < MAX_TMP; i++)
         if (!strcmp(argv[i], "-o")) {
-            size_t n = strlen(argv[i + 1]) + 32;
+            size_t n = strlen(argv[i + 1]) + 48;
             char *t = malloc(n);
             if (!t)
                 return;
-            snprintf(t, n, "%s.%ld.tmp", argv[i + 1], (long)getpid());
+            if (rg2_temp_name(argv[i + 1], t, n)) {
+                free(t);
+                continue;
+            }
             tmp_paths[n_tmp] = t;
             n_tmp = n_tmp + 1;
         }

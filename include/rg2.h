@@ -43,9 +43,11 @@
  *     fesetenv after). Under another rounding mode the results stay accurate, but the grid's
  *     promise of the same bits for any thread count holds only for round to nearest (worker
  *     threads keep the environment they were created in).
- *   - fork: the grid's worker pool is rebuilt in a child, but libgomp's is not: a child of a
- *     process that ran rg2_render or rg2_check with more than one thread must call them with
- *     threads = 1 (else they wait forever; a libgomp limitation).
+ *   - fork: the grid's worker pool is rebuilt in a child, but libgomp's is not: in a child of a
+ *     process that has used rg2 (building more than 256 patches, writing STEP, IGES, OBJ or
+ *     JSON, rendering, checking), an rg2 call that runs OpenMP threads waits forever (a libgomp
+ *     limitation). Call omp_set_num_threads(1) in the child first (or run with
+ *     OMP_NUM_THREADS=1).
  *   - The AVX-512 kernels are chosen at load time (GCC function multi-versioning, an ifunc):
  *     ThreadSanitizer builds of the whole program cannot instrument that resolver; build the
  *     library with -DRG2_NO_CLONES for them.
@@ -909,6 +911,12 @@ RG2_API rg2_status rg2_export_files(const rg2_surface *surfs, int n_surfs, const
  *  @return RG2_OK, or RG2_EINVAL (no path, no extension, unknown extension; the message lists
  *  the known ones). */
 RG2_API rg2_status rg2_export_format_check(const char *path, rg2_error *err);
+/** The temporary file this process's next write of path would use (every writer writes a new
+ *  file next to path, then renames it): the first free name of "<path>.<pid>.tmp",
+ *  "<path>.<pid>.1.tmp", ... For a program that writes each path from one thread and must
+ *  remove its temporary files when a signal ends it (the rg2 command does). Returns 0, or -1
+ *  (no path or buf, buf too small, no free name). */
+RG2_API int rg2_temp_name(const char *path, char *buf, size_t cap);
 
 
 /* ===================================================================================== */

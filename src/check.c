@@ -1179,8 +1179,10 @@ rg2_status rg2_check_format(const rg2_check_report *r, int json, char **text, rg
     void *loc = rg2__c_numeric_begin();
     if (json) {
         char *c = format_json(r);
-        if (!c)
+        if (!c) {
+            rg2__c_numeric_end(loc);
             return rg2__fail(err, RG2_ENOMEM, "check: out of memory formatting JSON");
+        }
         /* hand out memory from malloc (cJSON may use its own allocator hooks) */
         size_t len = strlen(c);
         *text = malloc(len + 2);

@@ -538,11 +538,20 @@ static void json_doubles(FILE *f, const double *x, int n)
     fputc(']', f);
 }
 
-static void json_ints(FILE *f, const int *x, int n, int stride)
+static void json_ints(FILE *f, const int *x, int n)
 {
     fputc('[', f);
     for (int k = 0; k < n; k++)
-        fprintf(f, "%s%d", k ? ", " : "", x[(size_t)k * (size_t)stride]);
+        fprintf(f, "%s%d", k ? ", " : "", x[k]);
+    fputc(']', f);
+}
+
+/* The patches' degrees along u (side 0) or v (side 1), patch p = i nv + j */
+static void json_degrees(FILE *f, const rg2_surface *s, int side)
+{
+    fputc('[', f);
+    for (int p = 0; p < s->nu * s->nv; p++)
+        fprintf(f, "%s%d", p ? ", " : "", side_degree(s, p / s->nv, p % s->nv, side));
     fputc(']', f);
 }
 
@@ -580,7 +589,6 @@ static rg2_status write_json(const rg2_surface *surfs, int n, const rg2_export_o
     cJSON *name = cJSON_CreateString(o->name); /* the name as cJSON escapes a string */
     char *qname = name ? cJSON_PrintUnformatted(name) : NULL;
     cJSON_Delete(name);
-    int *deg = NULL;
     if (!qname)
         return rg2__fail(err, RG2_ENOMEM, "%s: out of memory building JSON", out->path);
     fputs("{\n\t\"surfaces\":\t[", f);
@@ -606,36 +614,23 @@ static rg2_status write_json(const rg2_surface *surfs, int n, const rg2_export_o
         json_doubles(f, s->gv, s->nv);
         if (s->tag) {
             json_key(f, "tag", 0);
-            json_ints(f, s->tag, np, 1);
+            json_ints(f, s->tag, np);
         }
         json_key(f, "patches", 0);
         fputc('[', f);
         json_patches jp = {s};
         if (rg2__write_blocks(f, np, 256, json_patch_block, NULL, &jp)) {
-            free(deg);
             cJSON_free(qname);
             return rg2__fail(err, RG2_ENOMEM, "%s: out of memory building JSON", out->path);
         }
         fputc(']', f);
-        free(deg);
-        deg = rg2__calloc((size_t)np, 2 * sizeof *deg);
-        if (!deg) {
-            cJSON_free(qname);
-            return rg2__fail(err, RG2_ENOMEM, "%s: out of memory building JSON", out->path);
-        }
-        for (int p = 0; p < np; p++) {
-            const rg2_xpatch *x = rg2_surface_xpatch(s, p / s->nv, p % s->nv);
-            deg[2 * p] = x ? x->du : 3;
-            deg[2 * p + 1] = x ? x->dv : 3;
-        }
         json_key(f, "du", 0);
-        json_ints(f, deg, np, 2);
+        json_degrees(f, s, 0);
         json_key(f, "dv", 0);
-        json_ints(f, deg + 1, np, 2);
+        json_degrees(f, s, 1);
         fputs("\n\t\t}", f);
     }
     fprintf(f, "],\n\t\"format\":\t\"rg2-patches\",\n\t\"version\":\t2,\n\t\"name\":\t%s\n}\n", qname);
-    free(deg);
     cJSON_free(qname);
     return RG2_OK;
 }
@@ -768,7 +763,7 @@ static rg2_status check_float_range(const rg2_tess *t, int n, const char *path, 
     return RG2_OK;
 }
 
-/* Write path.tmp in path's format; on success the complete file waits there in *out for
+/* Write path's temporary file in path's format; on success the complete file waits there in *out for
  * rg2__out_commit, on failure nothing is left. */
 static rg2_status export_staged(const rg2_surface *surfs, int n_surfs, const char *path,
                                 const rg2_export_opts *opts, rg2__out *out, rg2_error *err)

@@ -15,9 +15,30 @@
 #include <fcntl.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #define OUT_TRIES 1000 /* names tried within one process before giving up */
+
+/* The k-th temporary name of path (k = 0: "<path>.<pid>.tmp", else "<path>.<pid>.<k>.tmp"). */
+static int temp_name(const char *path, int k, char *buf, size_t cap)
+{
+    long pid = (long)getpid();
+    int n = k ? snprintf(buf, cap, "%s.%ld.%d.tmp", path, pid, k) : snprintf(buf, cap, "%s.%ld.tmp", path, pid);
+    return n >= 0 && (size_t)n < cap ? 0 : -1;
+}
+
+int rg2_temp_name(const char *path, char *buf, size_t cap)
+{
+    struct stat sb;
+    for (int k = 0; path && buf && k < OUT_TRIES; k++) {
+        if (temp_name(path, k, buf, cap))
+            return -1;
+        if (lstat(buf, &sb) != 0) /* free: the name rg2__out_open takes next */
+            return errno == ENOENT ? 0 : -1;
+    }
+    return -1;
+}
 
 rg2_status rg2__out_open(rg2__out *o, const char *path, rg2_error *err)
 {
@@ -27,13 +48,9 @@ rg2_status rg2__out_open(rg2__out *o, const char *path, rg2_error *err)
     if (!o->tmp)
         return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", path);
     o->path = path;
-    long pid = (long)getpid();
     int fd = -1;
     for (int k = 0; k < OUT_TRIES && fd < 0; k++) {
-        if (k)
-            snprintf(o->tmp, cap, "%s.%ld.%d.tmp", path, pid, k);
-        else
-            snprintf(o->tmp, cap, "%s.%ld.tmp", path, pid);
+        temp_name(path, k, o->tmp, cap);
         fd = open(o->tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
         if (fd < 0 && errno != EEXIST)
             break;

@@ -1316,6 +1316,12 @@ static void temp_files(const rg2_surface *s)
     CHECK(v && fputs("victim\n", v) >= 0 && fclose(v) == 0, "write %s", victim);
     snprintf(link, sizeof link, "%s.%ld.tmp", out, (long)getpid());
     CHECK(symlink(victim, link) == 0, "symlink %s", link);
+    char next[300], want[300], tiny[8];
+    snprintf(want, sizeof want, "%s.%ld.1.tmp", out, (long)getpid());
+    CHECK(rg2_temp_name(out, next, sizeof next) == 0 && !strcmp(next, want), "rg2_temp_name: '%s', want '%s'", next,
+          want);
+    CHECK(rg2_temp_name(out, tiny, sizeof tiny) == -1 && rg2_temp_name(NULL, next, sizeof next) == -1,
+          "rg2_temp_name: a small buffer or no path is -1");
     CHECK_OK(export_one(s, "planted.obj", &err), &err);
     size_t len;
     unsigned char *vb = slurp(victim, &len);
