@@ -1002,6 +1002,17 @@ static void box_add(void *ctx, const double *pts, size_t npts)
         }
 }
 
+/* the threads a render uses: the options' count, else OpenMP's */
+static int render_threads(const rg2_render_opts *o)
+{
+#ifdef _OPENMP
+    return o->threads > 0 ? o->threads : omp_get_max_threads();
+#else
+    (void)o;
+    return 1;
+#endif
+}
+
 static rg2_status render_apart(const rg2_surface *surfs, int n, const rg2_mesh *meshes, const rg2_render_opts *o,
                                rg2_image *out, rg2_error *err)
 {
@@ -1016,10 +1027,7 @@ static rg2_status render_apart(const rg2_surface *surfs, int n, const rg2_mesh *
         goto done;
     }
     double cw = 0, ch = 0, depth = 0;
-    int nt = 1;
-#ifdef _OPENMP
-    nt = o->threads > 0 ? o->threads : omp_get_max_threads();
-#endif
+    int nt = render_threads(o);
     for (int s = 0; s < n; s++) {
         double *b = box + 6 * s;
         apart_box ab = {{r, up, dir}, b};
@@ -1078,10 +1086,7 @@ rg2_status rg2_render(const rg2_surface *surfs, int n, const rg2_mesh *meshes, c
         return st;
     if (o->apart && n > 1)
         return render_apart(surfs, n, meshes, o, out, err);
-    int nt = 1;
-#ifdef _OPENMP
-    nt = o->threads > 0 ? o->threads : omp_get_max_threads();
-#endif
+    int nt = render_threads(o);
     int W = o->width, H = o->height, curv = o->mode == RG2_RENDER_MEAN || o->mode == RG2_RENDER_GAUSS;
     int vw = (curv && o->colorbar && W > 2 * BAR_MARGIN) ? W - BAR_MARGIN : W;
     camera cam;
