@@ -61,6 +61,20 @@
 extern "C" {
 #endif
 
+/* The inline helpers' index arithmetic: a static_cast for C++ hosts that build with
+ * -Wold-style-cast -Werror (tests/header.sh compiles this header under strict warnings). */
+#ifdef __cplusplus
+#define RG2_SIZE(x) static_cast<size_t>(x)
+#else
+#define RG2_SIZE(x) ((size_t)(x))
+#endif
+/* and nullptr where C++ has it (-Wzero-as-null-pointer-constant) */
+#if defined(__cplusplus) && __cplusplus >= 201103L
+#define RG2_NULL nullptr
+#else
+#define RG2_NULL NULL
+#endif
+
 #if defined(RG2_BUILDING_LIBRARY) && defined(__GNUC__)
 #define RG2_API __attribute__((visibility("default")))
 #else
@@ -241,7 +255,7 @@ RG2_API rg2_status rg2_mesh_check_weights(const rg2_mesh *m, int *wi, int *wj, r
 /** Pointer to 4-tuple (i, j). */
 static inline double *rg2_mesh_at(const rg2_mesh *m, int i, int j)
 {
-    return m->p + ((size_t)i * (size_t)m->nv + (size_t)j) * 4;
+    return m->p + (RG2_SIZE(i) * RG2_SIZE(m->nv) + RG2_SIZE(j)) * 4;
 }
 
 /* ===================================================================================== */
@@ -297,13 +311,13 @@ RG2_API void rg2_surface_free(rg2_surface *s);
 RG2_API rg2_status rg2_surface_copy(const rg2_surface *src, rg2_surface *dst, rg2_error *err);
 static inline rg2_patch *rg2_surface_patch(const rg2_surface *s, int i, int j)
 {
-    return s->patch + (size_t)i * (size_t)s->nv + (size_t)j;
+    return s->patch + RG2_SIZE(i) * RG2_SIZE(s->nv) + RG2_SIZE(j);
 }
 /** The higher-degree patch (i, j), or NULL when patch (i, j) is an ordinary bi-3 patch. */
 static inline const rg2_xpatch *rg2_surface_xpatch(const rg2_surface *s, int i, int j)
 {
-    const rg2_xpatch *x = s->xp ? s->xp + (size_t)i * (size_t)s->nv + (size_t)j : 0;
-    return x && x->du > 0 ? x : 0;
+    const rg2_xpatch *x = s->xp ? s->xp + RG2_SIZE(i) * RG2_SIZE(s->nv) + RG2_SIZE(j) : RG2_NULL;
+    return x && x->du > 0 ? x : RG2_NULL;
 }
 /** Patch (i, j) in the general form, whichever kind it is (bi-3 patches with du = dv = 3). */
 RG2_API void rg2_surface_patch_get(const rg2_surface *s, int i, int j, rg2_xpatch *out);
