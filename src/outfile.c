@@ -7,24 +7,40 @@
  * a symlink planted at the name cannot redirect the write to another file, and two writers of
  * the same path (threads or processes) each get a file of their own, so the path ends up with
  * one writer's whole file, never a mix. The process id keeps processes apart; within one
- * process a name in use gets a counter ("<path>.<pid>.1.tmp", ...). */
+ * process a name in use gets a counter ("<path>.<pid>.1.tmp", ...). A file name near the
+ * 255-byte limit has its temporary name cut to fit. */
 #define _POSIX_C_SOURCE 200809L /* O_NOFOLLOW, O_CLOEXEC */
 #include "internal.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <fcntl.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-#define OUT_TRIES 1000 /* names tried within one process before giving up */
+#define OUT_TRIES 1000   /* names tried within one process before giving up */
+#define OUT_NAME_MAX 255 /* the longest file name (NAME_MAX of Linux's file systems) */
 
-/* The k-th temporary name of path (k = 0: "<path>.<pid>.tmp", else "<path>.<pid>.<k>.tmp"). */
+/* The k-th temporary name of path (k = 0: "<path>.<pid>.tmp", else "<path>.<pid>.<k>.tmp"). A last
+ * component within the suffix's length of the file-name limit is cut, at a UTF-8 character
+ * boundary, so that the temporary name fits too: any name path itself may have can be written. */
 static int temp_name(const char *path, int k, char *buf, size_t cap)
 {
+    char suffix[48];
     long pid = (long)getpid();
-    int n = k ? snprintf(buf, cap, "%s.%ld.%d.tmp", path, pid, k) : snprintf(buf, cap, "%s.%ld.tmp", path, pid);
+    int ns = k ? snprintf(suffix, sizeof suffix, ".%ld.%d.tmp", pid, k) : snprintf(suffix, sizeof suffix, ".%ld.tmp", pid);
+    const char *slash = strrchr(path, '/');
+    size_t dir = slash ? (size_t)(slash + 1 - path) : 0, base = strlen(path + dir);
+    if (ns < 0 || dir + base > INT_MAX)
+        return -1;
+    if (base <= OUT_NAME_MAX && base + (size_t)ns > OUT_NAME_MAX) {
+        base = OUT_NAME_MAX - (size_t)ns;
+        while (base > 0 && ((unsigned char)path[dir + base] & 0xC0) == 0x80) /* a continuation byte */
+            base--;
+    }
+    int n = snprintf(buf, cap, "%.*s%s", (int)(dir + base), path, suffix);
     return n >= 0 && (size_t)n < cap ? 0 : -1;
 }
 
