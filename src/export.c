@@ -764,9 +764,11 @@ static rg2_status check_float_range(const rg2_tess *t, int n, const char *path, 
 }
 
 /* Write path's temporary file in path's format; on success the complete file waits there in *out for
- * rg2__out_commit, on failure nothing is left. */
+ * rg2__out_commit, on failure nothing is left. keep: NULL, or where the OBJ, STL and glTF outputs
+ * of one rg2_export_files call keep the tessellation they share (without curvature: PLY, which has
+ * it, makes its own); the caller frees it. */
 static rg2_status export_staged(const rg2_surface *surfs, int n_surfs, const char *path,
-                                const rg2_export_opts *opts, rg2__out *out, rg2_error *err)
+                                const rg2_export_opts *opts, rg2__out *out, rg2_tess **keep, rg2_error *err)
 {
     memset(out, 0, sizeof *out);
     rg2_export_opts def;
@@ -803,22 +805,30 @@ static rg2_status export_staged(const rg2_surface *surfs, int n_surfs, const cha
     }
     if (st)
         return st;
-    rg2_tess *tess = NULL;
+    rg2_tess *tess = NULL, *own = NULL; /* own: the tessellation this call frees */
     if (fmt == F_OBJ || fmt == F_STL || fmt == F_PLY || fmt == F_GLB) {
-        st = rg2__tess_all(surfs, n_surfs, opts->density, fmt == F_PLY, &tess, err);
-        if (st)
-            return st;
+        if (fmt != F_PLY && keep && *keep)
+            tess = *keep;
+        else {
+            st = rg2__tess_all(surfs, n_surfs, opts->density, fmt == F_PLY, &tess, err);
+            if (st)
+                return st;
+            if (fmt != F_PLY && keep)
+                *keep = tess;
+            else
+                own = tess;
+        }
         if (fmt != F_OBJ)
             st = check_float_range(tess, n_surfs, path, fmt == F_STL ? "STL" : fmt == F_PLY ? "PLY" : "glTF", err);
         if (st) {
-            rg2__tess_all_free(tess, n_surfs);
+            rg2__tess_all_free(own, n_surfs);
             return st;
         }
     }
     int nomem;
     char *clean = name_without_controls(opts->name, &nomem);
     if (nomem) {
-        rg2__tess_all_free(tess, n_surfs);
+        rg2__tess_all_free(own, n_surfs);
         return rg2__fail(err, RG2_ENOMEM, "export: out of memory");
     }
     if (clean) {
@@ -829,7 +839,7 @@ static rg2_status export_staged(const rg2_surface *surfs, int n_surfs, const cha
     }
     st = rg2__out_open(out, path, err);
     if (st) {
-        rg2__tess_all_free(tess, n_surfs);
+        rg2__tess_all_free(own, n_surfs);
         free(clean);
         return st;
     }
@@ -846,7 +856,7 @@ static rg2_status export_staged(const rg2_surface *surfs, int n_surfs, const cha
     case F_JSON: st = write_json(surfs, n_surfs, opts, out, err); break;
     }
     rg2__c_numeric_end(loc);
-    rg2__tess_all_free(tess, n_surfs);
+    rg2__tess_all_free(own, n_surfs);
     free(clean);
     return rg2__out_finish(out, st, err);
 }
@@ -855,7 +865,7 @@ rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *pa
                            const rg2_export_opts *opts, rg2_error *err)
 {
     rg2__out out;
-    rg2_status st = export_staged(surfs, n_surfs, path, opts, &out, err);
+    rg2_status st = export_staged(surfs, n_surfs, path, opts, &out, NULL, err);
     if (st == RG2_OK)
         st = rg2__out_commit(&out, err);
     if (st == RG2_OK)
@@ -889,12 +899,14 @@ rg2_status rg2_export_files(const rg2_surface *surfs, int n_surfs, const char *c
     if (!outs)
         return rg2__fail(err, RG2_ENOMEM, "export: out of memory");
     rg2_status st = RG2_OK;
+    rg2_tess *shared = NULL; /* one tessellation for every OBJ, STL and glTF output */
     int staged = 0;
     for (; staged < n_paths; staged++) {
-        st = export_staged(surfs, n_surfs, paths[staged], opts, &outs[staged], err);
+        st = export_staged(surfs, n_surfs, paths[staged], opts, &outs[staged], &shared, err);
         if (st)
             break;
     }
+    rg2__tess_all_free(shared, n_surfs);
     if (st) { /* all or nothing: no path is touched, so files there before stay as they were */
         if (failed)
             *failed = staged;
