@@ -915,6 +915,8 @@ RG2_API rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const 
  *  the paths is touched: files already there stay as they were. *failed (if not NULL) is the
  *  index of the path that failed, -1 on success. A rename failing after others succeeded (in
  *  practice only when a path's directory changes under the call) leaves the earlier ones renamed.
+ *  The OBJ, STL and glTF outputs of one call share one tessellation (the same bytes as each
+ *  written alone).
  *  @return the statuses of rg2_export_file; RG2_EINVAL also for n_paths < 1 and for a path given
  *  twice. */
 RG2_API rg2_status rg2_export_files(const rg2_surface *surfs, int n_surfs, const char *const *paths,
