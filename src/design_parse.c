@@ -456,8 +456,8 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
             }
             else if ((st = as_int(c, x, p, &nseg)))
                 return st;
-            else if (nseg < 1 || nseg > MAX_PART)
-                return fail(c, RG2_EDOMAIN, p, "%d %s; need 1 to %d", nseg, ck, MAX_PART);
+            else if (nseg < 1 || nseg > MAX_PART) /* past the count: a size limit, as for a list */
+                return fail(c, nseg < 1 ? RG2_EDOMAIN : RG2_ELIMIT, p, "%d %s; need 1 to %d", nseg, ck, MAX_PART);
         }
     }
     int n;

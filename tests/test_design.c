@@ -854,6 +854,14 @@ static void bad_inputs(void)
         {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"tt\"}}}", RG2_EPARSE, "did you mean 't'"},
         {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": [90, 90, 200]}}}}", RG2_EDOMAIN,
          "meshes.T.u"},
+        /* an arc or segment count past the 100,000 of the size limits is RG2_ELIMIT (README "Size
+         * limits"), as a list of more than 100,000 values is; a count below 1 stays RG2_EDOMAIN */
+        {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": 100001}}}}", RG2_ELIMIT,
+         "meshes.T.u.arcs: 100001 arcs; need 1 to 100000"},
+        {"{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {\"C\": {\"shape\": \"c\", \"v\": {\"segments\": 100001,"
+         " \"from\": 0, \"to\": 1}}}}", RG2_ELIMIT, "meshes.C.v.segments: 100001 segments; need 1 to 100000"},
+        {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": 0}}}}", RG2_EDOMAIN,
+         "meshes.T.u.arcs: 0 arcs; need 1 to 100000"},
         {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"s\", \"v\": {\"arcs\": 4}}}}", RG2_EPARSE,
          "meshes.T.v: 'arcs' is for circle directions; v of a sphere is a polynomial (knot) direction"},
         {"{" TORUS_SHAPES ", \"meshes\": {\"N\": {\"nurbs\": {\"nu\": 4, \"nv\": 4, \"points\": [[0, 0, 0]],"
