@@ -384,7 +384,8 @@ RG2_API double rg2_eval_normal_curvature(const rg2_eval *e, double a, double c);
 /* ===================================================================================== */
 
 /* A partition of one direction of a shape.
- * Circle directions (angles): the arcs the surface covers, in radians, each in (0, pi),
+ * Circle directions (angles): the arcs the surface covers, in radians, each in [0.005, pi)
+ *   (rg2_partition_check refuses smaller arcs: their seams lose G2 accuracy, docs/robustness.md),
  *   starting at angle `start`. Closed: they must sum to 2 pi. Open: the mesh gets two extra
  *   control points at each end whose arcs (copies of the end arcs) carry data only, so the
  *   produced patches cover exactly the given arcs.
@@ -406,7 +407,7 @@ typedef struct {
     rg2_partition_kind kind;
     int closed;           /**< angles only */
     int n;                /**< number of values: arcs (angles) or knots (knots, n >= 2) */
-    const double *values; /**< n angles (radians, each in (0, pi)) or n increasing knots */
+    const double *values; /**< n angles (radians, each in [0.005, pi)) or n increasing knots */
     double start;         /**< angle of the start of the first arc (angles only) */
 } rg2_partition;
 
@@ -486,7 +487,7 @@ RG2_API double rg2_shape_implicit2(const rg2_shape *s, const double x[3], double
 
 /** Number of segments (patches) a partition produces in its direction; 0 if invalid. */
 RG2_API int rg2_partition_num_segments(const rg2_partition *p);
-/** Check a partition (counts, angles in (0, pi), closed sums = 2 pi, open sums <= 2 pi,
+/** Check a partition (counts, angles in [0.005, pi), closed sums = 2 pi, open sums <= 2 pi,
  *  increasing knots); `what` prefixes the message ("u", "v"). */
 RG2_API rg2_status rg2_partition_check(const rg2_partition *p, const char *what, rg2_error *err);
 /** Shape parameter at local parameter t in [0, 1] of produced segment seg: the arc map
@@ -954,7 +955,7 @@ typedef enum {
 
 typedef struct {
     int width, height;     /**< image size in pixels (default 800 x 600), each 16..8192; about
-                                125 bytes of memory per pixel (8192 x 8192: 8.4 GB) */
+                                131 bytes of memory per pixel (8192 x 8192: 8.8 GB) */
     rg2_render_mode mode;
     double azimuth;        /**< degrees about +z, 0 looks from +x towards the centre (default 35) */
     double elevation;      /**< degrees above the xy plane, -90..90 (default 25) */
