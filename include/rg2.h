@@ -16,6 +16,9 @@
  *   Evaluation .............. rg2_patch_eval (position, derivatives, normal, curvatures)
  *   Shapes .................. (exact basic shapes; see the shapes section)
  *   Design .................. (JSON design files; see the design section)
+ *   Poles ................... polar configurations, rg2_cap_build (polar caps), Moebius maps
+ *   Grid and tessellation ... rg2_patch_grid, rg2_surface_grid, rg2_patch_point(_normal),
+ *                             rg2_tessellate, rg2_retessellate
  *   Export .................. (STEP, IGES, BezierView, meshes; see the export section)
  *   Pictures and checks ..... (render, check; see that section)
  *
