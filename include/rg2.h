@@ -975,7 +975,8 @@ typedef struct {
     int colorbar;          /**< curvature modes: draw the colour bar and its range (default 1) */
     int range_set;         /**< 1: use range[] as the colour range; 0: robust range */
     double range[2];       /**< user colour range lo < hi (curvature modes) */
-    double percentile;     /**< robust range: clip this fraction at each end (default 0.02) */
+    double percentile;     /**< robust range: clip this fraction at each end, in [0, 0.5)
+                                (default 0.02) */
     double stripes;        /**< zebra: stripe pairs per half turn (default 12) */
     int keep_pixels;       /**< fill rg2_image.pixels with the per-pixel exact data */
     int threads;           /**< OpenMP threads, 0..1024; 0 = the OpenMP default */
@@ -1043,8 +1044,10 @@ enum {
 };
 
 typedef struct {
-    int seam_samples;      /**< seam intervals: seam_samples + 1 samples per seam (default 16) */
-    int patch_samples;     /**< samples per patch direction for residuals/curvature (default 12) */
+    int seam_samples;      /**< seam intervals: seam_samples + 1 samples per seam, 1..10000
+                                (default 16) */
+    int patch_samples;     /**< samples per patch direction for residuals/curvature, 1..1000
+                                (default 12) */
     double tol_g0, tol_g1, tol_g2, tol_exact; /**< pass limits (defaults 1e-12, 1e-10, 1e-8, 1e-11) */
     int threads;           /**< OpenMP threads: 0 = the OpenMP default (OMP_NUM_THREADS, else the
                                 cores; the default), 1 = serial, t > 1 = up to t (at most 64).
