@@ -718,7 +718,8 @@ typedef struct {
                                is v in [0, v_c] (0: polynomial chart, pole at r = 0); used only
                                when length > 0 */
     double jet_weight[3]; /**< multipliers of the value, first and second derivative rows of the
-                               least-squares fit (default 1, 1, 0.25) */
+                               least-squares fit, each > 0 (default 1, 1, 0.25; a zero weight
+                               leaves the fit rank-deficient: RG2_EDOMAIN) */
     int samples;          /**< boundary samples per patch column (default 8) */
     int quadratic;        /**< RG2_CAP_ROTATIONAL (default): eq. (14), q_k3 (x^2 + y^2), bi-3
                                caps; RG2_CAP_GENERAL: the general quadratic q_k3 x^2 + q_k4 x y +

@@ -726,7 +726,7 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
                 st = rg2__fail(err, RG2_EDOMAIN,
                                "cap: jet_weights [%g, %g, %g] has a zero weight: the %s boundary ring's 2-jet "
                                "then no longer determines the cap map (rank-deficient least-squares fit); "
-                               "the first- and second-order weights must be positive (default [1, 1, 0.25])",
+                               "all three weights must be positive (default [1, 1, 0.25])",
                                o.jet_weight[0], o.jet_weight[1], o.jet_weight[2], end_name(e));
             else
                 st = rg2__fail(err, RG2_EDOMAIN,
