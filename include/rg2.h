@@ -720,7 +720,7 @@ typedef struct {
     double jet_weight[3]; /**< multipliers of the value, first and second derivative rows of the
                                least-squares fit, each > 0 (default 1, 1, 0.25; a zero weight
                                leaves the fit rank-deficient: RG2_EDOMAIN) */
-    int samples;          /**< boundary samples per patch column (default 8) */
+    int samples;          /**< boundary samples per patch column, 2..256 (default 8) */
     int quadratic;        /**< RG2_CAP_ROTATIONAL (default): eq. (14), q_k3 (x^2 + y^2), bi-3
                                caps; RG2_CAP_GENERAL: the general quadratic q_k3 x^2 + q_k4 x y +
                                q_k5 y^2 (6 coefficients per coordinate), for saddle-like ends
