@@ -658,7 +658,8 @@ RG2_API rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, 
 /** Knots of a polar configuration from the interior knots v_1 < ... < v_m in (0, 1), m >= 2:
  *  writes the m + 4 knots v_{-1} = v_1 / (v_1 - 1), v_0 = 0, v_1, ..., v_m, v_{m+1} = 1,
  *  v_{m+2} = 1 / v_m (the layout of rg2_scalars_from_knots, open, for m + 2 points).
- *  @return RG2_EDOMAIN for a knot outside (0, 1) or not increasing, naming it. */
+ *  @return RG2_EDOMAIN for a knot outside (0, 1) or not increasing, naming it; RG2_EINVAL for
+ *  m < 2. */
 RG2_API rg2_status rg2_polar_knots(const double *v, int m, double *knots, rg2_error *err);
 
 /** Polar control mesh of the unit sphere (family 2, MATH.md eq. 13): u a closed circle
