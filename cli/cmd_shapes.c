@@ -613,8 +613,8 @@ int rg2_cmd_shape(int argc, char **argv)
     }
     size_t patches = (size_t)rg2_scalars_num_segments(&m.su) * (size_t)rg2_scalars_num_segments(&m.sv);
     if (patches > RG2_CLI_MAX_PATCHES) { /* a design's limit, checked before the patches take memory */
-        fprintf(stderr, "rg2 shape: %s: %zu patches, more than the limit of %d (as in a design file)\n",
-                is_nurbs ? "nurbs" : d->name, patches, RG2_CLI_MAX_PATCHES);
+        fprintf(stderr, "rg2 shape: %s: %s: %zu patches, more than the limit of %d (as in a design file)\n",
+                rg2_status_str(RG2_ELIMIT), is_nurbs ? "nurbs" : d->name, patches, RG2_CLI_MAX_PATCHES);
         rc = RG2_EXIT_FAIL;
         goto out;
     }

@@ -69,7 +69,7 @@ expect 2 "torus takes --R --r" -- "$RG2" shape torus --radius 2
 # the design file's limits: 100000 arcs or intervals per direction, 1000000 patches
 expect 0 "v: polynomial, 4200 segments" -- "$RG2" shape cylinder --u-arcs 3 --v-segments 4200 --samples 1
 expect 2 "--v-segments 100001: need an integer 1..100000" -- "$RG2" shape cylinder --v-segments 100001
-expect 1 "cylinder: 2000000 patches, more than the limit of 1000000" -- "$RG2" shape cylinder --u-arcs 100 --v-segments 20000
+expect 1 "size limit exceeded: cylinder: 2000000 patches, more than the limit of 1000000" -- "$RG2" shape cylinder --u-arcs 100 --v-segments 20000
 # the smallest arc, 0.005 rad (0.286479 deg), is in the help: 1256 arcs make a circle, 1257 do not
 expect 0 "[0.286479, 180) (0.005 rad up to pi, excluded), so a full circle has 3 to 1256 arcs" -- "$RG2" shape --help
 expect 0 "1256 arcs" -- "$RG2" shape torus --u-arcs 1256 --v-arcs 3 --samples 1
