@@ -831,8 +831,9 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
                                : 1.0;
     for (int k = 0; k < n_shapes; k++) {
         double d2 = 0;
-        for (int d = 0; d < 3; d++) {
-            double e = shape_box[6 * k + 3 + d] - shape_box[6 * k + d];
+        for (int d = 0; d < 3; d++) { /* (a shape without patches keeps its sentinels: no extent) */
+            double lo_d = shape_box[6 * k + d], hi_d = shape_box[6 * k + 3 + d];
+            double e = hi_d > lo_d ? hi_d - lo_d : 0; /* not -DBL_MAX - DBL_MAX: FE_OVERFLOW */
             d2 += e > 0 ? e * e : 0;
         }
         shape_size[k] = d2 > 0 ? sqrt(d2) : out->size;

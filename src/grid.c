@@ -181,7 +181,7 @@ static void tables_mode(tables *t, int order)
 static rg2_status tables_make(tables *t, int n, int m, int order, rg2_error *err)
 {
     memset(t, 0, sizeof *t);
-    size_t m8 = ((size_t)m + 7) & ~(size_t)7; /* v columns padded with zeros to whole 8-lane vectors */
+    size_t m8 = ((size_t)m + 7) & ~(size_t)7; /* v columns padded to whole 8-lane vectors */
     size_t per = (size_t)n * 4 + (size_t)n * 8 + m8 * 12;
     t->mem = rg2__calloc(per, sizeof(double));
     if (!t->mem)
@@ -218,6 +218,17 @@ static rg2_status tables_make(tables *t, int n, int m, int order, rg2_error *err
         t->hv[1][b] = 6.0 * v * s1;
         t->hv[2][b] = 3.0 * v * v;
     }
+    /* The padding columns (the AVX-512 kernels' lanes past the last point, computed but never
+     * stored) repeat the last column, v = 1: with zeros there the lanes' weight was 0 and 1 / w
+     * raised FE_DIVBYZERO, then FE_INVALID (0 * inf), which a host with floating-point traps
+     * enabled took as SIGFPE. Now they compute a point of the patch that the grid computes
+     * anyway, so they raise only what that point raises; the stored lanes are unchanged. */
+    for (size_t b = (size_t)m; b < m8; b++)
+        for (int s = 0; s < 4; s++) {
+            t->bv[s][b] = t->bv[s][m - 1];
+            t->hv[s][b] = t->hv[s][m - 1];
+            t->ddv[s][b] = t->ddv[s][m - 1];
+        }
     return RG2_OK;
 }
 
@@ -636,10 +647,17 @@ RG2_AVX512_FN static inline __m512d cross_threshold(const rg2_patch *P)
         mx = _mm512_max_pd(mx, _mm512_abs_pd(x));
         wmin = _mm512_mask_min_pd(wmin, 0x88, wmin, x);
     }
-    double M = _mm512_reduce_max_pd(mx), wm = _mm512_reduce_min_pd(wmin);
-    double S = M * (1.0 + M / wm), bound = 2e6 * (S * S) * (S * S), thr = 1e-30 * bound;
-    if (!(wm > 0) || !(thr >= 1e-280) || !(bound <= 1e300))
-        thr = __builtin_inf();
+    double M = _mm512_reduce_max_pd(mx), wm = _mm512_reduce_min_pd(wmin), thr = __builtin_inf();
+    if (wm > 0) { /* (S below 1e75 first: 2e6 S^4 is then below 1e307 and raises no FE_OVERFLOW; above,
+                   * bound > 1e300 and thr stays +inf) */
+        double S = M * (1.0 + M / wm);
+        if (S < 1e75) {
+            double bound = 2e6 * (S * S) * (S * S);
+            thr = 1e-30 * bound;
+            if (!(thr >= 1e-280) || !(bound <= 1e300))
+                thr = __builtin_inf();
+        }
+    }
     return _mm512_set1_pd(thr);
 }
 
@@ -880,7 +898,7 @@ RG2_AVX512_FN static inline __m512d colsum8(const rg2_patch *P, const __m512d V[
     return _mm512_add_pd(acc, _mm512_mul_pd(_mm512_set1_pd(P->h[r][3][k]), V[3]));
 }
 
-/* Column sums of one block, as vsum (zeros past cnt come from the zero-padded tables). */
+/* Column sums of one block, as vsum (past cnt, the padded tables' repeat of the last column). */
 RG2_AVX512_FN static void vsum_avx512(const rg2_patch *P, double *const bv[4], int b0, int cnt,
                                       double c[4][4][BLK])
 {
@@ -931,7 +949,7 @@ RG2_AVX512_FN static inline void vsumh_narrow(const rg2_patch *P, double *const 
     hdiff_avx(P, dh);
     __m512d V[3];
     for (int q = 0; q < 3; q++)
-        V[q] = _mm512_loadu_pd(hv[q]); /* zero-padded to 8 */
+        V[q] = _mm512_loadu_pd(hv[q]); /* padded to 8 (tables_make) */
     for (int r = 0; r < 4; r++)
         for (int k = 0; k < 4; k++)
             c[r][k] = colsum8h(dh, V, r, k);
@@ -942,7 +960,7 @@ RG2_AVX512_FN static inline void vsum_narrow(const rg2_patch *P, double *const b
 {
     __m512d V[4];
     for (int s = 0; s < 4; s++)
-        V[s] = _mm512_loadu_pd(bv[s]); /* zero-padded to 8 */
+        V[s] = _mm512_loadu_pd(bv[s]); /* padded to 8 (tables_make) */
     for (int r = 0; r < 4; r++)
         for (int k = 0; k < 4; k++)
             c[r][k] = colsum8(P, V, r, k);
@@ -1460,8 +1478,8 @@ RG2_AVX512_FN static inline void csum_k(double c[4][4][BLK], int k, int i, __m51
         d[q][0] = _mm512_sub_pd(v[q + 1][0], v[q][0]);
 }
 
-/* The second-order formulas for all 8-lane vectors covering 0..cnt-1 (vsum pads the column sums
- * with zeros; lanes past cnt are computed but not stored), each requested output interleaved and
+/* The second-order formulas for all 8-lane vectors covering 0..cnt-1 (the lanes past cnt repeat
+ * the last column, tables_make; computed but not stored), each requested output interleaved and
  * stored as soon as it is computed (point index `at` of the outputs). The sums along u are the
  * scaled ones of row_consts (Horner), whose positions and normals are bitwise those of pos8 and
  * pos_cross8; with w = lambda w', hu = mu hu', hv = lambda hv', huv = mu huv', hvv = lambda hvv'

@@ -58,7 +58,10 @@ static void le_u8(le_out *w, unsigned x)
 
 static void le_f32(le_out *w, double x)
 {
-    float v = (float)x;
+    /* beyond FLT_MAX + half an ulp (0x1.ffffffp127) the conversion rounds to +-inf: that inf
+     * without the conversion's FE_OVERFLOW (curvatures of a surface near the float formats'
+     * smallest size, 1e-31, pass 3.4e38) */
+    float v = isgreaterequal(fabs(x), 0x1.ffffffp127) ? (float)copysign(HUGE_VAL, x) : (float)x;
     uint32_t u;
     memcpy(&u, &v, 4);
     le_u32(w, u);

@@ -428,7 +428,7 @@ double rg2_surface_min_weight(const rg2_surface *s)
     for (size_t k = 0; k < np; k++)
         for (int r = 0; r < 4; r++)
             for (int t = 0; t < 4; t++)
-                if (s->patch[k].h[r][t][3] < mn)
+                if (isless(s->patch[k].h[r][t][3], mn)) /* quiet: a degree-elevated patch's are NaN */
                     mn = s->patch[k].h[r][t][3];
     if (s->xp)
         for (size_t k = 0; k < np; k++)
