@@ -39,13 +39,24 @@
  *   - Thread safety: the library keeps no global state that calls modify (the worker pool of
  *     the grid evaluator and the tessellation is internal and serialises its own use); reading
  *     one object from several threads at once is safe, writing it is not.
- *   - Floating point: call rg2 in the C default environment, round to nearest with exceptions
- *     not trapping. The numerics rely on IEEE non-stop arithmetic (an infinity or NaN that is
- *     tested and discarded, vector lanes past the last point): a host that enables traps
- *     (feenableexcept) gets SIGFPE; it must hold them around rg2 calls (feholdexcept before,
- *     fesetenv after). Under another rounding mode the results stay accurate, but the grid's
- *     promise of the same bits for any thread count holds only for round to nearest (worker
- *     threads keep the environment they were created in).
+ *   - Floating point: call rg2 in the C default environment, round to nearest. Traps: on valid
+ *     input (designs, meshes and NURBS the library accepts, within the numeric range of
+ *     docs/robustness.md, and the surfaces it builds from them) these calls raise none of
+ *     FE_INVALID, FE_DIVBYZERO, FE_OVERFLOW, so a host may keep those trapping (feenableexcept)
+ *     around them: building (rg2_design_load / _parse, rg2_surface_build / _rebuild,
+ *     rg2_cap_build, rg2_nurbs_mesh / _parse), evaluating (rg2_surface_grid, rg2_patch_grid,
+ *     rg2_surface_eval, rg2_patch_eval, rg2_patch_point, rg2_patch_point_normal), rg2_tessellate,
+ *     rg2_export_file(s) in every format, rg2_check and rg2_check_format, rg2_render
+ *     (tests/test_fptraps.c: every bundled design, 1 and 2 threads, every grid kernel). Not
+ *     promised: other calls; invalid input (NaN, infinities, weights <= 0, numbers out of range:
+ *     the checks that refuse them and the evaluators may raise them on the way); degenerate
+ *     patches (tangents parallel to within rounding, where the curvature divides by an
+ *     E G - F^2 that rounds to 0); FE_UNDERFLOW and FE_INEXACT, which occur anywhere. Otherwise
+ *     hold the traps around rg2 calls (feholdexcept before, fesetenv after). Worker threads (the
+ *     grid's pool, OpenMP's) keep the environment they were created in: enable the traps before
+ *     the first rg2 call (or in each OpenMP thread) for them to trap too. Under another rounding
+ *     mode the results stay accurate, but the grid's promise of the same bits for any thread
+ *     count holds only for round to nearest.
  *   - fork: the grid's worker pool is rebuilt in a child, but libgomp's is not: in a child of a
  *     process that has used rg2 (building more than 256 patches, writing STEP, IGES, OBJ or
  *     JSON, rendering, checking), an rg2 call that runs OpenMP threads waits forever (a libgomp
