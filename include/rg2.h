@@ -47,8 +47,9 @@
  *     rg2_cap_build, rg2_nurbs_mesh / _parse), evaluating (rg2_surface_grid, rg2_patch_grid,
  *     rg2_surface_eval, rg2_patch_eval, rg2_patch_point, rg2_patch_point_normal), rg2_tessellate,
  *     rg2_export_file(s) in every format, rg2_check and rg2_check_format, rg2_render
- *     (tests/test_fptraps.c: every bundled design, 1 and 2 threads, every grid kernel). Not
- *     promised: other calls; invalid input (NaN, infinities, weights <= 0, numbers out of range:
+ *     (tests/test_fptraps.c: every bundled design, 1 and 2 threads, every grid kernel; GCC and
+ *     clang builds, docs/robustness.md). Not promised: other calls; builds with -ffast-math or
+ *     -fno-trapping-math; invalid input (NaN, infinities, weights <= 0, numbers out of range:
  *     the checks that refuse them and the evaluators may raise them on the way); degenerate
  *     patches (tangents parallel to within rounding, where the curvature divides by an
  *     E G - F^2 that rounds to 0); FE_UNDERFLOW and FE_INEXACT, which occur anywhere. Otherwise

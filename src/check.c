@@ -799,8 +799,8 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
                  labels && labels[k] ? labels[k] : (name ? name : "shape"));
         snprintf(out->shapes[k].where, sizeof out->shapes[k].where, "-");
         for (int d = 0; d < 3; d++) {
-            shape_box[6 * k + d] = DBL_MAX;
-            shape_box[6 * k + 3 + d] = -DBL_MAX;
+            shape_box[6 * k + d] = INFINITY; /* (not DBL_MAX: -DBL_MAX - DBL_MAX overflows) */
+            shape_box[6 * k + 3 + d] = -INFINITY;
         }
     }
     /* the size of each shape: box of its tagged patches' control points */
@@ -831,9 +831,8 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
                                : 1.0;
     for (int k = 0; k < n_shapes; k++) {
         double d2 = 0;
-        for (int d = 0; d < 3; d++) { /* (a shape without patches keeps its sentinels: no extent) */
-            double lo_d = shape_box[6 * k + d], hi_d = shape_box[6 * k + 3 + d];
-            double e = hi_d > lo_d ? hi_d - lo_d : 0; /* not -DBL_MAX - DBL_MAX: FE_OVERFLOW */
+        for (int d = 0; d < 3; d++) { /* a shape without patches: -inf - inf = -inf, exactly */
+            double e = shape_box[6 * k + 3 + d] - shape_box[6 * k + d];
             d2 += e > 0 ? e * e : 0;
         }
         shape_size[k] = d2 > 0 ? sqrt(d2) : out->size;

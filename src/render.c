@@ -716,13 +716,16 @@ static void mask_segment(float *mask, int W, int H, double x0, double y0, double
     if (ix1 > W - 1) ix1 = W - 1;
     if (iy1 > H - 1) iy1 = H - 1;
     double len = sqrt(len2);
+    /* |dy| where the band is used, > 0 everywhere: clang computes wx and dx / dy before their
+     * test, and 0 / 0 of a point's segment raised FE_INVALID */
+    double ady = fmax(fabs(dy), 1e-9);
     for (int y = iy0; y <= iy1; y++) {
         /* restrict x to the segment's band on this row */
         int xa = ix0, xb = ix1;
         if (fabs(dy) > 1e-9 && len > 0) {
             double t0 = (y + 0.5 - y0) / dy;
-            double xm = x0 + t0 * dx, wx = (hw + 1.5) * len / fabs(dy);
-            if (fabs(dx / dy) < 1e6) {
+            double xm = x0 + t0 * dx, wx = (hw + 1.5) * len / ady;
+            if (fabs(dx) / ady < 1e6) {
                 xa = (int)fmax(xa, floor(xm - wx));
                 xb = (int)fmin(xb, ceil(xm + wx));
             }

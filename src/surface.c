@@ -425,11 +425,14 @@ double rg2_surface_min_weight(const rg2_surface *s)
 {
     double mn = INFINITY;
     size_t np = (size_t)s->nu * (size_t)s->nv;
-    for (size_t k = 0; k < np; k++)
+    for (size_t k = 0; k < np; k++) {
+        if (s->xp && s->xp[k].du > 0)
+            continue; /* its bi-3 slots are NaN (and a NaN comparison raises FE_INVALID) */
         for (int r = 0; r < 4; r++)
             for (int t = 0; t < 4; t++)
-                if (isless(s->patch[k].h[r][t][3], mn)) /* quiet: a degree-elevated patch's are NaN */
+                if (s->patch[k].h[r][t][3] < mn)
                     mn = s->patch[k].h[r][t][3];
+    }
     if (s->xp)
         for (size_t k = 0; k < np; k++)
             for (int r = 0; r <= s->xp[k].du; r++)
