@@ -28,6 +28,8 @@ out=$("$tmp/build/rg2" --version) || { echo "FAIL: rg2 --version on the shared l
 [ "$out" = "rg2 $major.$minor.$patch" ] || { echo "FAIL: rg2 --version says '$out'"; exit 1; }
 cmake --install "$tmp/build" --prefix "$tmp/prefix" >>"$tmp/log" 2>&1 || { tail "$tmp/log"; echo "FAIL: cmake --install"; exit 1; }
 [ -L "$tmp/prefix/lib/$soname" ] && [ -L "$tmp/prefix/lib/librg2.so" ] || { ls -l "$tmp/prefix/lib"; echo "FAIL: the installed $soname / librg2.so links"; exit 1; }
+out=$(env -u LD_LIBRARY_PATH "$tmp/prefix/bin/rg2" --version 2>&1) && [ "$out" = "rg2 $major.$minor.$patch" ] ||
+    { echo "FAIL: the installed rg2 does not run on the installed library: $out"; exit 1; }
 export PKG_CONFIG_PATH=$tmp/prefix/lib/pkgconfig
 [ "$(pkg-config --modversion rg2)" = "$major.$minor.$patch" ] || { echo "FAIL: rg2.pc says $(pkg-config --modversion rg2)"; exit 1; }
 # shellcheck disable=SC2046
