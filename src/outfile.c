@@ -8,7 +8,7 @@
  * the same path (threads or processes) each get a file of their own, so the path ends up with
  * one writer's whole file, never a mix. The process id keeps processes apart; within one
  * process a name in use gets a counter ("<path>.<pid>.1.tmp", ...). A file name near the
- * 255-byte limit has its temporary name cut to fit. */
+ * 255-byte limit has its temporary name cut to fit, with a hash of the whole name. */
 #define _POSIX_C_SOURCE 200809L /* O_NOFOLLOW, O_CLOEXEC */
 #include "internal.h"
 
@@ -35,12 +35,20 @@ static int temp_name(const char *path, int k, char *buf, size_t cap)
     size_t dir = slash ? (size_t)(slash + 1 - path) : 0, base = strlen(path + dir);
     if (ns < 0 || dir + base > INT_MAX)
         return -1;
+    char tag[16] = "";
     if (base <= OUT_NAME_MAX && base + (size_t)ns > OUT_NAME_MAX) {
-        base = OUT_NAME_MAX - (size_t)ns;
+        /* the cut name carries a hash of the whole one: names that differ only past the cut
+         * (x...x.step and x...x.igs) get different temporary names, each of which
+         * rg2_temp_name predicts (the rg2 command removes them on a signal) */
+        uint32_t h = 2166136261u; /* FNV-1a */
+        for (size_t i = 0; i < base; i++)
+            h = (h ^ (unsigned char)path[dir + i]) * 16777619u;
+        int nt = snprintf(tag, sizeof tag, ".%08x", (unsigned)h);
+        base = OUT_NAME_MAX - (size_t)ns - (size_t)nt;
         while (base > 0 && ((unsigned char)path[dir + base] & 0xC0) == 0x80) /* a continuation byte */
             base--;
     }
-    int n = snprintf(buf, cap, "%.*s%s", (int)(dir + base), path, suffix);
+    int n = snprintf(buf, cap, "%.*s%s%s", (int)(dir + base), path, tag, suffix);
     return n >= 0 && (size_t)n < cap ? 0 : -1;
 }
 

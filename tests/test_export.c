@@ -1379,22 +1379,38 @@ static void temp_files(const rg2_surface *s)
     remove(shared);
     rg2_surface_free(&other);
     /* file names up to the 255-byte limit: the temporary name is cut to fit, at a character
-     * boundary (it was "File name too long" within 12 bytes of the limit) */
-    for (int utf8 = 0; utf8 < 2; utf8++) {
+     * boundary (it was "File name too long" within 12 bytes of the limit), and carries a hash of
+     * the whole name (".%08x" before the suffix). utf8 1 and 2 shift the two-byte characters by
+     * one byte, so one of them has a character at the cut whatever the pid's length. */
+    char first[700] = "";
+    for (int utf8 = 0; utf8 < 3; utf8++) {
         char base[256] = "", lng[600], tname[700], suffix[48];
+        if (utf8 == 2)
+            strcat(base, "a");
         if (utf8)
             for (int c = 0; c < 125; c++)
                 strcat(base, "\xc3\xa9"); /* U+00E9, two bytes */
         else
             memset(base, 'x', 251);
-        strcat(base, ".obj"); /* 254 and 255 bytes */
+        strcat(base, ".obj"); /* 255, 254 and 255 bytes */
         snprintf(lng, sizeof lng, "%s/%s", g_dir, base);
         snprintf(suffix, sizeof suffix, ".%ld.tmp", (long)getpid());
         CHECK(rg2_temp_name(lng, tname, sizeof tname) == 0, "rg2_temp_name of a %zu-byte name", strlen(base));
         const char *tb = tname + strlen(g_dir) + 1;
-        size_t kept = strlen(tb) - strlen(suffix);
-        CHECK(strlen(tb) <= 255 && !strncmp(tb, base, kept) && !strcmp(tb + kept, suffix) && (!utf8 || kept % 2 == 0),
+        size_t kept = strlen(tb) - strlen(suffix) - 9;
+        CHECK(strlen(tb) <= 255 && strlen(tb) >= strlen(suffix) + 9 && !strncmp(tb, base, kept) &&
+                  tb[kept] == '.' && strspn(tb + kept + 1, "0123456789abcdef") == 8 &&
+                  !strcmp(tb + kept + 9, suffix) && (!utf8 || (kept - (utf8 == 2)) % 2 == 0),
               "temporary name of a %zu-byte name: '%s' (%zu bytes)", strlen(base), tb, strlen(tb));
+        if (utf8 == 0) {
+            snprintf(first, sizeof first, "%s", tname);
+            /* a name that differs only past the cut gets another temporary name (the rg2 command
+             * predicts each output's to remove it on a signal; they were the same) */
+            char alt[600], oname[700];
+            snprintf(alt, sizeof alt, "%s/%.251s.stl", g_dir, base);
+            CHECK(rg2_temp_name(alt, oname, sizeof oname) == 0 && strcmp(oname, first) != 0,
+                  "x...x.obj and x...x.stl: the same temporary name '%s'", oname);
+        }
         rg2_export_opts o;
         rg2_export_opts_default(&o);
         o.density = 2;
