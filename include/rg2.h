@@ -99,7 +99,12 @@ extern "C" {
 #define RG2_VERSION_MAJOR 0
 #define RG2_VERSION_MINOR 1
 #define RG2_VERSION_PATCH 0
-#define RG2_VERSION_STRING "0.1.0"
+#define RG2_VERSION_STR_(x) #x
+#define RG2_VERSION_STR(x) RG2_VERSION_STR_(x)
+/** "MAJOR.MINOR.PATCH", made from the three numbers above (the only place the version is
+ *  written: CMake reads them too). */
+#define RG2_VERSION_STRING                                                                         \
+    RG2_VERSION_STR(RG2_VERSION_MAJOR) "." RG2_VERSION_STR(RG2_VERSION_MINOR) "." RG2_VERSION_STR(RG2_VERSION_PATCH)
 /** RG2_VERSION_MAJOR * 10000 + MINOR * 100 + PATCH, for #if tests. */
 #define RG2_VERSION_NUMBER (RG2_VERSION_MAJOR * 10000 + RG2_VERSION_MINOR * 100 + RG2_VERSION_PATCH)
 #define RG2_PI 3.14159265358979323846

@@ -9,6 +9,9 @@ set -u
 src=${1:?source dir}
 tmp=$(mktemp -d) || exit 1
 trap 'rm -rf "$tmp"' EXIT
+for tool in readelf nm pkg-config; do
+    command -v "$tool" >/dev/null 2>&1 || { echo "FAIL: $tool is needed (binutils, pkg-config)"; exit 1; }
+done
 ver() { sed -n "s/^#define RG2_VERSION_$1 \([0-9][0-9]*\)$/\1/p" "$src/include/rg2.h"; }
 major=$(ver MAJOR) minor=$(ver MINOR) patch=$(ver PATCH)
 [ -n "$major" ] && [ -n "$minor" ] && [ -n "$patch" ] || { echo "FAIL: no RG2_VERSION_MAJOR/MINOR/PATCH in rg2.h"; exit 1; }
