@@ -938,8 +938,10 @@ RG2_API rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const 
  *  the paths is touched: files already there stay as they were. *failed (if not NULL) is the
  *  index of the path that failed, -1 on success. A rename failing after others succeeded (in
  *  practice only when a path's directory changes under the call) leaves the earlier ones renamed.
- *  The OBJ, STL and glTF outputs of one call share one tessellation (the same bytes as each
- *  written alone).
+ *  The mesh outputs (OBJ, STL, PLY, glTF) of one call share one tessellation, with curvatures
+ *  when a PLY is among them (the same bytes as each written alone: the positions, normals and
+ *  triangles do not depend on the curvatures being asked for), freed once the last mesh output
+ *  is written, so outputs named after it (STEP, IGES) are written without it in memory.
  *  @return the statuses of rg2_export_file; RG2_EINVAL also for n_paths < 1 and for a path given
  *  twice. */
 RG2_API rg2_status rg2_export_files(const rg2_surface *surfs, int n_surfs, const char *const *paths,

@@ -10,6 +10,7 @@
 #include <errno.h>
 #include <float.h>
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -655,9 +656,18 @@ void rg2__tess_all_free(rg2_tess *t, int n)
     free(t);
 }
 
+/* rg2__tess_all calls so far (rg2__tess_all_calls, a test hook). */
+static atomic_ulong tess_all_calls;
+
+unsigned long rg2__tess_all_calls(void)
+{
+    return atomic_load(&tess_all_calls);
+}
+
 rg2_status rg2__tess_all(const rg2_surface *surfs, int n_surfs, int density, int curvature,
                          rg2_tess **out, rg2_error *err)
 {
+    atomic_fetch_add(&tess_all_calls, 1);
     /* all surfaces together stay within the per-surface vertex limit of rg2_tessellate */
     double total = 0.0;
     for (int k = 0; k < n_surfs; k++)
@@ -681,6 +691,12 @@ rg2_status rg2__tess_all(const rg2_surface *surfs, int n_surfs, int density, int
 }
 
 enum { F_STEP, F_IGES, F_BV, F_BEZ, F_OBJ, F_STL, F_PLY, F_GLB, F_JSON };
+
+/* The formats written from a tessellation. */
+static int mesh_format(int fmt)
+{
+    return fmt == F_OBJ || fmt == F_STL || fmt == F_PLY || fmt == F_GLB;
+}
 
 /* The export format of a path by its extension (case-insensitive). */
 static rg2_status export_format(const char *path, int *fmt, rg2_error *err)
@@ -764,11 +780,14 @@ static rg2_status check_float_range(const rg2_tess *t, int n, const char *path, 
 }
 
 /* Write path's temporary file in path's format; on success the complete file waits there in *out for
- * rg2__out_commit, on failure nothing is left. keep: NULL, or where the OBJ, STL and glTF outputs
- * of one rg2_export_files call keep the tessellation they share (without curvature: PLY, which has
- * it, makes its own); the caller frees it. */
+ * rg2__out_commit, on failure nothing is left. keep: NULL, or where the mesh outputs (OBJ, STL, PLY,
+ * glTF) of one rg2_export_files call keep the tessellation they share, made by the first of them
+ * (with curvatures when keep_curvature: a PLY among them; the positions, normals and triangles are
+ * the same bits with or without, as rg2_grid_out promises and tests/test_grid.c checks); the
+ * caller frees it. */
 static rg2_status export_staged(const rg2_surface *surfs, int n_surfs, const char *path,
-                                const rg2_export_opts *opts, rg2__out *out, rg2_tess **keep, rg2_error *err)
+                                const rg2_export_opts *opts, rg2__out *out, rg2_tess **keep, int keep_curvature,
+                                rg2_error *err)
 {
     memset(out, 0, sizeof *out);
     rg2_export_opts def;
@@ -806,14 +825,14 @@ static rg2_status export_staged(const rg2_surface *surfs, int n_surfs, const cha
     if (st)
         return st;
     rg2_tess *tess = NULL, *own = NULL; /* own: the tessellation this call frees */
-    if (fmt == F_OBJ || fmt == F_STL || fmt == F_PLY || fmt == F_GLB) {
-        if (fmt != F_PLY && keep && *keep)
+    if (mesh_format(fmt)) {
+        if (keep && *keep)
             tess = *keep;
         else {
-            st = rg2__tess_all(surfs, n_surfs, opts->density, fmt == F_PLY, &tess, err);
+            st = rg2__tess_all(surfs, n_surfs, opts->density, keep ? keep_curvature : fmt == F_PLY, &tess, err);
             if (st)
                 return st;
-            if (fmt != F_PLY && keep)
+            if (keep)
                 *keep = tess;
             else
                 own = tess;
@@ -865,7 +884,7 @@ rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *pa
                            const rg2_export_opts *opts, rg2_error *err)
 {
     rg2__out out;
-    rg2_status st = export_staged(surfs, n_surfs, path, opts, &out, NULL, err);
+    rg2_status st = export_staged(surfs, n_surfs, path, opts, &out, NULL, 0, err);
     if (st == RG2_OK)
         st = rg2__out_commit(&out, err);
     if (st == RG2_OK)
@@ -880,6 +899,7 @@ rg2_status rg2_export_files(const rg2_surface *surfs, int n_surfs, const char *c
         *failed = -1;
     if (n_paths < 1 || !paths)
         return rg2__fail(err, RG2_EINVAL, "export: no output paths (%d)", n_paths);
+    int last_mesh = -1, curvature = 0; /* the last mesh output; a PLY among them */
     for (int k = 0; k < n_paths; k++) { /* a mistyped extension fails before anything is written */
         int fmt;
         rg2_status st = export_format(paths[k], &fmt, err);
@@ -888,6 +908,9 @@ rg2_status rg2_export_files(const rg2_surface *surfs, int n_surfs, const char *c
                 *failed = k;
             return st;
         }
+        if (mesh_format(fmt))
+            last_mesh = k;
+        curvature |= fmt == F_PLY;
         for (int j = 0; j < k; j++)
             if (!strcmp(paths[j], paths[k])) { /* the second file would replace the first */
                 if (failed)
@@ -899,14 +922,18 @@ rg2_status rg2_export_files(const rg2_surface *surfs, int n_surfs, const char *c
     if (!outs)
         return rg2__fail(err, RG2_ENOMEM, "export: out of memory");
     rg2_status st = RG2_OK;
-    rg2_tess *shared = NULL; /* one tessellation for every OBJ, STL and glTF output */
+    rg2_tess *shared = NULL; /* one tessellation for every mesh output, freed after the last */
     int staged = 0;
     for (; staged < n_paths; staged++) {
-        st = export_staged(surfs, n_surfs, paths[staged], opts, &outs[staged], &shared, err);
+        st = export_staged(surfs, n_surfs, paths[staged], opts, &outs[staged], &shared, curvature, err);
         if (st)
             break;
+        if (staged == last_mesh) { /* the outputs after it (STEP, IGES, ...) are written without it */
+            rg2__tess_all_free(shared, n_surfs);
+            shared = NULL;
+        }
     }
-    rg2__tess_all_free(shared, n_surfs);
+    rg2__tess_all_free(shared, n_surfs); /* (a failure before the last mesh output) */
     if (st) { /* all or nothing: no path is touched, so files there before stay as they were */
         if (failed)
             *failed = staged;

@@ -115,6 +115,8 @@ double (*rg2__merged_net(const rg2_surface *s, int *NU, int *NV, int *du, int *d
 rg2_status rg2__tess_all(const rg2_surface *surfs, int n_surfs, int density, int curvature,
                          rg2_tess **out, rg2_error *err);
 void rg2__tess_all_free(rg2_tess *t, int n);
+/* Test hook: how many times rg2__tess_all has run in this process. */
+unsigned long rg2__tess_all_calls(void);
 
 /* Writers, called by rg2_export_file after the common checks. */
 rg2_status rg2__write_step(const rg2_surface *surfs, int n, const rg2_export_opts *o, rg2__out *out,

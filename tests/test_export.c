@@ -21,13 +21,21 @@
 
 static char g_dir[64];
 
+/* name in the test directory, written into buf (a path that must outlive path_in's buffers) */
+static char *path_at(char buf[256], const char *name)
+{
+    snprintf(buf, 256, "%s/%s", g_dir, name);
+    return buf;
+}
+
+/* name in the test directory, in one of eight buffers used in turn: a ninth call overwrites the
+ * first one's path */
 static char *path_in(const char *name)
 {
     static char buf[8][256];
     static int k;
     k = (k + 1) % 8;
-    snprintf(buf[k], sizeof buf[k], "%s/%s", g_dir, name);
-    return buf[k];
+    return path_at(buf[k], name);
 }
 
 static unsigned char *slurp(const char *path, size_t *len)
@@ -1116,35 +1124,67 @@ static void failures(const rg2_surface *s)
     CHECK(!exists(path_in(negtmp)) && !exists(path_in("neg.step")), "neg.step or its temporary file left behind");
 }
 
+/* rg2_export_files of surfs[0..n) at density to the four mesh formats, STEP and IGES in one call:
+ * every file holds the bytes rg2_export_file writes (STEP/IGES: but the stamp), and the mesh
+ * files come from one tessellation, made with the curvatures that PLY writes (the positions,
+ * normals and triangles that OBJ, STL and glTF write are the same bits with or without them);
+ * IGES, named after the last mesh file, is written after the tessellation is freed. */
+static void several_same_bytes(const rg2_surface *surfs, int n, int density)
+{
+    rg2_error err;
+    rg2_export_opts o;
+    rg2_export_opts_default(&o);
+    o.density = density;
+    int failed = 7;
+    static const char *names[] = {"m1.obj", "m1.step", "m1.stl", "m1.ply", "m1.glb", "m1.igs"};
+    enum { n_ok = sizeof names / sizeof *names };
+    char buf[n_ok][256], one[256];
+    const char *paths[n_ok];
+    for (int k = 0; k < n_ok; k++)
+        paths[k] = path_at(buf[k], names[k]);
+    unsigned long calls = rg2__tess_all_calls();
+    CHECK_OK(rg2_export_files(surfs, n, paths, n_ok, &o, &failed, &err), &err);
+    calls = rg2__tess_all_calls() - calls;
+    CHECK(failed == -1, "success gave failed = %d", failed);
+    CHECK(calls == 1, "%d surface(s) at density %d: %lu tessellations for the four mesh files, want one", n, density,
+          calls);
+    for (int k = 0; k < n_ok; k++) { /* the same bytes as one file at a time (STEP/IGES: but the stamp) */
+        char name[16];
+        snprintf(name, sizeof name, "m2%s", strrchr(names[k], '.')); /* a name of the same length */
+        CHECK_OK(rg2_export_file(surfs, n, path_at(one, name), &o, &err), &err);
+        size_t la, lb;
+        unsigned char *a = slurp(paths[k], &la), *b = slurp(one, &lb);
+        CHECK(a && b && la == lb, "%s: %zu bytes, one at a time %zu", paths[k], la, lb);
+        if (!strstr(paths[k], ".step") && !strstr(paths[k], ".igs"))
+            CHECK(a && b && la == lb && !memcmp(a, b, la), "%d surface(s) at density %d: %s differs from the file written alone",
+                  n, density, paths[k]);
+        free(a);
+        free(b);
+        remove(one);
+    }
+    for (int k = 0; k < n_ok; k++)
+        remove(paths[k]);
+}
+
 /* Several files as one (rg2_export_files): on success every path holds what rg2_export_file
- * writes; when any output fails (a negative weight for STEP, an unwritable directory, an unknown
- * extension), no path is touched: files that were there keep their bytes, none is added and no
- * .tmp is left. */
+ * writes (the torus; a surface with poles, whose collapsed sides the tessellation merges, next
+ * to it; at two densities); when any output fails (a negative weight for STEP, an unwritable
+ * directory, an unknown extension), no path is touched: files that were there keep their bytes,
+ * none is added and no .tmp is left. */
 static void several_files(const rg2_surface *s)
 {
     rg2_error err;
     int failed = 7;
-    /* (the OBJ, STL and glTF files share one tessellation; PLY, with curvature, has its own) */
-    const char *ok_paths[] = {path_in("m1.obj"), path_in("m1.step"), path_in("m1.igs"),
-                              path_in("m1.stl"), path_in("m1.ply"),  path_in("m1.glb")};
-    const int n_ok = (int)(sizeof ok_paths / sizeof *ok_paths);
-    CHECK_OK(rg2_export_files(s, 1, ok_paths, n_ok, NULL, &failed, &err), &err);
-    CHECK(failed == -1, "success gave failed = %d", failed);
-    for (int k = 0; k < n_ok; k++) { /* the same bytes as one file at a time (STEP/IGES: but the stamp) */
-        char one[16];
-        snprintf(one, sizeof one, "m2%s", strrchr(ok_paths[k], '.')); /* a name of the same length */
-        CHECK_OK(rg2_export_file(s, 1, path_in(one), NULL, &err), &err);
-        size_t la, lb;
-        unsigned char *a = slurp(ok_paths[k], &la), *b = slurp(path_in(one), &lb);
-        CHECK(a && b && la == lb, "%s: %zu bytes, one at a time %zu", ok_paths[k], la, lb);
-        if (k != 1 && k != 2)
-            CHECK(a && b && la == lb && !memcmp(a, b, la), "%s differs from the file written alone", ok_paths[k]);
-        free(a);
-        free(b);
-        remove(path_in(one));
-    }
+    rg2_surface two[2];
+    two[0] = *s; /* (a shallow copy: read only) */
+    CHECK_OK(fx_pole(6, 7, &two[1], &err), &err);
+    several_same_bytes(s, 1, 16);
+    several_same_bytes(two, 2, 16);
+    several_same_bytes(two, 2, 3);
+    rg2_surface_free(&two[1]);
     /* an old file, then a failing set: it keeps its bytes */
-    FILE *f = fopen(path_in("old.obj"), "w");
+    char oldp[256], nb[3][2][256];
+    FILE *f = fopen(path_at(oldp, "old.obj"), "w");
     CHECK(f && fputs("old\n", f) >= 0 && fclose(f) == 0, "cannot write old.obj");
     rg2_surface bad;
     CHECK_OK(rg2_surface_copy(s, &bad, &err), &err);
@@ -1152,25 +1192,23 @@ static void several_files(const rg2_surface *s)
     for (int k = 0; k < 4; k++)
         h[k] *= -0.5; /* the same point, a negative weight: fine for meshes, refused by STEP */
     int before = count_files();
-    const char *sets[3][3] = {{path_in("old.obj"), path_in("new.stl"), path_in("new.step")},
-                              {path_in("old.obj"), path_in("new.glb"), "/nonexistent-rg2-dir/x.igs"},
-                              {path_in("old.obj"), path_in("new.ply"), path_in("new.xyz")}};
+    const char *sets[3][3] = {{oldp, path_at(nb[0][0], "new.stl"), path_at(nb[0][1], "new.step")},
+                              {oldp, path_at(nb[1][0], "new.glb"), "/nonexistent-rg2-dir/x.igs"},
+                              {oldp, path_at(nb[2][0], "new.ply"), path_at(nb[2][1], "new.xyz")}};
     const rg2_status want[3] = {RG2_EWEIGHT, RG2_EIO, RG2_EINVAL};
     for (int k = 0; k < 3; k++) {
         rg2_status st = rg2_export_files(k == 1 ? s : &bad, 1, sets[k], 3, NULL, &failed, &err);
         size_t n;
-        unsigned char *old = slurp(path_in("old.obj"), &n);
+        unsigned char *old = slurp(oldp, &n);
         CHECK(st == want[k] && failed == 2 && strstr(err.msg, strrchr(sets[k][2], '/') + 1), "set %d: %s (failed %d) '%s'",
               k, rg2_status_str(st), failed, err.msg);
         CHECK(old && n == 4 && !memcmp(old, "old\n", 4), "set %d: a failed set changed old.obj (%zu bytes)", k, n);
         CHECK(count_files() == before, "set %d: %d files before, %d after", k, before, count_files());
         free(old);
     }
-    CHECK(rg2_export_files(s, 1, ok_paths, 0, NULL, &failed, &err) == RG2_EINVAL, "no paths: %s", err.msg);
+    CHECK(rg2_export_files(s, 1, sets[0], 0, NULL, &failed, &err) == RG2_EINVAL, "no paths: %s", err.msg);
     rg2_surface_free(&bad);
-    for (int k = 0; k < n_ok; k++)
-        remove(ok_paths[k]);
-    remove(path_in("old.obj"));
+    remove(oldp);
 }
 
 /* STL, PLY and glTF store floats: a torus of size 4e45 (inside the supported 1e60) was written
