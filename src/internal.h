@@ -182,6 +182,9 @@ extern int rg2__grid_pages; /* test hook: -1 by CPU, 0/1 streamed outputs touch 
 extern int rg2__surface_portable; /* test hook: 1 builds surfaces on the portable path (surface.c) */
 /* Test hook: whether the grid's tables cache (grid.c) holds the tables of n x m points. */
 int rg2__grid_tables_cached(int n, int m);
+/* Test hook (outfile.c): the longest file name in directory dir, -1 for none known; pathconf's
+ * _PC_NAME_MAX unless a test sets another. */
+extern long (*rg2__dir_name_max)(const char *dir);
 /* Test hook (iges.c): the largest sequence number of an IGES section, 9,999,999 (7 columns). */
 extern int rg2__iges_max_records;
 

@@ -7,8 +7,9 @@
  * a symlink planted at the name cannot redirect the write to another file, and two writers of
  * the same path (threads or processes) each get a file of their own, so the path ends up with
  * one writer's whole file, never a mix. The process id keeps processes apart; within one
- * process a name in use gets a counter ("<path>.<pid>.1.tmp", ...). A file name near the
- * 255-byte limit has its temporary name cut to fit, with a hash of the whole name. */
+ * process a name in use gets a counter ("<path>.<pid>.1.tmp", ...). A file name near its
+ * directory's file-name limit (255 bytes on most file systems, 143 on eCryptfs) has its
+ * temporary name cut to fit, with a hash of the whole name. */
 #define _POSIX_C_SOURCE 200809L /* O_NOFOLLOW, O_CLOEXEC */
 #include "internal.h"
 
@@ -21,12 +22,45 @@
 #include <unistd.h>
 
 #define OUT_TRIES 1000   /* names tried within one process before giving up */
-#define OUT_NAME_MAX 255 /* the longest file name (NAME_MAX of Linux's file systems) */
+#define OUT_NAME_MAX 255 /* the longest file name where the directory does not say (NAME_MAX of Linux) */
+#define OUT_TAG_LEN 9    /* ".%08x", the hash of a cut name */
+
+static long dir_name_max(const char *dir)
+{
+    return pathconf(dir, _PC_NAME_MAX);
+}
+
+/* Test hook: the longest file name in directory dir, or -1 for none known (pathconf). */
+long (*rg2__dir_name_max)(const char *dir) = dir_name_max;
+
+/* The longest file name in path's directory (the file systems' 255 bytes, eCryptfs' 143, ...):
+ * the directory's own answer, OUT_NAME_MAX when it has none. */
+static size_t name_max(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    long m;
+    if (!slash)
+        m = rg2__dir_name_max(".");
+    else if (slash == path)
+        m = rg2__dir_name_max("/");
+    else {
+        size_t n = (size_t)(slash - path);
+        char *dir = malloc(n + 1);
+        if (!dir)
+            return OUT_NAME_MAX;
+        memcpy(dir, path, n);
+        dir[n] = '\0';
+        m = rg2__dir_name_max(dir);
+        free(dir);
+    }
+    return m > 0 ? (size_t)m : OUT_NAME_MAX;
+}
 
 /* The k-th temporary name of path (k = 0: "<path>.<pid>.tmp", else "<path>.<pid>.<k>.tmp"). A last
- * component within the suffix's length of the file-name limit is cut, at a UTF-8 character
- * boundary, so that the temporary name fits too: any name path itself may have can be written. */
-static int temp_name(const char *path, int k, char *buf, size_t cap)
+ * component within the suffix's length of the file-name limit lim is cut, at a UTF-8 character
+ * boundary, so that the temporary name fits too: any name path itself may have can be written
+ * (unless the limit leaves no room for the suffix and the hash). */
+static int temp_name(const char *path, int k, size_t lim, char *buf, size_t cap)
 {
     char suffix[48];
     long pid = (long)getpid();
@@ -36,7 +70,7 @@ static int temp_name(const char *path, int k, char *buf, size_t cap)
     if (ns < 0 || dir + base > INT_MAX)
         return -1;
     char tag[16] = "";
-    if (base <= OUT_NAME_MAX && base + (size_t)ns > OUT_NAME_MAX) {
+    if (base <= lim && base + (size_t)ns > lim && lim > (size_t)ns + OUT_TAG_LEN) {
         /* the cut name carries a hash of the whole one: names that differ only past the cut
          * (x...x.step and x...x.igs) get different temporary names, each of which
          * rg2_temp_name predicts (the rg2 command removes them on a signal) */
@@ -44,7 +78,7 @@ static int temp_name(const char *path, int k, char *buf, size_t cap)
         for (size_t i = 0; i < base; i++)
             h = (h ^ (unsigned char)path[dir + i]) * 16777619u;
         int nt = snprintf(tag, sizeof tag, ".%08x", (unsigned)h);
-        base = OUT_NAME_MAX - (size_t)ns - (size_t)nt;
+        base = lim - (size_t)ns - (size_t)nt;
         while (base > 0 && ((unsigned char)path[dir + base] & 0xC0) == 0x80) /* a continuation byte */
             base--;
     }
@@ -55,8 +89,9 @@ static int temp_name(const char *path, int k, char *buf, size_t cap)
 int rg2_temp_name(const char *path, char *buf, size_t cap)
 {
     struct stat sb;
+    size_t lim = path && buf ? name_max(path) : 0;
     for (int k = 0; path && buf && k < OUT_TRIES; k++) {
-        if (temp_name(path, k, buf, cap))
+        if (temp_name(path, k, lim, buf, cap))
             return -1;
         if (lstat(buf, &sb) != 0) /* free: the name rg2__out_open takes next */
             return errno == ENOENT ? 0 : -1;
@@ -73,8 +108,9 @@ rg2_status rg2__out_open(rg2__out *o, const char *path, rg2_error *err)
         return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", path);
     o->path = path;
     int fd = -1;
+    size_t lim = name_max(path);
     for (int k = 0; k < OUT_TRIES && fd < 0; k++) {
-        temp_name(path, k, o->tmp, cap);
+        temp_name(path, k, lim, o->tmp, cap);
         fd = open(o->tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
         if (fd < 0 && errno != EEXIST)
             break;

@@ -1347,6 +1347,61 @@ static void *same_path_writer(void *arg)
     return NULL;
 }
 
+/* The file-name limit the next temp_name_max call reports, and the directory it was asked for. */
+static long g_name_max;
+static char g_name_dir[600];
+
+static long temp_name_max(const char *dir)
+{
+    snprintf(g_name_dir, sizeof g_name_dir, "%s", dir);
+    return g_name_max;
+}
+
+/* Temporary names cut to the limit of the output's directory (pathconf's _PC_NAME_MAX: eCryptfs
+ * takes 143 bytes), through the test hook, since no file system here has a limit below 255: a
+ * 140-byte name is cut to 143 bytes with the hash of the whole name and written; the limit is
+ * asked of the path's own directory ("." and "/" for names without one); no answer (-1) means
+ * 255, and a limit too small for the suffix and hash leaves the name whole. */
+static void temp_names_limit(const rg2_surface *s)
+{
+    rg2_error err;
+    long (*saved)(const char *) = rg2__dir_name_max;
+    rg2__dir_name_max = temp_name_max;
+    char base[256], lng[600], tname[700], whole[700];
+    memset(base, 'y', 136);
+    strcpy(base + 136, ".obj"); /* 140 bytes */
+    snprintf(lng, sizeof lng, "%s/%s", g_dir, base);
+    snprintf(whole, sizeof whole, "%s.%ld.tmp", lng, (long)getpid());
+    const long limits[3] = {143, -1, 10};
+    for (int q = 0; q < 3; q++) {
+        g_name_max = limits[q];
+        g_name_dir[0] = '\0';
+        CHECK(rg2_temp_name(lng, tname, sizeof tname) == 0, "rg2_temp_name of a 140-byte name, limit %ld", limits[q]);
+        const char *tb = tname + strlen(g_dir) + 1, *suffix = whole + strlen(lng);
+        size_t n = strlen(tb), kept = 143 - 9 - strlen(suffix); /* base, ".%08x", suffix */
+        if (q == 0)
+            CHECK(n == 143 && !strncmp(tb, base, kept) && tb[kept] == '.' &&
+                      strspn(tb + kept + 1, "0123456789abcdef") == 8 && !strcmp(tb + kept + 9, suffix),
+                  "limit 143: temporary name '%s' (%zu bytes)", tb, n);
+        else
+            CHECK(!strcmp(tname, whole), "limit %ld: temporary name '%s', want the whole name", limits[q], tname);
+        CHECK(!strcmp(g_name_dir, g_dir), "limit %ld: asked of '%s', not of the directory '%s'", limits[q], g_name_dir, g_dir);
+    }
+    g_name_max = 143;
+    rg2_export_opts o;
+    rg2_export_opts_default(&o);
+    o.density = 2;
+    CHECK_OK(rg2_export_file(s, 1, lng, &o, &err), &err);
+    struct stat sb;
+    CHECK(stat(lng, &sb) == 0 && sb.st_size > 100, "limit 143: a 140-byte file name was not written");
+    remove(lng);
+    const char *bare[2][2] = {{"rg2-rel.obj", "."}, {"/rg2-abs.obj", "/"}};
+    for (int q = 0; q < 2; q++)
+        CHECK(rg2_temp_name(bare[q][0], tname, sizeof tname) == 0 && !strcmp(g_name_dir, bare[q][1]),
+              "%s: the limit asked of '%s', want '%s'", bare[q][0], g_name_dir, bare[q][1]);
+    rg2__dir_name_max = saved;
+}
+
 static void temp_files(const rg2_surface *s)
 {
     rg2_error err;
@@ -1457,6 +1512,7 @@ static void temp_files(const rg2_surface *s)
         CHECK(stat(lng, &lsb) == 0 && lsb.st_size > 100, "a %zu-byte file name was not written", strlen(base));
         remove(lng);
     }
+    temp_names_limit(s);
     /* the same path twice in one call */
     const char *twice[3] = {path_in("a.obj"), path_in("b.stl"), path_in("a.obj")};
     int bad = -2;
