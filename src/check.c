@@ -1164,7 +1164,7 @@ static char *format_json(const rg2_check_report *r)
     cJSON_AddBoolToObject(j, "g2", !(f & RG2_REQUIRE_G2));
     cJSON_AddBoolToObject(j, "exact", !(f & RG2_REQUIRE_EXACT));
     cJSON_AddBoolToObject(j, "positive_weights", !(f & RG2_REQUIRE_WEIGHTS));
-    char *txt = cJSON_Print(j);
+    char *txt = rg2__json_print(j, 1);
     cJSON_Delete(j);
     return txt;
 }

@@ -591,7 +591,7 @@ rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, rg2_erro
         cJSON_AddItemToObject(jm, "patch_shape", int_array(s->tag, s->nu * s->nv));
         cJSON_AddItemToArray(meshes, jm);
     }
-    char *text = cJSON_Print(root);
+    char *text = rg2__json_print(root, 1);
     cJSON_Delete(root);
     if (!text)
         return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", path);

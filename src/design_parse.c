@@ -1148,7 +1148,7 @@ static rg2_status parse_text(const char *json, size_t len, const char *name, cJS
                          len ? " (only white space)" : "");
     }
     const char *end = NULL;
-    *root = cJSON_ParseWithLengthOpts(buf, len + 1, &end, 1);
+    *root = rg2__json_parse(buf, len + 1, &end);
     if (!*root) {
         size_t off = end ? (size_t)(end - buf) : 0;
         if (off > len)

@@ -588,7 +588,7 @@ static rg2_status write_json(const rg2_surface *surfs, int n, const rg2_export_o
 {
     FILE *f = out->f;
     cJSON *name = cJSON_CreateString(o->name); /* the name as cJSON escapes a string */
-    char *qname = name ? cJSON_PrintUnformatted(name) : NULL;
+    char *qname = name ? rg2__json_print(name, 0) : NULL;
     cJSON_Delete(name);
     if (!qname)
         return rg2__fail(err, RG2_ENOMEM, "%s: out of memory building JSON", out->path);

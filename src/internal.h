@@ -218,6 +218,12 @@ int rg2__prev_leg(const rg2_scalars *s, int i);
 void *rg2__c_numeric_begin(void);
 void rg2__c_numeric_end(void *old);
 
+/* cJSON's parse (ParseWithLengthOpts, NUL required at text[len - 1]) and print (formatted or
+ * not), serialised and in the "C" locale (src/json.c); print's text is freed with cJSON_free. */
+struct cJSON;
+struct cJSON *rg2__json_parse(const char *text, size_t len, const char **end);
+char *rg2__json_print(const struct cJSON *item, int formatted);
+
 /* A bounding box grown point by point: its largest |coordinate| and its diagonal. */
 typedef struct {
     double lo[3], hi[3];

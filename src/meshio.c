@@ -308,7 +308,7 @@ rg2_status rg2__write_glb(const rg2_tess *t, int n, const rg2_export_opts *o, rg
     }
     cJSON *buf = ok ? cJSON_CreateObject() : NULL;
     ok = ok && buf && cJSON_AddItemToArray(buffers, buf) && cJSON_AddNumberToObject(buf, "byteLength", (double)offset);
-    char *json = ok ? cJSON_PrintUnformatted(root) : NULL;
+    char *json = ok ? rg2__json_print(root, 0) : NULL;
     cJSON_Delete(root);
     if (!json)
         return rg2__fail(err, RG2_ENOMEM, "%s: out of memory building the glTF JSON", out->path);
