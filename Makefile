@@ -4,6 +4,7 @@
 #   make bench  build optimised and run the benchmark against SISL and OpenCASCADE
 #   make check-memory  the rg2 command under valgrind on every example and bad input (make test runs it)
 #   make check-portable  build with clang, and with GCC without OpenMP or AVX-512; run the tests (make test runs it)
+#   make check-tsan  the threaded tests under ThreadSanitizer, the parser under helgrind (make test runs it)
 #   make fuzz   build the libFuzzer harnesses (clang) into build-fuzz/ and run each FUZZ_SECONDS
 #   make gallery  render every example design into docs/pictures/gallery/ and write docs/gallery.md
 #   make check-freecad  FreeCAD opens our STEP / IGES (installs freecad-python3, ~930 MB; not in make test)
@@ -12,7 +13,7 @@ MAKEFLAGS += --no-print-directory
 DESIGN ?= examples/torus_sphere.json
 FUZZ_SECONDS ?= 60
 
-.PHONY: all build run test bench clean check-memory check-portable check-freecad fuzz gallery
+.PHONY: all build run test bench clean check-memory check-portable check-tsan check-freecad fuzz gallery
 
 all: build
 
@@ -32,6 +33,7 @@ test:
 	@cd build-test && ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp ctest --output-on-failure -j$(JOBS)
 	@$(MAKE) --no-print-directory check-memory
 	@$(MAKE) --no-print-directory check-portable
+	@$(MAKE) --no-print-directory check-tsan
 
 # valgrind needs a build without sanitizers: build/ (Release, with debug info for the reports)
 check-memory:
@@ -44,6 +46,11 @@ check-memory:
 check-portable:
 	@scripts/deps.sh test
 	@scripts/check_portable.sh . build-portable
+
+# races: ThreadSanitizer (clang, libomp + Archer) and helgrind, in build-tsan/ (kept: incremental)
+check-tsan:
+	@scripts/deps.sh test
+	@scripts/check_tsan.sh . build-tsan
 
 gallery: build
 	@scripts/gallery.py build/rg2 docs
@@ -64,4 +71,4 @@ bench:
 	@build-bench/bench/rg2_bench out/bench.json
 
 clean:
-	rm -rf build build-test build-bench build-fuzz build-portable out
+	rm -rf build build-test build-bench build-fuzz build-portable build-tsan out

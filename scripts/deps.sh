@@ -3,7 +3,7 @@
 # Usage: scripts/deps.sh base|test|bench|fuzz|freecad
 set -eu
 base="cmake make gcc g++ pkg-config libcjson-dev libpng-dev"
-test="$base clang libomp-dev valgrind gmsh locales libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev libtbb-dev"
+test="$base clang libomp-dev libclang-rt-14-dev valgrind gmsh locales libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev libtbb-dev"
 bench="$test libsisl-dev"
 fuzz="$base clang libclang-rt-14-dev"
 freecad="$base freecad-python3"
