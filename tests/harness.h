@@ -80,4 +80,17 @@ rg2_status rg2t_torus(double R, double r, int nu, int nv, rg2_mesh *mesh, rg2_su
  * pole patches with sides collapsed to the poles (Su x Sv at rounding-noise level there). */
 rg2_status rg2t_capped_sphere(rg2_mesh *mesh, rg2_surface *out, rg2_error *err);
 
+/* A design's surfaces, control meshes, shapes and shape labels as arrays of shallow copies (read
+ * only, owned by the design; the shape arrays have at least one entry). 0 on success, -1 out of
+ * memory (nothing left to free). Release the arrays with rg2t_design_parts_free. */
+typedef struct {
+    int n, ns;
+    rg2_surface *s;
+    rg2_mesh *meshes;
+    rg2_shape *shapes;
+    const char **labels;
+} rg2t_parts;
+int rg2t_design_parts(const rg2_design *d, rg2t_parts *p);
+void rg2t_design_parts_free(rg2t_parts *p);
+
 #endif

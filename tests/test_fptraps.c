@@ -259,33 +259,18 @@ static void designs(void)
         }
         if (!d)
             continue;
-        int n = rg2_design_num_surfaces(d), ns = rg2_design_num_shapes(d);
-        rg2_surface *s = calloc((size_t)n, sizeof *s);
-        rg2_mesh *meshes = calloc((size_t)n, sizeof *meshes);
-        rg2_shape *shapes = calloc((size_t)ns + 1, sizeof *shapes);
-        const char **labels = calloc((size_t)ns + 1, sizeof *labels);
-        if (!s || !meshes || !shapes || !labels) {
+        rg2t_parts P;
+        if (rg2t_design_parts(d, &P)) {
             CHECK(0, "out of memory");
             break;
         }
-        for (int k = 0; k < n; k++) {
-            s[k] = *rg2_design_surface(d, k); /* shallow copies: read only */
-            meshes[k] = *rg2_design_mesh(d, k);
-        }
-        for (int q = 0; q < ns; q++) {
-            shapes[q] = *rg2_design_shape(d, q);
-            labels[q] = rg2_design_shape_label(d, q);
-        }
-        run_all(s, n, shapes, labels, ns, meshes, path, 0, 1);
+        run_all(P.s, P.n, P.shapes, P.labels, P.ns, P.meshes, path, 0, 1);
         char mp[128];
         snprintf(mp, sizeof mp, "%s/mesh.json", dir);
         STAGE("%s: write the mesh", path);
         CHECK_OK(rg2_design_write_mesh(d, mp, &err), &err);
         unlink(mp);
-        free(s);
-        free(meshes);
-        free(shapes);
-        free(labels);
+        rg2t_design_parts_free(&P);
         rg2_design_free(d);
     }
     globfree(&g);

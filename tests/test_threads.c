@@ -9,9 +9,9 @@
  * of the bytes). Half the threads parse and write
  * under de_DE.UTF-8 (uselocale), the others under "C": cJSON reads the decimal point through
  * localeconv(), whose one result struct every caller rewrites, and rg2's parses and prints are
- * serialised so that none of them reads another thread's decimal point. Then two threads write
- * different surfaces to the same path again and again: the path must end as one of the two whole
- * files, with no temporary file left.
+ * serialised so that none of them reads another thread's decimal point. Every file written is
+ * removed again: a temporary file left behind fails the test. (Two threads writing one path:
+ * test_export, temp_files.)
  *
  * Race detectors run it too (scripts/check_tsan.sh): ThreadSanitizer (clang, OpenMP through
  * libomp with its Archer tool) and, for the JSON parser whose library (libcjson) no compiler here
@@ -113,23 +113,13 @@ static uint64_t grid(const rg2_surface *s, int n, int m, int threads, int all, r
 static void use_design(const rg2_design *d, int k, const char *tag, results *R)
 {
     rg2_error err;
-    int n = rg2_design_num_surfaces(d), ns = rg2_design_num_shapes(d);
-    rg2_surface *s = calloc((size_t)n, sizeof *s);
-    rg2_mesh *meshes = calloc((size_t)n, sizeof *meshes);
-    rg2_shape *shapes = calloc((size_t)ns + 1, sizeof *shapes);
-    const char **labels = calloc((size_t)ns + 1, sizeof *labels);
-    if (!s || !meshes || !shapes || !labels) {
+    rg2t_parts P;
+    if (rg2t_design_parts(d, &P)) {
         fail(R, "out of memory", NULL);
-        goto out;
+        return;
     }
-    for (int q = 0; q < n; q++) {
-        s[q] = *rg2_design_surface(d, q); /* shallow copies: read only */
-        meshes[q] = *rg2_design_mesh(d, q);
-    }
-    for (int q = 0; q < ns; q++) {
-        shapes[q] = *rg2_design_shape(d, q);
-        labels[q] = rg2_design_shape_label(d, q);
-    }
+    rg2_surface *s = P.s;
+    int n = P.n;
     R->r[R_GRID1] = R->r[R_GRID2] = R->r[R_GRID3] = R->r[R_POINTS] = R->r[R_TESS] = FNV0;
     for (int q = 0; q < n; q++) {
         R->r[R_GRID1] = fnv(R->r[R_GRID1], (uint64_t[]){grid(&s[q], 5, 7, 1, 0, R)}, 8);
@@ -181,7 +171,7 @@ static void use_design(const rg2_design *d, int k, const char *tag, results *R)
     ro.threads = 1 + k % 2;
     ro.boundaries = ro.mesh = 1;
     rg2_image img;
-    if (rg2_render(s, n, meshes, &ro, &img, &err) == RG2_OK) {
+    if (rg2_render(s, n, P.meshes, &ro, &img, &err) == RG2_OK) {
         R->r[R_RENDER] = fnv(FNV0, img.rgb, (size_t)img.width * (size_t)img.height * 3);
         rg2_image_free(&img);
     } else
@@ -193,7 +183,7 @@ static void use_design(const rg2_design *d, int k, const char *tag, results *R)
     co.patch_samples = 3;
     co.threads = 1 + k % 2;
     rg2_check_report rep;
-    if (rg2_check(s, n, shapes, labels, ns, &co, &rep, &err) == RG2_OK) {
+    if (rg2_check(s, n, P.shapes, P.labels, P.ns, &co, &rep, &err) == RG2_OK) {
         for (int json = 0; json <= 1; json++) {
             char *txt = NULL;
             if (rg2_check_format(&rep, json, &txt, &err) == RG2_OK)
@@ -205,11 +195,7 @@ static void use_design(const rg2_design *d, int k, const char *tag, results *R)
         rg2_check_report_free(&rep);
     } else
         fail(R, "rg2_check", &err);
-out:
-    free(s);
-    free(meshes);
-    free(shapes);
-    free(labels);
+    rg2t_design_parts_free(&P);
 }
 
 /* The digest of what parsing design k gives (its grids stand for its surfaces), or 0. */
@@ -307,58 +293,6 @@ static void *run(void *arg)
     return NULL;
 }
 
-/* ---------------------------------------------------------------- one path, two writers */
-
-typedef struct {
-    const rg2_surface *s;
-    const char *path;
-    int fails;
-} same_path;
-
-static void *write_same(void *arg)
-{
-    same_path *sp = arg;
-    rg2_export_opts eo;
-    rg2_export_opts_default(&eo);
-    for (int i = 0; i < 40; i++) {
-        rg2_error err;
-        if (rg2_export_file(sp->s, 1, sp->path, &eo, &err) != RG2_OK)
-            sp->fails++;
-    }
-    return NULL;
-}
-
-static void one_path(void)
-{
-    rg2_error err;
-    rg2_surface a, b;
-    CHECK_OK(rg2t_torus(3, 1, 4, 3, NULL, &a, &err), &err);
-    CHECK_OK(rg2t_torus(2, 0.5, 5, 4, NULL, &b, &err), &err);
-    for (int f = 0; f < N_FORMATS; f += 4) { /* step, obj, json */
-        char pa[256], pb[256], path[256]; /* one base name: STEP and IGES write it in their headers */
-        snprintf(pa, sizeof pa, "%s/a/same.%s", dir, formats[f]);
-        snprintf(pb, sizeof pb, "%s/b/same.%s", dir, formats[f]);
-        snprintf(path, sizeof path, "%s/same.%s", dir, formats[f]);
-        CHECK_OK(rg2_export_file(&a, 1, pa, NULL, &err), &err);
-        CHECK_OK(rg2_export_file(&b, 1, pb, NULL, &err), &err);
-        uint64_t ha = file_digest(pa), hb = file_digest(pb);
-        same_path sp[2] = {{&a, path, 0}, {&b, path, 0}};
-        pthread_t t[2];
-        for (int i = 0; i < 2; i++)
-            CHECK(pthread_create(&t[i], NULL, write_same, &sp[i]) == 0, "pthread_create");
-        for (int i = 0; i < 2; i++)
-            pthread_join(t[i], NULL);
-        uint64_t h = file_digest(path);
-        CHECK(!sp[0].fails && !sp[1].fails, "%s: %d + %d writes failed", path, sp[0].fails, sp[1].fails);
-        CHECK(h && (h == ha || h == hb), "%s written by two threads is neither writer's whole file", path);
-        unlink(pa);
-        unlink(pb);
-        unlink(path);
-    }
-    rg2_surface_free(&a);
-    rg2_surface_free(&b);
-}
-
 /* the first n results of got against the serial run's */
 static void compare(const results *got, const results *want, int n, const char *who, const char *design)
 {
@@ -414,11 +348,6 @@ int main(int argc, char **argv)
         snprintf(sub, sizeof sub, "%s/w%ds", dir, i);
         mkdir(sub, 0700);
     }
-    for (int i = 0; i < 2; i++) {
-        char sub[64];
-        snprintf(sub, sizeof sub, "%s/%c", dir, 'a' + i);
-        mkdir(sub, 0700);
-    }
     serial->shared = shared;
     serial->parse_only = parse_only;
     serial->id = THREADS;
@@ -444,8 +373,6 @@ int main(int argc, char **argv)
         if (!parse_only)
             compare(&w[i].shared_R, &serial->shared_R, N_RESULTS, who, "the shared design");
     }
-    if (!parse_only)
-        one_path();
 
     rg2_design_free(shared);
     for (int k = 0; k < n_designs; k++)
@@ -457,7 +384,7 @@ int main(int argc, char **argv)
         freelocale(de_locale);
     /* every file was removed: a temporary file left behind keeps its directory */
     char cmd[128];
-    snprintf(cmd, sizeof cmd, "rmdir %s/w[0-9]* %s/a %s/b %s", dir, dir, dir, dir);
+    snprintf(cmd, sizeof cmd, "rmdir %s/w[0-9]* %s", dir, dir);
     CHECK(system(cmd) == 0, "files left in %s", dir);
     return rg2t_done("test_threads");
 }

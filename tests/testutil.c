@@ -253,3 +253,38 @@ rg2_status rg2t_capped_sphere(rg2_mesh *mesh, rg2_surface *out, rg2_error *err)
         rg2_mesh_free(mesh);
     return st;
 }
+
+int rg2t_design_parts(const rg2_design *d, rg2t_parts *p)
+{
+    p->n = rg2_design_num_surfaces(d);
+    p->ns = rg2_design_num_shapes(d);
+    p->s = calloc((size_t)p->n + 1, sizeof *p->s);
+    p->meshes = calloc((size_t)p->n + 1, sizeof *p->meshes);
+    p->shapes = calloc((size_t)p->ns + 1, sizeof *p->shapes);
+    p->labels = calloc((size_t)p->ns + 1, sizeof *p->labels);
+    if (!p->s || !p->meshes || !p->shapes || !p->labels) {
+        rg2t_design_parts_free(p);
+        return -1;
+    }
+    for (int k = 0; k < p->n; k++) {
+        p->s[k] = *rg2_design_surface(d, k);
+        p->meshes[k] = *rg2_design_mesh(d, k);
+    }
+    for (int q = 0; q < p->ns; q++) {
+        p->shapes[q] = *rg2_design_shape(d, q);
+        p->labels[q] = rg2_design_shape_label(d, q);
+    }
+    return 0;
+}
+
+void rg2t_design_parts_free(rg2t_parts *p)
+{
+    free(p->s);
+    free(p->meshes);
+    free(p->shapes);
+    free(p->labels);
+    p->s = NULL;
+    p->meshes = NULL;
+    p->shapes = NULL;
+    p->labels = NULL;
+}
