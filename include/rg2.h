@@ -36,9 +36,24 @@
  *   - Output structs (surfaces, meshes, scalars, tessellations, images) are filled from scratch:
  *     pass a zeroed or freed struct, or the previous contents leak. rg2_surface_rebuild and
  *     rg2_retessellate are the ones that reuse a built surface's or mesh's memory.
- *   - Thread safety: the library keeps no global state that calls modify (the worker pool of
- *     the grid evaluator and the tessellation is internal and serialises its own use); reading
- *     one object from several threads at once is safe, writing it is not.
+ *   - Thread safety: calls may come from several threads at once. Reading one object from
+ *     several threads at once is safe, writing it is not; results are the same bits as from a
+ *     serial run. What the library shares between calls is internal and synchronised: the
+ *     worker pool of the grid evaluator and the tessellation (one job at a time; a call that
+ *     finds it busy runs alone), the grid's table cache (entries written once, published
+ *     atomically), the "C" locale it formats numbers in, and its use of cJSON: Debian's libcjson
+ *     writes a process-wide error struct on every parse, and cJSON reads the decimal point
+ *     through localeconv(), whose one result struct every caller rewrites, so rg2 runs all its
+ *     cJSON parses and prints under one lock and in the "C" locale. Two writers of one path each
+ *     write their own temporary file; the path ends as one whole file. Measured by
+ *     tests/test_threads.c (4 threads, every bundled design, half under de_DE, every call above)
+ *     and test_export (one path, two writers) under ThreadSanitizer with libomp's Archer tool
+ *     and, for libcjson (not instrumented), helgrind (scripts/check_tsan.sh, make test). Not
+ *     covered by the lock, since that state belongs to libcjson and the C library: a host's own
+ *     cJSON calls (cJSON_InitHooks among them), or localeconv() under a locale whose decimal
+ *     point is not '.', in another thread during an rg2 call that parses or writes JSON
+ *     (rg2_design_load / _parse, rg2_nurbs_parse, rg2_design_write_mesh, rg2_check_format, the
+ *     JSON and glTF exports).
  *   - Floating point: call rg2 in the C default environment, round to nearest. Traps: on valid
  *     input (designs, meshes and NURBS the library accepts, within the numeric range of
  *     docs/robustness.md, and the surfaces it builds from them) these calls raise none of
