@@ -133,47 +133,58 @@ static void basis_at(double vc, double t, double phi0[3], double psi[3], double 
     phi3[2] = 2.0;
 }
 
-/* Least squares min |A x - b| by Householder QR; A is rows x nc (row-major), overwritten.
- * Returns the residual norm, or -1 if a column is dependent (relative 1e-12). */
-static double lsq_qr(double *A, double *b, int rows, int nc, double *x)
+/* Least squares min |A x - b| by Householder QR; A is rows x (nc + 1) (row-major, b in its
+ * last column), overwritten; nc <= 31. Returns the residual norm, or -1 if a column is
+ * dependent (relative 1e-12).
+ * Each reflection makes two passes over the rows: one for |v|^2 and the dot products of v
+ * (column c) with all later columns, one for their updates and the next column's norm. Each
+ * sum still runs over the rows in order, so the bits are those of one column at a time (a dot
+ * product reads only column c and its own column, which the reflection's other updates leave
+ * alone). Column at a time, the 24 576 x 27 matrix of a general cap on 256 columns (5.3 MB) was
+ * read column-strided 2 (nc - c) + 2 times per reflection: 8x slower. */
+static double lsq_qr(double *A, int rows, int nc, double *x)
 {
-    double Rd[32], amax = 0.0;
+    const size_t w = (size_t)nc + 1;
+    double Rd[32], s[32], amax = 0.0, nrm = 0.0;
+    for (int r = 0; r < rows; r++)
+        nrm += A[(size_t)r * w] * A[(size_t)r * w];
     for (int c = 0; c < nc; c++) {
-        double nrm = 0.0;
-        for (int r = c; r < rows; r++)
-            nrm += A[(size_t)r * nc + c] * A[(size_t)r * nc + c];
         nrm = sqrt(nrm);
         amax = fmax(amax, nrm);
         if (!(nrm > 1e-12 * amax))
             return -1.0;
-        double alpha = A[(size_t)c * nc + c] > 0 ? -nrm : nrm;
-        A[(size_t)c * nc + c] -= alpha;
+        double alpha = A[(size_t)c * w + c] > 0 ? -nrm : nrm;
+        A[(size_t)c * w + c] -= alpha;
         double vv = 0.0;
-        for (int r = c; r < rows; r++)
-            vv += A[(size_t)r * nc + c] * A[(size_t)r * nc + c];
-        for (int cc = c + 1; cc <= nc; cc++) { /* cc == nc is the right-hand side */
-            double s = 0.0;
-            for (int r = c; r < rows; r++)
-                s += A[(size_t)r * nc + c] * (cc < nc ? A[(size_t)r * nc + cc] : b[r]);
-            s *= 2.0 / vv;
-            for (int r = c; r < rows; r++) {
-                if (cc < nc)
-                    A[(size_t)r * nc + cc] -= s * A[(size_t)r * nc + c];
-                else
-                    b[r] -= s * A[(size_t)r * nc + c];
-            }
+        for (int cc = c + 1; cc <= nc; cc++) /* cc == nc is the right-hand side */
+            s[cc] = 0.0;
+        for (int r = c; r < rows; r++) {
+            const double *a = A + (size_t)r * w;
+            vv += a[c] * a[c];
+            for (int cc = c + 1; cc <= nc; cc++)
+                s[cc] += a[c] * a[cc];
+        }
+        for (int cc = c + 1; cc <= nc; cc++)
+            s[cc] *= 2.0 / vv;
+        nrm = 0.0;
+        for (int r = c; r < rows; r++) {
+            double *a = A + (size_t)r * w;
+            for (int cc = c + 1; cc <= nc; cc++)
+                a[cc] -= s[cc] * a[c];
+            if (r > c)
+                nrm += a[c + 1] * a[c + 1];
         }
         Rd[c] = alpha;
     }
     for (int c = nc - 1; c >= 0; c--) {
-        double s = b[c];
+        double t = A[(size_t)c * w + nc];
         for (int cc = c + 1; cc < nc; cc++)
-            s -= A[(size_t)c * nc + cc] * x[cc];
-        x[c] = s / Rd[c];
+            t -= A[(size_t)c * w + cc] * x[cc];
+        x[c] = t / Rd[c];
     }
     double rr = 0.0;
     for (int r = nc; r < rows; r++)
-        rr += b[r] * b[r];
+        rr += A[(size_t)r * w + nc] * A[(size_t)r * w + nc];
     return sqrt(rr);
 }
 
@@ -192,12 +203,11 @@ static double fit_solve(const fitdata *fd, double L, double vc, int nb, double g
 {
     const int nc = 4 * nb + 2;
     int rows = 12 * fd->n;
-    double *A = rg2__calloc((size_t)rows * nc, sizeof(double)), *B = rg2__calloc((size_t)rows, sizeof(double));
-    if (!A || !B) {
-        free(A);
-        free(B);
+    /* [A | B], 5.3 MB for a general cap on 256 columns: on huge pages, as 4 KiB pages its first
+     * writes were most of the fit's time */
+    double *A = rg2__alloc_big((size_t)rows, sizeof(double) * (size_t)(nc + 1), (size_t)2 << 20, 1);
+    if (!A)
         return -2.0;
-    }
     double phi0[3], psi[3], phi3[3];
     basis_at(vc, 1.0, phi0, psi, phi3);
     const double fact[3] = {1.0, 1.0, 0.5};
@@ -209,7 +219,7 @@ static double fit_solve(const fitdata *fd, double L, double vc, int nb, double g
             double W = fd->jw[k] * fact[k];
             for (int d = 0; d < 4; d++) {
                 int row = 12 * q + 4 * k + d;
-                double *a = A + (size_t)row * nc;
+                double *a = A + (size_t)row * (size_t)(nc + 1);
                 a[4 * 0 + d] = W * phi0[k];
                 a[4 * 1 + d] = W * sm->c * psi[k];
                 a[4 * 2 + d] = W * sm->s * psi[k];
@@ -226,14 +236,14 @@ static double fit_solve(const fitdata *fd, double L, double vc, int nb, double g
                     a[4 * nb] = -W * Lk * 2.0 * sm->J[1][d];
                     a[4 * nb + 1] = -W * Lk * sm->J[0][d];
                 }
-                B[row] = W * Lk * sm->J[k][d];
-                bnorm += B[row] * B[row];
+                a[nc] = W * Lk * sm->J[k][d];
+                bnorm += a[nc] * a[nc];
             }
             Lk *= L;
         }
     }
     double x[26];
-    double res = lsq_qr(A, B, rows, nc, x);
+    double res = lsq_qr(A, rows, nc, x);
     if (res >= 0.0) {
         for (int c = 0; c < nb; c++)
             for (int d = 0; d < 4; d++)
@@ -243,7 +253,6 @@ static double fit_solve(const fitdata *fd, double L, double vc, int nb, double g
         res = bnorm > 0.0 ? res / sqrt(bnorm) : 0.0;
     }
     free(A);
-    free(B);
     return res;
 }
 
@@ -449,6 +458,10 @@ static void cap_column(const rg2_surface *S, const ucircle *uc, int e, int i, do
 
 /* ---- the general-quadratic cap (degree 4 or 5 in u) ------------------------------------ */
 
+/* fmax(a, b) for a not NaN, inline (glibc's fmax is a call; the loops over every body patch
+ * make millions): b when it is greater, else a (also when b is NaN). */
+static inline double max_of(double a, double b) { return isgreater(b, a) ? b : a; }
+
 static double binom(int n, int k)
 {
     double b = 1.0;
@@ -457,14 +470,30 @@ static double binom(int n, int k)
     return b;
 }
 
-/* Bernstein product: c (degree na + nb) = a (degree na) * b (degree nb). */
-static void bmul(const double *a, int na, const double *b, int nb, double *c)
+/* Weights of the Bernstein product of degree 2 by degree nb, per pair of indices (computed
+ * once per build: 16 products per body patch, each with up to 12 weights). */
+typedef struct {
+    double w[2][3][4]; /* [nb - 2][i][j] = binom(2, i) binom(nb, j) / binom(2 + nb, i + j) */
+} bweights;
+
+static void bweights_make(bweights *bw)
 {
-    for (int k = 0; k <= na + nb; k++)
+    memset(bw, 0, sizeof *bw);
+    for (int nb = 2; nb <= 3; nb++)
+        for (int i = 0; i <= 2; i++)
+            for (int j = 0; j <= nb; j++)
+                bw->w[nb - 2][i][j] = binom(2, i) * binom(nb, j) / binom(2 + nb, i + j);
+}
+
+/* Bernstein product: c (degree 2 + nb) = a (degree 2) * b (degree nb), nb = 2 or 3. */
+static void bmul(const bweights *bw, const double a[3], const double *b, int nb, double *c)
+{
+    const double(*w)[4] = bw->w[nb - 2];
+    for (int k = 0; k <= 2 + nb; k++)
         c[k] = 0.0;
-    for (int i = 0; i <= na; i++)
+    for (int i = 0; i <= 2; i++)
         for (int j = 0; j <= nb; j++)
-            c[i + j] += binom(na, i) * binom(nb, j) / binom(na + nb, i + j) * a[i] * b[j];
+            c[i + j] += w[i][j] * a[i] * b[j];
 }
 
 /* One degree elevation n -> n + 1 of Bernstein coefficients (in place, a has room). */
@@ -483,7 +512,7 @@ static void belevate(double *a, int n)
  * at rounding level against their size). */
 static int cubic_is_quadratic(const double c[4])
 {
-    double m = fmax(fmax(fabs(c[0]), fabs(c[1])), fmax(fabs(c[2]), fabs(c[3])));
+    double m = max_of(max_of(fabs(c[0]), fabs(c[1])), max_of(fabs(c[2]), fabs(c[3])));
     return fabs(c[3] - 3.0 * c[2] + 3.0 * c[1] - c[0]) <= 1e-13 * m;
 }
 
@@ -501,31 +530,57 @@ static void ucircle_quadratic(const ucircle *uc, int i, double q[3][3])
     }
 }
 
-/* The u-degree of a general-quadratic capped surface: D times the body is degree 4 when every
- * body patch row is a degree-raised quadratic in u (family-2 rows: sphere, cylinder, ...),
- * else 5. */
-static int general_degree(const rg2_surface *S)
+/* One pass over the body's patches: the body's size, the largest |coordinate| of an affine
+ * control point, and for a general cap (general != 0) the u-degree of the capped surface in *du:
+ * D times the body is degree 4 when every body patch row is a degree-raised quadratic in u
+ * (family-2 rows: sphere, cylinder, ...), else 5. In parallel over the columns: a largest value
+ * and an "every" are the same in any order (NaN quotients are skipped, as fmax does). */
+static void body_scan(const rg2_surface *S, int general, double *scale, int *du)
 {
-    for (size_t k = 0; k < (size_t)S->nu * (size_t)S->nv; k++)
-        for (int t = 0; t < 4; t++)
-            for (int d = 0; d < 4; d++) {
-                double c[4];
+    double sc = 0.0;
+    int quad = 1;
+#ifdef RG2_HAVE_OPENMP
+#pragma omp parallel if ((size_t)S->nu * (size_t)S->nv > 256)
+#endif
+    {
+        double m[3] = {0.0, 0.0, 0.0}; /* per coordinate: three independent chains */
+        int q = general;
+#ifdef RG2_HAVE_OPENMP
+#pragma omp for schedule(static) nowait
+#endif
+        for (int i = 0; i < S->nu; i++)
+            for (int j = 0; j < S->nv; j++) {
+                const rg2_patch *P = rg2_surface_patch(S, i, j);
                 for (int r = 0; r < 4; r++)
-                    c[r] = S->patch[k].h[r][t][d];
-                if (!cubic_is_quadratic(c))
-                    return 5;
+                    for (int s = 0; s < 4; s++)
+                        for (int d = 0; d < 3; d++)
+                            m[d] = max_of(m[d], fabs(P->h[r][s][d] / P->h[r][s][3]));
+                for (int t = 0; q && t < 4; t++)
+                    for (int d = 0; q && d < 4; d++) {
+                        double c[4];
+                        for (int r = 0; r < 4; r++)
+                            c[r] = P->h[r][t][d];
+                        q = cubic_is_quadratic(c);
+                    }
             }
-    return 4;
+#ifdef RG2_HAVE_OPENMP
+#pragma omp critical(rg2_cap_body_scan)
+#endif
+        {
+            sc = max_of(sc, max_of(max_of(m[0], m[1]), m[2]));
+            quad = quad && q;
+        }
+    }
+    *scale = sc;
+    *du = quad ? 4 : 5;
 }
 
-/* Body patch (i, j) times D_i(u), the column's circle denominator: the same rational surface
- * of degree (du, 3), in the homogeneous scaling of the general caps (so that every seam of the
- * output, cap/body included, has one homogeneous form and the surface is one B-spline). */
-static void body_times_d(const rg2_surface *S, const ucircle *uc, int i, int j, int du, rg2_xpatch *X)
+/* Body patch P of column i times D_i(u), the column's circle denominator (its quadratic
+ * Bernstein coefficients D): the same rational surface of degree (du, 3), in the homogeneous
+ * scaling of the general caps (so that every seam of the output, cap/body included, has one
+ * homogeneous form and the surface is one B-spline). */
+static void body_times_d(const rg2_patch *P, const double D[3], const bweights *bw, int du, rg2_xpatch *X)
 {
-    double q[3][3];
-    ucircle_quadratic(uc, i, q);
-    const rg2_patch *P = rg2_surface_patch(S, i, j);
     memset(X, 0, sizeof *X);
     X->du = du;
     X->dv = 3;
@@ -536,9 +591,9 @@ static void body_times_d(const rg2_surface *S, const ucircle *uc, int i, int j, 
                 c[r] = P->h[r][t][d];
             if (du == 4) {
                 double c2[3] = {c[0], 0.5 * (3.0 * c[1] - c[0]), c[3]};
-                bmul(q[0], 2, c2, 2, out);
+                bmul(bw, D, c2, 2, out);
             } else {
-                bmul(q[0], 2, c, 3, out);
+                bmul(bw, D, c, 3, out);
             }
             for (int r = 0; r <= du; r++)
                 X->h[r][t][d] = out[r];
@@ -553,19 +608,18 @@ static void body_times_d(const rg2_surface *S, const ucircle *uc, int i, int j, 
  * are quadratics in u (family-2 rings), else 5, and the pole side is elevated to match. Rows
  * in v are as in the bi-3 cap, per u-coefficient (row_pieces).
  */
-static void cap_column_x(const rg2_surface *S, const ucircle *uc, int e, int i, int du, double L, double vc,
-                         double g[6][4], const double lam[2], rg2_xpatch X[3])
+static void cap_column_x(const rg2_surface *S, double q[3][3], const bweights *bw, int e, int i, int du, double L,
+                         double vc, double g[6][4], const double lam[2], rg2_xpatch X[3])
 {
     double phi0[3], psi[3], phi3[3];
     basis_at(vc, 0.0, phi0, psi, phi3);
-    double q[3][3], DD[5], DC[5], DS[5], CC[5], CS[5], SS[5];
-    ucircle_quadratic(uc, i, q);
-    bmul(q[0], 2, q[0], 2, DD);
-    bmul(q[0], 2, q[1], 2, DC);
-    bmul(q[0], 2, q[2], 2, DS);
-    bmul(q[1], 2, q[1], 2, CC);
-    bmul(q[1], 2, q[2], 2, CS);
-    bmul(q[2], 2, q[2], 2, SS);
+    double DD[5], DC[5], DS[5], CC[5], CS[5], SS[5];
+    bmul(bw, q[0], q[0], 2, DD);
+    bmul(bw, q[0], q[1], 2, DC);
+    bmul(bw, q[0], q[2], 2, DS);
+    bmul(bw, q[1], q[1], 2, CC);
+    bmul(bw, q[1], q[2], 2, CS);
+    bmul(bw, q[2], q[2], 2, SS);
     const rg2_patch *Bp = rg2_surface_patch(S, i, body_row(S, e));
     for (int k = 0; k < 3; k++) {
         memset(&X[k], 0, sizeof X[k]);
@@ -592,9 +646,9 @@ static void cap_column_x(const rg2_surface *S, const ucircle *uc, int e, int i, 
             }
             if (du == 4) {
                 double c2[3] = {c[0], 0.5 * (3.0 * c[1] - c[0]), c[3]};
-                bmul(q[0], 2, c2, 2, H[qq]);
+                bmul(bw, q[0], c2, 2, H[qq]);
             } else {
-                bmul(q[0], 2, c, 3, H[qq]);
+                bmul(bw, q[0], c, 3, H[qq]);
             }
         }
         for (int r = 0; r <= du; r++) {
@@ -677,12 +731,9 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
     memset(g, 0, sizeof g);
     if ((st = ucircle_make(&body->su, &uc, err)))
         goto done;
-    double scale = 0.0;
-    for (size_t k = 0; k < (size_t)S.nu * (size_t)S.nv; k++)
-        for (int r = 0; r < 4; r++)
-            for (int s = 0; s < 4; s++)
-                for (int d = 0; d < 3; d++)
-                    scale = fmax(scale, fabs(S.patch[k].h[r][s][d] / S.patch[k].h[r][s][3]));
+    double scale;
+    int du_general;
+    body_scan(&S, general, &scale, &du_general);
     for (int e = 0; e < 2; e++) {
         if (!(o.ends & (1 << e)))
             continue;
@@ -759,7 +810,7 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
                 inf.quad[e][d][0] = inf.quad[e][d][2] = inf.g[e][3][d] = g[e][3][d];
             }
         }
-        inf.du[e] = general ? general_degree(&S) : 3;
+        inf.du[e] = general ? du_general : 3;
         chart_to_q(inf.g[e], vc[e], inf.q[e]);
         for (int k = 0; k < 3; k++)
             inf.pole[e][k] = g[e][0][k] / g[e][0][3];
@@ -769,13 +820,15 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
     inf.rows_after = ra;
     /* assemble: cap rows, body rows, cap rows */
     int nv = S.nv + rb + ra;
-    out->patch = rg2__calloc_big((size_t)S.nu * (size_t)nv, sizeof(rg2_patch));
+    /* both written whole below (huge pages: 103 936 general patches are 120 MB of xp, and 4 KiB
+     * pages made their first writes most of the build) */
+    out->patch = rg2__alloc_big((size_t)S.nu * (size_t)nv, sizeof(rg2_patch), (size_t)2 << 20, 0);
     out->bu = rg2__calloc((size_t)S.nu, sizeof(double));
     out->gu = rg2__calloc((size_t)S.nu, sizeof(double));
     out->bv = rg2__calloc((size_t)nv, sizeof(double));
     out->gv = rg2__calloc((size_t)nv, sizeof(double));
     if (general)
-        out->xp = rg2__calloc((size_t)S.nu * (size_t)nv, sizeof(rg2_xpatch));
+        out->xp = rg2__alloc_big((size_t)S.nu * (size_t)nv, sizeof(rg2_xpatch), (size_t)2 << 20, 0);
     if (!out->patch || !out->bu || !out->gu || !out->bv || !out->gv || (general && !out->xp)) {
         rg2_surface_free(out);
         st = rg2__fail(err, RG2_ENOMEM, "cap: out of memory for %d x %d patches", S.nu, nv);
@@ -797,15 +850,26 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
         out->bv[rb] = 3.0 / L[0], out->gv[rb] = 0.0;
     if (ra)
         out->bv[rb + S.nv] = L[1] / 3.0, out->gv[rb + S.nv] = 0.0;
+    /* every patch on its own (the same bits on any number of threads) */
+    rg2_patch nanp;
+    for (int r = 0; r < 4; r++)
+        for (int t = 0; t < 4; t++)
+            for (int d = 0; d < 4; d++)
+                nanp.h[r][t][d] = NAN;
+    bweights bw;
+    bweights_make(&bw);
+    int du_body = inf.du[inf.capped[0] ? 0 : 1];
+#ifdef RG2_HAVE_OPENMP
+#pragma omp parallel for schedule(static) if ((size_t)S.nu * (size_t)nv > 256)
+#endif
     for (int i = 0; i < S.nu; i++) {
+        double q[3][3]; /* the column's quadratic (D, C, S) (used by general caps) */
+        ucircle_quadratic(&uc, i, q);
         for (int j = 0; j < S.nv; j++) {
             size_t at = (size_t)i * nv + rb + j;
             if (general) {
-                body_times_d(&S, &uc, i, j, inf.du[inf.capped[0] ? 0 : 1], out->xp + at);
-                for (int r = 0; r < 4; r++)
-                    for (int t = 0; t < 4; t++)
-                        for (int d = 0; d < 4; d++)
-                            out->patch[at].h[r][t][d] = NAN;
+                body_times_d(rg2_surface_patch(&S, i, j), q[0], &bw, du_body, out->xp + at);
+                out->patch[at] = nanp;
             } else {
                 out->patch[at] = *rg2_surface_patch(&S, i, j);
             }
@@ -815,7 +879,7 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
                 continue;
             if (general) {
                 rg2_xpatch X[3];
-                cap_column_x(&S, &uc, e, i, inf.du[e], L[e], vc[e], g[e], lam[e], X);
+                cap_column_x(&S, q, &bw, e, i, inf.du[e], L[e], vc[e], g[e], lam[e], X);
                 for (int k = 0; k < 3; k++) {
                     size_t at = (size_t)i * nv + (e == 0 ? k : nv - 1 - k);
                     rg2_xpatch *D = out->xp + at;
@@ -824,10 +888,7 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
                         for (int r = 0; r <= X[k].du; r++)
                             for (int t = 0; t <= 3; t++)
                                 memcpy(D->h[r][t], X[k].h[r][3 - t], sizeof(double[4]));
-                    for (int r = 0; r < 4; r++)
-                        for (int t = 0; t < 4; t++)
-                            for (int d = 0; d < 4; d++)
-                                out->patch[at].h[r][t][d] = NAN;
+                    out->patch[at] = nanp;
                 }
                 continue;
             }
