@@ -683,6 +683,9 @@ static void chart_to_q(double g[4][4], double vc, double q[4][4])
 static rg2_status body_build(const rg2_mesh *body, int rows, rg2_surface *S, rg2_error *err)
 {
     memset(S, 0, sizeof *S);
+    rg2_status st = rg2_mesh_check(body, err); /* (first, as rg2_surface_build does) */
+    if (st)
+        return st;
     int nu = rg2_scalars_num_segments(&body->su), nv = rg2_scalars_num_segments(&body->sv);
     S->patch = rg2__alloc_big((size_t)nu * ((size_t)nv + (size_t)rows), sizeof(rg2_patch), (size_t)2 << 20, 0);
     S->bu = rg2__calloc((size_t)nu, sizeof(double));

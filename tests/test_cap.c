@@ -1,7 +1,8 @@
 /* test_cap.c -- bi-3 polar caps: the complete sphere from a polar mesh (exact, G2, one pole
  * point with one limit normal), exact recovery of the cap coefficients on sphere data, exact
  * paraboloid and two-sheeted hyperboloid caps, free-form caps (perturbed spheres, random
- * tubes) with G2 seams and a smooth pole, and the errors for degenerate input. */
+ * tubes) with G2 seams and a smooth pole, the output's layout (body patches kept bit for bit,
+ * the same bits on 1 and 2 threads), and the errors for degenerate input. */
 #define _POSIX_C_SOURCE 200809L /* mkdtemp, rmdir */
 #include "poles_testutil.h"
 
@@ -9,6 +10,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 static void unit(double a[3])
 {
@@ -982,6 +986,107 @@ static void cap_option_values(void)
         rg2_design_free(d[k]);
 }
 
+/* Whether two surfaces hold the same bytes: grid, scalars, patches and higher-degree patches. */
+static int surface_bytes_equal(const rg2_surface *a, const rg2_surface *b)
+{
+    size_t np = (size_t)a->nu * (size_t)a->nv;
+    return a->nu == b->nu && a->nv == b->nv && a->closed_u == b->closed_u && a->closed_v == b->closed_v &&
+           !memcmp(a->patch, b->patch, np * sizeof(rg2_patch)) && !memcmp(a->bu, b->bu, (size_t)a->nu * sizeof(double)) &&
+           !memcmp(a->gu, b->gu, (size_t)a->nu * sizeof(double)) && !memcmp(a->bv, b->bv, (size_t)a->nv * sizeof(double)) &&
+           !memcmp(a->gv, b->gv, (size_t)a->nv * sizeof(double)) && !a->xp == !b->xp &&
+           (!a->xp || !memcmp(a->xp, b->xp, np * sizeof(rg2_xpatch)));
+}
+
+/* The capped surface's layout on a ring large enough for the parallel loops (more than 256
+ * patches): the body's rows are rg2_surface_build's patches bit for bit (bi-3 caps; the cap rows
+ * are added in the same array, the body moved in place) or those patches times D in xp with
+ * NaN bi-3 slots (general caps), for each choice of ends; and the same bytes on 1 and 2 threads. */
+static void cap_layout(void)
+{
+    rg2t_rng r;
+    uint64_t seed = 5150;
+    rg2t_seed(&r, seed);
+    printf("capped layout and threads, seed %llu\n", (unsigned long long)seed);
+#ifdef _OPENMP
+    int threads = omp_get_max_threads();
+#endif
+    int n = 24, m = 12, cases = 0;
+    double alpha[24], knots[16], cs[48];
+    pt_random_arcs(&r, n, alpha);
+    pt_random_knots(&r, m + 4, 0.0, 4.0, knots);
+    rg2_mesh mesh;
+    rg2_error err;
+    CHECK_OK(rg2_mesh_init(&mesh, n, m + 2, 1, 0, &err), &err);
+    rg2_scalars_free(&mesh.su);
+    rg2_scalars_free(&mesh.sv);
+    CHECK_OK(rg2_scalars_from_angles(&mesh.su, alpha, n, 1, &err), &err);
+    CHECK_OK(rg2_scalars_from_knots(&mesh.sv, knots, m + 4, 0, &err), &err);
+    CHECK_OK(rg2_circle_coeffs(alpha, n, 1, 0.0, cs, &err), &err);
+    for (int freeform = 0; freeform < 2; freeform++) {
+        /* circle rings (family-2 rows: general caps of degree 4), then perturbed ones (5) */
+        for (int j = 0; j < m + 2; j++) {
+            double rad = rg2t_uniform(&r, 0.7, 1.3);
+            for (int i = 0; i < n; i++) {
+                double *p = rg2_mesh_at(&mesh, i, j), e = freeform ? 0.1 : 0.0;
+                p[0] = rad * cs[2 * i] + rg2t_uniform(&r, -e, e);
+                p[1] = rad * cs[2 * i + 1] + rg2t_uniform(&r, -e, e);
+                p[2] = knots[j + 1];
+                p[3] = 1.0;
+            }
+        }
+        rg2_surface body;
+        CHECK_OK(rg2_surface_build(&mesh, &body, &err), &err);
+        for (int quadratic = 0; quadratic < 2; quadratic++)
+            for (int ends = 1; ends <= 3; ends++) {
+                rg2_cap_opts o;
+                rg2_cap_opts_default(&o);
+                o.quadratic = quadratic;
+                o.ends = ends;
+                rg2_surface s[2];
+                rg2_cap_info info;
+                memset(s, 0, sizeof s);
+                for (int th = 1; th <= 2; th++) {
+#ifdef _OPENMP
+                    omp_set_num_threads(th);
+#endif
+                    CHECK_OK(rg2_cap_build(&mesh, &o, &s[th - 1], &info, &err), &err);
+                }
+                const rg2_surface *c = &s[0];
+                int rb = info.rows_before, bad = 0, du = quadratic ? 4 + freeform : 3;
+                CHECK(c->nu * c->nv > 256 && c->nv == body.nv + rb + info.rows_after,
+                      "%d x %d patches for a body of %d x %d", c->nu, c->nv, body.nu, body.nv);
+                CHECK(info.du[0] == (ends & 1 ? du : 0) && info.du[1] == (ends & 2 ? du : 0), "u-degrees %d %d",
+                      info.du[0], info.du[1]);
+                CHECK(surface_bytes_equal(&s[0], &s[1]), "quadratic %d, ends %d: the same bytes on 1 and 2 threads",
+                      quadratic, ends);
+                for (int i = 0; i < c->nu; i++)
+                    for (int j = 0; j < c->nv; j++) {
+                        const rg2_patch *P = rg2_surface_patch(c, i, j);
+                        int in_body = j >= rb && j < rb + body.nv;
+                        if (!quadratic) {
+                            bad += in_body && memcmp(P, rg2_surface_patch(&body, i, j - rb), sizeof *P);
+                            continue;
+                        }
+                        const rg2_xpatch *X = rg2_surface_xpatch(c, i, j);
+                        bad += !X || X->du != (in_body ? du : info.du[j >= rb]) || X->dv != 3;
+                        for (int k = 0; k < 64; k++)
+                            bad += !isnan((&P->h[0][0][0])[k]);
+                    }
+                CHECK(!bad && !memcmp(c->bu, body.bu, sizeof(double) * (size_t)body.nu),
+                      "quadratic %d, ends %d: body rows kept (%d mismatches)", quadratic, ends, bad);
+                cases++;
+                rg2_surface_free(&s[0]);
+                rg2_surface_free(&s[1]);
+            }
+        rg2_surface_free(&body);
+    }
+#ifdef _OPENMP
+    omp_set_num_threads(threads);
+#endif
+    printf("  %d capped surfaces: body rows as built, the same bytes on 1 and 2 threads\n", cases);
+    rg2_mesh_free(&mesh);
+}
+
 int main(void)
 {
     cap_option_values();
@@ -990,6 +1095,7 @@ int main(void)
     quadric_caps();
     freeform_caps(RG2_CAP_ROTATIONAL);
     freeform_caps(RG2_CAP_GENERAL);
+    cap_layout();
     cap_errors();
     design_examples();
     rational_body_caps();
