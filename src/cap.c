@@ -564,7 +564,7 @@ static void body_scan(const rg2_surface *S, int general, double *scale, int *du)
                     }
             }
 #ifdef RG2_HAVE_OPENMP
-#pragma omp critical(rg2_cap_body_scan)
+#pragma omp critical
 #endif
         {
             sc = max_of(sc, max_of(max_of(m[0], m[1]), m[2]));
