@@ -420,6 +420,19 @@ static void quadric_caps(void)
 /* Free-form caps: perturbed polar sphere meshes (interior rows and polar points moved) and
  * tubes from random closed rings; G2 seams (angle <= 1e-11, curvature <= 1e-8) and a smooth
  * pole (one point, one limit normal; curvature spread shrinking towards the pole). */
+/* A tube's mesh of n x (m + 2) points (coordinates left zero): u the closed circle partition
+ * alpha, v open on the m + 4 knots; cs gets the partition's circle coefficients (cos, sin). */
+static void tube_mesh(const double *alpha, int n, const double *knots, int m, rg2_mesh *mesh, double *cs)
+{
+    rg2_error err;
+    CHECK_OK(rg2_mesh_init(mesh, n, m + 2, 1, 0, &err), &err);
+    rg2_scalars_free(&mesh->su);
+    rg2_scalars_free(&mesh->sv);
+    CHECK_OK(rg2_scalars_from_angles(&mesh->su, alpha, n, 1, &err), &err);
+    CHECK_OK(rg2_scalars_from_knots(&mesh->sv, knots, m + 4, 0, &err), &err);
+    CHECK_OK(rg2_circle_coeffs(alpha, n, 1, 0.0, cs, &err), &err);
+}
+
 static void freeform_caps(int quadratic)
 {
     rg2t_rng r;
@@ -457,12 +470,7 @@ static void freeform_caps(int quadratic)
         } else {
             double knots[20], cs[32];
             pt_random_knots(&r, m + 4, 0.0, 4.0, knots);
-            CHECK_OK(rg2_mesh_init(&mesh, n, m + 2, 1, 0, &err), &err);
-            rg2_scalars_free(&mesh.su);
-            rg2_scalars_free(&mesh.sv);
-            CHECK_OK(rg2_scalars_from_angles(&mesh.su, alpha, n, 1, &err), &err);
-            CHECK_OK(rg2_scalars_from_knots(&mesh.sv, knots, m + 4, 0, &err), &err);
-            CHECK_OK(rg2_circle_coeffs(alpha, n, 1, 0.0, cs, &err), &err);
+            tube_mesh(alpha, n, knots, m, &mesh, cs);
             for (int i = 0; i < n; i++)
                 for (int j = 0; j < m + 2; j++) {
                     double *p = rg2_mesh_at(&mesh, i, j), rad = rg2t_uniform(&r, 0.7, 1.3);
@@ -1016,12 +1024,7 @@ static void cap_layout(void)
     pt_random_knots(&r, m + 4, 0.0, 4.0, knots);
     rg2_mesh mesh;
     rg2_error err;
-    CHECK_OK(rg2_mesh_init(&mesh, n, m + 2, 1, 0, &err), &err);
-    rg2_scalars_free(&mesh.su);
-    rg2_scalars_free(&mesh.sv);
-    CHECK_OK(rg2_scalars_from_angles(&mesh.su, alpha, n, 1, &err), &err);
-    CHECK_OK(rg2_scalars_from_knots(&mesh.sv, knots, m + 4, 0, &err), &err);
-    CHECK_OK(rg2_circle_coeffs(alpha, n, 1, 0.0, cs, &err), &err);
+    tube_mesh(alpha, n, knots, m, &mesh, cs);
     for (int freeform = 0; freeform < 2; freeform++) {
         /* circle rings (family-2 rows: general caps of degree 4), then perturbed ones (5) */
         for (int j = 0; j < m + 2; j++) {
