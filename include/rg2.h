@@ -971,9 +971,10 @@ RG2_API rg2_status rg2_export_format_check(const char *path, rg2_error *err);
  *  file next to path, then renames it): the first free name of "<path>.<pid>.tmp",
  *  "<path>.<pid>.1.tmp", ... (a file name near its directory's file-name limit, pathconf's
  *  _PC_NAME_MAX: 255 bytes on most file systems, 143 on eCryptfs, 255 when the directory gives
- *  none, is cut before the suffix, at a UTF-8 character boundary, and a hash of the whole name,
- *  ".%08x", is added, so the temporary name fits and names that differ only past the cut keep
- *  different temporary names). For a program that writes each path from one thread and must
+ *  none or more (vfat and exfat answer 1530 but take 255 ASCII bytes), is cut before the
+ *  suffix, at a UTF-8 character boundary, and a hash of the whole name, ".%08x", is added, so
+ *  the temporary name fits and names that differ only past the cut keep different temporary
+ *  names). For a program that writes each path from one thread and must
  *  remove its temporary files when a signal ends it (the rg2 command does). Returns 0, or -1
  *  (no path or buf, buf too small, no free name). */
 RG2_API int rg2_temp_name(const char *path, char *buf, size_t cap);

@@ -34,7 +34,10 @@ static long dir_name_max(const char *dir)
 long (*rg2__dir_name_max)(const char *dir) = dir_name_max;
 
 /* The longest file name in path's directory (the file systems' 255 bytes, eCryptfs' 143, ...):
- * the directory's own answer, OUT_NAME_MAX when it has none. */
+ * the directory's own answer, OUT_NAME_MAX when it has none or a larger one. Larger answers are
+ * not byte counts: vfat and exfat report 255 UTF-16 units times 6 bytes (1530) yet refuse an
+ * ASCII name of 256 bytes, so a name they take, within the suffix's length of 255, went uncut
+ * and its temporary name failed with "File name too long". */
 static size_t name_max(const char *path)
 {
     const char *slash = strrchr(path, '/');
@@ -53,7 +56,7 @@ static size_t name_max(const char *path)
         m = rg2__dir_name_max(dir);
         free(dir);
     }
-    return m > 0 ? (size_t)m : OUT_NAME_MAX;
+    return m > 0 && m < OUT_NAME_MAX ? (size_t)m : OUT_NAME_MAX;
 }
 
 /* The k-th temporary name of path (k = 0: "<path>.<pid>.tmp", else "<path>.<pid>.<k>.tmp"). A last

@@ -1361,7 +1361,8 @@ static long temp_name_max(const char *dir)
  * takes 143 bytes), through the test hook, since no file system here has a limit below 255: a
  * 140-byte name is cut to 143 bytes with the hash of the whole name and written; the limit is
  * asked of the path's own directory ("." and "/" for names without one); no answer (-1) means
- * 255, and a limit too small for the suffix and hash leaves the name whole. */
+ * 255, and a limit too small for the suffix and hash leaves the name whole; a larger one (vfat
+ * and exfat answer 1530) counts as 255. */
 static void temp_names_limit(const rg2_surface *s)
 {
     rg2_error err;
@@ -1395,6 +1396,18 @@ static void temp_names_limit(const rg2_surface *s)
     struct stat sb;
     CHECK(stat(lng, &sb) == 0 && sb.st_size > 100, "limit 143: a 140-byte file name was not written");
     remove(lng);
+    /* vfat and exfat answer 255 UTF-16 units x 6 bytes = 1530 but take 255 ASCII bytes: a
+     * 250-byte name there (here: the hook on a 255-byte file system) is cut at 255 and written */
+    g_name_max = 1530;
+    char lng2[600], base2[256];
+    memset(base2, 'z', 246);
+    strcpy(base2 + 246, ".obj"); /* 250 bytes */
+    snprintf(lng2, sizeof lng2, "%s/%s", g_dir, base2);
+    CHECK(rg2_temp_name(lng2, tname, sizeof tname) == 0 && strlen(strrchr(tname, '/') + 1) <= 255,
+          "limit 1530 (vfat): temporary name of %zu bytes", strlen(strrchr(tname, '/') + 1));
+    rg2_status st1530 = rg2_export_file(s, 1, lng2, &o, &err);
+    CHECK(st1530 == RG2_OK, "limit 1530 (vfat): a 250-byte file name was not written: %s", err.msg);
+    remove(lng2);
     const char *bare[2][2] = {{"rg2-rel.obj", "."}, {"/rg2-abs.obj", "/"}};
     for (int q = 0; q < 2; q++)
         CHECK(rg2_temp_name(bare[q][0], tname, sizeof tname) == 0 && !strcmp(g_name_dir, bare[q][1]),
