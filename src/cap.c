@@ -537,41 +537,33 @@ static void ucircle_quadratic(const ucircle *uc, int i, double q[3][3])
  * and an "every" are the same in any order (NaN quotients are skipped, as fmax does). */
 static void body_scan(const rg2_surface *S, int general, double *scale, int *du)
 {
-    double sc = 0.0;
-    int quad = 1;
+    double m0 = 0.0, m1 = 0.0, m2 = 0.0; /* per coordinate: three independent chains */
+    int quad = general;
+    /* reductions, not a critical section: clang's libomp makes an unnamed critical's lock a
+     * global symbol (.gomp_critical_user_.var) that librg2.so would export */
 #ifdef RG2_HAVE_OPENMP
-#pragma omp parallel if ((size_t)S->nu * (size_t)S->nv > 256)
+#pragma omp parallel for schedule(static) reduction(max : m0, m1, m2) reduction(&& : quad) \
+    if ((size_t)S->nu * (size_t)S->nv > 256)
 #endif
-    {
-        double m[3] = {0.0, 0.0, 0.0}; /* per coordinate: three independent chains */
-        int q = general;
-#ifdef RG2_HAVE_OPENMP
-#pragma omp for schedule(static) nowait
-#endif
-        for (int i = 0; i < S->nu; i++)
-            for (int j = 0; j < S->nv; j++) {
-                const rg2_patch *P = rg2_surface_patch(S, i, j);
-                for (int r = 0; r < 4; r++)
-                    for (int s = 0; s < 4; s++)
-                        for (int d = 0; d < 3; d++)
-                            m[d] = max_of(m[d], fabs(P->h[r][s][d] / P->h[r][s][3]));
-                for (int t = 0; q && t < 4; t++)
-                    for (int d = 0; q && d < 4; d++) {
-                        double c[4];
-                        for (int r = 0; r < 4; r++)
-                            c[r] = P->h[r][t][d];
-                        q = cubic_is_quadratic(c);
-                    }
-            }
-#ifdef RG2_HAVE_OPENMP
-#pragma omp critical
-#endif
-        {
-            sc = max_of(sc, max_of(max_of(m[0], m[1]), m[2]));
-            quad = quad && q;
+    for (int i = 0; i < S->nu; i++)
+        for (int j = 0; j < S->nv; j++) {
+            const rg2_patch *P = rg2_surface_patch(S, i, j);
+            for (int r = 0; r < 4; r++)
+                for (int s = 0; s < 4; s++) {
+                    const double *h = P->h[r][s];
+                    m0 = max_of(m0, fabs(h[0] / h[3]));
+                    m1 = max_of(m1, fabs(h[1] / h[3]));
+                    m2 = max_of(m2, fabs(h[2] / h[3]));
+                }
+            for (int t = 0; general && quad && t < 4; t++)
+                for (int d = 0; quad && d < 4; d++) {
+                    double c[4];
+                    for (int r = 0; r < 4; r++)
+                        c[r] = P->h[r][t][d];
+                    quad = cubic_is_quadratic(c);
+                }
         }
-    }
-    *scale = sc;
+    *scale = max_of(max_of(m0, m1), m2);
     *du = quad ? 4 : 5;
 }
 
