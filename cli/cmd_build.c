@@ -21,7 +21,7 @@ static void usage(FILE *f)
                "  --iges-brep       IGES: a B-rep shell per mesh (faces, shared edges and vertices;\n"
                "                    no sewing needed) instead of untrimmed surfaces; either layout\n"
                "  --density N       triangle meshes: samples per patch edge (default 16)\n"
-               "  -q, --quiet       no progress line\n"
+               "  -q, --quiet       no progress line, and no notes on options that no output uses\n"
                "A progress line goes to stderr when it is a terminal.\n"
                "Exit codes: 0 ok, 1 invalid design or write error (message on stderr), 2 usage error.\n");
 }
