@@ -935,7 +935,8 @@ RG2_API rg2_status rg2_retessellate(const rg2_surface *s, int density, int curva
                                     rg2_error *err);
 RG2_API void rg2_tess_free(rg2_tess *t);
 /** Write surfaces to path; the format follows the extension: .step/.stp, .igs/.iges, .bv,
- *  .bez (geomview BEZ334), .obj, .stl, .ply, .glb, .json (docs/export.md). Writes a new temporary file next to path,
+ *  .bez (geomview BEZ<Du><Dv>4, the highest degrees: BEZ334 for bi-3 surfaces), .obj, .stl,
+ *  .ply, .glb, .json (docs/export.md). Writes a new temporary file next to path,
  *  "<path>.<pid>.tmp" (created exclusively, never through a symbolic link; a counter is added
  *  when another thread writes the same path), then renames it to path: a failed export leaves
  *  no file, and concurrent writers of one path leave one writer's whole file.
