@@ -218,6 +218,8 @@ int rg2_cmd_render(int argc, char **argv)
         only = (int)only_v;
     if (!rc && only < 0 && !o.apart && n > 1)
         overlap_note(surfs, n);
+    if (!rc && o.apart && (only >= 0 || n == 1))
+        rg2_cli_no_effect("render", "--apart", "one surface to draw");
     if (!rc) {
         rg2_error err = {0};
         if (only >= 0 && rg2_render_png(surfs + only, 1, meshes + only, &o, out, &err))

@@ -81,13 +81,18 @@ f1=$SRC/examples/fig1_torus.json
 "$RG2" render "$f1" -o "$tmp/f1.png" --size 96x64 2>"$tmp/f1.err" &&
   "$RG2" render "$f1" -o "$tmp/f1_apart.png" --size 96x64 --apart 2>"$tmp/f1_apart.err" &&
   "$RG2" render "$f1" -o "$tmp/f1_s2.png" --size 96x64 --surface 2 2>"$tmp/f1_s2.err" &&
-  "$RG2" render "$f1" -o "$tmp/f1_s2_apart.png" --size 96x64 --surface 2 --apart || bad "render fig1 --apart"
+  "$RG2" render "$f1" -o "$tmp/f1_s2_apart.png" --size 96x64 --surface 2 --apart 2>"$tmp/f1_s2_apart.err" ||
+  bad "render fig1 --apart"
 grep -q "note: output surfaces 0 and 1 overlap.*--apart" "$tmp/f1.err" && ok || bad "fig1 as placed: no overlap note"
 [ ! -s "$tmp/f1_apart.err" ] && [ ! -s "$tmp/f1_s2.err" ] && ok || bad "overlap note with --apart or --surface"
 "$RG2" render "$f9" -o "$tmp/f9n.png" --size 96x64 2>"$tmp/f9.err" && [ ! -s "$tmp/f9.err" ] && ok ||
   bad "fig9 (surfaces side by side): $(cat "$tmp/f9.err")"
 differ f1 f1_apart "--apart lays the four tori out"
 same f1_s2 f1_s2_apart "--apart with one surface"
+# ... so it gets a note, as other options the run does not use
+grep -q "note: --apart has no effect (one surface to draw)" "$tmp/f1_s2_apart.err" && ok ||
+  bad "--apart with one surface: no note: $(cat "$tmp/f1_s2_apart.err")"
+expect 0 "note: --apart has no effect (one surface to draw)" -- "$RG2" render "$ex" -o "$tmp/n6.png" --size 64x48 --apart
 png_is "$tmp/f1_apart.png" 96 64
 # same bytes for 1 and 2 threads
 "$RG2" render "$ex" -o "$tmp/t1.png" --mode zebra --size 160x120 --threads 1 &&
