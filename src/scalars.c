@@ -2,6 +2,7 @@
  * sources: knot vectors (polynomial mode) and circle partitions (MATH.md sections 1-2). */
 #include "internal.h"
 
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,6 +20,13 @@ static rg2_status check_count(int n, int closed, const char *what, rg2_error *er
         return rg2__fail(err, RG2_ELIMIT, "%s: %d control points exceeds the limit %d", what, n,
                          RG2_MAX_POINTS);
     return RG2_OK;
+}
+
+/* The control points of `count` values less `extra` (data values): a count near INT_MIN stays
+ * negative (too few points) instead of overflowing to a huge one. */
+static int points_of(int count, int extra)
+{
+    return count < INT_MIN + extra ? INT_MIN : count - extra;
 }
 
 /* An opening angle outside (0, pi), in radians and in the degrees the user likely gave. */
@@ -137,7 +145,7 @@ rg2_status rg2_scalars_from_knots(rg2_scalars *s, const double *knots, int n_kno
                                   rg2_error *err)
 {
     memset(s, 0, sizeof *s);
-    int n = closed ? n_knots - 1 : n_knots - 2;
+    int n = points_of(n_knots, closed ? 1 : 2);
     rg2_status st = check_count(n, closed, "knots", err);
     if (st)
         return st;
@@ -174,7 +182,7 @@ rg2_status rg2_scalars_from_angles(rg2_scalars *s, const double *alpha, int n_al
                                    rg2_error *err)
 {
     memset(s, 0, sizeof *s);
-    int n = closed ? n_alpha : n_alpha - 1;
+    int n = points_of(n_alpha, closed ? 0 : 1);
     rg2_status st = check_count(n, closed, "arcs", err);
     if (st)
         return st;
@@ -213,7 +221,7 @@ void rg2_blossom_monomials(double a, double b, double c, double out[4])
 rg2_status rg2_circle_coeffs(const double *alpha, int n_alpha, int closed, double theta0,
                              double *cs, rg2_error *err)
 {
-    int n = closed ? n_alpha : n_alpha - 1;
+    int n = points_of(n_alpha, closed ? 0 : 1);
     rg2_status st = check_count(n, closed, "arcs", err);
     if (st)
         return st;

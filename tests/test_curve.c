@@ -3,6 +3,7 @@
  * and the error cases. */
 #include "harness.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -468,6 +469,16 @@ static void errors(void)
     CHECK(rg2_scalars_from_knots(&s, knots, 3, 1, &err) == RG2_EINVAL &&
               !strcmp(err.msg, "knots: 2 control points, a closed direction needs at least 3"),
           "2 closed knots intervals: %s", err.msg);
+    /* counts near INT_MIN are too few points: n_knots - 2 and n_alpha - 1 overflowed to a count
+     * past the limit (RG2_ELIMIT, "2147483646 control points") */
+    CHECK(rg2_scalars_from_knots(&s, knots, INT_MIN, 0, &err) == RG2_EINVAL && strstr(err.msg, "at least 4"),
+          "INT_MIN open knots: %s", err.msg);
+    CHECK(rg2_scalars_from_knots(&s, knots, INT_MIN, 1, &err) == RG2_EINVAL && strstr(err.msg, "at least 3"),
+          "INT_MIN closed knots: %s", err.msg);
+    CHECK(rg2_scalars_from_angles(&s, a4, INT_MIN, 0, &err) == RG2_EINVAL && strstr(err.msg, "at least 4"),
+          "INT_MIN open arcs: %s", err.msg);
+    CHECK(rg2_circle_coeffs(a4, INT_MIN, 0, 0.0, cs, &err) == RG2_EINVAL && strstr(err.msg, "at least 4"),
+          "INT_MIN open circle arcs: %s", err.msg);
     CHECK_OK(rg2_scalars_init(&s, 4, 1, &err), &err);
     s.g[1] = NAN;
     CHECK(rg2_scalars_check(&s, "v", &err) == RG2_ENONFINITE && !strcmp(err.msg, "v: scalar g[1] is not finite"),
