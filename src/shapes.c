@@ -106,7 +106,7 @@ static int is_angles(rg2_partition_kind k) { return k == RG2_PART_ANGLES || k ==
 
 int rg2_partition_num_segments(const rg2_partition *p)
 {
-    if (!p || !p->values)
+    if (!p || !p->values || p->n <= 0) /* (p->n - 5 of a count near INT_MIN would overflow) */
         return 0;
     int n;
     switch (p->kind) {

@@ -636,6 +636,14 @@ static void knot_maps_and_checks(void)
     bad.kind = (rg2_partition_kind)7;
     expect_err(rg2_partition_check(&bad, "u", &err), RG2_EINVAL, &err, "u partition has unknown kind 7", "unknown kind");
     CHECK(rg2_partition_num_segments(&bad) == 0, "unknown kind: %d segments", rg2_partition_num_segments(&bad));
+    /* a negative count near INT_MIN: n - 4 / n - 5 overflowed to about 2^31 segments */
+    for (int kind = RG2_PART_ANGLES; kind <= RG2_PART_KNOTS_FULL; kind++) {
+        bad.kind = (rg2_partition_kind)kind;
+        bad.n = INT_MIN + 2;
+        int ns = rg2_partition_num_segments(&bad);
+        CHECK(ns == 0 && isnan(rg2_partition_map(&bad, 1000, 0.5)), /* (the map read values[1002]) */
+              "kind %d, %d values: %d segments", kind, bad.n, ns);
+    }
     double five[5] = {0.5, 0.5, 0.5, 0.5, 0.5};
     rg2_partition pf = {RG2_PART_ANGLES_FULL, 1, 5, five, 0.0};
     expect_err(rg2_partition_check(&pf, "u", &err), RG2_EINVAL, &err,
