@@ -53,7 +53,9 @@ rg2_status rg2_polar_sphere_mesh(const double *alpha, int n_alpha, double theta0
         for (int k = 0; k < 16; k++)
             if (!rg2__finite(M[k]))
                 return rg2__fail(err, RG2_ENONFINITE, "polar sphere: placement entry %d is not finite", k);
-    double *knots = rg2__calloc((size_t)m + 4, sizeof(double));
+    /* (m < 2 is rg2_polar_knots' error: (size_t)m + 4 of m <= -5 wrapped to an impossible
+     * size, reported as out of memory) */
+    double *knots = rg2__calloc((size_t)(m > 0 ? m : 0) + 4, sizeof(double));
     double *cs = rg2__calloc((size_t)n_alpha * 2, sizeof(double));
     rg2_status st = RG2_OK;
     if (!knots || !cs) {

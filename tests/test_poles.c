@@ -342,6 +342,10 @@ static void errors(void)
     CHECK(rg2_polar_sphere_mesh(alpha, 2, 0.0, v, 2, NULL, &b, &err) == RG2_EINVAL &&
               !strcmp(err.msg, "polar sphere: 2 arcs, a closed circle needs at least 3"),
           "2 arcs: %s", err.msg);
+    for (int mm = 1; mm >= -6; mm -= 7) /* m <= -5 was refused as out of memory */
+        CHECK(rg2_polar_sphere_mesh(alpha, 3, 0.0, v, mm, NULL, &b, &err) == RG2_EINVAL &&
+                  strstr(err.msg, "interior knot(s)") && b.p == NULL,
+              "m = %d: %s", mm, err.msg);
     double P[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     P[6] = NAN;
     CHECK(rg2_polar_sphere_mesh(alpha, 3, 0.0, v, 2, P, &b, &err) == RG2_ENONFINITE &&
