@@ -74,6 +74,9 @@ rg2_status rg2_mesh_check(const rg2_mesh *m, rg2_error *err)
     st = rg2_scalars_check(&m->sv, "mesh v", err);
     if (st)
         return st;
+    if ((long long)m->nu * m->nv > RG2_MAX_POINTS) /* (each count is within it: the scalars') */
+        return rg2__fail(err, RG2_ELIMIT, "mesh: %d x %d control points exceeds the limit of %d", m->nu, m->nv,
+                         RG2_MAX_POINTS);
     for (int i = 0; i < m->nu; i++)
         for (int j = 0; j < m->nv; j++) {
             const double *p = rg2_mesh_at(m, i, j);

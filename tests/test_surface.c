@@ -186,6 +186,20 @@ static void mesh_errors(void)
           err.msg);
     rg2_mesh_free(&m);
     CHECK(rg2_mesh_init(&m, 5000, 5000, 0, 0, &err) == RG2_ELIMIT, "huge mesh refused: %s", err.msg);
+    /* the same count in a mesh made by hand (each direction within the limit, the total past it):
+     * rg2_mesh_check, and so rg2_surface_build, took it */
+    CHECK_OK(rg2_mesh_init(&m, 4, 4, 1, 1, &err), &err);
+    rg2_scalars_free(&m.su);
+    rg2_scalars_free(&m.sv);
+    free(m.p);
+    m.nu = m.nv = 2001;
+    m.p = calloc((size_t)m.nu * (size_t)m.nv * 4, sizeof(double)); /* zeros: finite */
+    CHECK_OK(rg2_scalars_init(&m.su, m.nu, 1, &err), &err);
+    CHECK_OK(rg2_scalars_init(&m.sv, m.nv, 1, &err), &err);
+    CHECK(!m.p || (rg2_mesh_check(&m, &err) == RG2_ELIMIT &&
+                   !strcmp(err.msg, "mesh: 2001 x 2001 control points exceeds the limit of 4000000")),
+          "2001 x 2001 mesh checked: %s", err.msg);
+    rg2_mesh_free(&m);
     /* the direction that is too small is named, for v as for u */
     CHECK(rg2_mesh_init(&m, 5, 3, 0, 0, &err) == RG2_EINVAL && !m.p && !m.su.w &&
               !strcmp(err.msg, "mesh v: scalars: 3 control points, an open direction needs at least 4"),
