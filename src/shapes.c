@@ -1078,9 +1078,15 @@ rg2_status rg2_xform_invert(const double M[16], double inv[16], rg2_error *err)
                 a[r][j] -= f * a[c][j];
         }
     }
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++)
-            inv[4 * i + j] = ldexp(a[i][4 + j], ec[i] + er[j]);
+    double r[16]; /* (inv is left as it was when the inverse is out of range) */
+    for (int k = 0; k < 16; k++) {
+        r[k] = ldexp(a[k / 4][4 + k % 4], ec[k / 4] + er[k % 4]);
+        if (!rg2__finite(r[k]))
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "placement matrix is singular in double precision (inverse entry [%d][%d] overflows)",
+                             k / 4, k % 4);
+    }
+    memcpy(inv, r, sizeof r);
     rg2__ok(err);
     return RG2_OK;
 }

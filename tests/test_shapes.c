@@ -528,6 +528,13 @@ static void transforms(void)
     for (int k = 0; k < 16; k++)
         ei = fmax(ei, fabs(I[k] - (k % 5 == 0 ? 1.0 : 0.0)));
     CHECK(ei <= 1e-14, "xform_invert: M M^-1 - I = %.3g", ei);
+    /* a scale of 1e-310 (subnormal): the inverse's 1e310 is past the double range; it came back as
+     * inf with RG2_OK */
+    double S[16], Si[16];
+    rg2_xform_scale(S, 1e-310, 1.0, 1.0);
+    memcpy(Si, I, sizeof Si);
+    expect_err(rg2_xform_invert(S, Si, &err), RG2_EDOMAIN, &err, "inverse entry [0][0] overflows", "subnormal scale");
+    CHECK(!memcmp(Si, I, sizeof Si), "xform_invert: the output written on failure");
     rg2_surface_free(&s0);
     rg2_surface_free(&s1);
     rg2_mesh_free(&m0);
