@@ -1170,9 +1170,10 @@ static rg2_status parse_text(const char *json, size_t len, const char *name, cJS
 
 rg2_status rg2_nurbs_parse(const char *json, size_t len, const char *name, rg2_mesh *out, rg2_error *err)
 {
+    if (out) /* (first: a caller frees it whatever the outcome) */
+        memset(out, 0, sizeof *out);
     if (!json || !name || !out)
         return rg2__fail(err, RG2_EINVAL, "nurbs: no text, name or output");
-    memset(out, 0, sizeof *out);
     if (len > RG2_TEXT_MAX_BYTES)
         return rg2__fail(err, RG2_ELIMIT, "%s: %zu bytes, more than the limit of %u", name, len, RG2_TEXT_MAX_BYTES);
     cJSON *root;

@@ -114,6 +114,11 @@ static void parse_same(const rg2_nurbs *nb, const rg2_mesh *m, int trial)
         rg2_status st = rg2_nurbs_parse(t, strlen(t) / 2, "spec", &q, &err);
         CHECK(st == RG2_EPARSE && strstr(err.msg, "spec:1:") && strstr(err.msg, "malformed JSON"), "cut text: %s",
               err.msg);
+        /* no text: the output is zeroed as on every other failure (it was left as it was, and a
+         * caller's rg2_mesh_free of its uninitialised struct freed garbage) */
+        memset(&q, 0x55, sizeof q);
+        st = rg2_nurbs_parse(NULL, 0, "spec", &q, &err);
+        CHECK(st == RG2_EINVAL && !q.p && !q.nu && !q.su.w, "no text: %s, output %p %d", err.msg, (void *)q.p, q.nu);
     }
     free(t);
 }
