@@ -141,6 +141,23 @@ rg2_status rg2_scalars_check(const rg2_scalars *s, const char *what, rg2_error *
     return RG2_OK;
 }
 
+/* Scalars just made from finite knots or arcs: lengths or angles on the two sides of a junction
+ * that differ beyond the double range give a b, g or K that is not a finite number (b also 0). */
+static rg2_status made_finite(rg2_scalars *s, const char *what, const char *sides, rg2_error *err)
+{
+    for (int i = 0; i < s->n; i++) {
+        double b = s->b[i], g = s->g[i], K = rg2_scalars_K(s, i);
+        if (!(b > 0.0 && rg2__finite(b) && rg2__finite(g) && rg2__finite(K))) {
+            rg2_scalars_free(s);
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "%s: junction %d gets b = %g, g = %g, K = %g: the %s on its two sides differ beyond "
+                             "the double range",
+                             what, i, b, g, K, sides);
+        }
+    }
+    return RG2_OK;
+}
+
 rg2_status rg2_scalars_from_knots(rg2_scalars *s, const double *knots, int n_knots, int closed,
                                   rg2_error *err)
 {
@@ -175,7 +192,7 @@ rg2_status rg2_scalars_from_knots(rg2_scalars *s, const double *knots, int n_kno
         s->b[i] = d / dm;
         s->g[i] = 0.0;
     }
-    return RG2_OK;
+    return made_finite(s, "knots", "knot intervals", err);
 }
 
 rg2_status rg2_scalars_from_angles(rg2_scalars *s, const double *alpha, int n_alpha, int closed,
@@ -207,7 +224,7 @@ rg2_status rg2_scalars_from_angles(rg2_scalars *s, const double *alpha, int n_al
         s->b[i] = b;
         s->g[i] = 2.0 * b * sin(bi) * (tan(0.5 * bi) + tan(0.5 * bm));
     }
-    return RG2_OK;
+    return made_finite(s, "arcs", "arcs", err);
 }
 
 void rg2_blossom_monomials(double a, double b, double c, double out[4])

@@ -479,6 +479,16 @@ static void errors(void)
           "INT_MIN open arcs: %s", err.msg);
     CHECK(rg2_circle_coeffs(a4, INT_MIN, 0, 0.0, cs, &err) == RG2_EINVAL && strstr(err.msg, "at least 4"),
           "INT_MIN open circle arcs: %s", err.msg);
+    /* finite arcs and knots whose scalars leave the double range: they came back RG2_OK with
+     * b = inf (an arc of 1e-320 next to one of 2) or K = inf (intervals 1e-300 and 1) */
+    double tiny[3] = {1e-320, 2.0, 2.0}, wide[6] = {0, 1e-300, 1, 2, 3, 4};
+    CHECK(rg2_scalars_from_angles(&s, tiny, 3, 1, &err) == RG2_EDOMAIN && !s.b &&
+              !strcmp(err.msg, "arcs: junction 1 gets b = inf, g = inf, K = inf: the arcs on its two sides differ "
+                               "beyond the double range"),
+          "arc of 1e-320: %s", err.msg);
+    CHECK(rg2_scalars_from_knots(&s, wide, 6, 0, &err) == RG2_EDOMAIN && !s.b &&
+              strstr(err.msg, "knots: junction 0 gets b = 1e+300, g = 0, K = inf: the knot intervals"),
+          "knot intervals 1e-300 and 1: %s", err.msg);
     CHECK_OK(rg2_scalars_init(&s, 4, 1, &err), &err);
     s.g[1] = NAN;
     CHECK(rg2_scalars_check(&s, "v", &err) == RG2_ENONFINITE && !strcmp(err.msg, "v: scalar g[1] is not finite"),
