@@ -75,6 +75,11 @@ static rg2_status knots_prepare(const double *U, int n, const char *what, double
         for (int k = 1; k <= 3; k++)
             Unew[n + k] = U[n] + k * d;
     }
+    for (int k = 1; k < nk; k++) /* (knots -1e308 .. 1e308: the scalars' message named "knot 0", not finite) */
+        if (!rg2__finite(Unew[k] - Unew[k - 1]))
+            return rg2__fail(err, RG2_EDOMAIN, "nurbs: %s spans [%s, %s]: its intervals%s exceed the double range",
+                             what, rg2__num(U[0]).s, rg2__num(U[nk - 1]).s,
+                             *fix_lo || *fix_hi ? " (and the end intervals continued past a clamped end)" : "");
     return RG2_OK;
 }
 
@@ -302,9 +307,14 @@ rg2_status rg2_nurbs_mesh(const rg2_nurbs *nb, rg2_mesh *out, rg2_error *err)
         goto fail;
     rg2_scalars_free(&out->su);
     rg2_scalars_free(&out->sv);
-    if ((st = rg2_scalars_from_knots(&out->su, Uu + 1, nu + 2, 0, err)) ||
-        (st = rg2_scalars_from_knots(&out->sv, Uv + 1, nv + 2, 0, err)))
-        goto fail;
+    for (int d = 0; d < 2; d++) /* (the scalars' messages name the knot vector) */
+        if ((st = rg2_scalars_from_knots(d ? &out->sv : &out->su, d ? Uv + 1 : Uu + 1, (d ? nv : nu) + 2, 0, err))) {
+            if (err) {
+                rg2_error e = *err;
+                rg2__fail(err, st, "nurbs: %s: %s", d ? "knots_v" : "knots_u", e.msg);
+            }
+            goto fail;
+        }
     for (int i = 0; i < nu; i++)
         for (int j = 0; j < nv; j++) {
             size_t k = (size_t)i * (size_t)nv + (size_t)j;

@@ -521,6 +521,20 @@ static void errors(void)
     V[8] = INFINITY;
     expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_ENONFINITE, &err, "knots_v[8]", "inf knot");
     V[8] = 8;
+    /* knots whose intervals leave the double range, named by the knot vector: the end intervals
+     * continued past the clamped ends reach -inf (refused as "knots: knot 0 is not finite"), and
+     * intervals 1e-300 and 1 give K = inf (taken into the mesh's scalars) */
+    double Uw[10] = {-1e308, -1e308, -1e308, -1e308, -5e307, 5e307, 1e308, 1e308, 1e308, 1e308};
+    nb.knots_u = Uw;
+    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EDOMAIN, &err, "nurbs: knots_u spans [-1e+308, 1e+308]",
+               "knots spanning more than the double range");
+    double Vr[9] = {0, 1e-300, 2e-300, 3e-300, 1, 2, 3, 4, 5};
+    nb.knots_u = U;
+    nb.knots_v = Vr;
+    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EDOMAIN, &err, "nurbs: knots_v: knots: junction 1 gets b = 1e+300",
+               "knot intervals 1e-300 and 1");
+    CHECK(!m.p, "a mesh left after the error");
+    nb.knots_v = V;
     nb.nv = 3;
     expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EINVAL, &err, "at least 4", "too few points");
     nb.nv = 5;
