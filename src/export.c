@@ -674,8 +674,9 @@ rg2_status rg2__tess_all(const rg2_surface *surfs, int n_surfs, int density, int
         total += ((double)surfs[k].nu * density + 1.0) * ((double)surfs[k].nv * density + 1.0);
     if (total > RG2_MAX_POINTS)
         return rg2__fail(err, RG2_ELIMIT,
-                         "export: %d surfaces at density %d need %.0f vertices, more than the limit %d",
-                         n_surfs, density, total, RG2_MAX_POINTS);
+                         "export: %d surface%s at density %d need%s %.0f vertices, more than the limit %d",
+                         n_surfs, n_surfs == 1 ? "" : "s", density, n_surfs == 1 ? "s" : "", total,
+                         RG2_MAX_POINTS);
     *out = rg2__calloc((size_t)n_surfs, sizeof(rg2_tess));
     if (!*out)
         return rg2__fail(err, RG2_ENOMEM, "export: out of memory");
