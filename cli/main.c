@@ -2,6 +2,7 @@
 #define _POSIX_C_SOURCE 200809L /* sigaction */
 #include "cli.h"
 
+#include <errno.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -70,6 +71,19 @@ static void free_split(char **out, char **names)
         free(names[k]);
     free(names);
     free(out);
+}
+
+/* The exit code once the output is flushed: a write error on stdout (a full disk, /dev/full, a
+ * closed pipe's EIO) is a failure, named, never exit 0 with the report lost. */
+static int finish_stdout(const char *cmd, int rc)
+{
+    errno = 0;
+    int flushed = fflush(stdout) == 0, e = errno;
+    if (flushed && !ferror(stdout))
+        return rc;
+    fprintf(stderr, "rg2%s%s: cannot write the standard output: %s\n", cmd ? " " : "", cmd ? cmd : "",
+            !flushed && e ? strerror(e) : "write error");
+    return rc ? rc : RG2_EXIT_FAIL;
 }
 
 static void usage(FILE *f)
@@ -142,11 +156,11 @@ int main(int argc, char **argv)
     }
     if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "-V")) {
         printf("rg2 %s\n", rg2_version());
-        return 0;
+        return finish_stdout(NULL, 0);
     }
     if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
         usage(stdout);
-        return 0;
+        return finish_stdout(NULL, 0);
     }
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
         if (!strcmp(argv[1], commands[i].name)) {
@@ -160,7 +174,7 @@ int main(int argc, char **argv)
             int rc = commands[i].run(n, args);
             free_guards();
             free_split(args, names);
-            return rc;
+            return finish_stdout(commands[i].name, rc);
         }
     fprintf(stderr, "rg2: unknown command '%s'\n", argv[1]);
     usage(stderr);
