@@ -56,8 +56,6 @@ static void usage(FILE *f)
 
 static int parse_require(const char *s, unsigned *req)
 {
-    char buf[256];
-    snprintf(buf, sizeof buf, "%s", s);
     int any = 0;
     for (const char *q = s; *q; q++)
         any |= *q != ',' && *q != ' ';
@@ -65,7 +63,14 @@ static int parse_require(const char *s, unsigned *req)
         fprintf(stderr, "rg2 check: --require '%s': needs a comma-separated list of g0, g1, g2, exact, weights\n", s);
         return -1;
     }
-    for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
+    char *buf = malloc(strlen(s) + 1); /* the whole list, however long (a fixed buffer dropped its end) */
+    if (!buf) {
+        fprintf(stderr, "rg2 check: out of memory\n");
+        return -1;
+    }
+    memcpy(buf, s, strlen(s) + 1);
+    int rc = 0;
+    for (char *tok = strtok(buf, ","); tok && !rc; tok = strtok(NULL, ",")) {
         if (!strcmp(tok, "g0"))
             *req |= RG2_REQUIRE_G0;
         else if (!strcmp(tok, "g1"))
@@ -78,10 +83,11 @@ static int parse_require(const char *s, unsigned *req)
             *req |= RG2_REQUIRE_WEIGHTS;
         else {
             fprintf(stderr, "rg2 check: --require: unknown promise '%s' (g0, g1, g2, exact, weights)\n", tok);
-            return -1;
+            rc = -1;
         }
     }
-    return 0;
+    free(buf);
+    return rc;
 }
 
 int rg2_cmd_check(int argc, char **argv)
