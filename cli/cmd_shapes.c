@@ -128,7 +128,7 @@ typedef struct {
     int segments;    /* --D-segments N, 0: none */
     int has_range, has_sweep, has_start;
     double range[2], sweep, start;
-    int open, closed, is_knots; /* is_knots: values came from --D-knots */
+    int open, closed, angles, knots; /* angles, knots: --D-angles, --D-knots given (o->vals holds the last) */
 } dir_opts;
 
 /* Turn the options of one direction into a partition (values stored in o->vals). */
@@ -139,9 +139,21 @@ static int make_partition(const char *shape, const rg2_shape_desc *d, int dir, d
     memset(p, 0, sizeof *p);
     rg2_error err = {0};
     if (d->dir_kind[dir] == RG2_PART_ANGLES) {
-        if (o->is_knots || o->has_range || o->segments) {
+        if (o->knots || o->has_range || o->segments) {
             fprintf(stderr, "rg2 shape: %s: %s is a circle direction: use --%s-arcs, --%s-angles, "
                             "--%s-sweep, --%s-start\n", shape, D, D, D, D, D);
+            return RG2_EXIT_USAGE;
+        }
+        /* options that contradict each other, or one of which the other would silently drop */
+        const char *clash = o->open && o->closed ? "--%s-open and --%s-closed contradict each other"
+                            : o->closed && o->has_sweep ? "--%s-sweep gives an open partial circle; --%s-closed contradicts it"
+                            : o->angles && o->arcs ? "give --%s-angles (the arcs' angles) or --%s-arcs (a count), not both"
+                            : o->angles && o->has_sweep ? "--%s-angles goes without --%s-sweep: the angles add up to the sweep"
+                                                        : NULL;
+        if (clash) {
+            fprintf(stderr, "rg2 shape: %s: ", shape);
+            fprintf(stderr, clash, D, D);
+            fprintf(stderr, "\n");
             return RG2_EXIT_USAGE;
         }
         double start = o->has_start ? o->start * M_PI / 180.0 : 0.0;
@@ -191,9 +203,13 @@ static int make_partition(const char *shape, const rg2_shape_desc *d, int dir, d
         p->closed = !open;
         return 0;
     }
-    if (o->arcs || o->has_sweep || o->has_start || o->open || o->closed || (o->n_vals >= 0 && !o->is_knots)) {
+    if (o->arcs || o->has_sweep || o->has_start || o->open || o->closed || o->angles) {
         fprintf(stderr, "rg2 shape: %s: %s is a polynomial direction: use --%s-knots or --%s-range "
                         "with --%s-segments\n", shape, D, D, D, D);
+        return RG2_EXIT_USAGE;
+    }
+    if (o->knots && (o->has_range || o->segments)) {
+        fprintf(stderr, "rg2 shape: %s: give --%s-knots, or --%s-range with --%s-segments, not both\n", shape, D, D, D);
         return RG2_EXIT_USAGE;
     }
     if (o->n_vals >= 0) {
@@ -450,6 +466,11 @@ int rg2_cmd_shape(int argc, char **argv)
             fprintf(stderr, "rg2 shape: unexpected argument '%s'\n", a);
             return RG2_EXIT_USAGE;
         }
+        if (is_nurbs && strcmp(a, "--file") && strcmp(a, "--spec")) { /* placement, partitions: the exact shapes' */
+            fprintf(stderr, "rg2 shape: nurbs takes --file F.json or --spec JSON and --json, not '%s' (see rg2 shape "
+                            "--help)\n", a);
+            return RG2_EXIT_USAGE;
+        }
         /* flags without a value */
         if ((a[2] == 'u' || a[2] == 'v') && a[3] == '-' && (!strcmp(a + 4, "open") || !strcmp(a + 4, "closed"))) {
             dir_opts *o = &dop[a[2] == 'v'];
@@ -492,7 +513,10 @@ int rg2_cmd_shape(int argc, char **argv)
                     return RG2_EXIT_USAGE;
                 if ((rc = check_numbers(a, o->vals, o->n_vals)))
                     return rc;
-                o->is_knots = what[0] == 'k';
+                if (what[0] == 'k')
+                    o->knots = 1;
+                else
+                    o->angles = 1;
             } else if (!strcmp(what, "start")) {
                 if (parse_one(a, val, &o->start))
                     return RG2_EXIT_USAGE;
@@ -585,12 +609,13 @@ int rg2_cmd_shape(int argc, char **argv)
         }
         char *text = NULL;
         rg2_error rerr;
-        if (file && rg2_read_text(file, &text, NULL, &rerr)) {
+        size_t text_len = 0; /* the file's length: a NUL byte in it is an error, not its end */
+        if (file && rg2_read_text(file, &text, &text_len, &rerr)) {
             fprintf(stderr, "rg2 shape: nurbs: cannot read %s\n", rerr.msg);
             return RG2_EXIT_FAIL;
         }
         const char *src = file ? text : spec;
-        st = rg2_nurbs_parse(src, strlen(src), file ? file : "--spec", &m, &err);
+        st = rg2_nurbs_parse(src, file ? text_len : strlen(src), file ? file : "--spec", &m, &err);
         free(text);
         if (st) {
             rc = rg2_cli_report("shape", &err);
