@@ -56,6 +56,7 @@ int rg2_cmd_curve(int argc, char **argv)
     int n_angles = 0, n_pts = -1, dim = 2, closed = -1, json = 0, open = 0;
     int nw = -1, nb = -1, ng = -1;
     double radius = 1.0, start = 0.0;
+    const char *circle_opt = NULL, *poly_opt = NULL, *arcs_opt = NULL; /* the first given of each kind */
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
@@ -78,6 +79,11 @@ int rg2_cmd_curve(int argc, char **argv)
             closed = 1;
         } else if (!strcmp(a, "--arcs")) {
             NEED();
+            if (arcs_opt && strcmp(arcs_opt, a)) {
+                fprintf(stderr, "rg2 curve: give --arcs (a count) or --angles (the arcs' angles), not both\n");
+                return RG2_EXIT_USAGE;
+            }
+            arcs_opt = a;
             char *end;
             long n = strtol(val, &end, 10);
             if (end == val || *end || n < 3 || n > MAXV - 1) {
@@ -89,8 +95,17 @@ int rg2_cmd_curve(int argc, char **argv)
             n_angles = (int)n;
         } else if (!strcmp(a, "--angles")) {
             NEED();
+            if (arcs_opt && strcmp(arcs_opt, a)) {
+                fprintf(stderr, "rg2 curve: give --arcs (a count) or --angles (the arcs' angles), not both\n");
+                return RG2_EXIT_USAGE;
+            }
+            arcs_opt = a;
             if ((n_angles = rg2_cli_parse_list("curve", a, val, angles, MAXV)) < 0)
                 return RG2_EXIT_USAGE;
+            if (n_angles == 0) { /* not the default circle: an empty list is a mistake */
+                fprintf(stderr, "rg2 curve: --angles '%s': no angles given\n", val);
+                return RG2_EXIT_USAGE;
+            }
         } else if (!strcmp(a, "--radius")) {
             NEED();
             if (rg2_cli_number("curve", a, val, "a number", &radius))
@@ -129,6 +144,28 @@ int rg2_cmd_curve(int argc, char **argv)
             return RG2_EXIT_USAGE;
         }
 #undef NEED
+        /* the options of one kind of curve only: the other kind ignored them */
+        static const char *const circ[] = {"--arcs", "--angles", "--radius", "--start"};
+        static const char *const poly[] = {"--points", "--dim", "--w", "--b", "--g"};
+        for (size_t k = 0; k < sizeof circ / sizeof *circ; k++)
+            if (!strcmp(a, circ[k]) && !circle_opt)
+                circle_opt = a;
+        for (size_t k = 0; k < sizeof poly / sizeof *poly; k++)
+            if (!strcmp(a, poly[k]) && !poly_opt)
+                poly_opt = a;
+    }
+    if (open && closed > 0) {
+        fprintf(stderr, "rg2 curve: --open and --closed contradict each other\n");
+        return RG2_EXIT_USAGE;
+    }
+    if (circle_opt && poly_opt) {
+        fprintf(stderr, "rg2 curve: %s is for a circle and %s for a control polygon: give one or the other\n",
+                circle_opt, poly_opt);
+        return RG2_EXIT_USAGE;
+    }
+    if (poly_opt && n_pts < 0) {
+        fprintf(stderr, "rg2 curve: %s needs --points (it is for a control polygon)\n", poly_opt);
+        return RG2_EXIT_USAGE;
     }
     rg2_error err = {0};
     rg2_scalars s = {0};
