@@ -105,6 +105,11 @@ int rg2_temp_name(const char *path, char *buf, size_t cap)
 rg2_status rg2__out_open(rg2__out *o, const char *path, rg2_error *err)
 {
     memset(o, 0, sizeof *o);
+    /* refused before anything is written: the rename would fail only after the whole write, and
+     * after the other files of an rg2_export_files call had replaced theirs */
+    struct stat sb;
+    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
+        return rg2__fail(err, RG2_EIO, "%s: cannot write: it is a directory", path);
     size_t cap = strlen(path) + 48;
     o->tmp = malloc(cap);
     if (!o->tmp)

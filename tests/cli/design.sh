@@ -48,6 +48,15 @@ cmp -s "$tmp/ts.step" "$tmp/prev.step" && ok || bad "a failed build changed the 
 expect 1 "/nonexistent-rg2-dir/b.igs: cannot write" "$rg2" build -q "$src/examples/fig1_torus.json" -o /nonexistent-rg2-dir/b.igs -o "$tmp/ts.step"
 cmp -s "$tmp/ts.step" "$tmp/prev.step" && ok || bad "a failed build changed the ts.step that was there (failing output first)"
 ls "$tmp" | grep -q '\.tmp$' && bad "temporary file left behind" || ok
+# an output that is a directory is refused before any file is written (its rename failed only
+# after ts.step had been replaced), by every writer
+mkdir "$tmp/adir.igs" "$tmp/adir.json" "$tmp/adir.png"
+expect 1 "$tmp/adir.igs: cannot write: it is a directory" "$rg2" build -q "$src/examples/fig1_torus.json" -o "$tmp/ts.step" -o "$tmp/adir.igs"
+cmp -s "$tmp/ts.step" "$tmp/prev.step" && ok || bad "a build with a directory as output changed the ts.step that was there"
+expect 1 "$tmp/adir.json: cannot write: it is a directory" "$rg2" mesh "$src/examples/fig1_torus.json" -o "$tmp/adir.json"
+expect 1 "$tmp/adir.png: cannot write: it is a directory" "$rg2" render "$src/examples/fig1_torus.json" -o "$tmp/adir.png" --size 16x16
+[ -z "$(find "$tmp"/adir.* -mindepth 1)" ] && ! ls "$tmp" | grep -q '\.tmp$' && ok || bad "files left by the directory outputs"
+rmdir "$tmp/adir.igs" "$tmp/adir.json" "$tmp/adir.png"
 expect 0 "" "$rg2" info --map "$src/examples/torus_sphere.json"
 grep -q "exact on ring *48 patches" "$tmp/out" && grep -q "exact on ball *24 patches" "$tmp/out" &&
   grep -q "transition *48 patches" "$tmp/out" && ok || bad "info counts: $(cat "$tmp/out")"
