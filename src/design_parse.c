@@ -1112,6 +1112,45 @@ static void line_col(const char *text, size_t off, int *line, int *col)
     }
 }
 
+/* The length of the UTF-8 sequence at p (at most n bytes there), 0 if it is not one: no overlong
+ * form, no surrogate, nothing past U+10FFFF. */
+static size_t utf8_len(const unsigned char *p, size_t n)
+{
+    if (p[0] < 0x80)
+        return 1;
+    size_t k = p[0] >= 0xC2 && p[0] <= 0xDF ? 2 : p[0] >= 0xE0 && p[0] <= 0xEF ? 3 : p[0] >= 0xF0 && p[0] <= 0xF4 ? 4 : 0;
+    if (!k || k > n)
+        return 0;
+    for (size_t i = 1; i < k; i++)
+        if ((p[i] & 0xC0) != 0x80)
+            return 0;
+    if ((p[0] == 0xE0 && p[1] < 0xA0) || (p[0] == 0xED && p[1] > 0x9F) || (p[0] == 0xF0 && p[1] < 0x90) ||
+        (p[0] == 0xF4 && p[1] > 0x8F))
+        return 0;
+    return k;
+}
+
+/* How deep in arrays and objects the text is at offset off (brackets in strings not counted). */
+static int nesting(const char *text, size_t off)
+{
+    int depth = 0, in_string = 0;
+    for (size_t k = 0; k < off && text[k]; k++) {
+        char ch = text[k];
+        if (in_string) {
+            if (ch == '\\')
+                k++;
+            else if (ch == '"')
+                in_string = 0;
+        } else if (ch == '"')
+            in_string = 1;
+        else if (ch == '[' || ch == '{')
+            depth++;
+        else if (ch == ']' || ch == '}')
+            depth--;
+    }
+    return depth;
+}
+
 /* Parse a JSON text (a whole design file or a NURBS spec) into *root; the errors name name:line:col. */
 static rg2_status parse_text(const char *json, size_t len, const char *name, cJSON **root, rg2_error *err)
 {
@@ -1139,6 +1178,20 @@ static rg2_status parse_text(const char *json, size_t len, const char *name, cJS
             }
             i++; /* skip the escaped character: \\ then u0000 is a backslash and text */
         }
+    /* JSON text is UTF-8 (RFC 8259): other bytes would reach the labels, the messages and the
+     * mesh file (rg2 mesh wrote them as they were: JSON no reader takes) */
+    for (size_t i = 0; i < len;) {
+        size_t n = utf8_len((const unsigned char *)buf + i, len - i);
+        if (!n) {
+            int line, col;
+            line_col(buf, i, &line, &col);
+            unsigned byte = (unsigned char)buf[i];
+            free(buf);
+            return rg2__fail(err, RG2_EPARSE, "%s:%d:%d: byte 0x%02x is not UTF-8 text (save the file as UTF-8)",
+                             name, line, col, byte);
+        }
+        i += n;
+    }
     size_t blank = 0; /* an empty file (or only white space) is not a syntax error to hunt for */
     while (blank < len && strchr(" \t\r\n", buf[blank]))
         blank++;
@@ -1160,6 +1213,11 @@ static rg2_status parse_text(const char *json, size_t len, const char *name, cJS
         for (; k < sizeof near - 1 && buf[off + k] && buf[off + k] != '\n'; k++)
             near[k] = buf[off + k];
         near[k] = 0;
+        if (nesting(buf, off) >= CJSON_NESTING_LIMIT) { /* well formed, perhaps, but past the parser's depth */
+            free(buf);
+            return rg2__fail(err, RG2_ELIMIT, "%s:%d:%d: arrays and objects nested more than %d deep", name, line,
+                             col, CJSON_NESTING_LIMIT);
+        }
         free(buf);
         return rg2__fail(err, RG2_EPARSE, "%s:%d:%d: malformed JSON %s%s%s", name, line, col,
                          k ? "near '" : "at the end of the text", near, k ? "'" : "");
