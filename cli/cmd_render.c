@@ -117,15 +117,20 @@ int rg2_cmd_render(int argc, char **argv)
                 return RG2_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--size")) {
-            int w = 0, h = 0;
-            char c = 0;
-            if (i + 1 >= argc || sscanf(argv[i + 1], "%dx%d%c", &w, &h, &c) != 2 || w < 16 || h < 16 || w > 8192 ||
-                h > 8192) {
-                fprintf(stderr, "rg2 render: --size needs WxH, each 16..8192 (e.g. 800x600)\n");
+            /* strtol, not sscanf's %d: that wrapped 4294967312 to 16 */
+            long w = 0, h = 0;
+            char *end = NULL;
+            if (i + 1 < argc) {
+                w = strtol(argv[i + 1], &end, 10);
+                h = end != argv[i + 1] && *end == 'x' && end[1] >= '0' && end[1] <= '9' ? strtol(end + 1, &end, 10) : 0;
+            }
+            if (i + 1 >= argc || *end || w < 16 || h < 16 || w > 8192 || h > 8192) {
+                fprintf(stderr, "rg2 render: --size needs WxH, each 16..8192 (e.g. 800x600)%s%s%s\n",
+                        i + 1 < argc ? ", not '" : "", i + 1 < argc ? argv[i + 1] : "", i + 1 < argc ? "'" : "");
                 return RG2_EXIT_USAGE;
             }
-            o.width = w;
-            o.height = h;
+            o.width = (int)w;
+            o.height = (int)h;
             i++;
         } else if (!strcmp(a, "--azimuth")) {
             if (number(a, argc, argv, &i, &o.azimuth))
