@@ -544,11 +544,26 @@ static cJSON *scalars_json(const rg2_scalars *s, const int *leg, const int *jun)
 
 rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, rg2_error *err)
 {
-    cJSON *root = cJSON_CreateObject();
-    if (!root)
+    /* the design's name (its file's path) as UTF-8 text: a byte that is not (a Latin-1 file name)
+     * becomes '?', so the mesh file stays JSON (the design text itself is UTF-8, checked) */
+    size_t len = strlen(d->name);
+    char *name = malloc(len + 1);
+    cJSON *root = name ? cJSON_CreateObject() : NULL;
+    if (!root) {
+        free(name);
         return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", path);
+    }
+    for (size_t i = 0; i <= len;) {
+        size_t n = i < len ? rg2__utf8_len((const unsigned char *)d->name + i, len - i) : 1;
+        if (n)
+            memcpy(name + i, d->name + i, n);
+        else
+            name[i] = '?', n = 1;
+        i += n;
+    }
     cJSON_AddStringToObject(root, "format", "rg2 control mesh 1");
-    cJSON_AddStringToObject(root, "design", d->name);
+    cJSON_AddStringToObject(root, "design", name);
+    free(name);
     cJSON *shapes = cJSON_AddArrayToObject(root, "shapes");
     for (int k = 0; k < d->n_shapes; k++) {
         cJSON *s = cJSON_CreateObject();

@@ -1112,9 +1112,8 @@ static void line_col(const char *text, size_t off, int *line, int *col)
     }
 }
 
-/* The length of the UTF-8 sequence at p (at most n bytes there), 0 if it is not one: no overlong
- * form, no surrogate, nothing past U+10FFFF. */
-static size_t utf8_len(const unsigned char *p, size_t n)
+/* No overlong form, no surrogate, nothing past U+10FFFF. */
+size_t rg2__utf8_len(const unsigned char *p, size_t n)
 {
     if (p[0] < 0x80)
         return 1;
@@ -1181,7 +1180,7 @@ static rg2_status parse_text(const char *json, size_t len, const char *name, cJS
     /* JSON text is UTF-8 (RFC 8259): other bytes would reach the labels, the messages and the
      * mesh file (rg2 mesh wrote them as they were: JSON no reader takes) */
     for (size_t i = 0; i < len;) {
-        size_t n = utf8_len((const unsigned char *)buf + i, len - i);
+        size_t n = rg2__utf8_len((const unsigned char *)buf + i, len - i);
         if (!n) {
             int line, col;
             line_col(buf, i, &line, &col);

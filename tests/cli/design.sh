@@ -63,6 +63,13 @@ grep -q "exact on ring *48 patches" "$tmp/out" && grep -q "exact on ball *24 pat
 expect 0 "" "$rg2" mesh "$src/examples/fig1_torus.json" -o "$tmp/mesh.json"
 grep -q '"rg2 control mesh 1"' "$tmp/mesh.json" && grep -q '"patch_shape"' "$tmp/mesh.json" && ok || bad "mesh.json content"
 
+# a design file name that is not UTF-8 (Latin-1 'é'): the mesh file stays UTF-8 JSON, the byte a '?'
+cp "$src/examples/fig1_torus.json" "$tmp/lat"$'\xe9'".json"
+expect 0 "" "$rg2" mesh "$tmp/lat"$'\xe9'".json" -o "$tmp/lat.json"
+grep -qF "\"$tmp/lat?.json\"" "$tmp/lat.json" && ! LC_ALL=C grep -q $'\xe9' "$tmp/lat.json" && ok ||
+  bad "mesh of a Latin-1 file name: $(grep -a '"design"' "$tmp/lat.json")"
+rm -f "$tmp/lat"$'\xe9'".json" "$tmp/lat.json"
+
 # a bad extension among several outputs: a usage error before the build, nothing written
 expect 2 "unknown export format '.xyz'" "$rg2" build -q "$src/examples/fig5_workflow.json" -o "$tmp/w.step" -o "$tmp/w.xyz"
 [ -e "$tmp/w.step" ] && bad "w.step written despite a bad -o" || ok
