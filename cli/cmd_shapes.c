@@ -89,9 +89,10 @@ int rg2_cmd_shapes(int argc, char **argv)
     return 0;
 }
 
-static void help_shape(void)
+/* Usage to stdout for --help, to stderr as the usage error of a bare `rg2 shape`. */
+static void help_shape(FILE *f)
 {
-    printf(
+    fprintf(f,
         "usage: rg2 shape NAME [--PARAM value ...] [direction options] [placement] [--json]\n"
         "       rg2 shape nurbs (--file F.json | --spec JSON) [--json]\n\n"
         "Builds the control mesh of an exact shape (rg2 shapes lists them) and its rational\n"
@@ -423,7 +424,7 @@ static int parse_one(const char *opt, const char *val, double *out)
 int rg2_cmd_shape(int argc, char **argv)
 {
     if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
-        help_shape();
+        help_shape(argc < 2 ? stderr : stdout);
         return argc < 2 ? RG2_EXIT_USAGE : 0;
     }
     static dir_opts dop[2];
@@ -459,7 +460,7 @@ int rg2_cmd_shape(int argc, char **argv)
             continue;
         }
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            help_shape();
+            help_shape(stdout);
             return 0;
         }
         if (strncmp(a, "--", 2)) {

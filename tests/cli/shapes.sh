@@ -2,6 +2,11 @@
 . "$(dirname "$0")/lib.sh"
 expect 0 "usage: rg2 shapes" -- "$RG2" shapes --help
 expect 0 "usage: rg2 shape NAME" -- "$RG2" shape --help
+# a bare 'rg2 shape' is a usage error: the usage goes to stderr, as for the other commands
+out=$("$RG2" shape 2>/dev/null); rc=$?
+err=$("$RG2" shape 2>&1 >/dev/null)
+if [ "$rc" = 2 ] && [ -z "$out" ]; then ok; else bad "rg2 shape -> exit $rc, stdout '$out' (expected 2 and nothing)"; fi
+case "$err" in *"usage: rg2 shape NAME"*) ok ;; *) bad "rg2 shape: stderr lacks the usage: $err" ;; esac
 # every shape is listed with its parameters and builds with its defaults
 for s in torus cyclide sphere cylinder cone hyperboloid1_ruled hyperboloid1 hyperboloid2 paraboloid hypar ellipsoid; do
   expect 0 "$s" -- "$RG2" shapes
