@@ -1212,7 +1212,9 @@ static rg2_status parse_text(const char *json, size_t len, const char *name, cJS
         for (; k < sizeof near - 1 && buf[off + k] && buf[off + k] != '\n'; k++)
             near[k] = buf[off + k];
         near[k] = 0;
-        if (nesting(buf, off) >= CJSON_NESTING_LIMIT) { /* well formed, perhaps, but past the parser's depth */
+        /* well formed, perhaps, but past the parser's depth: cJSON stops at the bracket one level too
+         * deep (a syntax error at depth 1000, which it accepts, is not a nesting error) */
+        if ((buf[off] == '[' || buf[off] == '{') && nesting(buf, off) >= CJSON_NESTING_LIMIT) {
             free(buf);
             return rg2__fail(err, RG2_ELIMIT, "%s:%d:%d: arrays and objects nested more than %d deep", name, line,
                              col, CJSON_NESTING_LIMIT);
