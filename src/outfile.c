@@ -106,9 +106,10 @@ rg2_status rg2__out_open(rg2__out *o, const char *path, rg2_error *err)
 {
     memset(o, 0, sizeof *o);
     /* refused before anything is written: the rename would fail only after the whole write, and
-     * after the other files of an rg2_export_files call had replaced theirs */
+     * after the other files of an rg2_export_files call had replaced theirs. lstat: a symbolic
+     * link to a directory is replaced by the rename, as a link to a file is */
     struct stat sb;
-    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
+    if (lstat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
         return rg2__fail(err, RG2_EIO, "%s: cannot write: it is a directory", path);
     size_t cap = strlen(path) + 48;
     o->tmp = malloc(cap);

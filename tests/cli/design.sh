@@ -57,6 +57,11 @@ expect 1 "$tmp/adir.json: cannot write: it is a directory" "$rg2" mesh "$src/exa
 expect 1 "$tmp/adir.png: cannot write: it is a directory" "$rg2" render "$src/examples/fig1_torus.json" -o "$tmp/adir.png" --size 16x16
 [ -z "$(find "$tmp"/adir.* -mindepth 1)" ] && ! ls "$tmp" | grep -q '\.tmp$' && ok || bad "files left by the directory outputs"
 rmdir "$tmp/adir.igs" "$tmp/adir.json" "$tmp/adir.png"
+# a symbolic link to a directory is replaced by the rename, as a link to a file is: not refused
+mkdir "$tmp/ldir" && ln -s ldir "$tmp/link.step"
+expect 0 "" "$rg2" build -q "$src/examples/fig1_torus.json" -o "$tmp/link.step"
+[ -f "$tmp/link.step" ] && [ ! -L "$tmp/link.step" ] && [ -d "$tmp/ldir" ] && ok || bad "link.step was not replaced by the STEP file"
+rm -rf "$tmp/ldir" "$tmp/link.step"
 expect 0 "" "$rg2" info --map "$src/examples/torus_sphere.json"
 grep -q "exact on ring *48 patches" "$tmp/out" && grep -q "exact on ball *24 patches" "$tmp/out" &&
   grep -q "transition *48 patches" "$tmp/out" && ok || bad "info counts: $(cat "$tmp/out")"
