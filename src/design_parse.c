@@ -435,6 +435,10 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
                 return st;
             have_closed = 1;
         }
+        if (angles && have_to && have_closed && closed) /* as rg2 shape refuses --D-closed with --D-sweep */
+            return fail(c, RG2_EPARSE, path,
+                        "'to' ends an open ring; a closed circle goes all the way round (drop 'to', or "
+                        "say \"closed\": false)");
         const char *ck = angles ? "arcs" : "segments";
         x = get(obj, ck);
         if (!angles && get(obj, "knots")) {
