@@ -51,7 +51,8 @@ static void usage(FILE *f)
                "                      1e-11); repeatable\n"
                "  --threads N         threads, up to 64 used (default: all cores, or OMP_NUM_THREADS);\n"
                "                      the report does not depend on it\n"
-               "Exit codes: 0 ok, 1 invalid design, 2 usage error, 3 a required promise fails.\n");
+               "Exit codes: 0 ok, 1 invalid design or a failed write of the report, 2 usage error,\n"
+               "3 a required promise fails.\n");
 }
 
 static int parse_require(const char *s, unsigned *req)

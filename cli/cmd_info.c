@@ -43,7 +43,8 @@ static void usage(FILE *f)
                "e.g. \"-> 6 x 12 = 72 patches (24 of degree (5,3))\".\n"
                "  --map   also print a map of the patches (one line per u index; a letter per shape as\n"
                "          listed, '.' for a transition patch)\n"
-               "Exit codes: 0 ok, 1 the design is invalid (message on stderr), 2 usage error.\n");
+               "Exit codes: 0 ok, 1 the design is invalid or the report cannot be written (message on\n"
+               "stderr), 2 usage error.\n");
 }
 
 int rg2_cmd_info(int argc, char **argv)

@@ -117,12 +117,16 @@ int rg2_cmd_render(int argc, char **argv)
                 return RG2_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--size")) {
-            /* strtol, not sscanf's %d: that wrapped 4294967312 to 16 */
+            /* strtol, not sscanf's %d: that wrapped 4294967312 to 16; each number starts with a digit
+             * (strtol alone takes a sign or blanks) */
             long w = 0, h = 0;
             char *end = NULL;
             if (i + 1 < argc) {
-                w = strtol(argv[i + 1], &end, 10);
-                h = end != argv[i + 1] && *end == 'x' && end[1] >= '0' && end[1] <= '9' ? strtol(end + 1, &end, 10) : 0;
+                end = argv[i + 1];
+                if (*end >= '0' && *end <= '9')
+                    w = strtol(end, &end, 10);
+                if (w && *end == 'x' && end[1] >= '0' && end[1] <= '9')
+                    h = strtol(end + 1, &end, 10);
             }
             if (i + 1 >= argc || *end || w < 16 || h < 16 || w > 8192 || h > 8192) {
                 fprintf(stderr, "rg2 render: --size needs WxH, each 16..8192 (e.g. 800x600)%s%s%s\n",

@@ -74,7 +74,8 @@ static void free_split(char **out, char **names)
 }
 
 /* The exit code once the output is flushed: a write error on stdout (a full disk, /dev/full, a
- * closed pipe's EIO) is a failure, named, never exit 0 with the report lost. */
+ * closed pipe's EPIPE when SIGPIPE is ignored) is a failure, named, never exit 0 with the report
+ * lost. */
 static int finish_stdout(const char *cmd, int rc)
 {
     errno = 0;
