@@ -652,7 +652,10 @@ RG2_API rg2_status rg2_mesh_check_range(const rg2_mesh *m, const char *what, rg2
 /** Read and build a design file. On failure *out is NULL and err names the offending item
  *  (file, line and column for syntax errors, JSON path for semantic ones). */
 RG2_API rg2_status rg2_design_load(const char *path, rg2_design **out, rg2_error *err);
-/** The same from a JSON text in memory; `name` is used in messages. */
+/** The same from a JSON text in memory; `name` is used in messages. The text (as the file of
+ *  rg2_design_load) is UTF-8 JSON with no NUL byte (RG2_EPARSE naming the line and column of the
+ *  first byte that is not; a UTF-8 byte-order mark is skipped), nested at most 1000 deep
+ *  (RG2_ELIMIT). */
 RG2_API rg2_status rg2_design_parse(const char *json, size_t len, const char *name,
                                     rg2_design **out, rg2_error *err);
 RG2_API void rg2_design_free(rg2_design *d);

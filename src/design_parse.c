@@ -1166,8 +1166,13 @@ static rg2_status parse_text(const char *json, size_t len, const char *name, cJS
         size_t off = strlen(buf);
         int line, col;
         line_col(buf, off, &line, &col);
+        /* a UTF-16 (or UTF-32) file, from Windows most often: a byte-order mark FF FE / FE FF, or
+         * a NUL in the first two bytes, where JSON text has '{' or blanks */
+        const unsigned char *u = (const unsigned char *)buf;
+        int wide = off < 2 || (len >= 2 && ((u[0] == 0xff && u[1] == 0xfe) || (u[0] == 0xfe && u[1] == 0xff)));
         free(buf);
-        return rg2__fail(err, RG2_EPARSE, "%s:%d:%d: NUL byte in the design text", name, line, col);
+        return rg2__fail(err, RG2_EPARSE, "%s:%d:%d: NUL byte in the design text%s", name, line, col,
+                         wide ? " (the file looks like UTF-16 or UTF-32: save it as UTF-8)" : "");
     }
     /* "\u0000" in a string: cJSON's strings are C strings and would end there silently */
     for (size_t i = 0; i + 1 < len; i++)
