@@ -896,7 +896,7 @@ typedef struct {
                                  of untrimmed surfaces */
     int density;            /**< meshes: samples per patch edge (default 16; < 1: 16) */
     const char *name;       /**< product / object name (default "rg2"; NULL: "rg2"); control
-                                 characters are written as '_' */
+                                 characters are written as '_', bytes that are not UTF-8 as '?' */
 } rg2_export_opts;
 
 RG2_API void rg2_export_opts_default(rg2_export_opts *o);

@@ -170,8 +170,6 @@ int rg2__patch_tag(const rg2_design *d, const rg2__dmesh *dm, const rg2__stencil
                    int l);
 
 /* JSON design parser (design_parse.c). */
-/* The length of the UTF-8 sequence at p (at most n bytes there), 0 if it is not one. */
-size_t rg2__utf8_len(const unsigned char *p, size_t n);
 rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, const char *name,
                                   rg2_error *err);
 

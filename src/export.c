@@ -733,14 +733,16 @@ rg2_status rg2_export_format_check(const char *path, rg2_error *err)
     return export_format(path, &fmt, err);
 }
 
-/* A copy of name with every control character (a newline, say) replaced by '_', or NULL if it
- * has none. In the OBJ and PLY headers the name sits in a comment line that a newline would end;
- * STEP and IGES map such characters themselves. */
+/* A copy of name with every control character (a newline, say) replaced by '_' and every byte
+ * that is not UTF-8 by '?', or NULL if it has none. In the OBJ and PLY headers the name sits in a
+ * comment line that a newline would end; glTF and JSON are UTF-8 text; STEP and IGES map such
+ * characters themselves. */
 static char *name_without_controls(const char *name, int *nomem)
 {
-    size_t n = strlen(name), k = 0;
-    while (k < n && (unsigned char)name[k] >= 32 && name[k] != 127)
-        k++;
+    size_t n = strlen(name), k = 0, l = 1;
+    while (k < n && (unsigned char)name[k] >= 32 && name[k] != 127 &&
+           (l = rg2__utf8_len((const unsigned char *)name + k, n - k)))
+        k += l;
     *nomem = 0;
     if (k == n)
         return NULL;
@@ -749,8 +751,16 @@ static char *name_without_controls(const char *name, int *nomem)
         *nomem = 1;
         return NULL;
     }
-    for (k = 0; k <= n; k++)
-        c[k] = k < n && ((unsigned char)name[k] < 32 || name[k] == 127) ? '_' : name[k];
+    for (k = 0; k <= n; k += l) {
+        unsigned char ch = (unsigned char)name[k];
+        l = k < n ? rg2__utf8_len((const unsigned char *)name + k, n - k) : 1;
+        if (!l) /* not UTF-8 (a Latin-1 name): glTF and JSON text must be */
+            c[k] = '?', l = 1;
+        else if (k < n && (ch < 32 || ch == 127))
+            c[k] = '_';
+        else
+            memcpy(c + k, name + k, l);
+    }
     return c;
 }
 

@@ -221,6 +221,9 @@ void rg2__c_numeric_end(void *old);
 /* cJSON's parse (ParseWithLengthOpts, NUL required at text[len - 1]) and print (formatted or
  * not), serialised and in the "C" locale (src/json.c); print's text is freed with cJSON_free. */
 struct cJSON;
+/* The length of the UTF-8 sequence at p (at most n bytes there), 0 if it is not one
+ * (src/design_parse.c). */
+size_t rg2__utf8_len(const unsigned char *p, size_t n);
 struct cJSON *rg2__json_parse(const char *text, size_t len, const char **end);
 char *rg2__json_print(const struct cJSON *item, int formatted);
 

@@ -1662,6 +1662,26 @@ static void names_and_defaults(const rg2_surface *s)
     CHECK(b && strstr(b, "=PRODUCT('two_lines_and_','two_lines_and_',"), "STEP: control characters as '_'");
     free(b);
 
+    /* a name that is not UTF-8 (Latin-1 e-acute, then the same letter in UTF-8): glTF and JSON
+     * are UTF-8 text, so the stray byte is written as '?' */
+    rg2_export_opts_default(&o);
+    o.name = "caf\xe9 \xc3\xa9";
+    o.density = 2;
+    CHECK_OK(rg2_export_file(s, 1, path_in("latin.json"), &o, &err), &err);
+    CHECK_OK(rg2_export_file(s, 1, path_in("latin.glb"), &o, &err), &err);
+    static const char *const latin[] = {"latin.json", "latin.glb"};
+    for (int k = 0; k < 2; k++) {
+        unsigned char *u = slurp(path_in(latin[k]), &len);
+        int good = 0, bad = 0; /* (a byte search: the glb's binary chunk may hold NULs) */
+        for (size_t i = 0; u && i + 9 <= len; i++) {
+            good |= !memcmp(u + i, "\"caf? \xc3\xa9\"", 9);
+            bad |= !memcmp(u + i, "caf\xe9", 4);
+        }
+        CHECK(u && good && !bad,
+              "%s: the name as UTF-8 with '?' for the Latin-1 byte", latin[k]);
+        free(u);
+    }
+
     /* defaults: name NULL and density 0 are "rg2" and 16, as are no options */
     rg2_export_opts z;
     memset(&z, 0, sizeof z);
