@@ -75,11 +75,29 @@ static rg2_status knots_prepare(const double *U, int n, const char *what, double
         for (int k = 1; k <= 3; k++)
             Unew[n + k] = U[n] + k * d;
     }
-    for (int k = 1; k < nk; k++) /* (knots -1e308 .. 1e308: the scalars' message named "knot 0", not finite) */
-        if (!rg2__finite(Unew[k] - Unew[k - 1]))
-            return rg2__fail(err, RG2_EDOMAIN, "nurbs: %s spans [%s, %s]: its intervals%s exceed the double range",
-                             what, rg2__num(U[0]).s, rg2__num(U[nk - 1]).s,
-                             *fix_lo || *fix_hi ? " (and the end intervals continued past a clamped end)" : "");
+    /* The construction reads Unew[1..n+2] (the scalars of rg2_nurbs_mesh; the blossoms of
+     * unclamp_line and check_clamped_rounding), never Unew[0] or Unew[n+3]: the intervals
+     * Unew[k-1..k], k = 2..n+2, must be finite. Those of the user's knots first (k = 3..n+2 or
+     * 2..n, k-1 >= 3 and k <= n where an end is continued), then the continued ones. */
+    for (int k = 2; k <= n + 2; k++)
+        if (!(*fix_lo && k <= 3) && !(*fix_hi && k > n) && !rg2__finite(Unew[k] - Unew[k - 1]))
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "nurbs: the interval %s[%d..%d] = [%s, %s] is longer than the double range", what,
+                             k - 1, k, rg2__num(U[k - 1]).s, rg2__num(U[k]).s);
+    if (*fix_lo && !(rg2__finite(Unew[1]) && rg2__finite(Unew[2])))
+        return rg2__fail(err, RG2_EDOMAIN,
+                         "nurbs: the end interval %s[3..4] = [%s, %s], continued past the clamped start as "
+                         "rg2 does to unclamp it, reaches %s[3] - 2 (%s[4] - %s[3]) = %s, beyond the double "
+                         "range",
+                         what, rg2__num(U[3]).s, rg2__num(U[4]).s, what, what, what,
+                         rg2__num(U[3] - 2.0 * (U[4] - U[3])).s);
+    if (*fix_hi && !(rg2__finite(Unew[n + 1]) && rg2__finite(Unew[n + 2])))
+        return rg2__fail(err, RG2_EDOMAIN,
+                         "nurbs: the end interval %s[%d..%d] = [%s, %s], continued past the clamped end as "
+                         "rg2 does to unclamp it, reaches %s[%d] + 2 (%s[%d] - %s[%d]) = %s, beyond the double "
+                         "range",
+                         what, n - 1, n, rg2__num(U[n - 1]).s, rg2__num(U[n]).s, what, n, what, n, what, n - 1,
+                         rg2__num(U[n] + 2.0 * (U[n] - U[n - 1])).s);
     return RG2_OK;
 }
 

@@ -490,6 +490,76 @@ static void extreme_knot_ratios(void)
     CHECK(textbook16 >= 1e-13, "textbook Cox-de Boor at e^16 only %.3g off", textbook16);
 }
 
+/* Build the surface of the 5 x 4 NURBS with knots_u U (knots_v 0..7) into *s; 0 on success. */
+static int build_5x4(const double *U, rg2_surface *s)
+{
+    static double pts[5 * 4 * 3];
+    for (int i = 0; i < 5; i++)
+        for (int j = 0; j < 4; j++) {
+            double *p = pts + 3 * (i * 4 + j);
+            p[0] = i, p[1] = j, p[2] = (i * j) % 3;
+        }
+    static const double V[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+    rg2_nurbs nb = {5, 4, pts, NULL, U, V};
+    rg2_mesh m;
+    rg2_error err;
+    rg2_status st = rg2_nurbs_mesh(&nb, &m, &err);
+    CHECK(st == RG2_OK, "knots_u from %g to %g: %s", U[0], U[8], err.msg);
+    if (st)
+        return 1;
+    st = rg2_surface_build(&m, s, &err);
+    rg2_mesh_free(&m);
+    CHECK_OK(st, &err);
+    return st != RG2_OK;
+}
+
+/* The largest distance between two surfaces of the same patch layout at 5 x 5 points a patch. */
+static double surface_distance(const rg2_surface *a, const rg2_surface *b)
+{
+    double md = 0.0;
+    for (int i = 0; i < a->nu; i++)
+        for (int j = 0; j < a->nv; j++)
+            for (int x = 0; x <= 4; x++)
+                for (int y = 0; y <= 4; y++) {
+                    rg2_eval e1, e2;
+                    rg2_surface_eval(a, i, j, 0.25 * x, 0.25 * y, 0, &e1);
+                    rg2_surface_eval(b, i, j, 0.25 * x, 0.25 * y, 0, &e2);
+                    for (int k = 0; k < 3; k++)
+                        md = fmax(md, fabs(e1.p[k] - e2.p[k]));
+                }
+    return md;
+}
+
+/* Knots of magnitude near the double range whose used intervals are finite: the construction
+ * reads knots_u[1..n+2] (and the end intervals continued past a clamped end, twice), never
+ * knots_u[0] or knots_u[n+3] nor a third continued interval. rg2 refused both (RG2_EDOMAIN
+ * "knots_u spans ...") for an interval it does not read: knots_u[0..1] of 1.9e308, and the
+ * third interval continued past either clamped end, 1.5e308 to 2e308. */
+static void knots_near_double_range(void)
+{
+    const double Uf[9] = {-1.7e308, 2e307, 3e307, 4e307, 5e307, 6e307, 7e307, 8e307, 9e307};
+    const double Ufr[9] = {-1, 2e307, 3e307, 4e307, 5e307, 6e307, 7e307, 8e307, 9e307};
+    const double Uc[9] = {-5e307, -5e307, -5e307, -5e307, 0, 5e307, 5e307, 5e307, 5e307};
+    const double Ucr[9] = {-1, -1, -1, -1, 0, 1, 1, 1, 1};
+    rg2_surface a, b;
+    if (!build_5x4(Uf, &a)) {
+        if (!build_5x4(Ufr, &b)) {
+            double d = surface_distance(&a, &b);
+            CHECK(d <= 1e-14, "knots_u[0] = -1.7e308: %.3g from knots_u[0] = -1", d);
+            rg2_surface_free(&b);
+        }
+        rg2_surface_free(&a);
+    }
+    if (!build_5x4(Uc, &a)) {
+        if (!build_5x4(Ucr, &b)) {
+            double d = surface_distance(&a, &b);
+            CHECK(d <= 1e-14, "clamped knots_u +-5e307: %.3g from +-1", d);
+            rg2_surface_free(&b);
+        }
+        rg2_surface_free(&a);
+    }
+}
+
 static void errors(void)
 {
     double P[6 * 5 * 3], W[30];
@@ -521,13 +591,27 @@ static void errors(void)
     V[8] = INFINITY;
     expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_ENONFINITE, &err, "knots_v[8]", "inf knot");
     V[8] = 8;
-    /* knots whose intervals leave the double range, named by the knot vector: the end intervals
-     * continued past the clamped ends reach -inf (refused as "knots: knot 0 is not finite"), and
-     * intervals 1e-300 and 1 give K = inf (taken into the mesh's scalars) */
+    /* knots whose intervals leave the double range, named by the knot vector and the knots: the
+     * end interval continued past a clamped end reaches -inf (refused as "knots: knot 0 is not
+     * finite"), an interval of the knots themselves, and intervals 1e-300 and 1 give K = inf
+     * (taken into the mesh's scalars) */
     double Uw[10] = {-1e308, -1e308, -1e308, -1e308, -5e307, 5e307, 1e308, 1e308, 1e308, 1e308};
     nb.knots_u = Uw;
-    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EDOMAIN, &err, "nurbs: knots_u spans [-1e+308, 1e+308]",
-               "knots spanning more than the double range");
+    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EDOMAIN, &err,
+               "nurbs: the end interval knots_u[3..4] = [-1e+308, -5e+307], continued past the clamped start "
+               "as rg2 does to unclamp it, reaches knots_u[3] - 2 (knots_u[4] - knots_u[3]) = -inf",
+               "knots continued past the clamped start beyond the double range");
+    double Uh[10] = {0, 1, 2, 3, 4, 8e307, 1.6e308, 1.6e308, 1.6e308, 1.6e308};
+    nb.knots_u = Uh;
+    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EDOMAIN, &err,
+               "nurbs: the end interval knots_u[5..6] = [8e+307, 1.6e+308], continued past the clamped end "
+               "as rg2 does to unclamp it, reaches knots_u[6] + 2 (knots_u[6] - knots_u[5]) = inf",
+               "knots continued past the clamped end beyond the double range");
+    double Ui[10] = {-1.7e308, -1.6e308, -1.5e308, -1.4e308, -1e308, 1e308, 1.1e308, 1.2e308, 1.3e308, 1.4e308};
+    nb.knots_u = Ui;
+    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EDOMAIN, &err,
+               "nurbs: the interval knots_u[4..5] = [-1e+308, 1e+308] is longer than the double range",
+               "a knot interval beyond the double range");
     double Vr[9] = {0, 1e-300, 2e-300, 3e-300, 1, 2, 3, 4, 5};
     nb.knots_u = U;
     nb.knots_v = Vr;
@@ -547,6 +631,7 @@ int main(void)
     random_nurbs();
     clamped_weights();
     extreme_knot_ratios();
+    knots_near_double_range();
     errors();
     return rg2t_done("test_nurbs");
 }
