@@ -212,6 +212,11 @@ rg2_status rg2__surface_check_finite(const rg2_surface *s, const char *what, int
 /* The leg before junction i as users number legs: i - 1, wrapped in a closed direction (junction
  * 0 of a closed u follows leg n - 1, not -1; open directions have the data-only leg -1). */
 int rg2__prev_leg(const rg2_scalars *s, int i);
+/* rg2_scalars_from_knots whose refusal of junction scalars out of the double range names the
+ * knots as "<name>[k + first]" after "<who>: " (rg2_nurbs_mesh: "nurbs: knots_u", "knots_u", 1;
+ * a shape's open knots partition: "knots", "values", -2); first = 0 also names the junction. */
+rg2_status rg2__scalars_from_knots_named(rg2_scalars *s, const double *knots, int n_knots, int closed,
+                                         const char *who, const char *name, int first, rg2_error *err);
 
 /* Switch this thread to the "C" locale for numbers written into files (src/clocale.c); pass
  * the returned value to rg2__c_numeric_end to switch back. */

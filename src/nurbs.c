@@ -325,14 +325,12 @@ rg2_status rg2_nurbs_mesh(const rg2_nurbs *nb, rg2_mesh *out, rg2_error *err)
         goto fail;
     rg2_scalars_free(&out->su);
     rg2_scalars_free(&out->sv);
-    for (int d = 0; d < 2; d++) /* (the scalars' messages name the knot vector) */
-        if ((st = rg2_scalars_from_knots(d ? &out->sv : &out->su, d ? Uv + 1 : Uu + 1, (d ? nv : nu) + 2, 0, err))) {
-            if (err) {
-                rg2_error e = *err;
-                rg2__fail(err, st, "nurbs: %s: %s", d ? "knots_v" : "knots_u", e.msg);
-            }
-            goto fail;
-        }
+    /* (the scalars' knots are Unew[1..n+2]: knots_u[1..n+2] where no end is continued; a
+     * junction whose intervals leave the double range reads none of the continued ones, whose
+     * ratios are 1) */
+    if ((st = rg2__scalars_from_knots_named(&out->su, Uu + 1, nu + 2, 0, "nurbs: knots_u", "knots_u", 1, err)) ||
+        (st = rg2__scalars_from_knots_named(&out->sv, Uv + 1, nv + 2, 0, "nurbs: knots_v", "knots_v", 1, err)))
+        goto fail;
     for (int i = 0; i < nu; i++)
         for (int j = 0; j < nv; j++) {
             size_t k = (size_t)i * (size_t)nv + (size_t)j;

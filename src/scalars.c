@@ -3,6 +3,7 @@
 #include "internal.h"
 
 #include <limits.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -141,25 +142,35 @@ rg2_status rg2_scalars_check(const rg2_scalars *s, const char *what, rg2_error *
     return RG2_OK;
 }
 
-/* Scalars just made from finite knots or arcs: lengths or angles on the two sides of a junction
- * that differ beyond the double range give a b, g or K that is not a finite number (b also 0). */
-static rg2_status made_finite(rg2_scalars *s, const char *what, const char *sides, rg2_error *err)
+/* The first junction of scalars just made from finite knots or arcs whose b, g or K is not a
+ * finite number (b also 0: a ratio below the double range), or -1; *which names those scalars
+ * ("K is", "b and K are", ...). Lengths or angles on the two sides of a junction that differ by
+ * about the double range give them: intervals 1e-300 and 1 give b = 1e300, a double, but
+ * K = 2 b (3 w - 2) + 2 b^2 (3 w' - 2) + g = inf. */
+static int out_of_range(const rg2_scalars *s, char which[32])
 {
     for (int i = 0; i < s->n; i++) {
         double b = s->b[i], g = s->g[i], K = rg2_scalars_K(s, i);
-        if (!(b > 0.0 && rg2__finite(b) && rg2__finite(g) && rg2__finite(K))) {
-            rg2_scalars_free(s);
-            return rg2__fail(err, RG2_EDOMAIN,
-                             "%s: junction %d gets b = %g, g = %g, K = %g: the %s on its two sides differ beyond "
-                             "the double range",
-                             what, i, b, g, K, sides);
-        }
+        int bad[3] = {!(b > 0.0 && rg2__finite(b)), !rg2__finite(g), !rg2__finite(K)};
+        if (!bad[0] && !bad[1] && !bad[2])
+            continue;
+        static const char *const names[3] = {"b", "g", "K"};
+        int nb = bad[0] + bad[1] + bad[2], k = 0;
+        which[0] = '\0';
+        for (int j = 0; j < 3; j++)
+            if (bad[j]) {
+                strcat(which, k == 0 ? "" : k + 1 < nb ? ", " : " and ");
+                strcat(which, names[j]);
+                k++;
+            }
+        strcat(which, nb > 1 ? " are" : " is");
+        return i;
     }
-    return RG2_OK;
+    return -1;
 }
 
-rg2_status rg2_scalars_from_knots(rg2_scalars *s, const double *knots, int n_knots, int closed,
-                                  rg2_error *err)
+rg2_status rg2__scalars_from_knots_named(rg2_scalars *s, const double *knots, int n_knots, int closed,
+                                         const char *who, const char *name, int first, rg2_error *err)
 {
     memset(s, 0, sizeof *s);
     int n = points_of(n_knots, closed ? 1 : 2);
@@ -192,7 +203,28 @@ rg2_status rg2_scalars_from_knots(rg2_scalars *s, const double *knots, int n_kno
         s->b[i] = d / dm;
         s->g[i] = 0.0;
     }
-    return made_finite(s, "knots", "knot intervals", err);
+    char which[32];
+    int i = out_of_range(s, which);
+    if (i < 0)
+        return RG2_OK;
+    double b = s->b[i], g = s->g[i], K = rg2_scalars_K(s, i);
+    int k0 = closed ? (i + n - 1) % n : i, k1 = closed ? i : i + 1; /* the intervals' first knots */
+    char junction[32] = "";
+    if (first == 0)
+        snprintf(junction, sizeof junction, " (junction %d)", i);
+    rg2_scalars_free(s);
+    return rg2__fail(err, RG2_EDOMAIN,
+                     "%s: the knot intervals %s[%d..%d] = [%s, %s] and %s[%d..%d] = [%s, %s]%s give b = %g, "
+                     "g = %g, K = %g: %s out of the double range",
+                     who, name, k0 + first, k0 + 1 + first, rg2__num(knots[k0]).s, rg2__num(knots[k0 + 1]).s,
+                     name, k1 + first, k1 + 1 + first, rg2__num(knots[k1]).s, rg2__num(knots[k1 + 1]).s,
+                     junction, b, g, K, which);
+}
+
+rg2_status rg2_scalars_from_knots(rg2_scalars *s, const double *knots, int n_knots, int closed,
+                                  rg2_error *err)
+{
+    return rg2__scalars_from_knots_named(s, knots, n_knots, closed, "knots", "knots", 0, err);
 }
 
 rg2_status rg2_scalars_from_angles(rg2_scalars *s, const double *alpha, int n_alpha, int closed,
@@ -224,7 +256,17 @@ rg2_status rg2_scalars_from_angles(rg2_scalars *s, const double *alpha, int n_al
         s->b[i] = b;
         s->g[i] = 2.0 * b * sin(bi) * (tan(0.5 * bi) + tan(0.5 * bm));
     }
-    return made_finite(s, "arcs", "arcs", err);
+    char which[32];
+    int i = out_of_range(s, which);
+    if (i < 0)
+        return RG2_OK;
+    double b = s->b[i], g = s->g[i], K = rg2_scalars_K(s, i);
+    int k0 = closed ? (i + n - 1) % n : i, k1 = closed ? i : i + 1; /* alpha[] of arcs i - 1 and i */
+    rg2_scalars_free(s);
+    return rg2__fail(err, RG2_EDOMAIN,
+                     "arcs: arcs %d and %d (angles %s and %s) give junction %d b = %g, g = %g, K = %g: %s out "
+                     "of the double range",
+                     k0 - off, k1 - off, rg2__num(alpha[k0]).s, rg2__num(alpha[k1]).s, i, b, g, K, which);
 }
 
 void rg2_blossom_monomials(double a, double b, double c, double out[4])

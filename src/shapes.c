@@ -350,7 +350,9 @@ static rg2_status dir_make(const rg2_partition *p, const char *what, dir_data *d
         st = rg2_scalars_from_angles(&d->sc, full, nf, closed, err);
         d->nb = 3;
     } else {
-        st = rg2_scalars_from_knots(&d->sc, full, nf, 0, err);
+        /* (open knots: full[k] = values[k - 2], and values[-2], values[-1] the mirrored ones) */
+        st = rg2__scalars_from_knots_named(&d->sc, full, nf, 0, "knots", "values",
+                                           p->kind == RG2_PART_KNOTS ? -2 : 0, err);
         d->nb = 4;
     }
     if (st) {

@@ -483,11 +483,12 @@ static void errors(void)
      * b = inf (an arc of 1e-320 next to one of 2) or K = inf (intervals 1e-300 and 1) */
     double tiny[3] = {1e-320, 2.0, 2.0}, wide[6] = {0, 1e-300, 1, 2, 3, 4};
     CHECK(rg2_scalars_from_angles(&s, tiny, 3, 1, &err) == RG2_EDOMAIN && !s.b &&
-              !strcmp(err.msg, "arcs: junction 1 gets b = inf, g = inf, K = inf: the arcs on its two sides differ "
-                               "beyond the double range"),
+              !strcmp(err.msg, "arcs: arcs 0 and 1 (angles 1e-320 and 2) give junction 1 b = inf, g = inf, "
+                               "K = inf: b, g and K are out of the double range"),
           "arc of 1e-320: %s", err.msg);
     CHECK(rg2_scalars_from_knots(&s, wide, 6, 0, &err) == RG2_EDOMAIN && !s.b &&
-              strstr(err.msg, "knots: junction 0 gets b = 1e+300, g = 0, K = inf: the knot intervals"),
+              !strcmp(err.msg, "knots: the knot intervals knots[0..1] = [0, 1e-300] and knots[1..2] = [1e-300, 1] "
+                               "(junction 0) give b = 1e+300, g = 0, K = inf: K is out of the double range"),
           "knot intervals 1e-300 and 1: %s", err.msg);
     CHECK_OK(rg2_scalars_init(&s, 4, 1, &err), &err);
     s.g[1] = NAN;

@@ -615,7 +615,9 @@ static void errors(void)
     double Vr[9] = {0, 1e-300, 2e-300, 3e-300, 1, 2, 3, 4, 5};
     nb.knots_u = U;
     nb.knots_v = Vr;
-    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EDOMAIN, &err, "nurbs: knots_v: knots: junction 1 gets b = 1e+300",
+    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EDOMAIN, &err,
+               "nurbs: knots_v: the knot intervals knots_v[2..3] = [2e-300, 3e-300] and knots_v[3..4] = [3e-300, 1] "
+               "give b = 1e+300, g = 0, K = inf: K is out of the double range",
                "knot intervals 1e-300 and 1");
     CHECK(!m.p, "a mesh left after the error");
     nb.knots_v = V;

@@ -811,6 +811,16 @@ static void errors(void)
     double kinf[2] = {0.0, INFINITY};
     bad = pv, bad.values = kinf, bad.n = 2;
     expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_ENONFINITE, &err, "value 1", "inf knot");
+    /* knot intervals 1e-300 and 1 give K = inf (RG2_EWEIGHT from the scalars' check until the
+     * scalars refused it, RG2_EDOMAIN naming the expanded layout's "knots[2..3]" and junction 2):
+     * named by the partition's values */
+    rg2_shape_init(&sh, RG2_SHAPE_CYLINDER);
+    double kw[4] = {0.0, 1e-300, 1.0, 2.0};
+    bad = pv, bad.values = kw, bad.n = 4;
+    expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_EDOMAIN, &err,
+               "cylinder: v: knots: the knot intervals values[0..1] = [0, 1e-300] and values[1..2] = [1e-300, 1] "
+               "give b = 1e+300, g = 0, K = inf: K is out of the double range",
+               "knot intervals 1e-300 and 1");
 
     /* shape-specific ranges */
     rg2_shape_init(&sh, RG2_SHAPE_HYPERBOLOID1);
