@@ -650,7 +650,8 @@ RG2_API rg2_status rg2_number_check(double x, const char *what, rg2_error *err);
 RG2_API rg2_status rg2_mesh_check_range(const rg2_mesh *m, const char *what, rg2_error *err);
 
 /** Read and build a design file. On failure *out is NULL and err names the offending item
- *  (file, line and column for syntax errors, JSON path for semantic ones). */
+ *  (file, line and column for syntax errors, JSON path for semantic ones). A NULL path or out
+ *  is RG2_EINVAL, as a NULL text or out is for rg2_design_parse. */
 RG2_API rg2_status rg2_design_load(const char *path, rg2_design **out, rg2_error *err);
 /** The same from a JSON text in memory; `name` is used in messages. The text (as the file of
  *  rg2_design_load) is UTF-8 JSON with no NUL byte (RG2_EPARSE naming the line and column of the

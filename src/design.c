@@ -459,7 +459,11 @@ rg2_status rg2_design_parse(const char *json, size_t len, const char *name, rg2_
 
 rg2_status rg2_design_load(const char *path, rg2_design **out, rg2_error *err)
 {
+    if (!out) /* (as rg2_design_parse) */
+        return rg2__fail(err, RG2_EINVAL, "design: NULL output pointer");
     *out = NULL;
+    if (!path)
+        return rg2__fail(err, RG2_EINVAL, "design: no file name (NULL path)");
     char *buf;
     size_t len;
     rg2_status st = rg2_read_text(path, &buf, &len, err);

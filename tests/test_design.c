@@ -575,6 +575,13 @@ static void parse_sizes(void)
     CHECK(rg2_design_parse(txt, (size_t)RG2_TEXT_MAX_BYTES + 1, "big", &d, &err) == RG2_ELIMIT && !d,
           "past the text limit: %s", err.msg);
     CHECK(rg2_design_parse(txt, 2, "x", NULL, &err) == RG2_EINVAL, "NULL out: %s", err.msg);
+    /* rg2_design_load wrote through a NULL out (and read a NULL path) */
+    CHECK(rg2_design_load("x.json", NULL, &err) == RG2_EINVAL && !strcmp(err.msg, "design: NULL output pointer"),
+          "load, NULL out: %s", err.msg);
+    d = (rg2_design *)1;
+    CHECK(rg2_design_load(NULL, &d, &err) == RG2_EINVAL && !d &&
+              !strcmp(err.msg, "design: no file name (NULL path)"),
+          "load, NULL path: %s", err.msg);
 }
 
 
