@@ -706,8 +706,57 @@ static void blend(unsigned char *px, const double rgb[3], double a)
 }
 
 /* Coverage of an anti-aliased segment of half-width hw into mask (max, order independent). */
+/* Clip the segment (x0, y0)-(x1, y1) to the box [-M, W + M] x [-M, H + M] (Liang-Barsky):
+ * 0 when none of it is inside, or an end is not finite. A segment inside is left as it is; a
+ * clipped one is formed from halves of its ends (their differences stay finite). Mesh points
+ * far off the view project to coordinates past the int range, which mask_segment converted
+ * to int (undefined; on x86 INT_MIN, so the line from an on-screen point to such a point was
+ * not drawn). Pixels that a segment covers lie within 3 of it, inside the box: the mask is
+ * the same. */
+static int clip_segment(double *x0, double *y0, double *x1, double *y1, int W, int H)
+{
+    const double M = 16.0, lo[2] = {-M, -M}, hi[2] = {W + M, H + M};
+    double a[2] = {*x0, *y0}, b[2] = {*x1, *y1};
+    for (int k = 0; k < 2; k++)
+        if (!(rg2__finite(a[k]) && rg2__finite(b[k])))
+            return 0;
+    if (a[0] >= lo[0] && a[0] <= hi[0] && a[1] >= lo[1] && a[1] <= hi[1] && b[0] >= lo[0] && b[0] <= hi[0] &&
+        b[1] >= lo[1] && b[1] <= hi[1])
+        return 1;
+    double t0 = 0.0, t1 = 1.0, ha[2], hd[2];
+    for (int k = 0; k < 2; k++) {
+        ha[k] = 0.5 * a[k];
+        hd[k] = 0.5 * b[k] - ha[k];
+        double p[2] = {-hd[k], hd[k]}, q[2] = {ha[k] - 0.5 * lo[k], 0.5 * hi[k] - ha[k]};
+        for (int e = 0; e < 2; e++) {
+            if (p[e] == 0.0) {
+                if (q[e] < 0.0)
+                    return 0;
+                continue;
+            }
+            double r = q[e] / p[e];
+            if (p[e] < 0.0) {
+                if (r > t1)
+                    return 0;
+                if (r > t0)
+                    t0 = r;
+            } else {
+                if (r < t0)
+                    return 0;
+                if (r < t1)
+                    t1 = r;
+            }
+        }
+    }
+    *x0 = 2.0 * (ha[0] + t0 * hd[0]), *y0 = 2.0 * (ha[1] + t0 * hd[1]);
+    *x1 = 2.0 * (ha[0] + t1 * hd[0]), *y1 = 2.0 * (ha[1] + t1 * hd[1]);
+    return 1;
+}
+
 static void mask_segment(float *mask, int W, int H, double x0, double y0, double x1, double y1, double hw)
 {
+    if (!clip_segment(&x0, &y0, &x1, &y1, W, H))
+        return;
     double dx = x1 - x0, dy = y1 - y0, len2 = dx * dx + dy * dy;
     int ix0 = (int)floor(fmin(x0, x1) - hw - 1), ix1 = (int)ceil(fmax(x0, x1) + hw + 1);
     int iy0 = (int)floor(fmin(y0, y1) - hw - 1), iy1 = (int)ceil(fmax(y0, y1) + hw + 1);

@@ -893,6 +893,68 @@ static void many_patches(void)
     rg2_design_free(d);
 }
 
+/* The control-mesh overlay of a mesh with two points far off the view on either side, along
+ * the camera's right axis (at `far` from the middle of a 5 x 4 NURBS), from 20 away. */
+static int far_overlay(double far, rg2_image *img)
+{
+    static double pts[5 * 4 * 3];
+    static const double U[9] = {0, 1, 2, 3, 4, 5, 6, 7, 8}, V[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+    for (int i = 0; i < 5; i++)
+        for (int j = 0; j < 4; j++) {
+            double *p = pts + 3 * (i * 4 + j);
+            p[0] = i, p[1] = j, p[2] = (i * j) % 3;
+        }
+    rg2_nurbs nb = {5, 4, pts, NULL, U, V};
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    rg2_status st = rg2_nurbs_mesh(&nb, &m, &err);
+    CHECK_OK(st, &err);
+    if (st)
+        return 1;
+    st = rg2_surface_build(&m, &s, &err);
+    CHECK_OK(st, &err);
+    if (st) {
+        rg2_mesh_free(&m);
+        return 1;
+    }
+    rg2_render_opts o;
+    rg2_render_opts_default(&o);
+    double az = o.azimuth * M_PI / 180.0, r[3] = {-sin(az), cos(az), 0.0}, c[3] = {2.0, 1.5, 1.0};
+    double *a = rg2_mesh_at(&m, 0, 0), *b = rg2_mesh_at(&m, 4, 3);
+    for (int k = 0; k < 3; k++)
+        a[k] = (c[k] - far * r[k]) * a[3], b[k] = (c[k] + far * r[k]) * b[3];
+    o.width = 64, o.height = 48, o.mesh = 1, o.distance = 20.0;
+    st = rg2_render(&s, 1, &m, &o, img, &err);
+    CHECK_OK(st, &err);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+    return st != RG2_OK;
+}
+
+/* Mesh points far off the view: their projections, past the int range, were converted to int
+ * (undefined behaviour; on x86 INT_MIN, and the lines from the mesh's on-screen points to them
+ * were not drawn). Now the lines are clipped to the view first: points 1e12 away give the
+ * picture of points 1e8 away (whose projections, 4.5e8 pixels off, fit an int). */
+static void far_mesh_points(void)
+{
+    rg2_image near = {0}, far = {0};
+    if (!far_overlay(1e8, &near) && !far_overlay(1e12, &far)) {
+        int differ = 0, edge = 0;
+        for (int k = 0; k < 64 * 48 * 3; k++)
+            differ += abs(near.rgb[k] - far.rgb[k]) > 8;
+        for (int y = 0; y < 48; y++)
+            for (int x = 0; x < 64; x += 63) {
+                const unsigned char *p = far.rgb + 3 * (y * 64 + x);
+                edge += p[0] > 2 * p[1] && p[0] > 2 * p[2]; /* the overlay's red */
+            }
+        CHECK(differ == 0, "mesh points 1e12 off the view: %d bytes differ from points 1e8 off", differ);
+        CHECK(edge >= 2, "mesh points 1e12 off the view: %d red pixels at the left and right edges", edge);
+    }
+    rg2_image_free(&near);
+    rg2_image_free(&far);
+}
+
 int main(void)
 {
     for (int mixed = 0; mixed < 2; mixed++) {
@@ -907,5 +969,6 @@ int main(void)
     options();
     apart();
     many_patches();
+    far_mesh_points();
     return rg2t_done("test_render");
 }
