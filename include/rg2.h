@@ -204,7 +204,11 @@ RG2_API rg2_status rg2_scalars_check(const rg2_scalars *s, const char *what, rg2
  *  Open: n_knots = n + 2 knots v_{-1}..v_n (stored knots[i+1] = v_i); segment i (1..n-3)
  *        spans [v_i, v_{i+1}], so the domain is [v_1, v_{n-2}].
  *  Closed: n_knots = n + 1 knots v_0..v_n, period v_n - v_0.
- *  @return RG2_EDOMAIN for a non-increasing knot (zero-length interval), naming it. */
+ *  @return RG2_EDOMAIN for a non-increasing knot (zero-length interval), naming it, and for
+ *          neighbouring intervals whose junction scalars leave the double range (b = 0 or a
+ *          b, g or K that is not a finite number: intervals 1e-300 and 1 give b = 1e300 and
+ *          K = inf), naming the knots, the junction and the scalars; RG2_ENONFINITE for a NaN
+ *          or infinite knot; RG2_EINVAL / RG2_ELIMIT for too few / too many knots. */
 RG2_API rg2_status rg2_scalars_from_knots(rg2_scalars *s, const double *knots, int n_knots,
                                           int closed, rg2_error *err);
 
@@ -215,7 +219,9 @@ RG2_API rg2_status rg2_scalars_from_knots(rg2_scalars *s, const double *knots, i
  *  Open: n_alpha = n + 1 arcs alpha_{-1}..alpha_{n-1} (stored alpha[i+1] = alpha_i); the
  *        produced segments 1..n-3 are exactly arcs 1..n-3.
  *  @return RG2_ENONFINITE for a NaN or infinite angle, RG2_EDOMAIN for an angle outside
- *          (0, pi), naming it. */
+ *          (0, pi), naming it, and for neighbouring arcs whose junction scalars leave the
+ *          double range (an arc of 1e-320 next to one of 2: b = inf), naming the arcs, the
+ *          junction and the scalars. */
 RG2_API rg2_status rg2_scalars_from_angles(rg2_scalars *s, const double *alpha, int n_alpha,
                                            int closed, rg2_error *err);
 
@@ -584,7 +590,9 @@ RG2_API void rg2_xform_rotate(double M[16], double ax, double ay, double az, dou
 /** Frame placement: the shape's z axis goes to `axis` (normalised) and its origin to `centre`
  *  (the rotation taking z to axis about z x axis). */
 RG2_API void rg2_xform_place(double M[16], const double centre[3], const double axis[3]);
-/** Inverse of a 4x4 matrix; RG2_EDOMAIN if singular, RG2_ENONFINITE for NaN/inf. */
+/** Inverse of a 4x4 matrix; RG2_EDOMAIN if singular, also in double precision (an inverse
+ *  entry beyond the double range, as for a scale of 1e-310: inv is left as it was),
+ *  RG2_ENONFINITE for NaN/inf. */
 RG2_API rg2_status rg2_xform_invert(const double M[16], double inv[16], rg2_error *err);
 
 /* Bi-cubic NURBS import: control points P_ij, weights w_ij, knot vectors U (nu + 4 values)
@@ -595,7 +603,11 @@ RG2_API rg2_status rg2_xform_invert(const double M[16], double inv[16], rg2_erro
  * is the NURBS over [U_{i+3}, U_{i+4}] x [V_{j+3}, V_{j+4}] with linear parameter maps.
  * Weights that differ much near a clamped end make those extrapolated points cancel: when the
  * estimated rounding error exceeds 1e-10 of the coordinates' scale the NURBS is refused with
- * RG2_EDOMAIN naming two weights (docs/shapes.md). */
+ * RG2_EDOMAIN naming two weights (docs/shapes.md). Knots whose used intervals leave the double
+ * range are refused with RG2_EDOMAIN naming them: an interval of knots_u[1..nu+2] longer than
+ * the largest double, an end interval continued twice past a clamped end beyond it, or
+ * neighbouring intervals whose junction scalars are not finite (1e-300 next to 1: K = inf).
+ * knots_u[0] and knots_u[nu+3] (likewise in v) are never read. */
 typedef struct {
     int nu, nv;             /**< control points (>= 4 each) */
     const double *points;   /**< nu * nv * 3: points[(i * nv + j) * 3 + d] */
