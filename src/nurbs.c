@@ -11,7 +11,10 @@
  * B-spline with 4-tuple de Boor points P (stride `stride` doubles between consecutive
  * points, P pointing at P_{l-3}): the de Boor algorithm with one argument per level.
  * With `absval` the same combination with the absolute values of its coefficients: applied
- * to absolute values it bounds the magnitudes that the rounding errors are relative to. */
+ * to absolute values it bounds the magnitudes that the rounding errors are relative to.
+ * Knots up to 1e308 can lie farther apart than the largest double over the up to three
+ * intervals a coefficient spans (clamped at -1.79e307, then 5.37e307 and 1.7e308): that
+ * coefficient is formed from the halves of its knots (exact, the same ratio). */
 static void span_blossom(const double *U, int l, const double *P, size_t stride, const double a[3],
                          int absval, double out[4])
 {
@@ -21,7 +24,10 @@ static void span_blossom(const double *U, int l, const double *P, size_t stride,
     for (int r = 1; r <= 3; r++)
         for (int i = 3; i >= r; i--) { /* d[i] holds de Boor point l - 3 + i */
             int gi = l - 3 + i;
-            double al = (a[r - 1] - U[gi]) / (U[gi + 4 - r] - U[gi]), be = 1.0 - al;
+            double num = a[r - 1] - U[gi], den = U[gi + 4 - r] - U[gi];
+            if (!(rg2__finite(num) && rg2__finite(den))) /* (halves: their differences are finite) */
+                num = 0.5 * a[r - 1] - 0.5 * U[gi], den = 0.5 * U[gi + 4 - r] - 0.5 * U[gi];
+            double al = num / den, be = 1.0 - al;
             if (absval)
                 al = fabs(al), be = fabs(be);
             for (int k = 0; k < 4; k++)

@@ -558,6 +558,21 @@ static void knots_near_double_range(void)
         }
         rg2_surface_free(&a);
     }
+    /* clamped at the start, where the blossoms that unclamp it divide by knots_u[5] - knots_u[2]
+     * = 1.88e308, beyond the double range: the coefficient was NaN, and the NURBS refused as if
+     * its rounding could move the surface "by nan" */
+    const double Ub[9] = {-1.79e307, -1.79e307, -1.79e307, -1.79e307, 5.37e307, 1.7e308, 1.72e308, 1.74e308, 1.76e308};
+    double Ubq[9];
+    for (int k = 0; k < 9; k++)
+        Ubq[k] = 0.25 * Ub[k];
+    if (!build_5x4(Ub, &a)) {
+        if (!build_5x4(Ubq, &b)) {
+            double d = surface_distance(&a, &b);
+            CHECK(d <= 1e-14, "blossom over 1.88e308 of knots: %.3g from the knots / 4", d);
+            rg2_surface_free(&b);
+        }
+        rg2_surface_free(&a);
+    }
 }
 
 static void errors(void)
