@@ -71,15 +71,17 @@ static rg2_status knots_prepare(const double *U, int n, const char *what, double
     memcpy(Unew, U, sizeof(double) * (size_t)nk);
     *fix_lo = !(U[1] < U[2] && U[2] < U[3]);
     *fix_hi = !(U[n] < U[n + 1] && U[n + 1] < U[n + 2]);
+    /* U[3] - k d; where k d alone overflows (d past half the largest double) but the knot does
+     * not, one more step from the last knot (the same bits wherever k d is finite) */
     if (*fix_lo) {
         double d = U[4] - U[3];
         for (int k = 1; k <= 3; k++)
-            Unew[3 - k] = U[3] - k * d;
+            Unew[3 - k] = rg2__finite(k * d) ? U[3] - k * d : Unew[4 - k] - d;
     }
     if (*fix_hi) {
         double d = U[n] - U[n - 1];
         for (int k = 1; k <= 3; k++)
-            Unew[n + k] = U[n] + k * d;
+            Unew[n + k] = rg2__finite(k * d) ? U[n] + k * d : Unew[n + k - 1] + d;
     }
     /* The construction reads Unew[1..n+2] (the scalars of rg2_nurbs_mesh; the blossoms of
      * unclamp_line and check_clamped_rounding), never Unew[0] or Unew[n+3]: the intervals
@@ -95,15 +97,14 @@ static rg2_status knots_prepare(const double *U, int n, const char *what, double
                          "nurbs: the end interval %s[3..4] = [%s, %s], continued past the clamped start as "
                          "rg2 does to unclamp it, reaches %s[3] - 2 (%s[4] - %s[3]) = %s, beyond the double "
                          "range",
-                         what, rg2__num(U[3]).s, rg2__num(U[4]).s, what, what, what,
-                         rg2__num(U[3] - 2.0 * (U[4] - U[3])).s);
+                         what, rg2__num(U[3]).s, rg2__num(U[4]).s, what, what, what, rg2__num(Unew[1]).s);
     if (*fix_hi && !(rg2__finite(Unew[n + 1]) && rg2__finite(Unew[n + 2])))
         return rg2__fail(err, RG2_EDOMAIN,
                          "nurbs: the end interval %s[%d..%d] = [%s, %s], continued past the clamped end as "
                          "rg2 does to unclamp it, reaches %s[%d] + 2 (%s[%d] - %s[%d]) = %s, beyond the double "
                          "range",
                          what, n - 1, n, rg2__num(U[n - 1]).s, rg2__num(U[n]).s, what, n, what, n, what, n - 1,
-                         rg2__num(U[n] + 2.0 * (U[n] - U[n - 1])).s);
+                         rg2__num(Unew[n + 2]).s);
     return RG2_OK;
 }
 

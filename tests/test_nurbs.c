@@ -565,6 +565,13 @@ static void knots_near_double_range(void)
     for (int k = 0; k < 9; k++)
         Ubq[k] = 0.25 * Ub[k];
     same_surface(Ub, Ubq, "a blossom over 1.88e308 of knots against the knots / 4");
+    /* clamped at the start with an end interval of 1.08e308: twice it overflows, but the knot it
+     * continues to, 5.4e307 - 2.16e308 = -1.62e308, does not (refused as reaching "-inf") */
+    const double Ud[9] = {5.4e307, 5.4e307, 5.4e307, 5.4e307, 1.62e308, 1.65e308, 1.7e308, 1.75e308, 1.78e308};
+    double Udq[9];
+    for (int k = 0; k < 9; k++)
+        Udq[k] = 0.25 * Ud[k];
+    same_surface(Ud, Udq, "an end interval of 1.08e308 continued twice against the knots / 4");
 }
 
 static void errors(void)
