@@ -735,8 +735,9 @@ rg2_status rg2_export_format_check(const char *path, rg2_error *err)
 
 /* A copy of name with every control character (a newline, say) replaced by '_' and every byte
  * that is not UTF-8 by '?', or NULL if it has none. In the OBJ and PLY headers the name sits in a
- * comment line that a newline would end; glTF and JSON are UTF-8 text; STEP and IGES map such
- * characters themselves. */
+ * comment line that a newline would end; glTF and JSON are UTF-8 text. STEP and IGES write
+ * ASCII only, mapping the rest to '_' themselves (so a byte that is not UTF-8 arrives there as
+ * '?' and a UTF-8 letter as '_'). */
 static char *name_without_controls(const char *name, int *nomem)
 {
     size_t n = strlen(name), k = 0, l = 1;

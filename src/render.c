@@ -705,7 +705,6 @@ static void blend(unsigned char *px, const double rgb[3], double a)
     }
 }
 
-/* Coverage of an anti-aliased segment of half-width hw into mask (max, order independent). */
 /* Clip the segment (x0, y0)-(x1, y1) to the box [-M, W + M] x [-M, H + M] (Liang-Barsky):
  * 0 when none of it is inside, or an end is not finite. A segment inside is left as it is; a
  * clipped one is formed from halves of its ends (their differences stay finite). Mesh points
@@ -753,6 +752,7 @@ static int clip_segment(double *x0, double *y0, double *x1, double *y1, int W, i
     return 1;
 }
 
+/* Coverage of an anti-aliased segment of half-width hw into mask (max, order independent). */
 static void mask_segment(float *mask, int W, int H, double x0, double y0, double x1, double y1, double hw)
 {
     if (!clip_segment(&x0, &y0, &x1, &y1, W, H))
