@@ -169,6 +169,20 @@ static int out_of_range(const rg2_scalars *s, char which[32])
     return -1;
 }
 
+/* The interval knots[k..k+1] in the caller's terms: name[k + first .. k + first + 1]; with
+ * first < 0 the caller gave knots[-first .. n_knots - 1 + first] and the ends around them are
+ * mirrored (a shape's open knot partition), named as such. */
+static void interval_name(char *buf, size_t cap, const char *name, int k, int first, int n_knots)
+{
+    int j = k + first, last = n_knots - 1 + 2 * first;
+    if (first < 0 && j < 0)
+        snprintf(buf, cap, "%s mirrored before %s[0]", j == -1 ? "the first" : "the second", name);
+    else if (first < 0 && j + 1 > last)
+        snprintf(buf, cap, "%s mirrored after %s[%d]", j == last ? "the first" : "the second", name, last);
+    else
+        snprintf(buf, cap, "%s[%d..%d]", name, j, j + 1);
+}
+
 rg2_status rg2__scalars_from_knots_named(rg2_scalars *s, const double *knots, int n_knots, int closed,
                                          const char *who, const char *name, int first, rg2_error *err)
 {
@@ -181,11 +195,15 @@ rg2_status rg2__scalars_from_knots_named(rg2_scalars *s, const double *knots, in
         if (!rg2__finite(knots[k]))
             return rg2__fail(err, RG2_ENONFINITE, "knots: knot %d is not finite", k);
     for (int k = 0; k + 1 < n_knots; k++)
-        if (!(knots[k + 1] > knots[k]))
+        if (!(knots[k + 1] > knots[k])) {
+            char iv[64] = "";
+            if (first < 0) /* (the mirrored ends of values that are themselves increasing) */
+                interval_name(iv, sizeof iv, name, k, first, n_knots);
             return rg2__fail(err, RG2_EDOMAIN,
-                             "knots: interval %d [%s, %s] has zero or negative length "
+                             "knots: interval %s%s [%s, %s] has zero or negative length "
                              "(repeated knots are not supported: split the spline there)",
-                             k, rg2__num(knots[k]).s, rg2__num(knots[k + 1]).s);
+                             first < 0 ? "" : rg2__num(k).s, iv, rg2__num(knots[k]).s, rg2__num(knots[k + 1]).s);
+        }
     st = rg2_scalars_init(s, n, closed, err);
     if (st)
         return st;
@@ -212,13 +230,15 @@ rg2_status rg2__scalars_from_knots_named(rg2_scalars *s, const double *knots, in
     char junction[32] = "";
     if (first == 0)
         snprintf(junction, sizeof junction, " (junction %d)", i);
+    char iv0[64], iv1[64];
+    interval_name(iv0, sizeof iv0, name, k0, first, n_knots);
+    interval_name(iv1, sizeof iv1, name, k1, first, n_knots);
     rg2_scalars_free(s);
     return rg2__fail(err, RG2_EDOMAIN,
-                     "%s: the knot intervals %s[%d..%d] = [%s, %s] and %s[%d..%d] = [%s, %s]%s give b = %g, "
-                     "g = %g, K = %g: %s out of the double range",
-                     who, name, k0 + first, k0 + 1 + first, rg2__num(knots[k0]).s, rg2__num(knots[k0 + 1]).s,
-                     name, k1 + first, k1 + 1 + first, rg2__num(knots[k1]).s, rg2__num(knots[k1 + 1]).s,
-                     junction, b, g, K, which);
+                     "%s: the knot intervals %s = [%s, %s] and %s = [%s, %s]%s give b = %g, g = %g, K = %g: %s "
+                     "out of the double range",
+                     who, iv0, rg2__num(knots[k0]).s, rg2__num(knots[k0 + 1]).s, iv1, rg2__num(knots[k1]).s,
+                     rg2__num(knots[k1 + 1]).s, junction, b, g, K, which);
 }
 
 rg2_status rg2_scalars_from_knots(rg2_scalars *s, const double *knots, int n_knots, int closed,

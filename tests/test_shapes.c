@@ -821,6 +821,19 @@ static void errors(void)
                "cylinder: v: knots: the knot intervals values[0..1] = [0, 1e-300] and values[1..2] = [1e-300, 1] "
                "give b = 1e+300, g = 0, K = inf: K is out of the double range",
                "knot intervals 1e-300 and 1");
+    /* at the mirrored end of the values: named as mirrored (it named values[4..5], which the
+     * caller never gave), as is a mirrored interval of zero length (it was "interval 5") */
+    double kw2[4] = {-2.0, -1.0, 0.0, 1e-300};
+    bad = pv, bad.values = kw2, bad.n = 4;
+    expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_EDOMAIN, &err,
+               "the knot intervals the first mirrored after values[3] = [1e-300, 2e-300] and the second mirrored "
+               "after values[3] = [2e-300, 1] give",
+               "knot intervals 1 and 1e-300 at the end");
+    double kw3[3] = {0.0, 1e-300, 1.0};
+    bad = pv, bad.values = kw3, bad.n = 3;
+    expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_EDOMAIN, &err,
+               "interval the second mirrored after values[2] [2, 2] has zero or negative length",
+               "mirrored end of zero length");
 
     /* shape-specific ranges */
     rg2_shape_init(&sh, RG2_SHAPE_HYPERBOLOID1);
