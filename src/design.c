@@ -550,20 +550,11 @@ rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, rg2_erro
 {
     /* the design's name (its file's path) as UTF-8 text: a byte that is not (a Latin-1 file name)
      * becomes '?', so the mesh file stays JSON (the design text itself is UTF-8, checked) */
-    size_t len = strlen(d->name);
-    char *name = malloc(len + 1);
+    char *name = rg2__text_clean(d->name, 0);
     cJSON *root = name ? cJSON_CreateObject() : NULL;
     if (!root) {
         free(name);
         return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", path);
-    }
-    for (size_t i = 0; i <= len;) {
-        size_t n = i < len ? rg2__utf8_len((const unsigned char *)d->name + i, len - i) : 1;
-        if (n)
-            memcpy(name + i, d->name + i, n);
-        else
-            name[i] = '?', n = 1;
-        i += n;
     }
     cJSON_AddStringToObject(root, "format", "rg2 control mesh 1");
     cJSON_AddStringToObject(root, "design", name);

@@ -1116,23 +1116,6 @@ static void line_col(const char *text, size_t off, int *line, int *col)
     }
 }
 
-/* No overlong form, no surrogate, nothing past U+10FFFF. */
-size_t rg2__utf8_len(const unsigned char *p, size_t n)
-{
-    if (p[0] < 0x80)
-        return 1;
-    size_t k = p[0] >= 0xC2 && p[0] <= 0xDF ? 2 : p[0] >= 0xE0 && p[0] <= 0xEF ? 3 : p[0] >= 0xF0 && p[0] <= 0xF4 ? 4 : 0;
-    if (!k || k > n)
-        return 0;
-    for (size_t i = 1; i < k; i++)
-        if ((p[i] & 0xC0) != 0x80)
-            return 0;
-    if ((p[0] == 0xE0 && p[1] < 0xA0) || (p[0] == 0xED && p[1] > 0x9F) || (p[0] == 0xF0 && p[1] < 0x90) ||
-        (p[0] == 0xF4 && p[1] > 0x8F))
-        return 0;
-    return k;
-}
-
 /* How deep in arrays and objects the text is at offset off (brackets in strings not counted). */
 static int nesting(const char *text, size_t off)
 {

@@ -733,38 +733,6 @@ rg2_status rg2_export_format_check(const char *path, rg2_error *err)
     return export_format(path, &fmt, err);
 }
 
-/* A copy of name with every control character (a newline, say) replaced by '_' and every byte
- * that is not UTF-8 by '?', or NULL if it has none. In the OBJ and PLY headers the name sits in a
- * comment line that a newline would end; glTF and JSON are UTF-8 text. STEP and IGES write
- * ASCII only, mapping the rest to '_' themselves (so a byte that is not UTF-8 arrives there as
- * '?' and a UTF-8 letter as '_'). */
-static char *name_without_controls(const char *name, int *nomem)
-{
-    size_t n = strlen(name), k = 0, l = 1;
-    while (k < n && (unsigned char)name[k] >= 32 && name[k] != 127 &&
-           (l = rg2__utf8_len((const unsigned char *)name + k, n - k)))
-        k += l;
-    *nomem = 0;
-    if (k == n)
-        return NULL;
-    char *c = malloc(n + 1);
-    if (!c) {
-        *nomem = 1;
-        return NULL;
-    }
-    for (k = 0; k <= n; k += l) {
-        unsigned char ch = (unsigned char)name[k];
-        l = k < n ? rg2__utf8_len((const unsigned char *)name + k, n - k) : 1;
-        if (!l) /* not UTF-8 (a Latin-1 name): glTF and JSON text must be */
-            c[k] = '?', l = 1;
-        else if (k < n && (ch < 32 || ch == 127))
-            c[k] = '_';
-        else
-            memcpy(c + k, name + k, l);
-    }
-    return c;
-}
-
 /* STL, PLY and glTF store float coordinates: a surface beyond FLT_MAX would be written as
  * infinities (and glTF's min/max as null), one spanning less than FLT_MIN / FLT_EPSILON as
  * zeros or a few denormal values. */
@@ -856,18 +824,18 @@ static rg2_status export_staged(const rg2_surface *surfs, int n_surfs, const cha
             return st;
         }
     }
-    int nomem;
-    char *clean = name_without_controls(opts->name, &nomem);
-    if (nomem) {
+    /* the name without control characters (a newline would end the OBJ and PLY header comment
+     * line) and as UTF-8 (glTF and JSON are UTF-8 text); STEP and IGES write ASCII only, mapping
+     * the rest to '_' themselves */
+    char *clean = rg2__text_clean(opts->name, '_');
+    if (!clean) {
         rg2__tess_all_free(own, n_surfs);
         return rg2__fail(err, RG2_ENOMEM, "export: out of memory");
     }
-    if (clean) {
-        if (opts != &def)
-            def = *opts;
-        def.name = clean;
-        opts = &def;
-    }
+    if (opts != &def)
+        def = *opts;
+    def.name = clean;
+    opts = &def;
     st = rg2__out_open(out, path, err);
     if (st) {
         rg2__tess_all_free(own, n_surfs);

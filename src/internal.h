@@ -227,8 +227,11 @@ void rg2__c_numeric_end(void *old);
  * not), serialised and in the "C" locale (src/json.c); print's text is freed with cJSON_free. */
 struct cJSON;
 /* The length of the UTF-8 sequence at p (at most n bytes there), 0 if it is not one
- * (src/design_parse.c). */
+ * (src/textfile.c). */
 size_t rg2__utf8_len(const unsigned char *p, size_t n);
+/* A copy of s (free it) with each byte that is not UTF-8 replaced by '?' and, when control is
+ * not 0, each control character by control; NULL when out of memory. */
+char *rg2__text_clean(const char *s, char control);
 struct cJSON *rg2__json_parse(const char *text, size_t len, const char **end);
 char *rg2__json_print(const struct cJSON *item, int formatted);
 

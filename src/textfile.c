@@ -1,5 +1,5 @@
 /* textfile.c -- reading a whole text file (design files, NURBS files of the command line) with
- * a size limit and messages that name the file. */
+ * a size limit and messages that name the file; UTF-8 text. */
 #include "internal.h"
 
 #include <errno.h>
@@ -56,4 +56,40 @@ rg2_status rg2_read_text(const char *path, char **out, size_t *len, rg2_error *e
         *len = n;
     rg2__ok(err);
     return RG2_OK;
+}
+
+/* No overlong form, no surrogate, nothing past U+10FFFF. */
+size_t rg2__utf8_len(const unsigned char *p, size_t n)
+{
+    if (p[0] < 0x80)
+        return 1;
+    size_t k = p[0] >= 0xC2 && p[0] <= 0xDF ? 2 : p[0] >= 0xE0 && p[0] <= 0xEF ? 3 : p[0] >= 0xF0 && p[0] <= 0xF4 ? 4 : 0;
+    if (!k || k > n)
+        return 0;
+    for (size_t i = 1; i < k; i++)
+        if ((p[i] & 0xC0) != 0x80)
+            return 0;
+    if ((p[0] == 0xE0 && p[1] < 0xA0) || (p[0] == 0xED && p[1] > 0x9F) || (p[0] == 0xF0 && p[1] < 0x90) ||
+        (p[0] == 0xF4 && p[1] > 0x8F))
+        return 0;
+    return k;
+}
+
+char *rg2__text_clean(const char *s, char control)
+{
+    size_t n = strlen(s);
+    char *c = malloc(n + 1);
+    if (!c)
+        return NULL;
+    for (size_t k = 0, l; k <= n; k += l) {
+        unsigned char ch = (unsigned char)s[k];
+        l = k < n ? rg2__utf8_len((const unsigned char *)s + k, n - k) : 1;
+        if (!l)
+            c[k] = '?', l = 1;
+        else if (control && k < n && (ch < 32 || ch == 127))
+            c[k] = control;
+        else
+            memcpy(c + k, s + k, l);
+    }
+    return c;
 }
