@@ -46,7 +46,7 @@ static void usage(FILE *f)
                "  --json              the report as JSON\n"
                "  --require LIST      promises that must hold (g2 implies g0, g1); repeatable\n"
                "  --samples N         seam intervals: N + 1 samples per seam, both ends included\n"
-               "                      (default 16: 17 samples)\n"
+               "                      (default 16: 17 samples; at most 1e9 samples over all seams)\n"
                "  --tol KIND=X        pass limit for g0, g1, g2 or exact (defaults 1e-12, 1e-10, 1e-8,\n"
                "                      1e-11); repeatable\n"
                "  --threads N         threads, up to 64 used (default: all cores, or OMP_NUM_THREADS);\n"

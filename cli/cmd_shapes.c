@@ -644,6 +644,15 @@ int rg2_cmd_shape(int argc, char **argv)
         rc = RG2_EXIT_FAIL;
         goto out;
     }
+    /* the residual's samples, bounded as rg2_check bounds its own (the default 8 stays far below) */
+    double residual_samples = (double)patches * (samples + 1.0) * (samples + 1.0);
+    if (!is_nurbs && residual_samples > RG2_MAX_CHECK_SAMPLES) {
+        fprintf(stderr, "rg2 shape: %s: %s: --samples %d: %zu patches x %d x %d samples = %.0f, more than the limit "
+                "of %d: fewer samples\n", rg2_status_str(RG2_ELIMIT), d->name, samples, patches, samples + 1,
+                samples + 1, residual_samples, RG2_MAX_CHECK_SAMPLES);
+        rc = RG2_EXIT_FAIL;
+        goto out;
+    }
     /* the range every output mesh of a design must stay in (rg2 build refuses the same) */
     if (rg2_mesh_check_range(&m, is_nurbs ? "nurbs" : d->name, &err) || rg2_surface_build(&m, &s, &err)) {
         rc = rg2_cli_report("shape", &err);

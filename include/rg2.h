@@ -1100,6 +1100,10 @@ enum {
     RG2_REQUIRE_WEIGHTS = 1u << 4 /**< every homogeneous weight > 0 */
 };
 
+/** Largest number of seam samples, and of patch samples, of one rg2_check (the counts of the
+ *  report are ints; about ten minutes of work per thread) */
+#define RG2_MAX_CHECK_SAMPLES 1000000000
+
 typedef struct {
     int seam_samples;      /**< seam intervals: seam_samples + 1 samples per seam, 1..10000
                                 (default 16) */
@@ -1179,7 +1183,9 @@ RG2_API void rg2_check_opts_default(rg2_check_opts *o);
 /** Measure surfaces against shapes (nullable if n_shapes == 0; labels nullable), on
  *  o->threads threads (o NULL: the defaults). Release the report with rg2_check_report_free.
  *  @return RG2_EINVAL (no surfaces, samples out of range, threads < 0, a tolerance that is
- *  not a finite number >= 0), RG2_ENOMEM. */
+ *  not a finite number >= 0), RG2_ELIMIT (more than RG2_MAX_CHECK_SAMPLES seam samples, or
+ *  patch samples, over all surfaces: seams x (seam_samples + 1), patches x
+ *  (patch_samples + 1)^2), RG2_ENOMEM. */
 RG2_API rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes,
                              const char *const *labels, int n_shapes, const rg2_check_opts *o,
                              rg2_check_report *out, rg2_error *err);

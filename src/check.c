@@ -777,6 +777,21 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
         if (!surfs[s].bu || !surfs[s].bv)
             return rg2__fail(err, RG2_EINVAL, "check: surface %d has no junction scalars", s);
     }
+    /* the report counts samples in ints: each kind's total (and so every count of it, folds at
+       most twice the patch samples) stays below RG2_MAX_CHECK_SAMPLES, minutes of work per thread */
+    double seam_total = 0, patch_total = 0;
+    for (int s = 0; s < n; s++) {
+        seam_total += (double)seam_count(&surfs[s]) * (o->seam_samples + 1.0);
+        patch_total += (double)surfs[s].nu * surfs[s].nv * (o->patch_samples + 1.0) * (o->patch_samples + 1.0);
+    }
+    if (seam_total > RG2_MAX_CHECK_SAMPLES)
+        return rg2__fail(err, RG2_ELIMIT, "check: %.0f seam samples (%d per seam) exceed the limit of %d: fewer "
+                         "samples per seam (seam_samples; rg2 check --samples)", seam_total, o->seam_samples + 1,
+                         RG2_MAX_CHECK_SAMPLES);
+    if (patch_total > RG2_MAX_CHECK_SAMPLES)
+        return rg2__fail(err, RG2_ELIMIT, "check: %.0f patch samples (%d x %d per patch) exceed the limit of %d: "
+                         "fewer samples per patch (patch_samples)", patch_total, o->patch_samples + 1,
+                         o->patch_samples + 1, RG2_MAX_CHECK_SAMPLES);
     out->opts = *o;
     out->surfaces = n;
     out->n_shapes = n_shapes;
