@@ -62,6 +62,13 @@ mkdir "$tmp/ldir" && ln -s ldir "$tmp/link.step"
 expect 0 "" "$rg2" build -q "$src/examples/fig1_torus.json" -o "$tmp/link.step"
 [ -f "$tmp/link.step" ] && [ ! -L "$tmp/link.step" ] && [ -d "$tmp/ldir" ] && ok || bad "link.step was not replaced by the STEP file"
 rm -rf "$tmp/ldir" "$tmp/link.step"
+# a link to a file and a named pipe as outputs: each name becomes the file, the target unchanged
+echo target > "$tmp/target.step" && ln -s target.step "$tmp/flink.step" && mkfifo "$tmp/pipe.igs"
+expect 0 "" "$rg2" build -q "$src/examples/fig1_torus.json" -o "$tmp/flink.step" -o "$tmp/pipe.igs"
+[ -f "$tmp/flink.step" ] && [ ! -L "$tmp/flink.step" ] && [ -f "$tmp/pipe.igs" ] && [ ! -p "$tmp/pipe.igs" ] &&
+  [ "$(cat "$tmp/target.step")" = target ] && grep -q ISO-10303-21 "$tmp/flink.step" && ok ||
+  bad "the link or pipe output was not replaced by a file, or the link's target changed"
+rm -f "$tmp/target.step" "$tmp/flink.step" "$tmp/pipe.igs"
 expect 0 "" "$rg2" info --map "$src/examples/torus_sphere.json"
 grep -q "exact on ring *48 patches" "$tmp/out" && grep -q "exact on ball *24 patches" "$tmp/out" &&
   grep -q "transition *48 patches" "$tmp/out" && ok || bad "info counts: $(cat "$tmp/out")"
