@@ -643,8 +643,9 @@ typedef struct rg2_design rg2_design;
 /** Largest text file rg2 reads (design files, NURBS files): 64 MiB. */
 #define RG2_TEXT_MAX_BYTES (64u << 20)
 /** Read a whole text file into a NUL-terminated buffer (*out, release with free; *len its
- *  length, len may be NULL). RG2_EIO when it cannot be opened or read, RG2_ELIMIT past
- *  RG2_TEXT_MAX_BYTES, RG2_ENOMEM; the message names the file. */
+ *  length, len may be NULL). RG2_EIO when it cannot be opened or read (also an empty name),
+ *  RG2_ELIMIT past RG2_TEXT_MAX_BYTES, RG2_ENOMEM, RG2_EINVAL for a NULL path or out; the
+ *  message names the file. */
 RG2_API rg2_status rg2_read_text(const char *path, char **out, size_t *len, rg2_error *err);
 /** The one of names[0..n) closest to word by edit distance, if within min(3, strlen(word) / 2 + 1)
  *  edits (the first of equals), else NULL: the "did you mean" of the design parser's unknown

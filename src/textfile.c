@@ -10,9 +10,15 @@
 
 rg2_status rg2_read_text(const char *path, char **out, size_t *len, rg2_error *err)
 {
+    if (!out)
+        return rg2__fail(err, RG2_EINVAL, "read_text: no output");
     *out = NULL;
     if (len)
         *len = 0;
+    if (!path)
+        return rg2__fail(err, RG2_EINVAL, "read_text: no file name");
+    if (!*path) /* (not fopen's "No such file or directory" after an empty name) */
+        return rg2__fail(err, RG2_EIO, "'': cannot open: the file name is empty");
     struct stat sb;
     if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
         return rg2__fail(err, RG2_EIO, "%s: is a directory, not a file", path);

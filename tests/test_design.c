@@ -662,6 +662,19 @@ static void text_files(void)
                   strstr(err.msg, strerror(EFBIG)) && access(path, F_OK) != 0,
               "control mesh on a full disk: %s '%s'", rg2_status_str(st), err.msg);
     }
+    /* an empty or NULL file name: said so, not fopen's ": cannot open: No such file" */
+    {
+        char *buf = (char *)1;
+        rg2_design *d = (rg2_design *)1;
+        CHECK(rg2_design_load("", &d, &err) == RG2_EIO && d == NULL &&
+                  !strcmp(err.msg, "'': cannot open: the file name is empty"),
+              "empty design file name: '%s'", err.msg);
+        CHECK(rg2_read_text(NULL, &buf, NULL, &err) == RG2_EINVAL && buf == NULL &&
+                  !strcmp(err.msg, "read_text: no file name"),
+              "NULL path: '%s'", err.msg);
+        CHECK(rg2_read_text(path, NULL, NULL, &err) == RG2_EINVAL && !strcmp(err.msg, "read_text: no output"),
+              "NULL output: '%s'", err.msg);
+    }
     CHECK(rmdir(dir) == 0, "a file left in %s", dir);
     printf("  design files of 100000 and %u bytes (the limit) build the same surface as their text; %u + 1 refused\n",
            RG2_TEXT_MAX_BYTES, RG2_TEXT_MAX_BYTES);

@@ -62,6 +62,10 @@ mkdir "$tmp/ldir" && ln -s ldir "$tmp/link.step"
 expect 0 "" "$rg2" build -q "$src/examples/fig1_torus.json" -o "$tmp/link.step"
 [ -f "$tmp/link.step" ] && [ ! -L "$tmp/link.step" ] && [ -d "$tmp/ldir" ] && ok || bad "link.step was not replaced by the STEP file"
 rm -rf "$tmp/ldir" "$tmp/link.step"
+# an empty design file name is named as such (it read ": cannot open: No such file or directory")
+expect 1 "rg2 build: input/output error: '': cannot open: the file name is empty" "$rg2" build -q "" -o "$tmp/e.step"
+expect 1 "rg2 info: input/output error: '': cannot open: the file name is empty" "$rg2" info ""
+[ ! -e "$tmp/e.step" ] && ok || bad "a build of an empty file name wrote e.step"
 # a link to a file and a named pipe as outputs: each name becomes the file, the target unchanged
 echo target > "$tmp/target.step" && ln -s target.step "$tmp/flink.step" && mkfifo "$tmp/pipe.igs"
 expect 0 "" "$rg2" build -q "$src/examples/fig1_torus.json" -o "$tmp/flink.step" -o "$tmp/pipe.igs"
