@@ -421,13 +421,131 @@ static void mobius_rotated(void)
     printf("rotated Moebius matrix: poles %.2e from R times eq. (16), Lorentz defect %.2e\n", e, ld);
 }
 
+/* Collapse is a property of the affine control points: scaling each 4-tuple by its own factor
+ * (weights 0.01, 1, 3.7, 100, ...) keeps every row's verdict, and a polar point moved by 1e-10
+ * of the mesh size (100 times the 1e-12 tolerance) is no longer collapsed, whatever the scaling.
+ * Equal knots leave a band interval of length 0 and are refused like decreasing ones. */
+static void collapse_projective(void)
+{
+    double alpha[5] = {1.1, 1.3, 1.2, 1.4, 2 * M_PI - 5.0}, v[3] = {0.2, 0.55, 0.85};
+    static const double wts[4] = {0.01, 1.0, 3.7, 100.0};
+    rg2_error err;
+    int bad = 0, n_rows = 0;
+    for (int sc = 0; sc < 5; sc++) /* 0..3: every point by wts[sc]; 4: each point its own */
+        for (int moved = 0; moved < 2; moved++) {
+            rg2_mesh m;
+            CHECK_OK(rg2_polar_sphere_mesh(alpha, 5, 0.3, v, 3, NULL, &m, &err), &err);
+            if (moved) /* the mesh size is Zn / 1 = the north polar point's height, > 1 */
+                for (int j = 0; j < m.nv; j += m.nv - 1) {
+                    double *p = rg2_mesh_at(&m, 3, j), size = fabs(rg2_mesh_at(&m, 0, m.nv - 1)[2]);
+                    p[0] += 1e-10 * size * p[3];
+                }
+            for (int i = 0; i < m.nu; i++)
+                for (int j = 0; j < m.nv; j++) {
+                    double *p = rg2_mesh_at(&m, i, j), f = sc < 4 ? wts[sc] : wts[(i + 3 * j) % 4];
+                    for (int k = 0; k < 4; k++)
+                        p[k] *= f;
+                }
+            for (int j = 0; j < m.nv; j++) {
+                int want = (j == 0 || j == m.nv - 1) && !moved, got = rg2_mesh_row_collapsed(&m, j);
+                n_rows++;
+                if (got != want) {
+                    bad++;
+                    CHECK(0, "scaling %d, moved %d: row %d collapsed = %d, expected %d", sc, moved, j, got, want);
+                }
+            }
+            CHECK(!rg2_mesh_row_collapsed(&m, -1) && !rg2_mesh_row_collapsed(&m, m.nv),
+                  "rows -1 and %d do not exist", m.nv);
+            rg2_mesh_free(&m);
+        }
+    printf("collapse detection under projective scaling: %d rows, %d wrong\n", n_rows, bad);
+    double eq[3] = {0.3, 0.3, 0.6}, k[7];
+    CHECK(rg2_polar_knots(eq, 3, k, &err) == RG2_EDOMAIN &&
+              !strcmp(err.msg, "polar knots: v_2 = 0.3 is not above v_1 = 0.3"),
+          "equal knots: %s", err.msg);
+    rg2_mesh b;
+    CHECK(rg2_polar_sphere_mesh(alpha, 5, 0.0, eq, 3, NULL, &b, &err) == RG2_EDOMAIN && b.p == NULL,
+          "equal knots, sphere mesh: %s", err.msg);
+}
+
+/* A Moebius map that sends control points through infinity names one of them: the named point
+ * [i][j] exists, and the map (applied here) really gives it the weight printed, <= 0. The map's
+ * weight row depends only on the pole separation (a boost along x, then a rotation), so the mesh
+ * is turned instead (its circle starts at theta0 = 0.3 + q pi / 4): the offending points move to
+ * other columns. */
+static void mobius_weight_message(void)
+{
+    double alpha[6] = {1, 1, 1, 1, 1, 2 * M_PI - 5}, v[3] = {0.25, 0.5, 0.75}, c0[3] = {0, 0, 0}, a = 1e-3;
+    double nn[3] = {0, 1, 0}, sn[3] = {0, cos(a), -sin(a)}, M[16];
+    rg2_error err;
+    CHECK_OK(rg2_mobius_poles_matrix(sn, nn, M, &err), &err);
+    int named = 0, later = 0, cols = 0;
+    for (int q = 0; q < 8; q++) {
+        rg2_mesh m;
+        CHECK_OK(rg2_polar_sphere_mesh(alpha, 6, 0.3 + q * M_PI / 4, v, 3, NULL, &m, &err), &err);
+        rg2_status st = rg2_mesh_mobius(&m, c0, 1.0, M, &err);
+        int i = -1, j = -1;
+        double w = NAN;
+        const char *at = strstr(err.msg, "control point [");
+        CHECK(st == RG2_EWEIGHT && at && sscanf(at, "control point [%d][%d] gets weight %lf", &i, &j, &w) == 3,
+              "turn %d: %s", q, err.msg);
+        if (i >= 0 && i < m.nu && j >= 0 && j < m.nv) {
+            double img[4];
+            apply(M, rg2_mesh_at(&m, i, j), img);
+            CHECK(img[3] <= 0 && fabs(img[3] - w) <= 1e-5 * fabs(img[3]),
+                  "turn %d: point [%d][%d] gets weight %.6g, the message says %g", q, i, j, img[3], w);
+            named++;
+            later += i * m.nv + j > 0;
+            cols |= 1 << i;
+        } else {
+            CHECK(0, "turn %d: the message names point [%d][%d] of a %d x %d mesh", q, i, j, m.nu, m.nv);
+        }
+        rg2_mesh_free(&m);
+    }
+    int ncols = 0;
+    for (int i = 0; i < 6; i++)
+        ncols += cols >> i & 1;
+    CHECK(named == 8 && later >= 4 && ncols >= 3,
+          "%d of 8 messages name a point sent through infinity (%d past [0][0], in %d columns)", named, later, ncols);
+    printf("Moebius through infinity: 8 turned meshes, %d messages name the right control point (%d past [0][0], "
+           "%d columns)\n",
+           named, later, ncols);
+}
+
+/* Poles must lie on the unit sphere to 1e-9 (rg2.h): 4e-10 off is accepted, and the map takes
+ * the unit sphere's poles to within that tolerance of the normalized points (6.7e-11 here: the
+ * frame's pole axis is taken from the points as given); 2e-9 off is refused. */
+static void mobius_pole_tolerance(void)
+{
+    const double off[2] = {4e-10, 2e-9};
+    for (int k = 0; k < 2; k++) {
+        double f = 1 + off[k], s[3] = {0, 0, -1}, n[3] = {0, 0.6 * f, 0.8 * f}, M[16];
+        rg2_error err;
+        rg2_status st = rg2_mobius_poles_matrix(s, n, M, &err);
+        if (k == 0) {
+            CHECK(st == RG2_OK, "pole %.0e off the sphere refused: %s", off[k], err.msg);
+            double N4[4] = {0, 0, 1, 1}, y[4];
+            apply(M, N4, y);
+            double want[3] = {0, 0.6, 0.8}, got[3] = {y[0] / y[3], y[1] / y[3], y[2] / y[3]};
+            CHECK(st || pt_dist3(got, want) <= 1e-9, "pole %.0e off mapped %.3g from its normalized point", off[k],
+                  pt_dist3(got, want));
+        } else {
+            CHECK(st == RG2_EDOMAIN && strstr(err.msg, "north pole") && strstr(err.msg, "not on the unit sphere"),
+                  "pole %.0e off the sphere: %s", off[k], err.msg);
+        }
+    }
+}
+
 int main(void)
 {
     mobius_rotated();
     polar_knots();
+    collapse_projective();
     polar_sphere_band();
     mobius_b();
     mobius_general();
     errors();
+    mobius_weight_message();
+    mobius_pole_tolerance();
     return rg2t_done("test_poles");
 }
