@@ -986,6 +986,51 @@ static void design_errors(void)
 /* The cap options spelled out: "ends": "both" and "quadratic": "rotational" are the defaults
  * (the same patches bit for bit); "south" / "north" add the 3 cap rows at that end only, the
  * body rows unchanged, and their pole patches collapse to that end's pole. */
+/* Explicit cap lengths (length > 0) with v_c = 0, the polynomial chart that rg2.h allows, and
+ * with v_c = 0.3, on a free-form tube: each is used as given (rg2_cap_info) and the capped tube
+ * is G2 across every seam, the pole one point. */
+static void explicit_lengths(void)
+{
+    double alpha[5] = {1.1, 1.3, 1.2, 1.4, 2 * M_PI - 5.0}, knots[9] = {0, 0.5, 1.1, 1.6, 2.2, 2.9, 3.3, 3.8, 4.5};
+    double cs[10];
+    const double vcs[2] = {0.0, 0.3};
+    rg2_error err;
+    for (int k = 0; k < 2; k++) {
+        rg2_mesh mesh;
+        tube_mesh(alpha, 5, knots, 5, &mesh, cs);
+        for (int i = 0; i < 5; i++)
+            for (int j = 0; j < 7; j++) {
+                double *p = rg2_mesh_at(&mesh, i, j), rad = 1.0 + 0.1 * sin(1.7 * i + j);
+                p[0] = rad * cs[2 * i], p[1] = rad * cs[2 * i + 1], p[2] = knots[j + 1], p[3] = 1.0;
+            }
+        rg2_cap_opts o;
+        rg2_cap_opts_default(&o);
+        o.length[0] = 1.5, o.length[1] = 0.8, o.vc[0] = o.vc[1] = vcs[k];
+        rg2_surface s;
+        rg2_cap_info info;
+        rg2_status st = rg2_cap_build(&mesh, &o, &s, &info, &err);
+        CHECK(st == RG2_OK, "v_c = %g: %s", vcs[k], err.msg);
+        if (st == RG2_OK) {
+            CHECK(info.length[0] == 1.5 && info.length[1] == 0.8 && info.vc[0] == vcs[k] && info.vc[1] == vcs[k],
+                  "v_c = %g: used L = %g / %g, v_c = %g / %g", vcs[k], info.length[0], info.length[1], info.vc[0],
+                  info.vc[1]);
+            char what[64];
+            snprintf(what, sizeof what, "tube capped with L = 1.5 / 0.8, v_c = %g", vcs[k]);
+            rg2t_seams g;
+            check_seams(&s, what, 1e-11, 1e-8, &g);
+            double scale = rg2t_surface_scale(&s);
+            for (int e = 0; e < 2; e++) {
+                pole_meas pm;
+                measure_pole(&s, e, scale, &pm);
+                CHECK(pm.point <= 1e-14 && pm.normal <= 1e-10, "%s: pole point %.3g, normals %.3g rad", what, pm.point,
+                      pm.normal);
+            }
+            rg2_surface_free(&s);
+        }
+        rg2_mesh_free(&mesh);
+    }
+}
+
 static void cap_option_values(void)
 {
     const char *fmt = "{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\","
@@ -1145,5 +1190,6 @@ int main(void)
     ellipsoid_caps();
     design_errors();
     design_pole_tolerance();
+    explicit_lengths();
     return rg2t_done("test_cap");
 }
