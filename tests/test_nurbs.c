@@ -290,6 +290,43 @@ static void clamped_weights(void)
             CHECK(first_refused < INFINITY, "alternating weights: no ratio refused");
     }
 
+    /* only some ends clamped. One direction clamped (u, v, or the start of u alone): the
+     * extrapolated points of one direction cancel little, every ratio accepted and exact. A
+     * corner clamped in both directions (the starts of u and v; all of u and the start of v; the
+     * end of u and the start of v):
+     * refused from some ratio, as when every end is clamped, and the accepted ones are the
+     * NURBS to 1e-10 of its scale (the bound ran only where all four ends were clamped: these
+     * came back accepted at every ratio) */
+    double Us[9] = {0, 0, 0, 0, 1, 2, 3, 4, 5}, Ue[9] = {0, 1, 2, 3, 4, 5, 5, 5, 5};
+    const double *part[6][2] = {{Uc, Uf}, {Uf, Uc}, {Us, Uf}, {Us, Us}, {Uc, Us}, {Ue, Us}};
+    const char *pname[6] = {"u clamped", "v clamped", "the start of u clamped", "the starts of u and v clamped",
+                            "u and the start of v clamped", "the end of u and the start of v clamped"};
+    for (int c = 0; c < 6; c++) {
+        int refused = 0;
+        double worst = 0.0;
+        for (int e = 0; e <= 8; e++) {
+            double r = pow(10.0, e);
+            for (int k = 0; k < 25; k++)
+                W[k] = (k / 5 + k % 5) % 2 ? r : 1.0 / r;
+            rg2_nurbs nb = {5, 5, P, W, part[c][0], part[c][1]};
+            rg2_mesh m;
+            rg2_error err;
+            rg2_status st = rg2_nurbs_mesh(&nb, &m, &err);
+            if (st) {
+                CHECK(st == RG2_EDOMAIN && strstr(err.msg, "weights [") && e > 1, "%s, r = %g: %s %s", pname[c], r,
+                      rg2_status_str(st), err.msg);
+                refused++;
+                continue;
+            }
+            double corner, d = import_error(&nb, &m, 32, &corner);
+            rg2_mesh_free(&m);
+            worst = fmax(worst, d);
+            CHECK(d <= 1e-10, "%s, alternating r = %g: accepted, %.3g from Cox-de Boor", pname[c], r, d);
+        }
+        CHECK(c < 3 || refused > 0, "%s: alternating weights up to 1e8 all accepted (worst %.3g)", pname[c], worst);
+        printf("  %s: %d of 9 ratios refused, the accepted ones %.1e from Cox-de Boor\n", pname[c], refused, worst);
+    }
+
     /* random clamped NURBS with weights e^U(-L, L): accepted ones are accurate */
     rg2t_rng rng;
     rg2t_seed(&rng, 77);
@@ -635,8 +672,18 @@ static void errors(void)
                "knot intervals 1e-300 and 1");
     CHECK(!m.p, "a mesh left after the error");
     nb.knots_v = V;
+    /* too few points in either direction, the other having enough: named by the NURBS check (a
+     * later check of the knots' scalars refused them too, with another message and, for a
+     * negative count, reading outside the knots) */
     nb.nv = 3;
-    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EINVAL, &err, "at least 4", "too few points");
+    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EINVAL, &err,
+               "nurbs: 6 x 3 control points; a bi-cubic NURBS needs at least 4", "too few points in v");
+    nb.nu = 3, nb.nv = 5;
+    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EINVAL, &err,
+               "nurbs: 3 x 5 control points; a bi-cubic NURBS needs at least 4", "too few points in u");
+    nb.nu = 6, nb.nv = -1;
+    expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EINVAL, &err, "nurbs: 6 x -1 control points",
+               "a negative count");
     nb.nv = 5;
     nb.knots_v = NULL;
     expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EINVAL, &err, "missing", "no knots");
