@@ -919,6 +919,147 @@ static void errors(void)
                "(0, pi)", "2 closed arcs of pi");
 }
 
+/* Small shapes: every named shape with its size parameters at 1e-3 of the defaults (the cone's
+ * slope kept) builds over its default partitions and lies on its implicit surface, along its own
+ * parameterization, to rounding (a parameter in (0, 0.01] was refused by a mis-set positivity
+ * bound and no test noticed). Each size parameter set negative in turn is refused, naming it. */
+static void parameter_ranges(void)
+{
+    rg2_error err;
+    double worst = 0.0, wrep = 0.0;
+    for (int kind = 0; kind < RG2_SHAPE_COUNT; kind++) {
+        const rg2_shape_desc *d = rg2_shape_describe((rg2_shape_kind)kind);
+        rg2_shape sh;
+        rg2_shape_init(&sh, (rg2_shape_kind)kind);
+        if (kind != RG2_SHAPE_CONE)
+            for (int k = 0; k < d->n_params; k++)
+                sh.param[k] *= 1e-3;
+        double vals[2][MAXSEG + 1];
+        rg2_partition p[2];
+        for (int dir = 0; dir < 2; dir++)
+            CHECK_OK(rg2_partition_equal(&p[dir], d->dir_kind[dir], d->default_closed[dir], d->default_range[dir][0],
+                                         d->default_range[dir][1], d->default_segments[dir], vals[dir], MAXSEG + 1,
+                                         &err),
+                     &err);
+        rg2_surface s;
+        rg2_status st = rg2_shape_surface(&sh, &p[0], &p[1], &s, NULL, &err);
+        CHECK(st == RG2_OK, "%s with parameters 1e-3 of the defaults: %s", d->name, err.msg);
+        if (st == RG2_OK) {
+            stats one;
+            stats_init(&one);
+            measure_surface(&sh, &s, &p[0], &p[1], rg2t_surface_scale(&s), 4, &one);
+            worst = fmax(worst, one.resid);
+            wrep = fmax(wrep, one.repro);
+            rg2_surface_free(&s);
+        }
+        /* a negative size parameter (not the cone's slope, which may be negative) */
+        for (int k = 0; k < d->n_params && kind != RG2_SHAPE_CONE; k++) {
+            rg2_shape_init(&sh, (rg2_shape_kind)kind);
+            sh.param[k] = -sh.param[k];
+            char want[96];
+            snprintf(want, sizeof want, "%s: parameter %s = %g must be", d->name, d->param_names[k], sh.param[k]);
+            rg2_mesh m;
+            expect_err(rg2_shape_mesh(&sh, &p[0], &p[1], &m, &err), RG2_EDOMAIN, &err, want, d->name);
+        }
+    }
+    printf("shapes at 1e-3 of the default parameters: residual %.2e, reproduction %.2e\n", worst, wrep);
+    CHECK(worst <= 1e-13 && wrep <= 1e-13, "small shapes: residual %.3g, reproduction %.3g", worst, wrep);
+}
+
+/* rg2_partition_equal over knots: n + 1 increasing knots from lo to hi in equal steps (each step
+ * (hi - lo) / n to rounding), and a cylinder over them reaches every knot's height. */
+static void equal_knots(void)
+{
+    rg2_error err;
+    rg2_partition pk, pu;
+    double kv[8], eq[7];
+    CHECK_OK(rg2_partition_equal(&pk, RG2_PART_KNOTS, 0, -1.0, 2.5, 7, kv, 8, &err), &err);
+    double wstep = 0.0;
+    for (int k = 1; k <= 7; k++)
+        wstep = fmax(wstep, fabs((kv[k] - kv[k - 1]) - 0.5));
+    CHECK(pk.n == 8 && kv[0] == -1.0 && kv[7] == 2.5 && wstep <= 1e-15,
+          "equal knots on [-1, 2.5]: %d values from %g to %g, steps off 0.5 by %.3g", pk.n, kv[0], kv[7], wstep);
+    rg2_shape sh;
+    rg2_shape_init(&sh, RG2_SHAPE_CYLINDER);
+    CHECK_OK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0.0, 0.0, 6, eq, 7, &err), &err);
+    rg2_surface s;
+    rg2_status st = rg2_shape_surface(&sh, &pu, &pk, &s, NULL, &err);
+    CHECK(st == RG2_OK && s.nv == 7, "cylinder over 7 equal knot intervals: %s", err.msg);
+    if (st == RG2_OK) {
+        double wz = 0.0;
+        for (int j = 0; j < s.nv; j++) {
+            rg2_eval e0, e1;
+            rg2_patch_eval(rg2_surface_patch(&s, 0, j), 0.5, 0.0, 0, &e0);
+            rg2_patch_eval(rg2_surface_patch(&s, 0, j), 0.5, 1.0, 0, &e1);
+            wz = fmax(wz, fmax(fabs(e0.p[2] - (-1.0 + 0.5 * j)), fabs(e1.p[2] - (-1.0 + 0.5 * (j + 1)))));
+        }
+        CHECK(wz <= 1e-14, "cylinder over equal knots: heights off the knots by %.3g", wz);
+        rg2_surface_free(&s);
+    }
+}
+
+/* An arc below the smallest supported one is refused naming its angle, and the smallest, in
+ * radians and degrees: each degree figure is its radian figure times 180 / pi. */
+static void small_arc_message(void)
+{
+    rg2_error err;
+    double arcs[4] = {1e-3, M_PI / 2, M_PI / 2, M_PI - 1e-3};
+    rg2_partition p = {RG2_PART_ANGLES, 1, 4, arcs, 0.0};
+    rg2_status st = rg2_partition_check(&p, "u", &err);
+    double a = 0, ad = 0, m = 0, md = 0;
+    const char *at = strstr(err.msg, "opening angle "), *mt = strstr(err.msg, "smallest supported arc of ");
+    int got = st == RG2_EDOMAIN && at && mt && sscanf(at, "opening angle %lf rad (%lf deg)", &a, &ad) == 2 &&
+              sscanf(mt, "smallest supported arc of %lf rad (%lf deg)", &m, &md) == 2;
+    CHECK(got && strstr(err.msg, "arc 0 ") && a == 1e-3 && m > a && fabs(ad - a * 180.0 / M_PI) <= 1e-5 * ad &&
+              fabs(md - m * 180.0 / M_PI) <= 1e-5 * md,
+          "arc below the smallest: %s %s", rg2_status_str(st), err.msg);
+    /* with data arcs the produced arcs count from values[1]: values[2] is arc 1 */
+    double full[5] = {0.4, 0.4, 1e-3, 0.5, 0.5};
+    rg2_partition pf = {RG2_PART_ANGLES_FULL, 0, 5, full, 0.0};
+    expect_err(rg2_partition_check(&pf, "v", &err), RG2_EDOMAIN, &err, "v partition: arc 1 has opening angle 0.001 rad",
+               "data-arc layout: small arc named by its produced index");
+}
+
+/* The smallest data-knot layout, 6 values (v_-1, v_0, v_1, v_2 and two data knots): one
+ * produced interval [values[2], values[3]]; a cylinder over it spans exactly those heights. */
+static void smallest_full_knots(void)
+{
+    rg2_error err;
+    double kn[6] = {-1.0, 0.0, 1.0, 2.5, 3.0, 4.0}, eq[7];
+    rg2_partition pk = {RG2_PART_KNOTS_FULL, 0, 6, kn, 0}, pu;
+    CHECK_OK(rg2_partition_check(&pk, "v", &err), &err);
+    CHECK(rg2_partition_num_segments(&pk) == 1, "6 full knots: %d segments", rg2_partition_num_segments(&pk));
+    rg2_shape sh;
+    rg2_shape_init(&sh, RG2_SHAPE_CYLINDER);
+    CHECK_OK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0.0, 0.0, 6, eq, 7, &err), &err);
+    rg2_surface s;
+    rg2_status st = rg2_shape_surface(&sh, &pu, &pk, &s, NULL, &err);
+    CHECK(st == RG2_OK && s.nv == 1, "cylinder over 6 full knots: %s", err.msg);
+    if (st == RG2_OK) {
+        rg2_eval e0, e1;
+        rg2_patch_eval(rg2_surface_patch(&s, 2, 0), 0.3, 0.0, 0, &e0);
+        rg2_patch_eval(rg2_surface_patch(&s, 2, 0), 0.3, 1.0, 0, &e1);
+        CHECK(fabs(e0.p[2] - 1.0) <= 2e-15 && fabs(e1.p[2] - 2.5) <= 2e-15, "heights %.17g, %.17g for knots 1, 2.5",
+              e0.p[2], e1.p[2]);
+        rg2_surface_free(&s);
+    }
+    pk.n = 5;
+    expect_err(rg2_partition_check(&pk, "v", &err), RG2_EINVAL, &err, "5 knots given, need at least 6", "5 full knots");
+}
+
+/* An unknown shape name lists the known ones: every name once, joined by ", ", nothing after the last. */
+static void unknown_name_list(void)
+{
+    rg2_error err;
+    rg2_shape_kind kind;
+    char want[512] = "(known: ";
+    for (int k = 0; k < RG2_SHAPE_COUNT; k++) {
+        strcat(want, rg2_shape_name((rg2_shape_kind)k));
+        strcat(want, k + 1 == RG2_SHAPE_COUNT ? ")" : ", ");
+    }
+    expect_err(rg2_shape_from_name("doughnut", &kind, &err), RG2_EINVAL, &err, want, "the list of known shapes");
+}
+
 int main(void)
 {
     named_shapes();
@@ -927,6 +1068,11 @@ int main(void)
     full_partitions();
     knot_maps_and_checks();
     weight_warning();
+    parameter_ranges();
+    equal_knots();
+    small_arc_message();
+    smallest_full_knots();
+    unknown_name_list();
     errors();
     return rg2t_done("test_shapes");
 }
