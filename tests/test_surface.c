@@ -156,6 +156,24 @@ static void copy_edge_cases(void)
     bad.nu = -1;
     bad.nv = 5;
     CHECK(rg2_surface_copy(&bad, &c, &err) == RG2_EINVAL, "negative patch count: %s", err.msg);
+    /* a negative count in either direction is invalid whatever the other count or the patch array
+     * (not an empty surface when the other count is 0, not "out of memory" when patches are set) */
+    rg2_patch one;
+    memset(&one, 0, sizeof one);
+    const struct {
+        int nu, nv, with_patch;
+    } neg[] = {{-1, 0, 0}, {0, -1, 0}, {-1, 0, 1}, {0, -1, 1}, {-1, 5, 1}, {5, -1, 1}, {-2, -3, 1}};
+    for (size_t q = 0; q < sizeof neg / sizeof neg[0]; q++) {
+        memset(&bad, 0, sizeof bad);
+        bad.nu = neg[q].nu, bad.nv = neg[q].nv, bad.patch = neg[q].with_patch ? &one : NULL;
+        memset(&c, 0, sizeof c);
+        rg2_status st = rg2_surface_copy(&bad, &c, &err);
+        CHECK(st == RG2_EINVAL && strstr(err.msg, "not a surface") && !c.patch,
+              "copy of a %d x %d surface (patches %s): %s '%s'", neg[q].nu, neg[q].nv,
+              neg[q].with_patch ? "set" : "NULL", rg2_status_str(st), err.msg);
+        if (st == RG2_OK)
+            rg2_surface_free(&c);
+    }
 }
 
 static void mesh_errors(void)
