@@ -565,6 +565,86 @@ static void construction_paths(void)
            compared, overflows, avx512 ? "on this CPU" : "not in this build or CPU: the portable path twice");
 }
 
+/* The ends of the two paths' shared rules (surface.c: normalize_weights and the AVX-512 range and
+ * finiteness tests). With unit scalars and one mesh weight W every patch's largest weight is W
+ * itself: kept if W lies in [2^-32, 2^32] (both ends included), else scaled by a power of two into
+ * [1, 2) (W = f 2^e with f in [0.5, 1) by frexp: 2 f), on both paths alike; W at both ends of the
+ * range and one ulp and a half binade past them. Coordinates near the top of the double range with weights of 1: the inner control
+ * points (times omega omega' = 1.96) overflow while every weight stays in range; the build must
+ * refuse that (ENONFINITE naming patch (0, 0), surface left empty) on both paths, not return
+ * patches holding inf. */
+static void construction_edges(void)
+{
+    rg2_error err;
+    int kept = 0, patches = 0;
+    const double Ws[] = {0x1p-32, 0x1p32, 0x1.fffffffffffffp-33, 0x1.0000000000001p32, 0x1.8p-33, 0x1.8p32};
+    for (int t = 0; t < 12; t++) {
+        int closed = t & 1, e2;
+        double W = Ws[t / 2], f = frexp(W, &e2), want = W >= 0x1p-32 && W <= 0x1p32 ? W : 2 * f;
+        rg2_mesh m;
+        CHECK_OK(rg2_mesh_init(&m, 7, 6, closed, closed, &err), &err);
+        for (int i = 0; i < 7; i++)
+            for (int j = 0; j < 6; j++) {
+                double *p = rg2_mesh_at(&m, i, j);
+                p[0] = W * i, p[1] = W * j, p[2] = W * ((i * j) % 3), p[3] = W;
+            }
+        rg2_surface s[2] = {{0}, {0}};
+        for (int q = 0; q < 2; q++) {
+            rg2__surface_portable = q;
+            CHECK_OK(rg2_surface_build(&m, &s[q], &err), &err);
+        }
+        rg2__surface_portable = 0;
+        size_t np = (size_t)s[0].nu * (size_t)s[0].nv;
+        CHECK(s[0].patch && s[1].patch && s[1].nu * s[1].nv == (int)np &&
+                  !memcmp(s[0].patch, s[1].patch, np * sizeof(rg2_patch)),
+              "weights %a (closed %d): the two construction paths differ", W, closed);
+        for (size_t k = 0; s[0].patch && k < np; k++) {
+            double big = 0;
+            for (int r = 0; r < 4; r++)
+                for (int c = 0; c < 4; c++)
+                    big = fmax(big, s[0].patch[k].h[r][c][3]);
+            kept += big == want;
+            patches++;
+        }
+        rg2_surface_free(&s[0]);
+        rg2_surface_free(&s[1]);
+        rg2_mesh_free(&m);
+    }
+    CHECK(patches > 0 && kept == patches, "largest weights kept in [2^-32, 2^32], else scaled into [1, 2): %d of %d patches",
+          kept, patches);
+    for (int closed = 0; closed < 2; closed++) {
+        rg2_mesh m;
+        CHECK_OK(rg2_mesh_init(&m, 6, 6, closed, closed, &err), &err);
+        for (int k = 0; k < 7 - closed; k++) {
+            if (k < rg2_scalars_num_w(&m.su))
+                m.su.w[k] = 1.4;
+            if (k < rg2_scalars_num_w(&m.sv))
+                m.sv.w[k] = 1.4;
+        }
+        for (int i = 0; i < 6; i++)
+            for (int j = 0; j < 6; j++) {
+                double *p = rg2_mesh_at(&m, i, j);
+                p[0] = 1.7e308, p[1] = j, p[2] = i, p[3] = 1.0;
+            }
+        rg2_surface s[2] = {{0}, {0}};
+        rg2_error e[2];
+        rg2_status st[2];
+        for (int q = 0; q < 2; q++) {
+            rg2__surface_portable = q;
+            st[q] = rg2_surface_build(&m, &s[q], &e[q]);
+        }
+        rg2__surface_portable = 0;
+        for (int q = 0; q < 2; q++)
+            CHECK(st[q] == RG2_ENONFINITE && strstr(e[q].msg, "patch (0, 0) overflows") && !s[q].patch &&
+                      s[q].nu == 0,
+                  "closed %d, %s path: coordinates 1.7e308 times 1.96 must overflow: %s '%s'", closed,
+                  q ? "portable" : "default", rg2_status_str(st[q]), st[q] ? e[q].msg : "");
+        rg2_surface_free(&s[0]);
+        rg2_surface_free(&s[1]);
+        rg2_mesh_free(&m);
+    }
+}
+
 /* rg2_surface_transform: the homogeneous values and derivatives of every patch (bi-3 and, after
  * xmix_elevate, higher degree) become M times the old ones; a bi-3 surface transformed equals the
  * construction of the transformed mesh; a rigid motion keeps K and H and turns the normal. */
@@ -692,6 +772,7 @@ static void transform(void)
 int main(void)
 {
     construction_paths();
+    construction_edges();
     copy_edge_cases();
     torus_curvatures();
     degenerate_and_derivatives();
