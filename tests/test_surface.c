@@ -728,16 +728,19 @@ static void transform(void)
         /* rg2_surface_box: the box of the positive-weight control points, found independently;
          * the surface inside it where every weight is positive */
         double lo[3], hi[3], wlo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, whi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+        double wmin = HUGE_VAL; /* rg2_surface_min_weight: the least weight of the patches' own control points */
         CHECK(rg2_surface_box(&st, lo, hi), "trial %d: the box has points", trial);
         for (int i = 0; i < st.nu; i++)
             for (int j = 0; j < st.nv; j++) {
                 rg2_xpatch X;
                 rg2_surface_patch_get(&st, i, j, &X);
                 for (int a = 0; a <= X.du; a++)
-                    for (int b = 0; b <= X.dv; b++)
+                    for (int b = 0; b <= X.dv; b++) {
+                        wmin = fmin(wmin, X.h[a][b][3]);
                         for (int q = 0; q < 3 && X.h[a][b][3] > 0; q++)
                             wlo[q] = fmin(wlo[q], X.h[a][b][q] / X.h[a][b][3]),
                             whi[q] = fmax(whi[q], X.h[a][b][q] / X.h[a][b][3]);
+                    }
                 for (int t = 0; t < 4 && rg2_surface_min_weight(&st) > 0; t++) {
                     rg2_eval e;
                     rg2_surface_eval(&st, i, j, rg2t_uniform(&r, 0, 1), rg2t_uniform(&r, 0, 1), 0, &e);
@@ -748,6 +751,8 @@ static void transform(void)
             }
         for (int q = 0; q < 3; q++)
             box_same += lo[q] == wlo[q] && hi[q] == whi[q];
+        CHECK(rg2_surface_min_weight(&st) == wmin, "trial %d (%d higher-degree patches): least weight %.17g, the "
+              "control points' own %.17g", trial, xmix_count(&st), rg2_surface_min_weight(&st), wmin);
         rg2_surface_free(&s);
         rg2_surface_free(&st);
         rg2_surface_free(&sb);
