@@ -645,6 +645,61 @@ static void construction_edges(void)
     }
 }
 
+/* rg2__surface_normalize_weights (a capped design's surfaces, design.c) on a surface of mixed
+ * degrees whose homogeneous values were all scaled by c: a patch whose largest weight lies outside
+ * [2^-32, 2^32] is scaled as a whole, every control value of it (bi-3 or of higher degree) by the
+ * same power of two, into a largest weight in [1, 2); one inside is left as it is. */
+static void normalize_mixed(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 3232);
+    rg2_error err;
+    rg2_mesh m;
+    random_mesh(&r, 8, 9, 0, 1, &m);
+    rg2_surface s;
+    CHECK_OK(rg2_surface_build(&m, &s, &err), &err);
+    CHECK_OK(xmix_elevate(&s, &err), &err);
+    const double cs[] = {0x1p40, 0x1p-40, 0x1p10, 0x1p200};
+    int whole = 0, ranged = 0, patches = 0;
+    for (int q = 0; q < 4; q++) {
+        double c = cs[q], M[16] = {c, 0, 0, 0, 0, c, 0, 0, 0, 0, c, 0, 0, 0, 0, c};
+        rg2_surface t;
+        CHECK_OK(rg2_surface_copy(&s, &t, &err), &err);
+        rg2_surface_transform(&t, M);
+        rg2__surface_normalize_weights(&t);
+        for (int i = 0; i < s.nu; i++)
+            for (int j = 0; j < s.nv; j++) {
+                rg2_xpatch X, Y;
+                rg2_surface_patch_get(&s, i, j, &X);
+                rg2_surface_patch_get(&t, i, j, &Y);
+                double big = 0;
+                for (int a = 0; a <= X.du; a++)
+                    for (int b = 0; b <= X.dv; b++)
+                        big = fmax(big, c * X.h[a][b][3]);
+                int e2;
+                frexp(big, &e2); /* big in [2^(e2-1), 2^e2) */
+                double f = big >= 0x1p-32 && big <= 0x1p32 ? c : ldexp(c, 1 - e2);
+                int same = X.du == Y.du && X.dv == Y.dv;
+                double ybig = 0;
+                for (int a = 0; a <= X.du; a++)
+                    for (int b = 0; b <= X.dv; b++)
+                        for (int k = 0; k < 4; k++) {
+                            same &= Y.h[a][b][k] == f * X.h[a][b][k];
+                            ybig = k == 3 ? fmax(ybig, Y.h[a][b][3]) : ybig;
+                        }
+                whole += same;
+                ranged += ybig >= 0x1p-32 && ybig <= 0x1p32 && (f == c || (ybig >= 1 && ybig < 2));
+                patches++;
+            }
+        rg2_surface_free(&t);
+    }
+    CHECK(xmix_count(&s) > 0 && whole == patches && ranged == patches,
+          "normalized weights (%d higher-degree patches): %d of %d patches scaled whole, %d of them in range",
+          xmix_count(&s), whole, patches, ranged);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 /* rg2_surface_transform: the homogeneous values and derivatives of every patch (bi-3 and, after
  * xmix_elevate, higher degree) become M times the old ones; a bi-3 surface transformed equals the
  * construction of the transformed mesh; a rigid motion keeps K and H and turns the normal. */
@@ -778,6 +833,7 @@ int main(void)
 {
     construction_paths();
     construction_edges();
+    normalize_mixed();
     copy_edge_cases();
     torus_curvatures();
     degenerate_and_derivatives();
