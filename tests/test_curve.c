@@ -463,7 +463,22 @@ static void errors(void)
     CHECK(rg2_circle_coeffs(a4, 4, 1, 0.0, cs, &err) == RG2_EDOMAIN &&
               strstr(err.msg, "sum to 2 pi; these sum to 6.1086523819801535 rad (350 deg)"),
           "closed circle short of 2 pi named in degrees: %s", err.msg);
-    a4[1] = M_PI / 2;
+    /* a closed circle's arcs sum to 2 pi to the relative RG2_CLOSED_SUM_TOL (rg2.h): 4 equal arcs
+     * off by half of it either way are a circle, off by twice it are refused (the sum measured
+     * here, as the arcs are passed) */
+    for (int t = 0; t < 4; t++) {
+        double rel = (t & 1 ? -1 : 1) * (t & 2 ? 2.0 : 0.5) * RG2_CLOSED_SUM_TOL, sum = 0;
+        for (int k = 0; k < 4; k++)
+            sum += (a4[k] = M_PI / 2 * (1 + rel));
+        double off = fabs(sum - 2 * M_PI) / (2 * M_PI);
+        rg2_status st = rg2_circle_coeffs(a4, 4, 1, 0.0, cs, &err);
+        CHECK(off > 0.4 * fabs(rel) && off < 1.6 * fabs(rel) &&
+                  (t & 2 ? st == RG2_EDOMAIN && strstr(err.msg, "sum to 2 pi") : st == RG2_OK),
+              "4 arcs summing to 2 pi (1 %+.2g): %s '%s'", (sum - 2 * M_PI) / (2 * M_PI), rg2_status_str(st),
+              st ? err.msg : "");
+    }
+    for (int k = 0; k < 4; k++)
+        a4[k] = M_PI / 2;
     CHECK(rg2_circle_coeffs(a4, 4, 1, NAN, cs, &err) == RG2_ENONFINITE && !strcmp(err.msg, "arcs: start angle is not finite"),
           "NaN start angle: %s", err.msg);
     CHECK(rg2_scalars_from_knots(&s, knots, 3, 1, &err) == RG2_EINVAL &&
