@@ -459,6 +459,18 @@ static void errors(void)
     a4[1] = INFINITY; /* as rg2_scalars_from_angles names it */
     CHECK(rg2_circle_coeffs(a4, 4, 1, 0.0, cs, &err) == RG2_ENONFINITE && !strcmp(err.msg, "arcs: angle of arc 1 is not finite"),
           "circle arc of inf named: %s", err.msg);
+    /* open arcs (the first and last are the mirrored end arcs): a bad arc gets the same number
+     * from rg2_circle_coeffs as from rg2_scalars_from_angles, for each position and kind */
+    for (int k = 0; k < 4; k++)
+        for (int kind = 0; kind < 2; kind++) {
+            double a5[5] = {0.5, 0.6, 0.7, 0.8, 0.9};
+            a5[k] = kind ? INFINITY : 3.5;
+            rg2_error e1, e2;
+            rg2_status s1 = rg2_scalars_from_angles(&s, a5, 5, 0, &e1);
+            rg2_status s2 = rg2_circle_coeffs(a5, 5, 0, 0.0, cs, &e2);
+            CHECK(s1 != RG2_OK && s1 == s2 && !strcmp(e1.msg, e2.msg) && strstr(e2.msg, "arc "),
+                  "open arc %d (%g): from_angles '%s', circle_coeffs '%s'", k, a5[k], e1.msg, e2.msg);
+        }
     a4[1] = 80.0 * M_PI / 180.0; /* a closed circle of 350 degrees */
     CHECK(rg2_circle_coeffs(a4, 4, 1, 0.0, cs, &err) == RG2_EDOMAIN &&
               strstr(err.msg, "sum to 2 pi; these sum to 6.1086523819801535 rad (350 deg)"),
