@@ -388,6 +388,41 @@ static void curve_curvature(void)
     printf("rg2_curve_curvature: circles |k R - 1| %.2e, random space curves %.2e relative\n", wc, wr);
 }
 
+/* The closed flag of scalars is 1 or 0 (rg2.h) however closedness was asked for (any nonzero
+ * int), through every constructor and copy, and so the mesh's and the built surface's. */
+static void closed_flags(void)
+{
+    rg2_error err;
+    const int asked[] = {0, 1, 2, -1, 7};
+    double knots[8] = {0, 1, 2, 3.5, 4, 5, 6, 7}, arcs[5] = {M_PI / 2, M_PI / 2, M_PI / 2, M_PI / 2, M_PI / 2};
+    int right = 0, made = 0;
+    for (int q = 0; q < 5; q++) {
+        int want = asked[q] != 0;
+        rg2_scalars s[4];
+        memset(s, 0, sizeof s);
+        CHECK_OK(rg2_scalars_init(&s[0], 5, asked[q], &err), &err);
+        CHECK_OK(rg2_scalars_from_knots(&s[1], knots, 8, asked[q], &err), &err);
+        CHECK_OK(rg2_scalars_from_angles(&s[2], arcs, 5, asked[q], &err), &err);
+        CHECK_OK(rg2_scalars_copy(&s[2], &s[3], &err), &err);
+        for (int k = 0; k < 4; k++, made++)
+            right += s[k].closed == want;
+        for (int k = 0; k < 4; k++)
+            rg2_scalars_free(&s[k]);
+        rg2_mesh m;
+        CHECK_OK(rg2_mesh_init(&m, 6, 5, asked[q], asked[4 - q], &err), &err);
+        for (int k = 0; k < 6 * 5; k++)
+            m.p[4 * k] = k % 6, m.p[4 * k + 1] = k / 6, m.p[4 * k + 2] = (k * 7) % 3, m.p[4 * k + 3] = 1;
+        rg2_surface sf;
+        CHECK_OK(rg2_surface_build(&m, &sf, &err), &err);
+        right += m.su.closed == want && m.sv.closed == (asked[4 - q] != 0) && sf.closed_u == want &&
+                 sf.closed_v == (asked[4 - q] != 0);
+        made++;
+        rg2_surface_free(&sf);
+        rg2_mesh_free(&m);
+    }
+    CHECK(right == made, "closed flags 0 or 1: %d of %d", right, made);
+}
+
 static void errors(void)
 {
     rg2_scalars s;
@@ -528,6 +563,7 @@ static void errors(void)
 
 int main(void)
 {
+    closed_flags();
     random_curves();
     polynomial_mode();
     circles();
