@@ -100,7 +100,7 @@ static void normalize_weights(double *h, int n)
     double m = 0.0;
     for (int q = 3; q < n; q += 4)
         m = fmax(m, fabs(h[q]));
-    if (!(m > 0.0) || (m >= 0x1p-32 && m <= 0x1p32) || !(m <= 1.79e308))
+    if (!(m > 0.0) || (m >= 0x1p-32 && m <= 0x1p32) || !(m <= DBL_MAX))
         return;
     double t = ldexp(1.0, -ilogb(m));
     for (int q = 0; q < n; q++)

@@ -4,6 +4,7 @@
 #include "harness.h"
 #include "xmix.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -567,9 +568,9 @@ static void construction_paths(void)
 
 /* The ends of the two paths' shared rules (surface.c: normalize_weights and the AVX-512 range and
  * finiteness tests). With unit scalars and one mesh weight W every patch's largest weight is W
- * itself: kept if W lies in [2^-32, 2^32] (both ends included), else scaled by a power of two into
- * [1, 2) (W = f 2^e with f in [0.5, 1) by frexp: 2 f), on both paths alike; W at both ends of the
- * range and one ulp and a half binade past them. Coordinates near the top of the double range with weights of 1: the inner control
+ * (to rounding): kept if W lies in [2^-32, 2^32] (both ends included, exactly W), else scaled by a
+ * power of two into [1, 2), on both paths alike; W at both ends of the range, one ulp and a half
+ * binade past them, and up to DBL_MAX (weights above 1.79e308 were left as they were). Coordinates near the top of the double range with weights of 1: the inner control
  * points (times omega omega' = 1.96) overflow while every weight stays in range; the build must
  * refuse that (ENONFINITE naming patch (0, 0), surface left empty) on both paths, not return
  * patches holding inf. */
@@ -577,16 +578,17 @@ static void construction_edges(void)
 {
     rg2_error err;
     int kept = 0, patches = 0;
-    const double Ws[] = {0x1p-32, 0x1p32, 0x1.fffffffffffffp-33, 0x1.0000000000001p32, 0x1.8p-33, 0x1.8p32};
-    for (int t = 0; t < 12; t++) {
-        int closed = t & 1, e2;
-        double W = Ws[t / 2], f = frexp(W, &e2), want = W >= 0x1p-32 && W <= 0x1p32 ? W : 2 * f;
+    const double Ws[] = {0x1p-32, 0x1p32, 0x1.fffffffffffffp-33, 0x1.0000000000001p32, 0x1.8p-33, 0x1.8p32,
+                         1.795e308, DBL_MAX};
+    for (int t = 0; t < 16; t++) {
+        int closed = t & 1, inside = Ws[t / 2] >= 0x1p-32 && Ws[t / 2] <= 0x1p32;
+        double W = Ws[t / 2];
         rg2_mesh m;
         CHECK_OK(rg2_mesh_init(&m, 7, 6, closed, closed, &err), &err);
         for (int i = 0; i < 7; i++)
             for (int j = 0; j < 6; j++) {
                 double *p = rg2_mesh_at(&m, i, j);
-                p[0] = W * i, p[1] = W * j, p[2] = W * ((i * j) % 3), p[3] = W;
+                p[0] = W * (i / 8.0), p[1] = W * (j / 8.0), p[2] = W * ((i * j) % 3 / 8.0), p[3] = W;
             }
         rg2_surface s[2] = {{0}, {0}};
         for (int q = 0; q < 2; q++) {
@@ -603,7 +605,7 @@ static void construction_edges(void)
             for (int r = 0; r < 4; r++)
                 for (int c = 0; c < 4; c++)
                     big = fmax(big, s[0].patch[k].h[r][c][3]);
-            kept += big == want;
+            kept += inside ? big == W : big >= 1 && big < 2;
             patches++;
         }
         rg2_surface_free(&s[0]);
