@@ -2,6 +2,7 @@
  * measured geometrically and parametrically, for all closed/open combinations. */
 #include "../src/internal.h"
 #include "harness.h"
+#include "scenes.h"
 #include "xmix.h"
 
 #include <float.h>
@@ -385,10 +386,14 @@ static void big_surface(void)
 
 /* Torus from circle products: exact point, normal and curvatures against the implicit
  * geometry (K = cos v / (r (R + r cos v)), H from the principal curvatures 1/r and
- * cos v / (R + r cos v), with cos v = (rho - R) / r read off the point). */
-static void torus_curvatures(void)
+ * cos v / (R + r cos v), with cos v = (rho - R) / r read off the point). All errors are
+ * relative, so the torus is measured at several sizes: curvatures scale like 1 / size, and at
+ * size 20 the principal curvatures are 0.07 and -0.03 .. 0.02 (H^2 - K < 1e-2, where a
+ * fixed threshold on the discriminant would merge k1 and k2); at 2^-60 the derivatives are
+ * ~1e-18 (a fixed absolute floor in the normal's test would leave the normal undefined). */
+static void torus_curvatures(double scale)
 {
-    const double R = 2.5, rr = 0.75;
+    const double R = 2.5 * scale, rr = 0.75 * scale;
     double au[7], av[5], cu[14], cv[10];
     rg2t_rng rng;
     rg2t_seed(&rng, 5);
@@ -436,15 +441,61 @@ static void torus_curvatures(void)
                     wH = fmax(wH, fabs(e.H - H) / (1 / rr));
                     double k1 = fmax(k_a, k_b), k2 = fmin(k_a, k_b);
                     wk = fmax(wk, fmax(fabs(e.k1 - k1), fabs(e.k2 - k2)) * rr);
-                    CHECK(e.flags == 0, "flags %u at patch (%d,%d)", e.flags, i, j);
+                    CHECK(e.flags == 0, "torus x %g: flags %u at patch (%d,%d)", scale, e.flags, i, j);
                 }
-    CHECK(wpos <= 1e-14, "torus position %.3g", wpos);
-    CHECK(wn <= 1e-13, "torus normal %.3g", wn);
-    CHECK(wK <= 1e-12 && wH <= 1e-12 && wk <= 1e-12, "torus curvature K %.3g H %.3g k1/k2 %.3g", wK, wH, wk);
-    printf("torus (random arcs): position %.2e, normal %.2e, K %.2e, H %.2e, k1/k2 %.2e (relative)\n", wpos,
-           wn, wK, wH, wk);
+    CHECK(wpos <= 1e-14, "torus x %g: position %.3g", scale, wpos);
+    CHECK(wn <= 1e-13, "torus x %g: normal %.3g", scale, wn);
+    CHECK(wK <= 1e-12 && wH <= 1e-12 && wk <= 1e-12, "torus x %g: curvature K %.3g H %.3g k1/k2 %.3g", scale, wK,
+          wH, wk);
+    printf("torus x %g (random arcs): position %.2e, normal %.2e, K %.2e, H %.2e, k1/k2 %.2e (relative)\n", scale,
+           wpos, wn, wK, wH, wk);
     rg2_surface_free(&s);
     rg2_mesh_free(&m);
+}
+
+/* A sphere band of radius rs (latitudes -90 .. 30 degrees): every point is umbilic, so
+ * k1 = k2 = H = -+1 / rs (sign from the normal's orientation) and K = 1 / rs^2, the
+ * discriminant H^2 - K being rounding noise of either sign; k1 - k2 is then sqrt(noise) ~ 1e-8
+ * of the curvature at most. At the pole (the band's first row of patches starts there) the
+ * normal is undefined and flagged so. */
+static void sphere_umbilics(void)
+{
+    static const double radii[] = {1.0, 1e3};
+    for (int q = 0; q < 2; q++) {
+        const double rs = radii[q];
+        rg2_mesh m;
+        rg2_surface s;
+        rg2_error err;
+        CHECK_OK(scene_revolve(0.0, rs, 6, 4, 0, -M_PI / 3, M_PI / 6, &m, &s, &err), &err);
+        double wpos = 0, wk = 0, wH = 0, wK = 0;
+        int flagged = 0;
+        for (int i = 0; i < s.nu; i++)
+            for (int j = 0; j < s.nv; j++)
+                for (int a = 0; a <= 8; a++)
+                    for (int b = 0; b <= 8; b++) {
+                        rg2_eval e;
+                        rg2_patch_eval(rg2_surface_patch(&s, i, j), a / 8.0, b / 8.0, 2, &e);
+                        double d = sqrt(e.p[0] * e.p[0] + e.p[1] * e.p[1] + e.p[2] * e.p[2]);
+                        wpos = fmax(wpos, fabs(d - rs) / rs);
+                        if (hypot(e.p[0], e.p[1]) <= 1e-12 * rs) { /* the band's pole: no normal */
+                            flagged += !(e.flags & RG2_EVAL_NORMAL_UNDEFINED);
+                            continue;
+                        }
+                        double sgn = e.n[0] * e.p[0] + e.n[1] * e.p[1] + e.n[2] * e.p[2] > 0 ? 1.0 : -1.0;
+                        double k = -sgn / rs;
+                        wk = fmax(wk, fmax(fabs(e.k1 - k), fabs(e.k2 - k)) * rs);
+                        wH = fmax(wH, fabs(e.H - k) * rs);
+                        wK = fmax(wK, fabs(e.K - k * k) * rs * rs);
+                        flagged += e.flags != 0;
+                    }
+        printf("sphere band r = %g: position %.2e, k1/k2 %.2e, H %.2e, K %.2e (relative), %d samples misflagged\n", rs,
+               wpos, wk, wH, wK, flagged);
+        CHECK(flagged == 0 && wpos <= 1e-14 && wH <= 1e-11 && wK <= 1e-11,
+              "sphere band r = %g: %d misflagged, position %.3g, H %.3g, K %.3g", rs, flagged, wpos, wH, wK);
+        CHECK(wk <= 1e-6, "sphere band r = %g: umbilic k1, k2 off 1/r by %.3g (relative)", rs, wk);
+        rg2_surface_free(&s);
+        rg2_mesh_free(&m);
+    }
 }
 
 /* A collapsed edge (all u = 0 control points equal) flags the normal as undefined there,
@@ -837,7 +888,10 @@ int main(void)
     construction_edges();
     normalize_mixed();
     copy_edge_cases();
-    torus_curvatures();
+    torus_curvatures(1.0);
+    torus_curvatures(20.0);
+    torus_curvatures(0x1p-60);
+    sphere_umbilics();
     degenerate_and_derivatives();
     random_surfaces();
     broken_is_detected();
