@@ -292,6 +292,51 @@ static void exact_and_broken(int mixed)
     rg2_surface_free(&s);
 }
 
+/* The report's size and weights against the control points read directly: size is the
+ * diagonal of the box of all affine control points (positive weights), wmin / wmax the extreme
+ * homogeneous weights. One control weight made negative (-1e-2, an inner point: the patch's
+ * denominator stays positive at every sample) fails the weights promise on its own. */
+static void size_and_weights(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(rg2t_torus(3, 1, 8, 6, &m, &s, &err), &err);
+    for (int round = 0; round < 2; round++) {
+        double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        double wlo = INFINITY, whi = -INFINITY;
+        for (int k = 0; k < s.nu * s.nv; k++)
+            for (int a = 0; a < 4; a++)
+                for (int b = 0; b < 4; b++) {
+                    const double *h = s.patch[k].h[a][b];
+                    wlo = fmin(wlo, h[3]);
+                    whi = fmax(whi, h[3]);
+                    for (int d = 0; d < 3 && h[3] > 0; d++) {
+                        lo[d] = fmin(lo[d], h[d] / h[3]);
+                        hi[d] = fmax(hi[d], h[d] / h[3]);
+                    }
+                }
+        double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                           (hi[2] - lo[2]) * (hi[2] - lo[2]));
+        rg2_check_report r;
+        CHECK_OK(rg2_check(&s, 1, NULL, NULL, 0, NULL, &r, &err), &err);
+        unsigned f = rg2_check_failures(&r, RG2_REQUIRE_WEIGHTS);
+        printf("torus 8 x 6%s: size %.17g (control box %.17g), weights [%.6g, %.6g] ([%.6g, %.6g]), at samples "
+               "%.6g, weight failure %d\n",
+               round ? " with a control weight -1e-2" : "", r.size, diag, r.wmin, r.wmax, wlo, whi, r.eval_wmin,
+               f != 0);
+        CHECK(rel(r.size, diag) <= 1e-15, "size %.17g vs control box diagonal %.17g", r.size, diag);
+        CHECK(r.wmin == wlo && r.wmax == whi, "weights [%.17g, %.17g] vs control points [%.17g, %.17g]", r.wmin,
+              r.wmax, wlo, whi);
+        CHECK(r.eval_wmin > 0 && f == (round ? RG2_REQUIRE_WEIGHTS : 0u),
+              "round %d: denominators at the samples >= %.3g, weight failure %#x", round, r.eval_wmin, f);
+        rg2_check_report_free(&r);
+        s.patch[13].h[1][2][3] = -1e-2;
+    }
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 /* The G1 cylinder + plane: G1 holds, G2 fails at its one seam by the jump 1/R -> 0. */
 static void g1_join(void)
 {
@@ -966,6 +1011,7 @@ int main(void)
     harness_agreement();
     exact_and_broken(0);
     exact_and_broken(1);
+    size_and_weights();
     g1_join();
     examples();
     pole_sample_counts();
