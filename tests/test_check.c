@@ -243,6 +243,31 @@ static void exact_and_broken(int mixed)
     if (txt)
         fputs(txt, stdout);
     free(txt);
+    /* the JSON curvature ranges are the torus's (R = 3, r = 1; the samples include v = 0 and
+     * v = pi): K = cos v / (R + cos v) in [-1/2, 1/4]; |H| between Hin and Hout; principal
+     * curvatures +-1 on the tube and cos v / (R + cos v), so {kmin, kmax} = {-1/2, 1} or
+     * {-1, 1/2} with the orientation */
+    char *js0 = NULL;
+    CHECK_OK(rg2_check_format(&r, 1, &js0, &err), &err);
+    cJSON *j0 = js0 ? cJSON_Parse(js0) : NULL;
+    cJSON *jk = cJSON_GetObjectItem(j0, "principal_curvature"), *jh = cJSON_GetObjectItem(j0, "mean_curvature");
+    cJSON *jg = cJSON_GetObjectItem(j0, "gauss_curvature");
+    CHECK(cJSON_GetArraySize(jk) == 2 && cJSON_GetArraySize(jh) == 2 && cJSON_GetArraySize(jg) == 2,
+          "JSON curvature ranges: two numbers each");
+    if (cJSON_GetArraySize(jk) == 2 && cJSON_GetArraySize(jh) == 2 && cJSON_GetArraySize(jg) == 2) {
+        double k0 = cJSON_GetArrayItem(jk, 0)->valuedouble, k1 = cJSON_GetArrayItem(jk, 1)->valuedouble;
+        double h0 = cJSON_GetArrayItem(jh, 0)->valuedouble, h1 = cJSON_GetArrayItem(jh, 1)->valuedouble;
+        double g0 = cJSON_GetArrayItem(jg, 0)->valuedouble, g1 = cJSON_GetArrayItem(jg, 1)->valuedouble;
+        double kbig = fmax(fabs(k0), fabs(k1)), ksmall = fmin(fabs(k0), fabs(k1));
+        CHECK(fabs(g0 + 0.5) < 1e-9 && fabs(g1 - 0.25) < 1e-9, "JSON K range [%.12g, %.12g] vs torus [-1/2, 1/4]", g0,
+              g1);
+        CHECK(fabs(fmax(fabs(h0), fabs(h1)) - Hout) < 1e-9 && fabs(fmin(fabs(h0), fabs(h1)) - Hin) < 1e-9,
+              "JSON H range [%.12g, %.12g] vs torus %.12g, %.12g", h0, h1, Hout, Hin);
+        CHECK(k0 < 0 && k1 > 0 && fabs(kbig - 1) < 1e-9 && fabs(ksmall - 0.5) < 1e-9,
+              "JSON k range [%.12g, %.12g] vs torus {-1/2, 1} or {-1, 1/2}", k0, k1);
+    }
+    cJSON_Delete(j0);
+    free(js0);
     rg2_check_report_free(&r);
 
     /* an inner control point of patch (3, 2) moved: every inner point sits next to an edge, so
