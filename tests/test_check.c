@@ -411,6 +411,10 @@ static void g1_join(void)
     bad.nv = 0;
     CHECK(rg2_check(&bad, 1, NULL, NULL, 0, NULL, &r, &err) == RG2_EINVAL && !strcmp(err.msg, "check: surface 0 has no patches"),
           "%s", err.msg);
+    bad = s; /* either count: nu = 0 would make nu - 1 = -1 rows of u seams */
+    bad.nu = 0;
+    CHECK(rg2_check(&bad, 1, NULL, NULL, 0, NULL, &r, &err) == RG2_EINVAL && !strcmp(err.msg, "check: surface 0 has no patches"),
+          "nu = 0: %s", err.msg);
     bad = s;
     bad.bv = NULL;
     CHECK(rg2_check(&bad, 1, NULL, NULL, 0, NULL, &r, &err) == RG2_EINVAL &&
