@@ -503,7 +503,8 @@ RG2_API void rg2_mesh_transform(rg2_mesh *m, const double M[16]);
  *                      z^2/c^2 - (x^2+y^2)/a^2 = 1
  *   paraboloid A, B                   hypar A, B: z = x^2/A^2 - y^2/B^2
  *   ellipsoid a, b, c: x^2/a^2 + y^2/b^2 + z^2/c^2 = 1
- * With the default parameters (all 1) the quadrics are the ones listed in the enum. */
+ * With the default parameters (all 1; the ellipsoid 2, 1.5, 1) the quadrics are the ones listed
+ * in the enum. */
 
 /** Static description of a shape kind (for listings, the CLI and design files). */
 typedef struct {

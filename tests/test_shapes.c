@@ -1060,9 +1060,51 @@ static void unknown_name_list(void)
     expect_err(rg2_shape_from_name("doughnut", &kind, &err), RG2_EINVAL, &err, want, "the list of known shapes");
 }
 
+/* The defaults of rg2_shape_describe are the ones docs/shapes.md gives: the table row of each
+ * shape lists "name = value" in the parameters' order (no geometric property sees a wrong
+ * default: a shape of other size is exact too). */
+static void documented_defaults(void)
+{
+    rg2_error err;
+    char *md = NULL;
+    CHECK_OK(rg2_read_text("docs/shapes.md", &md, NULL, &err), &err);
+    if (!md)
+        return;
+    int rows = 0;
+    for (int kind = 0; kind < RG2_SHAPE_COUNT; kind++) {
+        const rg2_shape_desc *d = rg2_shape_describe((rg2_shape_kind)kind);
+        char key[64];
+        snprintf(key, sizeof key, "\n| `%s` | ", d->name);
+        const char *row = strstr(md, key);
+        CHECK(row != NULL, "docs/shapes.md has no table row for %s", d->name);
+        if (!row)
+            continue;
+        row += strlen(key);
+        const char *end = strstr(row, " | "), *at = row;
+        int k = 0, same = 1;
+        for (; end && k < d->n_params; k++) { /* the k-th "= number" of the row's parameter cell */
+            const char *eq = strstr(at, "= ");
+            char *stop;
+            double v = eq && eq < end ? strtod(eq + 2, &stop) : NAN;
+            if (!eq || eq >= end || stop == eq + 2)
+                break;
+            same &= v == d->param_defaults[k];
+            CHECK(v == d->param_defaults[k], "%s: docs/shapes.md gives %s = %g, rg2_shape_describe %g", d->name,
+                  d->param_names[k], v, d->param_defaults[k]);
+            at = stop;
+        }
+        CHECK(k == d->n_params, "%s: docs/shapes.md gives %d of its %d parameter defaults", d->name, k, d->n_params);
+        rows += k == d->n_params && same;
+    }
+    printf("shape defaults: %d of %d table rows of docs/shapes.md agree with rg2_shape_describe\n", rows,
+           (int)RG2_SHAPE_COUNT);
+    free(md);
+}
+
 int main(void)
 {
     named_shapes();
+    documented_defaults();
     families();
     transforms();
     full_partitions();
