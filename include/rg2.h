@@ -417,7 +417,8 @@ RG2_API void rg2_surface_eval(const rg2_surface *s, int i, int j, double u, doub
                               rg2_eval *out);
 RG2_API void rg2_surface_eval_h(const rg2_surface *s, int i, int j, double u, double v,
                                 double out[6][4]);
-/** Normal curvature in the tangent direction t = a su + c sv of an order-2 evaluation. */
+/** Normal curvature in the tangent direction t = a su + c sv of an order-2 evaluation (with
+ *  the sign of its normal n); 0 when t is the zero vector (a = c = 0, for one). */
 RG2_API double rg2_eval_normal_curvature(const rg2_eval *e, double a, double c);
 
 /* ===================================================================================== */
