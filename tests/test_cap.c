@@ -983,9 +983,6 @@ static void design_errors(void)
     }
 }
 
-/* The cap options spelled out: "ends": "both" and "quadratic": "rotational" are the defaults
- * (the same patches bit for bit); "south" / "north" add the 3 cap rows at that end only, the
- * body rows unchanged, and their pole patches collapse to that end's pole. */
 /* Explicit cap lengths (length > 0) with v_c = 0, the polynomial chart that rg2.h allows, and
  * with v_c = 0.3, on a free-form tube: each is used as given (rg2_cap_info) and the capped tube
  * is G2 across every seam, the pole one point. */
@@ -1031,6 +1028,9 @@ static void explicit_lengths(void)
     }
 }
 
+/* The cap options spelled out: "ends": "both" and "quadratic": "rotational" are the defaults
+ * (the same patches bit for bit); "south" / "north" add the 3 cap rows at that end only, the
+ * body rows unchanged, and their pole patches collapse to that end's pole. */
 static void cap_option_values(void)
 {
     const char *fmt = "{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\","

@@ -1084,7 +1084,7 @@ static void documented_defaults(void)
         int k = 0, same = 1;
         for (; end && k < d->n_params; k++) { /* the k-th "= number" of the row's parameter cell */
             const char *eq = strstr(at, "= ");
-            char *stop;
+            char *stop = NULL;
             double v = eq && eq < end ? strtod(eq + 2, &stop) : NAN;
             if (!eq || eq >= end || stop == eq + 2)
                 break;
