@@ -536,6 +536,17 @@ static void degenerate_and_derivatives(void)
     CHECK(worst <= 1e-6, "derivatives vs central differences: %.3g", worst);
 }
 
+/* The mesh built on both construction paths: s[0], st[0], e[0] by the default path (AVX-512
+ * where the CPU has it), s[1], st[1], e[1] by the portable one. */
+static void build_both(const rg2_mesh *m, rg2_surface s[2], rg2_status st[2], rg2_error e[2])
+{
+    for (int q = 0; q < 2; q++) {
+        rg2__surface_portable = q;
+        st[q] = rg2_surface_build(m, &s[q], &e[q]);
+    }
+    rg2__surface_portable = 0;
+}
+
 /* The construction's two paths (AVX-512 per patch, portable per row; surface.c) give the same
  * bits, the same errors and the same overflowing patch, over open and closed random meshes
  * with weights that need normalizing (1e-40, 1e40), signed zeros, and weights that overflow. */
@@ -564,11 +575,7 @@ static void construction_paths(void)
         rg2_surface s[2] = {{0}, {0}};
         rg2_error e[2];
         rg2_status st[2];
-        for (int q = 0; q < 2; q++) {
-            rg2__surface_portable = q;
-            st[q] = rg2_surface_build(&m, &s[q], &e[q]);
-        }
-        rg2__surface_portable = 0;
+        build_both(&m, s, st, e);
         CHECK(st[0] == st[1] && (st[0] == RG2_OK || !strcmp(e[0].msg, e[1].msg)),
               "mesh %d: statuses %d / %d (%s / %s)", t, st[0], st[1], st[0] ? e[0].msg : "", st[1] ? e[1].msg : "");
         overflows += st[0] == RG2_ENONFINITE;
@@ -594,11 +601,11 @@ static void construction_paths(void)
                 p[0] = W * i, p[1] = W * j, p[2] = W * rg2t_uniform(&r, -1, 1), p[3] = W;
             }
         rg2_surface s[2] = {{0}, {0}};
-        for (int q = 0; q < 2; q++) {
-            rg2__surface_portable = q;
-            CHECK_OK(rg2_surface_build(&m, &s[q], &err), &err);
-        }
-        rg2__surface_portable = 0;
+        rg2_error e[2];
+        rg2_status st[2];
+        build_both(&m, s, st, e);
+        for (int q = 0; q < 2; q++)
+            CHECK(st[q] == RG2_OK, "%s path: %s", q ? "portable" : "default", e[q].msg);
         size_t np = (size_t)s[0].nu * (size_t)s[0].nv;
         CHECK(s[0].patch && s[1].patch && np * sizeof(rg2_patch) > ((size_t)16 << 20) &&
                   s[1].nu * s[1].nv == (int)np && !memcmp(s[0].patch, s[1].patch, np * sizeof(rg2_patch)),
@@ -642,11 +649,11 @@ static void construction_edges(void)
                 p[0] = W * (i / 8.0), p[1] = W * (j / 8.0), p[2] = W * ((i * j) % 3 / 8.0), p[3] = W;
             }
         rg2_surface s[2] = {{0}, {0}};
-        for (int q = 0; q < 2; q++) {
-            rg2__surface_portable = q;
-            CHECK_OK(rg2_surface_build(&m, &s[q], &err), &err);
-        }
-        rg2__surface_portable = 0;
+        rg2_error e[2];
+        rg2_status st[2];
+        build_both(&m, s, st, e);
+        for (int q = 0; q < 2; q++)
+            CHECK(st[q] == RG2_OK, "%s path: %s", q ? "portable" : "default", e[q].msg);
         size_t np = (size_t)s[0].nu * (size_t)s[0].nv;
         CHECK(s[0].patch && s[1].patch && s[1].nu * s[1].nv == (int)np &&
                   !memcmp(s[0].patch, s[1].patch, np * sizeof(rg2_patch)),
@@ -682,11 +689,7 @@ static void construction_edges(void)
         rg2_surface s[2] = {{0}, {0}};
         rg2_error e[2];
         rg2_status st[2];
-        for (int q = 0; q < 2; q++) {
-            rg2__surface_portable = q;
-            st[q] = rg2_surface_build(&m, &s[q], &e[q]);
-        }
-        rg2__surface_portable = 0;
+        build_both(&m, s, st, e);
         for (int q = 0; q < 2; q++)
             CHECK(st[q] == RG2_ENONFINITE && strstr(e[q].msg, "patch (0, 0) overflows") && !s[q].patch &&
                       s[q].nu == 0,
