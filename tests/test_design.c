@@ -292,6 +292,71 @@ static void edits_are_local(void)
     rg2_design_free(d0);
 }
 
+/* Edits measured against the control mesh: a move along x alone moves the point's Euclidean
+ * position by exactly that vector (and nothing else), a small positive weight is accepted and keeps
+ * the position, and junction 0 (the first valid index) can be edited and changes the surface. */
+static void edits_measured(void)
+{
+    const char *base = "{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": 3, \"r\": 1}},"
+                       " \"meshes\": {\"m\": {\"shape\": \"t\", \"u\": {\"arcs\": 10},"
+                       " \"v\": {\"arcs\": 8, \"from\": 0, \"to\": 270}}%s}}";
+    char json[2048];
+    rg2_error err;
+    snprintf(json, sizeof json, base, "");
+    rg2_design *d0 = parse(json, &err);
+    if (!d0)
+        return;
+    const rg2_mesh *m0 = rg2_design_mesh(d0, 0);
+    const struct {
+        const char *edit;
+        double dx, W; /* expected x shift of point [4, 5], its expected weight (0: unchanged) */
+    } cases[] = {
+        {", \"e\": {\"edit\": \"m\", \"points\": [{\"at\": [4, 5], \"move\": [0.25, 0, 0]}]}", 0.25, 0.0},
+        {", \"e\": {\"edit\": \"m\", \"points\": [{\"at\": [4, 5], \"W\": 0.004}]}", 0.0, 0.004},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        snprintf(json, sizeof json, base, cases[c].edit);
+        rg2_design *d1 = parse(json, &err);
+        if (!d1)
+            continue;
+        const rg2_mesh *m1 = rg2_design_mesh(d1, 0);
+        double worst_other = 0.0, dpos = 0.0;
+        for (int i = 0; i < m0->nu; i++)
+            for (int j = 0; j < m0->nv; j++) {
+                const double *a = rg2_mesh_at(m0, i, j), *b = rg2_mesh_at(m1, i, j);
+                if (i == 4 && j == 5) {
+                    double want[3] = {a[0] / a[3] + cases[c].dx, a[1] / a[3], a[2] / a[3]};
+                    for (int k = 0; k < 3; k++)
+                        dpos = fmax(dpos, fabs(b[k] / b[3] - want[k]));
+                    double wW = cases[c].W > 0 ? cases[c].W : a[3];
+                    CHECK(fabs(b[3] - wW) <= 1e-15 * wW, "edit %zu: W = %.17g, want %.17g", c, b[3], wW);
+                } else {
+                    for (int k = 0; k < 4; k++)
+                        worst_other = fmax(worst_other, fabs(b[k] - a[k]));
+                }
+            }
+        printf("  measured edit %zu: point off by %.3g, others moved %.3g\n", c, dpos, worst_other);
+        CHECK(dpos <= 1e-14, "edit %zu: the edited point is %.3g from its intended position", c, dpos);
+        CHECK(worst_other == 0.0, "edit %zu: other points moved by %.3g", c, worst_other);
+        rg2_design_free(d1);
+    }
+    /* junction 0 is a valid index: the edit is accepted and changes the surface */
+    snprintf(json, sizeof json, base,
+             ", \"e\": {\"edit\": \"m\", \"scalars\": [{\"dir\": \"u\", \"junction\": 0, \"g\": 0.1}]}");
+    rg2_design *d1 = parse(json, &err);
+    if (d1) {
+        const rg2_surface *s0 = rg2_design_surface(d0, 0), *s1 = rg2_design_surface(d1, 0);
+        const rg2_mesh *m1 = rg2_design_mesh(d1, 0);
+        CHECK(fabs(m1->su.g[0] - 0.1) <= 1e-15, "junction 0: g = %.17g, want 0.1", m1->su.g[0]);
+        int diff = 0;
+        for (int k = 0; k < s0->nu * s0->nv; k++)
+            diff += memcmp(&s0->patch[k], &s1->patch[k], sizeof(rg2_patch)) != 0;
+        CHECK(diff > 0, "junction 0 edit changed no patch");
+        rg2_design_free(d1);
+    }
+    rg2_design_free(d0);
+}
+
 static int same_mesh(const rg2_mesh *a, const rg2_mesh *b);
 
 /* Operations that must keep every patch exact: cuts (ranges, wrap, open_at), transpose,
@@ -1085,6 +1150,7 @@ int main(void)
     examples();
     printf("edit locality:\n");
     edits_are_local();
+    edits_measured();
     printf("operations that keep exactness:\n");
     ops_keep_exactness();
     printf("random operation chains:\n");
