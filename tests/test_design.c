@@ -629,6 +629,36 @@ static void seam_rules(void)
 #define TORUS_SHAPES "\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": 3, \"r\": 1}, \"s\": {\"kind\": \"sphere\"}}"
 #define TORUS_MESH "\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": 8}, \"v\": {\"arcs\": 6}}"
 
+/* Scalar provenance across a merge (written by rg2_design_write_mesh as w_shape, junction_shape):
+ * two cuts of one torus merged along u keep, in v (the direction they share), every leg weight
+ * and junction tagged with the torus (shape 0), as the unmerged torus has them. */
+static void merge_keeps_scalar_provenance(void)
+{
+    rg2_error err;
+    rg2_design *d = parse("{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"A\": {\"cut\": \"T\", \"u\": [0, 4]},"
+                          " \"B\": {\"cut\": \"T\", \"u\": [4, 8]}, \"M\": {\"merge\": [\"A\", \"B\"], \"along\": \"u\"}},"
+                          " \"output\": [\"T\", \"M\"]}", &err);
+    if (!d)
+        return;
+    CHECK(d->n_out == 2, "outputs: %d", d->n_out);
+    if (d->n_out == 2) {
+        const rg2__dmesh *T = &d->mesh[d->out[0]], *M = &d->mesh[d->out[1]];
+        int nw = rg2_scalars_num_w(&M->m.sv), bad = 0, tagged = 0;
+        for (int i = 0; i < nw; i++) {
+            bad += M->leg[1][i] != T->leg[1][i];
+            tagged += T->leg[1][i] == 0;
+        }
+        for (int i = 0; i < M->m.sv.n; i++) {
+            bad += M->jun[1][i] != T->jun[1][i];
+            tagged += T->jun[1][i] == 0;
+        }
+        CHECK(nw == rg2_scalars_num_w(&T->m.sv) && tagged == nw + T->m.sv.n,
+              "the torus's v scalars are not all tagged with it (%d of %d)", tagged, nw + T->m.sv.n);
+        CHECK(bad == 0, "merge: %d v leg/junction provenance tags differ from the torus's", bad);
+    }
+    rg2_design_free(d);
+}
+
 /* In-memory text: the same size limit as files (and no wrap-around of len + 1). */
 static void parse_sizes(void)
 {
@@ -1151,6 +1181,7 @@ int main(void)
     printf("edit locality:\n");
     edits_are_local();
     edits_measured();
+    merge_keeps_scalar_provenance();
     printf("operations that keep exactness:\n");
     ops_keep_exactness();
     printf("random operation chains:\n");
