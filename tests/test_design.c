@@ -1002,6 +1002,11 @@ static void bad_inputs(void)
         {"{" TORUS_SHAPES ", \"meshes\": {\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 8}, \"v\": {\"knots\": [0.2, 0.5, 0.8]}},"
          " \"C\": {\"shape\": \"s\", \"u\": {\"arcs\": 8}}, \"M\": {\"merge\": [\"P\", \"C\"], \"along\": \"v\"}}}",
          RG2_EINCOMPATIBLE, "meshes.M.merge[0]: mesh 'P' has a polar point at its last end (row v = 4"},
+        /* a cut too short for an open direction names its exact count (singular and plural) */
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"A\": {\"cut\": \"T\", \"u\": [2, 2]}}}",
+         RG2_EINVAL, "range [2, 2] keeps 1 control point; an open direction needs at least 4"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"A\": {\"cut\": \"T\", \"u\": [2, 4]}}}",
+         RG2_EINVAL, "range [2, 4] keeps 3 control points; an open direction needs at least 4"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"points\": [{\"at\": [8, 0], \"move\": [0, 0, 1]}]}}}",
          RG2_EINVAL, "meshes.E.points[0].at: control point [8, 0] is outside the 8 x 6"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"points\": [{\"at\": [1, 1], \"W\": 0}]}}}",
