@@ -547,6 +547,19 @@ static void build_both(const rg2_mesh *m, rg2_surface s[2], rg2_status st[2], rg
     rg2__surface_portable = 0;
 }
 
+/* build_both that must succeed on both paths: whether the two surfaces hold the same bits. */
+static int same_on_both_paths(const rg2_mesh *m, rg2_surface s[2])
+{
+    rg2_error e[2];
+    rg2_status st[2];
+    build_both(m, s, st, e);
+    for (int q = 0; q < 2; q++)
+        CHECK(st[q] == RG2_OK, "%s path: %s", q ? "portable" : "default", e[q].msg);
+    size_t np = (size_t)s[0].nu * (size_t)s[0].nv;
+    return s[0].patch && s[1].patch && s[1].nu * s[1].nv == (int)np &&
+           !memcmp(s[0].patch, s[1].patch, np * sizeof(rg2_patch));
+}
+
 /* The construction's two paths (AVX-512 per patch, portable per row; surface.c) give the same
  * bits, the same errors and the same overflowing patch, over open and closed random meshes
  * with weights that need normalizing (1e-40, 1e40), signed zeros, and weights that overflow. */
@@ -601,14 +614,9 @@ static void construction_paths(void)
                 p[0] = W * i, p[1] = W * j, p[2] = W * rg2t_uniform(&r, -1, 1), p[3] = W;
             }
         rg2_surface s[2] = {{0}, {0}};
-        rg2_error e[2];
-        rg2_status st[2];
-        build_both(&m, s, st, e);
-        for (int q = 0; q < 2; q++)
-            CHECK(st[q] == RG2_OK, "%s path: %s", q ? "portable" : "default", e[q].msg);
+        int same = same_on_both_paths(&m, s);
         size_t np = (size_t)s[0].nu * (size_t)s[0].nv;
-        CHECK(s[0].patch && s[1].patch && np * sizeof(rg2_patch) > ((size_t)16 << 20) &&
-                  s[1].nu * s[1].nv == (int)np && !memcmp(s[0].patch, s[1].patch, np * sizeof(rg2_patch)),
+        CHECK(same && np * sizeof(rg2_patch) > ((size_t)16 << 20),
               "large mesh %d x %d: the two construction paths differ", n, n);
         compared++;
         rg2_surface_free(&s[0]);
@@ -649,15 +657,8 @@ static void construction_edges(void)
                 p[0] = W * (i / 8.0), p[1] = W * (j / 8.0), p[2] = W * ((i * j) % 3 / 8.0), p[3] = W;
             }
         rg2_surface s[2] = {{0}, {0}};
-        rg2_error e[2];
-        rg2_status st[2];
-        build_both(&m, s, st, e);
-        for (int q = 0; q < 2; q++)
-            CHECK(st[q] == RG2_OK, "%s path: %s", q ? "portable" : "default", e[q].msg);
+        CHECK(same_on_both_paths(&m, s), "weights %a (closed %d): the two construction paths differ", W, closed);
         size_t np = (size_t)s[0].nu * (size_t)s[0].nv;
-        CHECK(s[0].patch && s[1].patch && s[1].nu * s[1].nv == (int)np &&
-                  !memcmp(s[0].patch, s[1].patch, np * sizeof(rg2_patch)),
-              "weights %a (closed %d): the two construction paths differ", W, closed);
         for (size_t k = 0; s[0].patch && k < np; k++) {
             double big = 0;
             for (int r = 0; r < 4; r++)
