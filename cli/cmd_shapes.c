@@ -9,6 +9,19 @@
 
 #define MAXV (RG2_CLI_MAX_ARCS + 1) /* values of a list: n arcs, or n + 1 knots */
 
+/* A direction's default partition as docs/shapes.md ("Default partitions") words it. */
+static void print_default_partition(const rg2_shape_desc *d, int dir)
+{
+    if (d->dir_kind[dir] == RG2_PART_ANGLES && d->default_closed[dir])
+        printf("%d arcs, full circle", d->default_segments[dir]);
+    else if (d->dir_kind[dir] == RG2_PART_ANGLES)
+        printf("%d arcs over [%g, %g] deg", d->default_segments[dir], d->default_range[dir][0] * 180 / M_PI,
+               d->default_range[dir][1] * 180 / M_PI);
+    else
+        printf("%d knot intervals of [%g, %g]", d->default_segments[dir], d->default_range[dir][0],
+               d->default_range[dir][1]);
+}
+
 static void print_shape_list_text(void)
 {
     printf("exact basic shapes (build one with: rg2 shape NAME --PARAM value ...; see rg2 shape --help):\n\n");
@@ -19,7 +32,11 @@ static void print_shape_list_text(void)
             printf(" %s=%g", d->param_names[p], d->param_defaults[p]);
         printf("\n  u: %s, v: %s\n", d->dir_kind[0] == RG2_PART_ANGLES ? "circle (angles)" : "polynomial (knots)",
                d->dir_kind[1] == RG2_PART_ANGLES ? "circle (angles)" : "polynomial (knots)");
-        printf("  h(u, v) = %s\n  implicit: %s\n", d->param_text, d->implicit_text);
+        printf("  default u: ");
+        print_default_partition(d, 0);
+        printf("; v: ");
+        print_default_partition(d, 1);
+        printf("\n  h(u, v) = %s\n  implicit: %s\n", d->param_text, d->implicit_text);
     }
     printf("nurbs               bi-cubic NURBS from a JSON file (rg2 shape nurbs --file F.json)\n");
 }
@@ -57,7 +74,9 @@ static void print_shape_list_json(void)
         json_doubles(d->default_range[0], 2);
         printf(", ");
         json_doubles(d->default_range[1], 2);
-        printf("], \"param\": \"%s\", \"implicit\": \"%s\"}", d->param_text, d->implicit_text);
+        printf("], \"default_segments\": [%d, %d], \"default_closed\": [%s, %s]", d->default_segments[0],
+               d->default_segments[1], d->default_closed[0] ? "true" : "false", d->default_closed[1] ? "true" : "false");
+        printf(", \"param\": \"%s\", \"implicit\": \"%s\"}", d->param_text, d->implicit_text);
     }
     printf("\n]}\n");
 }

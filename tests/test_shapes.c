@@ -1101,10 +1101,61 @@ static void documented_defaults(void)
     free(md);
 }
 
+/* One cell of docs/shapes.md's "Default partitions" table against the description of direction
+ * dir: "N arcs, full circle" (a closed angle partition of [0, 2 pi]) or "N knot intervals of
+ * [A, B]". Returns whether they agree. */
+static int partition_cell_agrees(const rg2_shape_desc *d, int dir, const char *cell)
+{
+    int n = 0, used = 0;
+    double lo = NAN, hi = NAN;
+    if (sscanf(cell, "%d arcs, full circle%n", &n, &used) == 1 && used > 0)
+        return d->dir_kind[dir] == RG2_PART_ANGLES && d->default_closed[dir] && n == d->default_segments[dir] &&
+               d->default_range[dir][0] == 0 && d->default_range[dir][1] == 2 * M_PI;
+    if (sscanf(cell, "%d knot intervals of [%lf, %lf]", &n, &lo, &hi) == 3)
+        return d->dir_kind[dir] == RG2_PART_KNOTS && !d->default_closed[dir] && n == d->default_segments[dir] &&
+               lo == d->default_range[dir][0] && hi == d->default_range[dir][1];
+    return 0;
+}
+
+/* The default partitions of rg2_shape_describe (used by rg2 shape and by design meshes without
+ * u / v) are the ones docs/shapes.md gives in "Default partitions" (a wrong default count or
+ * range builds an exact shape too: no geometric property sees it). */
+static void documented_partitions(void)
+{
+    rg2_error err;
+    char *md = NULL;
+    CHECK_OK(rg2_read_text("docs/shapes.md", &md, NULL, &err), &err);
+    if (!md)
+        return;
+    const char *table = strstr(md, "**Default partitions**");
+    CHECK(table != NULL, "docs/shapes.md has no Default partitions table");
+    int rows = 0;
+    for (int kind = 0; table && kind < RG2_SHAPE_COUNT; kind++) {
+        const rg2_shape_desc *d = rg2_shape_describe((rg2_shape_kind)kind);
+        char key[64];
+        snprintf(key, sizeof key, "\n| `%s` | ", d->name);
+        const char *row = strstr(table, key);
+        CHECK(row != NULL, "docs/shapes.md: no default partition row for %s", d->name);
+        if (!row)
+            continue;
+        const char *u = row + strlen(key), *v = strstr(u, " | ");
+        int same = v && partition_cell_agrees(d, 0, u) && partition_cell_agrees(d, 1, v + 3);
+        CHECK(same, "%s: docs/shapes.md's default partition (%.60s) differs from rg2_shape_describe: u %d %s [%g, %g], "
+                    "v %d %s [%g, %g]", d->name, u, d->default_segments[0], d->default_closed[0] ? "closed" : "open",
+              d->default_range[0][0], d->default_range[0][1], d->default_segments[1],
+              d->default_closed[1] ? "closed" : "open", d->default_range[1][0], d->default_range[1][1]);
+        rows += same;
+    }
+    printf("default partitions: %d of %d rows of docs/shapes.md agree with rg2_shape_describe\n", rows,
+           (int)RG2_SHAPE_COUNT);
+    free(md);
+}
+
 int main(void)
 {
     named_shapes();
     documented_defaults();
+    documented_partitions();
     families();
     transforms();
     full_partitions();

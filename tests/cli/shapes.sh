@@ -13,6 +13,30 @@ for s in torus cyclide sphere cylinder cone hyperboloid1_ruled hyperboloid1 hype
   expect 0 "rational bi-cubic patches" -- "$RG2" shape "$s"
 done
 expect 0 "R=3 r=1" -- "$RG2" shapes
+# the default partitions of docs/shapes.md ("Default partitions": "N arcs, full circle" or "N knot
+# intervals of [A, B]") are what 'rg2 shape NAME', 'rg2 shapes' and a design mesh without u / v use
+dtmp=$(mktemp -d)
+cells() { # NAME -> "NU NV V_KNOTS_OR_-": the table row's counts, and the v knots it implies
+  awk -v s="$1" -F' [|] ' '/^\*\*Default partitions\*\*/ { on = 1 }
+    on && index($0, "| `" s "` |") == 1 { split($2, a, " "); split($3, b, " ");
+      k = "-"; if ($3 ~ /knot intervals of/) { lo = $3; sub(/.*\[/, "", lo); hi = lo; sub(/,.*/, "", lo);
+        sub(/.*, /, "", hi); sub(/\].*/, "", hi); k = "";
+        for (i = 0; i <= b[1]; i++) k = k (i ? " " : "") sprintf("%.6g", lo + (hi - lo) * i / b[1]) }
+      print a[1], b[1], k; exit }' "$SRC/docs/shapes.md"
+}
+for s in torus cyclide sphere cylinder cone hyperboloid1_ruled hyperboloid1 hyperboloid2 paraboloid hypar ellipsoid; do
+  read -r nu nv knots <<< "$(cells "$s")"
+  if [ -z "$nu" ] || [ -z "$nv" ]; then bad "docs/shapes.md: no default partition row for $s"; continue; fi
+  expect 0 "$nu x $nv rational bi-cubic patches" -- "$RG2" shape "$s"
+  [ "$knots" != "-" ] && expect 0 "v: polynomial, $nv segments, knots: $knots" -- "$RG2" shape "$s"
+  row=$(awk -v s="$s" -F' [|] ' 'index($0, "| `" s "` |") == 1 && /arcs|knot intervals/ { print $2 "; v: " $3 }' "$SRC/docs/shapes.md")
+  row=${row% |}
+  expect 0 "default u: $row" -- "$RG2" shapes
+  printf '{"format": "rg2 design 1", "shapes": {"S": {"kind": "%s"}}, "meshes": {"M": {"shape": "S"}}}' "$s" > "$dtmp/d.json"
+  expect 0 "-> $nu x $nv = $((nu * nv)) patches" -- "$RG2" info "$dtmp/d.json"
+done
+rm -rf "$dtmp"
+expect 0 '"default_segments": [6, 4], "default_closed": [true, false]' -- "$RG2" shapes --json
 expect 0 '"name": "cyclide", "params": {"a": 2' -- "$RG2" shapes --json
 expect 0 "8 x 6 rational bi-cubic patches" -- "$RG2" shape torus --R 3 --r 1 --u-arcs 8 --v-arcs 6
 expect 0 "3 x 4 rational bi-cubic patches" -- "$RG2" shape torus --u-arcs 3 --u-sweep 90 --v-angles 60,120,90,90
