@@ -1060,26 +1060,40 @@ static void unknown_name_list(void)
     expect_err(rg2_shape_from_name("doughnut", &kind, &err), RG2_EINVAL, &err, want, "the list of known shapes");
 }
 
+/* docs/shapes.md's text (NULL, and a failed check, when it cannot be read). */
+static char *shapes_doc(void)
+{
+    rg2_error err;
+    char *md = NULL;
+    CHECK_OK(rg2_read_text("docs/shapes.md", &md, NULL, &err), &err);
+    return md;
+}
+
+/* The text after "| `name` | " of the first table row of shape d from `from` on (NULL, and a
+ * failed check naming the table, when there is none). */
+static const char *shape_row(const char *from, const rg2_shape_desc *d, const char *table)
+{
+    char key[64];
+    snprintf(key, sizeof key, "\n| `%s` | ", d->name);
+    const char *row = from ? strstr(from, key) : NULL;
+    CHECK(row != NULL, "docs/shapes.md has no %s row for %s", table, d->name);
+    return row ? row + strlen(key) : NULL;
+}
+
 /* The defaults of rg2_shape_describe are the ones docs/shapes.md gives: the table row of each
  * shape lists "name = value" in the parameters' order (no geometric property sees a wrong
  * default: a shape of other size is exact too). */
 static void documented_defaults(void)
 {
-    rg2_error err;
-    char *md = NULL;
-    CHECK_OK(rg2_read_text("docs/shapes.md", &md, NULL, &err), &err);
+    char *md = shapes_doc();
     if (!md)
         return;
     int rows = 0;
     for (int kind = 0; kind < RG2_SHAPE_COUNT; kind++) {
         const rg2_shape_desc *d = rg2_shape_describe((rg2_shape_kind)kind);
-        char key[64];
-        snprintf(key, sizeof key, "\n| `%s` | ", d->name);
-        const char *row = strstr(md, key);
-        CHECK(row != NULL, "docs/shapes.md has no table row for %s", d->name);
+        const char *row = shape_row(md, d, "shape table");
         if (!row)
             continue;
-        row += strlen(key);
         const char *end = strstr(row, " | "), *at = row;
         int k = 0, same = 1;
         for (; end && k < d->n_params; k++) { /* the k-th "= number" of the row's parameter cell */
@@ -1122,23 +1136,16 @@ static int partition_cell_agrees(const rg2_shape_desc *d, int dir, const char *c
  * range builds an exact shape too: no geometric property sees it). */
 static void documented_partitions(void)
 {
-    rg2_error err;
-    char *md = NULL;
-    CHECK_OK(rg2_read_text("docs/shapes.md", &md, NULL, &err), &err);
+    char *md = shapes_doc();
     if (!md)
         return;
     const char *table = strstr(md, "**Default partitions**");
-    CHECK(table != NULL, "docs/shapes.md has no Default partitions table");
     int rows = 0;
-    for (int kind = 0; table && kind < RG2_SHAPE_COUNT; kind++) {
+    for (int kind = 0; kind < RG2_SHAPE_COUNT; kind++) {
         const rg2_shape_desc *d = rg2_shape_describe((rg2_shape_kind)kind);
-        char key[64];
-        snprintf(key, sizeof key, "\n| `%s` | ", d->name);
-        const char *row = strstr(table, key);
-        CHECK(row != NULL, "docs/shapes.md: no default partition row for %s", d->name);
-        if (!row)
+        const char *u = shape_row(table, d, "Default partitions"), *v = u ? strstr(u, " | ") : NULL;
+        if (!u)
             continue;
-        const char *u = row + strlen(key), *v = strstr(u, " | ");
         int same = v && partition_cell_agrees(d, 0, u) && partition_cell_agrees(d, 1, v + 3);
         CHECK(same, "%s: docs/shapes.md's default partition (%.60s) differs from rg2_shape_describe: u %d %s [%g, %g], "
                     "v %d %s [%g, %g]", d->name, u, d->default_segments[0], d->default_closed[0] ? "closed" : "open",
