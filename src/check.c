@@ -1034,7 +1034,9 @@ static void format_text(const rg2_check_report *r, sbuf *b)
         for (int k = 0; k < r->n_shapes; k++)
             if ((int)strlen(r->shapes[k].label) > wl)
                 wl = (int)strlen(r->shapes[k].label);
-        sb_printf(b, "%-*s patches  worst residual  verdict  where\n", wl + 4, "exact pieces");
+        /* the header's columns over the rows' "  %2d %-*s %7d  %14.2e  %-7s  %s": the index and
+         * label take wl + 5 characters, the right-aligned counts and residuals end under their names */
+        sb_printf(b, "%-*s patches  worst residual  verdict  where\n", wl + 5, "exact pieces");
         for (int k = 0; k < r->n_shapes; k++) {
             const rg2_check_shape *s = &r->shapes[k];
             sb_printf(b, "  %2d %-*s %7d  %14.2e  %-7s  %s\n", k, wl, s->label, s->patches, s->residual,

@@ -199,6 +199,74 @@ static void harness_agreement(void)
 
 /* A torus from the shapes module, tagged 0: exact, G2, passes every promise; a moved control
  * point breaks exactness and the continuity of that patch's seams. */
+/* Column (0-based) where the n-th run of non-blank characters of line starts (from 0) or ends
+ * (one past it); -1 if the line has fewer runs. */
+static int run_col(const char *line, int n, int end)
+{
+    int k = 0, run = -1;
+    while (line[k] && line[k] != '\n') {
+        if (line[k] != ' ' && (k == 0 || line[k - 1] == ' ') && ++run == n && !end)
+            return k;
+        if (line[k] != ' ' && (line[k + 1] == ' ' || line[k + 1] == '\n' || !line[k + 1]) && run == n && end)
+            return k + 1;
+        k++;
+    }
+    return -1;
+}
+
+/* The text report's table of exact pieces lines up under its header: the patch counts and
+ * residuals end where "patches" and "worst residual" end, the verdicts and places start where
+ * "verdict" and "where" start, and every label is whole, for labels shorter and longer than the
+ * 24-character column. */
+static void shape_table_layout(void)
+{
+    rg2_shape sh[2];
+    rg2_shape_init(&sh[0], RG2_SHAPE_TORUS);
+    rg2_shape_init(&sh[1], RG2_SHAPE_SPHERE);
+    double au[9], av[7];
+    rg2_partition pu, pv;
+    rg2_error err;
+    CHECK_OK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0, 0, 8, au, 9, &err), &err);
+    CHECK_OK(rg2_partition_equal(&pv, RG2_PART_ANGLES, 1, 0, 0, 6, av, 7, &err), &err);
+    rg2_surface s;
+    CHECK_OK(rg2_shape_surface(&sh[0], &pu, &pv, &s, NULL, &err), &err);
+    s.tag = calloc((size_t)s.nu * s.nv, sizeof *s.tag);
+    static const char *const sets[2][2] = {{"ring", "ball"},
+                                           {"ring", "a_label_of_forty_characters_1234567890ab"}};
+    rg2_check_opts o;
+    rg2_check_opts_default(&o);
+    o.seam_samples = 2;
+    o.patch_samples = 2;
+    for (int set = 0; set < 2 && s.tag; set++) {
+        char *json = NULL, *txt = report_text(&s, 1, sh, sets[set], 2, &o, 1, &json);
+        const char *head = txt ? strstr(txt, "exact pieces") : NULL;
+        CHECK(head != NULL, "text report without the table of exact pieces");
+        if (head) {
+            /* header runs: "exact" "pieces" "patches" "worst" "residual" "verdict" "where" */
+            int h_pat = run_col(head, 2, 1), h_res = run_col(head, 4, 1), h_ver = run_col(head, 5, 0),
+                h_whr = run_col(head, 6, 0);
+            const char *row = strchr(head, '\n');
+            for (int k = 0; k < 2 && row; k++, row = strchr(row + 1, '\n')) {
+                row++;
+                char want[64];
+                snprintf(want, sizeof want, "%2d %s ", k, sets[set][k]);
+                CHECK(strncmp(row + 2, want, strlen(want)) == 0, "row %d does not hold the whole label '%s': %.80s", k,
+                      sets[set][k], row);
+                /* row runs: index, label, count, residual, verdict, where... (shape 1 has no patch: "-") */
+                int r_pat = run_col(row, 2, 1), r_res = run_col(row, 3, 1), r_ver = run_col(row, 4, 0),
+                    r_whr = run_col(row, 5, 0);
+                CHECK(r_pat == h_pat && r_res == h_res && r_ver == h_ver && (k == 1 || r_whr == h_whr),
+                      "labels %s, %s: row %d's columns end/start at %d %d %d %d, the header's at %d %d %d %d", sets[set][0],
+                      sets[set][1], k, r_pat, r_res, r_ver, r_whr, h_pat, h_res, h_ver, h_whr);
+            }
+        }
+        free(txt);
+        free(json);
+    }
+    printf("check report: the table of exact pieces lines up under its header for labels of 4 and 40 characters\n");
+    rg2_surface_free(&s);
+}
+
 static void exact_and_broken(int mixed)
 {
     rg2_shape sh;
@@ -1037,6 +1105,7 @@ static void threads_identical(void)
 int main(void)
 {
     harness_agreement();
+    shape_table_layout();
     exact_and_broken(0);
     exact_and_broken(1);
     size_and_weights();
