@@ -199,6 +199,18 @@ static void harness_agreement(void)
 
 /* A torus from the shapes module, tagged 0: exact, G2, passes every promise; a moved control
  * point breaks exactness and the continuity of that patch's seams. */
+/* The surface of torus shape sh over 8 x 6 equal arcs, every patch tagged with shape 0. */
+static void torus_8x6(const rg2_shape *sh, rg2_surface *s)
+{
+    double au[9], av[7];
+    rg2_partition pu, pv;
+    rg2_error err;
+    CHECK_OK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0, 0, 8, au, 9, &err), &err);
+    CHECK_OK(rg2_partition_equal(&pv, RG2_PART_ANGLES, 1, 0, 0, 6, av, 7, &err), &err);
+    CHECK_OK(rg2_shape_surface(sh, &pu, &pv, s, NULL, &err), &err);
+    s->tag = calloc((size_t)s->nu * s->nv, sizeof *s->tag);
+}
+
 /* Column (0-based) where the n-th run of non-blank characters of line starts (from 0) or ends
  * (one past it); -1 if the line has fewer runs. */
 static int run_col(const char *line, int n, int end)
@@ -223,14 +235,8 @@ static void shape_table_layout(void)
     rg2_shape sh[2];
     rg2_shape_init(&sh[0], RG2_SHAPE_TORUS);
     rg2_shape_init(&sh[1], RG2_SHAPE_SPHERE);
-    double au[9], av[7];
-    rg2_partition pu, pv;
-    rg2_error err;
-    CHECK_OK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0, 0, 8, au, 9, &err), &err);
-    CHECK_OK(rg2_partition_equal(&pv, RG2_PART_ANGLES, 1, 0, 0, 6, av, 7, &err), &err);
     rg2_surface s;
-    CHECK_OK(rg2_shape_surface(&sh[0], &pu, &pv, &s, NULL, &err), &err);
-    s.tag = calloc((size_t)s.nu * s.nv, sizeof *s.tag);
+    torus_8x6(&sh[0], &s);
     static const char *const sets[2][2] = {{"ring", "ball"},
                                            {"ring", "a_label_of_forty_characters_1234567890ab"}};
     rg2_check_opts o;
@@ -276,14 +282,9 @@ static void exact_and_broken(int mixed)
     double M[16];
     rg2_xform_rotate(M, 1, 2, 3, 0.7);
     memcpy(sh.xform, M, sizeof M);
-    double au[9], av[7];
-    rg2_partition pu, pv;
     rg2_error err;
-    CHECK_OK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0, 0, 8, au, 9, &err), &err);
-    CHECK_OK(rg2_partition_equal(&pv, RG2_PART_ANGLES, 1, 0, 0, 6, av, 7, &err), &err);
     rg2_surface s;
-    CHECK_OK(rg2_shape_surface(&sh, &pu, &pv, &s, NULL, &err), &err);
-    s.tag = calloc((size_t)s.nu * s.nv, sizeof *s.tag);
+    torus_8x6(&sh, &s);
     if (mixed) {
         CHECK_OK(xmix_elevate(&s, &err), &err);
         printf("torus (tilted) with %d of %d patches elevated:\n", xmix_count(&s), s.nu * s.nv);
