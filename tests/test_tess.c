@@ -84,6 +84,77 @@ static double dist2(const double *a, const double *b)
     return d0 * d0 + d1 * d1 + d2 * d2;
 }
 
+/* A vertex's grid line along one direction: its patch's index p that way, its parameter x there. */
+static int grid_at(int p, double x, int d) { return p * d + (int)lround(x * d); }
+
+/* b - a on a grid line of n intervals, wrapped to (-n/2, n/2] when the direction is closed. */
+static int grid_step(int a, int b, int n, int closed)
+{
+    int s = b - a;
+    if (closed) {
+        s = ((s % n) + n) % n;
+        if (2 * s > n)
+            s -= n;
+    }
+    return s;
+}
+
+/* Quads split along the shorter diagonal (rg2.h): every grid quad whose four corners are distinct
+ * vertices is cut by exactly one diagonal, and that one is no longer than the other (a tie to
+ * 1e-12 of size^2 may go either way). The grid point (I, J) of a vertex comes from its patch and
+ * (u, v); the lengths are measured here from the vertex positions. Returns bit 0 when some quad's
+ * v00-v11 diagonal is the shorter one beyond a tie, bit 1 when some quad's v10-v01 is. */
+static int check_diagonals(const rg2_surface *s, const rg2_tess *t, int d, double size, const char *what)
+{
+    int NU = s->nu * d, NV = s->nv * d, GU = NU + !s->closed_u, GV = NV + !s->closed_v;
+    int *at = malloc(sizeof(int) * (size_t)GU * (size_t)GV), *cut = calloc((size_t)GU * (size_t)GV, sizeof(int));
+    int *I = malloc(sizeof(int) * (size_t)t->n_vertices), *J = malloc(sizeof(int) * (size_t)t->n_vertices);
+    CHECK(at && cut && I && J, "%s: out of memory", what);
+    int checked = 0, bad = 0, longer = 0, both = 0;
+    if (!at || !cut || !I || !J)
+        goto out;
+    for (int k = 0; k < GU * GV; k++)
+        at[k] = -1;
+    for (int v = 0; v < t->n_vertices; v++) {
+        I[v] = grid_at(t->patch[v] / s->nv, t->uv[2 * v], d) % (s->closed_u ? NU : GU);
+        J[v] = grid_at(t->patch[v] % s->nv, t->uv[2 * v + 1], d) % (s->closed_v ? NV : GV);
+        at[I[v] * GV + J[v]] = v;
+    }
+    /* cut[quad] |= 1 for the v00-v11 diagonal, 2 for v10-v01 (quad = its corner (I0, J0)) */
+    for (int q = 0; q < t->n_triangles; q++)
+        for (int e = 0; e < 3; e++) {
+            int a = t->tri[3 * q + e], b = t->tri[3 * q + (e + 1) % 3];
+            int di = grid_step(I[a], I[b], NU, s->closed_u), dj = grid_step(J[a], J[b], NV, s->closed_v);
+            if ((di != 1 && di != -1) || (dj != 1 && dj != -1))
+                continue;
+            int I0 = di > 0 ? I[a] : I[b], J0 = dj > 0 ? J[a] : J[b];
+            cut[I0 * GV + J0] |= di == dj ? 1 : 2;
+        }
+    for (int i0 = 0; i0 < NU; i0++)
+        for (int j0 = 0; j0 < NV; j0++) {
+            int i1 = (i0 + 1) % GU, j1 = (j0 + 1) % GV;
+            int v00 = at[i0 * GV + j0], v10 = at[i1 * GV + j0], v11 = at[i1 * GV + j1], v01 = at[i0 * GV + j1];
+            if (v00 < 0 || v10 < 0 || v11 < 0 || v01 < 0) /* merged into a pole vertex */
+                continue;
+            checked++;
+            int c = cut[i0 * GV + j0];
+            double dm = dist2(t->pos + 3 * v00, t->pos + 3 * v11), da = dist2(t->pos + 3 * v10, t->pos + 3 * v01);
+            bad += c != 1 && c != 2;
+            if ((c == 1 && dm > da + 1e-12 * size * size) || (c == 2 && da > dm + 1e-12 * size * size))
+                longer++;
+            both |= dm < da - 1e-12 * size * size ? 1 : da < dm - 1e-12 * size * size ? 2 : 0;
+        }
+    CHECK(checked > 0 && bad == 0 && longer == 0,
+          "%s: of %d quads, %d not cut by exactly one diagonal, %d cut along the longer one", what, checked, bad,
+          longer);
+out:
+    free(at);
+    free(cut);
+    free(I);
+    free(J);
+    return both;
+}
+
 /* Same vertices (to 1e-15 of the size), normals (1e-13) and curvatures (1e-10 relative to
  * max(|value|, 1 / size): next to a pole |Su| ~ v |Suv| amplifies the rounding of either form;
  * the pole itself, the vertex of more than 8 triangles, is left out: its curvature is taken
@@ -293,6 +364,7 @@ static void random_mesh(int mixed)
     CHECK(once == 2 * (GU - 1) + 2 * (GV - 1), "random: %d boundary edges, expected %d", once, 2 * (GU - 1) + 2 * (GV - 1));
     CHECK(over == 0 && same == 0, "random: %d edges over-used, %d mis-oriented", over, same);
     check_orientation(&t, "random");
+    CHECK(check_diagonals(&s, &t, d, scale, "random") == 3, "random: no quad with a diagonal shorter than the other");
     printf("random open %d x %d patches d=%d%s: %d vertices, = rg2_surface_eval to 1e-14, seam gap %.1e\n", s.nu, s.nv,
            d, mixed ? " (mixed degrees)" : "", t.n_vertices, gap);
     rg2_tess_free(&t);
@@ -323,6 +395,7 @@ static void pole_mesh(int mixed)
     CHECK(t.n_triangles == 2 * ring * (rows - 1) - ring, "pole: %d triangles, expected %d", t.n_triangles,
           2 * ring * (rows - 1) - ring);
     check_orientation(&t, "pole");
+    check_diagonals(&s, &t, d, rg2t_surface_scale(&s), "pole");
     check_vs_grid(&s, &t, d, 1, "pole");
     int over, twice, same;
     int once = edge_census(&t, &over, &twice, &same);
@@ -381,6 +454,7 @@ static void cap_mesh(void)
           once, ring, over, same);
     check_orientation(&t, "cap");
     double scale = rg2t_surface_scale(s), dev = 0, devn = 0;
+    CHECK(check_diagonals(s, &t, d, scale, "cap") == 3, "cap: no quad with a diagonal shorter than the other");
     for (int v = 0; v < t.n_vertices; v++) {
         rg2_eval e;
         rg2_surface_eval(s, t.patch[v] / s->nv, t.patch[v] % s->nv, t.uv[2 * v], t.uv[2 * v + 1], 1, &e);
@@ -436,6 +510,36 @@ static void sphere_poles_kh(void)
     rg2_tess_free(&t);
     rg2_surface_free(&s);
     rg2_mesh_free(&m);
+}
+
+/* The pole surface under an affine map (sheared, stretched and moved off the axis, applied to the
+ * homogeneous control points: still rational bi-cubic, the pole still collapsed): its quads are
+ * no longer symmetric trapezoids, so next to merged vertices (the general triangle path) the
+ * choice of the shorter diagonal is measured for real. */
+static void sheared_pole(void)
+{
+    static const double A[3][4] = {{1.0, 0.7, 0.3, 5.0}, {0.2, 2.5, 0.4, 40.0}, {-0.3, 0.1, 1.5, -7.0}};
+    rg2_surface s;
+    rg2_error err;
+    rg2_tess t;
+    CHECK_OK(fx_pole(6, 7, &s, &err), &err);
+    for (int p = 0; p < s.nu * s.nv; p++)
+        for (int a = 0; a < 4; a++)
+            for (int b = 0; b < 4; b++) {
+                double *h = s.patch[p].h[a][b], x[4] = {h[0], h[1], h[2], h[3]};
+                for (int k = 0; k < 3; k++)
+                    h[k] = A[k][0] * x[0] + A[k][1] * x[1] + A[k][2] * x[2] + A[k][3] * x[3];
+            }
+    int d = 6;
+    CHECK_OK(rg2_tessellate(&s, d, 0, &t, &err), &err);
+    int ring = s.nu * d, rows = s.nv * d + 1;
+    CHECK(t.n_vertices == ring * (rows - 1) + 1, "sheared pole: %d vertices, expected %d", t.n_vertices,
+          ring * (rows - 1) + 1);
+    check_orientation(&t, "sheared pole");
+    CHECK(check_diagonals(&s, &t, d, rg2t_surface_scale(&s), "sheared pole") == 3,
+          "sheared pole: no quad with a diagonal shorter than the other");
+    rg2_tess_free(&t);
+    rg2_surface_free(&s);
 }
 
 /* Bitwise the same mesh: counts, every array (K and H when asked). */
@@ -563,6 +667,7 @@ int main(void)
         pole_mesh(mixed);
     }
     pole_mesh(2);
+    sheared_pole();
     cap_mesh();
     sphere_poles_kh();
     retessellate();
