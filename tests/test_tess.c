@@ -320,12 +320,14 @@ static void torus_mesh(int mixed)
     rg2_surface_free(&s);
 }
 
-static void random_mesh(int mixed)
+/* An open random surface of nu x nv control points ((nu - 3) x (nv - 3) patches: 4 gives a single
+ * patch row, which must tessellate like any other). */
+static void random_mesh(int nu, int nv, int mixed)
 {
     rg2_surface s;
     rg2_error err;
     rg2_tess t;
-    CHECK_OK(fx_random(7, 8, 7, &s, &err), &err);
+    CHECK_OK(fx_random(7, nu, nv, &s, &err), &err);
     if (mixed)
         CHECK_OK(xmix_elevate(&s, &err), &err);
     int d = 5;
@@ -663,10 +665,12 @@ int main(void)
 {
     for (int mixed = 0; mixed < 2; mixed++) {
         torus_mesh(mixed);
-        random_mesh(mixed);
+        random_mesh(8, 7, mixed);
         pole_mesh(mixed);
     }
     pole_mesh(2);
+    random_mesh(4, 5, 0); /* 1 x 2 patches */
+    random_mesh(5, 4, 0); /* 2 x 1 */
     sheared_pole();
     cap_mesh();
     sphere_poles_kh();
