@@ -269,6 +269,20 @@ static void glb_validate(const rg2_surface *s, const rg2_tess *t)
         int comps = cJSON_IsString(type) && !strcmp(type->valuestring, "VEC3") ? 3 : 1;
         bad += !view || num(a, "count") * comps * 4 > num(view, "byteLength");
     }
+    /* the scene graph a viewer walks: scene 0 lists node 0, which shows mesh 0 (named as the
+     * export), whose primitive lists triangles (mode 4, TRIANGLES: the indices are 3 per face) */
+    const cJSON *scene = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(j, "scenes"), 0);
+    const cJSON *snodes = cJSON_GetObjectItemCaseSensitive(scene, "nodes");
+    const cJSON *node = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(j, "nodes"), 0);
+    const cJSON *mesh = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(j, "meshes"), 0);
+    const cJSON *nname = cJSON_GetObjectItemCaseSensitive(node, "name");
+    const cJSON *mname = cJSON_GetObjectItemCaseSensitive(mesh, "name");
+    const cJSON *node0 = cJSON_GetArrayItem(snodes, 0);
+    CHECK(num(j, "scene") == 0 && cJSON_GetArraySize(snodes) == 1 && cJSON_IsNumber(node0) && node0->valuedouble == 0 &&
+              num(node, "mesh") == 0 && cJSON_IsString(nname) && !strcmp(nname->valuestring, "torus") &&
+              cJSON_IsString(mname) && !strcmp(mname->valuestring, "torus"),
+          "glb: scene 0 -> node 0 -> mesh 0 'torus' not linked");
+    CHECK(num(prim, "mode") == 4, "glb: primitive mode %g, expected 4 (TRIANGLES)", num(prim, "mode"));
     const cJSON *attr = cJSON_GetObjectItemCaseSensitive(prim, "attributes");
     const cJSON *pa = cJSON_GetArrayItem(acc, (int)num(attr, "POSITION"));
     const cJSON *ia = cJSON_GetArrayItem(acc, (int)num(prim, "indices"));
