@@ -220,6 +220,18 @@ static void mesh_errors(void)
                    !strcmp(err.msg, "mesh: 2001 x 2001 control points exceeds the limit of 4000000")),
           "2001 x 2001 mesh checked: %s", err.msg);
     rg2_mesh_free(&m);
+    /* the limit itself is allowed ("past RG2_MAX_POINTS" is refused): 2000 x 2000 control points
+     * are RG2_MAX_POINTS exactly, one more column is past it */
+    CHECK(RG2_MAX_POINTS == 2000 * 2000, "RG2_MAX_POINTS %d", RG2_MAX_POINTS);
+    CHECK_OK(rg2_mesh_init(&m, 2000, 2000, 0, 0, &err), &err);
+    CHECK(m.p && m.nu == 2000 && m.nv == 2000, "2000 x 2000 mesh: %d x %d", m.nu, m.nv);
+    rg2_mesh_free(&m);
+    CHECK(rg2_mesh_init(&m, 2000, 2001, 0, 0, &err) == RG2_ELIMIT && !m.p &&
+              !strcmp(err.msg, "mesh: 2000 x 2001 control points exceeds the limit of 4000000"),
+          "2000 x 2001 mesh: %s", err.msg);
+    /* no mesh, or one without points (all zeros, or freed): "mesh: empty", the points not read */
+    CHECK(rg2_mesh_check(&m, &err) == RG2_EINVAL && !strcmp(err.msg, "mesh: empty"), "mesh of zeros: %s", err.msg);
+    CHECK(rg2_mesh_check(NULL, &err) == RG2_EINVAL && !strcmp(err.msg, "mesh: empty"), "NULL mesh: %s", err.msg);
     /* the direction that is too small is named, for v as for u */
     CHECK(rg2_mesh_init(&m, 5, 3, 0, 0, &err) == RG2_EINVAL && !m.p && !m.su.w &&
               !strcmp(err.msg, "mesh v: scalars: 3 control points, an open direction needs at least 4"),
