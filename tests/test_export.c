@@ -24,7 +24,8 @@ static char g_dir[64];
 /* name in the test directory, written into buf (a path that must outlive path_in's buffers) */
 static char *path_at(char buf[256], const char *name)
 {
-    snprintf(buf, 256, "%s/%s", g_dir, name);
+    int n = snprintf(buf, 256, "%s/%s", g_dir, name);
+    CHECK(n > 0 && n < 256, "test path '%s/%s' longer than its buffer", g_dir, name);
     return buf;
 }
 
