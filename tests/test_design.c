@@ -936,6 +936,23 @@ static void pole_edit_weights(void)
         rg2_design_free(d[k]);
 }
 
+/* Levenshtein distance by the full (la + 1) x (lb + 1) table: the test's own, for the rule of
+ * rg2_closest_name (words up to 15 letters). */
+static int edit_distance_table(const char *a, const char *b)
+{
+    int la = (int)strlen(a), lb = (int)strlen(b), D[16][16];
+    for (int i = 0; i <= la; i++)
+        for (int j = 0; j <= lb; j++)
+            if (!i || !j)
+                D[i][j] = i + j;
+            else {
+                int sub = D[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
+                int del = D[i - 1][j] + 1, ins = D[i][j - 1] + 1;
+                D[i][j] = sub < del ? (sub < ins ? sub : ins) : (del < ins ? del : ins);
+            }
+    return D[la][lb];
+}
+
 /* rg2_closest_name: the parser's "did you mean" rule, shared with the command line */
 static void closest_names(void)
 {
@@ -944,6 +961,29 @@ static void closest_names(void)
     CHECK(rg2_closest_name("trnaspose", ops, 6) == ops[3], "trnaspose");
     CHECK(rg2_closest_name("xyz", ops, 6) == NULL, "xyz is close to nothing");
     CHECK(rg2_closest_name("cut", ops, 0) == NULL, "no names");
+    /* the documented rule (rg2.h): the first name at the least edit distance if within
+     * min(3, strlen(word) / 2 + 1) edits, else NULL; the distances computed here, the words chosen
+     * to sit at the limit ("mrg": 2 of 2, "trnsps": 3 of 3, "dt": 2 of 2) and one past it */
+    const char *const words[] = {"x", "ct", "dt", "mrg", "mrgee", "trnsps", "trnsp", "shp", "rvrs", "edt",
+                                 "tansposer", "abcdef", "verse", "shapes", "reverse", "ab"};
+    int at_limit = 0, past_limit = 0;
+    for (size_t w = 0; w < sizeof words / sizeof words[0]; w++) {
+        int best = -1, bd = 1 << 30, len = (int)strlen(words[w]);
+        for (int k = 0; k < 6; k++) {
+            int dd = edit_distance_table(words[w], ops[k]);
+            if (dd < bd) {
+                bd = dd;
+                best = k;
+            }
+        }
+        int lim = len / 2 + 1 < 3 ? len / 2 + 1 : 3;
+        const char *want = bd <= lim ? ops[best] : NULL, *got = rg2_closest_name(words[w], ops, 6);
+        at_limit += bd == lim;
+        past_limit += bd == lim + 1;
+        CHECK(got == want, "closest to '%s' (%d edits from '%s', limit %d): got %s, want %s", words[w], bd,
+              ops[best], lim, got ? got : "NULL", want ? want : "NULL");
+    }
+    CHECK(at_limit >= 3 && past_limit >= 2, "%d words at the limit, %d one past it", at_limit, past_limit);
 }
 
 static void bad_inputs(void)
