@@ -1098,6 +1098,21 @@ static void bad_inputs(void)
          " \"M\": {\"merge\": [\"A\", \"B\"], \"along\": \"u\"}}}",
          RG2_EINCOMPATIBLE, "do not agree in v (the direction that must match when merging along u): junction scalar "
                             "g[2] = 0 vs 0.5"},
+        /* one zero factor of a scale vector is refused as all three are */
+        {"{\"shapes\": {\"t\": {\"kind\": \"torus\", \"scale\": [0, 1, 1]}}, \"meshes\": {\"T\": {\"shape\": \"t\"}}}",
+         RG2_EDOMAIN, "test: shapes.t.scale: scale factors must be non-zero"},
+        {"{\"shapes\": {\"t\": {\"kind\": \"torus\", \"scale\": [1, 0, 1]}}, \"meshes\": {\"T\": {\"shape\": \"t\"}}}",
+         RG2_EDOMAIN, "test: shapes.t.scale: scale factors must be non-zero"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"X\": {\"transform\": \"T\", \"scale\": [1, 1, 0]}}}",
+         RG2_EDOMAIN, "test: meshes.X.scale: scale factors must be non-zero"},
+        /* a count is an integer: 2.5 arcs is refused, not rounded */
+        {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": 2.5}}}}", RG2_EPARSE,
+         "test: meshes.T.u.arcs: expected an integer, found 2.5"},
+        /* a polar configuration's v: missing, or not an object */
+        {"{" TORUS_SHAPES ", \"meshes\": {\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 8}}}}", RG2_EPARSE,
+         "test: meshes.P: missing key 'v'"},
+        {"{" TORUS_SHAPES ", \"meshes\": {\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 8}, \"v\": [0.2, 0.8]}}}", RG2_EPARSE,
+         "test: meshes.P.v: expected an object, found an array"},
     };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         rg2_design *d = (rg2_design *)1;
@@ -1117,6 +1132,31 @@ static void bad_inputs(void)
     CHECK(rg2_design_load("tests/data/no-such-file.json", &d, &err) == RG2_EIO && d == NULL &&
               strstr(err.msg, "no-such-file.json"),
           "missing file: %s", err.msg);
+}
+
+/* An unknown key's message names it and lists every key its object takes, in order, and ends
+ * there (docs/design-format.md "Errors": "...; known keys: merge, along, closed, seam"). */
+static void unknown_key_lists(void)
+{
+    struct {
+        const char *json, *msg;
+    } cases[] = {
+        {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"t\", \"zzzzzz\": 8}}}",
+         "test: meshes.T: unknown key 'zzzzzz'; known keys: shape, u, v"},
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"scalars\": [{\"dir\": \"u\","
+         " \"leg\": 2, \"w\": 2, \"zzzzzz\": 1}]}}}",
+         "test: meshes.E.scalars[0]: unknown key 'zzzzzz'; known keys: dir, leg, junction, w, b, g"},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        rg2_design *d = (rg2_design *)1;
+        rg2_error err;
+        memset(&err, 0, sizeof err);
+        rg2_status st = rg2_design_parse(cases[c].json, strlen(cases[c].json), "test", &d, &err);
+        CHECK(st == RG2_EPARSE && d == NULL && !strcmp(err.msg, cases[c].msg), "unknown key %zu: got %s '%s', want '%s'",
+              c, rg2_status_str(st), err.msg, cases[c].msg);
+        if (st == RG2_OK)
+            rg2_design_free(d);
+    }
 }
 
 /* A transform copies each source the mesh uses, transformed, to keep its patches exact: only the
@@ -1244,5 +1284,6 @@ int main(void)
     many_names();
     printf("bad input:\n");
     bad_inputs();
+    unknown_key_lists();
     return rg2t_done("test_design");
 }
