@@ -1134,6 +1134,32 @@ static void bad_inputs(void)
           "missing file: %s", err.msg);
 }
 
+/* A cap's seam positions v_c lie in [0, 1) (docs/design-format.md, docs/poles.md: v_c = 0 is
+ * allowed): both ends of that range, 0 taken and 1 refused, and a negative one refused by name. */
+static void cap_seam_positions(void)
+{
+    const char *fmt = "{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {\"A\": {\"shape\": \"c\"},"
+                      " \"C\": {\"cap\": \"A\", \"length\": [1, 1], \"vc\": [%s, %s]}}}";
+    const char *vc[][2] = {{"0", "0"}, {"0", "0.5"}, {"-0.25", "0"}, {"0.5", "1"}};
+    const char *want[] = {NULL, NULL, "test: meshes.C.vc[0]: south seam position v_c = -0.25, must lie in [0, 1)",
+                          "test: meshes.C.vc[1]: north seam position v_c = 1, must lie in [0, 1)"};
+    for (int c = 0; c < 4; c++) {
+        char json[300];
+        snprintf(json, sizeof json, fmt, vc[c][0], vc[c][1]);
+        rg2_design *d = NULL;
+        rg2_error err;
+        memset(&err, 0, sizeof err);
+        rg2_status st = rg2_design_parse(json, strlen(json), "test", &d, &err);
+        if (!want[c])
+            CHECK(st == RG2_OK && rg2_design_num_surfaces(d) == 1, "cap with v_c = [%s, %s]: %s '%s'", vc[c][0],
+                  vc[c][1], rg2_status_str(st), err.msg);
+        else
+            CHECK(st == RG2_EDOMAIN && d == NULL && strstr(err.msg, want[c]), "cap with v_c = [%s, %s]: %s '%s'",
+                  vc[c][0], vc[c][1], rg2_status_str(st), err.msg);
+        rg2_design_free(d);
+    }
+}
+
 /* An unknown key's message names it and lists every key its object takes, in order, and ends
  * there (docs/design-format.md "Errors": "...; known keys: merge, along, closed, seam"). */
 static void unknown_key_lists(void)
@@ -1315,5 +1341,6 @@ int main(void)
     printf("bad input:\n");
     bad_inputs();
     unknown_key_lists();
+    cap_seam_positions();
     return rg2t_done("test_design");
 }
