@@ -771,6 +771,13 @@ static rg2_status op_transform(pctx *c, const cJSON *obj, const char *path, rg2_
         return st;
     if (!any)
         return fail(c, RG2_EPARSE, path, "a transform needs 'matrix', 'translate', 'rotate' or 'scale'");
+    double inv[16]; /* refused as a shape's placement is: the transformed shapes' equations need it */
+    rg2_error e;
+    if ((st = rg2_xform_invert(M, inv, &e))) {
+        char p[300];
+        subpath(p, sizeof p, path, "matrix");
+        return fail(c, st, get(obj, "matrix") ? p : path, "%s", e.msg);
+    }
     return rg2__op_transform(c->d, &c->d->mesh[src], M, out, path, c->err);
 }
 

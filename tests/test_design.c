@@ -1105,6 +1105,12 @@ static void bad_inputs(void)
          RG2_EDOMAIN, "test: shapes.t.scale: scale factors must be non-zero"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"X\": {\"transform\": \"T\", \"scale\": [1, 1, 0]}}}",
          RG2_EDOMAIN, "test: meshes.X.scale: scale factors must be non-zero"},
+        /* a transform's singular matrix is refused as a shape's is (it was taken, its flattened torus
+         * tagged as exact on "t@meshes.X") */
+        {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"X\": {\"transform\": \"T\", \"matrix\": [1, 0, 0, 0,"
+         " 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1]}}}", RG2_EDOMAIN, "test: meshes.X.matrix: placement matrix is singular"},
+        {"{\"shapes\": {\"t\": {\"kind\": \"torus\", \"matrix\": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1]}},"
+         " \"meshes\": {\"T\": {\"shape\": \"t\"}}}", RG2_EDOMAIN, "test: shapes.t.matrix: placement matrix is singular"},
         /* a count is an integer: 2.5 arcs is refused, not rounded */
         {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": 2.5}}}}", RG2_EPARSE,
          "test: meshes.T.u.arcs: expected an integer, found 2.5"},
