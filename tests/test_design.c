@@ -702,6 +702,56 @@ static int write_padded(const char *path, const char *text, size_t size)
     return fclose(f) == 0 && ok;
 }
 
+/* The control mesh JSON (rg2_design_write_mesh) read back: every output mesh's design points
+ * d = p_{1..3} / p_4 and weights W = p_4 against the mesh's homogeneous points (a torus with two
+ * weights edited, W = 2.5 and 0.5, and its transpose). */
+static void check_written_mesh(const char *path)
+{
+    rg2_error err;
+    rg2_design *d = parse("{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"points\":"
+                          " [{\"at\": [1, 2], \"W\": 2.5}, {\"at\": [5, 0], \"W\": 0.5}]},"
+                          " \"F\": {\"transpose\": \"E\"}}, \"output\": [\"E\", \"F\"]}",
+                          &err);
+    if (!d)
+        return;
+    CHECK_OK(rg2_design_write_mesh(d, path, &err), &err);
+    char *text = read_text(path);
+    cJSON *root = text ? cJSON_Parse(text) : NULL;
+    free(text);
+    const cJSON *meshes = cJSON_GetObjectItemCaseSensitive(root, "meshes");
+    CHECK(cJSON_GetArraySize(meshes) == rg2_design_num_surfaces(d), "%s: %d meshes written", path,
+          cJSON_GetArraySize(meshes));
+    double dev = 0.0;
+    int points = 0, w_not_1 = 0;
+    for (int o = 0; o < rg2_design_num_surfaces(d) && o < cJSON_GetArraySize(meshes); o++) {
+        const rg2_mesh *m = rg2_design_mesh(d, o);
+        const cJSON *jm = cJSON_GetArrayItem(meshes, o), *D = cJSON_GetObjectItemCaseSensitive(jm, "d"),
+                    *W = cJSON_GetObjectItemCaseSensitive(jm, "W");
+        CHECK(cJSON_GetArraySize(D) == m->nu && cJSON_GetArraySize(W) == m->nu, "mesh %d: %d rows written", o,
+              cJSON_GetArraySize(D));
+        for (int i = 0; i < m->nu && i < cJSON_GetArraySize(D) && i < cJSON_GetArraySize(W); i++)
+            for (int j = 0; j < m->nv; j++) {
+                const double *p = rg2_mesh_at(m, i, j);
+                const cJSON *x = cJSON_GetArrayItem(cJSON_GetArrayItem(D, i), j);
+                const cJSON *w = cJSON_GetArrayItem(cJSON_GetArrayItem(W, i), j);
+                if (cJSON_GetArraySize(x) != 3 || !cJSON_IsNumber(w)) {
+                    dev = INFINITY;
+                    continue;
+                }
+                for (int k = 0; k < 3; k++)
+                    dev = fmax(dev, fabs(cJSON_GetArrayItem(x, k)->valuedouble - p[k] / p[3]));
+                dev = fmax(dev, fabs(w->valuedouble - p[3]));
+                w_not_1 += p[3] != 1.0;
+                points++;
+            }
+    }
+    CHECK(dev <= 1e-14 && w_not_1 > 0, "%s: %d points read back off by %.3g (%d with W != 1)", path, points, dev,
+          w_not_1);
+    cJSON_Delete(root);
+    remove(path);
+    rg2_design_free(d);
+}
+
 static void text_files(void)
 {
     const char *text = "{\"shapes\": {\"comment\": \"a comment among the shapes\","
@@ -748,9 +798,10 @@ static void text_files(void)
         }
         remove(path);
     }
-    /* the control mesh JSON onto a full disk (files fail past 100 bytes) */
+    /* the control mesh JSON read back, then onto a full disk (files fail past 100 bytes) */
     {
         snprintf(path, sizeof path, "%s/m.json", dir);
+        check_written_mesh(path);
         CHECK(rg2t_file_limit(100) == 0, "file size limit");
         rg2_status st = rg2_design_write_mesh(ref, path, &err);
         rg2t_file_limit(-1);
