@@ -587,7 +587,8 @@ RG2_API void rg2_xform_identity(double M[16]);
 RG2_API void rg2_xform_mul(const double A[16], const double B[16], double out[16]);
 RG2_API void rg2_xform_translate(double M[16], double x, double y, double z);
 RG2_API void rg2_xform_scale(double M[16], double sx, double sy, double sz);
-/** Rotation by angle (radians) about the axis (ax, ay, az) through the origin. */
+/** Rotation by angle (radians) about the axis (ax, ay, az) through the origin, counter-clockwise
+ *  seen from the axis's tip (right-hand rule). */
 RG2_API void rg2_xform_rotate(double M[16], double ax, double ay, double az, double angle);
 /** Frame placement: the shape's z axis goes to `axis` (normalised) and its origin to `centre`
  *  (the rotation taking z to axis about z x axis). */
