@@ -476,7 +476,9 @@ rg2_status rg2__mesh_topo_build(const rg2_surface *s, rg2__mesh_topo *t, rg2_err
             t->edge[sd] = t->n_edges++;
         }
     }
-    t->closed = (s->closed_u || collapsed[1] || collapsed[3]) && (s->closed_v || collapsed[0] || collapsed[2]);
+    /* closed: in each direction closed, or both its boundary sides collapsed (a pole at one end
+     * only leaves the other end's boundary free) */
+    t->closed = (s->closed_u || (collapsed[1] && collapsed[3])) && (s->closed_v || (collapsed[0] && collapsed[2]));
     return RG2_OK;
 }
 
