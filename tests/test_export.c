@@ -2,7 +2,8 @@
  * PLY round-trips against the tessellation, .glb validated structurally (header, chunk
  * lengths, accessor and index bounds, min/max), .bv / .bez / .json patches exactly, STEP
  * numbers, complex-instance order and one pcurve per edge use, IGES record layout and B-rep
- * loops; a big surface's STEP entities in file order and its four IGES forms read back
+ * loops; the STEP and IGES B-reps read back entity by entity (knots, edge ends at their
+ * vertices, pcurves on the faces using them, shell faces, closed or open shells); a big surface's STEP entities in file order and its four IGES forms read back
  * (directory pointers, every number); and the failure cases (unwritable path, non-positive
  * weight, empty input, unknown extension, more IGES records than its sequence numbers hold)
  * leave no file behind. */
@@ -484,89 +485,6 @@ static int iges_scan(const char *path, int types[1000])
     return badline + (count[4] != 1);
 }
 
-/* The parameter data of entity DE pointer `de` of an IGES file as numbers (the delimiters
- * ',' and ';' dropped; at most cap); returns how many, -1 if absent. */
-static int iges_params(const char *text, int de, double *v, int cap)
-{
-    char buf[65], *all = NULL;
-    size_t len = 0;
-    for (const char *l = text; *l; l = strchr(l, '\n') ? strchr(l, '\n') + 1 : l + strlen(l)) {
-        if (strlen(l) < 80 || l[72] != 'P' || atoi(l + 65) != de)
-            continue;
-        memcpy(buf, l, 64);
-        buf[64] = 0;
-        char *grown = realloc(all, len + 65);
-        if (!grown)
-            break;
-        all = grown;
-        memcpy(all + len, buf, 65);
-        len += 64;
-    }
-    if (!all)
-        return -1;
-    int n = 0;
-    for (char *tok = strtok(all, ",;"); tok && n < cap; tok = strtok(NULL, ",;"))
-        if (strspn(tok, " ") < strlen(tok))
-            v[n++] = atof(tok);
-    free(all);
-    return n;
-}
-
-/* Every loop (508) of an IGES B-rep file closes: with its orientation flags, each edge use
- * ends at the vertex where the next one starts (edges and vertices from the 504 list). Returns
- * the number of loops checked, -1 for a malformed file, and counts the broken ones. */
-static int iges_loops_close(const char *path, int *broken)
-{
-    size_t len;
-    char *text = (char *)slurp(path, &len);
-    *broken = 0;
-    if (!text)
-        return -1;
-    int loops = 0, nv = 0;
-    static double el[1 + 5 * 100000], lp[2 + 7 * 8];
-    int ne = -1;
-    for (const char *l = text; l && *l; l = strchr(l, '\n') ? strchr(l, '\n') + 1 : NULL) {
-        if (strlen(l) < 80 || l[72] != 'D' || atoi(l + 73) % 2 == 0)
-            continue;
-        int type = atoi(l), de = atoi(l + 73);
-        if (type == 504) {
-            ne = iges_params(text, de, el, (int)(sizeof el / sizeof el[0]));
-            nv++;
-        }
-    }
-    for (const char *l = text; ne > 1 && l && *l; l = strchr(l, '\n') ? strchr(l, '\n') + 1 : NULL) {
-        if (strlen(l) < 80 || l[72] != 'D' || atoi(l + 73) % 2 == 0 || atoi(l) != 508)
-            continue;
-        int n = iges_params(text, atoi(l + 73), lp, (int)(sizeof lp / sizeof lp[0]));
-        int k = n > 1 ? (int)lp[1] : 0;
-        if (k < 1 || k > 8 || n != 2 + 7 * k) {
-            loops = -1;
-            break;
-        }
-        int from[8], to[8];
-        for (int q = 0; q < k; q++) {
-            const double *u = lp + 2 + 7 * q; /* type, list, index, OF, K, ISOP, pcurve */
-            int e = (int)u[2];
-            if (e < 1 || 2 + 5 * e > ne) {
-                loops = -1;
-                break;
-            }
-            int sv = (int)el[2 + 5 * (e - 1) + 2], tv = (int)el[2 + 5 * (e - 1) + 4];
-            from[q] = u[3] != 0 ? sv : tv;
-            to[q] = u[3] != 0 ? tv : sv;
-        }
-        if (loops < 0)
-            break;
-        int ok = 1;
-        for (int q = 0; q < k; q++)
-            ok &= to[q] == from[(q + 1) % k];
-        *broken += !ok;
-        loops++;
-    }
-    free(text);
-    return nv == 1 ? loops : -1;
-}
-
 /* A surface's STEP, whose vertices, surfaces and edges (face per patch) or the one surface's
  * points, pole list and weights (face per mesh) are formatted on the threads in several batches
  * of blocks (src/step.c, emit_all, put_all_rows), must come out as writing them one after the
@@ -666,13 +584,195 @@ static int iges_int(const char *p, int w) /* the integer in w columns */
     return atoi(b);
 }
 
+/* The knot vector of n poles of degree d as piecewise Bezier spans ((n - 1) / d of them, an
+ * exact number): 0 d + 1 times, then 1, 2, ... d times each, the last d + 1 times. The knots
+ * k[0 .. n + d] that differ from it (all n + d + 1 if the spans do not fit). */
+static int knots_differ(const double *k, int n, int d)
+{
+    int spans = (n - 1) / d, bad = 0;
+    if (d < 1 || spans * d != n - 1)
+        return n + d + 1;
+    for (int a = 0; a < n + d + 1; a++)
+        bad += k[a] != (a <= d ? 0 : a >= n ? spans : (a - 1) / d);
+    return bad;
+}
+
+/* The parameter data of every entity of an IGES file as numbers, in one pass (the delimiters
+ * dropped; tokens never span records): those of DE pointer de are v[at[de] .. at[de] + n[de]),
+ * n[de] 0 for none. 0, or -1 (malformed or out of memory). */
+typedef struct {
+    double *v;
+    int *at, *n, nde;
+} iges_nums;
+
+static void iges_nums_free(iges_nums *P)
+{
+    free(P->v);
+    free(P->at);
+    free(P->n);
+}
+
+static int iges_nums_read(const char *text, size_t len, iges_nums *P)
+{
+    int nrec = (int)(len / 81), count = 0, cap = 32 * nrec + 1;
+    P->nde = nrec + 2;
+    P->v = malloc(sizeof(double) * (size_t)cap);
+    P->at = calloc((size_t)P->nde, sizeof(int));
+    P->n = calloc((size_t)P->nde, sizeof(int));
+    if (!P->v || !P->at || !P->n || len % 81)
+        return -1;
+    for (int k = 0; k < nrec; k++) {
+        const char *rec = text + (size_t)k * 81;
+        int de = iges_int(rec + 65, 7);
+        if (rec[72] != 'P')
+            continue;
+        if (de < 1 || de >= P->nde || (P->n[de] && P->at[de] + P->n[de] != count))
+            return -1;
+        if (!P->n[de])
+            P->at[de] = count;
+        iges_record_nums(rec, P->v, &count, cap);
+        P->n[de] = count - P->at[de];
+    }
+    return 0;
+}
+
+/* p and q (3 coordinates each) the same point but for rounding */
+static int near3(const double *p, const double *q)
+{
+    double d = 0, m = 1;
+    for (int c = 0; c < 3; c++) {
+        d = fmax(d, fabs(p[c] - q[c]));
+        m = fmax(m, fabs(p[c]));
+    }
+    return d <= 1e-9 * m;
+}
+
+/* The point of entity 128 s (its numbers, n of them) at the corner (u, v) of its parameter
+ * range (NULL if (u, v) is no corner): that corner's pole. */
+static const double *corner_128(const double *s, int n, double u, double v)
+{
+    int NU = (int)s[1] + 1, NV = (int)s[2] + 1, du = (int)s[3], dv = (int)s[4];
+    int w0 = 10 + (NU + du + 1) + (NV + dv + 1);
+    if (n != w0 + 4 * NU * NV + 4 || s[0] != 128)
+        return NULL;
+    const double *r = s + n - 4; /* U0, U1, V0, V1 */
+    int a = u == r[0] ? 0 : u == r[1] ? NU - 1 : -1, b = v == r[2] ? 0 : v == r[3] ? NV - 1 : -1;
+    return a < 0 || b < 0 ? NULL : s + w0 + NU * NV + 3 * (b * NU + a);
+}
+
+/* Every loop (508) of an IGES B-rep file closes: with its orientation flags, each edge use
+ * ends at the vertex where the next one starts (edges and vertices from the 504 list). And
+ * (*astray counts the faults) the shell (514) lists every face (510) once, and every edge runs
+ * between its vertices where it is drawn: its model curve (126) from its start vertex's point
+ * (502) to its end vertex's (first and last pole), and in each loop its pcurve (110), mapped by
+ * the face's surface (128: a corner of the parameter range to that corner's pole), from the
+ * use's first vertex to its last. Returns the number of loops checked, -1 for a malformed file,
+ * and counts the broken ones. */
+static int iges_loops_close(const char *path, int *broken, int *astray)
+{
+    size_t len;
+    char *text = (char *)slurp(path, &len);
+    iges_nums P = {0};
+    int loops = 0, n504 = 0, n502 = 0, n510 = 0, *surf_of = NULL, *type_of = NULL;
+    const double *el = NULL, *vl = NULL, *sh = NULL;
+    *broken = *astray = 0;
+    if (!text || iges_nums_read(text, len, &P) || !(surf_of = calloc((size_t)P.nde, sizeof(int))) ||
+        !(type_of = calloc((size_t)P.nde, sizeof(int)))) {
+        loops = -1;
+        goto done;
+    }
+    for (size_t o = 0; o + 81 <= len; o += 81) { /* the directory: 504, 502, and each loop's face */
+        const char *l = text + o;
+        int type = iges_int(l, 8), de = iges_int(l + 73, 7);
+        if (l[72] != 'D' || de % 2 == 0 || de >= P.nde)
+            continue;
+        const double *v = P.v + P.at[de];
+        type_of[de] = type;
+        n510 += type == 510;
+        if (type == 514)
+            sh = P.n[de] > 2 && P.n[de] == 2 + 2 * (int)v[1] ? v : NULL;
+        if (type == 504)
+            n504++, el = v;
+        if (type == 502)
+            n502++, vl = v;
+        if (type == 510 && P.n[de] == 5 && v[4] > 0 && v[4] < P.nde)
+            surf_of[(int)v[4]] = (int)v[1];
+    }
+    int ne = el ? (int)el[1] : 0, nv = vl ? (int)vl[1] : 0;
+    if (n504 != 1 || n502 != 1 || ne < 1 || nv < 1) {
+        loops = -1;
+        goto done;
+    }
+    *astray += !sh || (int)sh[1] != n510;
+    for (int k = 0; sh && k < (int)sh[1]; k++) { /* each face once: its 510 marked by a negative type */
+        int f = (int)sh[2 + 2 * k];
+        *astray += f < 1 || f >= P.nde || type_of[f] != 510;
+        if (f > 0 && f < P.nde)
+            type_of[f] = -type_of[f];
+    }
+    for (int e = 0; e < ne; e++) { /* curve DE, list, start, list, end */
+        const double *u = el + 2 + 5 * e;
+        int c = (int)u[0], sv = (int)u[2], tv = (int)u[4];
+        const double *cv = c > 0 && c < P.nde ? P.v + P.at[c] : NULL;
+        int np = cv ? (int)cv[1] + 1 : 0, deg = cv ? (int)cv[2] : 0, p0 = 7 + (np + deg + 1) + np;
+        if (!cv || P.n[c] != p0 + 3 * np + 2 || cv[0] != 126 || knots_differ(cv + 7, np, deg) || sv < 1 || sv > nv || tv < 1 || tv > nv ||
+            !near3(cv + p0, vl + 2 + 3 * (sv - 1)) || !near3(cv + p0 + 3 * (np - 1), vl + 2 + 3 * (tv - 1)))
+            (*astray)++;
+    }
+    for (size_t o = 0; o + 81 <= len; o += 81) {
+        const char *l = text + o;
+        int de = iges_int(l + 73, 7);
+        if (l[72] != 'D' || de % 2 == 0 || de >= P.nde || iges_int(l, 8) != 508)
+            continue;
+        const double *lp = P.v + P.at[de];
+        int n = P.n[de], k = n > 1 ? (int)lp[1] : 0, sf = surf_of[de];
+        if (k < 1 || k > 8 || n != 2 + 7 * k || sf < 1 || sf >= P.nde) {
+            loops = -1;
+            break;
+        }
+        int from[8], to[8];
+        for (int q = 0; q < k; q++) {
+            const double *u = lp + 2 + 7 * q; /* type, list, index, OF, K, ISOP, pcurve */
+            int e = (int)u[2], pc = (int)u[6];
+            if (e < 1 || e > ne || pc < 1 || pc >= P.nde) {
+                loops = -1;
+                break;
+            }
+            int sv = (int)el[2 + 5 * (e - 1) + 2], tv = (int)el[2 + 5 * (e - 1) + 4];
+            from[q] = u[3] != 0 ? sv : tv;
+            to[q] = u[3] != 0 ? tv : sv;
+            const double *line = P.v + P.at[pc], *s = P.v + P.at[sf]; /* 110: x1 y1 z1 x2 y2 z2 */
+            const double *a = P.n[pc] == 7 && line[0] == 110 ? corner_128(s, P.n[sf], line[1], line[2]) : NULL;
+            const double *b = a ? corner_128(s, P.n[sf], line[4], line[5]) : NULL;
+            *astray += !b || from[q] < 1 || from[q] > nv || to[q] < 1 || to[q] > nv ||
+                       !near3(a, vl + 2 + 3 * (from[q] - 1)) || !near3(b, vl + 2 + 3 * (to[q] - 1));
+        }
+        if (loops < 0)
+            break;
+        int ok = 1;
+        for (int q = 0; q < k; q++)
+            ok &= to[q] == from[(q + 1) % k];
+        *broken += !ok;
+        loops++;
+    }
+done:
+    free(text);
+    free(surf_of);
+    free(type_of);
+    iges_nums_free(&P);
+    return loops;
+}
+
 /* Mismatches between the numbers v[0..n-1] of an entity 128 and the NU x NV net h (a along u)
- * of degrees (du, dv): its type, degrees and count, then its weights and points (u fastest). */
+ * of degrees (du, dv): its type, upper indices, degrees and count, its knots (piecewise Bezier,
+ * bezier_knot), then its weights and points (u fastest), and its parameter range (the knots'). */
 static int cmp_128(const double *v, int n, const double (*h)[4], int NU, int NV, int du, int dv)
 {
     int w0 = 10 + (NU + du + 1) + (NV + dv + 1), nn = NU * NV, bad = 0; /* after ints and knots */
-    if (n != w0 + 4 * nn + 4 || v[0] != 128 || v[3] != du || v[4] != dv)
+    if (n != w0 + 4 * nn + 4 || v[0] != 128 || v[1] != NU - 1 || v[2] != NV - 1 || v[3] != du || v[4] != dv)
         return 1;
+    bad += knots_differ(v + 10, NU, du) + knots_differ(v + 10 + NU + du + 1, NV, dv);
+    bad += v[n - 4] != 0 || v[n - 3] != (NU - 1) / du || v[n - 2] != 0 || v[n - 1] != (NV - 1) / dv;
     for (int b = 0; b < NV; b++)
         for (int a = 0; a < NU; a++) {
             const double *p = h[a * NV + b];
@@ -801,6 +901,331 @@ static void iges_big(void)
     rg2_surface_free(&s);
 }
 
+/* ---------------------------------------------------------------- STEP B-rep read back */
+/* A STEP file's DATA section as entities by id: ent[id] is the text after "#id=" up to its ';'
+ * (made the end of the string), NULL where no entity has that id. */
+typedef struct {
+    char *text;
+    char **ent;
+    int n; /* ids 0 .. n-1 */
+} step_ents;
+
+static void step_unload(step_ents *f)
+{
+    free(f->text);
+    free(f->ent);
+}
+
+static int step_load(const char *path, step_ents *f)
+{
+    size_t len;
+    memset(f, 0, sizeof *f);
+    f->text = (char *)slurp(path, &len);
+    char *p = f->text ? strstr(f->text, "DATA;\n") : NULL;
+    if (!p)
+        return -1;
+    f->n = (int)len; /* ids < bytes */
+    f->ent = calloc(len, sizeof(char *));
+    for (p += 6; f->ent && *p == '#';) {
+        char *e = strstr(p, ";\n"), *eq = strchr(p, '=');
+        int id = atoi(p + 1);
+        if (!e || !eq || eq > e || id <= 0 || id >= f->n || f->ent[id])
+            return -1;
+        *e = 0;
+        f->ent[id] = eq + 1;
+        p = e + 2;
+    }
+    return f->ent && !strncmp(p, "ENDSEC;", 7) ? 0 : -1;
+}
+
+/* Entity id if it is of the type (its text starts with type, e.g. "VERTEX_POINT("), else NULL. */
+static const char *step_ent(const step_ents *f, int id, const char *type)
+{
+    const char *e = id > 0 && id < f->n ? f->ent[id] : NULL;
+    return e && !strncmp(e, type, strlen(type)) ? e : NULL;
+}
+
+/* The references #id in s (up to end, or its end if NULL), in order (at most cap). */
+static int step_refs(const char *s, const char *end, int *ref, int cap)
+{
+    int n = 0;
+    for (const char *p = s; p && *p && (!end || p < end); p++)
+        if (*p == '#' && n < cap)
+            ref[n++] = atoi(p + 1);
+    return n;
+}
+
+static int step_point(const step_ents *f, int id, double p[3])
+{
+    const char *e = step_ent(f, id, "CARTESIAN_POINT(");
+    return e && sscanf(e, "CARTESIAN_POINT('',(%lf,%lf,%lf))", &p[0], &p[1], &p[2]) == 3 ? 0 : -1;
+}
+
+/* The numbers of the list "(a,b,...)" at *p (-1 if none), *p moved past it. */
+static int step_nums(const char **p, double *v, int cap)
+{
+    const char *q = *p;
+    int n = 0;
+    while (*q == '\n' || *q == ' ')
+        q++;
+    if (*q != '(')
+        return -1;
+    for (q++; *q != ')'; q++) {
+        char *end;
+        double x = strtod(q, &end);
+        if (end == q || n >= cap)
+            return -1;
+        v[n++] = x;
+        q = end;
+        while (*q == '\n' || *q == ' ')
+            q++;
+        if (*q != ',' && *q != ')')
+            return -1;
+        if (*q == ')')
+            break;
+    }
+    *p = q + 1;
+    return n;
+}
+
+/* A clamped piecewise knot vector: the multiplicities m[0..nm) and knot values k[0..nk) of n
+ * poles of degree deg: as many of each, deg + 1 at the ends and 1 .. deg inside, increasing
+ * values, multiplicities summing to n + deg + 1. Returns the faults. */
+static int knots_bad(const double *m, int nm, const double *k, int nk, int n, int deg)
+{
+    double sum = 0;
+    int bad = nm != nk || nm < 2 || m[0] != deg + 1 || m[nm - 1] != deg + 1;
+    for (int a = 0; a < nm; a++) {
+        sum += m[a];
+        bad += a > 0 && a < nm - 1 && (m[a] < 1 || m[a] > deg);
+        bad += a > 0 && a < nk && !(k[a] > k[a - 1]);
+    }
+    return bad + (sum != n + deg + 1);
+}
+
+/* The knot vectors of the B-spline curve or surface e (number of poles counted in its pole
+ * lists, weights one per pole): the faults, 0 if e is neither. */
+static int step_spline_bad(const char *e)
+{
+    double m[2][64], k[2][64], wt[64];
+    int nm[2], nk[2], deg[2], n[2];
+    const char *c = strstr(e, "B_SPLINE_CURVE("), *s = strstr(e, "B_SPLINE_SURFACE(");
+    const char *kn = strstr(e, c ? "B_SPLINE_CURVE_WITH_KNOTS(" : "B_SPLINE_SURFACE_WITH_KNOTS(");
+    int refs[4096], dirs = s ? 2 : 1;
+    if (!c && !s)
+        return 0;
+    if (!kn || (c && sscanf(c, "B_SPLINE_CURVE(%d,", &deg[0]) != 1) ||
+        (s && sscanf(s, "B_SPLINE_SURFACE(%d,%d,", &deg[0], &deg[1]) != 2))
+        return 1;
+    int np = step_refs(c ? c : s, kn, refs, 4096), rows = 0;
+    for (const char *p = s; s && p < kn && (p = strstr(p, "(#")) && p < kn; p++)
+        rows++;
+    n[0] = s ? rows : np;
+    n[1] = rows ? np / rows : 0;
+    const char *p = kn + strlen(c ? "B_SPLINE_CURVE_WITH_KNOTS" : "B_SPLINE_SURFACE_WITH_KNOTS") + 1;
+    for (int d = 0; d < dirs; d++, p++)
+        nm[d] = step_nums(&p, m[d], 64);
+    for (int d = 0; d < dirs; d++, p++)
+        nk[d] = step_nums(&p, k[d], 64);
+    int bad = s && rows * n[1] != np;
+    for (int d = 0; d < dirs; d++)
+        bad += nm[d] < 0 || nk[d] < 0 || knots_bad(m[d], nm[d], k[d], nk[d], n[d], deg[d]);
+    /* the weights: one list of n (curve), or rows lists of n[1] (surface) */
+    const char *w = strstr(e, c ? "RATIONAL_B_SPLINE_CURVE(" : "RATIONAL_B_SPLINE_SURFACE((");
+    if (!w)
+        return bad + 1;
+    p = strchr(w, '(') + (s ? 2 : 1); /* the list (of rows) */
+    for (int r = 0; r < (s ? n[0] : 1); r++, p++)
+        bad += step_nums(&p, wt, 64) != (s ? n[1] : n[0]);
+    return bad;
+}
+
+/* The poles of the B-spline curve a SURFACE_CURVE or SEAM_CURVE sc refers to, first and last
+ * (a, b), and its pcurves pc[0 .. *npc). 0, or -1 if not so. */
+static int step_edge_curve(const step_ents *f, int sc, double a[3], double b[3], int pc[2], int *npc)
+{
+    const char *e = step_ent(f, sc, "SURFACE_CURVE(");
+    e = e ? e : step_ent(f, sc, "SEAM_CURVE(");
+    int ref[3], pt[64];
+    int n = e ? step_refs(e, NULL, ref, 3) : 0;
+    const char *c = n >= 2 ? step_ent(f, ref[0], "( BOUNDED_CURVE() B_SPLINE_CURVE(") : NULL;
+    int np = c ? step_refs(c, strstr(c, "B_SPLINE_CURVE_WITH_KNOTS("), pt, 64) : 0;
+    *npc = n - 1;
+    for (int k = 1; k < n; k++)
+        pc[k - 1] = ref[k];
+    return np >= 2 && !step_point(f, pt[0], a) && !step_point(f, pt[np - 1], b) ? 0 : -1;
+}
+
+static int step_vertex(const step_ents *f, int id, double p[3])
+{
+    const char *e = step_ent(f, id, "VERTEX_POINT(");
+    int ref;
+    return e && step_refs(e, NULL, &ref, 1) == 1 ? step_point(f, ref, p) : -1;
+}
+
+/* What step_brep read from a STEP file. */
+typedef struct {
+    int faces, edges, uses;   /* ADVANCED_FACEs, EDGE_CURVEs, ORIENTED_EDGEs in loops */
+    int closed_shells, open_shells;
+    int bad_knots;    /* curves and surfaces whose knots do not fit their poles and degrees */
+    int bad_ends;     /* edge ends: a vertex not at its curve's end, or not a corner of s */
+    int bad_pcurves;  /* edges with other pcurves than one on each face using them */
+    int open_loops;   /* loops whose oriented edges do not follow each other */
+    int twice;        /* edges used by exactly two oriented edges */
+} step_brep_read;
+
+/* |p - q| (Euclidean), p a STEP point, q homogeneous. */
+static double dist_h(const double p[3], const double q[4])
+{
+    return sqrt(pow(p[0] - q[0] / q[3], 2) + pow(p[1] - q[1] / q[3], 2) + pow(p[2] - q[2] / q[3], 2));
+}
+
+/* The faces' loops, edges, vertices and pcurves of a STEP file of surface s read back: each
+ * loop's oriented edges run end to start; each edge's vertices are its curve's end points and
+ * corners of s's patches (their corner control points); each edge carries one PCURVE on each
+ * face's surface that uses it (a seam's two on one surface). -1 if the file does not parse. */
+static int step_brep(const char *path, const rg2_surface *s, step_brep_read *r)
+{
+    step_ents f;
+    memset(r, 0, sizeof *r);
+    if (step_load(path, &f)) {
+        step_unload(&f);
+        return -1;
+    }
+    int *uses = calloc((size_t)f.n, sizeof(int)), *esurf = calloc(2 * (size_t)f.n, sizeof(int)), ok = uses && esurf;
+    double tol = 1e-9 * rg2t_surface_scale(s);
+    for (int id = 1; ok && id < f.n; id++) {
+        const char *e = f.ent[id];
+        if (!e)
+            continue;
+        r->bad_knots += step_spline_bad(e) != 0;
+        r->closed_shells += !strncmp(e, "CLOSED_SHELL(", 13);
+        r->open_shells += !strncmp(e, "OPEN_SHELL(", 11);
+        if (strncmp(e, "ADVANCED_FACE(", 14))
+            continue;
+        /* the face: its bound, loop, oriented edges */
+        int ref[2], lp, oe[8], from[8], to[8];
+        const char *b = step_refs(e, NULL, ref, 2) == 2 ? step_ent(&f, ref[0], "FACE_OUTER_BOUND(") : NULL;
+        const char *l = b && step_refs(b, NULL, &lp, 1) == 1 ? step_ent(&f, lp, "EDGE_LOOP(") : NULL;
+        int n = l ? step_refs(l, NULL, oe, 8) : 0;
+        r->faces++;
+        for (int k = 0; k < n; k++) {
+            const char *o = step_ent(&f, oe[k], "ORIENTED_EDGE('',*,*,#");
+            int ed = o ? atoi(o + 22) : 0, v[3];
+            const char *ec = step_ent(&f, ed, "EDGE_CURVE(");
+            if (!ec || step_refs(ec, NULL, v, 3) != 3) {
+                n = 0; /* (an open loop) */
+                break;
+            }
+            int fwd = strstr(o, ",.T.)") != NULL;
+            from[k] = fwd ? v[0] : v[1];
+            to[k] = fwd ? v[1] : v[0];
+            if (uses[ed] < 2)
+                esurf[2 * ed + uses[ed]] = ref[1];
+            uses[ed]++;
+            r->uses++;
+        }
+        int open = n == 0;
+        for (int k = 0; k < n; k++)
+            open |= to[k] != from[(k + 1) % n];
+        r->open_loops += open;
+    }
+    for (int id = 1; ok && id < f.n; id++) {
+        const char *e = step_ent(&f, id, "EDGE_CURVE(");
+        int v[3], pc[2], npc;
+        double p0[3], p1[3], a[3], b[3];
+        if (!e)
+            continue;
+        r->edges++;
+        r->twice += uses[id] == 2;
+        if (step_refs(e, NULL, v, 3) != 3 || step_vertex(&f, v[0], p0) || step_vertex(&f, v[1], p1) ||
+            step_edge_curve(&f, v[2], a, b, pc, &npc)) {
+            r->bad_ends++;
+            continue;
+        }
+        double corner[2] = {INFINITY, INFINITY}; /* each vertex's distance from the nearest patch corner */
+        for (int i = 0; i < s->nu; i++)
+            for (int j = 0; j < s->nv; j++) {
+                rg2_xpatch X;
+                rg2_surface_patch_get(s, i, j, &X);
+                for (int c = 0; c < 4; c++) {
+                    const double *h = X.h[c & 1 ? X.du : 0][c & 2 ? X.dv : 0];
+                    corner[0] = fmin(corner[0], dist_h(p0, h));
+                    corner[1] = fmin(corner[1], dist_h(p1, h));
+                }
+            }
+        double ends = fmax(fmax(fabs(p0[0] - a[0]), fabs(p0[1] - a[1])), fabs(p0[2] - a[2]));
+        ends = fmax(ends, fmax(fmax(fabs(p1[0] - b[0]), fabs(p1[1] - b[1])), fabs(p1[2] - b[2])));
+        r->bad_ends += !(ends <= tol && corner[0] <= tol && corner[1] <= tol);
+        /* one pcurve per use, on the surfaces of the faces using the edge (as a multiset) */
+        int nuse = uses[id] < 2 ? uses[id] : 2, surf[2] = {0, 0}, badp = npc != uses[id];
+        for (int k = 0; k < npc && k < 2 && !badp; k++) {
+            const char *q = step_ent(&f, pc[k], "PCURVE(");
+            surf[k] = q ? atoi(strchr(q, '#') + 1) : -1;
+        }
+        if (!badp && nuse == 2)
+            badp = !((surf[0] == esurf[2 * id] && surf[1] == esurf[2 * id + 1]) ||
+                     (surf[0] == esurf[2 * id + 1] && surf[1] == esurf[2 * id]));
+        else if (!badp && nuse == 1)
+            badp = surf[0] != esurf[2 * id];
+        r->bad_pcurves += badp;
+    }
+    free(uses);
+    free(esurf);
+    step_unload(&f);
+    return ok ? 0 : -1;
+}
+
+/* The STEP B-rep of s in a layout read back (step_brep): faces as many as patches (one per
+ * mesh), knots fitting every curve and surface, each edge between the corners at its curve's
+ * ends, one pcurve per face using it, the loops closed; and a CLOSED_SHELL exactly when s is
+ * closed (want_closed: a torus; a surface with a boundary is open), which is when every edge
+ * bounds two faces. The IGES B-rep likewise (iges_loops_close). */
+static void brep_case(const rg2_surface *s, int per_mesh, int want_closed, const char *what)
+{
+    rg2_error err;
+    rg2_export_opts o;
+    rg2_export_opts_default(&o);
+    o.layout = per_mesh ? RG2_STEP_FACE_PER_MESH : RG2_STEP_FACE_PER_PATCH;
+    CHECK_OK(rg2_export_file(s, 1, path_in("brep.step"), &o, &err), &err);
+    step_brep_read r;
+    int st = step_brep(path_in("brep.step"), s, &r), want_faces = per_mesh ? 1 : s->nu * s->nv;
+    CHECK(st == 0 && r.faces == want_faces && r.edges > 0 && !r.bad_knots && !r.bad_ends && !r.bad_pcurves &&
+              !r.open_loops,
+          "STEP %s %s: read %d, %d faces (want %d), %d edges: knots wrong in %d curves/surfaces, %d edges not "
+          "between their vertices, %d with wrong pcurves, %d open loops",
+          what, per_mesh ? "per mesh" : "per patch", st, r.faces, want_faces, r.edges, r.bad_knots, r.bad_ends,
+          r.bad_pcurves, r.open_loops);
+    CHECK(r.closed_shells == want_closed && r.open_shells == !want_closed && (r.twice == r.edges) == want_closed,
+          "STEP %s %s: %d closed and %d open shells, %d of %d edges bound two faces (closed: %d)", what,
+          per_mesh ? "per mesh" : "per patch", r.closed_shells, r.open_shells, r.twice, r.edges, want_closed);
+    o.iges_brep = 1;
+    CHECK_OK(rg2_export_file(s, 1, path_in("brep.igs"), &o, &err), &err);
+    int broken, astray, loops = iges_loops_close(path_in("brep.igs"), &broken, &astray);
+    CHECK(loops == want_faces && broken == 0 && astray == 0,
+          "IGES B-rep %s %s: %d loops (want %d), %d not closing, %d faults of the shell's faces, edge curves or "
+          "pcurves",
+          what, per_mesh ? "per mesh" : "per patch", loops, want_faces, broken, astray);
+}
+
+/* The STEP and IGES B-reps read back for a closed torus, an open random surface with patches of degrees (5, 3)
+ * (the merged net's degrees differ in u and v), a surface with a pole, in both layouts. */
+static void breps_read_back(const rg2_surface *torus)
+{
+    rg2_surface open, pole;
+    rg2_error err;
+    CHECK_OK(fx_random(7, 5, 4, &open, &err), &err);
+    CHECK_OK(rg2t_elevate_some(&open, 5, 3, 3, 1, &err), &err);
+    CHECK_OK(fx_pole(6, 5, &pole, &err), &err);
+    for (int per_mesh = 0; per_mesh < 2; per_mesh++) {
+        brep_case(torus, per_mesh, 1, "torus");
+        brep_case(&open, per_mesh, 0, "open (5, 3)");
+        brep_case(&pole, per_mesh, 0, "pole");
+    }
+    rg2_surface_free(&open);
+    rg2_surface_free(&pole);
+}
+
 static void step_text(const rg2_surface *s)
 {
     rg2_error err;
@@ -896,9 +1321,11 @@ static void step_text(const rg2_surface *s)
           "126 %d (STEP edges %d)",
           badline, types[514], types[510], types[508], types[128], types[502], types[504], types[110], types[126],
           ecurves);
-    int broken, loops = iges_loops_close(path_in("b.igs"), &broken);
-    CHECK(loops == np && broken == 0, "IGES B-rep: %d loops read (expected %d), %d do not close with their edge "
-                                      "orientations", loops, np, broken);
+    int broken, astray, loops = iges_loops_close(path_in("b.igs"), &broken, &astray);
+    CHECK(loops == np && broken == 0 && astray == 0,
+          "IGES B-rep: %d loops read (expected %d), %d do not close with their edge orientations, %d faults of "
+          "the shell's faces, edge curves or pcurves",
+          loops, np, broken, astray);
     /* face per mesh: one face on the merged net, its seams used twice by its loop */
     o.layout = RG2_STEP_FACE_PER_MESH;
     CHECK_OK(rg2_export_file(s, 1, path_in("bm.igs"), &o, &err), &err);
@@ -910,8 +1337,9 @@ static void step_text(const rg2_surface *s)
           "110 %d, 126 %d (expected %d)",
           badline, types[514], types[510], types[508], types[128], types[502], types[504], types[110], types[126],
           edges);
-    loops = iges_loops_close(path_in("bm.igs"), &broken);
-    CHECK(loops == 1 && broken == 0, "IGES B-rep per mesh: %d loops, %d do not close", loops, broken);
+    loops = iges_loops_close(path_in("bm.igs"), &broken, &astray);
+    CHECK(loops == 1 && broken == 0 && astray == 0, "IGES B-rep per mesh: %d loops, %d do not close, %d astray",
+          loops, broken, astray);
 }
 
 /* ---------------------------------------------------------------- degrees in STEP and IGES */
@@ -1601,12 +2029,13 @@ static void transposed_pole(void)
         CHECK_OK(rg2_export_file(&a, 1, path_in("pa.igs"), &o, &err), &err);
         CHECK_OK(rg2_export_file(&b, 1, path_in("pb.igs"), &o, &err), &err);
         int ta[1000], tb[1000];
-        int bad = iges_scan(path_in("pa.igs"), ta) + iges_scan(path_in("pb.igs"), tb), broken = 0;
-        int loops = iges_loops_close(path_in("pb.igs"), &broken);
-        CHECK(bad == 0 && ta[126] == e[0] && tb[126] == e[1] && ta[510] == tb[510] && loops == want_f && broken == 0,
+        int bad = iges_scan(path_in("pa.igs"), ta) + iges_scan(path_in("pb.igs"), tb), broken = 0, astray = 0;
+        int loops = iges_loops_close(path_in("pb.igs"), &broken, &astray);
+        CHECK(bad == 0 && ta[126] == e[0] && tb[126] == e[1] && ta[510] == tb[510] && loops == want_f && broken == 0 &&
+                  astray == 0,
               "IGES B-rep %s: %d malformed records, model curves %d / %d (STEP edges %d), faces %d / %d, %d loops "
-              "(%d not closing)",
-              layout ? "per mesh" : "per patch", bad, ta[126], tb[126], e[0], ta[510], tb[510], loops, broken);
+              "(%d not closing, %d astray)",
+              layout ? "per mesh" : "per patch", bad, ta[126], tb[126], e[0], ta[510], tb[510], loops, broken, astray);
     }
     rg2_surface_free(&a);
     rg2_surface_free(&b);
@@ -1871,6 +2300,7 @@ int main(void)
     glb_validate(&s, &t);
     patches_roundtrip(&s, 13.0, 4.0);
     step_text(&s);
+    breps_read_back(&s);
     step_big_in_order();
     iges_big();
     names_and_defaults(&s);
