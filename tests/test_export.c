@@ -662,7 +662,8 @@ static const double *corner_128(const double *s, int n, double u, double v)
 
 /* Every loop (508) of an IGES B-rep file closes: with its orientation flags, each edge use
  * ends at the vertex where the next one starts (edges and vertices from the 504 list). And
- * (*astray counts the faults) the shell (514) lists every face (510) once, and every edge runs
+ * (*astray counts the faults) the shell (514) lists every face (510) once, is of form 1 (closed)
+ * exactly when every edge is used twice by the loops (else form 2, open), and every edge runs
  * between its vertices where it is drawn: its model curve (126) from its start vertex's point
  * (502) to its end vertex's (first and last pole), and in each loop its pcurve (110), mapped by
  * the face's surface (128: a corner of the parameter range to that corner's pole), from the
@@ -673,7 +674,7 @@ static int iges_loops_close(const char *path, int *broken, int *astray)
     size_t len;
     char *text = (char *)slurp(path, &len);
     iges_nums P = {0};
-    int loops = 0, n504 = 0, n502 = 0, n510 = 0, *surf_of = NULL, *type_of = NULL;
+    int loops = 0, n504 = 0, n502 = 0, n510 = 0, form = 0, *surf_of = NULL, *type_of = NULL, *euse = NULL;
     const double *el = NULL, *vl = NULL, *sh = NULL;
     *broken = *astray = 0;
     if (!text || iges_nums_read(text, len, &P) || !(surf_of = calloc((size_t)P.nde, sizeof(int))) ||
@@ -689,8 +690,10 @@ static int iges_loops_close(const char *path, int *broken, int *astray)
         const double *v = P.v + P.at[de];
         type_of[de] = type;
         n510 += type == 510;
-        if (type == 514)
+        if (type == 514) {
             sh = P.n[de] > 2 && P.n[de] == 2 + 2 * (int)v[1] ? v : NULL;
+            form = o + 162 <= len ? iges_int(l + 81 + 32, 8) : 0; /* the second record's 5th field */
+        }
         if (type == 504)
             n504++, el = v;
         if (type == 502)
@@ -699,7 +702,7 @@ static int iges_loops_close(const char *path, int *broken, int *astray)
             surf_of[(int)v[4]] = (int)v[1];
     }
     int ne = el ? (int)el[1] : 0, nv = vl ? (int)vl[1] : 0;
-    if (n504 != 1 || n502 != 1 || ne < 1 || nv < 1) {
+    if (n504 != 1 || n502 != 1 || ne < 1 || nv < 1 || !(euse = calloc((size_t)ne + 1, sizeof(int)))) {
         loops = -1;
         goto done;
     }
@@ -739,6 +742,7 @@ static int iges_loops_close(const char *path, int *broken, int *astray)
                 break;
             }
             int sv = (int)el[2 + 5 * (e - 1) + 2], tv = (int)el[2 + 5 * (e - 1) + 4];
+            euse[e]++;
             from[q] = u[3] != 0 ? sv : tv;
             to[q] = u[3] != 0 ? tv : sv;
             const double *line = P.v + P.at[pc], *s = P.v + P.at[sf]; /* 110: x1 y1 z1 x2 y2 z2 */
@@ -755,17 +759,22 @@ static int iges_loops_close(const char *path, int *broken, int *astray)
         *broken += !ok;
         loops++;
     }
+    int twice = 1;
+    for (int e = 1; e <= ne && euse; e++)
+        twice &= euse[e] == 2;
+    *astray += form != (twice ? 1 : 2);
 done:
     free(text);
     free(surf_of);
     free(type_of);
+    free(euse);
     iges_nums_free(&P);
     return loops;
 }
 
 /* Mismatches between the numbers v[0..n-1] of an entity 128 and the NU x NV net h (a along u)
  * of degrees (du, dv): its type, upper indices, degrees and count, its knots (piecewise Bezier,
- * bezier_knot), then its weights and points (u fastest), and its parameter range (the knots'). */
+ * knots_differ), then its weights and points (u fastest), and its parameter range (the knots'). */
 static int cmp_128(const double *v, int n, const double (*h)[4], int NU, int NV, int du, int dv)
 {
     int w0 = 10 + (NU + du + 1) + (NV + dv + 1), nn = NU * NV, bad = 0; /* after ints and knots */
