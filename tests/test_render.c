@@ -955,6 +955,47 @@ static void far_mesh_points(void)
     rg2_image_free(&far);
 }
 
+/* The robust colour range clips the fraction p at each end (rg2_render_opts.percentile): counted
+ * over the surface pixels' own H (mean) or |K| (Gauss, symmetric about 0), at most p (m - 1) of
+ * the m values lie beyond each end and more than that reach it (the end is a pixel's value). */
+static void robust_range(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_revolve(3.0, 1.0, 8, 6, 1, 0, 0, &m, &s, &err), &err);
+    for (int q = 0; q < 4; q++) {
+        rg2_render_opts o;
+        rg2_render_opts_default(&o);
+        o.width = 160;
+        o.height = 120;
+        o.keep_pixels = 1;
+        o.mode = q < 2 ? RG2_RENDER_MEAN : RG2_RENDER_GAUSS;
+        o.percentile = q % 2 ? 0.1 : 0.02;
+        rg2_image img;
+        CHECK_OK(rg2_render(&s, 1, NULL, &o, &img, &err), &err);
+        int gauss = o.mode == RG2_RENDER_GAUSS, n = 0, below = 0, to_lo = 0, above = 0, to_hi = 0;
+        for (int k = 0; img.pixels && k < img.width * img.height; k++) {
+            const rg2_pixel *p = &img.pixels[k];
+            if (p->surf < 0)
+                continue;
+            double v = gauss ? fabs(p->K) : p->H;
+            n++;
+            below += !gauss && v < img.range[0], to_lo += !gauss && v <= img.range[0];
+            above += v > img.range[1], to_hi += v >= img.range[1];
+        }
+        double clip = o.percentile * (n - 1);
+        int lo_ok = gauss ? img.range[0] == -img.range[1] : below <= clip && to_lo > clip;
+        CHECK(n > 2000 && lo_ok && above <= clip && to_hi > clip,
+              "%s, percentile %g: range [%g, %g] of %d pixels: %d / %d below / at most lo, %d / %d above / at "
+              "least hi, want <= %g < 'at most' / 'at least'",
+              gauss ? "|K|" : "H", o.percentile, img.range[0], img.range[1], n, below, to_lo, above, to_hi, clip);
+        rg2_image_free(&img);
+    }
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 int main(void)
 {
     for (int mixed = 0; mixed < 2; mixed++) {
@@ -970,5 +1011,6 @@ int main(void)
     apart();
     many_patches();
     far_mesh_points();
+    robust_range();
     return rg2t_done("test_render");
 }
