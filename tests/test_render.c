@@ -717,6 +717,20 @@ static void options(void)
         rg2_image_free(&h);
         rg2_image_free(&r);
     }
+    /* threads 0..1024: the largest count is a render like any other, the bytes of one thread */
+    {
+        rg2_image one, most;
+        rg2_render_opts_default(&o);
+        o.width = o.height = 32;
+        o.threads = 1;
+        CHECK_OK(rg2_render(&s, 1, NULL, &o, &one, &err), &err);
+        o.threads = 1024;
+        rg2_status st = rg2_render(&s, 1, NULL, &o, &most, &err);
+        CHECK(st == RG2_OK && one.rgb && most.rgb && !memcmp(one.rgb, most.rgb, 32 * 32 * 3),
+              "threads 1024: %s '%s', or not the bytes of 1 thread", rg2_status_str(st), err.msg);
+        rg2_image_free(&one);
+        rg2_image_free(&most);
+    }
     rg2_render_opts_default(&o);
     o.width = o.height = 32;
     CHECK(rg2_render(&s, 1, NULL, &o, NULL, &err) == RG2_EINVAL && strstr(err.msg, "render: no output image"), "%s",
