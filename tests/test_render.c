@@ -1074,6 +1074,36 @@ static void zebra_antialias(void)
     rg2_mesh_free(&m);
 }
 
+/* Shaded: a lit surface, not a flat one. The untinted sphere band shades from dark on the side away
+ * from the lights to bright: the darkest pixel (off the silhouette) is at most half the brightest. */
+static void shaded_contrast(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_revolve(0.0, 1.0, 6, 4, 0, -M_PI / 3, M_PI / 6, &m, &s, &err), &err);
+    rg2_render_opts o;
+    rg2_render_opts_default(&o);
+    o.width = 120;
+    o.height = 90;
+    o.keep_pixels = 1;
+    rg2_image img;
+    CHECK_OK(rg2_render(&s, 1, NULL, &o, &img, &err), &err);
+    int lo = 255, hi = 0, fg = 0;
+    for (int k = 0; img.pixels && k < img.width * img.height; k++) {
+        if (img.pixels[k].surf < 0 || at_silhouette(&img, k))
+            continue;
+        int g = img.rgb[3 * (size_t)k + 1];
+        lo = g < lo ? g : lo, hi = g > hi ? g : hi;
+        fg++;
+    }
+    CHECK(fg > 1000 && 2 * lo <= hi, "shaded sphere band: %d pixels, green %d..%d: not lit", fg, lo, hi);
+    printf("shaded sphere band: %d pixels, green levels %d..%d\n", fg, lo, hi);
+    rg2_image_free(&img);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 int main(void)
 {
     for (int mixed = 0; mixed < 2; mixed++) {
@@ -1091,5 +1121,6 @@ int main(void)
     far_mesh_points();
     robust_range();
     zebra_antialias();
+    shaded_contrast();
     return rg2t_done("test_render");
 }
