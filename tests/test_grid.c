@@ -549,6 +549,19 @@ static void narrow_patches(void)
                "%.2e, normal %.2e\n",
                n, m, np, 24e-6 * (double)pts, cfg[c].misalign ? ", misaligned" : nm ? ", normals misaligned" : "",
                d.pos, d.normal);
+        /* past the streaming threshold (set to 0): rows shorter than a vector are stored as below it,
+         * the shifted run of whole rows being for rows of exactly 8 points */
+        if (m < 8) {
+            size_t stream_bytes = rg2__grid_stream_bytes;
+            rg2__grid_stream_bytes = 0;
+            CHECK_OK(rg2_surface_grid(&s, n, m, 1, &o0, &err), &err);
+            CHECK_OK(rg2_surface_grid(&s, n, m, 1, &o1, &err), &err);
+            rg2__grid_stream_bytes = stream_bytes;
+            CHECK(memcmp(pos3, pos, 3 * pts * sizeof(double)) == 0 &&
+                      memcmp(pos2, pos, 3 * pts * sizeof(double)) == 0 &&
+                      memcmp(nrm2, nrm, 3 * pts * sizeof(double)) == 0,
+                  "narrow %d x %d, streamed: positions and normals bitwise as with plain stores", n, m);
+        }
         /* K without the normals it is made from: the second-order kernel stores only what is asked */
         memset(nrm2, 0, 3 * pts * sizeof(double));
         rg2_grid_out ok = {.pos = pos3, .K = nrm2};
