@@ -1,6 +1,6 @@
 /* export_fixtures.h -- test surfaces for the export tests (C and C++): a torus (closed in u
- * and v, exact), an open random mesh, and a surface of revolution whose first patch row
- * collapses to a pole on the axis (closed u, open v). Header-only: static functions. */
+ * and v, exact), an open random mesh, and a surface of revolution whose first (or last) patch
+ * row or column collapses to a pole on the axis. Header-only: static functions. */
 #ifndef RG2_EXPORT_FIXTURES_H
 #define RG2_EXPORT_FIXTURES_H
 
@@ -59,8 +59,9 @@ static inline rg2_status fx_random(uint64_t seed, int nu, int nv, rg2_surface *o
 /* Surface of revolution about z: a circle of nc arcs and an open uniform cubic profile of np
  * control points with radii -1, 0, 1, 2, ... (mirrored through the axis) so that the side of the
  * first patch row (column) at the profile's start collapses to the point on the axis: a pole.
- * t = 0: u the circle, v the profile; t = 1: the transposed mesh (u the profile). */
-static inline rg2_status fx_revolved(int nc, int np, int t, rg2_surface *out, rg2_error *err)
+ * t = 0: u the circle, v the profile; t = 1: the transposed mesh (u the profile). end = 1: the
+ * profile reversed, the pole on the last patch row's (column's) side at the profile's end. */
+static inline rg2_status fx_revolved(int nc, int np, int t, int end, rg2_surface *out, rg2_error *err)
 {
     double ac[32], cs[64], knots[40];
     rg2_mesh m;
@@ -83,7 +84,8 @@ static inline rg2_status fx_revolved(int nc, int np, int t, rg2_surface *out, rg
         for (int c = 0; c < nc; c++)
             for (int q = 0; q < np; q++) {
                 double *p = t ? rg2_mesh_at(&m, q, c) : rg2_mesh_at(&m, c, q);
-                double rad = 4.0 * (q - 1), z = 0.5 * (q - 1) * (q - 1);
+                double q1 = end ? np - 2 - q : q - 1;
+                double rad = 4.0 * q1, z = 0.5 * q1 * q1;
                 p[0] = rad * cs[2 * c];
                 p[1] = rad * cs[2 * c + 1];
                 p[2] = z;
@@ -99,14 +101,14 @@ static inline rg2_status fx_revolved(int nc, int np, int t, rg2_surface *out, rg
  * the pole. */
 static inline rg2_status fx_pole(int nu, int nv, rg2_surface *out, rg2_error *err)
 {
-    return fx_revolved(nu, nv, 0, out, err);
+    return fx_revolved(nu, nv, 0, 0, out, err);
 }
 
 /* fx_pole with the directions exchanged, built from the transposed mesh: u the open profile of
  * nu points (the first patch column's u = 0 side collapses to the pole), v the circle of nv arcs. */
 static inline rg2_status fx_pole_t(int nu, int nv, rg2_surface *out, rg2_error *err)
 {
-    return fx_revolved(nv, nu, 1, out, err);
+    return fx_revolved(nv, nu, 1, 0, out, err);
 }
 
 #endif

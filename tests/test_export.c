@@ -1988,15 +1988,20 @@ static void temp_files(const rg2_surface *s)
 }
 
 /* ---------------------------------------------------------------- poles on a u side */
-static void step_counts(const char *path, int *faces, int *edges, int *verts)
+/* Faces, edges, vertices and closed shells of a STEP file (closed: NULL or the CLOSED_SHELL count). */
+static void step_counts(const char *path, int *faces, int *edges, int *verts, int *closed)
 {
     size_t len;
     char *b = (char *)slurp(path, &len);
     *faces = *edges = *verts = 0;
+    if (closed)
+        *closed = 0;
     for (char *p = b; p && (p = strchr(p, '=')); p++) {
         *faces += !strncmp(p + 1, "ADVANCED_FACE(", 14);
         *edges += !strncmp(p + 1, "EDGE_CURVE(", 11);
         *verts += !strncmp(p + 1, "VERTEX_POINT(", 13);
+        if (closed)
+            *closed += !strncmp(p + 1, "CLOSED_SHELL(", 13);
     }
     free(b);
 }
@@ -2027,8 +2032,8 @@ static void transposed_pole(void)
         CHECK_OK(rg2_export_file(&a, 1, path_in("pa.step"), &o, &err), &err);
         CHECK_OK(rg2_export_file(&b, 1, path_in("pb.step"), &o, &err), &err);
         int f[2], e[2], v[2];
-        step_counts(path_in("pa.step"), &f[0], &e[0], &v[0]);
-        step_counts(path_in("pb.step"), &f[1], &e[1], &v[1]);
+        step_counts(path_in("pa.step"), &f[0], &e[0], &v[0], NULL);
+        step_counts(path_in("pb.step"), &f[1], &e[1], &v[1], NULL);
         /* per patch: nu * nv faces; edges: u lines (nu + 1) * nv... less the collapsed ones */
         int want_f = layout ? 1 : a.nu * a.nv;
         CHECK(f[0] == want_f && f[1] == want_f && e[0] == e[1] && v[0] == v[1] && e[0] > 0,
@@ -2048,6 +2053,83 @@ static void transposed_pole(void)
     }
     rg2_surface_free(&a);
     rg2_surface_free(&b);
+}
+
+/* Edges and vertices of a B-rep on an nu x nv patch grid, counted from the grid alone: corner
+ * lines lu = nu (closed u: line nu is line 0) or nu + 1, likewise lv; the collapsed side `pole`
+ * (0 v = 0, 1 u = 1, 2 v = 1, 3 u = 0; -1 none) is no edge and its corners are one vertex. The
+ * face-per-mesh layout is the same count with nu = nv = 1. */
+static void grid_brep(int nu, int nv, int cu, int cv, int pole, int *edges, int *verts)
+{
+    int lu = cu ? nu : nu + 1, lv = cv ? nv : nv + 1;
+    *edges = lu * nv + lv * nu - (pole < 0 ? 0 : (pole & 1) ? nv : nu);
+    *verts = lu * lv - (pole < 0 ? 0 : ((pole & 1) ? lv : lu) - 1);
+}
+
+/* One surface's STEP (both layouts) against grid_brep: faces, edges (`extra` more), vertices,
+ * and a closed shell exactly when `closed`. */
+static void step_brep(const rg2_surface *s, int pole, int closed, int extra, const char *what)
+{
+    rg2_export_opts o;
+    rg2_export_opts_default(&o);
+    rg2_error err;
+    for (int layout = 0; layout < 2; layout++) {
+        o.layout = layout ? RG2_STEP_FACE_PER_MESH : RG2_STEP_FACE_PER_PATCH;
+        int f = -1, e = -1, v = -1, sh = -1, we, wv, wf = layout ? 1 : s->nu * s->nv;
+        grid_brep(layout ? 1 : s->nu, layout ? 1 : s->nv, s->closed_u, s->closed_v, pole, &we, &wv);
+        CHECK_OK(rg2_export_file(s, 1, path_in("brep.step"), &o, &err), &err);
+        step_counts(path_in("brep.step"), &f, &e, &v, &sh);
+        we += extra;
+        CHECK(f == wf && e == we && v == wv && sh == closed,
+              "%s (%d x %d patches, closed %d/%d, pole side %d) %s: faces %d, edges %d, vertices %d, closed shell %d; "
+              "want %d, %d, %d, %d",
+              what, s->nu, s->nv, s->closed_u, s->closed_v, pole, layout ? "per mesh" : "per patch", f, e, v, sh, wf,
+              we, wv, closed);
+    }
+}
+
+/* The pole's topology on every side: the profile's start or end, along v or (transposed) along
+ * u, with more arcs than profile patches and fewer, closed around and opened (the closed flag
+ * cleared: the same patches, the seam two free sides); only the torus is a closed shell. A pole side within 1e-11 of the size (docs/export.md) is still a pole, one 10 times
+ * that is an edge. */
+static void pole_topology(void)
+{
+    rg2_error err;
+    static const int size[2][2] = {{8, 5}, {3, 9}}; /* arcs, profile points */
+    for (int z = 0; z < 2; z++)
+        for (int t = 0; t < 2; t++)
+            for (int end = 0; end < 2; end++)
+                for (int open = 0; open < 2; open++) {
+                    rg2_surface s;
+                    CHECK_OK(fx_revolved(size[z][0], size[z][1], t, end, &s, &err), &err);
+                    if (open)
+                        *(t ? &s.closed_v : &s.closed_u) = 0;
+                    char what[64];
+                    snprintf(what, sizeof what, "pole (%d arcs, %d points, %s, %s%s)", size[z][0], size[z][1],
+                             t ? "u the profile" : "v the profile", end ? "at its end" : "at its start",
+                             open ? ", opened" : "");
+                    step_brep(&s, t ? (end ? 1 : 3) : (end ? 2 : 0), 0, 0, what);
+                    rg2_surface_free(&s);
+                }
+    rg2_surface s;
+    CHECK_OK(fx_torus(13.0, 4.0, 5, 3, &s, &err), &err);
+    step_brep(&s, -1, 1, 0, "torus");
+    rg2_surface_free(&s);
+    /* the pole side's control point [1][0] of patch (0, 0) moved off the pole by 0.3e-11 and
+     * 3e-11 of the control points' box diagonal */
+    for (int k = 0; k < 2; k++) {
+        CHECK_OK(fx_pole(8, 5, &s, &err), &err);
+        double lo[3], hi[3];
+        rg2_surface_box(&s, lo, hi);
+        double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                           (hi[2] - lo[2]) * (hi[2] - lo[2]));
+        double *h = rg2_surface_patch(&s, 0, 0)->h[1][0];
+        h[0] += (k ? 3e-11 : 0.3e-11) * diag * h[3];
+        /* 3e-11: that side an edge of its own, per patch and per mesh */
+        step_brep(&s, 0, 0, k, k ? "pole moved by 3e-11 of its size" : "pole moved by 0.3e-11 of its size");
+        rg2_surface_free(&s);
+    }
+    remove(path_in("brep.step"));
 }
 
 /* ---------------------------------------------------------------- names, defaults, exponents */
@@ -2314,6 +2396,7 @@ int main(void)
     iges_big();
     names_and_defaults(&s);
     transposed_pole();
+    pole_topology();
     full_disk(&s);
     temp_files(&s);
     failures(&s);
