@@ -13,6 +13,7 @@
 
 #include <cjson/cJSON.h>
 #include <errno.h>
+#include <float.h>
 #include <dirent.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -1704,6 +1705,67 @@ static void float_range(void)
     }
 }
 
+/* The float formats' upper limit itself (docs/export.md: "up to 3.40282e+38"): a plane whose
+ * control points span x in [0, FLT_MAX] exactly (the last column's corner FLT_MAX, reached at u = 1
+ * exactly) is written, its STL's largest x is FLT_MAX; the same plane stretched by 2^-40 more is
+ * refused. */
+static void float_max(void)
+{
+    rg2_error err;
+    for (int q = 0; q < 2; q++) {
+        rg2_surface s;
+        CHECK_OK(fx_random(7, 4, 4, &s, &err), &err);
+        int N = 3 * s.nu;
+        for (int i = 0; i < s.nu; i++)
+            for (int j = 0; j < s.nv; j++)
+                for (int r = 0; r < 4; r++)
+                    for (int t = 0; t < 4; t++) {
+                        double *h = rg2_surface_patch(&s, i, j)->h[r][t];
+                        h[0] = (double)FLT_MAX * (3 * i + r) / N * (q ? 1 + 0x1p-40 : 1);
+                        h[1] = (3.0 * j + t) / (3 * s.nv);
+                        h[2] = 0;
+                        h[3] = 1;
+                    }
+        rg2_status st = rg2_export_file(&s, 1, path_in("fmax.stl"), NULL, &err);
+        if (q == 0) {
+            size_t len;
+            unsigned char *b = st == RG2_OK ? slurp(path_in("fmax.stl"), &len) : NULL;
+            float mx = 0;
+            for (size_t o = 84; b && o + 50 <= len; o += 50)
+                for (int c = 1; c < 4; c++)
+                    mx = fmaxf(mx, rd_f32(b + o + 12 * c));
+            CHECK(st == RG2_OK && mx == FLT_MAX, "a plane up to x = FLT_MAX as STL: %s '%s', largest x %.9g",
+                  rg2_status_str(st), err.msg, (double)mx);
+            free(b);
+        } else
+            CHECK(st == RG2_EDOMAIN && strstr(err.msg, "float") && !exists(path_in("fmax.stl")),
+                  "a plane up to x = FLT_MAX (1 + 2^-40) as STL: %s '%s'", rg2_status_str(st), err.msg);
+        remove(path_in("fmax.stl"));
+        rg2_surface_free(&s);
+    }
+}
+
+/* The mesh formats' vertex limit over all surfaces together (rg2__tess_all): two tori of 6 x 4
+ * patches at density 300 need 2 (6 * 300 + 1)(4 * 300 + 1) vertices, each alone fewer than
+ * RG2_MAX_POINTS, both more: refused before anything is tessellated, with that count. */
+static void vertex_limit(const rg2_surface *s)
+{
+    rg2_surface two[2] = {*s, *s};
+    rg2_export_opts o;
+    rg2_export_opts_default(&o);
+    o.density = 300;
+    double each = (6.0 * o.density + 1) * (4.0 * o.density + 1);
+    char want[160];
+    snprintf(want, sizeof want, "export: 2 surfaces at density %d need %.0f vertices, more than the limit %d",
+             o.density, 2 * each, RG2_MAX_POINTS);
+    rg2_error err;
+    rg2_status st = rg2_export_file(two, 2, path_in("limit.obj"), &o, &err);
+    CHECK(s->nu == 6 && s->nv == 4 && each < RG2_MAX_POINTS && 2 * each > RG2_MAX_POINTS && st == RG2_ELIMIT &&
+              !strcmp(err.msg, want) && !exists(path_in("limit.obj")),
+          "2 surfaces of %d x %d patches at density %d: %s '%s' (want '%s')", s->nu, s->nv, o.density,
+          rg2_status_str(st), err.msg, want);
+}
+
 /* The failures again where the offending point is in a higher-degree patch, beyond the bi-3
  * index range: the weight and finiteness checks read every patch at its own degrees. */
 static void xfailures(const rg2_surface *x)
@@ -2403,6 +2465,8 @@ int main(void)
     cjson_hooks(&s);
     several_files(&s);
     float_range();
+    float_max();
+    vertex_limit(&s);
     export_degrees(&s);
     json_dump_stream();
     rg2_surface x;
