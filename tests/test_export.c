@@ -1876,7 +1876,7 @@ static long temp_name_max(const char *dir)
  * 140-byte name is cut to 143 bytes with the hash of the whole name and written; the limit is
  * asked of the path's own directory ("." and "/" for names without one); no answer (-1) means
  * 255, and a limit too small for the suffix and hash leaves the name whole; a larger one (vfat
- * and exfat answer 1530) counts as 255. */
+ * and exfat answer 1530) counts as 255; a name of continuation bytes only is cut whole. */
 static void temp_names_limit(const rg2_surface *s)
 {
     rg2_error err;
@@ -1902,6 +1902,20 @@ static void temp_names_limit(const rg2_surface *s)
             CHECK(!strcmp(tname, whole), "limit %ld: temporary name '%s', want the whole name", limits[q], tname);
         CHECK(!strcmp(g_name_dir, g_dir), "limit %ld: asked of '%s', not of the directory '%s'", limits[q], g_name_dir, g_dir);
     }
+    /* a last component of UTF-8 continuation bytes only (not UTF-8, but Linux takes any bytes)
+     * has no character boundary before the cut: all of it goes, and the temporary name is the
+     * hash and the suffix in the output's own directory */
+    g_name_max = 143;
+    memset(base, 0x80, 136);
+    strcpy(base + 136, ".obj");
+    snprintf(lng, sizeof lng, "%s/%s", g_dir, base);
+    size_t nd = strlen(g_dir);
+    char suffix[48];
+    snprintf(suffix, sizeof suffix, ".%ld.tmp", (long)getpid());
+    CHECK(rg2_temp_name(lng, tname, sizeof tname) == 0 && !strncmp(tname, g_dir, nd) && tname[nd] == '/' &&
+              tname[nd + 1] == '.' && strspn(tname + nd + 2, "0123456789abcdef") == 8 && !strcmp(tname + nd + 10, suffix),
+          "limit 143, a name of 136 continuation bytes: temporary name '%s', want '%s/.<8 hex digits>%s'", tname, g_dir,
+          suffix);
     g_name_max = 143;
     rg2_export_opts o;
     rg2_export_opts_default(&o);
