@@ -2208,6 +2208,37 @@ static void pole_topology(void)
     remove(path_in("brep.step"));
 }
 
+/* ---------------------------------------------------------------- UTF-8 */
+/* rg2__utf8_len (the names of glTF and JSON, design files) against the code point: every lead
+ * byte with every second byte, the rest 0x80 or 0xBF, is one character of k bytes exactly when its
+ * bits decode to a code point that needs k bytes (no overlong form), is at most U+10FFFF and no
+ * surrogate (RFC 3629); cut one byte short it is none. */
+static void utf8_table(void)
+{
+    int bad = 0, first = -1;
+    for (int b0 = 0; b0 < 256; b0++)
+        for (int b1 = 0; b1 < 256; b1++)
+            for (int tail = 0x80; tail <= 0xBF; tail += 0x3F) {
+                unsigned char p[4] = {(unsigned char)b0, (unsigned char)b1, (unsigned char)tail, (unsigned char)tail};
+                int k = b0 < 0x80 ? 1 : (b0 & 0xE0) == 0xC0 ? 2 : (b0 & 0xF0) == 0xE0 ? 3 : (b0 & 0xF8) == 0xF0 ? 4 : 0;
+                long cp = k == 1 ? b0 : k ? (b0 & (0x7F >> k)) : 0;
+                for (int i = 1; i < k; i++)
+                    cp = cp << 6 | (p[i] & 0x3F);
+                static const long least[5] = {0, 0, 0x80, 0x800, 0x10000};
+                int conts = 1;
+                for (int i = 1; i < k; i++)
+                    conts &= (p[i] & 0xC0) == 0x80;
+                int ok = k && conts && cp >= least[k] && cp <= 0x10FFFF && !(cp >= 0xD800 && cp <= 0xDFFF);
+                size_t got = rg2__utf8_len(p, 4), cut = k > 1 ? rg2__utf8_len(p, (size_t)k - 1) : 0;
+                if (got != (size_t)(ok ? k : 0) || cut != 0) {
+                    bad++;
+                    if (first < 0)
+                        first = b0 << 8 | b1;
+                }
+            }
+    CHECK(bad == 0, "rg2__utf8_len: %d of 131072 sequences wrong, the first %02X %02X", bad, first >> 8, first & 0xFF);
+}
+
 /* ---------------------------------------------------------------- names, defaults, exponents */
 /* Names in STEP strings (apostrophes doubled, backslashes doubled, other bytes outside printable
  * ASCII replaced) and IGES Hollerith strings (the raw count of characters); options left at 0 /
@@ -2470,6 +2501,7 @@ int main(void)
     breps_read_back(&s);
     step_big_in_order();
     iges_big();
+    utf8_table();
     names_and_defaults(&s);
     transposed_pole();
     pole_topology();
