@@ -7,6 +7,7 @@
 #include "harness.h"
 
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
@@ -157,9 +158,42 @@ static void grid_under_load(void)
     rg2_surface_free(&s);
 }
 
+/* A worker asleep (after a pause longer than its 2 ms spin) is woken by the next call and takes
+ * part in it: chunk 0, the caller's first, waits (up to 5 s) until a chunk has run on another
+ * thread, which a worker that slept through the call never does (the caller alone still gets
+ * every chunk right, so chunks_once cannot tell). */
+typedef struct {
+    pthread_t caller;
+    atomic_int other; /* chunks run on another thread */
+} wake_job;
+
+static void wake_chunk(void *arg, uint32_t c)
+{
+    wake_job *j = arg;
+    if (!pthread_equal(pthread_self(), j->caller))
+        atomic_fetch_add(&j->other, 1);
+    else if (c == 0)
+        for (int ms = 0; ms < 5000 && !atomic_load(&j->other); ms++)
+            sleep_ms(1);
+}
+
+static void woken_workers(void)
+{
+    CHECK(one_call(2, 64) == 0, "2 threads, 64 chunks"); /* the worker exists */
+    int joined = 0;
+    for (int round = 0; round < 3; round++) {
+        sleep_ms(20); /* the worker falls asleep */
+        wake_job j = {pthread_self(), 0};
+        rg2__pool_run(2, 64, wake_chunk, &j);
+        joined += atomic_load(&j.other) > 0;
+    }
+    CHECK(joined == 3, "a sleeping worker took part in %d of 3 calls after a pause", joined);
+}
+
 int main(void)
 {
     chunks_once();
+    woken_workers();
     grid_under_load();
     return rg2t_done("test_pool");
 }
