@@ -2144,7 +2144,7 @@ static void grid_brep(int nu, int nv, int cu, int cv, int pole, int *edges, int 
 
 /* One surface's STEP (both layouts) against grid_brep: faces, edges (`extra` more), vertices,
  * and a closed shell exactly when `closed`. */
-static void step_brep(const rg2_surface *s, int pole, int closed, int extra, const char *what)
+static void pole_brep_counts(const rg2_surface *s, int pole, int closed, int extra, const char *what)
 {
     rg2_export_opts o;
     rg2_export_opts_default(&o);
@@ -2184,12 +2184,12 @@ static void pole_topology(void)
                     snprintf(what, sizeof what, "pole (%d arcs, %d points, %s, %s%s)", size[z][0], size[z][1],
                              t ? "u the profile" : "v the profile", end ? "at its end" : "at its start",
                              open ? ", opened" : "");
-                    step_brep(&s, t ? (end ? 1 : 3) : (end ? 2 : 0), 0, 0, what);
+                    pole_brep_counts(&s, t ? (end ? 1 : 3) : (end ? 2 : 0), 0, 0, what);
                     rg2_surface_free(&s);
                 }
     rg2_surface s;
     CHECK_OK(fx_torus(13.0, 4.0, 5, 3, &s, &err), &err);
-    step_brep(&s, -1, 1, 0, "torus");
+    pole_brep_counts(&s, -1, 1, 0, "torus");
     rg2_surface_free(&s);
     /* the pole side's control point [1][0] of patch (0, 0) moved off the pole by 0.3e-11 and
      * 3e-11 of the control points' box diagonal */
@@ -2202,7 +2202,7 @@ static void pole_topology(void)
         double *h = rg2_surface_patch(&s, 0, 0)->h[1][0];
         h[0] += (k ? 3e-11 : 0.3e-11) * diag * h[3];
         /* 3e-11: that side an edge of its own, per patch and per mesh */
-        step_brep(&s, 0, 0, k, k ? "pole moved by 3e-11 of its size" : "pole moved by 0.3e-11 of its size");
+        pole_brep_counts(&s, 0, 0, k, k ? "pole moved by 3e-11 of its size" : "pole moved by 0.3e-11 of its size");
         rg2_surface_free(&s);
     }
     remove(path_in("brep.step"));

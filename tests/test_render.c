@@ -969,6 +969,17 @@ static void far_mesh_points(void)
     rg2_image_free(&far);
 }
 
+/* Default options at 160 x 120 pixels, keeping the pixels' surface points (keep_pixels). */
+static rg2_render_opts small_kept(void)
+{
+    rg2_render_opts o;
+    rg2_render_opts_default(&o);
+    o.width = 160;
+    o.height = 120;
+    o.keep_pixels = 1;
+    return o;
+}
+
 /* The robust colour range clips the fraction p at each end (rg2_render_opts.percentile): counted
  * over the surface pixels' own H (mean) or |K| (Gauss, symmetric about 0), at most p (m - 1) of
  * the m values lie beyond each end and more than that reach it (the end is a pixel's value). */
@@ -979,11 +990,7 @@ static void robust_range(void)
     rg2_error err;
     CHECK_OK(scene_revolve(3.0, 1.0, 8, 6, 1, 0, 0, &m, &s, &err), &err);
     for (int q = 0; q < 4; q++) {
-        rg2_render_opts o;
-        rg2_render_opts_default(&o);
-        o.width = 160;
-        o.height = 120;
-        o.keep_pixels = 1;
+        rg2_render_opts o = small_kept();
         o.mode = q < 2 ? RG2_RENDER_MEAN : RG2_RENDER_GAUSS;
         o.percentile = q % 2 ? 0.1 : 0.02;
         rg2_image img;
@@ -1115,14 +1122,10 @@ static void silhouette_pixels(void)
     rg2_error err;
     CHECK_OK(scene_revolve(3.0, 1.0, 8, 6, 1, 0, 0, &m, &s, &err), &err);
     for (int q = 0; q < 2; q++) {
-        rg2_render_opts o;
-        rg2_render_opts_default(&o);
-        o.width = 160;
-        o.height = 120;
+        rg2_render_opts o = small_kept();
         o.distance = 20;
         o.azimuth = q ? 115 : 35;
         o.elevation = q ? -35 : 25;
-        o.keep_pixels = 1;
         rg2_image img;
         CHECK_OK(rg2_render(&s, 1, NULL, &o, &img, &err), &err);
         double pixel = 28 * 2 * tan(15 * M_PI / 180) / o.height, worst = 0;
