@@ -750,6 +750,17 @@ static void options(void)
            sizeof bad / sizeof bad[0]);
 }
 
+/* Default options at w x h pixels, keeping the pixels' surface points (keep_pixels). */
+static rg2_render_opts kept_opts(int w, int h)
+{
+    rg2_render_opts o;
+    rg2_render_opts_default(&o);
+    o.width = w;
+    o.height = h;
+    o.keep_pixels = 1;
+    return o;
+}
+
 /* opts.apart: copies of one sphere band, every other one placed 4 further from the eye, laid out
  * in a grid across the view. Each copy's pixels are exact points of a unit sphere (the centre
  * p - n or p + n is one point to 1e-12); the copies' pixels lie in disjoint boxes of the
@@ -762,11 +773,7 @@ static void apart(void)
     rg2_surface s;
     rg2_error err;
     CHECK_OK(scene_revolve(0.0, 1.0, 6, 4, 0, -M_PI / 3, M_PI / 6, &m, &s, &err), &err);
-    rg2_render_opts o;
-    rg2_render_opts_default(&o);
-    o.width = 240;
-    o.height = 180;
-    o.keep_pixels = 1;
+    rg2_render_opts o = kept_opts(240, 180);
     o.apart = 1;
     double az = o.azimuth * M_PI / 180, el = o.elevation * M_PI / 180;
     double dir[3] = {cos(el) * cos(az), cos(el) * sin(az), sin(el)}, r[3] = {-dir[1], dir[0], 0}, up[3], T[16];
@@ -969,17 +976,6 @@ static void far_mesh_points(void)
     rg2_image_free(&far);
 }
 
-/* Default options at 160 x 120 pixels, keeping the pixels' surface points (keep_pixels). */
-static rg2_render_opts small_kept(void)
-{
-    rg2_render_opts o;
-    rg2_render_opts_default(&o);
-    o.width = 160;
-    o.height = 120;
-    o.keep_pixels = 1;
-    return o;
-}
-
 /* The robust colour range clips the fraction p at each end (rg2_render_opts.percentile): counted
  * over the surface pixels' own H (mean) or |K| (Gauss, symmetric about 0), at most p (m - 1) of
  * the m values lie beyond each end and more than that reach it (the end is a pixel's value). */
@@ -990,7 +986,7 @@ static void robust_range(void)
     rg2_error err;
     CHECK_OK(scene_revolve(3.0, 1.0, 8, 6, 1, 0, 0, &m, &s, &err), &err);
     for (int q = 0; q < 4; q++) {
-        rg2_render_opts o = small_kept();
+        rg2_render_opts o = kept_opts(160, 120);
         o.mode = q < 2 ? RG2_RENDER_MEAN : RG2_RENDER_GAUSS;
         o.percentile = q % 2 ? 0.1 : 0.02;
         rg2_image img;
@@ -1089,11 +1085,7 @@ static void shaded_contrast(void)
     rg2_surface s;
     rg2_error err;
     CHECK_OK(scene_revolve(0.0, 1.0, 6, 4, 0, -M_PI / 3, M_PI / 6, &m, &s, &err), &err);
-    rg2_render_opts o;
-    rg2_render_opts_default(&o);
-    o.width = 120;
-    o.height = 90;
-    o.keep_pixels = 1;
+    rg2_render_opts o = kept_opts(120, 90);
     rg2_image img;
     CHECK_OK(rg2_render(&s, 1, NULL, &o, &img, &err), &err);
     int lo = 255, hi = 0, fg = 0;
@@ -1122,7 +1114,7 @@ static void silhouette_pixels(void)
     rg2_error err;
     CHECK_OK(scene_revolve(3.0, 1.0, 8, 6, 1, 0, 0, &m, &s, &err), &err);
     for (int q = 0; q < 2; q++) {
-        rg2_render_opts o = small_kept();
+        rg2_render_opts o = kept_opts(160, 120);
         o.distance = 20;
         o.azimuth = q ? 115 : 35;
         o.elevation = q ? -35 : 25;
