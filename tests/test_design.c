@@ -1163,7 +1163,6 @@ static void bad_inputs(void)
          " 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1]}}}", RG2_EDOMAIN, "test: meshes.X.matrix: placement matrix is singular"},
         {"{\"shapes\": {\"t\": {\"kind\": \"torus\", \"matrix\": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1]}},"
          " \"meshes\": {\"T\": {\"shape\": \"t\"}}}", RG2_EDOMAIN, "test: shapes.t.matrix: placement matrix is singular"},
-        /* a count is an integer: 2.5 arcs is refused, not rounded */
         /* exactly the 1,000,000 patches of the limit pass it (the design's range is what is refused
          * then), with "output" or without */
         {"{\"shapes\": {\"c\": {\"kind\": \"cylinder\", \"scale\": 1e61}}, \"meshes\": {\"C\": {\"shape\": \"c\","
@@ -1171,6 +1170,7 @@ static void bad_inputs(void)
          "test: meshes.C: coordinates up to"},
         {"{\"shapes\": {\"c\": {\"kind\": \"cylinder\", \"scale\": 1e61}}, \"meshes\": {\"C\": {\"shape\": \"c\","
          " \"u\": {\"arcs\": 1000}, \"v\": {\"segments\": 1000}}}}", RG2_EDOMAIN, "test: meshes.C: coordinates up to"},
+        /* a count is an integer: 2.5 arcs is refused, not rounded */
         {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": 2.5}}}}", RG2_EPARSE,
          "test: meshes.T.u.arcs: expected an integer, found 2.5"},
         /* a polar configuration's v: missing, or not an object */

@@ -554,6 +554,9 @@ static void narrow_patches(void)
         if (m < 8) {
             size_t stream_bytes = rg2__grid_stream_bytes;
             rg2__grid_stream_bytes = 0;
+            memset(pos3, 0xff, 3 * pts * sizeof(double)); /* NaN: every value must be stored again */
+            memset(pos2, 0xff, 3 * pts * sizeof(double));
+            memset(nrm2, 0xff, 3 * pts * sizeof(double));
             CHECK_OK(rg2_surface_grid(&s, n, m, 1, &o0, &err), &err);
             CHECK_OK(rg2_surface_grid(&s, n, m, 1, &o1, &err), &err);
             rg2__grid_stream_bytes = stream_bytes;
