@@ -901,8 +901,11 @@ rg2_status rg2_export_files(const rg2_surface *surfs, int n_surfs, const char *c
             }
     }
     rg2__out *outs = calloc((size_t)n_paths, sizeof *outs);
-    if (!outs)
-        return rg2__fail(err, RG2_ENOMEM, "export: out of memory");
+    if (!outs) { /* (nothing written: the first output is the one that failed, not -1, success) */
+        if (failed)
+            *failed = 0;
+        return rg2__fail(err, RG2_ENOMEM, "export: out of memory for %d outputs", n_paths);
+    }
     rg2_status st = RG2_OK;
     rg2_tess *shared = NULL; /* one tessellation for every mesh output, freed after the last */
     int staged = 0;
