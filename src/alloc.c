@@ -27,6 +27,7 @@
 #define _DEFAULT_SOURCE /* madvise, posix_memalign */
 #include "internal.h"
 
+#include <errno.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -123,3 +124,42 @@ void *rg2__alloc_big(size_t n, size_t size, size_t from, int zero)
         return malloc(n * size != 0 ? n * size : 1);
     return rg2__calloc(n, size); /* small, overflowing (NULL) or no huge pages */
 }
+
+#ifdef RG2_FAULT_INJECT
+/* The counting wrappers of internal.h (tests only), on the real allocators. */
+#undef malloc
+#undef calloc
+#undef realloc
+#undef strdup
+#undef posix_memalign
+long rg2__fi_countdown = -1, rg2__fi_injected, rg2__fi_calls;
+
+static int fi_fail(void)
+{
+    rg2__fi_calls++;
+    if (rg2__fi_countdown < 0)
+        return 0;
+    if (rg2__fi_countdown-- > 0)
+        return 0;
+    rg2__fi_injected++; /* (the countdown is now -1: later allocations succeed) */
+    return 1;
+}
+
+void *rg2__fi_malloc(size_t n) { return fi_fail() ? NULL : malloc(n); }
+void *rg2__fi_calloc(size_t n, size_t size) { return fi_fail() ? NULL : calloc(n, size); }
+void *rg2__fi_realloc(void *p, size_t n) { return fi_fail() ? NULL : realloc(p, n); }
+
+char *rg2__fi_strdup(const char *s)
+{
+    if (fi_fail())
+        return NULL;
+    size_t n = strlen(s) + 1;
+    char *r = malloc(n);
+    return r ? memcpy(r, s, n) : NULL;
+}
+
+int rg2__fi_posix_memalign(void **p, size_t align, size_t n)
+{
+    return fi_fail() ? ENOMEM : posix_memalign(p, align, n);
+}
+#endif

@@ -70,6 +70,28 @@ typedef struct {
 } rg2__numtext;
 rg2__numtext rg2__num(double x);
 
+/* Fault injection (tests only: the rg2_fi library of tests/CMakeLists.txt defines
+ * RG2_FAULT_INJECT; the library itself has none of this). Every malloc, calloc, realloc, strdup
+ * and posix_memalign of src/ goes through a counting wrapper (alloc.c): while rg2__fi_countdown
+ * is >= 0 each allocation counts it down, and the one that finds it at 0 fails (NULL, or ENOMEM
+ * from posix_memalign) and sets it to -1, so exactly the (N + 1)-th allocation after setting it
+ * to N fails. rg2__fi_injected counts the failures injected, rg2__fi_calls the allocations.
+ * Allocations inside cJSON, libpng, libc (fopen) and the thread runtimes are not counted. */
+#ifdef RG2_FAULT_INJECT
+#include <stdlib.h>
+extern long rg2__fi_countdown, rg2__fi_injected, rg2__fi_calls;
+void *rg2__fi_malloc(size_t n);
+void *rg2__fi_calloc(size_t n, size_t size);
+void *rg2__fi_realloc(void *p, size_t n);
+char *rg2__fi_strdup(const char *s);
+int rg2__fi_posix_memalign(void **p, size_t align, size_t n);
+#define malloc(n) rg2__fi_malloc(n)
+#define calloc(n, size) rg2__fi_calloc(n, size)
+#define realloc(p, n) rg2__fi_realloc(p, n)
+#define strdup(s) rg2__fi_strdup(s)
+#define posix_memalign(p, align, n) rg2__fi_posix_memalign(p, align, n)
+#endif
+
 /* Overflow-checked allocation of n * size bytes (zeroed); NULL on failure or overflow. */
 void *rg2__calloc(size_t n, size_t size);
 /* The same for large arrays (src/alloc.c): from 2 MiB up, 2 MiB-aligned on transparent huge

@@ -1,0 +1,493 @@
+/* test_faults.c -- allocation failures: every operation below runs with its N-th allocation
+ * made to fail, N = 0, 1, 2, ... (every N up to 200, then steps of about 5 %), until a run
+ * meets no injected failure. Each failing run must return RG2_ENOMEM with a message and leave
+ * nothing in the output directory (neither the file nor a temporary one); under ASan (make
+ * test) LeakSanitizer reports anything it did not free. The run without a failure must give
+ * the same result (the file's bytes, the surface's values) as a run without injection.
+ *
+ * Linked with rg2_fi, the library built with RG2_FAULT_INJECT (src/internal.h: the counting
+ * allocators; only allocations in src/ are counted, not cJSON's, libpng's or libc's own).
+ * The threads: render and check run with threads = 1, and the test runs with OMP_NUM_THREADS=1
+ * (tests/CMakeLists.txt; main re-executes itself with it otherwise) for the tessellation and
+ * the exports, so one thread allocates and the N-th allocation is the same one run after run;
+ * SOURCE_DATE_EPOCH=0 fixes the time stamps of STEP and IGES. */
+#define _POSIX_C_SOURCE 200809L
+#include "harness.h"
+
+#include <dirent.h>
+#include <time.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+extern long rg2__fi_countdown, rg2__fi_injected, rg2__fi_calls;
+int rg2__grid_tables_cached(int n, int m);
+
+/* A result as bytes, to compare a run with the reference run. */
+typedef struct {
+    unsigned char *b;
+    size_t n, cap;
+} blob;
+
+static void put(blob *o, const void *p, size_t n)
+{
+    if (n == 0 || !p)
+        return;
+    if (o->n + n > o->cap) {
+        size_t c = o->cap ? o->cap : 4096;
+        while (c < o->n + n)
+            c *= 2;
+        unsigned char *b = realloc(o->b, c);
+        if (!b) {
+            fprintf(stderr, "test_faults: out of memory\n");
+            exit(1);
+        }
+        o->b = b;
+        o->cap = c;
+    }
+    memcpy(o->b + o->n, p, n);
+    o->n += n;
+}
+
+static void put_surface(blob *o, const rg2_surface *s)
+{
+    size_t np = (size_t)s->nu * (size_t)s->nv;
+    int head[4] = {s->nu, s->nv, s->closed_u, s->closed_v};
+    put(o, head, sizeof head);
+    put(o, s->patch, np * sizeof *s->patch);
+    put(o, s->bu, (size_t)s->nu * sizeof(double));
+    put(o, s->gu, (size_t)s->nu * sizeof(double));
+    put(o, s->bv, (size_t)s->nv * sizeof(double));
+    put(o, s->gv, (size_t)s->nv * sizeof(double));
+    put(o, s->tag, s->tag ? np * sizeof(int) : 0);
+    put(o, s->xp, s->xp ? np * sizeof *s->xp : 0);
+}
+
+/* The operations: each runs once, returns its status and on success appends its result to out
+ * and frees everything it made. path is the output file of the writers (in an empty directory). */
+typedef rg2_status (*op_fn)(const void *ctx, const char *path, blob *out, rg2_error *err);
+
+static char dir[64];
+static long cur_N; /* the N of the run (-1: the reference run), for the operations' messages */
+
+/* Entries of dir other than . and .. (the output file and temporary files). */
+static int dir_entries(char *first, size_t n)
+{
+    DIR *d = opendir(dir);
+    int count = 0;
+    if (!d)
+        return -1;
+    for (struct dirent *e; (e = readdir(d));) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
+            continue;
+        if (count++ == 0)
+            snprintf(first, n, "%s", e->d_name);
+    }
+    closedir(d);
+    return count;
+}
+
+static int read_file(const char *path, blob *out)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return -1;
+    unsigned char buf[65536];
+    for (size_t k; (k = fread(buf, 1, sizeof buf, f)) > 0;)
+        put(out, buf, k);
+    fclose(f);
+    return 0;
+}
+
+/* ---- the operations ---- */
+
+static rg2_status op_build(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    (void)path;
+    rg2_surface s;
+    rg2_status st = rg2_surface_build(ctx, &s, err);
+    if (st == RG2_OK) {
+        put_surface(out, &s);
+        rg2_surface_free(&s);
+    }
+    return st;
+}
+
+static rg2_status op_load(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    (void)path;
+    rg2_design *d = NULL;
+    rg2_status st = rg2_design_load(ctx, &d, err);
+    if (st == RG2_OK) {
+        for (int k = 0; k < rg2_design_num_surfaces(d); k++)
+            put_surface(out, rg2_design_surface(d, k));
+        rg2_design_free(d);
+    }
+    return st;
+}
+
+static rg2_status op_tess(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    (void)path;
+    rg2_tess t;
+    rg2_status st = rg2_tessellate(ctx, 6, 1, &t, err);
+    if (st == RG2_OK) {
+        size_t nv = (size_t)t.n_vertices;
+        put(out, t.pos, 3 * nv * sizeof(double));
+        put(out, t.normal, 3 * nv * sizeof(double));
+        put(out, t.K, nv * sizeof(double));
+        put(out, t.H, nv * sizeof(double));
+        put(out, t.patch, nv * sizeof(int));
+        put(out, t.uv, 2 * nv * sizeof(double));
+        put(out, t.tri, 3 * (size_t)t.n_triangles * sizeof(int));
+        rg2_tess_free(&t);
+    }
+    return st;
+}
+
+static rg2_status op_retess(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    (void)path;
+    rg2_tess t = {0};
+    rg2_status st = rg2_retessellate(ctx, 2, 0, &t, err); /* (grown below: the second allocates) */
+    if (st == RG2_OK)
+        st = rg2_retessellate(ctx, 7, 1, &t, err);
+    if (st == RG2_OK) {
+        put(out, t.pos, 3 * (size_t)t.n_vertices * sizeof(double));
+        put(out, t.K, (size_t)t.n_vertices * sizeof(double));
+        put(out, t.tri, 3 * (size_t)t.n_triangles * sizeof(int));
+    }
+    rg2_tess_free(&t); /* (left empty on failure) */
+    return st;
+}
+
+static rg2_status op_grid(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    (void)path;
+    const rg2_surface *s = ctx;
+    size_t np = (size_t)s->nu * (size_t)s->nv * 5 * 4;
+    double *a = calloc(np * 8, sizeof(double));
+    rg2_grid_out go = {a, a + 3 * np, NULL, NULL, NULL, NULL, NULL, a + 6 * np, a + 7 * np};
+    rg2_status st = a ? rg2_surface_grid(s, 5, 4, 1, &go, err) : RG2_ENOMEM;
+    if (st == RG2_OK)
+        put(out, a, np * 8 * sizeof(double));
+    free(a);
+    return st;
+}
+
+static rg2_status op_read_text(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    (void)path;
+    char *text = NULL;
+    size_t len = 0;
+    rg2_status st = rg2_read_text(ctx, &text, &len, err);
+    if (st == RG2_OK) {
+        put(out, text, len);
+        free(text);
+    }
+    return st;
+}
+
+static rg2_status op_write_mesh(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    rg2_status st = rg2_design_write_mesh(ctx, path, err);
+    if (st == RG2_OK) {
+        CHECK(read_file(path, out) == 0, "write_mesh: no file after success");
+        unlink(path);
+    }
+    return st;
+}
+
+/* A design's surfaces written to a file. */
+typedef struct {
+    const rg2_surface *surfs;
+    const rg2_mesh *meshes;
+    int n;
+    const char *ext;
+    rg2_export_opts eo;
+    rg2_render_opts ro;
+} write_job;
+
+static rg2_status op_export(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    const write_job *j = ctx;
+    if (strcmp(j->ext, ".obj+step+ply")) {
+        rg2_status st = rg2_export_file(j->surfs, j->n, path, &j->eo, err);
+        if (st == RG2_OK) {
+            CHECK(read_file(path, out) == 0, "export %s: no file after success", j->ext);
+            unlink(path);
+        }
+        return st;
+    }
+    /* rg2_export_files: three outputs as one, the mesh ones sharing a tessellation */
+    char paths[3][160];
+    const char *pp[3] = {paths[0], paths[1], paths[2]};
+    const char *ext[3] = {".obj", ".step", ".ply"};
+    for (int k = 0; k < 3; k++)
+        snprintf(paths[k], sizeof paths[k], "%s%s", path, ext[k]);
+    int failed = -2;
+    rg2_status st = rg2_export_files(j->surfs, j->n, pp, 3, &j->eo, &failed, err);
+    CHECK((st == RG2_OK) == (failed == -1), "export_files: N = %ld: status %s, *failed = %d", cur_N,
+          rg2_status_str(st), failed);
+    for (int k = 0; k < 3 && st == RG2_OK; k++) {
+        CHECK(read_file(paths[k], out) == 0, "export_files: no %s after success", paths[k]);
+        unlink(paths[k]);
+    }
+    return st;
+}
+
+static rg2_status op_render(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    const write_job *j = ctx;
+    rg2_status st = rg2_render_png(j->surfs, j->n, j->meshes, &j->ro, path, err);
+    if (st == RG2_OK) {
+        CHECK(read_file(path, out) == 0, "render: no file after success");
+        unlink(path);
+    }
+    return st;
+}
+
+static rg2_status op_check(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    (void)path;
+    const write_job *j = ctx;
+    rg2_check_opts o;
+    rg2_check_opts_default(&o);
+    o.threads = 1;
+    o.seam_samples = 4;
+    o.patch_samples = 3;
+    rg2_check_report r;
+    rg2_status st = rg2_check(j->surfs, j->n, NULL, NULL, 0, &o, &r, err);
+    if (st == RG2_OK) {
+        long saved = rg2__fi_countdown;
+        rg2__fi_countdown = -1; /* (the report's text is the result, not a step that may fail) */
+        char *text = NULL;
+        rg2_error e2;
+        CHECK_OK(rg2_check_format(&r, 1, &text, &e2), &e2);
+        rg2__fi_countdown = saved;
+        if (text)
+            put(out, text, strlen(text));
+        free(text);
+        rg2_check_report_free(&r);
+    }
+    return st;
+}
+
+static rg2_status op_format(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    (void)path;
+    char *text = NULL;
+    rg2_status st = rg2_check_format(ctx, 0, &text, err);
+    if (st == RG2_OK) {
+        put(out, text, strlen(text));
+        free(text);
+    }
+    return st;
+}
+
+/* ---- the sweep ---- */
+
+static long total_points;
+
+static void sweep(const char *name, op_fn run, const void *ctx, const char *ext)
+{
+    char path[128], first[256];
+    snprintf(path, sizeof path, "%s/out%s", dir, ext ? ext : "");
+    rg2_error err;
+    blob ref = {0};
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    long calls0 = rg2__fi_calls;
+    rg2__fi_countdown = cur_N = -1;
+    rg2_status st = run(ctx, path, &ref, &err);
+    CHECK(st == RG2_OK, "%s: reference run -> %s: %s", name, rg2_status_str(st), err.msg);
+    long calls = rg2__fi_calls - calls0;
+    int tried = 0, recovered = 0, done = 0;
+    for (long N = 0, next; N <= calls + 16 && !done; N = next) {
+        next = N < 200 ? N + 1 : N + N / 20;
+        if (N < calls && next > calls) /* (the last step lands on the reference run's count) */
+            next = calls;
+        blob got = {0};
+        long inj0 = rg2__fi_injected;
+        memset(&err, 0, sizeof err);
+        rg2__fi_countdown = cur_N = N;
+        st = run(ctx, path, &got, &err);
+        rg2__fi_countdown = -1;
+        if (rg2__fi_injected == inj0) { /* no allocation failed: the whole result */
+            CHECK(st == RG2_OK, "%s: N = %ld, no failure injected -> %s: %s", name, N, rg2_status_str(st),
+                  err.msg);
+            CHECK(got.n == ref.n && (got.n == 0 || !memcmp(got.b, ref.b, got.n)),
+                  "%s: N = %ld: the result differs from the reference run (%zu, %zu bytes)", name, N, got.n,
+                  ref.n);
+            done = 1;
+        } else {
+            tried++;
+            if (st == RG2_OK) { /* a fallback (huge-page array, cache): the result must not differ */
+                recovered++;
+                if (getenv("RG2_FI_VERBOSE"))
+                    printf("  %s: N = %ld recovered from\n", name, N);
+                CHECK(got.n == ref.n && (got.n == 0 || !memcmp(got.b, ref.b, got.n)),
+                      "%s: N = %ld: failure recovered from, but the result differs", name, N);
+            } else {
+                CHECK(st == RG2_ENOMEM, "%s: N = %ld -> %s (not ENOMEM): %s", name, N, rg2_status_str(st), err.msg);
+                CHECK(err.msg[0] != 0, "%s: N = %ld: RG2_ENOMEM without a message", name, N);
+            }
+            int left = dir_entries(first, sizeof first);
+            CHECK(left == 0, "%s: N = %ld: %d file(s) left in the output directory (%s)", name, N, left,
+                  left > 0 ? first : "?");
+            if (left > 0) { /* (clear it for the next run) */
+                char p[600];
+                DIR *d = opendir(dir);
+                for (struct dirent *e; d && (e = readdir(d));)
+                    if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) {
+                        snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
+                        unlink(p);
+                    }
+                if (d)
+                    closedir(d);
+            }
+        }
+        free(got.b);
+    }
+    CHECK(done, "%s: still failing after N = %ld (allocations of the reference run: %ld)", name, calls + 16,
+          calls);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    printf("  %-30s %5ld allocations, %4d failure points tried, %3d recovered from, %.2f s\n", name, calls, tried,
+           recovered, (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
+    total_points += tried;
+    free(ref.b);
+}
+
+int main(int argc, char **argv)
+{
+    (void)argc;
+    const char *omp = getenv("OMP_NUM_THREADS");
+    const char *sde = getenv("SOURCE_DATE_EPOCH");
+    if (!omp || strcmp(omp, "1") || !sde || strcmp(sde, "0")) { /* one thread allocates (see the top) */
+        setenv("OMP_NUM_THREADS", "1", 1);
+        setenv("SOURCE_DATE_EPOCH", "0", 1); /* (STEP and IGES stamp the time) */
+        execv("/proc/self/exe", argv);
+        perror("test_faults: execv");
+        return 1;
+    }
+    snprintf(dir, sizeof dir, "/tmp/rg2_faults_XXXXXX");
+    if (!mkdtemp(dir)) {
+        perror("test_faults: mkdtemp");
+        return 1;
+    }
+    rg2_error err;
+
+    /* surfaces built from meshes: a torus, and each mesh of the polar sphere */
+    rg2_mesh torus;
+    rg2_surface ts;
+    CHECK_OK(rg2t_torus(3, 1, 6, 4, &torus, &ts, &err), &err);
+    rg2_surface_free(&ts);
+    sweep("surface_build torus", op_build, &torus, NULL);
+
+    rg2_design *ds = NULL, *dp = NULL;
+    CHECK_OK(rg2_design_load("examples/torus_sphere.json", &ds, &err), &err);
+    CHECK_OK(rg2_design_load("examples/fig9_polar_sphere.json", &dp, &err), &err);
+    if (!ds || !dp)
+        return rg2t_done("test_faults");
+    for (int k = 0; k < rg2_design_num_surfaces(dp); k++) {
+        char name[64];
+        snprintf(name, sizeof name, "surface_build polar %d", k);
+        sweep(name, op_build, rg2_design_mesh(dp, k), NULL);
+    }
+
+    sweep("design_load torus_sphere", op_load, "examples/torus_sphere.json", NULL);
+    sweep("design_load fig9_polar", op_load, "examples/fig9_polar_sphere.json", NULL);
+
+    sweep("tessellate torus_sphere 0", op_tess, rg2_design_surface(ds, 0), NULL);
+    sweep("tessellate polar 0", op_tess, rg2_design_surface(dp, 0), NULL);
+    sweep("retessellate torus_sphere 0", op_retess, rg2_design_surface(ds, 0), NULL);
+    sweep("read_text", op_read_text, "examples/torus_sphere.json", NULL);
+    sweep("design_write_mesh torus_sphere", op_write_mesh, ds, ".json");
+    sweep("design_write_mesh fig9_polar", op_write_mesh, dp, ".json");
+
+    int n = rg2_design_num_surfaces(ds), m = rg2_design_num_surfaces(dp);
+    rg2_surface *surfs = calloc((size_t)(n + m), sizeof *surfs);
+    rg2_mesh *meshes = calloc((size_t)(n + m), sizeof *meshes);
+    for (int k = 0; k < n + m; k++) { /* (views: the designs own the arrays) */
+        surfs[k] = *rg2_design_surface(k < n ? ds : dp, k < n ? k : k - n);
+        meshes[k] = *rg2_design_mesh(k < n ? ds : dp, k < n ? k : k - n);
+    }
+    write_job j = {surfs, meshes, n + m, NULL, {0}, {0}};
+    rg2_export_opts_default(&j.eo);
+    j.eo.density = 4;
+    struct {
+        const char *name, *ext;
+        int layout, brep;
+    } fmt[] = {{"export STEP face per patch", ".step", RG2_STEP_FACE_PER_PATCH, 0},
+               {"export STEP face per mesh", ".step", RG2_STEP_FACE_PER_MESH, 0},
+               {"export IGES", ".igs", RG2_STEP_FACE_PER_PATCH, 0},
+               {"export IGES B-rep", ".igs", RG2_STEP_FACE_PER_PATCH, 1},
+               {"export IGES B-rep per mesh", ".igs", RG2_STEP_FACE_PER_MESH, 1},
+               {"export OBJ", ".obj", 0, 0},
+               {"export STL", ".stl", 0, 0},
+               {"export glb", ".glb", 0, 0},
+               {"export PLY", ".ply", 0, 0},
+               {"export BezierView", ".bv", 0, 0},
+               {"export BEZ", ".bez", 0, 0},
+               {"export JSON", ".json", 0, 0},
+               {"export_files OBJ+STEP+PLY", ".obj+step+ply", 0, 0}};
+    for (size_t f = 0; f < sizeof fmt / sizeof fmt[0]; f++) {
+        j.ext = fmt[f].ext;
+        j.eo.layout = (rg2_step_layout)fmt[f].layout;
+        j.eo.iges_brep = fmt[f].brep;
+        sweep(fmt[f].name, op_export, &j, fmt[f].ext);
+    }
+
+    struct {
+        const char *name;
+        int apart_mesh_keep;
+        rg2_render_mode mode;
+    } pic[] = {{"render PNG", 0, RG2_RENDER_SHADED},
+               {"render PNG apart, mesh, H", 1, RG2_RENDER_MEAN}, /* (laid apart: render.c's own copies) */
+               {"render PNG zebra", 0, RG2_RENDER_ZEBRA}};
+    for (size_t f = 0; f < sizeof pic / sizeof pic[0]; f++) {
+        rg2_render_opts_default(&j.ro);
+        j.ro.width = 48;
+        j.ro.height = 32;
+        j.ro.threads = 1;
+        j.ro.mode = pic[f].mode;
+        j.ro.apart = j.ro.mesh = j.ro.boundaries = j.ro.keep_pixels = pic[f].apart_mesh_keep;
+        sweep(pic[f].name, op_render, &j, ".png");
+    }
+
+    sweep("check", op_check, &j, NULL);
+    rg2_check_opts co;
+    rg2_check_opts_default(&co);
+    co.threads = 1;
+    rg2_check_report r;
+    CHECK_OK(rg2_check(surfs, n + m, NULL, NULL, 0, &co, &r, &err), &err);
+    sweep("check_format", op_format, &r, NULL);
+    rg2_check_report_free(&r);
+
+    /* the grid keeps the tables of the first 8 grid sizes (grid.c): fill its slots with other
+     * sizes first, so every call of the sweep makes (and may fail to make) tables of its own
+     * (last: with the slots full, the renders and mesh exports above would make theirs per
+     * patch, 500-800 allocations a run, each failure recovered from, at twice the run time) */
+    for (int k = 0; k < 9; k++) {
+        const rg2_surface *s = rg2_design_surface(ds, 0);
+        size_t np = (size_t)s->nu * (size_t)s->nv * (size_t)(11 + k) * 3;
+        double *pos = malloc(3 * np * sizeof(double));
+        rg2_grid_out go = {.pos = pos};
+        CHECK_OK(rg2_surface_grid(s, 11 + k, 3, 1, &go, &err), &err);
+        free(pos);
+    }
+    CHECK(!rg2__grid_tables_cached(5, 4), "the 5 x 4 grid's tables are cached");
+    for (int k = 0; k < 2; k++) {
+        char name[64];
+        snprintf(name, sizeof name, "surface_grid polar %d", k);
+        sweep(name, op_grid, rg2_design_surface(dp, k), NULL);
+    }
+    printf("  %ld failure points in all\n", total_points);
+    free(surfs);
+    free(meshes);
+    rg2_design_free(ds);
+    rg2_design_free(dp);
+    rg2_mesh_free(&torus);
+    rmdir(dir);
+    return rg2t_done("test_faults");
+}
