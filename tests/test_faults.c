@@ -435,7 +435,12 @@ int main(int argc, char **argv)
         j.ext = fmt[f].ext;
         j.eo.layout = (rg2_step_layout)fmt[f].layout;
         j.eo.iges_brep = fmt[f].brep;
-        sweep(fmt[f].name, op_export, &j, fmt[f].ext);
+        write_job one = j; /* (several outputs: of the polar sphere alone, for the run time) */
+        if (f == sizeof fmt / sizeof fmt[0] - 1) {
+            one.surfs = surfs + n;
+            one.n = m;
+        }
+        sweep(fmt[f].name, op_export, &one, fmt[f].ext);
     }
 
     struct {
@@ -443,8 +448,7 @@ int main(int argc, char **argv)
         int apart_mesh_keep;
         rg2_render_mode mode;
     } pic[] = {{"render PNG", 0, RG2_RENDER_SHADED},
-               {"render PNG apart, mesh, H", 1, RG2_RENDER_MEAN}, /* (laid apart: render.c's own copies) */
-               {"render PNG zebra", 0, RG2_RENDER_ZEBRA}};
+               {"render PNG apart, mesh, H", 1, RG2_RENDER_MEAN}}; /* (laid apart: render.c's own copies) */
     for (size_t f = 0; f < sizeof pic / sizeof pic[0]; f++) {
         rg2_render_opts_default(&j.ro);
         j.ro.width = 48;
