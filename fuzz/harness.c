@@ -219,7 +219,8 @@ static void rg2f_nurbs_eval(const rg2_nurbs *nb, int lu, int lv, double u, doubl
 
 /* Knots: clamped ends (4 equal knots) or free ones; increments from the input (>= 0, so
  * zero intervals occur) or raw values. Returns the ratio of the longest to the shortest
- * non-zero interval, or inf if an interior interval is zero or the knots decrease. */
+ * non-zero interval, or inf if an interior interval is zero, one is below 2^-960, or the knots
+ * decrease. */
 static double rg2f_knots(rg2f_reader *r, double *U, int n, int clamp, int incr)
 {
     int nk = n + 4;
@@ -241,7 +242,9 @@ static double rg2f_knots(rg2f_reader *r, double *U, int n, int clamp, int incr)
             hi = fmax(hi, dd);
         }
     }
-    return hi / lo;
+    /* a subnormal interval (or nearly one: below 2^-960) makes t * (U_{l+1} - U_l) round in the
+     * reference de Boor (rg2f_deboor), which then loses up to 1e-7: no reference there */
+    return lo < 0x1p-960 ? INFINITY : hi / lo;
 }
 
 int rg2f_nurbs(const uint8_t *data, size_t size)

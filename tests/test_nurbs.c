@@ -611,6 +611,14 @@ static void knots_near_double_range(void)
     for (int k = 0; k < 9; k++)
         Udq[k] = 0.25 * Ud[k];
     same_surface(Ud, Udq, "an end interval of 1.08e308 continued twice against the knots / 4");
+    /* and at the bottom: knots whose intervals are subnormal (2^-1060 and 2^-1070 times the
+     * reference's, exact) build the same surface; a fuzz input with a clamped span of 1.7e-317
+     * found the fuzz harness's reference de Boor losing 1e-7 there, not the library */
+    double Us[9], Ucs[9];
+    for (int k = 0; k < 9; k++)
+        Us[k] = 0x1p-1070 * Ufr[k], Ucs[k] = 0x1p-1060 * Ucr[k];
+    same_surface(Us, Ufr, "knots_u of subnormal intervals (2^-1070 x -1, 2 .. 9) against -1, 2 .. 9");
+    same_surface(Ucs, Ucr, "clamped knots_u 2^-1060 x (-1, 0, 1) against -1, 0, 1");
 }
 
 static void errors(void)
