@@ -1040,7 +1040,7 @@ typedef struct {
                                 (default 0.02) */
     double stripes;        /**< zebra: stripe pairs per half turn (default 12) */
     int keep_pixels;       /**< fill rg2_image.pixels with the per-pixel exact data */
-    int threads;           /**< OpenMP threads, 0..1024; 0 = the OpenMP default */
+    int threads;           /**< OpenMP threads, 0..1024 (at most 64 run); 0 = the OpenMP default */
 } rg2_render_opts;
 
 /** Exact data of one pixel (rg2_render_opts.keep_pixels). surf < 0 marks background. */

@@ -1054,11 +1054,15 @@ static void box_add(void *ctx, const double *pts, size_t npts)
         }
 }
 
-/* the threads a render uses: the options' count, else OpenMP's */
+/* the threads a render uses: the options' count, else OpenMP's; at most RENDER_MAX_THREADS, as
+ * the grid, the tessellation and the check (a count the process may not start made libgomp abort
+ * it; the bytes are the same for any count) */
+#define RENDER_MAX_THREADS 64
 static int render_threads(const rg2_render_opts *o)
 {
 #ifdef _OPENMP
-    return o->threads > 0 ? o->threads : omp_get_max_threads();
+    int nt = o->threads > 0 ? o->threads : omp_get_max_threads();
+    return nt < RENDER_MAX_THREADS ? nt : RENDER_MAX_THREADS;
 #else
     (void)o;
     return 1;

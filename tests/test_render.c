@@ -9,19 +9,7 @@
 #include "scenes.h"
 #include "xmix.h"
 
-#if defined(__SANITIZE_THREAD__)
-#define RG2_TEST_TSAN 1
-#elif defined(__has_feature)
-#if __has_feature(thread_sanitizer)
-#define RG2_TEST_TSAN 1
-#endif
-#endif
-#ifndef RG2_TEST_TSAN
-#define RG2_TEST_TSAN 0
-#endif
-
 #include <errno.h>
-#include <sys/resource.h>
 #include <sys/stat.h>
 #include <png.h>
 #include <stdio.h>
@@ -729,14 +717,9 @@ static void options(void)
         rg2_image_free(&h);
         rg2_image_free(&r);
     }
-    /* threads 0..1024: the largest count is a render like any other, the bytes of one thread
-     * (1024 OpenMP threads: not under ThreadSanitizer, nor where the process may not start them) */
-    struct rlimit nproc;
-    int many = !RG2_TEST_TSAN && (getrlimit(RLIMIT_NPROC, &nproc) != 0 || nproc.rlim_cur == RLIM_INFINITY ||
-                                  nproc.rlim_cur >= 4096 || getuid() == 0);
-    if (!many)
-        printf("threads 1024: not run (ThreadSanitizer, or a process limit below 4096)\n");
-    if (many) {
+    /* threads 0..1024: the largest count is a render like any other (at most 64 threads run),
+     * the bytes of one thread */
+    {
         rg2_image one, most;
         rg2_render_opts_default(&o);
         o.width = o.height = 32;
