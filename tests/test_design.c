@@ -196,6 +196,14 @@ static rg2_design *parse(const char *json, rg2_error *err)
     return d;
 }
 
+/* parse() of the design `base` (a printf format with one %s) with `edit` in its place. */
+static rg2_design *parse_edit(const char *base, const char *edit, rg2_error *err)
+{
+    char json[2048];
+    snprintf(json, sizeof json, base, edit);
+    return parse(json, err);
+}
+
 /* Patches of b that differ from a (bitwise); *outside counts those outside the support. */
 static int changed_patches(const rg2_surface *a, const rg2_surface *b, const int *in_u, const int *in_v,
                            int *outside)
@@ -240,18 +248,15 @@ static void edits_are_local(void)
         {", \"e\": {\"edit\": \"m\", \"scalars\": [{\"dir\": \"u\", \"junction\": 3, \"b\": 1.3, \"g\": 0.2}]}", 3, -1},
         {", \"e\": {\"edit\": \"m\", \"scalars\": [{\"dir\": \"v\", \"junction\": 6, \"g\": -0.1}]}", -1, 6},
     };
-    char json[2048];
     rg2_error err;
-    snprintf(json, sizeof json, base, "");
-    rg2_design *d0 = parse(json, &err);
+    rg2_design *d0 = parse_edit(base, "", &err);
     if (!d0)
         return;
     const rg2_surface *s0 = rg2_design_surface(d0, 0);
     const rg2_mesh *m0 = rg2_design_mesh(d0, 0);
     int in_u[64], in_v[64];
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
-        snprintf(json, sizeof json, base, cases[c].edit);
-        rg2_design *d1 = parse(json, &err);
+        rg2_design *d1 = parse_edit(base, cases[c].edit, &err);
         if (!d1)
             continue;
         const rg2_surface *s1 = rg2_design_surface(d1, 0);
@@ -300,10 +305,8 @@ static void edits_measured(void)
     const char *base = "{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": 3, \"r\": 1}},"
                        " \"meshes\": {\"m\": {\"shape\": \"t\", \"u\": {\"arcs\": 10},"
                        " \"v\": {\"arcs\": 8, \"from\": 0, \"to\": 270}}%s}}";
-    char json[2048];
     rg2_error err;
-    snprintf(json, sizeof json, base, "");
-    rg2_design *d0 = parse(json, &err);
+    rg2_design *d0 = parse_edit(base, "", &err);
     if (!d0)
         return;
     const rg2_mesh *m0 = rg2_design_mesh(d0, 0);
@@ -315,8 +318,7 @@ static void edits_measured(void)
         {", \"e\": {\"edit\": \"m\", \"points\": [{\"at\": [4, 5], \"W\": 0.004}]}", 0.0, 0.004},
     };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
-        snprintf(json, sizeof json, base, cases[c].edit);
-        rg2_design *d1 = parse(json, &err);
+        rg2_design *d1 = parse_edit(base, cases[c].edit, &err);
         if (!d1)
             continue;
         const rg2_mesh *m1 = rg2_design_mesh(d1, 0);
@@ -341,9 +343,8 @@ static void edits_measured(void)
         rg2_design_free(d1);
     }
     /* junction 0 is a valid index: the edit is accepted and changes the surface */
-    snprintf(json, sizeof json, base,
-             ", \"e\": {\"edit\": \"m\", \"scalars\": [{\"dir\": \"u\", \"junction\": 0, \"g\": 0.1}]}");
-    rg2_design *d1 = parse(json, &err);
+    rg2_design *d1 = parse_edit(
+        base, ", \"e\": {\"edit\": \"m\", \"scalars\": [{\"dir\": \"u\", \"junction\": 0, \"g\": 0.1}]}", &err);
     if (d1) {
         const rg2_surface *s0 = rg2_design_surface(d0, 0), *s1 = rg2_design_surface(d1, 0);
         const rg2_mesh *m1 = rg2_design_mesh(d1, 0);
