@@ -744,7 +744,8 @@ RG2_API void rg2_mobius_matrix(double b, const double *R, double M[16]);
 /** The general Moebius transformation of the unit sphere (a Lorentz map of its 4-tuples,
  *  rotation composed with a boost) that takes the south pole (0,0,-1) to `south` and the north
  *  pole (0,0,1) to `north`: any two distinct points of the unit sphere (need not be antipodal).
- *  Writes the row-major 4x4 matrix to M.
+ *  Points within the tolerance below are normalized first: the poles go to south / |south|
+ *  and north / |north|. Writes the row-major 4x4 matrix to M.
  *  @return RG2_EDOMAIN if a point is not on the unit sphere (1e-9) or the two coincide. */
 RG2_API rg2_status rg2_mobius_poles_matrix(const double south[3], const double north[3],
                                            double M[16], rg2_error *err);

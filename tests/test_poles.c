@@ -513,13 +513,13 @@ static void mobius_weight_message(void)
 }
 
 /* Poles must lie on the unit sphere to 1e-9 (rg2.h): 4e-10 off is accepted, and the map takes
- * the unit sphere's poles to within that tolerance of the normalized points (6.7e-11 here: the
- * frame's pole axis is taken from the points as given); 2e-9 off is refused. */
+ * the unit sphere's poles to the normalized points, to rounding (6.7e-11 off when the frame's
+ * pole axis was taken from the points as given); 2e-9 off is refused. */
 static void mobius_pole_tolerance(void)
 {
     const double off[2] = {4e-10, 2e-9};
     for (int k = 0; k < 2; k++) {
-        double f = 1 + off[k], s[3] = {0, 0, -1}, n[3] = {0, 0.6 * f, 0.8 * f}, M[16];
+        double f = 1 + off[k], s[3] = {0, 0, -(1 - off[k] / 2)}, n[3] = {0, 0.6 * f, 0.8 * f}, M[16];
         rg2_error err;
         rg2_status st = rg2_mobius_poles_matrix(s, n, M, &err);
         if (k == 0) {
@@ -527,8 +527,11 @@ static void mobius_pole_tolerance(void)
             double N4[4] = {0, 0, 1, 1}, y[4];
             apply(M, N4, y);
             double want[3] = {0, 0.6, 0.8}, got[3] = {y[0] / y[3], y[1] / y[3], y[2] / y[3]};
-            CHECK(st || pt_dist3(got, want) <= 1e-9, "pole %.0e off mapped %.3g from its normalized point", off[k],
-                  pt_dist3(got, want));
+            double S4[4] = {0, 0, -1, 1}, x[4];
+            apply(M, S4, x);
+            double gots[3] = {x[0] / x[3], x[1] / x[3], x[2] / x[3]}, e = fmax(pt_dist3(got, want), pt_dist3(gots, (double[3]){0, 0, -1}));
+            CHECK(st || e <= 4e-16, "pole %.0e off mapped %.3g from its normalized point", off[k], e);
+            printf("poles %.0e off the unit sphere: their images %.2e from the normalized points\n", off[k], e);
         } else {
             CHECK(st == RG2_EDOMAIN && strstr(err.msg, "north pole") && strstr(err.msg, "not on the unit sphere"),
                   "pole %.0e off the sphere: %s", off[k], err.msg);
