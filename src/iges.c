@@ -569,13 +569,16 @@ done:
     return st;
 }
 
-/* The four pcurves of a face on [0, U1] x [0, V1]: 110 lines along its sides, counter-clockwise
- * (v=0 in +u, u=U1 in +v, v=V1 in -u, u=0 in -v), as entities q .. q + 3. */
-static void brep_lines(pwriter *w, int q, double U1, double V1)
+/* The pcurves of a face on [0, U1] x [0, V1]: 110 lines along the sides of the mask `sides`
+ * (bit k: side k), counter-clockwise (v=0 in +u, u=U1 in +v, v=V1 in -u, u=0 in -v), as
+ * entities q, q + 1, ... in side order. */
+static void brep_lines(pwriter *w, int q, double U1, double V1, unsigned sides)
 {
     const double ends[4][4] = {{0, 0, U1, 0}, {U1, 0, U1, V1}, {U1, V1, 0, V1}, {0, V1, 0, 0}};
     for (int k = 0; k < 4; k++) {
-        int start = begin_entity(w, q + k);
+        if (!(sides >> k & 1u))
+            continue;
+        int start = begin_entity(w, q);
         pw_int(w, 110);
         pw_real(w, ends[k][0], ',');
         pw_real(w, ends[k][1], ',');
@@ -583,14 +586,30 @@ static void brep_lines(pwriter *w, int q, double U1, double V1)
         pw_real(w, ends[k][2], ',');
         pw_real(w, ends[k][3], ',');
         pw_real(w, 0.0, ';');
-        end_entity(w, start, 110, 0, "00010000", "RG2PCURV", q + k);
+        end_entity(w, start, 110, 0, "00010000", "RG2PCURV", q);
+        q++;
     }
 }
 
+/* The sides of a face per mesh that its loop uses (bit k: side k): those with an edge, not the
+ * collapsed ones of poles (a line no loop used was read as a curve of its own, outside the
+ * shell: two stray lines reaching (8, 11) in the capped sphere of 5.4 of Fig. 9). */
+static unsigned mesh_loop_sides(const rg2__mesh_topo *t)
+{
+    unsigned m = 0;
+    for (int sd = 0; sd < 4; sd++)
+        if (t->edge[sd] >= 0)
+            m |= 1u << sd;
+    return m;
+}
+
+static int bit_count(unsigned m) { return (int)(m & 1u) + (int)(m >> 1 & 1u) + (int)(m >> 2 & 1u) + (int)(m >> 3 & 1u); }
+
 /* The B-rep entities of one surface as one face on its merged net (face per mesh), from entity
- * index *q on: 514 shell, 502 vertex list, 504 edge list, 126 per edge, the face's four 110
- * lines on [0, nu] x [0, nv], 128, 508, 510; the topology of rg2__mesh_topo (the STEP writer's):
- * a closed direction's seam edge is used twice by the loop, once with each of its lines. */
+ * index *q on: 514 shell, 502 vertex list, 504 edge list, 126 per edge, the face's 110 lines on
+ * [0, nu] x [0, nv] (one per side its loop uses), 128, 508, 510; the topology of rg2__mesh_topo
+ * (the STEP writer's): a closed direction's seam edge is used twice by the loop, once with each
+ * of its lines. */
 static rg2_status brep_mesh_shell(pwriter *w, const rg2_surface *s, int *q, rg2_error *err)
 {
     rg2__mesh_topo t;
@@ -598,7 +617,8 @@ static rg2_status brep_mesh_shell(pwriter *w, const rg2_surface *s, int *q, rg2_
     if (st)
         return st;
     int q_shell = *q, q_vl = q_shell + 1, q_el = q_shell + 2, q_curve = q_shell + 3;
-    int q_line = q_curve + t.n_edges, q_face = q_line + 4;
+    unsigned sides = mesh_loop_sides(&t);
+    int q_line = q_curve + t.n_edges, q_face = q_line + bit_count(sides);
     int face_q = q_face + 2;
     put_514(w, q_shell, &face_q, 1, t.closed);
     double vh[4][4];
@@ -618,14 +638,15 @@ static rg2_status brep_mesh_shell(pwriter *w, const rg2_surface *s, int *q, rg2_
         int sd = t.eside[e], n = rg2__net_side(&t, sd);
         put_126_entity(w, q_curve + e, (const double(*)[4])t.side, n, (sd & 1) ? t.dv : t.du);
     }
-    brep_lines(w, q_line, (double)s->nu, (double)s->nv);
+    brep_lines(w, q_line, (double)s->nu, (double)s->nv, sides);
     int edge[4], fwd[4], lq[4], n = 0;
     for (int sd = 0; sd < 4; sd++) {
-        if (t.edge[sd] < 0)
+        if (!(sides >> sd & 1u))
             continue;
         edge[n] = t.edge[sd];
         fwd[n] = sd < 2;
-        lq[n++] = q_line + sd;
+        lq[n] = q_line + n;
+        n++;
     }
     put_face_entities(w, q_face, (const double(*)[4])t.h, t.NU, t.NV, t.du, t.dv, s->closed_u, s->closed_v, q_el,
                       edge, fwd, lq, n);
@@ -727,8 +748,8 @@ static int dir_block(FILE *m, void *ctx, int b, int k0, int k1)
 
 /* The entities surface s takes in the file (*count): one per patch (plain, face per patch), one
  * (plain, face per mesh), or its shell's (B-rep; the topology built here and again when written:
- * 514, 502, 504, a 126 per edge, then 128, 508, 510 per patch, or the face's four 110 and one
- * 128, 508, 510). */
+ * 514, 502, 504, a 126 per edge, then 128, 508, 510 per patch, or the face's 110 per side its
+ * loop uses and one 128, 508, 510). */
 static rg2_status surface_entities(const rg2_surface *s, int brep, int per_mesh, int *count, rg2_error *err)
 {
     int np = s->nu * s->nv;
@@ -738,7 +759,7 @@ static rg2_status surface_entities(const rg2_surface *s, int brep, int per_mesh,
     } else if (per_mesh) {
         rg2__mesh_topo t;
         if (!(st = rg2__mesh_topo_build(s, &t, err)))
-            *count = 3 + t.n_edges + 4 + 3;
+            *count = 3 + t.n_edges + bit_count(mesh_loop_sides(&t)) + 3;
         rg2__mesh_topo_free(&t);
     } else {
         rg2__topo t;
@@ -832,7 +853,7 @@ rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opt
         goto done;
     }
     if (o->iges_brep && !per_mesh) { /* every patch face shares the lines of [0, 1]^2 */
-        brep_lines(&w, 0, 1.0, 1.0);
+        brep_lines(&w, 0, 1.0, 1.0, 15u);
         entity = 4;
     }
     for (int k = 0; k < n && !P.failed; k++) {

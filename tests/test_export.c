@@ -668,18 +668,20 @@ static const double *corner_128(const double *s, int n, double u, double v)
  * between its vertices where it is drawn: its model curve (126) from its start vertex's point
  * (502) to its end vertex's (first and last pole), and in each loop its pcurve (110), mapped by
  * the face's surface (128: a corner of the parameter range to that corner's pole), from the
- * use's first vertex to its last. Returns the number of loops checked, -1 for a malformed file,
- * and counts the broken ones. */
+ * use's first vertex to its last; and every pcurve (110) is used by a loop (an unused one is read
+ * as a curve of its own, outside the shell). Returns the number of loops checked, -1 for a
+ * malformed file, and counts the broken ones. */
 static int iges_loops_close(const char *path, int *broken, int *astray)
 {
     size_t len;
     char *text = (char *)slurp(path, &len);
     iges_nums P = {0};
-    int loops = 0, n504 = 0, n502 = 0, n510 = 0, form = 0, *surf_of = NULL, *type_of = NULL, *euse = NULL;
+    int loops = 0, n504 = 0, n502 = 0, n510 = 0, form = 0, *surf_of = NULL, *type_of = NULL, *euse = NULL,
+        *pc_used = NULL;
     const double *el = NULL, *vl = NULL, *sh = NULL;
     *broken = *astray = 0;
     if (!text || iges_nums_read(text, len, &P) || !(surf_of = calloc((size_t)P.nde, sizeof(int))) ||
-        !(type_of = calloc((size_t)P.nde, sizeof(int)))) {
+        !(type_of = calloc((size_t)P.nde, sizeof(int))) || !(pc_used = calloc((size_t)P.nde, sizeof(int)))) {
         loops = -1;
         goto done;
     }
@@ -744,6 +746,7 @@ static int iges_loops_close(const char *path, int *broken, int *astray)
             }
             int sv = (int)el[2 + 5 * (e - 1) + 2], tv = (int)el[2 + 5 * (e - 1) + 4];
             euse[e]++;
+            pc_used[pc] = 1;
             from[q] = u[3] != 0 ? sv : tv;
             to[q] = u[3] != 0 ? tv : sv;
             const double *line = P.v + P.at[pc], *s = P.v + P.at[sf]; /* 110: x1 y1 z1 x2 y2 z2 */
@@ -764,9 +767,12 @@ static int iges_loops_close(const char *path, int *broken, int *astray)
     for (int e = 1; e <= ne && euse; e++)
         twice &= euse[e] == 2;
     *astray += form != (twice ? 1 : 2);
+    for (int de = 1; de < P.nde; de += 2)
+        *astray += type_of[de] == 110 && !pc_used[de];
 done:
     free(text);
     free(surf_of);
+    free(pc_used);
     free(type_of);
     free(euse);
     iges_nums_free(&P);

@@ -27,6 +27,7 @@ extern "C" {
 #include <ShapeAnalysis_ShapeTolerance.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TopoDS.hxx>
@@ -530,10 +531,21 @@ void check_file(const Case &c, const std::string &dir, const char *ext, int layo
         CHECK(ok, "%s: IGES read failed", what);
         if (!ok)
             return;
+        int nroots = r.NbRootsForTransfer();
         r.TransferRoots();
         TopoDS_Shape raw = r.OneShape();
         TopTools_IndexedMapOfShape fm;
         TopExp::MapShapes(raw, TopAbs_FACE, fm);
+        // every entity is in the shell or is a face: no curve of its own among the roots (the
+        // per-mesh B-rep's unused pcurves of pole sides came back as two stray edges)
+        TopTools_IndexedDataMapOfShapeListOfShape ef;
+        TopExp::MapShapesAndAncestors(raw, TopAbs_EDGE, TopAbs_FACE, ef);
+        int stray = 0;
+        for (int k = 1; k <= ef.Extent(); k++)
+            stray += ef(k).IsEmpty();
+        int want_roots = brep ? 1 : expect_of(c.s, per_mesh).faces;
+        CHECK(stray == 0 && nroots == want_roots, "%s: %d roots (expected %d), %d edges outside every face", what,
+              nroots, want_roots, stray);
         Expect e = expect_of(c.s, per_mesh);
         CHECK(fm.Extent() == e.faces, "%s: %d faces before sewing, expected %d", what, fm.Extent(), e.faces);
         if (brep) // the file's own topology: no sewing
