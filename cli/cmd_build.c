@@ -2,6 +2,7 @@
  * file extensions name (through rg2_export_file). */
 #include "cli.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,6 +25,36 @@ static void usage(FILE *f)
                "  -q, --quiet       no progress line, and no notes on options that no output uses\n"
                "A progress line goes to stderr when it is a terminal.\n"
                "Exit codes: 0 ok, 1 invalid design or write error (message on stderr), 2 usage error.\n");
+}
+
+/* STEP and IGES are read by CAD kernels that merge points closer than their tolerance (the
+ * files' uncertainty 1e-7 mm, OpenCASCADE's Precision::Confusion 1e-7): below this size
+ * (bounding-box diagonal of the control points, mm) a note asks for a larger scale. A torus of
+ * diagonal 1.2e-6 came back invalid from OpenCASCADE as plain IGES, one of 3.5e-7 as STEP. */
+#define CAD_MIN_SIZE 1e-3
+
+static void note_cad_size(const rg2_surface *surfs, int ns)
+{
+    double lo[3], hi[3], blo[3] = {0, 0, 0}, bhi[3] = {0, 0, 0};
+    int any = 0;
+    for (int k = 0; k < ns; k++) {
+        if (!rg2_surface_box(&surfs[k], lo, hi))
+            continue;
+        for (int c = 0; c < 3; c++) {
+            blo[c] = any ? (lo[c] < blo[c] ? lo[c] : blo[c]) : lo[c];
+            bhi[c] = any ? (hi[c] > bhi[c] ? hi[c] : bhi[c]) : hi[c];
+        }
+        any = 1;
+    }
+    double d2 = 0;
+    for (int c = 0; c < 3; c++)
+        d2 += (bhi[c] - blo[c]) * (bhi[c] - blo[c]);
+    if (any && d2 < CAD_MIN_SIZE * CAD_MIN_SIZE)
+        fprintf(stderr,
+                "rg2 build: note: the surfaces span %.3g mm (bounding-box diagonal); STEP and IGES are in mm, and "
+                "CAD kernels merge points closer than 1e-07 mm (the files' uncertainty), so below %g mm they may "
+                "read the file as invalid: scale the design up (a \"scale\" placement)\n",
+                sqrt(d2), CAD_MIN_SIZE);
 }
 
 static void progress(int on, const char *fmt, const char *arg)
@@ -93,8 +124,9 @@ int rg2_cmd_build(int argc, char **argv)
             return RG2_EXIT_USAGE;
         }
     }
+    int step = 0, iges = 0;
     if (!quiet) { /* options that no output uses: a note, not an error */
-        int step = 0, iges = 0, tri = 0;
+        int tri = 0;
         for (int k = 0; k < n_out; k++) {
             step |= rg2_cli_has_ext(out[k], ".step") || rg2_cli_has_ext(out[k], ".stp");
             iges |= rg2_cli_has_ext(out[k], ".igs") || rg2_cli_has_ext(out[k], ".iges");
@@ -128,6 +160,8 @@ int rg2_cmd_build(int argc, char **argv)
     }
     for (int k = 0; k < ns; k++)
         surfs[k] = *rg2_design_surface(d, k); /* shallow views; the design owns the data */
+    if (step || iges)
+        note_cad_size(surfs, ns);
     int rc = RG2_EXIT_OK;
     progress(tty, n_out > 1 ? "rg2 build: writing %s and the other outputs" : "rg2 build: writing %s", out[0]);
     /* all or nothing: the files are renamed into place only when every one is written */

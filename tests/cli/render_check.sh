@@ -54,6 +54,19 @@ case "$out" in *"--stripes has no effect"*) bad "zebra uses --stripes: $out" ;; 
 expect 0 "note: --iges-brep has no effect (no IGES output)" -- "$RG2" build "$ex" -o "$tmp/n.obj" --iges-brep
 expect 0 "note: --ap242 has no effect (no STEP output)" -- "$RG2" build "$ex" -o "$tmp/n.igs" --ap242
 expect 0 "note: --density has no effect" -- "$RG2" build "$ex" -o "$tmp/n.step" --density 4
+# a design below CAD kernels' resolution: a note for STEP and IGES, none for meshes, none with -q,
+# none just above 1e-3 mm. The torus R = 3e-8, r = 1e-8 spans sqrt(2 (2 (R + r))^2 + (2 r)^2)
+# = 1.149e-7 (its control points lie within R + r of the axis, the circles' ends on the box);
+# R = 3e-4, r = 1e-4 spans 1.149e-3
+tiny() { printf '{"shapes": {"t": {"kind": "torus", "R": %s, "r": %s}}, "meshes": {"T": {"shape": "t"}}}' "$1" "$2" > "$tmp/$3.json"; }
+tiny 3e-8 1e-8 tiny
+tiny 3e-4 1e-4 small
+expect 0 "note: the surfaces span 1.15e-07 mm (bounding-box diagonal)" -- "$RG2" build "$tmp/tiny.json" -o "$tmp/tiny.step"
+expect 0 "below 0.001 mm they may read the file as invalid" -- "$RG2" build "$tmp/tiny.json" -o "$tmp/tiny.igs" -o "$tmp/tiny.obj"
+for args in "$tmp/tiny.json -o $tmp/tiny.obj" "-q $tmp/tiny.json -o $tmp/tiny.step" "$tmp/small.json -o $tmp/small.step"; do
+  out=$("$RG2" build $args 2>&1)
+  [ -z "$out" ] && ok || bad "rg2 build $args: $out"
+done
 out=$("$RG2" build "$ex" -o "$tmp/n.step" -o "$tmp/n.igs" -o "$tmp/n.stl" --ap242 --iges-brep --density 4 --face-per-mesh 2>&1)
 [ -z "$out" ] && ok || bad "options every output uses gave: $out"
 out=$("$RG2" build -q "$ex" -o "$tmp/n.obj" --iges-brep 2>&1)
