@@ -715,9 +715,11 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
     if (o.samples < 2 || o.samples > 256)
         return rg2__fail(err, RG2_EDOMAIN, "cap: %d boundary samples per column, must be in 2..256", o.samples);
     for (int k = 0; k < 3; k++)
-        if (!rg2__finite(o.jet_weight[k]) || !(o.jet_weight[k] >= 0.0))
-            return rg2__fail(err, RG2_EDOMAIN, "cap: jet weight %d is %g, must be finite and >= 0", k,
-                             o.jet_weight[k]);
+        if (!rg2__finite(o.jet_weight[k]) || !(o.jet_weight[k] > 0.0))
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "cap: jet weight %d is %g, must be finite and > 0 (a zero weight leaves the "
+                             "least-squares fit rank-deficient)",
+                             k, o.jet_weight[k]);
     for (int e = 0; e < 2; e++)
         if (o.length[e] != 0.0 && (!rg2__finite(o.length[e]) || !(o.length[e] > 0.0) ||
                                    !(o.vc[e] >= 0.0 && o.vc[e] < 1.0)))
@@ -792,18 +794,11 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
             st = rg2__fail(err, RG2_ENOMEM, "cap: out of memory in the fit");
             goto done;
         }
-        if (res < 0.0) {
-            if (!(o.jet_weight[0] > 0.0) || !(o.jet_weight[1] > 0.0) || !(o.jet_weight[2] > 0.0))
-                st = rg2__fail(err, RG2_EDOMAIN,
-                               "cap: jet_weights [%g, %g, %g] has a zero weight: the %s boundary ring's 2-jet "
-                               "then no longer determines the cap map (rank-deficient least-squares fit); "
-                               "all three weights must be positive (default [1, 1, 0.25])",
-                               o.jet_weight[0], o.jet_weight[1], o.jet_weight[2], end_name(e));
-            else
-                st = rg2__fail(err, RG2_EDOMAIN,
-                               "cap: the %s boundary ring does not determine the cap map (rank-deficient "
-                               "least-squares fit; is the ring degenerate?)",
-                               end_name(e));
+        if (res < 0.0) { /* (the jet weights are > 0, checked above) */
+            st = rg2__fail(err, RG2_EDOMAIN,
+                           "cap: the %s boundary ring does not determine the cap map (rank-deficient "
+                           "least-squares fit; is the ring degenerate?)",
+                           end_name(e));
             goto done;
         }
         if (!(g[e][0][3] > 0.0)) {

@@ -1607,7 +1607,7 @@ static rg2_status op_cap(pctx *c, const cJSON *obj, const char *path, rg2__dmesh
             return st;
         for (int e = 0; e < 2; e++) {
             indexpath(q, sizeof q, p, e);
-            if (o.length[e] != 0.0 && !(o.vc[e] >= 0.0 && o.vc[e] < 1.0))
+            if (!(o.vc[e] >= 0.0 && o.vc[e] < 1.0)) /* checked for both ends (used where length > 0) */
                 return fail(c, RG2_EDOMAIN, q, "%s seam position v_c = %s, must lie in [0, 1)",
                             e ? "north" : "south", rg2__num(o.vc[e]).s);
         }
@@ -1625,8 +1625,10 @@ static rg2_status op_cap(pctx *c, const cJSON *obj, const char *path, rg2__dmesh
             return st;
         for (int e = 0; e < 3; e++) {
             indexpath(q, sizeof q, p, e);
-            if (!(o.jet_weight[e] >= 0.0))
-                return fail(c, RG2_EDOMAIN, q, "weight %g (order %d of the boundary 2-jet), must be >= 0",
+            if (!(o.jet_weight[e] > 0.0))
+                return fail(c, RG2_EDOMAIN, q,
+                            "weight %g (order %d of the boundary 2-jet), must be > 0 (a zero weight leaves the "
+                            "cap's least-squares fit rank-deficient)",
                             o.jet_weight[e], e);
         }
     }

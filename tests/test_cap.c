@@ -594,8 +594,18 @@ static void cap_errors(void)
     rg2_cap_opts_default(&o);
     o.jet_weight[1] = -1;
     CHECK(rg2_cap_build(&m, &o, &s, NULL, &err) == RG2_EDOMAIN &&
-              !strcmp(err.msg, "cap: jet weight 1 is -1, must be finite and >= 0"),
+              !strcmp(err.msg, "cap: jet weight 1 is -1, must be finite and > 0 (a zero weight leaves the "
+                               "least-squares fit rank-deficient)"),
           "negative jet weight: %s", err.msg);
+    for (int k = 0; k < 3; k++) { /* a zero weight of any order: refused by name, as documented */
+        rg2_cap_opts_default(&o);
+        o.jet_weight[k] = 0.0;
+        char want[64];
+        snprintf(want, sizeof want, "cap: jet weight %d is 0, must be finite and > 0", k);
+        CHECK(rg2_cap_build(&m, &o, &s, NULL, &err) == RG2_EDOMAIN && strstr(err.msg, want), "zero jet weight %d: %s",
+              k, err.msg);
+    }
+    rg2_cap_opts_default(&o);
     o.jet_weight[1] = NAN;
     CHECK(rg2_cap_build(&m, &o, &s, NULL, &err) == RG2_EDOMAIN && strstr(err.msg, "cap: jet weight 1 is nan"),
           "NaN jet weight: %s", err.msg);
