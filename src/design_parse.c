@@ -398,7 +398,7 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
         hi *= 180.0 / M_PI;
     }
     const cJSON *list = NULL;
-    int have_to = 0, have_closed = 0;
+    int have_to = 0, have_closed = 0, have_count = 0;
     if (obj) {
         if ((st = as_obj(c, obj, path)))
             return st;
@@ -462,6 +462,7 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
                 return st;
             else if (nseg < 1 || nseg > MAX_PART) /* past the count: a size limit, as for a list */
                 return fail(c, nseg < 1 ? RG2_EDOMAIN : RG2_ELIMIT, p, "%d %s; need 1 to %d", nseg, ck, MAX_PART);
+            have_count = 1;
         }
     }
     int n;
@@ -494,6 +495,13 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
             closed = !have_to;
         if (!angles)
             closed = 0;
+        if (angles && !closed && !have_count && hi - lo > 0.0) {
+            /* an open range without a count: arcs about as fine as the default full circle's, as
+             * rg2 shape's --D-sweep (the default count over 90 degrees gave the torus 8 arcs of
+             * 11.25 degrees in a design, 2 of 45 from rg2 shape) */
+            double k = ceil((hi - lo) / (360.0 / nseg) - 1e-9);
+            nseg = k < 1.0 ? 1 : k > MAX_PART ? MAX_PART : (int)k;
+        }
         pb->values = rg2__calloc((size_t)nseg + 1, sizeof(double));
         if (!pb->values)
             return fail(c, RG2_ENOMEM, path, "out of memory");
@@ -502,6 +510,7 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
             if (!(span > 0.0))
                 return fail(c, RG2_EDOMAIN, path, "arc range from %s to %s degrees is empty", rg2__num(lo).s,
                             rg2__num(hi).s);
+
             for (int k = 0; k < nseg; k++)
                 pb->values[k] = closed ? 2.0 * M_PI / nseg : span * (M_PI / 180.0) / nseg;
             n = nseg;

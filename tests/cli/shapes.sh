@@ -35,6 +35,23 @@ for s in torus cyclide sphere cylinder cone hyperboloid1_ruled hyperboloid1 hype
   printf '{"format": "rg2 design 1", "shapes": {"S": {"kind": "%s"}}, "meshes": {"M": {"shape": "S"}}}' "$s" > "$dtmp/d.json"
   expect 0 "-> $nu x $nv = $((nu * nv)) patches" -- "$RG2" info "$dtmp/d.json"
 done
+# a partly given direction: an open circle range without a count takes arcs about as fine as the
+# default full circle's (the torus's 8: ceil(sweep / 45) arcs), in a design as from rg2 shape; a
+# polynomial direction takes the missing count or range from the defaults (cylinder: 3 of [0, 1])
+for sw in 7 45 90 300 359; do
+  n=$(( (sw + 44) / 45 ))
+  expect 0 "$n x 6 rational bi-cubic patches" -- "$RG2" shape torus --u-sweep "$sw"
+  printf '{"shapes": {"S": {"kind": "torus"}}, "meshes": {"M": {"shape": "S", "u": {"to": %s}}}}' "$sw" > "$dtmp/d.json"
+  expect 0 "-> $n x 6 = $((n * 6)) patches" -- "$RG2" info "$dtmp/d.json"
+  printf '{"shapes": {"S": {"kind": "torus"}}, "meshes": {"M": {"shape": "S", "u": {"from": 10, "to": %s}}}}' "$((sw + 10))" > "$dtmp/d.json"
+  expect 0 "-> $n x 6 = $((n * 6)) patches" -- "$RG2" info "$dtmp/d.json"
+done
+expect 0 "v: polynomial, 5 segments, knots: 0 0.2 0.4 0.6 0.8 1" -- "$RG2" shape cylinder --v-segments 5
+expect 0 "v: polynomial, 3 segments, knots: 0.5 1 1.5 2" -- "$RG2" shape cylinder --v-range 0.5,2
+printf '{"shapes": {"S": {"kind": "cylinder"}}, "meshes": {"M": {"shape": "S", "v": {"segments": 5}}}}' > "$dtmp/d.json"
+expect 0 "-> 6 x 5 = 30 patches" -- "$RG2" info "$dtmp/d.json"
+printf '{"shapes": {"S": {"kind": "cylinder"}}, "meshes": {"M": {"shape": "S", "v": {"from": 0.5, "to": 2}}}}' > "$dtmp/d.json"
+expect 0 "-> 6 x 3 = 18 patches" -- "$RG2" info "$dtmp/d.json"
 rm -rf "$dtmp"
 expect 0 '"default_segments": [6, 4], "default_closed": [true, false]' -- "$RG2" shapes --json
 expect 0 '"name": "cyclide", "params": {"a": 2' -- "$RG2" shapes --json
