@@ -7,9 +7,10 @@
  * a symlink planted at the name cannot redirect the write to another file, and two writers of
  * the same path (threads or processes) each get a file of their own, so the path ends up with
  * one writer's whole file, never a mix. The process id keeps processes apart; within one
- * process a name in use gets a counter ("<path>.<pid>.1.tmp", ...). A file name near its
- * directory's file-name limit (255 bytes on most file systems, 143 on eCryptfs) has its
- * temporary name cut to fit, with a hash of the whole name. */
+ * process a name in use gets a counter ("<path>.<pid>.1.tmp", ...). A regular file replaced
+ * keeps its permission bits (the temporary file gets them before the rename); a new file has
+ * 0666 & ~umask. A file name near its directory's file-name limit (255 bytes on most file
+ * systems, 143 on eCryptfs) has its temporary name cut to fit, with a hash of the whole name. */
 #define _POSIX_C_SOURCE 200809L /* O_NOFOLLOW, O_CLOEXEC */
 #include "internal.h"
 
@@ -109,7 +110,8 @@ rg2_status rg2__out_open(rg2__out *o, const char *path, rg2_error *err)
      * after the other files of an rg2_export_files call had replaced theirs. lstat: a symbolic
      * link to a directory is replaced by the rename, as a link to a file is */
     struct stat sb;
-    if (lstat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
+    int have = lstat(path, &sb) == 0;
+    if (have && S_ISDIR(sb.st_mode))
         return rg2__fail(err, RG2_EIO, "%s: cannot write: it is a directory", path);
     size_t cap = strlen(path) + 48;
     o->tmp = malloc(cap);
@@ -124,6 +126,11 @@ rg2_status rg2__out_open(rg2__out *o, const char *path, rg2_error *err)
         if (fd < 0 && errno != EEXIST)
             break;
     }
+    /* a regular file at path keeps its permission bits (mode & 07777), as sed -i keeps them:
+     * the renamed file used to have the new file's 0666 & ~umask (a 0600 file became 0644).
+     * A failed fchmod (a file system without modes) leaves that mode and is not an error */
+    if (fd >= 0 && have && S_ISREG(sb.st_mode))
+        (void)fchmod(fd, sb.st_mode & 07777);
     if (fd >= 0 && !(o->f = fdopen(fd, "wb"))) {
         int saved = errno;
         close(fd);

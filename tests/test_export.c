@@ -1949,10 +1949,67 @@ static void temp_names_limit(const rg2_surface *s)
     rg2__dir_name_max = saved;
 }
 
+/* A regular file replaced keeps its permission bits (mode & 07777, as sed -i keeps them): the
+ * renamed temporary file used to have 0666 & ~umask, so a 0600 or 0444 file became 0644. A new
+ * file, and one written over a symbolic link, has 0666 & ~umask; the link's target keeps its own. */
+static void kept_modes(const rg2_surface *s)
+{
+    rg2_error err;
+    mode_t saved = umask(022);
+    static const mode_t modes[] = {0600, 0444, 0640, 0755};
+    struct stat sb;
+    for (size_t k = 0; k < sizeof modes / sizeof *modes; k++) {
+        char *p = path_in("mode.obj");
+        FILE *f = fopen(p, "w");
+        CHECK(f && fputs("x\n", f) >= 0 && fclose(f) == 0 && chmod(p, modes[k]) == 0, "write %s", p);
+        CHECK_OK(export_one(s, "mode.obj", &err), &err);
+        CHECK(stat(p, &sb) == 0 && sb.st_size > 1000 && (sb.st_mode & 07777) == modes[k],
+              "a %04o file written over: mode %04o", (unsigned)modes[k], (unsigned)(sb.st_mode & 07777));
+        remove(p);
+    }
+    /* several outputs of one call, each keeping its own */
+    const char *two[2] = {path_in("mode2.obj"), path_in("mode2.stl")};
+    for (int k = 0; k < 2; k++) {
+        FILE *f = fopen(two[k], "w");
+        CHECK(f && fclose(f) == 0 && chmod(two[k], k ? 0604 : 0600) == 0, "write %s", two[k]);
+    }
+    CHECK_OK(rg2_export_files(s, 1, two, 2, NULL, NULL, &err), &err);
+    for (int k = 0; k < 2; k++) {
+        CHECK(stat(two[k], &sb) == 0 && (sb.st_mode & 07777) == (k ? 0604u : 0600u),
+              "rg2_export_files: %s has mode %04o", two[k], (unsigned)(sb.st_mode & 07777));
+        remove(two[k]);
+    }
+    /* new files: 0666 & ~umask */
+    static const mode_t masks[] = {022, 077, 0};
+    for (size_t k = 0; k < sizeof masks / sizeof *masks; k++) {
+        umask(masks[k]);
+        char *p = path_in("mode_new.obj");
+        CHECK_OK(export_one(s, "mode_new.obj", &err), &err);
+        CHECK(stat(p, &sb) == 0 && (sb.st_mode & 07777) == (0666 & ~masks[k]),
+              "a new file under umask %03o: mode %04o", (unsigned)masks[k], (unsigned)(sb.st_mode & 07777));
+        remove(p);
+    }
+    umask(022);
+    /* a symbolic link at the path becomes a new file; its 0600 target is left as it was */
+    char *target = path_in("mode_target.txt"), *link = path_in("mode_link.obj");
+    FILE *f = fopen(target, "w");
+    CHECK(f && fclose(f) == 0 && chmod(target, 0600) == 0 && symlink(target, link) == 0, "link %s", link);
+    CHECK_OK(export_one(s, "mode_link.obj", &err), &err);
+    CHECK(lstat(link, &sb) == 0 && S_ISREG(sb.st_mode) && (sb.st_mode & 07777) == 0644,
+          "written over a link: mode %04o", (unsigned)(sb.st_mode & 07777));
+    CHECK(stat(target, &sb) == 0 && sb.st_size == 0 && (sb.st_mode & 07777) == 0600, "the link's target changed");
+    remove(link);
+    remove(target);
+    umask(saved);
+    printf("  files written over keep their modes (0600, 0444, 0640, 0755; two outputs of one call); new "
+           "files 0666 & ~umask\n");
+}
+
 static void temp_files(const rg2_surface *s)
 {
     rg2_error err;
     int before = count_files();
+    kept_modes(s);
     /* a planted symbolic link at the temporary file's name */
     char *out = path_in("planted.obj"), *victim = path_in("victim.txt"), link[300];
     FILE *v = fopen(victim, "w");

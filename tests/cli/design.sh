@@ -73,6 +73,23 @@ expect 0 "" "$rg2" build -q "$src/examples/fig1_torus.json" -o "$tmp/flink.step"
   [ "$(cat "$tmp/target.step")" = target ] && grep -q ISO-10303-21 "$tmp/flink.step" && ok ||
   bad "the link or pipe output was not replaced by a file, or the link's target changed"
 rm -f "$tmp/target.step" "$tmp/flink.step" "$tmp/pipe.igs"
+# a file written over keeps its permission bits, as with sed -i (0600 and 0444 became 0644); a
+# new file has 0666 & ~umask; build, mesh and render write through the same helper
+for m in 600 444 640; do
+  echo x > "$tmp/p$m.step" && chmod "$m" "$tmp/p$m.step" && echo x > "$tmp/p$m.json" && chmod "$m" "$tmp/p$m.json"
+  expect 0 "" "$rg2" build -q "$src/examples/fig1_torus.json" -o "$tmp/p$m.step"
+  expect 0 "" "$rg2" mesh "$src/examples/fig1_torus.json" -o "$tmp/p$m.json"
+  [ "$(stat -c %a "$tmp/p$m.step")" = "$m" ] && [ "$(stat -c %a "$tmp/p$m.json")" = "$m" ] &&
+    grep -q ISO-10303-21 "$tmp/p$m.step" && ok ||
+    bad "a $m file written over: modes $(stat -c %a "$tmp/p$m.step") (build), $(stat -c %a "$tmp/p$m.json") (mesh)"
+  rm -f "$tmp/p$m.step" "$tmp/p$m.json"
+done
+for u in 022 077; do
+  expect 0 "" bash -c "umask $u && exec '$rg2' build -q '$src/examples/fig1_torus.json' -o '$tmp/new$u.step'"
+done
+[ "$(stat -c %a "$tmp/new022.step")" = 644 ] && [ "$(stat -c %a "$tmp/new077.step")" = 600 ] && ok ||
+  bad "new files under umask 022 and 077: $(stat -c %a "$tmp/new022.step") and $(stat -c %a "$tmp/new077.step")"
+rm -f "$tmp/new022.step" "$tmp/new077.step"
 expect 0 "" "$rg2" info --map "$src/examples/torus_sphere.json"
 grep -q "exact on ring *48 patches" "$tmp/out" && grep -q "exact on ball *24 patches" "$tmp/out" &&
   grep -q "transition *48 patches" "$tmp/out" && ok || bad "info counts: $(cat "$tmp/out")"
