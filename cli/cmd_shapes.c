@@ -122,11 +122,11 @@ static void help_shape(FILE *f)
         "  --D-arcs N          N equal arcs: the full circle (closed), or --D-sweep DEG (open)\n"
         "  --D-angles A,B,...  opening angles; closed if they sum to 360 (to 12 digits)\n"
         "  --D-start DEG       angle where the first arc starts (default 0)\n"
-        "  --D-sweep DEG       open partial circle of this total angle\n"
+        "  --D-sweep DEG       open partial circle of this total angle (> 0)\n"
         "  --D-open / --D-closed  force open or closed\n"
         "Polynomial directions:\n"
         "  --D-knots K0,K1,... increasing knots bounding the segments\n"
-        "  --D-range A,B --D-segments N   N equal segments of [A, B]\n"
+        "  --D-range A,B --D-segments N   N equal segments of [A, B], A < B\n"
         "Placement (applied in this order: scale, axis rotation, centre, then --xform):\n"
         "  --scale S | SX,SY,SZ   --axis X,Y,Z (the shape's z axis)   --center X,Y,Z\n"
         "  --xform M00,M01,...,M33 (16 numbers, row-major, applied to homogeneous 4-tuples)\n"
@@ -435,6 +435,22 @@ static int check_numbers(const char *opt, const double *x, int n)
     return 0;
 }
 
+/* x in 15 significant digits, or 16 or 17 where 15 do not read back as x ("0.1", not
+ * "0.10000000000000001"; "-90", not "-9e+01"). */
+typedef struct {
+    char s[32];
+} num_text_t;
+static num_text_t num_text(double x)
+{
+    num_text_t t;
+    for (int p = 15; p <= 17; p++) {
+        snprintf(t.s, sizeof t.s, "%.*g", p, x);
+        if (strtod(t.s, NULL) == x)
+            break;
+    }
+    return t;
+}
+
 static int parse_one(const char *opt, const char *val, double *out)
 {
     return rg2_cli_number("shape", opt, val, "a number", out);
@@ -548,12 +564,23 @@ int rg2_cmd_shape(int argc, char **argv)
                     return RG2_EXIT_USAGE;
                 if ((rc = check_numbers(a, &o->sweep, 1)))
                     return rc;
+                if (!(o->sweep > 0.0)) { /* (it read "arc 0 has opening angle -45 deg", naming no option) */
+                    fprintf(stderr, "rg2 shape: %s %s: the range is empty (a sweep of %s <= 0 degrees)\n", a, val,
+                            num_text(o->sweep).s);
+                    return RG2_EXIT_USAGE;
+                }
                 o->has_sweep = 1;
             } else if (!strcmp(what, "range")) {
                 if (rg2_cli_parse_n("shape", a, val, o->range, 2, "two numbers A,B"))
                     return RG2_EXIT_USAGE;
                 if ((rc = check_numbers(a, o->range, 2)))
                     return rc;
+                if (!(o->range[0] < o->range[1])) { /* (it read "equal partition: knot 1 (= 4) is not
+                                                      * greater than knot 0 (= 5)", naming no option) */
+                    fprintf(stderr, "rg2 shape: %s %s: the range is empty (%s >= %s)\n", a, val,
+                            num_text(o->range[0]).s, num_text(o->range[1]).s);
+                    return RG2_EXIT_USAGE;
+                }
                 o->has_range = 1;
             } else {
                 fprintf(stderr, "rg2 shape: unknown option '%s' (see rg2 shape --help)\n", a);

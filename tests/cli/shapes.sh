@@ -102,6 +102,14 @@ expect 1 "past 2 pi" -- "$RG2" shape cylinder --u-arcs 5 --u-sweep 400
 expect 1 "knot 2 (= 0.5) is not greater than knot 1" -- "$RG2" shape sphere --v-knots 0.2,0.5,0.5
 expect 1 "v knot 0 = -1 must be > 0" -- "$RG2" shape hyperboloid1 --v-knots -1,1
 expect 1 "|v| < 1" -- "$RG2" shape hyperboloid2 --v-range 0,1.5
+# an empty or reversed range names the option and its values (it read "equal partition: knot 1
+# (= 4) is not greater than knot 0 (= 5)", exit 1; a negative sweep "arc 0 has opening angle")
+expect 2 "rg2 shape: --v-range 5,2: the range is empty (5 >= 2)" -- "$RG2" shape cylinder --v-range 5,2 --v-segments 3
+expect 2 "rg2 shape: --v-range 0.5,0.5: the range is empty (0.5 >= 0.5)" -- "$RG2" shape cone --v-range 0.5,0.5
+expect 2 "rg2 shape: --u-range 1,-0.1: the range is empty (1 >= -0.1)" -- "$RG2" shape hypar --u-range 1,-0.1
+expect 2 "rg2 shape: --u-sweep -90: the range is empty (a sweep of -90 <= 0 degrees)" -- "$RG2" shape torus --u-sweep -90
+expect 2 "rg2 shape: --v-sweep 0: the range is empty (a sweep of 0 <= 0 degrees)" -- "$RG2" shape torus --v-arcs 3 --v-sweep 0
+expect 0 "knots: -2 -1 0" -- "$RG2" shape cylinder --v-range -2,0 --v-segments 2
 # v knots 1, 2, 3: the mirrored data knot lies at v = 0, a control point of weight 0 (at infinity,
 # no coordinates) that the range check once divided by ("coordinates up to inf")
 expect 0 "all positive" -- "$RG2" shape hyperboloid1 --v-knots 1,2,3
