@@ -47,6 +47,10 @@ int rg2_cli_parse_n(const char *cmd, const char *opt, const char *s, double *out
 /* One number of a single-number option (s NULL: the value is missing): 0, or -1 with one line
  * printed, "rg2 <cmd>: <opt> needs <rule>, not '<s>'". A subnormal number is accepted. */
 int rg2_cli_number(const char *cmd, const char *opt, const char *s, const char *rule, double *v);
+/* Each of x[0..n) in the numeric range of a design file's numbers (rg2_number_check: 0 or a
+ * magnitude from 1e-100 to 1e100): 0, or RG2_EXIT_USAGE with one line printed, "rg2 <cmd>: value
+ * out of range: <opt>[ item k]: number ... is outside the supported range (...)". */
+int rg2_cli_check_numbers(const char *cmd, const char *opt, const double *x, int n);
 /* An integer lo..hi of an option (s NULL: missing): 0, or -1 with one line printed. */
 int rg2_cli_int(const char *cmd, const char *opt, const char *s, int lo, int hi, int *v);
 /* 1 if the file name's extension is ext (".png"), in any case. */

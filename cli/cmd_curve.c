@@ -17,7 +17,8 @@ static void help(void)
            "    angles in degrees (each in (0,180); closed: they sum to 360; --open: n+1 angles for\n"
            "    n control points, the first and last two carry data only), or\n"
            "  - the G2 spline of a control polygon with leg weights w, junction scalars b, g\n"
-           "    (defaults 1, 1, 0: the uniform cubic B-spline). Open: n+1 weights w_-1..w_n-1.\n");
+           "    (defaults 1, 1, 0: the uniform cubic B-spline). Open: n+1 weights w_-1..w_n-1.\n"
+           "Every number is 0 or of magnitude 1e-100..1e100 (as in design files); R > 0.\n");
 }
 
 static void print_curve(const rg2_curve *c, int json)
@@ -102,17 +103,23 @@ int rg2_cmd_curve(int argc, char **argv)
             arcs_opt = a;
             if ((n_angles = rg2_cli_parse_list("curve", a, val, angles, MAXV)) < 0)
                 return RG2_EXIT_USAGE;
+            if (rg2_cli_check_numbers("curve", a, angles, n_angles))
+                return RG2_EXIT_USAGE;
             if (n_angles == 0) { /* not the default circle: an empty list is a mistake */
                 fprintf(stderr, "rg2 curve: --angles '%s': no angles given\n", val);
                 return RG2_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--radius")) {
             NEED();
-            if (rg2_cli_number("curve", a, val, "a number", &radius))
+            if (rg2_cli_number("curve", a, val, "a number", &radius) || rg2_cli_check_numbers("curve", a, &radius, 1))
                 return RG2_EXIT_USAGE;
+            if (!(radius > 0.0)) { /* (0 printed all-zero segments, -1 a reflected circle) */
+                fprintf(stderr, "rg2 curve: --radius %s: the radius must be > 0\n", val);
+                return RG2_EXIT_USAGE;
+            }
         } else if (!strcmp(a, "--start")) {
             NEED();
-            if (rg2_cli_number("curve", a, val, "a number", &start))
+            if (rg2_cli_number("curve", a, val, "a number", &start) || rg2_cli_check_numbers("curve", a, &start, 1))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--dim")) {
             NEED();
@@ -125,19 +132,20 @@ int rg2_cmd_curve(int argc, char **argv)
             dim = (int)d;
         } else if (!strcmp(a, "--points")) {
             NEED();
-            if ((n_pts = rg2_cli_parse_list("curve", a, val, pts, MAXV * 4)) < 0)
+            if ((n_pts = rg2_cli_parse_list("curve", a, val, pts, MAXV * 4)) < 0 ||
+                rg2_cli_check_numbers("curve", a, pts, n_pts))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--w")) {
             NEED();
-            if ((nw = rg2_cli_parse_list("curve", a, val, w, MAXV)) < 0)
+            if ((nw = rg2_cli_parse_list("curve", a, val, w, MAXV)) < 0 || rg2_cli_check_numbers("curve", a, w, nw))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--b")) {
             NEED();
-            if ((nb = rg2_cli_parse_list("curve", a, val, b, MAXV)) < 0)
+            if ((nb = rg2_cli_parse_list("curve", a, val, b, MAXV)) < 0 || rg2_cli_check_numbers("curve", a, b, nb))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--g")) {
             NEED();
-            if ((ng = rg2_cli_parse_list("curve", a, val, g, MAXV)) < 0)
+            if ((ng = rg2_cli_parse_list("curve", a, val, g, MAXV)) < 0 || rg2_cli_check_numbers("curve", a, g, ng))
                 return RG2_EXIT_USAGE;
         } else {
             fprintf(stderr, "rg2 curve: unknown option '%s' (see rg2 curve --help)\n", a);

@@ -416,25 +416,6 @@ static void print_summary(const rg2_shape *sh, const rg2_partition *pu, const rg
 
 /* --- rg2 shape ------------------------------------------------------------------------- */
 
-/* The numeric range a design file's numbers get (rg2_number_check): 0 on success, else the
- * usage error's exit code with the message printed (a bad option value, like --u-arcs 0). */
-static int check_numbers(const char *opt, const double *x, int n)
-{
-    for (int k = 0; k < n; k++) {
-        char what[96];
-        rg2_error err;
-        if (n > 1)
-            snprintf(what, sizeof what, "%s item %d", opt, k);
-        else
-            snprintf(what, sizeof what, "%s", opt);
-        if (rg2_number_check(x[k], what, &err)) {
-            rg2_cli_report("shape", &err);
-            return RG2_EXIT_USAGE;
-        }
-    }
-    return 0;
-}
-
 /* x in 15 significant digits, or 16 or 17 where 15 do not read back as x ("0.1", not
  * "0.10000000000000001"; "-90", not "-9e+01"). */
 typedef struct {
@@ -528,7 +509,7 @@ int rg2_cmd_shape(int argc, char **argv)
         if (pi >= 0) {
             if (parse_one(a, val, &sh.param[pi]))
                 return RG2_EXIT_USAGE;
-            if ((rc = check_numbers(a, &sh.param[pi], 1)))
+            if ((rc = rg2_cli_check_numbers("shape", a, &sh.param[pi], 1)))
                 return rc;
         } else if ((a[2] == 'u' || a[2] == 'v') && a[3] == '-') {
             dir_opts *o = &dop[a[2] == 'v'];
@@ -547,7 +528,7 @@ int rg2_cmd_shape(int argc, char **argv)
             } else if (!strcmp(what, "angles") || !strcmp(what, "knots")) {
                 if ((o->n_vals = rg2_cli_parse_list("shape", a, val, o->vals, MAXV)) < 0)
                     return RG2_EXIT_USAGE;
-                if ((rc = check_numbers(a, o->vals, o->n_vals)))
+                if ((rc = rg2_cli_check_numbers("shape", a, o->vals, o->n_vals)))
                     return rc;
                 if (what[0] == 'k')
                     o->knots = 1;
@@ -556,13 +537,13 @@ int rg2_cmd_shape(int argc, char **argv)
             } else if (!strcmp(what, "start")) {
                 if (parse_one(a, val, &o->start))
                     return RG2_EXIT_USAGE;
-                if ((rc = check_numbers(a, &o->start, 1)))
+                if ((rc = rg2_cli_check_numbers("shape", a, &o->start, 1)))
                     return rc;
                 o->has_start = 1;
             } else if (!strcmp(what, "sweep")) {
                 if (parse_one(a, val, &o->sweep))
                     return RG2_EXIT_USAGE;
-                if ((rc = check_numbers(a, &o->sweep, 1)))
+                if ((rc = rg2_cli_check_numbers("shape", a, &o->sweep, 1)))
                     return rc;
                 if (!(o->sweep > 0.0)) { /* (it read "arc 0 has opening angle -45 deg", naming no option) */
                     fprintf(stderr, "rg2 shape: %s %s: the range is empty (a sweep of %s <= 0 degrees)\n", a, val,
@@ -573,7 +554,7 @@ int rg2_cmd_shape(int argc, char **argv)
             } else if (!strcmp(what, "range")) {
                 if (rg2_cli_parse_n("shape", a, val, o->range, 2, "two numbers A,B"))
                     return RG2_EXIT_USAGE;
-                if ((rc = check_numbers(a, o->range, 2)))
+                if ((rc = rg2_cli_check_numbers("shape", a, o->range, 2)))
                     return rc;
                 if (!(o->range[0] < o->range[1])) { /* (it read "equal partition: knot 1 (= 4) is not
                                                       * greater than knot 0 (= 5)", naming no option) */
@@ -596,7 +577,7 @@ int rg2_cmd_shape(int argc, char **argv)
                 fprintf(stderr, "rg2 shape: --scale needs 1 or 3 numbers\n");
                 return RG2_EXIT_USAGE;
             }
-            if ((rc = check_numbers(a, scale, n)))
+            if ((rc = rg2_cli_check_numbers("shape", a, scale, n)))
                 return rc;
             if (scale[0] == 0.0 || scale[1] == 0.0 || scale[2] == 0.0) {
                 fprintf(stderr, "rg2 shape: --scale %s: scale factors must be non-zero\n", val);
@@ -606,7 +587,7 @@ int rg2_cmd_shape(int argc, char **argv)
             double *x = a[2] == 'a' ? axis : centre;
             if (rg2_cli_parse_n("shape", a, val, x, 3, "three numbers X,Y,Z"))
                 return RG2_EXIT_USAGE;
-            if ((rc = check_numbers(a, x, 3)))
+            if ((rc = rg2_cli_check_numbers("shape", a, x, 3)))
                 return rc;
             if (x == axis && axis[0] == 0.0 && axis[1] == 0.0 && axis[2] == 0.0) {
                 fprintf(stderr, "rg2 shape: --axis %s: the axis is the zero vector\n", val);
@@ -615,7 +596,7 @@ int rg2_cmd_shape(int argc, char **argv)
         } else if (!strcmp(a, "--xform")) {
             if (rg2_cli_parse_n("shape", a, val, xf, 16, "16 numbers (row-major 4x4)"))
                 return RG2_EXIT_USAGE;
-            if ((rc = check_numbers(a, xf, 16)))
+            if ((rc = rg2_cli_check_numbers("shape", a, xf, 16)))
                 return rc;
             has_xform = 1;
         } else if (!strcmp(a, "--samples")) {

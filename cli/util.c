@@ -80,6 +80,23 @@ int rg2_cli_number(const char *cmd, const char *opt, const char *s, const char *
     return -1;
 }
 
+int rg2_cli_check_numbers(const char *cmd, const char *opt, const double *x, int n)
+{
+    for (int k = 0; k < n; k++) {
+        char what[96];
+        rg2_error err;
+        if (n > 1)
+            snprintf(what, sizeof what, "%s item %d", opt, k);
+        else
+            snprintf(what, sizeof what, "%s", opt);
+        if (rg2_number_check(x[k], what, &err)) {
+            rg2_cli_report(cmd, &err);
+            return RG2_EXIT_USAGE;
+        }
+    }
+    return 0;
+}
+
 int rg2_cli_int(const char *cmd, const char *opt, const char *s, int lo, int hi, int *v)
 {
     double x = 0.0;

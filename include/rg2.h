@@ -655,8 +655,9 @@ RG2_API rg2_status rg2_read_text(const char *path, char **out, size_t *len, rg2_
  *  keys and of the command line's unknown shape names. */
 RG2_API const char *rg2_closest_name(const char *word, const char *const *names, int n);
 
-/** The supported numeric range of every number a design (or `rg2 shape`) gives: finite, and 0
- *  or a magnitude within the limits of docs/robustness.md "Numeric range" (1e-100 .. 1e100).
+/** The supported numeric range of every number a design (or `rg2 shape`, `rg2 curve`) gives:
+ *  finite, and 0 or a magnitude within the limits of docs/robustness.md "Numeric range"
+ *  (1e-100 .. 1e100).
  *  RG2_ENONFINITE / RG2_EDOMAIN, the message starting with `what` (nullable). */
 RG2_API rg2_status rg2_number_check(double x, const char *what, rg2_error *err);
 /** The supported range of a mesh's design points p_{1..3} / p_4: coordinates up to

@@ -15,6 +15,19 @@ expect 1 "w[1] = -1" -- "$RG2" curve --points "0,0;1,0;2,1;3,0;4,2" --w 1,1,-1,1
 expect 1 "junction 2 has K" -- "$RG2" curve --points "0,0;1,0;2,1;3,0;4,2" --g 0,0,-9,0,0
 expect 2 "need 6 weights" -- "$RG2" curve --points "0,0;1,0;2,1;3,0;4,2" --w 1,1
 expect 2 "unknown option" -- "$RG2" curve --bogus
+# the numbers of a design file's range, as rg2 shape checks them (--radius 0 printed all-zero
+# segments, -1 and 1e-300 were taken, 1e308 read "control point 0 coordinate 0 is not finite")
+expect 2 "rg2 curve: --radius 0: the radius must be > 0" -- "$RG2" curve --arcs 3 --radius 0
+expect 2 "rg2 curve: --radius -1: the radius must be > 0" -- "$RG2" curve --radius -1
+expect 2 "--radius: number 1e-300 is outside the supported range (0 or a magnitude from 1e-100 to 1e+100)" -- "$RG2" curve --radius 1e-300
+expect 2 "--radius: number 1e+308 is outside the supported range" -- "$RG2" curve --arcs 3 --radius 1e308
+expect 0 "3 rational cubic Bezier segments" -- "$RG2" curve --arcs 3 --radius 1e100
+expect 2 "--start: number 1e+200 is outside the supported range" -- "$RG2" curve --start 1e200
+expect 2 "--angles item 2: number 1e-200 is outside the supported range" -- "$RG2" curve --angles 100,120,1e-200
+expect 2 "--points item 7: number 1e-200 is outside the supported range" -- "$RG2" curve --points "0,0;1,0;2,1;3,1e-200;4,2"
+expect 2 "--w item 2: number 1e+300 is outside the supported range" -- "$RG2" curve --points "0,0;1,0;2,1;3,0;4,2" --w 1,1,1e300,1,1,1
+expect 2 "--b item 0: number 1e-101 is outside" -- "$RG2" curve --points "0,0;1,0;1,1;0,1" --closed --b 1e-101,1,1,1
+expect 2 "--g item 3: number -1e+150 is outside" -- "$RG2" curve --points "0,0;1,0;1,1;0,1" --closed --g 0,0,0,-1e150
 # the JSON output is exact: the 90-degree circle's middle weight (1 + 2 cos 45)/3
 "$RG2" curve --arcs 4 --json | grep -q '0.80473785412436' && ok || bad "exact circle weight"
 expect 2 "usage: rg2" -- "$RG2"
