@@ -126,11 +126,13 @@ rg2_status rg2__out_open(rg2__out *o, const char *path, rg2_error *err)
         if (fd < 0 && errno != EEXIST)
             break;
     }
-    /* a regular file at path keeps its permission bits (mode & 07777), as sed -i keeps them:
+    /* a regular file at path keeps its permission bits (mode & 0777), as sed -i keeps them:
      * the renamed file used to have the new file's 0666 & ~umask (a 0600 file became 0644).
-     * A failed fchmod (a file system without modes) leaves that mode and is not an error */
+     * Not the setuid, setgid and sticky bits: root writing over another user's setuid file
+     * would make a root-owned setuid file. A failed fchmod (a file system without modes)
+     * leaves 0666 & ~umask and is not an error */
     if (fd >= 0 && have && S_ISREG(sb.st_mode))
-        (void)fchmod(fd, sb.st_mode & 07777);
+        (void)fchmod(fd, sb.st_mode & 0777);
     if (fd >= 0 && !(o->f = fdopen(fd, "wb"))) {
         int saved = errno;
         close(fd);

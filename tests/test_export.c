@@ -1949,21 +1949,22 @@ static void temp_names_limit(const rg2_surface *s)
     rg2__dir_name_max = saved;
 }
 
-/* A regular file replaced keeps its permission bits (mode & 07777, as sed -i keeps them): the
+/* A regular file replaced keeps its permission bits (mode & 0777, as sed -i keeps them; not the
+ * setuid, setgid or sticky bit, which a 04755 file loses): the
  * renamed temporary file used to have 0666 & ~umask, so a 0600 or 0444 file became 0644. A new
  * file, and one written over a symbolic link, has 0666 & ~umask; the link's target keeps its own. */
 static void kept_modes(const rg2_surface *s)
 {
     rg2_error err;
     mode_t saved = umask(022);
-    static const mode_t modes[] = {0600, 0444, 0640, 0755};
+    static const mode_t modes[] = {0600, 0444, 0640, 0755, 04755, 01644};
     struct stat sb;
     for (size_t k = 0; k < sizeof modes / sizeof *modes; k++) {
         char *p = path_in("mode.obj");
         FILE *f = fopen(p, "w");
         CHECK(f && fputs("x\n", f) >= 0 && fclose(f) == 0 && chmod(p, modes[k]) == 0, "write %s", p);
         CHECK_OK(export_one(s, "mode.obj", &err), &err);
-        CHECK(stat(p, &sb) == 0 && sb.st_size > 1000 && (sb.st_mode & 07777) == modes[k],
+        CHECK(stat(p, &sb) == 0 && sb.st_size > 1000 && (sb.st_mode & 07777) == (modes[k] & 0777),
               "a %04o file written over: mode %04o", (unsigned)modes[k], (unsigned)(sb.st_mode & 07777));
         remove(p);
     }
