@@ -886,6 +886,9 @@ RG2_API rg2_status rg2_patch_grid(const rg2_patch *P, int n, int m, const rg2_gr
  *  small calls (an interactive editor at 60 Hz, say) threads = 1 is faster (docs/performance.md).
  *  Results are identical for any t; safe to call from several threads at once.
  *  Patches of higher degree (s->xp) are evaluated too, equal to rg2_xpatch_eval bit for bit.
+ *  Nothing is checked per point: where a patch's weights reach 0 its points are at infinity
+ *  and the outputs not finite (rg2_tessellate refuses such vertices; weights > 0 keep every
+ *  point finite).
  *  @return as rg2_patch_grid; RG2_EINVAL for an empty surface or threads < 0; RG2_ELIMIT when
  *  the total number of values does not fit in memory sizes. */
 RG2_API rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads,
@@ -944,7 +947,9 @@ typedef struct {
  *  in all or per direction), RG2_ENONFINITE (a control value not finite, naming the patch),
  *  RG2_EDOMAIN (control points beyond 1e60 or spanning less than 1e-60, the supported numeric
  *  range of docs/robustness.md: past about 1e+-75 the normals and curvatures overflow),
- *  RG2_ENOMEM. */
+ *  RG2_EWEIGHT (a vertex not finite: weights that reach 0 put the surface through infinity;
+ *  names the vertex's patch and (u, v). Negative weights alone are allowed: a patch whose
+ *  4-tuples are all negated is the same surface), RG2_ENOMEM. */
 RG2_API rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_tess *out,
                                   rg2_error *err);
 /** rg2_tessellate into a mesh that already exists (from rg2_tessellate, _retessellate, or all

@@ -333,6 +333,29 @@ static void tri_chunk(void *arg, uint32_t c)
         tri_row(T, I);
 }
 
+/* A surface whose control weights reach 0 may pass through infinity: its vertices there are
+ * not finite (a torus with a 4 x 4 block of weight 0 gave 75 of 2304 coordinates NaN, and the
+ * mesh formats wrote them with RG2_OK). RG2_EWEIGHT naming the first such vertex's patch. */
+static rg2_status infinite_vertex(const rg2_surface *s, const rg2_tess *t, rg2_error *err)
+{
+    for (int v = 0; v < t->n_vertices; v++) {
+        const double *p = t->pos + 3 * (size_t)v, *n = t->normal + 3 * (size_t)v;
+        int bad = 0;
+        for (int c = 0; c < 3; c++)
+            bad |= !rg2__finite(p[c]) || !rg2__finite(n[c]);
+        if (bad) {
+            int k = t->patch[v];
+            return rg2__fail(err, RG2_EWEIGHT,
+                             "tessellate: the vertex at patch (%d, %d) u = %.6g, v = %.6g is not finite: the "
+                             "surface passes through infinity there (control weights down to %g; a mesh "
+                             "needs the patches' weights > 0)",
+                             k / s->nv, k % s->nv, t->uv[2 * (size_t)v], t->uv[2 * (size_t)v + 1],
+                             rg2_surface_min_weight(s));
+        }
+    }
+    return RG2_OK;
+}
+
 /*
  * METHOD: the surface's grid points (I, J), I = 0..nu d, J = 0..nv d, closing lines folded
  * onto line 0, each belong to exactly one patch (the one with i = min(I / d, nu - 1)), which
@@ -499,6 +522,13 @@ static rg2_status tessellate(const rg2_surface *s, int density, int curvature, r
     }
     free(rowcnt);
     out->n_triangles = (int)nt;
+    if (rg2_surface_min_weight(s) <= 0.0) { /* (positive weights keep every point finite) */
+        st = infinite_vertex(s, out, err);
+        if (st) {
+            rg2_tess_free(out);
+            block = NULL;
+        }
+    }
 done:
     free(old); /* (not yet taken over: failed before the block) */
     free(coll);
@@ -511,6 +541,8 @@ done:
         return rg2__fail(err, RG2_ENOMEM, "tessellate: out of memory for %d x %d patches at density %d",
                          nu, nv, d);
     }
+    if (st)
+        return st;
     rg2__ok(err);
     return RG2_OK;
 }

@@ -4,10 +4,13 @@
  * Every check runs again on the same surfaces with a mixed pattern of patches replaced by
  * their exact degree elevations ((4,3), (5,3), (4,4), (3,5) next to bi-3: xmix.h), and the
  * two tessellations are compared. */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp */
 #include "export_fixtures.h"
 #include "xmix.h"
 
+#include <stdio.h>
 #include <stdlib.h>
+#include <unistd.h>
 
 /* Count how many triangles use each undirected edge: returns the number of edges used once
  * (boundary), and sets *over to the number used more than twice and *dup_dir to the number
@@ -630,6 +633,40 @@ static void bad_input(void)
           err.msg);
     rg2_tess_free(&t);
     rg2_surface_free(&s);
+    /* weights through 0: patch (2, 1)'s 4-tuples times 0 put its points at 0 / 0 (75 of 2304
+     * coordinates NaN came back with RG2_OK, and OBJ wrote them); times -1 is the same surface
+     * (projectively), finite with negative weights, and tessellates as before */
+    for (int q = 0; q < 2; q++) {
+        rg2_tess ref;
+        CHECK_OK(fx_torus(3.0, 1.0, 8, 6, &s, &err), &err);
+        CHECK_OK(rg2_tessellate(&s, 4, 1, &ref, &err), &err);
+        for (int r = 0; r < 4; r++)
+            for (int c = 0; c < 4; c++)
+                for (int k = 0; k < 4; k++)
+                    s.patch[2 * s.nv + 1].h[r][c][k] *= q ? -1.0 : 0.0;
+        rg2_status st = rg2_tessellate(&s, 4, 1, &t, &err);
+        if (q == 0) {
+            CHECK(st == RG2_EWEIGHT && strstr(err.msg, "the vertex at patch (2, 1)") && strstr(err.msg, "is not finite") &&
+                      t.pos == NULL && t.n_vertices == 0,
+                  "weights 0: %s '%s'", rg2_status_str(st), err.msg);
+            char dir[] = "/tmp/rg2_tess_inf_XXXXXX", path[64];
+            CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+            snprintf(path, sizeof path, "%s/w0.obj", dir);
+            st = rg2_export_file(&s, 1, path, NULL, &err);
+            CHECK(st == RG2_EWEIGHT && access(path, F_OK) != 0 && rmdir(dir) == 0, "weights 0 to OBJ: %s '%s'",
+                  rg2_status_str(st), err.msg);
+        } else {
+            double dp = 0.0;
+            for (int v = 0; st == RG2_OK && v < t.n_vertices && v < ref.n_vertices; v++)
+                for (int c = 0; c < 3; c++)
+                    dp = fmax(dp, fabs(t.pos[3 * v + c] - ref.pos[3 * v + c]));
+            CHECK(st == RG2_OK && t.n_vertices == ref.n_vertices && dp <= 1e-14,
+                  "weights -1 (the same surface): %s, positions %.3g off", err.msg, dp);
+        }
+        rg2_tess_free(&t);
+        rg2_tess_free(&ref);
+        rg2_surface_free(&s);
+    }
     /* sizes: up to the supported 1e60 (and down to 1e-60) every normal, K and H is finite and
      * the normals are those of the unit torus; a torus of size 1e80 gave NaN normals with status
      * ok, and is refused now, as is one of size 1e-80 */
