@@ -1043,7 +1043,9 @@ typedef struct {
     int mesh;              /**< overlay the control meshes (needs meshes != NULL) */
     int tint;              /**< shaded: tint patches by shape tag (default 1) */
     int colorbar;          /**< curvature modes: draw the colour bar and its range (default 1) */
-    int range_set;         /**< 1: use range[] as the colour range; 0: robust range */
+    int range_set;         /**< 1: use range[] as the colour range; 0: robust range (the
+                                percentiles below, at least 1e-3 of its middle and 1e-9 / rho
+                                wide for H, 1e-9 / rho^2 for K; rho the scene's radius) */
     double range[2];       /**< user colour range lo < hi (curvature modes) */
     double percentile;     /**< robust range: clip this fraction at each end, in [0, 0.5)
                                 (default 0.02) */

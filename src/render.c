@@ -658,7 +658,10 @@ static int cmp_double(const void *a, const void *b)
 }
 
 /* Robust colour range: clip the fraction p at each end; Gauss symmetric about 0. */
-static rg2_status robust_range(const rg2_pixel *px, size_t np, int gauss, double p, double range[2], rg2_error *err)
+/* The colour range of the curvature maps; radius: the scene's bounding-sphere radius, the length
+ * that makes the smallest span scale with the picture (K in 1 / length^2, H in 1 / length). */
+static rg2_status robust_range(const rg2_pixel *px, size_t np, int gauss, double p, double radius, double range[2],
+                               rg2_error *err)
 {
     size_t m = 0;
     for (size_t k = 0; k < np; k++)
@@ -687,7 +690,9 @@ static rg2_status robust_range(const rg2_pixel *px, size_t np, int gauss, double
     }
     free(v);
     double mid = 0.5 * (range[0] + range[1]), span = range[1] - range[0];
-    double minspan = fmax(1e-3 * fabs(mid), 1e-9); /* a constant map (sphere) sits mid-bar */
+    /* a constant map (sphere, plane) sits mid-bar; the floor in the scene's units (a fixed 1e-9
+     * made the K map of a torus scaled by 1e5, |K| <= 5e-11, one flat grey: 539-2642 colours) */
+    double minspan = fmax(1e-3 * fabs(mid), 1e-9 / (gauss ? radius * radius : radius));
     if (span < minspan) {
         range[0] = mid - 0.5 * minspan;
         range[1] = mid + 0.5 * minspan;
@@ -1190,7 +1195,7 @@ rg2_status rg2_render(const rg2_surface *surfs, int n, const rg2_mesh *meshes, c
         if (o->range_set) {
             out->range[0] = o->range[0];
             out->range[1] = o->range[1];
-        } else if ((st = robust_range(pix, np, o->mode == RG2_RENDER_GAUSS, o->percentile, out->range, err)))
+        } else if ((st = robust_range(pix, np, o->mode == RG2_RENDER_GAUSS, o->percentile, cam.scale, out->range, err)))
             goto fail;
     }
     shade_pixels(surfs, &cam, o, pix, out->range, out, nt);

@@ -986,9 +986,16 @@ static void robust_range(void)
     rg2_surface s;
     rg2_error err;
     CHECK_OK(scene_revolve(3.0, 1.0, 8, 6, 1, 0, 0, &m, &s, &err), &err);
-    for (int q = 0; q < 4; q++) {
+    /* at any scale: the torus times 1e5 (|K| <= 1.1e-11) had its K range floored at +-5e-10, one
+     * flat grey; times 1e-4 */
+    const double scale[3] = {1.0, 1e5, 1e-4 / 1e5};
+    for (int q = 0; q < 12; q++) {
+        if (q % 4 == 0 && q) {
+            double M[16] = {scale[q / 4], 0, 0, 0, 0, scale[q / 4], 0, 0, 0, 0, scale[q / 4], 0, 0, 0, 0, 1};
+            rg2_surface_transform(&s, M);
+        }
         rg2_render_opts o = kept_opts(160, 120);
-        o.mode = q < 2 ? RG2_RENDER_MEAN : RG2_RENDER_GAUSS;
+        o.mode = q % 4 < 2 ? RG2_RENDER_MEAN : RG2_RENDER_GAUSS;
         o.percentile = q % 2 ? 0.1 : 0.02;
         rg2_image img;
         CHECK_OK(rg2_render(&s, 1, NULL, &o, &img, &err), &err);
@@ -1005,9 +1012,10 @@ static void robust_range(void)
         double clip = o.percentile * (n - 1);
         int lo_ok = gauss ? img.range[0] == -img.range[1] : below <= clip && to_lo > clip;
         CHECK(n > 2000 && lo_ok && above <= clip && to_hi > clip,
-              "%s, percentile %g: range [%g, %g] of %d pixels: %d / %d below / at most lo, %d / %d above / at "
-              "least hi, want <= %g < 'at most' / 'at least'",
-              gauss ? "|K|" : "H", o.percentile, img.range[0], img.range[1], n, below, to_lo, above, to_hi, clip);
+              "%s, percentile %g, torus times %g: range [%g, %g] of %d pixels: %d / %d below / at most lo, %d / %d "
+              "above / at least hi, want <= %g < 'at most' / 'at least'",
+              gauss ? "|K|" : "H", o.percentile, q < 4 ? 1.0 : q < 8 ? 1e5 : 1e-4, img.range[0], img.range[1], n,
+              below, to_lo, above, to_hi, clip);
         rg2_image_free(&img);
     }
     rg2_surface_free(&s);
