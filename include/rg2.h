@@ -576,7 +576,8 @@ typedef struct {
     unsigned flags;     /**< RG2_SHAPE_WARN_* */
 } rg2_weight_report;
 RG2_API void rg2_surface_weight_report(const rg2_surface *s, rg2_weight_report *rep);
-/** Mesh + Bi-cubic Construction in one call; rep (nullable) gets the weight report. */
+/** Mesh + Bi-cubic Construction in one call; rep (nullable) gets the weight report. Every
+ *  patch is tagged 0 (out->tag): rg2_check(out, 1, s, NULL, 1, ...) checks it against s. */
 RG2_API rg2_status rg2_shape_surface(const rg2_shape *s, const rg2_partition *pu,
                                      const rg2_partition *pv, rg2_surface *out,
                                      rg2_weight_report *rep, rg2_error *err);

@@ -1149,6 +1149,13 @@ rg2_status rg2_shape_surface(const rg2_shape *s, const rg2_partition *pu, const 
     rg2_mesh_free(&m);
     if (st)
         return st;
+    /* every patch lies on the shape: tag 0, the shape in a one-shape list (rg2_check(&surface, 1,
+     * s, NULL, 1, ...) found no exact patch before, the tags being NULL) */
+    size_t np = (size_t)out->nu * (size_t)out->nv;
+    if (!(out->tag = rg2__calloc(np, sizeof *out->tag))) {
+        rg2_surface_free(out);
+        return rg2__fail(err, RG2_ENOMEM, "shape surface: out of memory");
+    }
     if (rep)
         rg2_surface_weight_report(out, rep);
     return RG2_OK;

@@ -197,7 +197,9 @@ static void harness_agreement(void)
     rg2_mesh_free(&m);
 }
 
-/* The surface of torus shape sh over 8 x 6 equal arcs, every patch tagged with shape 0. */
+/* The surface of torus shape sh over 8 x 6 equal arcs, every patch tagged with shape 0 (by
+ * rg2_shape_surface, as rg2.h says: the tags were NULL, and a check against the shape found no
+ * exact patch). */
 static void torus_8x6(const rg2_shape *sh, rg2_surface *s)
 {
     double au[9], av[7];
@@ -206,7 +208,10 @@ static void torus_8x6(const rg2_shape *sh, rg2_surface *s)
     CHECK_OK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0, 0, 8, au, 9, &err), &err);
     CHECK_OK(rg2_partition_equal(&pv, RG2_PART_ANGLES, 1, 0, 0, 6, av, 7, &err), &err);
     CHECK_OK(rg2_shape_surface(sh, &pu, &pv, s, NULL, &err), &err);
-    s->tag = calloc((size_t)s->nu * s->nv, sizeof *s->tag);
+    int zero = s->tag != NULL;
+    for (int k = 0; zero && k < s->nu * s->nv; k++)
+        zero = s->tag[k] == 0;
+    CHECK(zero, "rg2_shape_surface: every patch tagged 0");
 }
 
 /* Column (0-based) where the n-th run of non-blank characters of line starts (from 0) or ends
