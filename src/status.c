@@ -2,6 +2,7 @@
 #include "internal.h"
 
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,13 +26,34 @@ const char *rg2_status_str(rg2_status code)
 
 const char *rg2_version(void) { return RG2_VERSION_STRING; }
 
+/* Head of a message too long for rg2_error.msg that is kept (the rest is its tail). */
+#define MSG_HEAD 160
+
 rg2_status rg2__fail(rg2_error *err, rg2_status code, const char *fmt, ...)
 {
     if (err) {
-        va_list ap;
+        va_list ap, ap2;
         va_start(ap, fmt);
-        vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+        va_copy(ap2, ap);
+        int n = vsnprintf(err->msg, sizeof err->msg, fmt, ap);
         va_end(ap);
+        /* too long (a path of 830 bytes first): its head and its tail, which says what went wrong
+         * ("No such file or directory" was cut off); as cut when out of memory */
+        char *full = n >= (int)sizeof err->msg ? malloc((size_t)n + 1) : NULL;
+        if (full) {
+            vsnprintf(full, (size_t)n + 1, fmt, ap2);
+            static const char mid[] = " [...] ";
+            size_t h = MSG_HEAD, t = (size_t)n - (sizeof err->msg - 1 - MSG_HEAD - (sizeof mid - 1));
+            while (h > 0 && ((unsigned char)full[h] & 0xC0) == 0x80) /* cut between UTF-8 characters */
+                h--;
+            while (t < (size_t)n && ((unsigned char)full[t] & 0xC0) == 0x80)
+                t++;
+            memcpy(err->msg, full, h);
+            memcpy(err->msg + h, mid, sizeof mid - 1);
+            memcpy(err->msg + h + sizeof mid - 1, full + t, (size_t)n - t + 1);
+            free(full);
+        }
+        va_end(ap2);
         err->code = code;
     }
     return code;

@@ -1377,9 +1377,38 @@ static void many_names(void)
     rg2_design_free(d);
 }
 
+/* A message longer than rg2_error.msg keeps its head and its tail (the reason), cut between
+ * UTF-8 characters: a design path of 830 bytes (two-byte 'é's among them) that does not exist
+ * lost "No such file or directory" before. */
+static void long_messages(void)
+{
+    char path[900];
+    size_t n = (size_t)snprintf(path, sizeof path, "/nonexistent-rg2-dir/");
+    while (n < 826)
+        n += (size_t)snprintf(path + n, sizeof path - n, n % 7 ? "d" : "\xc3\xa9");
+    snprintf(path + n, sizeof path - n, ".json");
+    rg2_design *d = NULL;
+    rg2_error err;
+    CHECK(rg2_design_load(path, &d, &err) == RG2_EIO && d == NULL, "missing design: %s", err.msg);
+    size_t len = strlen(err.msg), tail = strlen(strerror(ENOENT));
+    int utf8 = 1; /* every lead byte followed by its continuation bytes */
+    for (size_t k = 0; k < len; k++) {
+        unsigned char c = (unsigned char)err.msg[k];
+        if (c >= 0xC0)
+            utf8 &= k + 1 < len && ((unsigned char)err.msg[k + 1] & 0xC0) == 0x80;
+        else if (c >= 0x80)
+            utf8 &= k > 0 && (unsigned char)err.msg[k - 1] >= 0x80;
+    }
+    CHECK(len < sizeof err.msg && len > 400 && !strncmp(err.msg, path, 100) && strstr(err.msg, " [...] ") &&
+              len > tail && !strcmp(err.msg + len - tail, strerror(ENOENT)) && utf8,
+          "a %zu-byte path's message (%zu bytes, valid UTF-8 %d): %s", strlen(path), len, utf8, err.msg);
+    printf("  a %zu-byte path: message of %zu bytes ending in \"%s\"\n", strlen(path), len, strerror(ENOENT));
+}
+
 int main(void)
 {
     parse_sizes();
+    long_messages();
     printf("design files:\n");
     text_files();
     printf("examples (exact-patch residual |F| / (|grad F| size), G2 seam gaps):\n");
