@@ -150,7 +150,8 @@ typedef enum {
 /** An error report: the status code and a message naming the offending item. */
 typedef struct {
     rg2_status code;
-    char msg[512];
+    char msg[512]; /**< UTF-8; a longer message (a long path) keeps its first 160 bytes and its
+                        end, which says what went wrong, joined by " [...] " */
 } rg2_error;
 
 /** Text for a status code; never NULL. */
