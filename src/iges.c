@@ -603,7 +603,10 @@ static unsigned mesh_loop_sides(const rg2__mesh_topo *t)
     return m;
 }
 
-static int bit_count(unsigned m) { return (int)(m & 1u) + (int)(m >> 1 & 1u) + (int)(m >> 2 & 1u) + (int)(m >> 3 & 1u); }
+static int bit_count(unsigned m)
+{
+    return (int)(m & 1u) + (int)(m >> 1 & 1u) + (int)(m >> 2 & 1u) + (int)(m >> 3 & 1u);
+}
 
 /* The B-rep entities of one surface as one face on its merged net (face per mesh), from entity
  * index *q on: 514 shell, 502 vertex list, 504 edge list, 126 per edge, the face's 110 lines on
