@@ -479,6 +479,8 @@ typedef struct {
 /** Name ("torus", ...) of a shape kind; NULL for an unknown kind. Parameter names, count and
  *  defaults: rg2_shape_describe. */
 RG2_API const char *rg2_shape_name(rg2_shape_kind kind);
+/** The kind named `name` ("torus", ...). @return RG2_EINVAL for an unknown name (listing the
+ *  known ones), a NULL name or a NULL kind, the message saying which. */
 RG2_API rg2_status rg2_shape_from_name(const char *name, rg2_shape_kind *kind, rg2_error *err);
 /** Initialise a shape with default parameters and the identity placement. */
 RG2_API void rg2_shape_init(rg2_shape *s, rg2_shape_kind kind);
@@ -623,9 +625,11 @@ typedef struct {
 RG2_API rg2_status rg2_nurbs_mesh(const rg2_nurbs *nb, rg2_mesh *out, rg2_error *err);
 /** rg2_nurbs_mesh from a JSON text {"nu", "nv", "points": [[x, y, z], ...] (u-major),
  *  "weights" (optional), "knots_u", "knots_v"}: the spec of `rg2 shape nurbs` and of a design
- *  file's nurbs operation, read by the same code. `name` (a file name, say) starts the messages,
- *  which name the offending item (name:line:col for malformed JSON, nurbs.points[k], knots_u[k]).
- *  @return as rg2_design_parse for the text (RG2_EPARSE, RG2_ELIMIT), then as rg2_nurbs_mesh. */
+ *  file's nurbs operation, read by the same code. `name` (a file name, say; NULL: "nurbs", as
+ *  rg2_design_parse's NULL name is "design") starts the messages, which name the offending item
+ *  (name:line:col for malformed JSON, nurbs.points[k], knots_u[k]). *out is zeroed first.
+ *  @return RG2_EINVAL for a NULL text or out (the message names which), then as rg2_design_parse
+ *  for the text (RG2_EPARSE, RG2_ELIMIT), then as rg2_nurbs_mesh. */
 RG2_API rg2_status rg2_nurbs_parse(const char *json, size_t len, const char *name, rg2_mesh *out,
                                    rg2_error *err);
 
@@ -679,7 +683,8 @@ RG2_API rg2_status rg2_design_load(const char *path, rg2_design **out, rg2_error
 RG2_API rg2_status rg2_design_parse(const char *json, size_t len, const char *name,
                                     rg2_design **out, rg2_error *err);
 RG2_API void rg2_design_free(rg2_design *d);
-/** Built surfaces (one per output mesh of the design), with tags set. */
+/** Built surfaces (one per output mesh of the design), with tags set. The accessors below
+ *  take a NULL design (or an index out of range) as empty: 0, NULL or -1. */
 RG2_API int rg2_design_num_surfaces(const rg2_design *d);
 RG2_API const rg2_surface *rg2_design_surface(const rg2_design *d, int k);
 /** The control mesh surface k was built from. */
@@ -695,8 +700,9 @@ RG2_API const char *rg2_design_mesh_name(const rg2_design *d, int k);
 RG2_API int rg2_design_point_shape(const rg2_design *d, int k, int i, int j);
 /** Write the output control meshes as JSON (design coordinates d = p_{1..3} / p_4, weights
  *  W = p_4, scalars w, b, g, provenance and patch tags; docs/design-format.md). Writes a
- *  temporary file next to path, then renames (as rg2_export_file). @return RG2_EIO if the file cannot be written (nothing is left),
- *  RG2_ENOMEM. */
+ *  temporary file next to path, then renames (as rg2_export_file). @return RG2_EINVAL for a NULL
+ *  design or a NULL or empty path (as rg2_design_load's NULL path), RG2_EIO if the file cannot be
+ *  written (nothing is left), RG2_ENOMEM. */
 RG2_API rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, rg2_error *err);
 
 

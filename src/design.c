@@ -548,6 +548,10 @@ static cJSON *scalars_json(const rg2_scalars *s, const int *leg, const int *jun)
 
 rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, rg2_error *err)
 {
+    if (!d) /* (as rg2_design_load's NULL path and output; the accessors return 0 / NULL) */
+        return rg2__fail(err, RG2_EINVAL, "design: no design to write (NULL design)");
+    if (!path || !*path)
+        return rg2__fail(err, RG2_EINVAL, "%s: no output path (%s path)", d->name, path ? "empty" : "NULL");
     /* the design's name (its file's path) as UTF-8 text: a byte that is not (a Latin-1 file name)
      * becomes '?', so the mesh file stays JSON (the design text itself is UTF-8, checked) */
     char *name = rg2__text_clean(d->name, 0);

@@ -1239,8 +1239,12 @@ rg2_status rg2_nurbs_parse(const char *json, size_t len, const char *name, rg2_m
 {
     if (out) /* (first: a caller frees it whatever the outcome) */
         memset(out, 0, sizeof *out);
-    if (!json || !name || !out)
-        return rg2__fail(err, RG2_EINVAL, "nurbs: no text, name or output");
+    if (!out)
+        return rg2__fail(err, RG2_EINVAL, "nurbs: NULL output mesh");
+    if (!name) /* (as rg2_design_parse: a NULL name is the default) */
+        name = "nurbs";
+    if (!json)
+        return rg2__fail(err, RG2_EINVAL, "%s: no text (NULL text)", name);
     if (len > RG2_TEXT_MAX_BYTES)
         return rg2__fail(err, RG2_ELIMIT, "%s: %zu bytes, more than the limit of %u", name, len, RG2_TEXT_MAX_BYTES);
     cJSON *root;

@@ -72,7 +72,11 @@ const char *rg2_shape_name(rg2_shape_kind kind)
 
 rg2_status rg2_shape_from_name(const char *name, rg2_shape_kind *kind, rg2_error *err)
 {
-    for (int k = 0; name && k < RG2_SHAPE_COUNT; k++)
+    if (!kind)
+        return rg2__fail(err, RG2_EINVAL, "shape: NULL output kind");
+    if (!name)
+        return rg2__fail(err, RG2_EINVAL, "shape: no name (NULL name)");
+    for (int k = 0; k < RG2_SHAPE_COUNT; k++)
         if (!strcmp(name, shape_table[k].name)) {
             *kind = (rg2_shape_kind)k;
             rg2__ok(err);
@@ -84,7 +88,7 @@ rg2_status rg2_shape_from_name(const char *name, rg2_shape_kind *kind, rg2_error
         if (k + 1 < RG2_SHAPE_COUNT)
             strncat(list, ", ", sizeof list - strlen(list) - 1);
     }
-    return rg2__fail(err, RG2_EINVAL, "unknown shape '%s' (known: %s)", name ? name : "(null)", list);
+    return rg2__fail(err, RG2_EINVAL, "unknown shape '%s' (known: %s)", name, list);
 }
 
 void rg2_shape_init(rg2_shape *s, rg2_shape_kind kind)

@@ -1405,6 +1405,31 @@ static void long_messages(void)
     printf("  a %zu-byte path: message of %zu bytes ending in \"%s\"\n", strlen(path), len, strerror(ENOENT));
 }
 
+/* A NULL design (or path) as the header's conventions take it: rg2_design_write_mesh(NULL, ...)
+ * dereferenced it (a segfault) and a NULL path went to strlen, where rg2_design_load refuses a
+ * NULL path with RG2_EINVAL and the accessors give 0 / NULL / -1 for a NULL design. */
+static void null_designs(void)
+{
+    rg2_error err;
+    CHECK(rg2_design_write_mesh(NULL, "unused.json", &err) == RG2_EINVAL &&
+              !strcmp(err.msg, "design: no design to write (NULL design)"),
+          "write_mesh(NULL design): %s", err.msg);
+    CHECK(rg2_design_write_mesh(NULL, NULL, NULL) == RG2_EINVAL, "write_mesh(NULL, NULL, NULL)");
+    CHECK(rg2_design_num_surfaces(NULL) == 0 && rg2_design_num_shapes(NULL) == 0 && !rg2_design_surface(NULL, 0) &&
+              !rg2_design_mesh(NULL, 0) && !rg2_design_mesh_name(NULL, 0) && !rg2_design_shape(NULL, 0) &&
+              !rg2_design_shape_label(NULL, 0) && rg2_design_point_shape(NULL, 0, 0, 0) == -1,
+          "the accessors of a NULL design");
+    rg2_design_free(NULL);
+    rg2_design *d = parse("{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH "}, \"output\": [\"T\"]}", &err);
+    if (!d)
+        return;
+    CHECK(rg2_design_write_mesh(d, NULL, &err) == RG2_EINVAL && !strcmp(err.msg, "test: no output path (NULL path)"),
+          "write_mesh(NULL path): %s", err.msg);
+    CHECK(rg2_design_write_mesh(d, "", &err) == RG2_EINVAL && !strcmp(err.msg, "test: no output path (empty path)"),
+          "write_mesh(empty path): %s", err.msg);
+    rg2_design_free(d);
+}
+
 int main(void)
 {
     parse_sizes();
@@ -1435,6 +1460,7 @@ int main(void)
     many_names();
     printf("bad input:\n");
     bad_inputs();
+    null_designs();
     unknown_key_lists();
     cap_seam_positions();
     return rg2t_done("test_design");

@@ -119,6 +119,16 @@ static void parse_same(const rg2_nurbs *nb, const rg2_mesh *m, int trial)
         memset(&q, 0x55, sizeof q);
         st = rg2_nurbs_parse(NULL, 0, "spec", &q, &err);
         CHECK(st == RG2_EINVAL && !q.p && !q.nu && !q.su.w, "no text: %s, output %p %d", err.msg, (void *)q.p, q.nu);
+        /* each NULL argument named (all three gave "nurbs: no text, name or output"); a NULL name
+         * is the default "nurbs", as rg2_design_parse's is "design" */
+        CHECK(!strcmp(err.msg, "spec: no text (NULL text)"), "no text: %s", err.msg);
+        st = rg2_nurbs_parse(t, strlen(t), "spec", NULL, &err);
+        CHECK(st == RG2_EINVAL && !strcmp(err.msg, "nurbs: NULL output mesh"), "no output: %s", err.msg);
+        st = rg2_nurbs_parse(t, strlen(t), NULL, &q, &err);
+        CHECK(st == RG2_OK && q.nu > 0, "NULL name: %s %s", rg2_status_str(st), st ? err.msg : "");
+        rg2_mesh_free(&q);
+        st = rg2_nurbs_parse(t, strlen(t) / 2, NULL, &q, &err);
+        CHECK(st == RG2_EPARSE && !strncmp(err.msg, "nurbs:1:", 8), "NULL name, cut text: %s", err.msg);
     }
     free(t);
 }

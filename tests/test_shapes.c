@@ -899,6 +899,11 @@ static void errors(void)
     expect_err(rg2_shape_from_name("doughnut", &kind, &err), RG2_EINVAL, &err, "unknown shape 'doughnut'",
                "unknown name");
     CHECK(rg2_shape_from_name("cyclide", &kind, &err) == RG2_OK && kind == RG2_SHAPE_CYCLIDE, "name lookup");
+    /* a NULL name is named as such (it went to the unknown-name message as "unknown shape '(null)'") */
+    CHECK(rg2_shape_from_name(NULL, &kind, &err) == RG2_EINVAL && !strcmp(err.msg, "shape: no name (NULL name)"),
+          "NULL name: %s", err.msg);
+    CHECK(rg2_shape_from_name("torus", NULL, &err) == RG2_EINVAL && !strcmp(err.msg, "shape: NULL output kind"),
+          "NULL kind: %s", err.msg);
     CHECK(rg2_shape_name((rg2_shape_kind)RG2_SHAPE_COUNT) == NULL && rg2_shape_describe((rg2_shape_kind)-1) == NULL,
           "unknown kinds have no name");
     double a1[4][9] = {{0}};
