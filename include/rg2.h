@@ -209,7 +209,10 @@ RG2_API rg2_status rg2_scalars_check(const rg2_scalars *s, const char *what, rg2
  *          neighbouring intervals whose junction scalars leave the double range (b = 0 or a
  *          b, g or K that is not a finite number: intervals 1e-300 and 1 give b = 1e300 and
  *          K = inf), naming the knots, the junction and the scalars; RG2_ENONFINITE for a NaN
- *          or infinite knot; RG2_EINVAL / RG2_ELIMIT for too few / too many knots. */
+ *          or infinite knot; RG2_EINVAL / RG2_ELIMIT for too few / too many knots: open at
+ *          least 6 (4 points), closed at least 4 (3 points), at most RG2_MAX_POINTS points; the
+ *          message tells the n_knots given ("knots: 2 knots given, an open direction needs at
+ *          least 6 (4 control points, 1 segment)"). */
 RG2_API rg2_status rg2_scalars_from_knots(rg2_scalars *s, const double *knots, int n_knots,
                                           int closed, rg2_error *err);
 
@@ -222,7 +225,9 @@ RG2_API rg2_status rg2_scalars_from_knots(rg2_scalars *s, const double *knots, i
  *  @return RG2_ENONFINITE for a NaN or infinite angle, RG2_EDOMAIN for an angle outside
  *          (0, pi), naming it, and for neighbouring arcs whose junction scalars leave the
  *          double range (an arc of 1e-320 next to one of 2: b = inf), naming the arcs, the
- *          junction and the scalars. */
+ *          junction and the scalars; RG2_EINVAL / RG2_ELIMIT for too few / too many arcs: open
+ *          at least 5 (4 points), closed at least 3, at most RG2_MAX_POINTS points; the message
+ *          tells the n_alpha given ("arcs: 2 arcs given, a closed direction needs at least 3"). */
 RG2_API rg2_status rg2_scalars_from_angles(rg2_scalars *s, const double *alpha, int n_alpha,
                                            int closed, rg2_error *err);
 
@@ -236,7 +241,8 @@ RG2_API rg2_status rg2_scalars_from_angles(rg2_scalars *s, const double *alpha, 
  *  cs receives n pairs: cs[2i] = C_i, cs[2i+1] = S_i (n = n_alpha closed, n_alpha - 1 open).
  *  Closed partitions must sum to 2 pi (to 1e-12 relative).
  *  @return RG2_ENONFINITE for a NaN or infinite angle or theta0, RG2_EDOMAIN for an angle
- *          outside (0, pi) or a closed sum other than 2 pi, naming the arc or the sum. */
+ *          outside (0, pi) or a closed sum other than 2 pi, naming the arc or the sum;
+ *          RG2_EINVAL / RG2_ELIMIT for an n_alpha out of range, as rg2_scalars_from_angles. */
 RG2_API rg2_status rg2_circle_coeffs(const double *alpha, int n_alpha, int closed, double theta0,
                                      double *cs, rg2_error *err);
 
@@ -720,7 +726,7 @@ RG2_API rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, 
  *  writes the m + 4 knots v_{-1} = v_1 / (v_1 - 1), v_0 = 0, v_1, ..., v_m, v_{m+1} = 1,
  *  v_{m+2} = 1 / v_m (the layout of rg2_scalars_from_knots, open, for m + 2 points).
  *  @return RG2_EDOMAIN for a knot outside (0, 1) or not increasing, naming it; RG2_EINVAL for
- *  m < 2. */
+ *  m < 2 (telling the m given) or a NULL v or knots (naming which). */
 RG2_API rg2_status rg2_polar_knots(const double *v, int m, double *knots, rg2_error *err);
 
 /** Polar control mesh of the unit sphere (family 2, MATH.md eq. 13): u a closed circle
@@ -729,7 +735,9 @@ RG2_API rg2_status rg2_polar_knots(const double *v, int m, double *knots, rg2_er
  *  point (0, 0, Zs, 1), row m + 1 the north polar point (0, 0, Zn, 1) (exactly collapsed).
  *  The surface built from it is the band v in [v_1, v_m] of the sphere, exactly.
  *  M (nullable): row-major 4x4 placement applied to every 4-tuple (exact; rows stay collapsed).
- *  Free out with rg2_mesh_free. */
+ *  Free out with rg2_mesh_free. @return RG2_EINVAL for a NULL alpha or n_alpha < 3 (telling the
+ *  n_alpha given), RG2_ENONFINITE for a non-finite entry of M, then as rg2_polar_knots and
+ *  rg2_circle_coeffs. */
 RG2_API rg2_status rg2_polar_sphere_mesh(const double *alpha, int n_alpha, double theta0,
                                          const double *v, int m, const double *M, rg2_mesh *out,
                                          rg2_error *err);

@@ -7,11 +7,13 @@
 
 rg2_status rg2_polar_knots(const double *v, int m, double *knots, rg2_error *err)
 {
-    if (!v || !knots)
-        return rg2__fail(err, RG2_EINVAL, "polar knots: no knots given");
+    if (!v)
+        return rg2__fail(err, RG2_EINVAL, "polar knots: no interior knots (NULL v)");
+    if (!knots)
+        return rg2__fail(err, RG2_EINVAL, "polar knots: NULL output knots");
     if (m < 2)
         return rg2__fail(err, RG2_EINVAL,
-                         "polar knots: %d interior knot(s); a polar configuration needs at least "
+                         "polar knots: %d interior knots given; a polar configuration needs at least "
                          "2 (v_1 < v_2) for one band ring",
                          m);
     for (int k = 0; k < m; k++) {
@@ -46,9 +48,11 @@ rg2_status rg2_polar_sphere_mesh(const double *alpha, int n_alpha, double theta0
                                  int m, const double *M, rg2_mesh *out, rg2_error *err)
 {
     memset(out, 0, sizeof *out);
-    if (!alpha || n_alpha < 3)
-        return rg2__fail(err, RG2_EINVAL, "polar sphere: %d arcs, a closed circle needs at least 3",
-                         alpha ? n_alpha : 0);
+    if (!alpha) /* (it was "0 arcs", whatever n_alpha said) */
+        return rg2__fail(err, RG2_EINVAL, "polar sphere: no arcs (NULL alpha)");
+    if (n_alpha < 3)
+        return rg2__fail(err, RG2_EINVAL, "polar sphere: %d arcs given, a closed circle needs at least 3",
+                         n_alpha);
     if (M)
         for (int k = 0; k < 16; k++)
             if (!rg2__finite(M[k]))

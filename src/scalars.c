@@ -2,7 +2,6 @@
  * sources: knot vectors (polynomial mode) and circle partitions (MATH.md sections 1-2). */
 #include "internal.h"
 
-#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,11 +22,23 @@ static rg2_status check_count(int n, int closed, const char *what, rg2_error *er
     return RG2_OK;
 }
 
-/* The control points of `count` values less `extra` (data values): a count near INT_MIN stays
- * negative (too few points) instead of overflowing to a huge one. */
-static int points_of(int count, int extra)
+/* The count of values a caller passed (n_knots, n_alpha): `given` of them make given - extra
+ * control points. Too few or too many are told in the caller's unit, with the minimum it needs
+ * (an open direction 4 points, a closed one 3): "knots: 2 knots given, an open direction needs
+ * at least 6 (4 control points, 1 segment)" (the messages spoke of given - extra control points,
+ * "-3 control points" for n_knots = -1). */
+static rg2_status check_given(int given, int extra, int closed, const char *what, const char *unit,
+                              rg2_error *err)
 {
-    return count < INT_MIN + extra ? INT_MIN : count - extra;
+    int min_points = closed ? 3 : 4, min = min_points + extra;
+    if (given < min)
+        return rg2__fail(err, RG2_EINVAL, "%s: %d %s given, a%s direction needs at least %d (%d control points, %s)",
+                         what, given, unit, closed ? " closed" : "n open", min, min_points,
+                         closed ? "3 segments" : "1 segment");
+    if (given - extra > RG2_MAX_POINTS)
+        return rg2__fail(err, RG2_ELIMIT, "%s: %d %s given, more than the limit %d (%d control points)", what,
+                         given, unit, RG2_MAX_POINTS + extra, RG2_MAX_POINTS);
+    return RG2_OK;
 }
 
 /* An opening angle outside (0, pi), in radians and in the degrees the user likely gave. */
@@ -187,10 +198,10 @@ rg2_status rg2__scalars_from_knots_named(rg2_scalars *s, const double *knots, in
                                          const char *who, const char *name, int first, rg2_error *err)
 {
     memset(s, 0, sizeof *s);
-    int n = points_of(n_knots, closed ? 1 : 2);
-    rg2_status st = check_count(n, closed, "knots", err);
+    rg2_status st = check_given(n_knots, closed ? 1 : 2, closed, "knots", "knots", err);
     if (st)
         return st;
+    int n = n_knots - (closed ? 1 : 2);
     for (int k = 0; k < n_knots; k++)
         if (!rg2__finite(knots[k]))
             return rg2__fail(err, RG2_ENONFINITE, "knots: knot %d is not finite", k);
@@ -251,10 +262,10 @@ rg2_status rg2_scalars_from_angles(rg2_scalars *s, const double *alpha, int n_al
                                    rg2_error *err)
 {
     memset(s, 0, sizeof *s);
-    int n = points_of(n_alpha, closed ? 0 : 1);
-    rg2_status st = check_count(n, closed, "arcs", err);
+    rg2_status st = check_given(n_alpha, closed ? 0 : 1, closed, "arcs", "arcs", err);
     if (st)
         return st;
+    int n = n_alpha - (closed ? 0 : 1);
     int off = closed ? 0 : 1;
     for (int k = 0; k < n_alpha; k++) {
         if (!rg2__finite(alpha[k]))
@@ -300,10 +311,10 @@ void rg2_blossom_monomials(double a, double b, double c, double out[4])
 rg2_status rg2_circle_coeffs(const double *alpha, int n_alpha, int closed, double theta0,
                              double *cs, rg2_error *err)
 {
-    int n = points_of(n_alpha, closed ? 0 : 1);
-    rg2_status st = check_count(n, closed, "arcs", err);
+    rg2_status st = check_given(n_alpha, closed ? 0 : 1, closed, "arcs", "arcs", err);
     if (st)
         return st;
+    int n = n_alpha - (closed ? 0 : 1);
     int off = closed ? 0 : 1;
     double sum = 0.0;
     for (int k = 0; k < n_alpha; k++) {

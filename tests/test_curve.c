@@ -528,18 +528,44 @@ static void errors(void)
         a4[k] = M_PI / 2;
     CHECK(rg2_circle_coeffs(a4, 4, 1, NAN, cs, &err) == RG2_ENONFINITE && !strcmp(err.msg, "arcs: start angle is not finite"),
           "NaN start angle: %s", err.msg);
-    CHECK(rg2_scalars_from_knots(&s, knots, 3, 1, &err) == RG2_EINVAL &&
-              !strcmp(err.msg, "knots: 2 control points, a closed direction needs at least 3"),
-          "2 closed knots intervals: %s", err.msg);
+    /* too few or too many values: the message tells the count the caller passed and the minimum in
+     * the same unit (it spoke of the control points they make: "-3 control points" for n_knots = -1,
+     * "0 control points" for 2 knots, "arcs: -4 control points" for n_alpha = -3) */
+    static const struct {
+        int fn, n, closed; /* fn 0 rg2_scalars_from_knots, 1 rg2_scalars_from_angles, 2 rg2_circle_coeffs */
+        rg2_status st;
+        const char *msg;
+    } counts[] = {
+        {0, -1, 0, RG2_EINVAL, "knots: -1 knots given, an open direction needs at least 6 (4 control points, 1 segment)"},
+        {0, 2, 0, RG2_EINVAL, "knots: 2 knots given, an open direction needs at least 6 (4 control points, 1 segment)"},
+        {0, 5, 0, RG2_EINVAL, "knots: 5 knots given, an open direction needs at least 6 (4 control points, 1 segment)"},
+        {0, 3, 1, RG2_EINVAL, "knots: 3 knots given, a closed direction needs at least 4 (3 control points, 3 segments)"},
+        {0, INT_MIN, 1, RG2_EINVAL,
+         "knots: -2147483648 knots given, a closed direction needs at least 4 (3 control points, 3 segments)"},
+        {0, RG2_MAX_POINTS + 3, 0, RG2_ELIMIT, "knots: 4000003 knots given, more than the limit 4000002 (4000000 control points)"},
+        {1, 4, 0, RG2_EINVAL, "arcs: 4 arcs given, an open direction needs at least 5 (4 control points, 1 segment)"},
+        {1, 0, 1, RG2_EINVAL, "arcs: 0 arcs given, a closed direction needs at least 3 (3 control points, 3 segments)"},
+        {1, RG2_MAX_POINTS + 1, 1, RG2_ELIMIT, "arcs: 4000001 arcs given, more than the limit 4000000 (4000000 control points)"},
+        {2, -3, 0, RG2_EINVAL, "arcs: -3 arcs given, an open direction needs at least 5 (4 control points, 1 segment)"},
+        {2, 2, 1, RG2_EINVAL, "arcs: 2 arcs given, a closed direction needs at least 3 (3 control points, 3 segments)"},
+    };
+    for (size_t t = 0; t < sizeof counts / sizeof counts[0]; t++) {
+        int n = counts[t].n, cl = counts[t].closed;
+        rg2_status st = counts[t].fn == 0   ? rg2_scalars_from_knots(&s, knots, n, cl, &err)
+                        : counts[t].fn == 1 ? rg2_scalars_from_angles(&s, a4, n, cl, &err)
+                                            : rg2_circle_coeffs(a4, n, cl, 0.0, cs, &err);
+        CHECK(st == counts[t].st && !strcmp(err.msg, counts[t].msg), "count %d (fn %d, closed %d): %s '%s', want '%s'",
+              n, counts[t].fn, cl, rg2_status_str(st), err.msg, counts[t].msg);
+    }
     /* counts near INT_MIN are too few points: n_knots - 2 and n_alpha - 1 overflowed to a count
      * past the limit (RG2_ELIMIT, "2147483646 control points") */
-    CHECK(rg2_scalars_from_knots(&s, knots, INT_MIN, 0, &err) == RG2_EINVAL && strstr(err.msg, "at least 4"),
+    CHECK(rg2_scalars_from_knots(&s, knots, INT_MIN, 0, &err) == RG2_EINVAL && strstr(err.msg, "at least 6"),
           "INT_MIN open knots: %s", err.msg);
-    CHECK(rg2_scalars_from_knots(&s, knots, INT_MIN, 1, &err) == RG2_EINVAL && strstr(err.msg, "at least 3"),
+    CHECK(rg2_scalars_from_knots(&s, knots, INT_MIN, 1, &err) == RG2_EINVAL && strstr(err.msg, "at least 4"),
           "INT_MIN closed knots: %s", err.msg);
-    CHECK(rg2_scalars_from_angles(&s, a4, INT_MIN, 0, &err) == RG2_EINVAL && strstr(err.msg, "at least 4"),
+    CHECK(rg2_scalars_from_angles(&s, a4, INT_MIN, 0, &err) == RG2_EINVAL && strstr(err.msg, "at least 5"),
           "INT_MIN open arcs: %s", err.msg);
-    CHECK(rg2_circle_coeffs(a4, INT_MIN, 0, 0.0, cs, &err) == RG2_EINVAL && strstr(err.msg, "at least 4"),
+    CHECK(rg2_circle_coeffs(a4, INT_MIN, 0, 0.0, cs, &err) == RG2_EINVAL && strstr(err.msg, "at least 5"),
           "INT_MIN open circle arcs: %s", err.msg);
     /* finite arcs and knots whose scalars leave the double range: they came back RG2_OK with
      * b = inf (an arc of 1e-320 next to one of 2) or K = inf (intervals 1e-300 and 1) */

@@ -340,11 +340,16 @@ static void errors(void)
     CHECK(rg2_polar_sphere_mesh(a2, 3, 0.0, v, 2, NULL, &b, &err) == RG2_EDOMAIN && strstr(err.msg, "2 pi"),
           "arcs: %s", err.msg);
     CHECK(rg2_polar_sphere_mesh(alpha, 2, 0.0, v, 2, NULL, &b, &err) == RG2_EINVAL &&
-              !strcmp(err.msg, "polar sphere: 2 arcs, a closed circle needs at least 3"),
+              !strcmp(err.msg, "polar sphere: 2 arcs given, a closed circle needs at least 3"),
           "2 arcs: %s", err.msg);
+    /* a NULL alpha is not "0 arcs" (it was, whatever n_alpha said) */
+    CHECK(rg2_polar_sphere_mesh(NULL, 8, 0.0, v, 2, NULL, &b, &err) == RG2_EINVAL &&
+              !strcmp(err.msg, "polar sphere: no arcs (NULL alpha)"),
+          "NULL arcs: %s", err.msg);
     for (int mm = 1; mm >= -6; mm -= 7) /* m <= -5 was refused as out of memory */
         CHECK(rg2_polar_sphere_mesh(alpha, 3, 0.0, v, mm, NULL, &b, &err) == RG2_EINVAL &&
-                  strstr(err.msg, "interior knot(s)") && b.p == NULL,
+                  strstr(err.msg, mm == 1 ? "polar knots: 1 interior knots given; a polar configuration needs at least 2"
+                                          : "polar knots: -6 interior knots given;") && b.p == NULL,
               "m = %d: %s", mm, err.msg);
     double P[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     P[6] = NAN;
@@ -354,7 +359,10 @@ static void errors(void)
     double vn[2] = {0.3, NAN}, kn[8];
     CHECK(rg2_polar_knots(vn, 2, kn, &err) == RG2_ENONFINITE && !strcmp(err.msg, "polar knots: v_2 is not finite"),
           "NaN knot: %s", err.msg);
-    CHECK(rg2_polar_knots(NULL, 2, kn, &err) == RG2_EINVAL, "no knots: %s", err.msg);
+    CHECK(rg2_polar_knots(NULL, 2, kn, &err) == RG2_EINVAL && !strcmp(err.msg, "polar knots: no interior knots (NULL v)"),
+          "no knots: %s", err.msg);
+    CHECK(rg2_polar_knots(kn, 2, NULL, &err) == RG2_EINVAL && !strcmp(err.msg, "polar knots: NULL output knots"),
+          "no output: %s", err.msg);
     p[1] = INFINITY;
     CHECK(rg2_polar_set_point(&m, 0, p, &err) == RG2_ENONFINITE && !strcmp(err.msg, "polar point: component 1 is not finite"),
           "infinite polar point: %s", err.msg);
