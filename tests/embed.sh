@@ -1,18 +1,58 @@
 #!/bin/bash
-# embed.sh BUILD SRC [CFLAGS]: install the build tree into a temporary prefix and compile
-# examples/c/torus_quarter.c with the line its header documents (pkg-config --static rg2), then
-# run it: the program checks its torus against the implicit equation and writes STEP. The compiler
-# is $CC (the one that built the library: ctest sets it), else cc.
+# embed.sh BUILD SRC [CFLAGS [pkgconfig|cmake]]: install the build tree into a temporary prefix and
+# build examples/c/torus_quarter.c against it the documented way, then run it: the program
+# checks its torus against the implicit equation and writes STEP. The compiler is $CC (the one
+# that built the library: ctest sets it), else cc.
+#   pkgconfig (the default): with the line its header documents (pkg-config --static rg2).
+#   cmake: a tiny consumer project, find_package(rg2 REQUIRED) + target_link_libraries(app
+#          rg2::rg2), configured with CMAKE_PREFIX_PATH at the prefix (no CMake package was
+#          installed: find_package(rg2) failed).
 set -u
-build=${1:?build dir} src=${2:?source dir} extra=${3:-}
+build=${1:?build dir} src=${2:?source dir} extra=${3:-} mode=${4:-pkgconfig}
 tmp=$(mktemp -d) || exit 1
 trap 'rm -rf "$tmp"' EXIT
 cmake --install "$build" --prefix "$tmp/prefix" >"$tmp/install.log" 2>&1 || { cat "$tmp/install.log"; echo "FAIL: cmake --install"; exit 1; }
-export PKG_CONFIG_PATH=$tmp/prefix/lib/pkgconfig
-flags=$(pkg-config --cflags --libs --static rg2) || { echo "FAIL: pkg-config rg2"; exit 1; }
-# shellcheck disable=SC2086
-"${CC:-cc}" $extra "$src/examples/c/torus_quarter.c" $flags -o "$tmp/torus_quarter" || { echo "FAIL: ${CC:-cc} ... \$(pkg-config --cflags --libs --static rg2)"; exit 1; }
+case $mode in
+pkgconfig)
+    export PKG_CONFIG_PATH=$tmp/prefix/lib/pkgconfig
+    flags=$(pkg-config --cflags --libs --static rg2) || { echo "FAIL: pkg-config rg2"; exit 1; }
+    # shellcheck disable=SC2086
+    "${CC:-cc}" $extra "$src/examples/c/torus_quarter.c" $flags -o "$tmp/torus_quarter" || { echo "FAIL: ${CC:-cc} ... \$(pkg-config --cflags --libs --static rg2)"; exit 1; }
+    how="compiled with pkg-config --static rg2" ;;
+cmake)
+    for f in rg2Config.cmake rg2ConfigVersion.cmake rg2Targets.cmake; do
+        [ -f "$tmp/prefix/lib/cmake/rg2/$f" ] || { ls -R "$tmp/prefix/lib"; echo "FAIL: no lib/cmake/rg2/$f installed"; exit 1; }
+    done
+    mkdir -p "$tmp/app"
+    cp "$src/examples/c/torus_quarter.c" "$tmp/app/torus_quarter.c"
+    cat >"$tmp/app/CMakeLists.txt" <<'EOT'
+cmake_minimum_required(VERSION 3.16)
+project(app C)
+find_package(rg2 REQUIRED)
+add_executable(torus_quarter torus_quarter.c)
+target_link_libraries(torus_quarter PRIVATE rg2::rg2)
+EOT
+    ver() { sed -n "s/^#define RG2_VERSION_$1 \([0-9][0-9]*\)$/\1/p" "$src/include/rg2.h"; }
+    major=$(ver MAJOR) minor=$(ver MINOR) patch=$(ver PATCH)
+    if [ "$major" = 0 ]; then other=0.$((minor + 1)); else other=$((major + 1)).0; fi
+    # the package's version file: rg2's own version is found, the next ABI's is not (before 1.0
+    # a minor version may change the ABI, as the SONAME says)
+    cat >>"$tmp/app/CMakeLists.txt" <<EOT
+find_package(rg2 $major.$minor.$patch EXACT REQUIRED)
+find_package(rg2 $other QUIET)
+if(rg2_FOUND)
+  message(FATAL_ERROR "find_package(rg2 $other) accepted rg2 $major.$minor.$patch")
+endif()
+EOT
+    env -u CFLAGS -u LDFLAGS cmake -S "$tmp/app" -B "$tmp/app/build" -DCMAKE_PREFIX_PATH="$tmp/prefix" \
+        ${CC:+-DCMAKE_C_COMPILER="$CC"} -DCMAKE_C_FLAGS="$extra" -DCMAKE_EXE_LINKER_FLAGS="$extra" \
+        >"$tmp/cfg.log" 2>&1 || { cat "$tmp/cfg.log"; echo "FAIL: find_package(rg2 REQUIRED) in a consumer project"; exit 1; }
+    cmake --build "$tmp/app/build" >"$tmp/build.log" 2>&1 || { cat "$tmp/build.log"; echo "FAIL: building the consumer linked to rg2::rg2"; exit 1; }
+    cp "$tmp/app/build/torus_quarter" "$tmp/torus_quarter"
+    how="built with find_package(rg2) and rg2::rg2" ;;
+*) echo "FAIL: unknown mode '$mode'"; exit 1 ;;
+esac
 out=$("$tmp/torus_quarter" "$tmp/q.step") || { echo "FAIL: torus_quarter: $out"; exit 1; }
 head -c 13 "$tmp/q.step" | grep -q "ISO-10303-21" || { echo "FAIL: no STEP file written"; exit 1; }
 echo "$out"
-echo "embed: installed, compiled with pkg-config --static rg2, ran: ok"
+echo "embed: installed, $how, ran: ok"

@@ -3,7 +3,8 @@
 # package it. Checked: the SONAME carries the header's version (librg2.so.MAJOR.MINOR before 1.0,
 # when a minor version may change the ABI; it was a bare librg2.so, so every version claimed the
 # same ABI); the library exports only rg2_ names; rg2.pc and `rg2 --version` say the header's
-# version; an installed copy links through plain pkg-config and the example program runs on it.
+# version; an installed copy links through plain pkg-config (with rg2.pc alone on the path:
+# cJSON's and libpng's .pc files are not needed) and the example program runs on it.
 # The compiler is $CC (ctest sets the one that built the tests), else cc.
 set -u
 src=${1:?source dir}
@@ -33,6 +34,15 @@ cmake --install "$tmp/build" --prefix "$tmp/prefix" >>"$tmp/log" 2>&1 || { tail 
 [ -L "$tmp/prefix/lib/$soname" ] && [ -L "$tmp/prefix/lib/librg2.so" ] || { ls -l "$tmp/prefix/lib"; echo "FAIL: the installed $soname / librg2.so links"; exit 1; }
 out=$(env -u LD_LIBRARY_PATH "$tmp/prefix/bin/rg2" --version 2>&1) && [ "$out" = "rg2 $major.$minor.$patch" ] ||
     { echo "FAIL: the installed rg2 does not run on the installed library: $out"; exit 1; }
+# rg2.h uses neither cJSON nor libpng, and librg2.so links them itself: plain pkg-config works
+# with no .pc file but rg2's (rg2.pc had Requires.private: libcjson libpng, which pkg-config
+# reads even without --static: "Package libcjson was not found"), and --static still names them
+only=(env PKG_CONFIG_LIBDIR="$tmp/prefix/lib/pkgconfig" PKG_CONFIG_PATH=)
+out=$("${only[@]}" pkg-config --cflags --libs rg2 2>&1) ||
+    { echo "FAIL: pkg-config --cflags --libs rg2 with only rg2.pc on the path: $out"; exit 1; }
+out=$("${only[@]}" pkg-config --libs --static rg2 2>&1) && echo " $out " | grep -q -- " -lcjson " &&
+    echo " $out " | grep -q -- " -lpng[0-9]* " ||
+    { echo "FAIL: pkg-config --libs --static rg2 does not name cJSON and libpng: $out"; exit 1; }
 export PKG_CONFIG_PATH=$tmp/prefix/lib/pkgconfig
 [ "$(pkg-config --modversion rg2)" = "$major.$minor.$patch" ] || { echo "FAIL: rg2.pc says $(pkg-config --modversion rg2)"; exit 1; }
 # shellcheck disable=SC2046

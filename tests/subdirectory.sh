@@ -16,7 +16,7 @@ cmake_minimum_required(VERSION 3.16)
 project(host C)
 add_subdirectory("$src" rg2)
 add_executable(app app.c)
-target_link_libraries(app PRIVATE rg2)
+target_link_libraries(app PRIVATE rg2::rg2) # (the alias of the installed package's name)
 EOT
 cmake -S "$tmp/host" -B "$tmp/build" -G "Unix Makefiles" >"$tmp/cfg.log" 2>&1 || { cat "$tmp/cfg.log"; echo "FAIL: a host project with add_subdirectory(rg2) does not configure"; exit 1; }
 [ -f "$tmp/build/rg2/rg2.pc" ] || { echo "FAIL: rg2.pc not generated in rg2's build directory"; exit 1; }
