@@ -1042,15 +1042,22 @@ typedef enum {
     RG2_RENDER_ZEBRA       /**< reflection of parallel light lines (stripes from the normal) */
 } rg2_render_mode;
 
+/* Every field's range is checked by rg2_render (the message names the field and its value;
+ * a non-finite view names the three): RG2_EINVAL outside it, RG2_ENONFINITE for a NaN or
+ * infinite azimuth, elevation or distance.
+ * Flags (apart, boundaries, tint, colorbar, keep_pixels) are 0 = off, anything else = on. */
 typedef struct {
     int width, height;     /**< image size in pixels (default 800 x 600), each 16..8192; about
                                 131 bytes of memory per pixel (8192 x 8192: 8.8 GB) */
-    rg2_render_mode mode;
-    double azimuth;        /**< degrees about +z, 0 looks from +x towards the centre (default 35) */
-    double elevation;      /**< degrees above the xy plane, -90..90 (default 25) */
+    rg2_render_mode mode;  /**< one of rg2_render_mode (default shaded) */
+    double azimuth;        /**< degrees about +z, 0 looks from +x towards the centre (default 35);
+                                any finite value (taken modulo 360) */
+    double elevation;      /**< degrees above the xy plane, finite and in -90..90 (default 25) */
     double distance;       /**< eye distance from the view centre (middle of the scene's extent
-                                across the view); <= 0 fits the view to the scene */
-    double fov;            /**< vertical field of view in degrees (default 30) */
+                                across the view), finite; <= 0 fits the view to the scene
+                                (default 0) */
+    double fov;            /**< vertical field of view in degrees, strictly between 1 and 170
+                                (1 and 170 themselves, and NaN, are refused; default 30) */
     int apart;             /**< n > 1: lay the surfaces out apart, in a grid across the view
                                 (ceil(sqrt(n)) columns, surface 0 top left, all at one depth),
                                 each moved by a translation; for outputs that overlap (default
@@ -1062,10 +1069,13 @@ typedef struct {
     int range_set;         /**< 1: use range[] as the colour range; 0: robust range (the
                                 percentiles below, at least 1e-3 of its middle and 1e-9 / rho
                                 wide for H, 1e-9 / rho^2 for K; rho the scene's radius) */
-    double range[2];       /**< user colour range lo < hi (curvature modes) */
+    double range[2];       /**< user colour range (curvature modes), read when range_set: both
+                                finite, lo < hi, and hi - lo finite (not wider than the largest
+                                double) */
     double percentile;     /**< robust range: clip this fraction at each end, in [0, 0.5)
-                                (default 0.02) */
-    double stripes;        /**< zebra: stripe pairs per half turn (default 12) */
+                                (default 0.02; checked in every mode) */
+    double stripes;        /**< zebra: stripe pairs per half turn, 1..1000 (rounded to the
+                                nearest whole number; checked in zebra mode only; default 12) */
     int keep_pixels;       /**< fill rg2_image.pixels with the per-pixel exact data */
     int threads;           /**< OpenMP threads, 0..1024 (at most 64 run); 0 = the OpenMP default */
 } rg2_render_opts;
@@ -1090,11 +1100,12 @@ typedef struct {
 } rg2_image;
 
 RG2_API void rg2_render_opts_default(rg2_render_opts *o);
-/** Render n surfaces (meshes: nullable, n control meshes for the overlay) into out.
- *  Release with rg2_image_free.
- *  @return RG2_EINVAL (no surfaces, bad size/range/mode, a colour range wider than the largest
- *  double, elevation outside [-90, 90], threads outside 0..1024, mesh overlay without meshes),
- *  RG2_ENONFINITE (non-finite control point, naming it), RG2_ENOMEM. */
+/** Render n surfaces (meshes: nullable, n control meshes for the overlay) into out (o NULL:
+ *  rg2_render_opts_default). Release with rg2_image_free.
+ *  @return RG2_EINVAL (no surfaces, a NULL out, a surface without patches, an rg2_render_opts
+ *  field outside the range its comment gives: size, mode, fov, elevation, colour range,
+ *  percentile, zebra stripes, threads, mesh overlay without meshes), RG2_ENONFINITE (a NaN or
+ *  infinite azimuth, elevation or distance; a non-finite control point, naming it), RG2_ENOMEM. */
 RG2_API rg2_status rg2_render(const rg2_surface *surfs, int n, const rg2_mesh *meshes,
                               const rg2_render_opts *o, rg2_image *out, rg2_error *err);
 RG2_API void rg2_image_free(rg2_image *img);

@@ -666,6 +666,15 @@ static void options(void)
         const char *msg;
     } bad[] = {{0, 9, RG2_EINVAL, "render: unknown mode 9"},
                {1, 0.5, RG2_EINVAL, "render: field of view 0.5 outside (1, 170) degrees"},
+               /* the edges rg2.h gives (fov strictly between 1 and 170, stripes 1..1000, a NaN view
+                * RG2_ENONFINITE): the comments gave no fov or stripes range and no ENONFINITE */
+               {1, 1, RG2_EINVAL, "render: field of view 1 outside (1, 170) degrees"},
+               {1, 170, RG2_EINVAL, "render: field of view 170 outside (1, 170) degrees"},
+               {1, NAN, RG2_EINVAL, "render: field of view nan outside (1, 170) degrees"},
+               {6, NAN, RG2_ENONFINITE, "render: non-finite view (azimuth, elevation or distance)"},
+               {5, 1000.5, RG2_EINVAL, "render: stripes 1000.5 outside 1..1000"},
+               {5, 0.99, RG2_EINVAL, "render: stripes 0.99 outside 1..1000"},
+               {4, -0.01, RG2_EINVAL, "render: percentile -0.01 outside [0, 0.5)"},
                {2, NAN, RG2_ENONFINITE, "render: non-finite view (azimuth, elevation or distance)"},
                {3, INFINITY, RG2_ENONFINITE, "render: non-finite view"},
                {4, 0.5, RG2_EINVAL, "render: percentile 0.5 outside [0, 0.5)"},
@@ -697,6 +706,23 @@ static void options(void)
         rg2_status st = rg2_render(&s, 1, NULL, &o, &a, &err);
         CHECK(st == bad[k].code && strstr(err.msg, bad[k].msg), "bad option %zu: %s '%s', want '%s'", k,
               rg2_status_str(st), err.msg, bad[k].msg);
+    }
+    /* the insides of those edges render; stripes are checked in zebra mode only (as rg2.h says) */
+    for (int k = 0; k < 4; k++) {
+        rg2_image e;
+        rg2_render_opts_default(&o);
+        o.width = o.height = 16;
+        if (k == 0)
+            o.fov = 1.5;
+        else if (k == 1)
+            o.fov = 169.5;
+        else if (k == 2)
+            o.mode = RG2_RENDER_ZEBRA, o.stripes = 1000, o.elevation = -90;
+        else
+            o.stripes = 0; /* shaded: not read */
+        rg2_status st = rg2_render(&s, 1, NULL, &o, &e, &err);
+        CHECK(st == RG2_OK, "in-range options %d: %s %s", k, rg2_status_str(st), st ? err.msg : "");
+        rg2_image_free(&e);
     }
     /* an azimuth of 1e308 degrees is the angle fmod(1e308, 360): the same picture, not an empty
      * one (the angle in radians overflowed to inf) */
