@@ -928,6 +928,42 @@ static void errors(void)
  * slope kept) builds over its default partitions and lies on its implicit surface, along its own
  * parameterization, to rounding (a parameter in (0, 0.01] was refused by a mis-set positivity
  * bound and no test noticed). Each size parameter set negative in turn is refused, naming it. */
+/* The text of a number in a message: the fewest significant digits that read back as the
+ * number, but never fewer than its integer digits below 1e17 (90 reads "90", not "9e+01");
+ * found here by trying %.*g from that many digits up. */
+static void number_text(double x, char *buf, size_t cap)
+{
+    int p = 1;
+    if (fabs(x) >= 1.0 && fabs(x) < 1e17) {
+        char ip[32];
+        p = snprintf(ip, sizeof ip, "%.0f", floor(fabs(x)));
+    }
+    for (; p <= 17; p++) {
+        snprintf(buf, cap, "%.*g", p, x);
+        if (strtod(buf, NULL) == x)
+            return;
+    }
+}
+
+/* A negative first parameter is named with its value as number_text writes it: integers below
+ * 1e17 in all their digits (90, 2e16), 1e17, fractions and a subnormal in the fewest digits that
+ * read back. */
+static void parameter_number_text(const rg2_shape_desc *d, rg2_shape_kind kind, const rg2_partition p[2])
+{
+    static const double vals[] = {-90.0, -123456789.0, -2e16, -1e17, -0.1, -1.0 / 3.0, -3e-16, -5e-324};
+    for (size_t k = 0; k < sizeof vals / sizeof vals[0]; k++) {
+        rg2_shape sh;
+        rg2_shape_init(&sh, kind);
+        sh.param[0] = vals[k];
+        char num[40], want[128];
+        number_text(vals[k], num, sizeof num);
+        snprintf(want, sizeof want, "%s: parameter %s = %s must be > 0", d->name, d->param_names[0], num);
+        rg2_error err;
+        rg2_mesh m;
+        expect_err(rg2_shape_mesh(&sh, &p[0], &p[1], &m, &err), RG2_EDOMAIN, &err, want, "the value's digits");
+    }
+}
+
 static void parameter_ranges(void)
 {
     rg2_error err;
@@ -966,6 +1002,8 @@ static void parameter_ranges(void)
             rg2_mesh m;
             expect_err(rg2_shape_mesh(&sh, &p[0], &p[1], &m, &err), RG2_EDOMAIN, &err, want, d->name);
         }
+        if (kind == RG2_SHAPE_SPHERE)
+            parameter_number_text(d, (rg2_shape_kind)kind, p);
     }
     printf("shapes at 1e-3 of the default parameters: residual %.2e, reproduction %.2e\n", worst, wrep);
     CHECK(worst <= 1e-13 && wrep <= 1e-13, "small shapes: residual %.3g, reproduction %.3g", worst, wrep);
