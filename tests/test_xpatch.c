@@ -242,8 +242,28 @@ static void bad_degrees(void)
     }
 }
 
+/* Patch (i, j) of s on an n x m per-patch grid (positions): the largest distance from
+ * rg2_surface_eval at (a / (n - 1), b / (m - 1)), or -1 when the grid is refused (err says why). */
+static double patch_grid_dev(const rg2_surface *s, int i, int j, int n, int m, rg2_error *err)
+{
+    double *pg = malloc(sizeof(double) * 3 * (size_t)n * (size_t)m), dev = -1.0;
+    rg2_grid_out one = {.pos = pg};
+    if (pg && rg2__surface_patch_grid(s, i, j, n, m, &one, err) == RG2_OK) {
+        dev = 0.0;
+        for (int a = 0; a < n; a++)
+            for (int b = 0; b < m; b++) {
+                rg2_eval e;
+                rg2_surface_eval(s, i, j, (double)a / (n - 1), (double)b / (m - 1), 0, &e);
+                dev = fmax(dev, dist3(pg + 3 * ((size_t)a * m + b), e.p));
+            }
+    }
+    free(pg);
+    return dev;
+}
+
 /* Surfaces holding elevated patches: accessors, copy, min weight; rg2_surface_grid and the
- * per-patch grid agree with rg2_surface_eval. */
+ * per-patch grid agree with rg2_surface_eval, the per-patch grid also at 2 and RG2_GRID_MAX
+ * points per direction. */
 static void surface_grids(void)
 {
     rg2_surface s, x;
@@ -338,17 +358,32 @@ static void surface_grids(void)
     free(buf2);
     double p1[3 * 4];
     rg2_grid_out bad = {.pos = p1};
-    CHECK(rg2__surface_patch_grid(&x, 0, 0, 1, 4, &bad, &err) == RG2_EINVAL && strstr(err.msg, "degree (4, 3)"),
-          "1 x 4 grid on a higher-degree patch: %s", err.msg);
-    CHECK(rg2__surface_patch_grid(&x, 0, 0, 2, RG2_GRID_MAX + 1, &bad, &err) == RG2_ELIMIT, "grid limit: %s",
-          err.msg);
+    /* the edges of the guard, in either direction: 2 and RG2_GRID_MAX points are grids (of the
+     * surface's points); 1 point, RG2_GRID_MAX + 1 points and no position array are refused,
+     * the message naming the patch's degrees */
+    static const int edge[4][2] = {{2, 5}, {5, 2}, {RG2_GRID_MAX, 2}, {2, RG2_GRID_MAX}};
+    for (int k = 0; k < 4; k++) {
+        double dev = patch_grid_dev(&x, 0, 0, edge[k][0], edge[k][1], &err);
+        CHECK(dev >= 0 && dev <= 14.0 * 1e-14, "%d x %d grid on a higher-degree patch: %.3g from rg2_surface_eval (%s)",
+              edge[k][0], edge[k][1], dev, dev < 0 ? err.msg : "");
+    }
+    static const int refused[5][2] = {{1, 4}, {4, 1}, {RG2_GRID_MAX + 1, 2}, {2, RG2_GRID_MAX + 1}, {4, 4}};
+    for (int k = 0; k < 5; k++) {
+        rg2_grid_out no_pos = {.normal = p1}, *o = k < 4 ? &bad : &no_pos;
+        rg2_status want = k == 2 || k == 3 ? RG2_ELIMIT : RG2_EINVAL;
+        CHECK(rg2__surface_patch_grid(&x, 0, 0, refused[k][0], refused[k][1], o, &err) == want &&
+                  strstr(err.msg, "degree (4, 3)"),
+              "%d x %d grid%s on a higher-degree patch: %s", refused[k][0], refused[k][1],
+              k < 4 ? "" : " without positions", err.msg);
+    }
     free(buf);
     rg2_surface_free(&x);
     rg2_surface_free(&s);
 }
 
 /* Collapsed sides of any degree: a patch with a side on one point stays collapsed there when
- * elevated, its other sides do not; the collapse tolerance counts the elevated patches. */
+ * elevated, its other sides do not; the collapse tolerance counts the elevated patches; a side
+ * whose points lie exactly tol apart collapses at tol. */
 static void collapsed_sides(void)
 {
     rg2t_rng r;
@@ -368,6 +403,17 @@ static void collapsed_sides(void)
                 ok &= !rg2__xpatch_side_collapsed(&Y, side, 1e-12);
         }
     CHECK(ok, "collapsed side 0 found on every elevation, no other side");
+    /* "within tol" includes tol: side 0 of weight 2 on (1, 2, 3) but one point 0.25 off in x
+     * (all exact in binary) collapses at tol 0.25, not at 0.125; on one point, at tol 0 */
+    random_xpatch(&r, 3, 3, &X);
+    for (int a = 0; a <= 3; a++)
+        for (int k = 0; k < 4; k++)
+            X.h[a][0][k] = 2.0 * (k < 3 ? k + 1 : 1);
+    int at0 = rg2__xpatch_side_collapsed(&X, 0, 0.0);
+    X.h[2][0][0] = 2.0 * 1.25;
+    int at_tol = rg2__xpatch_side_collapsed(&X, 0, 0.25), below = rg2__xpatch_side_collapsed(&X, 0, 0.125);
+    CHECK(at0 && at_tol && !below, "side within tol: coincident at tol 0 %d, 0.25 off at tol 0.25 %d, at 0.125 %d", at0,
+          at_tol, below);
     rg2_surface s, x;
     CHECK_OK(rg2t_torus(5.0, 2.0, 5, 5, NULL, &s, &err), &err);
     CHECK_OK(rg2_surface_copy(&s, &x, &err), &err);
