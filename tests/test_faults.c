@@ -3,7 +3,9 @@
  * meets no injected failure. Each failing run must return RG2_ENOMEM with a message and leave
  * nothing in the output directory (neither the file nor a temporary one); under ASan (make
  * test) LeakSanitizer reports anything it did not free. The run without a failure must give
- * the same result (the file's bytes, the surface's values) as a run without injection.
+ * the same result (the file's bytes, the surface's values) as a run without injection, and the
+ * run N = 0 must have had its first allocation fail (else no failure was ever injected). First
+ * the allocators themselves (allocators()): sizes, zeroing, overflow and 2 MiB alignment.
  *
  * Linked with rg2_fi, the library built with RG2_FAULT_INJECT (src/internal.h: the counting
  * allocators; only allocations in src/ are counted, not cJSON's, libpng's or libc's own).
@@ -16,12 +18,19 @@
 
 #include <dirent.h>
 #include <time.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 extern long rg2__fi_countdown, rg2__fi_injected, rg2__fi_calls;
 int rg2__grid_tables_cached(int n, int m);
+void *rg2__calloc(size_t n, size_t size);
+void *rg2__calloc_big(size_t n, size_t size);
+void *rg2__alloc_big(size_t n, size_t size, size_t from, int zero);
 
 /* A result as bytes, to compare a run with the reference run. */
 typedef struct {
@@ -303,6 +312,7 @@ static void sweep(const char *name, op_fn run, const void *ctx, const char *ext)
     CHECK(st == RG2_OK, "%s: reference run -> %s: %s", name, rg2_status_str(st), err.msg);
     long calls = rg2__fi_calls - calls0;
     int tried = 0, recovered = 0, done = 0;
+    long inj_first = -1; /* failures injected in the run N = 0 */
     for (long N = 0, next; N <= calls + 16 && !done; N = next) {
         next = N < 200 ? N + 1 : N + N / 20;
         if (N < calls && next > calls) /* (the last step lands on the reference run's count) */
@@ -313,6 +323,8 @@ static void sweep(const char *name, op_fn run, const void *ctx, const char *ext)
         rg2__fi_countdown = cur_N = N;
         st = run(ctx, path, &got, &err);
         rg2__fi_countdown = -1;
+        if (N == 0)
+            inj_first = rg2__fi_injected - inj0;
         if (rg2__fi_injected == inj0) { /* no allocation failed: the whole result */
             CHECK(st == RG2_OK, "%s: N = %ld, no failure injected -> %s: %s", name, N, rg2_status_str(st),
                   err.msg);
@@ -351,11 +363,60 @@ static void sweep(const char *name, op_fn run, const void *ctx, const char *ext)
     }
     CHECK(done, "%s: still failing after N = %ld (allocations of the reference run: %ld)", name, calls + 16,
           calls);
+    CHECK(calls == 0 || inj_first == 1, "%s: N = 0 made %ld allocations fail, not the first of the reference run's %ld",
+          name, inj_first, calls);
     clock_gettime(CLOCK_MONOTONIC, &t1);
     printf("  %-30s %5ld allocations, %4d failure points tried, %3d recovered from, %.2f s\n", name, calls, tried,
            recovered, (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
     total_points += tried;
     free(ref.b);
+}
+
+/* The allocators (src/internal.h): n * size bytes, zeroed unless asked not to; NULL when
+ * n * size overflows, also where the product wrapped past SIZE_MAX would be a size they could
+ * allocate (4 MiB here); on Linux, from the threshold up (2 MiB for rg2__calloc_big) on 2 MiB
+ * boundaries (transparent huge pages), below it from the ordinary heap. */
+static void allocators(void)
+{
+    const size_t mib2 = (size_t)2 << 20, wrap = SIZE_MAX / 2 + 1 + mib2; /* wrap * 2 = 4 MiB mod 2^N */
+    void *w[4] = {rg2__calloc(wrap, 2), rg2__calloc_big(wrap, 2), rg2__alloc_big(wrap, 2, 4096, 0),
+                  rg2__alloc_big(wrap, 2, 4096, 1)};
+    CHECK(!w[0] && !w[1] && !w[2] && !w[3], "(SIZE_MAX / 2 + 1 + 2 MiB) x 2 bytes allocated: %p %p %p %p", w[0], w[1],
+          w[2], w[3]);
+    for (int k = 0; k < 4; k++)
+        free(w[k]);
+    static const size_t sizes[] = {1, 100, ((size_t)2 << 20) - 1, (size_t)2 << 20, ((size_t)2 << 20) + 1,
+                                   ((size_t)6 << 20) + 5};
+    int bad = 0, misaligned = 0, small = 0, small_aligned = 0;
+    for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++)
+        for (int zero = 0; zero < 2; zero++) {
+            size_t n = sizes[k];
+            unsigned char *p = zero ? rg2__calloc_big(n, 1) : rg2__alloc_big(n / 4 + 1, 4, mib2, 0);
+            size_t got = zero ? n : 4 * (n / 4 + 1);
+            if (!p) {
+                bad++;
+                continue;
+            }
+#ifdef __GLIBC__
+            bad += malloc_usable_size(p) < got;
+#endif
+            for (size_t q = 0; zero && q < got; q++)
+                bad += p[q] != 0;
+            memset(p, 0xA5, got); /* (the whole array is the caller's: ASan checks the bytes) */
+#ifdef __linux__
+            if (got >= mib2)
+                misaligned += (uintptr_t)p % mib2 != 0;
+            else { /* (one may sit on a 2 MiB boundary by chance, not all of them) */
+                small++;
+                small_aligned += (uintptr_t)p % mib2 == 0;
+            }
+#endif
+            free(p);
+        }
+    CHECK(bad == 0 && misaligned == 0 && (small == 0 || small_aligned < small),
+          "allocators: %d arrays short, missing or not zeroed; %d of 2 MiB and more not on 2 MiB boundaries, %d of %d "
+          "smaller ones on them",
+          bad, misaligned, small_aligned, small);
 }
 
 int main(int argc, char **argv)
@@ -376,6 +437,7 @@ int main(int argc, char **argv)
         return 1;
     }
     rg2_error err;
+    allocators();
 
     /* surfaces built from meshes: a torus, and each mesh of the polar sphere */
     rg2_mesh torus;
