@@ -693,7 +693,8 @@ RG2_API void rg2_design_free(rg2_design *d);
  *  take a NULL design (or an index out of range) as empty: 0, NULL or -1. */
 RG2_API int rg2_design_num_surfaces(const rg2_design *d);
 RG2_API const rg2_surface *rg2_design_surface(const rg2_design *d, int k);
-/** The control mesh surface k was built from. */
+/** The control mesh surface k was built from; for a capped output, the body mesh before its
+ *  caps (rg2_design_cap gives the caps' options). */
 RG2_API const rg2_mesh *rg2_design_mesh(const rg2_design *d, int k);
 /** The shapes the design uses; surface tags index this list. */
 RG2_API int rg2_design_num_shapes(const rg2_design *d);
@@ -843,6 +844,10 @@ RG2_API void rg2_cap_opts_default(rg2_cap_opts *o);
  *  errors of rg2_surface_build. */
 RG2_API rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts,
                                  rg2_surface *out, rg2_cap_info *info, rg2_error *err);
+/** Whether output k of a design is capped (its `cap` operation): 1, and *opts (nullable) gets
+ *  the caps' options, with which rg2_cap_build of rg2_design_mesh(d, k) builds the patches of
+ *  rg2_design_surface(d, k) bit for bit; else 0 (also for a NULL design or k out of range). */
+RG2_API int rg2_design_cap(const rg2_design *d, int k, rg2_cap_opts *opts);
 
 /* ===================================================================================== */
 /** @name Grid evaluation and tessellation */

@@ -486,6 +486,16 @@ const rg2_mesh *rg2_design_mesh(const rg2_design *d, int k)
     return (d && k >= 0 && k < d->n_out) ? &d->mesh[d->out[k]].m : NULL;
 }
 
+int rg2_design_cap(const rg2_design *d, int k, rg2_cap_opts *opts)
+{
+    const rg2__dmesh *dm = (d && k >= 0 && k < d->n_out) ? &d->mesh[d->out[k]] : NULL;
+    if (!dm || !dm->capped)
+        return 0;
+    if (opts)
+        *opts = dm->cap;
+    return 1;
+}
+
 const char *rg2_design_mesh_name(const rg2_design *d, int k)
 {
     return (d && k >= 0 && k < d->n_out) ? d->mesh[d->out[k]].name : NULL;

@@ -1202,6 +1202,42 @@ static void bad_inputs(void)
 
 /* A cap's seam positions v_c lie in [0, 1) (docs/design-format.md, docs/poles.md: v_c = 0 is
  * allowed): both ends of that range, 0 taken and 1 refused, and a negative one refused by name. */
+/* A capped output's caps can be built again from the API: rg2_design_cap's options and
+ * rg2_design_mesh's body give rg2_design_surface's patches bit for bit (Fig. 9's sphere, both
+ * ends; Fig. 15's general quadratic caps of degree 4 or 5); its uncapped output reports 0. */
+static void design_caps_again(void)
+{
+    const char *files[] = {"examples/fig9_polar_sphere.json", "examples/fig15_saddle_caps.json"};
+    for (int f = 0; f < 2; f++) {
+        rg2_design *d = NULL;
+        rg2_error err;
+        CHECK_OK(rg2_design_load(files[f], &d, &err), &err);
+        int capped = 0, same = 0;
+        for (int k = 0; k < rg2_design_num_surfaces(d); k++) {
+            rg2_cap_opts o;
+            if (!rg2_design_cap(d, k, &o))
+                continue;
+            capped++;
+            const rg2_surface *a = rg2_design_surface(d, k);
+            rg2_surface b;
+            CHECK_OK(rg2_cap_build(rg2_design_mesh(d, k), &o, &b, NULL, &err), &err);
+            int eq = a->nu == b.nu && a->nv == b.nv && !a->xp == !b.xp;
+            size_t np = (size_t)a->nu * (size_t)a->nv;
+            eq = eq && !memcmp(a->patch, b.patch, np * sizeof *a->patch);
+            eq = eq && (!a->xp || !memcmp(a->xp, b.xp, np * sizeof *a->xp));
+            same += eq;
+            rg2_surface_free(&b);
+        }
+        int want = f ? 3 : 1;
+        CHECK(capped == want && same == want && !rg2_design_cap(d, -1, NULL) &&
+                  !rg2_design_cap(d, rg2_design_num_surfaces(d), NULL) && !rg2_design_cap(NULL, 0, NULL),
+              "%s: %d capped outputs (want %d), %d built again bit for bit", files[f], capped, want, same);
+        if (f == 0)
+            CHECK(!rg2_design_cap(d, 0, NULL), "%s: output 0 (the band) is not capped", files[f]);
+        rg2_design_free(d);
+    }
+}
+
 static void cap_seam_positions(void)
 {
     const char *fmt = "{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {\"A\": {\"shape\": \"c\"},"
@@ -1463,5 +1499,6 @@ int main(void)
     null_designs();
     unknown_key_lists();
     cap_seam_positions();
+    design_caps_again();
     return rg2t_done("test_design");
 }
