@@ -49,7 +49,27 @@ EOT
         >"$tmp/cfg.log" 2>&1 || { cat "$tmp/cfg.log"; echo "FAIL: find_package(rg2 REQUIRED) in a consumer project"; exit 1; }
     cmake --build "$tmp/app/build" >"$tmp/build.log" 2>&1 || { cat "$tmp/build.log"; echo "FAIL: building the consumer linked to rg2::rg2"; exit 1; }
     cp "$tmp/app/build/torus_quarter" "$tmp/torus_quarter"
-    how="built with find_package(rg2) and rg2::rg2" ;;
+    # a C++ project (rg2.h's extern "C"): the package enables C for OpenMP's C component itself
+    mkdir -p "$tmp/appxx"
+    printf '#include <rg2.h>\n#include <cstdio>\nint main() { std::printf("%%s\\n", rg2_version()); return 0; }\n' \
+        >"$tmp/appxx/v.cpp"
+    cat >"$tmp/appxx/CMakeLists.txt" <<'EOT'
+cmake_minimum_required(VERSION 3.16)
+project(appxx CXX)
+find_package(rg2 REQUIRED)
+add_executable(v v.cpp)
+target_link_libraries(v PRIVATE rg2::rg2)
+EOT
+    # the C++ compiler of the C compiler's family (the sanitizer runtimes of GCC and clang differ)
+    case "${CC:-}" in *clang*) cxx=${CC%clang*}clang++${CC##*clang} ;; *gcc*) cxx=${CC%gcc*}g++${CC##*gcc} ;; *) cxx= ;; esac
+    command -v "$cxx" >/dev/null 2>&1 || cxx=
+    env -u CFLAGS -u CXXFLAGS -u LDFLAGS cmake -S "$tmp/appxx" -B "$tmp/appxx/build" -DCMAKE_PREFIX_PATH="$tmp/prefix" \
+        ${CC:+-DCMAKE_C_COMPILER="$CC"} ${cxx:+-DCMAKE_CXX_COMPILER="$cxx"} \
+        -DCMAKE_CXX_FLAGS="$extra" -DCMAKE_EXE_LINKER_FLAGS="$extra" \
+        >"$tmp/cfgxx.log" 2>&1 || { cat "$tmp/cfgxx.log"; echo "FAIL: find_package(rg2 REQUIRED) in a C++ project"; exit 1; }
+    cmake --build "$tmp/appxx/build" >"$tmp/buildxx.log" 2>&1 || { cat "$tmp/buildxx.log"; echo "FAIL: building the C++ consumer"; exit 1; }
+    v=$("$tmp/appxx/build/v") && [ -n "$v" ] || { echo "FAIL: the C++ consumer did not run: $v"; exit 1; }
+    how="built with find_package(rg2) and rg2::rg2, in C and in C++ (rg2 $v)" ;;
 *) echo "FAIL: unknown mode '$mode'"; exit 1 ;;
 esac
 out=$("$tmp/torus_quarter" "$tmp/q.step") || { echo "FAIL: torus_quarter: $out"; exit 1; }
