@@ -989,7 +989,8 @@ RG2_API void rg2_tess_free(rg2_tess *t);
  *  when another thread writes the same path), then renames it to path: a failed export leaves
  *  no file, and concurrent writers of one path leave one writer's whole file. A regular file
  *  replaced keeps its permission bits (mode & 0777, as with sed -i; not setuid, setgid or
- *  sticky); a new file, or one replacing a symbolic link, has 0666 & ~umask.
+ *  sticky) and, where the writer may give them, its owner and group (else its group bits are
+ *  cut to the others'); a new file, or one replacing a symbolic link, has 0666 & ~umask.
  *  @return RG2_EIO (unwritable), RG2_EWEIGHT (non-positive weight for STEP/IGES, naming the
  *  patch), RG2_ENONFINITE (a control value not finite, in every format), RG2_EINVAL (unknown
  *  extension, empty input, a layout other than the two), RG2_EDOMAIN (STL, PLY and glTF store

@@ -126,13 +126,20 @@ rg2_status rg2__out_open(rg2__out *o, const char *path, rg2_error *err)
         if (fd < 0 && errno != EEXIST)
             break;
     }
-    /* a regular file at path keeps its permission bits (mode & 0777), as sed -i keeps them:
-     * the renamed file used to have the new file's 0666 & ~umask (a 0600 file became 0644).
-     * Not the setuid, setgid and sticky bits: root writing over another user's setuid file
-     * would make a root-owned setuid file. A failed fchmod (a file system without modes)
-     * leaves 0666 & ~umask and is not an error */
-    if (fd >= 0 && have && S_ISREG(sb.st_mode))
-        (void)fchmod(fd, sb.st_mode & 0777);
+    /* a regular file at path keeps its permission bits (mode & 0777) and, where the writer may
+     * give them (root; a group of its own), its owner and group, as sed -i keeps them: the
+     * renamed file used to have the new file's 0666 & ~umask (a 0600 file became 0644), and
+     * with the bits alone a 0660 file of group 'project' became 0660 of the writer's group.
+     * Under another group the group bits grant no more than the others' do. Not the setuid,
+     * setgid and sticky bits: root writing over another user's setuid file would make a
+     * root-owned setuid file. A failed fchmod (a file system without modes) leaves
+     * 0666 & ~umask and is not an error */
+    if (fd >= 0 && have && S_ISREG(sb.st_mode)) {
+        mode_t m = sb.st_mode & 0777;
+        if (fchown(fd, sb.st_uid, sb.st_gid) != 0 && fchown(fd, (uid_t)-1, sb.st_gid) != 0)
+            m = (m & 0707) | (m & (m << 3) & 0070);
+        (void)fchmod(fd, m);
+    }
     if (fd >= 0 && !(o->f = fdopen(fd, "wb"))) {
         int saved = errno;
         close(fd);

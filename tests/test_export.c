@@ -1991,6 +1991,19 @@ static void kept_modes(const rg2_surface *s)
         remove(p);
     }
     umask(022);
+    /* its owner and group too, where the writer may give them (root, as CI runs): a 0660 file of
+     * nobody:nogroup stayed 0660 but became root:root, its group bits granting root's group */
+    if (geteuid() == 0) {
+        char *p = path_in("mode_owner.obj");
+        FILE *f = fopen(p, "w");
+        CHECK(f && fclose(f) == 0 && chown(p, 65534, 65534) == 0 && chmod(p, 0660) == 0, "chown %s", p);
+        CHECK_OK(export_one(s, "mode_owner.obj", &err), &err);
+        CHECK(stat(p, &sb) == 0 && sb.st_uid == 65534 && sb.st_gid == 65534 && (sb.st_mode & 07777) == 0660,
+              "a 0660 file of 65534:65534 written over: %u:%u, mode %04o", (unsigned)sb.st_uid, (unsigned)sb.st_gid,
+              (unsigned)(sb.st_mode & 07777));
+        remove(p);
+    } else
+        printf("  (not root: a file's owner and group kept is not tested)\n");
     /* a symbolic link at the path becomes a new file; its 0600 target is left as it was */
     char *target = path_in("mode_target.txt"), *link = path_in("mode_link.obj");
     FILE *f = fopen(target, "w");
