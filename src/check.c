@@ -1043,9 +1043,13 @@ static void format_text(const rg2_check_report *r, sbuf *b)
                       s->patches ? verdict(s->residual, o->tol_exact) : "-", s->where);
         }
     }
-    if (r->exact_patches == 0)
+    if (r->exact_patches == 0 && !r->untagged_bad)
         sb_printf(b, "  NO EXACT PATCH         no patch lies on a shape (every patch is a transition): "
                      "the exact promise FAILS\n");
+    else if (r->exact_patches == 0) /* (tags beyond the shapes given: none given, say) */
+        sb_printf(b, "  NO EXACT PATCH         no patch lies on a shape given (%d given; %d patches tagged with a "
+                     "shape beyond them): the exact promise FAILS\n",
+                  r->n_shapes, r->untagged_bad);
     unsigned f = rg2_check_failures(r, RG2_REQUIRE_G0 | RG2_REQUIRE_G1 | RG2_REQUIRE_G2);
     sb_printf(b, "seams %d, %d samples (%d per seam): %d at a pole (no normal there), %d not measured\n", r->seams,
               r->seam_samples, o->seam_samples + 1, r->pole_samples, r->unmeasured);

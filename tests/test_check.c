@@ -233,6 +233,35 @@ static int run_col(const char *line, int n, int end)
  * residuals end where "patches" and "worst residual" end, the verdicts and places start where
  * "verdict" and "where" start, and every label is whole, for labels shorter and longer than the
  * 24-character column. */
+/* The NO EXACT PATCH line says why: every patch a transition, or (a shape surface checked with
+ * no shapes given) tags beyond the shapes given; it said "every patch is a transition" of a
+ * surface with 0 transitions. With the shape given, the same surface is exact. */
+static void no_exact_patch_reason(void)
+{
+    rg2_shape sh;
+    rg2_shape_init(&sh, RG2_SHAPE_TORUS);
+    rg2_surface s;
+    torus_8x6(&sh, &s);
+    rg2_check_opts o;
+    rg2_check_opts_default(&o);
+    o.seam_samples = 2;
+    o.patch_samples = 2;
+    for (int n = 0; n < 2; n++) {
+        char *json = NULL, *txt = report_text(&s, 1, &sh, NULL, n, &o, 1, &json);
+        const char *line = txt ? strstr(txt, "NO EXACT PATCH") : NULL;
+        if (n == 0)
+            CHECK(line && strstr(line, "no patch lies on a shape given (0 given; 48 patches tagged with a shape beyond "
+                                       "them): the exact promise FAILS") &&
+                      !strstr(txt, "every patch is a transition"),
+                  "no shapes given: %s", txt ? txt : "(no report)");
+        else
+            CHECK(txt && !line && strstr(txt, "48 exact"), "the shape given: %s", txt ? txt : "(no report)");
+        free(txt);
+        free(json);
+    }
+    rg2_surface_free(&s);
+}
+
 static void shape_table_layout(void)
 {
     rg2_shape sh[2];
@@ -1176,6 +1205,7 @@ int main(void)
 {
     harness_agreement();
     shape_table_layout();
+    no_exact_patch_reason();
     exact_and_broken(0);
     exact_and_broken(1);
     size_and_weights();
