@@ -30,7 +30,7 @@ static void usage(FILE *f)
 /* STEP and IGES are read by CAD kernels that merge points closer than their tolerance (the
  * files' uncertainty 1e-7 mm, OpenCASCADE's Precision::Confusion 1e-7): below this size
  * (bounding-box diagonal of the control points, mm) a note asks for a larger scale. A torus of
- * diagonal 1.2e-6 came back invalid from OpenCASCADE as plain IGES, one of 3.5e-7 as STEP. */
+ * diagonal 1.2e-6 came back invalid from OpenCASCADE as plain IGES, one of 1.15e-7 as STEP. */
 #define CAD_MIN_SIZE 1e-3
 
 static void note_cad_size(const rg2_surface *surfs, int ns)

@@ -226,15 +226,12 @@ rg2_status rg2__edit_pole(rg2__dmesh *m, int end, rg2__edit_kind kind, const dou
  * residual <= 1e-12: the fit is unique, so the cap map is the shape's own, e.g. the sphere),
  * else -1.
  */
-/* A failed cap names the cap's entry: its jet weights when they leave the fit rank-deficient
- * (cap.c's messages start with "cap: ", that one then with "jet_weights "; the others are checked
- * by the parser), else the mesh it caps. */
+/* A failed cap names the cap's entry and the mesh it caps (cap.c's messages start with "cap: ";
+ * its options, the jet weights among them, are checked by the parser, naming their keys). */
 static rg2_status cap_fail(const rg2_design *d, const rg2__dmesh *dm, rg2_status st, rg2_error *err)
 {
     rg2_error e = *err;
-    const char *m = rg2__after(e.msg, "cap: "), *jet = rg2__after(m, "jet_weights ");
-    if (jet != m)
-        return rg2__fail(err, st, "%s: meshes.%s.jet_weights: %s", d->name, dm->name, jet);
+    const char *m = rg2__after(e.msg, "cap: ");
     return rg2__fail(err, st, "%s: meshes.%s.cap: mesh '%s' cannot be capped: %s", d->name, dm->name,
                      d->mesh[dm->cap_src].name, m);
 }

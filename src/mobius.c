@@ -108,7 +108,8 @@ rg2_status rg2_mobius_poles_matrix(const double south[3], const double north[3],
     double B[16] = {ch, 0, 0, sh, 0, 1, 0, 0, 0, 0, 1, 0, sh, 0, 0, ch};
     /* target frame f1 ~ n + s, f2 ~ n - s, f3 = f1 x f2; source frame (1,0,0), (0,0,1), (0,-1,0).
      * Both from the normalized poles: the axis from the poles as given (up to 1e-9 off the
-     * sphere) put a pole's image 6.7e-11 from its normalized point */
+     * sphere) put a pole's image 6.7e-11 from its normalized point with one pole 4e-10 off,
+     * 1.0e-10 with both */
     double f1[3], f2[3] = {dn[0], dn[1], dn[2]}, f3[3];
     unit3(f2);
     double ps[3] = {n[0] + s[0], n[1] + s[1], n[2] + s[2]};

@@ -20,6 +20,7 @@
 #include <time.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <sys/mman.h>
 #include <string.h>
 #include <unistd.h>
 #ifdef __GLIBC__
@@ -403,7 +404,7 @@ static void allocators(void)
             for (size_t q = 0; zero && q < got; q++)
                 bad += p[q] != 0;
             memset(p, 0xA5, got); /* (the whole array is the caller's: ASan checks the bytes) */
-#ifdef __linux__
+#if defined(__linux__) && defined(MADV_HUGEPAGE) /* (src/alloc.c aligns under the same condition) */
             if (got >= mib2)
                 misaligned += (uintptr_t)p % mib2 != 0;
             else { /* (one may sit on a 2 MiB boundary by chance, not all of them) */
