@@ -59,6 +59,9 @@ rg2_status rg2__fail(rg2_error *err, rg2_status code, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
+/* Prefix err's message with "what: " when st is an error (a too long result shortened as
+ * rg2__fail shortens, keeping the message's end); returns st. */
+rg2_status rg2__prefix(rg2_error *err, rg2_status st, const char *what);
 /* Set err to RG2_OK with an empty message. */
 void rg2__ok(rg2_error *err);
 

@@ -11,19 +11,12 @@ rg2_status rg2_mesh_init(rg2_mesh *m, int nu, int nv, int closed_u, int closed_v
         return rg2__fail(err, RG2_ELIMIT, "mesh: %d x %d control points exceeds the limit of %d", nu,
                          nv, RG2_MAX_POINTS);
     rg2_status st = rg2_scalars_init(&m->su, nu, closed_u, err);
-    if (st) {
-        if (err)
-            memmove(err->msg + 8, err->msg, sizeof err->msg - 8), memcpy(err->msg, "mesh u: ", 8),
-                err->msg[sizeof err->msg - 1] = 0;
-        return st;
-    }
+    if (st)
+        return rg2__prefix(err, st, "mesh u");
     st = rg2_scalars_init(&m->sv, nv, closed_v, err);
     if (st) {
-        if (err)
-            memmove(err->msg + 8, err->msg, sizeof err->msg - 8), memcpy(err->msg, "mesh v: ", 8),
-                err->msg[sizeof err->msg - 1] = 0;
         rg2_mesh_free(m);
-        return st;
+        return rg2__prefix(err, st, "mesh v");
     }
     m->p = rg2__calloc((size_t)nu * (size_t)nv * 4, sizeof(double));
     if (!m->p) {

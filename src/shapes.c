@@ -281,17 +281,7 @@ static void dir_free(dir_data *d)
 /* Prefix err->msg with "what: " (core messages do not know the direction). */
 static rg2_status prefixed(rg2_error *err, rg2_status st, const char *what)
 {
-    if (err && st) {
-        size_t lw = strlen(what), cap = sizeof err->msg;
-        if (lw + 3 < cap) {
-            memmove(err->msg + lw + 2, err->msg, cap - lw - 2);
-            memcpy(err->msg, what, lw);
-            err->msg[lw] = ':';
-            err->msg[lw + 1] = ' ';
-            err->msg[cap - 1] = '\0';
-        }
-    }
-    return st;
+    return rg2__prefix(err, st, what);
 }
 
 /*

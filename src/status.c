@@ -59,6 +59,16 @@ rg2_status rg2__fail(rg2_error *err, rg2_status code, const char *fmt, ...)
     return code;
 }
 
+rg2_status rg2__prefix(rg2_error *err, rg2_status st, const char *what)
+{
+    if (err && st) { /* (shifting the message right cut its end, the reason, and could split a
+                      * UTF-8 character, for a message near the buffer's size) */
+        rg2_error e = *err;
+        rg2__fail(err, st, "%s: %s", what, e.msg);
+    }
+    return st;
+}
+
 rg2__numtext rg2__num(double x)
 {
     rg2__numtext t;

@@ -1439,6 +1439,14 @@ static void long_messages(void)
               len > tail && !strcmp(err.msg + len - tail, strerror(ENOENT)) && utf8,
           "a %zu-byte path's message (%zu bytes, valid UTF-8 %d): %s", strlen(path), len, utf8, err.msg);
     printf("  a %zu-byte path: message of %zu bytes ending in \"%s\"\n", strlen(path), len, strerror(ENOENT));
+    /* a prefix added to a message near the buffer's size keeps its end as well (the prefix was
+     * made by shifting the message right, which cut the end) */
+    memset(err.msg, 'x', 500);
+    snprintf(err.msg + 500, sizeof err.msg - 500, " REASON");
+    CHECK(rg2__prefix(&err, RG2_EINVAL, "mesh u") == RG2_EINVAL && err.code == RG2_EINVAL &&
+              !strncmp(err.msg, "mesh u: xxx", 11) && strlen(err.msg) < sizeof err.msg &&
+              !strcmp(err.msg + strlen(err.msg) - 7, " REASON"),
+          "a prefixed 507-byte message: %s", err.msg);
 }
 
 /* A NULL design (or path) as the header's conventions take it: rg2_design_write_mesh(NULL, ...)
