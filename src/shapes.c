@@ -278,12 +278,6 @@ static void dir_free(dir_data *d)
     memset(d, 0, sizeof *d);
 }
 
-/* Prefix err->msg with "what: " (core messages do not know the direction). */
-static rg2_status prefixed(rg2_error *err, rg2_status st, const char *what)
-{
-    return rg2__prefix(err, st, what);
-}
-
 /*
  * METHOD: expand the partition to the full layout of rg2_scalars_from_angles / _from_knots
  * (open angles: copies of the end arcs as the two data arcs at each end; open knots: end
@@ -351,7 +345,7 @@ static rg2_status dir_make(const rg2_partition *p, const char *what, dir_data *d
     }
     if (st) {
         free(full);
-        return prefixed(err, st, what);
+        return rg2__prefix(err, st, what);
     }
     d->n = d->sc.n;
     d->coef = rg2__calloc((size_t)d->n * (size_t)d->nb, sizeof(double));
@@ -377,7 +371,7 @@ static rg2_status dir_make(const rg2_partition *p, const char *what, dir_data *d
     free(cs);
     if (st) {
         dir_free(d);
-        return prefixed(err, st, what);
+        return rg2__prefix(err, st, what);
     }
     return RG2_OK;
 }
@@ -686,7 +680,7 @@ static rg2_status check_xform(const double M[16], const char *who, rg2_error *er
     double inv[16];
     rg2_status st = rg2_xform_invert(M, inv, err);
     if (st)
-        return prefixed(err, st, who);
+        return rg2__prefix(err, st, who);
     return RG2_OK;
 }
 
@@ -726,12 +720,12 @@ rg2_status rg2_shape_mesh(const rg2_shape *s, const rg2_partition *pu, const rg2
                          d->name, err)))
         return st;
     if ((st = rg2_partition_check(pu, "u", err)) || (st = rg2_partition_check(pv, "v", err)))
-        return prefixed(err, st, d->name);
+        return rg2__prefix(err, st, d->name);
     if ((st = rg2__shape_check_range(s, pv, err)) || (st = check_xform(s->xform, d->name, err)))
         return st;
     st = rg2_product_mesh((const double(*)[4][4])C, pu, pv, out, err);
     if (st)
-        return prefixed(err, st, d->name);
+        return rg2__prefix(err, st, d->name);
     if ((st = check_placed_weights(out, s->xform, d->name, err))) {
         rg2_mesh_free(out);
         return st;
