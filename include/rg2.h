@@ -306,6 +306,48 @@ static inline double *rg2_mesh_at(const rg2_mesh *m, int i, int j)
     return m->p + (RG2_SIZE(i) * RG2_SIZE(m->nv) + RG2_SIZE(j)) * 4;
 }
 
+/** @name Mesh operations (docs/design-format.md, "Mesh operations")
+ *
+ * The design file's operations on plain meshes, for callers who build meshes in C: the mesh
+ * each returns equals, bit for bit, the one a design file makes of the same meshes. Each
+ * checks its inputs with rg2_mesh_check (the message starts with the function and the input:
+ * "rg2_mesh_merge: in[1]: mesh u: ..."), writes a new mesh into *out (free it with
+ * rg2_mesh_free), and leaves *out empty (zeroed) on failure. out must not be an input.
+ * Moving a control point or a weight is a write through rg2_mesh_at; a scalar, a write to
+ * su / sv (rg2_mesh_check tells whether K stays > 0). Exactness tags (rg2_surface.tag, used
+ * by rg2_check to tell which patches lie on which shape) come only from a design; a surface
+ * built from these meshes is checked for G2 at every seam all the same. */
+/** Keep control points first[d]..last[d] (inclusive) of direction d = 0 (u), 1 (v); first[d] =
+ *  -1 keeps that direction whole. A closed direction may wrap (last up to first + n + 2) and
+ *  comes out open; an open one keeps at least 4 points. RG2_EINVAL naming the range. */
+RG2_API rg2_status rg2_mesh_cut(const rg2_mesh *in, const int first[2], const int last[2], rg2_mesh *out,
+                                rg2_error *err);
+/** Swap u and v (points and scalars). */
+RG2_API rg2_status rg2_mesh_transpose(const rg2_mesh *in, rg2_mesh *out, rg2_error *err);
+/** Reverse direction dir (0 u, 1 v): points and legs in reverse order, junction scalars
+ *  b' = 1 / b, g' = g / b^3; every patch is the same surface traversed backwards. */
+RG2_API rg2_status rg2_mesh_reverse(const rg2_mesh *in, int dir, rg2_mesh *out, rg2_error *err);
+/** How a merge sets the scalars at a seam (docs/design-format.md, "Seam rule"). PRESERVE
+ *  re-solves g at both seam junctions so that every patch of every part stays what it was
+ *  (only the 3 patches straddling a seam change); PLAIN keeps b and g, so the parts' end
+ *  patches change when the parts' end weights differ. */
+typedef enum { RG2_SEAM_PRESERVE = 0, RG2_SEAM_PLAIN = 1 } rg2_seam_rule;
+/** Put n >= 1 meshes side by side along dir (0 u, 1 v), no new control points: in[t]'s last
+ *  line joins in[t + 1]'s first by a new leg, and with closed != 0 the last mesh joins the first
+ *  (n = 1 closes a mesh). The meshes must be open along dir and agree in the other direction
+ *  (counts and scalars, 1e-12 relative), and no seam may be at a polar point.
+ *  RG2_EINCOMPATIBLE naming the mesh and the first difference ("rg2_mesh_merge.merge[1]:
+ *  meshes 'in[0]' and 'in[1]' do not agree in v ...: 6 vs 8 control points"); RG2_ELIMIT past
+ *  RG2_MAX_POINTS. */
+RG2_API rg2_status rg2_mesh_merge(const rg2_mesh *const *in, int n, int dir, int closed, rg2_seam_rule rule,
+                                  rg2_mesh *out, rg2_error *err);
+/** The blend (1 - t) a + t b of the 4-tuples and the scalars w, b, g, 0 <= t <= 1 (equal values
+ *  and t = 0, 1 copy without rounding). a and b need equal counts and closedness;
+ *  RG2_EINCOMPATIBLE, RG2_EDOMAIN for t outside [0, 1] or NaN, RG2_EWEIGHT where a blended
+ *  junction has K <= 0. */
+RG2_API rg2_status rg2_mesh_morph(const rg2_mesh *a, const rg2_mesh *b, double t, rg2_mesh *out,
+                                  rg2_error *err);
+
 /* ===================================================================================== */
 /** @name Patches and surfaces (MATH.md section 4) */
 /* ===================================================================================== */

@@ -184,14 +184,15 @@ rg2_status rg2__op_cut(const rg2__dmesh *in, const int first[2], const int last[
             f[k] = 0;
             continue;
         }
-        int cnt = last[k] - first[k] + 1;
-        int maxlast = s->closed ? first[k] + s->n + 2 : s->n - 1;
-        if (first[k] >= s->n || last[k] < first[k] || last[k] > maxlast)
+        /* (a C caller's indices may be anywhere in int: no sum of them may overflow) */
+        int maxlast = s->closed ? (first[k] < s->n ? first[k] : s->n - 1) + s->n + 2 : s->n - 1;
+        if (first[k] >= s->n || last[k] < first[k] || last[k] > first[k] + s->n + 2)
             return rg2__fail(err, RG2_EINVAL,
                              "%s: range [%d, %d] is outside the %d control points of mesh '%s' in %s "
                              "(%s; need 0 <= first < %d, first <= last <= %d)",
                              what[k], first[k], last[k], s->n, in->name, dir_name(k),
                              s->closed ? "closed, last may wrap" : "open", s->n, maxlast);
+        int cnt = last[k] - first[k] + 1;
         if (cnt < 4)
             return rg2__fail(err, RG2_EINVAL,
                              "%s: range [%d, %d] keeps %d control point%s; an open direction needs at least 4",

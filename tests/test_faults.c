@@ -123,6 +123,48 @@ static rg2_status op_build(const void *ctx, const char *path, blob *out, rg2_err
     return st;
 }
 
+static void put_mesh(blob *o, const rg2_mesh *m)
+{
+    int head[4] = {m->nu, m->nv, m->su.closed, m->sv.closed};
+    put(o, head, sizeof head);
+    put(o, m->p, (size_t)m->nu * (size_t)m->nv * 4 * sizeof(double));
+    for (int k = 0; k < 2; k++) {
+        const rg2_scalars *s = k ? &m->sv : &m->su;
+        put(o, s->w, (size_t)rg2_scalars_num_w(s) * sizeof(double));
+        put(o, s->b, (size_t)s->n * sizeof(double));
+        put(o, s->g, (size_t)s->n * sizeof(double));
+    }
+}
+
+/* The mesh operations of the C API on a closed ring J: cut it in two, merge them closed again,
+ * transpose, reverse, morph; a failed step must leave its output empty (nothing to free). */
+static rg2_status op_meshops(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    (void)path;
+    const rg2_mesh *J = ctx;
+    rg2_mesh m[6];
+    memset(m, 0, sizeof m);
+    const int fa[2] = {0, -1}, la[2] = {8, 0}, fb[2] = {9, -1}, lb[2] = {14, 0};
+    rg2_status st = rg2_mesh_cut(J, fa, la, &m[0], err);
+    if (!st)
+        st = rg2_mesh_cut(J, fb, lb, &m[1], err);
+    const rg2_mesh *two[2] = {&m[0], &m[1]};
+    if (!st)
+        st = rg2_mesh_merge(two, 2, 0, 1, RG2_SEAM_PRESERVE, &m[2], err);
+    if (!st)
+        st = rg2_mesh_transpose(&m[2], &m[3], err);
+    if (!st)
+        st = rg2_mesh_reverse(&m[3], 0, &m[4], err);
+    if (!st)
+        st = rg2_mesh_morph(&m[2], J, 0.5, &m[5], err);
+    for (int k = 0; k < 6; k++) {
+        if (!st)
+            put_mesh(out, &m[k]);
+        rg2_mesh_free(&m[k]);
+    }
+    return st;
+}
+
 static rg2_status op_load(const void *ctx, const char *path, blob *out, rg2_error *err)
 {
     (void)path;
@@ -458,6 +500,7 @@ int main(int argc, char **argv)
         sweep(name, op_build, rg2_design_mesh(dp, k), NULL);
     }
 
+    sweep("mesh operations torus_sphere", op_meshops, rg2_design_mesh(ds, 0), NULL);
     sweep("design_load torus_sphere", op_load, "examples/torus_sphere.json", NULL);
     sweep("design_load fig9_polar", op_load, "examples/fig9_polar_sphere.json", NULL);
 

@@ -1,0 +1,205 @@
+/* meshops.c -- the design file's mesh operations (cut, transpose, reverse, merge, morph) for C
+ * callers: plain rg2_mesh in, plain rg2_mesh out. Each wraps its input meshes as design meshes
+ * (shallow views; no provenance) and runs the operation of design_ops.c, so a mesh built here
+ * equals, bit for bit, the one a design file builds from the same meshes. */
+#include "design_internal.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A design mesh viewing m (its points and scalars shared, not copied; never rg2__dmesh_free'd),
+ * every point and scalar of no source. */
+typedef struct {
+    rg2__dmesh d;
+} view;
+
+static void view_free(view *v)
+{
+    free(v->d.pp);
+    for (int k = 0; k < 2; k++) {
+        free(v->d.leg[k]);
+        free(v->d.jun[k]);
+    }
+    memset(v, 0, sizeof *v);
+}
+
+/* A view of m, after rg2_mesh_check (its message prefixed with `what`); the operations' messages
+ * call it `label` ("mesh 'in'"). */
+static rg2_status view_init(view *v, const rg2_mesh *m, const char *what, const char *label, rg2_error *err)
+{
+    memset(v, 0, sizeof *v);
+    if (!m)
+        return rg2__fail(err, RG2_EINVAL, "%s is NULL", what);
+    rg2_status st = rg2_mesh_check(m, err);
+    if (st)
+        return rg2__prefix(err, st, what);
+    v->d.name = (char *)label; /* read by the operations' messages only */
+    v->d.m = *m;
+    size_t np = (size_t)m->nu * (size_t)m->nv;
+    v->d.pp = rg2__calloc(1, np * sizeof *v->d.pp);
+    int ok = v->d.pp != NULL;
+    for (int k = 0; k < 2; k++) {
+        const rg2_scalars *s = k ? &m->sv : &m->su;
+        v->d.leg[k] = rg2__calloc(1, (size_t)rg2_scalars_num_w(s) * sizeof(int));
+        v->d.jun[k] = rg2__calloc(1, (size_t)s->n * sizeof(int));
+        ok = ok && v->d.leg[k] && v->d.jun[k];
+    }
+    if (!ok) {
+        view_free(v);
+        return rg2__fail(err, RG2_ENOMEM, "%s: out of memory for %d x %d control points", what, m->nu, m->nv);
+    }
+    for (size_t q = 0; q < np; q++)
+        v->d.pp[q] = (rg2__pprov){-1, 0, 0};
+    for (int k = 0; k < 2; k++) {
+        const rg2_scalars *s = k ? &m->sv : &m->su;
+        for (int i = 0; i < rg2_scalars_num_w(s); i++)
+            v->d.leg[k][i] = -1;
+        for (int i = 0; i < s->n; i++)
+            v->d.jun[k][i] = -1;
+    }
+    return RG2_OK;
+}
+
+/* Hands the operation's result over to *out (st == RG2_OK) or leaves *out empty. */
+static rg2_status finish(rg2_status st, rg2__dmesh *res, rg2_mesh *out)
+{
+    if (st == RG2_OK) {
+        *out = res->m;
+        memset(&res->m, 0, sizeof res->m);
+        rg2__dmesh_free(res);
+    }
+    return st;
+}
+
+/* The common entry checks: out given and not one of the inputs. */
+static rg2_status begin(const char *fn, rg2_mesh *out, const rg2_mesh *const *in, int n, rg2_error *err)
+{
+    if (!out)
+        return rg2__fail(err, RG2_EINVAL, "%s: out is NULL", fn);
+    for (int t = 0; t < n; t++)
+        if (in[t] == out)
+            return rg2__fail(err, RG2_EINVAL, "%s: out is also an input; give a mesh of its own", fn);
+    memset(out, 0, sizeof *out);
+    return RG2_OK;
+}
+
+rg2_status rg2_mesh_cut(const rg2_mesh *in, const int first[2], const int last[2], rg2_mesh *out,
+                        rg2_error *err)
+{
+    rg2_status st = begin("rg2_mesh_cut", out, &in, 1, err);
+    if (st)
+        return st;
+    if (!first || !last)
+        return rg2__fail(err, RG2_EINVAL, "rg2_mesh_cut: %s is NULL", first ? "last" : "first");
+    for (int k = 0; k < 2; k++)
+        if (first[k] < -1)
+            return rg2__fail(err, RG2_EINVAL,
+                             "rg2_mesh_cut: first[%d] = %d is negative (-1 keeps the %s direction whole)", k,
+                             first[k], k ? "v" : "u");
+    view v;
+    if ((st = view_init(&v, in, "rg2_mesh_cut: in", "in", err)))
+        return st;
+    const char *what[2] = {"rg2_mesh_cut: u (first[0], last[0])", "rg2_mesh_cut: v (first[1], last[1])"};
+    rg2__dmesh res;
+    st = finish(rg2__op_cut(&v.d, first, last, &res, what, err), &res, out);
+    view_free(&v);
+    return st;
+}
+
+rg2_status rg2_mesh_transpose(const rg2_mesh *in, rg2_mesh *out, rg2_error *err)
+{
+    rg2_status st = begin("rg2_mesh_transpose", out, &in, 1, err);
+    if (st)
+        return st;
+    view v;
+    if ((st = view_init(&v, in, "rg2_mesh_transpose: in", "in", err)))
+        return st;
+    rg2__dmesh res;
+    st = finish(rg2__op_transpose(&v.d, &res, "rg2_mesh_transpose", err), &res, out);
+    view_free(&v);
+    return st;
+}
+
+rg2_status rg2_mesh_reverse(const rg2_mesh *in, int dir, rg2_mesh *out, rg2_error *err)
+{
+    rg2_status st = begin("rg2_mesh_reverse", out, &in, 1, err);
+    if (st)
+        return st;
+    if (dir != 0 && dir != 1)
+        return rg2__fail(err, RG2_EINVAL, "rg2_mesh_reverse: dir = %d, must be 0 (u) or 1 (v)", dir);
+    view v;
+    if ((st = view_init(&v, in, "rg2_mesh_reverse: in", "in", err)))
+        return st;
+    rg2__dmesh res;
+    st = finish(rg2__op_reverse(&v.d, dir, &res, "rg2_mesh_reverse", err), &res, out);
+    view_free(&v);
+    return st;
+}
+
+rg2_status rg2_mesh_merge(const rg2_mesh *const *in, int n, int dir, int closed, rg2_seam_rule rule,
+                          rg2_mesh *out, rg2_error *err)
+{
+    if (!in || n < 1)
+        return rg2__fail(err, RG2_EINVAL, "rg2_mesh_merge: %s", !in ? "in is NULL" : "no meshes (n < 1)");
+    if (n > RG2_MAX_POINTS)
+        return rg2__fail(err, RG2_ELIMIT, "rg2_mesh_merge: n = %d meshes, more than the limit of %d points", n,
+                         RG2_MAX_POINTS);
+    rg2_status st = begin("rg2_mesh_merge", out, in, n, err);
+    if (st)
+        return st;
+    if (dir != 0 && dir != 1)
+        return rg2__fail(err, RG2_EINVAL, "rg2_mesh_merge: dir = %d, must be 0 (u) or 1 (v)", dir);
+    if (rule != RG2_SEAM_PRESERVE && rule != RG2_SEAM_PLAIN)
+        return rg2__fail(err, RG2_EINVAL,
+                         "rg2_mesh_merge: rule = %d, must be RG2_SEAM_PRESERVE (0) or RG2_SEAM_PLAIN (1)", (int)rule);
+    view *v = rg2__calloc((size_t)n, sizeof *v);
+    const rg2__dmesh **d = rg2__calloc((size_t)n, sizeof *d);
+    /* the names the messages give: "in[t]" (the operation says "rg2_mesh_merge.merge[t]: mesh 'in[t]'") */
+    char (*names)[48] = rg2__calloc((size_t)n, sizeof *names);
+    int made = 0;
+    if (!v || !d || !names) {
+        st = rg2__fail(err, RG2_ENOMEM, "rg2_mesh_merge: out of memory for %d meshes", n);
+        goto done;
+    }
+    for (; made < n; made++) {
+        snprintf(names[made], sizeof names[made], "in[%d]", made);
+        char what[80];
+        snprintf(what, sizeof what, "rg2_mesh_merge: in[%d]", made);
+        if ((st = view_init(&v[made], in[made], what, names[made], err)))
+            goto done;
+        d[made] = &v[made].d;
+    }
+    rg2__dmesh res;
+    st = finish(rg2__op_merge(d, n, dir, closed ? 1 : 0,
+                              rule == RG2_SEAM_PLAIN ? RG2__SEAM_PLAIN : RG2__SEAM_PRESERVE, &res,
+                              "rg2_mesh_merge", err),
+                &res, out);
+done:
+    for (int t = 0; v && t < made; t++)
+        view_free(&v[t]);
+    free(v);
+    free(d);
+    free(names);
+    return st;
+}
+
+rg2_status rg2_mesh_morph(const rg2_mesh *a, const rg2_mesh *b, double t, rg2_mesh *out, rg2_error *err)
+{
+    const rg2_mesh *in[2] = {a, b};
+    rg2_status st = begin("rg2_mesh_morph", out, in, 2, err);
+    if (st)
+        return st;
+    view va, vb;
+    if ((st = view_init(&va, a, "rg2_mesh_morph: a", "a", err)))
+        return st;
+    if ((st = view_init(&vb, b, "rg2_mesh_morph: b", "b", err))) {
+        view_free(&va);
+        return st;
+    }
+    rg2__dmesh res;
+    st = finish(rg2__op_morph(&va.d, &vb.d, t, &res, "rg2_mesh_morph", err), &res, out);
+    view_free(&va);
+    view_free(&vb);
+    return st;
+}

@@ -1,0 +1,282 @@
+/* test_meshops.c -- the mesh operations of the C API (rg2_mesh_cut, _transpose, _reverse,
+ * _merge, _morph): each equals, bit for bit, what a design file makes of the same meshes; the
+ * merged surface is measured on its own (G2 gaps at every seam, the patches on the torus and on
+ * the sphere against their implicit equations); bad input gets an error naming it and leaves
+ * the output empty. */
+#include "expect_err.h"
+#include "harness.h"
+
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Fig. 8 / Fig. 13 (examples/torus_sphere.json, fig13_morph.json) with every step an output. */
+static const char *design_json =
+    "{\"format\": \"rg2 design 1\","
+    " \"shapes\": {\"ring\": {\"kind\": \"torus\", \"R\": 3, \"r\": 0.6},"
+    "  \"ball\": {\"kind\": \"sphere\", \"radius\": 1.3, \"matrix\": [0.5, 0, 0.8660254037844386, 1.5,"
+    "   -0.8660254037844386, 0, 0.5, -2.598076211353316, 0, 1, 0, 0, 0, 0, 0, 1]}},"
+    " \"meshes\": {"
+    "  \"ring_mesh\": {\"shape\": \"ring\", \"u\": {\"arcs\": [30, 30, 30, 30, 30, 30, 30, 30,"
+    "   17.142857142857142, 17.142857142857142, 17.142857142857142, 17.142857142857142,"
+    "   17.142857142857142, 17.142857142857142, 17.142857142857146]}, \"v\": {\"arcs\": 8}},"
+    "  \"tube\": {\"cut\": \"ring_mesh\", \"u\": [0, 8]},"
+    "  \"wrap\": {\"cut\": \"ring_mesh\", \"u\": [11, 19], \"v\": [2, 7]},"
+    "  \"opened\": {\"cut\": \"ring_mesh\", \"v\": {\"open_at\": 3}},"
+    "  \"ball_mesh\": {\"shape\": \"ball\", \"u\": {\"arcs\": 8}, \"v\": {\"knots\": [0.35, 0.45, 0.55, 0.65]}},"
+    "  \"ball_band\": {\"transpose\": \"ball_mesh\"},"
+    "  \"joined\": {\"merge\": [\"tube\", \"ball_band\"], \"along\": \"u\", \"closed\": true},"
+    "  \"joined_plain\": {\"merge\": [\"tube\", \"ball_band\"], \"along\": \"u\", \"closed\": true, \"seam\": \"plain\"},"
+    "  \"row\": {\"merge\": [\"tube\", \"ball_band\", \"tube\"], \"along\": \"u\"},"
+    "  \"halfway\": {\"morph\": [\"joined\", \"ring_mesh\"], \"t\": 0.5},"
+    "  \"backwards\": {\"reverse\": \"joined\", \"dir\": \"v\"},"
+    "  \"backwards_u\": {\"reverse\": \"row\", \"dir\": \"u\"}"
+    " },"
+    " \"output\": [\"ring_mesh\", \"tube\", \"wrap\", \"opened\", \"ball_mesh\", \"ball_band\", \"joined\","
+    "  \"joined_plain\", \"row\", \"halfway\", \"backwards\", \"backwards_u\"]}";
+
+enum { RING, TUBE, WRAP, OPENED, BALL, BAND, JOINED, JOINED_PLAIN, ROW, HALFWAY, BACK, BACK_U, N_OUT };
+
+static int scalars_same(const rg2_scalars *a, const rg2_scalars *b)
+{
+    return a->n == b->n && a->closed == b->closed &&
+           !memcmp(a->w, b->w, (size_t)rg2_scalars_num_w(a) * sizeof(double)) &&
+           !memcmp(a->b, b->b, (size_t)a->n * sizeof(double)) && !memcmp(a->g, b->g, (size_t)a->n * sizeof(double));
+}
+
+/* Bit for bit: counts, closedness, 4-tuples, scalars. */
+static void same_mesh(const rg2_mesh *got, const rg2_mesh *want, const char *what)
+{
+    int ok = got->p && got->nu == want->nu && got->nv == want->nv && scalars_same(&got->su, &want->su) &&
+             scalars_same(&got->sv, &want->sv) &&
+             !memcmp(got->p, want->p, (size_t)want->nu * (size_t)want->nv * 4 * sizeof(double));
+    CHECK(ok, "%s: the C API's mesh (%d x %d) differs from the design file's (%d x %d)", what, got->nu, got->nv,
+          want->nu, want->nv);
+}
+
+/* Patches of s whose 9 x 9 samples all lie on shape sh (|F| / |grad F| <= tol * size). */
+static int patches_on(const rg2_surface *s, const rg2_shape *sh, double size, double tol)
+{
+    int count = 0;
+    for (int i = 0; i < s->nu; i++)
+        for (int j = 0; j < s->nv; j++) {
+            double worst = 0.0;
+            for (int a = 0; a <= 8; a++)
+                for (int b = 0; b <= 8; b++) {
+                    rg2_eval e;
+                    double g[3];
+                    rg2_surface_eval(s, i, j, a / 8.0, b / 8.0, 0, &e);
+                    double f = rg2_shape_implicit(sh, e.p, g);
+                    worst = fmax(worst, fabs(f) / sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]));
+                }
+            count += worst <= tol * size;
+        }
+    return count;
+}
+
+/* The surface of m: G2 at every seam (measured), and how many patches lie on each shape. */
+static void measure(const rg2_mesh *m, const rg2_shape *ring, const rg2_shape *ball, int want_ring,
+                    int want_ball, int want_patches, const char *what)
+{
+    rg2_error err;
+    rg2_surface s;
+    rg2_status st = rg2_surface_build(m, &s, &err);
+    CHECK(st == RG2_OK, "%s: build: %s", what, err.msg);
+    if (st)
+        return;
+    double size = rg2t_surface_scale(&s);
+    rg2t_seams g;
+    rg2t_surface_seams(&s, 9, &g);
+    int on_ring = patches_on(&s, ring, size, 1e-14), on_ball = patches_on(&s, ball, size, 1e-14);
+    printf("%s: %d x %d patches, %d on the torus, %d on the sphere; %d seams: position %.2e, normal angle %.2e, "
+           "curvature %.2e\n",
+           what, s.nu, s.nv, on_ring, on_ball, g.seams, g.pos, g.angle, g.curv);
+    CHECK(s.nu * s.nv == want_patches, "%s: %d patches, want %d", what, s.nu * s.nv, want_patches);
+    CHECK(on_ring == want_ring && on_ball == want_ball, "%s: %d patches on the torus (want %d), %d on the sphere "
+          "(want %d)", what, on_ring, want_ring, on_ball, want_ball);
+    CHECK(g.pos < 1e-14 && g.angle < 1e-12 && g.curv < 1e-9,
+          "%s: seam gaps position %.3g, angle %.3g, curvature %.3g (worst at %s)", what, g.pos, g.angle, g.curv,
+          g.where);
+    rg2_surface_free(&s);
+}
+
+static void results_match(const rg2_mesh *M, const rg2_shape *ring, const rg2_shape *ball)
+{
+    rg2_error err;
+    rg2_mesh r;
+    const int keep[2] = {-1, -1};
+
+    /* cut: a range, a wrapping range in both directions, a closed direction opened */
+    int f1[2] = {0, -1}, l1[2] = {8, 0};
+    CHECK_OK(rg2_mesh_cut(&M[RING], f1, l1, &r, &err), &err);
+    same_mesh(&r, &M[TUBE], "cut u [0, 8]");
+    rg2_mesh_free(&r);
+    int f2[2] = {11, 2}, l2[2] = {19, 7};
+    CHECK_OK(rg2_mesh_cut(&M[RING], f2, l2, &r, &err), &err);
+    same_mesh(&r, &M[WRAP], "cut u [11, 19] (wrapping) v [2, 7]");
+    rg2_mesh_free(&r);
+    int f3[2] = {-1, 3}, l3[2] = {0, 3 + 8 - 1};
+    CHECK_OK(rg2_mesh_cut(&M[RING], f3, l3, &r, &err), &err);
+    same_mesh(&r, &M[OPENED], "cut v open at 3");
+    rg2_mesh_free(&r);
+    CHECK_OK(rg2_mesh_cut(&M[RING], keep, keep, &r, &err), &err);
+    same_mesh(&r, &M[RING], "cut keeping both directions");
+    rg2_mesh_free(&r);
+
+    /* transpose; twice is the mesh itself */
+    rg2_mesh t2;
+    CHECK_OK(rg2_mesh_transpose(&M[BALL], &r, &err), &err);
+    same_mesh(&r, &M[BAND], "transpose");
+    CHECK_OK(rg2_mesh_transpose(&r, &t2, &err), &err);
+    same_mesh(&t2, &M[BALL], "transpose twice");
+    rg2_mesh_free(&r);
+    rg2_mesh_free(&t2);
+
+    /* merge: closed ring of two, both seam rules; an open row of three */
+    const rg2_mesh *two[2] = {&M[TUBE], &M[BAND]};
+    rg2_mesh joined;
+    CHECK_OK(rg2_mesh_merge(two, 2, 0, 1, RG2_SEAM_PRESERVE, &joined, &err), &err);
+    same_mesh(&joined, &M[JOINED], "merge (preserve)");
+    measure(&joined, ring, ball, 48, 24, 120, "merge closed (preserve)");
+    CHECK_OK(rg2_mesh_merge(two, 2, 0, 1, RG2_SEAM_PLAIN, &r, &err), &err);
+    same_mesh(&r, &M[JOINED_PLAIN], "merge (plain)");
+    rg2_mesh_free(&r);
+    const rg2_mesh *three[3] = {&M[TUBE], &M[BAND], &M[TUBE]};
+    rg2_mesh row;
+    CHECK_OK(rg2_mesh_merge(three, 3, 0, 0, RG2_SEAM_PRESERVE, &row, &err), &err);
+    same_mesh(&row, &M[ROW], "merge of three (open)");
+    /* 9 + 6 + 9 points open in u: 21 patch columns; 6 + 6 on the torus, 3 on the sphere; 8 rows */
+    measure(&row, ring, ball, (6 + 6) * 8, 3 * 8, 21 * 8, "merge of three, open");
+
+    /* morph and reverse */
+    CHECK_OK(rg2_mesh_morph(&joined, &M[RING], 0.5, &r, &err), &err);
+    same_mesh(&r, &M[HALFWAY], "morph t = 0.5");
+    rg2_mesh_free(&r);
+    CHECK_OK(rg2_mesh_morph(&joined, &M[RING], 1.0, &r, &err), &err);
+    same_mesh(&r, &M[RING], "morph t = 1");
+    rg2_mesh_free(&r);
+    CHECK_OK(rg2_mesh_reverse(&joined, 1, &r, &err), &err);
+    same_mesh(&r, &M[BACK], "reverse v");
+    measure(&r, ring, ball, 48, 24, 120, "reverse v");
+    rg2_mesh_free(&r);
+    CHECK_OK(rg2_mesh_reverse(&row, 0, &r, &err), &err);
+    same_mesh(&r, &M[BACK_U], "reverse u");
+    rg2_mesh_free(&r);
+
+    /* one mesh closed on itself: the tube's 9 points become a closed ring of 9 patch columns,
+     * G2 across the new seam; the 3 columns straddling it are transitions */
+    const rg2_mesh *one[1] = {&M[TUBE]};
+    CHECK_OK(rg2_mesh_merge(one, 1, 0, 1, RG2_SEAM_PRESERVE, &r, &err), &err);
+    CHECK(r.su.closed && r.nu == 9, "merge of one, closed: %d points, closed %d", r.nu, r.su.closed);
+    measure(&r, ring, ball, 6 * 8, 0, 9 * 8, "tube closed on itself");
+    rg2_mesh_free(&r);
+
+    rg2_mesh_free(&joined);
+    rg2_mesh_free(&row);
+}
+
+/* The status and message; and *out left empty. */
+static void bad(rg2_status got, rg2_status want, const rg2_error *err, const rg2_mesh *out, const char *needle,
+                const char *what)
+{
+    expect_err(got, want, err, needle, what);
+    CHECK(!out || (out->p == NULL && out->nu == 0 && out->su.w == NULL), "%s: the output is not empty", what);
+}
+
+static void errors(const rg2_mesh *M)
+{
+    rg2_error err;
+    rg2_mesh r;
+    int f[2] = {0, -1}, l[2] = {8, 0};
+
+    const rg2_mesh *closed_first[2] = {&M[RING], &M[BAND]};
+    bad(rg2_mesh_merge(closed_first, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINCOMPATIBLE, &err, &r,
+        "rg2_mesh_merge.merge[0]: mesh 'in[0]' is closed in u", "merge of a closed mesh");
+    const rg2_mesh *unlike[2] = {&M[TUBE], &M[WRAP]};
+    bad(rg2_mesh_merge(unlike, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINCOMPATIBLE, &err, &r,
+        "rg2_mesh_merge.merge[1]: meshes 'in[0]' and 'in[1]' do not agree in v (the direction that must match "
+        "when merging along u): 8 vs 6 control points", "merge of unlike meshes");
+    const rg2_mesh *two[2] = {&M[TUBE], &M[BAND]};
+    bad(rg2_mesh_merge(two, 2, 2, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINVAL, &err, &r, "dir = 2", "merge dir 2");
+    bad(rg2_mesh_merge(two, 2, 0, 0, (rg2_seam_rule)7, &r, &err), RG2_EINVAL, &err, &r, "rule = 7", "merge rule 7");
+    bad(rg2_mesh_merge(two, 0, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINVAL, &err, &r, "no meshes", "merge of 0");
+    bad(rg2_mesh_merge(NULL, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINVAL, &err, NULL, "in is NULL",
+        "merge of NULL");
+    bad(rg2_mesh_merge(two, 2, 0, 0, RG2_SEAM_PRESERVE, NULL, &err), RG2_EINVAL, &err, NULL, "out is NULL",
+        "merge into NULL");
+    const rg2_mesh *with_null[2] = {&M[TUBE], NULL};
+    bad(rg2_mesh_merge(with_null, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINVAL, &err, &r,
+        "rg2_mesh_merge: in[1] is NULL", "merge with a NULL mesh");
+
+    /* out aliasing an input is refused before anything is touched */
+    rg2_mesh c;
+    CHECK_OK(rg2_mesh_copy(&M[TUBE], &c, &err), &err);
+    const rg2_mesh *self[2] = {&c, &M[BAND]};
+    expect_err(rg2_mesh_merge(self, 2, 0, 0, RG2_SEAM_PRESERVE, &c, &err), RG2_EINVAL, &err, "out is also an input",
+               "merge into an input");
+    same_mesh(&c, &M[TUBE], "an input refused as the output");
+
+    /* a bad input mesh: its check's message, prefixed with the function and the input */
+    rg2_mesh_at(&c, 2, 3)[1] = NAN;
+    const rg2_mesh *nan_in[2] = {&M[TUBE], &c};
+    bad(rg2_mesh_merge(nan_in, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_ENONFINITE, &err, &r,
+        "rg2_mesh_merge: in[1]: mesh: control point [2][3] component 1 is not finite", "merge of a NaN mesh");
+    bad(rg2_mesh_transpose(&c, &r, &err), RG2_ENONFINITE, &err, &r, "rg2_mesh_transpose: in: mesh: control point",
+        "transpose of a NaN mesh");
+    rg2_mesh_free(&c);
+    CHECK_OK(rg2_mesh_copy(&M[TUBE], &c, &err), &err);
+    c.su.b[4] = -1.0;
+    bad(rg2_mesh_reverse(&c, 0, &r, &err), RG2_EWEIGHT, &err, &r, "rg2_mesh_reverse: in: mesh u", "reverse b < 0");
+    rg2_mesh_free(&c);
+
+    /* cut ranges */
+    int fa[2] = {10, -1}, la[2] = {8, 0};
+    bad(rg2_mesh_cut(&M[TUBE], fa, la, &r, &err), RG2_EINVAL, &err, &r,
+        "rg2_mesh_cut: u (first[0], last[0]): range [10, 8] is outside the 9 control points", "cut backwards");
+    int fb[2] = {-1, 0}, lb[2] = {0, 2};
+    bad(rg2_mesh_cut(&M[TUBE], fb, lb, &r, &err), RG2_EINVAL, &err, &r, "keeps 3 control points", "cut of 3");
+    int fc[2] = {-2, -1}, lc[2] = {0, 0};
+    bad(rg2_mesh_cut(&M[TUBE], fc, lc, &r, &err), RG2_EINVAL, &err, &r, "first[0] = -2 is negative", "cut from -2");
+    /* indices anywhere in int: no overflow (UBSan) in the range checks */
+    int fd[2] = {0, -1}, ld[2] = {INT_MAX, 0};
+    bad(rg2_mesh_cut(&M[RING], fd, ld, &r, &err), RG2_EINVAL, &err, &r,
+        "range [0, 2147483647] is outside the 15 control points", "cut to INT_MAX");
+    int fe[2] = {INT_MAX, -1}, le[2] = {INT_MAX, 0};
+    bad(rg2_mesh_cut(&M[RING], fe, le, &r, &err), RG2_EINVAL, &err, &r, "first <= last <= 31)",
+        "cut from INT_MAX");
+    bad(rg2_mesh_cut(&M[TUBE], NULL, l, &r, &err), RG2_EINVAL, &err, &r, "first is NULL", "cut, NULL first");
+    bad(rg2_mesh_cut(NULL, f, l, &r, &err), RG2_EINVAL, &err, &r, "rg2_mesh_cut: in is NULL", "cut of NULL");
+
+    /* reverse, morph */
+    bad(rg2_mesh_reverse(&M[TUBE], 2, &r, &err), RG2_EINVAL, &err, &r, "dir = 2", "reverse dir 2");
+    bad(rg2_mesh_morph(&M[JOINED], &M[RING], 2.0, &r, &err), RG2_EDOMAIN, &err, &r, "rg2_mesh_morph.t: t = 2,",
+        "morph t = 2");
+    bad(rg2_mesh_morph(&M[JOINED], &M[RING], NAN, &r, &err), RG2_EDOMAIN, &err, &r, "must lie in [0, 1]",
+        "morph t = NaN");
+    bad(rg2_mesh_morph(&M[TUBE], &M[RING], 0.5, &r, &err), RG2_EINCOMPATIBLE, &err, &r,
+        "meshes 'a' (9 open) and 'b' (15 closed) differ in u", "morph of unlike meshes");
+    bad(rg2_mesh_morph(&M[TUBE], NULL, 0.5, &r, &err), RG2_EINVAL, &err, &r, "rg2_mesh_morph: b is NULL",
+        "morph with NULL");
+}
+
+int main(void)
+{
+    rg2_error err;
+    rg2_design *d = NULL;
+    rg2_status st = rg2_design_parse(design_json, strlen(design_json), "meshops", &d, &err);
+    CHECK(st == RG2_OK && rg2_design_num_surfaces(d) == N_OUT, "design: %s (%d outputs)", err.msg,
+          rg2_design_num_surfaces(d));
+    if (st == RG2_OK && rg2_design_num_surfaces(d) == N_OUT) {
+        rg2_mesh M[N_OUT];
+        for (int k = 0; k < N_OUT; k++)
+            M[k] = *rg2_design_mesh(d, k);
+        const rg2_shape *ring = rg2_design_shape(d, 0), *ball = rg2_design_shape(d, 1);
+        CHECK(!strcmp(rg2_design_shape_label(d, 0), "ring") && !strcmp(rg2_design_shape_label(d, 1), "ball"),
+              "shape labels %s, %s", rg2_design_shape_label(d, 0), rg2_design_shape_label(d, 1));
+        results_match(M, ring, ball);
+        errors(M);
+    }
+    rg2_design_free(d);
+    return rg2t_done("test_meshops");
+}
