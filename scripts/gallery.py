@@ -58,7 +58,12 @@ def main():
              "Every design in `examples/`, rendered from the exact surface by `rg2 render` (%s pixels), "
              "with the figures `rg2 check` measures on it: the exact pieces' worst implicit residual "
              "(relative to the shape's size), and the worst G1 (normal angle) and G2 (normal-curvature "
-             "jump, relative) gaps over the samples of every patch seam. Shaded pictures tint the "
+             "jump, relative) gaps over the samples of every patch seam; next to a pole, samples whose "
+             "rounding bound exceeds the limits are measured against that bound instead and are not in "
+             "these two columns ([poles.md](poles.md#measured-seams-worst-over-the-tests), \"How `rg2 check` treats poles\"). \"Exact\" "
+             "counts the patches tagged with a shape by their provenance ([design-format.md]"
+             "(design-format.md#provenance-which-patches-are-exact)); a transition patch may lie on a "
+             "shape too. Shaded pictures tint the "
              "patches that are exact pieces of a shape (one colour per shape) and leave the transition "
              "patches grey-blue; the mean-curvature pictures show a curvature-continuous surface as "
              "continuous colour." % SIZE.replace("x", " x "),
