@@ -186,7 +186,7 @@ rg2_status rg2__op_cut(const rg2__dmesh *in, const int first[2], const int last[
         }
         /* (a C caller's indices may be anywhere in int: no sum of them may overflow) */
         int maxlast = s->closed ? (first[k] < s->n ? first[k] : s->n - 1) + s->n + 2 : s->n - 1;
-        if (first[k] >= s->n || last[k] < first[k] || last[k] > first[k] + s->n + 2)
+        if (first[k] >= s->n || last[k] < first[k] || last[k] > maxlast)
             return rg2__fail(err, RG2_EINVAL,
                              "%s: range [%d, %d] is outside the %d control points of mesh '%s' in %s "
                              "(%s; need 0 <= first < %d, first <= last <= %d)",

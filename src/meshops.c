@@ -140,14 +140,18 @@ rg2_status rg2_mesh_reverse(const rg2_mesh *in, int dir, rg2_mesh *out, rg2_erro
 rg2_status rg2_mesh_merge(const rg2_mesh *const *in, int n, int dir, int closed, rg2_seam_rule rule,
                           rg2_mesh *out, rg2_error *err)
 {
-    if (!in || n < 1)
+    if (!out)
+        return rg2__fail(err, RG2_EINVAL, "rg2_mesh_merge: out is NULL");
+    if (!in || n < 1) { /* (no input to alias out) */
+        memset(out, 0, sizeof *out);
         return rg2__fail(err, RG2_EINVAL, "rg2_mesh_merge: %s", !in ? "in is NULL" : "no meshes (n < 1)");
-    if (n > RG2_MAX_POINTS)
-        return rg2__fail(err, RG2_ELIMIT, "rg2_mesh_merge: n = %d meshes, more than the limit of %d points", n,
-                         RG2_MAX_POINTS);
+    }
     rg2_status st = begin("rg2_mesh_merge", out, in, n, err);
     if (st)
         return st;
+    if (n > RG2_MAX_POINTS)
+        return rg2__fail(err, RG2_ELIMIT, "rg2_mesh_merge: n = %d meshes, more than the limit of %d points", n,
+                         RG2_MAX_POINTS);
     if (dir != 0 && dir != 1)
         return rg2__fail(err, RG2_EINVAL, "rg2_mesh_merge: dir = %d, must be 0 (u) or 1 (v)", dir);
     if (rule != RG2_SEAM_PRESERVE && rule != RG2_SEAM_PLAIN)

@@ -200,9 +200,27 @@ static void errors(const rg2_mesh *M)
     const rg2_mesh *two[2] = {&M[TUBE], &M[BAND]};
     bad(rg2_mesh_merge(two, 2, 2, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINVAL, &err, &r, "dir = 2", "merge dir 2");
     bad(rg2_mesh_merge(two, 2, 0, 0, (rg2_seam_rule)7, &r, &err), RG2_EINVAL, &err, &r, "rule = 7", "merge rule 7");
+    /* the output is emptied by every failure, the first checks' too (rg2_mesh_free of it is safe) */
+    memset(&r, 0xab, sizeof r);
     bad(rg2_mesh_merge(two, 0, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINVAL, &err, &r, "no meshes", "merge of 0");
-    bad(rg2_mesh_merge(NULL, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINVAL, &err, NULL, "in is NULL",
+    memset(&r, 0xab, sizeof r);
+    bad(rg2_mesh_merge(NULL, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINVAL, &err, &r, "in is NULL",
         "merge of NULL");
+    for (int k = 0; k < 5; k++) {
+        memset(&r, 0xab, sizeof r);
+        rg2_status st = RG2_OK;
+        int fk[2] = {0, 0}, lk[2] = {2, 2};
+        switch (k) {
+        case 0: st = rg2_mesh_cut(&M[TUBE], fk, lk, &r, &err); break;
+        case 1: st = rg2_mesh_transpose(NULL, &r, &err); break;
+        case 2: st = rg2_mesh_reverse(&M[TUBE], 5, &r, &err); break;
+        case 3: st = rg2_mesh_merge(two, 2, 1, 0, RG2_SEAM_PRESERVE, &r, &err); break;
+        default: st = rg2_mesh_morph(&M[TUBE], &M[RING], -1.0, &r, &err); break;
+        }
+        CHECK(st != RG2_OK && r.p == NULL && r.nu == 0 && r.su.w == NULL && r.sv.b == NULL,
+              "operation %d: failed (%s) but left the output unemptied", k, rg2_status_str(st));
+        rg2_mesh_free(&r);
+    }
     bad(rg2_mesh_merge(two, 2, 0, 0, RG2_SEAM_PRESERVE, NULL, &err), RG2_EINVAL, &err, NULL, "out is NULL",
         "merge into NULL");
     const rg2_mesh *with_null[2] = {&M[TUBE], NULL};
@@ -234,6 +252,12 @@ static void errors(const rg2_mesh *M)
     int fa[2] = {10, -1}, la[2] = {8, 0};
     bad(rg2_mesh_cut(&M[TUBE], fa, la, &r, &err), RG2_EINVAL, &err, &r,
         "rg2_mesh_cut: u (first[0], last[0]): range [10, 8] is outside the 9 control points", "cut backwards");
+    /* an open direction ends at its last point (a closed one may wrap: the heap over-read of a
+     * range [3, 9] of 6 points was accepted when the wrap rule applied to both) */
+    int fo[2] = {-1, 0}, lo[2] = {0, 7};
+    bad(rg2_mesh_cut(&M[WRAP], fo, lo, &r, &err), RG2_EINVAL, &err, &r,
+        "rg2_mesh_cut: v (first[1], last[1]): range [0, 7] is outside the 6 control points of mesh 'in' in v (open; "
+        "need 0 <= first < 6, first <= last <= 5)", "cut past an open end");
     int fb[2] = {-1, 0}, lb[2] = {0, 2};
     bad(rg2_mesh_cut(&M[TUBE], fb, lb, &r, &err), RG2_EINVAL, &err, &r, "keeps 3 control points", "cut of 3");
     int fc[2] = {-2, -1}, lc[2] = {0, 0};
