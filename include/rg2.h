@@ -197,7 +197,8 @@ RG2_API double rg2_scalars_leg_w(const rg2_scalars *s, int i);
 /** K_i of junction i (MATH.md eq. 4). */
 RG2_API double rg2_scalars_K(const rg2_scalars *s, int i);
 /** Check finiteness, w > 0, b > 0, K > 0. `what` prefixes the message ("u", "mesh 2 v"...).
- *  @return RG2_ENONFINITE, RG2_EWEIGHT or RG2_EINVAL, naming the index. */
+ *  @return RG2_ENONFINITE (also for a K that is not a finite number), RG2_EWEIGHT or RG2_EINVAL,
+ *          naming the index. */
 RG2_API rg2_status rg2_scalars_check(const rg2_scalars *s, const char *what, rg2_error *err);
 
 /** Scalars of the polynomial special case (non-uniform C2 cubic B-spline): w = 1, g = 0,

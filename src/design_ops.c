@@ -294,6 +294,14 @@ rg2_status rg2__op_reverse(const rg2__dmesh *in, int dir, rg2__dmesh *out, const
         b->b[j] = 1.0 / bb;
         b->g[j] = a->g[n - 1 - j] / (bb * bb * bb);
         out->jun[dir][j] = in->jun[dir][n - 1 - j];
+        if (!rg2__finite(b->b[j]) || !rg2__finite(b->g[j])) { /* (a b of 1e-310: 1 / b = inf) */
+            rg2__dmesh_free(out);
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "%s: %s junction %d (b = %s, g = %s) cannot be reversed: b' = 1 / b = %s and g' = "
+                             "g / b^3 = %s leave the double range",
+                             what, dir_name(dir), n - 1 - j, rg2__num(bb).s, rg2__num(a->g[n - 1 - j]).s,
+                             rg2__num(1.0 / bb).s, rg2__num(a->g[n - 1 - j] / (bb * bb * bb)).s);
+        }
     }
     for (int s = 0; s < rg2_scalars_num_w(a); s++) {
         int from = a->closed ? rg2__wrap(n - 2 - s, n, 1) : n - s;
@@ -335,9 +343,9 @@ static int scalars_differ(const rg2_scalars *a, const rg2_scalars *b, char *msg,
     for (int i = 0; i < nw; i++)
         if (!close_rel(a->w[i], b->w[i], tol)) {
             snprintf(msg, cap, "leg weight w[%d] = %s vs %s%s", i - off, rg2__num(a->w[i]).s, rg2__num(b->w[i]).s,
-                     ones_a != ones_b ? " (one is a polynomial direction, knots or a NURBS, with all leg weights 1, "
-                                        "the other a circle direction: a circle merges only with a circle of the "
-                                        "same arcs)"
+                     ones_a != ones_b ? " (one has all its leg weights 1, like a polynomial direction (knots or "
+                                        "a NURBS), the other not, like a circle direction or an edited one: a "
+                                        "circle merges only with a circle of the same arcs)"
                                       : "");
             return 1;
         }
@@ -427,7 +435,7 @@ rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int clo
     cc[other] = so->closed;
     rg2_status st = rg2__dmesh_alloc(out, NULL, nn[0], nn[1], cc[0], cc[1], err);
     if (st)
-        return st;
+        return rg2__prefix(err, st, what);
     /* points */
     int off = 0;
     for (int t = 0; t < n_in; t++) {
@@ -808,13 +816,15 @@ int rg2__bad_junction(const rg2_scalars *s)
 rg2_status rg2__dir_check(const rg2_scalars *s, int dir, const char *what, const char *when, rg2_error *err)
 {
     int i = rg2__bad_junction(s);
-    if (i >= 0)
-        return rg2__fail(err, RG2_EWEIGHT,
+    if (i >= 0) {
+        double K = rg2_scalars_K(s, i);
+        return rg2__fail(err, rg2__finite(K) ? RG2_EWEIGHT : RG2_ENONFINITE,
                          "%s: %s%s junction %d has K = %g (from w[%d] = %g, w[%d] = %g, b = %g, g = %g); "
-                         "K must be > 0",
-                         what, when, dir_name(dir), i, rg2_scalars_K(s, i), rg2__prev_leg(s, i),
-                         rg2_scalars_leg_w(s, i - 1), i,
-                         rg2_scalars_leg_w(s, i), s->b[i], s->g[i]);
+                         "K must be %s",
+                         what, when, dir_name(dir), i, K, rg2__prev_leg(s, i), rg2_scalars_leg_w(s, i - 1), i,
+                         rg2_scalars_leg_w(s, i), s->b[i], s->g[i],
+                         rg2__finite(K) ? "> 0" : "a finite number > 0 (the scalars leave the double range)");
+    }
     char w[340];
     snprintf(w, sizeof w, "%s: %s%s", what, when, dir_name(dir));
     return rg2_scalars_check(s, w, err); /* (the operations keep w, b > 0: not reached) */

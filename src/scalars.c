@@ -143,11 +143,12 @@ rg2_status rg2_scalars_check(const rg2_scalars *s, const char *what, rg2_error *
     for (int i = 0; i < s->n; i++) {
         double K = rg2_scalars_K(s, i);
         if (!(K > 0.0) || !rg2__finite(K))
-            return rg2__fail(err, RG2_EWEIGHT,
+            return rg2__fail(err, rg2__finite(K) ? RG2_EWEIGHT : RG2_ENONFINITE,
                              "%s: junction %d has K = %g (from w[%d] = %g, w[%d] = %g, b = %g, g = %g);"
-                             " K must be > 0",
+                             " K must be %s",
                              what, i, K, rg2__prev_leg(s, i), rg2_scalars_leg_w(s, i - 1), i,
-                             rg2_scalars_leg_w(s, i), s->b[i], s->g[i]);
+                             rg2_scalars_leg_w(s, i), s->b[i], s->g[i],
+                             rg2__finite(K) ? "> 0" : "a finite number > 0 (the scalars leave the double range)");
     }
     rg2__ok(err);
     return RG2_OK;

@@ -187,7 +187,7 @@ static void bad(rg2_status got, rg2_status want, const rg2_error *err, const rg2
 static void errors(const rg2_mesh *M)
 {
     rg2_error err;
-    rg2_mesh r;
+    rg2_mesh r, t;
     int f[2] = {0, -1}, l[2] = {8, 0};
 
     const rg2_mesh *closed_first[2] = {&M[RING], &M[BAND]};
@@ -247,6 +247,23 @@ static void errors(const rg2_mesh *M)
     c.su.b[4] = -1.0;
     bad(rg2_mesh_reverse(&c, 0, &r, &err), RG2_EWEIGHT, &err, &r, "rg2_mesh_reverse: in: mesh u", "reverse b < 0");
     rg2_mesh_free(&c);
+
+    /* scalars that leave the double range: named, as the input's junction */
+    CHECK_OK(rg2_mesh_copy(&M[TUBE], &c, &err), &err);
+    c.sv.b[2] = 1e-310;
+    bad(rg2_mesh_reverse(&c, 1, &r, &err), RG2_EDOMAIN, &err, &r,
+        "rg2_mesh_reverse: v junction 2 (b = 1e-310, g = 0.304481869954853) cannot be reversed: b' = 1 / b = inf", "reverse b = 1e-310");
+    rg2_mesh_free(&c);
+    CHECK_OK(rg2_mesh_copy(&M[TUBE], &c, &err), &err);
+    CHECK_OK(rg2_mesh_copy(&M[BAND], &t, &err), &err);
+    c.su.w[c.su.n] = 1e308; /* the data-only end weights whose mean is the seam leg's: inf */
+    t.su.w[0] = 1e308;
+    const rg2_mesh *huge[2] = {&c, &t};
+    bad(rg2_mesh_merge(huge, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_ENONFINITE, &err, &r,
+        "rg2_mesh_merge: in[0]: mesh u: junction 8 has K = inf (from w[7] = 0.977284, w[8] = 1e+308, b = 0.575855, "
+        "g = 0.0354623); K must be a finite number > 0 (the scalars leave the double range)", "merge to K = inf");
+    rg2_mesh_free(&c);
+    rg2_mesh_free(&t);
 
     /* cut ranges */
     int fa[2] = {10, -1}, la[2] = {8, 0};
