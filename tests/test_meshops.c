@@ -265,6 +265,20 @@ static void errors(const rg2_mesh *M)
     rg2_mesh_free(&c);
     rg2_mesh_free(&t);
 
+    /* two meshes within the point limit whose merge is not: the message starts with the function */
+    CHECK_OK(rg2_mesh_init(&c, 4, 600000, 0, 0, &err), &err);
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 600000; j++) {
+            double *p = rg2_mesh_at(&c, i, j);
+            p[0] = i;
+            p[1] = j;
+            p[3] = 1.0;
+        }
+    const rg2_mesh *big[2] = {&c, &c};
+    bad(rg2_mesh_merge(big, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_ELIMIT, &err, &r,
+        "rg2_mesh_merge: mesh: 8 x 600000 control points exceeds the limit of 4000000", "merge past the limit");
+    rg2_mesh_free(&c);
+
     /* cut ranges */
     int fa[2] = {10, -1}, la[2] = {8, 0};
     bad(rg2_mesh_cut(&M[TUBE], fa, la, &r, &err), RG2_EINVAL, &err, &r,
