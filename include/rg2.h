@@ -307,7 +307,7 @@ static inline double *rg2_mesh_at(const rg2_mesh *m, int i, int j)
     return m->p + (RG2_SIZE(i) * RG2_SIZE(m->nv) + RG2_SIZE(j)) * 4;
 }
 
-/** @name Mesh operations (docs/design-format.md, "Mesh operations")
+/** @name Mesh operations (docs/design-format.md, "The same operations from C")
  *
  * The design file's operations on plain meshes, for callers who build meshes in C: the mesh
  * each returns equals, bit for bit, the one a design file makes of the same meshes. Each
@@ -379,7 +379,11 @@ typedef struct {
     double *bu, *gu;     /**< u junction scalars: bu[i] joins patch column i-1 to i (nu values;
                               for open u, bu[0] is unused) */
     double *bv, *gv;     /**< v junction scalars likewise (nv values) */
-    int *tag;            /**< nu * nv provenance tags (shape index, -1 transition); may be NULL */
+    int *tag;            /**< nu * nv provenance tags (shape index, -1 transition); may be NULL.
+                              Owned by the surface, like every array here: rg2_surface_free
+                              frees them (with free()), so a caller who tags a surface itself
+                              gives it a malloc'd array of nu * nv ints. rg2_check reads a
+                              patch tagged s as a piece of its shapes[s]. */
     rg2_xpatch *xp;      /**< NULL for an all-bi-3 surface; else nu * nv entries: where
                               xp[k].du > 0, patch k is that higher-degree patch (the general-
                               quadratic polar caps) and patch[k] is unused (all NaN). Read
@@ -590,7 +594,9 @@ RG2_API rg2_status rg2_partition_check(const rg2_partition *p, const char *what,
  *  section 2 for circle directions, v_seg + t (v_{seg+1} - v_seg) for knot directions. */
 RG2_API double rg2_partition_map(const rg2_partition *p, int seg, double t);
 /** A partition of [lo, hi] into n equal arcs (angles, radians) or knot intervals, written to
- *  values (capacity cap >= n + 1). Closed angle partitions ignore hi (full circle from lo). */
+ *  values (capacity cap >= n + 1). Closed angle partitions ignore hi (full circle from lo).
+ *  @return RG2_EINVAL for a kind other than RG2_PART_ANGLES / RG2_PART_KNOTS, n < 1 or cap <= n;
+ *          RG2_ENONFINITE for a NaN or infinite lo or hi; then rg2_partition_check's codes. */
 RG2_API rg2_status rg2_partition_equal(rg2_partition *p, rg2_partition_kind kind, int closed,
                                        double lo, double hi, int n, double *values, int cap,
                                        rg2_error *err);
@@ -785,6 +791,21 @@ RG2_API rg2_status rg2_polar_knots(const double *v, int m, double *knots, rg2_er
 RG2_API rg2_status rg2_polar_sphere_mesh(const double *alpha, int n_alpha, double theta0,
                                          const double *v, int m, const double *M, rg2_mesh *out,
                                          rg2_error *err);
+
+/** Polar configuration of a shape, the design file's `polar` (docs/poles.md), the same bits:
+ *  the shape's own control mesh over the u partition pu and the full polar knot vector of the
+ *  interior knots v_1 < ... < v_m (m >= 2), its polar rows collapsed to one point exactly.
+ *  Sphere, ellipsoid: v in (0, 1), both poles, the knots of rg2_polar_knots (for the unit
+ *  sphere the mesh is rg2_polar_sphere_mesh's up to the last bit of the pole rows' weights).
+ *  Paraboloid, hyperboloid2 (the pole at v = 0): all v > 0, knots -v_1, 0, v_1..v_m, v_m + d,
+ *  v_m + 2d (d = v_m - v_{m-1}), the pole row 0; or all v < 0, knots v_1 - 2d, v_1 - d,
+ *  v_1..v_m, 0, -v_m (d = v_2 - v_1), the pole row m + 1. The shape's placement applies.
+ *  Free out with rg2_mesh_free; empty (zeroed) on failure. @return RG2_EINVAL for a NULL
+ *  argument, another kind of shape or m < 2; RG2_EDOMAIN for knots out of order, on both sides of
+ *  0 or outside (0, 1) (sphere, ellipsoid), naming the knot ("rg2_polar_mesh: polar knots: v_2
+ *  = ..."); then as rg2_shape_mesh. */
+RG2_API rg2_status rg2_polar_mesh(const rg2_shape *s, const rg2_partition *pu, const double *v, int m,
+                                  rg2_mesh *out, rg2_error *err);
 
 /** 1 if row j (all i) of the mesh is one point: every 4-tuple projectively equal to the first
  *  one to 1e-12 relative to the mesh size; 0 otherwise (or for a bad j). */

@@ -9,13 +9,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Collapse row j of a mesh to its first point (bit-exact polar row). */
-static void collapse_row(rg2_mesh *m, int j)
-{
-    for (int i = 1; i < m->nu; i++)
-        memcpy(rg2_mesh_at(m, i, j), rg2_mesh_at(m, 0, j), 4 * sizeof(double));
-}
-
 /* The same on a shape's source (which stores all its points). */
 static void collapse_source_row(rg2__source *S, int j)
 {
@@ -57,31 +50,8 @@ rg2_status rg2__op_polar(rg2_design *d, int shape, const rg2_partition *pu, cons
     double *k = rg2__calloc((size_t)m + 4, sizeof(double));
     if (!k)
         return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", what);
-    int north = !both && v[m - 1] < 0.0; /* paraboloid, hyperboloid2: knots below 0, pole at the end */
-    if (both) {
-        st = rg2_polar_knots(v, m, k, err);
-    } else {
-        for (int q = 0; q < m && !st; q++)
-            if (!(north ? v[q] < 0.0 : v[q] > 0.0) || (q && !(v[q] > v[q - 1])))
-                st = rg2__fail(err, RG2_EDOMAIN,
-                               "v_%d = %s: the knots must increase and all lie on one side of the pole v = 0",
-                               q + 1, rg2__num(v[q]).s);
-        if (!st && !north) {
-            double dl = v[m - 1] - v[m - 2];
-            k[0] = -v[0];
-            k[1] = 0.0;
-            memcpy(k + 2, v, (size_t)m * sizeof(double));
-            k[m + 2] = v[m - 1] + dl;
-            k[m + 3] = v[m - 1] + 2.0 * dl;
-        } else if (!st) {
-            double dl = v[1] - v[0];
-            k[0] = v[0] - 2.0 * dl;
-            k[1] = v[0] - dl;
-            memcpy(k + 2, v, (size_t)m * sizeof(double));
-            k[m + 2] = 0.0;
-            k[m + 3] = -v[m - 1];
-        }
-    }
+    int north = 0;
+    st = rg2__polar_full_knots(kind, v, m, k, &north, err);
     if (st) { /* (rg2_polar_knots: "polar knots: v_2 = ..."; the path names the knots) */
         rg2_error e = *err;
         free(k);
@@ -98,7 +68,7 @@ rg2_status rg2__op_polar(rg2_design *d, int shape, const rg2_partition *pu, cons
             continue;
         int j = e ? base->nv - 1 : 0;
         collapse_source_row(base, j);
-        collapse_row(&out->m, j);
+        rg2__collapse_row(&out->m, j);
     }
     return RG2_OK;
 }

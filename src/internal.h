@@ -363,6 +363,15 @@ static inline void rg2__bern3(double t, double B[4], double D[4], double DD[4])
  * v-column i = idx, all j) is collapsed to one point: all its 4-tuples projectively equal to
  * 1e-12 of the mesh size (its largest affine coordinate). rg2_mesh_row_collapsed is dir 1. */
 int rg2__mesh_line_collapsed(const rg2_mesh *m, int dir, int idx);
+/* The full knot vector (m + 4 knots, RG2_PART_KNOTS_FULL) of a polar configuration of the
+ * interior knots v_1..v_m (poles.c, docs/poles.md): sphere, ellipsoid rg2_polar_knots; paraboloid,
+ * hyperboloid2 -v_1, 0, v_1..v_m, v_m + d, v_m + 2d (d = v_m - v_{m-1}; *north = 0), or for knots
+ * below 0 v_1 - 2d, v_1 - d, v_1..v_m, 0, -v_m (d = v_2 - v_1; *north = 1, the pole is the last
+ * row). Messages start "polar knots: ". */
+rg2_status rg2__polar_full_knots(rg2_shape_kind kind, const double *v, int m, double *k, int *north,
+                                 rg2_error *err);
+/* Row j of m made its first point, bit for bit (a polar row). */
+void rg2__collapse_row(rg2_mesh *m, int j);
 
 /* A shape's implicit function with its placement inverted once (rg2_shape_implicit2 inverts
  * it per call): prep once per shape, then evaluate at many points, with the same bits. */

@@ -37,6 +37,90 @@ rg2_status rg2_polar_knots(const double *v, int m, double *knots, rg2_error *err
     return RG2_OK;
 }
 
+rg2_status rg2__polar_full_knots(rg2_shape_kind kind, const double *v, int m, double *k, int *north,
+                                 rg2_error *err)
+{
+    *north = 0;
+    if (kind == RG2_SHAPE_SPHERE || kind == RG2_SHAPE_ELLIPSOID)
+        return rg2_polar_knots(v, m, k, err);
+    if (m < 2)
+        return rg2__fail(err, RG2_EINVAL,
+                         "polar knots: %d interior knots given; a polar configuration needs at least 2", m);
+    int nth = v[m - 1] < 0.0; /* knots below 0: the pole v = 0 is at the end */
+    for (int q = 0; q < m; q++)
+        if (!(nth ? v[q] < 0.0 : v[q] > 0.0) || (q && !(v[q] > v[q - 1])))
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "polar knots: v_%d = %s: the knots must increase and all lie on one side of the "
+                             "pole v = 0",
+                             q + 1, rg2__num(v[q]).s);
+    if (!nth) {
+        double dl = v[m - 1] - v[m - 2];
+        k[0] = -v[0];
+        k[1] = 0.0;
+        memcpy(k + 2, v, (size_t)m * sizeof(double));
+        k[m + 2] = v[m - 1] + dl;
+        k[m + 3] = v[m - 1] + 2.0 * dl;
+    } else {
+        double dl = v[1] - v[0];
+        k[0] = v[0] - 2.0 * dl;
+        k[1] = v[0] - dl;
+        memcpy(k + 2, v, (size_t)m * sizeof(double));
+        k[m + 2] = 0.0;
+        k[m + 3] = -v[m - 1];
+    }
+    *north = nth;
+    return RG2_OK;
+}
+
+void rg2__collapse_row(rg2_mesh *m, int j)
+{
+    for (int i = 1; i < m->nu; i++)
+        memcpy(rg2_mesh_at(m, i, j), rg2_mesh_at(m, 0, j), 4 * sizeof(double));
+}
+
+/*
+ * METHOD: the design file's `polar` (design_poles.c): the shape's own mesh over the full polar
+ * knot vector (rg2__polar_full_knots), its polar rows made one point to the last bit.
+ */
+rg2_status rg2_polar_mesh(const rg2_shape *s, const rg2_partition *pu, const double *v, int m, rg2_mesh *out,
+                          rg2_error *err)
+{
+    if (!out)
+        return rg2__fail(err, RG2_EINVAL, "rg2_polar_mesh: out is NULL");
+    memset(out, 0, sizeof *out);
+    if (!s || !pu || !v)
+        return rg2__fail(err, RG2_EINVAL, "rg2_polar_mesh: %s is NULL", !s ? "s" : !pu ? "pu" : "v");
+    rg2_shape_kind kind = s->kind;
+    int both = kind == RG2_SHAPE_SPHERE || kind == RG2_SHAPE_ELLIPSOID;
+    if (!both && kind != RG2_SHAPE_PARABOLOID && kind != RG2_SHAPE_HYPERBOLOID2) {
+        const char *name = rg2_shape_name(kind);
+        return rg2__fail(err, RG2_EINVAL,
+                         "rg2_polar_mesh: a %s has no polar configuration (sphere, ellipsoid: both poles; "
+                         "paraboloid, hyperboloid2: the pole at v = 0)",
+                         name ? name : "shape of an unknown kind");
+    }
+    if (m < 2) /* (before the knots' allocation: m + 4 of a negative m) */
+        return rg2__fail(err, RG2_EINVAL,
+                         "rg2_polar_mesh: %d interior knots given; a polar configuration needs at least 2", m);
+    double *k = rg2__calloc((size_t)m + 4, sizeof(double));
+    if (!k)
+        return rg2__fail(err, RG2_ENOMEM, "rg2_polar_mesh: out of memory for %d knots", m);
+    int north = 0;
+    rg2_status st = rg2__polar_full_knots(kind, v, m, k, &north, err);
+    rg2_partition pv = {RG2_PART_KNOTS_FULL, 0, m + 4, k, 0.0};
+    if (!st)
+        st = rg2__shape_check_range(s, &pv, err);
+    if (!st)
+        st = rg2_shape_mesh(s, pu, &pv, out, err);
+    free(k);
+    if (st)
+        return rg2__prefix(err, st, "rg2_polar_mesh");
+    for (int e = 0; e < 2; e++)
+        if (both || e == north)
+            rg2__collapse_row(out, e ? out->nv - 1 : 0);
+    return RG2_OK;
+}
+
 /*
  * METHOD: family 2 (MATH.md section 5), h = (2v(1-v) cu, 2v(1-v) su, 2v - 1, 2v^2 - 2v + 1).
  * Control 4-tuple (i, j) = products of the circle coefficients (C_i, S_i) and the blossoms

@@ -242,7 +242,7 @@ rg2_status rg2_partition_equal(rg2_partition *p, rg2_partition_kind kind, int cl
     if (n < 1)
         return rg2__fail(err, RG2_EINVAL, "equal partition: %d segments, need at least 1", n);
     if (cap <= n) /* (not cap < n + 1: n may be INT_MAX) */
-        return rg2__fail(err, RG2_ELIMIT, "equal partition: %d segments need %lld values, room for %d",
+        return rg2__fail(err, RG2_EINVAL, "equal partition: %d segments need %lld values, room for %d (cap)",
                          n, (long long)n + 1, cap);
     if (!rg2__finite(lo) || !rg2__finite(hi))
         return rg2__fail(err, RG2_ENONFINITE, "equal partition: range is not finite");

@@ -8,6 +8,7 @@
 
 #include <limits.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -315,6 +316,84 @@ static void errors(const rg2_mesh *M)
         "morph with NULL");
 }
 
+/* Polar configurations: rg2_polar_mesh against the design file's `polar`, bit for bit, and the
+ * band it builds on its shape; then its bad input. */
+static const char *polar_json =
+    "{\"format\": \"rg2 design 1\","
+    " \"shapes\": {\"ball\": {\"kind\": \"sphere\", \"radius\": 1.5, \"translate\": [1, 2, 3]},"
+    "  \"egg\": {\"kind\": \"ellipsoid\", \"a\": 2, \"b\": 1.5, \"c\": 1, \"rotate\": {\"axis\": [1, 1, 0], \"degrees\": 30}},"
+    "  \"bowl\": {\"kind\": \"paraboloid\", \"A\": 1, \"B\": 0.8},"
+    "  \"lid\": {\"kind\": \"hyperboloid2\", \"a\": 0.8, \"c\": 0.6, \"scale\": [1, 0.8, -1], \"translate\": [0, 0, 2.6]}},"
+    " \"meshes\": {"
+    "  \"B\": {\"polar\": \"ball\", \"u\": {\"arcs\": 8}, \"v\": {\"knots\": [0.15, 0.3, 0.42, 0.58, 0.7, 0.85]}},"
+    "  \"E\": {\"polar\": \"egg\", \"u\": {\"arcs\": 6}, \"v\": {\"knots\": [0.2, 0.5, 0.8]}},"
+    "  \"P\": {\"polar\": \"bowl\", \"u\": {\"arcs\": 8}, \"v\": {\"knots\": [0.3, 0.6, 0.9, 1.0]}},"
+    "  \"H\": {\"polar\": \"lid\", \"u\": {\"arcs\": 8, \"from\": 180}, \"v\": {\"knots\": [-0.5, -0.45, -0.3, -0.15]}}"
+    " },"
+    " \"output\": [\"B\", \"E\", \"P\", \"H\"]}";
+
+static void polar(void)
+{
+    rg2_error err;
+    rg2_design *d = NULL;
+    rg2_status st = rg2_design_parse(polar_json, strlen(polar_json), "polar", &d, &err);
+    CHECK(st == RG2_OK && rg2_design_num_surfaces(d) == 4, "polar design: %s", err.msg);
+    if (st)
+        return;
+    static const double kb[] = {0.15, 0.3, 0.42, 0.58, 0.7, 0.85}, ke[] = {0.2, 0.5, 0.8},
+                        kp[] = {0.3, 0.6, 0.9, 1.0}, kh[] = {-0.5, -0.45, -0.3, -0.15};
+    const double *kv[4] = {kb, ke, kp, kh};
+    const int m[4] = {6, 3, 4, 4}, arcs[4] = {8, 6, 8, 8};
+    const double start[4] = {0, 0, 0, 180 * M_PI / 180.0}; /* (the design's own formula for "from") */
+    const int poles[4] = {3, 3, 1, 2}; /* bit 0: row 0 collapsed, bit 1: the last row */
+    for (int k = 0; k < 4; k++) {
+        double au[8];
+        for (int a = 0; a < arcs[k]; a++)
+            au[a] = 2.0 * M_PI / arcs[k];
+        rg2_partition pu = {RG2_PART_ANGLES, 1, arcs[k], au, start[k]};
+        const rg2_shape *sh = rg2_design_shape(d, k);
+        rg2_mesh r;
+        CHECK_OK(rg2_polar_mesh(sh, &pu, kv[k], m[k], &r, &err), &err);
+        char what[64];
+        snprintf(what, sizeof what, "rg2_polar_mesh of '%s'", rg2_design_shape_label(d, k));
+        same_mesh(&r, rg2_design_mesh(d, k), what);
+        CHECK(rg2_mesh_row_collapsed(&r, 0) == (poles[k] & 1) && rg2_mesh_row_collapsed(&r, r.nv - 1) == poles[k] >> 1,
+              "%s: collapsed rows %d, %d, want %d, %d", what, rg2_mesh_row_collapsed(&r, 0),
+              rg2_mesh_row_collapsed(&r, r.nv - 1), poles[k] & 1, poles[k] >> 1);
+        rg2_surface s;
+        CHECK_OK(rg2_surface_build(&r, &s, &err), &err);
+        int on = patches_on(&s, sh, rg2t_surface_scale(&s), 1e-14);
+        CHECK(on == s.nu * s.nv, "%s: %d of %d patches on the shape", what, on, s.nu * s.nv);
+        rg2_surface_free(&s);
+        rg2_mesh_free(&r);
+    }
+
+    double au[8];
+    for (int a = 0; a < 8; a++)
+        au[a] = M_PI / 4;
+    rg2_partition pu = {RG2_PART_ANGLES, 1, 8, au, 0.0};
+    rg2_mesh r;
+    rg2_shape torus;
+    rg2_shape_init(&torus, RG2_SHAPE_TORUS);
+    bad(rg2_polar_mesh(&torus, &pu, kb, 6, &r, &err), RG2_EINVAL, &err, &r,
+        "rg2_polar_mesh: a torus has no polar configuration", "polar torus");
+    bad(rg2_polar_mesh(rg2_design_shape(d, 0), &pu, kb, 1, &r, &err), RG2_EINVAL, &err, &r,
+        "rg2_polar_mesh: 1 interior knots given", "polar of 1 knot");
+    bad(rg2_polar_mesh(rg2_design_shape(d, 0), &pu, kb, -7, &r, &err), RG2_EINVAL, &err, &r,
+        "rg2_polar_mesh: -7 interior knots given", "polar of -7 knots");
+    const double across[3] = {-0.2, 0.3, 0.5}, outside[2] = {0.5, 1.2};
+    bad(rg2_polar_mesh(rg2_design_shape(d, 2), &pu, across, 3, &r, &err), RG2_EDOMAIN, &err, &r,
+        "rg2_polar_mesh: polar knots: v_1 = -0.2: the knots must increase and all lie on one side of the pole",
+        "paraboloid knots on both sides");
+    bad(rg2_polar_mesh(rg2_design_shape(d, 0), &pu, outside, 2, &r, &err), RG2_EDOMAIN, &err, &r,
+        "rg2_polar_mesh: polar knots: v_2 = 1.2 must lie strictly between the poles 0 and 1", "sphere knot 1.2");
+    bad(rg2_polar_mesh(rg2_design_shape(d, 0), NULL, kb, 6, &r, &err), RG2_EINVAL, &err, &r, "pu is NULL",
+        "polar of a NULL partition");
+    bad(rg2_polar_mesh(rg2_design_shape(d, 0), &pu, kb, 6, NULL, &err), RG2_EINVAL, &err, NULL, "out is NULL",
+        "polar into NULL");
+    rg2_design_free(d);
+}
+
 int main(void)
 {
     rg2_error err;
@@ -333,5 +412,6 @@ int main(void)
         errors(M);
     }
     rg2_design_free(d);
+    polar();
     return rg2t_done("test_meshops");
 }

@@ -738,7 +738,7 @@ static void errors(void)
     rg2_mesh m;
     double eq[9], kn[4] = {0.2, 0.4, 0.6, 0.8};
     rg2_partition pu, pv = {RG2_PART_KNOTS, 0, 4, kn, 0}, pc;
-    CHECK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0.0, 0.0, INT_MAX, eq, 9, &err) == RG2_ELIMIT &&
+    CHECK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0.0, 0.0, INT_MAX, eq, 9, &err) == RG2_EINVAL &&
               strstr(err.msg, "2147483648 values"),
           "INT_MAX segments: %s", err.msg);
     rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0.0, 0.0, 6, eq, 9, &err);
@@ -918,8 +918,8 @@ static void errors(void)
                "coefficient [0][3][0]", "NaN coefficient");
     rg2_partition pe;
     double buf[3];
-    expect_err(rg2_partition_equal(&pe, RG2_PART_ANGLES, 1, 0, 0, 5, buf, 3, &err), RG2_ELIMIT, &err,
-               "room for 3", "equal partition capacity");
+    expect_err(rg2_partition_equal(&pe, RG2_PART_ANGLES, 1, 0, 0, 5, buf, 3, &err), RG2_EINVAL, &err,
+               "5 segments need 6 values, room for 3 (cap)", "equal partition capacity");
     expect_err(rg2_partition_equal(&pe, RG2_PART_ANGLES, 1, 0, 0, 2, buf, 3, &err), RG2_EDOMAIN, &err,
                "(0, pi)", "2 closed arcs of pi");
 }
