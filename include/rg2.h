@@ -313,20 +313,23 @@ static inline double *rg2_mesh_at(const rg2_mesh *m, int i, int j)
  * each returns equals, bit for bit, the one a design file makes of the same meshes. Each
  * checks its inputs with rg2_mesh_check (the message starts with the function and the input:
  * "rg2_mesh_merge: in[1]: mesh u: ..."), writes a new mesh into *out (free it with
- * rg2_mesh_free), and leaves *out empty (zeroed) on failure. out must not be an input.
+ * rg2_mesh_free), and leaves *out empty (zeroed) on failure. out must not be an input: that is
+ * refused (RG2_EINVAL) with *out left as it was.
  * Moving a control point or a weight is a write through rg2_mesh_at; a scalar, a write to
  * su / sv (rg2_mesh_check tells whether K stays > 0). Exactness tags (rg2_surface.tag, used
  * by rg2_check to tell which patches lie on which shape) come only from a design; a surface
  * built from these meshes is checked for G2 at every seam all the same. */
 /** Keep control points first[d]..last[d] (inclusive) of direction d = 0 (u), 1 (v); first[d] =
  *  -1 keeps that direction whole. A closed direction may wrap (last up to first + n + 2) and
- *  comes out open; an open one keeps at least 4 points. RG2_EINVAL naming the range. */
+ *  comes out open; an open one keeps at least 4 points. RG2_EINVAL naming the range; RG2_ELIMIT
+ *  when a wrapping cut passes RG2_MAX_POINTS. */
 RG2_API rg2_status rg2_mesh_cut(const rg2_mesh *in, const int first[2], const int last[2], rg2_mesh *out,
                                 rg2_error *err);
 /** Swap u and v (points and scalars). */
 RG2_API rg2_status rg2_mesh_transpose(const rg2_mesh *in, rg2_mesh *out, rg2_error *err);
 /** Reverse direction dir (0 u, 1 v): points and legs in reverse order, junction scalars
- *  b' = 1 / b, g' = g / b^3; every patch is the same surface traversed backwards. */
+ *  b' = 1 / b, g' = g / b^3; every patch is the same surface traversed backwards.
+ *  RG2_EDOMAIN, naming the junction, where b' or g' is not a finite number (b = 1e-310). */
 RG2_API rg2_status rg2_mesh_reverse(const rg2_mesh *in, int dir, rg2_mesh *out, rg2_error *err);
 /** How a merge sets the scalars at a seam (docs/design-format.md, "Seam rule"). PRESERVE
  *  re-solves g at both seam junctions so that every patch of every part stays what it was
@@ -339,7 +342,8 @@ typedef enum { RG2_SEAM_PRESERVE = 0, RG2_SEAM_PLAIN = 1 } rg2_seam_rule;
  *  (counts and scalars, 1e-12 relative), and no seam may be at a polar point.
  *  RG2_EINCOMPATIBLE naming the mesh and the first difference ("rg2_mesh_merge.merge[1]:
  *  meshes 'in[0]' and 'in[1]' do not agree in v ...: 6 vs 8 control points"); RG2_ELIMIT past
- *  RG2_MAX_POINTS. */
+ *  RG2_MAX_POINTS; RG2_EWEIGHT / RG2_ENONFINITE where a seam junction's K is not > 0 / not a
+ *  finite number (RG2_SEAM_PLAIN keeps b and g, so a seam's new leg weight can make K <= 0). */
 RG2_API rg2_status rg2_mesh_merge(const rg2_mesh *const *in, int n, int dir, int closed, rg2_seam_rule rule,
                                   rg2_mesh *out, rg2_error *err);
 /** The blend (1 - t) a + t b of the 4-tuples and the scalars w, b, g, 0 <= t <= 1 (equal values
@@ -786,8 +790,8 @@ RG2_API rg2_status rg2_polar_knots(const double *v, int m, double *knots, rg2_er
  *  The surface built from it is the band v in [v_1, v_m] of the sphere, exactly.
  *  M (nullable): row-major 4x4 placement applied to every 4-tuple (exact; rows stay collapsed).
  *  Free out with rg2_mesh_free. @return RG2_EINVAL for a NULL alpha or n_alpha < 3 (telling the
- *  n_alpha given), RG2_ENONFINITE for a non-finite entry of M, then as rg2_polar_knots and
- *  rg2_circle_coeffs. */
+ *  n_alpha given), RG2_ENONFINITE for a non-finite entry of M, RG2_ELIMIT for m > RG2_MAX_POINTS
+ *  - 2, then as rg2_polar_knots and rg2_circle_coeffs. */
 RG2_API rg2_status rg2_polar_sphere_mesh(const double *alpha, int n_alpha, double theta0,
                                          const double *v, int m, const double *M, rg2_mesh *out,
                                          rg2_error *err);
@@ -796,14 +800,15 @@ RG2_API rg2_status rg2_polar_sphere_mesh(const double *alpha, int n_alpha, doubl
  *  the shape's own control mesh over the u partition pu and the full polar knot vector of the
  *  interior knots v_1 < ... < v_m (m >= 2), its polar rows collapsed to one point exactly.
  *  Sphere, ellipsoid: v in (0, 1), both poles, the knots of rg2_polar_knots (for the unit
- *  sphere the mesh is rg2_polar_sphere_mesh's up to the last bit of the pole rows' weights).
+ *  sphere the mesh agrees with rg2_polar_sphere_mesh's to rounding, a few ulps, not bit for bit).
  *  Paraboloid, hyperboloid2 (the pole at v = 0): all v > 0, knots -v_1, 0, v_1..v_m, v_m + d,
  *  v_m + 2d (d = v_m - v_{m-1}), the pole row 0; or all v < 0, knots v_1 - 2d, v_1 - d,
  *  v_1..v_m, 0, -v_m (d = v_2 - v_1), the pole row m + 1. The shape's placement applies.
  *  Free out with rg2_mesh_free; empty (zeroed) on failure. @return RG2_EINVAL for a NULL
- *  argument, another kind of shape or m < 2; RG2_EDOMAIN for knots out of order, on both sides of
- *  0 or outside (0, 1) (sphere, ellipsoid), naming the knot ("rg2_polar_mesh: polar knots: v_2
- *  = ..."); then as rg2_shape_mesh. */
+ *  argument, another kind of shape or m < 2; RG2_ELIMIT for m > RG2_MAX_POINTS - 2;
+ *  RG2_ENONFINITE for a NaN or infinite knot; RG2_EDOMAIN for knots out of order, on both sides
+ *  of 0 or outside (0, 1) (sphere, ellipsoid), naming the knot ("rg2_polar_mesh: polar knots:
+ *  v_2 = ..."); then as rg2_shape_mesh. */
 RG2_API rg2_status rg2_polar_mesh(const rg2_shape *s, const rg2_partition *pu, const double *v, int m,
                                   rg2_mesh *out, rg2_error *err);
 

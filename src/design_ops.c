@@ -202,8 +202,8 @@ rg2_status rg2__op_cut(const rg2__dmesh *in, const int first[2], const int last[
         f[k] = first[k];
     }
     rg2_status st = rg2__dmesh_alloc(out, NULL, n[0], n[1], cl[0], cl[1], err);
-    if (st)
-        return st;
+    if (st) /* (a wrapping cut of a closed direction keeps up to n + 3 points: past the limit) */
+        return rg2__prefix(err, st, what[first[0] >= 0 ? 0 : 1]);
     for (int i = 0; i < n[0]; i++)
         for (int j = 0; j < n[1]; j++) {
             int si = rg2__wrap(f[0] + i, in->m.nu, in->m.su.closed);
@@ -291,16 +291,19 @@ rg2_status rg2__op_reverse(const rg2__dmesh *in, int dir, rg2__dmesh *out, const
         }
     for (int j = 0; j < n; j++) {
         double bb = a->b[n - 1 - j];
+        double g = a->g[n - 1 - j];
         b->b[j] = 1.0 / bb;
-        b->g[j] = a->g[n - 1 - j] / (bb * bb * bb);
+        b->g[j] = g / (bb * bb * bb);
+        if (!rg2__finite(b->g[j])) /* (b^3 underflowed, b = 1e-110: divide step by step) */
+            b->g[j] = ((g / bb) / bb) / bb;
         out->jun[dir][j] = in->jun[dir][n - 1 - j];
         if (!rg2__finite(b->b[j]) || !rg2__finite(b->g[j])) { /* (a b of 1e-310: 1 / b = inf) */
             rg2__dmesh_free(out);
-            return rg2__fail(err, RG2_EDOMAIN,
-                             "%s: %s junction %d (b = %s, g = %s) cannot be reversed: b' = 1 / b = %s and g' = "
-                             "g / b^3 = %s leave the double range",
-                             what, dir_name(dir), n - 1 - j, rg2__num(bb).s, rg2__num(a->g[n - 1 - j]).s,
-                             rg2__num(1.0 / bb).s, rg2__num(a->g[n - 1 - j] / (bb * bb * bb)).s);
+            double bj = 1.0 / bb;
+            return rg2__fail(err, RG2_EDOMAIN, "%s: %s junction %d (b = %s, g = %s) cannot be reversed: %s",
+                             what, dir_name(dir), n - 1 - j, rg2__num(bb).s, rg2__num(g).s,
+                             !rg2__finite(bj) ? "b' = 1 / b is not a finite number"
+                                              : "g' = g / b^3 is not a finite number");
         }
     }
     for (int s = 0; s < rg2_scalars_num_w(a); s++) {
@@ -511,12 +514,16 @@ rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int clo
         /* left: keep B_{jl-1} */
         double b = a->b[a->n - 1], wp = a->w[a->n - 1], KL = rg2_scalars_K(a, a->n - 1);
         double K = KL * (ws + b * wp) * wvl / (ws * (wvl + b * wp));
+        if (!rg2__finite(K)) /* (an intermediate overflowed: the same value by ratios) */
+            K = KL * ((ws + b * wp) / ws) * (wvl / (wvl + b * wp));
         S->g[jl] = K - 2.0 * b * (3.0 * ws - 2.0) - 2.0 * b * b * (3.0 * wp - 2.0);
         out->jun[dir][jl] = -1;
         /* right: keep A_{jr} */
         b = r->b[0];
         double wn = r->w[1], KR = rg2_scalars_K(r, 0);
         K = KR * wvr * (wn + b * ws) / (ws * (wn + b * wvr));
+        if (!rg2__finite(K))
+            K = KR * (wvr / ws) * ((wn + b * ws) / (wn + b * wvr));
         S->g[jr] = K - 2.0 * b * (3.0 * wn - 2.0) - 2.0 * b * b * (3.0 * ws - 2.0);
         out->jun[dir][jr] = -1;
     }

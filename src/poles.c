@@ -46,6 +46,9 @@ rg2_status rg2__polar_full_knots(rg2_shape_kind kind, const double *v, int m, do
     if (m < 2)
         return rg2__fail(err, RG2_EINVAL,
                          "polar knots: %d interior knots given; a polar configuration needs at least 2", m);
+    for (int q = 0; q < m; q++)
+        if (!rg2__finite(v[q]))
+            return rg2__fail(err, RG2_ENONFINITE, "polar knots: v_%d is not finite", q + 1);
     int nth = v[m - 1] < 0.0; /* knots below 0: the pole v = 0 is at the end */
     for (int q = 0; q < m; q++)
         if (!(nth ? v[q] < 0.0 : v[q] > 0.0) || (q && !(v[q] > v[q - 1])))
@@ -102,6 +105,9 @@ rg2_status rg2_polar_mesh(const rg2_shape *s, const rg2_partition *pu, const dou
     if (m < 2) /* (before the knots' allocation: m + 4 of a negative m) */
         return rg2__fail(err, RG2_EINVAL,
                          "rg2_polar_mesh: %d interior knots given; a polar configuration needs at least 2", m);
+    if (m > RG2_MAX_POINTS - 2) /* (m + 2 control points in v; m + 4 would overflow near INT_MAX) */
+        return rg2__fail(err, RG2_ELIMIT, "rg2_polar_mesh: %d interior knots give %lld control points in v, more "
+                         "than the limit of %d", m, (long long)m + 2, RG2_MAX_POINTS);
     double *k = rg2__calloc((size_t)m + 4, sizeof(double));
     if (!k)
         return rg2__fail(err, RG2_ENOMEM, "rg2_polar_mesh: out of memory for %d knots", m);
@@ -143,6 +149,9 @@ rg2_status rg2_polar_sphere_mesh(const double *alpha, int n_alpha, double theta0
                 return rg2__fail(err, RG2_ENONFINITE, "polar sphere: placement entry %d is not finite", k);
     /* (m < 2 is rg2_polar_knots' error: (size_t)m + 4 of m <= -5 wrapped to an impossible
      * size, reported as out of memory) */
+    if (m > RG2_MAX_POINTS - 2)
+        return rg2__fail(err, RG2_ELIMIT, "polar sphere: %d interior knots give %lld control points in v, more "
+                         "than the limit of %d", m, (long long)m + 2, RG2_MAX_POINTS);
     double *knots = rg2__calloc((size_t)(m > 0 ? m : 0) + 4, sizeof(double));
     double *cs = rg2__calloc((size_t)n_alpha * 2, sizeof(double));
     rg2_status st = RG2_OK;

@@ -145,22 +145,53 @@ static rg2_status op_meshops(const void *ctx, const char *path, blob *out, rg2_e
     rg2_mesh m[6];
     memset(m, 0, sizeof m);
     const int fa[2] = {0, -1}, la[2] = {8, 0}, fb[2] = {9, -1}, lb[2] = {14, 0};
+    memset(m, 0xab, sizeof m); /* (each operation must set its output, emptied on failure) */
+    int k = 0;
     rg2_status st = rg2_mesh_cut(J, fa, la, &m[0], err);
-    if (!st)
+    if (!st && ++k)
         st = rg2_mesh_cut(J, fb, lb, &m[1], err);
     const rg2_mesh *two[2] = {&m[0], &m[1]};
-    if (!st)
+    if (!st && ++k)
         st = rg2_mesh_merge(two, 2, 0, 1, RG2_SEAM_PRESERVE, &m[2], err);
-    if (!st)
+    if (!st && ++k)
         st = rg2_mesh_transpose(&m[2], &m[3], err);
-    if (!st)
+    if (!st && ++k)
         st = rg2_mesh_reverse(&m[3], 0, &m[4], err);
-    if (!st)
+    if (!st && ++k)
         st = rg2_mesh_morph(&m[2], J, 0.5, &m[5], err);
-    for (int k = 0; k < 6; k++) {
+    if (st)
+        CHECK(m[k].p == NULL && m[k].su.w == NULL && m[k].sv.b == NULL && m[k].nu == 0,
+              "mesh operation %d failed (%s) but left its output unemptied", k, rg2_status_str(st));
+    for (int q = 0; q <= k; q++) {
         if (!st)
-            put_mesh(out, &m[k]);
-        rg2_mesh_free(&m[k]);
+            put_mesh(out, &m[q]);
+        rg2_mesh_free(&m[q]);
+    }
+    return st;
+}
+
+/* rg2_polar_mesh of the unit sphere and of a paraboloid. */
+static rg2_status op_polar(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    (void)ctx;
+    (void)path;
+    double au[6], v[4] = {0.2, 0.4, 0.6, 0.8};
+    for (int a = 0; a < 6; a++)
+        au[a] = 2.0 * M_PI / 6;
+    rg2_partition pu = {RG2_PART_ANGLES, 1, 6, au, 0.0};
+    rg2_shape sh;
+    rg2_mesh m;
+    rg2_status st = RG2_OK;
+    for (int k = 0; k < 2 && !st; k++) {
+        rg2_shape_init(&sh, k ? RG2_SHAPE_PARABOLOID : RG2_SHAPE_SPHERE);
+        memset(&m, 0xab, sizeof m);
+        st = rg2_polar_mesh(&sh, &pu, v, 4, &m, err);
+        if (st)
+            CHECK(m.p == NULL && m.su.w == NULL && m.nu == 0, "rg2_polar_mesh failed (%s) but left its output unemptied",
+                  rg2_status_str(st));
+        else
+            put_mesh(out, &m);
+        rg2_mesh_free(&m);
     }
     return st;
 }
@@ -501,6 +532,7 @@ int main(int argc, char **argv)
     }
 
     sweep("mesh operations torus_sphere", op_meshops, rg2_design_mesh(ds, 0), NULL);
+    sweep("polar_mesh sphere, paraboloid", op_polar, NULL, NULL);
     sweep("design_load torus_sphere", op_load, "examples/torus_sphere.json", NULL);
     sweep("design_load fig9_polar", op_load, "examples/fig9_polar_sphere.json", NULL);
 

@@ -185,6 +185,8 @@ static void bad(rg2_status got, rg2_status want, const rg2_error *err, const rg2
     CHECK(!out || (out->p == NULL && out->nu == 0 && out->su.w == NULL), "%s: the output is not empty", what);
 }
 
+static int finite_k(double x) { return x - x == 0.0; }
+
 static void errors(const rg2_mesh *M)
 {
     rg2_error err;
@@ -253,18 +255,89 @@ static void errors(const rg2_mesh *M)
     CHECK_OK(rg2_mesh_copy(&M[TUBE], &c, &err), &err);
     c.sv.b[2] = 1e-310;
     bad(rg2_mesh_reverse(&c, 1, &r, &err), RG2_EDOMAIN, &err, &r,
-        "rg2_mesh_reverse: v junction 2 (b = 1e-310, g = 0.304481869954853) cannot be reversed: b' = 1 / b = inf", "reverse b = 1e-310");
+        "rg2_mesh_reverse: v junction 2 (b = 1e-310, g = 0.304481869954853) cannot be reversed: b' = 1 / b is not a "
+        "finite number", "reverse b = 1e-310");
+    /* b = 1e-110 reverses (b' = 1e110, g' = g / b^3 = 0 / 1e-330): b^3 underflows, g' may not */
+    c.sv.b[2] = 1e-110;
+    c.sv.g[2] = 0.0;
+    CHECK_OK(rg2_mesh_reverse(&c, 1, &r, &err), &err);
+    CHECK(r.p && r.sv.b[8 - 1 - 2] == 1.0 / 1e-110 && r.sv.g[8 - 1 - 2] == 0.0,
+          "reverse b = 1e-110: b' = %g, g' = %g", r.p ? r.sv.b[5] : 0.0, r.p ? r.sv.g[5] : 0.0);
+    rg2_mesh_free(&r);
+    c.sv.g[2] = 1e-300; /* g' = 1e30, though b^3 = 0 */
+    CHECK_OK(rg2_mesh_reverse(&c, 1, &r, &err), &err);
+    CHECK(r.p && fabs(r.sv.g[5] / 1e30 - 1.0) < 1e-14, "reverse b = 1e-110, g = 1e-300: g' = %g, want 1e30",
+          r.p ? r.sv.g[5] : 0.0);
+    rg2_mesh_free(&r);
     rg2_mesh_free(&c);
+
+    /* an input whose K leaves the double range is refused by the input check */
     CHECK_OK(rg2_mesh_copy(&M[TUBE], &c, &err), &err);
-    CHECK_OK(rg2_mesh_copy(&M[BAND], &t, &err), &err);
-    c.su.w[c.su.n] = 1e308; /* the data-only end weights whose mean is the seam leg's: inf */
-    t.su.w[0] = 1e308;
-    const rg2_mesh *huge[2] = {&c, &t};
+    c.su.w[c.su.n] = 1e308;
+    const rg2_mesh *huge[2] = {&c, &M[BAND]};
     bad(rg2_mesh_merge(huge, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_ENONFINITE, &err, &r,
         "rg2_mesh_merge: in[0]: mesh u: junction 8 has K = inf (from w[7] = 0.977284, w[8] = 1e+308, b = 0.575855, "
-        "g = 0.0354623); K must be a finite number > 0 (the scalars leave the double range)", "merge to K = inf");
+        "g = 0.0354623); K must be a finite number > 0 (the scalars leave the double range)", "input K = inf");
+    rg2_mesh_free(&c);
+
+    /* seams (u junctions 8 and 9 of tube + band): */
+    const int jl = 8, jr = 9;
+    CHECK_OK(rg2_mesh_copy(&M[TUBE], &c, &err), &err);
+    CHECK_OK(rg2_mesh_copy(&M[BAND], &t, &err), &err);
+    const rg2_mesh *pair[2] = {&c, &t};
+    /* preserve with end weights 1e300 and 2e300: the re-solved K = 6e300 is finite (its
+     * intermediate product overflowed, 'K = -nan'), and the left part's stencil quantity
+     * B = 2 b^2 ((w_j + b w_{j-1}) / w_j) / K_j stays the part's own */
+    c.su.w[c.su.n] = 1e300;
+    t.su.w[0] = 2e300;
+    CHECK_OK(rg2_mesh_merge(pair, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), &err);
+    if (r.p) {
+        double b = c.su.b[jl], wp = rg2_scalars_leg_w(&c.su, jl - 1);
+        double Bpart = 2 * b * b * ((1e300 + b * wp) / 1e300) / rg2_scalars_K(&c.su, jl);
+        double ws = rg2_scalars_leg_w(&r.su, jl), Bmerged = 2 * b * b * ((ws + b * wp) / ws) / rg2_scalars_K(&r.su, jl);
+        CHECK(ws == 1.5e300 && finite_k(rg2_scalars_K(&r.su, jl)) && finite_k(rg2_scalars_K(&r.su, jr)) &&
+                  fabs(Bmerged / Bpart - 1.0) < 1e-14,
+              "preserve at end weights 1e300, 2e300: w_s = %g, K = %g, %g, B %g vs %g", ws, rg2_scalars_K(&r.su, jl),
+              rg2_scalars_K(&r.su, jr), Bmerged, Bpart);
+    }
+    rg2_mesh_free(&r);
+    /* plain keeps b and g: end weights 10 and 0.5 (w_s = 5.25) with g = -40 leave K < 0 */
+    c.su.w[c.su.n] = 10.0;
+    t.su.w[0] = 0.5;
+    c.su.b[jl] = 1.0;
+    c.su.g[jl] = -40.0;
+    CHECK_OK(rg2_mesh_check(&c, &err), &err);
+    bad(rg2_mesh_merge(pair, 2, 0, 0, RG2_SEAM_PLAIN, &r, &err), RG2_EWEIGHT, &err, &r,
+        "rg2_mesh_merge: at a seam, u junction 8 has K = ", "plain seam K < 0");
+    CHECK(strstr(err.msg, "K must be > 0") != NULL, "plain seam K < 0: %s", err.msg);
+    CHECK_OK(rg2_mesh_merge(pair, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), &err); /* (K rescaled, > 0) */
+    rg2_mesh_free(&r);
+    /* plain, end weights 1 and 5e307 (w_s = 2.5e307) with b = 2: K = 3e308 = inf */
+    c.su.w[c.su.n] = 1.0;
+    c.su.b[jl] = 2.0;
+    c.su.g[jl] = 0.0;
+    t.su.w[0] = 5e307;
+    t.su.b[0] = 0.5;
+    CHECK_OK(rg2_mesh_check(&t, &err), &err);
+    bad(rg2_mesh_merge(pair, 2, 0, 0, RG2_SEAM_PLAIN, &r, &err), RG2_ENONFINITE, &err, &r,
+        "K must be a finite number > 0 (the scalars leave the double range)", "plain seam K = inf");
     rg2_mesh_free(&c);
     rg2_mesh_free(&t);
+
+    /* a wrapping cut past the point limit: 1000003 x 4 of a closed 1000000 x 4 */
+    CHECK_OK(rg2_mesh_init(&c, 1000000, 4, 1, 0, &err), &err);
+    for (int i = 0; i < c.nu; i++)
+        for (int j = 0; j < 4; j++) {
+            double *p = rg2_mesh_at(&c, i, j);
+            p[0] = i;
+            p[1] = j;
+            p[3] = 1.0;
+        }
+    int fw[2] = {0, -1}, lw[2] = {1000002, 0};
+    bad(rg2_mesh_cut(&c, fw, lw, &r, &err), RG2_ELIMIT, &err, &r,
+        "rg2_mesh_cut: u (first[0], last[0]): mesh: 1000003 x 4 control points exceeds the limit of 4000000",
+        "wrapping cut past the limit");
+    rg2_mesh_free(&c);
 
     /* two meshes within the point limit whose merge is not: the message starts with the function */
     CHECK_OK(rg2_mesh_init(&c, 4, 600000, 0, 0, &err), &err);
@@ -391,6 +464,19 @@ static void polar(void)
         "polar of a NULL partition");
     bad(rg2_polar_mesh(rg2_design_shape(d, 0), &pu, kb, 6, NULL, &err), RG2_EINVAL, &err, NULL, "out is NULL",
         "polar into NULL");
+    const double nan_knots[3] = {0.2, NAN, 0.6};
+    bad(rg2_polar_mesh(rg2_design_shape(d, 2), &pu, nan_knots, 3, &r, &err), RG2_ENONFINITE, &err, &r,
+        "rg2_polar_mesh: polar knots: v_2 is not finite", "paraboloid NaN knot");
+    bad(rg2_polar_mesh(rg2_design_shape(d, 0), &pu, kb, INT_MAX, &r, &err), RG2_ELIMIT, &err, &r,
+        "rg2_polar_mesh: 2147483647 interior knots give 2147483649 control points in v", "polar of INT_MAX knots");
+
+    /* a merge cannot join at a pole: the paraboloid's pole row 0 is the second mesh's first */
+    rg2_mesh P;
+    CHECK_OK(rg2_polar_mesh(rg2_design_shape(d, 2), &pu, kp, 4, &P, &err), &err);
+    const rg2_mesh *two[2] = {&P, &P};
+    bad(rg2_mesh_merge(two, 2, 1, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINCOMPATIBLE, &err, &r,
+        "rg2_mesh_merge.merge[1]: mesh 'in[1]' has a polar point at its first end", "merge at a pole");
+    rg2_mesh_free(&P);
     rg2_design_free(d);
 }
 
