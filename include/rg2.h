@@ -329,7 +329,8 @@ RG2_API rg2_status rg2_mesh_cut(const rg2_mesh *in, const int first[2], const in
 RG2_API rg2_status rg2_mesh_transpose(const rg2_mesh *in, rg2_mesh *out, rg2_error *err);
 /** Reverse direction dir (0 u, 1 v): points and legs in reverse order, junction scalars
  *  b' = 1 / b, g' = g / b^3; every patch is the same surface traversed backwards.
- *  RG2_EDOMAIN, naming the junction, where b' or g' is not a finite number (b = 1e-310). */
+ *  RG2_EDOMAIN, naming the junction, where b', g' or K' = K / b^3 is not a finite number
+ *  (b = 1e-160: K' = inf). */
 RG2_API rg2_status rg2_mesh_reverse(const rg2_mesh *in, int dir, rg2_mesh *out, rg2_error *err);
 /** How a merge sets the scalars at a seam (docs/design-format.md, "Seam rule"). PRESERVE
  *  re-solves g at both seam junctions so that every patch of every part stays what it was
@@ -348,8 +349,8 @@ RG2_API rg2_status rg2_mesh_merge(const rg2_mesh *const *in, int n, int dir, int
                                   rg2_mesh *out, rg2_error *err);
 /** The blend (1 - t) a + t b of the 4-tuples and the scalars w, b, g, 0 <= t <= 1 (equal values
  *  and t = 0, 1 copy without rounding). a and b need equal counts and closedness;
- *  RG2_EINCOMPATIBLE, RG2_EDOMAIN for t outside [0, 1] or NaN, RG2_EWEIGHT where a blended
- *  junction has K <= 0. */
+ *  RG2_EINCOMPATIBLE, RG2_EDOMAIN for t outside [0, 1] or NaN, RG2_EWEIGHT / RG2_ENONFINITE
+ *  where a blended junction's K is not > 0 / not a finite number. */
 RG2_API rg2_status rg2_mesh_morph(const rg2_mesh *a, const rg2_mesh *b, double t, rg2_mesh *out,
                                   rg2_error *err);
 
@@ -808,7 +809,7 @@ RG2_API rg2_status rg2_polar_sphere_mesh(const double *alpha, int n_alpha, doubl
  *  argument, another kind of shape or m < 2; RG2_ELIMIT for m > RG2_MAX_POINTS - 2;
  *  RG2_ENONFINITE for a NaN or infinite knot; RG2_EDOMAIN for knots out of order, on both sides
  *  of 0 or outside (0, 1) (sphere, ellipsoid), naming the knot ("rg2_polar_mesh: polar knots:
- *  v_2 = ..."); then as rg2_shape_mesh. */
+ *  v_2 = ..."), or whose data-only end knots leave the double range; then as rg2_shape_mesh. */
 RG2_API rg2_status rg2_polar_mesh(const rg2_shape *s, const rg2_partition *pu, const double *v, int m,
                                   rg2_mesh *out, rg2_error *err);
 

@@ -3,6 +3,7 @@
  * provenance of control points and scalars along. */
 #include "design_internal.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -202,8 +203,10 @@ rg2_status rg2__op_cut(const rg2__dmesh *in, const int first[2], const int last[
         f[k] = first[k];
     }
     rg2_status st = rg2__dmesh_alloc(out, NULL, n[0], n[1], cl[0], cl[1], err);
-    if (st) /* (a wrapping cut of a closed direction keeps up to n + 3 points: past the limit) */
-        return rg2__prefix(err, st, what[first[0] >= 0 ? 0 : 1]);
+    if (st == RG2_ELIMIT) /* (a wrapping cut keeps up to n + 3 points of a closed direction: the one that grew) */
+        return rg2__prefix(err, st, what[n[1] > in->m.sv.n ? 1 : 0]);
+    if (st)
+        return st;
     for (int i = 0; i < n[0]; i++)
         for (int j = 0; j < n[1]; j++) {
             int si = rg2__wrap(f[0] + i, in->m.nu, in->m.su.closed);
@@ -291,11 +294,10 @@ rg2_status rg2__op_reverse(const rg2__dmesh *in, int dir, rg2__dmesh *out, const
         }
     for (int j = 0; j < n; j++) {
         double bb = a->b[n - 1 - j];
-        double g = a->g[n - 1 - j];
+        double g = a->g[n - 1 - j], b3 = bb * bb * bb;
         b->b[j] = 1.0 / bb;
-        b->g[j] = g / (bb * bb * bb);
-        if (!rg2__finite(b->g[j])) /* (b^3 underflowed, b = 1e-110: divide step by step) */
-            b->g[j] = ((g / bb) / bb) / bb;
+        /* (b^3 subnormal, 0 or inf, b = 1e-110 or 1e110: divide step by step) */
+        b->g[j] = b3 >= DBL_MIN && rg2__finite(b3) ? g / b3 : ((g / bb) / bb) / bb;
         out->jun[dir][j] = in->jun[dir][n - 1 - j];
         if (!rg2__finite(b->b[j]) || !rg2__finite(b->g[j])) { /* (a b of 1e-310: 1 / b = inf) */
             rg2__dmesh_free(out);
@@ -311,6 +313,15 @@ rg2_status rg2__op_reverse(const rg2__dmesh *in, int dir, rg2__dmesh *out, const
         b->w[s] = a->w[from];
         out->leg[dir][s] = in->leg[dir][from];
     }
+    for (int j = 0; j < n; j++) /* K' = K / b^3: b = 1e-160 gives a finite b' = 1e160 but K' = inf */
+        if (!rg2__finite(rg2_scalars_K(b, j))) {
+            double bb = a->b[n - 1 - j], g = a->g[n - 1 - j];
+            rg2__dmesh_free(out);
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "%s: %s junction %d (b = %s, g = %s) cannot be reversed: K' = K / b^3 is not a "
+                             "finite number",
+                             what, dir_name(dir), n - 1 - j, rg2__num(bb).s, rg2__num(g).s);
+        }
     st = rg2__dir_check(b, dir, what, "", err);
     if (st)
         rg2__dmesh_free(out);

@@ -71,6 +71,12 @@ rg2_status rg2__polar_full_knots(rg2_shape_kind kind, const double *v, int m, do
         k[m + 2] = 0.0;
         k[m + 3] = -v[m - 1];
     }
+    for (int q = 0; q < m + 4; q++) /* (the data-only knots v_m + 2d of knots near 1e308) */
+        if (!rg2__finite(k[q]))
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "polar knots: the data-only end knots %s leave the double range (d = %s)",
+                             nth ? "v_1 - 2d, v_1 - d" : "v_m + d, v_m + 2d",
+                             rg2__num(nth ? v[1] - v[0] : v[m - 1] - v[m - 2]).s);
     *north = nth;
     return RG2_OK;
 }

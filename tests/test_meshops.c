@@ -194,19 +194,25 @@ static void errors(const rg2_mesh *M)
     int f[2] = {0, -1}, l[2] = {8, 0};
 
     const rg2_mesh *closed_first[2] = {&M[RING], &M[BAND]};
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_merge(closed_first, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINCOMPATIBLE, &err, &r,
         "rg2_mesh_merge.merge[0]: mesh 'in[0]' is closed in u", "merge of a closed mesh");
     const rg2_mesh *unlike[2] = {&M[TUBE], &M[WRAP]};
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_merge(unlike, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINCOMPATIBLE, &err, &r,
         "rg2_mesh_merge.merge[1]: meshes 'in[0]' and 'in[1]' do not agree in v (the direction that must match "
         "when merging along u): 8 vs 6 control points", "merge of unlike meshes");
     const rg2_mesh *two[2] = {&M[TUBE], &M[BAND]};
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_merge(two, 2, 2, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINVAL, &err, &r, "dir = 2", "merge dir 2");
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_merge(two, 2, 0, 0, (rg2_seam_rule)7, &r, &err), RG2_EINVAL, &err, &r, "rule = 7", "merge rule 7");
     /* the output is emptied by every failure, the first checks' too (rg2_mesh_free of it is safe) */
     memset(&r, 0xab, sizeof r);
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_merge(two, 0, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINVAL, &err, &r, "no meshes", "merge of 0");
     memset(&r, 0xab, sizeof r);
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_merge(NULL, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINVAL, &err, &r, "in is NULL",
         "merge of NULL");
     for (int k = 0; k < 5; k++) {
@@ -224,9 +230,11 @@ static void errors(const rg2_mesh *M)
               "operation %d: failed (%s) but left the output unemptied", k, rg2_status_str(st));
         rg2_mesh_free(&r);
     }
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_merge(two, 2, 0, 0, RG2_SEAM_PRESERVE, NULL, &err), RG2_EINVAL, &err, NULL, "out is NULL",
         "merge into NULL");
     const rg2_mesh *with_null[2] = {&M[TUBE], NULL};
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_merge(with_null, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINVAL, &err, &r,
         "rg2_mesh_merge: in[1] is NULL", "merge with a NULL mesh");
 
@@ -241,22 +249,38 @@ static void errors(const rg2_mesh *M)
     /* a bad input mesh: its check's message, prefixed with the function and the input */
     rg2_mesh_at(&c, 2, 3)[1] = NAN;
     const rg2_mesh *nan_in[2] = {&M[TUBE], &c};
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_merge(nan_in, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_ENONFINITE, &err, &r,
         "rg2_mesh_merge: in[1]: mesh: control point [2][3] component 1 is not finite", "merge of a NaN mesh");
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_transpose(&c, &r, &err), RG2_ENONFINITE, &err, &r, "rg2_mesh_transpose: in: mesh: control point",
         "transpose of a NaN mesh");
     rg2_mesh_free(&c);
     CHECK_OK(rg2_mesh_copy(&M[TUBE], &c, &err), &err);
     c.su.b[4] = -1.0;
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_reverse(&c, 0, &r, &err), RG2_EWEIGHT, &err, &r, "rg2_mesh_reverse: in: mesh u", "reverse b < 0");
     rg2_mesh_free(&c);
 
     /* scalars that leave the double range: named, as the input's junction */
     CHECK_OK(rg2_mesh_copy(&M[TUBE], &c, &err), &err);
     c.sv.b[2] = 1e-310;
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_reverse(&c, 1, &r, &err), RG2_EDOMAIN, &err, &r,
         "rg2_mesh_reverse: v junction 2 (b = 1e-310, g = 0.304481869954853) cannot be reversed: b' = 1 / b is not a "
         "finite number", "reverse b = 1e-310");
+    c.sv.b[2] = 1e-160; /* b' = 1e160 and g' = 0 are finite, K' = K / b^3 is not */
+    c.sv.g[2] = 0.0;
+    memset(&r, 0xab, sizeof r);
+    bad(rg2_mesh_reverse(&c, 1, &r, &err), RG2_EDOMAIN, &err, &r,
+        "rg2_mesh_reverse: v junction 2 (b = 1e-160, g = 0) cannot be reversed: K' = K / b^3 is not "
+        "a finite number", "reverse b = 1e-160");
+    c.sv.b[2] = 1e110; /* b^3 = inf: g' = g / b / b / b = 1e-30, not g / inf = 0 */
+    c.sv.g[2] = 1e300;
+    CHECK_OK(rg2_mesh_reverse(&c, 1, &r, &err), &err);
+    CHECK(r.p && fabs(r.sv.g[5] / 1e-30 - 1.0) < 1e-14, "reverse b = 1e110, g = 1e300: g' = %g, want 1e-30",
+          r.p ? r.sv.g[5] : 0.0);
+    rg2_mesh_free(&r);
     /* b = 1e-110 reverses (b' = 1e110, g' = g / b^3 = 0 / 1e-330): b^3 underflows, g' may not */
     c.sv.b[2] = 1e-110;
     c.sv.g[2] = 0.0;
@@ -275,6 +299,7 @@ static void errors(const rg2_mesh *M)
     CHECK_OK(rg2_mesh_copy(&M[TUBE], &c, &err), &err);
     c.su.w[c.su.n] = 1e308;
     const rg2_mesh *huge[2] = {&c, &M[BAND]};
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_merge(huge, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_ENONFINITE, &err, &r,
         "rg2_mesh_merge: in[0]: mesh u: junction 8 has K = inf (from w[7] = 0.977284, w[8] = 1e+308, b = 0.575855, "
         "g = 0.0354623); K must be a finite number > 0 (the scalars leave the double range)", "input K = inf");
@@ -307,6 +332,7 @@ static void errors(const rg2_mesh *M)
     c.su.b[jl] = 1.0;
     c.su.g[jl] = -40.0;
     CHECK_OK(rg2_mesh_check(&c, &err), &err);
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_merge(pair, 2, 0, 0, RG2_SEAM_PLAIN, &r, &err), RG2_EWEIGHT, &err, &r,
         "rg2_mesh_merge: at a seam, u junction 8 has K = ", "plain seam K < 0");
     CHECK(strstr(err.msg, "K must be > 0") != NULL, "plain seam K < 0: %s", err.msg);
@@ -319,6 +345,7 @@ static void errors(const rg2_mesh *M)
     t.su.w[0] = 5e307;
     t.su.b[0] = 0.5;
     CHECK_OK(rg2_mesh_check(&t, &err), &err);
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_merge(pair, 2, 0, 0, RG2_SEAM_PLAIN, &r, &err), RG2_ENONFINITE, &err, &r,
         "K must be a finite number > 0 (the scalars leave the double range)", "plain seam K = inf");
     rg2_mesh_free(&c);
@@ -334,9 +361,23 @@ static void errors(const rg2_mesh *M)
             p[3] = 1.0;
         }
     int fw[2] = {0, -1}, lw[2] = {1000002, 0};
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_cut(&c, fw, lw, &r, &err), RG2_ELIMIT, &err, &r,
         "rg2_mesh_cut: u (first[0], last[0]): mesh: 1000003 x 4 control points exceeds the limit of 4000000",
         "wrapping cut past the limit");
+    rg2_mesh_free(&c);
+    CHECK_OK(rg2_mesh_init(&c, 4, 1000000, 0, 1, &err), &err); /* the same in v: the message names v */
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < c.nv; j++) {
+            double *p = rg2_mesh_at(&c, i, j);
+            p[0] = i;
+            p[1] = j;
+            p[3] = 1.0;
+        }
+    int fv[2] = {0, 0}, lv[2] = {3, 1000002};
+    memset(&r, 0xab, sizeof r);
+    bad(rg2_mesh_cut(&c, fv, lv, &r, &err), RG2_ELIMIT, &err, &r,
+        "rg2_mesh_cut: v (first[1], last[1]): mesh: 4 x 1000003 control points exceeds the limit", "wrapping v cut");
     rg2_mesh_free(&c);
 
     /* two meshes within the point limit whose merge is not: the message starts with the function */
@@ -349,42 +390,56 @@ static void errors(const rg2_mesh *M)
             p[3] = 1.0;
         }
     const rg2_mesh *big[2] = {&c, &c};
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_merge(big, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_ELIMIT, &err, &r,
         "rg2_mesh_merge: mesh: 8 x 600000 control points exceeds the limit of 4000000", "merge past the limit");
     rg2_mesh_free(&c);
 
     /* cut ranges */
     int fa[2] = {10, -1}, la[2] = {8, 0};
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_cut(&M[TUBE], fa, la, &r, &err), RG2_EINVAL, &err, &r,
         "rg2_mesh_cut: u (first[0], last[0]): range [10, 8] is outside the 9 control points", "cut backwards");
     /* an open direction ends at its last point (a closed one may wrap: the heap over-read of a
      * range [3, 9] of 6 points was accepted when the wrap rule applied to both) */
     int fo[2] = {-1, 0}, lo[2] = {0, 7};
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_cut(&M[WRAP], fo, lo, &r, &err), RG2_EINVAL, &err, &r,
         "rg2_mesh_cut: v (first[1], last[1]): range [0, 7] is outside the 6 control points of mesh 'in' in v (open; "
         "need 0 <= first < 6, first <= last <= 5)", "cut past an open end");
     int fb[2] = {-1, 0}, lb[2] = {0, 2};
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_cut(&M[TUBE], fb, lb, &r, &err), RG2_EINVAL, &err, &r, "keeps 3 control points", "cut of 3");
     int fc[2] = {-2, -1}, lc[2] = {0, 0};
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_cut(&M[TUBE], fc, lc, &r, &err), RG2_EINVAL, &err, &r, "first[0] = -2 is negative", "cut from -2");
     /* indices anywhere in int: no overflow (UBSan) in the range checks */
     int fd[2] = {0, -1}, ld[2] = {INT_MAX, 0};
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_cut(&M[RING], fd, ld, &r, &err), RG2_EINVAL, &err, &r,
         "range [0, 2147483647] is outside the 15 control points", "cut to INT_MAX");
     int fe[2] = {INT_MAX, -1}, le[2] = {INT_MAX, 0};
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_cut(&M[RING], fe, le, &r, &err), RG2_EINVAL, &err, &r, "first <= last <= 31)",
         "cut from INT_MAX");
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_cut(&M[TUBE], NULL, l, &r, &err), RG2_EINVAL, &err, &r, "first is NULL", "cut, NULL first");
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_cut(NULL, f, l, &r, &err), RG2_EINVAL, &err, &r, "rg2_mesh_cut: in is NULL", "cut of NULL");
 
     /* reverse, morph */
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_reverse(&M[TUBE], 2, &r, &err), RG2_EINVAL, &err, &r, "dir = 2", "reverse dir 2");
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_morph(&M[JOINED], &M[RING], 2.0, &r, &err), RG2_EDOMAIN, &err, &r, "rg2_mesh_morph.t: t = 2,",
         "morph t = 2");
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_morph(&M[JOINED], &M[RING], NAN, &r, &err), RG2_EDOMAIN, &err, &r, "must lie in [0, 1]",
         "morph t = NaN");
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_morph(&M[TUBE], &M[RING], 0.5, &r, &err), RG2_EINCOMPATIBLE, &err, &r,
         "meshes 'a' (9 open) and 'b' (15 closed) differ in u", "morph of unlike meshes");
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_morph(&M[TUBE], NULL, 0.5, &r, &err), RG2_EINVAL, &err, &r, "rg2_mesh_morph: b is NULL",
         "morph with NULL");
 }
@@ -448,32 +503,48 @@ static void polar(void)
     rg2_mesh r;
     rg2_shape torus;
     rg2_shape_init(&torus, RG2_SHAPE_TORUS);
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_polar_mesh(&torus, &pu, kb, 6, &r, &err), RG2_EINVAL, &err, &r,
         "rg2_polar_mesh: a torus has no polar configuration", "polar torus");
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_polar_mesh(rg2_design_shape(d, 0), &pu, kb, 1, &r, &err), RG2_EINVAL, &err, &r,
         "rg2_polar_mesh: 1 interior knots given", "polar of 1 knot");
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_polar_mesh(rg2_design_shape(d, 0), &pu, kb, -7, &r, &err), RG2_EINVAL, &err, &r,
         "rg2_polar_mesh: -7 interior knots given", "polar of -7 knots");
     const double across[3] = {-0.2, 0.3, 0.5}, outside[2] = {0.5, 1.2};
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_polar_mesh(rg2_design_shape(d, 2), &pu, across, 3, &r, &err), RG2_EDOMAIN, &err, &r,
         "rg2_polar_mesh: polar knots: v_1 = -0.2: the knots must increase and all lie on one side of the pole",
         "paraboloid knots on both sides");
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_polar_mesh(rg2_design_shape(d, 0), &pu, outside, 2, &r, &err), RG2_EDOMAIN, &err, &r,
         "rg2_polar_mesh: polar knots: v_2 = 1.2 must lie strictly between the poles 0 and 1", "sphere knot 1.2");
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_polar_mesh(rg2_design_shape(d, 0), NULL, kb, 6, &r, &err), RG2_EINVAL, &err, &r, "pu is NULL",
         "polar of a NULL partition");
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_polar_mesh(rg2_design_shape(d, 0), &pu, kb, 6, NULL, &err), RG2_EINVAL, &err, NULL, "out is NULL",
         "polar into NULL");
     const double nan_knots[3] = {0.2, NAN, 0.6};
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_polar_mesh(rg2_design_shape(d, 2), &pu, nan_knots, 3, &r, &err), RG2_ENONFINITE, &err, &r,
         "rg2_polar_mesh: polar knots: v_2 is not finite", "paraboloid NaN knot");
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_polar_mesh(rg2_design_shape(d, 0), &pu, kb, INT_MAX, &r, &err), RG2_ELIMIT, &err, &r,
         "rg2_polar_mesh: 2147483647 interior knots give 2147483649 control points in v", "polar of INT_MAX knots");
+
+    const double far[3] = {1e307, 1e308, 1.7e308}; /* v_m + 2d = 3.1e308 */
+    memset(&r, 0xab, sizeof r);
+    bad(rg2_polar_mesh(rg2_design_shape(d, 2), &pu, far, 3, &r, &err), RG2_EDOMAIN, &err, &r,
+        "rg2_polar_mesh: polar knots: the data-only end knots v_m + d, v_m + 2d leave the double range (d = 6.999999999999999e+307)",
+        "paraboloid knots near the double range");
 
     /* a merge cannot join at a pole: the paraboloid's pole row 0 is the second mesh's first */
     rg2_mesh P;
     CHECK_OK(rg2_polar_mesh(rg2_design_shape(d, 2), &pu, kp, 4, &P, &err), &err);
     const rg2_mesh *two[2] = {&P, &P};
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_merge(two, 2, 1, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINCOMPATIBLE, &err, &r,
         "rg2_mesh_merge.merge[1]: mesh 'in[1]' has a polar point at its first end", "merge at a pole");
     rg2_mesh_free(&P);
