@@ -1,4 +1,5 @@
-/* harness.c -- the fuzz harnesses (see harness.h): the design path and the NURBS import.
+/* harness.c -- the fuzz harnesses (see harness.h): the design path, the NURBS import and the C
+ * mesh operations.
  * Compiled into the libFuzzer programs (fuzz/fuzz_*.c) and included by the replay test. */
 #include "harness.h"
 
@@ -313,5 +314,159 @@ int rg2f_nurbs(const uint8_t *data, size_t size)
         rg2_mesh_free(&m);
     }
     free(P);
+    return 0;
+}
+
+/* ------------------------------------------------------------------------------------- */
+/* mesh operations */
+
+/* One byte of the input (past its end: 0). */
+static unsigned rg2f_byte(rg2f_reader *r) { return r->at < r->n ? r->p[r->at++] : 0u; }
+
+/* A 32-bit index from the input: small most of the time, anywhere in int now and then. */
+static int rg2f_index(rg2f_reader *r)
+{
+    unsigned b = rg2f_byte(r);
+    if (b < 0xf0)
+        return (int)(b % 24) - 1;
+    int32_t x = 0;
+    for (int k = 0; k < 4; k++)
+        x = (int32_t)((uint32_t)x << 8 | rg2f_byte(r));
+    return x;
+}
+
+/* An output must be empty after a failure. */
+static void rg2f_check_empty(const char *call, const rg2_mesh *m)
+{
+    if (m->p || m->nu || m->nv || m->su.w || m->su.b || m->sv.w || m->sv.g)
+        rg2f_violation("%s failed but left its output set", call);
+}
+
+static int rg2f_same_mesh(const rg2_mesh *a, const rg2_mesh *b)
+{
+    if (a->nu != b->nu || a->nv != b->nv || a->su.closed != b->su.closed || a->sv.closed != b->sv.closed)
+        return 0;
+    for (int k = 0; k < 2; k++) {
+        const rg2_scalars *x = k ? &a->sv : &a->su, *y = k ? &b->sv : &b->su;
+        if (memcmp(x->w, y->w, (size_t)rg2_scalars_num_w(x) * sizeof(double)) ||
+            memcmp(x->b, y->b, (size_t)x->n * sizeof(double)) || memcmp(x->g, y->g, (size_t)x->n * sizeof(double)))
+            return 0;
+    }
+    return !memcmp(a->p, b->p, (size_t)a->nu * (size_t)a->nv * 4 * sizeof(double));
+}
+
+#define RG2F_POOL 6
+
+int rg2f_meshops(const uint8_t *data, size_t size)
+{
+    if (size > RG2F_MAX_INPUT || size < 3)
+        return 0;
+    /* bytes: mesh count, value format, the length L of the operations, the values, and the last
+     * L bytes the operations (so a short input still runs operations on default meshes) */
+    size_t L = data[2] < size - 3 ? data[2] : size - 3;
+    rg2f_reader r = {data, size - L, 3, data[1] & 1, 0}, o = {data + size - L, L, 0, 0, 0};
+    rg2_mesh pool[RG2F_POOL];
+    memset(pool, 0, sizeof pool);
+    int n = 0;
+    rg2_error err;
+    /* 1 to 3 meshes: 4..9 points each way, either closed (3..9), scalars and points from the input */
+    for (int t = 0, nm = 1 + data[0] % 3; t < nm; t++) {
+        unsigned f = rg2f_byte(&r);
+        int cu = f & 1, cv = (f >> 1) & 1, nu = (cu ? 3 : 4) + (int)((f >> 2) % 7), nv = 4 + (int)((f >> 5) % 6);
+        rg2_mesh *m = &pool[n];
+        if (rg2_mesh_init(m, nu, nv, cu, cv, &err))
+            rg2f_violation("rg2_mesh_init %d x %d: %s", nu, nv, err.msg);
+        for (int k = 0; k < 2; k++) {
+            rg2_scalars *s = k ? &m->sv : &m->su;
+            for (int i = 0; i < rg2_scalars_num_w(s); i++)
+                s->w[i] = 1.0 + 0.75 * tanh(rg2f_next(&r, 0.0));
+            for (int i = 0; i < s->n; i++) {
+                s->b[i] = exp(0.5 * tanh(rg2f_next(&r, 0.0)));
+                s->g[i] = tanh(rg2f_next(&r, 0.0));
+            }
+        }
+        for (int i = 0; i < nu; i++)
+            for (int j = 0; j < nv; j++) {
+                double *p = rg2_mesh_at(m, i, j);
+                p[3] = 1.0 + 0.5 * tanh(rg2f_next(&r, 0.0));
+                p[0] = p[3] * (i + rg2f_next(&r, 0.0));
+                p[1] = p[3] * (j + rg2f_next(&r, 0.0));
+                p[2] = p[3] * rg2f_next(&r, 0.0);
+            }
+        n++;
+    }
+    /* operations on the pool, each output (while there is room) joining it */
+    for (int step = 0; step < 8 && o.at < o.n; step++) {
+        unsigned op = rg2f_byte(&o);
+        const rg2_mesh *a = &pool[rg2f_byte(&o) % (unsigned)n], *b = &pool[rg2f_byte(&o) % (unsigned)n];
+        rg2_mesh out;
+        memset(&out, 0xab, sizeof out);
+        rg2_status st;
+        const char *call;
+        switch (op % 5) {
+        case 0: {
+            int first[2], last[2]; /* (read in order: an initializer list's order is unspecified) */
+            first[0] = rg2f_index(&o);
+            first[1] = rg2f_index(&o);
+            last[0] = rg2f_index(&o);
+            last[1] = rg2f_index(&o);
+            call = "rg2_mesh_cut";
+            st = rg2_mesh_cut(a, first, last, &out, &err);
+            break;
+        }
+        case 1:
+            call = "rg2_mesh_transpose";
+            st = rg2_mesh_transpose(a, &out, &err);
+            if (!st) { /* twice: the mesh itself, bit for bit */
+                rg2_mesh back;
+                if (rg2_mesh_transpose(&out, &back, &err) || !rg2f_same_mesh(&back, a))
+                    rg2f_violation("rg2_mesh_transpose twice is not the mesh");
+                rg2_mesh_free(&back);
+            }
+            break;
+        case 2:
+            call = "rg2_mesh_reverse";
+            st = rg2_mesh_reverse(a, (int)(op >> 3) % 3, &out, &err);
+            break;
+        case 3: {
+            const rg2_mesh *in[3] = {a, b, a};
+            call = "rg2_mesh_merge";
+            st = rg2_mesh_merge(in, 1 + (int)(op >> 3) % 3, (op >> 5) & 1, (op >> 6) & 1,
+                                (rg2_seam_rule)((op >> 7) & 1), &out, &err);
+            break;
+        }
+        default: {
+            double t = ((op >> 3) % 12) / 10.0 - 0.05; /* -0.05 .. 1.05 */
+            call = "rg2_mesh_morph";
+            st = rg2_mesh_morph(a, b, t, &out, &err);
+            if (!st && t == 0.0 && !rg2f_same_mesh(&out, a))
+                rg2f_violation("rg2_mesh_morph at t = 0 is not the first mesh");
+            break;
+        }
+        }
+        rg2f_check_error(call, st, &err);
+        if (st) {
+            rg2f_check_empty(call, &out);
+            continue;
+        }
+        /* a valid mesh in, a valid mesh out, and its surface builds or says why not */
+        if (rg2_mesh_check(&out, &err))
+            rg2f_violation("%s gave a mesh that fails its check: %s", call, err.msg);
+        if ((size_t)out.nu * (size_t)out.nv <= 4096) {
+            rg2_surface s;
+            st = rg2_surface_build(&out, &s, &err);
+            rg2f_check_error("rg2_surface_build", st, &err);
+            if (!st) {
+                rg2f_check_surface(&s, call);
+                rg2_surface_free(&s);
+            }
+        }
+        if (n < RG2F_POOL)
+            pool[n++] = out;
+        else
+            rg2_mesh_free(&out);
+    }
+    for (int k = 0; k < n; k++)
+        rg2_mesh_free(&pool[k]);
     return 0;
 }

@@ -27,4 +27,12 @@ int rg2f_design(const uint8_t *data, size_t size);
  * the built patches are compared with an independent de Boor evaluation of the NURBS. */
 int rg2f_nurbs(const uint8_t *data, size_t size);
 
+/* The C mesh operations: 1 to 3 small meshes decoded from the bytes (closed or open, scalars
+ * near the uniform ones), then up to 8 operations (cut with any int indices, transpose,
+ * reverse, merge of 1 to 3 meshes either way with either seam rule, morph at t in -0.05..1.05)
+ * on them and their results: a failure reports itself and leaves its output empty; a result is
+ * a mesh that passes rg2_mesh_check, whose surface builds or says why not; transpose twice and
+ * a morph at t = 0 give the mesh back, bit for bit. */
+int rg2f_meshops(const uint8_t *data, size_t size);
+
 #endif

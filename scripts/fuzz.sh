@@ -4,11 +4,11 @@
 # run goes on). The seed corpus is tests/data/fuzz/<harness>/ (the regression cases that
 # `make test` replays); new inputs go to build-fuzz/corpus/<harness>/, crashes, timeouts and
 # out-of-memory inputs to build-fuzz/artifacts/<harness>/.
-# Usage: scripts/fuzz.sh SECONDS [harness ...]   (harnesses: design nurbs; default both)
+# Usage: scripts/fuzz.sh SECONDS [harness ...]   (harnesses: design nurbs meshops; default all three)
 set -eu
 secs=${1:-60}
 shift || true
-targets=${*:-design nurbs}
+targets=${*:-design nurbs meshops}
 cc=${FUZZ_CC:-clang}
 out=build-fuzz
 mkdir -p "$out"

@@ -56,7 +56,10 @@ int main(void)
     int nd = replay(dir, rg2f_design);
     snprintf(dir, sizeof dir, "%s/tests/data/fuzz/nurbs", src ? src : ".");
     int nn = replay(dir, rg2f_nurbs);
-    printf("replayed %d design inputs and %d NURBS inputs\n", nd, nn);
-    CHECK(nd >= 10 && nn >= 4, "corpus too small: %d design, %d NURBS inputs", nd, nn);
+    snprintf(dir, sizeof dir, "%s/tests/data/fuzz/meshops", src ? src : ".");
+    int nm = replay(dir, rg2f_meshops);
+    printf("replayed %d design inputs, %d NURBS inputs and %d mesh-operation inputs\n", nd, nn, nm);
+    CHECK(nd >= 10 && nn >= 4 && nm >= 4, "corpus too small: %d design, %d NURBS, %d mesh-operation inputs", nd, nn,
+          nm);
     return rg2t_done("test_fuzz_replay");
 }
