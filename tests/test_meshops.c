@@ -456,35 +456,77 @@ static const char *polar_json =
     "  \"B\": {\"polar\": \"ball\", \"u\": {\"arcs\": 8}, \"v\": {\"knots\": [0.15, 0.3, 0.42, 0.58, 0.7, 0.85]}},"
     "  \"E\": {\"polar\": \"egg\", \"u\": {\"arcs\": 6}, \"v\": {\"knots\": [0.2, 0.5, 0.8]}},"
     "  \"P\": {\"polar\": \"bowl\", \"u\": {\"arcs\": 8}, \"v\": {\"knots\": [0.3, 0.6, 0.9, 1.0]}},"
-    "  \"H\": {\"polar\": \"lid\", \"u\": {\"arcs\": 8, \"from\": 180}, \"v\": {\"knots\": [-0.5, -0.45, -0.3, -0.15]}}"
+    "  \"H\": {\"polar\": \"lid\", \"u\": {\"arcs\": 8, \"from\": 180}, \"v\": {\"knots\": [-0.5, -0.45, -0.3, -0.15]}},"
+    "  \"P2\": {\"polar\": \"bowl\", \"u\": {\"arcs\": 8}, \"v\": {\"knots\": [0.005, 1.0]}},"
+    "  \"H2\": {\"polar\": \"lid\", \"u\": {\"arcs\": 8}, \"v\": {\"knots\": [-0.5, -0.25]}}"
     " },"
-    " \"output\": [\"B\", \"E\", \"P\", \"H\"]}";
+    " \"output\": [\"B\", \"E\", \"P\", \"H\", \"P2\", \"H2\"]}";
+
+/* A one-pole polar mesh (paraboloid, hyperboloid2) against rg2_shape_mesh over the knots rg2.h
+ * documents, built here: above the pole -v_1, 0, v_1..v_m, v_m + d, v_m + 2d (d = v_m - v_{m-1}),
+ * below v_1 - 2d, v_1 - d, v_1..v_m, 0, -v_m (d = v_2 - v_1); every point bit for bit, the pole
+ * row every point its first. */
+static void one_pole_knots_match(const rg2_mesh *r, const rg2_shape *sh, const rg2_partition *pu, const double *v,
+                                 int m, const char *what)
+{
+    double k[16];
+    if (m + 4 > 16)
+        return;
+    int below = v[m - 1] < 0.0;
+    double d = below ? v[1] - v[0] : v[m - 1] - v[m - 2];
+    memcpy(k + 2, v, (size_t)m * sizeof(double));
+    k[0] = below ? v[0] - 2.0 * d : -v[0];
+    k[1] = below ? v[0] - d : 0.0;
+    k[m + 2] = below ? 0.0 : v[m - 1] + d;
+    k[m + 3] = below ? -v[m - 1] : v[m - 1] + 2.0 * d;
+    rg2_partition pv = {RG2_PART_KNOTS_FULL, 0, m + 4, k, 0.0};
+    rg2_mesh ref;
+    rg2_error err;
+    CHECK_OK(rg2_shape_mesh(sh, pu, &pv, &ref, &err), &err);
+    if (ref.p == NULL)
+        return;
+    int pole = below ? ref.nv - 1 : 0, ok = ref.nu == r->nu && ref.nv == r->nv && scalars_same(&ref.su, &r->su) &&
+                                            scalars_same(&ref.sv, &r->sv);
+    for (int i = 0; ok && i < ref.nu; i++)
+        for (int j = 0; j < ref.nv; j++)
+            ok = ok && !memcmp(rg2_mesh_at(r, i, j), rg2_mesh_at(&ref, j == pole ? 0 : i, j),
+                               4 * sizeof(double));
+    CHECK(ok, "%s: differs from the shape's mesh over the documented knots", what);
+    rg2_mesh_free(&ref);
+}
 
 static void polar(void)
 {
     rg2_error err;
     rg2_design *d = NULL;
     rg2_status st = rg2_design_parse(polar_json, strlen(polar_json), "polar", &d, &err);
-    CHECK(st == RG2_OK && rg2_design_num_surfaces(d) == 4, "polar design: %s", err.msg);
+    CHECK(st == RG2_OK && rg2_design_num_surfaces(d) == 6, "polar design: %s", err.msg);
     if (st)
         return;
+    /* (P2, H2: the fewest knots a one-pole shape takes, 2: one patch row, 4 points in v; P2 a first
+     * knot close to the pole) */
     static const double kb[] = {0.15, 0.3, 0.42, 0.58, 0.7, 0.85}, ke[] = {0.2, 0.5, 0.8},
-                        kp[] = {0.3, 0.6, 0.9, 1.0}, kh[] = {-0.5, -0.45, -0.3, -0.15};
-    const double *kv[4] = {kb, ke, kp, kh};
-    const int m[4] = {6, 3, 4, 4}, arcs[4] = {8, 6, 8, 8};
-    const double start[4] = {0, 0, 0, 180 * M_PI / 180.0}; /* (the design's own formula for "from") */
-    const int poles[4] = {3, 3, 1, 2}; /* bit 0: row 0 collapsed, bit 1: the last row */
-    for (int k = 0; k < 4; k++) {
+                        kp[] = {0.3, 0.6, 0.9, 1.0}, kh[] = {-0.5, -0.45, -0.3, -0.15}, kp2[] = {0.005, 1.0},
+                        kh2[] = {-0.5, -0.25};
+    const double *kv[6] = {kb, ke, kp, kh, kp2, kh2};
+    const int m[6] = {6, 3, 4, 4, 2, 2}, arcs[6] = {8, 6, 8, 8, 8, 8}, shape[6] = {0, 1, 2, 3, 2, 3};
+    const double start[6] = {0, 0, 0, 180 * M_PI / 180.0, 0, 0}; /* (the design's own formula for "from") */
+    const int poles[6] = {3, 3, 1, 2, 1, 2}; /* bit 0: row 0 collapsed, bit 1: the last row */
+    for (int k = 0; k < 6; k++) {
         double au[8];
         for (int a = 0; a < arcs[k]; a++)
             au[a] = 2.0 * M_PI / arcs[k];
         rg2_partition pu = {RG2_PART_ANGLES, 1, arcs[k], au, start[k]};
-        const rg2_shape *sh = rg2_design_shape(d, k);
+        const rg2_shape *sh = rg2_design_shape(d, shape[k]);
         rg2_mesh r;
         CHECK_OK(rg2_polar_mesh(sh, &pu, kv[k], m[k], &r, &err), &err);
+        CHECK(r.nu == arcs[k] && r.nv == m[k] + 2, "polar mesh %d: %d x %d points, want %d x %d", k, r.nu, r.nv,
+              arcs[k], m[k] + 2);
         char what[64];
-        snprintf(what, sizeof what, "rg2_polar_mesh of '%s'", rg2_design_shape_label(d, k));
+        snprintf(what, sizeof what, "rg2_polar_mesh of '%s' (%d knots)", rg2_design_shape_label(d, shape[k]), m[k]);
         same_mesh(&r, rg2_design_mesh(d, k), what);
+        if (k >= 2)
+            one_pole_knots_match(&r, sh, &pu, kv[k], m[k], what);
         CHECK(rg2_mesh_row_collapsed(&r, 0) == (poles[k] & 1) && rg2_mesh_row_collapsed(&r, r.nv - 1) == poles[k] >> 1,
               "%s: collapsed rows %d, %d, want %d, %d", what, rg2_mesh_row_collapsed(&r, 0),
               rg2_mesh_row_collapsed(&r, r.nv - 1), poles[k] & 1, poles[k] >> 1);
@@ -517,6 +559,22 @@ static void polar(void)
     bad(rg2_polar_mesh(rg2_design_shape(d, 2), &pu, across, 3, &r, &err), RG2_EDOMAIN, &err, &r,
         "rg2_polar_mesh: polar knots: v_1 = -0.2: the knots must increase and all lie on one side of the pole",
         "paraboloid knots on both sides");
+    /* one-pole knots must lie strictly on one side of the pole v = 0 and strictly increase */
+    static const struct {
+        int shape;
+        double v[3];
+        const char *needle;
+    } one_side[] = {
+        {2, {0.0, 0.5, 0.9}, "rg2_polar_mesh: polar knots: v_1 = 0: the knots must increase"},
+        {2, {0.3, 0.3, 0.9}, "rg2_polar_mesh: polar knots: v_2 = 0.3: the knots must increase"},
+        {3, {-0.5, -0.5, -0.2}, "rg2_polar_mesh: polar knots: v_2 = -0.5: the knots must increase"},
+        {3, {-0.5, 0.0, -0.2}, "rg2_polar_mesh: polar knots: v_2 = 0: the knots must increase"},
+    };
+    for (size_t c = 0; c < sizeof one_side / sizeof one_side[0]; c++) {
+        memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
+        bad(rg2_polar_mesh(rg2_design_shape(d, one_side[c].shape), &pu, one_side[c].v, 3, &r, &err), RG2_EDOMAIN,
+            &err, &r, one_side[c].needle, "one-pole knots at the pole or repeated");
+    }
     memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_polar_mesh(rg2_design_shape(d, 0), &pu, outside, 2, &r, &err), RG2_EDOMAIN, &err, &r,
         "rg2_polar_mesh: polar knots: v_2 = 1.2 must lie strictly between the poles 0 and 1", "sphere knot 1.2");
