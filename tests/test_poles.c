@@ -4,7 +4,9 @@
  * with the poles where MATH.md section 7 says, and errors. */
 #include "poles_testutil.h"
 
+#include <limits.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -351,6 +353,15 @@ static void errors(void)
                   strstr(err.msg, mm == 1 ? "polar knots: 1 interior knots given; a polar configuration needs at least 2"
                                           : "polar knots: -6 interior knots given;") && b.p == NULL,
               "m = %d: %s", mm, err.msg);
+    /* m + 2 control points in v past the limit: refused before v is read, both counts named */
+    {
+        char want[160];
+        snprintf(want, sizeof want, "polar sphere: %d interior knots give %lld control points in v, more than the limit of %d",
+                 INT_MAX, (long long)INT_MAX + 2, RG2_MAX_POINTS);
+        CHECK(rg2_polar_sphere_mesh(alpha, 3, 0.0, v, INT_MAX, NULL, &b, &err) == RG2_ELIMIT && !strcmp(err.msg, want) &&
+                  b.p == NULL,
+              "m = INT_MAX: %s", err.msg);
+    }
     double P[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     P[6] = NAN;
     CHECK(rg2_polar_sphere_mesh(alpha, 3, 0.0, v, 2, P, &b, &err) == RG2_ENONFINITE &&
