@@ -457,7 +457,7 @@ static const char *polar_json =
     "  \"E\": {\"polar\": \"egg\", \"u\": {\"arcs\": 6}, \"v\": {\"knots\": [0.2, 0.5, 0.8]}},"
     "  \"P\": {\"polar\": \"bowl\", \"u\": {\"arcs\": 8}, \"v\": {\"knots\": [0.3, 0.6, 0.9, 1.0]}},"
     "  \"H\": {\"polar\": \"lid\", \"u\": {\"arcs\": 8, \"from\": 180}, \"v\": {\"knots\": [-0.5, -0.45, -0.3, -0.15]}},"
-    "  \"P2\": {\"polar\": \"bowl\", \"u\": {\"arcs\": 8}, \"v\": {\"knots\": [0.005, 1.0]}},"
+    "  \"P2\": {\"polar\": \"bowl\", \"u\": {\"arcs\": 8}, \"v\": {\"knots\": [0.004, 0.008]}},"
     "  \"H2\": {\"polar\": \"lid\", \"u\": {\"arcs\": 8}, \"v\": {\"knots\": [-0.5, -0.25]}}"
     " },"
     " \"output\": [\"B\", \"E\", \"P\", \"H\", \"P2\", \"H2\"]}";
@@ -503,10 +503,10 @@ static void polar(void)
     CHECK(st == RG2_OK && rg2_design_num_surfaces(d) == 6, "polar design: %s", err.msg);
     if (st)
         return;
-    /* (P2, H2: the fewest knots a one-pole shape takes, 2: one patch row, 4 points in v; P2 a first
-     * knot close to the pole) */
+    /* (P2, H2: the fewest knots a one-pole shape takes, 2: one patch row, 4 points in v; P2 both knots
+     * close to the pole) */
     static const double kb[] = {0.15, 0.3, 0.42, 0.58, 0.7, 0.85}, ke[] = {0.2, 0.5, 0.8},
-                        kp[] = {0.3, 0.6, 0.9, 1.0}, kh[] = {-0.5, -0.45, -0.3, -0.15}, kp2[] = {0.005, 1.0},
+                        kp[] = {0.3, 0.6, 0.9, 1.0}, kh[] = {-0.5, -0.45, -0.3, -0.15}, kp2[] = {0.004, 0.008},
                         kh2[] = {-0.5, -0.25};
     const double *kv[6] = {kb, ke, kp, kh, kp2, kh2};
     const int m[6] = {6, 3, 4, 4, 2, 2}, arcs[6] = {8, 6, 8, 8, 8, 8}, shape[6] = {0, 1, 2, 3, 2, 3};
@@ -569,6 +569,7 @@ static void polar(void)
         {2, {0.3, 0.3, 0.9}, "rg2_polar_mesh: polar knots: v_2 = 0.3: the knots must increase"},
         {3, {-0.5, -0.5, -0.2}, "rg2_polar_mesh: polar knots: v_2 = -0.5: the knots must increase"},
         {3, {-0.5, 0.0, -0.2}, "rg2_polar_mesh: polar knots: v_2 = 0: the knots must increase"},
+        {3, {-0.5, -0.2, 0.0}, "rg2_polar_mesh: polar knots: v_1 = -0.5: the knots must increase"},
     };
     for (size_t c = 0; c < sizeof one_side / sizeof one_side[0]; c++) {
         memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
