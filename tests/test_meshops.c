@@ -422,6 +422,15 @@ static void errors(const rg2_mesh *M)
     memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_cut(&M[RING], fe, le, &r, &err), RG2_EINVAL, &err, &r, "first <= last <= 31)",
         "cut from INT_MAX");
+    /* first = n, the first index past a closed direction: the bound named is that of first = n - 1 */
+    {
+        int n = M[RING].su.n, ff[2] = {n, -1}, lf[2] = {n, 0};
+        char want[200];
+        snprintf(want, sizeof want, "range [%d, %d] is outside the %d control points of mesh 'in' in u (closed, last may "
+                 "wrap; need 0 <= first < %d, first <= last <= %d)", n, n, n, n, (n - 1) + n + 2);
+        memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
+        bad(rg2_mesh_cut(&M[RING], ff, lf, &r, &err), RG2_EINVAL, &err, &r, want, "cut from n");
+    }
     memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_cut(&M[TUBE], NULL, l, &r, &err), RG2_EINVAL, &err, &r, "first is NULL", "cut, NULL first");
     memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
