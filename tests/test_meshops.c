@@ -269,6 +269,23 @@ static void errors(const rg2_mesh *M)
     bad(rg2_mesh_reverse(&c, 1, &r, &err), RG2_EDOMAIN, &err, &r,
         "rg2_mesh_reverse: v junction 2 (b = 1e-310, g = 0.304481869954853) cannot be reversed: b' = 1 / b is not a "
         "finite number", "reverse b = 1e-310");
+    /* each of b', g' alone out of range names itself: b = 1e-310, g = 0 (b' = 1e310, g' = 0); b = 1e-110,
+     * g = 1e300 (b' = 1e110, g' = 1e630) */
+    static const struct {
+        double b, g;
+        const char *needle;
+    } one_out[] = {
+        {1e-310, 0.0, "rg2_mesh_reverse: v junction 2 (b = 1e-310, g = 0) cannot be reversed: b' = 1 / b is not a "
+                      "finite number"},
+        {1e-110, 1e300, "rg2_mesh_reverse: v junction 2 (b = 1e-110, g = 1e+300) cannot be reversed: g' = g / b^3 is "
+                        "not a finite number"},
+    };
+    for (size_t k = 0; k < sizeof one_out / sizeof one_out[0]; k++) {
+        c.sv.b[2] = one_out[k].b;
+        c.sv.g[2] = one_out[k].g;
+        memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
+        bad(rg2_mesh_reverse(&c, 1, &r, &err), RG2_EDOMAIN, &err, &r, one_out[k].needle, "reverse, b' or g' alone");
+    }
     c.sv.b[2] = 1e-160; /* b' = 1e160 and g' = 0 are finite, K' = K / b^3 is not */
     c.sv.g[2] = 0.0;
     memset(&r, 0xab, sizeof r);
