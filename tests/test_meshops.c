@@ -187,6 +187,10 @@ static void bad(rg2_status got, rg2_status want, const rg2_error *err, const rg2
 
 static int finite_k(double x) { return x - x == 0.0; }
 
+/* A preserve seam's left stencil quantity B = 2 b^2 ((w + b w_p) / w) / K, in ratios so that
+ * b near 1e150 and K near 1e300 do not overflow it. */
+static double stencil_B(double b, double wp, double w, double K) { return 2.0 * b * (b / K) * ((w + b * wp) / w); }
+
 static void errors(const rg2_mesh *M)
 {
     rg2_error err;
@@ -335,12 +339,27 @@ static void errors(const rg2_mesh *M)
     CHECK_OK(rg2_mesh_merge(pair, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), &err);
     if (r.p) {
         double b = c.su.b[jl], wp = rg2_scalars_leg_w(&c.su, jl - 1);
-        double Bpart = 2 * b * b * ((1e300 + b * wp) / 1e300) / rg2_scalars_K(&c.su, jl);
-        double ws = rg2_scalars_leg_w(&r.su, jl), Bmerged = 2 * b * b * ((ws + b * wp) / ws) / rg2_scalars_K(&r.su, jl);
+        double Bpart = stencil_B(b, wp, 1e300, rg2_scalars_K(&c.su, jl));
+        double ws = rg2_scalars_leg_w(&r.su, jl), Bmerged = stencil_B(b, wp, ws, rg2_scalars_K(&r.su, jl));
         CHECK(ws == 1.5e300 && finite_k(rg2_scalars_K(&r.su, jl)) && finite_k(rg2_scalars_K(&r.su, jr)) &&
                   fabs(Bmerged / Bpart - 1.0) < 1e-14,
               "preserve at end weights 1e300, 2e300: w_s = %g, K = %g, %g, B %g vs %g", ws, rg2_scalars_K(&r.su, jl),
               rg2_scalars_K(&r.su, jr), Bmerged, Bpart);
+    }
+    rg2_mesh_free(&r);
+    /* preserve with b = 5.3e102 at the left end and end weights 1 and 3: K (w_s + b w_p) = 1.8 b^3
+     * overflows, K ((w_s + b w_p) / w_s) = 0.9 b^3 does not; b w_p outweighs w_s, and B keeps the part's
+     * own value only if b w_p is weighed right */
+    c.su.w[c.su.n] = 1.0;
+    t.su.w[0] = 3.0;
+    c.su.b[jl] = 5.3e102;
+    c.su.g[jl] = 0.0;
+    CHECK_OK(rg2_mesh_check(&c, &err), &err);
+    CHECK_OK(rg2_mesh_merge(pair, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), &err);
+    if (r.p) {
+        double b = 5.3e102, wp = rg2_scalars_leg_w(&c.su, jl - 1);
+        double Bpart = stencil_B(b, wp, 1.0, rg2_scalars_K(&c.su, jl)), Bmerged = stencil_B(b, wp, 2.0, rg2_scalars_K(&r.su, jl));
+        CHECK(fabs(Bmerged / Bpart - 1.0) < 1e-13, "preserve with b = 5.3e102: B %.17g vs %.17g", Bmerged, Bpart);
     }
     rg2_mesh_free(&r);
     /* plain keeps b and g: end weights 10 and 0.5 (w_s = 5.25) with g = -40 leave K < 0 */
