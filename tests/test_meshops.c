@@ -190,6 +190,8 @@ static int finite_k(double x) { return x - x == 0.0; }
 /* A preserve seam's left stencil quantity B = 2 b^2 ((w + b w_p) / w) / K, in ratios so that
  * b near 1e150 and K near 1e300 do not overflow it. */
 static double stencil_B(double b, double wp, double w, double K) { return 2.0 * b * (b / K) * ((w + b * wp) / w); }
+/* Its right quantity A = K w / (w_n + b w) (w the end weight or w_s, K the junction's). */
+static double stencil_A(double b, double wn, double w, double K) { return (K / (wn + b * w)) * w; }
 
 static void errors(const rg2_mesh *M)
 {
@@ -362,6 +364,23 @@ static void errors(const rg2_mesh *M)
         CHECK(fabs(Bmerged / Bpart - 1.0) < 1e-13, "preserve with b = 5.3e102: B %.17g vs %.17g", Bmerged, Bpart);
     }
     rg2_mesh_free(&r);
+    /* the right end likewise, b = 1e120 (K wvr (w_n + b w_s) = 1e361): A = K w / (w_n + b w) stays the part's */
+    double tb = t.su.b[0], tg = t.su.g[0];
+    c.su.b[jl] = 1.0;
+    t.su.b[0] = 1e120;
+    t.su.g[0] = 0.0;
+    CHECK_OK(rg2_mesh_check(&c, &err), &err);
+    CHECK_OK(rg2_mesh_check(&t, &err), &err);
+    CHECK_OK(rg2_mesh_merge(pair, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), &err);
+    if (r.p) {
+        double b = 1e120, wn = rg2_scalars_leg_w(&t.su, 0), ws = rg2_scalars_leg_w(&r.su, jl);
+        double Apart = stencil_A(b, wn, 3.0, rg2_scalars_K(&t.su, 0)), Amerged = stencil_A(b, wn, ws, rg2_scalars_K(&r.su, jr));
+        CHECK(ws == 2.0 && fabs(Amerged / Apart - 1.0) < 1e-13, "preserve with b = 1e120 on the right: w_s = %g, A %.17g vs %.17g",
+              ws, Amerged, Apart);
+    }
+    rg2_mesh_free(&r);
+    t.su.b[0] = tb;
+    t.su.g[0] = tg;
     /* plain keeps b and g: end weights 10 and 0.5 (w_s = 5.25) with g = -40 leave K < 0 */
     c.su.w[c.su.n] = 10.0;
     t.su.w[0] = 0.5;
