@@ -526,7 +526,7 @@ rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int clo
         double b = a->b[a->n - 1], wp = a->w[a->n - 1], KL = rg2_scalars_K(a, a->n - 1);
         double K = KL * (ws + b * wp) * wvl / (ws * (wvl + b * wp));
         if (!rg2__finite(K)) /* (an intermediate overflowed: the same value by ratios) */
-            K = KL * ((ws + b * wp) / ws) * (wvl / (wvl + b * wp));
+            K = KL * (((ws + b * wp) / ws) * (wvl / (wvl + b * wp))); /* (the product of the ratios is bounded) */
         S->g[jl] = K - 2.0 * b * (3.0 * ws - 2.0) - 2.0 * b * b * (3.0 * wp - 2.0);
         out->jun[dir][jl] = -1;
         /* right: keep A_{jr} */

@@ -364,6 +364,17 @@ static void errors(const rg2_mesh *M)
         CHECK(fabs(Bmerged / Bpart - 1.0) < 1e-13, "preserve with b = 5.3e102: B %.17g vs %.17g", Bmerged, Bpart);
     }
     rg2_mesh_free(&r);
+    /* b = 1e150 (K = 1.9e300): K ((w_s + b w_p) / w_s) overflows too, the product of the ratios does not */
+    c.su.b[jl] = 1e150;
+    CHECK_OK(rg2_mesh_check(&c, &err), &err);
+    CHECK_OK(rg2_mesh_merge(pair, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), &err);
+    if (r.p) {
+        double wp = rg2_scalars_leg_w(&c.su, jl - 1);
+        double Bpart = stencil_B(1e150, wp, 1.0, rg2_scalars_K(&c.su, jl)),
+               Bmerged = stencil_B(1e150, wp, 2.0, rg2_scalars_K(&r.su, jl));
+        CHECK(fabs(Bmerged / Bpart - 1.0) < 1e-13, "preserve with b = 1e150: B %.17g vs %.17g", Bmerged, Bpart);
+    }
+    rg2_mesh_free(&r);
     /* the right end likewise, b = 1e120 (K wvr (w_n + b w_s) = 1e361): A = K w / (w_n + b w) stays the part's */
     double tb = t.su.b[0], tg = t.su.g[0];
     c.su.b[jl] = 1.0;
