@@ -276,7 +276,7 @@ static void errors(const rg2_mesh *M)
         "rg2_mesh_reverse: v junction 2 (b = 1e-310, g = 0.304481869954853) cannot be reversed: b' = 1 / b is not a "
         "finite number", "reverse b = 1e-310");
     /* each of b', g' alone out of range names itself: b = 1e-310, g = 0 (b' = 1e310, g' = 0); b = 1e-110,
-     * g = 1e300 (b' = 1e110, g' = 1e630) */
+     * g = 1e300 (b' = 1e110, g' = 1e630); b = 5.6e-309, g = 0.3 (b' = 1.8e308, g' = 1.7e924) */
     static const struct {
         double b, g;
         const char *needle;
@@ -284,6 +284,9 @@ static void errors(const rg2_mesh *M)
         {1e-310, 0.0, "rg2_mesh_reverse: v junction 2 (b = 1e-310, g = 0) cannot be reversed: b' = 1 / b is not a "
                       "finite number"},
         {1e-110, 1e300, "rg2_mesh_reverse: v junction 2 (b = 1e-110, g = 1e+300) cannot be reversed: g' = g / b^3 is "
+                        "not a finite number"},
+        /* (1 / b = 1.8e308 is finite, though b' = 1.01 / b would not be) */
+        {5.6e-309, 0.3, "rg2_mesh_reverse: v junction 2 (b = 5.6e-309, g = 0.3) cannot be reversed: g' = g / b^3 is "
                         "not a finite number"},
     };
     for (size_t k = 0; k < sizeof one_out / sizeof one_out[0]; k++) {
