@@ -806,7 +806,8 @@ RG2_API rg2_status rg2_polar_sphere_mesh(const double *alpha, int n_alpha, doubl
  *  v_m + 2d (d = v_m - v_{m-1}), the pole row 0; or all v < 0, knots v_1 - 2d, v_1 - d,
  *  v_1..v_m, 0, -v_m (d = v_2 - v_1), the pole row m + 1. The shape's placement applies.
  *  Free out with rg2_mesh_free; empty (zeroed) on failure. @return RG2_EINVAL for a NULL
- *  argument, another kind of shape or m < 2; RG2_ELIMIT for m > RG2_MAX_POINTS - 2;
+ *  argument, another kind of shape or m < 2; RG2_ELIMIT for m > RG2_MAX_POINTS - 4 (the m + 4
+ *  knots of the partition);
  *  RG2_ENONFINITE for a NaN or infinite knot; RG2_EDOMAIN for knots out of order, on both sides
  *  of 0 or outside (0, 1) (sphere, ellipsoid), naming the knot ("rg2_polar_mesh: polar knots:
  *  v_2 = ..."), or whose data-only end knots leave the double range; then as rg2_shape_mesh. */

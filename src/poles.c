@@ -111,9 +111,9 @@ rg2_status rg2_polar_mesh(const rg2_shape *s, const rg2_partition *pu, const dou
     if (m < 2) /* (before the knots' allocation: m + 4 of a negative m) */
         return rg2__fail(err, RG2_EINVAL,
                          "rg2_polar_mesh: %d interior knots given; a polar configuration needs at least 2", m);
-    if (m > RG2_MAX_POINTS - 2) /* (m + 2 control points in v; m + 4 would overflow near INT_MAX) */
-        return rg2__fail(err, RG2_ELIMIT, "rg2_polar_mesh: %d interior knots give %lld control points in v, more "
-                         "than the limit of %d", m, (long long)m + 2, RG2_MAX_POINTS);
+    if (m > RG2_MAX_POINTS - 4) /* (the partition's m + 4 knots, at most RG2_MAX_POINTS values) */
+        return rg2__fail(err, RG2_ELIMIT, "rg2_polar_mesh: %d interior knots give %lld knots with the 4 data-only "
+                         "ones, more than the limit of %d", m, (long long)m + 4, RG2_MAX_POINTS);
     double *k = rg2__calloc((size_t)m + 4, sizeof(double));
     if (!k)
         return rg2__fail(err, RG2_ENOMEM, "rg2_polar_mesh: out of memory for %d knots", m);

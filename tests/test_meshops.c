@@ -669,7 +669,13 @@ static void polar(void)
         "rg2_polar_mesh: polar knots: v_2 is not finite", "paraboloid NaN knot");
     memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_polar_mesh(rg2_design_shape(d, 0), &pu, kb, INT_MAX, &r, &err), RG2_ELIMIT, &err, &r,
-        "rg2_polar_mesh: 2147483647 interior knots give 2147483649 control points in v", "polar of INT_MAX knots");
+        "rg2_polar_mesh: 2147483647 interior knots give 2147483651 knots with the 4 data-only ones, more than the "
+        "limit of 4000000", "polar of INT_MAX knots");
+    /* the largest refused: m + 4 = RG2_MAX_POINTS + 1 knots (it passed the check and failed in the
+     * partition's, naming 'v partition: 4000002 values') */
+    memset(&r, 0xab, sizeof r);
+    bad(rg2_polar_mesh(rg2_design_shape(d, 2), &pu, kb, RG2_MAX_POINTS - 3, &r, &err), RG2_ELIMIT, &err, &r,
+        "rg2_polar_mesh: 3999997 interior knots give 4000001 knots", "polar of RG2_MAX_POINTS - 3 knots");
 
     const double far[3] = {1e307, 1e308, 1.7e308}; /* v_m + 2d = 3.1e308 */
     memset(&r, 0xab, sizeof r);
