@@ -185,6 +185,20 @@ static void bad(rg2_status got, rg2_status want, const rg2_error *err, const rg2
     CHECK(!out || (out->p == NULL && out->nu == 0 && out->su.w == NULL), "%s: the output is not empty", what);
 }
 
+/* A big nu x nv mesh of distinct points (i, j, 0) with weight 1 and uniform scalars. */
+static rg2_status grid_mesh(rg2_mesh *m, int nu, int nv, int closed_u, int closed_v, rg2_error *err)
+{
+    rg2_status st = rg2_mesh_init(m, nu, nv, closed_u, closed_v, err);
+    for (int i = 0; !st && i < nu; i++)
+        for (int j = 0; j < nv; j++) {
+            double *p = rg2_mesh_at(m, i, j);
+            p[0] = i;
+            p[1] = j;
+            p[3] = 1.0;
+        }
+    return st;
+}
+
 static int finite_k(double x) { return x - x == 0.0; }
 
 /* A preserve seam's left stencil quantity B = 2 b^2 ((w + b w_p) / w) / K, in ratios so that
@@ -421,28 +435,14 @@ static void errors(const rg2_mesh *M)
     rg2_mesh_free(&t);
 
     /* a wrapping cut past the point limit: 1000003 x 4 of a closed 1000000 x 4 */
-    CHECK_OK(rg2_mesh_init(&c, 1000000, 4, 1, 0, &err), &err);
-    for (int i = 0; i < c.nu; i++)
-        for (int j = 0; j < 4; j++) {
-            double *p = rg2_mesh_at(&c, i, j);
-            p[0] = i;
-            p[1] = j;
-            p[3] = 1.0;
-        }
+    CHECK_OK(grid_mesh(&c, 1000000, 4, 1, 0, &err), &err);
     int fw[2] = {0, -1}, lw[2] = {1000002, 0};
     memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_cut(&c, fw, lw, &r, &err), RG2_ELIMIT, &err, &r,
         "rg2_mesh_cut: u (first[0], last[0]): mesh: 1000003 x 4 control points exceeds the limit of 4000000",
         "wrapping cut past the limit");
     rg2_mesh_free(&c);
-    CHECK_OK(rg2_mesh_init(&c, 4, 1000000, 0, 1, &err), &err); /* the same in v: the message names v */
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < c.nv; j++) {
-            double *p = rg2_mesh_at(&c, i, j);
-            p[0] = i;
-            p[1] = j;
-            p[3] = 1.0;
-        }
+    CHECK_OK(grid_mesh(&c, 4, 1000000, 0, 1, &err), &err); /* the same in v: the message names v */
     int fv[2] = {0, 0}, lv[2] = {3, 1000002};
     memset(&r, 0xab, sizeof r);
     bad(rg2_mesh_cut(&c, fv, lv, &r, &err), RG2_ELIMIT, &err, &r,
@@ -450,14 +450,7 @@ static void errors(const rg2_mesh *M)
     rg2_mesh_free(&c);
 
     /* two meshes within the point limit whose merge is not: the message starts with the function */
-    CHECK_OK(rg2_mesh_init(&c, 4, 600000, 0, 0, &err), &err);
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 600000; j++) {
-            double *p = rg2_mesh_at(&c, i, j);
-            p[0] = i;
-            p[1] = j;
-            p[3] = 1.0;
-        }
+    CHECK_OK(grid_mesh(&c, 4, 600000, 0, 0, &err), &err);
     const rg2_mesh *big[2] = {&c, &c};
     memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_merge(big, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_ELIMIT, &err, &r,
