@@ -361,6 +361,24 @@ static void errors(void)
         CHECK(rg2_polar_sphere_mesh(alpha, 3, 0.0, v, INT_MAX, NULL, &b, &err) == RG2_ELIMIT && !strcmp(err.msg, want) &&
                   b.p == NULL,
               "m = INT_MAX: %s", err.msg);
+        /* the bound itself: m + 2 = RG2_MAX_POINTS + 1 points refused by it, m + 2 = RG2_MAX_POINTS
+         * passes it (and 3 x RG2_MAX_POINTS points are the mesh's limit, refused there) */
+        int top = RG2_MAX_POINTS - 1;
+        double *vt = malloc((size_t)top * sizeof *vt);
+        CHECK(vt != NULL, "no memory for %d knots", top);
+        if (vt) {
+            for (int k = 0; k < top; k++)
+                vt[k] = (k + 1.0) / (top + 1.0);
+            snprintf(want, sizeof want, "polar sphere: %d interior knots give %lld control points in v, more than the limit of %d",
+                     top, (long long)top + 2, RG2_MAX_POINTS);
+            CHECK(rg2_polar_sphere_mesh(alpha, 3, 0.0, vt, top, NULL, &b, &err) == RG2_ELIMIT && !strcmp(err.msg, want) &&
+                      b.p == NULL,
+                  "m = RG2_MAX_POINTS - 1: %s", err.msg);
+            CHECK(rg2_polar_sphere_mesh(alpha, 3, 0.0, vt, top - 1, NULL, &b, &err) == RG2_ELIMIT &&
+                      !strstr(err.msg, "polar sphere:") && strstr(err.msg, "4000000") && b.p == NULL,
+                  "m = RG2_MAX_POINTS - 2: %s", err.msg);
+            free(vt);
+        }
     }
     double P[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     P[6] = NAN;
