@@ -849,6 +849,20 @@ RG2_API rg2_status rg2_mobius_poles_matrix(const double south[3], const double n
 RG2_API rg2_status rg2_mesh_mobius(rg2_mesh *m, const double center[3], double radius,
                                    const double M[16], rg2_error *err);
 
+/** The design file's `mobius` (docs/poles.md), the same bits: move the poles of a sphere-like
+ *  mesh whose reference is the placed sphere or ellipsoid `ref` (NULL: the unit sphere at the
+ *  origin), by eq. (16) with parameter *b, or (b NULL) taking the reference's south and north
+ *  poles to `south` and `north` (world coordinates, on the reference to 1e-9; need not be
+ *  antipodal). Every 4-tuple p becomes X M X^-1 p, X the reference's placement times
+ *  diag(radius) or diag(a, b, c). On failure m is unchanged.
+ *  @return RG2_EINVAL for an empty mesh, both or neither of b and the poles, one pole NULL, or a
+ *  reference of another kind; RG2_ENONFINITE for a non-finite b or pole coordinate; RG2_EDOMAIN
+ *  for a pole off the reference (naming the nearest point on it), poles that coincide or a
+ *  singular placement; RG2_EWEIGHT if a resulting weight is not > 0 (naming the control point);
+ *  RG2_ENOMEM. */
+RG2_API rg2_status rg2_mesh_mobius_shape(rg2_mesh *m, const rg2_shape *ref, const double *b,
+                                         const double south[3], const double north[3], rg2_error *err);
+
 /** Cap ends. */
 enum { RG2_CAP_SOUTH = 1, RG2_CAP_NORTH = 2 };
 

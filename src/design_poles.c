@@ -73,75 +73,17 @@ rg2_status rg2__op_polar(rg2_design *d, int shape, const rg2_partition *pu, cons
     return RG2_OK;
 }
 
-/*
- * METHOD: the Moebius matrix M acts on the reference unit sphere; the shape's placement X
- * (its matrix times diag(radius) or diag(a, b, c)) maps that sphere onto the shape, so the
- * mesh gets X M X^-1 (a transform: the sources and the shape get transformed copies, and the
- * placed shape's implicit equation is carried through the projective map). Poles given in
- * world coordinates are first mapped back to the unit sphere by X^-1.
- */
+/* The design's `mobius`: the mesh gets rg2__mobius_world's X M X^-1 (a transform: the sources
+ * and the shape get transformed copies, and the placed shape's implicit equation is carried
+ * through the projective map). */
 rg2_status rg2__op_mobius(rg2_design *d, const rg2__dmesh *in, int shape, const double *b,
                           double poles[2][3], rg2__dmesh *out, const char *what, rg2_error *err)
 {
-    double X[16], Xi[16], M[16], A[16];
-    rg2_xform_identity(X);
-    if (shape >= 0) {
-        const rg2_shape *s = &d->shapes[shape];
-        double S[16];
-        if (s->kind == RG2_SHAPE_SPHERE)
-            rg2_xform_scale(S, s->param[0], s->param[0], s->param[0]);
-        else if (s->kind == RG2_SHAPE_ELLIPSOID)
-            rg2_xform_scale(S, s->param[0], s->param[1], s->param[2]);
-        else
-            return rg2__fail(err, RG2_EINVAL,
-                             "%s.sphere: '%s' is a %s; the reference shape must be a sphere or an ellipsoid", what,
-                             d->labels[shape], rg2_shape_name(s->kind));
-        rg2_xform_mul(s->xform, S, X);
-    }
-    rg2_status st = rg2_xform_invert(X, Xi, err);
-    if (st) {
-        rg2_error e = *err;
-        return rg2__fail(err, st, "%s.sphere: %s", what, e.msg);
-    }
-    if (b) {
-        rg2_mobius_matrix(*b, NULL, M);
-    } else {
-        double loc[2][3];
-        for (int e = 0; e < 2; e++) {
-            double h[4];
-            for (int r = 0; r < 4; r++)
-                h[r] = Xi[4 * r] * poles[e][0] + Xi[4 * r + 1] * poles[e][1] + Xi[4 * r + 2] * poles[e][2] + Xi[4 * r + 3];
-            for (int q = 0; q < 3; q++)
-                loc[e][q] = h[q] / h[3];
-            /* a pole off the reference sphere: name it as given, in world coordinates, with the
-             * nearest point of the sphere (rg2_mobius_poles_matrix's own message would speak of
-             * the unit sphere the placement maps it to) */
-            double l = sqrt(loc[e][0] * loc[e][0] + loc[e][1] * loc[e][1] + loc[e][2] * loc[e][2]);
-            if (rg2__finite(l) && l > 0 && !(fabs(l - 1.0) <= 1e-9)) {
-                double nq[4], u[4] = {loc[e][0] / l, loc[e][1] / l, loc[e][2] / l, 1.0};
-                for (int r = 0; r < 4; r++)
-                    nq[r] = X[4 * r] * u[0] + X[4 * r + 1] * u[1] + X[4 * r + 2] * u[2] + X[4 * r + 3] * u[3];
-                char ref[200];
-                if (shape >= 0)
-                    snprintf(ref, sizeof ref, "%s '%s'", rg2_shape_name(d->shapes[shape].kind), d->labels[shape]);
-                else
-                    snprintf(ref, sizeof ref, "unit sphere at the origin");
-                return rg2__fail(err, RG2_EDOMAIN,
-                                 "%s.poles.%s: (%.9g, %.9g, %.9g) is not on the reference %s (%.9g of the way "
-                                 "from its centre to its surface; it must lie on it to 1e-9): the nearest point "
-                                 "on it is (%s, %s, %s)",
-                                 what, e ? "north" : "south", poles[e][0], poles[e][1], poles[e][2], ref, l,
-                                 rg2__num(nq[0] / nq[3]).s, rg2__num(nq[1] / nq[3]).s, rg2__num(nq[2] / nq[3]).s);
-            }
-        }
-        if ((st = rg2_mobius_poles_matrix(loc[0], loc[1], M, err))) {
-            rg2_error e = *err;
-            return rg2__fail(err, st, "%s.poles: %s (poles taken relative to the reference sphere)", what,
-                             rg2__after(e.msg, "moebius: "));
-        }
-    }
-    rg2_xform_mul(M, Xi, A);
-    rg2_xform_mul(X, A, A);
+    double A[16];
+    rg2_status st = rg2__mobius_world(shape >= 0 ? &d->shapes[shape] : NULL, shape >= 0 ? d->labels[shape] : NULL,
+                                      b, poles[0], poles[1], A, what, "sphere", "poles.", err);
+    if (st)
+        return st;
     if ((st = rg2__op_transform(d, in, A, out, what, err)))
         return st;
     for (int i = 0; i < out->m.nu; i++)

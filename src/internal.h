@@ -294,6 +294,13 @@ static inline void rg2__box_extent(const rg2__box *b, double *big, double *diag)
 rg2_status rg2__surface_check_range(const rg2_surface *s, const char *what, int index, rg2_error *err);
 /* p = M p for a homogeneous 4-tuple p (row-major M), as rg2_mesh_transform does per point. */
 void rg2__xform_apply(const double M[16], double p[4]);
+/* The world matrix A = X M X^-1 of a Moebius map about the reference s (a placed sphere or
+ * ellipsoid, X its placement; NULL: the unit sphere): M by eq. (16) from *b, or (b NULL) taking
+ * the reference's poles to south and north (world coordinates). The design's `mobius` and
+ * rg2_mesh_mobius_shape (mobius.c: the messages' keys). */
+rg2_status rg2__mobius_world(const rg2_shape *s, const char *label, const double *b, const double *south,
+                             const double *north, double A[16], const char *what, const char *refkey,
+                             const char *poleskey, rg2_error *err);
 
 /* Two tangent vectors a, b scaled in place by one power of two 2^-e (exact), when the largest
  * |component| m lies outside [2^-128, 2^128]: then m becomes 1 <= m < 2 and the squares and

@@ -4,6 +4,8 @@
  * exact sphere exact and moves the poles of the parameterization. */
 #include "internal.h"
 
+#include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -192,6 +194,131 @@ rg2_status rg2_mesh_mobius(rg2_mesh *m, const double center[3], double radius, c
                              i, j, w);
         }
     }
+    memcpy(m->p, q, np * 4 * sizeof(double));
+    free(q);
+    rg2__ok(err);
+    return RG2_OK;
+}
+
+/*
+ * METHOD: the Moebius matrix M acts on the reference unit sphere; the shape's placement X
+ * (its matrix times diag(radius) or diag(a, b, c)) maps that sphere onto the shape, so the
+ * mesh gets A = X M X^-1. Poles given in world coordinates are first mapped back to the unit
+ * sphere by X^-1. Messages start with what; refkey names the reference argument ("sphere" in a
+ * design, "ref" in C), poleskey prefixes "south" / "north" ("poles." in a design); label is the
+ * shape's name in a design, NULL in C.
+ */
+rg2_status rg2__mobius_world(const rg2_shape *s, const char *label, const double *b, const double *south,
+                             const double *north, double A[16], const char *what, const char *refkey,
+                             const char *poleskey, rg2_error *err)
+{
+    double X[16], Xi[16], M[16];
+    rg2_xform_identity(X);
+    if (s) {
+        double S[16];
+        if (s->kind == RG2_SHAPE_SPHERE)
+            rg2_xform_scale(S, s->param[0], s->param[0], s->param[0]);
+        else if (s->kind == RG2_SHAPE_ELLIPSOID)
+            rg2_xform_scale(S, s->param[0], s->param[1], s->param[2]);
+        else if (label)
+            return rg2__fail(err, RG2_EINVAL,
+                             "%s.%s: '%s' is a %s; the reference shape must be a sphere or an ellipsoid", what,
+                             refkey, label, rg2_shape_name(s->kind));
+        else
+            return rg2__fail(err, RG2_EINVAL,
+                             "%s.%s: the reference shape is a %s; it must be a sphere or an ellipsoid", what,
+                             refkey, rg2_shape_name(s->kind));
+        rg2_xform_mul(s->xform, S, X);
+    }
+    rg2_status st = rg2_xform_invert(X, Xi, err);
+    if (st) {
+        rg2_error e = *err;
+        return rg2__fail(err, st, "%s.%s: %s", what, refkey, e.msg);
+    }
+    if (b) {
+        rg2_mobius_matrix(*b, NULL, M);
+    } else {
+        const double *poles[2] = {south, north};
+        double loc[2][3];
+        for (int e = 0; e < 2; e++) {
+            double h[4];
+            for (int r = 0; r < 4; r++)
+                h[r] = Xi[4 * r] * poles[e][0] + Xi[4 * r + 1] * poles[e][1] + Xi[4 * r + 2] * poles[e][2] + Xi[4 * r + 3];
+            for (int q = 0; q < 3; q++)
+                loc[e][q] = h[q] / h[3];
+            /* a pole off the reference sphere: name it as given, in world coordinates, with the
+             * nearest point of the sphere (rg2_mobius_poles_matrix's own message would speak of
+             * the unit sphere the placement maps it to) */
+            double l = sqrt(loc[e][0] * loc[e][0] + loc[e][1] * loc[e][1] + loc[e][2] * loc[e][2]);
+            if (rg2__finite(l) && l > 0 && !(fabs(l - 1.0) <= 1e-9)) {
+                double nq[4], u[4] = {loc[e][0] / l, loc[e][1] / l, loc[e][2] / l, 1.0};
+                for (int r = 0; r < 4; r++)
+                    nq[r] = X[4 * r] * u[0] + X[4 * r + 1] * u[1] + X[4 * r + 2] * u[2] + X[4 * r + 3] * u[3];
+                char ref[200];
+                if (s && label)
+                    snprintf(ref, sizeof ref, "%s '%s'", rg2_shape_name(s->kind), label);
+                else if (s)
+                    snprintf(ref, sizeof ref, "%s", rg2_shape_name(s->kind));
+                else
+                    snprintf(ref, sizeof ref, "unit sphere at the origin");
+                return rg2__fail(err, RG2_EDOMAIN,
+                                 "%s.%s%s: (%.9g, %.9g, %.9g) is not on the reference %s (%.9g of the way "
+                                 "from its centre to its surface; it must lie on it to 1e-9): the nearest point "
+                                 "on it is (%s, %s, %s)",
+                                 what, poleskey, e ? "north" : "south", poles[e][0], poles[e][1], poles[e][2], ref,
+                                 l, rg2__num(nq[0] / nq[3]).s, rg2__num(nq[1] / nq[3]).s, rg2__num(nq[2] / nq[3]).s);
+            }
+        }
+        if ((st = rg2_mobius_poles_matrix(loc[0], loc[1], M, err))) {
+            rg2_error e = *err;
+            return rg2__fail(err, st, "%s.poles: %s (poles taken relative to the reference sphere)", what,
+                             rg2__after(e.msg, "moebius: "));
+        }
+    }
+    rg2_xform_mul(M, Xi, A);
+    rg2_xform_mul(X, A, A);
+    return RG2_OK;
+}
+
+rg2_status rg2_mesh_mobius_shape(rg2_mesh *m, const rg2_shape *ref, const double *b, const double south[3],
+                                 const double north[3], rg2_error *err)
+{
+    static const char what[] = "rg2_mesh_mobius_shape";
+    if (!m || !m->p || m->nu < 1 || m->nv < 1)
+        return rg2__fail(err, RG2_EINVAL, "%s: empty mesh", what);
+    if (!b == !(south || north))
+        return rg2__fail(err, RG2_EINVAL, "%s: give either b or the poles south and north, %s", what,
+                         b ? "not both" : "not neither");
+    if (!b && (!south || !north))
+        return rg2__fail(err, RG2_EINVAL, "%s: the %s pole is NULL (give both poles)", what, south ? "north" : "south");
+    if (b && !rg2__finite(*b))
+        return rg2__fail(err, RG2_ENONFINITE, "%s.b is not a finite number", what);
+    for (int e = 0; !b && e < 2; e++)
+        for (int k = 0; k < 3; k++)
+            if (!rg2__finite((e ? north : south)[k]))
+                return rg2__fail(err, RG2_ENONFINITE, "%s.%s: coordinate %d is not finite", what,
+                                 e ? "north" : "south", k);
+    double A[16];
+    rg2_status st = rg2__mobius_world(ref, NULL, b, south, north, A, what, "ref", "", err);
+    if (st)
+        return st;
+    size_t np = (size_t)m->nu * (size_t)m->nv;
+    double *q = rg2__calloc(np * 4, sizeof(double));
+    if (!q)
+        return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", what);
+    memcpy(q, m->p, np * 4 * sizeof(double));
+    rg2_mesh t = *m; /* (the design's rg2_mesh_transform on a copy: the same bits, m untouched until all pass) */
+    t.p = q;
+    rg2_mesh_transform(&t, A);
+    for (size_t k = 0; k < np; k++)
+        if (!(q[4 * k + 3] > 0.0)) {
+            double w = q[4 * k + 3];
+            free(q);
+            return rg2__fail(err, RG2_EWEIGHT,
+                             "%s.%s: the Moebius map gives control point [%d, %d] the weight %g, sending it "
+                             "through infinity (move the poles less far, or refine the u partition)",
+                             what, b ? "b" : "poles", (int)(k / (size_t)m->nv), (int)(k % (size_t)m->nv), w);
+        }
     memcpy(m->p, q, np * 4 * sizeof(double));
     free(q);
     rg2__ok(err);

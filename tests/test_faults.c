@@ -196,6 +196,29 @@ static rg2_status op_polar(const void *ctx, const char *path, blob *out, rg2_err
     return st;
 }
 
+/* rg2_mesh_mobius_shape about the unit sphere (a boost: poles not antipodal) on a copy of ctx;
+ * a failure leaves the copy as it was. */
+static rg2_status op_mobius(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    (void)path;
+    const rg2_mesh *src = ctx;
+    rg2_mesh m;
+    rg2_status st = rg2_mesh_copy(src, &m, err);
+    if (st)
+        return st;
+    rg2_shape sh;
+    rg2_shape_init(&sh, RG2_SHAPE_SPHERE);
+    static const double south[3] = {0, 0.6, -0.8}, north[3] = {0.6, 0, 0.8};
+    st = rg2_mesh_mobius_shape(&m, &sh, NULL, south, north, err);
+    if (st)
+        CHECK(!memcmp(m.p, src->p, (size_t)m.nu * (size_t)m.nv * 4 * sizeof(double)),
+              "rg2_mesh_mobius_shape failed (%s) but changed the mesh", rg2_status_str(st));
+    else
+        put_mesh(out, &m);
+    rg2_mesh_free(&m);
+    return st;
+}
+
 static rg2_status op_load(const void *ctx, const char *path, blob *out, rg2_error *err)
 {
     (void)path;
@@ -533,6 +556,7 @@ int main(int argc, char **argv)
 
     sweep("mesh operations torus_sphere", op_meshops, rg2_design_mesh(ds, 0), NULL);
     sweep("polar_mesh sphere, paraboloid", op_polar, NULL, NULL);
+    sweep("mesh_mobius_shape polar 0", op_mobius, rg2_design_mesh(dp, 0), NULL);
     sweep("design_load torus_sphere", op_load, "examples/torus_sphere.json", NULL);
     sweep("design_load fig9_polar", op_load, "examples/fig9_polar_sphere.json", NULL);
 

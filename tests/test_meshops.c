@@ -687,6 +687,114 @@ static void polar(void)
     rg2_design_free(d);
 }
 
+/* Moebius maps about a placed reference: rg2_mesh_mobius_shape against the design file's `mobius`,
+ * bit for bit, every band patch still on its shape; then its bad input, the mesh left as it was. */
+static const char *mobius_json =
+    "{\"format\": \"rg2 design 1\","
+    " \"shapes\": {\"ball\": {\"kind\": \"sphere\", \"radius\": 1.5, \"translate\": [0, 0, 1]},"
+    "  \"egg\": {\"kind\": \"ellipsoid\", \"a\": 2, \"b\": 1.5, \"c\": 1, \"rotate\": {\"axis\": [1, 1, 0], \"degrees\": 30},"
+    "   \"translate\": [0.5, -1, 2]},"
+    "  \"unit\": {\"kind\": \"sphere\"}, \"ring\": {\"kind\": \"torus\", \"R\": 2, \"r\": 0.5}},"
+    " \"meshes\": {"
+    "  \"B\": {\"polar\": \"ball\", \"u\": {\"arcs\": 8}, \"v\": {\"knots\": [0.15, 0.3, 0.42, 0.58, 0.7, 0.85]}},"
+    "  \"E\": {\"polar\": \"egg\", \"u\": {\"arcs\": 6}, \"v\": {\"knots\": [0.2, 0.5, 0.8]}},"
+    "  \"U\": {\"polar\": \"unit\", \"u\": {\"arcs\": 5}, \"v\": {\"knots\": [0.25, 0.5, 0.75]}},"
+    "  \"T\": {\"polar\": \"unit\", \"u\": {\"arcs\": 3}, \"v\": {\"knots\": [0.2, 0.5, 0.8]}},"
+    "  \"Bb\": {\"mobius\": \"B\", \"sphere\": \"ball\", \"b\": 0.5},"
+    "  \"Bp\": {\"mobius\": \"B\", \"sphere\": \"ball\", \"poles\": {\"south\": [1.2, 0, 0.1], \"north\": [0, 0, 2.5]}},"
+    "  \"Eb\": {\"mobius\": \"E\", \"sphere\": \"egg\", \"b\": -0.3},"
+    "  \"Up\": {\"mobius\": \"U\", \"poles\": {\"south\": [0, 0.6, -0.8], \"north\": [0.6, 0, 0.8]}}"
+    " },"
+    " \"output\": [\"B\", \"E\", \"U\", \"Bb\", \"Bp\", \"Eb\", \"Up\", \"T\"]}";
+
+static void mobius(void)
+{
+    rg2_error err;
+    rg2_design *d = NULL;
+    rg2_status st = rg2_design_parse(mobius_json, strlen(mobius_json), "mobius", &d, &err);
+    CHECK(st == RG2_OK && rg2_design_num_surfaces(d) == 8, "mobius design: %s", err.msg);
+    if (st)
+        return;
+    const rg2_shape *ball = rg2_design_shape(d, 0), *egg = rg2_design_shape(d, 1), *ring = rg2_design_shape(d, 3);
+    static const double bb = 0.5, be = -0.3, south[3] = {1.2, 0, 0.1}, north[3] = {0, 0, 2.5},
+                        su[3] = {0, 0.6, -0.8}, nu[3] = {0.6, 0, 0.8};
+    const struct {
+        int in, out;
+        const rg2_shape *ref, *on;
+        const double *b, *s, *n;
+        int patches;
+    } c[4] = {{0, 3, ball, ball, &bb, NULL, NULL, 40}, {0, 4, ball, ball, NULL, south, north, 40},
+              {1, 5, egg, egg, &be, NULL, NULL, 12}, {2, 6, NULL, rg2_design_shape(d, 2), NULL, su, nu, 10}};
+    for (int k = 0; k < 4; k++) {
+        rg2_mesh m;
+        CHECK_OK(rg2_mesh_copy(rg2_design_mesh(d, c[k].in), &m, &err), &err);
+        if (!m.p)
+            continue;
+        char what[96];
+        snprintf(what, sizeof what, "rg2_mesh_mobius_shape of design mesh %d (%s)", c[k].in, c[k].b ? "b" : "poles");
+        CHECK_OK(rg2_mesh_mobius_shape(&m, c[k].ref, c[k].b, c[k].s, c[k].n, &err), &err);
+        same_mesh(&m, rg2_design_mesh(d, c[k].out), what);
+        CHECK(memcmp(m.p, rg2_design_mesh(d, c[k].in)->p, (size_t)m.nu * (size_t)m.nv * 4 * sizeof(double)) != 0,
+              "%s: the mesh did not move", what);
+        rg2_surface s;
+        if (rg2_surface_build(&m, &s, &err) == RG2_OK) {
+            int on = patches_on(&s, c[k].on, rg2t_surface_scale(&s), 1e-14);
+            CHECK(s.nu * s.nv == c[k].patches && on == c[k].patches, "%s: %d of %d patches on the shape, want %d",
+                  what, on, s.nu * s.nv, c[k].patches);
+            rg2_surface_free(&s);
+        } else
+            CHECK(0, "%s: build: %s", what, err.msg);
+        rg2_mesh_free(&m);
+    }
+
+    /* bad input: the status, a message naming the argument, and the mesh as it was */
+    rg2_mesh m, keep;
+    CHECK_OK(rg2_mesh_copy(rg2_design_mesh(d, 0), &m, &err), &err);
+    CHECK_OK(rg2_mesh_copy(&m, &keep, &err), &err);
+    const double nan3[3] = {0, NAN, 1}, nanb = NAN, off[3] = {1.2, 0, 0.1001};
+    const struct {
+        const rg2_shape *ref;
+        const double *b, *s, *n;
+        rg2_status want;
+        const char *needle;
+    } bad_in[] = {
+        {ring, &bb, NULL, NULL, RG2_EINVAL, "rg2_mesh_mobius_shape.ref: the reference shape is a torus; it must be a sphere or an ellipsoid"},
+        {ball, &bb, south, north, RG2_EINVAL, "rg2_mesh_mobius_shape: give either b or the poles south and north, not both"},
+        {ball, NULL, NULL, NULL, RG2_EINVAL, "rg2_mesh_mobius_shape: give either b or the poles south and north, not neither"},
+        {ball, NULL, south, NULL, RG2_EINVAL, "rg2_mesh_mobius_shape: the north pole is NULL (give both poles)"},
+        {ball, &nanb, NULL, NULL, RG2_ENONFINITE, "rg2_mesh_mobius_shape.b is not a finite number"},
+        {ball, NULL, south, nan3, RG2_ENONFINITE, "rg2_mesh_mobius_shape.north: coordinate 1 is not finite"},
+        {ball, NULL, off, north, RG2_EDOMAIN, "rg2_mesh_mobius_shape.south: (1.2, 0, 0.1001) is not on the reference sphere ("},
+        {ball, NULL, north, north, RG2_EDOMAIN, "rg2_mesh_mobius_shape.poles: "},
+    };
+    for (size_t k = 0; k < sizeof bad_in / sizeof bad_in[0]; k++) {
+        char what[48];
+        snprintf(what, sizeof what, "rg2_mesh_mobius_shape bad input %zu", k);
+        expect_err(rg2_mesh_mobius_shape(&m, bad_in[k].ref, bad_in[k].b, bad_in[k].s, bad_in[k].n, &err), bad_in[k].want,
+                   &err, bad_in[k].needle, what);
+        CHECK(m.p && !memcmp(m.p, keep.p, (size_t)m.nu * (size_t)m.nv * 4 * sizeof(double)), "%s: the mesh changed",
+              what);
+    }
+    /* a boost that sends control points through infinity (tests/bad/mobius_through_infinity.json; b
+     * alone is a rotation times 1 + b^2 and keeps every weight > 0) */
+    rg2_mesh t, tkeep;
+    CHECK_OK(rg2_mesh_copy(rg2_design_mesh(d, 7), &t, &err), &err);
+    CHECK_OK(rg2_mesh_copy(&t, &tkeep, &err), &err);
+    static const double ts[3] = {0, 0.999, -0.0447101778}, tn[3] = {0, 1, 0};
+    expect_err(rg2_mesh_mobius_shape(&t, NULL, NULL, ts, tn, &err), RG2_EWEIGHT, &err,
+               "rg2_mesh_mobius_shape.poles: the Moebius map gives control point [", "a map through infinity");
+    CHECK(t.p && !memcmp(t.p, tkeep.p, (size_t)t.nu * (size_t)t.nv * 4 * sizeof(double)),
+          "a map through infinity: the mesh changed");
+    rg2_mesh_free(&t);
+    rg2_mesh_free(&tkeep);
+    rg2_mesh empty = {0};
+    expect_err(rg2_mesh_mobius_shape(&empty, ball, &bb, NULL, NULL, &err), RG2_EINVAL, &err,
+               "rg2_mesh_mobius_shape: empty mesh", "rg2_mesh_mobius_shape of an empty mesh");
+    rg2_mesh_free(&m);
+    rg2_mesh_free(&keep);
+    rg2_design_free(d);
+}
+
 int main(void)
 {
     rg2_error err;
@@ -706,5 +814,6 @@ int main(void)
     }
     rg2_design_free(d);
     polar();
+    mobius();
     return rg2t_done("test_meshops");
 }
