@@ -446,7 +446,10 @@ RG2_API rg2_status rg2_xpatch_elevate(const rg2_xpatch *X, int du, int dv, rg2_x
 /* ===================================================================================== */
 
 enum {
-    RG2_EVAL_NORMAL_UNDEFINED = 1u << 0,    /**< Su x Sv vanishes (collapsed edge, pole) */
+    RG2_EVAL_NORMAL_UNDEFINED = 1u << 0,    /**< Su x Sv vanishes (collapsed edge, pole; every point of
+                                                 a side whose affine control points agree to 1e-11
+                                                 of the patch's control box, where the derivative
+                                                 along the side is the noise of the stored points) */
     RG2_EVAL_CURVATURE_UNDEFINED = 1u << 1, /**< normal undefined: K, H, k1, k2 are 0 */
     RG2_EVAL_WEIGHT_NONPOSITIVE = 1u << 2   /**< denominator <= 0 at this point */
 };
@@ -954,7 +957,7 @@ RG2_API int rg2_design_cap(const rg2_design *d, int k, rg2_cap_opts *opts);
  * points [k * n * m, (k + 1) * n * m): seam points appear in both patches (tessellators merge
  * them). Every output array except pos may be NULL (not computed). Where Su x Sv vanishes
  * (collapsed edges, poles) the normal and K, H are 0, as in rg2_patch_eval: the points of a
- * collapsed side take rg2_patch_eval's values (its tests know the rounding noise there). The
+ * collapsed side take rg2_patch_eval's values (it tests the side's control points there). The
  * sides tested are those on a surface's open boundary, where the poles of rg2's constructions
  * lie, and every side of a patch given alone (rg2_patch_grid).
  * Speed: outputs past 8 MB per thread bypass the caches (streaming stores); arrays that start on

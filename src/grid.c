@@ -2107,7 +2107,13 @@ RG2_HOT unsigned rg2_patch_point_normal(const rg2_patch *P, double u, double v, 
         rv += fabs(hv[k]) + fabs(hv[3] * p[k]);
     }
     double t = rg2__scale_pair(su, sv), c[3], len;
-    if (!rg2__normal_test(su, sv, ru * t, rv * t, c, &len)) {
+    int pole = 0;
+    if (rg2__pole_suspect(u, v, su, sv)) { /* (rare: see rg2__pole_suspect) */
+        rg2_xpatch X;
+        rg2_xpatch_from_patch(P, &X);
+        pole = rg2__xpatch_pole_at(&X, u, v);
+    }
+    if (pole || !rg2__normal_test(su, sv, ru * t, rv * t, c, &len)) {
         nrm[0] = nrm[1] = nrm[2] = 0.0;
         return flags | RG2_EVAL_NORMAL_UNDEFINED | RG2_EVAL_CURVATURE_UNDEFINED;
     }

@@ -344,6 +344,31 @@ static inline int rg2__normal_test(const double su[3], const double sv[3], doubl
     return *len > 1e-14 * (E + G) && !(sqrt(E) <= 1e-13 * ru) && !(sqrt(G) <= 1e-13 * rv);
 }
 
+/* On a side of a patch that collapses to a point (a pole) the derivative along the side is the
+ * noise of the side's stored control points, which are equal only projectively (up to about
+ * 1e-12 of the size after the construction's rounding), not of the evaluation: the rounding
+ * levels of rg2__normal_test do not see it, and it can pass (Fig. 14's second sphere, patch
+ * (5, 0) at u = 63/128, v = 0: a normal 77 degrees off and K = -1.5e29). rg2__pole_suspect is
+ * the cheap trigger, a point on a side (u or v exactly 0 or 1) where one tangent is below 1e-8 of
+ * the other; rg2__xpatch_pole_at (xpatch_util.c) then tests the sides the point is on as the
+ * exporters, the tessellation and the grid do (rg2__xpatch_side_collapsed with rg2__collapse_tol
+ * over the patch alone), and rg2__eval_undefine makes the normal and the curvatures undefined
+ * there, as rg2.h promises for poles. */
+static inline int rg2__pole_suspect(double u, double v, const double su[3], const double sv[3])
+{
+    if (!(u == 0.0 || u == 1.0 || v == 0.0 || v == 1.0))
+        return 0;
+    double E = su[0] * su[0] + su[1] * su[1] + su[2] * su[2], G = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2];
+    return E < 1e-16 * G || G < 1e-16 * E;
+}
+int rg2__xpatch_pole_at(const rg2_xpatch *X, double u, double v);
+static inline void rg2__eval_undefine(rg2_eval *e)
+{
+    e->flags |= RG2_EVAL_NORMAL_UNDEFINED | RG2_EVAL_CURVATURE_UNDEFINED;
+    e->n[0] = e->n[1] = e->n[2] = 0.0;
+    e->K = e->H = e->k1 = e->k2 = 0.0;
+}
+
 /* Bernstein cubic basis and derivatives at t. */
 static inline void rg2__bern3(double t, double B[4], double D[4], double DD[4])
 {

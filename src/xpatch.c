@@ -54,6 +54,9 @@ void rg2_xpatch_eval(const rg2_xpatch *X, double u, double v, int order, rg2_eva
     double H[6][4];
     xeval_h(X, u, v, order, H);
     rg2__eval_from_h(H, order, e);
+    if (order >= 1 && !(e->flags & RG2_EVAL_NORMAL_UNDEFINED) && rg2__pole_suspect(u, v, e->su, e->sv) &&
+        rg2__xpatch_pole_at(X, u, v))
+        rg2__eval_undefine(e);
 }
 
 void rg2_xpatch_from_patch(const rg2_patch *P, rg2_xpatch *out)
@@ -251,6 +254,12 @@ void rg2__xgrid_patch(const rg2_xpatch *x, const rg2__xgrid *t, const rg2_grid_o
                     rg2__hom_row(H, rows, Bu[r], Du[r], DDu[r], c[bb][0][r], c[bb][1][r], c[bb][2][r]);
                 rg2_eval e;
                 rg2__eval_from_h(H, t->order, &e);
+                if (!(e.flags & RG2_EVAL_NORMAL_UNDEFINED) && (a == 0 || a == t->n - 1 || b0 + bb == 0 || b0 + bb == t->m - 1)) {
+                    /* (as rg2_xpatch_eval: the grid's parameters are exactly 0 and 1 at the ends) */
+                    double u = (double)a / (double)(t->n - 1), v = (double)(b0 + bb) / (double)(t->m - 1);
+                    if (rg2__pole_suspect(u, v, e.su, e.sv) && rg2__xpatch_pole_at(x, u, v))
+                        rg2__eval_undefine(&e);
+                }
                 size_t q = first + (size_t)a * (size_t)t->m + (size_t)(b0 + bb);
                 put3(out->pos, q, e.p);
                 put3(out->normal, q, e.n);

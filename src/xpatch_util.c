@@ -59,6 +59,21 @@ int rg2__xpatch_side_collapsed(const rg2_xpatch *X, int side, double tol)
     return 1;
 }
 
+int rg2__xpatch_pole_at(const rg2_xpatch *X, double u, double v)
+{
+    unsigned on = (unsigned)(v == 0.0) | (unsigned)(u == 1.0) << 1 | (unsigned)(v == 1.0) << 2 | (unsigned)(u == 0.0) << 3;
+    if (!on)
+        return 0;
+    rg2_surface one = {0}; /* a one-patch view, for the tolerance (as the grid's pole_sides) */
+    one.nu = one.nv = 1;
+    one.xp = (rg2_xpatch *)X;
+    double tol = rg2__collapse_tol(&one);
+    for (int side = 0; side < 4; side++)
+        if (on >> side & 1 && rg2__xpatch_side_collapsed(X, side, tol))
+            return 1;
+    return 0;
+}
+
 int rg2__surface_side_collapsed(const rg2_surface *s, int i, int j, int side, double tol)
 {
     const rg2_xpatch *x = rg2_surface_xpatch(s, i, j);

@@ -689,6 +689,91 @@ static void tables_cache(void)
            "calls\n", CACHE_SIZES, 30 * CACHE_SIZES);
 }
 
+/* Side `side` (0 v=0, 1 u=1, 2 v=1, 3 u=0) of patch X collapsed to a point: its affine control
+ * points within 1e-11 of the patch's control box diagonal of the first (rg2.h's poles; computed
+ * here from the control points). */
+static int side_collapsed(const rg2_xpatch *X, int side)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, diag = 0.0;
+    for (int r = 0; r <= X->du; r++)
+        for (int t = 0; t <= X->dv; t++)
+            for (int k = 0; k < 3; k++) {
+                lo[k] = fmin(lo[k], X->h[r][t][k] / X->h[r][t][3]);
+                hi[k] = fmax(hi[k], X->h[r][t][k] / X->h[r][t][3]);
+            }
+    for (int k = 0; k < 3; k++)
+        diag += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    int n = side & 1 ? X->dv : X->du;
+    for (int a = 1; a <= n; a++)
+        for (int k = 0; k < 3; k++) {
+            const double *p = side == 0 ? X->h[a][0] : side == 1 ? X->h[X->du][a] : side == 2 ? X->h[a][X->dv] : X->h[0][a];
+            const double *q = side == 0 ? X->h[0][0] : side == 1 ? X->h[X->du][0] : side == 2 ? X->h[0][X->dv] : X->h[0][0];
+            if (!(fabs(p[k] / p[3] - q[k] / q[3]) <= 1e-11 * sqrt(diag)))
+                return 0;
+        }
+    return 1;
+}
+
+/* The poles of the examples' Moebius-moved spheres and saddle caps (bi-3 and degree-5 patches):
+ * at every grid point on a collapsed side the normal is 0 and K = H = 0 (rg2.h), in the grid,
+ * rg2_surface_eval and rg2_patch_point_normal. The side's control points are equal only
+ * projectively there, and the rounding-level test alone let 10 points of Fig. 14's second sphere
+ * (u = 63/128: a normal 77 degrees off, K = -1.5e29) and 24 of Fig. 15's second surface (u = 1/2,
+ * every odd grid size) through. */
+static void design_poles(void)
+{
+    static const char *const files[] = {"examples/fig14_mobius.json", "examples/fig15_saddle_caps.json"};
+    static const int sizes[] = {3, 129};
+    for (int f = 0; f < 2; f++) {
+        rg2_design *d = NULL;
+        rg2_error err;
+        CHECK_OK(rg2_design_load(files[f], &d, &err), &err);
+        if (!d)
+            continue;
+        int pts = 0, bad_grid = 0, bad_eval = 0, bad_point = 0;
+        for (int si = 0; si < rg2_design_num_surfaces(d); si++) {
+            const rg2_surface *s = rg2_design_surface(d, si);
+            size_t np = (size_t)s->nu * s->nv;
+            for (int z = 0; z < 2; z++) {
+                int n = sizes[z];
+                size_t per = (size_t)n * n;
+                grid_buf g;
+                buf_alloc(&g, per * np);
+                CHECK_OK(rg2_surface_grid(s, n, n, 1, &g.o, &err), &err);
+                for (size_t k = 0; k < np; k++) {
+                    rg2_xpatch X;
+                    rg2_surface_patch_get(s, (int)(k / s->nv), (int)(k % s->nv), &X);
+                    for (int side = 0; side < 4; side++) {
+                        if (!side_collapsed(&X, side))
+                            continue;
+                        for (int q = 0; q < n; q++, pts++) {
+                            int a = side == 1 ? n - 1 : side == 3 ? 0 : q, b = side == 0 ? 0 : side == 2 ? n - 1 : q;
+                            double u = a == n - 1 ? 1.0 : (double)a / (n - 1), v = b == n - 1 ? 1.0 : (double)b / (n - 1);
+                            size_t i = k * per + (size_t)a * n + b;
+                            bad_grid += !(norm3(g.o.normal + 3 * i) == 0.0 && g.o.K[i] == 0.0 && g.o.H[i] == 0.0);
+                            rg2_eval e;
+                            rg2_surface_eval(s, (int)(k / s->nv), (int)(k % s->nv), u, v, 2, &e);
+                            bad_eval += !(e.flags & RG2_EVAL_NORMAL_UNDEFINED && norm3(e.n) == 0.0 && e.K == 0.0 && e.H == 0.0);
+                            if (!(s->xp && s->xp[k].du > 0)) {
+                                double p[3], nn[3];
+                                unsigned fl = rg2_patch_point_normal(&s->patch[k], u, v, p, nn);
+                                bad_point += !(fl & RG2_EVAL_NORMAL_UNDEFINED && norm3(nn) == 0.0);
+                            }
+                        }
+                    }
+                }
+                free(g.mem);
+            }
+        }
+        printf("%s: %d grid points on collapsed sides; normal or K, H not 0 at %d (grid), %d (rg2_surface_eval), "
+               "%d (rg2_patch_point_normal)\n", files[f], pts, bad_grid, bad_eval, bad_point);
+        CHECK(pts > 1000 && bad_grid == 0 && bad_eval == 0 && bad_point == 0,
+              "%s: %d pole points; normal defined at %d (grid), %d (eval), %d (point)", files[f], pts, bad_grid,
+              bad_eval, bad_point);
+        rg2_design_free(d);
+    }
+}
+
 int main(void)
 {
     tables_cache();
@@ -706,6 +791,7 @@ int main(void)
         collapsed_edge();
         normal_test_bound();
         capped_poles();
+        design_poles();
         torus();
         large_output();
         narrow_patches();
