@@ -3,7 +3,8 @@
 // library, read back with OpenCASCADE's readers, its shell made a solid with
 // BRepBuilderAPI_MakeSolid (which keeps the faces' orientations as read, so faces written
 // inward show as a negative volume instead of being turned round, as ShapeFix_Solid would), and
-// measured: a valid solid with no free edge, volume > 0 as exported, and area, volume and
+// measured: no message from the reader's transfer (it would turn a face written inward round
+// quietly), a valid solid with no free edge, volume > 0 as exported, and area, volume and
 // centroid (BRepGProp, adaptive Gauss integration to a relative eps) against the exact shape
 // (torus, sphere) or against an integration of rg2's own patches written here (Gauss-Legendre
 // per patch, volume by the divergence theorem).
@@ -21,6 +22,8 @@ extern "C" {
 #include <Geom_Surface.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <IGESControl_Reader.hxx>
+#include <Interface_Check.hxx>
+#include <Interface_CheckIterator.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <STEPControl_Reader.hxx>
@@ -34,6 +37,10 @@ extern "C" {
 #include <TopoDS_Shell.hxx>
 #include <TopoDS_Solid.hxx>
 #include <gp_Pnt.hxx>
+#include <Transfer_TransientProcess.hxx>
+#include <XSControl_Reader.hxx>
+#include <XSControl_TransferReader.hxx>
+#include <XSControl_WorkSession.hxx>
 #include <gp_Vec.hxx>
 
 #include <algorithm>
@@ -281,24 +288,35 @@ void check_solid(const Case &c, const Props &ref, const Props &own, const std::s
     CHECK(st == RG2_OK, "%s: export failed: %s", what, err.msg);
     if (st)
         return;
-    TopoDS_Shape shape;
-    if (iges) {
-        IGESControl_Reader r;
-        bool ok = r.ReadFile(path.c_str()) == IFSelect_RetDone;
-        CHECK(ok, "%s: IGES read failed", what);
-        if (!ok)
-            return;
-        r.TransferRoots();
-        shape = r.OneShape();
-    } else {
-        STEPControl_Reader r;
-        bool ok = r.ReadFile(path.c_str()) == IFSelect_RetDone;
-        CHECK(ok, "%s: STEP read failed", what);
-        if (!ok)
-            return;
-        r.TransferRoots();
-        shape = r.OneShape();
+    // OCCT's reader turns faces round to agree with the shell's first one ("Faces were
+    // incorrectly oriented in the shell, corrected"), so one face written inward would come
+    // out right: every message of the transfer is checked too. The one expected: "Surface
+    // forced to be periodic" (face per mesh, closed directions).
+    IGESControl_Reader ir;
+    STEPControl_Reader sr;
+    XSControl_Reader &r = iges ? (XSControl_Reader &)ir : (XSControl_Reader &)sr;
+    bool ok = r.ReadFile(path.c_str()) == IFSelect_RetDone;
+    CHECK(ok, "%s: %s read failed", what, iges ? "IGES" : "STEP");
+    if (!ok)
+        return;
+    r.TransferRoots();
+    TopoDS_Shape shape = r.OneShape();
+    Interface_CheckIterator checks = r.WS()->TransferReader()->TransientProcess()->CheckList(Standard_False);
+    int messages = 0;
+    std::string first;
+    for (checks.Start(); checks.More(); checks.Next()) {
+        const Handle(Interface_Check) &ch = checks.Value();
+        for (int q = 1; q <= ch->NbFails(); q++, messages++)
+            if (first.empty())
+                first = std::string("fail: ") + ch->CFail(q);
+        for (int q = 1; q <= ch->NbWarnings(); q++)
+            if (strcmp(ch->CWarning(q), "Surface forced to be periodic") != 0) {
+                if (first.empty())
+                    first = std::string("warning: ") + ch->CWarning(q);
+                messages++;
+            }
     }
+    CHECK(messages == 0, "%s: %d messages from the reader's transfer, the first %s", what, messages, first.c_str());
     if (!getenv("RG2_OCCT_KEEP"))
         remove(path.c_str());
     // exactly one shell, holding every face
@@ -377,9 +395,9 @@ void check_solid(const Case &c, const Props &ref, const Props &own, const std::s
     double s_gprop = std::chrono::duration<double>(t2 - t1).count(), s_gauss = std::chrono::duration<double>(t3 - t2).count();
     g_worst.seconds += sec;
     g_worst.solids++;
-    printf("  %-40s %3d faces, %2d degenerated edges, valid %d, volume %+.12f, area %.12f; BRepGProp vs %s: area "
+    printf("  %-40s %3d faces, %2d degenerated edges, %d reader messages, valid %d, volume %+.12f, area %.12f; BRepGProp vs %s: area "
            "%.1e, volume %.1e, centroid %.1e (its estimates %.0e, %.0e); OCCT faces vs rg2 %.1e; %.2f s (BRepGProp %.2f, Gauss %.2f)\n",
-           what, faces, degenerated, (int)an.IsValid(), occ.volume, occ.area, c.exact ? "exact" : "rg2  ", d.area,
+           what, faces, degenerated, messages, (int)an.IsValid(), occ.volume, occ.area, c.exact ? "exact" : "rg2  ", d.area,
            d.volume, d.centre, area_est, vol_est, std::max(dg.area, std::max(dg.volume, dg.centre)), sec, s_gprop, s_gauss);
 }
 
