@@ -214,7 +214,7 @@ void check_g2(const TopoDS_Shape &shape, double scale, const char *what, int *n_
             gp_Pnt p;
             gp_Vec tang;
             c3->D1(t, p, tang);
-            gp_Vec n[2], cross[2];
+            gp_Vec n[2];
             GeomLProp_SLProps *pr[2] = {nullptr, nullptr};
             Handle(Geom_Surface) surf[2];
             gp_Pnt2d uv[2];
@@ -695,9 +695,9 @@ int main()
         rg2_partition pp[2];
         double vals[2][64];
         bool ok = true;
-        for (int dir = 0; dir < 2 && ok; dir++)
-            ok = rg2_partition_equal(&pp[dir], d->dir_kind[dir], d->default_closed[dir], d->default_range[dir][0],
-                                     d->default_range[dir][1], d->default_segments[dir], vals[dir], 64, &err) == RG2_OK;
+        for (int q = 0; q < 2 && ok; q++)
+            ok = rg2_partition_equal(&pp[q], d->dir_kind[q], d->default_closed[q], d->default_range[q][0],
+                                     d->default_range[q][1], d->default_segments[q], vals[q], 64, &err) == RG2_OK;
         rg2_surface surf;
         memset(&surf, 0, sizeof surf);
         rg2_weight_report rep;
