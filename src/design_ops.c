@@ -433,12 +433,20 @@ rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int clo
                              "more than the limit of %d", what, t, n, dir_name(dir), RG2_MAX_POINTS);
         if (t > 0) {
             char msg[400];
-            if (scalars_differ(dir_scalars(&in[0]->m, other), dir_scalars(&in[t]->m, other), msg,
-                               sizeof msg))
+            const rg2_scalars *st = dir_scalars(&in[t]->m, other);
+            if (scalars_differ(dir_scalars(&in[0]->m, other), st, msg, sizeof msg)) {
+                /* name the mesh it is joined to, which it does not agree with (mesh t - 1); the first
+                 * mesh only when it agrees with its neighbour to the tolerance and not with the first */
+                int r = t - 1;
+                if (!scalars_differ(dir_scalars(&in[r]->m, other), st, msg, sizeof msg)) {
+                    r = 0;
+                    scalars_differ(dir_scalars(&in[0]->m, other), st, msg, sizeof msg);
+                }
                 return rg2__fail(err, RG2_EINCOMPATIBLE,
                                  "%s.merge[%d]: meshes '%s' and '%s' do not agree in %s (the direction "
                                  "that must match when merging along %s): %s",
-                                 what, t, in[0]->name, in[t]->name, dir_name(other), dir_name(dir), msg);
+                                 what, t, in[r]->name, in[t]->name, dir_name(other), dir_name(dir), msg);
+            }
         }
     }
     const rg2_scalars *so = dir_scalars(&in[0]->m, other);

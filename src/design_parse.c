@@ -495,6 +495,13 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
             closed = !have_to;
         if (!angles)
             closed = 0;
+        if (angles && have_to && !have_closed && fabs(hi - lo - 360.0) <= RG2_NEAR_FULL_DEG)
+            /* (a full range was an open ring whose two ends met: a slit, 20 free edges in a STEP file) */
+            return fail(c, RG2_EDOMAIN, path,
+                        "'from' %s to 'to' %s degrees goes all the way round, which 'to' leaves open (the two "
+                        "ends meet in a slit): drop 'to' for a closed circle starting at 'from', or say "
+                        "\"closed\": false for an open ring",
+                        rg2__num(lo).s, rg2__num(hi).s);
         if (angles && !closed && !have_count && hi - lo > 0.0) {
             /* an open range without a count: arcs about as fine as the default full circle's, as
              * rg2 shape's --D-sweep (the default count over 90 degrees gave the torus 8 arcs of
@@ -1226,6 +1233,16 @@ static rg2_status parse_text(const char *json, size_t len, const char *name, cJS
             free(buf);
             return rg2__fail(err, RG2_ELIMIT, "%s:%d:%d: arrays and objects nested more than %d deep", name, line,
                              col, CJSON_NESTING_LIMIT);
+        }
+        if (!k && off < len) { /* at the end of a line (it said "at the end of the text"): what precedes */
+            size_t b = off;
+            while (b > 0 && off - b < sizeof near - 1 && buf[b - 1] != '\n')
+                b--;
+            memcpy(near, buf + b, off - b);
+            near[off - b] = 0;
+            free(buf);
+            return rg2__fail(err, RG2_EPARSE, "%s:%d:%d: malformed JSON at the end of line %d, after '%s'", name, line,
+                             col, line, near);
         }
         free(buf);
         return rg2__fail(err, RG2_EPARSE, "%s:%d:%d: malformed JSON %s%s%s", name, line, col,
