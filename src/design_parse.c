@@ -517,6 +517,21 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
             if (!(span > 0.0))
                 return fail(c, RG2_EDOMAIN, path, "arc range from %s to %s degrees is empty", rg2__num(lo).s,
                             rg2__num(hi).s);
+            /* (arcs of 180 degrees or more: the opening angle's own message named arc 0 and its angle,
+             * not the count or the range that made it) */
+            if (closed && nseg < 3)
+                return fail(c, RG2_EDOMAIN, path,
+                            "a full circle in %d arc%s gives arcs of %g degrees; every arc must be under 180: "
+                            "give at least 3 arcs", nseg, nseg == 1 ? "" : "s", 360.0 / nseg);
+            if (!closed && span > 360.0)
+                return fail(c, RG2_EDOMAIN, path,
+                            "'from' %s to 'to' %s spans %s degrees, more than a full circle", rg2__num(lo).s,
+                            rg2__num(hi).s, rg2__num(span).s);
+            if (!closed && span / nseg >= 180.0)
+                return fail(c, RG2_EDOMAIN, path,
+                            "%s degrees in %d arc%s gives arcs of %s degrees; every arc must be under 180: give "
+                            "at least %d arcs", rg2__num(span).s, nseg, nseg == 1 ? "" : "s",
+                            rg2__num(span / nseg).s, (int)floor(span / 180.0) + 1);
 
             for (int k = 0; k < nseg; k++)
                 pb->values[k] = closed ? 2.0 * M_PI / nseg : span * (M_PI / 180.0) / nseg;
