@@ -120,3 +120,12 @@ rg2_status rg2__surface_patch_grid(const rg2_surface *s, int i, int j, int n, in
     rg2__ok(err);
     return RG2_OK;
 }
+
+rg2_status rg2_surface_patch_grid(const rg2_surface *s, int i, int j, int n, int m, const rg2_grid_out *out,
+                                  rg2_error *err)
+{
+    if (!s || !s->patch || i < 0 || j < 0 || i >= s->nu || j >= s->nv)
+        return rg2__fail(err, RG2_EINVAL, "grid: patch (%d, %d) is not a patch of the surface (%d x %d patches)", i, j,
+                         s ? s->nu : 0, s ? s->nv : 0);
+    return rg2__surface_patch_grid(s, i, j, n, m, out, err);
+}

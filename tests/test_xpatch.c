@@ -303,7 +303,7 @@ static void surface_grids(void)
         for (int j = 0; j < x.nv; j++) {
             double pg[3 * N * M], ng[3 * N * M];
             rg2_grid_out one = {.pos = pg, .normal = ng};
-            CHECK_OK(rg2__surface_patch_grid(&x, i, j, N, M, &one, &err), &err);
+            CHECK_OK(rg2_surface_patch_grid(&x, i, j, N, M, &one, &err), &err); /* (the public call) */
             for (int a = 0; a < N; a++)
                 for (int b = 0; b < M; b++) {
                     size_t q = ((size_t)(i * x.nv + j) * N + a) * M + b, l = (size_t)a * M + b;
@@ -375,6 +375,17 @@ static void surface_grids(void)
                   strstr(err.msg, "degree (4, 3)"),
               "%d x %d grid%s on a higher-degree patch: %s", refused[k][0], refused[k][1],
               k < 4 ? "" : " without positions", err.msg);
+    }
+    /* the public call refuses a patch outside the surface, naming it and the surface's patches */
+    static const int outside[4][2] = {{-1, 0}, {0, -1}, {6, 0}, {0, 7}};
+    for (int k = 0; k < 4; k++) {
+        char want[96];
+        snprintf(want, sizeof want, "grid: patch (%d, %d) is not a patch of the surface (6 x 7 patches)", outside[k][0],
+                 outside[k][1]);
+        CHECK(x.nu == 6 && x.nv == 7 &&
+                  rg2_surface_patch_grid(&x, outside[k][0], outside[k][1], 4, 4, &bad, &err) == RG2_EINVAL &&
+                  !strcmp(err.msg, want),
+              "patch (%d, %d) of a 6 x 7 surface: %s", outside[k][0], outside[k][1], err.msg);
     }
     free(buf);
     rg2_surface_free(&x);
