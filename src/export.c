@@ -118,7 +118,8 @@ int rg2__write_blocks(FILE *f, int n, int block, rg2__block_fn fn, rg2__block_fi
 rg2_status rg2__check_nonempty(const rg2_surface *surfs, int n_surfs, rg2_error *err)
 {
     if (!surfs || n_surfs < 1)
-        return rg2__fail(err, RG2_EINVAL, "export: no surfaces to write (empty design)");
+        return rg2__fail(err, RG2_EINVAL, "export: no surfaces to write (%s)",
+                         !surfs ? "surfs is NULL" : n_surfs == 0 ? "n_surfs = 0: an empty design" : "n_surfs < 0");
     for (int k = 0; k < n_surfs; k++)
         if (surfs[k].nu < 1 || surfs[k].nv < 1 || !surfs[k].patch)
             return rg2__fail(err, RG2_EINVAL, "export: surface %d has no patches (%d x %d)", k,

@@ -1961,7 +1961,9 @@ static void set_stores(tables *t, size_t pts)
 
 static rg2_status check_args(int n, int m, const rg2_grid_out *out, rg2_error *err)
 {
-    if (!out || !out->pos)
+    if (!out)
+        return rg2__fail(err, RG2_EINVAL, "grid: no output arrays (out is NULL)");
+    if (!out->pos)
         return rg2__fail(err, RG2_EINVAL, "grid: the position array (out->pos) is NULL");
     if (n < 2 || m < 2)
         return rg2__fail(err, RG2_EINVAL, "grid: %d x %d points per patch; need at least 2 x 2", n, m);

@@ -175,7 +175,9 @@ static size_t line_up(size_t n)
 
 static rg2_status check_args(const rg2_surface *s, int density, rg2_error *err)
 {
-    if (!s || s->nu < 1 || s->nv < 1 || !s->patch)
+    if (!s)
+        return rg2__fail(err, RG2_EINVAL, "tessellate: no surface (s is NULL)");
+    if (s->nu < 1 || s->nv < 1 || !s->patch)
         return rg2__fail(err, RG2_EINVAL, "tessellate: surface has no patches");
     if (density < 1)
         return rg2__fail(err, RG2_EINVAL, "tessellate: density %d, must be >= 1", density);
@@ -550,12 +552,16 @@ done:
 rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_tess *out,
                           rg2_error *err)
 {
+    if (!out)
+        return rg2__fail(err, RG2_EINVAL, "tessellate: no output (out is NULL)");
     memset(out, 0, sizeof *out);
     return tessellate(s, density, curvature, out, NULL, 0, err);
 }
 
 rg2_status rg2_retessellate(const rg2_surface *s, int density, int curvature, rg2_tess *t, rg2_error *err)
 {
+    if (!t)
+        return rg2__fail(err, RG2_EINVAL, "retessellate: no mesh (t is NULL)");
     char *old = (char *)t->pos; /* (NULL in a zeroed struct) */
     size_t cap = t->capacity;
     memset(t, 0, sizeof *t);

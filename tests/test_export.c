@@ -1523,7 +1523,14 @@ static void failures(const rg2_surface *s)
     }
     CHECK(rg2_export_format_check(NULL, &err) == RG2_EINVAL, "NULL path accepted");
     st = rg2_export_file(s, 0, path_in("empty.step"), NULL, &err);
-    CHECK(st == RG2_EINVAL && strstr(err.msg, "empty"), "empty input: %s", err.msg);
+    CHECK(st == RG2_EINVAL && !strcmp(err.msg, "export: no surfaces to write (n_surfs = 0: an empty design)"),
+          "empty input: %s", err.msg);
+    st = rg2_export_file(NULL, 1, path_in("empty.step"), NULL, &err); /* (both said "empty design" to C callers) */
+    CHECK(st == RG2_EINVAL && !strcmp(err.msg, "export: no surfaces to write (surfs is NULL)"), "NULL surfs: %s",
+          err.msg);
+    st = rg2_export_file(s, -1, path_in("empty.step"), NULL, &err);
+    CHECK(st == RG2_EINVAL && !strcmp(err.msg, "export: no surfaces to write (n_surfs < 0)"), "n_surfs -1: %s",
+          err.msg);
     rg2_surface none;
     memset(&none, 0, sizeof none);
     st = rg2_export_file(&none, 1, path_in("none.igs"), NULL, &err);

@@ -622,6 +622,13 @@ static void bad_input(void)
     memset(&empty, 0, sizeof empty);
     CHECK(rg2_tessellate(&empty, 4, 0, &t, &err) == RG2_EINVAL, "empty surface accepted");
     CHECK_OK(fx_random(3, 5, 5, &s, &err), &err);
+    /* NULL arguments: named, no crash (a NULL out and a NULL mesh crashed) */
+    CHECK(rg2_tessellate(NULL, 4, 0, &t, &err) == RG2_EINVAL && !strcmp(err.msg, "tessellate: no surface (s is NULL)"),
+          "NULL surface: %s", err.msg);
+    CHECK(rg2_tessellate(&s, 4, 0, NULL, &err) == RG2_EINVAL && !strcmp(err.msg, "tessellate: no output (out is NULL)"),
+          "NULL out: %s", err.msg);
+    CHECK(rg2_retessellate(&s, 4, 0, NULL, &err) == RG2_EINVAL && !strcmp(err.msg, "retessellate: no mesh (t is NULL)"),
+          "NULL mesh: %s", err.msg);
     CHECK(rg2_tessellate(&s, 0, 0, &t, &err) == RG2_EINVAL && strstr(err.msg, "density"), "density 0: %s", err.msg);
     CHECK(t.pos == NULL && t.tri == NULL, "failed tessellation left arrays");
     CHECK(rg2_tessellate(&s, 5000, 0, &t, &err) == RG2_ELIMIT, "huge density: %s", err.msg);
