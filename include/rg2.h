@@ -730,8 +730,9 @@ RG2_API const char *rg2_closest_name(const char *word, const char *const *names,
  *  RG2_ENONFINITE / RG2_EDOMAIN, the message starting with `what` (nullable). */
 RG2_API rg2_status rg2_number_check(double x, const char *what, rg2_error *err);
 /** The supported range of a mesh's design points p_{1..3} / p_4: coordinates up to
- *  the largest supported magnitude, bounding-box diagonal at least the smallest (what every
- *  output mesh of a design must satisfy; points of weight p_4 = 0, at infinity, have no
+ *  the largest supported magnitude, bounding-box diagonal at least the smallest and at least
+ *  1e-12 of the largest coordinate (what every output mesh of a design must satisfy; below
+ *  that the coordinates' rounding takes the shape apart; points of weight p_4 = 0, at infinity, have no
  *  coordinates and are skipped). RG2_EDOMAIN, the message starting with `what` (nullable). */
 RG2_API rg2_status rg2_mesh_check_range(const rg2_mesh *m, const char *what, rg2_error *err);
 

@@ -353,6 +353,12 @@ rg2_status rg2_mesh_check_range(const rg2_mesh *m, const char *what, rg2_error *
                          "%s: coordinates up to %g, size %g: outside the supported range "
                          "(coordinates up to %g, size at least %g)",
                          what, big, diag, RG2_DESIGN_MAX_COORD, RG2_DESIGN_MIN_SIZE);
+    if (diag < 1e-12 * big) /* (a part of size 1e-20 at x = 1 was built, its points rounded together) */
+        return rg2__fail(err, RG2_EDOMAIN,
+                         "%s: size %g at coordinates up to %g: below 1e-12 of its distance from the origin, so "
+                         "the rounding of its coordinates (about %.2g) takes its shape apart; place it nearer the "
+                         "origin or make it larger",
+                         what, diag, big, big * 2.220446049250313e-16);
     rg2__ok(err);
     return RG2_OK;
 }
