@@ -1078,7 +1078,9 @@ RG2_API rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvatu
  *  zeros), for editing loops (move a control point, rg2_surface_rebuild, re-tessellate) and
  *  animations: when t's allocation holds the new mesh, it is reused (no fresh pages: the bundled
  *  120-patch design at density 64, 45 MB, in 4.5-5.9 ms instead of 7.0-8.4 ms on one thread,
- *  docs/export.md), else it is freed and allocated anew. The result equals rg2_tessellate's bit
+ *  docs/export.md), else it is freed and allocated anew. The allocation never shrinks: after a
+ *  zoom to a fine density a coarse mesh keeps the large block (t->capacity bytes) until
+ *  rg2_tess_free. The result equals rg2_tessellate's bit
  *  for bit. On failure t is left empty (freed), with the errors of rg2_tessellate. */
 RG2_API rg2_status rg2_retessellate(const rg2_surface *s, int density, int curvature, rg2_tess *t,
                                     rg2_error *err);
@@ -1217,7 +1219,8 @@ RG2_API rg2_status rg2_render(const rg2_surface *surfs, int n, const rg2_mesh *m
                               const rg2_render_opts *o, rg2_image *out, rg2_error *err);
 RG2_API void rg2_image_free(rg2_image *img);
 /** Write an RGB image as 8-bit PNG (libpng) to a temporary file next to path, then rename (as
- *  rg2_export_file; a failed write leaves no file). @return RG2_EIO (unwritable, disk full), RG2_EINVAL (empty image, no path),
+ *  rg2_export_file; a failed write leaves no file). The name is the caller's: a PNG is written
+ *  whatever its extension (the rg2 command refuses one other than .png). @return RG2_EIO (unwritable, disk full), RG2_EINVAL (empty image, no path),
  *  RG2_ENOMEM. */
 RG2_API rg2_status rg2_image_write_png(const rg2_image *img, const char *path, rg2_error *err);
 /** rg2_render followed by rg2_image_write_png. */
