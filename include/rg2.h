@@ -1151,8 +1151,8 @@ typedef enum {
     RG2_RENDER_ZEBRA       /**< reflection of parallel light lines (stripes from the normal) */
 } rg2_render_mode;
 
-/* Every field's range is checked by rg2_render (the message names the field and its value;
- * a non-finite view names the three): RG2_EINVAL outside it, RG2_ENONFINITE for a NaN or
+/* Every field's range is checked by rg2_render (the message names the field and its value):
+ * RG2_EINVAL outside it, RG2_ENONFINITE for a NaN or
  * infinite azimuth, elevation or distance.
  * Flags (apart, boundaries, tint, colorbar, keep_pixels) are 0 = off, anything else = on. */
 typedef struct {

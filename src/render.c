@@ -923,8 +923,12 @@ static rg2_status check_input(const rg2_surface *surfs, int n, const rg2_mesh *m
     if (!(o->fov > 1.0 && o->fov < 170.0))
         return rg2__fail(err, RG2_EINVAL, "render: field of view %s outside (1, 170) degrees",
                          rg2__num(o->fov).s);
-    if (!isfinite(o->azimuth) || !isfinite(o->elevation) || !isfinite(o->distance))
-        return rg2__fail(err, RG2_ENONFINITE, "render: non-finite view (azimuth, elevation or distance)");
+    const double view[3] = {o->azimuth, o->elevation, o->distance};
+    static const char *const view_name[3] = {"azimuth", "elevation", "distance"};
+    for (int k = 0; k < 3; k++) /* (it named all three: "azimuth, elevation or distance") */
+        if (!isfinite(view[k]))
+            return rg2__fail(err, RG2_ENONFINITE, "render: %s %s is not a finite number", view_name[k],
+                             rg2__num(view[k]).s);
     if (!(o->elevation >= -90.0 && o->elevation <= 90.0))
         return rg2__fail(err, RG2_EINVAL, "render: elevation %s outside [-90, 90] degrees",
                          rg2__num(o->elevation).s);
