@@ -356,7 +356,15 @@ static int scalars_differ(const rg2_scalars *a, const rg2_scalars *b, char *msg,
     }
     for (int i = 0; i < nw; i++)
         if (!close_rel(a->w[i], b->w[i], tol)) {
-            snprintf(msg, cap, "leg weight w[%d] = %s vs %s%s", i - off, rg2__num(a->w[i]).s, rg2__num(b->w[i]).s,
+            /* circle legs: an arc of opening angle t has w = (1 + 2 cos(t / 2)) / 3; name the arcs, which
+             * the designer wrote (it gave only the weights) */
+            char arcs[96] = "";
+            double ca = (3.0 * a->w[i] - 1.0) / 2.0, cb = (3.0 * b->w[i] - 1.0) / 2.0;
+            if (!ones_a && !ones_b && ca > -1.0 && ca < 1.0 && cb > -1.0 && cb < 1.0)
+                snprintf(arcs, sizeof arcs, " (as circle arcs: %.6g vs %.6g degrees)", 2.0 * acos(ca) * 180.0 / M_PI,
+                         2.0 * acos(cb) * 180.0 / M_PI);
+            snprintf(msg, cap, "leg weight w[%d] = %s vs %s%s%s", i - off, rg2__num(a->w[i]).s, rg2__num(b->w[i]).s,
+                     arcs,
                      ones_a != ones_b ? " (one has all its leg weights 1, like a polynomial direction (knots or "
                                         "a NURBS), the other not, like a circle direction or an edited one: a "
                                         "circle merges only with a circle of the same arcs)"
