@@ -1249,7 +1249,10 @@ static rg2_status parse_text(const char *json, size_t len, const char *name, cJS
             return rg2__fail(err, RG2_ELIMIT, "%s:%d:%d: arrays and objects nested more than %d deep", name, line,
                              col, CJSON_NESTING_LIMIT);
         }
-        if (!k && off < len) { /* at the end of a line (it said "at the end of the text"): what precedes */
+        size_t ws = 0; /* (only blanks or a CR before the line's end: a CRLF file, trailing spaces) */
+        while (ws < k && (near[ws] == ' ' || near[ws] == '\t' || near[ws] == '\r'))
+            ws++;
+        if (ws == k && off + k < len && buf[off + k] == '\n') { /* at the end of a line (it said "at the end of the text"): what precedes */
             size_t b = off;
             while (b > 0 && off - b < sizeof near - 1 && buf[b - 1] != '\n')
                 b--;
