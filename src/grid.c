@@ -1959,7 +1959,7 @@ static void set_stores(tables *t, size_t pts)
     t->spread = t->order == 1 && rg2__grid_spread;
 }
 
-static rg2_status check_args(int n, int m, const rg2_grid_out *out, rg2_error *err)
+rg2_status rg2__grid_check_args(int n, int m, const rg2_grid_out *out, rg2_error *err)
 {
     if (!out)
         return rg2__fail(err, RG2_EINVAL, "grid: no output arrays (out is NULL)");
@@ -1975,7 +1975,7 @@ static rg2_status check_args(int n, int m, const rg2_grid_out *out, rg2_error *e
 
 rg2_status rg2_patch_grid(const rg2_patch *P, int n, int m, const rg2_grid_out *out, rg2_error *err)
 {
-    rg2_status st = check_args(n, m, out, err);
+    rg2_status st = rg2__grid_check_args(n, m, out, err);
     if (st)
         return st;
     if (!P)
@@ -1994,7 +1994,7 @@ rg2_status rg2_patch_grid(const rg2_patch *P, int n, int m, const rg2_grid_out *
 rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads, const rg2_grid_out *out,
                             rg2_error *err)
 {
-    rg2_status st = check_args(n, m, out, err);
+    rg2_status st = rg2__grid_check_args(n, m, out, err);
     if (st)
         return st;
     if (!s || !s->patch || s->nu < 1 || s->nv < 1)

@@ -362,6 +362,9 @@ static inline int rg2__pole_suspect(double u, double v, const double su[3], cons
     return E < 1e-16 * G || G < 1e-16 * E;
 }
 int rg2__xpatch_pole_at(const rg2_xpatch *X, double u, double v);
+/* The grid calls' argument checks (grid.c: out, out->pos, n and m), shared with
+ * rg2__surface_patch_grid. */
+rg2_status rg2__grid_check_args(int n, int m, const rg2_grid_out *out, rg2_error *err);
 static inline void rg2__eval_undefine(rg2_eval *e)
 {
     e->flags |= RG2_EVAL_NORMAL_UNDEFINED | RG2_EVAL_CURVATURE_UNDEFINED;

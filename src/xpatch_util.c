@@ -103,16 +103,18 @@ rg2_status rg2__surface_patch_grid(const rg2_surface *s, int i, int j, int n, in
     const rg2_xpatch *x = rg2_surface_xpatch(s, i, j);
     if (!x)
         return rg2_patch_grid(rg2_surface_patch(s, i, j), n, m, out, err);
-    if (!out || !out->pos || n < 2 || m < 2 || n > RG2_GRID_MAX || m > RG2_GRID_MAX)
-        return rg2__fail(err, n > RG2_GRID_MAX || m > RG2_GRID_MAX ? RG2_ELIMIT : RG2_EINVAL,
-                         "grid: patch (%d, %d) of degree (%d, %d): %d x %d points, or no position array", i, j,
-                         x->du, x->dv, n, m);
+    rg2_status st = rg2__grid_check_args(n, m, out, err);
+    if (st) { /* (rg2_patch_grid's message, naming the patch: it said "%d x %d points, or no position array") */
+        rg2_error e = *err;
+        return rg2__fail(err, st, "grid: patch (%d, %d) of degree (%d, %d): %s", i, j, x->du, x->dv,
+                         rg2__after(e.msg, "grid: "));
+    }
     /* a one-patch view of the higher-degree patch for the tables */
     rg2_surface one = {0};
     one.nu = one.nv = 1;
     one.xp = (rg2_xpatch *)x;
     rg2__xgrid t;
-    rg2_status st = rg2__xgrid_make(&one, n, m, out, &t, err);
+    st = rg2__xgrid_make(&one, n, m, out, &t, err);
     if (st)
         return st;
     rg2__xgrid_patch(x, &t, out, 0);
@@ -124,8 +126,10 @@ rg2_status rg2__surface_patch_grid(const rg2_surface *s, int i, int j, int n, in
 rg2_status rg2_surface_patch_grid(const rg2_surface *s, int i, int j, int n, int m, const rg2_grid_out *out,
                                   rg2_error *err)
 {
-    if (!s || !s->patch || i < 0 || j < 0 || i >= s->nu || j >= s->nv)
+    if (!s)
+        return rg2__fail(err, RG2_EINVAL, "grid: no surface (s is NULL)");
+    if (!s->patch || i < 0 || j < 0 || i >= s->nu || j >= s->nv)
         return rg2__fail(err, RG2_EINVAL, "grid: patch (%d, %d) is not a patch of the surface (%d x %d patches)", i, j,
-                         s ? s->nu : 0, s ? s->nv : 0);
+                         s->nu, s->nv);
     return rg2__surface_patch_grid(s, i, j, n, m, out, err);
 }

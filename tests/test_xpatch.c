@@ -376,6 +376,17 @@ static void surface_grids(void)
               "%d x %d grid%s on a higher-degree patch: %s", refused[k][0], refused[k][1],
               k < 4 ? "" : " without positions", err.msg);
     }
+    /* the cause named, as rg2_patch_grid names it (it said "4 x 4 points, or no position array" for
+     * both), and a NULL surface named as such (it said "(0 x 0 patches)") */
+    static const char *const named[3] = {"grid: patch (0, 0) of degree (4, 3): no output arrays (out is NULL)",
+                                         "grid: patch (0, 0) of degree (4, 3): the position array (out->pos) is NULL",
+                                         "grid: no surface (s is NULL)"};
+    rg2_grid_out no_pos = {.normal = p1};
+    for (int k = 0; k < 3; k++)
+        CHECK((k < 2 ? rg2_surface_patch_grid(&x, 0, 0, 4, 4, k ? &no_pos : NULL, &err)
+                     : rg2_surface_patch_grid(NULL, 0, 0, 4, 4, &bad, &err)) == RG2_EINVAL &&
+                  !strcmp(err.msg, named[k]),
+              "want '%s': %s", named[k], err.msg);
     /* the public call refuses a patch outside the surface, naming it and the surface's patches */
     static const int outside[4][2] = {{-1, 0}, {0, -1}, {6, 0}, {0, 7}};
     for (int k = 0; k < 4; k++) {
