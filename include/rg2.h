@@ -446,9 +446,10 @@ RG2_API rg2_status rg2_xpatch_elevate(const rg2_xpatch *X, int du, int dv, rg2_x
 /* ===================================================================================== */
 
 enum {
-    RG2_EVAL_NORMAL_UNDEFINED = 1u << 0,    /**< Su x Sv vanishes (collapsed edge, pole; every point of
-                                                 a side whose affine control points agree to 1e-11
-                                                 of the patch's control box, where the derivative
+    RG2_EVAL_NORMAL_UNDEFINED = 1u << 0,    /**< Su x Sv vanishes (collapsed edge, pole; also every
+                                                 point of a side whose affine control points agree
+                                                 to 1e-11 of the patch's control box and where
+                                                 |Su x Sv| <= 1e-6 (|Su|^2 + |Sv|^2): the derivative
                                                  along the side is the noise of the stored points) */
     RG2_EVAL_CURVATURE_UNDEFINED = 1u << 1, /**< normal undefined: K, H, k1, k2 are 0 */
     RG2_EVAL_WEIGHT_NONPOSITIVE = 1u << 2   /**< denominator <= 0 at this point */

@@ -63,12 +63,9 @@ void rg2_patch_eval(const rg2_patch *P, double u, double v, int order, rg2_eval 
     double H[6][4];
     eval_h(P, u, v, order, H);
     rg2__eval_from_h(H, order, e);
-    if (order >= 1 && !(e->flags & RG2_EVAL_NORMAL_UNDEFINED) && rg2__pole_suspect(u, v, e->su, e->sv)) {
-        rg2_xpatch X;
-        rg2_xpatch_from_patch(P, &X);
-        if (rg2__xpatch_pole_at(&X, u, v))
-            rg2__eval_undefine(e);
-    }
+    if (order >= 1 && !(e->flags & RG2_EVAL_NORMAL_UNDEFINED) && rg2__pole_suspect(u, v, e->su, e->sv) &&
+        rg2__patch_pole_at(P, u, v))
+        rg2__eval_undefine(e);
 }
 
 /* Position, derivatives, normal and curvatures from the homogeneous values (quotient rule). */

@@ -343,24 +343,48 @@ static inline int rg2__normal_test(const double su[3], const double sv[3], doubl
     double E = su[0] * su[0] + su[1] * su[1] + su[2] * su[2], G = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2];
     return *len > 1e-14 * (E + G) && !(sqrt(E) <= 1e-13 * ru) && !(sqrt(G) <= 1e-13 * rv);
 }
+/* rg2__normal_test, returning 2 instead of 1 where the tangents are weak (rg2__tangents_weak, below:
+ * |c| <= 1e-6 (|su|^2 + |sv|^2)), from the sums it has formed anyway. */
+static inline int rg2__normal_test_weak(const double su[3], const double sv[3], double ru, double rv, double c[3],
+                                        double *len)
+{
+    c[0] = su[1] * sv[2] - su[2] * sv[1];
+    c[1] = su[2] * sv[0] - su[0] * sv[2];
+    c[2] = su[0] * sv[1] - su[1] * sv[0];
+    *len = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    double E = su[0] * su[0] + su[1] * su[1] + su[2] * su[2], G = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2];
+    if (!(*len > 1e-14 * (E + G) && !(sqrt(E) <= 1e-13 * ru) && !(sqrt(G) <= 1e-13 * rv)))
+        return 0;
+    return __builtin_expect(*len <= 1e-6 * (E + G), 0) ? 2 : 1;
+}
 
 /* On a side of a patch that collapses to a point (a pole) the derivative along the side is the
  * noise of the side's stored control points, which are equal only projectively (up to about
  * 1e-12 of the size after the construction's rounding), not of the evaluation: the rounding
  * levels of rg2__normal_test do not see it, and it can pass (Fig. 14's second sphere, patch
- * (5, 0) at u = 63/128, v = 0: a normal 77 degrees off and K = -1.5e29). rg2__pole_suspect is
- * the cheap trigger, a point on a side (u or v exactly 0 or 1) where one tangent is below 1e-8 of
- * the other; rg2__xpatch_pole_at (xpatch_util.c) then tests the sides the point is on as the
+ * (5, 0) at u = 63/128, v = 0: a normal 77 degrees off and K = -1.5e29). The cheap trigger is a
+ * point on a side (u or v exactly 0 or 1, rg2__on_side) whose tangents span almost no area,
+ * |su x sv| <= 1e-6 (|su|^2 + |sv|^2) (rg2__tangents_weak: at the poles one tangent is about
+ * 1e-13 of the other; at ordinary points the ratio is half the sine of their angle); then
+ * rg2__xpatch_pole_at / rg2__patch_pole_at (xpatch_util.c) test the sides the point is on as the
  * exporters, the tessellation and the grid do (rg2__xpatch_side_collapsed with rg2__collapse_tol
  * over the patch alone), and rg2__eval_undefine makes the normal and the curvatures undefined
  * there, as rg2.h promises for poles. */
+static inline int rg2__on_side(double u, double v)
+{
+    return u == 0.0 || u == 1.0 || v == 0.0 || v == 1.0;
+}
+static inline int rg2__tangents_weak(const double su[3], const double sv[3])
+{
+    double c0 = su[1] * sv[2] - su[2] * sv[1], c1 = su[2] * sv[0] - su[0] * sv[2], c2 = su[0] * sv[1] - su[1] * sv[0];
+    double E = su[0] * su[0] + su[1] * su[1] + su[2] * su[2], G = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2];
+    return sqrt(c0 * c0 + c1 * c1 + c2 * c2) <= 1e-6 * (E + G);
+}
 static inline int rg2__pole_suspect(double u, double v, const double su[3], const double sv[3])
 {
-    if (!(u == 0.0 || u == 1.0 || v == 0.0 || v == 1.0))
-        return 0;
-    double E = su[0] * su[0] + su[1] * su[1] + su[2] * su[2], G = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2];
-    return E < 1e-16 * G || G < 1e-16 * E;
+    return rg2__on_side(u, v) && rg2__tangents_weak(su, sv);
 }
+int rg2__patch_pole_at(const rg2_patch *P, double u, double v);
 int rg2__xpatch_pole_at(const rg2_xpatch *X, double u, double v);
 /* The grid calls' argument checks (grid.c: out, out->pos, n and m), shared with
  * rg2__surface_patch_grid. */

@@ -74,6 +74,13 @@ int rg2__xpatch_pole_at(const rg2_xpatch *X, double u, double v)
     return 0;
 }
 
+__attribute__((noinline)) int rg2__patch_pole_at(const rg2_patch *P, double u, double v)
+{
+    rg2_xpatch X; /* (about 1 KB: out of line, off the per-point evaluators' stack) */
+    rg2_xpatch_from_patch(P, &X);
+    return rg2__xpatch_pole_at(&X, u, v);
+}
+
 int rg2__surface_side_collapsed(const rg2_surface *s, int i, int j, int side, double tol)
 {
     const rg2_xpatch *x = rg2_surface_xpatch(s, i, j);

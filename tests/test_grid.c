@@ -718,7 +718,7 @@ static int side_collapsed(const rg2_xpatch *X, int side)
  * at every grid point on a collapsed side the normal is 0 and K = H = 0 (rg2.h), in the grid,
  * rg2_surface_eval and rg2_patch_point_normal. The side's control points are equal only
  * projectively there, and the rounding-level test alone let 10 points of Fig. 14's second sphere
- * (u = 63/128: a normal 77 degrees off, K = -1.5e29) and 24 of Fig. 15's second surface (u = 1/2,
+ * (u = 63/128: a normal 77 degrees off, K = -1.5e29) and 8 of Fig. 15's second surface (u = 1/2,
  * every odd grid size) through. */
 static void design_poles(void)
 {
