@@ -774,6 +774,37 @@ static void design_poles(void)
     }
 }
 
+/* A flat wedge whose side v = 0 is collapsed to 4e-12 (the tolerance is 1e-11 of its box, 1.4e-11)
+ * with a height h of 1e-4: the side's tangent is 5.9e-8 of the other, which the first trigger of
+ * the pole test (a ratio below 1e-8) missed (normal defined, K = -1.3e21). Every evaluator gives
+ * the undefined normal at (1/2, 0). */
+static void flat_wedge_pole(void)
+{
+    rg2_patch P;
+    memset(&P, 0, sizeof P);
+    const double h = 1e-4;
+    for (int r = 0; r < 4; r++)
+        for (int t = 0; t < 4; t++) {
+            double x = r / 3.0 - 0.5, y = t / 3.0;
+            double *q = P.h[r][t];
+            q[0] = t == 0 ? (r == 1 ? 4e-12 : r == 2 ? -4e-12 : 0.0) : t == 3 ? x : x * y;
+            q[1] = t == 0 ? 0.0 : h * y;
+            q[2] = t == 0 ? 0.0 : (r * 7 + t * 3) % 5 * 0.1 * h * y;
+            q[3] = 1.0;
+        }
+    rg2_eval e;
+    rg2_patch_eval(&P, 0.5, 0.0, 2, &e);
+    double p[3], n[3], pg[27], ng[27], K[9];
+    unsigned fl = rg2_patch_point_normal(&P, 0.5, 0.0, p, n);
+    rg2_grid_out o = {.pos = pg, .normal = ng, .K = K};
+    rg2_error err;
+    CHECK_OK(rg2_patch_grid(&P, 3, 3, &o, &err), &err);
+    CHECK(e.flags & RG2_EVAL_NORMAL_UNDEFINED && e.K == 0.0 && fl & RG2_EVAL_NORMAL_UNDEFINED && norm3(n) == 0.0 &&
+              norm3(ng + 3 * 3) == 0.0 && K[3] == 0.0,
+          "flat wedge pole: eval flags %u K %.3g, point flags %u, grid normal %.3g K %.3g", e.flags, e.K, fl,
+          norm3(ng + 3 * 3), K[3]);
+}
+
 int main(void)
 {
     tables_cache();
@@ -792,6 +823,7 @@ int main(void)
         normal_test_bound();
         capped_poles();
         design_poles();
+        flat_wedge_pole();
         torus();
         large_output();
         narrow_patches();
