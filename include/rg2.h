@@ -861,7 +861,8 @@ RG2_API rg2_status rg2_mesh_mobius(rg2_mesh *m, const double center[3], double r
  *  antipodal). Every 4-tuple p becomes X M X^-1 p, X the reference's placement times
  *  diag(radius) or diag(a, b, c). On failure m is unchanged.
  *  @return RG2_EINVAL for an empty mesh, both or neither of b and the poles, one pole NULL, or a
- *  reference of another kind; RG2_ENONFINITE for a non-finite b or pole coordinate; RG2_EDOMAIN
+ *  reference of another kind; RG2_ENONFINITE for a non-finite b, pole coordinate, or entry of
+ *  ref's placement or parameters; RG2_EDOMAIN
  *  for a pole off the reference (naming the nearest point on it), poles that coincide or a
  *  singular placement; RG2_EWEIGHT if a resulting weight is not > 0 (naming the control point);
  *  RG2_ENOMEM. */

@@ -298,6 +298,14 @@ rg2_status rg2_mesh_mobius_shape(rg2_mesh *m, const rg2_shape *ref, const double
             if (!rg2__finite((e ? north : south)[k]))
                 return rg2__fail(err, RG2_ENONFINITE, "%s.%s: coordinate %d is not finite", what,
                                  e ? "north" : "south", k);
+    if (ref) { /* (a NaN here was named as an entry of the product placement x scale) */
+        for (int k = 0; k < 16; k++)
+            if (!rg2__finite(ref->xform[k]))
+                return rg2__fail(err, RG2_ENONFINITE, "%s.ref: placement entry %d is not finite", what, k);
+        for (int k = 0; k < 3; k++)
+            if (!rg2__finite(ref->param[k]))
+                return rg2__fail(err, RG2_ENONFINITE, "%s.ref: parameter %d is not finite", what, k);
+    }
     double A[16];
     rg2_status st = rg2__mobius_world(ref, NULL, b, south, north, A, what, "ref", "", err);
     if (st)

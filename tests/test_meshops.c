@@ -787,6 +787,15 @@ static void mobius(void)
           "a map through infinity: the mesh changed");
     rg2_mesh_free(&t);
     rg2_mesh_free(&tkeep);
+    rg2_shape nanball = *ball; /* (it named an entry of the product placement x scale) */
+    nanball.param[0] = NAN;
+    expect_err(rg2_mesh_mobius_shape(&m, &nanball, &bb, NULL, NULL, &err), RG2_ENONFINITE, &err,
+               "rg2_mesh_mobius_shape.ref: parameter 0 is not finite", "NaN radius");
+    nanball = *ball;
+    nanball.xform[3] = NAN;
+    expect_err(rg2_mesh_mobius_shape(&m, &nanball, &bb, NULL, NULL, &err), RG2_ENONFINITE, &err,
+               "rg2_mesh_mobius_shape.ref: placement entry 3 is not finite", "NaN placement");
+    CHECK(!memcmp(m.p, keep.p, (size_t)m.nu * (size_t)m.nv * 4 * sizeof(double)), "NaN reference: the mesh changed");
     rg2_mesh empty = {0};
     expect_err(rg2_mesh_mobius_shape(&empty, ball, &bb, NULL, NULL, &err), RG2_EINVAL, &err,
                "rg2_mesh_mobius_shape: empty mesh", "rg2_mesh_mobius_shape of an empty mesh");
