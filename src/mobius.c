@@ -284,6 +284,9 @@ rg2_status rg2_mesh_mobius_shape(rg2_mesh *m, const rg2_shape *ref, const double
                                  const double north[3], rg2_error *err)
 {
     static const char what[] = "rg2_mesh_mobius_shape";
+    rg2_error local; /* (rg2__mobius_world reads back the messages it prefixes) */
+    if (!err)
+        err = &local;
     if (!m || !m->p || m->nu < 1 || m->nv < 1)
         return rg2__fail(err, RG2_EINVAL, "%s: empty mesh", what);
     if (!b == !(south || north))

@@ -111,6 +111,8 @@ rg2_status rg2__surface_patch_grid(const rg2_surface *s, int i, int j, int n, in
     if (!x)
         return rg2_patch_grid(rg2_surface_patch(s, i, j), n, m, out, err);
     rg2_status st = rg2__grid_check_args(n, m, out, err);
+    if (st && !err) /* (the tessellation and the renderer pass no err) */
+        return st;
     if (st) { /* (rg2_patch_grid's message, naming the patch: it said "%d x %d points, or no position array") */
         rg2_error e = *err;
         return rg2__fail(err, st, "grid: patch (%d, %d) of degree (%d, %d): %s", i, j, x->du, x->dv,

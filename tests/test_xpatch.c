@@ -387,6 +387,9 @@ static void surface_grids(void)
                      : rg2_surface_patch_grid(NULL, 0, 0, 4, 4, &bad, &err)) == RG2_EINVAL &&
                   !strcmp(err.msg, named[k]),
               "want '%s': %s", named[k], err.msg);
+    /* without an error report (as the tessellation and the renderer call it): the status alone (it
+     * read the report it had not written) */
+    CHECK(rg2_surface_patch_grid(&x, 0, 0, 1, 4, &bad, NULL) == RG2_EINVAL, "1 x 4 grid, no error report");
     /* the public call refuses a patch outside the surface, naming it and the surface's patches */
     static const int outside[4][2] = {{-1, 0}, {0, -1}, {6, 0}, {0, 7}};
     for (int k = 0; k < 4; k++) {
