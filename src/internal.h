@@ -333,15 +333,12 @@ static inline double rg2__scale_pair(double a[3], double b[3])
  * derivative is at the level of its own rounding error, |su| > 1e-13 ru and |sv| > 1e-13 rv
  * (a pole with a short transversal derivative would pass the first test). su, sv may carry a
  * common positive factor (w, or rg2__scale_pair's) if ru, rv carry it too. */
+static inline int rg2__normal_test_weak(const double su[3], const double sv[3], double ru, double rv, double c[3],
+                                        double *len);
 static inline int rg2__normal_test(const double su[3], const double sv[3], double ru, double rv, double c[3],
                                    double *len)
 {
-    c[0] = su[1] * sv[2] - su[2] * sv[1];
-    c[1] = su[2] * sv[0] - su[0] * sv[2];
-    c[2] = su[0] * sv[1] - su[1] * sv[0];
-    *len = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-    double E = su[0] * su[0] + su[1] * su[1] + su[2] * su[2], G = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2];
-    return *len > 1e-14 * (E + G) && !(sqrt(E) <= 1e-13 * ru) && !(sqrt(G) <= 1e-13 * rv);
+    return rg2__normal_test_weak(su, sv, ru, rv, c, len) != 0;
 }
 /* rg2__normal_test, returning 2 instead of 1 where the tangents are weak (rg2__tangents_weak, below:
  * |c| <= 1e-6 (|su|^2 + |sv|^2)), from the sums it has formed anyway. */
