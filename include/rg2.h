@@ -452,7 +452,10 @@ enum {
                                                  |Su x Sv| <= 1e-6 (|Su|^2 + |Sv|^2): the derivative
                                                  along the side is the noise of the stored points) */
     RG2_EVAL_CURVATURE_UNDEFINED = 1u << 1, /**< normal undefined: K, H, k1, k2 are 0 */
-    RG2_EVAL_WEIGHT_NONPOSITIVE = 1u << 2   /**< denominator <= 0 at this point */
+    RG2_EVAL_WEIGHT_NONPOSITIVE = 1u << 2,  /**< denominator <= 0 at this point */
+    RG2_EVAL_POLE_LIMIT = 1u << 3           /**< rg2_surface_eval_limit only: the point is on a
+                                                 collapsed side (a pole), n is the limit normal and
+                                                 K, H, k1, k2 are taken next to the pole */
 };
 
 /** Point data of a surface evaluation. Curvature sign: n = Su x Sv / |Su x Sv|, second
@@ -480,6 +483,17 @@ RG2_API void rg2_surface_eval(const rg2_surface *s, int i, int j, double u, doub
                               rg2_eval *out);
 RG2_API void rg2_surface_eval_h(const rg2_surface *s, int i, int j, double u, double v,
                                 double out[6][4]);
+/** rg2_surface_eval, except on a side of the patch that collapses to one point (a pole; the
+ *  side's control points agree to 1e-11 of the patch's control box), where the normal is
+ *  undefined: there n is the limit of the normals as the point approaches the pole (for a
+ *  side v = 0, Suv x Sv normalised, oriented as the normals next to it), K, H, k1 and k2
+ *  (order 2) are those 3e-5 inside the patch, and flags has RG2_EVAL_POLE_LIMIT instead of
+ *  RG2_EVAL_NORMAL_UNDEFINED and RG2_EVAL_CURVATURE_UNDEFINED. These are the normals and
+ *  curvatures that rg2_tessellate gives its pole vertices, for a viewer's shading or picking.
+ *  Where the limit is undefined too (Suv x Sv = 0), n is the normal 3e-5 inside. Elsewhere
+ *  the same bits as rg2_surface_eval. docs/poles.md. */
+RG2_API void rg2_surface_eval_limit(const rg2_surface *s, int i, int j, double u, double v, int order,
+                                    rg2_eval *out);
 /** Normal curvature in the tangent direction t = a su + c sv of an order-2 evaluation (with
  *  the sign of its normal n); 0 when t is the zero vector (a = c = 0, for one). */
 RG2_API double rg2_eval_normal_curvature(const rg2_eval *e, double a, double c);

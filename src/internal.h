@@ -383,6 +383,14 @@ static inline int rg2__pole_suspect(double u, double v, const double su[3], cons
 }
 int rg2__patch_pole_at(const rg2_patch *P, double u, double v);
 int rg2__xpatch_pole_at(const rg2_xpatch *X, double u, double v);
+/* The sides (bit k: 0 v=0, 1 u=1, 2 v=1, 3 u=0) that (u, v) lies on and that collapse, tested as
+ * rg2__xpatch_pole_at does. */
+unsigned rg2__xpatch_pole_sides(const rg2_xpatch *X, double u, double v);
+/* The limit normal and the curvatures next to the pole on collapsed side `side` of patch (i, j)
+ * (limit.c), into e, an order-2 evaluation at (u, v) on that side: n, K, H, k1, k2 (curvatures of
+ * `order` 1 or 2) and flags (RG2_EVAL_POLE_LIMIT set). The tessellation's and
+ * rg2_surface_eval_limit's. */
+void rg2__pole_limit(const rg2_surface *s, int i, int j, double u, double v, int side, int order, rg2_eval *e);
 /* The grid calls' argument checks (grid.c: out, out->pos, n and m), shared with
  * rg2__surface_patch_grid. */
 rg2_status rg2__grid_check_args(int n, int m, const rg2_grid_out *out, rg2_error *err);

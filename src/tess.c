@@ -20,61 +20,6 @@ void rg2_tess_free(rg2_tess *t)
     memset(t, 0, sizeof *t);
 }
 
-static void normalize3(double v[3])
-{
-    double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (l > 0.0)
-        for (int k = 0; k < 3; k++)
-            v[k] /= l;
-}
-
-static void cross3(const double a[3], const double b[3], double c[3])
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-/*
- * Normal and curvatures on a collapsed side (0 v=0, 1 u=1, 2 v=1, 3 u=0), where Su x Sv
- * vanishes (up to rounding noise, so the evaluator's flag cannot be trusted). METHOD: on a side v = 0
- * that collapses, Su(u, v) = v Suv(u, 0) + O(v^2), so Su x Sv / v -> Suv x Sv: the limit normal
- * is Suv x Sv normalised (the sign flips on v = 1, and u = 0 / 1 use Su x Suv likewise). The
- * curvatures there are taken EPS inside the patch (they have no value on a collapsed side): the
- * rounding error of curvatures next to a pole grows as about 1e-14 / eps^2 (docs/poles.md) and
- * the step's own error as eps, so eps = 3e-5 balances them near 1e-5 (1e-6 gave K = 1.055
- * instead of 1 at the poles of the unit sphere; 3e-5 gives 1 to 1e-4, tests/test_tess.c).
- */
-#define POLE_STEP 3e-5
-static void degenerate_point(const rg2_surface *s, int i, int j, double u, double v, int side, int curvature,
-                             rg2_eval *e)
-{
-    double n[3] = {0, 0, 0};
-    if (side == 0 || side == 2) {
-        cross3(e->suv, e->sv, n);
-        if (side == 2)
-            for (int k = 0; k < 3; k++)
-                n[k] = -n[k];
-    } else {
-        cross3(e->su, e->suv, n);
-        if (side == 1)
-            for (int k = 0; k < 3; k++)
-                n[k] = -n[k];
-    }
-    rg2_eval in;
-    double du = u < 0.5 ? POLE_STEP : -POLE_STEP, dv = v < 0.5 ? POLE_STEP : -POLE_STEP;
-    rg2_surface_eval(s, i, j, u + du, v + dv, curvature ? 2 : 1, &in);
-    double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    if (l > 0.0 && n[0] * in.n[0] + n[1] * in.n[1] + n[2] * in.n[2] > 0.0) {
-        normalize3(n);
-        memcpy(e->n, n, sizeof n);
-    } else {
-        memcpy(e->n, in.n, sizeof in.n);
-    }
-    e->K = in.K;
-    e->H = in.H;
-}
-
 /*
  * Per-patch sampling of patch (i, j) of s (bi-3 or of higher degree): (d + 1)^2 points at
  * u = a / d, v = b / d, point a * (d + 1) + b of the arrays at `scratch`: positions (3 per
@@ -82,7 +27,7 @@ static void degenerate_point(const rg2_surface *s, int i, int j, double u, doubl
  * `collapsed` has bit k set when side k (0 v=0, 1 u=1, 2 v=1, 3 u=0) is collapsed. This is the
  * only place that evaluates the surface: the grid evaluator (rg2_patch_grid, grid.c; the
  * separable higher-degree grid of xpatch.c for a higher-degree patch) for every point, then the
- * points on collapsed sides again by rg2_surface_eval and degenerate_point. Returns non-zero on
+ * points on collapsed sides again by rg2_surface_eval and rg2__pole_limit (limit.c). Returns non-zero on
  * failure.
  */
 static int sample_patch(const rg2_surface *s, int i, int j, int d, int curvature, unsigned collapsed,
@@ -115,7 +60,7 @@ static int sample_patch(const rg2_surface *s, int i, int j, int d, int curvature
                 continue;
             rg2_eval e;
             rg2_surface_eval(s, i, j, u, v, 2, &e);
-            degenerate_point(s, i, j, u, v, side, curvature, &e);
+            rg2__pole_limit(s, i, j, u, v, side, curvature ? 2 : 1, &e);
             size_t k = (size_t)a * (size_t)(d + 1) + (size_t)b;
             memcpy(go.pos + 3 * k, e.p, sizeof e.p);
             memcpy(go.normal + 3 * k, e.n, sizeof e.n);

@@ -59,7 +59,7 @@ int rg2__xpatch_side_collapsed(const rg2_xpatch *X, int side, double tol)
     return 1;
 }
 
-int rg2__xpatch_pole_at(const rg2_xpatch *X, double u, double v)
+unsigned rg2__xpatch_pole_sides(const rg2_xpatch *X, double u, double v)
 {
     unsigned on = (unsigned)(v == 0.0) | (unsigned)(u == 1.0) << 1 | (unsigned)(v == 1.0) << 2 | (unsigned)(u == 0.0) << 3;
     if (!on)
@@ -68,10 +68,16 @@ int rg2__xpatch_pole_at(const rg2_xpatch *X, double u, double v)
     one.nu = one.nv = 1;
     one.xp = (rg2_xpatch *)X;
     double tol = rg2__collapse_tol(&one);
+    unsigned sides = 0;
     for (int side = 0; side < 4; side++)
         if (on >> side & 1 && rg2__xpatch_side_collapsed(X, side, tol))
-            return 1;
-    return 0;
+            sides |= 1u << side;
+    return sides;
+}
+
+int rg2__xpatch_pole_at(const rg2_xpatch *X, double u, double v)
+{
+    return rg2__xpatch_pole_sides(X, u, v) != 0;
 }
 
 __attribute__((noinline)) int rg2__patch_pole_at(const rg2_patch *P, double u, double v)

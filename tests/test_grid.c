@@ -5,6 +5,7 @@
 #include "harness.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
@@ -720,6 +721,34 @@ static int side_collapsed(const rg2_xpatch *X, int side)
  * projectively there, and the rounding-level test alone let 10 points of Fig. 14's second sphere
  * (u = 63/128: a normal 77 degrees off, K = -1.5e29) and 8 of Fig. 15's second surface (u = 1/2,
  * every odd grid size) through. */
+/* rg2_surface_eval_limit at (u, v) on collapsed side `side` of patch (i, j): the limit normal
+ * against one extrapolated from two normals of rg2_surface_eval inside, at distances h and 2h
+ * from the side (n(0) = 2 n(h) - n(2h) + O(h^2); their rounding grows like 1e-14 / h), and K, H
+ * against those at h (the curvatures converge linearly, docs/poles.md). Returns the angle, and
+ * the curvatures' difference relative to max(|K(h)|, 1) and max(|H(h)|, 1) in *dk. */
+static double limit_at_pole(const rg2_surface *s, int i, int j, double u, double v, int side, double *dk,
+                            unsigned *flags)
+{
+    rg2_eval e, a, b;
+    rg2_surface_eval_limit(s, i, j, u, v, 2, &e);
+    *flags = e.flags;
+    const double h = 1e-4;
+    double du = side == 1 ? -h : side == 3 ? h : 0.0, dv = side == 0 ? h : side == 2 ? -h : 0.0;
+    rg2_surface_eval(s, i, j, u + du, v + dv, 2, &a);
+    rg2_surface_eval(s, i, j, u + 2 * du, v + 2 * dv, 2, &b);
+    double x[3], c[3];
+    for (int k = 0; k < 3; k++)
+        x[k] = 2 * a.n[k] - b.n[k];
+    double l = norm3(x);
+    for (int k = 0; k < 3; k++)
+        x[k] /= l;
+    c[0] = e.n[1] * x[2] - e.n[2] * x[1];
+    c[1] = e.n[2] * x[0] - e.n[0] * x[2];
+    c[2] = e.n[0] * x[1] - e.n[1] * x[0];
+    *dk = fmax(fabs(e.K - a.K) / fmax(fabs(a.K), 1.0), fabs(e.H - a.H) / fmax(fabs(a.H), 1.0));
+    return atan2(norm3(c), e.n[0] * x[0] + e.n[1] * x[1] + e.n[2] * x[2]);
+}
+
 static void design_poles(void)
 {
     static const char *const files[] = {"examples/fig14_mobius.json", "examples/fig15_saddle_caps.json"};
@@ -730,7 +759,8 @@ static void design_poles(void)
         CHECK_OK(rg2_design_load(files[f], &d, &err), &err);
         if (!d)
             continue;
-        int pts = 0, bad_grid = 0, bad_eval = 0, bad_point = 0;
+        int pts = 0, bad_grid = 0, bad_eval = 0, bad_point = 0, bad_limit = 0, same = 0, differ = 0;
+        double worst_ang = 0, worst_k = 0;
         for (int si = 0; si < rg2_design_num_surfaces(d); si++) {
             const rg2_surface *s = rg2_design_surface(d, si);
             size_t np = (size_t)s->nu * s->nv;
@@ -743,6 +773,25 @@ static void design_poles(void)
                 for (size_t k = 0; k < np; k++) {
                     rg2_xpatch X;
                     rg2_surface_patch_get(s, (int)(k / s->nv), (int)(k % s->nv), &X);
+                    /* off the poles, rg2_surface_eval_limit is rg2_surface_eval, bit for bit */
+                    for (int a = 0; z == 0 && a < 5; a++)
+                        for (int b = 0; b < 5; b++) {
+                            double u = a / 4.0, v = b / 4.0;
+                            int on = (b == 0 && side_collapsed(&X, 0)) || (a == 4 && side_collapsed(&X, 1)) ||
+                                     (b == 4 && side_collapsed(&X, 2)) || (a == 0 && side_collapsed(&X, 3));
+                            for (int order = 0; order <= 2; order++) {
+                                rg2_eval e, l;
+                                rg2_surface_eval(s, (int)(k / s->nv), (int)(k % s->nv), u, v, order, &e);
+                                rg2_surface_eval_limit(s, (int)(k / s->nv), (int)(k % s->nv), u, v, order, &l);
+                                if (on && order > 0) /* on a pole: only n, the curvatures and flags differ */
+                                    memcpy(l.n, e.n, sizeof e.n), l.K = e.K, l.H = e.H, l.k1 = e.k1, l.k2 = e.k2,
+                                        l.flags = e.flags;
+                                if (memcmp(&e, &l, offsetof(rg2_eval, flags)) == 0 && e.flags == l.flags)
+                                    same++;
+                                else
+                                    differ++;
+                            }
+                        }
                     for (int side = 0; side < 4; side++) {
                         if (!side_collapsed(&X, side))
                             continue;
@@ -754,6 +803,11 @@ static void design_poles(void)
                             rg2_eval e;
                             rg2_surface_eval(s, (int)(k / s->nv), (int)(k % s->nv), u, v, 2, &e);
                             bad_eval += !(e.flags & RG2_EVAL_NORMAL_UNDEFINED && norm3(e.n) == 0.0 && e.K == 0.0 && e.H == 0.0);
+                            unsigned lf;
+                            double dk, ang = limit_at_pole(s, (int)(k / s->nv), (int)(k % s->nv), u, v, side, &dk, &lf);
+                            bad_limit += lf != RG2_EVAL_POLE_LIMIT;
+                            worst_ang = fmax(worst_ang, ang);
+                            worst_k = fmax(worst_k, dk);
                             if (!(s->xp && s->xp[k].du > 0)) {
                                 double p[3], nn[3];
                                 unsigned fl = rg2_patch_point_normal(&s->patch[k], u, v, p, nn);
@@ -767,6 +821,12 @@ static void design_poles(void)
         }
         printf("%s: %d grid points on collapsed sides; normal or K, H not 0 at %d (grid), %d (rg2_surface_eval), "
                "%d (rg2_patch_point_normal)\n", files[f], pts, bad_grid, bad_eval, bad_point);
+        printf("%s: rg2_surface_eval_limit: flags other than RG2_EVAL_POLE_LIMIT at %d pole points; limit normal vs "
+               "extrapolated %.2g rad, K and H vs 1e-4 inside %.2g; %d of %d evaluations off the poles differ from "
+               "rg2_surface_eval\n", files[f], bad_limit, worst_ang, worst_k, differ, same + differ);
+        CHECK(bad_limit == 0 && worst_ang <= 1e-6 && worst_k <= 1e-2 && differ == 0 && same > 1000,
+              "%s: rg2_surface_eval_limit: flags %d, normal %.3g rad, K and H %.3g, %d of %d differ", files[f], bad_limit,
+              worst_ang, worst_k, differ, same + differ);
         CHECK(pts > 1000 && bad_grid == 0 && bad_eval == 0 && bad_point == 0,
               "%s: %d pole points; normal defined at %d (grid), %d (eval), %d (point)", files[f], pts, bad_grid,
               bad_eval, bad_point);

@@ -412,6 +412,28 @@ static void pole_mesh(int mixed)
         if (hypot(t.pos[3 * v], t.pos[3 * v + 1]) < 1e-9)
             worst = fmin(worst, fabs(t.normal[3 * v + 2]));
     CHECK(fabs(worst - 1.0) <= 1e-12, "pole: pole normal z %.17g, expected +-1", worst);
+    /* rg2_surface_eval_limit gives the pole vertex's normal and curvatures at every u of the fan
+     * (the surface is one of revolution: K, H are the same all round, up to their rounding of
+     * about 1e-14 / 3e-5^2 next to the pole) */
+    int pv = -1;
+    for (int v = 0; v < t.n_vertices && pv < 0; v++)
+        if (hypot(t.pos[3 * v], t.pos[3 * v + 1]) < 1e-9)
+            pv = v;
+    double dn = 0, dK = 0, dH = 0;
+    for (int i = 0; pv >= 0 && i < s.nu; i++)
+        for (int a = 0; a <= 4; a++) {
+            rg2_eval e;
+            rg2_surface_eval_limit(&s, i, 0, a / 4.0, 0.0, 2, &e);
+            CHECK(e.flags == RG2_EVAL_POLE_LIMIT, "pole: eval_limit flags %#x at patch %d, u = %g", e.flags, i, a / 4.0);
+            for (int k = 0; k < 3; k++)
+                dn = fmax(dn, fabs(e.n[k] - t.normal[3 * pv + k]));
+            dK = fmax(dK, fabs(e.K - t.K[pv]) / fabs(t.K[pv]));
+            dH = fmax(dH, fabs(e.H - t.H[pv]) / fabs(t.H[pv]));
+        }
+    CHECK(pv >= 0 && dn <= 1e-12 && dK <= 1e-4 && dH <= 1e-4,
+          "pole: rg2_surface_eval_limit vs the pole vertex: normal %.3g, K %.3g, H %.3g (relative)", dn, dK, dH);
+    printf("pole%s: rg2_surface_eval_limit vs the pole vertex over the fan: normal %.2g, K %.2g, H %.2g (relative)\n",
+           mixed == 2 ? " (all (5,3))" : mixed ? " (mixed degrees)" : "", dn, dK, dH);
     printf("pole%s: %d vertices, %d triangles, no degenerate triangle, pole normal |z| = %.17g\n",
            mixed == 2 ? " (all (5,3))" : mixed ? " (mixed degrees)" : "", t.n_vertices, t.n_triangles, worst);
     if (mixed) {
