@@ -1,6 +1,8 @@
 /* rg2 check -- the continuity and exactness report of a design (rg2_check). */
 #include "cli.h"
 
+#include <cjson/cJSON.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,7 +37,7 @@ int rg2_cli_load_surfaces(const char *cmd, const char *path, rg2_design **d, rg2
 static void usage(FILE *f)
 {
     fprintf(f, "usage: rg2 check design.json [--json] [--require g0|g1|g2|exact|weights[,...]] [--samples N]\n"
-               "                 [--tol KIND=X] [--threads N]\n\n"
+               "                 [--tol KIND=X] [--threads N] [--on SHAPE]\n\n"
                "Measures the built surfaces of a design: patches, exact pieces per shape with their worst\n"
                "implicit residual (|f| / |grad f| / shape size), transitions, the worst G0/G1/G2 gaps over\n"
                "all patch seams (position / size, normal angle in radians, normal-curvature jump relative\n"
@@ -51,6 +53,9 @@ static void usage(FILE *f)
                "                      1e-11); repeatable\n"
                "  --threads N         threads, up to 64 used (default: all cores, or OMP_NUM_THREADS);\n"
                "                      the report does not depend on it\n"
+               "  --on SHAPE          also measure every patch, tagged or not, against the design's\n"
+               "                      shape SHAPE (its name under \"shapes\"): how many lie on it (residual\n"
+               "                      relative to the surface's size <= the exact limit); repeatable\n"
                "Exit codes: 0 ok, 1 invalid design or a failed write of the report, 2 usage error,\n"
                "3 a required promise fails.\n");
 }
@@ -91,10 +96,124 @@ static int parse_require(const char *s, unsigned *req)
     return rc;
 }
 
+#define MAX_ON 16
+
+/* Append line to the malloc'd text *t of length *len. Returns 0, or -1 out of memory. */
+static int append(char **t, size_t *len, const char *line)
+{
+    size_t l = strlen(line);
+    char *g = realloc(*t, *len + l + 1);
+    if (!g)
+        return -1;
+    memcpy(g + *len, line, l + 1);
+    *t = g;
+    *len += l;
+    return 0;
+}
+
+/* --on: every patch of surface s against shape `shape` (rg2_surface_shape_residuals): a line
+ * appended to the text report *text, or an entry of the JSON report's "on" array. */
+static int on_one(const rg2_surface *surf, int s, const rg2_shape *shape, const char *label, const rg2_check_opts *o,
+                  cJSON *arr, char **text, size_t *len)
+{
+    size_t np = (size_t)surf->nu * (size_t)surf->nv;
+    double *res = malloc(np * sizeof *res);
+    rg2_error err = {0};
+    if (!res)
+        return -1;
+    if (rg2_surface_shape_residuals(surf, shape, o->patch_samples, res, &err)) {
+        free(res);
+        return rg2_cli_report("check", &err);
+    }
+    size_t count = 0, w_on = 0, w_off = 0;
+    double worst = -1, nearest = INFINITY;
+    for (size_t k = 0; k < np; k++)
+        if (res[k] <= o->tol_exact) {
+            count++;
+            if (res[k] > worst)
+                worst = res[k], w_on = k;
+        } else if (!(res[k] >= nearest) && !(isnan(res[k]) && w_off != k && nearest < INFINITY)) {
+            nearest = res[k], w_off = k; /* (a NaN patch is the nearest only if no other is off) */
+        }
+    free(res);
+    int nv = surf->nv, off = count < np, rc = 0;
+    char on_at[48] = "", off_at[48] = "";
+    if (count)
+        snprintf(on_at, sizeof on_at, "patch (%d,%d)", (int)(w_on / (size_t)nv), (int)(w_on % (size_t)nv));
+    if (off)
+        snprintf(off_at, sizeof off_at, "patch (%d,%d)", (int)(w_off / (size_t)nv), (int)(w_off % (size_t)nv));
+    if (arr) {
+        const char *kind = rg2_shape_name(shape->kind);
+        cJSON *e = cJSON_CreateObject();
+        if (!e || !cJSON_AddItemToArray(arr, e)) {
+            cJSON_Delete(e);
+            return -1;
+        }
+        rc = !cJSON_AddStringToObject(e, "shape", label) || !cJSON_AddStringToObject(e, "kind", kind ? kind : "shape") ||
+             !cJSON_AddNumberToObject(e, "surface", s) || !cJSON_AddNumberToObject(e, "patches", (double)np) ||
+             !cJSON_AddNumberToObject(e, "on", (double)count);
+        if (!rc && count)
+            rc = !cJSON_AddNumberToObject(e, "worst_on", worst) || !cJSON_AddStringToObject(e, "worst_on_where", on_at);
+        if (!rc && off) /* (JSON has no NaN: null) */
+            rc = !(isnan(nearest) ? cJSON_AddNullToObject(e, "nearest_off")
+                                  : cJSON_AddNumberToObject(e, "nearest_off", nearest)) ||
+                 !cJSON_AddStringToObject(e, "nearest_off_where", off_at);
+        return rc ? -1 : 0;
+    }
+    char line[400], *p = line;
+    size_t room = sizeof line;
+    int m = snprintf(p, room, "on shape %-10s surface %d: %zu of %zu patches within %g", label, s, count, np,
+                     o->tol_exact);
+    if (count && m >= 0 && (size_t)m < room)
+        m += snprintf(p + m, room - (size_t)m, ", worst %.2e at %s", worst, on_at);
+    if (off && m >= 0 && (size_t)m < room)
+        m += snprintf(p + m, room - (size_t)m, "; nearest off it %.2e at %s", nearest, off_at);
+    if (m >= 0 && (size_t)m < room)
+        snprintf(p + m, room - (size_t)m, "\n");
+    return append(text, len, line);
+}
+
+/* The --on lines or the JSON "on" array for every shape asked for and every surface. */
+static int on_report(const rg2_surface *surfs, int n, const rg2_shape *shapes, const char **labels,
+                     const int *on_shape, int n_on, const rg2_check_opts *o, int json, char **text)
+{
+    cJSON *root = NULL, *arr = NULL;
+    size_t len = strlen(*text);
+    int rc = 0;
+    if (json) {
+        root = cJSON_Parse(*text);
+        arr = cJSON_CreateArray();
+        if (!root || !arr || !cJSON_AddItemToObject(root, "on", arr)) {
+            cJSON_Delete(arr);
+            rc = -1;
+        }
+    }
+    for (int q = 0; q < n_on && !rc; q++)
+        for (int s = 0; s < n && !rc; s++)
+            rc = on_one(&surfs[s], s, &shapes[on_shape[q]], labels[on_shape[q]], o, arr, text, &len);
+    if (json && !rc) {
+        char *p = cJSON_Print(root);
+        size_t l = p ? strlen(p) : 0;
+        if (!p || append(&p, &l, "\n")) {
+            free(p);
+            rc = -1;
+        } else {
+            free(*text);
+            *text = p;
+        }
+    }
+    cJSON_Delete(root);
+    if (rc < 0) {
+        fprintf(stderr, "rg2 check: out of memory\n");
+        rc = RG2_EXIT_FAIL;
+    }
+    return rc;
+}
+
 int rg2_cmd_check(int argc, char **argv)
 {
-    const char *path = NULL;
-    int json = 0;
+    const char *path = NULL, *on[MAX_ON];
+    int json = 0, n_on = 0;
     unsigned req = 0;
     rg2_check_opts o;
     rg2_check_opts_default(&o);
@@ -142,6 +261,16 @@ int rg2_cmd_check(int argc, char **argv)
                 return RG2_EXIT_USAGE;
             }
             *dst = v;
+        } else if (!strcmp(a, "--on")) {
+            if (i + 1 >= argc || !argv[i + 1][0]) {
+                fprintf(stderr, "rg2 check: --on needs the name of one of the design's shapes\n");
+                return RG2_EXIT_USAGE;
+            }
+            if (n_on == MAX_ON) {
+                fprintf(stderr, "rg2 check: --on given more than %d times\n", MAX_ON);
+                return RG2_EXIT_USAGE;
+            }
+            on[n_on++] = argv[++i];
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "rg2 check: unknown option '%s'\n", a);
             usage(stderr);
@@ -178,11 +307,28 @@ int rg2_cmd_check(int argc, char **argv)
         shapes[k] = *rg2_design_shape(d, k);
         labels[k] = rg2_design_shape_label(d, k);
     }
+    int on_shape[MAX_ON];
+    for (int q = 0; q < n_on; q++) {
+        on_shape[q] = -1;
+        for (int k = 0; k < ns && on_shape[q] < 0; k++)
+            if (labels[k] && !strcmp(labels[k], on[q]))
+                on_shape[q] = k;
+        if (on_shape[q] < 0) {
+            fprintf(stderr, "rg2 check: --on '%s': %s: the design has no shape of that name (its shapes:", on[q], path);
+            for (int k = 0; k < ns; k++)
+                fprintf(stderr, "%s %s", k ? "," : "", labels[k] ? labels[k] : "?");
+            fprintf(stderr, "%s)\n", ns ? "" : " none");
+            rc = RG2_EXIT_USAGE;
+            goto out;
+        }
+    }
     rg2_error err = {0};
     if (rg2_check(surfs, n, shapes, labels, ns, &o, &rep, &err) || rg2_check_format(&rep, json, &text, &err)) {
         rc = rg2_cli_report("check", &err);
         goto out;
     }
+    if (n_on && (rc = on_report(surfs, n, shapes, labels, on_shape, n_on, &o, json, &text)))
+        goto out;
     fputs(text, stdout);
     unsigned f = rg2_check_failures(&rep, req);
     if (f) {

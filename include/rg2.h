@@ -1358,6 +1358,15 @@ RG2_API rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *s
                              const char *const *labels, int n_shapes, const rg2_check_opts *o,
                              rg2_check_report *out, rg2_error *err);
 RG2_API void rg2_check_report_free(rg2_check_report *r);
+/** Which patches of s lie on a shape, whether tagged with it or not (rg2 check --on): res[i * nv
+ *  + j] (nu * nv doubles, the caller's) is the worst implicit residual |f| / |grad f| of patch
+ *  (i, j) over (samples + 1)^2 points u, v = a / samples, relative to the size of s (the diagonal
+ *  of the box of its control points of positive weight). Points at a singular point of the
+ *  shape (a cone's apex) are skipped; a non-finite point gives NaN. rg2_check counts a patch on
+ *  its shape at residuals <= tol_exact (1e-11). @return RG2_EINVAL (a surface without patches, no
+ *  shape or res, samples outside 1..1000), RG2_ELIMIT (more than RG2_MAX_CHECK_SAMPLES points). */
+RG2_API rg2_status rg2_surface_shape_residuals(const rg2_surface *s, const rg2_shape *shape, int samples,
+                                               double *res, rg2_error *err);
 /** The RG2_REQUIRE_* bits of `require` that the report fails (0: every promise holds). */
 RG2_API unsigned rg2_check_failures(const rg2_check_report *r, unsigned require);
 /** Format the report as a text table (json = 0) or JSON (json = 1) into a malloc'd string

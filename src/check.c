@@ -912,6 +912,47 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
     return RG2_OK;
 }
 
+/* Which patches lie on a shape, tagged or not: the residual of rg2_check's exact pieces at every
+ * sample of every patch, relative to the surface's size (rg2 check --on). */
+rg2_status rg2_surface_shape_residuals(const rg2_surface *s, const rg2_shape *shape, int samples, double *res,
+                                       rg2_error *err)
+{
+    if (!s || s->nu <= 0 || s->nv <= 0 || !s->patch)
+        return rg2__fail(err, RG2_EINVAL, "shape residuals: the surface has no patches");
+    if (!shape || !res)
+        return rg2__fail(err, RG2_EINVAL, "shape residuals: no %s", !shape ? "shape" : "residual array (res)");
+    if (samples < 1 || samples > 1000)
+        return rg2__fail(err, RG2_EINVAL, "shape residuals: samples %d outside 1..1000", samples);
+    size_t np = (size_t)s->nu * (size_t)s->nv;
+    if ((double)np * (samples + 1.0) * (samples + 1.0) > RG2_MAX_CHECK_SAMPLES)
+        return rg2__fail(err, RG2_ELIMIT, "shape residuals: %zu patches x %d x %d samples exceed the limit of %d",
+                         np, samples + 1, samples + 1, RG2_MAX_CHECK_SAMPLES);
+    rg2__implicit imp;
+    rg2__implicit_prep(shape, &imp);
+    double size = surface_size(s);
+    for (size_t k = 0; k < np; k++) {
+        int pi = (int)(k / (size_t)s->nv), pj = (int)(k % (size_t)s->nv);
+        double worst = 0.0;
+        for (int a = 0; a <= samples && !isnan(worst); a++)
+            for (int b = 0; b <= samples; b++) {
+                rg2_eval e;
+                rg2_surface_eval(s, pi, pj, (double)a / samples, (double)b / samples, 0, &e);
+                double g[3], f = rg2__implicit_eval(&imp, e.p, g, NULL), gn = norm3(g);
+                if (gn == 0.0)
+                    continue; /* a singular point of the shape (a cone's apex): no distance estimate */
+                double r = fabs(f) / gn / size;
+                if (!(r <= worst)) { /* (a NaN sticks) */
+                    worst = r;
+                    if (isnan(r))
+                        break;
+                }
+            }
+        res[k] = worst;
+    }
+    rg2__ok(err);
+    return RG2_OK;
+}
+
 void rg2_check_report_free(rg2_check_report *r)
 {
     if (!r)

@@ -1201,6 +1201,82 @@ static void threads_identical(void)
     rg2_mesh_free(&m);
 }
 
+/* rg2_surface_shape_residuals (rg2 check --on): every patch of a tilted torus lies on it, with the
+ * worst residual rg2_check finds for the tagged patches (the same samples and, every patch tagged,
+ * the same size); a control point moved off the torus takes exactly the 4 x 4 patches of its
+ * support off it (a bi-3 patch (i, j) of a closed mesh reads the points i - 1..i + 2, j - 1..j + 2),
+ * untagged as they are; no patch lies on a sphere through the torus; bad arguments are named. */
+static void shape_residuals(void)
+{
+    rg2_shape sh, ball;
+    rg2_shape_init(&sh, RG2_SHAPE_TORUS);
+    sh.param[0] = 3;
+    sh.param[1] = 1;
+    rg2_xform_rotate(sh.xform, 1, 2, 3, 0.7);
+    rg2_shape_init(&ball, RG2_SHAPE_SPHERE);
+    ball.param[0] = 4;
+    rg2_error err;
+    rg2_surface s;
+    torus_8x6(&sh, &s);
+    double res[48];
+    rg2_check_report r;
+    CHECK_OK(rg2_surface_shape_residuals(&s, &sh, 12, res, &err), &err);
+    CHECK_OK(rg2_check(&s, 1, &sh, NULL, 1, NULL, &r, &err), &err);
+    double worst = 0;
+    for (int k = 0; k < 48; k++)
+        worst = fmax(worst, res[k]);
+    CHECK(worst <= 1e-13 && worst == r.worst_residual, "torus on its torus: worst %.3g, rg2_check %.3g", worst,
+          r.worst_residual);
+    rg2_check_report_free(&r);
+    CHECK_OK(rg2_surface_shape_residuals(&s, &ball, 3, res, &err), &err);
+    double nearest = INFINITY;
+    for (int k = 0; k < 48; k++)
+        nearest = fmin(nearest, res[k]);
+    CHECK(nearest > 1e-3, "torus patches on a sphere of radius 4: nearest %.3g", nearest);
+    /* a control point moved outward by 0.05 of the size: the 16 patches of its support leave */
+    double au[9], av[7];
+    rg2_partition pu, pv;
+    rg2_mesh m;
+    rg2_surface t;
+    CHECK_OK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0, 0, 8, au, 9, &err), &err);
+    CHECK_OK(rg2_partition_equal(&pv, RG2_PART_ANGLES, 1, 0, 0, 6, av, 7, &err), &err);
+    CHECK_OK(rg2_shape_mesh(&sh, &pu, &pv, &m, &err), &err);
+    double *q = rg2_mesh_at(&m, 0, 2);
+    for (int k = 0; k < 3; k++)
+        q[k] *= 1.05;
+    CHECK_OK(rg2_surface_build(&m, &t, &err), &err);
+    CHECK(t.tag == NULL, "a built surface is untagged");
+    CHECK_OK(rg2_surface_shape_residuals(&t, &sh, 12, res, &err), &err);
+    int off = 0, wrong = 0;
+    double on_worst = 0, off_least = INFINITY;
+    for (int i = 0; i < 8; i++)
+        for (int j = 0; j < 6; j++) {
+            int di = (0 - i + 8) % 8, dj = (2 - j + 6) % 6; /* control index minus patch index, cyclic */
+            int near = (di <= 2 || di == 7) && (dj <= 2 || dj == 5);
+            double x = res[i * 6 + j];
+            off += x > 1e-11;
+            wrong += near != (x > 1e-11);
+            if (near)
+                off_least = fmin(off_least, x);
+            else
+                on_worst = fmax(on_worst, x);
+        }
+    printf("shape residuals: torus %.2e on its torus (rg2_check the same); a control point moved: %d patches off "
+           "(least %.2e), the others %.2e; on a sphere: nearest %.2e\n", worst, off, off_least, on_worst, nearest);
+    CHECK(off == 16 && wrong == 0 && on_worst <= 1e-13, "moved point: %d patches off, %d misplaced, others %.3g", off,
+          wrong, on_worst);
+    /* errors */
+    rg2_status st = rg2_surface_shape_residuals(&t, &sh, 0, res, &err);
+    CHECK(st == RG2_EINVAL && strstr(err.msg, "samples 0 outside 1..1000"), "samples 0: %d %s", st, err.msg);
+    st = rg2_surface_shape_residuals(&t, NULL, 4, res, &err);
+    CHECK(st == RG2_EINVAL && strstr(err.msg, "no shape"), "no shape: %d %s", st, err.msg);
+    st = rg2_surface_shape_residuals(&t, &sh, 4, NULL, &err);
+    CHECK(st == RG2_EINVAL && strstr(err.msg, "no residual array"), "no res: %d %s", st, err.msg);
+    rg2_surface_free(&t);
+    rg2_mesh_free(&m);
+    rg2_surface_free(&s);
+}
+
 int main(void)
 {
     harness_agreement();
@@ -1219,5 +1295,6 @@ int main(void)
     folds_fail();
     ill_conditioned_flat();
     threads_identical();
+    shape_residuals();
     return rg2t_done("test_check");
 }

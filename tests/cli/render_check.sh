@@ -192,6 +192,24 @@ expect 0 "3 rational cubic Bezier segments" -- "$RG2" curve --angles=120,120,120
 expect 2 "rg2 render: --apart takes no value ('--apart=1')" -- "$RG2" render "$ex" -o "$tmp/eq2.png" --apart=1
 expect 2 "rg2 render: unknown option '--frob'" -- "$RG2" render "$ex" -o "$tmp/eq2.png" --frob=1
 [ ! -e "$tmp/eq2.png" ] && ok || bad "a refused --name=value wrote a picture"
+# --on: every patch against a named shape. The patches tagged with it lie on it (the residual
+# relative to the surface's size, at least the shape's); in torus_sphere exactly those do.
+for f in "$SRC"/examples/*.json; do
+  for name in $(python3 -c 'import json, sys; print(" ".join(json.load(open(sys.argv[1])).get("shapes", {})))' "$f"); do
+    "$RG2" check "$f" --json --on "$name" > "$tmp/on.json" 2>&1 &&
+      python3 - "$tmp/on.json" "$name" <<'PY' && ok || bad "check --on $name: $f: tagged patches off their shape"
+import json, sys
+r = json.load(open(sys.argv[1]))
+tagged = sum(s["patches"] for s in r["shapes"] if s["label"] == sys.argv[2])
+on = sum(e["on"] for e in r["on"])
+sys.exit(0 if r["on"] and on >= tagged and all(e["shape"] == sys.argv[2] for e in r["on"]) else 1)
+PY
+  done
+done
+expect 0 "on shape ball       surface 0: 24 of 120 patches within 1e-11" -- "$RG2" check "$ex" --on ball --on ring
+expect 0 "on shape ring       surface 0: 48 of 120 patches within 1e-11" -- "$RG2" check "$ex" --on ball --on ring
+expect 2 "--on 'rin': $ex: the design has no shape of that name (its shapes: ring, ball)" -- "$RG2" check "$ex" --on rin
+expect 2 "--on needs the name" -- "$RG2" check "$ex" --on
 # bad designs: exit 1 with the loader's message
 expect 1 "K = " -- "$RG2" check "$SRC/tests/data/bad_scalar.json"
 expect 1 "" -- "$RG2" render "$SRC/tests/data/bad_weight.json" -o "$tmp/bad.png"
