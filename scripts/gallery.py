@@ -89,10 +89,11 @@ def main():
             run([rg2, "render", path, "-o", png, "--size", SIZE, "--threads", "1"] + opts)
             cells.append("![%s %s](pictures/gallery/%s-%s.png)" % (n, tag, n, tag))
             caps.append(cap)
-        cmd = "rg2 render %s -o %s.png %s" % (path, n, " ".join(PICTURES.get(n, DEFAULT)[0][1]))
+        cmds = ["`rg2 render %s -o %s-%s.png --size %s %s`" % (path, n, tag, SIZE, " ".join(opts))
+                for tag, opts, _ in PICTURES.get(n, DEFAULT)]  # (the pictures' own commands, bit for bit)
         sections += ["", "## %s" % n, "", desc, "",
                      "| " + " | ".join(caps) + " |", "|" + "---|" * len(caps), "| " + " | ".join(cells) + " |",
-                     "", "`%s`" % cmd.strip()]
+                     "", "  \n".join(cmds)]  # (two spaces: a Markdown line break)
     with open(os.path.join(out, "gallery.md.tmp"), "w") as f:
         f.write("\n".join(lines + sections) + "\n")
     os.replace(os.path.join(out, "gallery.md.tmp"), os.path.join(out, "gallery.md"))
