@@ -8,12 +8,16 @@
 #   make fuzz   build the libFuzzer harnesses (clang) into build-fuzz/ and run each FUZZ_SECONDS
 #   make gallery  render every example design into docs/pictures/gallery/ and write docs/gallery.md
 #   make check-freecad  FreeCAD opens our STEP / IGES (installs freecad-python3, ~930 MB; not in make test)
+#   make check-cross ARCH=aarch64|s390x|i686  cross build, every test under qemu-user (slow: 30-60 min
+#               or more an architecture; installs a cross GCC and qemu-user; not in make test)
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 MAKEFLAGS += --no-print-directory
 DESIGN ?= examples/torus_sphere.json
 FUZZ_SECONDS ?= 60
 
-.PHONY: all build run test bench clean check-memory check-portable check-tsan check-freecad fuzz gallery
+ARCH ?= aarch64
+
+.PHONY: all build run test bench clean check-memory check-portable check-tsan check-freecad check-cross fuzz gallery
 
 all: build
 
@@ -58,6 +62,9 @@ gallery: build
 check-freecad: build
 	@scripts/deps.sh freecad
 	@scripts/freecad_check.sh build/rg2 .
+
+check-cross:
+	@scripts/check_cross.sh . build-cross-$(ARCH) $(ARCH)
 
 fuzz:
 	@scripts/deps.sh fuzz
