@@ -834,35 +834,73 @@ static void design_poles(void)
     }
 }
 
-/* A flat wedge whose side v = 0 is collapsed to 4e-12 (the tolerance is 1e-11 of its box, 1.4e-11)
- * with a height h of 1e-4: the side's tangent is 5.9e-8 of the other, which the first trigger of
- * the pole test (a ratio below 1e-8) missed (normal defined, K = -1.3e21). Every evaluator gives
- * the undefined normal at (1/2, 0). */
-static void flat_wedge_pole(void)
+/* A flat wedge W[r][t] whose side t = 0 is collapsed to 4e-12 (the tolerance is 1e-11 of its box,
+ * 1.4e-11) with a height h: with h = 1e-4 the side's tangent is 5.9e-8 of the other, which the
+ * first trigger of the pole test (a ratio below 1e-8) missed (normal defined, K = -1.3e21). The
+ * wedge is laid on the patch with its collapsed side on `side` (0 v=0, 1 u=1, 2 v=1, 3 u=0). */
+static void flat_wedge(rg2_patch *P, double h, int side)
 {
-    rg2_patch P;
-    memset(&P, 0, sizeof P);
-    const double h = 1e-4;
+    memset(P, 0, sizeof *P);
     for (int r = 0; r < 4; r++)
         for (int t = 0; t < 4; t++) {
             double x = r / 3.0 - 0.5, y = t / 3.0;
-            double *q = P.h[r][t];
+            int a = side == 0 ? r : side == 1 ? 3 - t : side == 2 ? r : t; /* P's indices of W[r][t] */
+            int b = side == 0 ? t : side == 1 ? r : side == 2 ? 3 - t : r;
+            double *q = P->h[a][b];
             q[0] = t == 0 ? (r == 1 ? 4e-12 : r == 2 ? -4e-12 : 0.0) : t == 3 ? x : x * y;
             q[1] = t == 0 ? 0.0 : h * y;
             q[2] = t == 0 ? 0.0 : (r * 7 + t * 3) % 5 * 0.1 * h * y;
             q[3] = 1.0;
         }
-    rg2_eval e;
-    rg2_patch_eval(&P, 0.5, 0.0, 2, &e);
-    double p[3], n[3], pg[27], ng[27], K[9];
-    unsigned fl = rg2_patch_point_normal(&P, 0.5, 0.0, p, n);
-    rg2_grid_out o = {.pos = pg, .normal = ng, .K = K};
-    rg2_error err;
-    CHECK_OK(rg2_patch_grid(&P, 3, 3, &o, &err), &err);
-    CHECK(e.flags & RG2_EVAL_NORMAL_UNDEFINED && e.K == 0.0 && fl & RG2_EVAL_NORMAL_UNDEFINED && norm3(n) == 0.0 &&
-              norm3(ng + 3 * 3) == 0.0 && K[3] == 0.0,
-          "flat wedge pole: eval flags %u K %.3g, point flags %u, grid normal %.3g K %.3g", e.flags, e.K, fl,
-          norm3(ng + 3 * 3), K[3]);
+}
+
+/* The wedge's pole on each of the four sides: every evaluator (rg2_patch_eval, rg2_xpatch_eval,
+ * rg2_patch_point_normal, rg2_patch_grid) gives the undefined normal at the side's midpoint (before,
+ * only poles on v = 0 were tested: the u = 1, v = 1 and u = 0 sides' tests could be lost). */
+static void flat_wedge_pole(void)
+{
+    static const double mid[4][2] = {{0.5, 0.0}, {1.0, 0.5}, {0.5, 1.0}, {0.0, 0.5}};
+    for (int side = 0; side < 4; side++) {
+        rg2_patch P;
+        flat_wedge(&P, 1e-4, side);
+        double u = mid[side][0], v = mid[side][1];
+        rg2_eval e, ex;
+        rg2_patch_eval(&P, u, v, 2, &e);
+        rg2_xpatch X;
+        rg2_xpatch_from_patch(&P, &X);
+        rg2_xpatch_eval(&X, u, v, 2, &ex);
+        double p[3], n[3], pg[27], ng[27], K[9];
+        unsigned fl = rg2_patch_point_normal(&P, u, v, p, n);
+        rg2_grid_out o = {.pos = pg, .normal = ng, .K = K};
+        rg2_error err;
+        CHECK_OK(rg2_patch_grid(&P, 3, 3, &o, &err), &err);
+        int g = (int)(u * 2) * 3 + (int)(v * 2); /* the grid point (u, v) */
+        CHECK(e.flags & RG2_EVAL_NORMAL_UNDEFINED && e.K == 0.0 && ex.flags & RG2_EVAL_NORMAL_UNDEFINED &&
+                  ex.K == 0.0 && fl & RG2_EVAL_NORMAL_UNDEFINED && norm3(n) == 0.0 && norm3(ng + 3 * g) == 0.0 &&
+                  K[g] == 0.0,
+              "flat wedge pole on side %d: eval flags %u K %.3g, xpatch eval flags %u K %.3g, point flags %u, grid "
+              "normal %.3g K %.3g", side, e.flags, e.K, ex.flags, ex.K, fl, norm3(ng + 3 * g), K[g]);
+    }
+}
+
+/* A thin wedge (h = 1e-8): its tangents are weak (|su x sv| below 1e-6 (|su|^2 + |sv|^2)) all over,
+ * so every point of its sides is a pole suspect, but only the collapsed side v = 0 is a pole: on
+ * the side u = 0 the normal is defined, within 1e-6 rad of the normal just inside (u = 1e-9). */
+static void thin_wedge_side(void)
+{
+    rg2_patch P;
+    flat_wedge(&P, 1e-8, 0);
+    rg2_eval e, in;
+    rg2_patch_eval(&P, 0.0, 0.5, 2, &e);
+    rg2_patch_eval(&P, 1e-9, 0.5, 1, &in);
+    double p[3], n[3];
+    unsigned fl = rg2_patch_point_normal(&P, 0.0, 0.5, p, n);
+    double d[3] = {e.n[0] - in.n[0], e.n[1] - in.n[1], e.n[2] - in.n[2]};
+    double dp[3] = {n[0] - in.n[0], n[1] - in.n[1], n[2] - in.n[2]};
+    CHECK(!(e.flags & RG2_EVAL_NORMAL_UNDEFINED) && !(in.flags & RG2_EVAL_NORMAL_UNDEFINED) && norm3(d) < 1e-6 &&
+              !(fl & RG2_EVAL_NORMAL_UNDEFINED) && norm3(dp) < 1e-6,
+          "thin wedge, side u = 0 (no pole): eval flags %u, normal %.3g from the inside's, point flags %u, %.3g",
+          e.flags, norm3(d), fl, norm3(dp));
 }
 
 int main(void)
@@ -884,6 +922,7 @@ int main(void)
         capped_poles();
         design_poles();
         flat_wedge_pole();
+        thin_wedge_side();
         torus();
         large_output();
         narrow_patches();
