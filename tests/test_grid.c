@@ -856,13 +856,17 @@ static void flat_wedge(rg2_patch *P, double h, int side)
 
 /* The wedge's pole on each of the four sides: every evaluator (rg2_patch_eval, rg2_xpatch_eval,
  * rg2_patch_point_normal, rg2_patch_grid) gives the undefined normal at the side's midpoint (before,
- * only poles on v = 0 were tested: the u = 1, v = 1 and u = 0 sides' tests could be lost). */
+ * only poles on v = 0 were tested: the u = 1, v = 1 and u = 0 sides' tests could be lost). With
+ * h = 2e-5 the weak side's tangent is 5 times larger, |su x sv| about 3e-7 (|su|^2 + |sv|^2): under
+ * the trigger's 1e-6, over a trigger 10 times tighter. */
 static void flat_wedge_pole(void)
 {
     static const double mid[4][2] = {{0.5, 0.0}, {1.0, 0.5}, {0.5, 1.0}, {0.0, 0.5}};
-    for (int side = 0; side < 4; side++) {
+    for (int z = 0; z < 8; z++) {
+        int side = z % 4;
+        double h = z < 4 ? 1e-4 : 2e-5;
         rg2_patch P;
-        flat_wedge(&P, 1e-4, side);
+        flat_wedge(&P, h, side);
         double u = mid[side][0], v = mid[side][1];
         rg2_eval e, ex;
         rg2_patch_eval(&P, u, v, 2, &e);
@@ -878,8 +882,8 @@ static void flat_wedge_pole(void)
         CHECK(e.flags & RG2_EVAL_NORMAL_UNDEFINED && e.K == 0.0 && ex.flags & RG2_EVAL_NORMAL_UNDEFINED &&
                   ex.K == 0.0 && fl & RG2_EVAL_NORMAL_UNDEFINED && norm3(n) == 0.0 && norm3(ng + 3 * g) == 0.0 &&
                   K[g] == 0.0,
-              "flat wedge pole on side %d: eval flags %u K %.3g, xpatch eval flags %u K %.3g, point flags %u, grid "
-              "normal %.3g K %.3g", side, e.flags, e.K, ex.flags, ex.K, fl, norm3(ng + 3 * g), K[g]);
+              "flat wedge (h %g) pole on side %d: eval flags %u K %.3g, xpatch eval flags %u K %.3g, point flags %u, "
+              "grid normal %.3g K %.3g", h, side, e.flags, e.K, ex.flags, ex.K, fl, norm3(ng + 3 * g), K[g]);
     }
 }
 
