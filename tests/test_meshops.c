@@ -747,6 +747,23 @@ static void mobius(void)
         rg2_mesh_free(&m);
     }
 
+    /* one row of a mesh (1 x nv) is not empty: mapped point by point, the same bits as that row of the
+     * whole mesh's map */
+    rg2_mesh whole, row;
+    CHECK_OK(rg2_mesh_copy(rg2_design_mesh(d, 0), &whole, &err), &err);
+    CHECK_OK(rg2_mesh_copy(rg2_design_mesh(d, 0), &row, &err), &err);
+    if (whole.p && row.p) {
+        CHECK_OK(rg2_mesh_mobius_shape(&whole, ball, &bb, NULL, NULL, &err), &err);
+        int rows = row.nu;
+        row.nu = 1;
+        CHECK_OK(rg2_mesh_mobius_shape(&row, ball, &bb, NULL, NULL, &err), &err);
+        row.nu = rows;
+        CHECK(!memcmp(row.p, whole.p, (size_t)row.nv * 4 * sizeof(double)), "a 1 x %d mesh: not mapped as the row of "
+              "the whole mesh", row.nv);
+    }
+    rg2_mesh_free(&whole);
+    rg2_mesh_free(&row);
+
     /* bad input: the status, a message naming the argument, and the mesh as it was */
     rg2_mesh m, keep;
     CHECK_OK(rg2_mesh_copy(rg2_design_mesh(d, 0), &m, &err), &err);
