@@ -707,6 +707,38 @@ static const char *mobius_json =
     " },"
     " \"output\": [\"B\", \"E\", \"U\", \"Bb\", \"Bp\", \"Eb\", \"Up\", \"T\"]}";
 
+/* The largest difference of moved's 4-tuples from in's mapped by rg2_mobius_poles_matrix about the
+ * reference sphere (a translated sphere of radius param[0]; NULL: the unit sphere at the origin): the
+ * poles taken to the unit sphere, M applied to (p - c w) / R, then back; relative to the 4-tuple. */
+static double poles_map_error(const rg2_mesh *in, const rg2_mesh *moved, const rg2_shape *ref, const double *south,
+                              const double *north)
+{
+    double c[3] = {0.0, 0.0, 0.0}, R = ref ? ref->param[0] : 1.0, ls[3], ln[3], M[16], worst = 0.0;
+    for (int k = 0; ref && k < 3; k++)
+        c[k] = ref->xform[4 * k + 3];
+    for (int k = 0; k < 3; k++) {
+        ls[k] = (south[k] - c[k]) / R;
+        ln[k] = (north[k] - c[k]) / R;
+    }
+    rg2_error err;
+    if (rg2_mobius_poles_matrix(ls, ln, M, &err))
+        return INFINITY;
+    for (size_t i = 0; i < (size_t)in->nu * (size_t)in->nv; i++) {
+        const double *p = in->p + 4 * i, *got = moved->p + 4 * i;
+        double loc[4] = {(p[0] - c[0] * p[3]) / R, (p[1] - c[1] * p[3]) / R, (p[2] - c[2] * p[3]) / R, p[3]}, q[4],
+               size = 0.0, d = 0.0;
+        for (int r = 0; r < 4; r++)
+            q[r] = M[4 * r] * loc[0] + M[4 * r + 1] * loc[1] + M[4 * r + 2] * loc[2] + M[4 * r + 3] * loc[3];
+        for (int r = 0; r < 4; r++) {
+            double want = r < 3 ? R * q[r] + c[r] * q[3] : q[3];
+            d = fmax(d, fabs(got[r] - want));
+            size = fmax(size, fabs(want));
+        }
+        worst = fmax(worst, d / size);
+    }
+    return worst;
+}
+
 static void mobius(void)
 {
     rg2_error err;
@@ -734,6 +766,10 @@ static void mobius(void)
         snprintf(what, sizeof what, "rg2_mesh_mobius_shape of design mesh %d (%s)", c[k].in, c[k].b ? "b" : "poles");
         CHECK_OK(rg2_mesh_mobius_shape(&m, c[k].ref, c[k].b, c[k].s, c[k].n, &err), &err);
         same_mesh(&m, rg2_design_mesh(d, c[k].out), what);
+        if (c[k].s) /* the poles' map from rg2_mobius_poles_matrix about the sphere's centre and radius */
+            CHECK(poles_map_error(rg2_design_mesh(d, c[k].in), &m, c[k].ref, c[k].s, c[k].n) < 1e-13,
+                  "%s: %.3g from rg2_mobius_poles_matrix's map", what,
+                  poles_map_error(rg2_design_mesh(d, c[k].in), &m, c[k].ref, c[k].s, c[k].n));
         CHECK(memcmp(m.p, rg2_design_mesh(d, c[k].in)->p, (size_t)m.nu * (size_t)m.nv * 4 * sizeof(double)) != 0,
               "%s: the mesh did not move", what);
         rg2_surface s;
