@@ -828,6 +828,23 @@ static void mobius(void)
         CHECK(m.p && !memcmp(m.p, keep.p, (size_t)m.nu * (size_t)m.nv * 4 * sizeof(double)), "%s: the mesh changed",
               what);
     }
+    { /* a pole off the sphere in all three coordinates: the nearest point named is c + R (p - c) / |p - c| */
+        static const double p[3] = {0.3, 0.4, 0.1};
+        double cen[3] = {ball->xform[3], ball->xform[7], ball->xform[11]}, R = ball->param[0], dir[3], l;
+        double got[3] = {0, 0, 0};
+        for (int k = 0; k < 3; k++)
+            dir[k] = p[k] - cen[k];
+        l = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+        expect_err(rg2_mesh_mobius_shape(&m, ball, NULL, p, north, &err), RG2_EDOMAIN, &err,
+                   "rg2_mesh_mobius_shape.south: (0.3, 0.4, 0.1) is not on the reference sphere (", "pole off the sphere");
+        const char *at = strstr(err.msg, "the nearest point on it is (");
+        int n = at ? sscanf(at + strlen("the nearest point on it is ("), "%lf, %lf, %lf", &got[0], &got[1], &got[2]) : 0;
+        double worst = 0.0;
+        for (int k = 0; k < 3; k++)
+            worst = fmax(worst, fabs(got[k] - (cen[k] + R * dir[k] / l)));
+        CHECK(n == 3 && worst < 1e-14, "pole off the sphere: nearest point %.3g from c + R (p - c) / |p - c|: %s", worst,
+              err.msg);
+    }
     /* a boost that sends control points through infinity (tests/bad/mobius_through_infinity.json; b
      * alone is a rotation times 1 + b^2 and keeps every weight > 0) */
     rg2_mesh t, tkeep;
