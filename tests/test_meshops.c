@@ -853,6 +853,18 @@ static void mobius(void)
     static const double ts[3] = {0, 0.999, -0.0447101778}, tn[3] = {0, 1, 0};
     expect_err(rg2_mesh_mobius_shape(&t, NULL, NULL, ts, tn, &err), RG2_EWEIGHT, &err,
                "rg2_mesh_mobius_shape.poles: the Moebius map gives control point [", "a map through infinity");
+    { /* the weight it names: row 3 of rg2_mobius_poles_matrix's M (the unit sphere) times that 4-tuple, <= 0 */
+        int ci = -1, cj = -1;
+        double w = 1.0, M[16], want = NAN;
+        const char *at = strstr(err.msg, "control point [");
+        if (at && sscanf(at, "control point [%d, %d] the weight %lf", &ci, &cj, &w) == 3 && ci >= 0 && ci < tkeep.nu &&
+            cj >= 0 && cj < tkeep.nv && rg2_mobius_poles_matrix(ts, tn, M, &err) == RG2_OK) {
+            const double *p = tkeep.p + 4 * ((size_t)ci * (size_t)tkeep.nv + (size_t)cj);
+            want = M[12] * p[0] + M[13] * p[1] + M[14] * p[2] + M[15] * p[3];
+        }
+        CHECK(want <= 0.0 && fabs(w - want) <= 1e-5 * fabs(want), "a map through infinity: control point [%d, %d], "
+              "weight %.6g named, %.6g computed", ci, cj, w, want);
+    }
     CHECK(t.p && !memcmp(t.p, tkeep.p, (size_t)t.nu * (size_t)t.nv * 4 * sizeof(double)),
           "a map through infinity: the mesh changed");
     rg2_mesh_free(&t);
