@@ -868,11 +868,16 @@ static void flat_wedge_pole(void)
         rg2_patch P;
         flat_wedge(&P, h, side);
         double u = mid[side][0], v = mid[side][1];
-        rg2_eval e, ex;
+        rg2_eval e, ex, e1, ex1; /* (order 1 too: the normal without the curvatures) */
         rg2_patch_eval(&P, u, v, 2, &e);
+        rg2_patch_eval(&P, u, v, 1, &e1);
         rg2_xpatch X;
         rg2_xpatch_from_patch(&P, &X);
         rg2_xpatch_eval(&X, u, v, 2, &ex);
+        rg2_xpatch_eval(&X, u, v, 1, &ex1);
+        CHECK(e1.flags & ex1.flags & RG2_EVAL_NORMAL_UNDEFINED && norm3(e1.n) == 0.0 && norm3(ex1.n) == 0.0,
+              "flat wedge (h %g) pole on side %d, order 1: eval flags %u, xpatch eval flags %u", h, side, e1.flags,
+              ex1.flags);
         double p[3], n[3], pg[27], ng[27], K[9];
         unsigned fl = rg2_patch_point_normal(&P, u, v, p, n);
         rg2_grid_out o = {.pos = pg, .normal = ng, .K = K};
