@@ -859,6 +859,21 @@ static void flat_wedge(rg2_patch *P, double h, int side)
  * only poles on v = 0 were tested: the u = 1, v = 1 and u = 0 sides' tests could be lost). With
  * h = 2e-5 the weak side's tangent is 5 times larger, |su x sv| about 3e-7 (|su|^2 + |sv|^2): under
  * the trigger's 1e-6, over a trigger 10 times tighter. */
+/* P raised to degree (5, 3) as a one-patch surface, on the 3 x 3 higher-degree grid into o. */
+static void raised_grid(const rg2_patch *P, const rg2_grid_out *o)
+{
+    rg2_xpatch X, Xe;
+    rg2_error err;
+    rg2_xpatch_from_patch(P, &X);
+    CHECK_OK(rg2_xpatch_elevate(&X, 5, 3, &Xe, &err), &err);
+    rg2_surface one;
+    memset(&one, 0, sizeof one);
+    one.nu = one.nv = 1;
+    one.patch = (rg2_patch *)P;
+    one.xp = &Xe;
+    CHECK_OK(rg2_surface_patch_grid(&one, 0, 0, 3, 3, o, &err), &err);
+}
+
 static void flat_wedge_pole(void)
 {
     static const double mid[4][2] = {{0.5, 0.0}, {1.0, 0.5}, {0.5, 1.0}, {0.0, 0.5}};
@@ -890,15 +905,8 @@ static void flat_wedge_pole(void)
               "flat wedge (h %g) pole on side %d: eval flags %u K %.3g, xpatch eval flags %u K %.3g, point flags %u, "
               "grid normal %.3g K %.3g", h, side, e.flags, e.K, ex.flags, ex.K, fl, norm3(ng + 3 * g), K[g]);
         /* the same patch raised to degree (5, 3), on the higher-degree grid (its own pole fix-up) */
-        rg2_xpatch Xe;
-        CHECK_OK(rg2_xpatch_elevate(&X, 5, 3, &Xe, &err), &err);
-        rg2_surface one;
-        memset(&one, 0, sizeof one);
-        one.nu = one.nv = 1;
-        one.patch = &P;
-        one.xp = &Xe;
         memset(ng, 0xff, sizeof ng);
-        CHECK_OK(rg2_surface_patch_grid(&one, 0, 0, 3, 3, &o, &err), &err);
+        raised_grid(&P, &o);
         CHECK(norm3(ng + 3 * g) == 0.0 && K[g] == 0.0, "flat wedge (h %g) raised to (5,3), pole on side %d: grid normal "
               "%.3g K %.3g", h, side, norm3(ng + 3 * g), K[g]);
     }
@@ -923,18 +931,9 @@ static void thin_wedge_side(void)
           "thin wedge, side u = 0 (no pole): eval flags %u, normal %.3g from the inside's, point flags %u, %.3g",
           e.flags, norm3(d), fl, norm3(dp));
     /* raised to degree (5, 3), on the higher-degree grid: the normal at (0, 1/2) is defined too */
-    rg2_xpatch X, Xe;
-    rg2_error err;
-    rg2_xpatch_from_patch(&P, &X);
-    CHECK_OK(rg2_xpatch_elevate(&X, 5, 3, &Xe, &err), &err);
-    rg2_surface one;
-    memset(&one, 0, sizeof one);
-    one.nu = one.nv = 1;
-    one.patch = &P;
-    one.xp = &Xe;
     double pg[27], ng[27];
     rg2_grid_out o = {.pos = pg, .normal = ng};
-    CHECK_OK(rg2_surface_patch_grid(&one, 0, 0, 3, 3, &o, &err), &err);
+    raised_grid(&P, &o);
     double dg[3] = {ng[3] - in.n[0], ng[4] - in.n[1], ng[5] - in.n[2]}; /* grid point (0, 1) */
     CHECK(norm3(dg) < 1e-6, "thin wedge raised to (5,3), side u = 0 (no pole): grid normal %.3g from the inside's",
           norm3(dg));
