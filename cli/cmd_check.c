@@ -55,7 +55,8 @@ static void usage(FILE *f)
                "                      the report does not depend on it\n"
                "  --on SHAPE          also measure every patch, tagged or not, against the design's\n"
                "                      shape SHAPE (its name under \"shapes\"): how many lie on it (residual\n"
-               "                      relative to the surface's size <= the exact limit); repeatable\n"
+               "                      relative to the surface's size, not the shape's patches', <= the\n"
+               "                      exact limit); repeatable\n"
                "Exit codes: 0 ok, 1 invalid design or a failed write of the report, 2 usage error,\n"
                "3 a required promise fails.\n");
 }
@@ -162,7 +163,7 @@ static int on_one(const rg2_surface *surf, int s, const rg2_shape *shape, const 
     }
     char line[400], *p = line;
     size_t room = sizeof line;
-    int m = snprintf(p, room, "on shape %-10s surface %d: %zu of %zu patches within %g", label, s, count, np,
+    int m = snprintf(p, room, "on shape %-10s surface %d: %zu of %zu patches within %g of its size", label, s, count, np,
                      o->tol_exact);
     if (count && m >= 0 && (size_t)m < room)
         m += snprintf(p + m, room - (size_t)m, ", worst %.2e at %s", worst, on_at);
@@ -270,7 +271,12 @@ int rg2_cmd_check(int argc, char **argv)
                 fprintf(stderr, "rg2 check: --on given more than %d times\n", MAX_ON);
                 return RG2_EXIT_USAGE;
             }
-            on[n_on++] = argv[++i];
+            int dup = 0; /* (a name given twice is measured once) */
+            for (int q = 0; q < n_on; q++)
+                dup |= !strcmp(on[q], argv[i + 1]);
+            if (!dup)
+                on[n_on++] = argv[i + 1];
+            i++;
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "rg2 check: unknown option '%s'\n", a);
             usage(stderr);

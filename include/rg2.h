@@ -483,15 +483,16 @@ RG2_API void rg2_surface_eval(const rg2_surface *s, int i, int j, double u, doub
                               rg2_eval *out);
 RG2_API void rg2_surface_eval_h(const rg2_surface *s, int i, int j, double u, double v,
                                 double out[6][4]);
-/** rg2_surface_eval, except on a side of the patch that collapses to one point (a pole; the
- *  side's control points agree to 1e-11 of the patch's control box), where the normal is
- *  undefined: there n is the limit of the normals as the point approaches the pole (for a
+/** rg2_surface_eval, except at order >= 1 on a side of the patch that collapses to one point (a
+ *  pole; the side's control points agree to 1e-11 of the patch's control box), where the normal
+ *  is undefined: there n is the limit of the normals as the point approaches the pole (for a
  *  side v = 0, Suv x Sv normalised, oriented as the normals next to it), K, H, k1 and k2
  *  (order 2) are those 3e-5 inside the patch, and flags has RG2_EVAL_POLE_LIMIT instead of
  *  RG2_EVAL_NORMAL_UNDEFINED and RG2_EVAL_CURVATURE_UNDEFINED. These are the normals and
  *  curvatures that rg2_tessellate gives its pole vertices, for a viewer's shading or picking.
- *  Where the limit is undefined too (Suv x Sv = 0), n is the normal 3e-5 inside. Elsewhere
- *  the same bits as rg2_surface_eval. docs/poles.md. */
+ *  Where the limit is undefined too (Suv x Sv = 0), n is the normal 3e-5 inside; where that is
+ *  undefined as well (a NaN parameter), the result stays undefined (no RG2_EVAL_POLE_LIMIT).
+ *  Elsewhere the same bits as rg2_surface_eval. docs/poles.md. */
 RG2_API void rg2_surface_eval_limit(const rg2_surface *s, int i, int j, double u, double v, int order,
                                     rg2_eval *out);
 /** Normal curvature in the tangent direction t = a su + c sv of an order-2 evaluation (with
@@ -1362,8 +1363,11 @@ RG2_API void rg2_check_report_free(rg2_check_report *r);
  *  + j] (nu * nv doubles, the caller's) is the worst implicit residual |f| / |grad f| of patch
  *  (i, j) over (samples + 1)^2 points u, v = a / samples, relative to the size of s (the diagonal
  *  of the box of its control points of positive weight). Points at a singular point of the
- *  shape (a cone's apex) are skipped; a non-finite point gives NaN. rg2_check counts a patch on
- *  its shape at residuals <= tol_exact (1e-11). @return RG2_EINVAL (a surface without patches, no
+ *  shape (a cone's apex) are skipped; a non-finite point gives NaN. rg2 check --on counts a patch
+ *  on the shape at residuals <= tol_exact (1e-11). rg2_check's exact pieces divide by the size
+ *  of the patches tagged with the shape instead, so where those span less than the surface, its
+ *  figures for the same patches are larger by the ratio (Fig. 13's torus: 6.65e-16 there,
+ *  4.22e-16 here). @return RG2_EINVAL (a surface without patches, no
  *  shape or res, samples outside 1..1000), RG2_ELIMIT (more than RG2_MAX_CHECK_SAMPLES points). */
 RG2_API rg2_status rg2_surface_shape_residuals(const rg2_surface *s, const rg2_shape *shape, int samples,
                                                double *res, rg2_error *err);

@@ -26,12 +26,12 @@ set -eu
 src=$(cd "$1" && pwd) root=$2 arch=$3; shift 3
 mkdir -p "$root" && root=$(cd "$root" && pwd)
 case $arch in
-  aarch64|arm64) arch=aarch64 triple=aarch64-linux-gnu deb=arm64 qemu=qemu-aarch64 ;;
-  s390x)         triple=s390x-linux-gnu deb=s390x qemu=qemu-s390x ;;
-  i686|i386)     arch=i686 triple=i686-linux-gnu deb=i386 qemu=qemu-i386 ;;
+  aarch64|arm64) arch=aarch64 triple=aarch64-linux-gnu deb=arm64 qemu=qemu-aarch64 multi=aarch64-linux-gnu ;;
+  s390x)         triple=s390x-linux-gnu deb=s390x qemu=qemu-s390x multi=s390x-linux-gnu ;;
+  i686|i386)     arch=i686 triple=i686-linux-gnu deb=i386 qemu=qemu-i386 multi=i386-linux-gnu ;;
   *) echo "check-cross: unknown arch $arch (aarch64, s390x, i686)" >&2; exit 2 ;;
 esac
-multi=$(dpkg-architecture -a "$deb" -qDEB_HOST_MULTIARCH 2>/dev/null || echo "$triple")
+multi=$(dpkg-architecture -a "$deb" -qDEB_HOST_MULTIARCH 2>/dev/null || echo "$multi") # (Debian's library directory)
 jobs=${CROSS_JOBS:-2}
 start=$(date +%s)
 
@@ -58,7 +58,7 @@ if [ ! -f "$sysroot/.done" ]; then
   if ! fetch; then
     if [ "$(id -u)" = 0 ] && ! dpkg --print-foreign-architectures | grep -qx "$deb"; then
       echo "check-cross: dpkg --add-architecture $deb (undo: dpkg --remove-architecture $deb; nothing of $deb is installed)"
-      dpkg --add-architecture "$deb" && apt-get update -q >/dev/null 2>&1 || true
+      if dpkg --add-architecture "$deb"; then apt-get update -q >/dev/null 2>&1 || true; fi
     fi
     fetch || { echo "check-cross: apt-get download of the $deb libraries failed: it needs the $deb package index" >&2
       echo "  (dpkg --add-architecture $deb && apt-get update, as root)" >&2; exit 1; }

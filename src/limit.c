@@ -51,8 +51,10 @@ void rg2__pole_limit(const rg2_surface *s, int i, int j, double u, double v, int
     e->H = in.H;
     e->k1 = in.k1;
     e->k2 = in.k2;
-    e->flags = (e->flags & ~(unsigned)(RG2_EVAL_NORMAL_UNDEFINED | RG2_EVAL_CURVATURE_UNDEFINED)) |
-               (in.flags & (RG2_EVAL_NORMAL_UNDEFINED | RG2_EVAL_CURVATURE_UNDEFINED)) | RG2_EVAL_POLE_LIMIT;
+    /* the limit normal, or the one inside where that is defined: a pole limit; else (a NaN
+     * parameter, a degenerate patch) the normal stays undefined, as inside */
+    unsigned und = RG2_EVAL_NORMAL_UNDEFINED | RG2_EVAL_CURVATURE_UNDEFINED;
+    e->flags = (e->flags & ~und) | (in.flags & und) | (in.flags & RG2_EVAL_NORMAL_UNDEFINED ? 0u : RG2_EVAL_POLE_LIMIT);
 }
 
 void rg2_surface_eval_limit(const rg2_surface *s, int i, int j, double u, double v, int order, rg2_eval *out)

@@ -1265,6 +1265,29 @@ static void shape_residuals(void)
            "(least %.2e), the others %.2e; on a sphere: nearest %.2e\n", worst, off, off_least, on_worst, nearest);
     CHECK(off == 16 && wrong == 0 && on_worst <= 1e-13, "moved point: %d patches off, %d misplaced, others %.3g", off,
           wrong, on_worst);
+    /* samples = 1: the four corners of each patch, against |f| / |grad f| computed here */
+    double res1[48], lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int k = 0; k < t.nu * t.nv * 16; k++) {
+        const double *h = t.patch[k / 16].h[k % 16 / 4][k % 4];
+        for (int c = 0; c < 3; c++)
+            lo[c] = fmin(lo[c], h[c] / h[3]), hi[c] = fmax(hi[c], h[c] / h[3]);
+    }
+    double size = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                       (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    CHECK_OK(rg2_surface_shape_residuals(&t, &sh, 1, res1, &err), &err);
+    double corner_err = 0;
+    for (int k = 0; k < 48; k++) {
+        double w = 0;
+        for (int c = 0; c < 4; c++) {
+            rg2_eval e;
+            double g[3];
+            rg2_surface_eval(&t, k / 6, k % 6, c / 2, c % 2, 0, &e);
+            double f = rg2_shape_implicit(&sh, e.p, g);
+            w = fmax(w, fabs(f) / sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]) / size);
+        }
+        corner_err = fmax(corner_err, fabs(res1[k] - w) - 1e-12 * w); /* (over a rounding allowance) */
+    }
+    CHECK(corner_err <= 1e-18, "samples = 1: the corners' residuals off by %.3g", corner_err);
     /* errors */
     rg2_status st = rg2_surface_shape_residuals(&t, &sh, 0, res, &err);
     CHECK(st == RG2_EINVAL && strstr(err.msg, "samples 0 outside 1..1000"), "samples 0: %d %s", st, err.msg);

@@ -430,6 +430,10 @@ static void pole_mesh(int mixed)
             dK = fmax(dK, fabs(e.K - t.K[pv]) / fabs(t.K[pv]));
             dH = fmax(dH, fabs(e.H - t.H[pv]) / fabs(t.H[pv]));
         }
+    rg2_eval en; /* a NaN parameter on the pole side: undefined, no pole limit (the limit is NaN) */
+    rg2_surface_eval_limit(&s, 0, 0, NAN, 0.0, 2, &en);
+    CHECK((en.flags & (RG2_EVAL_NORMAL_UNDEFINED | RG2_EVAL_POLE_LIMIT)) == RG2_EVAL_NORMAL_UNDEFINED,
+          "pole: eval_limit at u = NaN: flags %#x", en.flags);
     CHECK(pv >= 0 && dn <= 1e-12 && dK <= 1e-4 && dH <= 1e-4,
           "pole: rg2_surface_eval_limit vs the pole vertex: normal %.3g, K %.3g, H %.3g (relative)", dn, dK, dH);
     printf("pole%s: rg2_surface_eval_limit vs the pole vertex over the fan: normal %.2g, K %.2g, H %.2g (relative)\n",

@@ -36,14 +36,15 @@ int main(int argc, char **argv)
     rg2_error err;
     if (rg2_design_parse(design, strlen(design), "capped sphere", &d, &err))
         return fail("design", &err);
-    int n = rg2_design_num_surfaces(d), ns = rg2_design_num_shapes(d), rc = 0;
+    int n = rg2_design_num_surfaces(d), ns = rg2_design_num_shapes(d), rc = 1;
     /* rg2_check takes arrays: the design's surfaces, shapes and their names */
     rg2_surface *surfs = calloc((size_t)n, sizeof *surfs);
     rg2_shape *shapes = calloc((size_t)ns, sizeof *shapes);
     const char **labels = calloc((size_t)ns, sizeof *labels);
+    double *res = NULL;
     if (!surfs || !shapes || !labels) {
         fprintf(stderr, "out of memory\n");
-        return 1;
+        goto out;
     }
     for (int k = 0; k < n; k++) {
         surfs[k] = *rg2_design_surface(d, k); /* (shallow copies: the design owns the arrays) */
@@ -54,25 +55,32 @@ int main(int argc, char **argv)
         labels[k] = rg2_design_shape_label(d, k);
     }
     rg2_check_report rep;
-    if (rg2_check(surfs, n, shapes, labels, ns, NULL, &rep, &err))
-        return fail("check", &err);
+    if (rg2_check(surfs, n, shapes, labels, ns, NULL, &rep, &err)) {
+        fail("check", &err);
+        goto out;
+    }
     printf("check: %d of %d patches exact (worst residual %.2e), G1 %.2e rad, G2 %.2e\n", rep.exact_patches,
            rep.patches, rep.worst_residual, rep.g1.value, rep.g2.value);
-    if (rg2_check_failures(&rep, RG2_REQUIRE_G2 | RG2_REQUIRE_EXACT | RG2_REQUIRE_WEIGHTS))
-        rc = 1;
+    rc = rg2_check_failures(&rep, RG2_REQUIRE_G2 | RG2_REQUIRE_EXACT | RG2_REQUIRE_WEIGHTS) != 0;
     rg2_check_report_free(&rep);
 
     /* every patch against the sphere, tagged or not */
     const rg2_surface *s = &surfs[0];
-    double *res = malloc((size_t)s->nu * (size_t)s->nv * sizeof *res);
-    if (!res || rg2_surface_shape_residuals(s, &shapes[0], 12, res, &err))
-        return res ? fail("residuals", &err) : 1;
+    res = malloc((size_t)s->nu * (size_t)s->nv * sizeof *res);
+    if (!res) {
+        fprintf(stderr, "out of memory\n");
+        rc = 1;
+        goto out;
+    }
+    if (rg2_surface_shape_residuals(s, &shapes[0], 12, res, &err)) {
+        rc = fail("residuals", &err);
+        goto out;
+    }
     int on = 0;
     for (int k = 0; k < s->nu * s->nv; k++)
         on += res[k] <= 1e-11;
     printf("on '%s': %d of %d patches\n", labels[0], on, s->nu * s->nv);
     rc |= on != s->nu * s->nv;
-    free(res);
 
     /* the south pole is side v = 0 of the patches (i, 0): Su x Sv vanishes there */
     rg2_eval e, l;
@@ -91,6 +99,8 @@ int main(int argc, char **argv)
         rc = fail("export", &err);
     else
         printf("wrote %s\n", path);
+out:
+    free(res);
     free(surfs);
     free(shapes);
     free(labels);

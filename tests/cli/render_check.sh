@@ -206,10 +206,11 @@ sys.exit(0 if r["on"] and on >= tagged and all(e["shape"] == sys.argv[2] for e i
 PY
   done
 done
-expect 0 "on shape ball       surface 0: 24 of 120 patches within 1e-11" -- "$RG2" check "$ex" --on ball --on ring
-expect 0 "on shape ring       surface 0: 48 of 120 patches within 1e-11" -- "$RG2" check "$ex" --on ball --on ring
+expect 0 "on shape ball       surface 0: 24 of 120 patches within 1e-11 of its size" -- "$RG2" check "$ex" --on ball --on ring
+expect 0 "on shape ring       surface 0: 48 of 120 patches within 1e-11 of its size" -- "$RG2" check "$ex" --on ball --on ring
 expect 2 "--on 'rin': $ex: the design has no shape of that name (its shapes: ring, ball)" -- "$RG2" check "$ex" --on rin
 expect 2 "--on needs the name" -- "$RG2" check "$ex" --on
+[ "$("$RG2" check "$ex" --on ball --on ball | grep -c '^on shape')" = 1 ] && ok || bad "check --on ball --on ball: measured twice"
 # bad designs: exit 1 with the loader's message
 expect 1 "K = " -- "$RG2" check "$SRC/tests/data/bad_scalar.json"
 expect 1 "" -- "$RG2" render "$SRC/tests/data/bad_weight.json" -o "$tmp/bad.png"
