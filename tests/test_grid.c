@@ -3,6 +3,7 @@
  * independence (bitwise); argument errors. */
 #include "../src/internal.h"
 #include "harness.h"
+#include "poles_testutil.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -724,29 +725,85 @@ static int side_collapsed(const rg2_xpatch *X, int side)
 /* rg2_surface_eval_limit at (u, v) on collapsed side `side` of patch (i, j): the limit normal
  * against one extrapolated from two normals of rg2_surface_eval inside, at distances h and 2h
  * from the side (n(0) = 2 n(h) - n(2h) + O(h^2); their rounding grows like 1e-14 / h), and K, H
- * against those at h (the curvatures converge linearly, docs/poles.md). Returns the angle, and
- * the curvatures' difference relative to max(|K(h)|, 1) and max(|H(h)|, 1) in *dk. */
+ * against those at h (the curvatures converge linearly, docs/poles.md). Returns the angle (the
+ * worse of orders 2 and 1), and the curvatures' difference relative to max(|K(h)|, 1) and
+ * max(|H(h)|, 1) in *dk. Order 1 and 2 must agree on the flags, and order 1 must leave the
+ * curvatures zero (rg2.h: fields beyond the order are zero): else *flags gets ~0u. So must a
+ * normal of length other than 1 (the angle alone would not see it). */
 static double limit_at_pole(const rg2_surface *s, int i, int j, double u, double v, int side, double *dk,
                             unsigned *flags)
 {
-    rg2_eval e, a, b;
+    rg2_eval e, e1, a, b;
     rg2_surface_eval_limit(s, i, j, u, v, 2, &e);
+    rg2_surface_eval_limit(s, i, j, u, v, 1, &e1);
     *flags = e.flags;
+    if (e1.flags != e.flags || e1.K != 0.0 || e1.H != 0.0 || e1.k1 != 0.0 || e1.k2 != 0.0 ||
+        !(fabs(norm3(e.n) - 1.0) <= 1e-14 && fabs(norm3(e1.n) - 1.0) <= 1e-14))
+        *flags = ~0u;
     const double h = 1e-4;
     double du = side == 1 ? -h : side == 3 ? h : 0.0, dv = side == 0 ? h : side == 2 ? -h : 0.0;
     rg2_surface_eval(s, i, j, u + du, v + dv, 2, &a);
     rg2_surface_eval(s, i, j, u + 2 * du, v + 2 * dv, 2, &b);
-    double x[3], c[3];
+    double x[3];
     for (int k = 0; k < 3; k++)
         x[k] = 2 * a.n[k] - b.n[k];
     double l = norm3(x);
     for (int k = 0; k < 3; k++)
         x[k] /= l;
-    c[0] = e.n[1] * x[2] - e.n[2] * x[1];
-    c[1] = e.n[2] * x[0] - e.n[0] * x[2];
-    c[2] = e.n[0] * x[1] - e.n[1] * x[0];
     *dk = fmax(fabs(e.K - a.K) / fmax(fabs(a.K), 1.0), fabs(e.H - a.H) / fmax(fabs(a.H), 1.0));
-    return atan2(norm3(c), e.n[0] * x[0] + e.n[1] * x[1] + e.n[2] * x[2]);
+    return fmax(pt_angle3(e.n, x), pt_angle3(e1.n, x));
+}
+
+/* The examples collapse only sides v = 0 and v = 1 (their poles), and their pole normals have
+ * no y component: each such patch of Fig. 14, transposed (h[r][t] -> h[t][r], a one-patch
+ * surface) and its coordinates rotated, collapses u = 0 or u = 1 (sides 3 and 1) instead, where
+ * the limit normal is Su x Suv, its sign flipped on u = 1. limit_at_pole at 9 points of every
+ * such side, orders 2 and 1. */
+static void limit_on_u_sides(void)
+{
+    rg2_design *d = NULL;
+    rg2_error err;
+    CHECK_OK(rg2_design_load("examples/fig14_mobius.json", &d, &err), &err);
+    int sides[4] = {0, 0, 0, 0}, bad = 0;
+    double worst_ang = 0, worst_k = 0;
+    for (int si = 0; d && si < rg2_design_num_surfaces(d); si++) {
+        const rg2_surface *s = rg2_design_surface(d, si);
+        for (int k = 0; k < s->nu * s->nv; k++) {
+            rg2_xpatch X, T;
+            rg2_surface_patch_get(s, k / s->nv, k % s->nv, &X);
+            memset(&T, 0, sizeof T);
+            T.du = X.dv;
+            T.dv = X.du;
+            for (int r = 0; r <= X.du; r++)
+                for (int t = 0; t <= X.dv; t++)
+                    for (int c = 0; c < 4; c++) /* (x, y, z) -> (y, z, x): normals with a y component */
+                        T.h[t][r][c] = X.h[r][t][c < 3 ? (c + 1) % 3 : 3];
+            rg2_patch unused;
+            memset(&unused, 0, sizeof unused);
+            rg2_surface one = {.nu = 1, .nv = 1, .patch = &unused, .xp = &T};
+            for (int side = 0; side < 4; side++) {
+                if (!side_collapsed(&T, side))
+                    continue;
+                sides[side]++;
+                for (int q = 0; q <= 8; q++) {
+                    double w = q / 8.0, u = side == 1 ? 1.0 : side == 3 ? 0.0 : w;
+                    double v = side == 0 ? 0.0 : side == 2 ? 1.0 : w, dk;
+                    unsigned fl;
+                    worst_ang = fmax(worst_ang, limit_at_pole(&one, 0, 0, u, v, side, &dk, &fl));
+                    worst_k = fmax(worst_k, dk);
+                    bad += fl != RG2_EVAL_POLE_LIMIT;
+                }
+            }
+        }
+    }
+    rg2_design_free(d);
+    printf("fig14 transposed: collapsed sides %d, %d, %d, %d; rg2_surface_eval_limit: %d points with other flags, "
+           "order 1 unlike 2 or |n| != 1; normal vs extrapolated %.2g rad, K and H vs 1e-4 inside %.2g\n",
+           sides[0], sides[1], sides[2], sides[3], bad, worst_ang, worst_k);
+    CHECK(sides[1] > 0 && sides[3] > 0 && sides[0] == 0 && sides[2] == 0 && bad == 0 && worst_ang <= 1e-6 &&
+              worst_k <= 1e-2,
+          "fig14 transposed: sides %d %d %d %d, %d bad, normal %.3g rad, K and H %.3g", sides[0], sides[1], sides[2],
+          sides[3], bad, worst_ang, worst_k);
 }
 
 static void design_poles(void)
@@ -821,7 +878,8 @@ static void design_poles(void)
         }
         printf("%s: %d grid points on collapsed sides; normal or K, H not 0 at %d (grid), %d (rg2_surface_eval), "
                "%d (rg2_patch_point_normal)\n", files[f], pts, bad_grid, bad_eval, bad_point);
-        printf("%s: rg2_surface_eval_limit: flags other than RG2_EVAL_POLE_LIMIT at %d pole points; limit normal vs "
+        printf("%s: rg2_surface_eval_limit: flags other than RG2_EVAL_POLE_LIMIT (or order 1 unlike order 2, or |n| != 1) "
+               "at %d pole points; limit normal vs "
                "extrapolated %.2g rad, K and H vs 1e-4 inside %.2g; %d of %d evaluations off the poles differ from "
                "rg2_surface_eval\n", files[f], bad_limit, worst_ang, worst_k, differ, same + differ);
         CHECK(bad_limit == 0 && worst_ang <= 1e-6 && worst_k <= 1e-2 && differ == 0 && same > 1000,
@@ -964,5 +1022,6 @@ int main(void)
         narrow_patches();
     }
     errors();
+    limit_on_u_sides();
     return rg2t_done("test_grid");
 }
