@@ -208,6 +208,41 @@ PY
 done
 expect 0 "on shape ball       surface 0: 24 of 120 patches within 1e-11 of its size" -- "$RG2" check "$ex" --on ball --on ring
 expect 0 "on shape ring       surface 0: 48 of 120 patches within 1e-11 of its size" -- "$RG2" check "$ex" --on ball --on ring
+# --on's worst patch on the shape and nearest off it: raising --tol exact to the nearest residual
+# off the shape takes that patch in (residuals <= the tolerance count) as the new worst, and
+# the text report says what the JSON one does (JSON numbers round-trip)
+"$RG2" check "$ex" --json --on ball > "$tmp/on1.json" 2>&1 || bad "check --json --on ball"
+near=$(python3 -c 'import json, sys; print(repr(json.load(open(sys.argv[1]))["on"][0]["nearest_off"]))' "$tmp/on1.json")
+"$RG2" check "$ex" --json --on ball --tol exact="$near" > "$tmp/on2.json" 2>&1 || bad "check --on ball --tol exact=$near"
+"$RG2" check "$ex" --on ball --tol exact="$near" > "$tmp/on2.txt" 2>&1 || bad "check --on ball --tol exact=$near (text)"
+# (and tolerances of 1, the surface's size: every patch on it, none off; and 1e-300: none on)
+for x in 1 1e-300; do
+  "$RG2" check "$ex" --json --on ball --tol exact=$x > "$tmp/tol$x.json" 2>&1 || bad "check --json --on ball --tol exact=$x"
+  "$RG2" check "$ex" --on ball --tol exact=$x > "$tmp/tol$x.txt" 2>&1 || bad "check --on ball --tol exact=$x"
+done
+python3 - "$tmp"/on{1,2}.json "$tmp/on2.txt" "$tmp"/tol1.{json,txt} "$tmp"/tol1e-300.{json,txt} <<'PY' && ok || bad "check --on ball: worst and nearest"
+import json, re, sys
+a, b, c, d = (json.load(open(sys.argv[k]))["on"][0] for k in (1, 2, 4, 6))
+t, t3, t0 = (open(sys.argv[k]).read() for k in (3, 5, 7))
+def where(s):
+    i, j = map(int, re.fullmatch(r"patch \((\d+),(\d+)\)", s).groups())
+    return i, j
+ok = a["patches"] == b["patches"] == 120 and 0 < a["on"] < b["on"] < 120
+ok = ok and a["worst_on"] <= 1e-11 < a["nearest_off"] and b["worst_on"] == a["nearest_off"] < b["nearest_off"]
+ok = ok and b["worst_on_where"] == a["nearest_off_where"] != a["worst_on_where"] != b["nearest_off_where"]
+ok = ok and all(0 <= k < 120 for w in (a["worst_on_where"], a["nearest_off_where"], b["nearest_off_where"]) for k in where(w))
+line = "on shape ball       surface 0: %d of 120 patches within %s of its size, worst %.2e at %s; nearest off it %.2e at %s\n" % (
+    b["on"], "%g" % b["worst_on"], b["worst_on"], b["worst_on_where"], b["nearest_off"], b["nearest_off_where"])
+ok = ok and line in t
+ok = ok and c["on"] == 120 and "nearest_off" not in c and "nearest_off_where" not in c and c["worst_on"] < 1
+ok = ok and "on shape ball       surface 0: 120 of 120 patches within 1 of its size, worst %.2e at %s\n" % (c["worst_on"], c["worst_on_where"]) in t3
+ok = ok and d["on"] == 0 and "worst_on" not in d and "worst_on_where" not in d and d["nearest_off"] <= a["worst_on"]
+ok = ok and "on shape ball       surface 0: 0 of 120 patches within 1e-300 of its size; nearest off it %.2e at %s\n" % (
+    d["nearest_off"], d["nearest_off_where"]) in t0
+if not ok:
+    print(a, b, c, d, repr(line), t, t3, t0, sep="\n", file=sys.stderr)
+sys.exit(0 if ok else 1)
+PY
 expect 2 "--on 'rin': $ex: the design has no shape of that name (its shapes: ring, ball)" -- "$RG2" check "$ex" --on rin
 expect 2 "--on needs the name" -- "$RG2" check "$ex" --on
 [ "$("$RG2" check "$ex" --on ball --on ball | grep -c '^on shape')" = 1 ] && ok || bad "check --on ball --on ball: measured twice"
