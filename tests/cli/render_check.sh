@@ -224,10 +224,11 @@ python3 - "$tmp"/on{1,2}.json "$tmp/on2.txt" "$tmp"/tol1.{json,txt} "$tmp"/tol1e
 import json, re, sys
 a, b, c, d = (json.load(open(sys.argv[k]))["on"][0] for k in (1, 2, 4, 6))
 t, t3, t0 = (open(sys.argv[k]).read() for k in (3, 5, 7))
+ok = all(open(sys.argv[k]).read().endswith("}\n") for k in (1, 2, 4, 6))  # (a line ends the JSON report)
 def where(s):
     i, j = map(int, re.fullmatch(r"patch \((\d+),(\d+)\)", s).groups())
     return i, j
-ok = a["patches"] == b["patches"] == 120 and 0 < a["on"] < b["on"] < 120
+ok = ok and a["patches"] == b["patches"] == 120 and 0 < a["on"] < b["on"] < 120
 ok = ok and a["worst_on"] <= 1e-11 < a["nearest_off"] and b["worst_on"] == a["nearest_off"] < b["nearest_off"]
 ok = ok and b["worst_on_where"] == a["nearest_off_where"] != a["worst_on_where"] != b["nearest_off_where"]
 ok = ok and all(0 <= k < 120 for w in (a["worst_on_where"], a["nearest_off_where"], b["nearest_off_where"]) for k in where(w))
