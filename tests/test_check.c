@@ -1291,6 +1291,17 @@ static void shape_residuals(void)
     /* errors */
     rg2_status st = rg2_surface_shape_residuals(&t, &sh, 0, res, &err);
     CHECK(st == RG2_EINVAL && strstr(err.msg, "samples 0 outside 1..1000"), "samples 0: %d %s", st, err.msg);
+    st = rg2_surface_shape_residuals(&t, &sh, 1001, res, &err);
+    CHECK(st == RG2_EINVAL && strstr(err.msg, "samples 1001 outside 1..1000"), "samples 1001: %d %s", st, err.msg);
+    /* the least samples, 1: the patch corners, on the torus but for the moved point's 16 patches */
+    CHECK_OK(rg2_surface_shape_residuals(&t, &sh, 1, res, &err), &err);
+    int far = 0;
+    for (int k = 0; k < 48; k++)
+        far += !(res[k] <= 1e-11);
+    CHECK(far > 0 && far <= 16, "samples 1: %d patches off the torus", far);
+    rg2_surface none = {.nu = 0, .nv = 6, .patch = t.patch}; /* (no patches, though a patch array) */
+    st = rg2_surface_shape_residuals(&none, &sh, 4, res, &err);
+    CHECK(st == RG2_EINVAL && strstr(err.msg, "the surface has no patches"), "no patches: %d %s", st, err.msg);
     st = rg2_surface_shape_residuals(&t, NULL, 4, res, &err);
     CHECK(st == RG2_EINVAL && strstr(err.msg, "no shape"), "no shape: %d %s", st, err.msg);
     st = rg2_surface_shape_residuals(&t, &sh, 4, NULL, &err);
