@@ -388,7 +388,7 @@ int rg2__xpatch_pole_at(const rg2_xpatch *X, double u, double v);
 unsigned rg2__xpatch_pole_sides(const rg2_xpatch *X, double u, double v);
 /* The limit normal and the curvatures next to the pole on collapsed side `side` of patch (i, j)
  * (limit.c), into e, an order-2 evaluation at (u, v) on that side: n, K, H, k1, k2 (curvatures of
- * `order` 1 or 2) and flags (RG2_EVAL_POLE_LIMIT set). The tessellation's and
+ * `order` 1 or 2) and flags (RG2_EVAL_POLE_LIMIT where the normal is defined). The tessellation's and
  * rg2_surface_eval_limit's. */
 void rg2__pole_limit(const rg2_surface *s, int i, int j, double u, double v, int side, int order, rg2_eval *e);
 /* The grid calls' argument checks (grid.c: out, out->pos, n and m), shared with
