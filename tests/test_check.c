@@ -1302,6 +1302,14 @@ static void shape_residuals(void)
     rg2_surface none = {.nu = 0, .nv = 6, .patch = t.patch}; /* (no patches, though a patch array) */
     st = rg2_surface_shape_residuals(&none, &sh, 4, res, &err);
     CHECK(st == RG2_EINVAL && strstr(err.msg, "the surface has no patches"), "no patches: %d %s", st, err.msg);
+    /* 1000 patches x 1001^2 samples pass RG2_MAX_CHECK_SAMPLES: refused before any patch is read
+       (the view's patch array is the 48 of t) */
+    rg2_surface wide = {.nu = 1000, .nv = 1, .patch = t.patch};
+    char want[160];
+    snprintf(want, sizeof want, "shape residuals: 1000 patches x 1001 x 1001 samples exceed the limit of %d",
+             RG2_MAX_CHECK_SAMPLES);
+    st = rg2_surface_shape_residuals(&wide, &sh, 1000, res, &err);
+    CHECK(st == RG2_ELIMIT && !strcmp(err.msg, want), "over the limit: %d %s", st, err.msg);
     st = rg2_surface_shape_residuals(&t, NULL, 4, res, &err);
     CHECK(st == RG2_EINVAL && strstr(err.msg, "no shape"), "no shape: %d %s", st, err.msg);
     st = rg2_surface_shape_residuals(&t, &sh, 4, NULL, &err);
