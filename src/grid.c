@@ -1866,7 +1866,7 @@ static void fix_collapsed(const rg2_patch *P, const tables *t, const rg2_grid_ou
  * the surface S, or among all four for a lone patch (S NULL): the poles of rg2's surfaces lie on
  * the boundary (polar meshes, caps, Moebius maps: every collapsed side of the examples, none
  * inside), so the test costs nothing for the interior patches of a large surface. "Collapsed"
- * as for the exporters and the tessellation (rg2__patch_side_collapsed), with the tolerance of
+ * as for the exporters and the tessellation (rg2__xpatch_side_collapsed, through rg2__xpatch_collapsed_among), with the tolerance of
  * rg2__collapse_tol taken over this patch alone (the surface's box would cost a pass over all
  * patches per call). */
 static int pole_sides(const rg2_surface *S, const rg2_patch *P, size_t k)
@@ -1878,15 +1878,9 @@ static int pole_sides(const rg2_surface *S, const rg2_patch *P, size_t k)
     }
     if (!cand)
         return 0;
-    rg2_surface one = {0}; /* a one-patch view, for the tolerance */
-    one.nu = one.nv = 1;
-    one.patch = (rg2_patch *)P;
-    double tol = rg2__collapse_tol(&one);
-    int mask = 0;
-    for (int side = 0; side < 4; side++)
-        if (cand >> side & 1 && rg2__patch_side_collapsed(P, side, tol))
-            mask |= 1 << side;
-    return mask;
+    rg2_xpatch X; /* (converted once for the four sides) */
+    rg2_xpatch_from_patch(P, &X);
+    return (int)rg2__xpatch_collapsed_among(&X, (unsigned)cand);
 }
 
 /* Patches k0 <= k < k1 of the array P, patch k at point index k * per of the outputs; S is the

@@ -386,6 +386,9 @@ int rg2__xpatch_pole_at(const rg2_xpatch *X, double u, double v);
 /* The sides (bit k: 0 v=0, 1 u=1, 2 v=1, 3 u=0) that (u, v) lies on and that collapse, tested as
  * rg2__xpatch_pole_at does. */
 unsigned rg2__xpatch_pole_sides(const rg2_xpatch *X, double u, double v);
+/* The sides among `cand` (the same bits) that collapse, with rg2__collapse_tol taken over this
+ * patch alone (xpatch_util.c; also the grid's pole_sides). */
+unsigned rg2__xpatch_collapsed_among(const rg2_xpatch *X, unsigned cand);
 /* The limit normal and the curvatures next to the pole on collapsed side `side` of patch (i, j)
  * (limit.c), into e, an order-2 evaluation at (u, v) on that side: n, K, H, k1, k2 (curvatures of
  * `order` 1 or 2) and flags (RG2_EVAL_POLE_LIMIT where the normal is defined). The tessellation's and

@@ -64,13 +64,18 @@ unsigned rg2__xpatch_pole_sides(const rg2_xpatch *X, double u, double v)
     unsigned on = (unsigned)(v == 0.0) | (unsigned)(u == 1.0) << 1 | (unsigned)(v == 1.0) << 2 | (unsigned)(u == 0.0) << 3;
     if (!on)
         return 0;
-    rg2_surface one = {0}; /* a one-patch view, for the tolerance (as the grid's pole_sides) */
+    return rg2__xpatch_collapsed_among(X, on);
+}
+
+unsigned rg2__xpatch_collapsed_among(const rg2_xpatch *X, unsigned cand)
+{
+    rg2_surface one = {0}; /* a one-patch view, for the tolerance */
     one.nu = one.nv = 1;
     one.xp = (rg2_xpatch *)X;
     double tol = rg2__collapse_tol(&one);
     unsigned sides = 0;
     for (int side = 0; side < 4; side++)
-        if (on >> side & 1 && rg2__xpatch_side_collapsed(X, side, tol))
+        if (cand >> side & 1 && rg2__xpatch_side_collapsed(X, side, tol))
             sides |= 1u << side;
     return sides;
 }
