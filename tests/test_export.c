@@ -8,6 +8,7 @@
  * weight, empty input, unknown extension, more IGES records than its sequence numbers hold)
  * leave no file behind. */
 #define _POSIX_C_SOURCE 200809L
+#define _DEFAULT_SOURCE /* setgroups */
 #include "../src/export_internal.h"
 #include "export_fixtures.h"
 
@@ -17,7 +18,9 @@
 #include <dirent.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <grp.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <pthread.h>
 #include <unistd.h>
 
@@ -1957,6 +1960,60 @@ static void temp_names_limit(const rg2_surface *s)
  * setuid, setgid or sticky bit, which a 04755 file loses): the
  * renamed temporary file used to have 0666 & ~umask, so a 0600 or 0444 file became 0644. A new
  * file, and one written over a symbolic link, has 0666 & ~umask; the link's target keeps its own. */
+/* A file written over by a user who may not give the new file its owner (not root): the new file
+ * is the writer's, keeps the old file's group where the writer belongs to it (fchown to the group
+ * alone), and else gets the writer's group with group bits that grant no more than the others'
+ * bits do. Run as user 65534 in a forked child; only when the test runs as root. */
+static int stranger_case(const rg2_surface *s, mode_t mode, int in_group, mode_t want_mode, gid_t want_gid)
+{
+    char *p = path_in("stranger/mode.obj");
+    FILE *f = fopen(p, "w");
+    CHECK(f && fclose(f) == 0 && chown(p, 0, 0) == 0 && chmod(p, mode) == 0, "write %s", p);
+    pid_t pid = fork();
+    CHECK(pid >= 0, "fork");
+    if (pid == 0) {
+        gid_t groups[2] = {65534, 0};
+        rg2_error err;
+        if (setgroups(in_group ? 2 : 1, groups) != 0 || setgid(65534) != 0 || setuid(65534) != 0)
+            _exit(2); /* a container without CAP_SETUID / CAP_SETGID */
+        _exit(export_one(s, "stranger/mode.obj", &err) == RG2_OK ? 0 : 1);
+    }
+    int status = 0;
+    if (waitpid(pid, &status, 0) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 2) {
+        remove(p);
+        return 0;
+    }
+    CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0,
+          "user 65534 writing over a %04o file of root:root failed", (unsigned)mode);
+    struct stat sb;
+    CHECK(stat(p, &sb) == 0 && sb.st_size > 1000 && sb.st_uid == 65534 && sb.st_gid == want_gid &&
+              (sb.st_mode & 07777) == want_mode,
+          "user 65534%s wrote over a %04o file of root:root: %u:%u, mode %04o (expected 65534:%u, %04o)",
+          in_group ? " in group 0" : "", (unsigned)mode, (unsigned)sb.st_uid, (unsigned)sb.st_gid,
+          (unsigned)(sb.st_mode & 07777), (unsigned)want_gid, (unsigned)want_mode);
+    remove(p);
+    return 1;
+}
+
+static void kept_modes_stranger(const rg2_surface *s)
+{
+    if (geteuid() != 0) {
+        printf("  (not root: a file written over by another user is not tested)\n");
+        return;
+    }
+    char *dir = path_in("stranger");
+    /* the test directory (mkdtemp: 0700) searchable by the writer while it runs */
+    CHECK(chmod(g_dir, 0711) == 0 && mkdir(dir, 0777) == 0 && chmod(dir, 0777) == 0, "mkdir %s", dir);
+    if (stranger_case(s, 0664, 0, 0644, 65534)) { /* root's group bits would grant group 65534 more */
+        stranger_case(s, 0640, 0, 0600, 65534);   /* the others have nothing: neither has the group */
+        stranger_case(s, 0606, 0, 0606, 65534);
+        stranger_case(s, 0664, 1, 0664, 0);       /* a member of group 0 keeps it, and the bits */
+        stranger_case(s, 0640, 1, 0640, 0);
+    } else
+        printf("  (cannot become user 65534 here: a file written over by another user is not tested)\n");
+    CHECK(rmdir(path_in("stranger")) == 0 && chmod(g_dir, 0700) == 0, "rmdir stranger");
+}
+
 static void kept_modes(const rg2_surface *s)
 {
     rg2_error err;
@@ -2008,6 +2065,7 @@ static void kept_modes(const rg2_surface *s)
         remove(p);
     } else
         printf("  (not root: a file's owner and group kept is not tested)\n");
+    kept_modes_stranger(s);
     /* a symbolic link at the path becomes a new file; its 0600 target is left as it was */
     char *target = path_in("mode_target.txt"), *link = path_in("mode_link.obj");
     FILE *f = fopen(target, "w");
