@@ -177,7 +177,14 @@ int main(int argc, char **argv)
             free_split(args, names);
             return finish_stdout(commands[i].name, rc);
         }
-    fprintf(stderr, "rg2: unknown command '%s'\n", argv[1]);
+    const char *names[sizeof commands / sizeof commands[0]];
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        names[i] = commands[i].name;
+    const char *close = rg2_closest_name(argv[1], names, (int)(sizeof names / sizeof names[0]));
+    if (close)
+        fprintf(stderr, "rg2: unknown command '%s' (did you mean '%s'?)\n", argv[1], close);
+    else
+        fprintf(stderr, "rg2: unknown command '%s'\n", argv[1]);
     usage(stderr);
     return 2;
 }

@@ -737,7 +737,7 @@ typedef struct rg2_design rg2_design;
 RG2_API rg2_status rg2_read_text(const char *path, char **out, size_t *len, rg2_error *err);
 /** The one of names[0..n) closest to word by edit distance, if within min(3, strlen(word) / 2 + 1)
  *  edits (the first of equals), else NULL: the "did you mean" of the design parser's unknown
- *  keys and of the command line's unknown shape names. */
+ *  keys and of the command line's unknown shape names and commands. */
 RG2_API const char *rg2_closest_name(const char *word, const char *const *names, int n);
 
 /** The supported numeric range of every number a design (or `rg2 shape`, `rg2 curve`) gives:

@@ -3,6 +3,8 @@
 expect 0 "rg2 0." -- "$RG2" --version
 expect 0 "commands:" -- "$RG2" --help
 expect 2 "unknown command" -- "$RG2" frobnicate
+expect 2 "unknown command 'bild' (did you mean 'build'?)" -- "$RG2" bild
+expect 2 "unknown command 'chek' (did you mean 'check'?)" -- "$RG2" chek
 expect 0 "usage: rg2 curve" -- "$RG2" curve --help
 expect 0 "4 rational cubic Bezier segments" -- "$RG2" curve --arcs 4
 expect 0 '"segments"' -- "$RG2" curve --arcs 5 --radius 2 --json
