@@ -622,7 +622,9 @@ static rg2_status mesh_ref(pctx *c, const cJSON *x, const char *path, int *idx)
                         "'%s' is a shape label, not a mesh%s; make its control mesh first, e.g. "
                         "\"%s_mesh\": {\"shape\": \"%s\"}, and use that mesh here",
                         name, sug, name, name);
-        return fail(c, RG2_EPARSE, path, "no mesh named '%s' defined before this one%s", name, sug);
+        /* the output list comes after every mesh: "before this one" would point at nothing */
+        return fail(c, RG2_EPARSE, path, "no mesh named '%s' %s%s", name,
+                    strncmp(path, "output", 6) ? "defined before this one" : "in \"meshes\"", sug);
     }
     return RG2_OK;
 }
