@@ -667,19 +667,33 @@ unsigned long rg2__tess_all_calls(void)
     return atomic_load(&tess_all_calls);
 }
 
+/* The vertices of the surfaces' tessellations at a density. */
+static double tess_vertices(const rg2_surface *surfs, int n_surfs, int density)
+{
+    double total = 0.0;
+    for (int k = 0; k < n_surfs; k++)
+        total += ((double)surfs[k].nu * density + 1.0) * ((double)surfs[k].nv * density + 1.0);
+    return total;
+}
+
 rg2_status rg2__tess_all(const rg2_surface *surfs, int n_surfs, int density, int curvature,
                          rg2_tess **out, rg2_error *err)
 {
     atomic_fetch_add(&tess_all_calls, 1);
     /* all surfaces together stay within the per-surface vertex limit of rg2_tessellate */
-    double total = 0.0;
-    for (int k = 0; k < n_surfs; k++)
-        total += ((double)surfs[k].nu * density + 1.0) * ((double)surfs[k].nv * density + 1.0);
-    if (total > RG2_MAX_POINTS)
+    double total = tess_vertices(surfs, n_surfs, density);
+    if (total > RG2_MAX_POINTS) {
+        int fits = density - 1; /* the largest density within the limit: what to ask for instead */
+        while (fits >= 1 && tess_vertices(surfs, n_surfs, fits) > RG2_MAX_POINTS)
+            fits--;
+        char hint[64] = "; no density fits";
+        if (fits >= 1)
+            snprintf(hint, sizeof hint, "; density %d or less fits", fits);
         return rg2__fail(err, RG2_ELIMIT,
-                         "export: %d surface%s at density %d need%s %.0f vertices, more than the limit %d",
+                         "export: %d surface%s at density %d need%s %.0f vertices, more than the limit %d%s",
                          n_surfs, n_surfs == 1 ? "" : "s", density, n_surfs == 1 ? "s" : "", total,
-                         RG2_MAX_POINTS);
+                         RG2_MAX_POINTS, hint);
+    }
     *out = rg2__calloc((size_t)n_surfs, sizeof(rg2_tess));
     if (!*out)
         return rg2__fail(err, RG2_ENOMEM, "export: out of memory");

@@ -1760,7 +1760,8 @@ static void float_max(void)
 
 /* The mesh formats' vertex limit over all surfaces together (rg2__tess_all): two tori of 6 x 4
  * patches at density 300 need 2 (6 * 300 + 1)(4 * 300 + 1) vertices, each alone fewer than
- * RG2_MAX_POINTS, both more: refused before anything is tessellated, with that count. */
+ * RG2_MAX_POINTS, both more: refused before anything is tessellated, with that count and the
+ * largest density that fits, 288 (2 (6 * 288 + 1)(4 * 288 + 1) = 3987074, at 289 4014790). */
 static void vertex_limit(const rg2_surface *s)
 {
     rg2_surface two[2] = {*s, *s};
@@ -1769,7 +1770,8 @@ static void vertex_limit(const rg2_surface *s)
     o.density = 300;
     double each = (6.0 * o.density + 1) * (4.0 * o.density + 1);
     char want[160];
-    snprintf(want, sizeof want, "export: 2 surfaces at density %d need %.0f vertices, more than the limit %d",
+    snprintf(want, sizeof want,
+             "export: 2 surfaces at density %d need %.0f vertices, more than the limit %d; density 288 or less fits",
              o.density, 2 * each, RG2_MAX_POINTS);
     rg2_error err;
     rg2_status st = rg2_export_file(two, 2, path_in("limit.obj"), &o, &err);
