@@ -340,7 +340,11 @@ static int close_rel(double a, double b, double tol)
 static int scalars_differ(const rg2_scalars *a, const rg2_scalars *b, char *msg, size_t cap)
 {
     if (a->n != b->n) {
-        snprintf(msg, cap, "%d vs %d control points", a->n, b->n);
+        if (a->closed != b->closed) /* both differ: a closed circle against an open ring, say so */
+            snprintf(msg, cap, "%d control points, %s, vs %d, %s", a->n, a->closed ? "closed" : "open", b->n,
+                     b->closed ? "closed" : "open");
+        else
+            snprintf(msg, cap, "%d vs %d control points", a->n, b->n);
         return 1;
     }
     if (a->closed != b->closed) {

@@ -221,7 +221,7 @@ static void errors(const rg2_mesh *M)
     memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_merge(unlike, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINCOMPATIBLE, &err, &r,
         "rg2_mesh_merge.merge[1]: meshes 'in[0]' and 'in[1]' do not agree in v (the direction that must match "
-        "when merging along u): 8 vs 6 control points", "merge of unlike meshes");
+        "when merging along u): 8 control points, closed, vs 6, open", "merge of unlike meshes");
     const rg2_mesh *two[2] = {&M[TUBE], &M[BAND]};
     memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_merge(two, 2, 2, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINVAL, &err, &r, "dir = 2", "merge dir 2");
