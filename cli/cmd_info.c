@@ -39,6 +39,8 @@ static void usage(FILE *f)
                "Reads and builds a design file (docs/design-format.md) and prints its shapes, its output\n"
                "meshes with their control point and patch counts, how many patches are exact pieces of\n"
                "each shape and how many are transitions, and the smallest homogeneous patch weight.\n"
+               "For a tube (u closed, v open) it says what closes its two v ends: a cap, nothing (an\n"
+               "open end), or nothing at a polar point, which leaves a hole around the pole.\n"
                "Patches of a degree above bi-3 (general-quadratic polar caps) are counted per degree,\n"
                "e.g. \"-> 8 x 12 = 96 patches (96 of degree (5,3))\" (general-quadratic caps raise the\n"
                "whole surface).\n"
@@ -46,6 +48,25 @@ static void usage(FILE *f)
                "          listed, '.' for a transition patch)\n"
                "Exit codes: 0 ok, 1 the design is invalid or the report cannot be written (message on\n"
                "stderr), 2 usage error.\n");
+}
+
+/* The v ends of a tube (u closed, v open): capped, open, or a polar point left uncapped, which
+ * is a hole (the construction makes no patch that touches a pole; only a cap closes it): a cap
+ * with "ends": "north" on a mesh whose south end is polar left one that no other line showed. */
+static void print_ends(const rg2_design *d, int o, const rg2_mesh *m)
+{
+    if (!m->su.closed || m->sv.closed)
+        return;
+    rg2_cap_opts co;
+    int capped = rg2_design_cap(d, o, &co);
+    printf("  ends:");
+    for (int e = 0; e < 2; e++) {
+        int cap = capped && (co.ends & (e ? RG2_CAP_NORTH : RG2_CAP_SOUTH));
+        int pole = rg2_mesh_row_collapsed(m, e ? m->nv - 1 : 0);
+        printf("%s %s %s", e ? ";" : "", e ? "north (v end)" : "south (v start)",
+               cap ? "capped" : pole ? "a polar point, not capped: a hole around the pole" : "open");
+    }
+    printf("\n");
 }
 
 int rg2_cmd_info(int argc, char **argv)
@@ -118,6 +139,7 @@ int rg2_cmd_info(int argc, char **argv)
             count[seen[q]] = 0;
         }
         printf("  %-25s %d patches\n", "transition", count[ns]);
+        print_ends(d, o, m);
         printf("  smallest patch weight %.6g%s\n", rg2_surface_min_weight(s),
                rg2_surface_min_weight(s) > 0 ? "" : " (not positive: STEP/IGES export will refuse it)");
         if (map)

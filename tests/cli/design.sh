@@ -93,6 +93,15 @@ rm -f "$tmp/new022.step" "$tmp/new077.step"
 expect 0 "" "$rg2" info --map "$src/examples/torus_sphere.json"
 grep -q "exact on ring *48 patches" "$tmp/out" && grep -q "exact on ball *24 patches" "$tmp/out" &&
   grep -q "transition *48 patches" "$tmp/out" && ok || bad "info counts: $(cat "$tmp/out")"
+# the ends of a tube: fig. 10's capsule capped at both; a south cap only on a mesh polar at both
+# ends leaves a hole at the north pole, which info names
+expect 0 "" "$rg2" info "$src/examples/fig10_sphere_cylinder.json"
+grep -q "ends: south (v start) capped; north (v end) capped" "$tmp/out" && ok || bad "info ends: $(cat "$tmp/out")"
+sed 's/"sphere": {"cap": "beside"}/"sphere": {"cap": "beside", "ends": "south"}/' "$src/examples/fig9_polar_sphere.json" >"$tmp/north_hole.json"
+expect 0 "" "$rg2" info "$tmp/north_hole.json"
+grep -q "ends: south (v start) capped; north (v end) a polar point, not capped: a hole around the pole" "$tmp/out" &&
+  ok || bad "info north hole: $(cat "$tmp/out")"
+rm -f "$tmp/north_hole.json"
 expect 0 "" "$rg2" mesh "$src/examples/fig1_torus.json" -o "$tmp/mesh.json"
 grep -q '"rg2 control mesh 1"' "$tmp/mesh.json" && grep -q '"patch_shape"' "$tmp/mesh.json" && ok || bad "mesh.json content"
 
