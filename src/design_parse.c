@@ -66,10 +66,22 @@ const char *rg2_closest_name(const char *word, const char *const *names, int n)
     return best >= 0 && bd <= (lim < 3 ? lim : 3) ? names[best] : NULL;
 }
 
-/* " (did you mean 'x'?)" for the closest of names, or "" if none is close. */
+/* " (did you mean 'x'?)" for the closest of names, or "" if none is close. A word of 3 letters or
+ * more that none is close to but that begins exactly one name is that name cut short ("deg" for
+ * "degrees", "seg" for "segments": 4 edits, past the edit-distance rule). */
 static void suggest(const char *word, const char *const *names, int n, char *out, size_t cap)
 {
     const char *best = rg2_closest_name(word, names, n);
+    size_t len = strlen(word);
+    for (int k = 0; k < n && !best && len >= 3; k++)
+        if (!strncmp(names[k], word, len)) {
+            int again = 0;
+            for (int q = k + 1; q < n; q++)
+                again |= !strncmp(names[q], word, len);
+            if (again)
+                break;
+            best = names[k];
+        }
     if (best)
         snprintf(out, cap, " (did you mean '%s'?)", best);
     else
