@@ -348,8 +348,8 @@ static void print_partition_text(const char *D, const rg2_partition *p)
         double sum = 0.0;
         for (int k = 0; k < p->n; k++)
             sum += p->values[k];
-        printf("  %s: %s circle, %d arcs from %g deg, total %g deg:", D, p->closed ? "closed" : "open", p->n,
-               p->start * 180.0 / M_PI, sum * 180.0 / M_PI);
+        printf("  %s: %s circle, %d arc%s from %g deg, total %g deg:", D, p->closed ? "closed" : "open", p->n,
+               p->n == 1 ? "" : "s", p->start * 180.0 / M_PI, sum * 180.0 / M_PI);
         for (int k = 0; k < p->n && k < 12; k++)
             printf(" %.6g", p->values[k] * 180.0 / M_PI);
     } else {

@@ -58,6 +58,7 @@ expect 0 '"name": "cyclide", "params": {"a": 2' -- "$RG2" shapes --json
 expect 0 "8 x 6 rational bi-cubic patches" -- "$RG2" shape torus --R 3 --r 1 --u-arcs 8 --v-arcs 6
 expect 0 "3 x 4 rational bi-cubic patches" -- "$RG2" shape torus --u-arcs 3 --u-sweep 90 --v-angles 60,120,90,90
 expect 0 "open circle, 3 arcs from 45 deg, total 90 deg" -- "$RG2" shape torus --u-arcs 3 --u-sweep 90 --u-start 45
+expect 0 "open circle, 1 arc from 0 deg, total 40 deg: 40" -- "$RG2" shape torus --u-sweep 40
 expect 0 "6 x 3 rational bi-cubic patches" -- "$RG2" shape sphere --radius 2 --v-knots 0.25,0.4,0.6,0.75
 expect 0 "knots: 0.5 0.875 1.25 1.625 2" -- "$RG2" shape cone --k 2 --v-range 0.5,2 --v-segments 4 --center 1,0,0 --axis 1,0,0
 expect 0 "all positive" -- "$RG2" shape ellipsoid --a 3 --b 2 --c 1 --scale 10 --center 1000,0,0
