@@ -36,8 +36,9 @@ int rg2_cli_load_surfaces(const char *cmd, const char *path, rg2_design **d, rg2
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: rg2 check design.json [--json] [--require g0|g1|g2|exact|weights[,...]] [--samples N]\n"
-               "                 [--tol KIND=X] [--threads N] [--on SHAPE]\n\n"
+    fprintf(f, "usage: rg2 check design.json [--json] [--require g0|g1|g2|exact|weights|no-crossings[,...]]\n"
+               "                 [--samples N] [--tol KIND=X] [--threads N] [--on SHAPE]\n"
+               "                 [--intersections [DENSITY]]\n\n"
                "Measures the built surfaces of a design: patches, exact pieces per shape with their worst\n"
                "implicit residual (|f| / |grad f| / shape size), transitions, the worst G0/G1/G2 gaps over\n"
                "all patch seams (position / size, normal angle in radians, normal-curvature jump relative\n"
@@ -53,6 +54,11 @@ static void usage(FILE *f)
                "                      1e-11); repeatable\n"
                "  --threads N         threads, up to 64 used (default: all cores, or OMP_NUM_THREADS);\n"
                "                      the report does not depend on it\n"
+               "  --intersections [D] also search the output surfaces for places where they cross\n"
+               "                      themselves or each other (tessellated at D samples per patch edge,\n"
+               "                      1..1000, default 4; each crossing of the triangles confirmed on the\n"
+               "                      exact patches; misses crossings shallower than the triangles' chord\n"
+               "                      error, and tangential contact); --require no-crossings implies it\n"
                "  --on SHAPE          also measure every patch, tagged or not, against the design's\n"
                "                      shape SHAPE (its name under \"shapes\"): how many lie on it (residual\n"
                "                      relative to the surface's size, not the shape's patches', <= the\n"
@@ -67,7 +73,8 @@ static int parse_require(const char *s, unsigned *req)
     for (const char *q = s; *q; q++)
         any |= *q != ',' && *q != ' ';
     if (!any || strstr(s, ",,") || s[0] == ',' || s[strlen(s) - 1] == ',') {
-        fprintf(stderr, "rg2 check: --require '%s': needs a comma-separated list of g0, g1, g2, exact, weights\n", s);
+        fprintf(stderr, "rg2 check: --require '%s': needs a comma-separated list of g0, g1, g2, exact, weights, "
+                        "no-crossings\n", s);
         return -1;
     }
     char *buf = malloc(strlen(s) + 1); /* the whole list, however long (a fixed buffer dropped its end) */
@@ -88,8 +95,11 @@ static int parse_require(const char *s, unsigned *req)
             *req |= RG2_REQUIRE_EXACT;
         else if (!strcmp(tok, "weights"))
             *req |= RG2_REQUIRE_WEIGHTS;
+        else if (!strcmp(tok, "no-crossings"))
+            *req |= RG2_REQUIRE_NO_CROSSINGS;
         else {
-            fprintf(stderr, "rg2 check: --require: unknown promise '%s' (g0, g1, g2, exact, weights)\n", tok);
+            fprintf(stderr, "rg2 check: --require: unknown promise '%s' (g0, g1, g2, exact, weights, no-crossings)\n",
+                    tok);
             rc = -1;
         }
     }
@@ -227,13 +237,20 @@ int rg2_cmd_check(int argc, char **argv)
             json = 1;
         else if (!strcmp(a, "--require")) {
             if (i + 1 >= argc) {
-                fprintf(stderr, "rg2 check: --require needs a comma-separated list of g0, g1, g2, exact, weights\n");
+                fprintf(stderr, "rg2 check: --require needs a comma-separated list of g0, g1, g2, exact, weights, "
+                                "no-crossings\n");
                 return RG2_EXIT_USAGE;
             }
             if (parse_require(argv[++i], &req))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--samples")) {
             if (rg2_cli_int("check", a, i + 1 < argc ? argv[++i] : NULL, 1, 10000, &o.seam_samples))
+                return RG2_EXIT_USAGE;
+        } else if (!strcmp(a, "--intersections")) {
+            o.crossing_density = RG2_CROSSING_DEFAULT_DENSITY; /* the number is optional: a digit follows */
+            if (i + 1 < argc && (argv[i + 1][0] == '-' ? argv[i + 1][1] >= '0' && argv[i + 1][1] <= '9'
+                                                       : argv[i + 1][0] >= '0' && argv[i + 1][0] <= '9') &&
+                rg2_cli_int("check", a, argv[++i], 1, 1000, &o.crossing_density))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--threads")) {
             /* the numbers rg2 render --threads takes */
@@ -329,6 +346,8 @@ int rg2_cmd_check(int argc, char **argv)
         }
     }
     rg2_error err = {0};
+    if ((req & RG2_REQUIRE_NO_CROSSINGS) && o.crossing_density == 0)
+        o.crossing_density = RG2_CROSSING_DEFAULT_DENSITY;
     if (rg2_check(surfs, n, shapes, labels, ns, &o, &rep, &err) || rg2_check_format(&rep, json, &text, &err)) {
         rc = rg2_cli_report("check", &err);
         goto out;
@@ -338,9 +357,10 @@ int rg2_cmd_check(int argc, char **argv)
     fputs(text, stdout);
     unsigned f = rg2_check_failures(&rep, req);
     if (f) {
-        fprintf(stderr, "rg2 check: %s: required promise%s failed:%s%s%s%s%s\n", path, (f & (f - 1)) ? "s" : "",
+        fprintf(stderr, "rg2 check: %s: required promise%s failed:%s%s%s%s%s%s\n", path, (f & (f - 1)) ? "s" : "",
                 f & RG2_REQUIRE_G0 ? " g0" : "", f & RG2_REQUIRE_G1 ? " g1" : "", f & RG2_REQUIRE_G2 ? " g2" : "",
-                f & RG2_REQUIRE_EXACT ? " exact" : "", f & RG2_REQUIRE_WEIGHTS ? " weights" : "");
+                f & RG2_REQUIRE_EXACT ? " exact" : "", f & RG2_REQUIRE_WEIGHTS ? " weights" : "",
+                f & RG2_REQUIRE_NO_CROSSINGS ? " no-crossings" : "");
         rc = RG2_EXIT_CHECK;
     }
 out:

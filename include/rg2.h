@@ -20,7 +20,7 @@
  *   Grid and tessellation ... rg2_patch_grid, rg2_surface_grid, rg2_patch_point(_normal),
  *                             rg2_tessellate, rg2_retessellate
  *   Export .................. (STEP, IGES, BezierView, meshes; see the export section)
- *   Pictures and checks ..... (render, check; see that section)
+ *   Pictures and checks ..... (render, check, rg2_find_crossings; see that section)
  *
  * Conventions
  *   - Every function that can fail returns rg2_status (RG2_OK = 0) and takes a nullable
@@ -1261,12 +1261,63 @@ RG2_API rg2_status rg2_render_png(const rg2_surface *surfs, int n, const rg2_mes
  * (singular) and a fold between neighbouring samples (the normal reverses: Su x Sv changes sign,
  * found by halving the segment) also fail G1 and G2: seams alone cannot see a surface that
  * runs back over itself inside a transition. */
+/** Where two sheets of the output surfaces cross (rg2_find_crossings). The surfaces are
+ *  tessellated at `density` samples per patch edge (rg2_tessellate), the vertices of all of
+ *  them that coincide (to 1e-10 of the size) welded into one, and every pair of triangles that
+ *  share no welded vertex and whose boxes overlap (a uniform grid) is tested for a transversal
+ *  crossing of the flat triangles (coplanar or touching triangles do not cross). Each crossing
+ *  pair is then CONFIRMED on the exact patches: from the point of the triangles' crossing
+ *  segment, interpolated to (u, v) on both sheets, Gauss-Newton (minimum-norm steps, stepping
+ *  across patch seams, clamped at open surface borders) solves S1(u1, v1) = S2(u2, v2). A pair
+ *  counts as a crossing when |S1 - S2| converges to <= 1e-10 of the size within 2 triangle
+ *  boxes of the start, neither point lies on an open border of its surface (surfaces that
+ *  meet along an edge touch, they do not cross), both normals are defined and their angle is
+ *  at least RG2_CROSSING_MIN_ANGLE (a near miss of a sheet with itself converges to one point
+ *  with parallel normals). Misses: crossings shallower than the tessellation's chord error
+ *  (a bulge that pokes through a wall by less than the flat triangles' distance to the
+ *  surface; raise the density), tangential contact (normals closer than the minimum angle),
+ *  and crossings at a pole (no normal). The result depends only on the surfaces and the
+ *  density (serial, deterministic). Memory: about 250 bytes per triangle. docs/render.md. */
+#define RG2_CROSSING_MIN_ANGLE 1e-3  /**< radians between the normals of a confirmed crossing */
+#define RG2_CROSSING_DEFAULT_DENSITY 4 /**< rg2 check --intersections without a number */
+#define RG2_MAX_CROSSING_TRIANGLES 4000000 /**< budget of one rg2_find_crossings (about 1 GB) */
+
+typedef struct {
+    int surf, pi, pj;      /**< surface, patch (i, j) */
+    double u, v;           /**< parameters in that patch */
+} rg2_crossing_sheet;
+
+typedef struct {
+    int density;           /**< samples per patch edge used; 0: not measured */
+    int triangles;         /**< triangles of all surfaces, tested */
+    int candidates;        /**< triangle pairs (no shared welded vertex) whose flat triangles cross */
+    int crossings;         /**< of them, confirmed on the exact surfaces (pass: 0) */
+    /** The first confirmed pair in the order of the triangles (surface, then rg2_tessellate's
+     *  triangle index; the lower triangle first), when crossings > 0: */
+    rg2_crossing_sheet a, b; /**< the two sheets at the confirmed point */
+    double p[3];           /**< the point (the mean of S_a and S_b there) */
+    double residual;       /**< |S_a - S_b| / size there */
+    double angle;          /**< angle between the two normals, in (0, pi/2] radians */
+    double size;           /**< the diagonal of the box of all control points (positive weights) */
+} rg2_crossing_report;
+
+/** Find transversal crossings of n surfaces, within each and between them (the method, the
+ *  tolerances and what it misses: rg2_crossing_report). density: samples per patch edge
+ *  (1..1000). The report is written whole (no allocation to release).
+ *  @return RG2_EINVAL (no surfaces or report, a surface without patches, density outside
+ *  1..1000, naming it), RG2_ELIMIT (more than RG2_MAX_CROSSING_TRIANGLES triangles: patches x
+ *  2 density^2, naming the count and the density; checked before anything is allocated), the
+ *  errors of rg2_tessellate (prefixed with the surface), RG2_ENOMEM. */
+RG2_API rg2_status rg2_find_crossings(const rg2_surface *surfs, int n, int density, rg2_crossing_report *out,
+                                      rg2_error *err);
+
 enum {
     RG2_REQUIRE_G0 = 1u << 0,
     RG2_REQUIRE_G1 = 1u << 1,
     RG2_REQUIRE_G2 = 1u << 2,    /**< implies G0 and G1 */
     RG2_REQUIRE_EXACT = 1u << 3, /**< every tagged patch on its shape, and at least one */
-    RG2_REQUIRE_WEIGHTS = 1u << 4 /**< every homogeneous weight > 0 */
+    RG2_REQUIRE_WEIGHTS = 1u << 4, /**< every homogeneous weight > 0 */
+    RG2_REQUIRE_NO_CROSSINGS = 1u << 5 /**< crossings measured (crossing_density > 0) and none */
 };
 
 /** Largest number of seam samples, and of patch samples, of one rg2_check (the counts of the
@@ -1284,6 +1335,8 @@ typedef struct {
                                 The seams and the patches are measured in contiguous chunks into
                                 partial reports merged in order with the serial comparisons:
                                 the report is identical, bit for bit, for any thread count */
+    int crossing_density;  /**< 0 (default): no crossing search; 1..1000: rg2_find_crossings at
+                                this density into the report's crossings (serial) */
 } rg2_check_opts;
 
 typedef struct {
@@ -1345,6 +1398,7 @@ typedef struct {
     double kmin, kmax;     /**< principal curvatures (k2 min, k1 max) over the samples */
     double Hmin, Hmax, Kmin, Kmax;
     double size;           /**< bounding-box diagonal used to scale gaps */
+    rg2_crossing_report crossings; /**< with opts.crossing_density > 0 (else all zero) */
     rg2_check_opts opts;   /**< the options (tolerances) the report was made with */
 } rg2_check_report;
 

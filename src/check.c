@@ -41,6 +41,7 @@ void rg2_check_opts_default(rg2_check_opts *o)
     o->tol_g2 = 1e-8;
     o->tol_exact = 1e-11;
     o->threads = 0;
+    o->crossing_density = 0;
 }
 
 static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -766,6 +767,9 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
                          o->seam_samples, o->patch_samples);
     if (o->threads < 0)
         return rg2__fail(err, RG2_EINVAL, "check: threads %d < 0 (0: the OpenMP default)", o->threads);
+    if (o->crossing_density < 0 || o->crossing_density > 1000)
+        return rg2__fail(err, RG2_EINVAL, "check: crossing_density %d outside 0..1000 (0: no crossing search)",
+                         o->crossing_density);
     const double tol[4] = {o->tol_g0, o->tol_g1, o->tol_g2, o->tol_exact};
     static const char *const tol_name[4] = {"tol_g0", "tol_g1", "tol_g2", "tol_exact"};
     for (int k = 0; k < 4; k++) /* (a NaN or negative limit would fail its promise whatever the surface) */
@@ -893,6 +897,8 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
     free(seam_off);
     free(patch_off);
     free(size);
+    if (!st && o->crossing_density > 0)
+        st = rg2__prefix(err, rg2_find_crossings(surfs, n, o->crossing_density, &out->crossings, err), "check");
     if (st) {
         free(shape_size);
         free(shape_box);
@@ -985,6 +991,9 @@ unsigned rg2_check_failures(const rg2_check_report *r, unsigned require)
         f |= RG2_REQUIRE_EXACT;
     if ((require & RG2_REQUIRE_WEIGHTS) && !(r->wmin > 0 && r->eval_wmin > 0))
         f |= RG2_REQUIRE_WEIGHTS;
+    /* not searched (crossing_density 0) does not keep the promise either */
+    if ((require & RG2_REQUIRE_NO_CROSSINGS) && (r->crossings.density == 0 || r->crossings.crossings > 0))
+        f |= RG2_REQUIRE_NO_CROSSINGS;
     return f;
 }
 
@@ -1136,6 +1145,28 @@ static void format_text(const rg2_check_report *r, sbuf *b)
     sb_printf(b, "curvature            k [%.6g, %.6g]  H [%.6g, %.6g]  K [%.6g, %.6g]\n", r->kmin, r->kmax, r->Hmin,
               r->Hmax, r->Kmin, r->Kmax);
     sb_printf(b, "size                 %.6g (box diagonal)\n", r->size);
+    const rg2_crossing_report *c = &r->crossings;
+    if (c->density > 0) {
+        sb_printf(b, "crossings            %d of %d triangle pairs crossing in the mesh confirmed (%d triangles, "
+                     "density %d) %s\n", c->crossings, c->candidates, c->triangles, c->density,
+                  c->crossings ? "FAIL" : "ok");
+        if (c->crossings)
+            sb_printf(b, "  first at surface %d patch (%d,%d) u=%.6g v=%.6g x surface %d patch (%d,%d) u=%.6g v=%.6g, "
+                         "point (%.6g, %.6g, %.6g), normals %.3g rad apart, gap %.1e\n", c->a.surf, c->a.pi, c->a.pj,
+                      c->a.u, c->a.v, c->b.surf, c->b.pi, c->b.pj, c->b.u, c->b.v, c->p[0], c->p[1], c->p[2],
+                      c->angle, c->residual);
+    }
+}
+
+static cJSON *sheet_json(const rg2_crossing_sheet *s)
+{
+    cJSON *j = cJSON_CreateObject();
+    int p[2] = {s->pi, s->pj};
+    double uv[2] = {s->u, s->v};
+    cJSON_AddNumberToObject(j, "surface", s->surf);
+    cJSON_AddItemToObject(j, "patch", cJSON_CreateIntArray(p, 2));
+    cJSON_AddItemToObject(j, "uv", cJSON_CreateDoubleArray(uv, 2));
+    return j;
 }
 
 static cJSON *gap_json(const rg2_check_gap *g, double tol)
@@ -1222,6 +1253,22 @@ static char *format_json(const rg2_check_report *r)
     cJSON_AddItemToObject(j, "mean_curvature", cJSON_CreateDoubleArray(k + 2, 2));
     cJSON_AddItemToObject(j, "gauss_curvature", cJSON_CreateDoubleArray(k + 4, 2));
     cJSON_AddNumberToObject(j, "size", r->size);
+    const rg2_crossing_report *c = &r->crossings;
+    if (c->density > 0) { /* (only when searched: the report without it is unchanged) */
+        cJSON *x = cJSON_AddObjectToObject(j, "crossings");
+        cJSON_AddNumberToObject(x, "density", c->density);
+        cJSON_AddNumberToObject(x, "triangles", c->triangles);
+        cJSON_AddNumberToObject(x, "candidates", c->candidates);
+        cJSON_AddNumberToObject(x, "crossings", c->crossings);
+        cJSON_AddBoolToObject(x, "ok", c->crossings == 0);
+        if (c->crossings) {
+            cJSON_AddItemToObject(x, "a", sheet_json(&c->a));
+            cJSON_AddItemToObject(x, "b", sheet_json(&c->b));
+            cJSON_AddItemToObject(x, "point", cJSON_CreateDoubleArray(c->p, 3));
+            cJSON_AddNumberToObject(x, "angle", c->angle);
+            cJSON_AddNumberToObject(x, "residual", c->residual);
+        }
+    }
     unsigned f = rg2_check_failures(r, RG2_REQUIRE_G2 | RG2_REQUIRE_EXACT | RG2_REQUIRE_WEIGHTS);
     cJSON_AddBoolToObject(j, "g2", !(f & RG2_REQUIRE_G2));
     cJSON_AddBoolToObject(j, "exact", !(f & RG2_REQUIRE_EXACT));
