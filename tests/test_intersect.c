@@ -1,0 +1,428 @@
+/* test_intersect.c -- rg2_find_crossings and the crossings row of rg2_check: measured
+ * properties of the crossings found (the point on both exact sheets, independent implicit
+ * equations and normals, the moved point's support) and of those not reported (every example
+ * surface, poles and merges, surfaces that meet along an edge, a torus pulled close to its
+ * opposite wall), bad arguments, and the report on 1, 2 and 3 threads. */
+#include "harness.h"
+#include "scenes.h"
+
+#include <dirent.h>
+#include <stdlib.h>
+#include <string.h>
+
+static double dist3(const double *a, const double *b)
+{
+    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+/* The two sheets of the first crossing, evaluated again (order 1) at the returned parameters. */
+static void sheets_at(const rg2_surface *surfs, const rg2_crossing_report *r, rg2_eval *ea, rg2_eval *eb)
+{
+    rg2_surface_eval(&surfs[r->a.surf], r->a.pi, r->a.pj, r->a.u, r->a.v, 1, ea);
+    rg2_surface_eval(&surfs[r->b.surf], r->b.pi, r->b.pj, r->b.u, r->b.v, 1, eb);
+}
+
+static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+/* Every example design (the .json files of examples/, sorted): no output surface crosses itself; all the
+ * surfaces of a design together cross only in Fig. 1, whose four outputs are variants of one
+ * torus overlaid in place (surface 2 is surface 0 with a point pulled out, 3 is 1 with two
+ * lifted: the moved pieces cross the unmoved torus), and there only between different surfaces. */
+static void examples(void)
+{
+    DIR *dir = opendir("examples");
+    CHECK(dir != NULL, "examples/ directory (tests run in the source tree)");
+    if (!dir)
+        return;
+    char *names[64];
+    int n = 0;
+    struct dirent *de;
+    while ((de = readdir(dir)) && n < 64) {
+        size_t len = strlen(de->d_name);
+        if (len > 5 && !strcmp(de->d_name + len - 5, ".json")) {
+            names[n] = malloc(len + 10);
+            snprintf(names[n], len + 10, "examples/%s", de->d_name);
+            n++;
+        }
+    }
+    closedir(dir);
+    qsort(names, (size_t)n, sizeof *names, cmp_str);
+    CHECK(n >= 13, "%d example designs", n);
+    for (int k = 0; k < n; k++) {
+        rg2_design *d = NULL;
+        rg2_error err;
+        CHECK_OK(rg2_design_load(names[k], &d, &err), &err);
+        int ns = d ? rg2_design_num_surfaces(d) : 0, tris = 0;
+        rg2_surface *surfs = calloc((size_t)ns + 1, sizeof *surfs);
+        for (int s = 0; s < ns; s++) {
+            surfs[s] = *rg2_design_surface(d, s);
+            rg2_crossing_report r;
+            CHECK_OK(rg2_find_crossings(&surfs[s], 1, RG2_CROSSING_DEFAULT_DENSITY, &r, &err), &err);
+            CHECK(r.crossings == 0, "%s surface %d crosses itself: %d crossings of %d candidates, first patch (%d,%d) "
+                  "x (%d,%d) at (%g, %g, %g), angle %g", names[k], s, r.crossings, r.candidates, r.a.pi, r.a.pj,
+                  r.b.pi, r.b.pj, r.p[0], r.p[1], r.p[2], r.angle);
+            CHECK(r.triangles > 0 && r.triangles <= 2 * surfs[s].nu * surfs[s].nv * 16,
+                  "%s surface %d: %d triangles, at most 2 x 4^2 per patch", names[k], s, r.triangles);
+            tris += r.triangles;
+        }
+        rg2_crossing_report all;
+        CHECK_OK(rg2_find_crossings(surfs, ns, RG2_CROSSING_DEFAULT_DENSITY, &all, &err), &err);
+        CHECK(all.triangles == tris, "%s: %d triangles together, %d one by one", names[k], all.triangles, tris);
+        if (strstr(names[k], "fig1_torus")) {
+            CHECK(all.crossings > 0 && all.a.surf != all.b.surf,
+                  "%s: the overlaid variants cross each other (%d crossings, surfaces %d, %d)", names[k],
+                  all.crossings, all.a.surf, all.b.surf);
+            printf("%s: %d surfaces overlaid in place cross each other: %d confirmed of %d candidate pairs; first "
+                   "surface %d x %d at (%.4f, %.4f, %.4f), normals %.3g rad apart\n", names[k], ns, all.crossings,
+                   all.candidates, all.a.surf, all.b.surf, all.p[0], all.p[1], all.p[2], all.angle);
+        } else
+            CHECK(all.crossings == 0, "%s: its %d surfaces cross: %d crossings, surfaces %d x %d at (%g, %g, %g)",
+                  names[k], ns, all.crossings, all.a.surf, all.b.surf, all.p[0], all.p[1], all.p[2]);
+        free(surfs);
+        rg2_design_free(d);
+        free(names[k]);
+    }
+}
+
+/* The torus R = 3, r = 1 over 8 x 6 arcs (u = 0 and v = 0 at the outer equator point (4, 0, 0))
+ * with control point (0, 0) moved by dx along x (dx = 0: the exact torus). */
+static void torus_moved(double dx, rg2_mesh *m, rg2_surface *s)
+{
+    rg2_error err;
+    CHECK_OK(scene_revolve(3, 1, 8, 6, 1, 0, 0, m, s, &err), &err);
+    if (dx != 0) {
+        rg2_mesh_at(m, 0, 0)[0] += dx * rg2_mesh_at(m, 0, 0)[3];
+        rg2_surface_free(s);
+        CHECK_OK(rg2_surface_build(m, s, &err), &err);
+    }
+}
+
+/* Whether patch (i, j) of a differs from b's (the moved point's support, measured). */
+static int patch_moved(const rg2_surface *a, const rg2_surface *b, int i, int j)
+{
+    size_t k = (size_t)i * (size_t)a->nv + (size_t)j;
+    return memcmp(&a->patch[k], &b->patch[k], sizeof a->patch[k]) != 0;
+}
+
+/* The smallest x over dense samples of the moved patches near the plane y = 0 (|y| < 0.3,
+ * |z| < 0.3): how close the bulge, pushed in along -x, comes to the opposite (inner) wall of
+ * the tube at x = R - r = 2. */
+static double bulge_min_x(const rg2_surface *s, const rg2_surface *ref)
+{
+    double best = HUGE_VAL;
+    for (int i = 0; i < s->nu; i++)
+        for (int j = 0; j < s->nv; j++)
+            if (patch_moved(s, ref, i, j))
+                for (int a = 0; a <= 40; a++)
+                    for (int b = 0; b <= 40; b++) {
+                        rg2_eval e;
+                        rg2_surface_eval(s, i, j, a / 40.0, b / 40.0, 0, &e);
+                        if (fabs(e.p[1]) < 0.3 && fabs(e.p[2]) < 0.3)
+                            best = fmin(best, e.p[0]);
+                    }
+    return best;
+}
+
+/* A torus with its outer control point (4, 0, 0) pushed in through the tube past the inner
+ * wall: crossings found; the point lies on both exact sheets; one sheet is a moved patch. The
+ * same point pushed less (the bulge stops short of the inner wall): none. */
+static void torus_pushed_through(void)
+{
+    rg2_mesh m0, m;
+    rg2_surface ref, s;
+    rg2_error err;
+    torus_moved(0, &m0, &ref);
+    torus_moved(-6.0, &m, &s);
+    double minx = bulge_min_x(&s, &ref);
+    CHECK(minx < 1.9, "the pushed bulge reaches x = %.4f, past the inner wall at x = 2", minx);
+    rg2_crossing_report r;
+    CHECK_OK(rg2_find_crossings(&s, 1, RG2_CROSSING_DEFAULT_DENSITY, &r, &err), &err);
+    CHECK(r.crossings > 0, "pushed-through torus: %d crossings of %d candidates", r.crossings, r.candidates);
+    if (r.crossings > 0) {
+        rg2_eval ea, eb;
+        sheets_at(&s, &r, &ea, &eb);
+        double gap = dist3(ea.p, eb.p) / r.size;
+        CHECK(gap < 1e-9, "the crossing point is on both sheets: gap %.3g of the size", gap);
+        CHECK(dist3(ea.p, r.p) < 1e-9 * r.size, "the reported point is S_a there (%.3g)", dist3(ea.p, r.p));
+        CHECK(patch_moved(&s, &ref, r.a.pi, r.a.pj) || patch_moved(&s, &ref, r.b.pi, r.b.pj),
+              "one of the patches (%d,%d), (%d,%d) is in the moved point's support", r.a.pi, r.a.pj, r.b.pi, r.b.pj);
+        double nx = ea.n[1] * eb.n[2] - ea.n[2] * eb.n[1], ny = ea.n[2] * eb.n[0] - ea.n[0] * eb.n[2],
+               nz = ea.n[0] * eb.n[1] - ea.n[1] * eb.n[0];
+        double ang = atan2(sqrt(nx * nx + ny * ny + nz * nz),
+                           fabs(ea.n[0] * eb.n[0] + ea.n[1] * eb.n[1] + ea.n[2] * eb.n[2]));
+        CHECK(ang > 0.1 && fabs(ang - r.angle) < 1e-9, "a transversal crossing: normals %.4f rad apart (report %.4f)",
+              ang, r.angle);
+        printf("torus pushed through (control point moved by -6 in x, bulge to x = %.3f): %d of %d candidate pairs "
+               "confirmed; first patch (%d,%d) x (%d,%d), gap %.2e of the size, normals %.3f rad apart\n",
+               minx, r.crossings, r.candidates, r.a.pi, r.a.pj, r.b.pi, r.b.pj, gap, r.angle);
+    }
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+    /* pulled close to the inner wall, not through (bulge stopping short of x = 2) */
+    torus_moved(-4.0, &m, &s);
+    minx = bulge_min_x(&s, &ref);
+    CHECK(minx > 2.02 && minx < 2.6, "the near-miss bulge stops at x = %.4f, short of the wall at 2", minx);
+    for (int dens = 2; dens <= 8; dens *= 2) {
+        CHECK_OK(rg2_find_crossings(&s, 1, dens, &r, &err), &err);
+        CHECK(r.crossings == 0, "near-miss torus at density %d: %d crossings (first (%d,%d) x (%d,%d))", dens,
+              r.crossings, r.a.pi, r.a.pj, r.b.pi, r.b.pj);
+    }
+    printf("torus pulled to x = %.3f (0.%02.0f from the inner wall): no crossing at densities 2, 4, 8\n", minx,
+           (minx - 2) * 100);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+    rg2_surface_free(&ref);
+    rg2_mesh_free(&m0);
+}
+
+/* Two cylinders of radius 1 at right angles (tests/data/crossing_cylinders.json: x^2 + y^2 = 1
+ * and y^2 + z^2 = 1) as two output surfaces: they cross; the point satisfies both implicit
+ * equations and the angle is that of the exact normals (x, y, 0) and (0, y, z). */
+static void crossing_cylinders(void)
+{
+    rg2_design *d = NULL;
+    rg2_error err;
+    CHECK_OK(rg2_design_load("tests/data/crossing_cylinders.json", &d, &err), &err);
+    if (!d)
+        return;
+    rg2_surface surfs[2] = {*rg2_design_surface(d, 0), *rg2_design_surface(d, 1)};
+    for (int dens = 1; dens <= 16; dens *= 4) {
+        rg2_crossing_report r;
+        CHECK_OK(rg2_find_crossings(surfs, 2, dens, &r, &err), &err);
+        CHECK(r.crossings > 0 && r.a.surf != r.b.surf, "cylinders at density %d: %d crossings, surfaces %d x %d",
+              dens, r.crossings, r.a.surf, r.b.surf);
+        if (!r.crossings)
+            continue;
+        const double *p = r.p;
+        double f1 = p[0] * p[0] + p[1] * p[1] - 1, f2 = p[1] * p[1] + p[2] * p[2] - 1;
+        CHECK(fabs(f1) < 1e-12 && fabs(f2) < 1e-12, "density %d: the point (%.17g, %.17g, %.17g) on both: x^2+y^2-1 "
+              "= %.3g, y^2+z^2-1 = %.3g", dens, p[0], p[1], p[2], f1, f2);
+        double n1[3] = {p[0], p[1], 0}, n2[3] = {0, p[1], p[2]};
+        double c = fabs(n1[1] * n2[1]) / (sqrt(n1[0] * n1[0] + n1[1] * n1[1]) * sqrt(n2[1] * n2[1] + n2[2] * n2[2]));
+        double exact = acos(fmin(c, 1.0));
+        CHECK(fabs(exact - r.angle) < 1e-9, "density %d: angle %.15g, exact normals give %.15g", dens, r.angle, exact);
+        rg2_eval ea, eb;
+        sheets_at(surfs, &r, &ea, &eb);
+        CHECK(dist3(ea.p, eb.p) < 1e-9 * r.size, "density %d: both sheets at the point (%.3g)", dens,
+              dist3(ea.p, eb.p));
+        printf("crossing cylinders, density %d: %d of %d candidate pairs confirmed; first at (%.6f, %.6f, %.6f): "
+               "residuals %.1e, %.1e; angle %.6f rad (exact normals %.6f)\n", dens, r.crossings, r.candidates, p[0],
+               p[1], p[2], f1, f2, r.angle, exact);
+    }
+    /* each cylinder alone: none */
+    for (int s = 0; s < 2; s++) {
+        rg2_crossing_report r;
+        CHECK_OK(rg2_find_crossings(&surfs[s], 1, 4, &r, &err), &err);
+        CHECK(r.crossings == 0, "cylinder %d alone: %d crossings", s, r.crossings);
+    }
+    rg2_design_free(d);
+}
+
+/* A one-patch surface: a straight profile from (x0, z0) to (x1, z1) extruded along y in [0, 2]. */
+static void plate(double x0, double z0, double x1, double z1, rg2_surface *s)
+{
+    double prof[4][3];
+    for (int r = 0; r < 4; r++) {
+        prof[r][0] = x0 + (x1 - x0) * r / 3.0;
+        prof[r][1] = z0 + (z1 - z0) * r / 3.0;
+        prof[r][2] = 1.0;
+    }
+    memset(s, 0, sizeof *s);
+    s->nu = s->nv = 1;
+    s->patch = calloc(1, sizeof *s->patch);
+    s->bu = calloc(1, sizeof(double));
+    s->gu = calloc(1, sizeof(double));
+    s->bv = calloc(1, sizeof(double));
+    s->gv = calloc(1, sizeof(double));
+    if (s->patch)
+        scene_extrude(prof, 2.0, s->patch);
+}
+
+/* Surfaces that meet along an edge touch, they do not cross: two plates at right angles with a
+ * common edge (an L), a plate whose edge lies on another's middle (a T), each with its own
+ * vertices (the T's edge is not one of the other plate's rows). A plate through the other's
+ * middle (an X) does cross: the same test with the border rule removed would report all. */
+static void edges_touch(void)
+{
+    rg2_surface s[2];
+    rg2_error err;
+    rg2_crossing_report r;
+    static const double shapes[3][2][4] = {
+        {{0, 0, 1, 0}, {0, 0, 0, 1}},            /* L: common edge x = z = 0 */
+        {{-1, 0, 1, 0}, {0.123, 0, 0.123, 1}},   /* T: the second's edge on the first's middle */
+        {{-1, 0, 1, 0}, {0.123, -1, 0.123, 1}},  /* X: through it */
+    };
+    for (int k = 0; k < 3; k++) {
+        for (int q = 0; q < 2; q++)
+            plate(shapes[k][q][0], shapes[k][q][1], shapes[k][q][2], shapes[k][q][3], &s[q]);
+        for (int dens = 1; dens <= 9; dens += 4) {
+            CHECK_OK(rg2_find_crossings(s, 2, dens, &r, &err), &err);
+            if (k < 2)
+                CHECK(r.crossings == 0, "%s at density %d: %d crossings (%d candidates)", k ? "T" : "L", dens,
+                      r.crossings, r.candidates);
+            else {
+                CHECK(r.crossings > 0, "X at density %d: %d crossings", dens, r.crossings);
+                CHECK(r.crossings == 0 || (fabs(r.p[0] - 0.123) < 1e-12 && fabs(r.p[2]) < 1e-12 &&
+                                           fabs(r.angle - M_PI / 2) < 1e-12),
+                      "X: the crossing on the line x = 0.123, z = 0 at right angles: (%g, %g, %g), %g", r.p[0], r.p[1],
+                      r.p[2], r.angle);
+            }
+        }
+        rg2_surface_free(&s[0]);
+        rg2_surface_free(&s[1]);
+    }
+}
+
+/* Two flat plates crossing along the line x = 0.123, z = 0 at an angle t: counted from
+ * RG2_CROSSING_MIN_ANGLE up, with the angle t itself; below it (near-tangential) not counted. */
+static void shallow_angles(void)
+{
+    static const double t[4] = {3e-4, 8e-4, 1.5e-3, 1e-2};
+    for (int k = 0; k < 4; k++) {
+        rg2_surface s[2];
+        rg2_error err;
+        rg2_crossing_report r;
+        plate(-1, 0, 1, 0, &s[0]);
+        plate(-1, (-1 - 0.123) * tan(t[k]), 1, (1 - 0.123) * tan(t[k]), &s[1]);
+        CHECK_OK(rg2_find_crossings(s, 2, 4, &r, &err), &err);
+        if (t[k] < RG2_CROSSING_MIN_ANGLE)
+            CHECK(r.crossings == 0 && r.candidates > 0, "plates %.1e rad apart: %d crossings of %d candidates: "
+                  "near-tangential, not counted", t[k], r.crossings, r.candidates);
+        else
+            CHECK(r.crossings > 0 && fabs(r.angle - t[k]) < 1e-12 * t[k] + 1e-15 && fabs(r.p[0] - 0.123) < 1e-12,
+                  "plates %.1e rad apart: %d crossings, angle %.17g, at x = %.17g", t[k], r.crossings, r.angle,
+                  r.p[0]);
+        rg2_surface_free(&s[0]);
+        rg2_surface_free(&s[1]);
+    }
+}
+
+/* Bad arguments: each refused with its code and a message naming it. */
+static void bad_arguments(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    rg2_crossing_report r;
+    torus_moved(0, &m, &s);
+    static const int dens[3] = {0, -3, 1001};
+    for (int k = 0; k < 3; k++) {
+        rg2_status st = rg2_find_crossings(&s, 1, dens[k], &r, &err);
+        CHECK(st == RG2_EINVAL && strstr(err.msg, "density") && r.density == 0, "density %d: %s (%s)", dens[k],
+              rg2_status_str(st), err.msg);
+    }
+    rg2_status st = rg2_find_crossings(&s, 1, 1000, &r, &err); /* 48 x 2 x 1000^2 triangles */
+    CHECK(st == RG2_ELIMIT && strstr(err.msg, "density 1000") && strstr(err.msg, "96000000"), "density 1000: %s (%s)",
+          rg2_status_str(st), err.msg);
+    st = rg2_find_crossings(NULL, 1, 4, &r, &err);
+    CHECK(st == RG2_EINVAL && strstr(err.msg, "no surfaces"), "NULL surfaces: %s (%s)", rg2_status_str(st), err.msg);
+    st = rg2_find_crossings(&s, 0, 4, &r, &err);
+    CHECK(st == RG2_EINVAL && strstr(err.msg, "no surfaces"), "n = 0: %s (%s)", rg2_status_str(st), err.msg);
+    st = rg2_find_crossings(&s, 1, 4, NULL, &err);
+    CHECK(st == RG2_EINVAL && strstr(err.msg, "no report"), "NULL report: %s (%s)", rg2_status_str(st), err.msg);
+    rg2_surface empty = {0};
+    st = rg2_find_crossings(&empty, 1, 4, &r, &err);
+    CHECK(st == RG2_EINVAL && strstr(err.msg, "surface 0 has no patches"), "no patches: %s (%s)", rg2_status_str(st),
+          err.msg);
+    rg2_check_opts o;
+    rg2_check_opts_default(&o);
+    CHECK(o.crossing_density == 0, "crossings are off by default (%d)", o.crossing_density);
+    rg2_check_report cr;
+    for (int k = 0; k < 2; k++) {
+        o.crossing_density = k ? 1001 : -1;
+        st = rg2_check(&s, 1, NULL, NULL, 0, &o, &cr, &err);
+        CHECK(st == RG2_EINVAL && strstr(err.msg, "crossing_density"), "check crossing_density %d: %s (%s)",
+              o.crossing_density, rg2_status_str(st), err.msg);
+    }
+    o.crossing_density = 1000;
+    st = rg2_check(&s, 1, NULL, NULL, 0, &o, &cr, &err);
+    CHECK(st == RG2_ELIMIT && strstr(err.msg, "check: crossings:"), "check at density 1000: %s (%s)",
+          rg2_status_str(st), err.msg);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
+/* Whether two crossing reports hold the same values (field by field: padding is not compared). */
+static int same_crossings(const rg2_crossing_report *x, const rg2_crossing_report *y)
+{
+    const rg2_crossing_sheet *s[4] = {&x->a, &y->a, &x->b, &y->b};
+    for (int k = 0; k < 4; k += 2)
+        if (s[k]->surf != s[k + 1]->surf || s[k]->pi != s[k + 1]->pi || s[k]->pj != s[k + 1]->pj ||
+            memcmp(&s[k]->u, &s[k + 1]->u, sizeof(double)) || memcmp(&s[k]->v, &s[k + 1]->v, sizeof(double)))
+            return 0;
+    return x->density == y->density && x->triangles == y->triangles && x->candidates == y->candidates &&
+           x->crossings == y->crossings && !memcmp(x->p, y->p, sizeof x->p) &&
+           !memcmp(&x->residual, &y->residual, sizeof(double)) && !memcmp(&x->angle, &y->angle, sizeof(double)) &&
+           !memcmp(&x->size, &y->size, sizeof(double));
+}
+
+/* rg2_check with crossing_density: the report's crossings equal rg2_find_crossings', the
+ * promise fails for the crossing torus and when not searched, holds for the clean torus; the
+ * report (struct and text) is the same on 1, 2 and 3 threads; without the option the text has
+ * no crossings row. */
+static void check_integration(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    torus_moved(-6.0, &m, &s);
+    rg2_crossing_report direct;
+    CHECK_OK(rg2_find_crossings(&s, 1, 4, &direct, &err), &err);
+    rg2_check_opts o;
+    rg2_check_opts_default(&o);
+    o.crossing_density = 4;
+    char *text[3] = {NULL, NULL, NULL};
+    rg2_crossing_report got[3];
+    for (int t = 1; t <= 3; t++) {
+        rg2_check_report cr;
+        o.threads = t;
+        CHECK_OK(rg2_check(&s, 1, NULL, NULL, 0, &o, &cr, &err), &err);
+        got[t - 1] = cr.crossings;
+        CHECK(rg2_check_failures(&cr, RG2_REQUIRE_NO_CROSSINGS) == RG2_REQUIRE_NO_CROSSINGS,
+              "%d threads: no-crossings fails for the pushed torus", t);
+        CHECK_OK(rg2_check_format(&cr, 0, &text[t - 1], &err), &err);
+        rg2_check_report_free(&cr);
+    }
+    CHECK(same_crossings(&got[0], &direct), "check's crossings equal rg2_find_crossings'");
+    CHECK(same_crossings(&got[0], &got[1]) && same_crossings(&got[0], &got[2]),
+          "the crossings report on 1, 2, 3 threads is the same");
+    CHECK(text[0] && text[1] && text[2] && !strcmp(text[0], text[1]) && !strcmp(text[0], text[2]) &&
+              strstr(text[0], "crossings ") && strstr(text[0], "FAIL"),
+          "the text on 1, 2, 3 threads is the same, with a failing crossings row");
+    for (int t = 0; t < 3; t++)
+        free(text[t]);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+    torus_moved(0, &m, &s);
+    rg2_check_report cr;
+    CHECK_OK(rg2_check(&s, 1, NULL, NULL, 0, &o, &cr, &err), &err);
+    CHECK(cr.crossings.density == 4 && cr.crossings.crossings == 0 && cr.crossings.triangles == 48 * 32 &&
+              !rg2_check_failures(&cr, RG2_REQUIRE_NO_CROSSINGS),
+          "the exact torus: %d crossings over %d triangles", cr.crossings.crossings, cr.crossings.triangles);
+    rg2_check_report_free(&cr);
+    o.crossing_density = 0;
+    CHECK_OK(rg2_check(&s, 1, NULL, NULL, 0, &o, &cr, &err), &err);
+    char *t0 = NULL, *j0 = NULL;
+    CHECK_OK(rg2_check_format(&cr, 0, &t0, &err), &err);
+    CHECK_OK(rg2_check_format(&cr, 1, &j0, &err), &err);
+    CHECK(cr.crossings.density == 0 && rg2_check_failures(&cr, RG2_REQUIRE_NO_CROSSINGS) &&
+              t0 && !strstr(t0, "crossings") && j0 && !strstr(j0, "crossings"),
+          "not searched: no row, no JSON object, and the promise fails");
+    free(t0);
+    free(j0);
+    rg2_check_report_free(&cr);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
+int main(void)
+{
+    examples();
+    torus_pushed_through();
+    crossing_cylinders();
+    edges_touch();
+    shallow_angles();
+    bad_arguments();
+    check_integration();
+    return rg2t_done("test_intersect");
+}
