@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# CLI tests of rg2 check --intersections and --require no-crossings: every example surface
+# keeps the promise alone (the examples' output lists, except Fig. 1's overlaid torus variants,
+# keep it together); two crossing cylinders break it (exit 3, the row, the JSON object whose
+# point lies on both cylinders); without the option the report has no crossings row; bad
+# densities are usage errors.
+# Usage: bash check_crossings.sh <path-to-rg2> <source-dir>
+set -u
+. "$(dirname "$0")/lib.sh"
+cyl=$SRC/tests/data/crossing_cylinders.json
+
+"$RG2" check --help | grep -q -- "--intersections" && ok || bad "--help lacks --intersections"
+"$RG2" check --help | grep -q -- "no-crossings" && ok || bad "--help lacks no-crossings"
+for f in "$SRC"/examples/*.json; do
+  case $f in
+    */fig1_torus.json) expect 3 "failed: no-crossings" -- "$RG2" check "$f" --require no-crossings ;;
+    *) expect 0 "crossings            0 of" -- "$RG2" check "$f" --require no-crossings ;;
+  esac
+done
+# the crossing cylinders: the promise fails, the row names both surfaces
+expect 3 "failed: no-crossings" -- "$RG2" check "$cyl" --require no-crossings
+expect 0 "x surface 1 patch" -- "$RG2" check "$cyl" --intersections 2
+expect 3 "FAIL" -- "$RG2" check "$cyl" --intersections --require no-crossings,g2,exact
+# each alone is clean: g2 and exact hold while no-crossings fails (only no-crossings named)
+out=$("$RG2" check "$cyl" --require g2,exact,no-crossings 2>&1 >/dev/null)
+[ "$out" = "rg2 check: $cyl: required promise failed: no-crossings" ] && ok || bad "stderr: $out"
+# JSON: the crossings object, its point on x^2 + y^2 = 1 and y^2 + z^2 = 1 (independently)
+"$RG2" check "$cyl" --json --intersections 3 | python3 -c '
+import json, sys
+c = json.load(sys.stdin)["crossings"]
+x, y, z = c["point"]
+assert c["density"] == 3 and c["crossings"] > 0 and not c["ok"], c
+assert abs(x*x + y*y - 1) < 1e-12 and abs(y*y + z*z - 1) < 1e-12, (x, y, z)
+assert {c["a"]["surface"], c["b"]["surface"]} == {0, 1}, c
+' && ok || bad "the JSON crossings object"
+# without the option: no row, no object (the old report)
+"$RG2" check "$cyl" | grep -q crossings && bad "a crossings row without --intersections" || ok
+"$RG2" check "$cyl" --json | grep -q crossings && bad "a crossings object without --intersections" || ok
+# the density is optional: a following design name is not taken for it
+expect 0 "density 4)" -- "$RG2" check --intersections "$cyl"
+expect 2 "--intersections needs an integer 1..1000, not '0'" -- "$RG2" check "$cyl" --intersections 0
+expect 2 "--intersections needs an integer 1..1000, not '-2'" -- "$RG2" check "$cyl" --intersections -2
+expect 2 "--intersections needs an integer 1..1000, not '1001'" -- "$RG2" check "$cyl" --intersections 1001
+expect 2 "unknown promise 'no-crossing'" -- "$RG2" check "$cyl" --require no-crossing
+expect 1 "exceed the limit of 4000000: a lower density" -- "$RG2" check "$cyl" --intersections 300
+finish
