@@ -41,6 +41,10 @@ int rg2t_done(const char *name);
  * (RLIMIT_FSIZE, with SIGXFSZ ignored); bytes < 0 lifts the limit again. 0 on success. */
 int rg2t_file_limit(long long bytes);
 
+/* The example designs, examples/NAME.json sorted by name (tests run in the source tree), into
+ * names (malloc'd each, the caller frees them): how many, at most max. */
+int rg2t_example_names(char **names, int max);
+
 /* Deterministic random numbers (splitmix64); every test prints its seed. */
 typedef struct {
     uint64_t s;

@@ -8,7 +8,6 @@
 #include "xmix.h"
 
 #include <cjson/cJSON.h>
-#include <dirent.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -649,35 +648,10 @@ out:
     rg2_design_free(d);
 }
 
-static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
-
-/* The example designs, examples/NAME.json sorted by name, into names (malloc'd each): how many. */
-static int example_names(char **names, int max)
-{
-    DIR *dir = opendir("examples");
-    CHECK(dir != NULL, "examples/ directory (tests run in the source tree)");
-    if (!dir)
-        return 0;
-    int n = 0;
-    struct dirent *de;
-    while ((de = readdir(dir)) && n < max) {
-        size_t len = strlen(de->d_name);
-        if (len > 5 && !strcmp(de->d_name + len - 5, ".json")) {
-            names[n] = malloc(len + 10);
-            snprintf(names[n], len + 10, "examples/%s", de->d_name);
-            n++;
-        }
-    }
-    closedir(dir);
-    qsort(names, (size_t)n, sizeof *names, cmp_str);
-    CHECK(n >= 1, "%d example designs", n);
-    return n;
-}
-
 static void examples(void)
 {
     char *names[64];
-    int n = example_names(names, 64);
+    int n = rg2t_example_names(names, 64);
     for (int k = 0; k < n; k++) {
         check_example(names[k]);
         free(names[k]);
@@ -1132,7 +1106,7 @@ static void ill_conditioned_flat(void)
 static void threads_identical(void)
 {
     char *names[64];
-    int nd = example_names(names, 64);
+    int nd = rg2t_example_names(names, 64);
     for (int k = 0; k < nd; k++) {
         rg2_design *d = NULL;
         rg2_error err;

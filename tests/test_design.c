@@ -7,7 +7,6 @@
 
 #include <cjson/cJSON.h>
 #include <errno.h>
-#include <dirent.h>
 #include <unistd.h>
 #include <math.h>
 #include <stdlib.h>
@@ -121,29 +120,8 @@ static void check_expect(const char *file, const rg2_design *d, int o, const cJS
 
 static void examples(void)
 {
-    DIR *dir = opendir("examples");
-    CHECK(dir != NULL, "cannot open examples/ (run from the source directory)");
-    if (!dir)
-        return;
     char *names[64];
-    int n = 0;
-    struct dirent *de;
-    while ((de = readdir(dir)) && n < 64) {
-        size_t l = strlen(de->d_name);
-        if (l > 5 && !strcmp(de->d_name + l - 5, ".json")) {
-            names[n] = malloc(l + 10);
-            snprintf(names[n], l + 10, "examples/%s", de->d_name);
-            n++;
-        }
-    }
-    closedir(dir);
-    for (int a = 0; a < n; a++) /* sorted, for a stable report */
-        for (int b = a + 1; b < n; b++)
-            if (strcmp(names[a], names[b]) > 0) {
-                char *t = names[a];
-                names[a] = names[b];
-                names[b] = t;
-            }
+    int n = rg2t_example_names(names, 64); /* sorted, for a stable report */
     CHECK(n >= 6, "only %d examples", n);
     for (int e = 0; e < n; e++) {
         const char *file = names[e];

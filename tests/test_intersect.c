@@ -6,7 +6,6 @@
 #include "harness.h"
 #include "scenes.h"
 
-#include <dirent.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -22,31 +21,14 @@ static void sheets_at(const rg2_surface *surfs, const rg2_crossing_report *r, rg
     rg2_surface_eval(&surfs[r->b.surf], r->b.pi, r->b.pj, r->b.u, r->b.v, 1, eb);
 }
 
-static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
-
 /* Every example design (the .json files of examples/, sorted): no output surface crosses itself; all the
  * surfaces of a design together cross only in Fig. 1, whose four outputs are variants of one
  * torus overlaid in place (surface 2 is surface 0 with a point pulled out, 3 is 1 with two
  * lifted: the moved pieces cross the unmoved torus), and there only between different surfaces. */
 static void examples(void)
 {
-    DIR *dir = opendir("examples");
-    CHECK(dir != NULL, "examples/ directory (tests run in the source tree)");
-    if (!dir)
-        return;
     char *names[64];
-    int n = 0;
-    struct dirent *de;
-    while ((de = readdir(dir)) && n < 64) {
-        size_t len = strlen(de->d_name);
-        if (len > 5 && !strcmp(de->d_name + len - 5, ".json")) {
-            names[n] = malloc(len + 10);
-            snprintf(names[n], len + 10, "examples/%s", de->d_name);
-            n++;
-        }
-    }
-    closedir(dir);
-    qsort(names, (size_t)n, sizeof *names, cmp_str);
+    int n = rg2t_example_names(names, 64);
     CHECK(n >= 13, "%d example designs", n);
     for (int k = 0; k < n; k++) {
         rg2_design *d = NULL;

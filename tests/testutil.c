@@ -2,6 +2,7 @@
 #define _POSIX_C_SOURCE 200809L /* setrlimit, sigaction */
 #include "harness.h"
 
+#include <dirent.h>
 #include <math.h>
 #include <signal.h>
 #include <stdlib.h>
@@ -287,4 +288,28 @@ void rg2t_design_parts_free(rg2t_parts *p)
     p->meshes = NULL;
     p->shapes = NULL;
     p->labels = NULL;
+}
+
+static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+int rg2t_example_names(char **names, int max)
+{
+    DIR *dir = opendir("examples");
+    CHECK(dir != NULL, "examples/ directory (tests run in the source tree)");
+    if (!dir)
+        return 0;
+    int n = 0;
+    struct dirent *de;
+    while ((de = readdir(dir)) && n < max) {
+        size_t len = strlen(de->d_name);
+        if (len > 5 && !strcmp(de->d_name + len - 5, ".json")) {
+            names[n] = malloc(len + 10);
+            snprintf(names[n], len + 10, "examples/%s", de->d_name);
+            n++;
+        }
+    }
+    closedir(dir);
+    qsort(names, (size_t)n, sizeof *names, cmp_str);
+    CHECK(n >= 1, "%d example designs", n);
+    return n;
 }
