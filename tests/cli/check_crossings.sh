@@ -17,6 +17,8 @@ for f in "$SRC"/examples/*.json; do
     *) expect 0 "crossings            0 of" -- "$RG2" check "$f" --require no-crossings ;;
   esac
 done
+# the torus pushed through its tube: G2, regular and on its torus where unmoved, but it crosses itself
+expect 3 "failed: no-crossings" -- "$RG2" check "$SRC/tests/data/torus_pushed_through.json" --require g2,exact,weights,no-crossings
 # the crossing cylinders: the promise fails, the row names both surfaces
 expect 3 "failed: no-crossings" -- "$RG2" check "$cyl" --require no-crossings
 expect 0 "x surface 1 patch" -- "$RG2" check "$cyl" --intersections 2
