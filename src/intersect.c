@@ -121,16 +121,22 @@ static double newton(sheet *a, sheet *b, rg2_eval *ea, rg2_eval *eb)
             for (int c = 0; c < 3; c++)
                 for (int k = 0; k < 4; k++)
                     M[r][c] += J[k][r] * J[k][c];
+        double scale = M[0][0] + M[1][1] + M[2][2]; /* M / its trace: no overflow at any size */
+        if (!(scale > 0 && isfinite(scale)))
+            return HUGE_VAL;
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 3; c++)
+                M[r][c] /= scale;
         double c0[3], c1[3], c2[3];
         cross3(M[1], M[2], c0);
         cross3(M[2], M[0], c1);
         cross3(M[0], M[1], c2);
-        double det = dot3(M[0], c0), scale = M[0][0] + M[1][1] + M[2][2];
-        if (!(fabs(det) > 1e-14 * scale * scale * scale))
+        double det = dot3(M[0], c0);
+        if (!(fabs(det) > 1e-14))
             return HUGE_VAL; /* the four tangents do not span space: tangential contact */
         double y[3]; /* M y = -F (M symmetric: its inverse is the cofactors / det) */
         for (int r = 0; r < 3; r++)
-            y[r] = -(c0[r] * F[0] + c1[r] * F[1] + c2[r] * F[2]) / det;
+            y[r] = -(c0[r] * F[0] + c1[r] * F[1] + c2[r] * F[2]) / det / scale;
         double step[4], len = 0;
         for (int k = 0; k < 4; k++) {
             step[k] = sg[k] * dot3(J[k], y);
@@ -156,8 +162,9 @@ typedef struct {
     int *vbase, *tbase;   /* first global vertex / triangle of each surface (n + 1 entries) */
     int nvert, ntri;
     int *weld;            /* global vertex -> its welded representative */
-    float *box;           /* 6 per triangle: lo, hi (rounded outwards) */
-    double size;
+    float *box;           /* 6 per triangle: lo, hi relative to origin / size (rounded outwards: a
+                             float holds every size of the supported range so) */
+    double size, origin[3];
 } mesh_set;
 
 static int tri_surface(const mesh_set *M, int t)
@@ -249,12 +256,12 @@ static int boxes(mesh_set *M)
             for (int d = 0; d < 3; d++) {
                 double lo = DBL_MAX, hi = -DBL_MAX;
                 for (int c = 0; c < 3; c++) {
-                    double x = vpos(M, s, tv[c])[d];
+                    double x = (vpos(M, s, tv[c])[d] - M->origin[d]) / M->size;
                     lo = fmin(lo, x);
                     hi = fmax(hi, x);
                 }
-                b[d] = round_down(lo);
-                b[3 + d] = round_up(hi);
+                b[d] = round_down(lo - 1e-12); /* (over the rounding of the quotient) */
+                b[3 + d] = round_up(hi + 1e-12);
             }
         }
     return 0;
@@ -301,6 +308,13 @@ static int tri_cross(const double *const A[3], const double *const B[3], double 
     sub3(B[1], B[0], ea);
     sub3(B[2], B[0], eb);
     cross3(ea, eb, nb);
+    double la = sqrt(dot3(na, na)), lb = sqrt(dot3(nb, nb)); /* unit normals: no underflow at 1e-60 */
+    if (!(la > 0 && lb > 0))
+        return 0; /* a degenerate triangle */
+    for (int c = 0; c < 3; c++) {
+        na[c] /= la;
+        nb[c] /= lb;
+    }
     if (!plane_cut(A, nb, B[0], sa) || !plane_cut(B, na, A[0], sb))
         return 0;
     cross3(na, nb, L);
@@ -387,7 +401,7 @@ static int confirm(const mesh_set *M, int ta, int tb, const double X[3], rg2_cro
     for (int c = 0; c < 3; c++)
         P[c] = 0.5 * (e[0].p[c] + e[1].p[c]);
     sub3(P, X, d);
-    double reach = 2 * (box_diag(M->box + 6 * (size_t)ta) + box_diag(M->box + 6 * (size_t)tb));
+    double reach = 2 * M->size * (box_diag(M->box + 6 * (size_t)ta) + box_diag(M->box + 6 * (size_t)tb));
     if (!(dot3(d, d) <= reach * reach))
         return 0; /* converged onto another sheet pair far away: not this pair's crossing */
     rg2_crossing_sheet cs[2];
@@ -629,6 +643,8 @@ rg2_status rg2_find_crossings(const rg2_surface *surfs, int n, int density, rg2_
         for (int d = 0; d < 3 && lo[0] <= hi[0]; d++)
             d2 += (hi[d] - lo[d]) * (hi[d] - lo[d]);
         M.size = d2 > 0 ? sqrt(d2) : 1.0;
+        for (int d = 0; d < 3; d++)
+            M.origin[d] = lo[0] <= hi[0] ? lo[d] : 0.0;
         M.nvert = M.vbase[n];
         M.ntri = M.tbase[n];
         out->density = density;

@@ -149,8 +149,8 @@ static void torus_pushed_through(void)
         CHECK(r.crossings == 0, "near-miss torus at density %d: %d crossings (first (%d,%d) x (%d,%d))", dens,
               r.crossings, r.a.pi, r.a.pj, r.b.pi, r.b.pj);
     }
-    printf("torus pulled to x = %.3f (0.%02.0f from the inner wall): no crossing at densities 2, 4, 8\n", minx,
-           (minx - 2) * 100);
+    printf("torus pulled to x = %.3f (%.3f from the inner wall): no crossing at densities 2, 4, 8\n", minx,
+           minx - 2);
     rg2_surface_free(&s);
     rg2_mesh_free(&m);
     rg2_surface_free(&ref);
@@ -190,6 +190,26 @@ static void crossing_cylinders(void)
         printf("crossing cylinders, density %d: %d of %d candidate pairs confirmed; first at (%.6f, %.6f, %.6f): "
                "residuals %.1e, %.1e; angle %.6f rad (exact normals %.6f)\n", dens, r.crossings, r.candidates, p[0],
                p[1], p[2], f1, f2, r.angle, exact);
+    }
+    /* the same at sizes 1e-55 and 1e55 (tolerances relative to the size; J J^T, 1e110, cubed would overflow) */
+    for (int e = -1; e <= 1; e += 2) {
+        double k = pow(10.0, 55 * e), T[16] = {k, 0, 0, 0, 0, k, 0, 0, 0, 0, k, 0, 0, 0, 0, 1};
+        rg2_mesh m[2];
+        rg2_surface sc[2];
+        for (int q = 0; q < 2; q++) {
+            CHECK_OK(rg2_mesh_copy(rg2_design_mesh(d, q), &m[q], &err), &err);
+            rg2_mesh_transform(&m[q], T);
+            CHECK_OK(rg2_surface_build(&m[q], &sc[q], &err), &err);
+        }
+        rg2_crossing_report r;
+        CHECK_OK(rg2_find_crossings(sc, 2, 4, &r, &err), &err);
+        double x = r.p[0] / k, y = r.p[1] / k, z = r.p[2] / k;
+        CHECK(r.crossings > 0 && fabs(x * x + y * y - 1) < 1e-12 && fabs(y * y + z * z - 1) < 1e-12,
+              "cylinders scaled by %g: %d crossings, point / scale (%g, %g, %g)", k, r.crossings, x, y, z);
+        for (int q = 0; q < 2; q++) {
+            rg2_surface_free(&sc[q]);
+            rg2_mesh_free(&m[q]);
+        }
     }
     /* each cylinder alone: none */
     for (int s = 0; s < 2; s++) {
