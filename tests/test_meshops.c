@@ -258,6 +258,26 @@ static void errors(const rg2_mesh *M)
     bad(rg2_mesh_merge(with_null, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINVAL, &err, &r,
         "rg2_mesh_merge: in[1] is NULL", "merge with a NULL mesh");
 
+    /* the count limit at its edge, before any input is read: RG2_MAX_POINTS + 1 meshes refused by
+     * it, naming n; RG2_MAX_POINTS pass it and reach the next check (dir 2). One mesh repeated:
+     * the pointer array (32 MB) is all that is allocated. */
+    const rg2_mesh **many = malloc(((size_t)RG2_MAX_POINTS + 1) * sizeof *many);
+    CHECK(many != NULL, "merge limit: out of memory for the input array");
+    if (many) {
+        for (size_t q = 0; q <= (size_t)RG2_MAX_POINTS; q++)
+            many[q] = &M[TUBE];
+        char want[96];
+        snprintf(want, sizeof want, "rg2_mesh_merge: n = %d meshes, more than the limit of %d points",
+                 RG2_MAX_POINTS + 1, RG2_MAX_POINTS);
+        memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
+        bad(rg2_mesh_merge(many, RG2_MAX_POINTS + 1, 2, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_ELIMIT, &err, &r, want,
+            "merge of RG2_MAX_POINTS + 1 meshes");
+        memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
+        bad(rg2_mesh_merge(many, RG2_MAX_POINTS, 2, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINVAL, &err, &r,
+            "rg2_mesh_merge: dir = 2", "merge of RG2_MAX_POINTS meshes (past the limit check)");
+        free(many);
+    }
+
     /* out aliasing an input is refused before anything is touched */
     rg2_mesh c;
     CHECK_OK(rg2_mesh_copy(&M[TUBE], &c, &err), &err);
