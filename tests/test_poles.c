@@ -130,6 +130,18 @@ static void apply(const double M[16], const double p[4], double q[4])
         q[r] = M[4 * r] * p[0] + M[4 * r + 1] * p[1] + M[4 * r + 2] * p[2] + M[4 * r + 3] * p[3];
 }
 
+/* How far M takes the unit sphere's poles (0, 0, -+1) from south and north (the larger distance;
+ * NaN compares false, so a non-finite M fails the callers' bounds). */
+static double poles_mapped_off(const double M[16], const double south[3], const double north[3])
+{
+    double S4[4] = {0, 0, -1, 1}, N4[4] = {0, 0, 1, 1}, x[4], y[4];
+    apply(M, S4, x);
+    apply(M, N4, y);
+    double xs[3] = {x[0] / x[3], x[1] / x[3], x[2] / x[3]}, yn[3] = {y[0] / y[3], y[1] / y[3], y[2] / y[3]};
+    double a = pt_dist3(xs, south), b = pt_dist3(yn, north);
+    return a != a || b != b ? NAN : fmax(a, b);
+}
+
 /* Worst distance from the sphere (center c, radius R) over a capped surface, and its poles. */
 static double capped_sphere(const rg2_mesh *mesh, const double c[3], double R, double pole[2][3],
                             rg2t_seams *g)
@@ -261,11 +273,8 @@ static void mobius_general(void)
         rg2_error err;
         CHECK_OK(rg2_mobius_poles_matrix(s, nn, M, &err), &err);
         wl = fmax(wl, lorentz_defect(M));
-        double S4[4] = {0, 0, -1, 1}, N4[4] = {0, 0, 1, 1}, a[4], b[4];
-        apply(M, S4, a);
-        apply(M, N4, b);
-        double as[3] = {a[0] / a[3], a[1] / a[3], a[2] / a[3]}, bn[3] = {b[0] / b[3], b[1] / b[3], b[2] / b[3]};
-        CHECK(pt_dist3(as, s) <= 1e-14 && pt_dist3(bn, nn) <= 1e-14, "poles mapped: %.3g %.3g", pt_dist3(as, s), pt_dist3(bn, nn));
+        double off = poles_mapped_off(M, s, nn);
+        CHECK(off <= 1e-14, "poles mapped %.3g off", off);
         /* placed sphere: center c, radius R */
         double c[3] = {rg2t_uniform(&r, -1, 1), rg2t_uniform(&r, -1, 1), rg2t_uniform(&r, -1, 1)}, R = rg2t_uniform(&r, 0.5, 2);
         double P[16] = {R, 0, 0, c[0], 0, R, 0, c[1], 0, 0, R, c[2], 0, 0, 0, 1};
@@ -305,16 +314,22 @@ static void errors(void)
     CHECK(rg2_mobius_poles_matrix(s, s, M, &err) == RG2_EDOMAIN && strstr(err.msg, "coincide"), "%s", err.msg);
     /* close poles (but not coincident): a finite matrix taking the poles where asked. 1e-8 apart
      * gave c = 1 and an infinite boost; 1e-6 apart 1 - c kept four digits (poles 1e-12 off) */
-    for (double sep = 1e-2; sep > 2e-9; sep /= 10.0) {
-        double a = sep, sp[3] = {0, 0, -1}, np_[3] = {sin(a), 0, -cos(a)}, Mc[16], S4[4] = {0, 0, -1, 1},
-               N4[4] = {0, 0, 1, 1}, x[4], y[4];
+    const double seps[8] = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 2e-9}; /* (2e-9: just past the limit) */
+    for (int t = 0; t < 8; t++) {
+        double a = seps[t], sp[3] = {0, 0, -1}, np_[3] = {sin(a), 0, -cos(a)}, Mc[16];
         CHECK_OK(rg2_mobius_poles_matrix(sp, np_, Mc, &err), &err);
-        apply(Mc, S4, x);
-        apply(Mc, N4, y);
-        double xs[3] = {x[0] / x[3], x[1] / x[3], x[2] / x[3]}, yn[3] = {y[0] / y[3], y[1] / y[3], y[2] / y[3]};
-        double e = fmax(pt_dist3(xs, sp), pt_dist3(yn, np_));
-        CHECK(e <= 1e-15, "poles %.0e rad apart mapped %.3g off", sep, e);
+        double e = poles_mapped_off(Mc, sp, np_);
+        CHECK(e <= 1e-15, "poles %.0e rad apart mapped %.3g off", a, e);
     }
+    /* closer than the points' own tolerance (1e-9) they count as one point: 5e-10 apart refused */
+    double s5[3] = {0, 0, -1}, n5[3] = {5e-10, 0, -1};
+    CHECK(rg2_mobius_poles_matrix(s5, n5, M, &err) == RG2_EDOMAIN && strstr(err.msg, "coincide"),
+          "poles 5e-10 apart: %s", err.msg);
+    /* coincident poles off every axis, named (the test must see each coordinate's difference) */
+    double q3[3] = {2.0 / 3, -1.0 / 3, 2.0 / 3};
+    CHECK(rg2_mobius_poles_matrix(q3, q3, M, &err) == RG2_EDOMAIN &&
+              strstr(err.msg, "coincide at (0.666667, -0.333333, 0.666667)"),
+          "coincident poles (2, -1, 2) / 3: %s", err.msg);
     double alpha[3] = {2 * M_PI / 3, 2 * M_PI / 3, 2 * M_PI / 3}, v[2] = {0.3, 0.7};
     rg2_mesh m;
     CHECK_OK(rg2_polar_sphere_mesh(alpha, 3, 0.0, v, 2, NULL, &m, &err), &err);
