@@ -103,10 +103,12 @@ rg2_status rg2_mobius_poles_matrix(const double south[3], const double north[3],
     unit3(s);
     /* poles less than 90 degrees apart: 1 - c = |n - s|^2 / 2 without cancellation (poles 1e-8
      * apart gave c = 1 exactly and an infinite boost, reported as "matrix entry 0 is not finite";
-     * 1e-6 apart, 1 - c kept 4 digits) */
+     * 1e-6 apart, 1 - c kept 4 digits); poles nearly opposite: 1 + c = |n + s|^2 / 2 likewise
+     * (poles 1e-7 to 2e-6 rad from opposite: 1 + c kept 4 to 6 digits, both images 1e-11 to 4e-11 off) */
     double c = fmin(fmax(dot3(n, s), -1.0), 1.0);
     double dn[3] = {n[0] - s[0], n[1] - s[1], n[2] - s[2]}, omc = c > 0.0 ? 0.5 * dot3(dn, dn) : 1.0 - c;
-    double sh = sqrt((c > 0.0 ? 2.0 - omc : 1.0 + c) / omc), ch = sqrt(1.0 + sh * sh);
+    double ps[3] = {n[0] + s[0], n[1] + s[1], n[2] + s[2]}, opc = c > 0.0 ? 2.0 - omc : 0.5 * dot3(ps, ps);
+    double sh = sqrt(opc / omc), ch = sqrt(1.0 + sh * sh);
     double B[16] = {ch, 0, 0, sh, 0, 1, 0, 0, 0, 0, 1, 0, sh, 0, 0, ch};
     /* target frame f1 ~ n + s, f2 ~ n - s, f3 = f1 x f2; source frame (1,0,0), (0,0,1), (0,-1,0).
      * Both from the normalized poles: the axis from the poles as given (up to 1e-9 off the
@@ -114,8 +116,11 @@ rg2_status rg2_mobius_poles_matrix(const double south[3], const double north[3],
      * 1.0e-10 with both */
     double f1[3], f2[3] = {dn[0], dn[1], dn[2]}, f3[3];
     unit3(f2);
-    double ps[3] = {n[0] + s[0], n[1] + s[1], n[2] + s[2]};
-    if (sqrt(dot3(ps, ps)) > 1e-6) {
+    /* f1 along n + s whenever the boost moves the poles by more than rounding (by |n + s| / 2):
+     * its direction is good to 1e-16 / |n + s|, so the images stay within rounding; another
+     * perpendicular direction put them up to |n + s| / sqrt 2 off (6.4e-7 for poles 9e-7 rad from
+     * opposite, when this limit was 1e-6) */
+    if (sqrt(dot3(ps, ps)) > 1e-15) {
         memcpy(f1, ps, sizeof f1);
     } else { /* antipodal: any direction perpendicular to the pole axis */
         double ax[3] = {1, 0, 0};

@@ -321,6 +321,18 @@ static void errors(void)
         double e = poles_mapped_off(Mc, sp, np_);
         CHECK(e <= 1e-15, "poles %.0e rad apart mapped %.3g off", a, e);
     }
+    /* nearly opposite poles, tilted by a from (0, 0, 1) towards x and towards y: the small boost
+     * must push along n + s (another direction perpendicular to the pole axis put the images up to
+     * a / sqrt 2 off, 6.4e-7 at a = 9e-7; 1 + c formed from c put them 1e-11 to 4e-11 off) */
+    const double tilts[7] = {2e-6, 1.5e-6, 9e-7, 5e-7, 1e-7, 1e-8, 1e-12};
+    for (int t = 0; t < 14; t++) {
+        double a = tilts[t / 2], sp[3] = {0, 0, -1}, np_[3] = {0, 0, cos(a)}, Mo[16];
+        np_[t % 2] = sin(a);
+        CHECK_OK(rg2_mobius_poles_matrix(sp, np_, Mo, &err), &err);
+        double e = poles_mapped_off(Mo, sp, np_), dl = lorentz_defect(Mo);
+        CHECK(e <= 1e-15 && dl <= 1e-15, "case %d: poles %.1e rad from opposite: images %.3g off, Lorentz defect %.3g",
+              t, a, e, dl);
+    }
     /* closer than the points' own tolerance (1e-9) they count as one point: 5e-10 apart refused */
     double s5[3] = {0, 0, -1}, n5[3] = {5e-10, 0, -1};
     CHECK(rg2_mobius_poles_matrix(s5, n5, M, &err) == RG2_EDOMAIN && strstr(err.msg, "coincide"),
