@@ -324,10 +324,15 @@ static void errors(void)
     /* nearly opposite poles, tilted by a from (0, 0, 1) towards x and towards y: the small boost
      * must push along n + s (another direction perpendicular to the pole axis put the images up to
      * a / sqrt 2 off, 6.4e-7 at a = 9e-7; 1 + c formed from c put them 1e-11 to 4e-11 off) */
+    /* then exactly opposite poles on each axis (the frame's perpendicular built from an axis
+     * whose components are 0): a rotation taking them where asked */
     const double tilts[7] = {2e-6, 1.5e-6, 9e-7, 5e-7, 1e-7, 1e-8, 1e-12};
-    for (int t = 0; t < 14; t++) {
-        double a = tilts[t / 2], sp[3] = {0, 0, -1}, np_[3] = {0, 0, cos(a)}, Mo[16];
+    for (int t = 0; t < 17; t++) {
+        double a = t < 14 ? tilts[t / 2] : 0.0, sp[3] = {0, 0, -1}, np_[3] = {0, 0, cos(a)}, Mo[16];
         np_[t % 2] = sin(a);
+        if (t >= 14) /* the axis t - 14 */
+            for (int k = 0; k < 3; k++)
+                np_[k] = k == t - 14, sp[k] = -np_[k];
         CHECK_OK(rg2_mobius_poles_matrix(sp, np_, Mo, &err), &err);
         double e = poles_mapped_off(Mo, sp, np_), dl = lorentz_defect(Mo);
         CHECK(e <= 1e-15 && dl <= 1e-15, "case %d: poles %.1e rad from opposite: images %.3g off, Lorentz defect %.3g",
@@ -353,6 +358,33 @@ static void errors(void)
     double before = m.p[3];
     st = rg2_mesh_mobius(&m, c0, 1.0, M, &err);
     CHECK(st == RG2_EWEIGHT && strstr(err.msg, "weight") && m.p[3] == before, "weight through zero: %s", err.msg);
+    /* the weight test's edges, with maps written here: a weight row of 0 gives every point the
+     * weight 0 exactly, refused naming the first; 0.005 I (the same points, weights 0.005 w) and
+     * the identity about a sphere of radius 0.005 (any radius > 0) are taken */
+    double Mz[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0}, Ms[16] = {0}, I4[16] = {0};
+    for (int k = 0; k < 4; k++)
+        Ms[5 * k] = 0.005, I4[5 * k] = 1.0;
+    st = rg2_mesh_mobius(&m, c0, 1.0, Mz, &err);
+    CHECK(st == RG2_EWEIGHT && strstr(err.msg, "control point [0][0] gets weight 0;") && m.p[3] == before,
+          "weight exactly 0: %s", err.msg);
+    rg2_mesh ms, mr;
+    CHECK_OK(rg2_mesh_copy(&m, &ms, &err), &err);
+    CHECK_OK(rg2_mesh_copy(&m, &mr, &err), &err);
+    CHECK_OK(rg2_mesh_mobius(&ms, c0, 1.0, Ms, &err), &err);
+    CHECK_OK(rg2_mesh_mobius(&mr, c0, 0.005, I4, &err), &err);
+    double dw = 0.0, dp = 0.0, dr = 0.0;
+    for (int k = 0; k < 4 * m.nu * m.nv; k++) {
+        double w = m.p[4 * (k / 4) + 3];
+        if (k % 4 == 3)
+            dw = fmax(dw, fabs(ms.p[k] - 0.005 * w) / w);
+        else
+            dp = fmax(dp, fabs(ms.p[k] / ms.p[4 * (k / 4) + 3] - m.p[k] / w));
+        dr = fmax(dr, fabs(mr.p[k] - m.p[k]));
+    }
+    CHECK(dw <= 1e-15 && dp <= 1e-15 && dr <= 1e-15, "0.005 I: weights %.3g, points %.3g off; identity about radius 0.005: %.3g",
+          dw, dp, dr);
+    rg2_mesh_free(&ms);
+    rg2_mesh_free(&mr);
     CHECK(rg2_mesh_mobius(&m, c0, 0.0, M, &err) == RG2_EDOMAIN, "radius 0: %s", err.msg);
     CHECK(rg2_mesh_mobius(&m, c0, NAN, M, &err) == RG2_ENONFINITE && !strcmp(err.msg, "moebius: sphere radius is not finite"),
           "radius NaN: %s", err.msg);
