@@ -803,22 +803,44 @@ static void mobius(void)
         rg2_mesh_free(&m);
     }
 
-    /* one row of a mesh (1 x nv) is not empty: mapped point by point, the same bits as that row of the
-     * whole mesh's map */
-    rg2_mesh whole, row;
+    /* one row (1 x nv) or one column (nu x 1) of a mesh is not empty: mapped point by point, the
+     * same bits as the whole mesh's first points; no points in either direction is empty. 4-tuples
+     * scaled by 0.005 (the same points, weights below 0.01) map to the scaled 4-tuples, and a point
+     * at infinity (weight 0, kept 0 by b's rotation) is refused, named */
+    rg2_mesh whole, part;
     CHECK_OK(rg2_mesh_copy(rg2_design_mesh(d, 0), &whole, &err), &err);
-    CHECK_OK(rg2_mesh_copy(rg2_design_mesh(d, 0), &row, &err), &err);
-    if (whole.p && row.p) {
+    CHECK_OK(rg2_mesh_copy(rg2_design_mesh(d, 0), &part, &err), &err);
+    if (whole.p && part.p) {
         CHECK_OK(rg2_mesh_mobius_shape(&whole, ball, &bb, NULL, NULL, &err), &err);
-        int rows = row.nu;
-        row.nu = 1;
-        CHECK_OK(rg2_mesh_mobius_shape(&row, ball, &bb, NULL, NULL, &err), &err);
-        row.nu = rows;
-        CHECK(!memcmp(row.p, whole.p, (size_t)row.nv * 4 * sizeof(double)), "a 1 x %d mesh: not mapped as the row of "
-              "the whole mesh", row.nv);
+        int n_u = part.nu, n_v = part.nv;
+        size_t n4 = (size_t)n_u * (size_t)n_v * 4;
+        const int shape[4][2] = {{1, n_v}, {n_u, 1}, {n_u, 0}, {0, n_v}};
+        for (int k = 0; k < 4; k++) {
+            memcpy(part.p, rg2_design_mesh(d, 0)->p, n4 * sizeof(double));
+            part.nu = shape[k][0], part.nv = shape[k][1];
+            st = rg2_mesh_mobius_shape(&part, ball, &bb, NULL, NULL, &err);
+            if (k < 2)
+                CHECK(st == RG2_OK && !memcmp(part.p, whole.p, (size_t)part.nu * (size_t)part.nv * 4 * sizeof(double)),
+                      "a %d x %d mesh: not mapped as the whole mesh's first points (%s)", part.nu, part.nv, err.msg);
+            else
+                expect_err(st, RG2_EINVAL, &err, "rg2_mesh_mobius_shape: empty mesh", k == 2 ? "nu x 0" : "0 x nv");
+        }
+        part.nu = n_u, part.nv = n_v;
+        memcpy(part.p, rg2_design_mesh(d, 0)->p, n4 * sizeof(double));
+        for (size_t q = 0; q < n4; q++)
+            part.p[q] *= 0.005;
+        CHECK_OK(rg2_mesh_mobius_shape(&part, ball, &bb, NULL, NULL, &err), &err);
+        double worst = 0.0;
+        for (size_t q = 0; q < n4; q++)
+            worst = fmax(worst, fabs(part.p[q] - 0.005 * whole.p[q]) / fabs(0.005 * whole.p[q | 3]));
+        CHECK(worst <= 1e-15, "4-tuples scaled by 0.005: %.3g from the scaled map", worst);
+        double *at = rg2_mesh_at(&part, 1, 2);
+        at[0] = 1.0, at[1] = at[2] = at[3] = 0.0;
+        expect_err(rg2_mesh_mobius_shape(&part, ball, &bb, NULL, NULL, &err), RG2_EWEIGHT, &err,
+                   "rg2_mesh_mobius_shape.b: the Moebius map gives control point [1, 2] the weight 0,", "weight 0");
     }
     rg2_mesh_free(&whole);
-    rg2_mesh_free(&row);
+    rg2_mesh_free(&part);
 
     /* bad input: the status, a message naming the argument, and the mesh as it was */
     rg2_mesh m, keep;
@@ -864,6 +886,14 @@ static void mobius(void)
             worst = fmax(worst, fabs(got[k] - (cen[k] + R * dir[k] / l)));
         CHECK(n == 3 && worst < 1e-14, "pole off the sphere: nearest point %.3g from c + R (p - c) / |p - c|: %s", worst,
               err.msg);
+    }
+    { /* a pole at the sphere's centre: no nearest point to name (the direction is undefined), the
+       * unit sphere's message of the pole as the placement maps it, |p| = 0 */
+        const double cen[3] = {ball->xform[3], ball->xform[7], ball->xform[11]};
+        expect_err(rg2_mesh_mobius_shape(&m, ball, NULL, cen, north, &err), RG2_EDOMAIN, &err,
+                   "rg2_mesh_mobius_shape.poles: south pole (0, 0, 0) is not on the unit sphere (|p| = 0)",
+                   "pole at the centre");
+        CHECK(!strstr(err.msg, "nan"), "pole at the centre: %s", err.msg);
     }
     /* a boost that sends control points through infinity (tests/bad/mobius_through_infinity.json; b
      * alone is a rotation times 1 + b^2 and keeps every weight > 0) */
