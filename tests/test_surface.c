@@ -907,6 +907,8 @@ int main(void)
     torus_curvatures(1.0);
     torus_curvatures(20.0);
     torus_curvatures(0x1p-60);
+    torus_curvatures(0x1p-300); /* |Su| |Sv| ~ 1e-180, past the double range of the formulas unless scaled (rg2__scale_pair) */
+    torus_curvatures(0x1p300); /* and ~ 1e180 */
     sphere_umbilics();
     degenerate_and_derivatives();
     random_surfaces();
