@@ -1430,6 +1430,36 @@ static void long_messages(void)
 /* A NULL design (or path) as the header's conventions take it: rg2_design_write_mesh(NULL, ...)
  * dereferenced it (a segfault) and a NULL path went to strlen, where rg2_design_load refuses a
  * NULL path with RG2_EINVAL and the accessors give 0 / NULL / -1 for a NULL design. */
+/* rg2_mesh_check_range measures design points p_{1..3} / p_4 (rg2.h): a 4 x 4 mesh of points within
+ * 3 of the origin, one of them given as (x, 0, 0, 0.01) with x / w = +-1e61 (past the supported 1e60,
+ * while x w is +-1e57) or 1e59 (inside): refused naming the coordinate x / w, or taken. */
+static void mesh_check_range_weights(void)
+{
+    const double xs[3] = {1e59, -1e59, 1e57}, w = 0.01;
+    for (int t = 0; t < 3; t++) {
+        rg2_mesh m;
+        rg2_error err;
+        CHECK_OK(rg2_mesh_init(&m, 4, 4, 0, 0, &err), &err);
+        for (int i = 0; i < 4; i++)
+            for (int j = 0; j < 4; j++) {
+                double *p = rg2_mesh_at(&m, i, j);
+                p[0] = i, p[1] = j, p[2] = 0.0, p[3] = 1.0;
+            }
+        double *q = rg2_mesh_at(&m, 2, 1);
+        q[0] = xs[t], q[1] = q[2] = 0.0, q[3] = w;
+        double affine = xs[t] / w;
+        char want[96];
+        snprintf(want, sizeof want, "weighted: coordinates up to %g, size ", fabs(affine));
+        rg2_status st = rg2_mesh_check_range(&m, "weighted", &err);
+        if (fabs(affine) > 1e60)
+            CHECK(st == RG2_EDOMAIN && !strncmp(err.msg, want, strlen(want)), "x / w = %g: %s %s", affine,
+                  rg2_status_str(st), err.msg);
+        else
+            CHECK(st == RG2_OK, "x / w = %g refused: %s", affine, err.msg);
+        rg2_mesh_free(&m);
+    }
+}
+
 static void null_designs(void)
 {
     rg2_error err;
@@ -1482,6 +1512,7 @@ int main(void)
     many_names();
     printf("bad input:\n");
     bad_inputs();
+    mesh_check_range_weights();
     null_designs();
     unknown_key_lists();
     cap_seam_positions();
