@@ -275,6 +275,133 @@ static void edges_touch(void)
     }
 }
 
+/* Whether the open segment PQ pierces the inside of triangle T (Moeller-Trumbore, strict); the
+ * point in X. Generic position assumed (no edge in the other's plane, no vertex on an edge). */
+static int seg_pierces(const double *P, const double *Q, const double *const T[3], double X[3])
+{
+    double e1[3], e2[3], d[3], h[3], s[3], q[3];
+    for (int c = 0; c < 3; c++) {
+        e1[c] = T[1][c] - T[0][c];
+        e2[c] = T[2][c] - T[0][c];
+        d[c] = Q[c] - P[c];
+        s[c] = P[c] - T[0][c];
+    }
+    h[0] = d[1] * e2[2] - d[2] * e2[1], h[1] = d[2] * e2[0] - d[0] * e2[2], h[2] = d[0] * e2[1] - d[1] * e2[0];
+    double a = e1[0] * h[0] + e1[1] * h[1] + e1[2] * h[2];
+    if (fabs(a) < 1e-300)
+        return 0;
+    double u = (s[0] * h[0] + s[1] * h[1] + s[2] * h[2]) / a;
+    q[0] = s[1] * e1[2] - s[2] * e1[1], q[1] = s[2] * e1[0] - s[0] * e1[2], q[2] = s[0] * e1[1] - s[1] * e1[0];
+    double v = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) / a, t = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / a;
+    if (!(u > 0 && v > 0 && u + v < 1 && t > 0 && t < 1))
+        return 0;
+    for (int c = 0; c < 3; c++)
+        X[c] = P[c] + t * d[c];
+    return 1;
+}
+
+/* Whether triangles A and B cross: an edge of one pierces the other (brute force, independent
+ * of the library's plane-interval test); E: the ends of their common segment (the two piercing
+ * points, in generic position). */
+static int tris_cross(const double *const A[3], const double *const B[3], double E[2][3])
+{
+    double X[3];
+    int n = 0;
+    for (int k = 0; k < 3; k++)
+        for (int w = 0; w < 2; w++) {
+            const double *const *T = w ? A : B, *const *S = w ? B : A;
+            if (seg_pierces(S[k], S[(k + 1) % 3], T, X) && n++ < 2)
+                memcpy(E[n - 1], X, sizeof X);
+        }
+    return n == 2;
+}
+
+/* The distance from X to the segment PQ. */
+static double seg_dist(const double *X, const double *P, const double *Q)
+{
+    double d[3] = {Q[0] - P[0], Q[1] - P[1], Q[2] - P[2]}, w[3] = {X[0] - P[0], X[1] - P[1], X[2] - P[2]};
+    double t = (w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]), c[3];
+    t = fmin(fmax(t, 0.0), 1.0);
+    for (int k = 0; k < 3; k++)
+        c[k] = P[k] + t * d[k];
+    return dist3(X, c);
+}
+
+/* A flat plate (x = 0.123, z from -0.77 to 1.13, y from 0.37 to 2.37) through another (z = 0, x
+ * from -1 to 1, y from 0 to 2), in generic position (no vertex of one on the other, edges of
+ * neither along the crossing line): the candidate pairs are exactly the pairs of their
+ * tessellations' triangles that cross (all pairs, brute force, by edges piercing triangles),
+ * and all are confirmed (flat patches: the meshes are exact); the first crossing reported is
+ * the pair of lowest triangle indices, at the midpoint of the two triangles' common segment. */
+static void mesh_candidates(void)
+{
+    for (int dens = 1; dens <= 7; dens += 3) {
+        rg2_surface s[2];
+        rg2_tess t[2];
+        rg2_error err;
+        plate(-1, 0, 1, 0, &s[0]);
+        plate(0.123, -0.77, 0.123, 1.13, &s[1]);
+        for (int r = 0; r < 4; r++) /* the second moved by 0.37 along y */
+            for (int c = 0; c < 4; c++)
+                s[1].patch[0].h[r][c][1] += 0.37 * s[1].patch[0].h[r][c][3];
+        for (int q = 0; q < 2; q++)
+            CHECK_OK(rg2_tessellate(&s[q], dens, 0, &t[q], &err), &err);
+        int count = 0;
+        double first[2][3] = {{0, 0, 0}, {0, 0, 0}};
+        for (int a = 0; a < t[0].n_triangles; a++)
+            for (int b = 0; b < t[1].n_triangles; b++) {
+                const int *va = t[0].tri + 3 * a, *vb = t[1].tri + 3 * b;
+                const double *A[3] = {t[0].pos + 3 * va[0], t[0].pos + 3 * va[1], t[0].pos + 3 * va[2]};
+                const double *B[3] = {t[1].pos + 3 * vb[0], t[1].pos + 3 * vb[1], t[1].pos + 3 * vb[2]};
+                double E[2][3];
+                if (tris_cross(A, B, E) && count++ == 0)
+                    memcpy(first, E, sizeof first);
+            }
+        rg2_crossing_report r;
+        CHECK_OK(rg2_find_crossings(s, 2, dens, &r, &err), &err);
+        CHECK(count > 0 && r.candidates == count && r.crossings == count,
+              "plates at density %d: %d candidates, %d crossings; brute force: %d crossing triangle pairs", dens,
+              r.candidates, r.crossings, count);
+        CHECK(r.triangles == t[0].n_triangles + t[1].n_triangles && r.a.surf == 0 && r.b.surf == 1 &&
+                  seg_dist(r.p, first[0], first[1]) < 1e-12 && fabs(r.p[0] - 0.123) < 1e-12 && fabs(r.p[2]) < 1e-12,
+              "plates at density %d: the first crossing (surfaces %d x %d) at (%.15g, %.15g, %.15g), %.3g from the "
+              "first pair's common segment, y from %.15g to %.15g", dens, r.a.surf, r.b.surf, r.p[0], r.p[1], r.p[2],
+              seg_dist(r.p, first[0], first[1]), first[0][1], first[1][1]);
+        for (int q = 0; q < 2; q++) {
+            rg2_tess_free(&t[q]);
+            rg2_surface_free(&s[q]);
+        }
+    }
+}
+
+/* A plate through another just inside its own border (x = 0.123, z from -0.002 to 1: the
+ * crossing line 0.002 / 1.002 of its profile from the border; and mirrored, z from -1 to 0.002):
+ * a crossing, though the confirmation starts near the border (only ON it, within 1e-9, the
+ * sheets touch). The point on the line x = 0.123, z = 0, the parameter of the second sheet
+ * across the profile 0.002 / 1.002 from the border. */
+static void near_border(void)
+{
+    static const double z[2][2] = {{-0.002, 1}, {-1, 0.002}};
+    for (int k = 0; k < 2; k++)
+        for (int dens = 1; dens <= 9; dens += 4) {
+            rg2_surface s[2];
+            rg2_error err;
+            rg2_crossing_report r;
+            plate(-1, 0, 1, 0, &s[0]);
+            plate(0.123, z[k][0], 0.123, z[k][1], &s[1]);
+            CHECK_OK(rg2_find_crossings(s, 2, dens, &r, &err), &err);
+            double from_border = k ? 1 - r.b.u : r.b.u, expect = 0.002 / 1.002; /* (u along the profile) */
+            CHECK(r.crossings > 0 && r.b.surf == 1 && fabs(r.p[0] - 0.123) < 1e-12 && fabs(r.p[2]) < 1e-12 &&
+                      fabs(from_border - expect) < 1e-9,
+                  "plate %s its border at density %d: %d crossings (%d candidates) at (%g, %g, %g), %.12g of the "
+                  "profile from the border (expected %.12g)", k ? "ending 0.002 past the other near" : "starting "
+                  "0.002 before the other near", dens, r.crossings, r.candidates, r.p[0], r.p[1], r.p[2],
+                  from_border, expect);
+            rg2_surface_free(&s[0]);
+            rg2_surface_free(&s[1]);
+        }
+}
+
 /* Two flat plates crossing along the line x = 0.123, z = 0 at an angle t: counted from
  * RG2_CROSSING_MIN_ANGLE up, with the angle t itself; below it (near-tangential) not counted. */
 static void shallow_angles(void)
@@ -424,6 +551,8 @@ int main(void)
     crossing_cylinders();
     edges_touch();
     shallow_angles();
+    mesh_candidates();
+    near_border();
     bad_arguments();
     check_integration();
     return rg2t_done("test_intersect");
