@@ -353,17 +353,18 @@ static rg2_status op_render(const void *ctx, const char *path, blob *out, rg2_er
     return st;
 }
 
-static rg2_status op_check(const void *ctx, const char *path, blob *out, rg2_error *err)
+/* rg2_check of n surfaces (crossing_density 0: no crossing search); the result: the report as
+ * JSON text. */
+static rg2_status check_run(const rg2_surface *surfs, int n, int crossing_density, blob *out, rg2_error *err)
 {
-    (void)path;
-    const write_job *j = ctx;
     rg2_check_opts o;
     rg2_check_opts_default(&o);
     o.threads = 1;
     o.seam_samples = 4;
     o.patch_samples = 3;
+    o.crossing_density = crossing_density;
     rg2_check_report r;
-    rg2_status st = rg2_check(j->surfs, j->n, NULL, NULL, 0, &o, &r, err);
+    rg2_status st = rg2_check(surfs, n, NULL, NULL, 0, &o, &r, err);
     if (st == RG2_OK) {
         long saved = rg2__fi_countdown;
         rg2__fi_countdown = -1; /* (the report's text is the result, not a step that may fail) */
@@ -377,6 +378,50 @@ static rg2_status op_check(const void *ctx, const char *path, blob *out, rg2_err
         rg2_check_report_free(&r);
     }
     return st;
+}
+
+static rg2_status op_check(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    (void)path;
+    const write_job *j = ctx;
+    return check_run(j->surfs, j->n, 0, out, err);
+}
+
+/* Surfaces searched for crossings at a density. */
+typedef struct {
+    const rg2_surface *surfs;
+    int n, density;
+} crossing_job;
+
+/* rg2_find_crossings; the result: the report's fields (one by one: no padding). A failed run
+ * leaves the report all zero. */
+static rg2_status op_crossings(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    (void)path;
+    const crossing_job *c = ctx;
+    rg2_crossing_report r;
+    memset(&r, 0xff, sizeof r);
+    rg2_status st = rg2_find_crossings(c->surfs, c->n, c->density, &r, err);
+    if (st != RG2_OK) {
+        CHECK(r.density == 0 && r.triangles == 0 && r.candidates == 0 && r.crossings == 0 && r.size == 0,
+              "find_crossings: N = %ld -> %s, but the report is not cleared (%d triangles, %d crossings)", cur_N,
+              rg2_status_str(st), r.triangles, r.crossings);
+        return st;
+    }
+    int ints[14] = {r.density, r.triangles, r.candidates, r.crossings, r.a.surf, r.a.pi, r.a.pj,
+                    r.b.surf, r.b.pi, r.b.pj, 0, 0, 0, 0};
+    double dbl[10] = {r.a.u, r.a.v, r.b.u, r.b.v, r.p[0], r.p[1], r.p[2], r.residual, r.angle, r.size};
+    put(out, ints, sizeof ints);
+    put(out, dbl, sizeof dbl);
+    return st;
+}
+
+/* rg2_check with the crossing search (crossing_density > 0); the result: the report's JSON. */
+static rg2_status op_check_crossings(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    (void)path;
+    const crossing_job *c = ctx;
+    return check_run(c->surfs, c->n, c->density, out, err);
 }
 
 static rg2_status op_format(const void *ctx, const char *path, blob *out, rg2_error *err)
@@ -622,6 +667,22 @@ int main(int argc, char **argv)
     }
 
     sweep("check", op_check, &j, NULL);
+    /* crossings: two cylinders that cross (confirmed crossings, two surfaces welded apart), the
+     * polar sphere (poles, seams welded) and torus_sphere (none crossing) */
+    rg2_design *dc = NULL;
+    CHECK_OK(rg2_design_load("tests/data/crossing_cylinders.json", &dc, &err), &err);
+    if (dc) {
+        rg2_surface cyl[2] = {*rg2_design_surface(dc, 0), *rg2_design_surface(dc, 1)};
+        crossing_job cj[3] = {{cyl, 2, 4}, {surfs + n, m, 3}, {surfs, n, 2}};
+        rg2_crossing_report cr;
+        CHECK_OK(rg2_find_crossings(cyl, 2, 4, &cr, &err), &err);
+        CHECK(cr.crossings > 0, "the cylinders cross (%d crossings): the sweep meets the confirmation", cr.crossings);
+        sweep("find_crossings cylinders", op_crossings, &cj[0], NULL);
+        sweep("find_crossings fig9_polar", op_crossings, &cj[1], NULL);
+        sweep("find_crossings torus_sphere", op_crossings, &cj[2], NULL);
+        sweep("check crossings cylinders", op_check_crossings, &cj[0], NULL);
+        rg2_design_free(dc);
+    }
     rg2_check_opts co;
     rg2_check_opts_default(&co);
     co.threads = 1;
