@@ -327,6 +327,28 @@ static double seg_dist(const double *X, const double *P, const double *Q)
     return dist3(X, c);
 }
 
+/* The pairs of triangles of s[0]'s and s[1]'s tessellations at dens (into t, the caller frees)
+ * that cross, by brute force (tris_cross); first: the common segment of the first pair (in the
+ * order of the triangles of s[0], then of s[1]). */
+static int crossing_pairs(const rg2_surface s[2], int dens, rg2_tess t[2], double first[2][3])
+{
+    rg2_error err;
+    int count = 0;
+    memset(first, 0, 2 * sizeof first[0]);
+    for (int q = 0; q < 2; q++)
+        CHECK_OK(rg2_tessellate(&s[q], dens, 0, &t[q], &err), &err);
+    for (int a = 0; a < t[0].n_triangles; a++)
+        for (int b = 0; b < t[1].n_triangles; b++) {
+            const int *va = t[0].tri + 3 * a, *vb = t[1].tri + 3 * b;
+            const double *A[3] = {t[0].pos + 3 * va[0], t[0].pos + 3 * va[1], t[0].pos + 3 * va[2]};
+            const double *B[3] = {t[1].pos + 3 * vb[0], t[1].pos + 3 * vb[1], t[1].pos + 3 * vb[2]};
+            double E[2][3];
+            if (tris_cross(A, B, E) && count++ == 0)
+                memcpy(first, E, sizeof E);
+        }
+    return count;
+}
+
 /* A flat plate (x = 0.123, z from -0.77 to 1.13, y from 0.37 to 2.37) through another (z = 0, x
  * from -1 to 1, y from 0 to 2), in generic position (no vertex of one on the other, edges of
  * neither along the crossing line): the candidate pairs are exactly the pairs of their
@@ -344,19 +366,8 @@ static void mesh_candidates(void)
         for (int r = 0; r < 4; r++) /* the second moved by 0.37 along y */
             for (int c = 0; c < 4; c++)
                 s[1].patch[0].h[r][c][1] += 0.37 * s[1].patch[0].h[r][c][3];
-        for (int q = 0; q < 2; q++)
-            CHECK_OK(rg2_tessellate(&s[q], dens, 0, &t[q], &err), &err);
-        int count = 0;
-        double first[2][3] = {{0, 0, 0}, {0, 0, 0}};
-        for (int a = 0; a < t[0].n_triangles; a++)
-            for (int b = 0; b < t[1].n_triangles; b++) {
-                const int *va = t[0].tri + 3 * a, *vb = t[1].tri + 3 * b;
-                const double *A[3] = {t[0].pos + 3 * va[0], t[0].pos + 3 * va[1], t[0].pos + 3 * va[2]};
-                const double *B[3] = {t[1].pos + 3 * vb[0], t[1].pos + 3 * vb[1], t[1].pos + 3 * vb[2]};
-                double E[2][3];
-                if (tris_cross(A, B, E) && count++ == 0)
-                    memcpy(first, E, sizeof first);
-            }
+        double first[2][3];
+        int count = crossing_pairs(s, dens, t, first);
         rg2_crossing_report r;
         CHECK_OK(rg2_find_crossings(s, 2, dens, &r, &err), &err);
         CHECK(count > 0 && r.candidates == count && r.crossings == count,
@@ -400,6 +411,51 @@ static void near_border(void)
             rg2_surface_free(&s[0]);
             rg2_surface_free(&s[1]);
         }
+}
+
+/* The upright cylinder x^2 + y^2 = 1 of tests/data/crossing_cylinders.json (8 arcs, 4 segments:
+ * 32 curved patches) cut by a plate (the plane z = 0.335 + 0.0175 x, y from -0.55 to 1.45),
+ * generic: the first crossing reported lies on both (their implicit equations), at the angle of
+ * their exact normals (x, y, 0) and (-0.0175, 0, 1), and near the common segment of the first pair
+ * of crossing triangles (brute force): no farther than the chord error, which is all Gauss-Newton
+ * has to move from its start there. */
+static void cylinder_plate(void)
+{
+    rg2_design *d = NULL;
+    rg2_error err;
+    CHECK_OK(rg2_design_load("tests/data/crossing_cylinders.json", &d, &err), &err);
+    if (!d)
+        return;
+    for (int dens = 2; dens <= 4; dens += 2) {
+        rg2_surface s[2] = {*rg2_design_surface(d, 0), {0}};
+        rg2_tess t[2];
+        double first[2][3];
+        plate(-2, 0.3, 2, 0.37, &s[1]);
+        for (int r = 0; r < 4; r++)
+            for (int c = 0; c < 4; c++)
+                s[1].patch[0].h[r][c][1] -= 0.55 * s[1].patch[0].h[r][c][3];
+        int count = crossing_pairs(s, dens, t, first);
+        rg2_crossing_report r;
+        CHECK_OK(rg2_find_crossings(s, 2, dens, &r, &err), &err);
+        const double *p = r.p;
+        /* the start is on the chords; Gauss-Newton moves it to the exact sheets, across the chord
+         * error of a 45-degree arc in dens steps (its sagitta, radius 1) */
+        double sag = 1 - cos(M_PI / 4 / dens / 2), gap = seg_dist(p, first[0], first[1]);
+        double n1[3] = {p[0], p[1], 0}, n2[3] = {-0.0175, 0, 1};
+        double c = fabs(n1[0] * n2[0]) / (sqrt(n1[0] * n1[0] + n1[1] * n1[1]) * sqrt(n2[0] * n2[0] + 1));
+        CHECK(count > 0 && r.crossings > 0 && r.a.surf == 0 && r.b.surf == 1 &&
+                  fabs(p[0] * p[0] + p[1] * p[1] - 1) < 1e-12 && fabs(p[2] - 0.335 - 0.0175 * p[0]) < 1e-12 &&
+                  fabs(r.angle - acos(fmin(c, 1.0))) < 1e-9,
+              "cylinder x plate at density %d: %d crossings (brute force: %d pairs) at (%.15g, %.15g, %.15g), "
+              "angle %.15g (exact normals %.15g)", dens, r.crossings, count, p[0], p[1], p[2], r.angle,
+              acos(fmin(c, 1.0)));
+        CHECK(gap <= 1.2 * sag, "cylinder x plate at density %d: the first crossing %.3g from the first crossing "
+              "pair's common segment, more than the chord error %.3g", dens, gap, sag);
+        for (int q = 0; q < 2; q++)
+            rg2_tess_free(&t[q]);
+        rg2_surface_free(&s[1]);
+    }
+    rg2_design_free(d);
 }
 
 /* Two flat plates crossing along the line x = 0.123, z = 0 at an angle t: counted from
@@ -553,6 +609,7 @@ int main(void)
     shallow_angles();
     mesh_candidates();
     near_border();
+    cylinder_plate();
     bad_arguments();
     check_integration();
     return rg2t_done("test_intersect");
