@@ -247,9 +247,11 @@ int rg2_cmd_check(int argc, char **argv)
             if (rg2_cli_int("check", a, i + 1 < argc ? argv[++i] : NULL, 1, 10000, &o.seam_samples))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--intersections")) {
-            o.crossing_density = RG2_CROSSING_DEFAULT_DENSITY; /* the number is optional: a digit follows */
-            if (i + 1 < argc && (argv[i + 1][0] == '-' ? argv[i + 1][1] >= '0' && argv[i + 1][1] <= '9'
-                                                       : argv[i + 1][0] >= '0' && argv[i + 1][0] <= '9') &&
+            /* the number is optional: the next argument is it when it is a number as a whole (a
+             * design named 2cyl.json begins with a digit but is the design) */
+            o.crossing_density = RG2_CROSSING_DEFAULT_DENSITY;
+            char *end = NULL;
+            if (i + 1 < argc && argv[i + 1][0] && (strtod(argv[i + 1], &end), end != argv[i + 1] && !*end) &&
                 rg2_cli_int("check", a, argv[++i], 1, 1000, &o.crossing_density))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--threads")) {

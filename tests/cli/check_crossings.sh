@@ -40,6 +40,13 @@ assert {c["a"]["surface"], c["b"]["surface"]} == {0, 1}, c
 "$RG2" check "$cyl" --json | grep -q crossings && bad "a crossings object without --intersections" || ok
 # the density is optional: a following design name is not taken for it
 expect 0 "density 4)" -- "$RG2" check --intersections "$cyl"
+# nor a design whose name begins with a digit (it was taken for the density: a usage error)
+tmp=$(mktemp -d)
+cp "$cyl" "$tmp/2cyl.json"
+rg2abs=$(cd "$(dirname "$RG2")" && pwd)/$(basename "$RG2")
+expect 0 "density 4)" -- sh -c 'cd "$1" && "$2" check --intersections 2cyl.json' sh "$tmp" "$rg2abs"
+expect 2 "--intersections needs an integer 1..1000, not '2.5'" -- "$RG2" check "$cyl" --intersections 2.5
+rm -rf "$tmp"
 expect 2 "--intersections needs an integer 1..1000, not '0'" -- "$RG2" check "$cyl" --intersections 0
 expect 2 "--intersections needs an integer 1..1000, not '-2'" -- "$RG2" check "$cyl" --intersections -2
 expect 2 "--intersections needs an integer 1..1000, not '1001'" -- "$RG2" check "$cyl" --intersections 1001
