@@ -1291,6 +1291,8 @@ typedef struct {
 typedef struct {
     int density;           /**< samples per patch edge used; 0: not measured */
     int triangles;         /**< triangles of all surfaces, tested */
+    long long pairs;       /**< triangle pairs met in the broad phase's grid lists and box-tested
+                                (its work: about linear in the triangles, whatever the layout) */
     int candidates;        /**< triangle pairs (no shared welded vertex) whose flat triangles cross */
     int crossings;         /**< of them, confirmed on the exact surfaces (pass: 0) */
     /** The first confirmed pair in the order of the triangles (surface, then rg2_tessellate's

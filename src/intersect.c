@@ -616,8 +616,10 @@ static int sweep(const mesh_set *M, rg2_crossing_report *r)
         qsort(L, m, sizeof *L, cmp_int); /* (already in order: filled by ascending t) */
         for (unsigned p = 0; p < m; p++)
             for (unsigned q = p + 1; q < m && (p == 0 || L[p] != L[p - 1]); q++)
-                if (L[q] != L[q - 1]) /* a triangle in two cells hashed to this list: once */
+                if (L[q] != L[q - 1]) { /* a triangle in two cells hashed to this list: once */
+                    r->pairs++;
                     test_pair(M, &g, L[p], L[q], c, r, &first_a, &first_b);
+                }
     }
     free(start);
     free(list);
