@@ -1291,7 +1291,7 @@ typedef struct {
 typedef struct {
     int density;           /**< samples per patch edge used; 0: not measured */
     int triangles;         /**< triangles of all surfaces, tested */
-    long long pairs;       /**< triangle pairs met in the broad phase's grid lists and box-tested
+    double pairs;          /**< triangle pairs met in the broad phase's grid lists and box-tested
                                 (its work: about linear in the triangles, whatever the layout) */
     int candidates;        /**< triangle pairs (no shared welded vertex) whose flat triangles cross */
     int crossings;         /**< of them, confirmed on the exact surfaces (pass: 0) */

@@ -1258,7 +1258,7 @@ static char *format_json(const rg2_check_report *r)
         cJSON *x = cJSON_AddObjectToObject(j, "crossings");
         cJSON_AddNumberToObject(x, "density", c->density);
         cJSON_AddNumberToObject(x, "triangles", c->triangles);
-        cJSON_AddNumberToObject(x, "pairs", (double)c->pairs);
+        cJSON_AddNumberToObject(x, "pairs", c->pairs);
         cJSON_AddNumberToObject(x, "candidates", c->candidates);
         cJSON_AddNumberToObject(x, "crossings", c->crossings);
         cJSON_AddBoolToObject(x, "ok", c->crossings == 0);

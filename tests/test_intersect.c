@@ -490,7 +490,7 @@ static void shallow_angles(void)
  * The count of pairs is the work, deterministic where a time is not. */
 static void far_apart(void)
 {
-    long long pairs[2];
+    double pairs[2];
     for (int far = 0; far < 2; far++) {
         rg2_mesh m;
         rg2_surface s[2];
@@ -515,8 +515,8 @@ static void far_apart(void)
     /* 4.6 and 10.0 million (the hashed lists mix cells); one torus's 76800 triangles tested pair
      * by pair would be 2.9e9 */
     CHECK(pairs[0] > 0 && pairs[1] <= 4 * pairs[0],
-          "two tori far apart: %lld pairs box-tested, side by side %lld", pairs[1], pairs[0]);
-    printf("two 60 x 40 tori, 153600 triangles: pairs box-tested side by side %lld, 1000 apart in x, y and z %lld\n",
+          "two tori far apart: %.0f pairs box-tested, side by side %.0f", pairs[1], pairs[0]);
+    printf("two 60 x 40 tori, 153600 triangles: pairs box-tested side by side %.0f, 1000 apart in x, y and z %.0f\n",
            pairs[0], pairs[1]);
 }
 
