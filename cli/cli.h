@@ -4,6 +4,8 @@
 
 #include "rg2.h"
 
+#include <stdio.h>
+
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
@@ -58,6 +60,12 @@ int rg2_cli_has_ext(const char *path, const char *ext);
 /* Say on stderr that an option given has no effect in this run (it is not an error: scripts
  * pass one option set to several commands): "rg2 CMD: note: OPT has no effect (WHY)". */
 void rg2_cli_no_effect(const char *cmd, const char *opt, const char *why);
+/* An unknown option: "rg2 <cmd>: unknown option '<arg>' (did you mean '<opt>'?)" on stderr, then the
+ * usage. The suggestion is the closest (rg2_closest_name) of the "--" options that usage() itself
+ * lists, so it cannot name an option the command does not have; aliases (nullable, pairs
+ * "wrong", "right", NULL-terminated) map a word users try to the option that does it ("--width",
+ * "--size WxH"). Returns RG2_EXIT_USAGE. */
+int rg2_cli_unknown_option(const char *cmd, const char *arg, void (*usage)(FILE *), const char *const *aliases);
 /* Print "rg2 <cmd>: <status text>: <message>" to stderr; returns RG2_EXIT_FAIL. */
 int rg2_cli_report(const char *cmd, const rg2_error *err);
 /* 1 if the paths name the same existing file (an output that would overwrite an input). */

@@ -101,9 +101,7 @@ int rg2_cmd_build(int argc, char **argv)
                 return RG2_EXIT_USAGE;
             density_set = 1;
         } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "rg2 build: unknown option '%s'\n", a);
-            usage(stderr);
-            return RG2_EXIT_USAGE;
+            return rg2_cli_unknown_option("build", a, usage, NULL);
         } else if (path) {
             fprintf(stderr, "rg2 build: more than one design file ('%s', '%s')\n", path, a);
             return RG2_EXIT_USAGE;

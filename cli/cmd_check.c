@@ -297,9 +297,7 @@ int rg2_cmd_check(int argc, char **argv)
                 on[n_on++] = argv[i + 1];
             i++;
         } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "rg2 check: unknown option '%s'\n", a);
-            usage(stderr);
-            return RG2_EXIT_USAGE;
+            return rg2_cli_unknown_option("check", a, usage, NULL);
         } else if (path) {
             fprintf(stderr, "rg2 check: more than one design file ('%s', '%s')\n", path, a);
             return RG2_EXIT_USAGE;

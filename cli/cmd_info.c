@@ -80,9 +80,7 @@ int rg2_cmd_info(int argc, char **argv)
         } else if (!strcmp(argv[i], "--map"))
             map = 1;
         else if (argv[i][0] == '-' && argv[i][1]) {
-            fprintf(stderr, "rg2 info: unknown option '%s'\n", argv[i]);
-            usage(stderr);
-            return RG2_EXIT_USAGE;
+            return rg2_cli_unknown_option("info", argv[i], usage, NULL);
         } else if (path) {
             fprintf(stderr, "rg2 info: more than one design file ('%s', '%s')\n", path, argv[i]);
             return RG2_EXIT_USAGE;

@@ -29,9 +29,7 @@ int rg2_cmd_mesh(int argc, char **argv)
             }
             out = argv[++i];
         } else if (argv[i][0] == '-' && argv[i][1]) {
-            fprintf(stderr, "rg2 mesh: unknown option '%s'\n", argv[i]);
-            usage(stderr);
-            return RG2_EXIT_USAGE;
+            return rg2_cli_unknown_option("mesh", argv[i], usage, NULL);
         } else if (path) {
             fprintf(stderr, "rg2 mesh: more than one design file ('%s', '%s')\n", path, argv[i]);
             return RG2_EXIT_USAGE;

@@ -186,9 +186,9 @@ int rg2_cmd_render(int argc, char **argv)
         else if (!strcmp(a, "--no-colorbar"))
             o.colorbar = 0, colorbar_set = 1;
         else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "rg2 render: unknown option '%s'\n", a);
-            usage(stderr);
-            return RG2_EXIT_USAGE;
+            static const char *const aliases[] = {"--width", "--size WxH", "--height", "--size WxH",
+                                                   "--resolution", "--size WxH", NULL};
+            return rg2_cli_unknown_option("render", a, usage, aliases);
         } else if (path) {
             fprintf(stderr, "rg2 render: more than one design file ('%s', '%s')\n", path, a);
             return RG2_EXIT_USAGE;

@@ -2,6 +2,7 @@
 #define _XOPEN_SOURCE 700 /* realpath */
 #include "cli.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -119,6 +120,55 @@ int rg2_cli_has_ext(const char *path, const char *ext)
 void rg2_cli_no_effect(const char *cmd, const char *opt, const char *why)
 {
     fprintf(stderr, "rg2 %s: note: %s has no effect (%s)\n", cmd, opt, why);
+}
+
+int rg2_cli_unknown_option(const char *cmd, const char *arg, void (*usage)(FILE *), const char *const *aliases)
+{
+    enum { MAX_OPTS = 64, MAX_LEN = 32 };
+    char opts[MAX_OPTS][MAX_LEN];
+    const char *names[2 * MAX_OPTS];
+    int n = 0;
+    FILE *t = tmpfile(); /* (the usage text is the one list of the options; none: no suggestion) */
+    if (t) {
+        usage(t);
+        rewind(t);
+        int c, prev = ' ';
+        while ((c = getc(t)) != EOF) {
+            /* a "--name" token not inside a word: --size, --iges-brep */
+            if (c == '-' && !(isalnum(prev) || prev == '-') && (c = getc(t)) == '-') {
+                char w[MAX_LEN] = "--";
+                int len = 2;
+                while ((c = getc(t)) != EOF && (isalnum(c) || c == '-') && len < MAX_LEN - 1)
+                    w[len++] = (char)c;
+                w[len] = 0;
+                int dup = !isalpha((unsigned char)w[2]) || n == MAX_OPTS;
+                for (int k = 0; k < n && !dup; k++)
+                    dup = !strcmp(opts[k], w);
+                if (!dup) {
+                    memcpy(opts[n], w, sizeof w);
+                    names[n] = opts[n];
+                    n++;
+                }
+            }
+            if (c == EOF)
+                break;
+            prev = c;
+        }
+        fclose(t);
+    }
+    int n_names = n;
+    for (int k = 0; aliases && aliases[k] && n_names < 2 * MAX_OPTS; k += 2)
+        names[n_names++] = aliases[k];
+    const char *close = n_names && arg[0] == '-' && arg[1] == '-' ? rg2_closest_name(arg, names, n_names) : NULL;
+    for (int k = n; close && k < n_names; k++)
+        if (close == names[k])
+            close = aliases[2 * (k - n) + 1];
+    if (close)
+        fprintf(stderr, "rg2 %s: unknown option '%s' (did you mean '%s'?)\n", cmd, arg, close);
+    else
+        fprintf(stderr, "rg2 %s: unknown option '%s'\n", cmd, arg);
+    usage(stderr);
+    return RG2_EXIT_USAGE;
 }
 
 int rg2_cli_report(const char *cmd, const rg2_error *err)
