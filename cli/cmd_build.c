@@ -148,6 +148,11 @@ int rg2_cmd_build(int argc, char **argv)
         progress(tty, NULL, NULL);
         return rg2_cli_report("build", &err);
     }
+    if (!quiet) {
+        progress(tty, NULL, NULL);
+        for (int k = 0; k < rg2_design_num_notes(d); k++)
+            fprintf(stderr, "rg2 build: note: %s\n", rg2_design_note(d, k));
+    }
     int ns = rg2_design_num_surfaces(d);
     rg2_surface *surfs = calloc((size_t)ns, sizeof *surfs);
     if (!surfs) {

@@ -41,6 +41,8 @@ static void usage(FILE *f)
                "each shape and how many are transitions, and the smallest homogeneous patch weight.\n"
                "For a tube (u closed, v open) it says what closes its two v ends: a cap, nothing (an\n"
                "open end), or nothing at a polar point, which leaves a hole around the pole.\n"
+               "Notes follow that are not errors: a merge whose circles meet turned or running\n"
+               "opposite ways round (rg2_design_note).\n"
                "Patches of a degree above bi-3 (general-quadratic polar caps) are counted per degree,\n"
                "e.g. \"-> 8 x 12 = 96 patches (96 of degree (5,3))\" (general-quadratic caps raise the\n"
                "whole surface).\n"
@@ -150,6 +152,8 @@ int rg2_cmd_info(int argc, char **argv)
                 putchar('\n');
             }
     }
+    for (int k = 0; k < rg2_design_num_notes(d); k++)
+        printf("note: %s\n", rg2_design_note(d, k));
     free(count);
     free(seen);
     rg2_design_free(d);

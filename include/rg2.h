@@ -774,6 +774,12 @@ RG2_API const rg2_mesh *rg2_design_mesh(const rg2_design *d, int k);
 RG2_API int rg2_design_num_shapes(const rg2_design *d);
 RG2_API const rg2_shape *rg2_design_shape(const rg2_design *d, int k);
 RG2_API const char *rg2_design_shape_label(const rg2_design *d, int k);
+/** Notes on the design that are not errors, in file order (docs/design-format.md, "merge"): a
+ *  merge whose closed rows meet at a seam turned about their axis (the circles start at other
+ *  angles) or running opposite ways round, which twists or pinches the transitions; each names
+ *  the merge entry, both meshes, the angle and the way out. rg2 info and rg2 build print them. */
+RG2_API int rg2_design_num_notes(const rg2_design *d);
+RG2_API const char *rg2_design_note(const rg2_design *d, int k);
 /** Name (in the design file) of the mesh surface k was built from. */
 RG2_API const char *rg2_design_mesh_name(const rg2_design *d, int k);
 /** Shape control point (i, j) of output mesh k came from (unchanged), or -1 if it was edited,

@@ -236,6 +236,9 @@ void rg2_design_free(rg2_design *d)
     free(d->surf);
     free(d->out);
     free(d->name);
+    for (int k = 0; k < d->n_notes; k++)
+        free(d->notes[k]);
+    free(d->notes);
     names_free(&d->mesh_index);
     names_free(&d->shape_index);
     free(d);
@@ -508,6 +511,25 @@ const char *rg2_design_mesh_name(const rg2_design *d, int k)
 }
 
 int rg2_design_num_shapes(const rg2_design *d) { return d ? d->n_shapes : 0; }
+
+rg2_status rg2__design_add_note(rg2_design *d, const char *text, rg2_error *err)
+{
+    char **grown = realloc(d->notes, ((size_t)d->n_notes + 1) * sizeof *grown);
+    if (!grown)
+        return rg2__fail(err, RG2_ENOMEM, "design notes: out of memory");
+    d->notes = grown;
+    if (!(d->notes[d->n_notes] = dupstr(text)))
+        return rg2__fail(err, RG2_ENOMEM, "design notes: out of memory");
+    d->n_notes++;
+    return RG2_OK;
+}
+
+int rg2_design_num_notes(const rg2_design *d) { return d ? d->n_notes : 0; }
+
+const char *rg2_design_note(const rg2_design *d, int k)
+{
+    return (d && k >= 0 && k < d->n_notes) ? d->notes[k] : NULL;
+}
 
 const rg2_shape *rg2_design_shape(const rg2_design *d, int k)
 {

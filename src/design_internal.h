@@ -77,6 +77,8 @@ struct rg2_design {
     rg2__names mesh_index, shape_index; /* mesh names and shape labels (a design of many meshes
                                            looked each name up by a linear search: quadratic) */
     size_t mesh_points;   /* control points of all the meshes */
+    int n_notes;          /* notes that are not errors (rg2_design_note) */
+    char **notes;
 };
 
 /* Seam rules of merge (docs/design-format.md). */
@@ -101,6 +103,8 @@ int rg2__design_add_source(rg2_design *d, int shape, rg2_mesh *base, rg2_error *
  * direction), which must lie in the stored window of `from`. Shares from's stencils. */
 int rg2__design_add_source_xform(rg2_design *d, int shape, int from, const double M[16], int i0, int j0, int wu,
                                  int wv, rg2_error *err);
+/* Append a copy of text to the design's notes (rg2_design_note); RG2_ENOMEM only. */
+rg2_status rg2__design_add_note(rg2_design *d, const char *text, rg2_error *err);
 rg2__dmesh *rg2__design_new_mesh(rg2_design *d, rg2_error *err);
 /* Enter the new mesh d->mesh[d->n_mesh] (its name set) into the registry: index its name, count
  * its points, n_mesh + 1. Returns 0, or -1 out of memory (err set; nothing entered). */
@@ -125,6 +129,11 @@ rg2_status rg2__op_transpose(const rg2__dmesh *in, rg2__dmesh *out, const char *
  * b' = 1 / b, g' = g / b^3 (the same curves traversed backwards). */
 rg2_status rg2__op_reverse(const rg2__dmesh *in, int dir, rg2__dmesh *out, const char *what,
                            rg2_error *err);
+/* Notes (rg2_design_note) on the seams of a merge of in[0..n_in) along dir whose other direction
+ * is closed: the closed rows a seam joins run opposite ways round, or meet turned about their axis
+ * by more than a degree (the transitions twist or pinch the tube). RG2_ENOMEM only. */
+rg2_status rg2__merge_twist_notes(rg2_design *d, const rg2__dmesh *const *in, int n_in, int dir, int closed,
+                                  const char *what, rg2_error *err);
 rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int closed,
                          rg2__seam_rule rule, rg2__dmesh *out, const char *what, rg2_error *err);
 rg2_status rg2__op_transform(rg2_design *d, const rg2__dmesh *in, const double M[16],

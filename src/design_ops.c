@@ -388,6 +388,114 @@ static int scalars_differ(const rg2_scalars *a, const rg2_scalars *b, char *msg,
     return 0;
 }
 
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static void cross3(const double a[3], const double b[3], double out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* The design point of line `line` (along dir) at index i of the other direction. */
+static void line_point(const rg2_mesh *m, int dir, int line, int i, double x[3])
+{
+    const double *p = dir ? rg2_mesh_at(m, i, line) : rg2_mesh_at(m, line, i);
+    for (int c = 0; c < 3; c++)
+        x[c] = p[c] / p[3];
+}
+
+/* Twist between two closed rows of n points (line la of a, line lb of b, along dir): their
+ * centroids, their Newell normals (the way round each runs), and the circular mean of the signed
+ * angles from a's point i to b's point i about the mean normal, positive along a's way round.
+ * 0 when a row has no way round (collapsed, or a line); else 1 with *opposite set when they run
+ * opposite ways round (then *deg is not measured). */
+static int row_twist(const rg2_mesh *a, int la, const rg2_mesh *b, int lb, int dir, int n, double *deg,
+                     int *opposite)
+{
+    double c[2][3] = {{0}}, N[2][3] = {{0}}, x[3], y[3];
+    const rg2_mesh *m[2] = {a, b};
+    int line[2] = {la, lb};
+    for (int r = 0; r < 2; r++) {
+        for (int i = 0; i < n; i++) {
+            line_point(m[r], dir, line[r], i, x);
+            for (int k = 0; k < 3; k++)
+                c[r][k] += x[k] / n;
+        }
+        for (int i = 0; i < n; i++) { /* Newell: sum of (p_i - c) x (p_{i+1} - c) */
+            line_point(m[r], dir, line[r], i, x);
+            line_point(m[r], dir, line[r], (i + 1) % n, y);
+            double cr[3];
+            for (int k = 0; k < 3; k++)
+                x[k] -= c[r][k], y[k] -= c[r][k];
+            cross3(x, y, cr);
+            for (int k = 0; k < 3; k++)
+                N[r][k] += cr[k];
+        }
+    }
+    double la2 = sqrt(dot3(N[0], N[0])), lb2 = sqrt(dot3(N[1], N[1]));
+    if (!(la2 > 0.0) || !(lb2 > 0.0) || !isfinite(la2) || !isfinite(lb2))
+        return 0;
+    *opposite = dot3(N[0], N[1]) < 0.0;
+    double ax[3], sc = 0.0, ss = 0.0;
+    for (int k = 0; k < 3; k++)
+        ax[k] = N[0][k] / la2 + N[1][k] / lb2;
+    double len = sqrt(dot3(ax, ax));
+    if (*opposite || !(len > 0.0))
+        return 1;
+    for (int k = 0; k < 3; k++)
+        ax[k] /= len;
+    for (int i = 0; i < n; i++) {
+        line_point(a, dir, la, i, x);
+        line_point(b, dir, lb, i, y);
+        for (int k = 0; k < 3; k++)
+            x[k] -= c[0][k], y[k] -= c[1][k];
+        double xa = dot3(x, ax), ya = dot3(y, ax); /* project onto the plane normal to ax */
+        for (int k = 0; k < 3; k++)
+            x[k] -= xa * ax[k], y[k] -= ya * ax[k];
+        double cr[3];
+        cross3(x, y, cr);
+        double t = atan2(dot3(cr, ax), dot3(x, y));
+        sc += cos(t), ss += sin(t);
+    }
+    *deg = atan2(ss, sc) * 180.0 / M_PI;
+    return 1;
+}
+
+rg2_status rg2__merge_twist_notes(rg2_design *d, const rg2__dmesh *const *in, int n_in, int dir, int closed,
+                                  const char *what, rg2_error *err)
+{
+    int other = 1 - dir, n = dir_scalars(&in[0]->m, other)->n;
+    if (!dir_scalars(&in[0]->m, other)->closed || n < 3)
+        return RG2_OK;
+    for (int t = closed ? 0 : 1; t < n_in; t++) {
+        const rg2__dmesh *l = in[t ? t - 1 : n_in - 1], *r = in[t];
+        double deg = 0.0;
+        int opposite = 0;
+        if (!row_twist(&l->m, dir_scalars(&l->m, dir)->n - 1, &r->m, 0, dir, n, &deg, &opposite) ||
+            (!opposite && fabs(deg) <= 1.0))
+            continue;
+        char msg[600];
+        if (opposite)
+            snprintf(msg, sizeof msg,
+                     "%s: %s.merge[%d]: the closed %s rows of '%s' and '%s' run opposite ways round at their seam: "
+                     "the transition patches turn the tube through itself (rg2 check --intersections finds "
+                     "them crossing); reverse one of them along %s",
+                     d->name, what, t, dir_name(other), l->name, r->name, dir_name(other));
+        else
+            snprintf(msg, sizeof msg,
+                     "%s: %s.merge[%d]: the closed %s rows of '%s' and '%s' meet turned by %.4g degrees about their "
+                     "axis ('%s' starts %.4g degrees %s along %s): the transition patches twist the tube; start "
+                     "both circles at the same angle (the partition's \"from\") or rotate one part about its axis",
+                     d->name, what, t, dir_name(other), l->name, r->name, fabs(deg), r->name, fabs(deg),
+                     deg > 0.0 ? "further" : "back", dir_name(other));
+        rg2_status st = rg2__design_add_note(d, msg, err);
+        if (st)
+            return st;
+    }
+    return RG2_OK;
+}
+
 /*
  * METHOD (seam rule "preserve", docs/design-format.md): the parts are concatenated along dir
  * without new points. Part legs and junctions keep their scalars. The seam leg between the

@@ -1482,6 +1482,53 @@ static void null_designs(void)
     rg2_design_free(d);
 }
 
+/* A merge whose closed rows meet turned about their axis or running opposite ways round builds (it
+ * is G2) but twists or pinches the tube: the design says so in a note naming the merge entry, both
+ * meshes and the angle; aligned circles give none. Two cylinders stacked along v; the upper one's
+ * circle starts at `from` degrees, or runs backwards. */
+static void twisted_merges(void)
+{
+    static const char base[] =
+        "{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {"
+        "\"A\": {\"shape\": \"c\", \"u\": {\"arcs\": 8}, \"v\": {\"segments\": 3, \"from\": 0, \"to\": 1}},"
+        "\"B0\": {\"shape\": \"c\", \"u\": {\"arcs\": 8, \"from\": %s}, \"v\": {\"segments\": 3, \"from\": 1.5, "
+        "\"to\": 2.5}},"
+        "\"B\": %s, \"M\": {\"merge\": [\"A\", \"B\"], \"along\": \"v\"}}}";
+    static const struct {
+        const char *from, *b, *note;
+    } cases[] = {
+        {"0", "{\"cut\": \"B0\", \"v\": [0, 5]}", NULL},
+        {"0.5", "{\"cut\": \"B0\", \"v\": [0, 5]}", NULL},
+        {"45", "{\"cut\": \"B0\", \"v\": [0, 5]}",
+         "test: meshes.M.merge[1]: the closed u rows of 'A' and 'B' meet turned by 45 degrees about their axis ('B' "
+         "starts 45 degrees further along u)"},
+        {"-22.5", "{\"cut\": \"B0\", \"v\": [0, 5]}",
+         "test: meshes.M.merge[1]: the closed u rows of 'A' and 'B' meet turned by 22.5 degrees about their axis ('B' "
+         "starts 22.5 degrees back along u)"},
+        {"0", "{\"reverse\": \"B0\", \"dir\": \"u\"}",
+         "test: meshes.M.merge[1]: the closed u rows of 'A' and 'B' run opposite ways round at their seam"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        char json[2048];
+        rg2_error err;
+        snprintf(json, sizeof json, base, cases[k].from, cases[k].b);
+        rg2_design *d = parse(json, &err);
+        if (!d)
+            continue;
+        const char *note = rg2_design_note(d, 0);
+        if (cases[k].note)
+            CHECK(rg2_design_num_notes(d) == 1 && note && !strncmp(note, cases[k].note, strlen(cases[k].note)),
+                  "from %s, %s: %d notes, first '%s'", cases[k].from, cases[k].b, rg2_design_num_notes(d),
+                  note ? note : "(none)");
+        else
+            CHECK(rg2_design_num_notes(d) == 0 && !note, "from %s: aligned circles give no note, got '%s'",
+                  cases[k].from, note ? note : "(none)");
+        CHECK(!rg2_design_note(d, -1) && !rg2_design_note(d, rg2_design_num_notes(d)), "note index out of range");
+        rg2_design_free(d);
+    }
+    CHECK(rg2_design_num_notes(NULL) == 0 && !rg2_design_note(NULL, 0), "the notes of a NULL design");
+}
+
 int main(void)
 {
     parse_sizes();
@@ -1517,5 +1564,6 @@ int main(void)
     unknown_key_lists();
     cap_seam_positions();
     design_caps_again();
+    twisted_merges();
     return rg2t_done("test_design");
 }

@@ -169,5 +169,18 @@ check_bad bad_missing.json "meshes.M: missing key 'along'"
 check_bad bad_scalar.json "junction 2 has K"
 check_bad no_such_design.json "cannot open"
 
+# a twisted merge (the upper cylinder's circle starts 45 degrees on) builds, with a note from info
+# (stdout) and build (stderr; none with -q)
+cat >"$tmp/twist.json" <<'EOF'
+{"shapes": {"c": {"kind": "cylinder"}}, "meshes": {
+  "A": {"shape": "c", "u": {"arcs": 8}, "v": {"segments": 3, "from": 0, "to": 1}},
+  "B": {"shape": "c", "u": {"arcs": 8, "from": 45}, "v": {"segments": 3, "from": 1.5, "to": 2.5}},
+  "M": {"merge": ["A", "B"], "along": "v"}}}
+EOF
+note="twist.json: meshes.M.merge[1]: the closed u rows of 'A' and 'B' meet turned by 45 degrees"
+"$rg2" info "$tmp/twist.json" | grep -qF "note: $tmp/$note" && ok || bad "info twist.json: no note"
+expect 0 "rg2 build: note: $tmp/$note" "$rg2" build "$tmp/twist.json" -o "$tmp/twist.obj"
+expect 0 "" "$rg2" build -q "$tmp/twist.json" -o "$tmp/twist.obj"
+[ -s "$tmp/err" ] && bad "build -q twist.json printed: $(cat "$tmp/err")" || ok
 echo "cli design: $passes passed, $fails failed"
 [ "$fails" = 0 ]
