@@ -835,8 +835,8 @@ RG2_API rg2_status rg2_polar_sphere_mesh(const double *alpha, int n_alpha, doubl
  *  argument, another kind of shape or m < 2; RG2_ELIMIT for m > RG2_MAX_POINTS - 4 (the m + 4
  *  knots of the partition);
  *  RG2_ENONFINITE for a NaN or infinite knot; RG2_EDOMAIN for knots out of order, on both sides
- *  of 0 or outside (0, 1) (sphere, ellipsoid), naming the knot ("rg2_polar_mesh: polar knots:
- *  v_2 = ..."), or whose data-only end knots leave the double range; then as rg2_shape_mesh. */
+ *  of 0 or outside (0, 1) (sphere, ellipsoid), naming the knot by its 0-based index in v, as other
+ *  messages count ("rg2_polar_mesh: polar knots: knot 1 = ..." for v[1], the paper's v_2), or whose data-only end knots leave the double range; then as rg2_shape_mesh. */
 RG2_API rg2_status rg2_polar_mesh(const rg2_shape *s, const rg2_partition *pu, const double *v, int m,
                                   rg2_mesh *out, rg2_error *err);
 

@@ -52,7 +52,7 @@ rg2_status rg2__op_polar(rg2_design *d, int shape, const rg2_partition *pu, cons
         return rg2__fail(err, RG2_ENOMEM, "%s: out of memory", what);
     int north = 0;
     st = rg2__polar_full_knots(kind, v, m, k, &north, err);
-    if (st) { /* (rg2_polar_knots: "polar knots: v_2 = ..."; the path names the knots) */
+    if (st) { /* (rg2_polar_knots: "polar knots: knot 1 = ..."; the path names the knots) */
         rg2_error e = *err;
         free(k);
         return rg2__fail(err, st, "%s: %s", kpath, rg2__after(e.msg, "polar knots: "));

@@ -18,14 +18,14 @@ rg2_status rg2_polar_knots(const double *v, int m, double *knots, rg2_error *err
                          m);
     for (int k = 0; k < m; k++) {
         if (!rg2__finite(v[k]))
-            return rg2__fail(err, RG2_ENONFINITE, "polar knots: v_%d is not finite", k + 1);
+            return rg2__fail(err, RG2_ENONFINITE, "polar knots: knot %d is not finite", k);
         if (!(v[k] > 0.0 && v[k] < 1.0))
             return rg2__fail(err, RG2_EDOMAIN,
-                             "polar knots: v_%d = %s must lie strictly between the poles 0 and 1",
-                             k + 1, rg2__num(v[k]).s);
+                             "polar knots: knot %d = %s must lie strictly between the poles 0 and 1",
+                             k, rg2__num(v[k]).s);
         if (k > 0 && !(v[k] > v[k - 1]))
-            return rg2__fail(err, RG2_EDOMAIN, "polar knots: v_%d = %s is not above v_%d = %s",
-                             k + 1, rg2__num(v[k]).s, k, rg2__num(v[k - 1]).s);
+            return rg2__fail(err, RG2_EDOMAIN, "polar knots: knot %d = %s is not above knot %d = %s",
+                             k, rg2__num(v[k]).s, k - 1, rg2__num(v[k - 1]).s);
     }
     knots[0] = v[0] / (v[0] - 1.0);
     knots[1] = 0.0;
@@ -48,14 +48,14 @@ rg2_status rg2__polar_full_knots(rg2_shape_kind kind, const double *v, int m, do
                          "polar knots: %d interior knots given; a polar configuration needs at least 2", m);
     for (int q = 0; q < m; q++)
         if (!rg2__finite(v[q]))
-            return rg2__fail(err, RG2_ENONFINITE, "polar knots: v_%d is not finite", q + 1);
+            return rg2__fail(err, RG2_ENONFINITE, "polar knots: knot %d is not finite", q);
     int nth = v[m - 1] < 0.0; /* knots below 0: the pole v = 0 is at the end */
     for (int q = 0; q < m; q++)
         if (!(nth ? v[q] < 0.0 : v[q] > 0.0) || (q && !(v[q] > v[q - 1])))
             return rg2__fail(err, RG2_EDOMAIN,
-                             "polar knots: v_%d = %s: the knots must increase and all lie on one side of the "
+                             "polar knots: knot %d = %s: the knots must increase and all lie on one side of the "
                              "pole v = 0",
-                             q + 1, rg2__num(v[q]).s);
+                             q, rg2__num(v[q]).s);
     if (!nth) {
         double dl = v[m - 1] - v[m - 2];
         k[0] = -v[0];

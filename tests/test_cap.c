@@ -947,7 +947,7 @@ static void design_errors(void)
          RG2_EINVAL, "meshes.P.polar: 't' is a torus, which has no polar configuration"},
         {"{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 8},"
          " \"v\": {\"knots\": [0.5, 0.2]}}}}",
-         RG2_EDOMAIN, "meshes.P.v.knots: v_2 = "},
+         RG2_EDOMAIN, "meshes.P.v.knots: knot 1 = "},
         {"{\"shapes\": {\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {\"P\": {\"polar\": \"s\", \"v\": {\"knots\": "
          "[0.2, 0.5]}}, \"M\": {\"mobius\": \"P\", \"b\": 1, \"poles\": {}}}}",
          RG2_EPARSE, "exactly one of 'b'"},

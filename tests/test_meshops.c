@@ -648,7 +648,7 @@ static void polar(void)
     const double across[3] = {-0.2, 0.3, 0.5}, outside[2] = {0.5, 1.2};
     memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_polar_mesh(rg2_design_shape(d, 2), &pu, across, 3, &r, &err), RG2_EDOMAIN, &err, &r,
-        "rg2_polar_mesh: polar knots: v_1 = -0.2: the knots must increase and all lie on one side of the pole",
+        "rg2_polar_mesh: polar knots: knot 0 = -0.2: the knots must increase and all lie on one side of the pole",
         "paraboloid knots on both sides");
     /* one-pole knots must lie strictly on one side of the pole v = 0 and strictly increase */
     static const struct {
@@ -656,11 +656,11 @@ static void polar(void)
         double v[3];
         const char *needle;
     } one_side[] = {
-        {2, {0.0, 0.5, 0.9}, "rg2_polar_mesh: polar knots: v_1 = 0: the knots must increase"},
-        {2, {0.3, 0.3, 0.9}, "rg2_polar_mesh: polar knots: v_2 = 0.3: the knots must increase"},
-        {3, {-0.5, -0.5, -0.2}, "rg2_polar_mesh: polar knots: v_2 = -0.5: the knots must increase"},
-        {3, {-0.5, 0.0, -0.2}, "rg2_polar_mesh: polar knots: v_2 = 0: the knots must increase"},
-        {3, {-0.5, -0.2, 0.0}, "rg2_polar_mesh: polar knots: v_1 = -0.5: the knots must increase"},
+        {2, {0.0, 0.5, 0.9}, "rg2_polar_mesh: polar knots: knot 0 = 0: the knots must increase"},
+        {2, {0.3, 0.3, 0.9}, "rg2_polar_mesh: polar knots: knot 1 = 0.3: the knots must increase"},
+        {3, {-0.5, -0.5, -0.2}, "rg2_polar_mesh: polar knots: knot 1 = -0.5: the knots must increase"},
+        {3, {-0.5, 0.0, -0.2}, "rg2_polar_mesh: polar knots: knot 1 = 0: the knots must increase"},
+        {3, {-0.5, -0.2, 0.0}, "rg2_polar_mesh: polar knots: knot 0 = -0.5: the knots must increase"},
     };
     for (size_t c = 0; c < sizeof one_side / sizeof one_side[0]; c++) {
         memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
@@ -669,7 +669,7 @@ static void polar(void)
     }
     memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_polar_mesh(rg2_design_shape(d, 0), &pu, outside, 2, &r, &err), RG2_EDOMAIN, &err, &r,
-        "rg2_polar_mesh: polar knots: v_2 = 1.2 must lie strictly between the poles 0 and 1", "sphere knot 1.2");
+        "rg2_polar_mesh: polar knots: knot 1 = 1.2 must lie strictly between the poles 0 and 1", "sphere knot 1.2");
     memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_polar_mesh(rg2_design_shape(d, 0), NULL, kb, 6, &r, &err), RG2_EINVAL, &err, &r, "pu is NULL",
         "polar of a NULL partition");
@@ -679,7 +679,7 @@ static void polar(void)
     const double nan_knots[3] = {0.2, NAN, 0.6};
     memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_polar_mesh(rg2_design_shape(d, 2), &pu, nan_knots, 3, &r, &err), RG2_ENONFINITE, &err, &r,
-        "rg2_polar_mesh: polar knots: v_2 is not finite", "paraboloid NaN knot");
+        "rg2_polar_mesh: polar knots: knot 1 is not finite", "paraboloid NaN knot");
     memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_polar_mesh(rg2_design_shape(d, 0), &pu, kb, INT_MAX, &r, &err), RG2_ELIMIT, &err, &r,
         "rg2_polar_mesh: 2147483647 interior knots give 2147483651 knots with the 4 data-only ones, more than the "

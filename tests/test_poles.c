@@ -25,9 +25,9 @@ static void polar_knots(void)
     CHECK(fabs(b0[1] - b0[2]) < 1e-16 && fabs(b1[1] - b1[2]) < 1e-15, "rows collapse: %.3g %.3g", b0[1] - b0[2],
           b1[1] - b1[2]);
     double bad1[2] = {0.5, 0.4}, bad2[2] = {0.0, 0.5}, bad3[2] = {0.5, 1.0};
-    CHECK(rg2_polar_knots(bad1, 2, k, &err) == RG2_EDOMAIN && strstr(err.msg, "v_2"), "%s", err.msg);
-    CHECK(rg2_polar_knots(bad2, 2, k, &err) == RG2_EDOMAIN && strstr(err.msg, "v_1"), "%s", err.msg);
-    CHECK(rg2_polar_knots(bad3, 2, k, &err) == RG2_EDOMAIN && strstr(err.msg, "v_2"), "%s", err.msg);
+    CHECK(rg2_polar_knots(bad1, 2, k, &err) == RG2_EDOMAIN && strstr(err.msg, "knot 1 = 0.4"), "%s", err.msg);
+    CHECK(rg2_polar_knots(bad2, 2, k, &err) == RG2_EDOMAIN && strstr(err.msg, "knot 0 = 0"), "%s", err.msg);
+    CHECK(rg2_polar_knots(bad3, 2, k, &err) == RG2_EDOMAIN && strstr(err.msg, "knot 1 = 1"), "%s", err.msg);
     CHECK(rg2_polar_knots(v, 1, k, &err) == RG2_EINVAL && strstr(err.msg, "at least 2"), "%s", err.msg);
 }
 
@@ -445,7 +445,7 @@ static void errors(void)
               !strcmp(err.msg, "polar sphere: placement entry 6 is not finite"),
           "NaN placement: %s", err.msg);
     double vn[2] = {0.3, NAN}, kn[8];
-    CHECK(rg2_polar_knots(vn, 2, kn, &err) == RG2_ENONFINITE && !strcmp(err.msg, "polar knots: v_2 is not finite"),
+    CHECK(rg2_polar_knots(vn, 2, kn, &err) == RG2_ENONFINITE && !strcmp(err.msg, "polar knots: knot 1 is not finite"),
           "NaN knot: %s", err.msg);
     CHECK(rg2_polar_knots(NULL, 2, kn, &err) == RG2_EINVAL && !strcmp(err.msg, "polar knots: no interior knots (NULL v)"),
           "no knots: %s", err.msg);
@@ -557,7 +557,7 @@ static void collapse_projective(void)
     printf("collapse detection under projective scaling: %d rows, %d wrong\n", n_rows, bad);
     double eq[3] = {0.3, 0.3, 0.6}, k[7];
     CHECK(rg2_polar_knots(eq, 3, k, &err) == RG2_EDOMAIN &&
-              !strcmp(err.msg, "polar knots: v_2 = 0.3 is not above v_1 = 0.3"),
+              !strcmp(err.msg, "polar knots: knot 1 = 0.3 is not above knot 0 = 0.3"),
           "equal knots: %s", err.msg);
     rg2_mesh b;
     CHECK(rg2_polar_sphere_mesh(alpha, 5, 0.0, eq, 3, NULL, &b, &err) == RG2_EDOMAIN && b.p == NULL,
