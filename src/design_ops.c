@@ -543,10 +543,20 @@ rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int clo
     }
     for (int t = 0; t < n_in; t++) {
         const rg2_scalars *s = dir_scalars(&in[t]->m, dir);
-        if (s->closed)
+        if (s->closed) {
+            /* a mesh open the other way, closed in `other` where the first mesh is (a torus piece
+             * whose tube circle is v, merged along v with a cylinder whose circle is u), is meant to
+             * be transposed, not cut */
+            char hint[300] = "";
+            const rg2_mesh *m0 = &in[0]->m;
+            if (t > 0 && !dir_scalars(&in[t]->m, other)->closed && dir_scalars(m0, other)->closed &&
+                !dir_scalars(m0, dir)->closed)
+                snprintf(hint, sizeof hint, ", or transpose it: it is open in %s, and '%s' is closed in %s",
+                         dir_name(other), in[0]->name, dir_name(other));
             return rg2__fail(err, RG2_EINCOMPATIBLE,
-                             "%s.merge[%d]: mesh '%s' is closed in %s; cut it open before merging along %s",
-                             what, t, in[t]->name, dir_name(dir), dir_name(dir));
+                             "%s.merge[%d]: mesh '%s' is closed in %s; cut it open before merging along %s%s",
+                             what, t, in[t]->name, dir_name(dir), dir_name(dir), hint);
+        }
         n += s->n;
         if (n > RG2_MAX_POINTS)
             return rg2__fail(err, RG2_ELIMIT, "%s.merge[%d]: the merged meshes reach %d control points along %s, "
