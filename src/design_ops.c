@@ -479,8 +479,8 @@ rg2_status rg2__merge_twist_notes(rg2_design *d, const rg2__dmesh *const *in, in
         if (opposite)
             snprintf(msg, sizeof msg,
                      "%s: %s.merge[%d]: the closed %s rows of '%s' and '%s' run opposite ways round at their seam: "
-                     "the transition patches turn the tube through itself (rg2 check --intersections finds "
-                     "them crossing); reverse one of them along %s",
+                     "the transition patches turn the tube through itself (rg2 check --intersections looks for "
+                     "the crossings); reverse one of them along %s",
                      d->name, what, t, dir_name(other), l->name, r->name, dir_name(other));
         else
             snprintf(msg, sizeof msg,
