@@ -41,6 +41,8 @@ static void usage(FILE *f)
                "each shape and how many are transitions, and the smallest homogeneous patch weight.\n"
                "For a tube (u closed, v open) it says what closes its two v ends: a cap, nothing (an\n"
                "open end), or nothing at a polar point, which leaves a hole around the pole.\n"
+               "For a closed surface (u closed; v closed or capped at both ends) it says whether the\n"
+               "normal points out or in (the sign of the volume its tessellation encloses).\n"
                "Notes follow that are not errors: a merge whose circles meet turned or running\n"
                "opposite ways round (rg2_design_note).\n"
                "Patches of a degree above bi-3 (general-quadratic polar caps) are counted per degree,\n"
@@ -69,6 +71,36 @@ static void print_ends(const rg2_design *d, int o, const rg2_mesh *m)
                cap ? "capped" : pole ? "a polar point, not capped: a hole around the pole" : "open");
     }
     printf("\n");
+}
+
+/* A closed surface (u closed; v closed, or capped at both ends): which way its normal points, by
+ * the sign of the volume its tessellation encloses (watertight: the seams share their vertices),
+ * sum over the triangles of a . (b x c) / 6. A solid read from STEP/IGES with the normal pointing
+ * in has a negative volume (FreeCAD's Part.Solid turns it round without a word). */
+static void print_orientation(const rg2_design *d, int o, const rg2_surface *s, const rg2_mesh *m)
+{
+    rg2_cap_opts co;
+    int capped = rg2_design_cap(d, o, &co);
+    int closed = m->su.closed && (m->sv.closed || (capped && (co.ends & RG2_CAP_SOUTH) && (co.ends & RG2_CAP_NORTH)));
+    enum { DENSITY = 4 };
+    if (!closed || (long)s->nu * s->nv > 20000) /* (a sign, not worth a large tessellation) */
+        return;
+    rg2_tess t;
+    rg2_error err;
+    if (rg2_tessellate(s, DENSITY, 0, &t, &err))
+        return;
+    double vol = 0.0;
+    for (int k = 0; k < t.n_triangles; k++) {
+        const double *a = t.pos + 3 * t.tri[3 * k], *b = t.pos + 3 * t.tri[3 * k + 1], *c = t.pos + 3 * t.tri[3 * k + 2];
+        vol += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
+    }
+    rg2_tess_free(&t);
+    if (vol > 0.0)
+        printf("  closed: the normal points out (enclosed volume about %.4g)\n", vol);
+    else if (vol < 0.0)
+        printf("  closed: the normal points IN (enclosed volume about %.4g, negative): STEP/IGES solids "
+               "come out inside out; reverse the mesh along u or v\n", vol);
 }
 
 int rg2_cmd_info(int argc, char **argv)
@@ -140,6 +172,7 @@ int rg2_cmd_info(int argc, char **argv)
         }
         printf("  %-25s %d patches\n", "transition", count[ns]);
         print_ends(d, o, m);
+        print_orientation(d, o, s, m);
         printf("  smallest patch weight %.6g%s\n", rg2_surface_min_weight(s),
                rg2_surface_min_weight(s) > 0 ? "" : " (not positive: STEP/IGES export will refuse it)");
         if (map)

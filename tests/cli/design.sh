@@ -182,5 +182,17 @@ note="twist.json: meshes.M.merge[1]: the closed u rows of 'A' and 'B' meet turne
 expect 0 "rg2 build: note: $tmp/$note" "$rg2" build "$tmp/twist.json" -o "$tmp/twist.obj"
 expect 0 "" "$rg2" build -q "$tmp/twist.json" -o "$tmp/twist.obj"
 [ -s "$tmp/err" ] && bad "build -q twist.json printed: $(cat "$tmp/err")" || ok
+# a closed surface: info says which way its normal points (a capped cylinder reversed along u
+# points in, which FreeCAD turns round without a word)
+cat >"$tmp/inward.json" <<'EOF'
+{"shapes": {"c": {"kind": "cylinder"}}, "meshes": {
+  "A": {"shape": "c", "u": {"arcs": 8}, "v": {"segments": 3, "from": -1, "to": 1}},
+  "out": {"cap": "A"}, "R": {"reverse": "A", "dir": "u"}, "in": {"cap": "R"}},
+ "output": ["out", "in"]}
+EOF
+"$rg2" info "$tmp/inward.json" >"$tmp/out" 2>&1
+[ "$(grep -c '  closed: the normal points out (enclosed volume about' "$tmp/out")" = 1 ] && ok || bad "info inward.json: $(cat "$tmp/out")"
+grep -q '  closed: the normal points IN (enclosed volume about -.*reverse the mesh along u or v' "$tmp/out" && ok ||
+  bad "info inward.json: no inward normal: $(cat "$tmp/out")"
 echo "cli design: $passes passed, $fails failed"
 [ "$fails" = 0 ]
