@@ -1317,8 +1317,8 @@ typedef struct {
  *  1..1000, naming it), RG2_ELIMIT (more than RG2_MAX_CROSSING_TRIANGLES triangles: patches x
  *  2 density^2, naming the count and the density; checked before anything is allocated), the
  *  errors of rg2_tessellate (prefixed with the surface), RG2_ENOMEM. */
-RG2_API rg2_status rg2_find_crossings(const rg2_surface *surfs, int n, int density, rg2_crossing_report *out,
-                                      rg2_error *err);
+RG2_API rg2_status rg2_find_crossings(const rg2_surface *surfs, int n, int density, int threads,
+                                      rg2_crossing_report *out, rg2_error *err);
 
 enum {
     RG2_REQUIRE_G0 = 1u << 0,

@@ -898,7 +898,7 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
     free(patch_off);
     free(size);
     if (!st && o->crossing_density > 0)
-        st = rg2__prefix(err, rg2_find_crossings(surfs, n, o->crossing_density, &out->crossings, err), "check");
+        st = rg2__prefix(err, rg2_find_crossings(surfs, n, o->crossing_density, o->threads, &out->crossings, err), "check");
     if (st) {
         free(shape_size);
         free(shape_box);

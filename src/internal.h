@@ -132,6 +132,9 @@ rg2_status rg2__out_close(rg2__out *o, rg2_status st, rg2_error *err);
 #include <stdint.h>
 typedef void (*rg2__pool_fn)(void *arg, uint32_t chunk);
 void rg2__pool_run(int nthreads, uint32_t n, rg2__pool_fn fn, void *arg);
+/* rg2_tessellate (no curvature) on up to `threads` threads of the pool (0: the OpenMP default,
+ * 1: serial); the same mesh, bit for bit, for any count. */
+rg2_status rg2__tessellate_threads(const rg2_surface *s, int density, int threads, rg2_tess *out, rg2_error *err);
 
 /* The curve construction of MATH.md eq. 3-4 as a linear stencil: Bezier coefficient r
  * (0..3) of output segment k is sum_a c[k][r][a] * p^{first[k] + a}, a = 0..3 (indices

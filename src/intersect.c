@@ -34,6 +34,23 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Threads (OpenMP, as rg2_check): the tessellation on the grid's pool, then the weld, the boxes,
+ * the grid's lists and the pair tests in parallel loops. The result is the same for any thread
+ * count: the weld's sort has a total order and its union-find roots are the least index of each
+ * class whatever the order of the unions; the boxes, the cell counts and the mean box are formed
+ * serially or as integer sums; each grid list is sorted before its pairs are tested; and the
+ * pair tests count into per-thread tallies (integer sums) and keep the least confirmed pair
+ * (ta, tb), whose report depends on that pair only. */
+#ifdef _OPENMP
+#include <omp.h>
+#define XS_OMP(x) _Pragma(x)
+static int xs_thread(void) { return omp_get_thread_num(); }
+#else
+#define XS_OMP(x)
+static int xs_thread(void) { return 0; }
+#endif
+#define XS_MAX_THREADS 64 /* as rg2_check */
+
 #define WELD_TOL 1e-10     /* relative to the size: vertices closer than this are one */
 #define CONFIRM_TOL 1e-10  /* relative to the size: |S1 - S2| of a confirmed crossing */
 #define NEWTON_ITERS 40
@@ -167,14 +184,21 @@ typedef struct {
     float *box;           /* 6 per triangle: lo, hi relative to origin / size (rounded outwards: a
                              float holds every size of the supported range so) */
     double size, origin[3];
+    int nt;               /* threads */
 } mesh_set;
 
+/* The surface of global triangle t: the s with tbase[s] <= t < tbase[s + 1] (bisection). */
 static int tri_surface(const mesh_set *M, int t)
 {
-    int s = 0;
-    while (t >= M->tbase[s + 1])
-        s++;
-    return s;
+    int lo = 0, hi = M->n - 1;
+    while (lo < hi) {
+        int mid = lo + (hi - lo) / 2;
+        if (t >= M->tbase[mid + 1])
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
 }
 
 static const double *vpos(const mesh_set *M, int s, int local) { return M->tess[s].pos + 3 * (size_t)local; }
@@ -183,7 +207,7 @@ static double weld_key(const double *p) { return 0.5773502691896258 * p[0] + 0.6
 
 typedef struct {
     double key;
-    int idx;
+    int idx, surf; /* global vertex, its surface */
 } keyed;
 
 static int cmp_keyed(const void *a, const void *b)
@@ -192,44 +216,107 @@ static int cmp_keyed(const void *a, const void *b)
     return x->key < y->key ? -1 : x->key > y->key ? 1 : (x->idx > y->idx) - (x->idx < y->idx);
 }
 
-/* Weld coincident vertices of all surfaces (union-find, the smaller index the root). */
+/* Sort k (n entries) by (key, index) on nt threads: runs sorted at once, then merged pairwise
+ * into tmp and back. The order is total, so the result is the same array for any nt. Returns
+ * the sorted array (k or tmp). */
+static keyed *sort_keyed(keyed *k, keyed *tmp, size_t n, int nt)
+{
+    int runs = n / 8192 + 1 < (size_t)nt ? (int)(n / 8192 + 1) : nt;
+    size_t bound[XS_MAX_THREADS + 1];
+    for (int c = 0; c <= runs; c++)
+        bound[c] = n * (size_t)c / (size_t)runs;
+    XS_OMP("omp parallel for num_threads(nt) schedule(static, 1)")
+    for (int c = 0; c < runs; c++)
+        qsort(k + bound[c], bound[c + 1] - bound[c], sizeof *k, cmp_keyed);
+    keyed *src = k, *dst = tmp;
+    for (int w = 1; w < runs; w *= 2) {
+        XS_OMP("omp parallel for num_threads(nt) schedule(static, 1)")
+        for (int c = 0; c < runs; c += 2 * w) {
+            size_t i = bound[c], mid = bound[c + w < runs ? c + w : runs];
+            size_t j = mid, hi = bound[c + 2 * w < runs ? c + 2 * w : runs], o = i;
+            while (i < mid && j < hi)
+                dst[o++] = cmp_keyed(&src[j], &src[i]) < 0 ? src[j++] : src[i++];
+            while (i < mid)
+                dst[o++] = src[i++];
+            while (j < hi)
+                dst[o++] = src[j++];
+        }
+        keyed *x = src;
+        src = dst;
+        dst = x;
+    }
+    return src;
+}
+
+/* Weld coincident vertices of all surfaces (union-find, the smaller index the root: each
+ * vertex ends at the least index of its class, whatever the order of the unions). The pairs
+ * within the tolerance are found on the threads into lists of their own, then united. */
 static int weld(mesh_set *M)
 {
-    keyed *k = rg2__calloc((size_t)M->nvert, sizeof *k);
-    M->weld = rg2__calloc((size_t)M->nvert, sizeof *M->weld);
-    if (!k || !M->weld) {
+    size_t nv = (size_t)M->nvert;
+    keyed *k = rg2__alloc_big(nv, sizeof *k, 1u << 21, 0), *tmp = rg2__alloc_big(nv, sizeof *k, 1u << 21, 0);
+    M->weld = rg2__alloc_big(nv, sizeof *M->weld, 1u << 21, 0);
+    if (!k || !tmp || !M->weld) {
         free(k);
+        free(tmp);
         return -1;
     }
     double tol = WELD_TOL * M->size;
-    for (int s = 0; s < M->n; s++)
+    for (int s = 0; s < M->n; s++) {
+        int base = M->vbase[s];
+        XS_OMP("omp parallel for num_threads(M->nt) schedule(static)")
         for (int v = 0; v < M->tess[s].n_vertices; v++) {
-            int g = M->vbase[s] + v;
-            k[g].key = weld_key(vpos(M, s, v));
-            k[g].idx = g;
-            M->weld[g] = g;
+            k[base + v].key = weld_key(vpos(M, s, v));
+            k[base + v].idx = base + v;
+            k[base + v].surf = s;
+            M->weld[base + v] = base + v;
         }
-    qsort(k, (size_t)M->nvert, sizeof *k, cmp_keyed);
-    int *sof = rg2__calloc((size_t)M->nvert, sizeof *sof); /* global vertex -> surface */
-    if (!sof) {
-        free(k);
-        return -1;
     }
-    for (int s = 0; s < M->n; s++)
-        for (int v = M->vbase[s]; v < M->vbase[s + 1]; v++)
-            sof[v] = s;
-    for (int a = 0; a < M->nvert; a++)
-        for (int b = a + 1; b < M->nvert && k[b].key - k[a].key <= 2 * tol; b++) {
-            int ga = k[a].idx, gb = k[b].idx;
-            double d[3];
-            sub3(vpos(M, sof[ga], ga - M->vbase[sof[ga]]), vpos(M, sof[gb], gb - M->vbase[sof[gb]]), d);
-            if (dot3(d, d) <= tol * tol)
-                rg2__uf_union(M->weld, ga, gb);
-        }
+    const keyed *K = sort_keyed(k, tmp, nv, M->nt);
+    int *pairs[XS_MAX_THREADS] = {NULL};
+    size_t np[XS_MAX_THREADS] = {0};
+    int oom = 0;
+    XS_OMP("omp parallel num_threads(M->nt)")
+    {
+        int me = xs_thread(), *L = NULL;
+        size_t n = 0, c = 0;
+        XS_OMP("omp for schedule(dynamic, 4096)")
+        for (int a = 0; a < M->nvert; a++)
+            for (int b = a + 1; b < M->nvert && K[b].key - K[a].key <= 2 * tol; b++) {
+                int ga = K[a].idx, gb = K[b].idx;
+                double d[3];
+                sub3(vpos(M, K[a].surf, ga - M->vbase[K[a].surf]), vpos(M, K[b].surf, gb - M->vbase[K[b].surf]), d);
+                if (!(dot3(d, d) <= tol * tol))
+                    continue;
+                if (n == c) {
+                    size_t c2 = c ? 2 * c : 64;
+                    int *L2 = realloc(L, c2 * 2 * sizeof *L2);
+                    if (!L2) {
+                        XS_OMP("omp atomic write")
+                        oom = 1;
+                        break;
+                    }
+                    L = L2;
+                    c = c2;
+                }
+                L[2 * n] = ga;
+                L[2 * n + 1] = gb;
+                n++;
+            }
+        pairs[me] = L;
+        np[me] = n;
+    }
+    for (int t = 0; t < M->nt; t++) {
+        for (size_t q = 0; q < np[t] && !oom; q++)
+            rg2__uf_union(M->weld, pairs[t][2 * q], pairs[t][2 * q + 1]);
+        free(pairs[t]);
+    }
+    free(k);
+    free(tmp);
+    if (oom)
+        return -1;
     for (int g = 0; g < M->nvert; g++)
         M->weld[g] = rg2__uf_find(M->weld, g);
-    free(sof);
-    free(k);
     return 0;
 }
 
@@ -251,21 +338,22 @@ static int boxes(mesh_set *M)
     M->box = rg2__alloc_big((size_t)M->ntri, 6 * sizeof *M->box, 1u << 21, 0);
     if (!M->box)
         return -1;
-    for (int s = 0; s < M->n; s++)
-        for (int t = M->tbase[s]; t < M->tbase[s + 1]; t++) {
-            const int *tv = tri_verts(M, s, t);
-            float *b = M->box + 6 * (size_t)t;
-            for (int d = 0; d < 3; d++) {
-                double lo = DBL_MAX, hi = -DBL_MAX;
-                for (int c = 0; c < 3; c++) {
-                    double x = (vpos(M, s, tv[c])[d] - M->origin[d]) / M->size;
-                    lo = fmin(lo, x);
-                    hi = fmax(hi, x);
-                }
-                b[d] = round_down(lo - 1e-12); /* (over the rounding of the quotient) */
-                b[3 + d] = round_up(hi + 1e-12);
+    XS_OMP("omp parallel for num_threads(M->nt) schedule(static)")
+    for (int t = 0; t < M->ntri; t++) {
+        int s = tri_surface(M, t);
+        const int *tv = tri_verts(M, s, t);
+        float *b = M->box + 6 * (size_t)t;
+        for (int d = 0; d < 3; d++) {
+            double lo = DBL_MAX, hi = -DBL_MAX; /* (the vertices are finite: rg2_tessellate) */
+            for (int c = 0; c < 3; c++) {
+                double x = (vpos(M, s, tv[c])[d] - M->origin[d]) / M->size;
+                lo = x < lo ? x : lo;
+                hi = x > hi ? x : hi;
             }
+            b[d] = round_down(lo - 1e-12); /* (over the rounding of the quotient) */
+            b[3 + d] = round_up(hi + 1e-12);
         }
+    }
     return 0;
 }
 
@@ -475,20 +563,26 @@ static int shares_vertex(const mesh_set *M, int ta, int tb)
     return 0;
 }
 
-/* Test the pair (ta < tb) met in list `bucket`, if that is where the pair's home cell is hashed. */
-static void test_pair(const mesh_set *M, const grid *g, int ta, int tb, size_t bucket, rg2_crossing_report *r,
-                      int *first_a, int *first_b)
+/* One thread's share of the pair tests: its counts and its least confirmed pair (ta, tb). */
+typedef struct {
+    double pairs;
+    int candidates, crossings, first_a, first_b, oom;
+    rg2_crossing_report first; /* that pair's sheets, point, residual, angle */
+} sweep_part;
+
+/* Test the pair (ta < tb) met in list `bucket`, if that is where the pair's home cell is hashed:
+ * the cell of the lower corner of the intersection of their boxes, which is the componentwise
+ * greater of the cells of their lower corners ca, cb (a cell's coordinate is monotonic in the
+ * point's, clamping included). */
+static void test_pair(const mesh_set *M, const grid *g, int ta, int tb, const int ca[3], const int cb[3],
+                      size_t bucket, sweep_part *P)
 {
     const float *ba = M->box + 6 * (size_t)ta, *bb = M->box + 6 * (size_t)tb;
-    float lo[6];
-    for (int d = 0; d < 3; d++) {
+    for (int d = 0; d < 3; d++)
         if (ba[3 + d] < bb[d] || bb[3 + d] < ba[d])
             return;
-        lo[d] = lo[3 + d] = fmaxf(ba[d], bb[d]);
-    }
-    int c0[3], c1[3];
-    cell_range(g, lo, c0, c1);
-    if (cell_bucket(g, c0) != bucket)
+    int home[3] = {ca[0] > cb[0] ? ca[0] : cb[0], ca[1] > cb[1] ? ca[1] : cb[1], ca[2] > cb[2] ? ca[2] : cb[2]};
+    if (cell_bucket(g, home) != bucket)
         return;
     if (shares_vertex(M, ta, tb))
         return;
@@ -499,26 +593,67 @@ static void test_pair(const mesh_set *M, const grid *g, int ta, int tb, size_t b
     double X[3];
     if (!tri_cross(A, B, X))
         return;
-    r->candidates++;
+    P->candidates++;
     rg2_crossing_report one = {0};
     if (!confirm(M, ta, tb, X, &one))
         return;
-    if (r->crossings == 0 || ta < *first_a || (ta == *first_a && tb < *first_b)) {
-        *first_a = ta;
-        *first_b = tb;
-        r->a = one.a;
-        r->b = one.b;
-        memcpy(r->p, one.p, sizeof r->p);
-        r->residual = one.residual;
-        r->angle = one.angle;
+    if (P->crossings == 0 || ta < P->first_a || (ta == P->first_a && tb < P->first_b)) {
+        P->first_a = ta;
+        P->first_b = tb;
+        P->first = one;
     }
-    r->crossings++;
+    P->crossings++;
 }
 
-static int cmp_int(const void *a, const void *b)
+/* The cells (x, y, z) of triangle t's box (clamped to the grid), their count, and each cell's list. */
+#define FOR_CELLS(g, b, x, y, z)                                                                                    \
+    int c0_[3], c1_[3];                                                                                             \
+    cell_range(g, b, c0_, c1_);                                                                                     \
+    for (int x = c0_[0]; x <= c1_[0]; x++)                                                                          \
+        for (int y = c0_[1]; y <= c1_[1]; y++)                                                                      \
+            for (int z = c0_[2]; z <= c1_[2]; z++)
+
+/* Sort a cell's list (short: insertion; the lists are in order already when one thread filled them). */
+static void sort_list(int *L, unsigned m)
 {
-    int x = *(const int *)a, y = *(const int *)b;
-    return (x > y) - (x < y);
+    for (unsigned p = 1; p < m; p++) {
+        int x = L[p];
+        unsigned q = p;
+        for (; q > 0 && L[q - 1] > x; q--)
+            L[q] = L[q - 1];
+        L[q] = x;
+    }
+}
+
+/* The pair tests of list c into P (cc: scratch for *cap triangles' cells, grown). */
+static void sweep_lists(const mesh_set *M, const grid *g, const unsigned *start, int *list, size_t c, int **cc,
+                        size_t *cap, sweep_part *P)
+{
+    int *L = list + start[c];
+    unsigned m = start[c + 1] - start[c];
+    if (m < 2)
+        return;
+    sort_list(L, m);
+    if (m > *cap) {
+        int *x = realloc(*cc, 3 * (size_t)m * sizeof *x);
+        if (!x) {
+            P->oom = 1;
+            return;
+        }
+        *cc = x;
+        *cap = m;
+    }
+    int *C = *cc;
+    for (unsigned p = 0; p < m; p++) { /* each triangle's lower cell, once per list */
+        int c1[3];
+        cell_range(g, M->box + 6 * (size_t)L[p], C + 3 * (size_t)p, c1);
+    }
+    for (unsigned p = 0; p < m; p++)
+        for (unsigned q = p + 1; q < m && (p == 0 || L[p] != L[p - 1]); q++)
+            if (L[q] != L[q - 1]) { /* a triangle in two cells hashed to this list: once */
+                P->pairs++;
+                test_pair(M, g, L[p], L[q], C + 3 * (size_t)p, C + 3 * (size_t)q, c, P);
+            }
 }
 
 /* Build the grid lists and test every pair once. Returns -1 out of memory. */
@@ -530,13 +665,14 @@ static int sweep(const mesh_set *M, rg2_crossing_report *r)
         g.lo[d] = DBL_MAX;
         hi[d] = -DBL_MAX;
     }
-    for (int t = 0; t < M->ntri; t++) {
+    for (int t = 0; t < M->ntri; t++) { /* (serial: the sum ext in one order) */
         const float *b = M->box + 6 * (size_t)t;
         double e = 0;
         for (int d = 0; d < 3; d++) {
-            g.lo[d] = fmin(g.lo[d], b[d]);
-            hi[d] = fmax(hi[d], b[3 + d]);
-            e = fmax(e, (double)b[3 + d] - b[d]);
+            double l = b[d], h = b[3 + d];
+            g.lo[d] = l < g.lo[d] ? l : g.lo[d];
+            hi[d] = h > hi[d] ? h : hi[d];
+            e = h - l > e ? h - l : e;
         }
         ext += e;
     }
@@ -546,8 +682,7 @@ static int sweep(const mesh_set *M, rg2_crossing_report *r)
      * (a few huge triangles next to many small ones): else coarser cells */
     double mean = g.h;
     g.hashed = 0;
-    size_t entries = 0, cells = 0;
-    unsigned *start = NULL;
+    size_t entries = 0, cells = 0, most = 8 * (size_t)M->ntri + 64;
     for (;;) {
         double nc = 1, kmax = 0;
         for (int d = 0; d < 3; d++) {
@@ -570,65 +705,89 @@ static int sweep(const mesh_set *M, rg2_crossing_report *r)
         cells = g.hashed ? 2 * (size_t)M->ntri + 64 : (size_t)nc;
         g.buckets = cells;
         entries = 0;
-        for (int t = 0; t < M->ntri && entries <= 8 * (size_t)M->ntri + 64; t++) {
+        XS_OMP("omp parallel for num_threads(M->nt) schedule(static) reduction(+ : entries)")
+        for (int t = 0; t < M->ntri; t++) {
             int c0[3], c1[3];
             cell_range(&g, M->box + 6 * (size_t)t, c0, c1);
-            entries += (size_t)(c1[0] - c0[0] + 1) * (size_t)(c1[1] - c0[1] + 1) * (size_t)(c1[2] - c0[2] + 1);
+            size_t e = (size_t)(c1[0] - c0[0] + 1) * (size_t)(c1[1] - c0[1] + 1) * (size_t)(c1[2] - c0[2] + 1);
+            entries += e < most ? e : most + 1; /* (no overflow) */
         }
-        if (entries <= 8 * (size_t)M->ntri + 64)
+        if (entries <= most)
             break;
         g.h *= 1.26;
     }
-    start = rg2__calloc(cells + 1, sizeof *start);
+    unsigned *start = rg2__calloc(cells + 1, sizeof *start);
     int *list = rg2__alloc_big(entries ? entries : 1, sizeof *list, 1u << 21, 0);
     if (!start || !list) {
         free(start);
         free(list);
         return -1;
     }
-    for (int pass = 0; pass < 2; pass++) { /* count, then fill (triangles in order in each cell) */
-        for (int t = 0; t < M->ntri; t++) {
-            int c0[3], c1[3];
-            cell_range(&g, M->box + 6 * (size_t)t, c0, c1);
-            for (int x = c0[0]; x <= c1[0]; x++)
-                for (int y = c0[1]; y <= c1[1]; y++)
-                    for (int z = c0[2]; z <= c1[2]; z++) {
-                        size_t c = cell_bucket(&g, (const int[3]){x, y, z});
-                        if (pass == 0)
-                            start[c + 1]++;
-                        else
-                            list[start[c]++] = t;
-                    }
+    /* count, then fill; the threads' triangles meet in a list in any order (sorted before use) */
+    XS_OMP("omp parallel for num_threads(M->nt) schedule(static)")
+    for (int t = 0; t < M->ntri; t++) {
+        FOR_CELLS(&g, M->box + 6 * (size_t)t, x, y, z) {
+            size_t c = cell_bucket(&g, (const int[3]){x, y, z});
+            XS_OMP("omp atomic")
+            start[c + 1]++;
         }
-        if (pass == 0)
-            for (size_t c = 0; c < cells; c++)
-                start[c + 1] += start[c];
-        else /* start[c] moved to the end of cell c: shift back */
-            for (size_t c = cells; c > 0; c--)
-                start[c] = start[c - 1];
-        if (pass == 1)
-            start[0] = 0;
     }
-    int first_a = -1, first_b = -1;
-    for (size_t c = 0; c < cells; c++) {
-        int *L = list + start[c];
-        unsigned m = start[c + 1] - start[c];
-        qsort(L, m, sizeof *L, cmp_int); /* (already in order: filled by ascending t) */
-        for (unsigned p = 0; p < m; p++)
-            for (unsigned q = p + 1; q < m && (p == 0 || L[p] != L[p - 1]); q++)
-                if (L[q] != L[q - 1]) { /* a triangle in two cells hashed to this list: once */
-                    r->pairs++;
-                    test_pair(M, &g, L[p], L[q], c, r, &first_a, &first_b);
-                }
+    for (size_t c = 0; c < cells; c++)
+        start[c + 1] += start[c];
+    XS_OMP("omp parallel for num_threads(M->nt) schedule(static)")
+    for (int t = 0; t < M->ntri; t++) {
+        FOR_CELLS(&g, M->box + 6 * (size_t)t, x, y, z) {
+            size_t c = cell_bucket(&g, (const int[3]){x, y, z});
+            unsigned at;
+            XS_OMP("omp atomic capture")
+            at = start[c]++;
+            list[at] = t;
+        }
+    }
+    for (size_t c = cells; c > 0; c--) /* start[c] moved to the end of cell c: shift back */
+        start[c] = start[c - 1];
+    start[0] = 0;
+    sweep_part part[XS_MAX_THREADS];
+    for (int k = 0; k < XS_MAX_THREADS; k++)
+        part[k] = (sweep_part){0, 0, 0, -1, -1, 0, {0}};
+    XS_OMP("omp parallel num_threads(M->nt)")
+    {
+        sweep_part P = {0, 0, 0, -1, -1, 0, {0}};
+        int *cc = NULL;
+        size_t cap = 0;
+        XS_OMP("omp for schedule(dynamic, 512)")
+        for (size_t c = 0; c < cells; c++)
+            sweep_lists(M, &g, start, list, c, &cc, &cap, &P);
+        free(cc);
+        part[xs_thread()] = P;
     }
     free(start);
     free(list);
-    return 0;
+    /* the threads' tallies: integer sums (pairs too, exact to 2^53), and the least pair */
+    int oom = 0, first_a = -1, first_b = -1;
+    for (int k = 0; k < M->nt; k++) {
+        const sweep_part *P = &part[k];
+        oom |= P->oom;
+        r->pairs += P->pairs;
+        r->candidates += P->candidates;
+        if (P->crossings && (first_a < 0 || P->first_a < first_a || (P->first_a == first_a && P->first_b < first_b))) {
+            first_a = P->first_a;
+            first_b = P->first_b;
+            r->a = P->first.a;
+            r->b = P->first.b;
+            memcpy(r->p, P->first.p, sizeof r->p);
+            r->residual = P->first.residual;
+            r->angle = P->first.angle;
+        }
+        r->crossings += P->crossings;
+    }
+    return oom ? -1 : 0;
 }
 
 /* ------------------------------------------------------------ the call */
 
-rg2_status rg2_find_crossings(const rg2_surface *surfs, int n, int density, rg2_crossing_report *out, rg2_error *err)
+rg2_status rg2_find_crossings(const rg2_surface *surfs, int n, int density, int threads, rg2_crossing_report *out,
+                              rg2_error *err)
 {
     if (!out)
         return rg2__fail(err, RG2_EINVAL, "crossings: no report");
@@ -637,6 +796,8 @@ rg2_status rg2_find_crossings(const rg2_surface *surfs, int n, int density, rg2_
         return rg2__fail(err, RG2_EINVAL, "crossings: no surfaces (n = %d)", n);
     if (density < 1 || density > 1000)
         return rg2__fail(err, RG2_EINVAL, "crossings: density %d outside 1..1000", density);
+    if (threads < 0)
+        return rg2__fail(err, RG2_EINVAL, "crossings: threads %d < 0 (0: the OpenMP default)", threads);
     double tris = 0;
     for (int s = 0; s < n; s++) {
         if (surfs[s].nu <= 0 || surfs[s].nv <= 0 || !surfs[s].patch)
@@ -649,6 +810,12 @@ rg2_status rg2_find_crossings(const rg2_surface *surfs, int n, int density, rg2_
     mesh_set M = {0};
     M.surfs = surfs;
     M.n = n;
+    M.nt = 1;
+#ifdef _OPENMP
+    M.nt = threads > 0 ? threads : omp_get_max_threads();
+#endif
+    if (M.nt > XS_MAX_THREADS)
+        M.nt = XS_MAX_THREADS;
     M.tess = rg2__calloc((size_t)n, sizeof *M.tess);
     M.vbase = rg2__calloc((size_t)n + 1, sizeof *M.vbase);
     M.tbase = rg2__calloc((size_t)n + 1, sizeof *M.tbase);
@@ -663,7 +830,7 @@ rg2_status rg2_find_crossings(const rg2_surface *surfs, int n, int density, rg2_
                 lo[d] = fmin(lo[d], l[d]);
                 hi[d] = fmax(hi[d], h[d]);
             }
-        if ((st = rg2_tessellate(&surfs[s], density, 0, &M.tess[s], err))) {
+        if ((st = rg2__tessellate_threads(&surfs[s], density, M.nt, &M.tess[s], err))) {
             char what[48];
             snprintf(what, sizeof what, "crossings: surface %d", s);
             rg2__prefix(err, st, what);

@@ -318,8 +318,8 @@ static rg2_status infinite_vertex(const rg2_surface *s, const rg2_tess *t, rg2_e
  * rg2_tessellate into out (zeroed), taking over old (a previous mesh's block of oldcap bytes, or
  * NULL): the new mesh goes into it when it is large enough, else it is freed.
  */
-static rg2_status tessellate(const rg2_surface *s, int density, int curvature, rg2_tess *out, char *old,
-                             size_t oldcap, rg2_error *err)
+static rg2_status tessellate(const rg2_surface *s, int density, int curvature, int threads, rg2_tess *out,
+                             char *old, size_t oldcap, rg2_error *err)
 {
     rg2_status st = check_args(s, density, err);
     if (st) {
@@ -433,7 +433,7 @@ static rg2_status tessellate(const rg2_surface *s, int density, int curvature, r
     int nth = 1;
 #ifdef RG2_HAVE_OPENMP
     if (np * npp > TESS_THREADS_FROM)
-        nth = omp_get_max_threads();
+        nth = threads > 0 ? threads : omp_get_max_threads();
 #endif
     if (nth > 64)
         nth = 64;
@@ -500,7 +500,7 @@ rg2_status rg2_tessellate(const rg2_surface *s, int density, int curvature, rg2_
     if (!out)
         return rg2__fail(err, RG2_EINVAL, "tessellate: no output (out is NULL)");
     memset(out, 0, sizeof *out);
-    return tessellate(s, density, curvature, out, NULL, 0, err);
+    return tessellate(s, density, curvature, 0, out, NULL, 0, err);
 }
 
 rg2_status rg2_retessellate(const rg2_surface *s, int density, int curvature, rg2_tess *t, rg2_error *err)
@@ -510,5 +510,11 @@ rg2_status rg2_retessellate(const rg2_surface *s, int density, int curvature, rg
     char *old = (char *)t->pos; /* (NULL in a zeroed struct) */
     size_t cap = t->capacity;
     memset(t, 0, sizeof *t);
-    return tessellate(s, density, curvature, t, old, cap, err);
+    return tessellate(s, density, curvature, 0, t, old, cap, err);
+}
+
+rg2_status rg2__tessellate_threads(const rg2_surface *s, int density, int threads, rg2_tess *out, rg2_error *err)
+{
+    memset(out, 0, sizeof *out);
+    return tessellate(s, density, 0, threads, out, NULL, 0, err);
 }

@@ -401,7 +401,7 @@ static rg2_status op_crossings(const void *ctx, const char *path, blob *out, rg2
     const crossing_job *c = ctx;
     rg2_crossing_report r;
     memset(&r, 0xff, sizeof r);
-    rg2_status st = rg2_find_crossings(c->surfs, c->n, c->density, &r, err);
+    rg2_status st = rg2_find_crossings(c->surfs, c->n, c->density, 1, &r, err);
     if (st != RG2_OK) {
         CHECK(r.density == 0 && r.triangles == 0 && r.candidates == 0 && r.crossings == 0 && r.size == 0,
               "find_crossings: N = %ld -> %s, but the report is not cleared (%d triangles, %d crossings)", cur_N,
@@ -675,7 +675,7 @@ int main(int argc, char **argv)
         rg2_surface cyl[2] = {*rg2_design_surface(dc, 0), *rg2_design_surface(dc, 1)};
         crossing_job cj[3] = {{cyl, 2, 4}, {surfs + n, m, 3}, {surfs, n, 2}};
         rg2_crossing_report cr;
-        CHECK_OK(rg2_find_crossings(cyl, 2, 4, &cr, &err), &err);
+        CHECK_OK(rg2_find_crossings(cyl, 2, 4, 1, &cr, &err), &err);
         CHECK(cr.crossings > 0, "the cylinders cross (%d crossings): the sweep meets the confirmation", cr.crossings);
         sweep("find_crossings cylinders", op_crossings, &cj[0], NULL);
         sweep("find_crossings fig9_polar", op_crossings, &cj[1], NULL);

@@ -39,7 +39,7 @@ static void examples(void)
         for (int s = 0; s < ns; s++) {
             surfs[s] = *rg2_design_surface(d, s);
             rg2_crossing_report r;
-            CHECK_OK(rg2_find_crossings(&surfs[s], 1, RG2_CROSSING_DEFAULT_DENSITY, &r, &err), &err);
+            CHECK_OK(rg2_find_crossings(&surfs[s], 1, RG2_CROSSING_DEFAULT_DENSITY, 0, &r, &err), &err);
             CHECK(r.crossings == 0, "%s surface %d crosses itself: %d crossings of %d candidates, first patch (%d,%d) "
                   "x (%d,%d) at (%g, %g, %g), angle %g", names[k], s, r.crossings, r.candidates, r.a.pi, r.a.pj,
                   r.b.pi, r.b.pj, r.p[0], r.p[1], r.p[2], r.angle);
@@ -48,7 +48,7 @@ static void examples(void)
             tris += r.triangles;
         }
         rg2_crossing_report all;
-        CHECK_OK(rg2_find_crossings(surfs, ns, RG2_CROSSING_DEFAULT_DENSITY, &all, &err), &err);
+        CHECK_OK(rg2_find_crossings(surfs, ns, RG2_CROSSING_DEFAULT_DENSITY, 0, &all, &err), &err);
         CHECK(all.triangles == tris, "%s: %d triangles together, %d one by one", names[k], all.triangles, tris);
         if (strstr(names[k], "fig1_torus")) {
             CHECK(all.crossings > 0 && all.a.surf != all.b.surf,
@@ -118,7 +118,7 @@ static void torus_pushed_through(void)
     double minx = bulge_min_x(&s, &ref);
     CHECK(minx < 1.9, "the pushed bulge reaches x = %.4f, past the inner wall at x = 2", minx);
     rg2_crossing_report r;
-    CHECK_OK(rg2_find_crossings(&s, 1, RG2_CROSSING_DEFAULT_DENSITY, &r, &err), &err);
+    CHECK_OK(rg2_find_crossings(&s, 1, RG2_CROSSING_DEFAULT_DENSITY, 0, &r, &err), &err);
     CHECK(r.crossings > 0, "pushed-through torus: %d crossings of %d candidates", r.crossings, r.candidates);
     if (r.crossings > 0) {
         rg2_eval ea, eb;
@@ -145,7 +145,7 @@ static void torus_pushed_through(void)
     minx = bulge_min_x(&s, &ref);
     CHECK(minx > 2.02 && minx < 2.6, "the near-miss bulge stops at x = %.4f, short of the wall at 2", minx);
     for (int dens = 2; dens <= 8; dens *= 2) {
-        CHECK_OK(rg2_find_crossings(&s, 1, dens, &r, &err), &err);
+        CHECK_OK(rg2_find_crossings(&s, 1, dens, 0, &r, &err), &err);
         CHECK(r.crossings == 0, "near-miss torus at density %d: %d crossings (first (%d,%d) x (%d,%d))", dens,
               r.crossings, r.a.pi, r.a.pj, r.b.pi, r.b.pj);
     }
@@ -170,7 +170,7 @@ static void crossing_cylinders(void)
     rg2_surface surfs[2] = {*rg2_design_surface(d, 0), *rg2_design_surface(d, 1)};
     for (int dens = 1; dens <= 16; dens *= 4) {
         rg2_crossing_report r;
-        CHECK_OK(rg2_find_crossings(surfs, 2, dens, &r, &err), &err);
+        CHECK_OK(rg2_find_crossings(surfs, 2, dens, 0, &r, &err), &err);
         CHECK(r.crossings > 0 && r.a.surf != r.b.surf, "cylinders at density %d: %d crossings, surfaces %d x %d",
               dens, r.crossings, r.a.surf, r.b.surf);
         if (!r.crossings)
@@ -202,7 +202,7 @@ static void crossing_cylinders(void)
             CHECK_OK(rg2_surface_build(&m[q], &sc[q], &err), &err);
         }
         rg2_crossing_report r;
-        CHECK_OK(rg2_find_crossings(sc, 2, 4, &r, &err), &err);
+        CHECK_OK(rg2_find_crossings(sc, 2, 4, 0, &r, &err), &err);
         double x = r.p[0] / k, y = r.p[1] / k, z = r.p[2] / k;
         CHECK(r.crossings > 0 && fabs(x * x + y * y - 1) < 1e-12 && fabs(y * y + z * z - 1) < 1e-12,
               "cylinders scaled by %g: %d crossings, point / scale (%g, %g, %g)", k, r.crossings, x, y, z);
@@ -214,7 +214,7 @@ static void crossing_cylinders(void)
     /* each cylinder alone: none */
     for (int s = 0; s < 2; s++) {
         rg2_crossing_report r;
-        CHECK_OK(rg2_find_crossings(&surfs[s], 1, 4, &r, &err), &err);
+        CHECK_OK(rg2_find_crossings(&surfs[s], 1, 4, 0, &r, &err), &err);
         CHECK(r.crossings == 0, "cylinder %d alone: %d crossings", s, r.crossings);
     }
     rg2_design_free(d);
@@ -258,7 +258,7 @@ static void edges_touch(void)
         for (int q = 0; q < 2; q++)
             plate(shapes[k][q][0], shapes[k][q][1], shapes[k][q][2], shapes[k][q][3], &s[q]);
         for (int dens = 1; dens <= 9; dens += 4) {
-            CHECK_OK(rg2_find_crossings(s, 2, dens, &r, &err), &err);
+            CHECK_OK(rg2_find_crossings(s, 2, dens, 0, &r, &err), &err);
             if (k < 2)
                 CHECK(r.crossings == 0, "%s at density %d: %d crossings (%d candidates)", k ? "T" : "L", dens,
                       r.crossings, r.candidates);
@@ -369,7 +369,7 @@ static void mesh_candidates(void)
         double first[2][3];
         int count = crossing_pairs(s, dens, t, first);
         rg2_crossing_report r;
-        CHECK_OK(rg2_find_crossings(s, 2, dens, &r, &err), &err);
+        CHECK_OK(rg2_find_crossings(s, 2, dens, 0, &r, &err), &err);
         CHECK(count > 0 && r.candidates == count && r.crossings == count,
               "plates at density %d: %d candidates, %d crossings; brute force: %d crossing triangle pairs", dens,
               r.candidates, r.crossings, count);
@@ -400,7 +400,7 @@ static void near_border(void)
             rg2_crossing_report r;
             plate(-1, 0, 1, 0, &s[0]);
             plate(0.123, z[k][0], 0.123, z[k][1], &s[1]);
-            CHECK_OK(rg2_find_crossings(s, 2, dens, &r, &err), &err);
+            CHECK_OK(rg2_find_crossings(s, 2, dens, 0, &r, &err), &err);
             double from_border = k ? 1 - r.b.u : r.b.u, expect = 0.002 / 1.002; /* (u along the profile) */
             CHECK(r.crossings > 0 && r.b.surf == 1 && fabs(r.p[0] - 0.123) < 1e-12 && fabs(r.p[2]) < 1e-12 &&
                       fabs(from_border - expect) < 1e-9,
@@ -436,7 +436,7 @@ static void cylinder_plate(void)
                 s[1].patch[0].h[r][c][1] -= 0.55 * s[1].patch[0].h[r][c][3];
         int count = crossing_pairs(s, dens, t, first);
         rg2_crossing_report r;
-        CHECK_OK(rg2_find_crossings(s, 2, dens, &r, &err), &err);
+        CHECK_OK(rg2_find_crossings(s, 2, dens, 0, &r, &err), &err);
         const double *p = r.p;
         /* the start is on the chords; Gauss-Newton moves it to the exact sheets, across the chord
          * error of a 45-degree arc in dens steps (its sagitta, radius 1) */
@@ -469,7 +469,7 @@ static void shallow_angles(void)
         rg2_crossing_report r;
         plate(-1, 0, 1, 0, &s[0]);
         plate(-1, (-1 - 0.123) * tan(t[k]), 1, (1 - 0.123) * tan(t[k]), &s[1]);
-        CHECK_OK(rg2_find_crossings(s, 2, 4, &r, &err), &err);
+        CHECK_OK(rg2_find_crossings(s, 2, 4, 0, &r, &err), &err);
         if (t[k] < RG2_CROSSING_MIN_ANGLE)
             CHECK(r.crossings == 0 && r.candidates > 0, "plates %.1e rad apart: %d crossings of %d candidates: "
                   "near-tangential, not counted", t[k], r.crossings, r.candidates);
@@ -504,7 +504,7 @@ static void far_apart(void)
         }
         CHECK_OK(rg2_surface_build(&m, &s[1], &err), &err);
         rg2_crossing_report r;
-        CHECK_OK(rg2_find_crossings(s, 2, 4, &r, &err), &err);
+        CHECK_OK(rg2_find_crossings(s, 2, 4, 0, &r, &err), &err);
         pairs[far] = r.pairs;
         CHECK(r.crossings == 0 && r.triangles == 2 * 2 * 60 * 40 * 16, "%s tori: %d crossings, %d triangles",
               far ? "far" : "near", r.crossings, r.triangles);
@@ -530,21 +530,21 @@ static void bad_arguments(void)
     torus_moved(0, &m, &s);
     static const int dens[3] = {0, -3, 1001};
     for (int k = 0; k < 3; k++) {
-        rg2_status st = rg2_find_crossings(&s, 1, dens[k], &r, &err);
+        rg2_status st = rg2_find_crossings(&s, 1, dens[k], 0, &r, &err);
         CHECK(st == RG2_EINVAL && strstr(err.msg, "density") && r.density == 0, "density %d: %s (%s)", dens[k],
               rg2_status_str(st), err.msg);
     }
-    rg2_status st = rg2_find_crossings(&s, 1, 1000, &r, &err); /* 48 x 2 x 1000^2 triangles */
+    rg2_status st = rg2_find_crossings(&s, 1, 1000, 0, &r, &err); /* 48 x 2 x 1000^2 triangles */
     CHECK(st == RG2_ELIMIT && strstr(err.msg, "density 1000") && strstr(err.msg, "96000000"), "density 1000: %s (%s)",
           rg2_status_str(st), err.msg);
-    st = rg2_find_crossings(NULL, 1, 4, &r, &err);
+    st = rg2_find_crossings(NULL, 1, 4, 0, &r, &err);
     CHECK(st == RG2_EINVAL && strstr(err.msg, "no surfaces"), "NULL surfaces: %s (%s)", rg2_status_str(st), err.msg);
-    st = rg2_find_crossings(&s, 0, 4, &r, &err);
+    st = rg2_find_crossings(&s, 0, 4, 0, &r, &err);
     CHECK(st == RG2_EINVAL && strstr(err.msg, "no surfaces"), "n = 0: %s (%s)", rg2_status_str(st), err.msg);
-    st = rg2_find_crossings(&s, 1, 4, NULL, &err);
+    st = rg2_find_crossings(&s, 1, 4, 0, NULL, &err);
     CHECK(st == RG2_EINVAL && strstr(err.msg, "no report"), "NULL report: %s (%s)", rg2_status_str(st), err.msg);
     rg2_surface empty = {0};
-    st = rg2_find_crossings(&empty, 1, 4, &r, &err);
+    st = rg2_find_crossings(&empty, 1, 4, 0, &r, &err);
     CHECK(st == RG2_EINVAL && strstr(err.msg, "surface 0 has no patches"), "no patches: %s (%s)", rg2_status_str(st),
           err.msg);
     rg2_check_opts o;
@@ -590,7 +590,7 @@ static void check_integration(void)
     rg2_error err;
     torus_moved(-6.0, &m, &s);
     rg2_crossing_report direct;
-    CHECK_OK(rg2_find_crossings(&s, 1, 4, &direct, &err), &err);
+    CHECK_OK(rg2_find_crossings(&s, 1, 4, 0, &direct, &err), &err);
     rg2_check_opts o;
     rg2_check_opts_default(&o);
     o.crossing_density = 4;

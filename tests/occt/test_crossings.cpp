@@ -33,7 +33,7 @@ int occt_self_interferences(const char *design, int k, const std::string &path, 
     rg2_status st = rg2_export_file(rg2_design_surface(d, k), 1, path.c_str(), &o, &err);
     CHECK(st == RG2_OK, "%s: export: %s", design, err.msg);
     rg2_crossing_report r;
-    CHECK_OK(rg2_find_crossings(rg2_design_surface(d, k), 1, RG2_CROSSING_DEFAULT_DENSITY, &r, &err), &err);
+    CHECK_OK(rg2_find_crossings(rg2_design_surface(d, k), 1, RG2_CROSSING_DEFAULT_DENSITY, 0, &r, &err), &err);
     int ours = r.crossings;
     rg2_design_free(d);
     STEPControl_Reader rd;
