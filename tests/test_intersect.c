@@ -638,6 +638,132 @@ static void check_integration(void)
     rg2_mesh_free(&m);
 }
 
+/* The report of rg2_find_crossings on 1, 2, 3 and 4 threads: identical, field by field (the
+ * counts, pairs among them, and the first crossing in the order of the triangles: its sheets,
+ * point, residual and angle, bit for bit), for the torus pushed through itself
+ * (tests/data/torus_pushed_through.json), the crossing cylinders and a clean example, at two
+ * densities. The threads share the pair tests cell by cell in any order: each keeps its least
+ * confirmed pair and the reduction takes the least of those. */
+static void threads_identical(void)
+{
+    static const char *const files[3] = {"tests/data/torus_pushed_through.json", "tests/data/crossing_cylinders.json",
+                                         "examples/torus_sphere.json"};
+    for (int f = 0; f < 3; f++) {
+        rg2_design *d = NULL;
+        rg2_error err;
+        CHECK_OK(rg2_design_load(files[f], &d, &err), &err);
+        if (!d)
+            continue;
+        int ns = rg2_design_num_surfaces(d);
+        rg2_surface surfs[8];
+        for (int s = 0; s < ns && s < 8; s++)
+            surfs[s] = *rg2_design_surface(d, s);
+        for (int dens = 3; dens <= 8; dens += 5) {
+            rg2_crossing_report r[4];
+            for (int t = 1; t <= 4; t++)
+                CHECK_OK(rg2_find_crossings(surfs, ns < 8 ? ns : 8, dens, t, &r[t - 1], &err), &err);
+            CHECK(f == 2 ? r[0].crossings == 0 : r[0].crossings > 0, "%s at density %d: %d crossings", files[f], dens,
+                  r[0].crossings);
+            for (int t = 2; t <= 4; t++)
+                CHECK(same_crossings(&r[0], &r[t - 1]) && r[0].pairs == r[t - 1].pairs,
+                      "%s at density %d: the report on %d threads differs from one thread's: %d / %d crossings of %d / "
+                      "%d candidates, %.0f / %.0f pairs, first (%d,%d) x (%d,%d) / (%d,%d) x (%d,%d), angle %.17g / "
+                      "%.17g", files[f], dens, t, r[t - 1].crossings, r[0].crossings, r[t - 1].candidates,
+                      r[0].candidates, r[t - 1].pairs, r[0].pairs, r[t - 1].a.pi, r[t - 1].a.pj, r[t - 1].b.pi,
+                      r[t - 1].b.pj, r[0].a.pi, r[0].a.pj, r[0].b.pi, r[0].b.pj, r[t - 1].angle, r[0].angle);
+            printf("%s, density %d: %d triangles, %.0f pairs, %d candidates, %d crossings: the same on 1, 2, 3, 4 "
+                   "threads\n", files[f], dens, r[0].triangles, r[0].pairs, r[0].candidates, r[0].crossings);
+        }
+        rg2_design_free(d);
+    }
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    rg2_crossing_report r;
+    torus_moved(0, &m, &s);
+    rg2_status st = rg2_find_crossings(&s, 1, 4, -1, &r, &err);
+    CHECK(st == RG2_EINVAL && strstr(err.msg, "threads -1") && r.density == 0, "threads -1: %s (%s)",
+          rg2_status_str(st), err.msg);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
+/* The triangles of t (a plate of weld_saves) with two vertices on the line x = z = 0: the
+ * y-ranges of those edges (lo, hi), their count. */
+static int line_edges(const rg2_tess *t, double (*yr)[2], int max)
+{
+    int n = 0;
+    for (int k = 0; k < t->n_triangles && n < max; k++) {
+        double y[3];
+        int on = 0;
+        for (int c = 0; c < 3; c++) {
+            const double *p = t->pos + 3 * t->tri[3 * k + c];
+            if (p[0] == 0 && p[2] == 0)
+                y[on++] = p[1];
+        }
+        if (on == 2) {
+            yr[n][0] = fmin(y[0], y[1]);
+            yr[n][1] = fmax(y[0], y[1]);
+            n++;
+        }
+    }
+    return n;
+}
+
+/* The weld: two plates at right angles meeting along the line x = z = 0 (an L; y from 0 to 2
+ * and from `shift` to 2 + shift), each tessellated with its own vertices. A triangle of each
+ * with an edge on the line is a candidate pair (the plane-interval test: the two edges overlap
+ * on the line over a positive length; confirmed as touching on the border, never a crossing)
+ * unless the weld made them share a vertex. Counted here from the tessellations: the pairs of
+ * such edges overlapping over a positive length, and of those the pairs with a common
+ * vertex (coincident ends). The library's candidates are the first count less the second:
+ * with the plates' vertices in line (shift 0) every overlapping pair shares its ends, and the
+ * weld saves them all (0 candidates; without the weld, density candidates); shifted by half
+ * an edge, none shares a vertex and every overlapping pair is a candidate. */
+static void weld_saves(void)
+{
+    for (int dens = 1; dens <= 7; dens += 3)
+        for (int sh = 0; sh < 2; sh++) {
+            rg2_surface s[2];
+            rg2_tess t[2];
+            rg2_error err;
+            double shift = sh ? 1.0 / dens : 0.0; /* half an edge (2 / dens long) */
+            plate(0, 0, 1, 0, &s[0]);
+            plate(0, 0, 0, 1, &s[1]);
+            for (int a = 0; a < 4; a++)
+                for (int b = 0; b < 4; b++)
+                    s[1].patch[0].h[a][b][1] += shift * s[1].patch[0].h[a][b][3];
+            double ya[64][2], yb[64][2];
+            int na = 0, nb = 0, overlap = 0, shared = 0;
+            for (int q = 0; q < 2; q++)
+                CHECK_OK(rg2_tessellate(&s[q], dens, 0, &t[q], &err), &err);
+            na = line_edges(&t[0], ya, 64);
+            nb = line_edges(&t[1], yb, 64);
+            for (int i = 0; i < na; i++)
+                for (int j = 0; j < nb; j++)
+                    if (fmin(ya[i][1], yb[j][1]) > fmax(ya[i][0], yb[j][0])) {
+                        overlap++;
+                        shared += ya[i][0] == yb[j][0] || ya[i][0] == yb[j][1] || ya[i][1] == yb[j][0] ||
+                                  ya[i][1] == yb[j][1];
+                    }
+            rg2_crossing_report r;
+            CHECK_OK(rg2_find_crossings(s, 2, dens, 0, &r, &err), &err);
+            CHECK(na == dens && nb == dens && overlap > 0 && (sh ? shared == 0 : shared == overlap),
+                  "L at density %d, shift %g: %d and %d edges on the line, %d overlapping pairs, %d sharing ends",
+                  dens, shift, na, nb, overlap, shared);
+            CHECK(r.crossings == 0 && r.candidates == overlap - shared,
+                  "L at density %d, shift %g: %d candidates (%d crossings); %d edge pairs overlap on the line, %d of "
+                  "them with welded ends", dens, shift, r.candidates, r.crossings, overlap, shared);
+            printf("L of two plates, density %d, %s: %d edge pairs overlapping on the common line, %d sharing "
+                   "welded ends (skipped): %d candidates\n", dens, sh ? "shifted by half an edge" : "vertices in line",
+                   overlap, shared, r.candidates);
+            for (int q = 0; q < 2; q++) {
+                rg2_tess_free(&t[q]);
+                rg2_surface_free(&s[q]);
+            }
+        }
+}
+
 int main(void)
 {
     examples();
@@ -651,5 +777,7 @@ int main(void)
     far_apart();
     bad_arguments();
     check_integration();
+    threads_identical();
+    weld_saves();
     return rg2t_done("test_intersect");
 }
