@@ -5,7 +5,7 @@
  * design shared read-only by all through grids of different sizes on 1 and 2 threads (the
  * worker pool and the grid's table cache), points, the tessellation, the export formats (a
  * third of them per design, each thread in a directory of its own), the control-mesh JSON,
- * pictures and the check report. Every result must be the serial run's, bit for bit (a digest
+ * pictures and the check report (with the crossing search). Every result must be the serial run's, bit for bit (a digest
  * of the bytes). Half the threads parse and write
  * under de_DE.UTF-8 (uselocale), the others under "C": cJSON reads the decimal point through
  * localeconv(), whose one result struct every caller rewrites, and rg2's parses and prints are
@@ -182,6 +182,7 @@ static void use_design(const rg2_design *d, int k, const char *tag, results *R)
     co.seam_samples = 4;
     co.patch_samples = 3;
     co.threads = 1 + k % 2;
+    co.crossing_density = 2; /* the crossing search too, on the check's threads */
     rg2_check_report rep;
     if (rg2_check(s, n, P.shapes, P.labels, P.ns, &co, &rep, &err) == RG2_OK) {
         for (int json = 0; json <= 1; json++) {
