@@ -135,6 +135,9 @@ void rg2__pool_run(int nthreads, uint32_t n, rg2__pool_fn fn, void *arg);
 /* rg2_tessellate (no curvature) on up to `threads` threads of the pool (0: the OpenMP default,
  * 1: serial); the same mesh, bit for bit, for any count. */
 rg2_status rg2__tessellate_threads(const rg2_surface *s, int density, int threads, rg2_tess *out, rg2_error *err);
+/* rg2_find_crossings runs the steps after the tessellation on one thread below this many
+ * triangles (src/intersect.c; tests set it to 0 before their threads start). */
+extern int rg2__crossing_threads_from;
 
 /* The curve construction of MATH.md eq. 3-4 as a linear stencil: Bezier coefficient r
  * (0..3) of output segment k is sum_a c[k][r][a] * p^{first[k] + a}, a = 0..3 (indices

@@ -50,6 +50,11 @@ static int xs_thread(void) { return omp_get_thread_num(); }
 static int xs_thread(void) { return 0; }
 #endif
 #define XS_MAX_THREADS 64 /* as rg2_check */
+/* Fewer triangles run on one thread: each parallel loop ends at a barrier that waits for every
+ * thread of the team, and when another process holds the second core a thread reaches it only
+ * at its next time slice. With threads from the first triangle, every example took 0.13-0.25 s
+ * on two threads of this shared 2-core VM against 0.01-0.05 s on one. */
+int rg2__crossing_threads_from = 200000; /* (tests lower it to run small inputs on threads) */
 
 #define WELD_TOL 1e-10     /* relative to the size: vertices closer than this are one */
 #define CONFIRM_TOL 1e-10  /* relative to the size: |S1 - S2| of a confirmed crossing */
@@ -187,19 +192,22 @@ typedef struct {
     int nt;               /* threads */
 } mesh_set;
 
-/* The surface of global triangle t: the s with tbase[s] <= t < tbase[s + 1] (bisection). */
-static int tri_surface(const mesh_set *M, int t)
+/* The s with base[s] <= x < base[s + 1], s < n (bisection): the surface of a global vertex or
+ * triangle. */
+static int surface_of(const int *base, int n, int x)
 {
-    int lo = 0, hi = M->n - 1;
+    int lo = 0, hi = n - 1;
     while (lo < hi) {
         int mid = lo + (hi - lo) / 2;
-        if (t >= M->tbase[mid + 1])
+        if (x >= base[mid + 1])
             lo = mid + 1;
         else
             hi = mid;
     }
     return lo;
 }
+
+static int tri_surface(const mesh_set *M, int t) { return surface_of(M->tbase, M->n, t); }
 
 static const double *vpos(const mesh_set *M, int s, int local) { return M->tess[s].pos + 3 * (size_t)local; }
 
@@ -216,12 +224,15 @@ static int cmp_keyed(const void *a, const void *b)
     return x->key < y->key ? -1 : x->key > y->key ? 1 : (x->idx > y->idx) - (x->idx < y->idx);
 }
 
+/* The runs sort_keyed sorts n entries in on nt threads (one: no merge, no second array). */
+static int sort_runs(size_t n, int nt) { return n / 8192 + 1 < (size_t)nt ? (int)(n / 8192 + 1) : nt; }
+
 /* Sort k (n entries) by (key, index) on nt threads: runs sorted at once, then merged pairwise
  * into tmp and back. The order is total, so the result is the same array for any nt. Returns
- * the sorted array (k or tmp). */
+ * the sorted array (k or tmp; tmp may be NULL for one run). */
 static keyed *sort_keyed(keyed *k, keyed *tmp, size_t n, int nt)
 {
-    int runs = n / 8192 + 1 < (size_t)nt ? (int)(n / 8192 + 1) : nt;
+    int runs = sort_runs(n, nt);
     size_t bound[XS_MAX_THREADS + 1];
     for (int c = 0; c <= runs; c++)
         bound[c] = n * (size_t)c / (size_t)runs;
@@ -254,23 +265,23 @@ static keyed *sort_keyed(keyed *k, keyed *tmp, size_t n, int nt)
 static int weld(mesh_set *M)
 {
     size_t nv = (size_t)M->nvert;
-    keyed *k = rg2__alloc_big(nv, sizeof *k, 1u << 21, 0), *tmp = rg2__alloc_big(nv, sizeof *k, 1u << 21, 0);
+    int merge = sort_runs(nv, M->nt) > 1;
+    keyed *k = rg2__alloc_big(nv, sizeof *k, 1u << 21, 0);
+    keyed *tmp = merge ? rg2__alloc_big(nv, sizeof *tmp, 1u << 21, 0) : NULL;
     M->weld = rg2__alloc_big(nv, sizeof *M->weld, 1u << 21, 0);
-    if (!k || !tmp || !M->weld) {
+    if (!k || (merge && !tmp) || !M->weld) {
         free(k);
         free(tmp);
         return -1;
     }
     double tol = WELD_TOL * M->size;
-    for (int s = 0; s < M->n; s++) {
-        int base = M->vbase[s];
-        XS_OMP("omp parallel for num_threads(M->nt) schedule(static)")
-        for (int v = 0; v < M->tess[s].n_vertices; v++) {
-            k[base + v].key = weld_key(vpos(M, s, v));
-            k[base + v].idx = base + v;
-            k[base + v].surf = s;
-            M->weld[base + v] = base + v;
-        }
+    XS_OMP("omp parallel for num_threads(M->nt) schedule(static)")
+    for (int g = 0; g < M->nvert; g++) {
+        int s = surface_of(M->vbase, M->n, g);
+        k[g].key = weld_key(vpos(M, s, g - M->vbase[s]));
+        k[g].idx = g;
+        k[g].surf = s;
+        M->weld[g] = g;
     }
     const keyed *K = sort_keyed(k, tmp, nv, M->nt);
     int *pairs[XS_MAX_THREADS] = {NULL};
@@ -848,6 +859,8 @@ rg2_status rg2_find_crossings(const rg2_surface *surfs, int n, int density, int 
             M.origin[d] = lo[0] <= hi[0] ? lo[d] : 0.0;
         M.nvert = M.vbase[n];
         M.ntri = M.tbase[n];
+        if (M.ntri < rg2__crossing_threads_from)
+            M.nt = 1;
         out->density = density;
         out->triangles = M.ntri;
         out->size = M.size;
