@@ -1283,11 +1283,13 @@ RG2_API rg2_status rg2_render_png(const rg2_surface *surfs, int n, const rg2_mes
  *  (a bulge that pokes through a wall by less than the flat triangles' distance to the
  *  surface; raise the density), tangential contact (normals closer than the minimum angle),
  *  and crossings at a pole (no normal). The result depends only on the surfaces and the
- *  density (serial, deterministic). Memory: about 85 bytes per triangle (1.92 million, the
- *  60,000-patch torus at density 4: 163 MB more than rg2_check alone). docs/render.md. */
+ *  density, not on the thread count (the pair tests run on threads, each keeping its least
+ *  confirmed pair; the reduction takes the least). Memory: about 85 bytes per triangle, the
+ *  same for any thread count (1.92 million, the 60,000-patch torus at density 4: 163 MB more
+ *  than rg2_check alone). docs/render.md. */
 #define RG2_CROSSING_MIN_ANGLE 1e-3  /**< radians between the normals of a confirmed crossing */
 #define RG2_CROSSING_DEFAULT_DENSITY 4 /**< rg2 check --intersections without a number */
-#define RG2_MAX_CROSSING_TRIANGLES 4000000 /**< budget of one rg2_find_crossings (about 350 MB) */
+#define RG2_MAX_CROSSING_TRIANGLES 4000000 /**< budget of one rg2_find_crossings (about 340 MB) */
 
 typedef struct {
     int surf, pi, pj;      /**< surface, patch (i, j) */
@@ -1312,9 +1314,12 @@ typedef struct {
 
 /** Find transversal crossings of n surfaces, within each and between them (the method, the
  *  tolerances and what it misses: rg2_crossing_report). density: samples per patch edge
- *  (1..1000). The report is written whole (no allocation to release).
+ *  (1..1000). threads: 0 = the OpenMP default (OMP_NUM_THREADS, else the cores), 1 = serial,
+ *  t > 1 = up to t (at most 64), for the tessellation, the weld, the grid and the pair tests;
+ *  the report is identical, bit for bit, for any thread count. The report is written whole
+ *  (no allocation to release).
  *  @return RG2_EINVAL (no surfaces or report, a surface without patches, density outside
- *  1..1000, naming it), RG2_ELIMIT (more than RG2_MAX_CROSSING_TRIANGLES triangles: patches x
+ *  1..1000, threads < 0, naming it), RG2_ELIMIT (more than RG2_MAX_CROSSING_TRIANGLES triangles: patches x
  *  2 density^2, naming the count and the density; checked before anything is allocated), the
  *  errors of rg2_tessellate (prefixed with the surface), RG2_ENOMEM. */
 RG2_API rg2_status rg2_find_crossings(const rg2_surface *surfs, int n, int density, int threads,
@@ -1345,7 +1350,8 @@ typedef struct {
                                 partial reports merged in order with the serial comparisons:
                                 the report is identical, bit for bit, for any thread count */
     int crossing_density;  /**< 0 (default): no crossing search; 1..1000: rg2_find_crossings at
-                                this density into the report's crossings (serial) */
+                                this density into the report's crossings, on `threads` threads
+                                (the same report for any count) */
 } rg2_check_opts;
 
 typedef struct {
