@@ -431,6 +431,7 @@ static rg2_status tessellate(const rg2_surface *s, int density, int curvature, i
      * ms on the pool's two (again into the same mesh; docs/performance.md, "Tessellating again,
      * on the pool"). */
     int nth = 1;
+    (void)threads; /* (without OpenMP: one) */
 #ifdef RG2_HAVE_OPENMP
     if (np * npp > TESS_THREADS_FROM)
         nth = threads > 0 ? threads : omp_get_max_threads();
