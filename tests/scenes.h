@@ -59,10 +59,10 @@ static inline void scene_extrude(double prof[4][3], double len, rg2_patch *P)
         }
 }
 
-/* G1 but not G2: a quarter cylinder of radius R (x = -R sin t, z = R (1 - cos t)) whose
- * lower edge x = 0 meets the plane z = 0 (x in [0, L]) tangentially. Patch 0 is the
- * cylinder (u = 1 at the seam), patch 1 the plane; both extruded over y in [0, len]. */
-static inline rg2_status scene_cyl_plane(double R, double L, double len, rg2_surface *s, rg2_error *err)
+/* Two patches side by side in u (one u seam, u = 1 of patch 0 on u = 0 of patch 1): the
+ * straight extrusions of the profiles prof0 and prof1 along y in [0, len]. */
+static inline rg2_status scene_two_extruded(double prof0[4][3], double prof1[4][3], double len, rg2_surface *s,
+                                            rg2_error *err)
 {
     memset(s, 0, sizeof *s);
     s->nu = 2;
@@ -80,6 +80,18 @@ static inline rg2_status scene_cyl_plane(double R, double L, double len, rg2_sur
         }
         return RG2_ENOMEM;
     }
+    scene_extrude(prof0, len, &s->patch[0]);
+    scene_extrude(prof1, len, &s->patch[1]);
+    s->bu[0] = s->bu[1] = 1;
+    s->bv[0] = 1;
+    return RG2_OK;
+}
+
+/* G1 but not G2: a quarter cylinder of radius R (x = -R sin t, z = R (1 - cos t)) whose
+ * lower edge x = 0 meets the plane z = 0 (x in [0, L]) tangentially. Patch 0 is the
+ * cylinder (u = 1 at the seam), patch 1 the plane; both extruded over y in [0, len]. */
+static inline rg2_status scene_cyl_plane(double R, double L, double len, rg2_surface *s, rg2_error *err)
+{
     /* quadratic arc from the top (-R, R) to the seam (0, 0), corner (-R, 0), weight 1/sqrt2,
      * raised to degree 3 in homogeneous form */
     double w1 = sqrt(0.5);
@@ -97,11 +109,7 @@ static inline rg2_status scene_cyl_plane(double R, double L, double len, rg2_sur
         pl[r][1] = 0;
         pl[r][2] = 1;
     }
-    scene_extrude(cyl, len, &s->patch[0]);
-    scene_extrude(pl, len, &s->patch[1]);
-    s->bu[0] = s->bu[1] = 1;
-    s->bv[0] = 1;
-    return RG2_OK;
+    return scene_two_extruded(cyl, pl, len, s, err);
 }
 
 /* G2: the C2 cubic B-spline (uniform scalars) through a control polygon of the same

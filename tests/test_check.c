@@ -874,6 +874,48 @@ static void unmeasured_fails(void)
     }
 }
 
+/* A metric that overflows on one side of a seam only is no measurement either: two flat
+ * patches side by side, extruded over y in [0, Y], one X wide and the other 4 X wide (|Su| = X
+ * and 4 X, |Sv| = Y, Su . Sv = 0). At X = Y = 1e77 the narrow patch's E G - F^2 = X^2 Y^2 is
+ * finite and the wide one's, 16 X^2 Y^2, overflows: every sample of the seam is unmeasured and
+ * G1 and G2 fail, whichever side is the wide one (a seam was measured when one side's metric
+ * still held). At 1e76 both hold: the plane is G2. */
+static void metric_overflow_one_side(void)
+{
+    for (int wide = 0; wide < 2; wide++)
+        for (int e = 0; e < 2; e++) {
+            double X = e ? 1e77 : 1e76, Y = X, w0 = wide ? 4 * X : X, w1 = wide ? X : 4 * X; /* widths of patches 0, 1 */
+            double p0[4][3], p1[4][3];
+            for (int r = 0; r < 4; r++) {
+                p0[r][0] = w0 * r / 3.0;
+                p1[r][0] = w0 + w1 * r / 3.0;
+                p0[r][1] = p1[r][1] = 0;
+                p0[r][2] = p1[r][2] = 1;
+            }
+            rg2_surface s;
+            rg2_error err;
+            CHECK_OK(scene_two_extruded(p0, p1, Y, &s, &err), &err);
+            rg2_check_report r;
+            CHECK_OK(rg2_check(&s, 1, NULL, NULL, 0, NULL, &r, &err), &err);
+            int over = !isfinite(16 * X * X * Y * Y), narrow_ok = isfinite(X * X * Y * Y);
+            unsigned f = rg2_check_failures(&r, RG2_REQUIRE_G0 | RG2_REQUIRE_G1 | RG2_REQUIRE_G2);
+            printf("plane, patches %.0e and %.0e wide, %.0e long: E G - F^2 %s on the wide side; %d of %d samples "
+                   "unmeasured, failures %#x\n", w0, w1, Y, over ? "overflows" : "finite", r.unmeasured,
+                   r.seam_samples, f);
+            CHECK(narrow_ok && r.seams == 1 && r.seam_samples == 17 && r.g0.value <= 1e-15,
+                  "one seam of 17 samples, positions equal (G0 %.3g)", r.g0.value);
+            if (over)
+                CHECK(r.unmeasured == 17 && r.pole_samples == 0 && f == (RG2_REQUIRE_G1 | RG2_REQUIRE_G2),
+                      "wide patch %d at %.0e: %d unmeasured, failures %#x", 1 - wide, X, r.unmeasured, f);
+            else
+                CHECK(r.unmeasured == 0 && f == 0 && r.g1.value <= 1e-15 && r.g2.value <= 1e-15,
+                      "at %.0e: %d unmeasured, failures %#x, G1 %.3g, G2 %.3g", X, r.unmeasured, f, r.g1.value,
+                      r.g2.value);
+            rg2_check_report_free(&r);
+            rg2_surface_free(&s);
+        }
+}
+
 /* Looser limits measure the same samples: with tol_g1 = tol_g2 = 1 nothing becomes unmeasured,
  * every sample that was measured against its rounding bound is measured at the loose limits,
  * the worst gaps cover those of the default report (its near-pole gaps included), and every
@@ -1307,6 +1349,7 @@ int main(void)
     defect_near_pole();
     poles_on_u_sides();
     unmeasured_fails();
+    metric_overflow_one_side();
     loose_limits();
     folds_fail();
     ill_conditioned_flat();
