@@ -831,6 +831,72 @@ static void defect_near_pole(void)
     rg2_design_free(d);
 }
 
+/* Scale the bi-3 surface s: affine control points by `pos`, homogeneous weights by `w`. */
+static void scale_surface(rg2_surface *s, double pos, double w)
+{
+    for (int k = 0; k < s->nu * s->nv; k++)
+        for (int c = 0; c < 16; c++)
+            for (int q = 0; q < 4; q++)
+                s->patch[k].h[c / 4][c % 4][q] *= q < 3 ? pos * w : w;
+}
+
+/* Diagonal of the box of the affine control points (a, b), a = 0..3, of row b of a bi-3 patch. */
+static double row_spread(const rg2_patch *P, int b)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, d2 = 0;
+    for (int a = 0; a < 4; a++)
+        for (int d = 0; d < 3; d++) {
+            lo[d] = fmin(lo[d], P->h[a][b][d] / P->h[a][b][3]);
+            hi[d] = fmax(hi[d], P->h[a][b][d] / P->h[a][b][3]);
+        }
+    for (int d = 0; d < 3; d++)
+        d2 += (hi[d] - lo[d]) * (hi[d] - lo[d]);
+    return sqrt(d2);
+}
+
+/* A pole is a side whose control points coincide to 1e-11 of the widest parallel control line
+ * (rounding of a placed design leaves them apart by less): the Fig. 9 sphere scaled by 50, the
+ * inner points of every south pole row moved apart along x to 3e-12 of that line (the corners
+ * stay, so the seams still meet), reports the same pole samples as the original, no fold or
+ * singular sample, and passes G2. */
+static void pole_within_rounding(void)
+{
+    rg2_design *d = NULL;
+    rg2_error err;
+    CHECK_OK(rg2_design_load("examples/fig9_polar_sphere.json", &d, &err), &err);
+    if (!d)
+        return;
+    rg2_surface s;
+    CHECK_OK(rg2_surface_copy(rg2_design_surface(d, rg2_design_num_surfaces(d) - 1), &s, &err), &err);
+    scale_surface(&s, 50, 1);
+    rg2_check_report a, b;
+    CHECK_OK(rg2_check(&s, 1, NULL, NULL, 0, NULL, &a, &err), &err);
+    double ratio = 0, wmin = INFINITY;
+    for (int i = 0; i < s.nu; i++) {
+        rg2_patch *P = rg2_surface_patch(&s, i, 0);
+        double w = fmax(fmax(row_spread(P, 1), row_spread(P, 2)), row_spread(P, 3)), dx = 1.5e-12 * w;
+        CHECK(row_spread(P, 0) <= 1e-15 * w, "patch (%d,0): a south pole row (%.3g)", i, row_spread(P, 0) / w);
+        P->h[1][0][0] += dx * P->h[1][0][3];
+        P->h[2][0][0] -= dx * P->h[2][0][3];
+        ratio = fmax(ratio, row_spread(P, 0) / w);
+        wmin = fmin(wmin, w);
+    }
+    CHECK_OK(rg2_check(&s, 1, NULL, NULL, 0, NULL, &b, &err), &err);
+    unsigned f = rg2_check_failures(&b, RG2_REQUIRE_G2);
+    printf("fig9 cap x 50, south pole rows %.2g of their widest parallel lines (>= %.3g) apart: %d pole samples "
+           "(%d before), %d folds, %d singular, %d unmeasured, failures %#x\n",
+           ratio, wmin, b.pole_samples, a.pole_samples, b.folds, b.singular, b.unmeasured, f);
+    CHECK(ratio > 2e-12 && ratio < 1e-11 && wmin > 2, "pole rows %.3g apart (widest lines >= %.3g)", ratio, wmin);
+    CHECK(a.pole_samples > 0 && b.pole_samples == a.pole_samples && b.folds == 0 && b.singular == 0 &&
+              b.unmeasured == 0 && f == 0 && !rg2_check_failures(&a, RG2_REQUIRE_G2),
+          "pole within rounding: %d pole samples (%d), %d folds, %d singular, %d unmeasured, failures %#x",
+          b.pole_samples, a.pole_samples, b.folds, b.singular, b.unmeasured, f);
+    rg2_check_report_free(&a);
+    rg2_check_report_free(&b);
+    rg2_surface_free(&s);
+    rg2_design_free(d);
+}
+
 /* Undefined normals away from a pole are no pole: a cylinder band of height 1e-95 (every normal
  * undefined, no collapsed side) must fail G1 and G2 with the samples counted as unmeasured, not
  * pass with nothing compared; so must a torus scaled to 1e100, whose metric E G - F^2 overflows. */
@@ -1347,6 +1413,7 @@ int main(void)
     examples();
     pole_sample_counts();
     defect_near_pole();
+    pole_within_rounding();
     poles_on_u_sides();
     unmeasured_fails();
     metric_overflow_one_side();
