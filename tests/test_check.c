@@ -749,6 +749,34 @@ static void transpose_surface(const rg2_surface *s, rg2_surface *t)
         }
 }
 
+/* The worst gap names its seam: the cylinder + plane's one seam joins patches (0,0) and (1,0)
+ * in u (seam_dir 0); transposed, (0,0) and (0,1) in v (seam_dir 1). Either way the relative
+ * curvature jump is 1 (1/R against the plane's 0) and the point lies on the seam line x = z = 0. */
+static void seam_direction_reported(void)
+{
+    rg2_surface s, t;
+    rg2_error err;
+    CHECK_OK(scene_cyl_plane(2.0, 1.5, 2.0, &s, &err), &err);
+    transpose_surface(&s, &t);
+    for (int dir = 0; dir < 2; dir++) {
+        rg2_check_report r;
+        CHECK_OK(rg2_check(dir ? &t : &s, 1, NULL, NULL, 0, NULL, &r, &err), &err);
+        const rg2_check_gap *g = &r.g2;
+        printf("cylinder+plane%s: G2 %.6f at seam_dir %d (%d,%d)|(%d,%d) t=%.3g p=(%.3g, %.3g, %.3g)\n",
+               dir ? " transposed" : "", g->value, g->seam_dir, g->pi, g->pj, g->qi, g->qj, g->t, g->p[0], g->p[1],
+               g->p[2]);
+        CHECK(fabs(g->value - 1.0) < 1e-12 && g->surf == 0 && g->seam_dir == dir && g->pi == 0 && g->pj == 0 &&
+                  g->qi == 1 - dir && g->qj == dir && g->t >= 0 && g->t <= 1 && fabs(g->p[0]) < 1e-15 &&
+                  fabs(g->p[2]) < 1e-15 && fabs(g->p[dir ? 0 : 1] - 2.0 * g->t) < 1e-14,
+              "%s: G2 %.17g at surface %d seam_dir %d (%d,%d)|(%d,%d), t %.3g, p (%.3g, %.3g, %.3g)",
+              dir ? "transposed" : "cylinder+plane", g->value, g->surf, g->seam_dir, g->pi, g->pj, g->qi, g->qj,
+              g->t, g->p[0], g->p[1], g->p[2]);
+        rg2_check_report_free(&r);
+    }
+    rg2_surface_free(&t);
+    rg2_surface_free(&s);
+}
+
 /* Poles on u sides: the capped sphere of Fig. 9 with u and v swapped has its poles on the u = 0
  * and u = 1 sides of its patches. Its report must count the same seams, pole samples and samples
  * measured against their rounding bound next to a pole as the original's (the same seams, met
@@ -1415,6 +1443,7 @@ int main(void)
     defect_near_pole();
     pole_within_rounding();
     poles_on_u_sides();
+    seam_direction_reported();
     unmeasured_fails();
     metric_overflow_one_side();
     loose_limits();
