@@ -1060,6 +1060,31 @@ static void loose_limits(void)
     }
 }
 
+/* The first fold of report r of s (default samples, 12 per patch side) lies between two
+ * neighbouring samples (its parameters: their midpoint, a half step along u or v), whose normals,
+ * evaluated here, point into opposite half-spaces. */
+static void fold_between_samples(const rg2_surface *s, const rg2_check_report *r, const char *name)
+{
+    const double S = 12;
+    double hu = 2 * S * r->fold_at.u, hv = 2 * S * r->fold_at.v, du = 0, dv = 0;
+    int ou = fabs(hu - round(hu)) < 1e-9 && fmod(round(hu), 2) == 1;
+    int ov = fabs(hv - round(hv)) < 1e-9 && fmod(round(hv), 2) == 1;
+    int eu = fabs(hu - round(hu)) < 1e-9 && !ou, ev = fabs(hv - round(hv)) < 1e-9 && !ov;
+    if (ou && ev)
+        du = 0.5 / S;
+    else if (eu && ov)
+        dv = 0.5 / S;
+    rg2_eval e0, e1;
+    rg2_surface_eval(s, r->fold_at.pi, r->fold_at.pj, r->fold_at.u - du, r->fold_at.v - dv, 1, &e0);
+    rg2_surface_eval(s, r->fold_at.pi, r->fold_at.pj, r->fold_at.u + du, r->fold_at.v + dv, 1, &e1);
+    double dn = e0.n[0] * e1.n[0] + e0.n[1] * e1.n[1] + e0.n[2] * e1.n[2];
+    printf("%s: first fold at patch (%d,%d) u=%.17g v=%.17g: between samples %s, n0 . n1 = %.3g\n", name,
+           r->fold_at.pi, r->fold_at.pj, r->fold_at.u, r->fold_at.v, du > 0 ? "along u" : dv > 0 ? "along v" : "?",
+           dn);
+    CHECK((du > 0 || dv > 0) && dn < 0, "%s: the fold at u=%.17g v=%.17g lies between two samples with opposite "
+          "normals (n0 . n1 = %.3g)", name, r->fold_at.u, r->fold_at.v, dn);
+}
+
 /* Seams alone cannot see a surface that runs back over itself: a cylinder mesh merged with
  * itself (tests/data/folded_merge.json, the second copy over the first) has G2 seams, but S_v
  * vanishes inside the middle transitions and the normal reverses there. The check must find the
@@ -1088,6 +1113,16 @@ static void folds_fail(void)
               r.fold_at.v);
         CHECK(g1 == RG2_REQUIRE_G1 && g2 == RG2_REQUIRE_G2 && !rg2_check_failures(&r, RG2_REQUIRE_G0),
               "a fold fails G1 and G2, not G0 (failures %#x %#x)", g1, g2);
+        fold_between_samples(rg2_design_surface(d, 0), &r, "folded merge");
+        rg2_surface tr;
+        transpose_surface(rg2_design_surface(d, 0), &tr);
+        rg2_check_report rt;
+        CHECK_OK(rg2_check(&tr, 1, NULL, NULL, 0, NULL, &rt, &err), &err);
+        CHECK(rt.folds == r.folds && rt.fold_at.pi == r.fold_at.pj && rt.fold_at.pj == r.fold_at.pi,
+              "transposed: %d folds (%d), first at patch (%d,%d)", rt.folds, r.folds, rt.fold_at.pi, rt.fold_at.pj);
+        fold_between_samples(&tr, &rt, "folded merge transposed");
+        rg2_check_report_free(&rt);
+        rg2_surface_free(&tr);
         same_on_threads(rg2_design_surface(d, 0), 1, NULL, NULL, 0, NULL, "folded merge");
         char *text = NULL, *json = NULL;
         CHECK_OK(rg2_check_format(&r, 0, &text, &err), &err);
