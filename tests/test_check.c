@@ -925,6 +925,48 @@ static void pole_within_rounding(void)
     rg2_design_free(d);
 }
 
+/* The rounding bounds are relative: the Fig. 9 cap at 256 samples per seam (hundreds of samples
+ * next to a pole measured against their bound) scaled by 2^30 in position and by 2^-20 in its
+ * homogeneous weights (both exact: the same surface, its evaluations scaled exactly) reports the
+ * same samples next to a pole, the same limits and gaps there and the same G1 / G2 gaps. */
+static void bounds_scale_free(void)
+{
+    rg2_design *d = NULL;
+    rg2_error err;
+    CHECK_OK(rg2_design_load("examples/fig9_polar_sphere.json", &d, &err), &err);
+    if (!d)
+        return;
+    rg2_surface s;
+    CHECK_OK(rg2_surface_copy(rg2_design_surface(d, rg2_design_num_surfaces(d) - 1), &s, &err), &err);
+    rg2_check_opts o;
+    rg2_check_opts_default(&o);
+    o.seam_samples = 256;
+    rg2_check_report a, b;
+    CHECK_OK(rg2_check(&s, 1, NULL, NULL, 0, &o, &a, &err), &err);
+    for (int k = 0; k < 2; k++) {
+        scale_surface(&s, k ? 1 : 0x1p30, k ? 0x1p-20 : 1);
+        CHECK_OK(rg2_check(&s, 1, NULL, NULL, 0, &o, &b, &err), &err);
+        const double x[8] = {a.near_pole_tol1, a.near_pole_tol2, a.g1_pole.value, a.g2_pole.value, a.g1.value,
+                             a.g2.value, a.size * 0x1p30, a.g0.value};
+        const double y[8] = {b.near_pole_tol1, b.near_pole_tol2, b.g1_pole.value, b.g2_pole.value, b.g1.value,
+                             b.g2.value, b.size, b.g0.value};
+        double worst = 0;
+        for (int q = 0; q < 8; q++)
+            worst = fmax(worst, q == 7 ? fabs(x[q] - y[q]) : rel(x[q], y[q]));
+        printf("fig9 cap, 256 samples, scaled by 2^30%s: %d next to a pole (%d), limits %.3e / %.3e (%.3e / %.3e), "
+               "worst relative difference %.2g\n", k ? " and weights by 2^-20" : "", b.near_pole, a.near_pole,
+               b.near_pole_tol1, b.near_pole_tol2, a.near_pole_tol1, a.near_pole_tol2, worst);
+        CHECK(a.near_pole > 100 && b.near_pole == a.near_pole && b.pole_samples == a.pole_samples &&
+                  b.pole_unresolved == a.pole_unresolved && worst <= 1e-12,
+              "scaled%s: %d next to a pole (%d), limits or gaps differ by %.3g", k ? ", weights too" : "",
+              b.near_pole, a.near_pole, worst);
+        rg2_check_report_free(&b);
+    }
+    rg2_check_report_free(&a);
+    rg2_surface_free(&s);
+    rg2_design_free(d);
+}
+
 /* Undefined normals away from a pole are no pole: a cylinder band of height 1e-95 (every normal
  * undefined, no collapsed side) must fail G1 and G2 with the samples counted as unmeasured, not
  * pass with nothing compared; so must a torus scaled to 1e100, whose metric E G - F^2 overflows. */
@@ -1477,6 +1519,7 @@ int main(void)
     pole_sample_counts();
     defect_near_pole();
     pole_within_rounding();
+    bounds_scale_free();
     poles_on_u_sides();
     seam_direction_reported();
     unmeasured_fails();
