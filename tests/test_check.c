@@ -820,20 +820,29 @@ static void poles_on_u_sides(void)
     rg2_design_free(d);
 }
 
+/* The capped sphere of Fig. 9 (its last surface: the south pole on the v = 0 sides of patches
+ * (i, 0)) copied into s; the design (the caller frees it), NULL if it did not load. */
+static rg2_design *fig9_cap(rg2_surface *s)
+{
+    rg2_design *d = NULL;
+    rg2_error err;
+    CHECK_OK(rg2_design_load("examples/fig9_polar_sphere.json", &d, &err), &err);
+    if (d)
+        CHECK_OK(rg2_surface_copy(rg2_design_surface(d, rg2_design_num_surfaces(d) - 1), s, &err), &err);
+    return d;
+}
+
 /* A defect next to a pole is not hidden by the near-pole limits: the control point next to the
  * pole of one fan patch of the Fig. 9 sphere moved by 1e-6 fails G1 and G2 at 16 and at 1000
  * samples, and at 1000 the samples measured against their rounding bound fail too (the pole is
  * still found). */
 static void defect_near_pole(void)
 {
-    rg2_design *d = NULL;
+    rg2_surface s;
     rg2_error err;
-    CHECK_OK(rg2_design_load("examples/fig9_polar_sphere.json", &d, &err), &err);
+    rg2_design *d = fig9_cap(&s);
     if (!d)
         return;
-    const rg2_surface *cs = rg2_design_surface(d, rg2_design_num_surfaces(d) - 1);
-    rg2_surface s;
-    CHECK_OK(rg2_surface_copy(cs, &s, &err), &err);
     CHECK(!s.xp && s.nv > 2, "capped sphere: bi-3, %d rows", s.nv);
     /* patch (0, 0): its v = 0 side is the south pole; move control point (1, 1) */
     double *h = s.patch[0].h[1][1];
@@ -889,13 +898,11 @@ static double row_spread(const rg2_patch *P, int b)
  * singular sample, and passes G2. */
 static void pole_within_rounding(void)
 {
-    rg2_design *d = NULL;
+    rg2_surface s;
     rg2_error err;
-    CHECK_OK(rg2_design_load("examples/fig9_polar_sphere.json", &d, &err), &err);
+    rg2_design *d = fig9_cap(&s);
     if (!d)
         return;
-    rg2_surface s;
-    CHECK_OK(rg2_surface_copy(rg2_design_surface(d, rg2_design_num_surfaces(d) - 1), &s, &err), &err);
     scale_surface(&s, 50, 1);
     rg2_check_report a, b;
     CHECK_OK(rg2_check(&s, 1, NULL, NULL, 0, NULL, &a, &err), &err);
@@ -931,13 +938,11 @@ static void pole_within_rounding(void)
  * same samples next to a pole, the same limits and gaps there and the same G1 / G2 gaps. */
 static void bounds_scale_free(void)
 {
-    rg2_design *d = NULL;
+    rg2_surface s;
     rg2_error err;
-    CHECK_OK(rg2_design_load("examples/fig9_polar_sphere.json", &d, &err), &err);
+    rg2_design *d = fig9_cap(&s);
     if (!d)
         return;
-    rg2_surface s;
-    CHECK_OK(rg2_surface_copy(rg2_design_surface(d, rg2_design_num_surfaces(d) - 1), &s, &err), &err);
     rg2_check_opts o;
     rg2_check_opts_default(&o);
     o.seam_samples = 256;
@@ -1020,7 +1025,8 @@ static void metric_overflow_one_side(void)
 {
     for (int wide = 0; wide < 2; wide++)
         for (int e = 0; e < 2; e++) {
-            double X = e ? 1e77 : 1e76, Y = X, w0 = wide ? 4 * X : X, w1 = wide ? X : 4 * X; /* widths of patches 0, 1 */
+            double X = e ? 1e77 : 1e76, Y = X;
+            double w0 = wide ? 4 * X : X, w1 = wide ? X : 4 * X; /* widths of patches 0, 1 */
             double p0[4][3], p1[4][3];
             for (int r = 0; r < 4; r++) {
                 p0[r][0] = w0 * r / 3.0;
