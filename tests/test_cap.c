@@ -543,6 +543,24 @@ static void cap_errors(void)
     CHECK(rg2_cap_build(&b, NULL, &s, NULL, &err) == RG2_EINCOMPATIBLE && strstr(err.msg, "circle"),
           "non-circle u refused: %s", err.msg);
     rg2_mesh_free(&b);
+    /* the u junction scalars must be the circle's to 1e-8 (relative to max(1, value)): those of
+     * four 90-degree arcs, b = 1 and g = 2 sin(pi/4) (2 tan(pi/8)), moved by 3e-9 of that are
+     * kept, moved by 3e-8 refused, for b and for g */
+    double gq = 2.0 * sin(M_PI / 4) * 2.0 * tan(M_PI / 8);
+    CHECK(fabs(m.su.b[1] - 1.0) <= 1e-15 && fabs(m.su.g[1] - gq) <= 1e-14, "junction 1: b %.17g, g %.17g vs %.17g",
+          m.su.b[1], m.su.g[1], gq);
+    for (int k = 0; k < 4; k++) {
+        rg2_mesh_copy(&m, &b, &err);
+        double *x = k < 2 ? &b.su.b[1] : &b.su.g[1], by = (k % 2 ? 3e-8 : 3e-9) * fmax(1.0, fabs(*x));
+        *x += by;
+        rg2_status st = rg2_cap_build(&b, NULL, &s, NULL, &err);
+        CHECK(k % 2 ? st == RG2_EINCOMPATIBLE && strstr(err.msg, "not a circle partition") : st == RG2_OK,
+              "junction 1's %s moved by %.1e: %s %s", k < 2 ? "b" : "g", by, rg2_status_str(st),
+              st ? err.msg : "");
+        if (st == RG2_OK)
+            rg2_surface_free(&s);
+        rg2_mesh_free(&b);
+    }
     /* collapsed body: every row one point */
     rg2_mesh_copy(&m, &b, &err);
     for (int j = 0; j < b.nv; j++)
