@@ -353,9 +353,10 @@ static rg2_status op_render(const void *ctx, const char *path, blob *out, rg2_er
     return st;
 }
 
-/* rg2_check of n surfaces (crossing_density 0: no crossing search); the result: the report as
- * JSON text. */
-static rg2_status check_run(const rg2_surface *surfs, int n, int crossing_density, blob *out, rg2_error *err)
+/* rg2_check of n surfaces against n_shapes shapes (crossing_density 0: no crossing search); the
+ * result: the report as JSON text. */
+static rg2_status check_run(const rg2_surface *surfs, int n, const rg2_shape *shapes, int n_shapes,
+                            int crossing_density, blob *out, rg2_error *err)
 {
     rg2_check_opts o;
     rg2_check_opts_default(&o);
@@ -364,7 +365,7 @@ static rg2_status check_run(const rg2_surface *surfs, int n, int crossing_densit
     o.patch_samples = 3;
     o.crossing_density = crossing_density;
     rg2_check_report r;
-    rg2_status st = rg2_check(surfs, n, NULL, NULL, 0, &o, &r, err);
+    rg2_status st = rg2_check(surfs, n, shapes, NULL, n_shapes, &o, &r, err);
     if (st == RG2_OK) {
         long saved = rg2__fi_countdown;
         rg2__fi_countdown = -1; /* (the report's text is the result, not a step that may fail) */
@@ -384,7 +385,19 @@ static rg2_status op_check(const void *ctx, const char *path, blob *out, rg2_err
 {
     (void)path;
     const write_job *j = ctx;
-    return check_run(j->surfs, j->n, 0, out, err);
+    return check_run(j->surfs, j->n, NULL, 0, 0, out, err);
+}
+
+/* rg2_check of a design's first surface against the design's shapes (at most 8). */
+static rg2_status op_check_shapes(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    (void)path;
+    const rg2_design *d = ctx;
+    rg2_shape sh[8];
+    int ns = rg2_design_num_shapes(d) < 8 ? rg2_design_num_shapes(d) : 8;
+    for (int k = 0; k < ns; k++)
+        sh[k] = *rg2_design_shape(d, k);
+    return check_run(rg2_design_surface(d, 0), 1, sh, ns, 0, out, err);
 }
 
 /* Surfaces searched for crossings at a density. */
@@ -421,7 +434,7 @@ static rg2_status op_check_crossings(const void *ctx, const char *path, blob *ou
 {
     (void)path;
     const crossing_job *c = ctx;
-    return check_run(c->surfs, c->n, c->density, out, err);
+    return check_run(c->surfs, c->n, NULL, 0, c->density, out, err);
 }
 
 static rg2_status op_format(const void *ctx, const char *path, blob *out, rg2_error *err)
@@ -667,6 +680,7 @@ int main(int argc, char **argv)
     }
 
     sweep("check", op_check, &j, NULL);
+    sweep("check with shapes torus_sphere 0", op_check_shapes, ds, NULL);
     /* crossings: two cylinders that cross (confirmed crossings, two surfaces welded apart), the
      * polar sphere (poles, seams welded) and torus_sphere (none crossing) */
     rg2_design *dc = NULL;
