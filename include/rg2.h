@@ -776,8 +776,10 @@ RG2_API const rg2_shape *rg2_design_shape(const rg2_design *d, int k);
 RG2_API const char *rg2_design_shape_label(const rg2_design *d, int k);
 /** Notes on the design that are not errors, in file order (docs/design-format.md, "merge"): a
  *  merge whose closed rows meet at a seam turned about their axis (the circles start at other
- *  angles) or running opposite ways round, which twists or pinches the transitions; each names
- *  the merge entry, both meshes, the angle and the way out. rg2 info and rg2 build print them. */
+ *  angles) or running opposite ways round, which twists or pinches the transitions; a merge whose
+ *  parts overlap, their control lines running back at the seam, which makes the transitions bend
+ *  sharply or fold; each names the merge entry, both meshes, the angle or the distance and the
+ *  way out. rg2 info and rg2 build print them. */
 RG2_API int rg2_design_num_notes(const rg2_design *d);
 RG2_API const char *rg2_design_note(const rg2_design *d, int k);
 /** Name (in the design file) of the mesh surface k was built from. */

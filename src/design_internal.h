@@ -134,6 +134,12 @@ rg2_status rg2__op_reverse(const rg2__dmesh *in, int dir, rg2__dmesh *out, const
  * by more than a degree (the transitions twist or pinch the tube). RG2_ENOMEM only. */
 rg2_status rg2__merge_twist_notes(rg2_design *d, const rg2__dmesh *const *in, int n_in, int dir, int closed,
                                   const char *what, rg2_error *err);
+/* Notes on the seams of a merge where the control lines run back: the step from the centre of
+ * one part's last line to the centre of the next part's first runs back against the step between
+ * either part's two lines there by more than 0.05 of it (the parts overlap: the transition
+ * patches bend sharply or fold). RG2_ENOMEM only. */
+rg2_status rg2__merge_overlap_notes(rg2_design *d, const rg2__dmesh *const *in, int n_in, int dir, int closed,
+                                    const char *what, rg2_error *err);
 rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int closed,
                          rg2__seam_rule rule, rg2__dmesh *out, const char *what, rg2_error *err);
 rg2_status rg2__op_transform(rg2_design *d, const rg2__dmesh *in, const double M[16],

@@ -496,6 +496,62 @@ rg2_status rg2__merge_twist_notes(rg2_design *d, const rg2__dmesh *const *in, in
     return RG2_OK;
 }
 
+/* The centre (mean design point) of line `line` (along dir) of n points. */
+static void line_centre(const rg2_mesh *m, int dir, int line, int n, double c[3])
+{
+    double x[3];
+    c[0] = c[1] = c[2] = 0.0;
+    for (int i = 0; i < n; i++) {
+        line_point(m, dir, line, i, x);
+        for (int k = 0; k < 3; k++)
+            c[k] += x[k] / n;
+    }
+}
+
+/* How far the seam step s runs back against the step a, in units of a's length: -s.a / |a|^2
+ * (0 where a has no length). */
+static double back_steps(const double s[3], const double a[3])
+{
+    double aa = dot3(a, a);
+    return aa > 0.0 && isfinite(aa) ? -dot3(s, a) / aa : 0.0;
+}
+
+rg2_status rg2__merge_overlap_notes(rg2_design *d, const rg2__dmesh *const *in, int n_in, int dir, int closed,
+                                    const char *what, rg2_error *err)
+{
+    int other = 1 - dir, n = dir_scalars(&in[0]->m, other)->n;
+    for (int t = closed ? 0 : 1; t < n_in; t++) {
+        const rg2__dmesh *l = in[t ? t - 1 : n_in - 1], *r = in[t];
+        int nl = dir_scalars(&l->m, dir)->n, nr = dir_scalars(&r->m, dir)->n;
+        if (nl < 2 || nr < 2)
+            continue;
+        double c[4][3];
+        line_centre(&l->m, dir, nl - 2, n, c[0]);
+        line_centre(&l->m, dir, nl - 1, n, c[1]);
+        line_centre(&r->m, dir, 0, n, c[2]);
+        line_centre(&r->m, dir, 1, n, c[3]);
+        double a[3], st3[3], b[3];
+        for (int k = 0; k < 3; k++)
+            a[k] = c[1][k] - c[0][k], st3[k] = c[2][k] - c[1][k], b[k] = c[3][k] - c[2][k];
+        double back_l = back_steps(st3, a), back_r = back_steps(st3, b);
+        double back = back_l > back_r ? back_l : back_r;
+        if (!(back > 0.05)) /* (examples that join well: up to 0.011) */
+            continue;
+        char msg[700];
+        snprintf(msg, sizeof msg,
+                 "%s: %s.merge[%d]: the control lines of '%s' and '%s' run back at their seam: the first %s line "
+                 "of '%s' lies %.2g line spacings of '%s' behind the last of '%s' (centres of the lines): the "
+                 "parts overlap, and the transition patches bend sharply or fold; leave a gap between the "
+                 "parts (end the first earlier or start the second later)",
+                 d->name, what, t, l->name, r->name, dir_name(other), r->name, back,
+                 back_l >= back_r ? l->name : r->name, l->name);
+        rg2_status st = rg2__design_add_note(d, msg, err);
+        if (st)
+            return st;
+    }
+    return RG2_OK;
+}
+
 /*
  * METHOD (seam rule "preserve", docs/design-format.md): the parts are concatenated along dir
  * without new points. Part legs and junctions keep their scalars. The seam leg between the
