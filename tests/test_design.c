@@ -182,6 +182,14 @@ static rg2_design *parse_edit(const char *base, const char *edit, rg2_error *err
     return parse(json, err);
 }
 
+/* parse() of the design `base` (a printf format with two %s) with a and b in their places. */
+static rg2_design *parse_edit2(const char *base, const char *a, const char *b, rg2_error *err)
+{
+    char json[2048];
+    snprintf(json, sizeof json, base, a, b);
+    return parse(json, err);
+}
+
 /* Patches of b that differ from a (bitwise); *outside counts those outside the support. */
 static int changed_patches(const rg2_surface *a, const rg2_surface *b, const int *in_u, const int *in_v,
                            int *outside)
@@ -1509,10 +1517,8 @@ static void twisted_merges(void)
          "test: meshes.M.merge[1]: the closed u rows of 'A' and 'B' run opposite ways round at their seam"},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
-        char json[2048];
         rg2_error err;
-        snprintf(json, sizeof json, base, cases[k].from, cases[k].b);
-        rg2_design *d = parse(json, &err);
+        rg2_design *d = parse_edit2(base, cases[k].from, cases[k].b, &err);
         if (!d)
             continue;
         const char *note = rg2_design_note(d, 0);
@@ -1571,10 +1577,8 @@ static void overlapping_merges(void)
     } cases[] = {{"0.5", "1.5", 1}, {"1.0", "2.0", 1}, {"1.6", "2.6", 1}, {"1.45", "1.95", 1}, {"2.0", "3.0", 0},
                  {"3.0", "4.0", 0}}; /* (B from 1.45 to 1.95: its lines half as far apart as A's) */
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
-        char json[2048];
         rg2_error err;
-        snprintf(json, sizeof json, base, cases[k].from, cases[k].to);
-        rg2_design *d = parse(json, &err);
+        rg2_design *d = parse_edit2(base, cases[k].from, cases[k].to, &err);
         if (!d)
             continue;
         double back = most_back(rg2_design_mesh(d, 0));
