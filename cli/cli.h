@@ -66,6 +66,11 @@ void rg2_cli_no_effect(const char *cmd, const char *opt, const char *why);
  * "wrong", "right", NULL-terminated) map a word users try to the option that does it ("--width",
  * "--size WxH"). Returns RG2_EXIT_USAGE. */
 int rg2_cli_unknown_option(const char *cmd, const char *arg, void (*usage)(FILE *), const char *const *aliases);
+/* The unknown option arg of a command whose options are the n names given ("--arcs", ...), on
+ * stderr: "rg2 <cmd>: unknown option '<arg>' (did you mean '<opt>'? see rg2 <cmd> --help)", the
+ * suggestion the closest name (rg2_closest_name), none when nothing is close. Returns
+ * RG2_EXIT_USAGE. */
+int rg2_cli_unknown_option_of(const char *cmd, const char *arg, const char *const *names, int n);
 /* Print "rg2 <cmd>: <status text>: <message>" to stderr; returns RG2_EXIT_FAIL. */
 int rg2_cli_report(const char *cmd, const rg2_error *err);
 /* 1 if the paths name the same existing file (an output that would overwrite an input). */

@@ -148,8 +148,10 @@ int rg2_cmd_curve(int argc, char **argv)
             if ((ng = rg2_cli_parse_list("curve", a, val, g, MAXV)) < 0 || rg2_cli_check_numbers("curve", a, g, ng))
                 return RG2_EXIT_USAGE;
         } else {
-            fprintf(stderr, "rg2 curve: unknown option '%s' (see rg2 curve --help)\n", a);
-            return RG2_EXIT_USAGE;
+            static const char *const opts[] = {"--arcs", "--angles", "--radius", "--start", "--points", "--dim",
+                                               "--w",    "--b",      "--g",      "--open",  "--closed", "--json",
+                                               "--help"};
+            return rg2_cli_unknown_option_of("curve", a, opts, (int)(sizeof opts / sizeof *opts));
         }
 #undef NEED
         /* the options of one kind of curve only: the other kind ignored them */

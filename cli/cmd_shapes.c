@@ -108,6 +108,42 @@ int rg2_cmd_shapes(int argc, char **argv)
     return 0;
 }
 
+/* An unknown option of `rg2 shape` (d: the shape's kind, or NULL): the message names the closest
+ * of the options the shape takes (its parameters, the partitions of u and v, the placement), or,
+ * for another shape's parameter or nothing close, the parameters this shape takes. */
+static int shape_unknown_option(const rg2_shape_desc *d, const char *a)
+{
+    static const char *const dir_opts[] = {"arcs", "segments", "angles", "knots", "start",
+                                           "sweep", "range", "open", "closed"};
+    static const char *const place[] = {"--scale", "--axis", "--center", "--centre", "--xform",
+                                        "--samples", "--json", "--help"};
+    enum { N_PAR = 4 /* rg2_shape_desc.param_names */, N_DIR = 9, N_PLACE = 8 };
+    char buf[N_PAR + 2 * N_DIR][24];
+    const char *names[N_PAR + 2 * N_DIR + N_PLACE];
+    int n = 0;
+    for (int k = 0; d && k < d->n_params && k < N_PAR; k++, n++)
+        snprintf(buf[n], sizeof buf[n], "--%s", d->param_names[k]), names[n] = buf[n];
+    for (int uv = 0; uv < 2; uv++)
+        for (int k = 0; k < N_DIR; k++, n++)
+            snprintf(buf[n], sizeof buf[n], "--%c-%s", "uv"[uv], dir_opts[k]), names[n] = buf[n];
+    for (int k = 0; k < N_PLACE; k++)
+        names[n++] = place[k];
+    int other_param = 0; /* another shape's parameter (--radius to a torus): say what this one takes */
+    for (int k = 0; d && k < RG2_SHAPE_COUNT; k++) {
+        const rg2_shape_desc *o = rg2_shape_describe((rg2_shape_kind)k);
+        for (int q = 0; o && q < o->n_params; q++)
+            other_param |= !strcmp(a + 2, o->param_names[q]);
+    }
+    if (d && (other_param || !rg2_closest_name(a, names, n))) { /* (or nothing close) */
+        fprintf(stderr, "rg2 shape: unknown option '%s'; %s takes", a, d->name);
+        for (int k = 0; k < d->n_params; k++)
+            fprintf(stderr, " --%s", d->param_names[k]);
+        fprintf(stderr, " (see rg2 shape --help)\n");
+        return RG2_EXIT_USAGE;
+    }
+    return rg2_cli_unknown_option_of("shape", a, names, n);
+}
+
 /* Usage to stdout for --help, to stderr as the usage error of a bare `rg2 shape`. */
 static void help_shape(FILE *f)
 {
@@ -563,10 +599,8 @@ int rg2_cmd_shape(int argc, char **argv)
                     return RG2_EXIT_USAGE;
                 }
                 o->has_range = 1;
-            } else {
-                fprintf(stderr, "rg2 shape: unknown option '%s' (see rg2 shape --help)\n", a);
-                return RG2_EXIT_USAGE;
-            }
+            } else
+                return shape_unknown_option(d, a);
         } else if (!strcmp(a, "--scale")) {
             int n = rg2_cli_parse_list("shape", a, val, scale, 3);
             if (n < 0) /* (its message printed) */
@@ -611,17 +645,8 @@ int rg2_cmd_shape(int argc, char **argv)
             file = val;
         } else if (is_nurbs && !strcmp(a, "--spec")) {
             spec = val;
-        } else {
-            if (d) {
-                fprintf(stderr, "rg2 shape: unknown option '%s'; %s takes", a, d->name);
-                for (int k = 0; k < d->n_params; k++)
-                    fprintf(stderr, " --%s", d->param_names[k]);
-                fprintf(stderr, " (see rg2 shape --help)\n");
-            } else {
-                fprintf(stderr, "rg2 shape: unknown option '%s' (see rg2 shape --help)\n", a);
-            }
-            return RG2_EXIT_USAGE;
-        }
+        } else
+            return shape_unknown_option(d, a);
     }
 
     rg2_mesh m = {0};

@@ -122,6 +122,16 @@ void rg2_cli_no_effect(const char *cmd, const char *opt, const char *why)
     fprintf(stderr, "rg2 %s: note: %s has no effect (%s)\n", cmd, opt, why);
 }
 
+int rg2_cli_unknown_option_of(const char *cmd, const char *arg, const char *const *names, int n)
+{
+    const char *close = n > 0 && arg[0] == '-' && arg[1] == '-' ? rg2_closest_name(arg, names, n) : NULL;
+    if (close)
+        fprintf(stderr, "rg2 %s: unknown option '%s' (did you mean '%s'? see rg2 %s --help)\n", cmd, arg, close, cmd);
+    else
+        fprintf(stderr, "rg2 %s: unknown option '%s' (see rg2 %s --help)\n", cmd, arg, cmd);
+    return RG2_EXIT_USAGE;
+}
+
 int rg2_cli_unknown_option(const char *cmd, const char *arg, void (*usage)(FILE *), const char *const *aliases)
 {
     enum { MAX_OPTS = 64, MAX_LEN = 32 };
