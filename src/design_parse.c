@@ -246,6 +246,32 @@ static rg2_status need(pctx *c, const cJSON *obj, const char *key, const char *p
 
 static const char *const placement_keys[] = {"matrix", "translate", "rotate", "scale"};
 
+/* One rotation {"axis": [x, y, z], "degrees": a} at path into T. */
+static rg2_status parse_rotation(pctx *c, const cJSON *x, const char *p, double T[16])
+{
+    rg2_status st;
+    if ((st = as_obj(c, x, p)))
+        return st;
+    static const char *const rk[] = {"axis", "degrees"};
+    if ((st = check_keys(c, x, p, rk, 2)))
+        return st;
+    const cJSON *ax, *dg;
+    double a[3], deg;
+    char q[340];
+    if ((st = need(c, x, "axis", p, &ax)) || (st = need(c, x, "degrees", p, &dg)))
+        return st;
+    subpath(q, sizeof q, p, "axis");
+    if ((st = as_nums(c, ax, q, a, 3, 3, NULL)))
+        return st;
+    if (a[0] == 0.0 && a[1] == 0.0 && a[2] == 0.0)
+        return fail(c, RG2_EDOMAIN, q, "the rotation axis is the zero vector");
+    subpath(q, sizeof q, p, "degrees");
+    if ((st = as_num(c, dg, q, &deg)))
+        return st;
+    rg2_xform_rotate(T, a[0], a[1], a[2], deg * M_PI / 180.0);
+    return RG2_OK;
+}
+
 static rg2_status parse_placement(pctx *c, const cJSON *obj, const char *path, double M[16], int *any)
 {
     char p[300];
@@ -271,26 +297,23 @@ static rg2_status parse_placement(pctx *c, const cJSON *obj, const char *path, d
     }
     if ((x = get(obj, "rotate"))) {
         subpath(p, sizeof p, path, "rotate");
-        if ((st = as_obj(c, x, p)))
-            return st;
-        static const char *const rk[] = {"axis", "degrees"};
-        if ((st = check_keys(c, x, p, rk, 2)))
-            return st;
-        const cJSON *ax, *dg;
-        double a[3], deg;
-        char q[320];
-        if ((st = need(c, x, "axis", p, &ax)) || (st = need(c, x, "degrees", p, &dg)))
-            return st;
-        subpath(q, sizeof q, p, "axis");
-        if ((st = as_nums(c, ax, q, a, 3, 3, NULL)))
-            return st;
-        if (a[0] == 0.0 && a[1] == 0.0 && a[2] == 0.0)
-            return fail(c, RG2_EDOMAIN, q, "the rotation axis is the zero vector");
-        subpath(q, sizeof q, p, "degrees");
-        if ((st = as_num(c, dg, q, &deg)))
-            return st;
-        rg2_xform_rotate(T, a[0], a[1], a[2], deg * M_PI / 180.0);
-        rg2_xform_mul(T, M, M);
+        if (cJSON_IsArray(x)) { /* rotations applied in order, the first first */
+            int nr = cJSON_GetArraySize(x);
+            if (nr < 1)
+                return fail(c, RG2_EPARSE, p, "an empty list of rotations (give one {\"axis\": [x, y, z], "
+                                              "\"degrees\": a} or a list of them)");
+            for (int k = 0; k < nr; k++) {
+                char q[320];
+                indexpath(q, sizeof q, p, k);
+                if ((st = parse_rotation(c, cJSON_GetArrayItem(x, k), q, T)))
+                    return st;
+                rg2_xform_mul(T, M, M);
+            }
+        } else {
+            if ((st = parse_rotation(c, x, p, T)))
+                return st;
+            rg2_xform_mul(T, M, M);
+        }
         *any = 1;
     }
     if ((x = get(obj, "translate"))) {
