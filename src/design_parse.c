@@ -611,8 +611,12 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
             n = nseg;
         } else {
             if (!(hi > lo))
-                return fail(c, RG2_EDOMAIN, path, "knot range from %s to %s is empty", rg2__num(lo).s,
-                            rg2__num(hi).s);
+                return fail(c, RG2_EDOMAIN, path,
+                            hi < lo ? "knot range from %s to %s is empty: 'from' must be below 'to' (to run the "
+                                      "other way, give 'from' %s, 'to' %s and reverse the mesh: {\"reverse\": "
+                                      "\"<mesh>\", \"dir\": \"%c\"})"
+                                    : "knot range from %s to %s is empty",
+                            rg2__num(lo).s, rg2__num(hi).s, rg2__num(hi).s, rg2__num(lo).s, dir ? 'v' : 'u');
             for (int k = 0; k <= nseg; k++)
                 pb->values[k] = k == nseg ? hi : lo + (hi - lo) * k / nseg;
             n = nseg + 1;
