@@ -332,6 +332,10 @@ RG2_API rg2_status rg2_mesh_transpose(const rg2_mesh *in, rg2_mesh *out, rg2_err
  *  RG2_EDOMAIN, naming the junction, where b', g' or K' = K / b^3 is not a finite number
  *  (b = 1e-160: K' = inf). */
 RG2_API rg2_status rg2_mesh_reverse(const rg2_mesh *in, int dir, rg2_mesh *out, rg2_error *err);
+/** Start the closed direction dir (0 u, 1 v) `by` control points further (any sign, modulo the
+ *  count): point, junction and leg j take those of j + by; every patch is the same patch,
+ *  relabelled (docs/design-format.md, "roll"). RG2_EINCOMPATIBLE for an open direction. */
+RG2_API rg2_status rg2_mesh_roll(const rg2_mesh *in, int dir, int by, rg2_mesh *out, rg2_error *err);
 /** How a merge sets the scalars at a seam (docs/design-format.md, "Seam rule"). PRESERVE
  *  re-solves g at both seam junctions so that every patch of every part stays what it was
  *  (only the 3 patches straddling a seam change); PLAIN keeps b and g, so the parts' end

@@ -127,6 +127,11 @@ rg2_status rg2__op_transpose(const rg2__dmesh *in, rg2__dmesh *out, const char *
                              rg2_error *err);
 /* Reverse direction dir: points in reverse order, legs reversed, junction scalars
  * b' = 1 / b, g' = g / b^3 (the same curves traversed backwards). */
+/* The same mesh with a closed direction started `by` control points further (any sign): point,
+ * junction and leg j take those of j + by (mod n); every patch is the same patch, relabelled.
+ * RG2_EINCOMPATIBLE for an open direction (naming the mesh), RG2_ENOMEM. */
+rg2_status rg2__op_roll(const rg2__dmesh *in, int dir, int by, rg2__dmesh *out, const char *what,
+                        rg2_error *err);
 rg2_status rg2__op_reverse(const rg2__dmesh *in, int dir, rg2__dmesh *out, const char *what,
                            rg2_error *err);
 /* Notes (rg2_design_note) on the seams of a merge of in[0..n_in) along dir whose other direction

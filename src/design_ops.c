@@ -328,6 +328,35 @@ rg2_status rg2__op_reverse(const rg2__dmesh *in, int dir, rg2__dmesh *out, const
     return st;
 }
 
+rg2_status rg2__op_roll(const rg2__dmesh *in, int dir, int by, rg2__dmesh *out, const char *what,
+                        rg2_error *err)
+{
+    const rg2_scalars *a = dir_scalars(&in->m, dir);
+    if (!a->closed)
+        return rg2__fail(err, RG2_EINCOMPATIBLE,
+                         "%s: mesh '%s' is open in %s; roll turns a closed direction (a circle) by whole "
+                         "steps", what, in->name, dir_name(dir));
+    rg2_status st = rg2__dmesh_copy(in, out, err);
+    if (st)
+        return st;
+    rg2_scalars *b = dir_scalars_mut(&out->m, dir);
+    int n = a->n, k = (int)(((long)by % n + n) % n); /* new index j takes the old j + k */
+    for (int i = 0; i < in->m.nu; i++)
+        for (int j = 0; j < in->m.nv; j++) {
+            int si = dir == 0 ? (i + k) % n : i, sj = dir == 0 ? j : (j + k) % n;
+            memcpy(rg2_mesh_at(&out->m, i, j), rg2_mesh_at(&in->m, si, sj), 4 * sizeof(double));
+            *rg2__dmesh_pp(out, i, j) = *rg2__dmesh_pp(in, si, sj);
+        }
+    for (int j = 0; j < n; j++) { /* junction j and leg j (from junction j to j + 1) move alike */
+        b->b[j] = a->b[(j + k) % n];
+        b->g[j] = a->g[(j + k) % n];
+        out->jun[dir][j] = in->jun[dir][(j + k) % n];
+        b->w[j] = a->w[(j + k) % n];
+        out->leg[dir][j] = in->leg[dir][(j + k) % n];
+    }
+    return RG2_OK;
+}
+
 /* ------------------------------------------------------------------------------------- */
 /* merge */
 
@@ -475,20 +504,28 @@ rg2_status rg2__merge_twist_notes(rg2_design *d, const rg2__dmesh *const *in, in
         if (!row_twist(&l->m, dir_scalars(&l->m, dir)->n - 1, &r->m, 0, dir, n, &deg, &opposite) ||
             (!opposite && fabs(deg) <= 1.0))
             continue;
-        char msg[600];
+        char msg[900];
         if (opposite)
             snprintf(msg, sizeof msg,
                      "%s: %s.merge[%d]: the closed %s rows of '%s' and '%s' run opposite ways round at their seam: "
                      "the transition patches turn the tube through itself (rg2 check --intersections looks for "
                      "the crossings); reverse one of them along %s",
                      d->name, what, t, dir_name(other), l->name, r->name, dir_name(other));
-        else
+        else {
+            /* a whole number of equal steps (a circle in n equal arcs: 360 / n degrees): roll undoes it */
+            double steps = deg / (360.0 / n), whole = round(steps);
+            char roll[200] = "";
+            if (whole != 0.0 && fabs(steps - whole) < 1e-3)
+                snprintf(roll, sizeof roll, ", or roll it back: {\"roll\": \"%s\", \"dir\": \"%s\", \"by\": %d}",
+                         r->name, dir_name(other), -(int)whole);
             snprintf(msg, sizeof msg,
                      "%s: %s.merge[%d]: the closed %s rows of '%s' and '%s' meet turned by %.4g degrees about their "
                      "axis ('%s' starts %.4g degrees %s along %s): the transition patches twist the tube; start "
-                     "both circles at the same angle (the partition's \"from\") or rotate one part about its axis",
+                     "both circles at the same angle (the partition's \"from\") or rotate one part about its "
+                     "axis%s",
                      d->name, what, t, dir_name(other), l->name, r->name, fabs(deg), r->name, fabs(deg),
-                     deg > 0.0 ? "further" : "back", dir_name(other));
+                     deg > 0.0 ? "further" : "back", dir_name(other), roll);
+        }
         rg2_status st = rg2__design_add_note(d, msg, err);
         if (st)
             return st;

@@ -637,8 +637,8 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
 /* meshes */
 
 static const char *const ops[] = {"shape", "cut", "merge", "transpose", "reverse", "edit", "transform", "morph",
-                                  "polar", "mobius", "cap", "nurbs"};
-#define N_OPS 12
+                                  "polar", "mobius", "cap", "nurbs", "roll"};
+#define N_OPS 13
 
 static rg2_status mesh_ref(pctx *c, const cJSON *x, const char *path, int *idx)
 {
@@ -870,6 +870,24 @@ static rg2_status op_reverse(pctx *c, const cJSON *obj, const char *path, rg2__d
     if ((st = need(c, obj, "dir", path, &x)) || (st = parse_dir(c, x, p, &dir)))
         return st;
     return rg2__op_reverse(&c->d->mesh[src], dir, out, path, c->err);
+}
+
+static rg2_status op_roll(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
+{
+    static const char *const keys[] = {"roll", "dir", "by"};
+    int src, dir, by;
+    rg2_status st = op_begin(c, obj, path, keys, 3, &src);
+    if (st)
+        return st;
+    const cJSON *x;
+    char p[300];
+    subpath(p, sizeof p, path, "dir");
+    if ((st = need(c, obj, "dir", path, &x)) || (st = parse_dir(c, x, p, &dir)))
+        return st;
+    subpath(p, sizeof p, path, "by");
+    if ((st = need(c, obj, "by", path, &x)) || (st = as_int(c, x, p, &by)))
+        return st;
+    return rg2__op_roll(&c->d->mesh[src], dir, by, out, path, c->err);
 }
 
 static rg2_status op_transform(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
@@ -1154,12 +1172,12 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
                 suggest(it->string, ops, N_OPS, sug, sizeof sug);
             if (sug[0])
                 return fail(c, RG2_EPARSE, path, "unknown key '%s'%s; a mesh needs one operation: shape, cut, "
-                            "merge, transpose, reverse, edit, transform, morph, polar, mobius, cap, nurbs",
+                            "merge, transpose, reverse, edit, transform, morph, polar, mobius, cap, nurbs, roll",
                             it->string, sug);
         }
         return fail(c, RG2_EPARSE, path,
                     "no operation: give one of shape, cut, merge, transpose, reverse, edit, transform, morph, "
-                    "polar, mobius, cap, nurbs");
+                    "polar, mobius, cap, nurbs, roll");
     }
     if (rg2__design_find_mesh(c->d, name) >= 0)
         return fail(c, RG2_EPARSE, path, "a mesh named '%s' already exists", name);
@@ -1177,7 +1195,8 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
     case 8: st = op_polar(c, obj, path, &tmp); break;
     case 9: st = op_mobius(c, obj, path, &tmp); break;
     case 10: st = op_cap(c, obj, path, &tmp); break;
-    default: st = op_nurbs(c, obj, path, &tmp); break;
+    case 11: st = op_nurbs(c, obj, path, &tmp); break;
+    default: st = op_roll(c, obj, path, &tmp); break;
     }
     if (st) {
         rg2__dmesh_free(&tmp); /* whatever the operation had allocated */

@@ -121,20 +121,35 @@ rg2_status rg2_mesh_transpose(const rg2_mesh *in, rg2_mesh *out, rg2_error *err)
     return st;
 }
 
-rg2_status rg2_mesh_reverse(const rg2_mesh *in, int dir, rg2_mesh *out, rg2_error *err)
+/* rg2_mesh_reverse (roll 0) and rg2_mesh_roll (roll 1) of direction dir. */
+static rg2_status one_dir_op(const char *who, int roll, const rg2_mesh *in, int dir, int by, rg2_mesh *out,
+                             rg2_error *err)
 {
-    rg2_status st = begin("rg2_mesh_reverse", out, &in, 1, err);
+    rg2_status st = begin(who, out, &in, 1, err);
     if (st)
         return st;
     if (dir != 0 && dir != 1)
-        return rg2__fail(err, RG2_EINVAL, "rg2_mesh_reverse: dir = %d, must be 0 (u) or 1 (v)", dir);
+        return rg2__fail(err, RG2_EINVAL, "%s: dir = %d, must be 0 (u) or 1 (v)", who, dir);
     view v;
-    if ((st = view_init(&v, in, "rg2_mesh_reverse: in", "in", err)))
+    char what[64];
+    snprintf(what, sizeof what, "%s: in", who);
+    if ((st = view_init(&v, in, what, "in", err)))
         return st;
     rg2__dmesh res;
-    st = finish(rg2__op_reverse(&v.d, dir, &res, "rg2_mesh_reverse", err), &res, out);
+    st = finish(roll ? rg2__op_roll(&v.d, dir, by, &res, who, err) : rg2__op_reverse(&v.d, dir, &res, who, err),
+                &res, out);
     view_free(&v);
     return st;
+}
+
+rg2_status rg2_mesh_reverse(const rg2_mesh *in, int dir, rg2_mesh *out, rg2_error *err)
+{
+    return one_dir_op("rg2_mesh_reverse", 0, in, dir, 0, out, err);
+}
+
+rg2_status rg2_mesh_roll(const rg2_mesh *in, int dir, int by, rg2_mesh *out, rg2_error *err)
+{
+    return one_dir_op("rg2_mesh_roll", 1, in, dir, by, out, err);
 }
 
 rg2_status rg2_mesh_merge(const rg2_mesh *const *in, int n, int dir, int closed, rg2_seam_rule rule,

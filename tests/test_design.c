@@ -1637,6 +1637,58 @@ static void rotation_lists(void)
     rg2_design_free(d1);
 }
 
+/* roll turns a closed direction by whole steps: every patch of the rolled torus (unequal arcs, so
+ * that each junction's scalars differ) is the patch k columns (or rows) on, bit for bit, with its tag; and rolling the twisted part of a merge back by
+ * one 45-degree arc removes the twist note (rolling it on doubles the twist). */
+static void rolled_meshes(void)
+{
+    static const char torus[] =
+        "{\"shapes\": {\"t\": {\"kind\": \"torus\"}}, \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": "
+        "{\"arcs\": [30, 40, 50, 60, 40, 50, 45, 45]}, \"v\": {\"arcs\": [50, 70, 60, 60, 50, 70]}}, "
+        "\"R\": {\"roll\": \"T\", \"dir\": \"%s\", \"by\": %s}}, \"output\": [\"T\", \"R\"]}";
+    static const struct {
+        const char *dir, *by;
+        int du, dv; /* the rolled patch (i, j) is the original (i + du, j + dv) */
+    } cases[] = {{"u", "3", 3, 0}, {"u", "-1", 7, 0}, {"v", "5", 0, 5}, {"v", "13", 0, 1}, {"u", "0", 0, 0}};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        rg2_error err;
+        rg2_design *d = parse_edit2(torus, cases[k].dir, cases[k].by, &err);
+        const rg2_surface *a = rg2_design_surface(d, 0), *b = rg2_design_surface(d, 1);
+        int same = a && b && a->nu == b->nu && a->nv == b->nv, differ = 0;
+        for (int i = 0; same && i < a->nu; i++)
+            for (int j = 0; j < a->nv; j++) {
+                int si = (i + cases[k].du) % a->nu, sj = (j + cases[k].dv) % a->nv;
+                same &= !memcmp(rg2_surface_patch(b, i, j), rg2_surface_patch(a, si, sj), sizeof(rg2_patch)) &&
+                        b->tag[i * b->nv + j] == a->tag[si * a->nv + sj];
+                differ |= memcmp(rg2_surface_patch(b, i, j), rg2_surface_patch(a, i, j), sizeof(rg2_patch)) != 0;
+            }
+        CHECK(same && differ == (cases[k].du || cases[k].dv), "roll %s by %s: the patches of the torus %s on",
+              cases[k].dir, cases[k].by, cases[k].du || cases[k].dv ? "moved" : "not moved");
+        rg2_design_free(d);
+    }
+    static const char twist[] =
+        "{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {"
+        "\"A\": {\"shape\": \"c\", \"u\": {\"arcs\": 8}, \"v\": {\"segments\": 3, \"from\": 0, \"to\": 1}},"
+        "\"B0\": {\"shape\": \"c\", \"u\": {\"arcs\": 8, \"from\": 45}, \"v\": {\"segments\": 3, \"from\": 2, "
+        "\"to\": 3}}, \"B\": {\"roll\": \"B0\", \"dir\": \"u\", \"by\": %s}, \"M\": {\"merge\": [\"A\", \"B\"], "
+        "\"along\": \"v\"}}, \"output\": \"M\"%s}";
+    rg2_error err;
+    rg2_design *d = parse_edit2(twist, "0", "", &err); /* the note says which roll undoes the twist */
+    const char *said = rg2_design_note(d, 0);
+    CHECK(said && strstr(said, "or roll it back: {\"roll\": \"B\", \"dir\": \"u\", \"by\": -1}"),
+          "the 45-degree twist's note names the roll, got '%s'", said ? said : "(none)");
+    rg2_design_free(d);
+    d = parse_edit2(twist, "-1", "", &err);
+    CHECK(d && rg2_design_num_notes(d) == 0, "rolled back by one arc: no twist note, got '%s'",
+          rg2_design_note(d, 0) ? rg2_design_note(d, 0) : "");
+    rg2_design_free(d);
+    d = parse_edit2(twist, "1", "", &err);
+    const char *note = rg2_design_note(d, 0);
+    CHECK(note && strstr(note, "meet turned by 90 degrees"), "rolled on by one arc: a 90-degree note, got '%s'",
+          note ? note : "(none)");
+    rg2_design_free(d);
+}
+
 int main(void)
 {
     parse_sizes();
@@ -1675,5 +1727,6 @@ int main(void)
     twisted_merges();
     overlapping_merges();
     rotation_lists();
+    rolled_meshes();
     return rg2t_done("test_design");
 }

@@ -137,12 +137,12 @@ static void put_mesh(blob *o, const rg2_mesh *m)
 }
 
 /* The mesh operations of the C API on a closed ring J: cut it in two, merge them closed again,
- * transpose, reverse, morph; a failed step must leave its output empty (nothing to free). */
+ * transpose, reverse, morph, roll; a failed step must leave its output empty (nothing to free). */
 static rg2_status op_meshops(const void *ctx, const char *path, blob *out, rg2_error *err)
 {
     (void)path;
     const rg2_mesh *J = ctx;
-    rg2_mesh m[6];
+    rg2_mesh m[7];
     memset(m, 0, sizeof m);
     const int fa[2] = {0, -1}, la[2] = {8, 0}, fb[2] = {9, -1}, lb[2] = {14, 0};
     memset(m, 0xab, sizeof m); /* (each operation must set its output, emptied on failure) */
@@ -159,6 +159,8 @@ static rg2_status op_meshops(const void *ctx, const char *path, blob *out, rg2_e
         st = rg2_mesh_reverse(&m[3], 0, &m[4], err);
     if (!st && ++k)
         st = rg2_mesh_morph(&m[2], J, 0.5, &m[5], err);
+    if (!st && ++k)
+        st = rg2_mesh_roll(&m[2], 0, 3, &m[6], err);
     if (st)
         CHECK(m[k].p == NULL && m[k].su.w == NULL && m[k].sv.b == NULL && m[k].nu == 0,
               "mesh operation %d failed (%s) but left its output unemptied", k, rg2_status_str(st));

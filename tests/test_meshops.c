@@ -165,6 +165,29 @@ static void results_match(const rg2_mesh *M, const rg2_shape *ring, const rg2_sh
     same_mesh(&r, &M[BACK_U], "reverse u");
     rg2_mesh_free(&r);
 
+    /* roll: the ring (closed in both directions) started 3 points further in u and 2 in v; each
+     * point, junction's b, g and leg weight is the one that many steps on, and rolling back
+     * restores the mesh bit for bit; an open direction is refused */
+    for (int dir = 0; dir < 2; dir++) {
+        const rg2_mesh *a = &M[RING];
+        int k = dir ? 2 : 3, n = dir ? a->nv : a->nu, moved = 1;
+        rg2_mesh back;
+        CHECK_OK(rg2_mesh_roll(a, dir, k, &r, &err), &err);
+        for (int i = 0; r.p && i < a->nu; i++)
+            for (int j = 0; j < a->nv; j++)
+                moved &= !memcmp(rg2_mesh_at(&r, i, j),
+                                 rg2_mesh_at(a, dir ? i : (i + k) % n, dir ? (j + k) % n : j), 4 * sizeof(double));
+        const rg2_scalars *sa = dir ? &a->sv : &a->su, *sr = dir ? &r.sv : &r.su;
+        for (int j = 0; r.p && j < n; j++)
+            moved &= sr->b[j] == sa->b[(j + k) % n] && sr->g[j] == sa->g[(j + k) % n] &&
+                     sr->w[j] == sa->w[(j + k) % n];
+        CHECK(moved, "roll %s by %d: points and scalars %d steps on", dir ? "v" : "u", k, k);
+        CHECK_OK(rg2_mesh_roll(&r, dir, -k + 5 * n, &back, &err), &err); /* (-k modulo n) */
+        same_mesh(&back, a, dir ? "roll v back" : "roll u back");
+        rg2_mesh_free(&back);
+        rg2_mesh_free(&r);
+    }
+
     /* one mesh closed on itself: the tube's 9 points become a closed ring of 9 patch columns,
      * G2 across the new seam; the 3 columns straddling it are transitions */
     const rg2_mesh *one[1] = {&M[TUBE]};
@@ -222,6 +245,11 @@ static void errors(const rg2_mesh *M)
     bad(rg2_mesh_merge(unlike, 2, 0, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINCOMPATIBLE, &err, &r,
         "rg2_mesh_merge.merge[1]: meshes 'in[0]' and 'in[1]' do not agree in v (the direction that must match "
         "when merging along u): 8 control points, closed, vs 6, open", "merge of unlike meshes");
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
+    bad(rg2_mesh_roll(&M[TUBE], 0, 1, &r, &err), RG2_EINCOMPATIBLE, &err, &r,
+        "rg2_mesh_roll: mesh 'in' is open in u; roll turns a closed direction", "roll of an open direction");
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
+    bad(rg2_mesh_roll(&M[TUBE], 2, 1, &r, &err), RG2_EINVAL, &err, &r, "rg2_mesh_roll: dir = 2", "roll dir 2");
     const rg2_mesh *two[2] = {&M[TUBE], &M[BAND]};
     memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_merge(two, 2, 2, 0, RG2_SEAM_PRESERVE, &r, &err), RG2_EINVAL, &err, &r, "dir = 2", "merge dir 2");
