@@ -857,17 +857,27 @@ static rg2_status op_transpose(pctx *c, const cJSON *obj, const char *path, rg2_
     return rg2__op_transpose(&c->d->mesh[src], out, path, c->err);
 }
 
-static rg2_status op_reverse(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
+/* The source mesh and the required "dir" of a one-direction operation (reverse, roll). */
+static rg2_status op_begin_dir(pctx *c, const cJSON *obj, const char *path, const char *const *keys, int nk,
+                               int *src, int *dir)
 {
-    static const char *const keys[] = {"reverse", "dir"};
-    int src, dir;
-    rg2_status st = op_begin(c, obj, path, keys, 2, &src);
+    rg2_status st = op_begin(c, obj, path, keys, nk, src);
     if (st)
         return st;
     const cJSON *x;
     char p[300];
     subpath(p, sizeof p, path, "dir");
-    if ((st = need(c, obj, "dir", path, &x)) || (st = parse_dir(c, x, p, &dir)))
+    if ((st = need(c, obj, "dir", path, &x)) || (st = parse_dir(c, x, p, dir)))
+        return st;
+    return RG2_OK;
+}
+
+static rg2_status op_reverse(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
+{
+    static const char *const keys[] = {"reverse", "dir"};
+    int src, dir;
+    rg2_status st = op_begin_dir(c, obj, path, keys, 2, &src, &dir);
+    if (st)
         return st;
     return rg2__op_reverse(&c->d->mesh[src], dir, out, path, c->err);
 }
@@ -876,14 +886,11 @@ static rg2_status op_roll(pctx *c, const cJSON *obj, const char *path, rg2__dmes
 {
     static const char *const keys[] = {"roll", "dir", "by"};
     int src, dir, by;
-    rg2_status st = op_begin(c, obj, path, keys, 3, &src);
+    rg2_status st = op_begin_dir(c, obj, path, keys, 3, &src, &dir);
     if (st)
         return st;
     const cJSON *x;
     char p[300];
-    subpath(p, sizeof p, path, "dir");
-    if ((st = need(c, obj, "dir", path, &x)) || (st = parse_dir(c, x, p, &dir)))
-        return st;
     subpath(p, sizeof p, path, "by");
     if ((st = need(c, obj, "by", path, &x)) || (st = as_int(c, x, p, &by)))
         return st;
