@@ -403,7 +403,7 @@ int rg2f_meshops(const uint8_t *data, size_t size)
         memset(&out, 0xab, sizeof out);
         rg2_status st;
         const char *call;
-        switch (op % 5) {
+        switch (op % 6) {
         case 0: {
             int first[2], last[2]; /* (read in order: an initializer list's order is unspecified) */
             first[0] = rg2f_index(&o);
@@ -433,6 +433,20 @@ int rg2f_meshops(const uint8_t *data, size_t size)
             call = "rg2_mesh_merge";
             st = rg2_mesh_merge(in, 1 + (int)(op >> 3) % 3, (op >> 5) & 1, (op >> 6) & 1,
                                 (rg2_seam_rule)((op >> 7) & 1), &out, &err);
+            break;
+        }
+        case 4: {
+            int dir = (int)(op >> 3) % 3, by = (int)rg2f_byte(&o) - 128; /* (dir 2: refused) */
+            call = "rg2_mesh_roll";
+            st = rg2_mesh_roll(a, dir, by, &out, &err);
+            if (!st) { /* rolled back: the mesh, bit for bit */
+                rg2_mesh back;
+                if (!rg2_mesh_roll(&out, dir, -by, &back, &err)) {
+                    if (!rg2f_same_mesh(&back, a))
+                        rg2f_violation("rg2_mesh_roll by %d and back is not the mesh", by);
+                    rg2_mesh_free(&back);
+                }
+            }
             break;
         }
         default: {
