@@ -1376,6 +1376,13 @@ typedef struct {
     double p[3];           /**< the point */
 } rg2_check_gap;
 
+/** A sample of a patch that the report points to. */
+typedef struct {
+    int surf, pi, pj;      /**< surface, patch (i, j) */
+    double u, v;           /**< parameters in the patch */
+    double p[3];           /**< the point there */
+} rg2_check_sample;
+
 typedef struct {
     int surfaces, patches, transitions, exact_patches, untagged_bad; /**< untagged_bad: tags
                               outside the shape list */
@@ -1409,15 +1416,17 @@ typedef struct {
                                 merged meshes that overlap: G1 and G2 fail when > 0 */
     int singular;          /**< patch samples away from any pole with an undefined normal
                                 (Su x Sv = 0): G1 and G2 fail when > 0 */
-    struct {
-        int surf, pi, pj;  /**< the first fold or singular sample: surface, patch (i, j) */
-        double u, v;       /**< its parameters in the patch (a fold: between two samples) */
-        double p[3];       /**< a point there */
-    } fold_at;
+    rg2_check_sample fold_at; /**< the first fold or singular sample (a fold: u, v between two
+                                   samples) */
     double wmin, wmax;     /**< homogeneous weights of all control points */
     double eval_wmin;      /**< smallest weight met at the samples */
     double kmin, kmax;     /**< principal curvatures (k2 min, k1 max) over the samples */
     double Hmin, Hmax, Kmin, Kmax;
+    rg2_check_sample kpeak; /**< where |k| is largest (the tightest bend): the first such sample in
+                                 the order patches are listed (surface, patch i, j, then u, v), the
+                                 same on any thread count; surf -1 when no sample has a curvature */
+    double kpeak_k;        /**< the principal curvature there (kmin or kmax, whichever is larger in
+                                magnitude; radius of curvature 1 / |k|) */
     double size;           /**< bounding-box diagonal used to scale gaps */
     rg2_crossing_report crossings; /**< with opts.crossing_density > 0 (else all zero) */
     rg2_check_opts opts;   /**< the options (tolerances) the report was made with */

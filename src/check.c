@@ -447,17 +447,34 @@ static int folds_between(const rg2_surface *s, int pi, int pj, double u0, double
     return 1;
 }
 
+/* The sample (u, v) of patch (pi, pj) at point p, into *at. */
+static void sample_set(rg2_check_sample *at, int surf, int pi, int pj, double u, double v, const double p[3])
+{
+    at->surf = surf;
+    at->pi = pi;
+    at->pj = pj;
+    at->u = u;
+    at->v = v;
+    memcpy(at->p, p, sizeof at->p);
+}
+
+/* The sample (u, v) of patch (pi, pj) with principal curvatures k1 >= k2: the report's largest
+ * |k| if larger than the one before (strict, so the first in the serial order; a NaN never wins). */
+static void kpeak_update(rg2_check_report *r, int surf, int pi, int pj, double u, double v, const double p[3],
+                         double k1, double k2)
+{
+    double k = fabs(k2) > fabs(k1) ? k2 : k1;
+    if (fabs(k) > fabs(r->kpeak_k) || (r->kpeak.surf < 0 && !isnan(k))) {
+        sample_set(&r->kpeak, surf, pi, pj, u, v, p);
+        r->kpeak_k = k;
+    }
+}
+
 /* A fold or a singular sample at (u, v) of patch (pi, pj): counted, the first one kept. */
 static void fold_note(rg2_check_report *r, int *count, int surf, int pi, int pj, double u, double v, const double p[3])
 {
-    if (r->folds == 0 && r->singular == 0) {
-        r->fold_at.surf = surf;
-        r->fold_at.pi = pi;
-        r->fold_at.pj = pj;
-        r->fold_at.u = u;
-        r->fold_at.v = v;
-        memcpy(r->fold_at.p, p, sizeof r->fold_at.p);
-    }
+    if (r->folds == 0 && r->singular == 0)
+        sample_set(&r->fold_at, surf, pi, pj, u, v, p);
     (*count)++;
 }
 
@@ -535,6 +552,7 @@ static void patch_one(rg2_check_report *r, const rg2_surface *s, int surf, size_
                 r->Hmax = fmax(r->Hmax, e.H);
                 r->Kmin = fmin(r->Kmin, e.K);
                 r->Kmax = fmax(r->Kmax, e.K);
+                kpeak_update(r, surf, pi, pj, u, v, e.p, e.k1, e.k2);
             }
             if (tag < 0 || tag >= n_shapes)
                 continue;
@@ -567,6 +585,7 @@ static void patch_one(rg2_check_report *r, const rg2_surface *s, int surf, size_
  *     partial's worst goes through the serial rule (strict >, a NaN sticks), which keeps the
  *     first worst sample in the serial order, its location with it;
  *   fold_at: the first fold or singular sample of the first chunk that has one;
+ *   kpeak: a chunk's largest |k| replaces the one before only if strictly larger (or the first);
  *   largest limits (near_pole_tol*, ill_tol*) and curvature ranges: fmax / fmin as serially
  *     (NaN ignored, each chunk from the serial start value);
  *   weights (wmin, wmax, eval_wmin): low_update / high_update, as serially (a NaN sticks).
@@ -672,6 +691,10 @@ static void part_merge(rg2_check_report *r, const check_part *c)
     r->Hmax = fmax(r->Hmax, x->Hmax);
     r->Kmin = fmin(r->Kmin, x->Kmin);
     r->Kmax = fmax(r->Kmax, x->Kmax);
+    if (x->kpeak.surf >= 0 && (r->kpeak.surf < 0 || fabs(x->kpeak_k) > fabs(r->kpeak_k))) {
+        r->kpeak = x->kpeak;
+        r->kpeak_k = x->kpeak_k;
+    }
     for (int k = 0; k < r->n_shapes; k++) {
         rg2_check_shape *cs = &r->shapes[k];
         const rg2_check_shape *xs = &x->shapes[k];
@@ -712,6 +735,8 @@ static rg2_status run_threads(rg2_check_report *r, const check_job *J, size_t n_
             P->r.wmax = -DBL_MAX;
             P->r.kmin = P->r.Hmin = P->r.Kmin = DBL_MAX;
             P->r.kmax = P->r.Hmax = P->r.Kmax = -DBL_MAX;
+            P->r.kpeak.surf = -1;
+            P->r.kpeak_k = 0;
         }
     }
     if (!oom) {
@@ -860,6 +885,8 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
     out->wmax = -DBL_MAX;
     out->kmin = out->Hmin = out->Kmin = DBL_MAX;
     out->kmax = out->Hmax = out->Kmax = -DBL_MAX;
+    out->kpeak.surf = -1;
+    out->kpeak_k = 0;
     /* the flat lists of seams and patches, each surface's size */
     size_t *seam_off = rg2__calloc((size_t)n + 1, sizeof *seam_off);
     size_t *patch_off = rg2__calloc((size_t)n + 1, sizeof *patch_off);
@@ -1144,6 +1171,10 @@ static void format_text(const rg2_check_report *r, sbuf *b)
               r->eval_wmin, r->wmin > 0 ? "(all > 0)" : "(NON-POSITIVE)");
     sb_printf(b, "curvature            k [%.6g, %.6g]  H [%.6g, %.6g]  K [%.6g, %.6g]\n", r->kmin, r->kmax, r->Hmin,
               r->Hmax, r->Kmin, r->Kmax);
+    if (r->kpeak.surf >= 0 && r->kpeak_k != 0)
+        sb_printf(b, "  largest |k|        %.6g (radius %.6g) at surface %d patch (%d,%d) u=%.3g v=%.3g, point (%.6g, "
+                     "%.6g, %.6g)\n", fabs(r->kpeak_k), 1 / fabs(r->kpeak_k), r->kpeak.surf, r->kpeak.pi,
+                  r->kpeak.pj, r->kpeak.u, r->kpeak.v, r->kpeak.p[0], r->kpeak.p[1], r->kpeak.p[2]);
     sb_printf(b, "size                 %.6g (box diagonal)\n", r->size);
     const rg2_crossing_report *c = &r->crossings;
     if (c->density > 0) {
@@ -1185,6 +1216,17 @@ static cJSON *gap_json(const rg2_check_gap *g, double tol)
     return j;
 }
 
+/* A sample's surface, patch, u, v and point as members of o. */
+static void sample_json(cJSON *o, const rg2_check_sample *at)
+{
+    cJSON_AddNumberToObject(o, "surface", at->surf);
+    int ij[2] = {at->pi, at->pj};
+    cJSON_AddItemToObject(o, "patch", cJSON_CreateIntArray(ij, 2));
+    cJSON_AddNumberToObject(o, "u", at->u);
+    cJSON_AddNumberToObject(o, "v", at->v);
+    cJSON_AddItemToObject(o, "point", cJSON_CreateDoubleArray(at->p, 3));
+}
+
 static char *format_json(const rg2_check_report *r)
 {
     const rg2_check_opts *o = &r->opts;
@@ -1218,12 +1260,7 @@ static char *format_json(const rg2_check_report *r)
     cJSON_AddNumberToObject(rg, "folds", r->folds);
     cJSON_AddNumberToObject(rg, "singular", r->singular);
     if (r->folds || r->singular) {
-        cJSON_AddNumberToObject(rg, "surface", r->fold_at.surf);
-        int fp[2] = {r->fold_at.pi, r->fold_at.pj};
-        cJSON_AddItemToObject(rg, "patch", cJSON_CreateIntArray(fp, 2));
-        cJSON_AddNumberToObject(rg, "u", r->fold_at.u);
-        cJSON_AddNumberToObject(rg, "v", r->fold_at.v);
-        cJSON_AddItemToObject(rg, "point", cJSON_CreateDoubleArray(r->fold_at.p, 3));
+        sample_json(rg, &r->fold_at);
     }
     unsigned fg = rg2_check_failures(r, RG2_REQUIRE_G0 | RG2_REQUIRE_G1 | RG2_REQUIRE_G2);
     cJSON *g;
@@ -1252,6 +1289,11 @@ static char *format_json(const rg2_check_report *r)
     cJSON_AddItemToObject(j, "principal_curvature", cJSON_CreateDoubleArray(k, 2));
     cJSON_AddItemToObject(j, "mean_curvature", cJSON_CreateDoubleArray(k + 2, 2));
     cJSON_AddItemToObject(j, "gauss_curvature", cJSON_CreateDoubleArray(k + 4, 2));
+    if (r->kpeak.surf >= 0) {
+        cJSON *kp = cJSON_AddObjectToObject(j, "largest_curvature");
+        cJSON_AddNumberToObject(kp, "k", r->kpeak_k);
+        sample_json(kp, &r->kpeak);
+    }
     cJSON_AddNumberToObject(j, "size", r->size);
     const rg2_crossing_report *c = &r->crossings;
     if (c->density > 0) { /* (only when searched: the report without it is unchanged) */

@@ -1394,6 +1394,94 @@ static void threads_identical(void)
     rg2_mesh_free(&m);
 }
 
+/* The sample of patch (pi, pj) at (u, v) with the larger principal curvature in magnitude. */
+static double larger_k(const rg2_surface *s, int pi, int pj, double u, double v, double p[3])
+{
+    rg2_eval e;
+    rg2_surface_eval(s, pi, pj, u, v, 2, &e);
+    memcpy(p, e.p, 3 * sizeof *p);
+    if (e.flags & RG2_EVAL_CURVATURE_UNDEFINED)
+        return NAN;
+    return fabs(e.k2) > fabs(e.k1) ? e.k2 : e.k1;
+}
+
+/* Where the surface bends most (rg2_check_report.kpeak, the "largest |k|" line). A cylinder of
+ * radius 1 scaled by 2 along x is an elliptic cylinder, a = 2, b = 1: it bends most at the ends
+ * of the major axis, |k| = a / b^2 = 2, which its 4 arcs put on patch corners. A torus with one
+ * control point moved: the report names the sample this test finds by its own scan of the same
+ * 13 x 13 samples per patch in the same order (first strictly larger), on 1 to 4 threads; the
+ * JSON carries the same k. */
+static void curvature_peak(void)
+{
+    rg2_shape c;
+    rg2_shape_init(&c, RG2_SHAPE_CYLINDER);
+    c.xform[0] = 2;
+    double au[5], kv[4];
+    rg2_partition pu, pv;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0, 0, 4, au, 5, &err), &err);
+    CHECK_OK(rg2_partition_equal(&pv, RG2_PART_KNOTS, 0, 0, 3, 3, kv, 4, &err), &err);
+    CHECK_OK(rg2_shape_surface(&c, &pu, &pv, &s, NULL, &err), &err);
+    rg2_check_report r;
+    CHECK_OK(rg2_check(&s, 1, NULL, NULL, 0, NULL, &r, &err), &err);
+    double k = r.kpeak_k, *p = r.kpeak.p;
+    printf("elliptic cylinder: largest |k| %.17g at (%.3g, %.3g, %.3g), patch (%d,%d) u=%g v=%g\n", fabs(k), p[0],
+           p[1], p[2], r.kpeak.pi, r.kpeak.pj, r.kpeak.u, r.kpeak.v);
+    CHECK(r.kpeak.surf == 0 && rel(fabs(k), 2.0) <= 1e-13 && fabs(fabs(p[0]) - 2) <= 1e-13 && fabs(p[1]) <= 1e-13,
+          "elliptic cylinder: largest |k| %.17g at (%g, %g, %g), expected 2 at x = +-2, y = 0", fabs(k), p[0], p[1],
+          p[2]);
+    CHECK(k == (fabs(r.kmin) > fabs(r.kmax) ? r.kmin : r.kmax), "elliptic cylinder: k %g is not kmin %g or kmax %g",
+          k, r.kmin, r.kmax);
+    rg2_check_report_free(&r);
+    rg2_surface_free(&s);
+
+    rg2_mesh m;
+    CHECK_OK(rg2t_torus(3, 1, 8, 6, &m, &s, &err), &err);
+    rg2_surface_free(&s);
+    double *q = m.p + (2 * m.nv + 3) * 4, d[3] = {0.3, 0.2, 0.4};
+    for (int t = 0; t < 3; t++)
+        q[t] += d[t] * q[3];
+    CHECK_OK(rg2_surface_build(&m, &s, &err), &err);
+    rg2_check_opts o;
+    rg2_check_opts_default(&o);
+    int S = o.patch_samples, bi = -1, bj = -1, ba = 0, bb = 0;
+    double best = 0, x[3];
+    for (int i = 0; i < s.nu; i++)
+        for (int j = 0; j < s.nv; j++)
+            for (int a = 0; a <= S; a++)
+                for (int b = 0; b <= S; b++) {
+                    double kk = larger_k(&s, i, j, (double)a / S, (double)b / S, x);
+                    if (fabs(kk) > fabs(best) || (bi < 0 && !isnan(kk))) {
+                        best = kk;
+                        bi = i, bj = j, ba = a, bb = b;
+                    }
+                }
+    for (int th = 1; th <= 4; th++) {
+        o.threads = th;
+        CHECK_OK(rg2_check(&s, 1, NULL, NULL, 0, &o, &r, &err), &err);
+        larger_k(&s, bi, bj, (double)ba / S, (double)bb / S, x);
+        CHECK(r.kpeak.surf == 0 && r.kpeak.pi == bi && r.kpeak.pj == bj && r.kpeak.u == (double)ba / S &&
+                  r.kpeak.v == (double)bb / S && r.kpeak_k == best && !memcmp(r.kpeak.p, x, sizeof x),
+              "torus with a moved point, %d thread(s): largest |k| %.17g at patch (%d,%d) u=%g v=%g, expected %.17g "
+              "at (%d,%d) u=%g v=%g", th, r.kpeak_k, r.kpeak.pi, r.kpeak.pj, r.kpeak.u, r.kpeak.v, best, bi, bj,
+              (double)ba / S, (double)bb / S);
+        char *json = NULL;
+        CHECK_OK(rg2_check_format(&r, 1, &json, &err), &err);
+        cJSON *j = json ? cJSON_Parse(json) : NULL, *kp = cJSON_GetObjectItem(j, "largest_curvature");
+        cJSON *jk = cJSON_GetObjectItem(kp, "k");
+        CHECK(cJSON_IsNumber(jk) && jk->valuedouble == best, "JSON largest_curvature.k %.17g, expected %.17g",
+              cJSON_IsNumber(jk) ? jk->valuedouble : NAN, best);
+        cJSON_Delete(j);
+        free(json);
+        rg2_check_report_free(&r);
+    }
+    printf("torus with a moved point: largest |k| %.6g (radius %.4g) at patch (%d,%d) u=%g v=%g on 1-4 threads, as "
+           "scanned\n", fabs(best), 1 / fabs(best), bi, bj, (double)ba / S, (double)bb / S);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 /* rg2_surface_shape_residuals (rg2 check --on): every patch of a tilted torus lies on it, with the
  * worst residual rg2_check finds for the tagged patches (the same samples and, every patch tagged,
  * the same size); a control point moved off the torus takes exactly the 4 x 4 patches of its
@@ -1534,6 +1622,7 @@ int main(void)
     folds_fail();
     ill_conditioned_flat();
     threads_identical();
+    curvature_peak();
     shape_residuals();
     return rg2t_done("test_check");
 }
