@@ -559,7 +559,7 @@ static cJSON *num_array(const double *v, int n)
 {
     cJSON *a = cJSON_CreateArray();
     for (int i = 0; a && i < n; i++)
-        cJSON_AddItemToArray(a, cJSON_CreateNumber(v[i]));
+        cJSON_AddItemToArray(a, rg2__json_double(v[i]));
     return a;
 }
 
@@ -609,7 +609,7 @@ rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, rg2_erro
         cJSON_AddStringToObject(s, "kind", desc ? desc->name : "?");
         if (desc)
             for (int p = 0; p < desc->n_params; p++)
-                cJSON_AddNumberToObject(s, desc->param_names[p], d->shapes[k].param[p]);
+                cJSON_AddItemToObject(s, desc->param_names[p], rg2__json_double(d->shapes[k].param[p]));
         cJSON_AddItemToObject(s, "matrix", num_array(d->shapes[k].xform, 16));
         cJSON_AddItemToArray(shapes, s);
     }
@@ -629,7 +629,7 @@ rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, rg2_erro
                 const double *p = rg2_mesh_at(m, i, j);
                 double x[3] = {p[0] / p[3], p[1] / p[3], p[2] / p[3]};
                 cJSON_AddItemToArray(row, num_array(x, 3));
-                cJSON_AddItemToArray(wrow, cJSON_CreateNumber(p[3]));
+                cJSON_AddItemToArray(wrow, rg2__json_double(p[3]));
                 int sp = rg2__dmesh_pp(dm, i, j)->src;
                 cJSON_AddItemToArray(srow, cJSON_CreateNumber(sp < 0 ? -1 : d->src[sp].shape));
             }

@@ -18,7 +18,10 @@
 #include "internal.h"
 
 #include <cjson/cJSON.h>
+#include <math.h>
 #include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
 
 static pthread_mutex_t json_lock = PTHREAD_MUTEX_INITIALIZER;
 static pthread_once_t json_once = PTHREAD_ONCE_INIT;
@@ -56,4 +59,24 @@ char *rg2__json_print(const cJSON *item, int formatted)
     char *text = formatted ? cJSON_Print(item) : cJSON_PrintUnformatted(item);
     json_end(loc);
     return text;
+}
+
+/* cJSON prints a number with 15 significant digits whenever they read back within about one
+ * unit in the last place (its compare_double), so 3.0000000000000004 came out as "3": 80 of
+ * the 576 numbers of a torus + cylinder control mesh were off by an ulp, and a point set with
+ * "to" from its printed position was no longer the shape's. Here the shortest of 15, 16 and 17
+ * digits that reads back to the same double, as a raw item (non-finite: cJSON's null). */
+cJSON *rg2__json_double(double x)
+{
+    if (!isfinite(x))
+        return cJSON_CreateNumber(x);
+    char buf[40];
+    void *loc = rg2__c_numeric_begin();
+    for (int digits = 15; digits <= 17; digits++) {
+        snprintf(buf, sizeof buf, "%.*g", digits, x);
+        if (strtod(buf, NULL) == x)
+            break;
+    }
+    rg2__c_numeric_end(loc);
+    return cJSON_CreateRaw(buf);
 }

@@ -690,8 +690,26 @@ static int write_padded(const char *path, const char *text, size_t size)
 }
 
 /* The control mesh JSON (rg2_design_write_mesh) read back: every output mesh's design points
- * d = p_{1..3} / p_4 and weights W = p_4 against the mesh's homogeneous points (a torus with two
- * weights edited, W = 2.5 and 0.5, and its transpose). */
+ * d = p_{1..3} / p_4 and weights W = p_4 against the mesh's homogeneous points, and its scalars
+ * w, b, g, bit for bit (a torus with two weights edited, W = 2.5 and 0.5, and its transpose;
+ * cJSON's own printing, 15 digits when they read back within an ulp, lost the last bit of 12
+ * of the 384 d and W values and of 16 scalars: a point set with "to" from its printed
+ * position was no longer the torus's). */
+static int scalars_read_back(const cJSON *js, const rg2_scalars *s)
+{
+    const double *v[3] = {s->w, s->b, s->g};
+    const char *key[3] = {"w", "b", "g"};
+    int differ = 0;
+    for (int k = 0; k < 3; k++) {
+        const cJSON *a = cJSON_GetObjectItemCaseSensitive(js, key[k]);
+        int n = k ? s->n : rg2_scalars_num_w(s);
+        differ += cJSON_GetArraySize(a) != n;
+        for (int i = 0; i < n && i < cJSON_GetArraySize(a); i++)
+            differ += cJSON_GetArrayItem(a, i)->valuedouble != v[k][i];
+    }
+    return differ;
+}
+
 static void check_written_mesh(const char *path)
 {
     rg2_error err;
@@ -709,7 +727,7 @@ static void check_written_mesh(const char *path)
     CHECK(cJSON_GetArraySize(meshes) == rg2_design_num_surfaces(d), "%s: %d meshes written", path,
           cJSON_GetArraySize(meshes));
     double dev = 0.0;
-    int points = 0, w_not_1 = 0;
+    int points = 0, w_not_1 = 0, off = 0, scalars_off = 0;
     for (int o = 0; o < rg2_design_num_surfaces(d) && o < cJSON_GetArraySize(meshes); o++) {
         const rg2_mesh *m = rg2_design_mesh(d, o);
         const cJSON *jm = cJSON_GetArrayItem(meshes, o), *D = cJSON_GetObjectItemCaseSensitive(jm, "d"),
@@ -725,15 +743,21 @@ static void check_written_mesh(const char *path)
                     dev = INFINITY;
                     continue;
                 }
-                for (int k = 0; k < 3; k++)
-                    dev = fmax(dev, fabs(cJSON_GetArrayItem(x, k)->valuedouble - p[k] / p[3]));
-                dev = fmax(dev, fabs(w->valuedouble - p[3]));
+                for (int k = 0; k < 4; k++) {
+                    double got = k < 3 ? cJSON_GetArrayItem(x, k)->valuedouble : w->valuedouble;
+                    double want = k < 3 ? p[k] / p[3] : p[3];
+                    dev = fmax(dev, fabs(got - want));
+                    off += got != want;
+                }
                 w_not_1 += p[3] != 1.0;
                 points++;
             }
+        scalars_off += scalars_read_back(cJSON_GetObjectItemCaseSensitive(jm, "u"), &m->su) +
+                       scalars_read_back(cJSON_GetObjectItemCaseSensitive(jm, "v"), &m->sv);
     }
-    CHECK(dev <= 1e-14 && w_not_1 > 0, "%s: %d points read back off by %.3g (%d with W != 1)", path, points, dev,
-          w_not_1);
+    CHECK(off == 0 && scalars_off == 0 && w_not_1 > 0,
+          "%s: %d points read back, %d values off (by up to %.3g), %d scalars off (%d with W != 1)", path, points,
+          off, dev, scalars_off, w_not_1);
     cJSON_Delete(root);
     remove(path);
     rg2_design_free(d);
