@@ -913,12 +913,21 @@ rg2_status rg2__op_morph(const rg2__dmesh *a, const rg2__dmesh *b, double t, rg2
         return rg2__fail(err, RG2_EDOMAIN, "%s.t: t = %s, must lie in [0, 1]", what, rg2__num(t).s);
     for (int k = 0; k < 2; k++) {
         const rg2_scalars *sa = dir_scalars(&a->m, k), *sb = dir_scalars(&b->m, k);
-        if (sa->n != sb->n || sa->closed != sb->closed)
+        if (sa->n != sb->n || sa->closed != sb->closed) {
+            /* b's u against a's v and b's v against a's u: b is a's structure transposed */
+            const rg2_scalars *bt[2] = {&b->m.sv, &b->m.su};
+            int swapped = 1;
+            for (int q = 0; q < 2; q++)
+                swapped = swapped && dir_scalars(&a->m, q)->n == bt[q]->n &&
+                          dir_scalars(&a->m, q)->closed == bt[q]->closed;
             return rg2__fail(err, RG2_EINCOMPATIBLE,
-                             "%s.morph: meshes '%s' (%d %s) and '%s' (%d %s) differ in %s; a morph needs "
-                             "meshes of equal structure",
+                             "%s.morph: meshes '%s' (%d control points, %s) and '%s' (%d control points, %s) "
+                             "differ in %s; a morph needs meshes of equal structure%s%s%s",
                              what, a->name, sa->n, sa->closed ? "closed" : "open", b->name, sb->n,
-                             sb->closed ? "closed" : "open", dir_name(k));
+                             sb->closed ? "closed" : "open", dir_name(k),
+                             swapped ? " ('" : "", swapped ? b->name : "",
+                             swapped ? "' transposed would match)" : "");
+        }
     }
     rg2_status st = rg2__dmesh_copy(t == 1.0 ? b : a, out, err);
     if (st)
@@ -970,8 +979,9 @@ rg2_status rg2__edit_point(rg2__dmesh *m, int i, int j, rg2__edit_kind kind, con
 {
     if (i < 0 || i >= m->m.nu || j < 0 || j >= m->m.nv)
         return rg2__fail(err, RG2_EINVAL,
-                         "%s: control point [%d, %d] is outside the %d x %d points of mesh '%s'",
-                         what, i, j, m->m.nu, m->m.nv, m->name);
+                         "%s: control point [%d, %d] is outside the %d x %d points of mesh '%s' "
+                         "(indices count from 0: [0..%d, 0..%d])",
+                         what, i, j, m->m.nu, m->m.nv, m->name, m->m.nu - 1, m->m.nv - 1);
     int nv = kind == RG2__EDIT_WEIGHT ? 1 : 3;
     for (int k = 0; k < nv; k++)
         if (!rg2__finite(v[k]))

@@ -1127,7 +1127,7 @@ static void bad_inputs(void)
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"points\": [{\"at\": [1, 1], \"mvoe\": [0, 0, 1]}]}}}",
          RG2_EPARSE, "did you mean 'move'"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"S\": {\"shape\": \"s\"}, \"M\": {\"morph\": [\"T\", \"S\"], \"t\": 0.5}}}",
-         RG2_EINCOMPATIBLE, "meshes.M.morph: meshes 'T' (8 closed) and 'S'"},
+         RG2_EINCOMPATIBLE, "meshes.M.morph: meshes 'T' (8 control points, closed) and 'S'"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"M\": {\"morph\": [\"T\", \"T\"], \"t\": 1.5}}}",
          RG2_EDOMAIN, "meshes.M.t: t = 1.5"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"X\": {\"transform\": \"T\", \"rotate\": {\"axis\": [0, 0, 0], \"degrees\": 3}}}}",

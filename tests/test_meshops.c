@@ -557,7 +557,16 @@ static void errors(const rg2_mesh *M)
         "morph t = NaN");
     memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_morph(&M[TUBE], &M[RING], 0.5, &r, &err), RG2_EINCOMPATIBLE, &err, &r,
-        "meshes 'a' (9 open) and 'b' (15 closed) differ in u", "morph of unlike meshes");
+        "meshes 'a' (9 control points, open) and 'b' (15 control points, closed) differ in u; a morph needs meshes "
+        "of equal structure", "morph of unlike meshes");
+    CHECK(!strstr(err.msg, "transposed"), "morph of unlike meshes: a transpose suggested: %s", err.msg);
+    /* a mesh and its transpose (the ball's band, 8 closed x 6 open, and 6 open x 8 closed) */
+    CHECK(M[BALL].su.n == M[BAND].sv.n && M[BALL].sv.n == M[BAND].su.n && M[BALL].su.n != M[BALL].sv.n,
+          "ball and band: %d x %d and %d x %d", M[BALL].su.n, M[BALL].sv.n, M[BAND].su.n, M[BAND].sv.n);
+    memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
+    bad(rg2_mesh_morph(&M[BALL], &M[BAND], 0.5, &r, &err), RG2_EINCOMPATIBLE, &err, &r,
+        "differ in u; a morph needs meshes of equal structure ('b' transposed would match)",
+        "morph of a mesh and its transpose");
     memset(&r, 0xab, sizeof r); /* (bad() requires it emptied) */
     bad(rg2_mesh_morph(&M[TUBE], NULL, 0.5, &r, &err), RG2_EINVAL, &err, &r, "rg2_mesh_morph: b is NULL",
         "morph with NULL");
