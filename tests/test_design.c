@@ -207,11 +207,12 @@ static int changed_patches(const rg2_surface *a, const rg2_surface *b, const int
 }
 
 /* Support of control point / junction i in a direction of n points: the segments k whose
- * stencil uses it (closed: k = i-2..i+1 mod n; open: k = i-3..i). */
-static void support(int *in, int nseg, int n, int closed, int i)
+ * stencil uses it (closed: k = i-2..i+1 mod n; open: k = i-3..i); of leg i (leg = 1), one
+ * segment more (closed: i-2..i+2; open: i-3..i+1, leg -1 the data-only first leg). */
+static void support(int *in, int nseg, int n, int closed, int i, int leg)
 {
     memset(in, 0, sizeof(int) * (size_t)nseg);
-    for (int d = 0; d < 4; d++) {
+    for (int d = 0; d < 4 + leg; d++) {
         int k = closed ? ((i - 2 + d) % n + n) % n : i - 3 + d;
         if (k >= 0 && k < nseg)
             in[k] = 1;
@@ -220,19 +221,25 @@ static void support(int *in, int nseg, int n, int closed, int i)
 
 static void edits_are_local(void)
 {
+    enum { ALL = -99 }; /* a scalar edit: every segment of the other direction */
     /* closed x open torus piece: u closed (10 points), v open (8 arcs -> 11 points) */
     const char *base = "{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": 3, \"r\": 1}},"
                        " \"meshes\": {\"m\": {\"shape\": \"t\", \"u\": {\"arcs\": 10},"
                        " \"v\": {\"arcs\": 8, \"from\": 0, \"to\": 270}}%s}}";
     struct {
         const char *edit;
-        int i, j; /* point or (leg/junction, -1) / (-1, leg/junction) */
+        int i, j; /* point or (leg/junction, ALL) / (ALL, leg/junction) */
+        int leg;  /* a leg weight w (its support is one segment wider) */
     } cases[] = {
-        {", \"e\": {\"edit\": \"m\", \"points\": [{\"at\": [4, 5], \"move\": [0.1, -0.2, 0.3]}]}", 4, 5},
-        {", \"e\": {\"edit\": \"m\", \"points\": [{\"at\": [0, 0], \"to\": [2, 2, 2]}]}", 0, 0},
-        {", \"e\": {\"edit\": \"m\", \"points\": [{\"at\": [9, 10], \"W\": 0.7}]}", 9, 10},
-        {", \"e\": {\"edit\": \"m\", \"scalars\": [{\"dir\": \"u\", \"junction\": 3, \"b\": 1.3, \"g\": 0.2}]}", 3, -1},
-        {", \"e\": {\"edit\": \"m\", \"scalars\": [{\"dir\": \"v\", \"junction\": 6, \"g\": -0.1}]}", -1, 6},
+        {", \"e\": {\"edit\": \"m\", \"points\": [{\"at\": [4, 5], \"move\": [0.1, -0.2, 0.3]}]}", 4, 5, 0},
+        {", \"e\": {\"edit\": \"m\", \"points\": [{\"at\": [0, 0], \"to\": [2, 2, 2]}]}", 0, 0, 0},
+        {", \"e\": {\"edit\": \"m\", \"points\": [{\"at\": [9, 10], \"W\": 0.7}]}", 9, 10, 0},
+        {", \"e\": {\"edit\": \"m\", \"scalars\": [{\"dir\": \"u\", \"junction\": 3, \"b\": 1.3, \"g\": 0.2}]}", 3, ALL, 0},
+        {", \"e\": {\"edit\": \"m\", \"scalars\": [{\"dir\": \"v\", \"junction\": 6, \"g\": -0.1}]}", ALL, 6, 0},
+        {", \"e\": {\"edit\": \"m\", \"scalars\": [{\"dir\": \"u\", \"leg\": 0, \"w\": 0.8}]}", 0, ALL, 1},
+        {", \"e\": {\"edit\": \"m\", \"scalars\": [{\"dir\": \"v\", \"leg\": 5, \"w\": 0.8}]}", ALL, 5, 1},
+        {", \"e\": {\"edit\": \"m\", \"scalars\": [{\"dir\": \"v\", \"leg\": -1, \"w\": 0.8}]}", ALL, -1, 1},
+        {", \"e\": {\"edit\": \"m\", \"scalars\": [{\"dir\": \"v\", \"leg\": 10, \"w\": 0.8}]}", ALL, 10, 1},
     };
     rg2_error err;
     rg2_design *d0 = parse_edit(base, "", &err);
@@ -246,12 +253,12 @@ static void edits_are_local(void)
         if (!d1)
             continue;
         const rg2_surface *s1 = rg2_design_surface(d1, 0);
-        if (cases[c].i >= 0)
-            support(in_u, s0->nu, m0->nu, 1, cases[c].i);
+        if (cases[c].i != ALL)
+            support(in_u, s0->nu, m0->nu, 1, cases[c].i, cases[c].leg);
         else
             for (int k = 0; k < s0->nu; k++) in_u[k] = 1;
-        if (cases[c].j >= 0)
-            support(in_v, s0->nv, m0->nv, 0, cases[c].j);
+        if (cases[c].j != ALL)
+            support(in_v, s0->nv, m0->nv, 0, cases[c].j, cases[c].leg);
         else
             for (int k = 0; k < s0->nv; k++) in_v[k] = 1;
         int outside, ch = changed_patches(s0, s1, in_u, in_v, &outside);
@@ -260,7 +267,7 @@ static void edits_are_local(void)
             for (int l = 0; l < s0->nv; l++)
                 n_in += in_u[k] && in_v[l];
         printf("  edit %zu: %d patches changed (support %d), %d outside the support\n", c, ch, n_in, outside);
-        CHECK(outside == 0, "edit %zu changed %d patches outside the 4x4 support", c, outside);
+        CHECK(outside == 0, "edit %zu changed %d patches outside the support", c, outside);
         CHECK(ch > 0 && ch == n_in, "edit %zu changed %d patches, its support has %d", c, ch, n_in);
         /* changed patches are tagged transition, the others keep their tags */
         int tag_ok = 1;
