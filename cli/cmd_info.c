@@ -2,6 +2,7 @@
  * which shape and which are transitions. */
 #include "cli.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -36,9 +37,11 @@ static int cmp_int(const void *a, const void *b)
 static void usage(FILE *f)
 {
     fprintf(f, "usage: rg2 info [--map] design.json\n\n"
-               "Reads and builds a design file (docs/design-format.md) and prints its shapes, its output\n"
-               "meshes with their control point and patch counts, how many patches are exact pieces of\n"
-               "each shape and how many are transitions, and the smallest homogeneous patch weight.\n"
+               "Reads and builds a design file (docs/design-format.md) and prints its shapes (kind and\n"
+               "parameters before placement, and whether the placement scales, stretches or shears them\n"
+               "or is projective), its output meshes with their control point and patch counts, how\n"
+               "many patches are exact pieces of each shape and how many are transitions, and the\n"
+               "smallest homogeneous patch weight.\n"
                "For a tube (u closed, v open) it says what closes its two v ends: a cap, nothing (an\n"
                "open end), or nothing at a polar point, which leaves a hole around the pole.\n"
                "For a closed surface (u closed; v closed or capped at both ends) it says whether the\n"
@@ -48,8 +51,9 @@ static void usage(FILE *f)
                "Patches of a degree above bi-3 (general-quadratic polar caps) are counted per degree,\n"
                "e.g. \"-> 8 x 12 = 96 patches (96 of degree (5,3))\" (general-quadratic caps raise the\n"
                "whole surface).\n"
-               "  --map   also print a map of the patches (one line per u index; a letter per shape as\n"
-               "          listed, '.' for a transition patch)\n"
+               "  --map   also print a map of the patches (line 'u i' for patches (i, 0..); its j-th\n"
+               "          character, from 0, for patch (i, j): a letter per shape as listed, '.' for a\n"
+               "          transition patch)\n"
                "Exit codes: 0 ok, 1 the design is invalid or the report cannot be written (message on\n"
                "stderr), 2 usage error.\n");
 }
@@ -103,6 +107,32 @@ static void print_orientation(const rg2_design *d, int o, const rg2_surface *s, 
                "come out inside out; reverse the mesh along u or v\n", vol);
 }
 
+/* What a shape's placement does to the kind and parameters info prints: a similarity
+ * (rotation, reflection, translation) keeps them, a uniform scale s scales the lengths by s
+ * (", scaled by 2 by its placement"), a non-uniform scale or a shear changes the proportions (a
+ * "transform" of a sphere with "scale": [2, 1, 1] is an ellipsoid, and was listed as
+ * "ball@meshes.t sphere radius=1"); a projective matrix (a Mobius map) is only named. */
+static const char *placement_note(const double M[16], char *buf, size_t size)
+{
+    if (M[12] != 0.0 || M[13] != 0.0 || M[14] != 0.0 || M[15] != 1.0)
+        return ", placed by a projective matrix";
+    double g[3][3], s2 = 0.0, off = 0.0;
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) {
+            g[a][b] = M[a] * M[b] + M[4 + a] * M[4 + b] + M[8 + a] * M[8 + b]; /* L^T L */
+            s2 += a == b ? g[a][b] / 3.0 : 0.0;
+        }
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++)
+            off = fmax(off, fabs(g[a][b] - (a == b ? s2 : 0.0)));
+    if (off > 1e-12 * s2)
+        return ", stretched or sheared by its placement (not these proportions)";
+    if (fabs(s2 - 1.0) <= 1e-12)
+        return "";
+    snprintf(buf, size, ", scaled by %g by its placement", sqrt(s2));
+    return buf;
+}
+
 int rg2_cmd_info(int argc, char **argv)
 {
     const char *path = NULL;
@@ -137,7 +167,8 @@ int rg2_cmd_info(int argc, char **argv)
         printf("  %c %-16s %s", 'A' + k % 26, rg2_design_shape_label(d, k), desc->name);
         for (int p = 0; p < desc->n_params; p++)
             printf(" %s=%g", desc->param_names[p], s->param[p]);
-        printf("\n");
+        char note[64];
+        printf("%s\n", placement_note(s->xform, note, sizeof note));
     }
     /* counts per shape, reset after each surface through the list of the shapes it has (a
      * design of many one-shape surfaces went through every shape for every surface) */

@@ -102,6 +102,19 @@ expect 0 "" "$rg2" info "$tmp/north_hole.json"
 grep -q "ends: south (v start) capped; north (v end) a polar point, not capped: a hole around the pole" "$tmp/out" &&
   ok || bad "info north hole: $(cat "$tmp/out")"
 rm -f "$tmp/north_hole.json"
+# what a placement does to the listed kind: a sphere transformed by a non-uniform scale (an
+# ellipsoid), by a uniform scale of 2 with a turn and a shift, and by a reflection (none)
+for tr in '"scale": [2, 1, 1]|, stretched or sheared by its placement (not these proportions)' \
+          '"scale": 2, "rotate": {"axis": [1, 2, 3], "degrees": 33}, "translate": [1, 2, 3]|, scaled by 2 by its placement' \
+          '"scale": [1, 1, -1]|'; do
+  printf '{"shapes": {"b": {"kind": "sphere"}}, "meshes": {"s": {"shape": "b"}, "t": {"transform": "s", %s}}}' \
+    "${tr%%|*}" >"$tmp/placed.json"
+  expect 0 "" "$rg2" info "$tmp/placed.json"
+  want="b@meshes.t *sphere radius=1${tr#*|}\$"
+  grep -q "^  B $want" "$tmp/out" && grep -q "^  A b *sphere radius=1\$" "$tmp/out" && ok ||
+    bad "info of a placed sphere (${tr%%|*}): $(cat "$tmp/out")"
+done
+rm -f "$tmp/placed.json"
 expect 0 "" "$rg2" mesh "$src/examples/fig1_torus.json" -o "$tmp/mesh.json"
 grep -q '"rg2 control mesh 1"' "$tmp/mesh.json" && grep -q '"patch_shape"' "$tmp/mesh.json" && ok || bad "mesh.json content"
 
