@@ -1086,24 +1086,28 @@ static rg2_status op_edit(pctx *c, const cJSON *obj, const char *path, rg2__dmes
     rg2_status st = op_begin(c, obj, path, keys, 3, &src);
     if (st)
         return st;
-    if (!get(obj, "points") && !get(obj, "scalars"))
+    const cJSON *pts = get(obj, "points"), *scs = get(obj, "scalars");
+    if (!pts && !scs)
         return fail(c, RG2_EPARSE, path, "an edit needs 'points' or 'scalars'");
+    /* [] edits nothing: as good as no key (a list left empty while writing the file) */
+    if ((!pts || (cJSON_IsArray(pts) && !pts->child)) && (!scs || (cJSON_IsArray(scs) && !scs->child)))
+        return fail(c, RG2_EPARSE, path, "an edit needs 'points' or 'scalars'; %s empty (it would copy the mesh "
+                    "unchanged)", pts && scs ? "both lists are" : pts ? "'points' is" : "'scalars' is");
     if ((st = rg2__dmesh_copy(&c->d->mesh[src], out, c->err)))
         return st;
     out->name = c->d->mesh[src].name; /* borrowed for messages; replaced by the caller */
-    const cJSON *x;
-    if ((x = get(obj, "points"))) {
+    if (pts) {
         subpath(p, sizeof p, path, "points");
-        st = edit_points(c, x, p, out);
+        st = edit_points(c, pts, p, out);
     }
-    if (!st && (x = get(obj, "scalars"))) {
+    if (!st && scs) {
         subpath(p, sizeof p, path, "scalars");
-        st = edit_scalars(c, x, p, out);
+        st = edit_scalars(c, scs, p, out);
     }
     for (int k = 0; k < 2 && !st; k++) { /* K > 0 after all the edits: name the last edit of the junction */
         const rg2_scalars *sc = k ? &out->m.sv : &out->m.su;
         int i = rg2__bad_junction(sc), blame = -1, e = 0;
-        for (const cJSON *it = cJSON_GetArrayItem(get(obj, "scalars"), 0); i >= 0 && it; it = it->next, e++) {
+        for (const cJSON *it = cJSON_GetArrayItem(scs, 0); i >= 0 && it; it = it->next, e++) {
             const cJSON *leg = get(it, "leg"), *jun = get(it, "junction");
             int id = (int)(leg ? leg : jun)->valuedouble; /* (checked above) */
             int l0 = sc->closed ? rg2__wrap(i - 1, sc->n, 1) : i - 1; /* junction i joins legs i - 1, i */
