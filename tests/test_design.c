@@ -514,6 +514,60 @@ static int same_surface(const rg2_surface *a, const rg2_surface *b)
            !memcmp(a->tag, b->tag, sizeof(int) * (size_t)a->nu * (size_t)a->nv);
 }
 
+/* Edits that give a point its own values: "to" its own design point d = p / W (printed with 17
+ * digits, which read back exactly) and "W" its own weight, on every point of a sphere band whose
+ * weights are not all 1. W * (p / W) is not always p, so an edit that recomputed p moved points
+ * by an ulp and took their patches off the sphere; the surface must come out bit for bit with
+ * every tag. */
+static void edits_to_own_values(void)
+{
+    const char *base = "{\"shapes\": {\"s\": {\"kind\": \"sphere\", \"radius\": 1.3}},"
+                       " \"meshes\": {\"S\": {\"shape\": \"s\", \"u\": {\"arcs\": 8},"
+                       " \"v\": {\"knots\": [0.2, 0.35, 0.5, 0.65, 0.8]}}";
+    rg2_error err;
+    char *json = malloc(65536);
+    int n = json ? snprintf(json, 65536, "%s}}", base) : 0;
+    rg2_design *d0 = json ? parse(json, &err) : NULL;
+    if (!d0) {
+        free(json);
+        return;
+    }
+    const rg2_mesh *m = rg2_design_mesh(d0, 0);
+    int not_back = 0;
+    for (int kind = 0; kind < 2; kind++) {
+        n = snprintf(json, 65536, "%s, \"E\": {\"edit\": \"S\", \"points\": [", base);
+        for (int i = 0; i < m->nu; i++)
+            for (int j = 0; j < m->nv; j++) {
+                const double *p = rg2_mesh_at(m, i, j);
+                double x[3] = {p[0] / p[3], p[1] / p[3], p[2] / p[3]};
+                for (int k = 0; kind == 0 && k < 3; k++)
+                    not_back += p[3] * x[k] != p[k];
+                if (kind == 0)
+                    n += snprintf(json + n, 65536 - (size_t)n, "%s{\"at\": [%d, %d], \"to\": [%.17g, %.17g, %.17g]}",
+                                  i + j ? ", " : "", i, j, x[0], x[1], x[2]);
+                else
+                    n += snprintf(json + n, 65536 - (size_t)n, "%s{\"at\": [%d, %d], \"W\": %.17g}", i + j ? ", " : "",
+                                  i, j, p[3]);
+            }
+        snprintf(json + n, 65536 - (size_t)n, "]}}, \"output\": \"E\"}");
+        rg2_design *d1 = parse(json, &err);
+        if (!d1)
+            continue;
+        const rg2_surface *s0 = rg2_design_surface(d0, 0), *s1 = rg2_design_surface(d1, 0);
+        int exact = 0;
+        for (int k = 0; k < s0->nu * s0->nv; k++)
+            exact += s0->tag[k] >= 0;
+        CHECK(same_surface(s0, s1) && exact == s0->nu * s0->nv,
+              "every point %s its own %s: the surface changed (%d of %d patches exact before)",
+              kind ? "given" : "moved to", kind ? "W" : "d", exact, s0->nu * s0->nv);
+        rg2_design_free(d1);
+    }
+    printf("  edits to own values: %d coordinates where W * (p / W) != p\n", not_back);
+    CHECK(not_back > 0, "no coordinate where W * (p / W) != p: the test does not test");
+    rg2_design_free(d0);
+    free(json);
+}
+
 static void morph_ends(void)
 {
     const char *json =
@@ -1730,6 +1784,7 @@ int main(void)
     examples();
     printf("edit locality:\n");
     edits_are_local();
+    edits_to_own_values();
     edits_measured();
     merge_keeps_scalar_provenance();
     printf("operations that keep exactness:\n");
