@@ -1005,8 +1005,13 @@ static rg2_status edit_points(pctx *c, const cJSON *arr, const char *path, rg2__
             return fail(c, RG2_EPARSE, q, "expected [i, j] or a list of [i, j], found %s",
                         cJSON_IsArray(at) ? "an empty array" : type_name(at));
         int multi = cJSON_IsArray(at->child);
+        /* a point listed twice in one list (a move would apply twice): the entry that first
+         * named each point, + 1 */
+        int *first = multi ? calloc((size_t)m->m.nu * (size_t)m->m.nv, sizeof *first) : NULL;
+        if (multi && !first)
+            return rg2__fail(c->err, RG2_ENOMEM, "%s: out of memory", q);
         int idx = 0;
-        for (const cJSON *it = multi ? at->child : at; it; it = multi ? it->next : NULL, idx++) {
+        for (const cJSON *it = multi ? at->child : at; !st && it; it = multi ? it->next : NULL, idx++) {
             char r[340];
             if (multi)
                 indexpath(r, sizeof r, q, idx);
@@ -1014,17 +1019,27 @@ static rg2_status edit_points(pctx *c, const cJSON *arr, const char *path, rg2__
                 fmtpath(r, sizeof r, "%s", q);
             double ij[2];
             if ((st = as_nums(c, it, r, ij, 2, 2, NULL)))
-                return st;
-            if (ij[0] != floor(ij[0]) || ij[1] != floor(ij[1]) || fabs(ij[0]) > 1e9 || fabs(ij[1]) > 1e9)
-                return fail(c, RG2_EPARSE, r, "expected integer indices [i, j], found [%s, %s]",
-                            rg2__num(ij[0]).s, rg2__num(ij[1]).s);
+                break;
+            if (ij[0] != floor(ij[0]) || ij[1] != floor(ij[1]) || fabs(ij[0]) > 1e9 || fabs(ij[1]) > 1e9) {
+                st = fail(c, RG2_EPARSE, r, "expected integer indices [i, j], found [%s, %s]",
+                          rg2__num(ij[0]).s, rg2__num(ij[1]).s);
+                break;
+            }
             int i = (int)ij[0], j = (int)ij[1];
             if (mv || to)
-                if ((st = rg2__edit_point(m, i, j, mv ? RG2__EDIT_MOVE : RG2__EDIT_TO, v, r, c->err)))
-                    return st;
-            if (W && (st = rg2__edit_point(m, i, j, RG2__EDIT_WEIGHT, &w, r, c->err)))
-                return st;
+                st = rg2__edit_point(m, i, j, mv ? RG2__EDIT_MOVE : RG2__EDIT_TO, v, r, c->err);
+            if (!st && W)
+                st = rg2__edit_point(m, i, j, RG2__EDIT_WEIGHT, &w, r, c->err);
+            int *f = first && !st ? &first[(size_t)i * (size_t)m->m.nv + (size_t)j] : NULL; /* (in range) */
+            if (f && *f)
+                st = fail(c, RG2_EPARSE, r, "control point [%d, %d] is listed twice (at[%d] and at[%d])%s", i, j,
+                          *f - 1, idx, mv ? ": the move would apply twice" : "");
+            else if (f)
+                *f = idx + 1;
         }
+        free(first);
+        if (st)
+            return st;
     }
     return RG2_OK;
 }
