@@ -885,7 +885,7 @@ static rg2_status op_reverse(pctx *c, const cJSON *obj, const char *path, rg2__d
 static rg2_status op_roll(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out)
 {
     static const char *const keys[] = {"roll", "dir", "by"};
-    int src, dir, by;
+    int src, dir, by = 0; /* (set by as_int; GCC -O2 cannot see it) */
     rg2_status st = op_begin_dir(c, obj, path, keys, 3, &src, &dir);
     if (st)
         return st;
