@@ -36,7 +36,7 @@ static int cmp_int(const void *a, const void *b)
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: rg2 info [--map] design.json\n\n"
+    fprintf(f, "usage: rg2 info [--map] [--near X,Y,Z] design.json\n\n"
                "Reads and builds a design file (docs/design-format.md) and prints its shapes (kind and\n"
                "parameters before placement, and whether the placement scales, stretches or shears them\n"
                "or is projective), its output meshes with their control point and patch counts, how\n"
@@ -54,6 +54,10 @@ static void usage(FILE *f)
                "  --map   also print a map of the patches (line 'u i' for patches (i, 0..); its j-th\n"
                "          character, from 0, for patch (i, j): a letter per shape as listed, '.' for a\n"
                "          transition patch)\n"
+               "  --near X,Y,Z  also name the control point nearest to (X, Y, Z) (its design point d,\n"
+               "          over the output meshes): the mesh, its indices [i, j] from 0, d, W and the\n"
+               "          distance, the edit that moves it, and the patches that edit changes (e.g.\n"
+               "          the point rg2 check gives for a gap or the largest |k|)\n"
                "Exit codes: 0 ok, 1 the design is invalid or the report cannot be written (message on\n"
                "stderr), 2 usage error.\n");
 }
@@ -107,6 +111,99 @@ static void print_orientation(const rg2_design *d, int o, const rg2_surface *s, 
                "come out inside out; reverse the mesh along u or v\n", vol);
 }
 
+/* The patches of a direction of n control points (closed or open) that point i touches, shifted
+ * by off: a closed direction's segment s reads points s - 1..s + 2, an open one's s..s + 3
+ * (docs/design-format.md, "edit"), as "6, 7, 0, 1" or "5..8"; returns their count, and in *ends
+ * whether they include the first (1) and the last (2) segment of an open direction. */
+static int touched(int i, int n, int closed, int off, char *buf, size_t size, int *ends)
+{
+    int count = 0;
+    size_t len = 0;
+    buf[0] = 0;
+    *ends = 0;
+    if (closed) {
+        for (int s = i - 2; s <= i + 1; s++) {
+            int k = ((s % n) + n) % n, dup = 0;
+            for (int t = i - 2; t < s; t++)
+                dup |= ((t % n) + n) % n == k;
+            if (dup)
+                continue;
+            len += (size_t)snprintf(buf + len, len < size ? size - len : 0, "%s%d", count ? ", " : "", k + off);
+            count++;
+        }
+        return count;
+    }
+    int lo = i - 3 < 0 ? 0 : i - 3, hi = i > n - 4 ? n - 4 : i;
+    *ends = (lo == 0) | (hi == n - 4) << 1;
+    snprintf(buf, size, lo == hi ? "%d" : "%d..%d", lo + off, hi + off);
+    return hi - lo + 1;
+}
+
+/* --near: the control point of the output meshes whose design point d = p / W lies nearest to
+ * x (positive weights only; the first in the order surface, i, j), the edit that moves it and
+ * the patches that changes: a point edit changes exactly its 4 x 4 support, and a cap, fitted to
+ * the 2-jet of the body's end row of patches, changes whole when the support reaches that row. */
+static void print_nearest(const rg2_design *d, const double x[3])
+{
+    int bo = -1, bi = 0, bj = 0;
+    double best = INFINITY;
+    for (int o = 0; o < rg2_design_num_surfaces(d); o++) {
+        const rg2_mesh *m = rg2_design_mesh(d, o);
+        for (int i = 0; i < m->nu; i++)
+            for (int j = 0; j < m->nv; j++) {
+                const double *p = rg2_mesh_at(m, i, j);
+                double e = 0.0;
+                for (int k = 0; k < 3 && p[3] > 0.0; k++)
+                    e += (p[k] / p[3] - x[k]) * (p[k] / p[3] - x[k]);
+                if (p[3] > 0.0 && e < best) {
+                    best = e;
+                    bo = o, bi = i, bj = j;
+                }
+            }
+    }
+    printf("nearest control point to (%.10g, %.10g, %.10g):", x[0], x[1], x[2]);
+    if (bo < 0) {
+        printf(" none (no control point of positive weight)\n");
+        return;
+    }
+    const rg2_mesh *m = rg2_design_mesh(d, bo);
+    const char *name = rg2_design_mesh_name(d, bo);
+    const double *p = rg2_mesh_at(m, bi, bj);
+    printf(" surface %d, mesh '%s' [%d, %d], d = (%.10g, %.10g, %.10g), W = %.10g, %.4g away\n", bo, name, bi, bj,
+           p[0] / p[3], p[1] / p[3], p[2] / p[3], p[3], sqrt(best));
+    if (!m->sv.closed && (bj == 0 || bj == m->nv - 1) && rg2_mesh_row_collapsed(m, bj)) {
+        printf("  it is the %s polar point (the whole collapsed row v %d): edit it with {\"edit\": \"%s\", "
+               "\"points\": [{\"pole\": \"%s\", \"move\": [dx, dy, dz]}]} (docs/poles.md)\n",
+               bj ? "north" : "south", bj, name, bj ? "north" : "south");
+        return;
+    }
+    rg2_cap_opts co;
+    unsigned caps = rg2_design_cap(d, bo, &co) ? (unsigned)co.ends : 0u;
+    printf("  edit it with {\"edit\": \"%s\", \"points\": [{\"at\": [%d, %d], \"move\": [dx, dy, dz]}]}", name, bi,
+           bj);
+    if (caps) /* an operation takes a capped mesh uncapped (design-format.md, "cap") */
+        printf(", then cap that edit as '%s' is capped ({\"cap\": <the edit>, \"ends\": \"%s\"}, the same options)", name,
+               caps == (RG2_CAP_SOUTH | RG2_CAP_NORTH) ? "both" : caps == RG2_CAP_SOUTH ? "south" : "north");
+    printf("\n");
+    int south = (caps & RG2_CAP_SOUTH) ? 3 : 0, ends;
+    char bu[64], bv[64], cap[80] = "";
+    int cu = touched(bi, m->nu, m->su.closed, 0, bu, sizeof bu, &ends);
+    int cv = touched(bj, m->nv, m->sv.closed, south, bv, sizeof bv, &ends);
+    int n = cu * cv;
+    if ((caps & RG2_CAP_SOUTH) && (ends & 1)) {
+        snprintf(cap, sizeof cap, ", and the south cap's (j in 0..2, every i)");
+        n += 3 * m->nu;
+    }
+    if ((caps & RG2_CAP_NORTH) && (ends & 2)) {
+        int j0 = south + m->nv - 3;
+        size_t len = strlen(cap);
+        snprintf(cap + len, sizeof cap - len, "%s the north cap's (j in %d..%d, every i)", cap[0] ? " and" : ", and",
+                 j0, j0 + 2);
+        n += 3 * m->nu;
+    }
+    printf("  that edit changes %d patches: (i, j) with i in %s, j in %s%s\n", n, bu, bv, cap);
+}
+
 /* What a shape's placement does to the kind and parameters info prints: a similarity
  * (rotation, reflection, translation) keeps them, a uniform scale s scales the lengths by s
  * (", scaled by 2 by its placement"), a non-uniform scale or a shear changes the proportions (a
@@ -136,13 +233,24 @@ static const char *placement_note(const double M[16], char *buf, size_t size)
 int rg2_cmd_info(int argc, char **argv)
 {
     const char *path = NULL;
-    int map = 0;
+    int map = 0, near = 0;
+    double x[3];
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             usage(stdout);
             return RG2_EXIT_OK;
         } else if (!strcmp(argv[i], "--map"))
             map = 1;
+        else if (!strcmp(argv[i], "--near")) {
+            if (i + 1 >= argc) {
+                fprintf(stderr, "rg2 info: --near needs three numbers X,Y,Z\n");
+                return RG2_EXIT_USAGE;
+            }
+            if (rg2_cli_parse_n("info", "--near", argv[++i], x, 3, "three numbers X,Y,Z") ||
+                rg2_cli_check_numbers("info", "--near", x, 3))
+                return RG2_EXIT_USAGE;
+            near = 1;
+        }
         else if (argv[i][0] == '-' && argv[i][1]) {
             return rg2_cli_unknown_option("info", argv[i], usage, NULL);
         } else if (path) {
@@ -216,6 +324,8 @@ int rg2_cmd_info(int argc, char **argv)
                 putchar('\n');
             }
     }
+    if (near)
+        print_nearest(d, x);
     for (int k = 0; k < rg2_design_num_notes(d); k++)
         printf("note: %s\n", rg2_design_note(d, k));
     free(count);

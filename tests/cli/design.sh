@@ -207,5 +207,76 @@ EOF
 [ "$(grep -c '  closed: the normal points out (enclosed volume about' "$tmp/out")" = 1 ] && ok || bad "info inward.json: $(cat "$tmp/out")"
 grep -q '  closed: the normal points IN (enclosed volume about -.*reverse the mesh along u or v' "$tmp/out" && ok ||
   bad "info inward.json: no inward normal: $(cat "$tmp/out")"
+# info --near: the nearest control point, found again here from rg2 mesh's d and W; the edit it
+# prints, applied (a move), changes exactly the patches it names (the build dumps compared patch by
+# patch): an uncapped torus + sphere, and the capped elbow near its south end (the cap refits) and
+# in its middle; a polar point is named as the pole to edit
+near_case() { # design X,Y,Z
+  local design=$1 at=$2
+  "$rg2" mesh "$design" -o "$tmp/near_mesh.json" >/dev/null 2>&1 &&
+    "$rg2" info --near "$at" "$design" >"$tmp/near_info" 2>&1 &&
+    "$rg2" build -q "$design" -o "$tmp/near_a.json" >/dev/null 2>&1 || { bad "info --near $at $design: $(cat "$tmp/near_info")"; return; }
+  python3 - "$design" "$at" "$tmp" "$rg2" <<'PY' && ok || bad "info --near $at $design: $(cat "$tmp/near_info")"
+import json, math, re, subprocess, sys
+design, at, tmp, rg2 = sys.argv[1:5]
+x = [float(t) for t in at.split(',')]
+mesh = json.load(open(tmp + '/near_mesh.json'))
+best = None
+for o, m in enumerate(mesh['meshes']):
+    for i in range(m['nu']):
+        for j in range(m['nv']):
+            d, w = m['d'][i][j], m['W'][i][j]
+            e = sum((d[k] - x[k]) ** 2 for k in range(3))
+            if w > 0 and (best is None or e < best[0]):
+                best = (e, o, m['name'], i, j)
+info = open(tmp + '/near_info').read()
+g = re.search(r"nearest control point to \(.*\): surface (\d+), mesh '([^']*)' \[(\d+), (\d+)\], .*, ([0-9.e+-]+) away", info)
+assert g, info
+o, name, i, j, dist = int(g[1]), g[2], int(g[3]), int(g[4]), float(g[5])
+assert (o, name, i, j) == best[1:], (o, name, i, j, best)
+assert abs(dist - math.sqrt(best[0])) <= 1e-3 * max(dist, 1e-300), (dist, best)
+pole = re.search(r'it is the (south|north) polar point', info)
+if pole:
+    assert j in (0, mesh['meshes'][o]['nv'] - 1)
+    sys.exit(0)
+ch = re.search(r'changes (\d+) patches: \(i, j\) with i in (\d+\.\.\d+|[0-9, ]+), j in (\d+\.\.\d+|[0-9, ]+)(.*)', info)
+assert ch, info
+def ids(t):
+    t = t.strip()
+    if '..' in t:
+        a, b = t.split('..')
+        return set(range(int(a), int(b) + 1))
+    return {int(v) for v in t.split(',')}
+want = {(a, b) for a in ids(ch[2]) for b in ids(ch[3])}
+
+src = json.load(open(design))
+src['meshes']['near_e'] = {'edit': name, 'points': [{'at': [i, j], 'move': [0.05, 0.02, -0.03]}]}
+ends = re.search(r'"ends": "(\w+)"', info)
+if ends:
+    src['meshes']['near_c'] = {'cap': 'near_e', 'ends': ends[1]}
+src['output'] = 'near_c' if ends else 'near_e'
+json.dump(src, open(tmp + '/near_ed.json', 'w'))
+subprocess.run([rg2, 'build', '-q', tmp + '/near_ed.json', '-o', tmp + '/near_b.json'], check=True)
+A = json.load(open(tmp + '/near_a.json'))['surfaces'][o]
+B = json.load(open(tmp + '/near_b.json'))['surfaces'][0]
+assert (A['nu'], A['nv']) == (B['nu'], B['nv'])
+got = {(k // A['nv'], k % A['nv']) for k in range(A['nu'] * A['nv']) if A['patches'][k] != B['patches'][k]}
+for c in re.finditer(r"the (south|north) cap's \(j in (\d+)\.\.(\d+), every i\)", ch[4]):
+    want |= {(a, b) for a in range(A['nu']) for b in range(int(c[2]), int(c[3]) + 1)}
+assert len(want) == int(ch[1]), (ch[1], len(want))
+assert got == want, (sorted(got - want), sorted(want - got))
+PY
+}
+near_case "$src/examples/torus_sphere.json" 0.2,-2.2,0
+near_case "$src/examples/pipe_elbow.json" 0.5,0,-3
+near_case "$src/examples/pipe_elbow.json" 3.5,-2.6,0
+grep -qF "that edit changes 32 patches: (i, j) with i in 5, 6, 7, 0, j in 3..4, and the south cap's (j in 0..2, every i)" "$tmp/near_info" && ok || bad "info --near by the south cap: $(tail -1 "$tmp/near_info")"
+near_case "$src/examples/pipe_elbow.json" 3.3,-0.4,-0.2
+near_case "$src/examples/pipe_elbow.json" 3,3,0
+near_case "$src/examples/fig9_polar_sphere.json" 0,0,5
+grep -q "it is the north polar point (the whole collapsed row v 7)" "$tmp/near_info" && ok || bad "info --near at a pole: $(cat "$tmp/near_info")"
+expect 2 "rg2 info: --near needs three numbers X,Y,Z" "$rg2" info --near 1,2 "$src/examples/torus_sphere.json"
+expect 2 "rg2 info: --near needs three numbers X,Y,Z" "$rg2" info "$src/examples/torus_sphere.json" --near
+expect 2 "--near" "$rg2" info --near 1,nan,2 "$src/examples/torus_sphere.json"
 echo "cli design: $passes passed, $fails failed"
 [ "$fails" = 0 ]
