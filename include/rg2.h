@@ -357,6 +357,15 @@ RG2_API rg2_status rg2_mesh_merge(const rg2_mesh *const *in, int n, int dir, int
  *  where a blended junction's K is not > 0 / not a finite number. */
 RG2_API rg2_status rg2_mesh_morph(const rg2_mesh *a, const rg2_mesh *b, double t, rg2_mesh *out,
                                   rg2_error *err);
+/** The unit normal of the control net at point (i, j), the direction of the design file's
+ *  "normal" edit: (d(i+1, j) - d(i-1, j)) x (d(i, j+1) - d(i, j-1)) of the design points
+ *  d = p / W, normalized; a closed direction wraps, an open one takes the one-sided difference
+ *  at its ends. It points as the surface's normal Su x Sv does where the net follows the surface
+ *  (on a cylinder's net, radially out, as its Su x Sv). @return RG2_EINVAL (NULL, or i, j outside
+ *  the mesh, naming the ranges), RG2_EWEIGHT (a point used with weight <= 0, named), RG2_EDOMAIN
+ *  where the net has no normal: the two differences are zero, parallel, or within 1e-12 of it
+ *  relative to their lengths (a polar point's collapsed row; coinciding points). */
+RG2_API rg2_status rg2_mesh_net_normal(const rg2_mesh *m, int i, int j, double n[3], rg2_error *err);
 
 /* ===================================================================================== */
 /** @name Patches and surfaces (MATH.md section 4) */

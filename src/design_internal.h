@@ -158,6 +158,8 @@ rg2_status rg2__edit_point(rg2__dmesh *m, int i, int j, rg2__edit_kind kind, con
                            const char *what, rg2_error *err);
 rg2_status rg2__edit_pole(rg2__dmesh *m, int end, rg2__edit_kind kind, const double *v, const char *what,
                           rg2_error *err);
+/* rg2_mesh_net_normal with its messages prefixed by what (meshops.c). */
+rg2_status rg2__net_normal(const rg2_mesh *m, int i, int j, double n[3], const char *what, rg2_error *err);
 /* Scalars: which = 'w' (leg index i), 'b' or 'g' (junction index i). */
 rg2_status rg2__edit_scalar(rg2__dmesh *m, int dir, char which, int i, double value,
                             const char *what, rg2_error *err);

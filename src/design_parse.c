@@ -960,22 +960,31 @@ static rg2_status edit_points(pctx *c, const cJSON *arr, const char *path, rg2__
     for (const cJSON *e = arr->child; e; e = e->next, k++) {
         char p[300], q[320];
         indexpath(p, sizeof p, path, k);
-        static const char *const keys[] = {"at", "move", "to", "W", "pole"};
-        if ((st = as_obj(c, e, p)) || (st = check_keys(c, e, p, keys, 5)))
+        static const char *const keys[] = {"at", "move", "to", "normal", "W", "pole"};
+        if ((st = as_obj(c, e, p)) || (st = check_keys(c, e, p, keys, 6)))
             return st;
         const cJSON *at = NULL, *mv = get(e, "move"), *to = get(e, "to"), *W = get(e, "W"), *pole = get(e, "pole");
+        const cJSON *nrm = get(e, "normal");
         if (pole && get(e, "at"))
             return fail(c, RG2_EPARSE, p, "give 'at' (points) or 'pole' (a polar point), not both");
         if (!pole && (st = need(c, e, "at", p, &at)))
             return st;
-        if (mv && to)
-            return fail(c, RG2_EPARSE, p, "give 'move' (offset) or 'to' (position), not both");
-        if (!mv && !to && !W)
-            return fail(c, RG2_EPARSE, p, "a point edit needs 'move', 'to' or 'W'");
-        double v[3], w = 0;
+        if (!!mv + !!to + !!nrm > 1)
+            return fail(c, RG2_EPARSE, p, "give one of 'move' (offset), 'to' (position) and 'normal' (offset along "
+                                          "the net's normal)");
+        if (!mv && !to && !nrm && !W)
+            return fail(c, RG2_EPARSE, p, "a point edit needs 'move', 'to', 'normal' or 'W'");
+        if (nrm && pole)
+            return fail(c, RG2_EPARSE, p, "a polar point has no net normal: move it with 'move' or 'to'");
+        double v[3], w = 0, dist = 0;
         if (mv || to) {
             subpath(q, sizeof q, p, mv ? "move" : "to");
             if ((st = as_nums(c, mv ? mv : to, q, v, 3, 3, NULL)))
+                return st;
+        }
+        if (nrm) {
+            subpath(q, sizeof q, p, "normal");
+            if ((st = as_num(c, nrm, q, &dist)))
                 return st;
         }
         if (W) {
@@ -1007,9 +1016,17 @@ static rg2_status edit_points(pctx *c, const cJSON *arr, const char *path, rg2__
         int multi = cJSON_IsArray(at->child);
         /* a point listed twice in one list (a move would apply twice): the entry that first
          * named each point, + 1 */
-        int *first = multi ? calloc((size_t)m->m.nu * (size_t)m->m.nv, sizeof *first) : NULL;
-        if (multi && !first)
+        int *first = multi ? rg2__calloc((size_t)m->m.nu * (size_t)m->m.nv, sizeof *first) : NULL;
+        /* 'normal': every listed point's normal from the net as it was before this entry */
+        rg2_mesh net = m->m;
+        net.p = nrm ? rg2__calloc((size_t)m->m.nu * (size_t)m->m.nv * 4, sizeof *net.p) : NULL;
+        if ((multi && !first) || (nrm && !net.p)) {
+            free(first);
+            free(net.p);
             return rg2__fail(c->err, RG2_ENOMEM, "%s: out of memory", q);
+        }
+        if (nrm)
+            memcpy(net.p, m->m.p, (size_t)m->m.nu * (size_t)m->m.nv * 4 * sizeof *net.p);
         int idx = 0;
         for (const cJSON *it = multi ? at->child : at; !st && it; it = multi ? it->next : NULL, idx++) {
             char r[340];
@@ -1026,18 +1043,22 @@ static rg2_status edit_points(pctx *c, const cJSON *arr, const char *path, rg2__
                 break;
             }
             int i = (int)ij[0], j = (int)ij[1];
-            if (mv || to)
-                st = rg2__edit_point(m, i, j, mv ? RG2__EDIT_MOVE : RG2__EDIT_TO, v, r, c->err);
+            if (nrm && !(st = rg2__net_normal(&net, i, j, v, r, c->err)))
+                for (int k2 = 0; k2 < 3; k2++)
+                    v[k2] *= dist;
+            if (!st && (mv || to || nrm))
+                st = rg2__edit_point(m, i, j, to ? RG2__EDIT_TO : RG2__EDIT_MOVE, v, r, c->err);
             if (!st && W)
                 st = rg2__edit_point(m, i, j, RG2__EDIT_WEIGHT, &w, r, c->err);
             int *f = first && !st ? &first[(size_t)i * (size_t)m->m.nv + (size_t)j] : NULL; /* (in range) */
             if (f && *f)
                 st = fail(c, RG2_EPARSE, r, "control point [%d, %d] is listed twice (at[%d] and at[%d])%s", i, j,
-                          *f - 1, idx, mv ? ": the move would apply twice" : "");
+                          *f - 1, idx, mv || nrm ? ": the move would apply twice" : "");
             else if (f)
                 *f = idx + 1;
         }
         free(first);
+        free(net.p);
         if (st)
             return st;
     }

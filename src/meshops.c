@@ -222,3 +222,54 @@ rg2_status rg2_mesh_morph(const rg2_mesh *a, const rg2_mesh *b, double t, rg2_me
     view_free(&vb);
     return st;
 }
+
+/* The net normal of rg2_mesh_net_normal, its messages prefixed with what. */
+rg2_status rg2__net_normal(const rg2_mesh *m, int i, int j, double n[3], const char *what, rg2_error *err)
+{
+    if (i < 0 || i >= m->nu || j < 0 || j >= m->nv)
+        return rg2__fail(err, RG2_EINVAL,
+                         "%s: control point [%d, %d] is outside the %d x %d points "
+                         "(indices count from 0: [0..%d, 0..%d])", what, i, j, m->nu, m->nv, m->nu - 1, m->nv - 1);
+    double t[2][3];
+    for (int dir = 0; dir < 2; dir++) {
+        int c = dir ? j : i, N = dir ? m->nv : m->nu, closed = dir ? m->sv.closed : m->su.closed;
+        int lo = c - 1, hi = c + 1;
+        if (closed) {
+            lo = (lo + N) % N;
+            hi = hi % N;
+        } else {
+            lo = lo < 0 ? c : lo;
+            hi = hi >= N ? c : hi;
+        }
+        const double *a = dir ? rg2_mesh_at(m, i, lo) : rg2_mesh_at(m, lo, j);
+        const double *b = dir ? rg2_mesh_at(m, i, hi) : rg2_mesh_at(m, hi, j);
+        if (!(a[3] > 0.0) || !(b[3] > 0.0)) {
+            int bad = !(a[3] > 0.0) ? lo : hi;
+            return rg2__fail(err, RG2_EWEIGHT,
+                             "%s: control point [%d, %d] has weight W = %g; design "
+                             "points need W > 0", what, dir ? i : bad, dir ? bad : j, !(a[3] > 0.0) ? a[3] : b[3]);
+        }
+        for (int k = 0; k < 3; k++)
+            t[dir][k] = b[k] / b[3] - a[k] / a[3];
+    }
+    double c[3] = {t[0][1] * t[1][2] - t[0][2] * t[1][1], t[0][2] * t[1][0] - t[0][0] * t[1][2],
+                   t[0][0] * t[1][1] - t[0][1] * t[1][0]};
+    double len = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    double lu = sqrt(t[0][0] * t[0][0] + t[0][1] * t[0][1] + t[0][2] * t[0][2]);
+    double lv = sqrt(t[1][0] * t[1][0] + t[1][1] * t[1][1] + t[1][2] * t[1][2]);
+    if (!(len > 1e-12 * lu * lv) || !rg2__finite(len))
+        return rg2__fail(err, RG2_EDOMAIN,
+                         "%s: the control net has no normal at [%d, %d]: its differences along u "
+                         "(length %g) and v (length %g) are zero or parallel (a polar point's "
+                         "collapsed row, or coinciding points)", what, i, j, lu, lv);
+    for (int k = 0; k < 3; k++)
+        n[k] = c[k] / len;
+    return RG2_OK;
+}
+
+rg2_status rg2_mesh_net_normal(const rg2_mesh *m, int i, int j, double n[3], rg2_error *err)
+{
+    if (!m || !n || !m->p)
+        return rg2__fail(err, RG2_EINVAL, "rg2_mesh_net_normal: %s is NULL", !m || !m->p ? "the mesh" : "n");
+    return rg2__net_normal(m, i, j, n, "rg2_mesh_net_normal", err);
+}

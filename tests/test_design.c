@@ -1774,6 +1774,80 @@ static void rolled_meshes(void)
     rg2_design_free(d);
 }
 
+/* "normal": a point moved along the control net's normal. On a cylinder's net the normal at any
+ * point, its open ends' one-sided differences included, is radial and outward (the net is
+ * symmetric about the point's radial plane, its v differences run along the axis, and Su x Sv
+ * points out): each listed point moves by 0.2 radially, to 1e-15, every other point stays bit
+ * for bit; the normals come from the net before the entry, so the list's order does not matter
+ * (bit for bit); rg2_mesh_net_normal gives the same move (bit for bit); a collapsed row has no
+ * normal (RG2_EDOMAIN, naming the point), and an index outside the mesh is named. */
+static void normal_edits(void)
+{
+    const char *base = "{\"shapes\": {\"c\": {\"kind\": \"cylinder\", \"radius\": 1.5}},"
+                       " \"meshes\": {\"A\": {\"shape\": \"c\", \"u\": {\"arcs\": 6},"
+                       " \"v\": {\"segments\": 4, \"from\": 0, \"to\": 2}}%s}, \"output\": \"%s\"}";
+    rg2_error err;
+    rg2_design *d0 = parse_edit2(base, "", "A", &err);
+    rg2_design *d1 = parse_edit2(base, ", \"E\": {\"edit\": \"A\", \"points\": [{\"at\": [[2, 3], [3, 3], [0, 0], [5, 6]],"
+                                 " \"normal\": 0.2}]}", "E", &err);
+    rg2_design *d2 = parse_edit2(base, ", \"E\": {\"edit\": \"A\", \"points\": [{\"at\": [[5, 6], [0, 0], [3, 3], [2, 3]],"
+                                 " \"normal\": 0.2}]}", "E", &err);
+    if (!d0 || !d1 || !d2) {
+        rg2_design_free(d0);
+        rg2_design_free(d1);
+        rg2_design_free(d2);
+        return;
+    }
+    const rg2_mesh *m0 = rg2_design_mesh(d0, 0), *m1 = rg2_design_mesh(d1, 0), *m2 = rg2_design_mesh(d2, 0);
+    double worst = 0;
+    int moved = 0, other = 0, same_api = 1;
+    for (int i = 0; i < m0->nu; i++)
+        for (int j = 0; j < m0->nv; j++) {
+            const double *p = rg2_mesh_at(m0, i, j), *q = rg2_mesh_at(m1, i, j);
+            int listed = (i == 2 && j == 3) || (i == 3 && j == 3) || (i == 0 && j == 0) || (i == 5 && j == 6);
+            if (!listed) {
+                other += memcmp(p, q, 4 * sizeof *p) != 0;
+                continue;
+            }
+            double r = hypot(p[0] / p[3], p[1] / p[3]), e[3];
+            for (int k = 0; k < 3; k++) {
+                double want = p[k] / p[3] + (k < 2 ? 0.2 * (p[k] / p[3]) / r : 0.0);
+                worst = fmax(worst, fabs(q[k] / q[3] - want));
+            }
+            moved++;
+            double n[3];
+            CHECK_OK(rg2_mesh_net_normal(m0, i, j, n, &err), &err);
+            for (int k = 0; k < 3; k++)
+                e[k] = p[3] * (p[k] / p[3] + 0.2 * n[k]);
+            same_api &= e[0] == q[0] && e[1] == q[1] && e[2] == q[2] && p[3] == q[3];
+        }
+    printf("  normal edits: 4 cylinder points moved 0.2 along the net's normal, off radial by %.2g\n", worst);
+    CHECK(moved == 4 && worst <= 1e-15 && other == 0, "normal edit: %d moved, off radial by %g, %d others changed",
+          moved, worst, other);
+    CHECK(m1->nu * m1->nv == m2->nu * m2->nv &&
+              !memcmp(m1->p, m2->p, (size_t)m1->nu * (size_t)m1->nv * 4 * sizeof *m1->p),
+          "normal edit: the list's order changed the mesh");
+    CHECK(same_api, "normal edit: rg2_mesh_net_normal gives another move");
+    rg2_design_free(d0);
+    rg2_design_free(d1);
+    rg2_design_free(d2);
+
+    rg2_design *dp = NULL;
+    CHECK_OK(rg2_design_load("examples/fig9_polar_sphere.json", &dp, &err), &err);
+    if (dp) {
+        const rg2_mesh *mp = rg2_design_mesh(dp, 0);
+        double n[3];
+        rg2_status st = rg2_mesh_net_normal(mp, 3, mp->nv - 1, n, &err);
+        CHECK(st == RG2_EDOMAIN && strstr(err.msg, "rg2_mesh_net_normal: the control net has no normal at [3, 7]"),
+              "net normal at a pole: %s: %s", rg2_status_str(st), err.msg);
+        st = rg2_mesh_net_normal(mp, 3, mp->nv, n, &err);
+        CHECK(st == RG2_EINVAL && strstr(err.msg, "[3, 8] is outside the 8 x 8 points"), "net normal outside: %s",
+              err.msg);
+        CHECK_OK(rg2_mesh_net_normal(mp, 3, mp->nv - 2, n, &err), &err);
+        rg2_design_free(dp);
+    }
+}
+
 int main(void)
 {
     parse_sizes();
@@ -1785,6 +1859,7 @@ int main(void)
     printf("edit locality:\n");
     edits_are_local();
     edits_to_own_values();
+    normal_edits();
     edits_measured();
     merge_keeps_scalar_provenance();
     printf("operations that keep exactness:\n");
