@@ -179,8 +179,8 @@ static void print_nearest(const rg2_design *d, const double x[3])
     }
     rg2_cap_opts co;
     unsigned caps = rg2_design_cap(d, bo, &co) ? (unsigned)co.ends : 0u;
-    printf("  edit it with {\"edit\": \"%s\", \"points\": [{\"at\": [%d, %d], \"move\": [dx, dy, dz]}]}", name, bi,
-           bj);
+    printf("  edit it with {\"edit\": \"%s\", \"points\": [{\"at\": [%d, %d], \"move\": [dx, dy, dz]}]} (or "
+           "\"normal\": t, along the net's normal)", name, bi, bj);
     if (caps) /* an operation takes a capped mesh uncapped (design-format.md, "cap") */
         printf(", then cap that edit as '%s' is capped ({\"cap\": <the edit>, \"ends\": \"%s\"}, the same options)", name,
                caps == (RG2_CAP_SOUTH | RG2_CAP_NORTH) ? "both" : caps == RG2_CAP_SOUTH ? "south" : "north");
