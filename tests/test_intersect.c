@@ -2,7 +2,7 @@
  * properties of the crossings found (the point on both exact sheets, independent implicit
  * equations and normals, the moved point's support) and of those not reported (every example
  * surface, poles and merges, surfaces that meet along an edge, a torus pulled close to its
- * opposite wall), bad arguments, and the report on 1, 2 and 3 threads. */
+ * opposite wall), bad arguments, the report on 1 to 4 threads, and the weld on 1 to 5 threads. */
 #include "harness.h"
 #include "scenes.h"
 
@@ -728,49 +728,84 @@ static int line_edges(const rg2_tess *t, double (*yr)[2], int max)
  * vertex (coincident ends). The library's candidates are the first count less the second:
  * with the plates' vertices in line (shift 0) every overlapping pair shares its ends, and the
  * weld saves them all (0 candidates; without the weld, density candidates); shifted by half
- * an edge, none shares a vertex and every overlapping pair is a candidate. */
+ * an edge, none shares a vertex and every overlapping pair is a candidate. One case: density
+ * dens, shifted (sh) or not, on `threads` threads; the report in *r, the vertices in *nvert. */
+static void weld_case(int dens, int sh, int threads, rg2_crossing_report *r, int *nvert)
+{
+    enum { MAX_EDGES = 256 };
+    rg2_surface s[2];
+    rg2_tess t[2];
+    rg2_error err;
+    double shift = sh ? 1.0 / dens : 0.0; /* half an edge (2 / dens long) */
+    plate(0, 0, 1, 0, &s[0]);
+    plate(0, 0, 0, 1, &s[1]);
+    for (int a = 0; a < 4; a++)
+        for (int b = 0; b < 4; b++)
+            s[1].patch[0].h[a][b][1] += shift * s[1].patch[0].h[a][b][3];
+    static double ya[MAX_EDGES][2], yb[MAX_EDGES][2];
+    int na = 0, nb = 0, overlap = 0, shared = 0;
+    for (int q = 0; q < 2; q++)
+        CHECK_OK(rg2_tessellate(&s[q], dens, 0, &t[q], &err), &err);
+    *nvert = t[0].n_vertices + t[1].n_vertices;
+    na = line_edges(&t[0], ya, MAX_EDGES);
+    nb = line_edges(&t[1], yb, MAX_EDGES);
+    for (int i = 0; i < na; i++)
+        for (int j = 0; j < nb; j++)
+            if (fmin(ya[i][1], yb[j][1]) > fmax(ya[i][0], yb[j][0])) {
+                overlap++;
+                shared += ya[i][0] == yb[j][0] || ya[i][0] == yb[j][1] || ya[i][1] == yb[j][0] ||
+                          ya[i][1] == yb[j][1];
+            }
+    CHECK_OK(rg2_find_crossings(s, 2, dens, threads, r, &err), &err);
+    CHECK(na == dens && nb == dens && overlap > 0 && (sh ? shared == 0 : shared == overlap),
+          "L at density %d, shift %g: %d and %d edges on the line, %d overlapping pairs, %d sharing ends",
+          dens, shift, na, nb, overlap, shared);
+    CHECK(r->crossings == 0 && r->candidates == overlap - shared,
+          "L at density %d, shift %g, %d threads: %d candidates (%d crossings); %d edge pairs overlap on the line, "
+          "%d of them with welded ends", dens, shift, threads, r->candidates, r->crossings, overlap, shared);
+    if (threads == 1)
+        printf("L of two plates, density %d, %s: %d edge pairs overlapping on the common line, %d sharing "
+               "welded ends (skipped): %d candidates\n", dens, sh ? "shifted by half an edge" : "vertices in line",
+               overlap, shared, r->candidates);
+    for (int q = 0; q < 2; q++) {
+        rg2_tess_free(&t[q]);
+        rg2_surface_free(&s[q]);
+    }
+}
+
 static void weld_saves(void)
 {
     for (int dens = 1; dens <= 7; dens += 3)
         for (int sh = 0; sh < 2; sh++) {
-            rg2_surface s[2];
-            rg2_tess t[2];
-            rg2_error err;
-            double shift = sh ? 1.0 / dens : 0.0; /* half an edge (2 / dens long) */
-            plate(0, 0, 1, 0, &s[0]);
-            plate(0, 0, 0, 1, &s[1]);
-            for (int a = 0; a < 4; a++)
-                for (int b = 0; b < 4; b++)
-                    s[1].patch[0].h[a][b][1] += shift * s[1].patch[0].h[a][b][3];
-            double ya[64][2], yb[64][2];
-            int na = 0, nb = 0, overlap = 0, shared = 0;
-            for (int q = 0; q < 2; q++)
-                CHECK_OK(rg2_tessellate(&s[q], dens, 0, &t[q], &err), &err);
-            na = line_edges(&t[0], ya, 64);
-            nb = line_edges(&t[1], yb, 64);
-            for (int i = 0; i < na; i++)
-                for (int j = 0; j < nb; j++)
-                    if (fmin(ya[i][1], yb[j][1]) > fmax(ya[i][0], yb[j][0])) {
-                        overlap++;
-                        shared += ya[i][0] == yb[j][0] || ya[i][0] == yb[j][1] || ya[i][1] == yb[j][0] ||
-                                  ya[i][1] == yb[j][1];
-                    }
             rg2_crossing_report r;
-            CHECK_OK(rg2_find_crossings(s, 2, dens, 0, &r, &err), &err);
-            CHECK(na == dens && nb == dens && overlap > 0 && (sh ? shared == 0 : shared == overlap),
-                  "L at density %d, shift %g: %d and %d edges on the line, %d overlapping pairs, %d sharing ends",
-                  dens, shift, na, nb, overlap, shared);
-            CHECK(r.crossings == 0 && r.candidates == overlap - shared,
-                  "L at density %d, shift %g: %d candidates (%d crossings); %d edge pairs overlap on the line, %d of "
-                  "them with welded ends", dens, shift, r.candidates, r.crossings, overlap, shared);
-            printf("L of two plates, density %d, %s: %d edge pairs overlapping on the common line, %d sharing "
-                   "welded ends (skipped): %d candidates\n", dens, sh ? "shifted by half an edge" : "vertices in line",
-                   overlap, shared, r.candidates);
-            for (int q = 0; q < 2; q++) {
-                rg2_tess_free(&t[q]);
-                rg2_surface_free(&s[q]);
-            }
+            int nv;
+            weld_case(dens, sh, 1, &r, &nv);
         }
+}
+
+/* The weld on threads, past one sorted run: the L of weld_saves at densities 64 and 128, over
+ * 8192 and 4 x 8192 vertices (the weld sorts them in runs of at least 8192, one per thread,
+ * merged pairwise: 2 runs at density 64, 2 to 5 at 128 on 2 to 5 threads). On 1 to 5
+ * threads the candidates are those counted on the tessellations (an unmerged or missorted run
+ * loses welded pairs: candidates along the common line) and the report is the same bit for bit. */
+static void weld_threads(void)
+{
+    int from = rg2__crossing_threads_from;
+    rg2__crossing_threads_from = 0; /* threads for these inputs too */
+    for (int dens = 64; dens <= 128; dens *= 2)
+        for (int sh = 0; sh < 2; sh++) {
+            rg2_crossing_report r[5];
+            int nv = 0;
+            for (int t = 1; t <= 5; t++) {
+                weld_case(dens, sh, t, &r[t - 1], &nv);
+                CHECK(same_crossings(&r[0], &r[t - 1]) && r[0].pairs == r[t - 1].pairs,
+                      "L at density %d, shift %d: the report on %d threads differs from one thread's: %d / %d "
+                      "candidates, %.0f / %.0f pairs", dens, sh, t, r[t - 1].candidates, r[0].candidates,
+                      r[t - 1].pairs, r[0].pairs);
+            }
+            CHECK(nv > (dens == 64 ? 8192 : 4 * 8192), "L at density %d: %d vertices", dens, nv);
+        }
+    rg2__crossing_threads_from = from;
 }
 
 int main(void)
@@ -788,5 +823,6 @@ int main(void)
     check_integration();
     threads_identical();
     weld_saves();
+    weld_threads();
     return rg2t_done("test_intersect");
 }
