@@ -93,6 +93,10 @@ rm -f "$tmp/new022.step" "$tmp/new077.step"
 expect 0 "" "$rg2" info --map "$src/examples/torus_sphere.json"
 grep -q "exact on ring *48 patches" "$tmp/out" && grep -q "exact on ball *24 patches" "$tmp/out" &&
   grep -q "transition *48 patches" "$tmp/out" && ok || bad "info counts: $(cat "$tmp/out")"
+# the map: a line per u index (15), a letter per v index (8), as many A, B and '.' as the design's
+# "expect" gives patches on the ring, on the ball and in transitions (48, 24, 48)
+awk '/^    u +[0-9]+  /{ n++; m = $3; w += length(m) != 8; a += gsub(/A/, "", m); b += gsub(/B/, "", m); t += gsub(/[.]/, "", m) }
+  END { exit !(n == 15 && !w && a == 48 && b == 24 && t == 48) }' "$tmp/out" && ok || bad "info --map: $(cat "$tmp/out")"
 # the ends of a tube: fig. 10's capsule capped at both; a south cap only on a mesh polar at both
 # ends leaves a hole at the north pole, which info names
 expect 0 "" "$rg2" info "$src/examples/fig10_sphere_cylinder.json"
@@ -135,6 +139,8 @@ mkdir "$tmp/dup"
 abs_rg2=$(cd "$(dirname "$rg2")" && pwd)/$(basename "$rg2") abs_src=$(cd "$src" && pwd)
 expect 2 "output './a.step' is listed twice (as 'a.step')" bash -c "cd '$tmp/dup' && '$abs_rg2' build -q '$abs_src/examples/fig5_workflow.json' -o a.step -o ./a.step"
 expect 2 "is listed twice" "$rg2" build -q "$src/examples/fig5_workflow.json" -o "$tmp/dup/b.step" -o "$tmp/dup//b.step"
+# in a directory that does not exist the names are compared lexically ("." and empty components dropped)
+expect 2 "output '$tmp/none/c.step' is listed twice (as '$tmp/none/./c.step')" "$rg2" build -q "$src/examples/fig5_workflow.json" -o "$tmp/none/./c.step" -o "$tmp/none/c.step"
 [ -z "$(ls -A "$tmp/dup")" ] && ok || bad "a refused duplicate output wrote $(ls -A "$tmp/dup")"
 # files at the temporary file's names are never written through: a design file named like one
 # builds and keeps its bytes, and symbolic links planted at the old name (<output>.tmp) and at
@@ -278,5 +284,17 @@ grep -q "it is the north polar point (the whole collapsed row v 7)" "$tmp/near_i
 expect 2 "rg2 info: --near needs three numbers X,Y,Z" "$rg2" info --near 1,2 "$src/examples/torus_sphere.json"
 expect 2 "rg2 info: --near needs three numbers X,Y,Z" "$rg2" info "$src/examples/torus_sphere.json" --near
 expect 2 "--near" "$rg2" info --near 1,nan,2 "$src/examples/torus_sphere.json"
+# and the volume: the torus R = 0.03, r = 0.01 of 8 x 6 arcs is tessellated at density 4 with
+# vertices on it, 32 steps around and 24 round the tube (the arcs' parametrisation is near
+# uniform in angle): the polyhedron of equal steps encloses 2 pi^2 R r^2 sinc(2 pi / 32) sinc(2 pi
+# / 24) = 5.8168e-05 (each step's quads are planar; Pappus over the polygon)
+cat >"$tmp/small_torus.json" <<'EOF'
+{"shapes": {"t": {"kind": "torus", "R": 0.03, "r": 0.01}},
+ "meshes": {"a": {"shape": "t", "u": {"arcs": 8}, "v": {"arcs": 6}}}, "output": ["a"]}
+EOF
+vol=$("$rg2" info "$tmp/small_torus.json" | sed -n 's/^  closed: the normal points out (enclosed volume about \([-0-9.e+]*\))$/\1/p')
+awk -v v="$vol" 'BEGIN { pi = 3.141592653589793; s = sin(2 * pi / 32) / (2 * pi / 32) * sin(2 * pi / 24) / (2 * pi / 24)
+  e = 2 * pi * pi * 0.03 * 0.01 * 0.01 * s; exit !(v != "" && (v - e) / e < 1e-3 && (e - v) / e < 1e-3) }' && ok ||
+  bad "info small_torus.json: enclosed volume '$vol', the polyhedron of equal steps 5.8168e-05"
 echo "cli design: $passes passed, $fails failed"
 [ "$fails" = 0 ]

@@ -137,6 +137,8 @@ expect 2 "--xform needs 16 numbers" -- "$RG2" shape torus --xform 1,2,3
 expect 2 "--R: number 1e+200 is outside the supported range" -- "$RG2" shape torus --R 1e200
 expect 2 "--r: number 1e+299 is outside the supported range" -- "$RG2" shape torus --r 1e299 --R 1e99 --json
 expect 2 "--center item 0: number 1e+101 is outside" -- "$RG2" shape sphere --center 1e101,0,0
+# a list of two names its item too
+expect 2 "--v-range item 1: number 1e+101 is outside" -- "$RG2" shape cone --v-range 0.5,1e101
 expect 1 "sphere: coordinates up to" -- "$RG2" shape sphere --radius 1e60 --scale 1e60
 expect 1 "torus: coordinates up to 4.68015e-200, size 1.34027e-199: outside the supported range" -- "$RG2" shape torus --R 3e-100 --r 1e-100 --scale 1e-100
 expect 1 "--axis 0,0,0: the axis is the zero vector" -- "$RG2" shape cone --axis 0,0,0
