@@ -697,6 +697,43 @@ static void threads_identical(void)
     rg2_mesh_free(&m);
 }
 
+/* The least confirmed pair when the lowest crossing triangle crosses many others, in many cells:
+ * a plate (x from -5 to 5, y from 0 to 2, z = 0.3; at density 1 two triangles, 0 and 1) through
+ * the tube of a 60 x 40 torus (R = 3, r = 1): its triangles cross some eighty of the torus's,
+ * whose pairs the threads meet in cells of their own, several holding a pair of triangle 0. The
+ * first crossing is the least pair (0, b) on any thread count: the report the same bit for bit as
+ * one thread's (ten times each: which thread meets which cell varies from run to run). */
+static void least_pair_threads(void)
+{
+    rg2_mesh m;
+    rg2_surface s[2];
+    rg2_error err;
+    plate(-5, 0.3, 5, 0.3, &s[0]);
+    CHECK_OK(scene_revolve(3, 1, 60, 40, 1, 0, 0, &m, &s[1], &err), &err);
+    int from = rg2__crossing_threads_from;
+    rg2__crossing_threads_from = 0;
+    rg2_crossing_report one, r;
+    CHECK_OK(rg2_find_crossings(s, 2, 1, 1, &one, &err), &err);
+    CHECK(one.crossings > 50 && one.a.surf == 0 && one.b.surf == 1 && fabs(one.p[2] - 0.3) < 1e-12,
+          "plate through the torus: %d crossings, first surfaces %d x %d at z = %.17g", one.crossings, one.a.surf,
+          one.b.surf, one.p[2]);
+    for (int t = 2; t <= 4; t++)
+        for (int rep = 0; rep < 10; rep++) {
+            CHECK_OK(rg2_find_crossings(s, 2, 1, t, &r, &err), &err);
+            CHECK(same_crossings(&one, &r) && one.pairs == r.pairs,
+                  "plate through the torus on %d threads: first (%d,%d) x (%d,%d) at (%.17g, %.17g, %.17g), one "
+                  "thread (%d,%d) x (%d,%d) at (%.17g, %.17g, %.17g); %d / %d crossings", t, r.a.pi, r.a.pj, r.b.pi,
+                  r.b.pj, r.p[0], r.p[1], r.p[2], one.a.pi, one.a.pj, one.b.pi, one.b.pj, one.p[0], one.p[1],
+                  one.p[2], r.crossings, one.crossings);
+        }
+    printf("plate through a 60 x 40 torus at density 1: %d crossings of %d candidates, the first the same on 1 to "
+           "4 threads\n", one.crossings, one.candidates);
+    rg2__crossing_threads_from = from;
+    rg2_surface_free(&s[0]);
+    rg2_surface_free(&s[1]);
+    rg2_mesh_free(&m);
+}
+
 /* The triangles of t (a plate of weld_saves) with two vertices on the line x = z = 0: the
  * y-ranges of those edges (lo, hi), their count. */
 static int line_edges(const rg2_tess *t, double (*yr)[2], int max)
@@ -824,5 +861,6 @@ int main(void)
     threads_identical();
     weld_saves();
     weld_threads();
+    least_pair_threads();
     return rg2t_done("test_intersect");
 }
