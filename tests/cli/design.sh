@@ -284,6 +284,15 @@ grep -q "it is the north polar point (the whole collapsed row v 7)" "$tmp/near_i
 expect 2 "rg2 info: --near needs three numbers X,Y,Z" "$rg2" info --near 1,2 "$src/examples/torus_sphere.json"
 expect 2 "rg2 info: --near needs three numbers X,Y,Z" "$rg2" info "$src/examples/torus_sphere.json" --near
 expect 2 "--near" "$rg2" info --near 1,nan,2 "$src/examples/torus_sphere.json"
+# closed along v only (the cylinder transposed: u open) is not a closed surface: no normal line
+cat >"$tmp/transposed.json" <<'EOF'
+{"shapes": {"c": {"kind": "cylinder"}}, "meshes": {
+  "A": {"shape": "c", "u": {"arcs": 8}, "v": {"segments": 3, "from": -1, "to": 1}}, "T": {"transpose": "A"}},
+ "output": ["T"]}
+EOF
+"$rg2" info "$tmp/transposed.json" >"$tmp/out" 2>&1
+grep -q "(u open, v closed)" "$tmp/out" && ! grep -q "closed: the normal" "$tmp/out" && ok ||
+  bad "info transposed.json (u open): $(cat "$tmp/out")"
 # and the volume: the torus R = 0.03, r = 0.01 of 8 x 6 arcs is tessellated at density 4 with
 # vertices on it, 32 steps around and 24 round the tube (the arcs' parametrisation is near
 # uniform in angle): the polyhedron of equal steps encloses 2 pi^2 R r^2 sinc(2 pi / 32) sinc(2 pi
