@@ -466,6 +466,15 @@ int rg2f_meshops(const uint8_t *data, size_t size)
         /* a valid mesh in, a valid mesh out, and its surface builds or says why not */
         if (rg2_mesh_check(&out, &err))
             rg2f_violation("%s gave a mesh that fails its check: %s", call, err.msg);
+        { /* the net's normal at a point the input names: a unit vector, or a refusal that says why */
+            int ni = (int)(rg2f_byte(&o) % (unsigned)out.nu), nj = (int)(rg2f_byte(&o) % (unsigned)out.nv);
+            double nn[3];
+            st = rg2_mesh_net_normal(&out, ni, nj, nn, &err);
+            rg2f_check_error("rg2_mesh_net_normal", st, &err);
+            double n2 = st ? 1.0 : nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2];
+            if (!(fabs(n2 - 1.0) <= 1e-12))
+                rg2f_violation("rg2_mesh_net_normal of %s's mesh at [%d, %d]: |n|^2 = %.17g", call, ni, nj, n2);
+        }
         if ((size_t)out.nu * (size_t)out.nv <= 4096) {
             rg2_surface s;
             st = rg2_surface_build(&out, &s, &err);
