@@ -57,7 +57,8 @@ static void usage(FILE *f)
                "  --near X,Y,Z  also name the control point nearest to (X, Y, Z) (its design point d,\n"
                "          over the output meshes): the mesh, its indices [i, j] from 0, d, W and the\n"
                "          distance, the edit that moves it, and the patches that edit changes (e.g.\n"
-               "          the point rg2 check gives for a gap or the largest |k|)\n"
+               "          the point rg2 check gives for a gap or the largest |k|), and the surface point\n"
+               "          nearest to it: its patch, u, v, the distance, and whether the patch is exact\n"
                "Exit codes: 0 ok, 1 the design is invalid or the report cannot be written (message on\n"
                "stderr), 2 usage error.\n");
 }
@@ -204,6 +205,61 @@ static void print_nearest(const rg2_design *d, const double x[3])
     printf("  that edit changes %d patches: (i, j) with i in %s, j in %s%s\n", n, bu, bv, cap);
 }
 
+/* --near on the surface: the output surface point nearest to x, from the nearest vertex of a
+ * tessellation (density 8; surfaces of more than 20000 patches are skipped) refined by
+ * Gauss-Newton on its patch (u, v kept in [0, 1]; a nearest point on a patch side stays on it).
+ * The patch's tag says whether the spot is on an exact piece or a transition. */
+static void print_nearest_surface(const rg2_design *d, const double x[3])
+{
+    int bo = -1, bp = 0;
+    double best = INFINITY, u = 0, v = 0;
+    for (int o = 0; o < rg2_design_num_surfaces(d); o++) {
+        const rg2_surface *s = rg2_design_surface(d, o);
+        rg2_tess t;
+        rg2_error err;
+        if ((long)s->nu * s->nv > 20000 || rg2_tessellate(s, 8, 0, &t, &err))
+            continue;
+        for (int k = 0; k < t.n_vertices; k++) {
+            const double *q = t.pos + 3 * k;
+            double e = (q[0] - x[0]) * (q[0] - x[0]) + (q[1] - x[1]) * (q[1] - x[1]) + (q[2] - x[2]) * (q[2] - x[2]);
+            if (e < best) {
+                best = e;
+                bo = o, bp = t.patch[k], u = t.uv[2 * k], v = t.uv[2 * k + 1];
+            }
+        }
+        rg2_tess_free(&t);
+    }
+    if (bo < 0)
+        return;
+    const rg2_surface *s = rg2_design_surface(d, bo);
+    int pi = bp / s->nv, pj = bp % s->nv;
+    rg2_eval e;
+    for (int it = 0; it < 50; it++) { /* min |S(u, v) - x|^2: (J^T J) delta = J^T (x - S) */
+        rg2_surface_eval(s, pi, pj, u, v, 1, &e);
+        double r[3] = {x[0] - e.p[0], x[1] - e.p[1], x[2] - e.p[2]};
+        double a = 0, b = 0, c = 0, f = 0, g = 0;
+        for (int k = 0; k < 3; k++) {
+            a += e.su[k] * e.su[k], b += e.su[k] * e.sv[k], c += e.sv[k] * e.sv[k];
+            f += e.su[k] * r[k], g += e.sv[k] * r[k];
+        }
+        double det = a * c - b * b;
+        if (!(det > 1e-30 * (a * c)) || !isfinite(det))
+            break; /* (a pole side: stay at the vertex's parameters) */
+        double du = (c * f - b * g) / det, dv = (a * g - b * f) / det;
+        double nu = fmin(1.0, fmax(0.0, u + du)), nv = fmin(1.0, fmax(0.0, v + dv));
+        if (nu == u && nv == v)
+            break;
+        u = nu, v = nv;
+    }
+    rg2_surface_eval(s, pi, pj, u, v, 0, &e);
+    double dist = sqrt((e.p[0] - x[0]) * (e.p[0] - x[0]) + (e.p[1] - x[1]) * (e.p[1] - x[1]) +
+                       (e.p[2] - x[2]) * (e.p[2] - x[2]));
+    int tag = s->tag ? s->tag[bp] : -1;
+    printf("  nearest surface point: surface %d patch (%d,%d) u=%.6g v=%.6g, point (%.10g, %.10g, %.10g), %.4g "
+           "away, %s%s%s\n", bo, pi, pj, u, v, e.p[0], e.p[1], e.p[2], dist, tag >= 0 ? "exact on '" : "a transition patch",
+           tag >= 0 ? rg2_design_shape_label(d, tag) : "", tag >= 0 ? "'" : "");
+}
+
 /* What a shape's placement does to the kind and parameters info prints: a similarity
  * (rotation, reflection, translation) keeps them, a uniform scale s scales the lengths by s
  * (", scaled by 2 by its placement"), a non-uniform scale or a shear changes the proportions (a
@@ -324,8 +380,10 @@ int rg2_cmd_info(int argc, char **argv)
                 putchar('\n');
             }
     }
-    if (near)
+    if (near) {
         print_nearest(d, x);
+        print_nearest_surface(d, x);
+    }
     for (int k = 0; k < rg2_design_num_notes(d); k++)
         printf("note: %s\n", rg2_design_note(d, k));
     free(count);

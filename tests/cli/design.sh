@@ -281,6 +281,19 @@ near_case "$src/examples/pipe_elbow.json" 3.3,-0.4,-0.2
 near_case "$src/examples/pipe_elbow.json" 3,3,0
 near_case "$src/examples/fig9_polar_sphere.json" 0,0,5
 grep -q "it is the north polar point (the whole collapsed row v 7)" "$tmp/near_info" && ok || bad "info --near at a pole: $(cat "$tmp/near_info")"
+# and the surface point nearest to it: 0.1 outside the ring of torus_sphere (R 3, r 0.6 about z)
+# at 75 degrees round, 100 round the tube, the nearest point is the torus's own there, 0.1 away
+at=$(python3 -c 'import math; a, t = math.radians(75), math.radians(100); q = 3 + 0.7 * math.cos(t)
+print("%.17g,%.17g,%.17g" % (q * math.cos(a), q * math.sin(a), 0.7 * math.sin(t)))')
+"$rg2" info --near "$at" "$src/examples/torus_sphere.json" >"$tmp/near_info" 2>&1
+python3 - "$at" "$tmp/near_info" <<'PY' && ok || bad "info --near $at: nearest surface point: $(tail -1 "$tmp/near_info")"
+import math, re, sys
+x = [float(t) for t in sys.argv[1].split(',')]
+g = re.search(r"nearest surface point: surface 0 patch \((\d+),(\d+)\) .*point \(([^)]*)\), ([0-9.e+-]+) away, exact on 'ring'", open(sys.argv[2]).read())
+p = [float(t) for t in g[3].split(',')]
+on = abs(math.hypot(math.hypot(p[0], p[1]) - 3, p[2]) - 0.6)
+assert on <= 1e-9 and abs(math.dist(p, x) - 0.1) <= 1e-9 and abs(float(g[4]) - 0.1) <= 1e-4, (on, math.dist(p, x), g[4])
+PY
 expect 2 "rg2 info: --near needs three numbers X,Y,Z" "$rg2" info --near 1,2 "$src/examples/torus_sphere.json"
 expect 2 "rg2 info: --near needs three numbers X,Y,Z" "$rg2" info "$src/examples/torus_sphere.json" --near
 expect 2 "--near" "$rg2" info --near 1,nan,2 "$src/examples/torus_sphere.json"
