@@ -1189,42 +1189,50 @@ static void format_text(const rg2_check_report *r, sbuf *b)
     }
 }
 
+/* The report's numbers as the shortest digits that read back to the same double (a point
+ * copied from the JSON into a design's "to" or `rg2 info --near` is the sample's own; cJSON's
+ * 15 digits could be an ulp off). */
+static void add_num(cJSON *o, const char *name, double x)
+{
+    cJSON_AddItemToObject(o, name, rg2__json_double(x));
+}
+
 static cJSON *sheet_json(const rg2_crossing_sheet *s)
 {
     cJSON *j = cJSON_CreateObject();
     int p[2] = {s->pi, s->pj};
     double uv[2] = {s->u, s->v};
-    cJSON_AddNumberToObject(j, "surface", s->surf);
+    add_num(j, "surface", s->surf);
     cJSON_AddItemToObject(j, "patch", cJSON_CreateIntArray(p, 2));
-    cJSON_AddItemToObject(j, "uv", cJSON_CreateDoubleArray(uv, 2));
+    cJSON_AddItemToObject(j, "uv", rg2__json_doubles(uv, 2));
     return j;
 }
 
 static cJSON *gap_json(const rg2_check_gap *g, double tol)
 {
     cJSON *j = cJSON_CreateObject();
-    cJSON_AddNumberToObject(j, "value", g->value);
-    cJSON_AddNumberToObject(j, "limit", tol);
+    add_num(j, "value", g->value);
+    add_num(j, "limit", tol);
     cJSON_AddBoolToObject(j, "ok", g->value <= tol);
-    cJSON_AddNumberToObject(j, "surface", g->surf);
+    add_num(j, "surface", g->surf);
     cJSON_AddStringToObject(j, "seam", g->seam_dir == 0 ? "u" : "v");
     int a[2] = {g->pi, g->pj}, c[2] = {g->qi, g->qj};
     cJSON_AddItemToObject(j, "patch_a", cJSON_CreateIntArray(a, 2));
     cJSON_AddItemToObject(j, "patch_b", cJSON_CreateIntArray(c, 2));
-    cJSON_AddNumberToObject(j, "t", g->t);
-    cJSON_AddItemToObject(j, "point", cJSON_CreateDoubleArray(g->p, 3));
+    add_num(j, "t", g->t);
+    cJSON_AddItemToObject(j, "point", rg2__json_doubles(g->p, 3));
     return j;
 }
 
 /* A sample's surface, patch, u, v and point as members of o. */
 static void sample_json(cJSON *o, const rg2_check_sample *at)
 {
-    cJSON_AddNumberToObject(o, "surface", at->surf);
+    add_num(o, "surface", at->surf);
     int ij[2] = {at->pi, at->pj};
     cJSON_AddItemToObject(o, "patch", cJSON_CreateIntArray(ij, 2));
-    cJSON_AddNumberToObject(o, "u", at->u);
-    cJSON_AddNumberToObject(o, "v", at->v);
-    cJSON_AddItemToObject(o, "point", cJSON_CreateDoubleArray(at->p, 3));
+    add_num(o, "u", at->u);
+    add_num(o, "v", at->v);
+    cJSON_AddItemToObject(o, "point", rg2__json_doubles(at->p, 3));
 }
 
 static char *format_json(const rg2_check_report *r)
@@ -1233,32 +1241,32 @@ static char *format_json(const rg2_check_report *r)
     cJSON *j = cJSON_CreateObject();
     if (!j)
         return NULL;
-    cJSON_AddNumberToObject(j, "surfaces", r->surfaces);
-    cJSON_AddNumberToObject(j, "patches", r->patches);
-    cJSON_AddNumberToObject(j, "exact_patches", r->exact_patches);
-    cJSON_AddNumberToObject(j, "transitions", r->transitions);
-    cJSON_AddNumberToObject(j, "unknown_tags", r->untagged_bad);
+    add_num(j, "surfaces", r->surfaces);
+    add_num(j, "patches", r->patches);
+    add_num(j, "exact_patches", r->exact_patches);
+    add_num(j, "transitions", r->transitions);
+    add_num(j, "unknown_tags", r->untagged_bad);
     cJSON *sh = cJSON_AddArrayToObject(j, "shapes");
     for (int k = 0; k < r->n_shapes; k++) {
         cJSON *s = cJSON_CreateObject();
-        cJSON_AddNumberToObject(s, "index", k);
+        add_num(s, "index", k);
         cJSON_AddStringToObject(s, "label", r->shapes[k].label);
-        cJSON_AddNumberToObject(s, "patches", r->shapes[k].patches);
-        cJSON_AddNumberToObject(s, "residual", r->shapes[k].residual);
+        add_num(s, "patches", r->shapes[k].patches);
+        add_num(s, "residual", r->shapes[k].residual);
         cJSON_AddBoolToObject(s, "ok", r->shapes[k].residual <= o->tol_exact);
         cJSON_AddStringToObject(s, "where", r->shapes[k].where);
         cJSON_AddItemToArray(sh, s);
     }
-    cJSON_AddNumberToObject(j, "worst_residual", r->worst_residual);
-    cJSON_AddNumberToObject(j, "exact_limit", o->tol_exact);
-    cJSON_AddNumberToObject(j, "seams", r->seams);
-    cJSON_AddNumberToObject(j, "seam_samples", r->seam_samples);
-    cJSON_AddNumberToObject(j, "skipped", r->skipped);
-    cJSON_AddNumberToObject(j, "pole_samples", r->pole_samples);
-    cJSON_AddNumberToObject(j, "unmeasured", r->unmeasured);
+    add_num(j, "worst_residual", r->worst_residual);
+    add_num(j, "exact_limit", o->tol_exact);
+    add_num(j, "seams", r->seams);
+    add_num(j, "seam_samples", r->seam_samples);
+    add_num(j, "skipped", r->skipped);
+    add_num(j, "pole_samples", r->pole_samples);
+    add_num(j, "unmeasured", r->unmeasured);
     cJSON *rg = cJSON_AddObjectToObject(j, "regularity");
-    cJSON_AddNumberToObject(rg, "folds", r->folds);
-    cJSON_AddNumberToObject(rg, "singular", r->singular);
+    add_num(rg, "folds", r->folds);
+    add_num(rg, "singular", r->singular);
     if (r->folds || r->singular) {
         sample_json(rg, &r->fold_at);
     }
@@ -1271,45 +1279,45 @@ static char *format_json(const rg2_check_report *r)
     cJSON_AddItemToObject(j, "g2_curvature_jump", g = gap_json(&r->g2, o->tol_g2));
     cJSON_ReplaceItemInObject(g, "ok", cJSON_CreateBool(!(fg & RG2_REQUIRE_G2)));
     cJSON *np = cJSON_AddObjectToObject(j, "near_pole");
-    cJSON_AddNumberToObject(np, "samples", r->near_pole);
-    cJSON_AddNumberToObject(np, "unresolved", r->pole_unresolved);
-    cJSON_AddNumberToObject(np, "g1_limit_max", fmax(r->near_pole_tol1, o->tol_g1));
-    cJSON_AddNumberToObject(np, "g2_limit_max", fmax(r->near_pole_tol2, o->tol_g2));
+    add_num(np, "samples", r->near_pole);
+    add_num(np, "unresolved", r->pole_unresolved);
+    add_num(np, "g1_limit_max", fmax(r->near_pole_tol1, o->tol_g1));
+    add_num(np, "g2_limit_max", fmax(r->near_pole_tol2, o->tol_g2));
     cJSON_AddItemToObject(np, "g1_gap_over_limit", gap_json(&r->g1_pole, 1.0));
     cJSON_AddItemToObject(np, "g2_gap_over_limit", gap_json(&r->g2_pole, 1.0));
     cJSON *ic = cJSON_AddObjectToObject(j, "ill_conditioned");
-    cJSON_AddNumberToObject(ic, "samples", r->ill_conditioned);
-    cJSON_AddNumberToObject(ic, "g1_limit_max", fmax(r->ill_tol1, o->tol_g1));
-    cJSON_AddNumberToObject(ic, "g2_limit_max", fmax(r->ill_tol2, o->tol_g2));
+    add_num(ic, "samples", r->ill_conditioned);
+    add_num(ic, "g1_limit_max", fmax(r->ill_tol1, o->tol_g1));
+    add_num(ic, "g2_limit_max", fmax(r->ill_tol2, o->tol_g2));
     cJSON_AddItemToObject(ic, "g1_gap_over_limit", gap_json(&r->g1_ill, 1.0));
     cJSON_AddItemToObject(ic, "g2_gap_over_limit", gap_json(&r->g2_ill, 1.0));
     double w[3] = {r->wmin, r->wmax, r->eval_wmin}, k[6] = {r->kmin, r->kmax, r->Hmin, r->Hmax, r->Kmin, r->Kmax};
-    cJSON_AddItemToObject(j, "weights", cJSON_CreateDoubleArray(w, 2));
-    cJSON_AddNumberToObject(j, "min_weight_at_samples", w[2]);
-    cJSON_AddItemToObject(j, "principal_curvature", cJSON_CreateDoubleArray(k, 2));
-    cJSON_AddItemToObject(j, "mean_curvature", cJSON_CreateDoubleArray(k + 2, 2));
-    cJSON_AddItemToObject(j, "gauss_curvature", cJSON_CreateDoubleArray(k + 4, 2));
+    cJSON_AddItemToObject(j, "weights", rg2__json_doubles(w, 2));
+    add_num(j, "min_weight_at_samples", w[2]);
+    cJSON_AddItemToObject(j, "principal_curvature", rg2__json_doubles(k, 2));
+    cJSON_AddItemToObject(j, "mean_curvature", rg2__json_doubles(k + 2, 2));
+    cJSON_AddItemToObject(j, "gauss_curvature", rg2__json_doubles(k + 4, 2));
     if (r->kpeak.surf >= 0) {
         cJSON *kp = cJSON_AddObjectToObject(j, "largest_curvature");
-        cJSON_AddNumberToObject(kp, "k", r->kpeak_k);
+        add_num(kp, "k", r->kpeak_k);
         sample_json(kp, &r->kpeak);
     }
-    cJSON_AddNumberToObject(j, "size", r->size);
+    add_num(j, "size", r->size);
     const rg2_crossing_report *c = &r->crossings;
     if (c->density > 0) { /* (only when searched: the report without it is unchanged) */
         cJSON *x = cJSON_AddObjectToObject(j, "crossings");
-        cJSON_AddNumberToObject(x, "density", c->density);
-        cJSON_AddNumberToObject(x, "triangles", c->triangles);
-        cJSON_AddNumberToObject(x, "pairs", c->pairs);
-        cJSON_AddNumberToObject(x, "candidates", c->candidates);
-        cJSON_AddNumberToObject(x, "crossings", c->crossings);
+        add_num(x, "density", c->density);
+        add_num(x, "triangles", c->triangles);
+        add_num(x, "pairs", c->pairs);
+        add_num(x, "candidates", c->candidates);
+        add_num(x, "crossings", c->crossings);
         cJSON_AddBoolToObject(x, "ok", c->crossings == 0);
         if (c->crossings) {
             cJSON_AddItemToObject(x, "a", sheet_json(&c->a));
             cJSON_AddItemToObject(x, "b", sheet_json(&c->b));
-            cJSON_AddItemToObject(x, "point", cJSON_CreateDoubleArray(c->p, 3));
-            cJSON_AddNumberToObject(x, "angle", c->angle);
-            cJSON_AddNumberToObject(x, "residual", c->residual);
+            cJSON_AddItemToObject(x, "point", rg2__json_doubles(c->p, 3));
+            add_num(x, "angle", c->angle);
+            add_num(x, "residual", c->residual);
         }
     }
     unsigned f = rg2_check_failures(r, RG2_REQUIRE_G2 | RG2_REQUIRE_EXACT | RG2_REQUIRE_WEIGHTS);

@@ -555,14 +555,6 @@ int rg2_design_point_shape(const rg2_design *d, int k, int i, int j)
 /* ------------------------------------------------------------------------------------- */
 /* the control mesh as JSON (rg2 mesh) */
 
-static cJSON *num_array(const double *v, int n)
-{
-    cJSON *a = cJSON_CreateArray();
-    for (int i = 0; a && i < n; i++)
-        cJSON_AddItemToArray(a, rg2__json_double(v[i]));
-    return a;
-}
-
 static cJSON *int_array(const int *v, int n)
 {
     cJSON *a = cJSON_CreateArray();
@@ -576,9 +568,9 @@ static cJSON *scalars_json(const rg2_scalars *s, const int *leg, const int *jun)
     cJSON *o = cJSON_CreateObject();
     cJSON_AddBoolToObject(o, "closed", s->closed);
     cJSON_AddNumberToObject(o, "first_leg", s->closed ? 0 : -1);
-    cJSON_AddItemToObject(o, "w", num_array(s->w, rg2_scalars_num_w(s)));
-    cJSON_AddItemToObject(o, "b", num_array(s->b, s->n));
-    cJSON_AddItemToObject(o, "g", num_array(s->g, s->n));
+    cJSON_AddItemToObject(o, "w", rg2__json_doubles(s->w, rg2_scalars_num_w(s)));
+    cJSON_AddItemToObject(o, "b", rg2__json_doubles(s->b, s->n));
+    cJSON_AddItemToObject(o, "g", rg2__json_doubles(s->g, s->n));
     cJSON_AddItemToObject(o, "w_shape", int_array(leg, rg2_scalars_num_w(s)));
     cJSON_AddItemToObject(o, "junction_shape", int_array(jun, s->n));
     return o;
@@ -610,7 +602,7 @@ rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, rg2_erro
         if (desc)
             for (int p = 0; p < desc->n_params; p++)
                 cJSON_AddItemToObject(s, desc->param_names[p], rg2__json_double(d->shapes[k].param[p]));
-        cJSON_AddItemToObject(s, "matrix", num_array(d->shapes[k].xform, 16));
+        cJSON_AddItemToObject(s, "matrix", rg2__json_doubles(d->shapes[k].xform, 16));
         cJSON_AddItemToArray(shapes, s);
     }
     cJSON *meshes = cJSON_AddArrayToObject(root, "meshes");
@@ -628,7 +620,7 @@ rg2_status rg2_design_write_mesh(const rg2_design *d, const char *path, rg2_erro
             for (int j = 0; j < m->nv; j++) {
                 const double *p = rg2_mesh_at(m, i, j);
                 double x[3] = {p[0] / p[3], p[1] / p[3], p[2] / p[3]};
-                cJSON_AddItemToArray(row, num_array(x, 3));
+                cJSON_AddItemToArray(row, rg2__json_doubles(x, 3));
                 cJSON_AddItemToArray(wrow, rg2__json_double(p[3]));
                 int sp = rg2__dmesh_pp(dm, i, j)->src;
                 cJSON_AddItemToArray(srow, cJSON_CreateNumber(sp < 0 ? -1 : d->src[sp].shape));

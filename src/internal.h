@@ -265,9 +265,10 @@ size_t rg2__utf8_len(const unsigned char *p, size_t n);
 char *rg2__text_clean(const char *s, char control);
 struct cJSON *rg2__json_parse(const char *text, size_t len, const char **end);
 char *rg2__json_print(const struct cJSON *item, int formatted);
-/* A number item whose printed text reads back to the same double (cJSON's own printing may
- * drop an ulp; src/json.c). */
+/* A number item (an array of n) whose printed text reads back to the same double (cJSON's own
+ * printing may drop an ulp; src/json.c). */
 struct cJSON *rg2__json_double(double x);
+struct cJSON *rg2__json_doubles(const double *x, int n);
 
 /* A bounding box grown point by point: its largest |coordinate| and its diagonal. */
 typedef struct {

@@ -80,3 +80,12 @@ cJSON *rg2__json_double(double x)
     rg2__c_numeric_end(loc);
     return cJSON_CreateRaw(buf);
 }
+
+/* An array of n such numbers (NULL when out of memory). */
+cJSON *rg2__json_doubles(const double *x, int n)
+{
+    cJSON *a = cJSON_CreateArray();
+    for (int i = 0; a && i < n; i++)
+        cJSON_AddItemToArray(a, rg2__json_double(x[i]));
+    return a;
+}

@@ -1405,12 +1405,24 @@ static double larger_k(const rg2_surface *s, int pi, int pj, double u, double v,
     return fabs(e.k2) > fabs(e.k1) ? e.k2 : e.k1;
 }
 
+/* a JSON number, or an array of three, that reads back to exactly x */
+static int json_is(const cJSON *n, double x)
+{
+    return cJSON_IsNumber(n) && n->valuedouble == x;
+}
+
+static int json_point_is(const cJSON *a, const double x[3])
+{
+    return cJSON_GetArraySize(a) == 3 && json_is(cJSON_GetArrayItem(a, 0), x[0]) &&
+           json_is(cJSON_GetArrayItem(a, 1), x[1]) && json_is(cJSON_GetArrayItem(a, 2), x[2]);
+}
+
 /* Where the surface bends most (rg2_check_report.kpeak, the "largest |k|" line). A cylinder of
  * radius 1 scaled by 2 along x is an elliptic cylinder, a = 2, b = 1: it bends most at the ends
  * of the major axis, |k| = a / b^2 = 2, which its 4 arcs put on patch corners. A torus with one
  * control point moved: the report names the sample this test finds by its own scan of the same
  * 13 x 13 samples per patch in the same order (first strictly larger), on 1 to 4 threads; the
- * JSON carries the same k (to the 15 digits cJSON may print). */
+ * JSON carries the same k, and every number of its report, bit for bit. */
 static void curvature_peak(void)
 {
     rg2_shape c;
@@ -1470,9 +1482,21 @@ static void curvature_peak(void)
         CHECK_OK(rg2_check_format(&r, 1, &json, &err), &err);
         cJSON *j = json ? cJSON_Parse(json) : NULL, *kp = cJSON_GetObjectItem(j, "largest_curvature");
         cJSON *jk = cJSON_GetObjectItem(kp, "k");
-        CHECK(cJSON_IsNumber(jk) && rel(jk->valuedouble, best) <= 1e-15, /* (15 digits may drop an ulp) */
-              "JSON largest_curvature.k %.17g, expected %.17g",
+        CHECK(cJSON_IsNumber(jk) && jk->valuedouble == best, "JSON largest_curvature.k %.17g, expected %.17g",
               cJSON_IsNumber(jk) ? jk->valuedouble : NAN, best);
+        /* every number reads back to the report's own double (cJSON's 15 digits dropped the last
+         * bit of some: the point copied into a design's "to" must be the sample's) */
+        int bits = json_point_is(cJSON_GetObjectItem(kp, "point"), r.kpeak.p) &&
+                   json_is(cJSON_GetObjectItem(kp, "u"), r.kpeak.u) && json_is(cJSON_GetObjectItem(kp, "v"), r.kpeak.v);
+        cJSON *g2 = cJSON_GetObjectItem(j, "g2_curvature_jump");
+        bits = bits && json_is(cJSON_GetObjectItem(g2, "value"), r.g2.value) &&
+               json_is(cJSON_GetObjectItem(g2, "t"), r.g2.t) && json_point_is(cJSON_GetObjectItem(g2, "point"), r.g2.p);
+        cJSON *w = cJSON_GetObjectItem(j, "weights");
+        bits = bits && json_is(cJSON_GetArrayItem(w, 0), r.wmin) && json_is(cJSON_GetArrayItem(w, 1), r.wmax) &&
+               json_is(cJSON_GetObjectItem(j, "min_weight_at_samples"), r.eval_wmin) &&
+               json_is(cJSON_GetObjectItem(j, "size"), r.size);
+        CHECK(bits, "%d thread(s): the JSON's largest_curvature u, v, point, G2 gap value, t, point, weights "
+              "and size read back bit for bit", th);
         cJSON_Delete(j);
         free(json);
         rg2_check_report_free(&r);
