@@ -187,6 +187,20 @@ typedef struct {
     int open, closed, angles, knots; /* angles, knots: --D-angles, --D-knots given (o->vals holds the last) */
 } dir_opts;
 
+/* An angle total (the --D-angles' sum or --D-sweep) of 2 pi, pi or pi / 2 degrees, as a design
+ * file's: a circle typed in radians (--u-angles 1.5708,1.5708,1.5708,1.5708 built an open sliver
+ * of 6.28 degrees with no word); refused unless --D-open or --D-closed is given. */
+static int radians(const char *shape, const char *D, const dir_opts *o, double deg)
+{
+    const char *turn = o->open || o->closed ? NULL : rg2_angle_total_in_radians(deg);
+    if (turn)
+        fprintf(stderr, "rg2 shape: %s: %s%s%s %.6g degrees, which is %s; angles are in degrees (a full circle "
+                        "is 360): convert them (times 180 / pi), or add --%s-open if an open ring of %.6g degrees "
+                        "is meant\n", shape, o->angles ? "the --" : "--", D, o->angles ? "-angles sum to" : "-sweep",
+                deg, turn, D, deg);
+    return turn != NULL;
+}
+
 /* Turn the options of one direction into a partition (values stored in o->vals). */
 static int make_partition(const char *shape, const rg2_shape_desc *d, int dir, dir_opts *o,
                           rg2_partition *p)
@@ -223,6 +237,8 @@ static int make_partition(const char *shape, const rg2_shape_desc *d, int dir, d
             p->n = o->n_vals;
             p->values = o->vals;
             p->start = start;
+            if (radians(shape, D, o, sum))
+                return RG2_EXIT_FAIL;
             double gap = fabs(sum - 360.0);
             if (!o->closed && !o->open && gap > RG2_CLOSED_SUM_TOL * 360.0 && gap <= RG2_NEAR_FULL_DEG) {
                 fprintf(stderr,
@@ -241,6 +257,8 @@ static int make_partition(const char *shape, const rg2_shape_desc *d, int dir, d
             return RG2_EXIT_USAGE;
         }
         double sweep = open ? o->sweep : 360.0;
+        if (o->has_sweep && radians(shape, D, o, sweep))
+            return RG2_EXIT_FAIL;
         if (n <= 0) /* open: about as fine as the default full-circle partition */
             n = open ? (int)ceil(fabs(sweep) / (360.0 / d->default_segments[dir]) - 1e-9)
                      : d->default_segments[dir];

@@ -415,22 +415,6 @@ static int find_shape(const rg2_design *d, const char *label)
 
 #define MAX_PART 100000
 
-/* An angle total in degrees that is 2 pi, pi or pi / 2 to 1e-3 (relative): a full, half or
- * quarter circle typed in radians ("arcs": [1.5708, 1.5708, 1.5708, 1.5708] gave an open sliver
- * of 6.28 degrees, refused only later by a merge, as "8 vs 11 control points"). Its name, or
- * NULL. */
-static const char *radian_turn(double deg)
-{
-    static const struct { double v; const char *name; } turns[] = {
-        {2.0 * M_PI, "2 pi (a full circle in radians)"},
-        {M_PI, "pi (a half circle in radians)"},
-        {M_PI / 2.0, "pi / 2 (a quarter circle in radians)"}};
-    for (size_t k = 0; k < sizeof turns / sizeof turns[0]; k++)
-        if (fabs(deg - turns[k].v) <= 1e-3 * turns[k].v)
-            return turns[k].name;
-    return NULL;
-}
-
 /* The message for an angle total that looks like radians (what names the total: "the 4 arcs sum
  * to", "'from' 0 to 'to' 1.5708 spans"). */
 static rg2_status radian_fail(pctx *c, const char *path, const char *what, double deg, const char *turn)
@@ -542,7 +526,7 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
                 pb->values[k] *= M_PI / 180.0;
             }
             double gap = fabs(sum - 360.0);
-            const char *turn = have_closed ? NULL : radian_turn(sum);
+            const char *turn = have_closed ? NULL : rg2_angle_total_in_radians(sum);
             if (turn) {
                 char what[64];
                 snprintf(what, sizeof what, "the %d arc%s sum%s to", n, n == 1 ? "" : "s", n == 1 ? "s" : "");
@@ -569,7 +553,7 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
                         "ends meet in a slit): drop 'to' for a closed circle starting at 'from', or say "
                         "\"closed\": false for an open ring",
                         rg2__num(lo).s, rg2__num(hi).s);
-        const char *turn = angles && have_to && !have_closed ? radian_turn(hi - lo) : NULL;
+        const char *turn = angles && have_to && !have_closed ? rg2_angle_total_in_radians(hi - lo) : NULL;
         if (turn) {
             char what[160];
             snprintf(what, sizeof what, "'from' %s to 'to' %s spans", rg2__num(lo).s, rg2__num(hi).s);

@@ -233,6 +233,20 @@ double rg2_partition_map(const rg2_partition *p, int seg, double t)
     return a + t * (b - a);
 }
 
+/* ("arcs": [1.5708, 1.5708, 1.5708, 1.5708] gave an open sliver of 6.28 degrees, refused only
+ * later by a merge, as "8 vs 11 control points") */
+const char *rg2_angle_total_in_radians(double deg)
+{
+    static const struct { double v; const char *name; } turns[] = {
+        {TWO_PI, "2 pi (a full circle in radians)"},
+        {0.5 * TWO_PI, "pi (a half circle in radians)"},
+        {0.25 * TWO_PI, "pi / 2 (a quarter circle in radians)"}};
+    for (size_t k = 0; k < sizeof turns / sizeof turns[0]; k++)
+        if (fabs(deg - turns[k].v) <= 1e-3 * turns[k].v)
+            return turns[k].name;
+    return NULL;
+}
+
 rg2_status rg2_partition_equal(rg2_partition *p, rg2_partition_kind kind, int closed, double lo,
                                double hi, int n, double *values, int cap, rg2_error *err)
 {

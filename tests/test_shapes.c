@@ -1063,6 +1063,26 @@ static void small_arc_message(void)
                "data-arc layout: small arc named by its produced index");
 }
 
+/* rg2_angle_total_in_radians: 2 pi, pi and pi / 2 degrees each to 1e-3 relative (just inside
+ * is named, just outside not), nothing else (360, 90, 0, NaN, infinity, a negative turn). */
+static void radian_totals(void)
+{
+    static const char *const names[3] = {"2 pi (a full circle in radians)", "pi (a half circle in radians)",
+                                         "pi / 2 (a quarter circle in radians)"};
+    for (int k = 0; k < 3; k++) {
+        double t = 2.0 * M_PI / (1 << k);
+        for (int side = -1; side <= 1; side += 2) {
+            const char *in = rg2_angle_total_in_radians(t * (1 + side * 0.999e-3));
+            const char *out = rg2_angle_total_in_radians(t * (1 + side * 1.001e-3));
+            CHECK(in && !strcmp(in, names[k]) && !out, "%s: %s inside 1e-3, %s outside", names[k],
+                  in ? in : "NULL", out ? out : "NULL");
+        }
+    }
+    const double other[] = {360.0, 180.0, 90.0, 0.0, -2.0 * M_PI, 4.0 * M_PI, NAN, INFINITY};
+    for (size_t k = 0; k < sizeof other / sizeof other[0]; k++)
+        CHECK(!rg2_angle_total_in_radians(other[k]), "%g degrees is not named", other[k]);
+}
+
 /* The smallest data-knot layout, 6 values (v_-1, v_0, v_1, v_2 and two data knots): one
  * produced interval [values[2], values[3]]; a cylinder over it spans exactly those heights. */
 static void smallest_full_knots(void)
@@ -1214,6 +1234,7 @@ int main(void)
     parameter_ranges();
     equal_knots();
     small_arc_message();
+    radian_totals();
     smallest_full_knots();
     unknown_name_list();
     errors();

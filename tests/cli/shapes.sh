@@ -120,6 +120,15 @@ expect 1 "--scale 0: scale factors must be non-zero" -- "$RG2" shape torus --sca
 expect 2 "v is a circle direction" -- "$RG2" shape torus --v-knots 1,2
 expect 2 "u is a polynomial direction" -- "$RG2" shape hypar --u-arcs 4
 expect 2 "needs --u-sweep" -- "$RG2" shape torus --u-open
+# angles typed in radians, as a design file refuses them: a total of 2 pi, pi or pi / 2 degrees
+# (to 1e-3) unless openness is stated (--u-angles 1.5708 x 4 built an open 6.28-degree sliver)
+expect 1 "rg2 shape: torus: the --u-angles sum to 6.2832 degrees, which is 2 pi (a full circle in radians); angles are in degrees (a full circle is 360): convert them (times 180 / pi), or add --u-open if an open ring of 6.2832 degrees is meant" -- "$RG2" shape torus --u-angles 1.5708,1.5708,1.5708,1.5708
+expect 1 "the --v-angles sum to 3.1416 degrees, which is pi (a half circle" -- "$RG2" shape torus --v-angles 1.0472,1.0472,1.0472
+expect 1 "--u-sweep 1.5708 degrees, which is pi / 2 (a quarter circle" -- "$RG2" shape cylinder --u-sweep 1.5708
+expect 1 "--u-sweep 6.2819 degrees, which is 2 pi" -- "$RG2" shape cylinder --u-arcs 1 --u-sweep 6.2819
+expect 0 "u: open circle, 4 arcs from 0 deg, total 6.2832 deg" -- "$RG2" shape torus --u-angles 1.5708,1.5708,1.5708,1.5708 --u-open
+expect 0 "u: open circle, 1 arc from 0 deg, total 1.5708 deg" -- "$RG2" shape cylinder --u-sweep 1.5708 --u-open
+expect 0 "u: open circle, 1 arc from 0 deg, total 6.2769 deg" -- "$RG2" shape cylinder --u-arcs 1 --u-sweep 6.2769
 expect 2 "torus takes --R --r" -- "$RG2" shape torus --radius 2
 # the design file's limits: 100000 arcs or intervals per direction, 1000000 patches
 expect 0 "v: polynomial, 4200 segments" -- "$RG2" shape cylinder --u-arcs 3 --v-segments 4200 --samples 1
