@@ -40,4 +40,6 @@ while IFS=$'\t' read -r file code msg args; do
   rm -rf "$tmp"
 done <"$table"
 [ "$rows" -ge 30 ] && ok || bad "only $rows rows in $table (need at least 30)"
+# README's "How this is checked" counts the rows
+grep -q "($rows user mistakes:" "$SRC/README.md" && ok || bad "README.md does not say '($rows user mistakes:' (the rows of $table)"
 finish
