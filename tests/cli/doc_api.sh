@@ -30,11 +30,8 @@ for path in sys.argv[2:]:
             n = 0 if a == '' else a.count(',') + 1
             if n != arity[name]:
                 print('%s:%d: %s(%s) has %d arguments, include/rg2.h %d' % (path, ln, name, a, n, arity[name]))
-print('calls', calls)
+print('count', calls)
 EOF
 )
-calls=$(sed -n 's/^calls //p' <<<"$out")
-while IFS= read -r e; do [ -n "$e" ] && bad "$e"; done < <(grep -v '^calls ' <<<"$out")
-echo "doc_api: $calls calls compared"
-[ "${calls:-0}" -ge 20 ] && ok || bad "only '${calls}' calls with arguments found"
+doc_report doc_api "calls with arguments" 20 "$out"
 finish

@@ -41,11 +41,8 @@ for path, t in text.items():
             d = re.sub(r'^--[uv]-', '--D-', o) if c == 'shape' else o
             if o not in known[c] and d not in known[c]:
                 print('%s: `%s`: rg2 %s --help has no %s' % (path, ' '.join(s.split()), c, o))
-print('compared', n)
+print('count', n)
 EOF
 )
-n=$(sed -n 's/^compared //p' <<<"$out")
-while IFS= read -r e; do [ -n "$e" ] && bad "$e"; done < <(grep -v '^compared ' <<<"$out")
-echo "doc_options: $n options compared"
-[ "${n:-0}" -ge 50 ] && ok || bad "only '${n}' options compared"
+doc_report doc_options options 50 "$out"
 finish

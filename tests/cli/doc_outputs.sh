@@ -133,15 +133,10 @@ for path in sys.argv[1:]:
         if line.strip():
             marker = None
         i += 1
-print(checked)
 for e in errors:
     print(e)
+print('count', checked)
 EOF
 )
-n=${out%%$'\n'*}
-if [ "$out" != "$n" ]; then
-  while IFS= read -r e; do bad "$e"; done <<<"${out#*$'\n'}"
-fi
-echo "doc_outputs: $n quoted outputs compared"
-[ "${n:-0}" -ge 5 ] 2>/dev/null && ok || bad "only '${n}' quoted outputs found"
+doc_report doc_outputs "quoted outputs" 5 "$out"
 finish

@@ -23,4 +23,14 @@ png_is() {
   [ "$hdr" = "$want" ] && ok || bad "$f header $hdr, expected $want"
 }
 
+# doc_report NAME WHAT MIN OUT: the docs checks' python prints a failure per line and last
+# 'count N', the number of WHAT it compared; fewer than MIN means it found too little to check.
+doc_report() {
+  local name=$1 what=$2 min=$3 out=$4 n e
+  n=$(sed -n 's/^count //p' <<<"$out")
+  while IFS= read -r e; do [ -n "$e" ] && bad "$e"; done < <(grep -v '^count ' <<<"$out")
+  echo "$name: ${n:-0} $what compared"
+  [ "${n:-0}" -ge "$min" ] && ok || bad "only '${n:-0}' $what found"
+}
+
 finish() { echo "$(basename "$0" .sh): $pass passed, $fail failed"; [ "$fail" = 0 ]; }
