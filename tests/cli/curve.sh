@@ -80,4 +80,27 @@ jb=$("$RG2" curve --points "0,0;1,0;1,1;0,1" --closed --b 1,2,1,1 --json)
 [ "$j" != "$jb" ] && ok || bad "--b 1,2,1,1 changes nothing"
 jg=$("$RG2" curve --points "0,0;1,0;1,1;0,1" --closed --b 1,1,1,1 --g 0,0,0,0 --w 1,1,1,1 --json)
 [ "$j" = "$jg" ] && ok || bad "the default scalars given explicitly give another curve"
+# --dim is an integer 1..4: 0, 5 and a trailing letter are refused (not read as 2 or clamped)
+for d in 0 5 2x; do expect 2 "rg2 curve: --dim $d: need an integer 1..4" -- "$RG2" curve --dim "$d" --points 0,0; done
+# an empty --w is a count of 0 weights, not "the defaults": 4 open points need 5
+expect 2 "4 open points need 5 weights (--w)" -- "$RG2" curve --points "0,0;1,0;2,1;3,0" --w ''
+# any radius > 0 in range is taken, small ones too: junction 0 of the default circle at (R, 0)
+for r in 0.001 1e-99; do
+  close "$(nums "$("$RG2" curve --arcs 3 --radius "$r" --json)" 6 1)" "$r" && ok || bad "--radius $r: b0 is not at x = $r"
+done
+# every segment's control points, from cos and sin computed here: b0 and b3 on the circle of
+# radius R at the arc's ends, b1 and b2 on the tangents there (the JSON's points are these)
+if command -v python3 >/dev/null; then
+  "$RG2" curve --angles 50,70,100,140 --start 10 --radius 2 --json | python3 -c 'import json, math, sys
+d = json.load(sys.stdin); a = [50, 70, 100, 140]; t = 10.0
+assert len(d["segments"]) == 4
+for k, s in enumerate(d["segments"]):
+    p = s["points"]; e = [math.radians(t), math.radians(t + a[k])]; t += a[k]
+    for q, u in ((p[0], e[0]), (p[3], e[1])):
+        assert math.hypot(q[0] - 2 * math.cos(u), q[1] - 2 * math.sin(u)) < 1e-14, (k, q)
+    for q, r in ((p[1], p[0]), (p[2], p[3])):
+        assert abs((q[0] - r[0]) * r[0] + (q[1] - r[1]) * r[1]) < 1e-13 and math.hypot(q[0] - r[0], q[1] - r[1]) > 0.1, (k, q)
+    c = math.cos(math.radians(a[k]) / 2)
+    assert abs(s["w"][1] - (1 + 2 * c) / 3) < 1e-15, (k, s["w"])' && ok || bad "curve --json: control points off the circle and its tangents"
+fi
 finish
