@@ -32,6 +32,11 @@ for s in torus cyclide sphere cylinder cone hyperboloid1_ruled hyperboloid1 hype
   row=$(awk -v s="$s" -F' [|] ' 'index($0, "| `" s "` |") == 1 && /arcs|knot intervals/ { print $2 "; v: " $3 }' "$SRC/docs/shapes.md")
   row=${row% |}
   expect 0 "default u: $row" -- "$RG2" shapes
+  # the shape's own lines of the listing: a direction of arcs is a circle, one of knot intervals a polynomial
+  kind() { case "$1" in *arcs*) echo "circle (angles)" ;; *) echo "polynomial (knots)" ;; esac; }
+  blk=$("$RG2" shapes | awk -v s="$s" '$1 == s { on = 1; next } on && /^[^ ]/ { exit } on')
+  [[ "$blk" == *"u: $(kind "${row%%; v: *}"), v: $(kind "${row#*; v: }")"*"default u: $row"* ]] && ok ||
+    bad "rg2 shapes: $s's lines do not name its directions' kinds and defaults ($row): $blk"
   printf '{"format": "rg2 design 1", "shapes": {"S": {"kind": "%s"}}, "meshes": {"M": {"shape": "S"}}}' "$s" > "$dtmp/d.json"
   expect 0 "-> $nu x $nv = $((nu * nv)) patches" -- "$RG2" info "$dtmp/d.json"
 done
@@ -165,5 +170,25 @@ d = json.load(sys.stdin, parse_constant=lambda c: sys.exit("bare " + c))
 r = d["max_residual"]
 sys.exit(0 if r is not None and math.isfinite(r) else "residual %r" % r)'; then ok
   else bad "rg2 shape $args --json: not valid JSON with a finite max_residual"; fi
+done
+# a circle direction refuses each polynomial option; zero scale factors in any axis; a misspelt
+# nurbs is suggested as the exact shapes are
+for o in "--u-range 0,1" "--u-segments 3" "--u-knots 0,1"; do
+  expect 2 "rg2 shape: torus: u is a circle direction" -- "$RG2" shape torus $o
+done
+for sc in 0,1,1 1,0,1 1,1,0; do expect 1 "--scale $sc: scale factors must be non-zero" -- "$RG2" shape torus --scale $sc; done
+expect 2 "did you mean 'nurbs'?" -- "$RG2" shape nurb
+# the arcs a sweep needs past the limit: the message names the limit that --u-arcs states
+lim=$("$RG2" shape torus --u-arcs 0 2>&1 | sed -n 's/.*need an integer 1\.\.\([0-9]*\).*/\1/p')
+expect 2 "--u-arcs $(( (10000000 + 44) / 45 )): at most $lim" -- "$RG2" shape torus --u-sweep 1e7
+# the size printed is the bounding-box diagonal of the torus: x, y in [-(R + r), R + r], z in [-r, r];
+# the residual of the exact shape is rounding, at any scale
+for p in "3 1 1" "5 2 1" "3 1 1000" "3 1 0.001"; do
+  read -r R r k <<< "$p"
+  out=$("$RG2" shape torus --R "$R" --r "$r" --scale "$k")
+  got=$(printf '%s\n' "$out" | sed -n 's/.*(\([0-9.e+-]*\) of the size \([0-9.e+-]*\)).*/\1 \2/p')
+  awk -v g="$got" -v R="$R" -v r="$r" -v k="$k" 'BEGIN { split(g, a, " "); d = k * sqrt(8 * (R + r)^2 + 4 * r^2)
+    exit !(a[1] != "" && a[1] + 0 <= 1e-13 && a[2] > d * (1 - 1e-5) && a[2] < d * (1 + 1e-5)) }' && ok ||
+    bad "torus R=$R r=$r scale $k: residual and size '$got', size expected $(awk -v R="$R" -v r="$r" -v k="$k" 'BEGIN { print k * sqrt(8 * (R + r)^2 + 4 * r^2) }')"
 done
 finish
