@@ -411,7 +411,9 @@ static void print_partition_text(const char *D, const rg2_partition *p)
         for (int k = 0; k < p->n && k < 13; k++)
             printf(" %.6g", p->values[k]);
     }
-    printf("%s\n", p->n > 13 ? " ..." : "");
+    /* the first 12 arcs, or the knots of the first 12 segments; " ..." when more are left out
+     * (13 arcs listed 12 and no " ...", as if complete) */
+    printf("%s\n", p->n > (p->kind == RG2_PART_ANGLES ? 12 : 13) ? " ..." : "");
 }
 
 /* Largest |f| / |grad f| over samples x samples points per patch, relative to the size. */

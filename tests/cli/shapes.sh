@@ -191,4 +191,14 @@ for p in "3 1 1" "5 2 1" "3 1 1000" "3 1 0.001"; do
     exit !(a[1] != "" && a[1] + 0 <= 1e-13 && a[2] > d * (1 - 1e-5) && a[2] < d * (1 + 1e-5)) }' && ok ||
     bad "torus R=$R r=$r scale $k: residual and size '$got', size expected $(awk -v R="$R" -v r="$r" -v k="$k" 'BEGIN { print k * sqrt(8 * (R + r)^2 + 4 * r^2) }')"
 done
+# the listed arcs or knots: all of them, or the first 12 arcs (knots of 12 segments) and " ..."
+for n in 6 12 13 14; do
+  for c in "u torus --u-arcs $n" "v cylinder --v-segments $n"; do
+    set -- $c; want=$((n > 12 ? 12 : n)); [ "$2" = cylinder ] && want=$((want + 1))
+    line=$("$RG2" shape "${@:2}" | grep "^  $1: "); line=${line#*deg:}; line=${line#*knots:}
+    vals=$(printf '%s' "${line% ...}" | wc -w); more=no; [[ "$line" == *" ..." ]] && more=yes
+    [ "$vals" = "$want" ] && [ "$more" = "$([ "$n" -gt 12 ] && echo yes || echo no)" ] && ok ||
+      bad "rg2 shape ${*:2}: $vals values listed, ' ...': $more (want $want, ' ...' iff more than 12): $line"
+  done
+done
 finish
