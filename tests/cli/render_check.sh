@@ -107,6 +107,29 @@ grep -q "note: --apart has no effect (one surface to draw)" "$tmp/f1_s2_apart.er
   bad "--apart with one surface: no note: $(cat "$tmp/f1_s2_apart.err")"
 expect 0 "note: --apart has no effect (one surface to draw)" -- "$RG2" render "$ex" -o "$tmp/n6.png" --size 64x48 --apart
 png_is "$tmp/f1_apart.png" 96 64
+# a small torus inside a big one (same centre, off the origin): the small box lies within the big
+# one on every axis, so they overlap by all of the smaller extent, in either output order
+for order in '"S", "B"' '"B", "S"'; do
+  printf '{"shapes": {"s": {"kind": "torus", "R": 0.3, "r": 0.1, "translate": [5, 5, 0]}, "b": {"kind": "torus", "R": 3, "r": 1, "translate": [5, 5, 0]}}, "meshes": {"S": {"shape": "s"}, "B": {"shape": "b"}}, "output": [%s]}' "$order" >"$tmp/nest.json"
+  expect 0 "note: output surfaces 0 and 1 overlap" -- "$RG2" render "$tmp/nest.json" -o "$tmp/nest.png" --size 16x16
+done
+# --size: the smallest picture, 16x16, is drawn; a height needs its digits right after the x
+# (strtol took '+50' and ' 50'); a --size without a value is a usage error, not a crash
+png_is "$tmp/nest.png" 16 16
+for sz in 100x+50 "100x 50" 15x16 16x15; do
+  expect 2 "rg2 render: --size needs WxH, each 16..8192 (e.g. 800x600), not '$sz'" -- "$RG2" render "$ex" -o "$tmp/x.png" --size "$sz"
+done
+out=$("$RG2" render "$ex" -o "$tmp/x.png" --size 2>&1); rc=$?
+[ "$rc" = 2 ] && [ "$out" = "rg2 render: --size needs WxH, each 16..8192 (e.g. 800x600)" ] && ok || bad "--size without a value: exit $rc: $out"
+expect 2 "rg2 render: --range needs lo,hi" -- "$RG2" render "$ex" -o "$tmp/x.png" --mode mean --range
+expect 2 "--range 1,1: needs lo < hi" -- "$RG2" render "$ex" -o "$tmp/x.png" --mode mean --range 1,1
+[ ! -e "$tmp/x.png" ] && ok || bad "a refused render wrote x.png"
+# the curvature modes use --range and --no-colorbar, and no mode but shaded is told about --no-tint
+# it was not given: no note
+for m in mean gauss; do
+  out=$("$RG2" render "$ex" -o "$tmp/m.png" --size 16x16 --mode $m --range -1,1 --no-colorbar 2>&1) && [ -z "$out" ] && ok ||
+    bad "render --mode $m --range --no-colorbar: $out"
+done
 # same bytes for 1 and 2 threads
 "$RG2" render "$ex" -o "$tmp/t1.png" --mode zebra --size 160x120 --threads 1 &&
   "$RG2" render "$ex" -o "$tmp/t2.png" --mode zebra --size 160x120 --threads 2 &&
