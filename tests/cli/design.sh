@@ -318,5 +318,18 @@ vol=$("$rg2" info "$tmp/small_torus.json" | sed -n 's/^  closed: the normal poin
 awk -v v="$vol" 'BEGIN { pi = 3.141592653589793; s = sin(2 * pi / 32) / (2 * pi / 32) * sin(2 * pi / 24) / (2 * pi / 24)
   e = 2 * pi * pi * 0.03 * 0.01 * 0.01 * s; exit !(v != "" && (v - e) / e < 1e-3 && (e - v) / e < 1e-3) }' && ok ||
   bad "info small_torus.json: enclosed volume '$vol', the polyhedron of equal steps 5.8168e-05"
+# the progress line is for a terminal (a pty from script(1)): it names the design and the first
+# output, "and the other outputs" when there are more; -q keeps the terminal silent
+if command -v script >/dev/null; then
+  ts=$src/examples/torus_sphere.json
+  pty() { script -qec "$(printf '%q ' "$@")" /dev/null </dev/null | tr -d '\r'; }
+  out=$(pty "$rg2" build "$ts" -o "$tmp/p1.obj")
+  [[ "$out" == *"rg2 build: reading and building $ts"*"rg2 build: writing $tmp/p1.obj"* ]] &&
+    [[ "$out" != *"other outputs"* ]] && ok || bad "build on a terminal, one output: $out"
+  out=$(pty "$rg2" build "$ts" -o "$tmp/p2.obj" -o "$tmp/p2.stl")
+  [[ "$out" == *"rg2 build: writing $tmp/p2.obj and the other outputs"* ]] && ok || bad "build on a terminal, two outputs: $out"
+  out=$(pty "$rg2" build -q "$ts" -o "$tmp/p3.obj")
+  [ -z "$out" ] && [ -s "$tmp/p3.obj" ] && ok || bad "build -q on a terminal printed: $out"
+fi
 echo "cli design: $passes passed, $fails failed"
 [ "$fails" = 0 ]
