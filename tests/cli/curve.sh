@@ -103,4 +103,8 @@ for k, s in enumerate(d["segments"]):
     c = math.cos(math.radians(a[k]) / 2)
     assert abs(s["w"][1] - (1 + 2 * c) / 3) < 1e-15, (k, s["w"])' && ok || bad "curve --json: control points off the circle and its tangents"
 fi
+# --name=value is split for every command; a flag given a value is refused wherever it stands in
+# the command's list of flags (first, middle, last), and a valued option keeps its value
+for f in --json --open --help; do expect 2 "rg2 curve: $f takes no value ('$f=1')" -- "$RG2" curve "$f=1"; done
+[ "$("$RG2" curve --arcs=5 --radius=2)" = "$("$RG2" curve --arcs 5 --radius 2)" ] && ok || bad "curve --arcs=5 --radius=2 differs from the spaced form"
 finish
