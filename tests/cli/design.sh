@@ -331,5 +331,11 @@ if command -v script >/dev/null; then
   out=$(pty "$rg2" build -q "$ts" -o "$tmp/p3.obj")
   [ -z "$out" ] && [ -s "$tmp/p3.obj" ] && ok || bad "build -q on a terminal printed: $out"
 fi
+# a write error is the file's, not a surface's: no "(surface k is mesh ...)" is appended (that
+# suffix is for a message naming a surface; /proc takes no new files, even for root)
+if [ -d /proc/self ]; then
+  expect 1 "/proc/x.step: cannot write" "$rg2" build -q "$src/examples/torus_sphere.json" -o /proc/x.step
+  grep -q "is mesh" "$tmp/err" && bad "a write error names a mesh: $(cat "$tmp/err")" || ok
+fi
 echo "cli design: $passes passed, $fails failed"
 [ "$fails" = 0 ]
