@@ -1625,6 +1625,387 @@ static void shape_residuals(void)
     rg2_surface_free(&s);
 }
 
+/* ------------------------------------------------ the formatted report, on reports made by hand */
+
+/* The promises report r breaks, from their definitions in rg2.h and the usage (not from
+ * rg2_check_failures): g0 the position gap over its limit; g1 that, or the normal angle over
+ * its limit, a sample next to a pole or ill-conditioned over its own bound (gap / limit > 1),
+ * a sample not measured, every sample on a pole, a fold or a singular sample; g2 that, or a
+ * curvature jump over its limit or over its own bound; exact a residual over its limit, a tag
+ * beyond the shapes, or no exact patch; weights a weight <= 0 at a control point or sample;
+ * no-crossings not searched, or a crossing. */
+static unsigned want_failures(const rg2_check_report *r)
+{
+    const rg2_check_opts *o = &r->opts;
+    int g0 = !(r->g0.value <= o->tol_g0);
+    int irregular = r->unmeasured > 0 || (r->seams > 0 && r->seam_samples == r->pole_samples) || r->folds > 0 ||
+                    r->singular > 0;
+    int g1 = g0 || irregular || !(r->g1.value <= o->tol_g1) || !(r->g1_pole.value <= 1) || !(r->g1_ill.value <= 1);
+    int g2 = g1 || !(r->g2.value <= o->tol_g2) || !(r->g2_pole.value <= 1) || !(r->g2_ill.value <= 1);
+    int exact = r->worst_residual <= o->tol_exact && r->untagged_bad == 0 && r->exact_patches > 0;
+    int weights = r->wmin > 0 && r->eval_wmin > 0;
+    int crossings = r->crossings.density == 0 || r->crossings.crossings > 0;
+    return (g0 ? RG2_REQUIRE_G0 : 0u) | (g1 ? RG2_REQUIRE_G1 : 0u) | (g2 ? RG2_REQUIRE_G2 : 0u) |
+           (exact ? 0u : RG2_REQUIRE_EXACT) | (weights ? 0u : RG2_REQUIRE_WEIGHTS) |
+           (crossings ? RG2_REQUIRE_NO_CROSSINGS : 0u);
+}
+
+/* A value against limit lim: 0, below, at, one ulp over, or well over it. */
+static double around(rg2t_rng *g, double lim)
+{
+    switch (rg2t_int(g, 0, 4)) {
+    case 0:
+        return 0;
+    case 1:
+        return lim * rg2t_uniform(g, 0.01, 0.99);
+    case 2:
+        return lim;
+    case 3:
+        return nextafter(lim, INFINITY);
+    default:
+        return lim * rg2t_uniform(g, 1.5, 1e3);
+    }
+}
+
+static void random_gap(rg2t_rng *g, rg2_check_gap *gap, double lim)
+{
+    gap->value = around(g, lim);
+    gap->surf = rg2t_int(g, 0, 3);
+    gap->seam_dir = rg2t_int(g, 0, 1);
+    gap->pi = rg2t_int(g, 0, 9), gap->pj = rg2t_int(g, 0, 9), gap->qi = rg2t_int(g, 0, 9), gap->qj = rg2t_int(g, 0, 9);
+    gap->t = rg2t_uniform(g, 0, 1);
+    for (int k = 0; k < 3; k++)
+        gap->p[k] = rg2t_uniform(g, -10, 10);
+}
+
+static void random_sample(rg2t_rng *g, rg2_check_sample *s)
+{
+    s->surf = rg2t_int(g, 0, 3), s->pi = rg2t_int(g, 0, 9), s->pj = rg2t_int(g, 0, 9);
+    s->u = rg2t_uniform(g, 0, 1), s->v = rg2t_uniform(g, 0, 1);
+    for (int k = 0; k < 3; k++)
+        s->p[k] = rg2t_uniform(g, -10, 10);
+}
+
+/* A report with every count either 0 or not and every value around its limit (shapes: room
+ * for 12). */
+static void random_report(rg2t_rng *g, rg2_check_report *r, rg2_check_shape *shapes)
+{
+    memset(r, 0, sizeof *r);
+    rg2_check_opts_default(&r->opts);
+    r->opts.seam_samples = rg2t_int(g, 1, 40);
+    r->opts.tol_g0 = rg2t_uniform(g, 1e-13, 1e-6), r->opts.tol_g1 = rg2t_uniform(g, 1e-13, 1e-6);
+    r->opts.tol_g2 = rg2t_uniform(g, 1e-13, 1e-6), r->opts.tol_exact = rg2t_uniform(g, 1e-13, 1e-6);
+    r->surfaces = rg2t_int(g, 1, 4), r->patches = rg2t_int(g, 1, 60);
+    r->exact_patches = rg2t_int(g, 0, 1) * rg2t_int(g, 1, r->patches), r->transitions = r->patches - r->exact_patches;
+    r->untagged_bad = rg2t_int(g, 0, 2) == 0 ? rg2t_int(g, 1, 3) : 0;
+    r->n_shapes = rg2t_int(g, 0, 12);
+    r->shapes = shapes;
+    for (int k = 0; k < r->n_shapes; k++) {
+        shapes[k].shape = k;
+        snprintf(shapes[k].label, sizeof shapes[k].label, "shape%d_%.*s", k, rg2t_int(g, 0, 40),
+                 "abcdefghijklmnopqrstuvwxyzabcdefghijklmnopqrstuvwxyz");
+        shapes[k].patches = rg2t_int(g, 0, 3);
+        shapes[k].residual = around(g, r->opts.tol_exact);
+        snprintf(shapes[k].where, sizeof shapes[k].where, "patch (%d,%d) u=%.3g v=%.3g", rg2t_int(g, 0, 9),
+                 rg2t_int(g, 0, 9), rg2t_uniform(g, 0, 1), rg2t_uniform(g, 0, 1));
+    }
+    r->worst_residual = around(g, r->opts.tol_exact);
+    r->seams = rg2t_int(g, 0, 3) ? rg2t_int(g, 1, 100) : 0;
+    r->seam_samples = r->seams * (r->opts.seam_samples + 1);
+    r->pole_samples = rg2t_int(g, 0, 3) == 0 ? r->seam_samples : rg2t_int(g, 0, r->seam_samples / 2);
+    r->unmeasured = rg2t_int(g, 0, 3) == 0 ? rg2t_int(g, 1, 5) : 0;
+    r->pole_unresolved = rg2t_int(g, 0, 3) == 0 ? rg2t_int(g, 1, 5) : 0;
+    r->skipped = r->pole_samples + r->pole_unresolved + r->unmeasured;
+    random_gap(g, &r->g0, r->opts.tol_g0);
+    random_gap(g, &r->g1, r->opts.tol_g1);
+    random_gap(g, &r->g2, r->opts.tol_g2);
+    r->near_pole = rg2t_int(g, 0, 1) ? rg2t_int(g, 1, 50) : 0;
+    r->near_pole_tol1 = rg2t_uniform(g, 1e-12, 1e-4), r->near_pole_tol2 = rg2t_uniform(g, 1e-12, 1e-2);
+    random_gap(g, &r->g1_pole, 1.0);
+    random_gap(g, &r->g2_pole, 1.0);
+    r->ill_conditioned = rg2t_int(g, 0, 1) ? rg2t_int(g, 1, 50) : 0;
+    r->ill_tol1 = rg2t_uniform(g, 1e-12, 1e-4), r->ill_tol2 = rg2t_uniform(g, 1e-12, 1e-2);
+    random_gap(g, &r->g1_ill, 1.0);
+    random_gap(g, &r->g2_ill, 1.0);
+    r->folds = rg2t_int(g, 0, 3) == 0 ? rg2t_int(g, 1, 9) : 0;
+    r->singular = rg2t_int(g, 0, 3) == 0 ? rg2t_int(g, 1, 9) : 0;
+    random_sample(g, &r->fold_at);
+    r->wmin = rg2t_uniform(g, -1, 1), r->wmax = r->wmin + rg2t_uniform(g, 0, 2);
+    r->eval_wmin = rg2t_int(g, 0, 3) ? fabs(r->wmin) + 0.1 : rg2t_uniform(g, -1, 0.1);
+    r->kmin = rg2t_uniform(g, -5, 0), r->kmax = rg2t_uniform(g, 0, 5);
+    r->Hmin = rg2t_uniform(g, -5, 0), r->Hmax = rg2t_uniform(g, 0, 5);
+    r->Kmin = rg2t_uniform(g, -5, 0), r->Kmax = rg2t_uniform(g, 0, 5);
+    random_sample(g, &r->kpeak);
+    r->kpeak.surf = rg2t_int(g, 0, 3) ? r->kpeak.surf : -1;
+    r->kpeak_k = rg2t_int(g, 0, 3) ? (rg2t_int(g, 0, 1) ? r->kmin : r->kmax) : 0;
+    r->size = rg2t_uniform(g, 0.1, 100);
+    rg2_crossing_report *c = &r->crossings;
+    if (rg2t_int(g, 0, 1)) {
+        c->density = rg2t_int(g, 1, 1000), c->triangles = rg2t_int(g, 2, 100000);
+        c->pairs = rg2t_int(g, 0, 100000), c->candidates = rg2t_int(g, 0, 100);
+        c->crossings = rg2t_int(g, 0, 1) ? rg2t_int(g, 1, 10) : 0;
+        rg2_check_sample a, b;
+        random_sample(g, &a), random_sample(g, &b);
+        c->a = (rg2_crossing_sheet){.surf = a.surf, .pi = a.pi, .pj = a.pj, .u = a.u, .v = a.v};
+        c->b = (rg2_crossing_sheet){.surf = b.surf, .pi = b.pi, .pj = b.pj, .u = b.u, .v = b.v};
+        memcpy(c->p, a.p, sizeof c->p);
+        c->angle = rg2t_uniform(g, 1e-3, 1.5), c->residual = rg2t_uniform(g, 0, 1e-9), c->size = r->size;
+    }
+}
+
+/* A member of o as a number (NaN when missing or not a number). */
+static double jnum(const cJSON *o, const char *name)
+{
+    const cJSON *x = cJSON_GetObjectItem(o, name);
+    return cJSON_IsNumber(x) ? x->valuedouble : NAN;
+}
+
+/* The n numbers of array member `name` of o equal x[0..n) (exactly: they read back). */
+static int jarr_is(const cJSON *o, const char *name, const double *x, int n)
+{
+    const cJSON *a = cJSON_GetObjectItem(o, name);
+    int same = cJSON_IsArray(a) && cJSON_GetArraySize(a) == n;
+    for (int k = 0; k < n && same; k++)
+        same = cJSON_IsNumber(cJSON_GetArrayItem(a, k)) && cJSON_GetArrayItem(a, k)->valuedouble == x[k];
+    return same;
+}
+
+/* A gap object of the JSON report holds g, its limit and verdict ok. */
+static int jgap_is(const cJSON *o, const rg2_check_gap *g, double lim, int ok)
+{
+    const cJSON *seam = cJSON_GetObjectItem(o, "seam"), *okj = cJSON_GetObjectItem(o, "ok");
+    double a[2] = {g->pi, g->pj}, b[2] = {g->qi, g->qj};
+    return jnum(o, "value") == g->value && jnum(o, "limit") == lim && cJSON_IsBool(okj) && cJSON_IsTrue(okj) == ok &&
+           jnum(o, "surface") == g->surf && cJSON_IsString(seam) && !strcmp(seam->valuestring, g->seam_dir ? "v" : "u") &&
+           jarr_is(o, "patch_a", a, 2) && jarr_is(o, "patch_b", b, 2) && jnum(o, "t") == g->t && jarr_is(o, "point", g->p, 3);
+}
+
+/* Sample members surface, patch, u, v, point of o hold s. */
+static int jsample_is(const cJSON *o, const rg2_check_sample *s)
+{
+    double ij[2] = {s->pi, s->pj};
+    return jnum(o, "surface") == s->surf && jarr_is(o, "patch", ij, 2) && jnum(o, "u") == s->u &&
+           jnum(o, "v") == s->v && jarr_is(o, "point", s->p, 3);
+}
+
+/* The line of text that begins with `start` (copied into line; 0 if none). */
+static int text_line(const char *text, const char *start, char *line, size_t size)
+{
+    size_t n = strlen(start);
+    for (const char *p = text; p && *p; p = strchr(p, '\n') ? strchr(p, '\n') + 1 : NULL)
+        if (!strncmp(p, start, n)) {
+            size_t l = strcspn(p, "\n");
+            snprintf(line, size, "%.*s", (int)(l < size ? l : size - 1), p);
+            return 1;
+        }
+    line[0] = '\0';
+    return 0;
+}
+
+/* The JSON report of r read back field by field. */
+static void json_matches(const rg2_check_report *r, const char *js, unsigned want, int trial)
+{
+    const rg2_check_opts *o = &r->opts;
+    cJSON *j = cJSON_Parse(js);
+    CHECK(j != NULL, "report %d: the JSON parses", trial);
+    if (!j)
+        return;
+    CHECK(jnum(j, "surfaces") == r->surfaces && jnum(j, "patches") == r->patches &&
+              jnum(j, "exact_patches") == r->exact_patches && jnum(j, "transitions") == r->transitions &&
+              jnum(j, "unknown_tags") == r->untagged_bad && jnum(j, "worst_residual") == r->worst_residual &&
+              jnum(j, "exact_limit") == o->tol_exact && jnum(j, "seams") == r->seams &&
+              jnum(j, "seam_samples") == r->seam_samples && jnum(j, "skipped") == r->skipped &&
+              jnum(j, "pole_samples") == r->pole_samples && jnum(j, "unmeasured") == r->unmeasured &&
+              jnum(j, "size") == r->size && jnum(j, "min_weight_at_samples") == r->eval_wmin,
+          "report %d: the JSON counts", trial);
+    const cJSON *sh = cJSON_GetObjectItem(j, "shapes");
+    CHECK(cJSON_GetArraySize(sh) == r->n_shapes, "report %d: %d JSON shapes of %d", trial, cJSON_GetArraySize(sh),
+          r->n_shapes);
+    for (int k = 0; k < r->n_shapes && k < cJSON_GetArraySize(sh); k++) {
+        const cJSON *s = cJSON_GetArrayItem(sh, k), *ok = cJSON_GetObjectItem(s, "ok");
+        const cJSON *label = cJSON_GetObjectItem(s, "label"), *where = cJSON_GetObjectItem(s, "where");
+        CHECK(jnum(s, "index") == k && cJSON_IsString(label) && !strcmp(label->valuestring, r->shapes[k].label) &&
+                  jnum(s, "patches") == r->shapes[k].patches && jnum(s, "residual") == r->shapes[k].residual &&
+                  cJSON_IsBool(ok) && cJSON_IsTrue(ok) == (r->shapes[k].residual <= o->tol_exact) &&
+                  cJSON_IsString(where) && !strcmp(where->valuestring, r->shapes[k].where),
+              "report %d: JSON shape %d", trial, k);
+    }
+    const cJSON *rg = cJSON_GetObjectItem(j, "regularity");
+    int irregular = r->folds || r->singular;
+    CHECK(jnum(rg, "folds") == r->folds && jnum(rg, "singular") == r->singular &&
+              (irregular ? jsample_is(rg, &r->fold_at) : !cJSON_GetObjectItem(rg, "point")),
+          "report %d: JSON regularity (folds %d, singular %d)", trial, r->folds, r->singular);
+    CHECK(jgap_is(cJSON_GetObjectItem(j, "g0_position"), &r->g0, o->tol_g0, !(want & RG2_REQUIRE_G0)) &&
+              jgap_is(cJSON_GetObjectItem(j, "g1_normal_angle"), &r->g1, o->tol_g1, !(want & RG2_REQUIRE_G1)) &&
+              jgap_is(cJSON_GetObjectItem(j, "g2_curvature_jump"), &r->g2, o->tol_g2, !(want & RG2_REQUIRE_G2)),
+          "report %d: JSON G0/G1/G2 (failures %#x)", trial, want);
+    const cJSON *np = cJSON_GetObjectItem(j, "near_pole"), *ic = cJSON_GetObjectItem(j, "ill_conditioned");
+    CHECK(jnum(np, "samples") == r->near_pole && jnum(np, "unresolved") == r->pole_unresolved &&
+              jnum(np, "g1_limit_max") == fmax(r->near_pole_tol1, o->tol_g1) &&
+              jnum(np, "g2_limit_max") == fmax(r->near_pole_tol2, o->tol_g2) &&
+              jgap_is(cJSON_GetObjectItem(np, "g1_gap_over_limit"), &r->g1_pole, 1, r->g1_pole.value <= 1) &&
+              jgap_is(cJSON_GetObjectItem(np, "g2_gap_over_limit"), &r->g2_pole, 1, r->g2_pole.value <= 1) &&
+              jnum(ic, "samples") == r->ill_conditioned && jnum(ic, "g1_limit_max") == fmax(r->ill_tol1, o->tol_g1) &&
+              jnum(ic, "g2_limit_max") == fmax(r->ill_tol2, o->tol_g2) &&
+              jgap_is(cJSON_GetObjectItem(ic, "g1_gap_over_limit"), &r->g1_ill, 1, r->g1_ill.value <= 1) &&
+              jgap_is(cJSON_GetObjectItem(ic, "g2_gap_over_limit"), &r->g2_ill, 1, r->g2_ill.value <= 1),
+          "report %d: JSON near_pole / ill_conditioned", trial);
+    double w[2] = {r->wmin, r->wmax}, k[2] = {r->kmin, r->kmax}, h[2] = {r->Hmin, r->Hmax}, K[2] = {r->Kmin, r->Kmax};
+    CHECK(jarr_is(j, "weights", w, 2) && jarr_is(j, "principal_curvature", k, 2) && jarr_is(j, "mean_curvature", h, 2) &&
+              jarr_is(j, "gauss_curvature", K, 2),
+          "report %d: JSON weights and curvature ranges", trial);
+    const cJSON *kp = cJSON_GetObjectItem(j, "largest_curvature");
+    CHECK(r->kpeak.surf >= 0 ? kp && jnum(kp, "k") == r->kpeak_k && jsample_is(kp, &r->kpeak) : !kp,
+          "report %d: JSON largest_curvature (surface %d)", trial, r->kpeak.surf);
+    const rg2_crossing_report *c = &r->crossings;
+    const cJSON *x = cJSON_GetObjectItem(j, "crossings"), *xok = cJSON_GetObjectItem(x, "ok");
+    int sheets = 1;
+    for (int s = 0; s < 2 && c->crossings; s++) {
+        const rg2_crossing_sheet *e = s ? &c->b : &c->a;
+        const cJSON *js_ = cJSON_GetObjectItem(x, s ? "b" : "a");
+        double ij[2] = {e->pi, e->pj}, uv[2] = {e->u, e->v};
+        sheets = sheets && jnum(js_, "surface") == e->surf && jarr_is(js_, "patch", ij, 2) && jarr_is(js_, "uv", uv, 2);
+    }
+    CHECK(c->density > 0 ? x && jnum(x, "density") == c->density && jnum(x, "triangles") == c->triangles &&
+                               jnum(x, "pairs") == c->pairs && jnum(x, "candidates") == c->candidates &&
+                               jnum(x, "crossings") == c->crossings && cJSON_IsBool(xok) &&
+                               cJSON_IsTrue(xok) == !(want & RG2_REQUIRE_NO_CROSSINGS) && sheets &&
+                               (c->crossings ? jarr_is(x, "point", c->p, 3) && jnum(x, "angle") == c->angle &&
+                                                   jnum(x, "residual") == c->residual
+                                             : !cJSON_GetObjectItem(x, "a") && !cJSON_GetObjectItem(x, "point"))
+                         : !x,
+          "report %d: JSON crossings (density %d, %d crossings)", trial, c->density, c->crossings);
+    CHECK(cJSON_IsBool(cJSON_GetObjectItem(j, "g2")) && cJSON_IsBool(cJSON_GetObjectItem(j, "exact")) &&
+              cJSON_IsBool(cJSON_GetObjectItem(j, "positive_weights")) &&
+              cJSON_IsTrue(cJSON_GetObjectItem(j, "g2")) == !(want & RG2_REQUIRE_G2) &&
+              cJSON_IsTrue(cJSON_GetObjectItem(j, "exact")) == !(want & RG2_REQUIRE_EXACT) &&
+              cJSON_IsTrue(cJSON_GetObjectItem(j, "positive_weights")) == !(want & RG2_REQUIRE_WEIGHTS),
+          "report %d: JSON promises (failures %#x)", trial, want);
+    cJSON_Delete(j);
+}
+
+/* The row of a gap in the text table names verdict `v` ("ok", "FAIL" or "-" without seams) and,
+ * when the row has a verdict and a gap, where it is. */
+static void text_gap_row(const char *text, const char *name, const rg2_check_gap *g, const char *v, int trial)
+{
+    char line[512], at[160], want_v[16];
+    snprintf(at, sizeof at, "at surface %d %s seam (%d,%d)|(%d,%d)", g->surf, g->seam_dir ? "v" : "u", g->pi, g->pj,
+             g->qi, g->qj);
+    snprintf(want_v, sizeof want_v, " %-4s (limit", v);
+    CHECK(text_line(text, name, line, sizeof line) && strstr(line, want_v) &&
+              !strstr(line, at) == (!strcmp(v, "-") || !(g->value > 0)),
+          "report %d: the row '%s' wants '%s'%s: %s", trial, name, v, g->value > 0 ? " and where" : "", line);
+}
+
+/* A block of samples against their own bound ("next to a pole", "ill-conditioned") is there
+ * when n > 0 with the verdicts of g1 and g2 over their bound 1, and where the larger is. */
+static void text_rounded(const char *text, const char *name, int n, const rg2_check_gap *g1, const rg2_check_gap *g2,
+                         int trial)
+{
+    char head[512], want[160];
+    int has = text_line(text, name, head, sizeof head);
+    CHECK(has == (n > 0), "report %d: '%s' %s with %d samples", trial, name, has ? "shown" : "not shown", n);
+    if (!has)
+        return;
+    const char *next = strstr(text, head) + strlen(head) + 1, *end = strchr(next, '\n');
+    snprintf(want, sizeof want, "G1 %.2g %s, G2 %.2g %s", g1->value, g1->value <= 1 ? "ok" : "FAIL", g2->value,
+             g2->value <= 1 ? "ok" : "FAIL");
+    const rg2_check_gap *w = g2->value >= g1->value ? g2 : g1;
+    char at[160];
+    snprintf(at, sizeof at, "at surface %d %s seam (%d,%d)|(%d,%d)", w->surf, w->seam_dir ? "v" : "u", w->pi, w->pj,
+             w->qi, w->qj);
+    char *row = end ? strstr(next, want) : NULL, *where = end ? strstr(next, at) : NULL;
+    CHECK(row && row < end && (g2->value > 0 ? where && where < end : !strstr(next, "  at surface") ||
+                                                                            strstr(next, "  at surface") > end),
+          "report %d: '%s' wants '%s'%s: %.*s", trial, name, want, g2->value > 0 ? " and where" : "",
+          end ? (int)(end - next) : 0, next);
+}
+
+/* The text table of r: the verdicts and the lines present as the report's own values say. */
+static void text_matches(const rg2_check_report *r, const char *text, unsigned want, int trial)
+{
+    const rg2_check_opts *o = &r->opts;
+    char line[512], want_s[160];
+    int has = r->seams > 0;
+    snprintf(want_s, sizeof want_s, "seams %d, %d samples (%d per seam): %d at a pole", r->seams, r->seam_samples,
+             o->seam_samples + 1, r->pole_samples);
+    CHECK(strstr(text, want_s) != NULL, "report %d: wants '%s'", trial, want_s);
+    text_gap_row(text, "  G0 position gap", &r->g0, !has ? "-" : want & RG2_REQUIRE_G0 ? "FAIL" : "ok", trial);
+    text_gap_row(text, "  G1 normal angle", &r->g1, !has ? "-" : want & RG2_REQUIRE_G1 ? "FAIL" : "ok", trial);
+    text_gap_row(text, "  G2 curvature jump", &r->g2, !has ? "-" : want & RG2_REQUIRE_G2 ? "FAIL" : "ok", trial);
+    text_rounded(text, "  next to a pole", r->near_pole, &r->g1_pole, &r->g2_pole, trial);
+    text_rounded(text, "  ill-conditioned", r->ill_conditioned, &r->g1_ill, &r->g2_ill, trial);
+    CHECK(!text_line(text, "  too close to a pole", line, sizeof line) == !r->pole_unresolved,
+          "report %d: %d samples too close to a pole", trial, r->pole_unresolved);
+    CHECK(!text_line(text, "  NOT MEASURED", line, sizeof line) ==
+              !(r->unmeasured || (has && r->seam_samples == r->pole_samples)),
+          "report %d: NOT MEASURED with %d unmeasured, %d of %d samples on a pole", trial, r->unmeasured,
+          r->pole_samples, r->seam_samples);
+    snprintf(want_s, sizeof want_s, "first at surface %d patch (%d,%d)", r->fold_at.surf, r->fold_at.pi, r->fold_at.pj);
+    int irr = text_line(text, "  NOT REGULAR", line, sizeof line);
+    CHECK(irr == (r->folds || r->singular) && (!irr || strstr(line, want_s)), "report %d: NOT REGULAR (%d, %d): %s",
+          trial, r->folds, r->singular, line);
+    CHECK(text_line(text, "  NO EXACT PATCH", line, sizeof line) == (r->exact_patches == 0),
+          "report %d: NO EXACT PATCH with %d exact patches", trial, r->exact_patches);
+    for (int k = 0; k < r->n_shapes; k++) {
+        const rg2_check_shape *s = &r->shapes[k];
+        char start[96], label[96], v[16];
+        int idx = -1, patches = -1;
+        double res = NAN;
+        snprintf(start, sizeof start, "  %2d %s ", k, s->label);
+        int row = text_line(text, start, line, sizeof line) &&
+                  sscanf(line, "%d %95s %d %lf %15s", &idx, label, &patches, &res, v) == 5;
+        CHECK(row && patches == s->patches && rel(res, s->residual) < 1e-2 &&
+                  !strcmp(v, !s->patches ? "-" : s->residual <= o->tol_exact ? "ok" : "FAIL") && strstr(line, s->where),
+              "report %d: shape row %d: %s", trial, k, line);
+    }
+    CHECK((strstr(text, "(NON-POSITIVE)") == NULL) == (r->wmin > 0), "report %d: weights from %g", trial, r->wmin);
+    CHECK(text_line(text, "  largest |k|", line, sizeof line) == (r->kpeak.surf >= 0 && r->kpeak_k != 0),
+          "report %d: largest |k| %g at surface %d", trial, r->kpeak_k, r->kpeak.surf);
+    const rg2_crossing_report *c = &r->crossings;
+    int xl = text_line(text, "crossings ", line, sizeof line);
+    size_t len = strlen(line);
+    const char *xv = c->crossings ? " FAIL" : " ok";
+    CHECK(xl == (c->density > 0) && (!xl || (len > strlen(xv) && !strcmp(line + len - strlen(xv), xv))),
+          "report %d: crossings (density %d, %d): %s", trial, c->density, c->crossings, line);
+    snprintf(want_s, sizeof want_s, "  first at surface %d patch (%d,%d)", c->a.surf, c->a.pi, c->a.pj);
+    CHECK(!text_line(text, want_s, line, sizeof line) == !(c->density > 0 && c->crossings),
+          "report %d: the first crossing named (density %d, %d)", trial, c->density, c->crossings);
+}
+
+/* Reports made by hand, every count zero or not and every value 0, below, at, an ulp over or well
+ * over its limit: rg2_check_failures keeps the promises' definitions for every set required; the
+ * JSON reads back to the report's own numbers with the verdicts those define; the text table
+ * shows the same verdicts and the lines and places the report's values call for. */
+static void format_made_reports(void)
+{
+    rg2t_rng g;
+    rg2t_seed(&g, 20261206);
+    rg2_check_shape shapes[12];
+    int bad = 0, failed = rg2t_failed;
+    for (int trial = 0; trial < 600; trial++) {
+        rg2_check_report r;
+        random_report(&g, &r, shapes);
+        unsigned want = want_failures(&r);
+        for (unsigned req = 0; req < 64; req++)
+            bad += rg2_check_failures(&r, req) != (want & req);
+        CHECK(!bad, "report %d: failures %#x of %#x required, want %#x", trial, rg2_check_failures(&r, 63u), 63u, want);
+        rg2_error err;
+        char *text = NULL, *js = NULL;
+        CHECK_OK(rg2_check_format(&r, 0, &text, &err), &err);
+        CHECK_OK(rg2_check_format(&r, 1, &js, &err), &err);
+        if (text)
+            text_matches(&r, text, want, trial);
+        if (js)
+            json_matches(&r, js, want, trial);
+        free(text);
+        free(js);
+        if (rg2t_failed > failed)
+            break; /* (the first report that fails is enough to read) */
+    }
+    printf("check report: 600 reports made by hand read back from their JSON and text\n");
+}
+
 int main(void)
 {
     harness_agreement();
@@ -1649,5 +2030,6 @@ int main(void)
     threads_identical();
     curvature_peak();
     shape_residuals();
+    format_made_reports();
     return rg2t_done("test_check");
 }
