@@ -181,6 +181,12 @@ expect 0 "16 at a pole (no normal there), 0 not measured" -- \
 expect 2 "--require '': needs a comma-separated list" -- "$RG2" check "$ex" --require ""
 expect 2 "--require 'g2,,exact': needs a comma-separated list" -- "$RG2" check "$ex" --require g2,,exact
 expect 2 "--tol" -- "$RG2" check "$ex" --tol g2
+# every --tol kind sets its own limit: the table's row (or the JSON's exact_limit) shows it
+for k in g0:"G0 position gap" g1:"G1 normal angle" g2:"G2 curvature jump"; do
+  "$RG2" check "$ex" --tol "${k%%:*}=3e-3" | grep "${k#*:}" | grep -q "(limit 3e-03" && ok || bad "--tol ${k%%:*}=3e-3 not in its row"
+done
+"$RG2" check "$ex" --tol exact=3e-3 --json | grep -q '"exact_limit":[[:space:]]*0.003,' && ok || bad "--tol exact=3e-3 not the exact_limit"
+expect 2 "--require '  ': needs a comma-separated list" -- "$RG2" check "$ex" --require "  "
 # the report does not depend on the thread count (text and JSON, a pole design, a fold)
 "$RG2" check --help | grep -q -- "--threads N" && ok || bad "check --help: --threads"
 for f in "$ex" "$SRC/examples/fig9_polar_sphere.json" "$SRC/examples/fig14_mobius.json" "$fold"; do
