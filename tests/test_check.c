@@ -1703,7 +1703,7 @@ static void random_report(rg2t_rng *g, rg2_check_report *r, rg2_check_shape *sha
     for (int k = 0; k < r->n_shapes; k++) {
         shapes[k].shape = k;
         snprintf(shapes[k].label, sizeof shapes[k].label, "shape%d_%.*s", k, rg2t_int(g, 0, 40),
-                 "abcdefghijklmnopqrstuvwxyzabcdefghijklmnopqrstuvwxyz");
+                 "abcdefghijklmnopqrstuvwxyzabcdefghijklmn");
         shapes[k].patches = rg2t_int(g, 0, 3);
         shapes[k].residual = around(g, r->opts.tol_exact);
         snprintf(shapes[k].where, sizeof shapes[k].where, "patch (%d,%d) u=%.3g v=%.3g", rg2t_int(g, 0, 9),
