@@ -275,10 +275,10 @@ int rg2_cmd_check(int argc, char **argv)
             }
             char kind[16];
             snprintf(kind, sizeof kind, "--tol %.*s", (int)(eq - t), t);
-            if (rg2_cli_number("check", kind, eq + 1, "a number >= 0", &v))
+            if (rg2_cli_number("check", kind, eq + 1, "a finite number >= 0", &v))
                 return RG2_EXIT_USAGE;
             if (v < 0) {
-                fprintf(stderr, "rg2 check: %s needs a number >= 0, not '%s'\n", kind, eq + 1);
+                fprintf(stderr, "rg2 check: %s needs a finite number >= 0, not '%s'\n", kind, eq + 1);
                 return RG2_EXIT_USAGE;
             }
             *dst = v;
