@@ -246,16 +246,26 @@ expect 0 "on shape ring       surface 0: 48 of 120 patches within 1e-11 of its s
 near=$(python3 -c 'import json, sys; print(repr(json.load(open(sys.argv[1]))["on"][0]["nearest_off"]))' "$tmp/on1.json")
 "$RG2" check "$ex" --json --on ball --tol exact="$near" > "$tmp/on2.json" 2>&1 || bad "check --on ball --tol exact=$near"
 "$RG2" check "$ex" --on ball --tol exact="$near" > "$tmp/on2.txt" 2>&1 || bad "check --on ball --tol exact=$near (text)"
+# (the nearest residual is printed exactly: one ulp below it the patch is off again)
+below=$(python3 -c 'import math, sys; print(repr(math.nextafter(float(sys.argv[1]), 0)))' "$near")
+"$RG2" check "$ex" --json --on ball --tol exact="$below" > "$tmp/on3.json" 2>&1 || bad "check --on ball --tol exact=$below"
 # (and tolerances of 1, the surface's size: every patch on it, none off; and 1e-300: none on)
 for x in 1 1e-300; do
   "$RG2" check "$ex" --json --on ball --tol exact=$x > "$tmp/tol$x.json" 2>&1 || bad "check --json --on ball --tol exact=$x"
   "$RG2" check "$ex" --on ball --tol exact=$x > "$tmp/tol$x.txt" 2>&1 || bad "check --on ball --tol exact=$x"
 done
-python3 - "$tmp"/on{1,2}.json "$tmp/on2.txt" "$tmp"/tol1.{json,txt} "$tmp"/tol1e-300.{json,txt} <<'PY' && ok || bad "check --on ball: worst and nearest"
+"$RG2" check "$ex" --json > "$tmp/plain.json" 2>&1 || bad "check --json"
+python3 - "$tmp"/on{1,2}.json "$tmp/on2.txt" "$tmp"/tol1.{json,txt} "$tmp"/tol1e-300.{json,txt} "$tmp"/{on3,plain}.json <<'PY' && ok || bad "check --on ball: worst and nearest"
 import json, re, sys
-a, b, c, d = (json.load(open(sys.argv[k]))["on"][0] for k in (1, 2, 4, 6))
+a, b, c, d, e = (json.load(open(sys.argv[k]))["on"][0] for k in (1, 2, 4, 6, 8))
+# the report around the "on" array is the plain one, every number bit for bit, and as text
+full, plain = json.load(open(sys.argv[1])), json.load(open(sys.argv[9]))
+ok = full.pop("on") is not None and full == plain
+text = open(sys.argv[1]).read()
+ok = ok and text[:text.find(',\n\t"on":')] + "\n}\n" == open(sys.argv[9]).read()
+ok = ok and e["on"] == a["on"] and e["nearest_off"] == a["nearest_off"]
 t, t3, t0 = (open(sys.argv[k]).read() for k in (3, 5, 7))
-ok = all(open(sys.argv[k]).read().endswith("}\n") for k in (1, 2, 4, 6))  # (a line ends the JSON report)
+ok = ok and all(open(sys.argv[k]).read().endswith("}\n") for k in (1, 2, 4, 6))  # (a line ends the JSON report)
 def where(s):
     i, j = map(int, re.fullmatch(r"patch \((\d+),(\d+)\)", s).groups())
     return i, j
