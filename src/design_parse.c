@@ -1674,9 +1674,15 @@ static rg2_status op_polar(pctx *c, const cJSON *obj, const char *path, rg2__dme
     const cJSON *vo, *kn;
     subpath(p, sizeof p, path, "v");
     static const char *const vkeys[] = {"knots"};
-    if ((st = need(c, obj, "v", path, &vo)) || (st = as_obj(c, vo, p)) || (st = check_keys(c, vo, p, vkeys, 1)) ||
-        (st = need(c, vo, "knots", p, &kn)))
+    /* (no default v: say what to give; the example knots suit all four kinds with poles) */
+    static const char *const give = "a polar configuration has no default v: give its interior knots, at least 2, "
+                                    "e.g. \"v\": {\"knots\": [0.2, 0.4, 0.6, 0.8]}";
+    if (!(vo = get(obj, "v")))
+        return fail(c, RG2_EPARSE, path, "missing key 'v': %s", give);
+    if ((st = as_obj(c, vo, p)) || (st = check_keys(c, vo, p, vkeys, 1)))
         return st;
+    if (!(kn = get(vo, "knots")))
+        return fail(c, RG2_EPARSE, p, "missing key 'knots': %s", give);
     subpath(q, sizeof q, p, "knots");
     int len = cJSON_IsArray(kn) ? cJSON_GetArraySize(kn) : 0, m = 0;
     double *v = rg2__calloc((size_t)(len > 0 ? len : 1), sizeof(double));
