@@ -2,7 +2,8 @@
 # the file comes in FC_FILE). Reads a STEP or IGES file with FreeCAD's Part module and prints one
 # line: faces, edges, shells, edges shared by two faces, free edges, validity, area, the largest
 # distance of 5 x 5 surface points per face from the torus R = 3, r = 1 (relative to R + r; when
-# FC_TORUS is set) and the triangles of a FreeCAD mesh of the shape.
+# FC_TORUS is set), the triangles of a FreeCAD mesh of the shape, how many free edges are
+# degenerate (zero length, at a pole) and whether every shell is closed.
 import math
 import os
 from collections import Counter
@@ -18,6 +19,9 @@ for f in s.Faces:
         uses[e.hashCode()] += 1
 shared = sum(1 for v in uses.values() if v == 2)
 free = sum(1 for v in uses.values() if v == 1)
+# a capped end's fan faces each have a zero-length edge at the pole, used by that face alone
+degenerate = sum(1 for f in s.Faces for e in f.Edges if uses[e.hashCode()] == 1 and e.Degenerated)
+closed = int(len(s.Shells) > 0 and all(sh.isClosed() for sh in s.Shells))
 worst = 0.0
 if os.environ.get("FC_TORUS"):
     for f in s.Faces:
@@ -32,5 +36,6 @@ try:
 except Exception:
     triangles = -1
 print("FC file=%s faces=%d edges=%d shells=%d shared=%d free=%d valid=%d area=%.12g torus_dev=%.3g triangles=%d"
+      " degenerate=%d closed=%d"
       % (os.path.basename(path), len(s.Faces), len(s.Edges), len(s.Shells), shared, free, int(s.isValid()),
-         s.Area, worst, triangles))
+         s.Area, worst, triangles, degenerate, closed))
