@@ -1221,6 +1221,71 @@ static void documented_partitions(void)
     free(md);
 }
 
+/* docs/shapes.md, "Where a knot puts the ring": the radius and height of the ring at knot v, and
+ * the knot back from the height, of every shape whose u is a circle about z, from the table's
+ * formulas, against rg2_shape_param. */
+static void ring_heights(void)
+{
+    static const rg2_shape_kind kinds[] = {RG2_SHAPE_CYLINDER, RG2_SHAPE_CONE, RG2_SHAPE_SPHERE,
+                                           RG2_SHAPE_ELLIPSOID, RG2_SHAPE_PARABOLOID, RG2_SHAPE_HYPERBOLOID1,
+                                           RG2_SHAPE_HYPERBOLOID2, RG2_SHAPE_HYPERBOLOID1_RULED};
+    double worst = 0.0;
+    for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; k++) {
+        rg2_shape s;
+        rg2_shape_init(&s, kinds[k]);
+        for (int i = 0; i < 3; i++) /* parameters other than the defaults */
+            s.param[i] = 0.7 + 0.45 * i;
+        if (kinds[k] == RG2_SHAPE_CONE)
+            s.param[0] = -1.3;
+        const double *q = s.param;
+        for (int t = 1; t <= 7; t++) {
+            double v = t / 8.0, r = 0.0, z = 0.0, vz = 0.0, u = 0.3, h[4];
+            if (kinds[k] == RG2_SHAPE_HYPERBOLOID1)
+                v = 0.4 * t;
+            if (kinds[k] == RG2_SHAPE_HYPERBOLOID1_RULED)
+                v = 0.5 * t - 2.0;
+            rg2_shape_param(&s, u, v, h);
+            double x = h[0] / h[3], y = h[1] / h[3], zz = h[2] / h[3];
+            switch (kinds[k]) {
+            case RG2_SHAPE_CYLINDER: r = q[0], z = v, vz = zz; break;
+            case RG2_SHAPE_CONE: r = fabs(v), z = q[0] * v, vz = zz / q[0]; break;
+            case RG2_SHAPE_SPHERE:
+            case RG2_SHAPE_ELLIPSOID: {
+                double c = kinds[k] == RG2_SHAPE_SPHERE ? q[0] : q[2], phi = 2.0 * atan(2.0 * v - 1.0);
+                r = kinds[k] == RG2_SHAPE_SPHERE ? q[0] * cos(phi) : 0.0;
+                z = c * sin(phi);
+                vz = (1.0 + tan(0.5 * asin(zz / c))) / 2.0;
+                if (kinds[k] == RG2_SHAPE_ELLIPSOID) /* radii a, b in x, y */
+                    worst = fmax(worst, fabs(hypot(x / q[0], y / q[1]) - cos(phi)));
+                break;
+            }
+            case RG2_SHAPE_PARABOLOID:
+                z = v * v, vz = sqrt(zz);
+                worst = fmax(worst, fabs(hypot(x / q[0], y / q[1]) - v));
+                break;
+            case RG2_SHAPE_HYPERBOLOID1:
+                r = q[0] * (1.0 + v * v) / (2.0 * v), z = q[1] * (1.0 - v * v) / (2.0 * v);
+                vz = sqrt(1.0 + (zz / q[1]) * (zz / q[1])) - zz / q[1];
+                break;
+            case RG2_SHAPE_HYPERBOLOID2:
+                r = 2.0 * q[0] * v / (1.0 - v * v), z = q[1] * (1.0 + v * v) / (1.0 - v * v);
+                vz = sqrt((zz - q[1]) / (zz + q[1]));
+                break;
+            default: /* ruled: the ring turned by atan v */
+                r = q[0] * sqrt(1.0 + v * v), z = q[1] * v, vz = zz / q[1];
+                worst = fmax(worst, fabs(atan2(y, x) - (u + atan(v))));
+                break;
+            }
+            if (r > 0.0)
+                worst = fmax(worst, fabs(hypot(x, y) - r) / r);
+            worst = fmax(worst, fabs(zz - z) / fmax(1.0, fabs(z)));
+            worst = fmax(worst, fabs(vz - v) / fmax(1.0, fabs(v)));
+        }
+    }
+    printf("ring heights (docs/shapes.md table): radius, height and knot from height within %.2e\n", worst);
+    CHECK(worst <= 1e-14, "ring radius / height / knot formulas of docs/shapes.md: %.3g off", worst);
+}
+
 int main(void)
 {
     named_shapes();
@@ -1237,6 +1302,7 @@ int main(void)
     radian_totals();
     smallest_full_knots();
     unknown_name_list();
+    ring_heights();
     errors();
     return rg2t_done("test_shapes");
 }
