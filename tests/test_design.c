@@ -1848,6 +1848,51 @@ static void normal_edits(void)
     }
 }
 
+/* docs/design-format.md, `cut`: which patches a cut keeps. Open direction: patch i covers knot
+ * interval i and uses points i..i+3, so [a, b] covers knots k_a..k_{b-2}; a polar mesh counts
+ * from its first listed knot; closed direction: patch i covers arc i and uses points
+ * i-1..i+2, so [a, b] keeps arcs a+1..b-2. Measured at the kept surface's first and last
+ * patch ends against the shapes' own formulas. */
+static void cut_ranges(void)
+{
+    rg2_error err;
+    rg2_design *d = parse("{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}, \"s\": {\"kind\": \"sphere\"},"
+                          " \"t\": {\"kind\": \"torus\"}},"
+                          " \"meshes\": {\"C\": {\"shape\": \"c\", \"v\": {\"knots\": [0, 0.3, 0.7, 1.2, 2.0, 2.5]}},"
+                          " \"Ck\": {\"cut\": \"C\", \"v\": [1, 6]},"
+                          " \"P\": {\"polar\": \"s\", \"v\": {\"knots\": [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7]}},"
+                          " \"Pk\": {\"cut\": \"P\", \"v\": [0, 6]},"
+                          " \"T\": {\"shape\": \"t\", \"u\": {\"arcs\": 12}},"
+                          " \"Tk\": {\"cut\": \"T\", \"u\": [0, 8]}},"
+                          " \"output\": [\"Ck\", \"Pk\", \"Tk\"]}",
+                          &err);
+    if (!d)
+        return;
+    const rg2_surface *c = rg2_design_surface(d, 0), *p = rg2_design_surface(d, 1), *t = rg2_design_surface(d, 2);
+    rg2_eval a, b;
+    /* cylinder: knots k_1 = 0.3 to k_4 = 2.0, 3 patches */
+    rg2_surface_eval(c, 0, 0, 0.0, 0.0, 0, &a);
+    rg2_surface_eval(c, 0, c->nv - 1, 0.0, 1.0, 0, &b);
+    CHECK(c->nv == 3 && fabs(a.p[2] - 0.3) <= 1e-15 && fabs(b.p[2] - 2.0) <= 1e-15,
+          "cut v [1, 6] of knots 0, 0.3, ..., 2.5: %d patches from z %.17g to %.17g (want 3, 0.3 to 2.0)", c->nv,
+          a.p[2], b.p[2]);
+    /* polar sphere: from the first listed knot 0.1 to knots[4] = 0.5 (the equator, z = 0) */
+    double v0 = 0.1, z0 = (2 * v0 - 1) / (2 * v0 * v0 - 2 * v0 + 1);
+    rg2_surface_eval(p, 0, 0, 0.0, 0.0, 0, &a);
+    rg2_surface_eval(p, 0, p->nv - 1, 0.0, 1.0, 0, &b);
+    CHECK(p->nv == 4 && fabs(a.p[2] - z0) <= 1e-15 && fabs(b.p[2]) <= 1e-15,
+          "cut v [0, 6] of the polar knots 0.1..0.7: %d patches from z %.17g to %.17g (want 4, %.17g to 0)", p->nv,
+          a.p[2], b.p[2], z0);
+    /* torus of 12 arcs: [0, 8] keeps arcs 1..6, 30 to 210 degrees */
+    rg2_surface_eval(t, 0, 0, 0.0, 0.0, 0, &a);
+    rg2_surface_eval(t, t->nu - 1, 0, 1.0, 0.0, 0, &b);
+    double a0 = atan2(a.p[1], a.p[0]) * 180 / M_PI, a1 = atan2(b.p[1], b.p[0]) * 180 / M_PI;
+    CHECK(t->nu == 6 && fabs(a0 - 30) <= 1e-12 && fabs(a1 + 150) <= 1e-12,
+          "cut u [0, 8] of a 12-arc torus: %d patches from %.15g to %.15g degrees (want 6, 30 to 210 = -150)", t->nu,
+          a0, a1);
+    rg2_design_free(d);
+}
+
 int main(void)
 {
     parse_sizes();
@@ -1889,5 +1934,6 @@ int main(void)
     overlapping_merges();
     rotation_lists();
     rolled_meshes();
+    cut_ranges();
     return rg2t_done("test_design");
 }
