@@ -245,6 +245,13 @@ rg2_status rg2__mobius_world(const rg2_shape *s, const char *label, const double
     } else {
         const double *poles[2] = {south, north};
         double loc[2][3];
+        char ref[200];
+        if (s && label)
+            snprintf(ref, sizeof ref, "%s '%s'", rg2_shape_name(s->kind), label);
+        else if (s)
+            snprintf(ref, sizeof ref, "%s", rg2_shape_name(s->kind));
+        else
+            snprintf(ref, sizeof ref, "unit sphere at the origin");
         for (int e = 0; e < 2; e++) {
             double h[4];
             for (int r = 0; r < 4; r++)
@@ -259,13 +266,6 @@ rg2_status rg2__mobius_world(const rg2_shape *s, const char *label, const double
                 double nq[4], u[4] = {loc[e][0] / l, loc[e][1] / l, loc[e][2] / l, 1.0};
                 for (int r = 0; r < 4; r++)
                     nq[r] = X[4 * r] * u[0] + X[4 * r + 1] * u[1] + X[4 * r + 2] * u[2] + X[4 * r + 3] * u[3];
-                char ref[200];
-                if (s && label)
-                    snprintf(ref, sizeof ref, "%s '%s'", rg2_shape_name(s->kind), label);
-                else if (s)
-                    snprintf(ref, sizeof ref, "%s", rg2_shape_name(s->kind));
-                else
-                    snprintf(ref, sizeof ref, "unit sphere at the origin");
                 return rg2__fail(err, RG2_EDOMAIN,
                                  "%s.%s%s: (%.9g, %.9g, %.9g) is not on the reference %s (%.9g of the way "
                                  "from its centre to its surface; it must lie on it to 1e-9): the nearest point "
@@ -274,6 +274,14 @@ rg2_status rg2__mobius_world(const rg2_shape *s, const char *label, const double
                                  l, rg2__num(nq[0] / nq[3]).s, rg2__num(nq[1] / nq[3]).s, rg2__num(nq[2] / nq[3]).s);
             }
         }
+        /* coincident poles: name them as given, in world coordinates (rg2_mobius_poles_matrix
+         * would name the point of the unit sphere the placement maps them to) */
+        double dl[3] = {loc[1][0] - loc[0][0], loc[1][1] - loc[0][1], loc[1][2] - loc[0][2]};
+        if (!(sqrt(dl[0] * dl[0] + dl[1] * dl[1] + dl[2] * dl[2]) > 1e-9))
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "%s.poles: the south and north poles coincide at (%.9g, %.9g, %.9g) on the reference %s: "
+                             "give two different points of it",
+                             what, south[0], south[1], south[2], ref);
         if ((st = rg2_mobius_poles_matrix(loc[0], loc[1], M, err))) {
             rg2_error e = *err;
             return rg2__fail(err, st, "%s.poles: %s (poles taken relative to the reference sphere)", what,
