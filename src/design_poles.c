@@ -76,10 +76,42 @@ rg2_status rg2__op_polar(rg2_design *d, int shape, const rg2_partition *pu, cons
 /* The design's `mobius`: the mesh gets rg2__mobius_world's X M X^-1 (a transform: the sources
  * and the shape get transformed copies, and the placed shape's implicit equation is carried
  * through the projective map). */
+/* A mobius without "sphere" maps about the unit sphere at the origin. When the mesh's points
+ * came from another sphere or ellipsoid, that sphere does not stay itself (its poles leave it):
+ * a note names the "sphere" the designer most likely meant. */
+static rg2_status note_missing_sphere(rg2_design *d, const rg2__dmesh *in, const char *what, rg2_error *err)
+{
+    int k = -1;
+    for (int q = 0; q < in->m.nu * in->m.nv && k < 0; q++)
+        if (in->pp[q].src >= 0)
+            k = d->src[in->pp[q].src].shape;
+    if (k < 0)
+        return RG2_OK;
+    const rg2_shape *s = &d->shapes[k];
+    double I[16];
+    rg2_xform_identity(I);
+    int unit = s->kind == RG2_SHAPE_SPHERE && s->param[0] == 1.0 && !memcmp(s->xform, I, sizeof I);
+    if (unit || (s->kind != RG2_SHAPE_SPHERE && s->kind != RG2_SHAPE_ELLIPSOID))
+        return RG2_OK;
+    char msg[700];
+    snprintf(msg, sizeof msg,
+             "%s: %s: no \"sphere\" given: the Moebius map is about the unit sphere at the origin, but '%s' "
+             "comes from the %s '%s', which the map turns into another %s; to move the poles on '%s' itself, "
+             "give \"sphere\": \"%s\"",
+             d->name, what, in->name, rg2_shape_name(s->kind), d->labels[k], rg2_shape_name(s->kind), d->labels[k],
+             d->labels[k]);
+    return rg2__design_add_note(d, msg, err);
+}
+
 rg2_status rg2__op_mobius(rg2_design *d, const rg2__dmesh *in, int shape, const double *b,
                           double poles[2][3], rg2__dmesh *out, const char *what, rg2_error *err)
 {
     double A[16];
+    if (shape < 0) {
+        rg2_status st = note_missing_sphere(d, in, what, err);
+        if (st)
+            return st;
+    }
     rg2_status st = rg2__mobius_world(shape >= 0 ? &d->shapes[shape] : NULL, shape >= 0 ? d->labels[shape] : NULL,
                                       b, poles[0], poles[1], A, what, "sphere", "poles.", err);
     if (st)

@@ -1893,6 +1893,37 @@ static void cut_ranges(void)
     rg2_design_free(d);
 }
 
+/* A mobius without "sphere" maps about the unit sphere at the origin: on the polar mesh of a
+ * placed sphere (radius 2 at (0, 0, 1)) that turns the sphere into another one (its patches
+ * 1.7e-2 off it), so the design notes the "sphere" meant; none when "sphere" is given or the
+ * mesh's sphere is the unit sphere at the origin. */
+static void mobius_reference_notes(void)
+{
+    static const char base[] =
+        "{\"shapes\": {\"s\": {\"kind\": \"sphere\", %s}}, \"meshes\": {\"P\": {\"polar\": \"s\","
+        " \"u\": {\"arcs\": 8}, \"v\": {\"knots\": [0.2, 0.4, 0.6, 0.8]}}, \"M\": {\"mobius\": \"P\", %s\"b\": 0.5}}}";
+    static const struct {
+        const char *shape, *ref;
+        int notes;
+    } cases[] = {{"\"radius\": 2, \"translate\": [0, 0, 1]", "", 1},
+                 {"\"radius\": 2, \"translate\": [0, 0, 1]", "\"sphere\": \"s\", ", 0},
+                 {"\"radius\": 1", "", 0}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        char json[1024];
+        snprintf(json, sizeof json, base, cases[c].shape, cases[c].ref);
+        rg2_error err;
+        rg2_design *d = parse(json, &err);
+        if (!d)
+            continue;
+        int n = rg2_design_num_notes(d);
+        const char *note = n > 0 ? rg2_design_note(d, 0) : "";
+        CHECK(n == cases[c].notes && (n == 0 || (strstr(note, "meshes.M: no \"sphere\" given") &&
+                                                     strstr(note, "give \"sphere\": \"s\""))),
+              "mobius case %zu: %d notes (want %d): %s", c, n, cases[c].notes, note);
+        rg2_design_free(d);
+    }
+}
+
 int main(void)
 {
     parse_sizes();
@@ -1935,5 +1966,6 @@ int main(void)
     rotation_lists();
     rolled_meshes();
     cut_ranges();
+    mobius_reference_notes();
     return rg2t_done("test_design");
 }
