@@ -1286,6 +1286,53 @@ static void ring_heights(void)
     CHECK(worst <= 1e-14, "ring radius / height / knot formulas of docs/shapes.md: %.3g off", worst);
 }
 
+/* docs/shapes.md, cyclide notes: the tube circles at u = 0, 90, 180, 270 degrees (plane, centre,
+ * radius, where v = 0 lies and which way v and u run), from the table, against rg2_shape_param
+ * at 12 points of each circle. */
+static void cyclide_circles(void)
+{
+    rg2_shape s;
+    rg2_shape_init(&s, RG2_SHAPE_CYCLIDE);
+    s.param[0] = 2.3, s.param[1] = 0.9, s.param[2] = 1.4; /* a, c, mu: a ring cyclide */
+    double a = s.param[0], c = s.param[1], mu = s.param[2], b = sqrt(a * a - c * c);
+    const double ctr[4][3] = {{a, 0, 0}, {mu * c / a, b, 0}, {-a, 0, 0}, {mu * c / a, -b, 0}};
+    const double rad[4] = {mu - c, b * mu / a, mu + c, b * mu / a};
+    const double run[4][3] = {{0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {1, 0, 0}}; /* the plane's normal, as u grows */
+    double worst = 0.0;
+    int ok_dirs = 1;
+    for (int q = 0; q < 4; q++) {
+        double u = q * M_PI / 2, h[4], h2[4];
+        for (int t = 0; t < 12; t++) {
+            rg2_shape_param(&s, u, t * M_PI / 6, h);
+            double d[3], off = 0.0, dist = 0.0;
+            for (int k = 0; k < 3; k++) {
+                d[k] = h[k] / h[3] - ctr[q][k];
+                off += d[k] * run[q][k];
+                dist += d[k] * d[k];
+            }
+            worst = fmax(worst, fmax(fabs(off), fabs(sqrt(dist) - rad[q])));
+        }
+        /* v = 0 nearest the z axis, v growing towards -z, u growing along the tube's direction */
+        double h0[4], p0[3], pv[3], pu[3];
+        rg2_shape_param(&s, u, 0.0, h0);
+        rg2_shape_param(&s, u, 1e-3, h);
+        rg2_shape_param(&s, u + 1e-3, 0.0, h2);
+        for (int k = 0; k < 3; k++) {
+            p0[k] = h0[k] / h0[3];
+            pv[k] = h[k] / h[3] - p0[k];
+            pu[k] = h2[k] / h2[3] - p0[k];
+        }
+        /* v = 0 at the centre less the radius along e = (1, 0, 0), (0, 1, 0), (-1, 0, 0), (0, -1, 0) */
+        const double e[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+        double gap = hypot(p0[0] - (ctr[q][0] - rad[q] * e[q][0]), p0[1] - (ctr[q][1] - rad[q] * e[q][1]));
+        ok_dirs &= gap <= 1e-14 && fabs(p0[2]) <= 1e-14 && pv[2] < 0.0 &&
+                   pu[0] * run[q][0] + pu[1] * run[q][1] + pu[2] * run[q][2] > 0.0;
+    }
+    printf("cyclide tube circles at u = 0, 90, 180, 270: on their planes and radii within %.2e\n", worst);
+    CHECK(worst <= 1e-14 && ok_dirs, "cyclide circles of docs/shapes.md: %.3g off, directions %s", worst,
+          ok_dirs ? "ok" : "wrong");
+}
+
 int main(void)
 {
     named_shapes();
@@ -1303,6 +1350,7 @@ int main(void)
     smallest_full_knots();
     unknown_name_list();
     ring_heights();
+    cyclide_circles();
     errors();
     return rg2t_done("test_shapes");
 }
