@@ -188,6 +188,27 @@ static double lsq_qr(double *A, int rows, int nc, double *x)
     return sqrt(rr);
 }
 
+/* Centre (mean of the sample points) and RMS radius about it of a boundary ring: the frame the
+ * fit works in, and the rho of the open-ring cap length. */
+static void ring_frame(const fitdata *fd, double c[3], double *rho)
+{
+    c[0] = c[1] = c[2] = 0.0;
+    for (int q = 0; q < fd->n; q++) {
+        const double *J0 = fd->smp[q].J[0];
+        for (int k = 0; k < 3; k++)
+            c[k] += J0[k] / J0[3] / fd->n;
+    }
+    double r2 = 0.0;
+    for (int q = 0; q < fd->n; q++) {
+        const double *J0 = fd->smp[q].J[0];
+        for (int k = 0; k < 3; k++) {
+            double x = J0[k] / J0[3] - c[k];
+            r2 += x * x / fd->n;
+        }
+    }
+    *rho = sqrt(r2);
+}
+
 /*
  * METHOD: weighted linear least squares (Householder QR) for the 16 coefficients g[c][d]
  * (c: basis function, d: homogeneous coordinate) and the two derivatives lambda1, lambda2 of a
@@ -196,12 +217,18 @@ static double lsq_qr(double *A, int rows, int nc, double *x)
  * (sample, order k, coordinate d): weight jw[k] / k! times
  *   sum_c basis_c^(k)(t = 1) g[c][d] - L^k (d^k/ds^k of lambda H - H) = L^k d^k H/ds^k,
  * with d/dt = L d/ds. The 1/k! makes each order count by the size of its Taylor term over the
- * cap (t-length 1). Sphere data are matched exactly with lambda = 1. Returns the relative
- * residual, -1 when rank deficient, -2 when out of memory.
+ * cap (t-length 1). Sphere data are matched exactly with lambda = 1. The fit runs in the
+ * ring's own frame, x' = (x - c) / rho (ring_frame: c its centre, rho its RMS radius), and g
+ * is mapped back: the rows weigh x, y, z against W, so in world coordinates the cap of a body
+ * moved or scaled was not the moved or scaled cap (a unit cylinder's dome 1.0625 deep at the
+ * origin, 1.0103 with the ring at z = 10, 1.1318 scaled by 10). Returns the relative residual,
+ * -1 when rank deficient, -2 when out of memory.
  */
 static double fit_solve(const fitdata *fd, double L, double vc, int nb, double g[6][4], double lam[2])
 {
     const int nc = 4 * nb + 2;
+    double fc[3], rho;
+    ring_frame(fd, fc, &rho);
     int rows = 12 * fd->n;
     /* [A | B], 5.3 MB for a general cap on 256 columns: on huge pages, as 4 KiB pages its first
      * writes were most of the fit's time */
@@ -230,13 +257,16 @@ static double fit_solve(const fitdata *fd, double L, double vc, int nb, double g
                     a[4 * 4 + d] = W * sm->c * sm->s * phi3[k];
                     a[4 * 5 + d] = W * sm->s * sm->s * phi3[k];
                 }
+                double J[3];
+                for (int o = 0; o < 3; o++)
+                    J[o] = d < 3 ? (sm->J[o][d] - fc[d] * sm->J[o][3]) / rho : sm->J[o][3];
                 if (k == 1)
-                    a[4 * nb] = -W * Lk * sm->J[0][d];
+                    a[4 * nb] = -W * Lk * J[0];
                 if (k == 2) {
-                    a[4 * nb] = -W * Lk * 2.0 * sm->J[1][d];
-                    a[4 * nb + 1] = -W * Lk * sm->J[0][d];
+                    a[4 * nb] = -W * Lk * 2.0 * J[1];
+                    a[4 * nb + 1] = -W * Lk * J[0];
                 }
-                a[nc] = W * Lk * sm->J[k][d];
+                a[nc] = W * Lk * J[k];
                 bnorm += a[nc] * a[nc];
             }
             Lk *= L;
@@ -245,9 +275,11 @@ static double fit_solve(const fitdata *fd, double L, double vc, int nb, double g
     double x[26];
     double res = lsq_qr(A, rows, nc, x);
     if (res >= 0.0) {
-        for (int c = 0; c < nb; c++)
-            for (int d = 0; d < 4; d++)
-                g[c][d] = x[4 * c + d];
+        for (int c = 0; c < nb; c++) {
+            g[c][3] = x[4 * c + 3];
+            for (int d = 0; d < 3; d++)
+                g[c][d] = rho * x[4 * c + d] + fc[d] * x[4 * c + 3];
+        }
         lam[0] = x[4 * nb];
         lam[1] = x[4 * nb + 1];
         res = bnorm > 0.0 ? res / sqrt(bnorm) : 0.0;
@@ -300,14 +332,11 @@ static rg2_status sample_end(const rg2_surface *S, const ucircle *uc, int e, int
 /* Extent of the boundary ring relative to the body's size; both in 3D. */
 static void ring_extent(const fitdata *fd, double *extent, double *center_w)
 {
-    double c[3] = {0, 0, 0};
+    double c[3], rho;
     double wmin = INFINITY;
-    for (int q = 0; q < fd->n; q++) {
-        const double *J = fd->smp[q].J[0];
-        wmin = fmin(wmin, J[3]);
-        for (int k = 0; k < 3; k++)
-            c[k] += J[k] / J[3] / fd->n;
-    }
+    ring_frame(fd, c, &rho);
+    for (int q = 0; q < fd->n; q++)
+        wmin = fmin(wmin, fd->smp[q].J[0][3]);
     double ext = 0.0;
     for (int q = 0; q < fd->n; q++) {
         const double *J = fd->smp[q].J[0];
@@ -351,21 +380,15 @@ static rg2_status choose_params(const rg2_mesh *body, const fitdata *fd, int e, 
         return RG2_OK;
     }
     *vc = 0.5;
-    double c[3] = {0, 0, 0}, rho = 0.0, sigma = 0.0;
-    for (int q = 0; q < fd->n; q++) {
-        const double *J0 = fd->smp[q].J[0];
-        for (int k = 0; k < 3; k++)
-            c[k] += J0[k] / J0[3] / fd->n;
-    }
+    double c[3], rho, sigma = 0.0;
+    ring_frame(fd, c, &rho);
     for (int q = 0; q < fd->n; q++) {
         const double *J0 = fd->smp[q].J[0], *J1 = fd->smp[q].J[1];
         for (int k = 0; k < 3; k++) {
             double x = J0[k] / J0[3], dx = (J1[k] - J1[3] * x) / J0[3];
-            rho += (x - c[k]) * (x - c[k]) / fd->n;
             sigma += dx * dx / fd->n;
         }
     }
-    rho = sqrt(rho);
     sigma = sqrt(sigma);
     if (!(sigma > 0.0) || !(rho > 0.0))
         return rg2__fail(err, RG2_EDOMAIN,

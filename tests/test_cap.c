@@ -1203,6 +1203,61 @@ static void cap_layout(void)
     rg2_mesh_free(&mesh);
 }
 
+/* A cap follows its body: the caps of a body moved and scaled (x -> 10 x + (3, -4, 10)) are
+ * the caps of the body, moved and scaled. The fit weighs x, y, z against W, so it runs in the
+ * boundary ring's own frame; fitted in world coordinates the dome of a unit cylinder was
+ * 1.0625 deep with its ring at the origin and 1.0103 with the ring at z = 10 (one of the two
+ * pipe_elbow caps, ends 2.5 from the origin, differed likewise). Compared by evaluation:
+ * 5 x 5 points per patch, bi-3 and general-quadratic caps, on a free-form tube. */
+static void moved_body_caps(void)
+{
+    double alpha[8], knots[8] = {-1.0, -0.5, 0.0, 0.5, 1.0, 1.5, 2.0, 2.5}, cs[16];
+    for (int i = 0; i < 8; i++)
+        alpha[i] = 2.0 * M_PI / 8;
+    rg2_mesh body, moved;
+    rg2_error err;
+    tube_mesh(alpha, 8, knots, 4, &body, cs);
+    for (int i = 0; i < 8; i++)
+        for (int j = 0; j < 6; j++) {
+            double *p = rg2_mesh_at(&body, i, j), rad = 1.0 + 0.1 * sin(3.0 * i + j);
+            p[0] = rad * cs[2 * i];
+            p[1] = rad * cs[2 * i + 1];
+            p[2] = knots[j + 1];
+            p[3] = 1.0;
+        }
+    const double M[16] = {10, 0, 0, 3, 0, 10, 0, -4, 0, 0, 10, 10, 0, 0, 0, 1};
+    CHECK_OK(rg2_mesh_copy(&body, &moved, &err), &err);
+    rg2_mesh_transform(&moved, M);
+    for (int quadratic = RG2_CAP_ROTATIONAL; quadratic <= RG2_CAP_GENERAL; quadratic++) {
+        rg2_cap_opts opts;
+        rg2_cap_opts_default(&opts);
+        opts.quadratic = quadratic;
+        rg2_surface a, b;
+        rg2_cap_info ia, ib;
+        CHECK_OK(rg2_cap_build(&body, &opts, &a, &ia, &err), &err);
+        CHECK_OK(rg2_cap_build(&moved, &opts, &b, &ib, &err), &err);
+        double worst = 0.0, scale = rg2t_surface_scale(&b);
+        for (int i = 0; i < a.nu; i++)
+            for (int j = 0; j < a.nv; j++)
+                for (int su = 0; su <= 4; su++)
+                    for (int sv = 0; sv <= 4; sv++) {
+                        rg2_eval ea, eb;
+                        rg2_surface_eval(&a, i, j, su / 4.0, sv / 4.0, 0, &ea);
+                        rg2_surface_eval(&b, i, j, su / 4.0, sv / 4.0, 0, &eb);
+                        for (int k = 0; k < 3; k++)
+                            worst = fmax(worst, fabs(10.0 * ea.p[k] + M[4 * k + 3] - eb.p[k]) / scale);
+                    }
+        printf("moved body (%s caps): caps of the moved body off the moved caps by %.2e of its size\n",
+               quadratic ? "general-quadratic" : "bi-3", worst);
+        CHECK(worst <= 1e-13, "%s caps of a body scaled by 10 and moved are its caps scaled and moved: %.3g off",
+              quadratic ? "general-quadratic" : "bi-3", worst);
+        rg2_surface_free(&a);
+        rg2_surface_free(&b);
+    }
+    rg2_mesh_free(&body);
+    rg2_mesh_free(&moved);
+}
+
 int main(void)
 {
     cap_option_values();
@@ -1219,5 +1274,6 @@ int main(void)
     design_errors();
     design_pole_tolerance();
     explicit_lengths();
+    moved_body_caps();
     return rg2t_done("test_cap");
 }
