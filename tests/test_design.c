@@ -753,7 +753,7 @@ static int write_padded(const char *path, const char *text, size_t size)
 /* The control mesh JSON (rg2_design_write_mesh) read back: every output mesh's design points
  * d = p_{1..3} / p_4 and weights W = p_4 against the mesh's homogeneous points, and its scalars
  * w, b, g, bit for bit (a torus with two weights edited, W = 2.5 and 0.5, and its transpose;
- * cJSON's own printing, 15 digits when they read back within an ulp, lost the last bit of 12
+ * cJSON's own printing, 15 digits when they read back within an ulp, lost (with r = 1) the last bit of 12
  * of the 384 d and W values and of 16 scalars: a point set with "to" from its printed
  * position was no longer the torus's). */
 static int scalars_read_back(const cJSON *js, const rg2_scalars *s)
@@ -771,10 +771,45 @@ static int scalars_read_back(const cJSON *js, const rg2_scalars *s)
     return differ;
 }
 
+/* The numbers of a JSON text not written in the fewest of 15, 16 or 17 significant digits that
+ * read back to the same double (docs/design-format.md, "The mesh file"): each number is read
+ * with strtod and printed again here. *tight counts those 15 digits hold whose 16 digits print
+ * otherwise (where starting at 16 digits would show). Strings are skipped. */
+static int not_fewest_digits(const char *text, int *numbers, int *tight)
+{
+    int off = 0;
+    *numbers = *tight = 0;
+    for (const char *c = text; *c;) {
+        if (*c == '"') {
+            for (c++; *c && *c != '"'; c++)
+                c += c[0] == '\\' && c[1];
+            c += *c == '"';
+        } else if (*c == '-' || (*c >= '0' && *c <= '9')) {
+            char *end, want[40] = "";
+            double x = strtod(c, &end);
+            for (int digits = 15; digits <= 17; digits++) {
+                snprintf(want, sizeof want, "%.*g", digits, x);
+                if (strtod(want, NULL) == x)
+                    break;
+            }
+            char alt[40];
+            snprintf(alt, sizeof alt, "%.16g", x);
+            *tight += strlen(want) < strlen(alt) && strtod(alt, NULL) == x;
+            off += (size_t)(end - c) != strlen(want) || strncmp(c, want, strlen(want)) != 0;
+            (*numbers)++;
+            c = end > c ? end : c + 1;
+        } else
+            c++;
+    }
+    return off;
+}
+
 static void check_written_mesh(const char *path)
 {
     rg2_error err;
-    rg2_design *d = parse("{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"points\":"
+    /* r = 0.987654321098765: 15 digits read back, 16 print as ...651 */
+    rg2_design *d = parse("{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": 3, \"r\": 0.987654321098765}, "
+                          "\"s\": {\"kind\": \"sphere\"}}, \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"points\":"
                           " [{\"at\": [1, 2], \"W\": 2.5}, {\"at\": [5, 0], \"W\": 0.5}]},"
                           " \"F\": {\"transpose\": \"E\"}}, \"output\": [\"E\", \"F\"]}",
                           &err);
@@ -783,6 +818,12 @@ static void check_written_mesh(const char *path)
     CHECK_OK(rg2_design_write_mesh(d, path, &err), &err);
     char *text = read_text(path);
     cJSON *root = text ? cJSON_Parse(text) : NULL;
+    int numbers = 0, tight = 0, long_form = text ? not_fewest_digits(text, &numbers, &tight) : -1;
+    CHECK(long_form == 0 && numbers > 500 && tight > 0,
+          "%s: %d of %d numbers not in the fewest of 15, 16, 17 digits that read back (%d where 15 differ from 16)",
+          path, long_form, numbers, tight);
+    /* formatted, one key per line as docs/design-format.md shows it, not a single line */
+    CHECK(text && !strncmp(text, "{\n", 2), "%s is not formatted JSON: '%.20s'", path, text ? text : "");
     free(text);
     const cJSON *meshes = cJSON_GetObjectItemCaseSensitive(root, "meshes");
     CHECK(cJSON_GetArraySize(meshes) == rg2_design_num_surfaces(d), "%s: %d meshes written", path,
