@@ -753,9 +753,9 @@ static int write_padded(const char *path, const char *text, size_t size)
 /* The control mesh JSON (rg2_design_write_mesh) read back: every output mesh's design points
  * d = p_{1..3} / p_4 and weights W = p_4 against the mesh's homogeneous points, and its scalars
  * w, b, g, bit for bit (a torus with two weights edited, W = 2.5 and 0.5, and its transpose;
- * cJSON's own printing, 15 digits when they read back within an ulp, lost (with r = 1) the last bit of 12
- * of the 384 d and W values and of 16 scalars: a point set with "to" from its printed
- * position was no longer the torus's). */
+ * cJSON's own printing, 15 digits when they read back within an ulp, lost (with r = 1) the
+ * last bit of 12 of the 384 d and W values and of 16 scalars: a point set with "to" from its
+ * printed position was no longer the torus's). */
 static int scalars_read_back(const cJSON *js, const rg2_scalars *s)
 {
     const double *v[3] = {s->w, s->b, s->g};
@@ -802,6 +802,19 @@ static int not_fewest_digits(const char *text, int *numbers, int *tight)
             c++;
     }
     return off;
+}
+
+/* Non-finite numbers as JSON's null (cJSON's convention: JSON has no infinity or NaN), never as
+ * the "inf" a digits loop would print and read back; finite ones in their fewest digits */
+static void json_numbers(void)
+{
+    const double x[5] = {INFINITY, -INFINITY, NAN, 0.1, 1.0 / 3.0};
+    cJSON *a = rg2__json_doubles(x, 5);
+    char *text = a ? rg2__json_print(a, 0) : NULL;
+    CHECK(text && !strcmp(text, "[null,null,null,0.1,0.3333333333333333]"), "inf, -inf, nan, 0.1, 1/3 as '%s'",
+          text ? text : "(none)");
+    free(text);
+    cJSON_Delete(a);
 }
 
 static void check_written_mesh(const char *path)
@@ -915,6 +928,7 @@ static void text_files(void)
     {
         snprintf(path, sizeof path, "%s/m.json", dir);
         check_written_mesh(path);
+        json_numbers();
         CHECK(rg2t_file_limit(100) == 0, "file size limit");
         rg2_status st = rg2_design_write_mesh(ref, path, &err);
         rg2t_file_limit(-1);
