@@ -88,20 +88,45 @@ expect 2 "4 open points need 5 weights (--w)" -- "$RG2" curve --points "0,0;1,0;
 for r in 0.001 1e-99; do
   close "$(nums "$("$RG2" curve --arcs 3 --radius "$r" --json)" 6 1)" "$r" && ok || bad "--radius $r: b0 is not at x = $r"
 done
-# every segment's control points, from cos and sin computed here: b0 and b3 on the circle of
-# radius R at the arc's ends, b1 and b2 on the tangents there (the JSON's points are these)
-if command -v python3 >/dev/null; then
-  "$RG2" curve --angles 50,70,100,140 --start 10 --radius 2 --json | python3 -c 'import json, math, sys
-d = json.load(sys.stdin); a = [50, 70, 100, 140]; t = 10.0
-assert len(d["segments"]) == 4
-for k, s in enumerate(d["segments"]):
-    p = s["points"]; e = [math.radians(t), math.radians(t + a[k])]; t += a[k]
-    for q, u in ((p[0], e[0]), (p[3], e[1])):
-        assert math.hypot(q[0] - 2 * math.cos(u), q[1] - 2 * math.sin(u)) < 1e-14, (k, q)
-    for q, r in ((p[1], p[0]), (p[2], p[3])):
-        assert abs((q[0] - r[0]) * r[0] + (q[1] - r[1]) * r[1]) < 1e-13 and math.hypot(q[0] - r[0], q[1] - r[1]) > 0.1, (k, q)
+# circle_segments ANGLES START R TOL: the segments on stdin (rg2 curve --json, or rg2 demo's
+# text) are the circle's, from cos and sin computed here: b0 and b3 on the circle of radius R at
+# the arc's ends, b1 and b2 on the tangents there (to TOL and 10 TOL), the middle weights
+# (1 + 2 cos(a / 2)) / 3 (to 1e-15); with demo's control points p_k, b1 and b2 of segment k on
+# the leg (p_k, p_k+1) (docs/MATH.md section 1)
+circle_segments() {
+  python3 -c 'import json, math, re, sys
+a = [float(x) for x in sys.argv[1].split(",")]; t, R, tol = map(float, sys.argv[2:5])
+text = sys.stdin.read(); num = r"(-?[0-9.e+-]+)"
+if text.startswith("{"):
+    segs, p = json.loads(text)["segments"], None
+else:
+    segs = [{"w": [1, float(g[1]), float(g[2]), 1], "points": [[float(v) for v in q] for q in re.findall(r"\(%s, %s\)" % (num, num), g[3])]}
+            for g in re.finditer(r"segment \d+ \(weights 1, %s, %s, 1\):(.*)" % (num, num), text)]
+    p = [[float(g[1]), float(g[2])] for g in re.finditer(r"p\d+ = \(%s, %s\)" % (num, num), text)]
+    assert len(p) == len(a), p
+assert len(segs) == len(a), segs
+for k, s in enumerate(segs):
+    q = s["points"]; e = [math.radians(t), math.radians(t + a[k])]; t += a[k]
+    assert len(q) == 4, (k, q)
+    for b, u in ((q[0], e[0]), (q[3], e[1])):
+        assert math.hypot(b[0] - R * math.cos(u), b[1] - R * math.sin(u)) < tol, (k, b)
+    for b, r in ((q[1], q[0]), (q[2], q[3])):
+        assert abs((b[0] - r[0]) * r[0] + (b[1] - r[1]) * r[1]) < 10 * tol and math.hypot(b[0] - r[0], b[1] - r[1]) > 0.1, (k, b)
     c = math.cos(math.radians(a[k]) / 2)
-    assert abs(s["w"][1] - (1 + 2 * c) / 3) < 1e-15, (k, s["w"])' && ok || bad "curve --json: control points off the circle and its tangents"
+    assert abs(s["w"][1] - (1 + 2 * c) / 3) < 1e-15 and s["w"][1] == s["w"][2], (k, s["w"])
+    if p:
+        l0, l1 = p[k], p[(k + 1) % len(p)]; leg = [l1[0] - l0[0], l1[1] - l0[1]]
+        for b in q[1:3]:
+            assert abs(leg[0] * (b[1] - l0[1]) - leg[1] * (b[0] - l0[0])) < 10 * tol * math.hypot(*leg), (k, b, l0, l1)' "$@"
+}
+if command -v python3 >/dev/null; then
+  "$RG2" curve --angles 50,70,100,140 --start 10 --radius 2 --json | circle_segments 50,70,100,140 10 2 1e-14 &&
+    ok || bad "curve --json: control points off the circle and its tangents"
+  # demo: the unit circle in 4 arcs of 90 degrees (points printed to 6 decimals), then the torus
+  # of R 3, r 1 as 8 x 6 patches within 1e-12 of it
+  d=$("$RG2" demo) && circle_segments 90,90,90,90 0 1 1e-6 <<<"$d" && grep -q '^  8 x 6 rational bi-cubic patches' <<<"$d" &&
+    awk '/largest distance from the torus/ { n++; far += !($NF < 1e-12) } END { exit n != 1 || far }' <<<"$d" &&
+    ok || bad "demo: $d"
 fi
 # --name=value is split for every command; a flag given a value is refused wherever it stands in
 # the command's list of flags (first, middle, last), and a valued option keeps its value
