@@ -489,7 +489,12 @@ full_soa_rev(const double *restrict T, const double *restrict DDU, double c0[4][
         double L = Suu[0] * n0 + Suu[1] * n1 + Suu[2] * n2;
         double M = Suv[0] * n0 + Suv[1] * n1 + Suv[2] * n2;
         double N = Svv[0] * n0 + Svv[1] * n1 + Svv[2] * n2;
-        double det = E * G - F * F + (1.0 - ok);
+        /* (EG - F^2 cancels: at a collapsed side's noise tangents it can come out 0 or below
+         * where ok = 1, a division by zero a trapping host sees; such points count as undefined
+         * here, and fix_collapsed gives them rg2_patch_eval's values) */
+        double det = E * G - F * F;
+        ok *= (double)(det > 1e-30 * (E * G));
+        det = det * ok + (1.0 - ok);
 #pragma GCC unroll 3
         for (int k = 0; k < 3; k++) {
             p[k][i] = P[k];
@@ -1533,7 +1538,9 @@ full_avx512(const double *HT, const double *DDU, double c0[4][4][BLK], double c1
         __mmask8 ok = normal8(A, B, nn);
         __m512d E = dot8(Su, Su), F = dot8(Su, Sv), G = dot8(Sv, Sv);
         __m512d L = dot8(Suu, nn), M = dot8(Suv, nn), N = dot8(Svv, nn);
-        __m512d det = _mm512_mask_blend_pd(ok, one, _mm512_fmsub_pd(E, G, _mm512_mul_pd(F, F)));
+        __m512d det = _mm512_fmsub_pd(E, G, _mm512_mul_pd(F, F)); /* (as in full_soa_rev) */
+        ok &= _mm512_cmp_pd_mask(det, _mm512_mul_pd(_mm512_set1_pd(1e-30), _mm512_mul_pd(E, G)), _CMP_GT_OQ);
+        det = _mm512_mask_blend_pd(ok, one, det);
         __m512d idet = recip8(det, hw);
         __m512d K = _mm512_mul_pd(_mm512_fmsub_pd(L, N, _mm512_mul_pd(M, M)), idet);
         __m512d Hn = _mm512_fmadd_pd(G, L, _mm512_fnmadd_pd(_mm512_mul_pd(two, F), M, _mm512_mul_pd(E, N)));
