@@ -373,7 +373,9 @@ static int scalars_differ(const rg2_scalars *a, const rg2_scalars *b, char *msg,
             snprintf(msg, cap, "%d control points, %s, vs %d, %s", a->n, a->closed ? "closed" : "open", b->n,
                      b->closed ? "closed" : "open");
         else
-            snprintf(msg, cap, "%d vs %d control points", a->n, b->n);
+            snprintf(msg, cap, "%d vs %d control points (make both with the same partition there: the same arcs "
+                               "or knots)",
+                     a->n, b->n);
         return 1;
     }
     if (a->closed != b->closed) {

@@ -179,7 +179,7 @@ check_bad() {
 check_bad bad_syntax.json "bad_syntax.json:3:3: malformed JSON"
 check_bad bad_key.json "meshes.M: unknown key 'closd' (did you mean 'closed'?)"
 check_bad bad_shape.json "unknown shape kind 'sphre' (did you mean 'sphere'?)"
-check_bad bad_merge.json "meshes 'tube' and 'band' do not agree in v"
+check_bad bad_merge.json "meshes 'tube' and 'band' do not agree in v (the direction that must match when merging along u): 6 vs 8 control points (make both with the same partition there: the same arcs or knots)"
 check_bad bad_index.json "meshes.E.points[0].at: control point [3, 6] is outside the 8 x 6 points of mesh 'T' (indices count from 0: [0..7, 0..5])"
 check_bad bad_overflow.json "shapes.t.R: number is not finite"
 check_bad bad_weight.json "meshes.E.points[0].W: weight W = -0.5, must be > 0"
