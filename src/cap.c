@@ -112,6 +112,7 @@ typedef struct {
     int n;
     sample *smp;
     double jw[3];
+    double c[3], rho; /* the ring's frame (ring_frame), set by sample_end */
 } fitdata;
 
 /*
@@ -189,7 +190,7 @@ static double lsq_qr(double *A, int rows, int nc, double *x)
 }
 
 /* Centre (mean of the sample points) and RMS radius about it of a boundary ring: the frame the
- * fit works in, and the rho of the open-ring cap length. */
+ * fit works in, and the rho of the open-ring cap length (sample_end keeps them in fd). */
 static void ring_frame(const fitdata *fd, double c[3], double *rho)
 {
     c[0] = c[1] = c[2] = 0.0;
@@ -227,8 +228,7 @@ static void ring_frame(const fitdata *fd, double c[3], double *rho)
 static double fit_solve(const fitdata *fd, double L, double vc, int nb, double g[6][4], double lam[2])
 {
     const int nc = 4 * nb + 2;
-    double fc[3], rho;
-    ring_frame(fd, fc, &rho);
+    const double *fc = fd->c, rho = fd->rho;
     int rows = 12 * fd->n;
     /* [A | B], 5.3 MB for a general cap on 256 columns: on huge pages, as 4 KiB pages its first
      * writes were most of the fit's time */
@@ -326,15 +326,15 @@ static rg2_status sample_end(const rg2_surface *S, const ucircle *uc, int e, int
                 sm->J[2][d] = H[5][d] / D;
             }
         }
+    ring_frame(fd, fd->c, &fd->rho);
     return RG2_OK;
 }
 
 /* Extent of the boundary ring relative to the body's size; both in 3D. */
 static void ring_extent(const fitdata *fd, double *extent, double *center_w)
 {
-    double c[3], rho;
+    const double *c = fd->c;
     double wmin = INFINITY;
-    ring_frame(fd, c, &rho);
     for (int q = 0; q < fd->n; q++)
         wmin = fmin(wmin, fd->smp[q].J[0][3]);
     double ext = 0.0;
@@ -380,8 +380,7 @@ static rg2_status choose_params(const rg2_mesh *body, const fitdata *fd, int e, 
         return RG2_OK;
     }
     *vc = 0.5;
-    double c[3], rho, sigma = 0.0;
-    ring_frame(fd, c, &rho);
+    double rho = fd->rho, sigma = 0.0;
     for (int q = 0; q < fd->n; q++) {
         const double *J0 = fd->smp[q].J[0], *J1 = fd->smp[q].J[1];
         for (int k = 0; k < 3; k++) {
