@@ -38,7 +38,7 @@ static void usage(FILE *f)
 {
     fprintf(f, "usage: rg2 check design.json [--json] [--require g0|g1|g2|exact|weights|no-crossings[,...]]\n"
                "                 [--samples N] [--tol KIND=X] [--threads N] [--on SHAPE]\n"
-               "                 [--intersections [DENSITY]]\n\n"
+               "                 [--intersections [DENSITY]] [--surface K]\n\n"
                "Measures the built surfaces of a design: patches, exact pieces per shape with their worst\n"
                "implicit residual (|f| / |grad f| / shape size), transitions, the worst G0/G1/G2 gaps over\n"
                "all patch seams (position / size, normal angle in radians, normal-curvature jump relative\n"
@@ -64,6 +64,10 @@ static void usage(FILE *f)
                "                      shape SHAPE (its name under \"shapes\"): how many lie on it (residual\n"
                "                      relative to the surface's size, not the shape's patches', <= the\n"
                "                      exact limit); repeatable\n"
+               "  --surface K         only output surface K (0-based) of the design, named K in the\n"
+               "                      report as in the whole design's; --intersections then looks for\n"
+               "                      crossings of K with itself only (outputs that overlap on purpose,\n"
+               "                      such as variants of one part, cross each other)\n"
                "Exit codes: 0 ok, 1 invalid design or a failed write of the report, 2 usage error,\n"
                "3 a required promise fails.\n");
 }
@@ -211,7 +215,8 @@ static int exact_numbers(cJSON *item)
     return 0;
 }
 
-/* The --on lines or the JSON "on" array for every shape asked for and every surface. */
+/* The --on lines or the JSON "on" array for every shape asked for and every surface (surfs[s] is
+ * the design's surface o->surface_base + s). */
 static int on_report(const rg2_surface *surfs, int n, const rg2_shape *shapes, const char **labels,
                      const int *on_shape, int n_on, const rg2_check_opts *o, int json, char **text)
 {
@@ -228,7 +233,7 @@ static int on_report(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
     }
     for (int q = 0; q < n_on && !rc; q++)
         for (int s = 0; s < n && !rc; s++)
-            rc = on_one(&surfs[s], s, &shapes[on_shape[q]], labels[on_shape[q]], o, arr, text, &len);
+            rc = on_one(&surfs[s], o->surface_base + s, &shapes[on_shape[q]], labels[on_shape[q]], o, arr, text, &len);
     if (json && !rc && !(rc = exact_numbers(root))) {
         char *p = cJSON_Print(root);
         size_t l = p ? strlen(p) : 0;
@@ -250,7 +255,8 @@ static int on_report(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
 
 int rg2_cmd_check(int argc, char **argv)
 {
-    const char *path = NULL, *on[MAX_ON];
+    const char *path = NULL, *on[MAX_ON], *only_arg = NULL;
+    double only_v = -1; /* --surface as given, checked against the design's count once loaded */
     int json = 0, n_on = 0;
     unsigned req = 0;
     rg2_check_opts o;
@@ -308,6 +314,16 @@ int rg2_cmd_check(int argc, char **argv)
                 return RG2_EXIT_USAGE;
             }
             *dst = v;
+        } else if (!strcmp(a, "--surface")) {
+            /* as rg2 render --surface: any index >= 0 here, the design's count bounds it once loaded */
+            const char *rule = "a surface index (an integer >= 0)";
+            only_arg = i + 1 < argc ? argv[++i] : NULL;
+            if (rg2_cli_number("check", a, only_arg, rule, &only_v))
+                return RG2_EXIT_USAGE;
+            if (only_v < 0 || only_v != floor(only_v)) {
+                fprintf(stderr, "rg2 check: --surface needs %s, not '%s'\n", rule, only_arg);
+                return RG2_EXIT_USAGE;
+            }
         } else if (!strcmp(a, "--on")) {
             if (i + 1 >= argc || !argv[i + 1][0]) {
                 fprintf(stderr, "rg2 check: --on needs the name of one of the design's shapes\n");
@@ -345,6 +361,20 @@ int rg2_cmd_check(int argc, char **argv)
     int n = 0, rc = rg2_cli_load_surfaces("check", path, &d, &surfs, &meshes, &n);
     if (rc)
         goto out;
+    if (only_v >= n) {
+        fprintf(stderr, "rg2 check: --surface %s: %s: the design has %d surface%s (0..%d)\n", only_arg, path, n,
+                n == 1 ? "" : "s", n - 1);
+        rc = RG2_EXIT_USAGE; /* an option value out of its range */
+        goto out;
+    }
+    /* --surface K: surface K alone, the report naming it K */
+    const rg2_surface *chk = surfs;
+    int n_chk = n;
+    if (only_v >= 0) {
+        o.surface_base = (int)only_v;
+        chk = surfs + o.surface_base;
+        n_chk = 1;
+    }
     int ns = rg2_design_num_shapes(d);
     shapes = calloc((size_t)(ns > 0 ? ns : 1), sizeof *shapes);
     labels = calloc((size_t)(ns > 0 ? ns : 1), sizeof *labels);
@@ -375,11 +405,11 @@ int rg2_cmd_check(int argc, char **argv)
     rg2_error err = {0};
     if ((req & RG2_REQUIRE_NO_CROSSINGS) && o.crossing_density == 0)
         o.crossing_density = RG2_CROSSING_DEFAULT_DENSITY;
-    if (rg2_check(surfs, n, shapes, labels, ns, &o, &rep, &err) || rg2_check_format(&rep, json, &text, &err)) {
+    if (rg2_check(chk, n_chk, shapes, labels, ns, &o, &rep, &err) || rg2_check_format(&rep, json, &text, &err)) {
         rc = rg2_cli_report("check", &err);
         goto out;
     }
-    if (n_on && (rc = on_report(surfs, n, shapes, labels, on_shape, n_on, &o, json, &text)))
+    if (n_on && (rc = on_report(chk, n_chk, shapes, labels, on_shape, n_on, &o, json, &text)))
         goto out;
     fputs(text, stdout);
     unsigned f = rg2_check_failures(&rep, req);

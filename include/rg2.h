@@ -1372,6 +1372,12 @@ typedef struct {
     int crossing_density;  /**< 0 (default): no crossing search; 1..1000: rg2_find_crossings at
                                 this density into the report's crossings, on `threads` threads
                                 (the same report for any count) */
+    int surface_base;      /**< the number the report gives surfs[0] (default 0): surfs[k] is
+                                named surface surface_base + k wherever the report names a
+                                surface (gaps, samples, crossings, the shapes' `where`). For
+                                checking part of a design's outputs under the numbers the whole
+                                design's report gives them: rg2 check --surface K checks output
+                                K alone, with surface_base K. 0 <= surface_base <= INT_MAX - n */
 } rg2_check_opts;
 
 typedef struct {

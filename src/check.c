@@ -28,6 +28,7 @@
 
 #include <cjson/cJSON.h>
 #include <float.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,6 +43,7 @@ void rg2_check_opts_default(rg2_check_opts *o)
     o->tol_exact = 1e-11;
     o->threads = 0;
     o->crossing_density = 0;
+    o->surface_base = 0;
 }
 
 static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -602,6 +604,7 @@ static void patch_one(rg2_check_report *r, const rg2_surface *s, int surf, size_
 typedef struct {
     const rg2_surface *surfs;
     int n, n_shapes, seam_samples, patch_samples;
+    int base;                           /* the number the report gives surface 0 (surface_base) */
     const size_t *seam_off, *patch_off; /* first seam / patch of each surface in the flat lists (n + 1) */
     const double *size;                 /* surface_size of each surface */
     const rg2__implicit *imp;
@@ -622,7 +625,7 @@ static void run_seams(rg2_check_report *r, const check_job *J, size_t lo, size_t
     for (size_t g = lo; g < hi; g++) {
         while (g >= J->seam_off[s + 1])
             s++;
-        seam_one(r, &J->surfs[s], s, g - J->seam_off[s], J->size[s], J->seam_samples);
+        seam_one(r, &J->surfs[s], J->base + s, g - J->seam_off[s], J->size[s], J->seam_samples);
     }
 }
 
@@ -634,7 +637,7 @@ static void run_patches(rg2_check_report *r, const check_job *J, size_t lo, size
     for (size_t g = lo; g < hi; g++) {
         while (g >= J->patch_off[s + 1])
             s++;
-        patch_one(r, &J->surfs[s], s, g - J->patch_off[s], J->imp, J->n_shapes, J->shape_size,
+        patch_one(r, &J->surfs[s], J->base + s, g - J->patch_off[s], J->imp, J->n_shapes, J->shape_size,
                   J->patch_samples, nrm, def);
     }
 }
@@ -795,6 +798,9 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
     if (o->crossing_density < 0 || o->crossing_density > 1000)
         return rg2__fail(err, RG2_EINVAL, "check: crossing_density %d outside 0..1000 (0: no crossing search)",
                          o->crossing_density);
+    if (o->surface_base < 0 || o->surface_base > INT_MAX - n)
+        return rg2__fail(err, RG2_EINVAL, "check: surface_base %d outside 0..%d (INT_MAX - %d surfaces)",
+                         o->surface_base, INT_MAX - n, n);
     const double tol[4] = {o->tol_g0, o->tol_g1, o->tol_g2, o->tol_exact};
     static const char *const tol_name[4] = {"tol_g0", "tol_g1", "tol_g2", "tol_exact"};
     for (int k = 0; k < 4; k++) /* (a NaN or negative limit would fail its promise whatever the surface) */
@@ -802,9 +808,9 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
             return rg2__fail(err, RG2_EINVAL, "check: %s = %g, must be a finite number >= 0", tol_name[k], tol[k]);
     for (int s = 0; s < n; s++) {
         if (surfs[s].nu <= 0 || surfs[s].nv <= 0 || !surfs[s].patch)
-            return rg2__fail(err, RG2_EINVAL, "check: surface %d has no patches", s);
+            return rg2__fail(err, RG2_EINVAL, "check: surface %d has no patches", o->surface_base + s);
         if (!surfs[s].bu || !surfs[s].bv)
-            return rg2__fail(err, RG2_EINVAL, "check: surface %d has no junction scalars", s);
+            return rg2__fail(err, RG2_EINVAL, "check: surface %d has no junction scalars", o->surface_base + s);
     }
     /* the report counts samples in ints: each kind's total (and so every count of it, folds at
        most twice the patch samples) stays below RG2_MAX_CHECK_SAMPLES, minutes of work per thread */
@@ -887,6 +893,11 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
     out->kmax = out->Hmax = out->Kmax = -DBL_MAX;
     out->kpeak.surf = -1;
     out->kpeak_k = 0;
+    /* a gap no sample exceeds (0 everywhere) keeps this place: the first surface's number */
+    rg2_check_gap *gaps[7] = {&out->g0, &out->g1, &out->g2, &out->g1_pole, &out->g2_pole, &out->g1_ill, &out->g2_ill};
+    for (int k = 0; k < 7; k++)
+        gaps[k]->surf = o->surface_base;
+    out->fold_at.surf = o->surface_base;
     /* the flat lists of seams and patches, each surface's size */
     size_t *seam_off = rg2__calloc((size_t)n + 1, sizeof *seam_off);
     size_t *patch_off = rg2__calloc((size_t)n + 1, sizeof *patch_off);
@@ -899,7 +910,7 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
         patch_off[s + 1] = patch_off[s] + (size_t)surfs[s].nu * (size_t)surfs[s].nv;
         size[s] = surface_size(&surfs[s]);
     }
-    check_job J = {surfs, n, n_shapes, o->seam_samples, o->patch_samples, seam_off, patch_off, size, imp, shape_size};
+    check_job J = {surfs, n, n_shapes, o->seam_samples, o->patch_samples, o->surface_base, seam_off, patch_off, size, imp, shape_size};
     int nt = 1;
 #ifdef _OPENMP
     nt = o->threads > 0 ? o->threads : omp_get_max_threads();
@@ -926,6 +937,10 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
     free(size);
     if (!st && o->crossing_density > 0)
         st = rg2__prefix(err, rg2_find_crossings(surfs, n, o->crossing_density, o->threads, &out->crossings, err), "check");
+    if (!st && out->crossings.crossings > 0) {
+        out->crossings.a.surf += o->surface_base;
+        out->crossings.b.surf += o->surface_base;
+    }
     if (st) {
         free(shape_size);
         free(shape_box);

@@ -6,6 +6,7 @@
 #include "harness.h"
 #include "scenes.h"
 
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -557,6 +558,20 @@ static void bad_arguments(void)
         CHECK(st == RG2_EINVAL && strstr(err.msg, "crossing_density"), "check crossing_density %d: %s (%s)",
               o.crossing_density, rg2_status_str(st), err.msg);
     }
+    o.crossing_density = 0;
+    for (int k = 0; k < 2; k++) { /* surfs[0] named below 0, or surfs[n - 1] beyond INT_MAX */
+        o.surface_base = k ? INT_MAX : -1;
+        st = rg2_check(&s, 1, NULL, NULL, 0, &o, &cr, &err);
+        CHECK(st == RG2_EINVAL && strstr(err.msg, "surface_base"), "check surface_base %d: %s (%s)", o.surface_base,
+              rg2_status_str(st), err.msg);
+    }
+    o.surface_base = INT_MAX - 1; /* the largest a single surface may take */
+    st = rg2_check(&s, 1, NULL, NULL, 0, &o, &cr, &err);
+    CHECK(st == RG2_OK && cr.g1.surf == INT_MAX - 1, "check surface_base INT_MAX - 1: %s (%s)", rg2_status_str(st),
+          err.msg);
+    if (st == RG2_OK)
+        rg2_check_report_free(&cr);
+    o.surface_base = 0;
     o.crossing_density = 1000;
     st = rg2_check(&s, 1, NULL, NULL, 0, &o, &cr, &err);
     CHECK(st == RG2_ELIMIT && strstr(err.msg, "check: crossings:"), "check at density 1000: %s (%s)",
@@ -607,6 +622,32 @@ static void check_integration(void)
         rg2_check_report_free(&cr);
     }
     CHECK(same_crossings(&got[0], &direct), "check's crossings equal rg2_find_crossings'");
+    /* surface_base 7: the same report, every surface it names (the crossing's two sheets, the
+     * worst gaps, the largest |k|) named 7 instead of 0 (rg2 check --surface's test covers the
+     * shapes' places) */
+    {
+        rg2_check_report c0, c7;
+        o.threads = 2;
+        CHECK_OK(rg2_check(&s, 1, NULL, NULL, 0, &o, &c0, &err), &err);
+        o.surface_base = 7;
+        CHECK_OK(rg2_check(&s, 1, NULL, NULL, 0, &o, &c7, &err), &err);
+        o.surface_base = 0;
+        rg2_crossing_report x = c7.crossings;
+        CHECK(x.crossings > 0 && x.a.surf == 7 && x.b.surf == 7, "base 7: the crossing's sheets %d, %d", x.a.surf,
+              x.b.surf);
+        x.a.surf = x.b.surf = 0;
+        CHECK(same_crossings(&x, &c0.crossings), "base 7: otherwise the crossings of base 0");
+        const rg2_check_gap *g0[3] = {&c0.g0, &c0.g1, &c0.g2}, *g7[3] = {&c7.g0, &c7.g1, &c7.g2};
+        for (int k = 0; k < 3; k++)
+            CHECK(g0[k]->surf == 0 && g7[k]->surf == 7 && g0[k]->value == g7[k]->value && g0[k]->pi == g7[k]->pi &&
+                      g0[k]->t == g7[k]->t,
+                  "base 7: G%d gap %g at surface %d (base 0: %g at %d)", k, g7[k]->value, g7[k]->surf, g0[k]->value,
+                  g0[k]->surf);
+        CHECK(c0.kpeak.surf == 0 && c7.kpeak.surf == 7 && c0.kpeak_k == c7.kpeak_k, "base 7: largest |k| at %d",
+              c7.kpeak.surf);
+        rg2_check_report_free(&c0);
+        rg2_check_report_free(&c7);
+    }
     CHECK(same_crossings(&got[0], &got[1]) && same_crossings(&got[0], &got[2]),
           "the crossings report on 1, 2, 3 threads is the same");
     CHECK(text[0] && text[1] && text[2] && !strcmp(text[0], text[1]) && !strcmp(text[0], text[2]) &&

@@ -52,4 +52,53 @@ expect 2 "--intersections needs an integer 1..1000, not '-2'" -- "$RG2" check "$
 expect 2 "--intersections needs an integer 1..1000, not '1001'" -- "$RG2" check "$cyl" --intersections 1001
 expect 2 "unknown promise 'no-crossing'" -- "$RG2" check "$cyl" --require no-crossing
 expect 1 "exceed the limit of 4000000: a lower density" -- "$RG2" check "$cyl" --intersections 300
+
+# --surface K: output K alone, named K. Fig. 1's overlaid variants cross each other, but each
+# alone keeps the promise; so does each crossing cylinder.
+"$RG2" check --help | grep -q -- "--surface K" && ok || bad "--help lacks --surface"
+for k in 0 1 2 3; do
+  expect 0 "crossings            0 of" -- "$RG2" check "$SRC/examples/fig1_torus.json" --surface $k --require no-crossings
+done
+expect 0 "crossings            0 of" -- "$RG2" check "$cyl" --surface 1 --intersections --require g2,exact,no-crossings
+# every design with several outputs: the whole report's worst gaps and largest |k| are the worst
+# over the outputs checked alone (the first output on a tie), at the same place, and each alone
+# names only its own number
+python3 - "$RG2" "$SRC" "$cyl" <<'PY' && ok || bad "--surface reports against the whole design's"
+import glob, json, subprocess, sys
+rg2, src, cyl = sys.argv[1], sys.argv[2], sys.argv[3]
+def check(path, *extra):
+    r = subprocess.run([rg2, "check", path, "--json", *extra], capture_output=True, text=True)
+    assert r.returncode == 0, (path, extra, r.stderr)
+    return json.loads(r.stdout)
+designs = 0
+for path in sorted(glob.glob(src + "/examples/*.json")) + [cyl]:
+    whole = check(path)
+    n = whole["surfaces"]
+    if n < 2:
+        continue
+    designs += 1
+    parts = [check(path, "--surface", str(k)) for k in range(n)]
+    for k, p in enumerate(parts):
+        assert p["surfaces"] == 1, (path, k)
+        for g in ("g0_position", "g1_normal_angle", "g2_curvature_jump"):
+            assert p[g]["surface"] == k, (path, k, g, p[g])
+        if "largest_curvature" in p:
+            assert p["largest_curvature"]["surface"] == k, (path, k)
+        for s in p["shapes"]:
+            assert s["patches"] == 0 or s["where"].startswith("surface %d " % k), (path, k, s)
+    assert whole["patches"] == sum(p["patches"] for p in parts), path
+    assert whole["seams"] == sum(p["seams"] for p in parts), path
+    for g in ("g0_position", "g1_normal_angle", "g2_curvature_jump"):
+        worst = max(p[g]["value"] for p in parts)
+        first = next(p for p in parts if p[g]["value"] == worst)
+        assert whole[g] == first[g], (path, g, whole[g], first[g])
+    ks = [p["largest_curvature"] for p in parts if "largest_curvature" in p]
+    big = max(abs(x["k"]) for x in ks)
+    assert whole["largest_curvature"] == next(x for x in ks if abs(x["k"]) == big), path
+assert designs >= 5, designs
+PY
+expect 2 "--surface 4: $SRC/examples/fig1_torus.json: the design has 4 surfaces (0..3)" -- "$RG2" check "$SRC/examples/fig1_torus.json" --surface 4
+expect 2 "--surface needs a surface index (an integer >= 0), not '-1'" -- "$RG2" check "$cyl" --surface -1
+expect 2 "--surface needs a surface index (an integer >= 0), not '1.5'" -- "$RG2" check "$cyl" --surface 1.5
+expect 2 "--surface needs a surface index (an integer >= 0), not 'b'" -- "$RG2" check "$cyl" --surface b
 finish
