@@ -44,10 +44,12 @@ if has render; then run 0 "$rg2" render "$src/examples/fig1_torus.json" -o "$tmp
 run 0 "$rg2" build -q "$src/examples/fig9_polar_sphere.json" --iges-brep --face-per-mesh -o "$tmp/bm.igs"
 run 0 "$rg2" demo
 run 0 "$rg2" shapes
-# the error paths: every row of the bad-input table (tests/bad/table.tsv, see its header)
+# the error paths: every row of the bad-input table (tests/bad/table.tsv, see its header), its
+# inputs read from a scratch copy (as tests/cli/bad_table.sh), never from the source tree
+mkdir -p "$tmp/in/tests/bad" && cp -R "$src/tests/bad/." "$tmp/in/tests/bad/"
 while IFS=$'\t' read -r file code msg args; do
   case "$file" in ''|'#'*) continue ;; esac
-  in="$src/tests/bad/$file"
+  in="$tmp/in/tests/bad/$file"
   mkdir -p "$tmp/bad"
   words=()
   for w in $args; do
