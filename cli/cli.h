@@ -49,6 +49,13 @@ int rg2_cli_parse_n(const char *cmd, const char *opt, const char *s, double *out
 /* One number of a single-number option (s NULL: the value is missing): 0, or -1 with one line
  * printed, "rg2 <cmd>: <opt> needs <rule>, not '<s>'". A subnormal number is accepted. */
 int rg2_cli_number(const char *cmd, const char *opt, const char *s, const char *rule, double *v);
+
+/* --surface K of rg2 render and rg2 check: K as given, any integer >= 0 (*v; a usage message and
+ * -1 otherwise). The design's count bounds it once loaded: rg2_cli_surface_in. */
+int rg2_cli_surface_opt(const char *cmd, const char *s, double *v);
+/* Whether --surface s (v as rg2_cli_surface_opt read it) names one of the design's n surfaces:
+ * 0, or a usage message and -1. */
+int rg2_cli_surface_in(const char *cmd, const char *s, double v, int n);
 /* Each of x[0..n) in the numeric range of a design file's numbers (rg2_number_check: 0 or a
  * magnitude from 1e-100 to 1e100): 0, or RG2_EXIT_USAGE with one line printed, "rg2 <cmd>: value
  * out of range: <opt>[ item k]: number ... is outside the supported range (...)". */

@@ -315,15 +315,9 @@ int rg2_cmd_check(int argc, char **argv)
             }
             *dst = v;
         } else if (!strcmp(a, "--surface")) {
-            /* as rg2 render --surface: any index >= 0 here, the design's count bounds it once loaded */
-            const char *rule = "a surface index (an integer >= 0)";
             only_arg = i + 1 < argc ? argv[++i] : NULL;
-            if (rg2_cli_number("check", a, only_arg, rule, &only_v))
+            if (rg2_cli_surface_opt("check", only_arg, &only_v))
                 return RG2_EXIT_USAGE;
-            if (only_v < 0 || only_v != floor(only_v)) {
-                fprintf(stderr, "rg2 check: --surface needs %s, not '%s'\n", rule, only_arg);
-                return RG2_EXIT_USAGE;
-            }
         } else if (!strcmp(a, "--on")) {
             if (i + 1 >= argc || !argv[i + 1][0]) {
                 fprintf(stderr, "rg2 check: --on needs the name of one of the design's shapes\n");
@@ -361,9 +355,7 @@ int rg2_cmd_check(int argc, char **argv)
     int n = 0, rc = rg2_cli_load_surfaces("check", path, &d, &surfs, &meshes, &n);
     if (rc)
         goto out;
-    if (only_v >= n) {
-        fprintf(stderr, "rg2 check: --surface %s: %s: the design has %d surface%s (0..%d)\n", only_arg, path, n,
-                n == 1 ? "" : "s", n - 1);
+    if (rg2_cli_surface_in("check", only_arg, only_v, n)) {
         rc = RG2_EXIT_USAGE; /* an option value out of its range */
         goto out;
     }

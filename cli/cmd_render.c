@@ -157,15 +157,9 @@ int rg2_cmd_render(int argc, char **argv)
             if (rg2_cli_int("render", a, i + 1 < argc ? argv[++i] : NULL, 1, 1024, &o.threads))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--surface")) {
-            /* any index >= 0 here; the design's count bounds it once loaded */
-            const char *rule = "a surface index (an integer >= 0)";
             only_arg = i + 1 < argc ? argv[++i] : NULL;
-            if (rg2_cli_number("render", a, only_arg, rule, &only_v))
+            if (rg2_cli_surface_opt("render", only_arg, &only_v))
                 return RG2_EXIT_USAGE;
-            if (only_v < 0 || only_v != floor(only_v)) {
-                fprintf(stderr, "rg2 render: --surface needs %s, not '%s'\n", rule, only_arg);
-                return RG2_EXIT_USAGE;
-            }
         } else if (!strcmp(a, "--range")) {
             if (rg2_cli_parse_n("render", "--range", i + 1 < argc ? argv[i + 1] : "", o.range, 2, "lo,hi"))
                 return RG2_EXIT_USAGE;
@@ -219,11 +213,9 @@ int rg2_cmd_render(int argc, char **argv)
     rg2_surface *surfs = NULL;
     rg2_mesh *meshes = NULL;
     int n = 0, rc = rg2_cli_load_surfaces("render", path, &d, &surfs, &meshes, &n);
-    if (!rc && only_v >= n) {
-        fprintf(stderr, "rg2 render: --surface %s: the design has %d surface%s (0..%d)\n", only_arg, n,
-                n == 1 ? "" : "s", n - 1);
+    if (!rc && rg2_cli_surface_in("render", only_arg, only_v, n))
         rc = RG2_EXIT_USAGE; /* an option value out of its range, like --size */
-    } else if (only_v >= 0)
+    else if (only_v >= 0)
         only = (int)only_v;
     if (!rc && only < 0 && !o.apart && n > 1)
         overlap_note(surfs, n);

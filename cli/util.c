@@ -81,6 +81,26 @@ int rg2_cli_number(const char *cmd, const char *opt, const char *s, const char *
     return -1;
 }
 
+int rg2_cli_surface_opt(const char *cmd, const char *s, double *v)
+{
+    const char *rule = "a surface index (an integer >= 0)";
+    if (rg2_cli_number(cmd, "--surface", s, rule, v))
+        return -1;
+    if (*v < 0 || *v != floor(*v)) {
+        fprintf(stderr, "rg2 %s: --surface needs %s, not '%s'\n", cmd, rule, s);
+        return -1;
+    }
+    return 0;
+}
+
+int rg2_cli_surface_in(const char *cmd, const char *s, double v, int n)
+{
+    if (v < n)
+        return 0;
+    fprintf(stderr, "rg2 %s: --surface %s: the design has %d surface%s (0..%d)\n", cmd, s, n, n == 1 ? "" : "s", n - 1);
+    return -1;
+}
+
 int rg2_cli_check_numbers(const char *cmd, const char *opt, const double *x, int n)
 {
     for (int k = 0; k < n; k++) {

@@ -97,7 +97,7 @@ for path in sorted(glob.glob(src + "/examples/*.json")) + [cyl]:
     assert whole["largest_curvature"] == next(x for x in ks if abs(x["k"]) == big), path
 assert designs >= 5, designs
 PY
-expect 2 "--surface 4: $SRC/examples/fig1_torus.json: the design has 4 surfaces (0..3)" -- "$RG2" check "$SRC/examples/fig1_torus.json" --surface 4
+expect 2 "rg2 check: --surface 4: the design has 4 surfaces (0..3)" -- "$RG2" check "$SRC/examples/fig1_torus.json" --surface 4
 expect 2 "--surface needs a surface index (an integer >= 0), not '-1'" -- "$RG2" check "$cyl" --surface -1
 expect 2 "--surface needs a surface index (an integer >= 0), not '1.5'" -- "$RG2" check "$cyl" --surface 1.5
 expect 2 "--surface needs a surface index (an integer >= 0), not 'b'" -- "$RG2" check "$cyl" --surface b
