@@ -22,6 +22,8 @@ static void usage(FILE *f)
                "  --iges-brep       IGES: a B-rep shell per mesh (faces, shared edges and vertices;\n"
                "                    no sewing needed) instead of untrimmed surfaces; either layout\n"
                "  --density N       triangle meshes: samples per patch edge (default 16)\n"
+               "  --surface K       only output surface K (0-based) of the design, e.g. one of several\n"
+               "                    variants listed in \"output\"\n"
                "  -q, --quiet       no progress line, and no notes on options that no output uses\n"
                "A progress line goes to stderr when it is a terminal.\n"
                "Exit codes: 0 ok, 1 invalid design or write error (message on stderr), 2 usage error.\n");
@@ -70,6 +72,8 @@ static void progress(int on, const char *fmt, const char *arg)
 int rg2_cmd_build(int argc, char **argv)
 {
     const char *path = NULL, *out[MAX_OUT];
+    const char *only_arg = NULL;
+    double only_v = -1; /* --surface as given, checked against the design's count once loaded */
     int n_out = 0, quiet = 0, density_set = 0;
     rg2_export_opts opts;
     rg2_export_opts_default(&opts);
@@ -100,6 +104,10 @@ int rg2_cmd_build(int argc, char **argv)
             if (rg2_cli_int("build", a, i + 1 < argc ? argv[++i] : NULL, 1, 1024, &opts.density))
                 return RG2_EXIT_USAGE;
             density_set = 1;
+        } else if (!strcmp(a, "--surface")) {
+            only_arg = i + 1 < argc ? argv[++i] : NULL;
+            if (rg2_cli_surface_opt("build", only_arg, &only_v))
+                return RG2_EXIT_USAGE;
         } else if (a[0] == '-' && a[1]) {
             return rg2_cli_unknown_option("build", a, usage, NULL);
         } else if (path) {
@@ -154,6 +162,16 @@ int rg2_cmd_build(int argc, char **argv)
             fprintf(stderr, "rg2 build: note: %s\n", rg2_design_note(d, k));
     }
     int ns = rg2_design_num_surfaces(d);
+    if (rg2_cli_surface_in("build", only_arg, only_v, ns)) {
+        rg2_design_free(d);
+        progress(tty, NULL, NULL);
+        return RG2_EXIT_USAGE; /* an option value out of its range */
+    }
+    int first = 0; /* --surface K: surface K alone */
+    if (only_v >= 0) {
+        first = (int)only_v;
+        ns = 1;
+    }
     rg2_surface *surfs = calloc((size_t)ns, sizeof *surfs);
     if (!surfs) {
         rg2_design_free(d);
@@ -162,7 +180,7 @@ int rg2_cmd_build(int argc, char **argv)
         return RG2_EXIT_FAIL;
     }
     for (int k = 0; k < ns; k++)
-        surfs[k] = *rg2_design_surface(d, k); /* shallow views; the design owns the data */
+        surfs[k] = *rg2_design_surface(d, first + k); /* shallow views; the design owns the data */
     if (step || iges)
         note_cad_size(surfs, ns);
     int rc = RG2_EXIT_OK;
@@ -173,9 +191,13 @@ int rg2_cmd_build(int argc, char **argv)
         const char *at = strstr(err.msg, ": surface ");
         int sk;
         if (at && sscanf(at, ": surface %d", &sk) == 1 && sk >= 0 && sk < ns) {
-            size_t len = strlen(err.msg); /* say which mesh surface k is */
-            snprintf(err.msg + len, sizeof err.msg - len, " (surface %d is mesh '%s')", sk,
-                     rg2_design_mesh_name(d, sk));
+            size_t len = strlen(err.msg); /* say which mesh surface k is (surfs[k] is the design's first + k) */
+            if (only_v >= 0)
+                snprintf(err.msg + len, sizeof err.msg - len, " (--surface %d: mesh '%s')", first,
+                         rg2_design_mesh_name(d, first + sk));
+            else
+                snprintf(err.msg + len, sizeof err.msg - len, " (surface %d is mesh '%s')", sk,
+                         rg2_design_mesh_name(d, sk));
         }
         rc = rg2_cli_report("build", &err);
     }

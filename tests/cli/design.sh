@@ -337,5 +337,25 @@ if [ -d /proc/self ]; then
   expect 1 "/proc/x.step: cannot write" "$rg2" build -q "$src/examples/torus_sphere.json" -o /proc/x.step
   grep -q "is mesh" "$tmp/err" && bad "a write error names a mesh: $(cat "$tmp/err")" || ok
 fi
+# --surface K: output K alone, its patches those of the whole build's surface K (the .json
+# export, compared as data); out of range, a usage error before anything is written
+f1=$src/examples/fig1_torus.json
+expect 0 "" "$rg2" build -q "$f1" -o "$tmp/f1all.json"
+for k in 0 2 3; do
+  expect 0 "" "$rg2" build -q "$f1" --surface $k -o "$tmp/f1s$k.json" -o "$tmp/f1s$k.step"
+  python3 - "$tmp/f1all.json" "$tmp/f1s$k.json" "$tmp/f1s$k.step" $k <<'PY' && ok || bad "build --surface $k: not the whole build's surface $k"
+import json, sys
+whole, one = (json.load(open(p))["surfaces"] for p in sys.argv[1:3])
+k = int(sys.argv[4])
+assert len(whole) == 4 and len(one) == 1 and one[0] == whole[k]
+assert whole[0] != whole[2] and whole[0] != whole[3] and whole[2] != whole[3]  # (so K is told apart)
+step = open(sys.argv[3]).read()
+assert step.count("B_SPLINE_SURFACE_WITH_KNOTS") == one[0]["nu"] * one[0]["nv"], step.count("B_SPLINE_SURFACE_WITH_KNOTS")
+PY
+done
+expect 2 "rg2 build: --surface 4: the design has 4 surfaces (0..3)" "$rg2" build -q "$f1" --surface 4 -o "$tmp/f1s4.step"
+expect 2 "rg2 build: --surface needs a surface index (an integer >= 0), not 'x'" "$rg2" build -q "$f1" --surface x -o "$tmp/f1sx.step"
+[ ! -e "$tmp/f1s4.step" ] && [ ! -e "$tmp/f1sx.step" ] && ok || bad "build --surface out of range wrote a file"
+"$rg2" build --help | grep -q -- "--surface K" && ok || bad "build --help lacks --surface"
 echo "cli design: $passes passed, $fails failed"
 [ "$fails" = 0 ]
