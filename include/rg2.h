@@ -410,7 +410,12 @@ typedef struct {
 } rg2_surface;
 
 /** The Bi-cubic Construction: rows then columns of the curve construction on 4-tuples.
- *  Patch (i, j) comes from segment i in u and j in v (open directions: segments 1..n-3). */
+ *  Patch (i, j) comes from segment i in u and j in v (open directions: segments 1..n-3).
+ *  What it depends on (per direction; u shown, v alike): control points i-1..i+2 (closed, indices
+ *  mod n) or i..i+3 (open), the junction scalars b, g of the same indices, and the stored
+ *  weights w[i-2..i+2] (closed, mod n) or w[i..i+4] (open). So moving control point (a, b)
+ *  changes at most the 4 x 4 patches (a-2..a+1 or a-3..a, likewise in v; fewer at an open
+ *  border), and every other patch keeps its bits (rg2_surface_rebuild: picking and editing). */
 RG2_API rg2_status rg2_surface_build(const rg2_mesh *m, rg2_surface *out, rg2_error *err);
 /** rg2_surface_build into a surface that already exists (from rg2_surface_build, _copy,
  *  _rebuild, or all zeros), for editing loops (move a control point, rebuild, re-tessellate):

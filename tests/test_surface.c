@@ -283,6 +283,83 @@ static void random_mesh(rg2t_rng *r, int nu, int nv, int cu, int cv, rg2_mesh *m
     }
 }
 
+/* rg2.h, rg2_surface_build: patch column i depends on points i-1..i+2 (closed, mod n) or i..i+3
+ * (open), junction scalars b, g of those indices, stored weights w[i-2..i+2] (closed) or
+ * w[i..i+4] (open); likewise in v. Each datum of a random mesh is changed in turn: every patch
+ * outside the documented set keeps its bits, and some patch inside it changes. */
+static int in_support(int i, int k, int lo, int hi, int n, int closed)
+{
+    for (int d = lo; d <= hi; d++) {
+        int q = closed ? (((i + d) % n) + n) % n : i + d;
+        if (q == k)
+            return 1;
+    }
+    return 0;
+}
+
+static void support(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 4242);
+    rg2_error err;
+    int outside = 0, none = 0, cases = 0;
+    for (int trial = 0; trial < 4; trial++) {
+        int cu = trial & 1, cv = (trial >> 1) & 1;
+        rg2_mesh m;
+        random_mesh(&r, 9, 8, cu, cv, &m);
+        rg2_surface s0, s;
+        memset(&s0, 0, sizeof s0);
+        memset(&s, 0, sizeof s);
+        CHECK_OK(rg2_surface_build(&m, &s0, &err), &err);
+        for (int what = 0; what < 4; what++)     /* point, b, g, w */
+            for (int dir = 0; dir < 2; dir++) {  /* scalars of u or v (points: both at once) */
+                rg2_scalars *sc = dir ? &m.sv : &m.su;
+                int n = sc->n, closed = sc->closed, nw = rg2_scalars_num_w(sc);
+                for (int k = 0; k < (what == 3 ? nw : n); k++) {
+                    int a = dir ? 3 : k, b = dir ? k : 3; /* the point moved: (k, 3) or (3, k) */
+                    double save, *x = what == 0 ? rg2_mesh_at(&m, a, b) : what == 1 ? &sc->b[k]
+                                                 : what == 2 ? &sc->g[k] : &sc->w[k];
+                    save = *x;
+                    *x = what == 2 ? save + 0.01 : save * 1.01;
+                    rg2_status st = rg2_surface_rebuild(&m, &s, &err);
+                    *x = save;
+                    if (st)
+                        continue; /* K <= 0 after the change: not a surface */
+                    cases++;
+                    int changed_inside = 0;
+                    for (int i = 0; i < s.nu; i++)
+                        for (int j = 0; j < s.nv; j++) {
+                            int ch = memcmp(rg2_surface_patch(&s, i, j), rg2_surface_patch(&s0, i, j),
+                                            sizeof(rg2_patch)) != 0;
+                            int in;
+                            if (what == 0) {
+                                in = in_support(i, a, cu ? -1 : 0, cu ? 2 : 3, m.nu, cu) &&
+                                     in_support(j, b, cv ? -1 : 0, cv ? 2 : 3, m.nv, cv);
+                            } else {
+                                int idx = dir ? j : i;
+                                in = what == 3 ? in_support(idx, k, closed ? -2 : 0, closed ? 2 : 4, n, closed)
+                                               : in_support(idx, k, closed ? -1 : 0, closed ? 2 : 3, n, closed);
+                            }
+                            if (ch && !in)
+                                outside++;
+                            changed_inside += ch && in;
+                        }
+                    /* open directions: the end data (junctions 0 and n-1, w[0] and w[n]) only
+                     * shape the end patches through their neighbours' stencils, so a change there
+                     * may change nothing; elsewhere something inside must change */
+                    if (!changed_inside && (what == 0 || closed || (k > 0 && k < (what == 3 ? nw : n) - 1)))
+                        none++;
+                }
+            }
+        rg2_surface_free(&s);
+        rg2_surface_free(&s0);
+        rg2_mesh_free(&m);
+    }
+    CHECK(cases > 200 && outside == 0 && none == 0,
+          "support: %d changes, %d patches changed outside the documented support, %d changes changed nothing", cases,
+          outside, none);
+}
+
 /* rg2_surface_rebuild: the result of rg2_surface_build bit for bit, into the old memory when the
  * patch counts stay (an editing loop), into new memory otherwise; old tags and higher-degree
  * patches dropped; on failure the surface is left empty (ASan sees any leak). */
@@ -916,6 +993,7 @@ int main(void)
     transpose_symmetry();
     mesh_errors();
     rebuild();
+    support();
     big_surface();
     transform();
     return rg2t_done("test_surface");
