@@ -35,7 +35,10 @@
  *     check them. Functions with a status check their counts and sizes.
  *   - Output structs (surfaces, meshes, scalars, tessellations, images) are filled from scratch:
  *     pass a zeroed or freed struct, or the previous contents leak. rg2_surface_rebuild and
- *     rg2_retessellate are the ones that reuse a built surface's or mesh's memory.
+ *     rg2_retessellate are the ones that reuse a built surface's or mesh's memory. A call that
+ *     fails leaves its output struct zeroed (rg2_design_load / _parse: *out NULL), whatever it
+ *     held before: nothing to free, and its *_free is harmless. (Plain result structs that own
+ *     no memory, rg2_cap_info and rg2_weight_report, may hold partial values.)
  *   - Thread safety: calls may come from several threads at once. Reading one object from
  *     several threads at once is safe, writing it is not; results are the same bits as from a
  *     serial run. What the library shares between calls is internal and synchronised: the

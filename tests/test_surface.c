@@ -975,6 +975,95 @@ static void transform(void)
           worst_n);
 }
 
+/* rg2.h conventions: a call that fails leaves its output struct zeroed, whatever it held (here
+ * garbage bytes), also when it fails after allocating (a non-finite vertex in the
+ * tessellation, a cap fit that is rank-deficient). */
+static int all_zero(const void *p, size_t n)
+{
+    const unsigned char *c = p;
+    for (size_t k = 0; k < n; k++)
+        if (c[k])
+            return 0;
+    return 1;
+}
+
+#define FAILS_ZEROED(obj, call)                                                                \
+    do {                                                                                       \
+        memset(&(obj), 0xAB, sizeof(obj));                                                     \
+        rg2_status st_ = (call);                                                               \
+        CHECK(st_ != RG2_OK && all_zero(&(obj), sizeof(obj)), "%s: status %s, output %s", #call, \
+              rg2_status_str(st_), all_zero(&(obj), sizeof(obj)) ? "zeroed" : "NOT zeroed");   \
+    } while (0)
+
+static void outputs_zeroed_on_failure(void)
+{
+    rg2_error err;
+    rg2_shape t;
+    rg2_shape_init(&t, RG2_SHAPE_TORUS);
+    t.param[0] = 3, t.param[1] = 1;
+    double a[8];
+    for (int k = 0; k < 8; k++)
+        a[k] = M_PI / 4;
+    rg2_partition p = {RG2_PART_ANGLES, 1, 8, a, 0.0};
+    rg2_mesh m, bad, mo;
+    rg2_surface s, sn, so;
+    memset(&m, 0, sizeof m), memset(&bad, 0, sizeof bad), memset(&s, 0, sizeof s), memset(&sn, 0, sizeof sn);
+    CHECK_OK(rg2_shape_mesh(&t, &p, &p, &m, &err), &err);
+    CHECK_OK(rg2_surface_build(&m, &s, &err), &err);
+    CHECK_OK(rg2_mesh_copy(&m, &bad, &err), &err);
+    rg2_mesh_at(&bad, 1, 1)[0] = NAN;
+    CHECK_OK(rg2_surface_copy(&s, &sn, &err), &err);
+    sn.patch[40].h[2][2][1] = NAN;
+
+    FAILS_ZEROED(so, rg2_surface_build(&bad, &so, &err));
+    t.param[1] = 5; /* r > R */
+    FAILS_ZEROED(so, rg2_shape_surface(&t, &p, &p, &so, NULL, &err));
+    FAILS_ZEROED(mo, rg2_shape_mesh(&t, &p, &p, &mo, &err));
+    t.param[1] = 1;
+    FAILS_ZEROED(mo, rg2_mesh_transpose(&bad, &mo, &err));
+    FAILS_ZEROED(mo, rg2_mesh_init(&mo, 2, 2, 0, 0, &err));
+    double ab[8];
+    memcpy(ab, a, sizeof ab);
+    ab[3] = 4; /* an arc past pi */
+    rg2_scalars sc;
+    FAILS_ZEROED(sc, rg2_scalars_from_angles(&sc, ab, 8, 1, &err));
+    rg2_curve c;
+    double pts[3 * 5] = {0};
+    FAILS_ZEROED(c, rg2_curve_build(0, pts, &m.su, &c, &err));
+    rg2_tess tt;
+    FAILS_ZEROED(tt, rg2_tessellate(&sn, 4, 1, &tt, &err));
+    rg2_check_opts o;
+    rg2_check_opts_default(&o);
+    o.seam_samples = 0;
+    rg2_check_report rep;
+    FAILS_ZEROED(rep, rg2_check(&s, 1, NULL, NULL, 0, &o, &rep, &err));
+    rg2_render_opts ro;
+    rg2_render_opts_default(&ro);
+    ro.width = ro.height = 32;
+    rg2_image im;
+    FAILS_ZEROED(im, rg2_render(&sn, 1, NULL, &ro, &im, &err));
+    rg2_crossing_report cr;
+    FAILS_ZEROED(cr, rg2_find_crossings(&sn, 1, 2, 1, &cr, &err));
+    rg2_shape sp;
+    rg2_shape_init(&sp, RG2_SHAPE_SPHERE);
+    double v[4] = {0.2, 0.4, 0.6, 0.8}, vbad[4] = {0.2, 0.1, 0.6, 0.8};
+    rg2_mesh pm;
+    memset(&pm, 0, sizeof pm);
+    CHECK_OK(rg2_polar_mesh(&sp, &p, v, 4, &pm, &err), &err);
+    FAILS_ZEROED(mo, rg2_polar_mesh(&sp, &p, vbad, 4, &mo, &err));
+    rg2_cap_opts co;
+    rg2_cap_opts_default(&co);
+    co.jet_weight[0] = 0; /* rank-deficient fit, after the body is built */
+    FAILS_ZEROED(so, rg2_cap_build(&pm, &co, &so, NULL, &err));
+    rg2_design *d;
+    FAILS_ZEROED(d, rg2_design_parse("{", 1, NULL, &d, &err));
+    rg2_mesh_free(&pm);
+    rg2_mesh_free(&m);
+    rg2_mesh_free(&bad);
+    rg2_surface_free(&s);
+    rg2_surface_free(&sn);
+}
+
 int main(void)
 {
     construction_paths();
@@ -994,6 +1083,7 @@ int main(void)
     mesh_errors();
     rebuild();
     support();
+    outputs_zeroed_on_failure();
     big_surface();
     transform();
     return rg2t_done("test_surface");
