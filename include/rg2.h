@@ -56,7 +56,8 @@
  *     cJSON calls (cJSON_InitHooks among them), or localeconv() under a locale whose decimal
  *     point is not '.', in another thread during an rg2 call that parses or writes JSON
  *     (rg2_design_load / _parse, rg2_nurbs_parse, rg2_design_write_mesh, rg2_check_format, the
- *     JSON and glTF exports).
+ *     JSON and glTF exports); nor a host's setenv / putenv / unsetenv in another thread during a
+ *     STEP or IGES export, which reads SOURCE_DATE_EPOCH with getenv (rg2_export_file).
  *   - Floating point: call rg2 in the C default environment, round to nearest. Traps: on valid
  *     input (designs, meshes and NURBS the library accepts, within the numeric range of
  *     docs/robustness.md, and the surfaces it builds from them) these calls raise none of
@@ -1145,6 +1146,11 @@ RG2_API void rg2_tess_free(rg2_tess *t);
  *  replaced keeps its permission bits (mode & 0777, as with sed -i; not setuid, setgid or
  *  sticky) and, where the writer may give them, its owner and group (else its group bits are
  *  cut to the others'); a new file, or one replacing a symbolic link, has 0666 & ~umask.
+ *  STEP and IGES headers carry the file name (without its directory) and the UTC time of the
+ *  write, so two writes of the same surfaces differ in those bytes; with the environment
+ *  variable SOURCE_DATE_EPOCH set (seconds since 1970, read with getenv at each STEP or IGES
+ *  write) the time is that one, and the same surfaces written to the same name give the same
+ *  bytes (docs/export.md). The other formats carry no time or file name.
  *  @return RG2_EIO (unwritable), RG2_EWEIGHT (non-positive weight for STEP/IGES, naming the
  *  patch), RG2_ENONFINITE (a control value not finite, in every format), RG2_EINVAL (unknown
  *  extension, empty input, a layout other than the two), RG2_EDOMAIN (STL, PLY and glTF store
