@@ -698,10 +698,13 @@ RG2_API void rg2_xform_mul(const double A[16], const double B[16], double out[16
 RG2_API void rg2_xform_translate(double M[16], double x, double y, double z);
 RG2_API void rg2_xform_scale(double M[16], double sx, double sy, double sz);
 /** Rotation by angle (radians) about the axis (ax, ay, az) through the origin, counter-clockwise
- *  seen from the axis's tip (right-hand rule). */
+ *  seen from the axis's tip (right-hand rule). A zero or NaN axis gives the identity (no error:
+ *  check the axis first if it comes from user input). */
 RG2_API void rg2_xform_rotate(double M[16], double ax, double ay, double az, double angle);
 /** Frame placement: the shape's z axis goes to `axis` (normalised) and its origin to `centre`
- *  (the rotation taking z to axis about z x axis). */
+ *  (the rotation taking z to axis about z x axis; for an axis along -z, the half turn about x).
+ *  A zero or NaN axis keeps the orientation (a translation only; no error: check the axis first
+ *  if it comes from user input). */
 RG2_API void rg2_xform_place(double M[16], const double centre[3], const double axis[3]);
 /** Inverse of a 4x4 matrix; RG2_EDOMAIN if singular, also in double precision (an inverse
  *  entry beyond the double range, as for a scale of 1e-310: inv is left as it was),

@@ -676,11 +676,11 @@ static void knot_maps_and_checks(void)
                "range is not finite", "equal partition of an infinite range");
 
     /* placement on the z axis and against it: +z is the identity rotation, -z the half turn
-     * about x (z -> -z, y -> -y), a zero axis keeps the orientation */
+     * about x (z -> -z, y -> -y), a zero or NaN axis keeps the orientation (rg2.h) */
     double P[16], c[3] = {1, 2, 3};
-    const double axes[3][3] = {{0, 0, 2}, {0, 0, -0.5}, {0, 0, 0}};
-    const double want_z[3] = {1, -1, 1}, want_y[3] = {1, -1, 1};
-    for (int k = 0; k < 3; k++) {
+    const double axes[4][3] = {{0, 0, 2}, {0, 0, -0.5}, {0, 0, 0}, {NAN, 0, 1}};
+    const double want_z[4] = {1, -1, 1, 1}, want_y[4] = {1, -1, 1, 1};
+    for (int k = 0; k < 4; k++) {
         rg2_xform_place(P, c, axes[k]);
         double e = 0;
         for (int r = 0; r < 3; r++) {
@@ -693,6 +693,12 @@ static void knot_maps_and_checks(void)
         e = fmax(e, fabs(P[12]) + fabs(P[13]) + fabs(P[14]) + fabs(P[15] - 1.0));
         CHECK(e <= 1e-15, "xform_place axis (%g, %g, %g): off by %.3g", axes[k][0], axes[k][1], axes[k][2], e);
     }
+    double Rz[16], Rn[16];
+    rg2_xform_rotate(Rz, 0, 0, 0, 1.0);
+    rg2_xform_rotate(Rn, NAN, 1, 0, 1.0);
+    double I[16];
+    rg2_xform_identity(I);
+    CHECK(!memcmp(Rz, I, sizeof I) && !memcmp(Rn, I, sizeof I), "xform_rotate about a zero or NaN axis: the identity");
     printf("knot maps: cylinder heights %.2e, radius %.2e; partition checks and z-axis placements\n", wz, wr);
 }
 
