@@ -139,9 +139,13 @@ rg2_status rg2_partition_check(const rg2_partition *p, const char *what, rg2_err
 {
     if (!what)
         what = "the";
-    if (!p || p->n <= 0 || !p->values)
-        return rg2__fail(err, RG2_EINVAL, "%s partition is empty (no %s given)", what,
-                         p && !is_angles(p->kind) ? "knots" : "arcs");
+    if (!p)
+        return rg2__fail(err, RG2_EINVAL, "%s partition is NULL", what);
+    const char *unit = !is_angles(p->kind) ? "knots" : "arcs";
+    if (p->n <= 0)
+        return rg2__fail(err, RG2_EINVAL, "%s partition is empty (n = %d: no %s given)", what, p->n, unit);
+    if (!p->values)
+        return rg2__fail(err, RG2_EINVAL, "%s partition: values is NULL (n = %d %s)", what, p->n, unit);
     if ((int)p->kind < 0 || p->kind > RG2_PART_KNOTS_FULL)
         return rg2__fail(err, RG2_EINVAL, "%s partition has unknown kind %d", what, (int)p->kind);
     if (p->n > RG2_MAX_POINTS)

@@ -786,10 +786,15 @@ static void errors(void)
     bad.n = 0;
     expect_err(rg2_shape_mesh(&sh, &bad, &pv, &m, &err), RG2_EINVAL, &err, "u partition is empty",
                "empty u partition");
+    bad.n = -3;
+    expect_err(rg2_shape_mesh(&sh, &bad, &pv, &m, &err), RG2_EINVAL, &err, "u partition is empty (n = -3",
+               "negative u partition count");
+    /* values NULL with a count: say so, not "empty (no knots given)" */
     bad = pv;
     bad.values = NULL;
-    expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_EINVAL, &err, "v partition is empty",
-               "empty v partition");
+    expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_EINVAL, &err,
+               "v partition: values is NULL (n = 4 knots)", "v partition without values");
+    expect_err(rg2_partition_check(NULL, "u", &err), RG2_EINVAL, &err, "u partition is NULL", "NULL partition");
     double a5[5] = {1.0, 1.0, 1.0, 1.0, 1.0};
     bad = pu, bad.values = a5, bad.n = 5;
     expect_err(rg2_shape_mesh(&sh, &bad, &pv, &m, &err), RG2_EDOMAIN, &err, "must sum to 2 pi",
