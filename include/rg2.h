@@ -1472,6 +1472,9 @@ typedef struct {
 RG2_API void rg2_check_opts_default(rg2_check_opts *o);
 /** Measure surfaces against shapes (nullable if n_shapes == 0; labels nullable), on
  *  o->threads threads (o NULL: the defaults). Release the report with rg2_check_report_free.
+ *  Non-finite control values are not refused (unlike rg2_tessellate, rg2_render and the
+ *  exports, which name the patch): the report measures them, its gaps and residuals come out
+ *  NaN and every G0, G1, G2 and EXACT promise fails (rg2_check_failures; the table says FAIL).
  *  @return RG2_EINVAL (no surfaces, samples out of range, threads < 0, a tolerance that is
  *  not a finite number >= 0), RG2_ELIMIT (more than RG2_MAX_CHECK_SAMPLES seam samples, or
  *  patch samples, over all surfaces: seams x (seam_samples + 1), patches x

@@ -1015,6 +1015,38 @@ static void unmeasured_fails(void)
     }
 }
 
+/* rg2.h, rg2_check: a non-finite control value is measured, not refused; the gaps and the
+ * residual come out NaN and every G0, G1, G2 and EXACT promise fails. */
+static void nonfinite_fails(void)
+{
+    rg2_design *d = NULL;
+    rg2_error err;
+    CHECK_OK(rg2_design_load("examples/fig1_torus.json", &d, &err), &err);
+    if (!d)
+        return;
+    for (int c = 0; c < 2; c++) {
+        rg2_surface s;
+        CHECK_OK(rg2_surface_copy(rg2_design_surface(d, 0), &s, &err), &err);
+        s.patch[s.nv + 1].h[1][2][c ? 3 : 0] = c ? INFINITY : NAN; /* a coordinate, a weight */
+        const rg2_shape *sh = rg2_design_shape(d, 0);
+        rg2_check_report r;
+        rg2_status st = rg2_check(&s, 1, sh, NULL, 1, NULL, &r, &err);
+        unsigned want = RG2_REQUIRE_G0 | RG2_REQUIRE_G1 | RG2_REQUIRE_G2 | RG2_REQUIRE_EXACT;
+        unsigned got = st ? 0 : rg2_check_failures(&r, want);
+        char *text = NULL;
+        if (!st)
+            CHECK_OK(rg2_check_format(&r, 0, &text, &err), &err);
+        CHECK(st == RG2_OK && got == want && text && strstr(text, "FAIL"),
+              "check of a surface with a non-finite %s: status %s, failures %#x of %#x", c ? "weight" : "coordinate",
+              rg2_status_str(st), got, want);
+        free(text);
+        if (!st)
+            rg2_check_report_free(&r);
+        rg2_surface_free(&s);
+    }
+    rg2_design_free(d);
+}
+
 /* A metric that overflows on one side of a seam only is no measurement either: two flat
  * patches side by side, extruded over y in [0, Y], one X wide and the other 4 X wide (|Su| = X
  * and 4 X, |Sv| = Y, Su . Sv = 0). At X = Y = 1e77 the narrow patch's E G - F^2 = X^2 Y^2 is
@@ -2023,6 +2055,7 @@ int main(void)
     poles_on_u_sides();
     seam_direction_reported();
     unmeasured_fails();
+    nonfinite_fails();
     metric_overflow_one_side();
     loose_limits();
     folds_fail();
