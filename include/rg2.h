@@ -431,6 +431,10 @@ RG2_API rg2_status rg2_surface_build(const rg2_mesh *m, rg2_surface *out, rg2_er
 RG2_API rg2_status rg2_surface_rebuild(const rg2_mesh *m, rg2_surface *s, rg2_error *err);
 RG2_API void rg2_surface_free(rg2_surface *s);
 RG2_API rg2_status rg2_surface_copy(const rg2_surface *src, rg2_surface *dst, rg2_error *err);
+/** Bi-3 patch (i, j). Where patch (i, j) is of higher degree (s->xp, general-quadratic caps)
+ *  this is the unused all-NaN placeholder, and so is whatever rg2_patch_eval, rg2_patch_point
+ *  or rg2_patch_grid make of it: read such surfaces through rg2_surface_eval, rg2_surface_xpatch
+ *  or rg2_surface_patch_grid. */
 static inline rg2_patch *rg2_surface_patch(const rg2_surface *s, int i, int j)
 {
     return s->patch + RG2_SIZE(i) * RG2_SIZE(s->nv) + RG2_SIZE(j);
@@ -1070,10 +1074,14 @@ RG2_API rg2_status rg2_surface_patch_grid(const rg2_surface *s, int i, int j, in
  *  the total number of values does not fit in memory sizes. */
 RG2_API rg2_status rg2_surface_grid(const rg2_surface *s, int n, int m, int threads,
                                     const rg2_grid_out *out, rg2_error *err);
-/** Position only at one point (the fast per-point path of rg2_patch_eval order 0). */
+/** Position only at one point (the fast per-point path of rg2_patch_eval order 0, equal to it
+ *  to rounding). A bi-3 patch only: for a surface with higher-degree patches (s->xp) the
+ *  placeholder of rg2_surface_patch gives NaN, so use rg2_surface_eval there. */
 RG2_API void rg2_patch_point(const rg2_patch *P, double u, double v, double p[3]);
 /** Position and unit normal at one point (normal 0 where undefined); returns the
- *  RG2_EVAL_* flags as rg2_patch_eval order 1 would set them. */
+ *  RG2_EVAL_* flags as rg2_patch_eval order 1 would set them; position and normal agree with
+ *  rg2_patch_eval's to rounding (normals: a few 1e-16 apart at most points, not bit for bit).
+ *  A bi-3 patch only, as rg2_patch_point. */
 RG2_API unsigned rg2_patch_point_normal(const rg2_patch *P, double u, double v, double p[3],
                                         double n[3]);
 
