@@ -1271,6 +1271,83 @@ static void moved_body_caps(void)
     rg2_mesh_free(&body);
 }
 
+/* 4-tuples are defined up to a scalar function (fit_solve's lambda absorbs its 2-jet at the
+ * ring): a sphere band whose 4-tuples are multiplied by mu(v) = 1 + v (family 2, cubic in v;
+ * the same surface) gets the caps of the band itself, with automatic parameters (bi-3 and
+ * general-quadratic) and with the sphere's own chart, which also puts them on the sphere: the
+ * band is v in [1/4, 3/4] of the sphere (2v(1 - v) cu, 2v(1 - v) su, 2v - 1, 2v^2 - 2v + 1)
+ * (docs/shapes.md) with knot intervals 1/8, so its south cap is v in [0, 1/4]: v_c = 1/4 and
+ * length 1/4 / (1/8) = 2 body rings (choose_params' polar formula); the north one the same by
+ * symmetry. A fit that left lambda out of the first-derivative rows, or weighed lambda's
+ * first derivative by a wrong factor in the second-derivative rows, put the caps of the scaled
+ * tuples 4.6e-3 to 3.6e-2 off (1.1e-3 to 2.7e-2 in the sphere's chart, as far off the sphere);
+ * a ring radius (the automatic length) that multiplied by the weights instead of dividing moved
+ * the automatic caps 5.4e-2. */
+static void scaled_tuple_caps(void)
+{
+    double av[8], kv[8];
+    rg2_error err;
+    rg2_partition pu, pv;
+    CHECK_OK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0.0, 0.0, 6, av, 8, &err), &err);
+    CHECK_OK(rg2_partition_equal(&pv, RG2_PART_KNOTS, 0, 0.25, 0.75, 4, kv, 8, &err), &err);
+    rg2_mesh m[2];
+    for (int k = 0; k < 2; k++) {
+        /* c[coordinate][1, cu, su][v^s]: the sphere, times (1 + v) for k = 1 */
+        const double p[4][3][3] = {{{0}, {0, 2, -2}, {0}}, {{0}, {0}, {0, 2, -2}}, {{-1, 2, 0}}, {{1, -2, 2}}};
+        double c[4][3][4] = {{{0}}};
+        for (int q = 0; q < 4; q++)
+            for (int b = 0; b < 3; b++)
+                for (int e = 0; e < 3; e++) {
+                    c[q][b][e] += p[q][b][e];
+                    c[q][b][e + 1] += k * p[q][b][e];
+                }
+        CHECK_OK(rg2_family2_mesh(c, &pu, &pv, &m[k], &err), &err);
+    }
+    const double zero[3] = {0, 0, 0};
+    for (int mode = 0; mode < 3; mode++) {
+        rg2_cap_opts o;
+        rg2_cap_opts_default(&o);
+        o.quadratic = mode == 1 ? RG2_CAP_GENERAL : RG2_CAP_ROTATIONAL;
+        if (mode == 2)
+            for (int e = 0; e < 2; e++)
+                o.length[e] = 2.0, o.vc[e] = 0.25;
+        rg2_surface s[2];
+        int built = 0;
+        for (int k = 0; k < 2; k++)
+            if (!rg2_cap_build(&m[k], &o, &s[k], NULL, &err))
+                built++;
+            else
+                CHECK(0, "scaled tuples: cap %d: %s", k, err.msg);
+        if (built < 2) {
+            if (built)
+                rg2_surface_free(&s[0]);
+            continue;
+        }
+        double worst = 0.0;
+        for (int i = 0; i < s[0].nu; i++)
+            for (int j = 0; j < s[0].nv; j++)
+                for (int a = 0; a <= 4; a++)
+                    for (int b = 0; b <= 4; b++) {
+                        rg2_eval e0, e1;
+                        rg2_surface_eval(&s[0], i, j, a / 4.0, b / 4.0, 0, &e0);
+                        rg2_surface_eval(&s[1], i, j, a / 4.0, b / 4.0, 0, &e1);
+                        for (int q = 0; q < 3; q++)
+                            worst = fmax(worst, fabs(e0.p[q] - e1.p[q]));
+                    }
+        double d = mode == 2 ? fmax(sphere_dist(&s[0], zero, 1.0), sphere_dist(&s[1], zero, 1.0)) : 0.0;
+        printf("sphere band, 4-tuples times 1 + v (%s): caps off the band's caps by %.2e%s", mode == 2 ? "L = 2, v_c = 1/4"
+               : mode ? "automatic, general" : "automatic, bi-3", worst, mode == 2 ? "" : "\n");
+        if (mode == 2)
+            printf(", off the sphere by %.2e\n", d);
+        CHECK(worst <= 1e-13 && d <= 1e-13, "caps of 4-tuples times 1 + v (mode %d): %.3g off the caps of the band, "
+              "%.3g off the sphere", mode, worst, d);
+        rg2_surface_free(&s[0]);
+        rg2_surface_free(&s[1]);
+    }
+    rg2_mesh_free(&m[0]);
+    rg2_mesh_free(&m[1]);
+}
+
 int main(void)
 {
     cap_option_values();
@@ -1288,5 +1365,6 @@ int main(void)
     design_pole_tolerance();
     explicit_lengths();
     moved_body_caps();
+    scaled_tuple_caps();
     return rg2t_done("test_cap");
 }
