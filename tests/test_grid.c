@@ -319,6 +319,40 @@ static void capped_poles(void)
     rg2_mesh_free(&m);
 }
 
+/* The torus's curvatures at sizes 1e-9 and 1e9 (R = 3 s, r = s): K = cos v / (r (R + r cos v))
+ * and |H| = (R + 2 r cos v) / (2 r (R + r cos v)) to 1e-13 relative (K s^2, H s). EG - F^2 is
+ * about s^4, so a test for its cancellation must compare it with E G (both s^4), not with a
+ * fixed figure or with E / G (s^0): against 1e-30 E / G every point of the 1e-9 torus counted
+ * as undefined (on the portable kernels), and its K and H came out as their numerators over a
+ * denominator of 1, about 0: 0.5 and 0.63 off relative to the exact figures. */
+static void torus_sizes(void)
+{
+    for (int big = 0; big < 2; big++) {
+        const double sz = big ? 1e9 : 1e-9, R = 3.0 * sz, r = sz;
+        rg2_surface s;
+        rg2_error err;
+        CHECK_OK(rg2t_torus(R, r, 8, 6, NULL, &s, &err), &err);
+        int n = 9, m = 7;
+        size_t per = (size_t)n * m, np = (size_t)s.nu * s.nv;
+        grid_buf g;
+        buf_alloc(&g, per * np);
+        CHECK_OK(rg2_surface_grid(&s, n, m, 0, &g.o, &err), &err);
+        double kerr = 0, herr = 0;
+        for (size_t i = 0; i < per * np; i++) {
+            const double *p = g.o.pos + 3 * i;
+            double cv = (hypot(p[0], p[1]) - R) / r;
+            double K = cv / (r * (R + r * cv)), H = (R + 2 * r * cv) / (2 * r * (R + r * cv));
+            worse(&kerr, fabs(g.o.K[i] - K) * sz * sz);
+            worse(&herr, fabs(fabs(g.o.H[i]) - H) * sz);
+        }
+        printf("torus of size %g: K %.2e, H %.2e off the exact torus's (relative)\n", sz, kerr, herr);
+        CHECK(kerr <= 1e-13 && herr <= 1e-13, "torus of size %g: grid K %.3g, H %.3g off the exact torus's", sz,
+              kerr, herr);
+        free(g.mem);
+        rg2_surface_free(&s);
+    }
+}
+
 static void torus(void)
 {
     const double R = 3.0, r = 1.0;
@@ -1018,6 +1052,7 @@ int main(void)
         flat_wedge_pole();
         thin_wedge_side();
         torus();
+        torus_sizes();
         large_output();
         narrow_patches();
     }
