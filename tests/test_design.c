@@ -1319,6 +1319,19 @@ static void bad_inputs(void)
     }
     printf("  %zu bad designs rejected with their messages, e.g. '%s'\n", sizeof cases / sizeof cases[0],
            "test:2:15: malformed JSON near '}}'");
+    /* a polar configuration's v knows one key: an unknown one is named with exactly that list
+     * (the whole message: a count past the list read beyond it) */
+    {
+        const char *json = "{" TORUS_SHAPES ", \"meshes\": {\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 8}, "
+                           "\"v\": {\"knots\": [0.2, 0.8], \"arcs\": 4}}}}";
+        rg2_design *dp = NULL;
+        rg2_error e;
+        rg2_status st = rg2_design_parse(json, strlen(json), "test", &dp, &e);
+        CHECK(st == RG2_EPARSE && !dp && !strcmp(e.msg, "test: meshes.P.v: unknown key 'arcs'; known keys: knots"),
+              "polar v with an unknown key: %s '%s'", rg2_status_str(st), e.msg);
+        if (dp)
+            rg2_design_free(dp);
+    }
     rg2_design *d;
     rg2_error err;
     CHECK(rg2_design_load("tests/data/no-such-file.json", &d, &err) == RG2_EIO && d == NULL &&
