@@ -1300,6 +1300,14 @@ static void bad_inputs(void)
         /* a count is an integer: 2.5 arcs is refused, not rounded */
         {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": 2.5}}}}", RG2_EPARSE,
          "test: meshes.T.u.arcs: expected an integer, found 2.5"},
+        /* poles 1e-9 apart on a sphere of radius 2 (5e-10 apart on the unit sphere, where
+         * rg2_mobius_poles_matrix counts them as one point) are named as given, in world
+         * coordinates, like coincident ones (were named by their unit-sphere image, (1, 0, 0)) */
+        {"{\"shapes\": {\"s\": {\"kind\": \"sphere\", \"radius\": 2, \"translate\": [0, 0, 1]}}, \"meshes\": {"
+         "\"P\": {\"polar\": \"s\", \"v\": {\"knots\": [0.2, 0.5]}}, \"M\": {\"mobius\": \"P\", \"sphere\": \"s\", "
+         "\"poles\": {\"south\": [2, 0, 1], \"north\": [2, 1e-9, 1]}}}}",
+         RG2_EDOMAIN, "test: meshes.M.poles: the south and north poles coincide at (2, 0, 1) on the reference sphere 's': "
+                      "give two different points of it"},
         /* a polar configuration's v: missing, or not an object */
         {"{" TORUS_SHAPES ", \"meshes\": {\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 8}}}}", RG2_EPARSE,
          "test: meshes.P: missing key 'v'"},
