@@ -2000,6 +2000,56 @@ static void mobius_reference_notes(void)
     }
 }
 
+/* Moebius poles given on a placed sphere (radius 2, centre c = (0, 0, 1)) at the two ends of a
+ * diameter along x, along y and along z: each pair is accepted (two different points, however
+ * they differ), and the map, a rotation for antipodal poles, puts the polar mesh's collapsed
+ * rows (on the reference's axis) on the axis from c through the poles given, at the same
+ * distances from c for all three (1e-12 of the radius; z is the identity). Poles that differ in
+ * one coordinate only were refused as coinciding when the distance test dropped or cancelled
+ * that coordinate. */
+static void mobius_axis_poles(void)
+{
+    static const char base[] =
+        "{\"shapes\": {\"s\": {\"kind\": \"sphere\", \"radius\": 2, \"translate\": [0, 0, 1]}}, \"meshes\": {"
+        "\"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 8}, \"v\": {\"knots\": [0.2, 0.4, 0.6, 0.8]}}, \"M\": "
+        "{\"mobius\": \"P\", \"sphere\": \"s\", \"poles\": {\"south\": [%g, %g, %g], \"north\": [%g, %g, %g]}}}, "
+        "\"output\": \"M\"}";
+    const double c[3] = {0, 0, 1};
+    double along[3][2] = {{0}}, off = 0.0;
+    int parsed = 0;
+    for (int a = 0; a < 3; a++) {
+        double S[3] = {0, 0, 1}, N[3] = {0, 0, 1};
+        S[a] -= 2.0, N[a] += 2.0;
+        char json[1024];
+        snprintf(json, sizeof json, base, S[0], S[1], S[2], N[0], N[1], N[2]);
+        rg2_error err;
+        rg2_design *d = parse(json, &err);
+        if (!d)
+            continue;
+        parsed++;
+        const rg2_mesh *m = rg2_design_mesh(d, 0);
+        for (int i = 0; i < m->nu; i++)
+            for (int e = 0; e < 2; e++) {
+                const double *p = rg2_mesh_at(m, i, e ? m->nv - 1 : 0);
+                for (int k = 0; k < 3; k++) {
+                    double x = p[k] / p[3] - c[k];
+                    if (k == a)
+                        along[a][e] = x;
+                    else
+                        off = fmax(off, fabs(x) / 2.0);
+                }
+            }
+        rg2_design_free(d);
+    }
+    double spread = 0.0;
+    for (int a = 0; a < 3; a++)
+        for (int e = 0; e < 2; e++)
+            spread = fmax(spread, fabs(along[a][e] - along[2][e]) / 2.0);
+    CHECK(parsed == 3 && off <= 1e-12 && spread <= 1e-12 && along[2][0] < 0 && along[2][1] > 0,
+          "Moebius poles along x, y, z: %d of 3 accepted, collapsed rows %.3g off the axis, distances %.3g apart "
+          "(south %g, north %g)", parsed, off, spread, along[2][0], along[2][1]);
+}
+
 int main(void)
 {
     parse_sizes();
@@ -2043,5 +2093,6 @@ int main(void)
     rolled_meshes();
     cut_ranges();
     mobius_reference_notes();
+    mobius_axis_poles();
     return rg2t_done("test_design");
 }
