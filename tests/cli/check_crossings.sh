@@ -98,6 +98,8 @@ for path in sorted(glob.glob(src + "/examples/*.json")) + [cyl]:
 assert designs >= 5, designs
 PY
 expect 2 "rg2 check: --surface 4: the design has 4 surfaces (0..3)" -- "$RG2" check "$SRC/examples/fig1_torus.json" --surface 4
+expect 2 "rg2 check: --surface 2: the design has 2 surfaces (0..1)" -- "$RG2" check "$SRC/examples/fig9_polar_sphere.json" --surface 2
+expect 2 "rg2 check: --surface 1: the design has 1 surface (0..0)" -- "$RG2" check "$SRC/examples/torus_sphere.json" --surface 1
 expect 2 "--surface needs a surface index (an integer >= 0), not '-1'" -- "$RG2" check "$cyl" --surface -1
 expect 2 "--surface needs a surface index (an integer >= 0), not '1.5'" -- "$RG2" check "$cyl" --surface 1.5
 expect 2 "--surface needs a surface index (an integer >= 0), not 'b'" -- "$RG2" check "$cyl" --surface b
