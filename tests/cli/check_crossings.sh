@@ -100,6 +100,13 @@ PY
 expect 2 "rg2 check: --surface 4: the design has 4 surfaces (0..3)" -- "$RG2" check "$SRC/examples/fig1_torus.json" --surface 4
 expect 2 "rg2 check: --surface 2: the design has 2 surfaces (0..1)" -- "$RG2" check "$SRC/examples/fig9_polar_sphere.json" --surface 2
 expect 2 "rg2 check: --surface 1: the design has 1 surface (0..0)" -- "$RG2" check "$SRC/examples/torus_sphere.json" --surface 1
+# --on names each surface by its number in the design: Fig. 9's two outputs 0 and 1, in that
+# order, and output 1 alone as 1
+on_surfaces() {
+  "$RG2" check "$SRC/examples/fig9_polar_sphere.json" --on ball "$@" | sed -n 's/^on shape ball *surface \([-0-9]*\):.*/\1/p' | tr '\n' ' '
+}
+[ "$(on_surfaces)" = "0 1 " ] && ok || bad "fig9 --on ball names surfaces '$(on_surfaces)', not '0 1 '"
+[ "$(on_surfaces --surface 1)" = "1 " ] && ok || bad "fig9 --on ball --surface 1 names surfaces '$(on_surfaces --surface 1)', not '1 '"
 expect 2 "--surface needs a surface index (an integer >= 0), not '-1'" -- "$RG2" check "$cyl" --surface -1
 expect 2 "--surface needs a surface index (an integer >= 0), not '1.5'" -- "$RG2" check "$cyl" --surface 1.5
 expect 2 "--surface needs a surface index (an integer >= 0), not 'b'" -- "$RG2" check "$cyl" --surface b
