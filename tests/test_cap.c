@@ -1301,7 +1301,7 @@ static void scaled_tuple_caps(void)
                     c[q][b][e] += p[q][b][e];
                     c[q][b][e + 1] += k * p[q][b][e];
                 }
-        CHECK_OK(rg2_family2_mesh(c, &pu, &pv, &m[k], &err), &err);
+        CHECK_OK(rg2_family2_mesh((const double(*)[3][4])c, &pu, &pv, &m[k], &err), &err);
     }
     const double zero[3] = {0, 0, 0};
     for (int mode = 0; mode < 3; mode++) {
