@@ -355,6 +355,21 @@ typedef enum { RG2_SEAM_PRESERVE = 0, RG2_SEAM_PLAIN = 1 } rg2_seam_rule;
  *  finite number (RG2_SEAM_PLAIN keeps b and g, so a seam's new leg weight can make K <= 0). */
 RG2_API rg2_status rg2_mesh_merge(const rg2_mesh *const *in, int n, int dir, int closed, rg2_seam_rule rule,
                                   rg2_mesh *out, rg2_error *err);
+/** How far the parts of a merge overlap at their seams: the figure behind a design file's
+ *  merge note (rg2_design_note), for C callers, before or after rg2_mesh_merge. back[t] (n
+ *  doubles, the caller's) is for the seam between in[t - 1] and in[t]: how far the centre of
+ *  in[t]'s first control line along dir lies behind the centre of in[t - 1]'s last, in units
+ *  of the spacing of the two lines next to the seam in either part (the larger figure);
+ *  back[0] is the closing seam in[n - 1] | in[0] when closed, else 0. About 0 or negative
+ *  where the parts leave a gap (every example: at most 0.011); above RG2_MERGE_OVERLAP the
+ *  parts overlap and the transition patches bend sharply or fold (rg2_check counts the folds),
+ *  so end the first part earlier or start the second later. The meshes need the same number
+ *  of control points across dir (as rg2_mesh_merge); they are only read.
+ *  @return RG2_EINVAL (in, a mesh or back NULL, n < 1, dir not 0 or 1, a mesh rg2_mesh_check
+ *  refuses, naming it), RG2_EINCOMPATIBLE (counts across dir that differ, naming both). */
+#define RG2_MERGE_OVERLAP 0.05
+RG2_API rg2_status rg2_mesh_merge_overlap(const rg2_mesh *const *in, int n, int dir, int closed, double *back,
+                                          rg2_error *err);
 /** The blend (1 - t) a + t b of the 4-tuples and the scalars w, b, g, 0 <= t <= 1 (equal values
  *  and t = 0, 1 copy without rounding). a and b need equal counts and closedness;
  *  RG2_EINCOMPATIBLE, RG2_EDOMAIN for t outside [0, 1] or NaN, RG2_EWEIGHT / RG2_ENONFINITE

@@ -139,10 +139,15 @@ rg2_status rg2__op_reverse(const rg2__dmesh *in, int dir, rg2__dmesh *out, const
  * by more than a degree (the transitions twist or pinch the tube). RG2_ENOMEM only. */
 rg2_status rg2__merge_twist_notes(rg2_design *d, const rg2__dmesh *const *in, int n_in, int dir, int closed,
                                   const char *what, rg2_error *err);
-/* Notes on the seams of a merge where the control lines run back: the step from the centre of
- * one part's last line to the centre of the next part's first runs back against the step between
- * either part's two lines there by more than 0.05 of it (the parts overlap: the transition
- * patches bend sharply or fold). RG2_ENOMEM only. */
+/* How far the seam between l's last line and r's first (lines along dir, the same count in the
+ * other direction) runs back: the step from the centre of l's last line to the centre of r's
+ * first, against the step between either part's two lines there, in units of that step's length
+ * (the larger of the two; *by_left, nullable: whether l's step gave it). 0 where a part has fewer
+ * than 2 lines or the step has no length (rg2_mesh_merge_overlap). */
+double rg2__merge_seam_back(const rg2_mesh *l, const rg2_mesh *r, int dir, int *by_left);
+/* Notes on the seams of a merge where the control lines run back by more than
+ * RG2_MERGE_OVERLAP (rg2__merge_seam_back; the parts overlap: the transition patches bend
+ * sharply or fold). RG2_ENOMEM only. */
 rg2_status rg2__merge_overlap_notes(rg2_design *d, const rg2__dmesh *const *in, int n_in, int dir, int closed,
                                     const char *what, rg2_error *err);
 rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int closed,

@@ -555,26 +555,36 @@ static double back_steps(const double s[3], const double a[3])
     return aa > 0.0 && isfinite(aa) ? -dot3(s, a) / aa : 0.0;
 }
 
+double rg2__merge_seam_back(const rg2_mesh *l, const rg2_mesh *r, int dir, int *by_left)
+{
+    int n = dir_scalars(l, 1 - dir)->n, nl = dir_scalars(l, dir)->n, nr = dir_scalars(r, dir)->n;
+    if (by_left)
+        *by_left = 1;
+    if (nl < 2 || nr < 2)
+        return 0.0;
+    double c[4][3];
+    line_centre(l, dir, nl - 2, n, c[0]);
+    line_centre(l, dir, nl - 1, n, c[1]);
+    line_centre(r, dir, 0, n, c[2]);
+    line_centre(r, dir, 1, n, c[3]);
+    double a[3], st3[3], b[3];
+    for (int k = 0; k < 3; k++)
+        a[k] = c[1][k] - c[0][k], st3[k] = c[2][k] - c[1][k], b[k] = c[3][k] - c[2][k];
+    double back_l = back_steps(st3, a), back_r = back_steps(st3, b);
+    if (by_left)
+        *by_left = back_l >= back_r;
+    return back_l > back_r ? back_l : back_r;
+}
+
 rg2_status rg2__merge_overlap_notes(rg2_design *d, const rg2__dmesh *const *in, int n_in, int dir, int closed,
                                     const char *what, rg2_error *err)
 {
-    int other = 1 - dir, n = dir_scalars(&in[0]->m, other)->n;
+    int other = 1 - dir;
     for (int t = closed ? 0 : 1; t < n_in; t++) {
         const rg2__dmesh *l = in[t ? t - 1 : n_in - 1], *r = in[t];
-        int nl = dir_scalars(&l->m, dir)->n, nr = dir_scalars(&r->m, dir)->n;
-        if (nl < 2 || nr < 2)
-            continue;
-        double c[4][3];
-        line_centre(&l->m, dir, nl - 2, n, c[0]);
-        line_centre(&l->m, dir, nl - 1, n, c[1]);
-        line_centre(&r->m, dir, 0, n, c[2]);
-        line_centre(&r->m, dir, 1, n, c[3]);
-        double a[3], st3[3], b[3];
-        for (int k = 0; k < 3; k++)
-            a[k] = c[1][k] - c[0][k], st3[k] = c[2][k] - c[1][k], b[k] = c[3][k] - c[2][k];
-        double back_l = back_steps(st3, a), back_r = back_steps(st3, b);
-        double back = back_l > back_r ? back_l : back_r;
-        if (!(back > 0.05)) /* (examples that join well: up to 0.011) */
+        int by_left;
+        double back = rg2__merge_seam_back(&l->m, &r->m, dir, &by_left);
+        if (!(back > RG2_MERGE_OVERLAP)) /* (examples that join well: up to 0.011) */
             continue;
         char msg[700];
         snprintf(msg, sizeof msg,
@@ -582,8 +592,8 @@ rg2_status rg2__merge_overlap_notes(rg2_design *d, const rg2__dmesh *const *in, 
                  "of '%s' lies %.2g line spacings of '%s' behind the last of '%s' (centres of the lines): the "
                  "parts overlap, and the transition patches bend sharply or fold; leave a gap between the "
                  "parts (end the first earlier or start the second later)",
-                 d->name, what, t, l->name, r->name, dir_name(other), r->name, back,
-                 back_l >= back_r ? l->name : r->name, l->name);
+                 d->name, what, t, l->name, r->name, dir_name(other), r->name, back, by_left ? l->name : r->name,
+                 l->name);
         rg2_status st = rg2__design_add_note(d, msg, err);
         if (st)
             return st;

@@ -152,6 +152,34 @@ rg2_status rg2_mesh_roll(const rg2_mesh *in, int dir, int by, rg2_mesh *out, rg2
     return one_dir_op("rg2_mesh_roll", 1, in, dir, by, out, err);
 }
 
+rg2_status rg2_mesh_merge_overlap(const rg2_mesh *const *in, int n, int dir, int closed, double *back,
+                                  rg2_error *err)
+{
+    if (!in || !back || n < 1)
+        return rg2__fail(err, RG2_EINVAL, "rg2_mesh_merge_overlap: %s",
+                         !in ? "in is NULL" : !back ? "back is NULL" : "no meshes (n < 1)");
+    if (dir != 0 && dir != 1)
+        return rg2__fail(err, RG2_EINVAL, "rg2_mesh_merge_overlap: dir = %d, must be 0 (u) or 1 (v)", dir);
+    for (int t = 0; t < n; t++) {
+        if (!in[t])
+            return rg2__fail(err, RG2_EINVAL, "rg2_mesh_merge_overlap: in[%d] is NULL", t);
+        char what[64];
+        snprintf(what, sizeof what, "rg2_mesh_merge_overlap: in[%d]", t);
+        rg2_status st = rg2_mesh_check(in[t], err);
+        if (st)
+            return rg2__prefix(err, st, what);
+        int a = dir ? in[0]->nu : in[0]->nv, b = dir ? in[t]->nu : in[t]->nv;
+        if (a != b)
+            return rg2__fail(err, RG2_EINCOMPATIBLE,
+                             "rg2_mesh_merge_overlap: in[0] and in[%d] do not agree in %s: %d vs %d control points", t,
+                             dir ? "u" : "v", a, b);
+    }
+    for (int t = 0; t < n; t++)
+        back[t] = t || closed ? rg2__merge_seam_back(in[t ? t - 1 : n - 1], in[t], dir, NULL) : 0.0;
+    rg2__ok(err);
+    return RG2_OK;
+}
+
 rg2_status rg2_mesh_merge(const rg2_mesh *const *in, int n, int dir, int closed, rg2_seam_rule rule,
                           rg2_mesh *out, rg2_error *err)
 {

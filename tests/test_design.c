@@ -1769,6 +1769,76 @@ static void overlapping_merges(void)
     }
 }
 
+/* rg2_mesh_merge_overlap, the C caller's figure for a design file's merge note: for the parts of
+ * overlapping_merges' cases (built by the design, output with the merge), back[1] is the merged
+ * mesh's own largest step back (most_back, measured here) where the parts overlap, and at most
+ * RG2_MERGE_OVERLAP where they leave a gap; the closing seam of a closed call is the seam of the
+ * parts given the other way round; and the calls that cannot be measured are refused, named. */
+static void merge_overlap_api(void)
+{
+    static const char base[] =
+        "{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {"
+        "\"A\": {\"shape\": \"c\", \"u\": {\"arcs\": 8}, \"v\": {\"segments\": 3, \"from\": 0, \"to\": 1}},"
+        "\"B\": {\"shape\": \"c\", \"u\": {\"arcs\": %s}, \"v\": {\"segments\": 3, \"from\": %s, \"to\": 2.6}},"
+        "\"M\": {\"merge\": [\"A\", \"B\"], \"along\": \"v\"}}, \"output\": [\"A\", \"B\", \"M\"]}";
+    static const struct {
+        const char *from;
+        int overlap; /* expected */
+    } cases[] = {{"0.5", 1}, {"1.0", 1}, {"1.45", 1}, {"1.6", 1}, {"2.0", 0}, {"2.3", 0}};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        rg2_error err;
+        rg2_design *d = parse_edit2(base, "8", cases[k].from, &err);
+        CHECK(d != NULL, "B from %s: %s", cases[k].from, err.msg);
+        if (!d)
+            continue;
+        const rg2_mesh *ab[2] = {rg2_design_mesh(d, 0), rg2_design_mesh(d, 1)}, *ba[2] = {ab[1], ab[0]};
+        double back[2] = {-1, -1}, closed[2], rev[2];
+        CHECK_OK(rg2_mesh_merge_overlap(ab, 2, 1, 0, back, &err), &err);
+        double most = most_back(rg2_design_mesh(d, 2));
+        if (cases[k].overlap)
+            CHECK(back[0] == 0.0 && back[1] > RG2_MERGE_OVERLAP && fabs(back[1] - most) <= 1e-12 * most &&
+                      rg2_design_num_notes(d) == 1,
+                  "B from %s: back %.17g, the merged mesh's step back %.17g, %d notes", cases[k].from, back[1], most,
+                  rg2_design_num_notes(d));
+        else
+            CHECK(back[0] == 0.0 && back[1] <= RG2_MERGE_OVERLAP && most <= RG2_MERGE_OVERLAP &&
+                      rg2_design_num_notes(d) == 0,
+                  "B from %s: a gap, back %.3g (merged mesh %.3g), %d notes", cases[k].from, back[1], most,
+                  rg2_design_num_notes(d));
+        printf("  merge overlap, B from %s: back %.4g, merged mesh's step back %.4g\n", cases[k].from, back[1], most);
+        CHECK_OK(rg2_mesh_merge_overlap(ab, 2, 1, 1, closed, &err), &err);
+        CHECK_OK(rg2_mesh_merge_overlap(ba, 2, 1, 0, rev, &err), &err);
+        CHECK(closed[1] == back[1] && closed[0] == rev[1], "B from %s: closed: %.17g, %.17g; B then A: %.17g",
+              cases[k].from, closed[0], closed[1], rev[1]);
+        rg2_design_free(d);
+    }
+    /* refused, named (B of 6 arcs: no merge in the design, which would refuse it) */
+    static const char unmerged[] =
+        "{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {"
+        "\"A\": {\"shape\": \"c\", \"u\": {\"arcs\": 8}, \"v\": {\"segments\": 3, \"from\": 0, \"to\": 1}},"
+        "\"B\": {\"shape\": \"c\", \"u\": {\"arcs\": %s}, \"v\": {\"segments\": 3, \"from\": %s, \"to\": 2.6}}}, "
+        "\"output\": [\"A\", \"B\"]}";
+    rg2_error err;
+    rg2_design *d = parse_edit2(unmerged, "6", "2.0", &err);
+    CHECK(d != NULL, "B of 6 arcs: %s", err.msg);
+    if (!d)
+        return;
+    const rg2_mesh *ab[2] = {rg2_design_mesh(d, 0), rg2_design_mesh(d, 1)}, *an[2] = {ab[0], NULL};
+    double back[2];
+    rg2_status st = rg2_mesh_merge_overlap(ab, 2, 1, 0, back, &err);
+    CHECK(st == RG2_EINCOMPATIBLE && strstr(err.msg, "rg2_mesh_merge_overlap: in[0] and in[1] do not agree in u: 8 vs 6"),
+          "counts that differ: %s (%s)", rg2_status_str(st), err.msg);
+    st = rg2_mesh_merge_overlap(an, 2, 1, 0, back, &err);
+    CHECK(st == RG2_EINVAL && strstr(err.msg, "in[1] is NULL"), "a NULL mesh: %s (%s)", rg2_status_str(st), err.msg);
+    st = rg2_mesh_merge_overlap(ab, 2, 2, 0, back, &err);
+    CHECK(st == RG2_EINVAL && strstr(err.msg, "dir = 2"), "dir 2: %s (%s)", rg2_status_str(st), err.msg);
+    st = rg2_mesh_merge_overlap(ab, 2, 1, 0, NULL, &err);
+    CHECK(st == RG2_EINVAL && strstr(err.msg, "back is NULL"), "no back: %s (%s)", rg2_status_str(st), err.msg);
+    st = rg2_mesh_merge_overlap(ab, 0, 1, 0, back, &err);
+    CHECK(st == RG2_EINVAL && strstr(err.msg, "no meshes"), "n = 0: %s (%s)", rg2_status_str(st), err.msg);
+    rg2_design_free(d);
+}
+
 /* A list of rotations is applied in order: 90 degrees about x, then 90 about z, maps (x, y, z) to
  * (x, -z, y), then to (z, x, y) (worked out here); the placed cylinder's control points are the
  * unplaced ones mapped so. */
@@ -2089,6 +2159,7 @@ int main(void)
     design_caps_again();
     twisted_merges();
     overlapping_merges();
+    merge_overlap_api();
     rotation_lists();
     rolled_meshes();
     cut_ranges();

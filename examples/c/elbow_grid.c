@@ -44,7 +44,8 @@ int main(int argc, char **argv)
      * ring goes on in; heights 2.5 .. 5.5. Its circle has the tube's partition, so the two
      * meshes agree along v and merge along u. The gap between the parts (the torus ends at
      * x = 0) is bridged by the transition patches; started at height 0.8 instead, the parts'
-     * data-only end control points overlap and the transitions fold (rg2_check: 8 folds). */
+     * data-only end control points overlap and the transitions fold (rg2_check: 8 folds), which
+     * rg2_mesh_merge_overlap tells before the merge (below). */
     rg2_shape pipe;
     rg2_shape_init(&pipe, RG2_SHAPE_CYLINDER);
     pipe.param[0] = r;
@@ -70,6 +71,20 @@ int main(int argc, char **argv)
         goto out;
     }
     const rg2_mesh *parts[2] = {&bend, &straight_t};
+    /* Whether the parts overlap at the seam (a design file's merge note): how far the cylinder's
+     * first control line lies behind the bend's last, in line spacings; above RG2_MERGE_OVERLAP
+     * the transitions would bend sharply or fold. */
+    double back[2];
+    if (rg2_mesh_merge_overlap(parts, 2, 0, 0, back, &err)) {
+        fail("overlap", &err);
+        goto out;
+    }
+    printf("seam: the cylinder starts %.2f line spacings %s the bend's end\n", fabs(back[1]),
+           back[1] > 0 ? "behind" : "beyond");
+    if (back[1] > RG2_MERGE_OVERLAP) {
+        fprintf(stderr, "the parts overlap: start the cylinder later\n");
+        goto out;
+    }
     if (rg2_mesh_merge(parts, 2, 0, 0, RG2_SEAM_PRESERVE, &elbow, &err) || rg2_surface_build(&elbow, &s, &err)) {
         fail("merge and build", &err);
         goto out;
