@@ -36,7 +36,7 @@ static int cmp_int(const void *a, const void *b)
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: rg2 info [--map] [--near X,Y,Z] design.json\n\n"
+    fprintf(f, "usage: rg2 info [--map] [--near X,Y,Z] [--ray X,Y,Z,DX,DY,DZ] design.json\n\n"
                "Reads and builds a design file (docs/design-format.md) and prints its shapes (kind and\n"
                "parameters before placement, and whether the placement scales, stretches or shears them\n"
                "or is projective), its output meshes with their control point and patch counts, how\n"
@@ -58,7 +58,12 @@ static void usage(FILE *f)
                "          over the output meshes): the mesh, its indices [i, j] from 0, d, W and the\n"
                "          distance, the edit that moves it, and the patches that edit changes (e.g.\n"
                "          the point rg2 check gives for a gap or the largest |k|), and the surface point\n"
-               "          nearest to it: its patch, u, v, the distance, and whether the patch is exact\n"
+               "          nearest to it over every output surface: its patch, u, v, the distance, the\n"
+               "          normal, and whether the patch is exact on a shape or a transition\n"
+               "  --ray X,Y,Z,DX,DY,DZ  also give the first point where the ray from (X, Y, Z) along\n"
+               "          (DX, DY, DZ) meets an output surface: its patch, u, v, the point, t and the\n"
+               "          distance along the ray, the normal, exact or transition (picking)\n"
+               "          Both are exact to the last digits, found over the whole surface (docs/picking.md)\n"
                "Exit codes: 0 ok, 1 the design is invalid or the report cannot be written (message on\n"
                "stderr), 2 usage error.\n");
 }
@@ -205,59 +210,73 @@ static void print_nearest(const rg2_design *d, const double x[3])
     printf("  that edit changes %d patches: (i, j) with i in %s, j in %s%s\n", n, bu, bv, cap);
 }
 
-/* --near on the surface: the output surface point nearest to x, from the nearest vertex of a
- * tessellation (density 8; surfaces of more than 20000 patches are skipped) refined by
- * Gauss-Newton on its patch (u, v kept in [0, 1]; a nearest point on a patch side stays on it).
- * The patch's tag says whether the spot is on an exact piece or a transition. */
+/* Where a found point lies: on a patch exact on a shape, or on a transition patch. */
+static void print_place(const rg2_design *d, const rg2_surface *s, const rg2_hit *h)
+{
+    int tag = s->tag ? s->tag[h->i * s->nv + h->j] : -1;
+    printf("%s%s%s", tag >= 0 ? "exact on '" : "a transition patch", tag >= 0 ? rg2_design_shape_label(d, tag) : "",
+           tag >= 0 ? "'" : "");
+}
+
+/* Search every output surface with a locator (src/locate.c): the nearest point (ray = NULL) or
+ * the first hit of the ray x + t ray; *o gets the surface (-1: none, or every surface refused).
+ * A surface the locator refuses (a weight <= 0) is named and skipped. */
+static void locate_all(const rg2_design *d, const double x[3], const double *ray, int *o, rg2_hit *best)
+{
+    *o = -1;
+    for (int k = 0; k < rg2_design_num_surfaces(d); k++) {
+        const rg2_surface *s = rg2_design_surface(d, k);
+        rg2_locator *L;
+        rg2_error err;
+        rg2_hit h;
+        rg2_status st = rg2_locator_build(s, &L, &err);
+        if (!st) {
+            st = ray ? rg2_locator_ray(L, x, ray, INFINITY, &h, &err) : rg2_locator_closest(L, x, &h, &err);
+            rg2_locator_free(L);
+        }
+        if (st) {
+            printf("  (surface %d not searched: %s)\n", k, err.msg);
+            continue;
+        }
+        if (h.i >= 0 && (*o < 0 || h.dist < best->dist))
+            *o = k, *best = h;
+    }
+}
+
+/* --near on the surface: the output surface point nearest to x, over all of every surface
+ * (rg2_locator_closest: exact, and no point nearer by more than its tolerance), with its patch,
+ * u, v, normal, and whether the patch is exact on a shape or a transition. */
 static void print_nearest_surface(const rg2_design *d, const double x[3])
 {
-    int bo = -1, bp = 0;
-    double best = INFINITY, u = 0, v = 0;
-    for (int o = 0; o < rg2_design_num_surfaces(d); o++) {
-        const rg2_surface *s = rg2_design_surface(d, o);
-        rg2_tess t;
-        rg2_error err;
-        if ((long)s->nu * s->nv > 20000 || rg2_tessellate(s, 8, 0, &t, &err))
-            continue;
-        for (int k = 0; k < t.n_vertices; k++) {
-            const double *q = t.pos + 3 * k;
-            double e = (q[0] - x[0]) * (q[0] - x[0]) + (q[1] - x[1]) * (q[1] - x[1]) + (q[2] - x[2]) * (q[2] - x[2]);
-            if (e < best) {
-                best = e;
-                bo = o, bp = t.patch[k], u = t.uv[2 * k], v = t.uv[2 * k + 1];
-            }
-        }
-        rg2_tess_free(&t);
-    }
-    if (bo < 0)
+    int o;
+    rg2_hit h;
+    locate_all(d, x, NULL, &o, &h);
+    if (o < 0)
         return;
-    const rg2_surface *s = rg2_design_surface(d, bo);
-    int pi = bp / s->nv, pj = bp % s->nv;
-    rg2_eval e;
-    for (int it = 0; it < 50; it++) { /* min |S(u, v) - x|^2: (J^T J) delta = J^T (x - S) */
-        rg2_surface_eval(s, pi, pj, u, v, 1, &e);
-        double r[3] = {x[0] - e.p[0], x[1] - e.p[1], x[2] - e.p[2]};
-        double a = 0, b = 0, c = 0, f = 0, g = 0;
-        for (int k = 0; k < 3; k++) {
-            a += e.su[k] * e.su[k], b += e.su[k] * e.sv[k], c += e.sv[k] * e.sv[k];
-            f += e.su[k] * r[k], g += e.sv[k] * r[k];
-        }
-        double det = a * c - b * b;
-        if (!(det > 1e-30 * (a * c)) || !isfinite(det))
-            break; /* (a pole side: stay at the vertex's parameters) */
-        double du = (c * f - b * g) / det, dv = (a * g - b * f) / det;
-        double nu = fmin(1.0, fmax(0.0, u + du)), nv = fmin(1.0, fmax(0.0, v + dv));
-        if (nu == u && nv == v)
-            break;
-        u = nu, v = nv;
+    printf("  nearest surface point: surface %d patch (%d,%d) u=%.6g v=%.6g, point (%.10g, %.10g, %.10g), %.10g "
+           "away, normal (%.6g, %.6g, %.6g), ", o, h.i, h.j, h.u, h.v, h.p[0], h.p[1], h.p[2], h.dist, h.n[0], h.n[1],
+           h.n[2]);
+    print_place(d, rg2_design_surface(d, o), &h);
+    printf("\n");
+}
+
+/* --ray: the first point where the ray x + t dir, t >= 0, meets an output surface. */
+static void print_ray(const rg2_design *d, const double r[6])
+{
+    int o;
+    rg2_hit h;
+    printf("ray from (%.10g, %.10g, %.10g) along (%.10g, %.10g, %.10g):\n", r[0], r[1], r[2], r[3], r[4], r[5]);
+    locate_all(d, r, r + 3, &o, &h);
+    if (o < 0) {
+        printf("  meets no surface\n");
+        return;
     }
-    rg2_surface_eval(s, pi, pj, u, v, 0, &e);
-    double dist = sqrt((e.p[0] - x[0]) * (e.p[0] - x[0]) + (e.p[1] - x[1]) * (e.p[1] - x[1]) +
-                       (e.p[2] - x[2]) * (e.p[2] - x[2]));
-    int tag = s->tag ? s->tag[bp] : -1;
-    printf("  nearest surface point: surface %d patch (%d,%d) u=%.6g v=%.6g, point (%.10g, %.10g, %.10g), %.4g "
-           "away, %s%s%s\n", bo, pi, pj, u, v, e.p[0], e.p[1], e.p[2], dist, tag >= 0 ? "exact on '" : "a transition patch",
-           tag >= 0 ? rg2_design_shape_label(d, tag) : "", tag >= 0 ? "'" : "");
+    double len = sqrt(r[3] * r[3] + r[4] * r[4] + r[5] * r[5]);
+    printf("  first hit: surface %d patch (%d,%d) u=%.6g v=%.6g, point (%.10g, %.10g, %.10g), t = %.10g (%.10g "
+           "along the ray), normal (%.6g, %.6g, %.6g), ", o, h.i, h.j, h.u, h.v, h.p[0], h.p[1], h.p[2], h.dist,
+           h.dist * len, h.n[0], h.n[1], h.n[2]);
+    print_place(d, rg2_design_surface(d, o), &h);
+    printf("\n");
 }
 
 /* What a shape's placement does to the kind and parameters info prints: a similarity
@@ -289,8 +308,8 @@ static const char *placement_note(const double M[16], char *buf, size_t size)
 int rg2_cmd_info(int argc, char **argv)
 {
     const char *path = NULL;
-    int map = 0, near = 0;
-    double x[3];
+    int map = 0, near = 0, ray = 0;
+    double x[3], r[6];
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             usage(stdout);
@@ -306,6 +325,19 @@ int rg2_cmd_info(int argc, char **argv)
                 rg2_cli_check_numbers("info", "--near", x, 3))
                 return RG2_EXIT_USAGE;
             near = 1;
+        } else if (!strcmp(argv[i], "--ray")) {
+            if (i + 1 >= argc) {
+                fprintf(stderr, "rg2 info: --ray needs six numbers X,Y,Z,DX,DY,DZ\n");
+                return RG2_EXIT_USAGE;
+            }
+            if (rg2_cli_parse_n("info", "--ray", argv[++i], r, 6, "six numbers X,Y,Z,DX,DY,DZ") ||
+                rg2_cli_check_numbers("info", "--ray", r, 6))
+                return RG2_EXIT_USAGE;
+            if (r[3] == 0 && r[4] == 0 && r[5] == 0) {
+                fprintf(stderr, "rg2 info: --ray: the direction (DX, DY, DZ) is zero\n");
+                return RG2_EXIT_USAGE;
+            }
+            ray = 1;
         }
         else if (argv[i][0] == '-' && argv[i][1]) {
             return rg2_cli_unknown_option("info", argv[i], usage, NULL);
@@ -384,6 +416,8 @@ int rg2_cmd_info(int argc, char **argv)
         print_nearest(d, x);
         print_nearest_surface(d, x);
     }
+    if (ray)
+        print_ray(d, r);
     for (int k = 0; k < rg2_design_num_notes(d); k++)
         printf("note: %s\n", rg2_design_note(d, k));
     free(count);

@@ -14,6 +14,7 @@
  *   Patches and surfaces .... rg2_patch (rational bi-3 Bezier), rg2_surface (grid of patches)
  *                             rg2_surface_build (the Bi-cubic Construction)
  *   Evaluation .............. rg2_patch_eval (position, derivatives, normal, curvatures)
+ *   Picking ................. rg2_locator: the closest surface point, the first hit of a ray
  *   Shapes .................. (exact basic shapes; see the shapes section)
  *   Design .................. (JSON design files; see the design section)
  *   Poles ................... polar configurations, rg2_cap_build (polar caps), Moebius maps
@@ -539,6 +540,61 @@ RG2_API void rg2_surface_eval_limit(const rg2_surface *s, int i, int j, double u
 /** Normal curvature in the tangent direction t = a su + c sv of an order-2 evaluation (with
  *  the sign of its normal n); 0 when t is the zero vector (a = c = 0, for one). */
 RG2_API double rg2_eval_normal_curvature(const rg2_eval *e, double a, double c);
+
+/* ===================================================================================== */
+/** @name Picking: the closest surface point, the first hit of a ray (src/locate.c)
+ *
+ * Both search the whole surface, not only near a guess: branch and bound over de Casteljau
+ * pieces of the patches (a piece lies inside the hull of its control points, all weights being
+ * positive), then Newton on the exact patch, so the point found is exact to the last bits and
+ * no other point of the surface beats it by more than the tolerance: 1e-10 of (the surface's
+ * box diagonal + the query point's distance from the box's centre). What is proven is reported
+ * in rg2_hit.bound. A locator reads its surface: keep the surface alive and unchanged while it is
+ * used (after rg2_surface_rebuild or _transform, build a new locator). Queries on one locator
+ * may run in several threads at once (each query allocates its own search). */
+/* ===================================================================================== */
+
+/** Pieces one query takes at most (its time is bounded: about 0.1 s): past it the search stops
+ *  with the best point so far and what it proved (rg2_hit.bound). Reached only where a whole
+ *  region is equally good, such as a sphere's centre (every point is closest) or a ray along a
+ *  surface line. */
+#define RG2_LOCATE_MAX_PIECES 50000
+
+typedef struct rg2_locator rg2_locator;
+
+/** A point found on a surface. */
+typedef struct {
+    int i, j;        /**< patch (i, j); -1, -1 when none (a ray that misses) */
+    double u, v;     /**< the point's parameters in patch (i, j), in [0, 1] */
+    double p[3];     /**< the point, rg2_surface_eval at (u, v) */
+    double n[3];     /**< unit normal there (rg2_surface_eval_limit: at a pole the limit normal);
+                          zero where undefined */
+    unsigned flags;  /**< rg2_surface_eval_limit's flags at (u, v) (RG2_EVAL_*) */
+    double dist;     /**< closest: |p - x|; ray: t with p = o + t d (INFINITY when none) */
+    double bound;    /**< proven: closest, no surface point is nearer x than bound; ray, the ray
+                          meets the surface nowhere with t < bound (tmax when it misses). bound <=
+                          dist, and normally dist - bound <= the tolerance (scaled by 1 / |d| for
+                          a ray); more when RG2_LOCATE_MAX_PIECES stopped the search. */
+} rg2_hit;
+
+/** Prepare a surface for picking: each patch's control box and corners (144 bytes a patch).
+ *  @return RG2_EINVAL (NULL, no patches), RG2_ENONFINITE (a control value, naming its patch),
+ *  RG2_EWEIGHT (a control weight <= 0, naming the patch and point: the search needs the hull
+ *  property), RG2_ENOMEM. */
+RG2_API rg2_status rg2_locator_build(const rg2_surface *s, rg2_locator **out, rg2_error *err);
+RG2_API void rg2_locator_free(rg2_locator *L);
+/** The surface point nearest x (the first met on ties), with its patch, parameters and normal.
+ *  A nearest point inside a patch has p - x along the normal; on a patch side or corner (the
+ *  surface's border, or where two patches' nearest points meet) it need not. Cost: a pass over
+ *  the patch boxes plus the subdivision near the answer (tens of microseconds on a torus of 48
+ *  patches). @return RG2_EINVAL (NULL), RG2_ENONFINITE (x), RG2_ENOMEM. */
+RG2_API rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit *out, rg2_error *err);
+/** The first point where the ray o + t d, 0 <= t <= tmax, meets the surface (out->i = -1 when it
+ *  does not); d need not be unit (t is in units of d). tmax = INFINITY for no limit.
+ *  @return RG2_EINVAL (NULL), RG2_ENONFINITE (o, d), RG2_EDOMAIN (d = 0; tmax NaN or < 0),
+ *  RG2_ENOMEM. */
+RG2_API rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double d[3], double tmax,
+                                   rg2_hit *out, rg2_error *err);
 
 /* ===================================================================================== */
 /** @name Shapes (exact basic shapes, paper section 3.1, MATH.md section 5) */

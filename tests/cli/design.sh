@@ -289,11 +289,34 @@ print("%.17g,%.17g,%.17g" % (q * math.cos(a), q * math.sin(a), 0.7 * math.sin(t)
 python3 - "$at" "$tmp/near_info" <<'PY' && ok || bad "info --near $at: nearest surface point: $(tail -1 "$tmp/near_info")"
 import math, re, sys
 x = [float(t) for t in sys.argv[1].split(',')]
-g = re.search(r"nearest surface point: surface 0 patch \((\d+),(\d+)\) .*point \(([^)]*)\), ([0-9.e+-]+) away, exact on 'ring'", open(sys.argv[2]).read())
+g = re.search(r"nearest surface point: surface 0 patch \((\d+),(\d+)\) .*point \(([^)]*)\), ([0-9.e+-]+) away, normal \([^)]*\), exact on 'ring'", open(sys.argv[2]).read())
 p = [float(t) for t in g[3].split(',')]
 on = abs(math.hypot(math.hypot(p[0], p[1]) - 3, p[2]) - 0.6)
-assert on <= 1e-9 and abs(math.dist(p, x) - 0.1) <= 1e-9 and abs(float(g[4]) - 0.1) <= 1e-4, (on, math.dist(p, x), g[4])
+assert on <= 1e-9 and abs(math.dist(p, x) - 0.1) <= 1e-9 and abs(float(g[4]) - 0.1) <= 1e-9, (on, math.dist(p, x), g[4])
 PY
+# info --ray: from 1 outside that torus point along its inward normal, the first hit is the
+# point itself at t = 1 (0.5 along a direction of length 2), on a patch exact on the ring
+ray=$(python3 -c 'import math; a, t = math.radians(75), math.radians(100); n = (math.cos(t) * math.cos(a), math.cos(t) * math.sin(a), math.sin(t))
+q = 3 + 0.6 * math.cos(t); p = (q * math.cos(a), q * math.sin(a), 0.6 * math.sin(t))
+print(",".join("%.17g" % v for v in [p[k] + n[k] for k in range(3)] + [-2 * n[k] for k in range(3)]))')
+"$rg2" info --ray "$ray" "$src/examples/torus_sphere.json" >"$tmp/ray_info" 2>&1
+python3 - "$ray" "$tmp/ray_info" <<'PY' && ok || bad "info --ray $ray: $(tail -2 "$tmp/ray_info")"
+import math, re, sys
+r = [float(t) for t in sys.argv[1].split(',')]
+g = re.search(r"first hit: surface 0 patch \((\d+),(\d+)\) .*point \(([^)]*)\), t = ([0-9.e+-]+) \(([0-9.e+-]+) along the ray\), normal \(([^)]*)\), exact on 'ring'", open(sys.argv[2]).read())
+p = [float(t) for t in g[3].split(',')]
+n = [float(t) for t in g[6].split(',')]
+on = abs(math.hypot(math.hypot(p[0], p[1]) - 3, p[2]) - 0.6)
+want = [r[k] + 0.5 * r[3 + k] for k in range(3)]
+assert on <= 1e-9 and math.dist(p, want) <= 1e-9 and abs(float(g[4]) - 0.5) <= 1e-9 and abs(float(g[5]) - 1) <= 1e-9, (on, p, want, g[4], g[5])
+assert abs(abs(sum(n[k] * r[3 + k] for k in range(3))) / 2 - 1) <= 1e-5, n  # the normal along the ray there
+PY
+"$rg2" info --ray 0,0,10,0,0,1 "$src/examples/torus_sphere.json" >"$tmp/ray_info" 2>&1
+grep -q "^  meets no surface$" "$tmp/ray_info" && ok || bad "info --ray away from the design: $(tail -2 "$tmp/ray_info")"
+expect 2 "rg2 info: --ray needs six numbers X,Y,Z,DX,DY,DZ" "$rg2" info "$src/examples/torus_sphere.json" --ray
+expect 2 "six numbers X,Y,Z,DX,DY,DZ" "$rg2" info --ray 1,2,3,4,5 "$src/examples/torus_sphere.json"
+expect 2 "rg2 info: --ray: the direction (DX, DY, DZ) is zero" "$rg2" info --ray 1,2,3,0,0,0 "$src/examples/torus_sphere.json"
+expect 2 "--ray" "$rg2" info --ray 1,2,3,0,inf,0 "$src/examples/torus_sphere.json"
 expect 2 "rg2 info: --near needs three numbers X,Y,Z" "$rg2" info --near 1,2 "$src/examples/torus_sphere.json"
 expect 2 "rg2 info: --near needs three numbers X,Y,Z" "$rg2" info "$src/examples/torus_sphere.json" --near
 expect 2 "--near" "$rg2" info --near 1,nan,2 "$src/examples/torus_sphere.json"

@@ -1,0 +1,778 @@
+/* locate.c -- picking on the exact surface: the surface point closest to a given point, and the
+ * first point where a ray meets the surface. Each is searched over the whole surface, not only
+ * near a guess, and polished by Newton on the exact patch.
+ *
+ * METHOD (branch and bound on Bezier subdivision)
+ *   A rational Bezier patch whose weights are all positive lies in the convex hull of its affine
+ *   control points, and so does every piece of it that de Casteljau subdivision cuts out. A box
+ *   around those points therefore bounds what the piece can hold:
+ *   - closest point: the distance from x to the piece's box is a lower bound of the distance
+ *     from x to the piece. Two boxes are used and the larger bound taken: one along the axes,
+ *     one along the piece's own frame (its corner differences; its thickness along the normal
+ *     shrinks like the square of its size, so the bound closes in on the true distance fast);
+ *   - ray o + t d: the piece can meet the ray only where its box in the ray's frame (two axes
+ *     across the ray) holds the ray, and not before the smallest t of its control points.
+ *   Pieces wait in a heap ordered by that bound. The smallest is taken, its centre is evaluated
+ *   and, if that improves on the best so far, Newton runs from there on the whole patch
+ *   (closest: the projected Newton step of |S - x|^2 with a step halving; ray: the two
+ *   residuals across the ray, as the renderer does per pixel); then the piece is split in four
+ *   and the halves whose bounds can still beat the best by more than the tolerance go back in
+ *   the heap. The search ends when the heap's smallest bound is within the tolerance of the best.
+ *   What stays certain is reported: bound, a distance (a ray parameter) below which no point
+ *   of the surface lies (meets the ray); normally within the tolerance of the answer.
+ *   Tolerance: 1e-10 of (the surface's box diagonal + the query point's distance from the box
+ *   centre). Pieces smaller than it are not split again (their centre counts as found), and a
+ *   query stops after RG2_LOCATE_MAX_PIECES pieces (a point equidistant from a whole region,
+ *   such as a sphere's centre, or a ray along a surface line): the bound then says how far the
+ *   answer is proven.
+ *   Memory: the heap keeps a piece as its patch and parameter rectangle; its control net is cut
+ *   again from the patch when it is taken (two de Casteljau steps per direction).
+ */
+#include "internal.h"
+
+#include <float.h>
+#include <stdlib.h>
+
+/* A tree of boxes over the patch grid: a node covers the patches (i, j), i0 <= i < i1,
+ * j0 <= j < j1, and halves its longer index range for its two children (kid, kid + 1); a leaf
+ * (kid = -1) is one patch, its box that of the patch's affine control points. */
+typedef struct {
+    double lo[3], hi[3];
+    int i0, i1, j0, j1, kid;
+} node;
+
+struct rg2_locator {
+    const rg2_surface *s;
+    size_t n;    /* patches */
+    node *tree;  /* 2 n - 1 nodes, tree[0] the root */
+    double centre[3], diag;
+};
+
+typedef struct {
+    double key; /* lower bound: a distance (closest) or a ray parameter (ray) */
+    int node;   /* a tree node, or -1: a piece of patch `patch` */
+    int patch;
+    double u0, u1, v0, v1;
+} piece;
+
+typedef struct {
+    piece *a;
+    size_t n, cap;
+    int nomem;
+} heap;
+
+static void heap_push(heap *h, const piece *p)
+{
+    if (h->n == h->cap) {
+        size_t cap = h->cap ? 2 * h->cap : 256;
+        piece *a = realloc(h->a, cap * sizeof *a);
+        if (!a) {
+            h->nomem = 1;
+            return;
+        }
+        h->a = a;
+        h->cap = cap;
+    }
+    size_t k = h->n++;
+    while (k > 0 && h->a[(k - 1) / 2].key > p->key) {
+        h->a[k] = h->a[(k - 1) / 2];
+        k = (k - 1) / 2;
+    }
+    h->a[k] = *p;
+}
+
+static piece heap_pop(heap *h)
+{
+    piece top = h->a[0], last = h->a[--h->n];
+    size_t k = 0;
+    for (;;) {
+        size_t c = 2 * k + 1;
+        if (c >= h->n)
+            break;
+        if (c + 1 < h->n && h->a[c + 1].key < h->a[c].key)
+            c++;
+        if (!(h->a[c].key < last.key))
+            break;
+        h->a[k] = h->a[c];
+        k = c;
+    }
+    if (h->n)
+        h->a[k] = last;
+    return top;
+}
+
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static int unit3(double *a)
+{
+    double l = sqrt(dot3(a, a));
+    if (!(l > 0) || !isfinite(l))
+        return 0;
+    for (int k = 0; k < 3; k++)
+        a[k] /= l;
+    return 1;
+}
+
+static void cross3(const double *a, const double *b, double *c)
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* ---------------------------------------------------------------- control nets of pieces */
+
+/* The Bezier points of the part [a, 1] (right = 1) or [0, a] (right = 0) of a curve of degree d
+ * whose d + 1 homogeneous points are c[0], c[st], c[2 st], ... (in place; de Casteljau). */
+static void cut(double *c, int d, size_t st, double a, int right)
+{
+    for (int l = 1; l <= d; l++) {
+        if (right)
+            for (int r = 0; r <= d - l; r++)
+                for (int k = 0; k < 4; k++)
+                    c[r * st + k] = (1 - a) * c[r * st + k] + a * c[(r + 1) * st + k];
+        else
+            for (int r = d; r >= l; r--)
+                for (int k = 0; k < 4; k++)
+                    c[r * st + k] = (1 - a) * c[(r - 1) * st + k] + a * c[r * st + k];
+    }
+}
+
+/* Restrict a curve to [a, b] of its parameter. */
+static void cut_range(double *c, int d, size_t st, double a, double b)
+{
+    if (a > 0) {
+        cut(c, d, st, a, 1);
+        b = (b - a) / (1 - a);
+    }
+    if (b < 1)
+        cut(c, d, st, b, 0);
+}
+
+/* The control net of piece p: patch p->patch restricted to its rectangle. */
+static void piece_net(const rg2_locator *L, const piece *p, rg2_xpatch *X)
+{
+    rg2_surface_patch_get(L->s, p->patch / L->s->nv, p->patch % L->s->nv, X);
+    size_t row = (RG2_MAX_DEGREE + 1) * 4;
+    if (p->u0 > 0 || p->u1 < 1)
+        for (int t = 0; t <= X->dv; t++)
+            cut_range(&X->h[0][t][0], X->du, row, p->u0, p->u1);
+    if (p->v0 > 0 || p->v1 < 1)
+        for (int r = 0; r <= X->du; r++)
+            cut_range(&X->h[r][0][0], X->dv, 4, p->v0, p->v1);
+}
+
+/* The four quarters of a net (split at the middle of both parameters); q[0] = [lo u, lo v],
+ * q[1] = [hi u, lo v], q[2] = [lo u, hi v], q[3] = [hi u, hi v]. */
+static void quarters(const rg2_xpatch *X, rg2_xpatch q[4])
+{
+    size_t row = (RG2_MAX_DEGREE + 1) * 4;
+    q[0] = *X;
+    q[1] = *X;
+    for (int t = 0; t <= X->dv; t++) {
+        cut(&q[0].h[0][t][0], X->du, row, 0.5, 0);
+        cut(&q[1].h[0][t][0], X->du, row, 0.5, 1);
+    }
+    q[2] = q[0];
+    q[3] = q[1];
+    for (int h = 0; h < 2; h++)
+        for (int r = 0; r <= X->du; r++) {
+            cut(&q[h].h[r][0][0], X->dv, 4, 0.5, 0);
+            cut(&q[h + 2].h[r][0][0], X->dv, 4, 0.5, 1);
+        }
+}
+
+/* The affine control points of a net, and its corners. */
+typedef struct {
+    int n;
+    double p[(RG2_MAX_DEGREE + 1) * (RG2_MAX_DEGREE + 1)][3];
+    const double *c00, *c10, *c01, *c11;
+} points;
+
+static void net_points(const rg2_xpatch *X, points *P)
+{
+    P->n = 0;
+    for (int r = 0; r <= X->du; r++)
+        for (int t = 0; t <= X->dv; t++) {
+            double w = 1.0 / X->h[r][t][3];
+            for (int k = 0; k < 3; k++)
+                P->p[P->n][k] = X->h[r][t][k] * w;
+            P->n++;
+        }
+    P->c00 = P->p[0];
+    P->c01 = P->p[X->dv];
+    P->c10 = P->p[X->du * (X->dv + 1)];
+    P->c11 = P->p[P->n - 1];
+}
+
+static double lesser(double a, double b) { return a < b ? a : b; }
+static double greater(double a, double b) { return a > b ? a : b; }
+
+/* Box of the points relative to o along the orthonormal axes e[0..2] (the coordinate axes
+ * when e is NULL): lo[k], hi[k] of e[k] . (P - o). Returns the largest |P - o| (1-norm). */
+static double pts_box(const points *P, const double o[3], const double (*e)[3], double lo[3], double hi[3])
+{
+    double mag = 0;
+    for (int k = 0; k < 3; k++)
+        lo[k] = INFINITY, hi[k] = -INFINITY;
+    for (int q = 0; q < P->n; q++) {
+        double d[3] = {P->p[q][0] - o[0], P->p[q][1] - o[1], P->p[q][2] - o[2]};
+        mag = greater(mag, fabs(d[0]) + fabs(d[1]) + fabs(d[2]));
+        for (int k = 0; k < 3; k++) {
+            double c = e ? dot3(e[k], d) : d[k];
+            lo[k] = lesser(lo[k], c);
+            hi[k] = greater(hi[k], c);
+        }
+    }
+    return mag;
+}
+
+static double box_dist(const double lo[3], const double hi[3], const double c[3])
+{
+    double e = 0;
+    for (int k = 0; k < 3; k++) {
+        double g = greater(0.0, greater(lo[k] - c[k], c[k] - hi[k]));
+        e += g * g;
+    }
+    return sqrt(e);
+}
+
+static double box_diag(const double lo[3], const double hi[3])
+{
+    return sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+/* The piece's own frame: e[0] along its u sides, e[1] along its v sides (made orthogonal),
+ * e[2] = e[0] x e[1], near its normal. 0 where a side pair has no direction (a pole). */
+static int piece_frame(const points *P, double e[3][3])
+{
+    for (int k = 0; k < 3; k++) {
+        e[0][k] = P->c10[k] - P->c00[k] + P->c11[k] - P->c01[k];
+        e[1][k] = P->c01[k] - P->c00[k] + P->c11[k] - P->c10[k];
+    }
+    if (!unit3(e[0]))
+        return 0;
+    double s = dot3(e[1], e[0]);
+    for (int k = 0; k < 3; k++)
+        e[1][k] -= s * e[0][k];
+    if (!unit3(e[1]))
+        return 0;
+    cross3(e[0], e[1], e[2]);
+    return 1;
+}
+
+/* Lower bound of the distance from x to the piece of points P (larger of the axis box and the
+ * piece's own frame box); *diag gets the axis box's diagonal. */
+static double closest_bound(const points *P, const double x[3], double *diag)
+{
+    static const double zero[3] = {0, 0, 0};
+    double lo[3], hi[3], e[3][3];
+    pts_box(P, zero, NULL, lo, hi);
+    *diag = box_diag(lo, hi);
+    double lb = box_dist(lo, hi, x);
+    if (!piece_frame(P, e))
+        return lb;
+    pts_box(P, x, (const double(*)[3])e, lo, hi);
+    return greater(lb, box_dist(lo, hi, zero));
+}
+
+/* ---------------------------------------------------------------- the locator */
+
+/* Node k over [i0, i1) x [j0, j1); its children go to the next free slots (*used). */
+static void tree_build(rg2_locator *L, size_t k, int i0, int i1, int j0, int j1, size_t *used)
+{
+    node *nd = L->tree + k;
+    nd->i0 = i0, nd->i1 = i1, nd->j0 = j0, nd->j1 = j1;
+    if (i1 - i0 == 1 && j1 - j0 == 1) {
+        static const double zero[3] = {0, 0, 0};
+        rg2_xpatch X;
+        points P;
+        rg2_surface_patch_get(L->s, i0, j0, &X);
+        net_points(&X, &P);
+        pts_box(&P, zero, NULL, nd->lo, nd->hi);
+        nd->kid = -1;
+        return;
+    }
+    size_t kid = *used;
+    *used += 2;
+    nd->kid = (int)kid;
+    if (i1 - i0 >= j1 - j0) {
+        tree_build(L, kid, i0, (i0 + i1) / 2, j0, j1, used);
+        tree_build(L, kid + 1, (i0 + i1) / 2, i1, j0, j1, used);
+    } else {
+        tree_build(L, kid, i0, i1, j0, (j0 + j1) / 2, used);
+        tree_build(L, kid + 1, i0, i1, (j0 + j1) / 2, j1, used);
+    }
+    nd = L->tree + k; /* (the same array: no reallocation) */
+    for (int c = 0; c < 3; c++) {
+        nd->lo[c] = lesser(L->tree[kid].lo[c], L->tree[kid + 1].lo[c]);
+        nd->hi[c] = greater(L->tree[kid].hi[c], L->tree[kid + 1].hi[c]);
+    }
+}
+
+rg2_status rg2_locator_build(const rg2_surface *s, rg2_locator **out, rg2_error *err)
+{
+    if (out)
+        *out = NULL;
+    if (!s || !out)
+        return rg2__fail(err, RG2_EINVAL, "rg2_locator_build: %s is NULL", !s ? "surface" : "out");
+    if (s->nu < 1 || s->nv < 1 || !s->patch)
+        return rg2__fail(err, RG2_EINVAL, "rg2_locator_build: the surface has no patches (%d x %d)", s->nu, s->nv);
+    rg2_status st = rg2__surface_check_finite(s, "rg2_locator_build", 0, err);
+    if (st)
+        return st;
+    size_t n = (size_t)s->nu * (size_t)s->nv;
+    for (size_t k = 0; k < n; k++) {
+        rg2_xpatch X;
+        rg2_surface_patch_get(s, (int)(k / (size_t)s->nv), (int)(k % (size_t)s->nv), &X);
+        for (int r = 0; r <= X.du; r++)
+            for (int t = 0; t <= X.dv; t++)
+                if (!(X.h[r][t][3] > 0))
+                    return rg2__fail(err, RG2_EWEIGHT,
+                                     "rg2_locator_build: patch (%zu,%zu) control point [%d][%d] has weight %g; the "
+                                     "search needs weights > 0 (the patch inside its control points' hull)",
+                                     k / (size_t)s->nv, k % (size_t)s->nv, r, t, X.h[r][t][3]);
+    }
+    rg2_locator *L = rg2__calloc(1, sizeof *L);
+    if (L)
+        L->tree = rg2__calloc(2 * n - 1, sizeof(node));
+    if (!L || !L->tree) {
+        rg2_locator_free(L);
+        return rg2__fail(err, RG2_ENOMEM, "rg2_locator_build: out of memory for %zu patches", n);
+    }
+    L->s = s;
+    L->n = n;
+    size_t used = 1;
+    tree_build(L, 0, 0, s->nu, 0, s->nv, &used);
+    const node *r = L->tree;
+    for (int c = 0; c < 3; c++)
+        L->centre[c] = 0.5 * (r->lo[c] + r->hi[c]);
+    L->diag = box_diag(r->lo, r->hi);
+    *out = L;
+    return RG2_OK;
+}
+
+void rg2_locator_free(rg2_locator *L)
+{
+    if (!L)
+        return;
+    free(L->tree);
+    free(L);
+}
+
+static void hit_init(rg2_hit *h)
+{
+    memset(h, 0, sizeof *h);
+    h->i = h->j = -1;
+    h->dist = h->bound = INFINITY;
+}
+
+/* The hit's point, its limit normal and its patch (i, j) at (u, v). */
+static void hit_fill(const rg2_locator *L, int patch, double u, double v, rg2_hit *h)
+{
+    rg2_eval e;
+    h->i = patch / L->s->nv;
+    h->j = patch % L->s->nv;
+    h->u = u;
+    h->v = v;
+    rg2_surface_eval_limit(L->s, h->i, h->j, u, v, 1, &e);
+    memcpy(h->p, e.p, sizeof h->p);
+    h->flags = e.flags;
+    if (!(e.flags & RG2_EVAL_NORMAL_UNDEFINED))
+        memcpy(h->n, e.n, sizeof h->n);
+    else
+        memset(h->n, 0, sizeof h->n);
+}
+
+static double dist3(const double *a, const double *b)
+{
+    double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+    return sqrt(dot3(d, d));
+}
+
+/* Newton on min |S(u, v) - x|^2 over patch (pi, pj)'s [0,1]^2 from (u, v): the Newton step
+ * where the Hessian is positive definite, else the Gauss-Newton one, kept in the square and
+ * halved until the distance drops. Returns the distance at the final (u, v). */
+static double foot(const rg2_surface *s, int pi, int pj, const double x[3], double *u, double *v)
+{
+    rg2_eval e;
+    rg2_surface_eval(s, pi, pj, *u, *v, 2, &e);
+    double r[3] = {e.p[0] - x[0], e.p[1] - x[1], e.p[2] - x[2]}, d = sqrt(dot3(r, r));
+    /* the rounding of d: of the differences p - x */
+    double slack = 16 * DBL_EPSILON * (fabs(x[0]) + fabs(x[1]) + fabs(x[2]) + d);
+    for (int it = 0; it < 60 && isfinite(d) && d > 0; it++) {
+        double g0 = dot3(e.su, r), g1 = dot3(e.sv, r);
+        double gg = (*u == 0 || *u == 1 ? 0 : g0 * g0) + (*v == 0 || *v == 1 ? 0 : g1 * g1);
+        double a = dot3(e.su, e.su), b = dot3(e.su, e.sv), c = dot3(e.sv, e.sv);
+        double A = a + dot3(e.suu, r), B = b + dot3(e.suv, r), C = c + dot3(e.svv, r);
+        double det = A * C - B * B;
+        if (!(A > 0 && det > 1e-14 * (fabs(A * C) + B * B))) { /* not positive definite: Gauss-Newton */
+            A = a, B = b, C = c;
+            det = A * C - B * B;
+            if (!(det > 1e-30 * (a * c)) || !isfinite(det)) {
+                if (a > 0) /* along u only (a pole side: Sv = 0) */
+                    A = a, B = 0, C = 1, det = a, g1 = 0;
+                else if (c > 0)
+                    A = 1, B = 0, C = c, det = c, g0 = 0;
+                else
+                    break;
+            }
+        }
+        double du = -(C * g0 - B * g1) / det, dv = -(A * g1 - B * g0) / det;
+        int better = 0;
+        for (int half = 0; half < 40 && !better; half++, du *= 0.5, dv *= 0.5) {
+            double nu = fmin(1.0, fmax(0.0, *u + du)), nv = fmin(1.0, fmax(0.0, *v + dv));
+            if (nu == *u && nv == *v)
+                break;
+            rg2_eval f;
+            rg2_surface_eval(s, pi, pj, nu, nv, 2, &f);
+            double q[3] = {f.p[0] - x[0], f.p[1] - x[1], f.p[2] - x[2]}, dq = sqrt(dot3(q, q));
+            /* nearer; or, where the distance is flat to rounding near the foot, as near with a
+             * smaller gradient (the point then still moves to its last bits) */
+            double h0 = dot3(f.su, q), h1 = dot3(f.sv, q);
+            if (nu == 0 || nu == 1)
+                h0 = 0;
+            if (nv == 0 || nv == 1)
+                h1 = 0;
+            if (dq < d || (dq <= d + slack && h0 * h0 + h1 * h1 < 0.25 * gg)) {
+                better = 1;
+                *u = nu, *v = nv, d = dq, e = f;
+                memcpy(r, q, sizeof r);
+            }
+        }
+        if (!better)
+            break;
+    }
+    return d;
+}
+
+/* foot, then across patch sides: where it ends on a side that another patch shares, from the
+ * same point of that patch; its result is taken when it leaves the side as near (a foot on the
+ * other side of a seam, which the first patch could only approach up to its side). */
+static double foot_across(const rg2_surface *s, int *pi, int *pj, const double x[3], double *u, double *v)
+{
+    double d = foot(s, *pi, *pj, x, u, v);
+    for (int hop = 0; hop < 4; hop++) {
+        int i = *pi, j = *pj, side = *u == 0 ? 0 : *u == 1 ? 1 : *v == 0 ? 2 : *v == 1 ? 3 : -1;
+        if (side < 0)
+            break;
+        double nu = *u, nv = *v;
+        if (side < 2) {
+            i += side ? 1 : -1;
+            if (i < 0 || i >= s->nu) {
+                if (!s->closed_u)
+                    break;
+                i = (i + s->nu) % s->nu;
+            }
+            nu = side ? 0 : 1;
+        } else {
+            j += side == 3 ? 1 : -1;
+            if (j < 0 || j >= s->nv) {
+                if (!s->closed_v)
+                    break;
+                j = (j + s->nv) % s->nv;
+            }
+            nv = side == 3 ? 0 : 1;
+        }
+        double a = nu, b = nv, dn = foot(s, i, j, x, &a, &b);
+        if ((side < 2 ? a == nu : b == nv) || !(dn <= d * (1 + 4 * DBL_EPSILON)))
+            break;
+        *pi = i, *pj = j, *u = a, *v = b, d = dn;
+    }
+    return d;
+}
+
+static rg2_status query_check(const rg2_locator *L, const char *who, const char *what, const double *x, int n,
+                              rg2_hit *out, rg2_error *err)
+{
+    if (!L || !x || !out)
+        return rg2__fail(err, RG2_EINVAL, "%s: %s is NULL", who, !L ? "locator" : !x ? what : "out");
+    for (int k = 0; k < n; k++)
+        if (!isfinite(x[k]))
+            return rg2__fail(err, RG2_ENONFINITE, "%s: %s[%d] is not a finite number", who, k < 3 ? what : "d",
+                             k % 3);
+    return RG2_OK;
+}
+
+rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit *out, rg2_error *err)
+{
+    if (out)
+        hit_init(out);
+    rg2_status st = query_check(L, "rg2_locator_closest", "x", x, 3, out, err);
+    if (st)
+        return st;
+    const rg2_surface *s = L->s;
+    double tol = 1e-10 * (L->diag + dist3(x, L->centre));
+    double best = INFINITY, bu = 0, bv = 0;
+    int bp = -1;
+    heap h = {0};
+    double floor = INFINITY; /* smallest bound of what was set aside unsplit */
+    piece root = {box_dist(L->tree[0].lo, L->tree[0].hi, x), 0, 0, 0, 1, 0, 1};
+    heap_push(&h, &root);
+    long taken = 0;
+    while (h.n && !h.nomem) {
+        piece p = heap_pop(&h);
+        if (!(p.key < best - tol) || ++taken > RG2_LOCATE_MAX_PIECES) {
+            floor = fmin(floor, p.key);
+            break;
+        }
+        if (p.node >= 0) { /* a node of the tree: its children, or its patch */
+            const node *nd = L->tree + p.node;
+            if (nd->kid < 0) {
+                piece q = {p.key, -1, nd->i0 * s->nv + nd->j0, 0, 1, 0, 1};
+                heap_push(&h, &q);
+            } else
+                for (int c = 0; c < 2; c++) {
+                    const node *kd = L->tree + nd->kid + c;
+                    piece q = {fmax(p.key, box_dist(kd->lo, kd->hi, x)), nd->kid + c, 0, 0, 1, 0, 1};
+                    if (q.key < best - tol)
+                        heap_push(&h, &q);
+                    else
+                        floor = fmin(floor, q.key);
+                }
+            continue;
+        }
+        int pi = p.patch / s->nv, pj = p.patch % s->nv;
+        double u = 0.5 * (p.u0 + p.u1), v = 0.5 * (p.v0 + p.v1);
+        rg2_eval e;
+        rg2_surface_eval(s, pi, pj, u, v, 0, &e);
+        if (dist3(e.p, x) < best) {
+            int fi = pi, fj = pj;
+            double d = foot_across(s, &fi, &fj, x, &u, &v);
+            if (d < best)
+                best = d, bp = fi * s->nv + fj, bu = u, bv = v;
+        }
+        rg2_xpatch X, q[4];
+        piece_net(L, &p, &X);
+        points P;
+        net_points(&X, &P);
+        double lo[3], hi[3];
+        static const double zero[3] = {0, 0, 0};
+        pts_box(&P, zero, NULL, lo, hi);
+        if (!(box_diag(lo, hi) > tol)) { /* smaller than the tolerance: its centre stands for it */
+            floor = fmin(floor, p.key);
+            continue;
+        }
+        quarters(&X, q);
+        for (int c = 0; c < 4; c++) {
+            double um = 0.5 * (p.u0 + p.u1), vm = 0.5 * (p.v0 + p.v1), dq;
+            net_points(&q[c], &P);
+            piece ch = {closest_bound(&P, x, &dq), -1, p.patch, c & 1 ? um : p.u0, c & 1 ? p.u1 : um,
+                        c & 2 ? vm : p.v0, c & 2 ? p.v1 : vm};
+            ch.key = fmax(ch.key, p.key);
+            if (ch.key < best - tol)
+                heap_push(&h, &ch);
+            else
+                floor = fmin(floor, ch.key);
+        }
+    }
+    if (h.n)
+        floor = fmin(floor, h.a[0].key);
+    free(h.a);
+    if (h.nomem)
+        return rg2__fail(err, RG2_ENOMEM, "rg2_locator_closest: out of memory for the search's pieces");
+    if (bp < 0) /* (the first patch piece taken sets it; a limit of at least one piece) */
+        return rg2__fail(err, RG2_ELIMIT, "rg2_locator_closest: the search ended before any patch");
+    hit_fill(L, bp, bu, bv, out);
+    out->dist = dist3(out->p, x);
+    out->bound = fmin(floor, out->dist);
+    return RG2_OK;
+}
+
+/* Newton on the two residuals across the ray (e1 . (S - o), e2 . (S - o)) over patch (pi, pj)'s
+ * [0,1]^2 from (u, v), as the renderer's per-pixel step. Returns the residual at the final
+ * (u, v), the best one met. */
+static double ray_newton(const rg2_surface *s, int pi, int pj, const double o[3], const double (*e)[3], double *u,
+                         double *v)
+{
+    double best = INFINITY, bu = *u, bv = *v;
+    for (int it = 0; it < 40; it++) {
+        rg2_eval f;
+        rg2_surface_eval(s, pi, pj, *u, *v, 1, &f);
+        double q[3] = {f.p[0] - o[0], f.p[1] - o[1], f.p[2] - o[2]};
+        double F0 = dot3(q, e[0]), F1 = dot3(q, e[1]), res = hypot(F0, F1);
+        if (!isfinite(res))
+            break;
+        if (!(res < best)) /* no more progress (rounding) */
+            break;
+        best = res, bu = *u, bv = *v;
+        double a = dot3(f.su, e[0]), b = dot3(f.sv, e[0]), c = dot3(f.su, e[1]), d = dot3(f.sv, e[1]);
+        double det = a * d - b * c;
+        if (!(fabs(det) > 0) || !isfinite(det))
+            break;
+        double nu = fmin(1.0, fmax(0.0, *u - (d * F0 - b * F1) / det));
+        double nv = fmin(1.0, fmax(0.0, *v - (a * F1 - c * F0) / det));
+        if (nu == *u && nv == *v)
+            break;
+        *u = nu, *v = nv;
+    }
+    *u = bu, *v = bv;
+    return best;
+}
+
+/* Box of a piece in the ray's frame: across the ray (e[0], e[1], relative to o) and along it
+ * (e[2] = d / |d|^2, giving ray parameters), narrowed by the slab of the piece's own frame.
+ * Returns 0 when the piece cannot meet the ray; else [*t0, *t1] holds the t where it can, and
+ * *diag is the box's size across the ray. */
+static int ray_box(const rg2_xpatch *X, const double o[3], const double d[3], const double (*e)[3], double *t0,
+                   double *t1, double *diag)
+{
+    points P;
+    net_points(X, &P);
+    double lo[3], hi[3], mag = pts_box(&P, o, e, lo, hi);
+    /* a margin for the rounding of these projections (a ray through a patch side or a corner
+     * must not slip between the patches) */
+    double m = 16 * DBL_EPSILON * mag, mt = m * sqrt(dot3(e[2], e[2]));
+    *t0 = lo[2] - mt;
+    *t1 = hi[2] + mt;
+    *diag = hypot(hi[0] - lo[0], hi[1] - lo[1]);
+    if (!(lo[0] <= m && hi[0] >= -m && lo[1] <= m && hi[1] >= -m))
+        return 0;
+    /* the slab of the piece's own frame across its normal: thin (its thickness shrinks like the
+     * square of the piece's size), so where the ray crosses it obliquely it bounds t closely */
+    double f[3][3];
+    if (!piece_frame(&P, f))
+        return 1;
+    pts_box(&P, o, (const double(*)[3])f, lo, hi);
+    double slo = lo[2] - m, shi = hi[2] + m;
+    double sd = dot3(f[2], d); /* (P relative to o: the ray's t where it crosses the slab) */
+    if (!(fabs(sd) * 1e250 > greater(fabs(slo), fabs(shi)))) /* along the slab */
+        return slo <= 0 && shi >= 0;
+    double ta = slo / sd, tb = shi / sd;
+    *t0 = greater(*t0, lesser(ta, tb));
+    *t1 = lesser(*t1, greater(ta, tb));
+    return *t0 <= *t1;
+}
+
+/* Slab test of a node's box, widened by tol, against the ray o + s dn (dn unit), 0 <= s <= smax
+ * (a filter: the ray frame test of the pieces decides). 1 and *s0, where the ray enters it. */
+static int slab(const node *nd, const double o[3], const double dn[3], double smax, double tol, double *s0)
+{
+    double t0 = 0, t1 = smax;
+    for (int c = 0; c < 3 && t0 <= t1; c++) {
+        if (fabs(dn[c]) < 1e-200) { /* parallel to this axis (within 1e-200) */
+            if (o[c] < nd->lo[c] - tol || o[c] > nd->hi[c] + tol)
+                return 0;
+            continue;
+        }
+        double ta = (nd->lo[c] - tol - o[c]) / dn[c], tb = (nd->hi[c] + tol - o[c]) / dn[c];
+        t0 = greater(t0, lesser(ta, tb));
+        t1 = lesser(t1, greater(ta, tb));
+    }
+    *s0 = t0;
+    return t0 <= t1;
+}
+
+rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double d[3], double tmax, rg2_hit *out,
+                           rg2_error *err)
+{
+    if (out)
+        hit_init(out);
+    rg2_status st = query_check(L, "rg2_locator_ray", "o", o, 3, out, err);
+    if (!st)
+        st = query_check(L, "rg2_locator_ray", "d", d, 3, out, err);
+    if (st)
+        return st;
+    if (isnan(tmax) || !(tmax >= 0))
+        return rg2__fail(err, RG2_EDOMAIN, "rg2_locator_ray: tmax is %g; it must be >= 0 (INFINITY for no limit)",
+                         tmax);
+    double dd = dot3(d, d), e[3][3];
+    if (!(dd > 0) || !isfinite(dd))
+        return rg2__fail(err, RG2_EDOMAIN, "rg2_locator_ray: the direction d = (%g, %g, %g) has no length", d[0],
+                         d[1], d[2]);
+    /* the frame: e[0], e[1] unit and across the ray, e[2] = d / |d|^2 */
+    int m = fabs(d[0]) <= fabs(d[1]) && fabs(d[0]) <= fabs(d[2]) ? 0 : fabs(d[1]) <= fabs(d[2]) ? 1 : 2;
+    double a[3] = {0, 0, 0}, dn[3] = {d[0], d[1], d[2]};
+    a[m] = 1;
+    unit3(dn);
+    cross3(dn, a, e[0]);
+    unit3(e[0]);
+    cross3(dn, e[0], e[1]);
+    for (int k = 0; k < 3; k++)
+        e[2][k] = d[k] / dd;
+    const rg2_surface *s = L->s;
+    double len = sqrt(dd), tol = 1e-10 * (L->diag + dist3(o, L->centre)), ttol = tol / len;
+    double best = tmax, bu = 0, bv = 0, floor = tmax, near_t = INFINITY, nu = 0, nv = 0;
+    int bp = -1, np = -1;
+    heap h = {0};
+    double tlen = len > 1 && tmax > DBL_MAX / len ? INFINITY : tmax * len; /* (tmax along dn) */
+    double t0;
+    if (slab(L->tree, o, dn, tlen, tol, &t0)) {
+        piece root = {t0 / len, 0, 0, 0, 1, 0, 1};
+        heap_push(&h, &root);
+    }
+    long taken = 0;
+    while (h.n && !h.nomem) {
+        piece p = heap_pop(&h);
+        if (!(p.key < best - (bp >= 0 ? ttol : 0)) || ++taken > RG2_LOCATE_MAX_PIECES) {
+            floor = fmin(floor, p.key);
+            break;
+        }
+        if (p.node >= 0) { /* a node of the tree: its children, or its patch */
+            const node *nd = L->tree + p.node;
+            if (nd->kid < 0) {
+                piece q = {p.key, -1, nd->i0 * s->nv + nd->j0, 0, 1, 0, 1};
+                heap_push(&h, &q);
+            } else
+                for (int c = 0; c < 2; c++) {
+                    double tc;
+                    if (slab(L->tree + nd->kid + c, o, dn, tlen, tol, &tc)) {
+                        piece q = {fmax(p.key, tc / len), nd->kid + c, 0, 0, 1, 0, 1};
+                        heap_push(&h, &q);
+                    }
+                }
+            continue;
+        }
+        rg2_xpatch X, q[4];
+        piece_net(L, &p, &X);
+        double t1, diag;
+        if (!ray_box(&X, o, d, (const double(*)[3])e, &t0, &t1, &diag) || t0 > best || t1 < 0)
+            continue; /* the piece misses the ray, or meets it only after the best or behind o */
+        int pi = p.patch / s->nv, pj = p.patch % s->nv;
+        double u = 0.5 * (p.u0 + p.u1), v = 0.5 * (p.v0 + p.v1);
+        double res = ray_newton(s, pi, pj, o, (const double(*)[3])e, &u, &v);
+        rg2_eval f;
+        rg2_surface_eval(s, pi, pj, u, v, 0, &f);
+        double q0[3] = {f.p[0] - o[0], f.p[1] - o[1], f.p[2] - o[2]}, t = dot3(e[2], q0);
+        if (res <= 1e-2 * tol && t >= 0 && t < best) /* on the ray */
+            best = t, bp = p.patch, bu = u, bv = v;
+        if (!(diag > tol)) { /* within the tolerance of the ray: not split again. Its centre is a
+                                hit within the tolerance, kept in case Newton finds none */
+            u = 0.5 * (p.u0 + p.u1), v = 0.5 * (p.v0 + p.v1);
+            rg2_surface_eval(s, pi, pj, u, v, 0, &f);
+            double qc[3] = {f.p[0] - o[0], f.p[1] - o[1], f.p[2] - o[2]}, tc = dot3(e[2], qc);
+            if (tc >= 0 && tc < near_t)
+                near_t = tc, np = p.patch, nu = u, nv = v;
+            floor = fmin(floor, fmax(0.0, t0));
+            continue;
+        }
+        quarters(&X, q);
+        for (int c = 0; c < 4; c++) {
+            double um = 0.5 * (p.u0 + p.u1), vm = 0.5 * (p.v0 + p.v1), c0, c1, cd;
+            if (!ray_box(&q[c], o, d, (const double(*)[3])e, &c0, &c1, &cd) || c0 > best || c1 < 0)
+                continue;
+            piece ch = {fmax(p.key, fmax(0.0, c0)), -1, p.patch, c & 1 ? um : p.u0, c & 1 ? p.u1 : um,
+                        c & 2 ? vm : p.v0, c & 2 ? p.v1 : vm};
+            if (ch.key < best - (bp >= 0 ? ttol : 0))
+                heap_push(&h, &ch);
+            else
+                floor = fmin(floor, ch.key);
+        }
+    }
+    if (h.n)
+        floor = fmin(floor, h.a[0].key);
+    free(h.a);
+    if (h.nomem)
+        return rg2__fail(err, RG2_ENOMEM, "rg2_locator_ray: out of memory for the search's pieces");
+    if (bp < 0 && np >= 0 && near_t <= tmax) /* no Newton hit: the nearest piece within the tolerance */
+        bp = np, bu = nu, bv = nv;
+    if (bp >= 0) {
+        hit_fill(L, bp, bu, bv, out);
+        double q0[3] = {out->p[0] - o[0], out->p[1] - o[1], out->p[2] - o[2]};
+        out->dist = dot3(e[2], q0);
+        out->bound = fmin(floor, out->dist);
+    } else
+        out->bound = floor;
+    return RG2_OK;
+}

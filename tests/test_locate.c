@@ -1,0 +1,447 @@
+/* test_locate.c -- picking (rg2_locator_closest, rg2_locator_ray), measured against answers
+ * found without rg2's patches:
+ *   - the torus: the nearest point and the distance in closed form, and the first root of the
+ *     torus's implicit equation along the ray (sign change on fine steps, then bisection);
+ *   - a band of the unit sphere (its poles collapsed rows outside the band): closed forms;
+ *   - the same torus with some patches raised to degree (5, 4) (the higher-degree path);
+ *   - every example design: dense tessellation vertices for the nearest point (the answer may
+ *     not be farther than any of them, and none may be nearer than the proven bound), and ray
+ *     hits on the tessellation's triangles (the exact first hit is on the ray and on the
+ *     surface, and not after a clear triangle hit);
+ *   - the degenerate queries (a sphere's centre, a torus's core circle and axis) stop with a
+ *     true answer and an honest bound; and every refusal names its item. */
+#include "harness.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static double dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static double dist3(const double *a, const double *b)
+{
+    double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+    return sqrt(dot(d, d));
+}
+
+/* ---------------------------------------------------------------- torus */
+
+static const double TR = 2.5, Tr = 0.75;
+
+static double torus_F(const double q[3])
+{
+    double s = dot(q, q) + TR * TR - Tr * Tr;
+    return s * s - 4 * TR * TR * (q[0] * q[0] + q[1] * q[1]);
+}
+
+/* First t in [0, T] with F(o + t d) = 0: a sign change over n steps, then bisection; -1 if none. */
+static double torus_first_root(const double o[3], const double d[3], double T, int n)
+{
+    double q[3], tp = 0, fp;
+    for (int k = 0; k < 3; k++)
+        q[k] = o[k];
+    fp = torus_F(q);
+    for (int s = 1; s <= n; s++) {
+        double t = T * s / n;
+        for (int k = 0; k < 3; k++)
+            q[k] = o[k] + t * d[k];
+        double f = torus_F(q);
+        if ((f > 0) != (fp > 0)) {
+            double a = tp, b = t;
+            for (int it = 0; it < 200 && b - a > 0; it++) {
+                double m = 0.5 * (a + b);
+                if (m <= a || m >= b)
+                    break;
+                for (int k = 0; k < 3; k++)
+                    q[k] = o[k] + m * d[k];
+                if ((torus_F(q) > 0) == (fp > 0))
+                    a = m;
+                else
+                    b = m;
+            }
+            return 0.5 * (a + b);
+        }
+        tp = t, fp = f;
+    }
+    return -1;
+}
+
+/* The tolerance the header states for a query from x: 1e-10 of (the diagonal of the surface's
+ * control box + the distance from x to the box's centre). */
+static double tolerance(const rg2_surface *s, const double x[3])
+{
+    double lo[3], hi[3], c[3];
+    rg2_surface_box(s, lo, hi);
+    for (int k = 0; k < 3; k++)
+        c[k] = 0.5 * (lo[k] + hi[k]);
+    return 1e-10 * (dist3(lo, hi) + dist3(x, c));
+}
+
+static void torus_case(const rg2_surface *s, const char *what, int queries, int rays)
+{
+    rg2_error err;
+    rg2_locator *L;
+    CHECK_OK(rg2_locator_build(s, &L, &err), &err);
+    if (!L)
+        return;
+    rg2t_rng rng;
+    rg2t_seed(&rng, 11);
+    const double scale = 2 * (TR + Tr);
+    double wd = 0, wp = 0, wn = 0, wb = 0;
+    int n = 0;
+    while (n < queries) {
+        double x[3] = {rg2t_uniform(&rng, -4, 4), rg2t_uniform(&rng, -4, 4), rg2t_uniform(&rng, -2, 2)};
+        double rho = hypot(x[0], x[1]), tube = hypot(rho - TR, x[2]);
+        if (rho < 0.05 || tube < 0.05)
+            continue; /* (equidistant from a circle: the degenerate queries below) */
+        n++;
+        double c[3] = {TR * x[0] / rho, TR * x[1] / rho, 0}; /* the core circle's nearest point */
+        double f[3];
+        for (int k = 0; k < 3; k++)
+            f[k] = c[k] + Tr * (x[k] - c[k]) / tube;
+        rg2_hit h;
+        CHECK_OK(rg2_locator_closest(L, x, &h, &err), &err);
+        wd = fmax(wd, fabs(h.dist - fabs(tube - Tr)) / scale);
+        wp = fmax(wp, dist3(h.p, f) / scale);
+        double no[3] = {(f[0] - c[0]) / Tr, (f[1] - c[1]) / Tr, (f[2] - c[2]) / Tr};
+        wn = fmax(wn, 1 - fabs(dot(no, h.n)));
+        CHECK(h.bound <= h.dist, "%s: bound %.17g above the distance %.17g", what, h.bound, h.dist);
+        wb = fmax(wb, (h.dist - h.bound) / tolerance(s, x));
+    }
+    printf("%s: %d nearest points: distance %.2e, point %.2e, normal 1-|cos| %.2e (relative); proven to %.2f of the "
+           "tolerance\n", what,
+           queries, wd, wp, wn, wb);
+    CHECK(wd <= 1e-14, "%s: nearest distance off by %.3g of the size", what, wd);
+    CHECK(wp <= 1e-12, "%s: nearest point off by %.3g of the size", what, wp);
+    CHECK(wn <= 1e-12, "%s: normal at the nearest point off by %.3g", what, wn);
+    CHECK(wb <= 1, "%s: bound below the distance by %.3g of the tolerance", what, wb);
+
+    double wt = 0, wr = 0, wtb = 0;
+    int hits = 0, agree = 0;
+    for (int q = 0; q < rays; q++) {
+        /* from a point outside toward a random point of the torus's box (some miss) */
+        double o[3], tgt[3], d[3];
+        double az = rg2t_uniform(&rng, 0, 2 * M_PI), el = rg2t_uniform(&rng, -1.2, 1.2);
+        o[0] = 8 * cos(el) * cos(az), o[1] = 8 * cos(el) * sin(az), o[2] = 8 * sin(el);
+        tgt[0] = rg2t_uniform(&rng, -3.3, 3.3), tgt[1] = rg2t_uniform(&rng, -3.3, 3.3);
+        tgt[2] = rg2t_uniform(&rng, -0.8, 0.8);
+        double sc = rg2t_uniform(&rng, 0.25, 4); /* t in units of a direction of any length */
+        for (int k = 0; k < 3; k++)
+            d[k] = sc * (tgt[k] - o[k]);
+        /* the roots lie where the ray is inside the ball of radius TR + Tr */
+        double A = dot(d, d), B = dot(o, d), C = dot(o, o) - (TR + Tr) * (TR + Tr), D = B * B - A * C;
+        double tref = D > 0 ? torus_first_root(o, d, (-B + sqrt(D)) / A, 40000) : -1;
+        rg2_hit h;
+        CHECK_OK(rg2_locator_ray(L, o, d, INFINITY, &h, &err), &err);
+        if (h.i >= 0) {
+            hits++;
+            double on[3];
+            for (int k = 0; k < 3; k++)
+                on[k] = o[k] + h.dist * d[k];
+            wr = fmax(wr, dist3(on, h.p) / scale); /* on the ray */
+            CHECK(h.bound <= h.dist, "%s ray %d: bound %.17g above t %.17g", what, q, h.bound, h.dist);
+            wtb = fmax(wtb, (h.dist - h.bound) * sqrt(dot(d, d)) / tolerance(s, o));
+        }
+        if ((h.i >= 0) == (tref >= 0)) {
+            agree++;
+            if (tref >= 0)
+                wt = fmax(wt, fabs(h.dist - tref) * sqrt(dot(d, d)) / scale);
+        } else
+            fprintf(stderr, "%s ray %d: rg2 %s (t %.17g), the implicit equation %s (t %.17g)\n", what, q,
+                    h.i >= 0 ? "hits" : "misses", h.dist, tref >= 0 ? "hits" : "misses", tref);
+    }
+    printf("%s: %d rays, %d hit: first hit t %.2e, on the ray %.2e (relative); proven to %.2f of the tolerance\n",
+           what, rays, hits,
+           wt, wr, wtb);
+    CHECK(agree == rays, "%s: %d of %d rays agree with the implicit equation on hit or miss", what, agree, rays);
+    CHECK(hits > rays / 4 && hits < rays, "%s: %d of %d rays hit (the test should have both)", what, hits, rays);
+    CHECK(wt <= 1e-13, "%s: first hit off by %.3g of the size", what, wt);
+    CHECK(wr <= 1e-14, "%s: hit point off the ray by %.3g of the size", what, wr);
+    CHECK(wtb <= 1, "%s: ray bound below the hit by %.3g of the tolerance", what, wtb);
+
+    /* a ray from inside the tube, along +x from the core circle: t = Tr / |d| */
+    double o[3] = {TR, 0, 0}, d[3] = {2, 0, 0};
+    rg2_hit h;
+    CHECK_OK(rg2_locator_ray(L, o, d, INFINITY, &h, &err), &err);
+    CHECK(fabs(h.dist - Tr / 2) <= 1e-14 && h.i >= 0, "%s: from inside, t %.17g (want %.17g)", what, h.dist, Tr / 2);
+    /* tmax before the hit: a miss, with bound tmax */
+    CHECK_OK(rg2_locator_ray(L, o, d, 0.3, &h, &err), &err);
+    CHECK(h.i < 0 && h.bound == 0.3 && h.dist == INFINITY, "%s: tmax 0.3 before the hit 0.375: i %d bound %g", what,
+          h.i, h.bound);
+    /* away from everything: a miss with bound tmax = INFINITY */
+    double o2[3] = {0, 0, 5}, d2[3] = {0, 0, 1};
+    CHECK_OK(rg2_locator_ray(L, o2, d2, INFINITY, &h, &err), &err);
+    CHECK(h.i < 0 && h.bound == INFINITY, "%s: a ray away from the torus: i %d bound %g", what, h.i, h.bound);
+
+    /* degenerate: on the core circle every tube point is at Tr; on the axis every point of the
+     * circle nearest the axis is at hypot(TR, 0.3) - Tr. The answer is true, the bound honest. */
+    double xs[2][3] = {{0, TR, 0}, {0, 0, 0.3}}, want[2] = {Tr, hypot(TR, 0.3) - Tr};
+    for (int k = 0; k < 2; k++) {
+        CHECK_OK(rg2_locator_closest(L, xs[k], &h, &err), &err);
+        CHECK(fabs(h.dist - want[k]) <= 1e-14 * scale && h.bound <= h.dist && h.bound > 0.99 * want[k],
+              "%s: degenerate query %d: distance %.17g (want %.17g), bound %.17g", what, k, h.dist, want[k], h.bound);
+        printf("%s: degenerate query %d (%s): distance off by %.2e, proven to %.2e\n", what, k,
+               k ? "on the axis" : "on the core circle", fabs(h.dist - want[k]), h.dist - h.bound);
+    }
+    rg2_locator_free(L);
+}
+
+/* ---------------------------------------------------------------- sphere band */
+
+static void sphere_band(void)
+{
+    double a[5], v[4] = {0.15, 0.4, 0.6, 0.85};
+    for (int k = 0; k < 5; k++)
+        a[k] = 2 * M_PI / 5;
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(rg2_polar_sphere_mesh(a, 5, 0.3, v, 4, NULL, &m, &err), &err);
+    CHECK_OK(rg2_surface_build(&m, &s, &err), &err);
+    rg2_mesh_free(&m);
+    /* the band's z range: its v = 0 and v = 1 sides are circles of constant z */
+    rg2_eval e0, e1;
+    rg2_surface_eval(&s, 0, 0, 0.3, 0.0, 0, &e0);
+    rg2_surface_eval(&s, 0, s.nv - 1, 0.3, 1.0, 0, &e1);
+    double zlo = fmin(e0.p[2], e1.p[2]), zhi = fmax(e0.p[2], e1.p[2]);
+    rg2_locator *L;
+    CHECK_OK(rg2_locator_build(&s, &L, &err), &err);
+    rg2t_rng rng;
+    rg2t_seed(&rng, 12);
+    double wd = 0, wp = 0, wt = 0;
+    int n = 0, rays = 0, hits = 0;
+    while (n < 1000) {
+        double x[3] = {rg2t_uniform(&rng, -2, 2), rg2t_uniform(&rng, -2, 2), rg2t_uniform(&rng, -2, 2)};
+        double r = sqrt(dot(x, x));
+        if (r < 0.05 || x[2] / r < zlo + 0.02 || x[2] / r > zhi - 0.02)
+            continue;
+        n++;
+        rg2_hit h;
+        CHECK_OK(rg2_locator_closest(L, x, &h, &err), &err);
+        double f[3] = {x[0] / r, x[1] / r, x[2] / r};
+        wd = fmax(wd, fabs(h.dist - fabs(r - 1)));
+        wp = fmax(wp, dist3(h.p, f));
+    }
+    while (rays < 1000) { /* rays from outside through the band's inside */
+        double o[3] = {rg2t_uniform(&rng, -3, 3), rg2t_uniform(&rng, -3, 3), rg2t_uniform(&rng, -3, 3)};
+        double tg[3] = {rg2t_uniform(&rng, -0.9, 0.9), rg2t_uniform(&rng, -0.9, 0.9), rg2t_uniform(&rng, -0.9, 0.9)};
+        double d[3] = {tg[0] - o[0], tg[1] - o[1], tg[2] - o[2]};
+        if (dot(o, o) < 1.5)
+            continue;
+        /* |o + t d|^2 = 1: the two roots; the first whose point is in the band */
+        double A = dot(d, d), B = dot(o, d), C = dot(o, o) - 1, D = B * B - A * C;
+        if (D <= 0)
+            continue;
+        double t1 = (-B - sqrt(D)) / A, t2 = (-B + sqrt(D)) / A, want = -1;
+        double z1 = o[2] + t1 * d[2], z2 = o[2] + t2 * d[2];
+        if (fabs(z1 - zlo) < 1e-6 || fabs(z1 - zhi) < 1e-6 || fabs(z2 - zlo) < 1e-6 || fabs(z2 - zhi) < 1e-6)
+            continue;
+        if (t1 >= 0 && z1 > zlo && z1 < zhi)
+            want = t1;
+        else if (t2 >= 0 && z2 > zlo && z2 < zhi)
+            want = t2;
+        rays++;
+        rg2_hit h;
+        CHECK_OK(rg2_locator_ray(L, o, d, INFINITY, &h, &err), &err);
+        CHECK((h.i >= 0) == (want >= 0), "sphere band ray %d: rg2 t %.17g, closed form %.17g", rays, h.dist, want);
+        if (h.i >= 0 && want >= 0) {
+            hits++;
+            wt = fmax(wt, fabs(h.dist - want) * sqrt(A));
+        }
+    }
+    printf("sphere band: 1000 nearest points: distance %.2e, point %.2e; 1000 rays (%d through the band): t %.2e\n",
+           wd, wp, hits, wt);
+    CHECK(wd <= 1e-14 && wp <= 1e-12, "sphere band: nearest distance %.3g, point %.3g", wd, wp);
+    CHECK(wt <= 1e-13 && hits > 300, "sphere band: ray t %.3g (%d hits)", wt, hits);
+    rg2_locator_free(L);
+    rg2_surface_free(&s);
+}
+
+/* ---------------------------------------------------------------- examples, against a tessellation */
+
+static void tri_hit(const double *A, const double *B, const double *C, const double o[3], const double d[3],
+                    double *t, double *cosang)
+{
+    double e1[3], e2[3], p[3], q[3], s[3];
+    for (int k = 0; k < 3; k++)
+        e1[k] = B[k] - A[k], e2[k] = C[k] - A[k], s[k] = o[k] - A[k];
+    p[0] = d[1] * e2[2] - d[2] * e2[1], p[1] = d[2] * e2[0] - d[0] * e2[2], p[2] = d[0] * e2[1] - d[1] * e2[0];
+    double det = dot(e1, p);
+    if (fabs(det) < 1e-300)
+        return;
+    double uu = dot(s, p) / det;
+    if (uu < 0 || uu > 1)
+        return;
+    q[0] = s[1] * e1[2] - s[2] * e1[1], q[1] = s[2] * e1[0] - s[0] * e1[2], q[2] = s[0] * e1[1] - s[1] * e1[0];
+    double vv = dot(d, q) / det;
+    if (vv < 0 || uu + vv > 1)
+        return;
+    double tt = dot(e2, q) / det;
+    if (tt >= 0 && tt < *t) {
+        double nn[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        *t = tt;
+        *cosang = fabs(dot(nn, d)) / sqrt(dot(nn, nn) * dot(d, d));
+    }
+}
+
+static void examples(void)
+{
+    char *names[64];
+    int ne = rg2t_example_names(names, 64);
+    CHECK(ne >= 10, "examples: %d designs found", ne);
+    double wworse = 0, wbelow = 0, wray = 0, wlate = 0;
+    int surfaces = 0, queries = 0, nrays = 0, clear = 0;
+    for (int k = 0; k < ne; k++) {
+        const char *path = names[k];
+        rg2_design *d = NULL;
+        rg2_error err;
+        CHECK_OK(rg2_design_load(path, &d, &err), &err);
+        for (int o = 0; d && o < rg2_design_num_surfaces(d); o++) {
+            const rg2_surface *s = rg2_design_surface(d, o);
+            rg2_tess t;
+            rg2_locator *L = NULL;
+            if ((long)s->nu * s->nv > 3000)
+                continue;
+            CHECK_OK(rg2_tessellate(s, 12, 0, &t, &err), &err);
+            CHECK_OK(rg2_locator_build(s, &L, &err), &err);
+            if (!L) {
+                rg2_tess_free(&t);
+                continue;
+            }
+            surfaces++;
+            double lo[3], hi[3];
+            rg2_surface_box(s, lo, hi);
+            double scale = dist3(lo, hi);
+            rg2t_rng rng;
+            rg2t_seed(&rng, 100 + 7 * k + o);
+            for (int q = 0; q < 12; q++, queries++) {
+                double x[3];
+                for (int c = 0; c < 3; c++)
+                    x[c] = rg2t_uniform(&rng, lo[c] - 0.2 * (hi[c] - lo[c]), hi[c] + 0.2 * (hi[c] - lo[c]));
+                rg2_hit h;
+                CHECK_OK(rg2_locator_closest(L, x, &h, &err), &err);
+                double vmin = INFINITY;
+                for (int v = 0; v < t.n_vertices; v++)
+                    vmin = fmin(vmin, dist3(t.pos + 3 * v, x));
+                /* not farther than any vertex (a point of the surface); none nearer than bound */
+                wworse = fmax(wworse, (h.dist - vmin) / scale);
+                wbelow = fmax(wbelow, (h.bound - vmin) / scale);
+                CHECK(h.dist <= vmin + 1e-13 * scale && h.bound <= vmin + 1e-13 * scale,
+                      "%s surface %d query %d: distance %.17g, bound %.17g, a vertex at %.17g", names[k], o, q, h.dist,
+                      h.bound, vmin);
+            }
+            for (int q = 0; q < 12; q++, nrays++) {
+                double org[3], tg[3], dir[3];
+                for (int c = 0; c < 3; c++) {
+                    org[c] = rg2t_uniform(&rng, lo[c] - (hi[c] - lo[c]), hi[c] + (hi[c] - lo[c]));
+                    tg[c] = rg2t_uniform(&rng, lo[c], hi[c]);
+                    dir[c] = tg[c] - org[c];
+                }
+                rg2_hit h;
+                CHECK_OK(rg2_locator_ray(L, org, dir, INFINITY, &h, &err), &err);
+                double tt = INFINITY, ca = 0;
+                for (int f = 0; f < t.n_triangles; f++)
+                    tri_hit(t.pos + 3 * t.tri[3 * f], t.pos + 3 * t.tri[3 * f + 1], t.pos + 3 * t.tri[3 * f + 2], org,
+                            dir, &tt, &ca);
+                if (h.i >= 0) {
+                    double on[3];
+                    for (int c = 0; c < 3; c++)
+                        on[c] = org[c] + h.dist * dir[c];
+                    wray = fmax(wray, dist3(on, h.p) / scale);
+                    CHECK(dist3(on, h.p) <= 1e-12 * scale, "%s surface %d ray %d: hit %.3g off the ray", names[k], o,
+                          q, dist3(on, h.p));
+                }
+                if (tt < INFINITY && ca > 0.2) { /* a clear triangle hit: the exact one is not later */
+                    clear++;
+                    double late = h.i >= 0 ? (h.dist - tt) * sqrt(dot(dir, dir)) / scale : INFINITY;
+                    wlate = fmax(wlate, late);
+                    CHECK(late <= 2e-3, "%s surface %d ray %d: exact hit %.17g (patch %d), triangle hit %.17g",
+                          names[k], o, q, h.dist, h.i, tt);
+                }
+            }
+            rg2_locator_free(L);
+            rg2_tess_free(&t);
+        }
+        rg2_design_free(d);
+        free(names[k]);
+    }
+    printf("examples: %d surfaces, %d nearest points: at most %.2e farther than the nearest vertex (the vertices "
+           "at density 12 lie up to their sag farther), bound at most %.2e above it; %d rays: on the ray %.2e, %d clear "
+           "triangle hits, exact hit at most %.2e later\n",
+           surfaces, queries, wworse, wbelow, nrays, wray, clear, wlate);
+    CHECK(clear > nrays / 4, "examples: only %d clear triangle hits of %d rays", clear, nrays);
+}
+
+/* ---------------------------------------------------------------- degree (5, 4) patches, the sphere's centre */
+
+static void special(void)
+{
+    rg2_error err;
+    rg2_surface s;
+    CHECK_OK(rg2t_torus(TR, Tr, 7, 5, NULL, &s, &err), &err);
+    CHECK_OK(rg2t_elevate_some(&s, 5, 4, 3, 1, &err), &err);
+    torus_case(&s, "torus, every third patch of degree (5, 4)", 300, 300);
+    rg2_surface_free(&s);
+
+    /* the centre of a polar sphere: every point is nearest; the search stops at its limit */
+    double a[4] = {M_PI / 2, M_PI / 2, M_PI / 2, M_PI / 2}, v[3] = {0.3, 0.5, 0.7};
+    rg2_mesh m;
+    CHECK_OK(rg2_polar_sphere_mesh(a, 4, 0.0, v, 3, NULL, &m, &err), &err);
+    CHECK_OK(rg2_surface_build(&m, &s, &err), &err);
+    rg2_mesh_free(&m);
+    rg2_locator *L;
+    CHECK_OK(rg2_locator_build(&s, &L, &err), &err);
+    double c[3] = {0, 0, 0};
+    rg2_hit h;
+    CHECK_OK(rg2_locator_closest(L, c, &h, &err), &err);
+    CHECK(fabs(h.dist - 1) <= 1e-15 && h.bound <= h.dist && h.bound > 0.9, "sphere centre: distance %.17g bound %.17g",
+          h.dist, h.bound);
+    printf("sphere centre (every point nearest; stopped after %d pieces): distance - 1 = %.2e, proven to %.2e\n",
+           RG2_LOCATE_MAX_PIECES, h.dist - 1, h.dist - h.bound);
+
+    /* refusals */
+    CHECK(rg2_locator_closest(L, NULL, &h, &err) == RG2_EINVAL && strstr(err.msg, "x is NULL"), "NULL x: %s", err.msg);
+    double nan3[3] = {0, NAN, 0}, d0[3] = {0, 0, 0}, d1[3] = {1, 0, 0};
+    CHECK(rg2_locator_closest(L, nan3, &h, &err) == RG2_ENONFINITE && strstr(err.msg, "x[1] is not a finite"),
+          "NaN x: %s", err.msg);
+    CHECK(h.i == -1 && h.dist == INFINITY, "a refused query leaves i = -1, dist INFINITY: %d %g", h.i, h.dist);
+    CHECK(rg2_locator_ray(L, c, nan3, INFINITY, &h, &err) == RG2_ENONFINITE && strstr(err.msg, "d[1] is not a finite"),
+          "NaN d: %s", err.msg);
+    CHECK(rg2_locator_ray(L, nan3, d1, INFINITY, &h, &err) == RG2_ENONFINITE && strstr(err.msg, "o[1] is not a finite"),
+          "NaN o: %s", err.msg);
+    CHECK(rg2_locator_ray(L, c, d0, INFINITY, &h, &err) == RG2_EDOMAIN && strstr(err.msg, "has no length"), "d = 0: %s",
+          err.msg);
+    CHECK(rg2_locator_ray(L, c, d1, -1, &h, &err) == RG2_EDOMAIN && strstr(err.msg, "tmax is -1"), "tmax -1: %s",
+          err.msg);
+    CHECK(rg2_locator_ray(L, c, d1, NAN, &h, &err) == RG2_EDOMAIN && strstr(err.msg, "tmax is nan"), "tmax NaN: %s",
+          err.msg);
+    CHECK(rg2_locator_ray(NULL, c, d1, 1, &h, &err) == RG2_EINVAL && strstr(err.msg, "locator is NULL"),
+          "NULL locator: %s", err.msg);
+    /* from the centre, every ray meets the sphere at t = 1 / |d| */
+    CHECK_OK(rg2_locator_ray(L, c, d1, INFINITY, &h, &err), &err);
+    CHECK(fabs(h.dist - 1) <= 1e-15 && fabs(h.p[0] - 1) <= 1e-15, "sphere centre ray: t %.17g", h.dist);
+    rg2_locator_free(L);
+
+    rg2_locator *L2 = (rg2_locator *)&err; /* (overwritten with NULL on failure) */
+    s.patch[5].h[1][2][3] = -0.5;
+    CHECK(rg2_locator_build(&s, &L2, &err) == RG2_EWEIGHT && L2 == NULL &&
+              strstr(err.msg, "patch (2,1) control point [1][2] has weight -0.5"),
+          "negative weight: %s", err.msg);
+    s.patch[5].h[1][2][3] = NAN;
+    CHECK(rg2_locator_build(&s, &L2, &err) == RG2_ENONFINITE && strstr(err.msg, "patch (2,1)"), "NaN: %s", err.msg);
+    CHECK(rg2_locator_build(NULL, &L2, &err) == RG2_EINVAL && strstr(err.msg, "surface is NULL"), "NULL: %s", err.msg);
+    rg2_surface_free(&s);
+}
+
+int main(void)
+{
+    rg2_error err;
+    rg2_surface s;
+    CHECK_OK(rg2t_torus(TR, Tr, 8, 6, NULL, &s, &err), &err);
+    torus_case(&s, "torus", 2000, 2000);
+    rg2_surface_free(&s);
+    sphere_band();
+    special();
+    examples();
+    return rg2t_done("test_locate");
+}
