@@ -19,6 +19,7 @@
 #include <dirent.h>
 #include <time.h>
 #include <stdint.h>
+#include <math.h>
 #include <stdlib.h>
 #include <sys/mman.h>
 #include <string.h>
@@ -451,6 +452,32 @@ static rg2_status op_format(const void *ctx, const char *path, blob *out, rg2_er
     return st;
 }
 
+/* rg2_locator_build, then nearest points and first ray hits (the heaps of their searches grow
+ * on the way); the result: the hits. A failed step leaves nothing to free. */
+static rg2_status op_locate(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    (void)path;
+    rg2_locator *L = NULL;
+    rg2_status st = rg2_locator_build(ctx, &L, err);
+    for (int q = 0; q < 6 && st == RG2_OK; q++) {
+        double x[3] = {4.0 - q, 0.5 * q - 1.0, 0.3 * q - 0.5}, d[3] = {-1.0, 0.1 * q, -0.05 * q};
+        rg2_hit h[2];
+        st = rg2_locator_closest(L, x, &h[0], err);
+        if (st == RG2_OK)
+            st = rg2_locator_ray(L, x, d, INFINITY, &h[1], err);
+        for (int k = 0; k < 2 && st == RG2_OK; k++) { /* (field by field: no padding) */
+            double f[10] = {h[k].u, h[k].v, h[k].p[0], h[k].p[1], h[k].p[2], h[k].n[0], h[k].n[1], h[k].n[2],
+                            h[k].dist, h[k].bound};
+            int ij[2] = {h[k].i, h[k].j};
+            put(out, ij, sizeof ij);
+            put(out, f, sizeof f);
+        }
+    }
+    CHECK(st == RG2_OK || st == RG2_ENOMEM, "locate: N = %ld -> %s: %s", cur_N, rg2_status_str(st), err->msg);
+    rg2_locator_free(L);
+    return st;
+}
+
 /* ---- the sweep ---- */
 
 static long total_points;
@@ -623,6 +650,8 @@ int main(int argc, char **argv)
     sweep("tessellate torus_sphere 0", op_tess, rg2_design_surface(ds, 0), NULL);
     sweep("tessellate polar 0", op_tess, rg2_design_surface(dp, 0), NULL);
     sweep("retessellate torus_sphere 0", op_retess, rg2_design_surface(ds, 0), NULL);
+    sweep("locator torus_sphere 0", op_locate, rg2_design_surface(ds, 0), NULL);
+    sweep("locator polar 0", op_locate, rg2_design_surface(dp, 0), NULL);
     sweep("read_text", op_read_text, "examples/torus_sphere.json", NULL);
     sweep("design_write_mesh torus_sphere", op_write_mesh, ds, ".json");
     sweep("design_write_mesh fig9_polar", op_write_mesh, dp, ".json");

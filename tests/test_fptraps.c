@@ -136,6 +136,37 @@ static void points(const rg2_surface *s, const char *name)
     }
 }
 
+/* Picking: nearest points and first ray hits from points around and inside the control box,
+ * along the axes (the slab tests' parallel case) and obliquely, and a ray with tmax = 0. */
+static void locate(const rg2_surface *s, const char *name)
+{
+    STAGE("%s: picking", name);
+    rg2_locator *L;
+    rg2_error err;
+    if (rg2_locator_build(s, &L, &err)) /* (a surface with weights <= 0 is refused: fine here) */
+        return;
+    double lo[3], hi[3];
+    rg2_surface_box(s, lo, hi);
+    for (int q = 0; q < 12; q++) {
+        double x[3], d[3] = {0, 0, 0};
+        for (int k = 0; k < 3; k++)
+            x[k] = lo[k] + (hi[k] - lo[k]) * (-0.3 + 0.15 * ((q + 2 * k) % 11));
+        if (q < 6)
+            d[q % 3] = q < 3 ? 1 : -1;
+        else
+            for (int k = 0; k < 3; k++)
+                d[k] = 0.5 * (lo[k] + hi[k]) - x[k] + 0.1 * (hi[k] - lo[k]) * (k - 1);
+        if (d[0] == 0 && d[1] == 0 && d[2] == 0)
+            d[0] = 1;
+        rg2_hit h;
+        if (!rg2_locator_closest(L, x, &h, &err))
+            sink += h.dist;
+        if (!rg2_locator_ray(L, x, d, q == 11 ? 0.0 : INFINITY, &h, &err))
+            sink += h.bound;
+    }
+    rg2_locator_free(L);
+}
+
 static void tessellate(const rg2_surface *s, const char *name)
 {
     rg2_error err;
@@ -228,6 +259,7 @@ static void run_all(const rg2_surface *s, int n, const rg2_shape *shapes, const 
         rg2_surface_weight_report(&s[k], &wr);
         grids(&s[k], nm, big);
         points(&s[k], nm);
+        locate(&s[k], nm);
     }
     for (int th = 1; th <= 2; th++) {
 #ifdef _OPENMP

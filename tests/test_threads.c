@@ -22,6 +22,7 @@
 #include <glob.h>
 #include <locale.h>
 #include <pthread.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -143,6 +144,28 @@ static void use_design(const rg2_design *d, int k, const char *tag, results *R)
             rg2_tess_free(&t);
         } else
             fail(R, "rg2_tessellate", &err);
+        rg2_locator *L; /* picking: nearest points and first hits (a refusal is a result too) */
+        rg2_status lst = rg2_locator_build(&s[q], &L, &err);
+        R->r[R_POINTS] = fnv(R->r[R_POINTS], &lst, sizeof lst);
+        if (lst == RG2_OK) {
+            double lo[3], hi[3];
+            rg2_surface_box(&s[q], lo, hi);
+            for (int a = 0; a < 3; a++) {
+                double x[3], ray[3];
+                for (int c = 0; c < 3; c++) {
+                    x[c] = lo[c] + (hi[c] - lo[c]) * (a == c ? 1.3 : 0.35 + 0.1 * a);
+                    ray[c] = 0.5 * (lo[c] + hi[c]) - x[c];
+                }
+                rg2_hit h[2];
+                if (rg2_locator_closest(L, x, &h[0], &err) || rg2_locator_ray(L, x, ray, INFINITY, &h[1], &err))
+                    fail(R, "rg2_locator", &err);
+                for (int b = 0; b < 2; b++) {
+                    R->r[R_POINTS] = fnv(R->r[R_POINTS], h[b].p, sizeof h[b].p);
+                    R->r[R_POINTS] = fnv(R->r[R_POINTS], &h[b].dist, sizeof h[b].dist);
+                }
+            }
+            rg2_locator_free(L);
+        }
     }
     char path[256];
     rg2_export_opts eo;
