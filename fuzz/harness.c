@@ -47,6 +47,66 @@ static volatile double rg2f_sink;
 
 /* Checks of a built surface: counts, finite control points, evaluation everywhere (for the
  * sanitizers), and a coarse tessellation of small surfaces. */
+/* Picking (src/locate.c): a nearest point and a first ray hit from outside the control box. A
+ * refusal names a weight <= 0; a hit lies on the surface side of its bound, on its ray (within
+ * the stated tolerance), and no farther than any patch corner (a point of the surface). */
+static void rg2f_check_picking(const rg2_surface *s, const char *what)
+{
+    rg2_locator *L = (rg2_locator *)&rg2f_sink; /* must be replaced by NULL on failure */
+    rg2_error err;
+    rg2_status st = rg2_locator_build(s, &L, &err);
+    if (st) {
+        if (L)
+            rg2f_violation("%s: rg2_locator_build failed but left *out set", what);
+        if (st != RG2_EWEIGHT)
+            rg2f_violation("%s: rg2_locator_build -> %s: %s", what, rg2_status_str(st), err.msg);
+        return;
+    }
+    double lo[3], hi[3], c[3], x[3], d[3], size = 0;
+    rg2_surface_box(s, lo, hi);
+    for (int k = 0; k < 3; k++) {
+        c[k] = 0.5 * (lo[k] + hi[k]);
+        size += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    }
+    size = sqrt(size);
+    for (int k = 0; k < 3; k++) {
+        x[k] = c[k] + (0.7 + 0.2 * k) * size;
+        d[k] = c[k] - x[k] + 0.01 * size * (k - 1);
+    }
+    double tol = 1e-10 * (size + sqrt((x[0] - c[0]) * (x[0] - c[0]) + (x[1] - c[1]) * (x[1] - c[1]) +
+                                      (x[2] - c[2]) * (x[2] - c[2])));
+    rg2_hit h;
+    st = rg2_locator_closest(L, x, &h, &err);
+    rg2f_check_error("rg2_locator_closest", st, &err);
+    if (!st) {
+        if (h.i < 0 || h.i >= s->nu || h.j < 0 || h.j >= s->nv || !(h.bound <= h.dist) || !isfinite(h.dist))
+            rg2f_violation("%s: nearest point patch (%d,%d), distance %g, bound %g", what, h.i, h.j, h.dist, h.bound);
+        rg2_eval e;
+        for (int k = 0; k < s->nu * s->nv; k++)
+            for (int q = 0; q < 4; q++) {
+                rg2_surface_eval(s, k / s->nv, k % s->nv, q & 1, q >> 1, 0, &e);
+                double g = sqrt((e.p[0] - x[0]) * (e.p[0] - x[0]) + (e.p[1] - x[1]) * (e.p[1] - x[1]) +
+                                (e.p[2] - x[2]) * (e.p[2] - x[2]));
+                if (g < h.bound - 1e-12 * (g + size) || g < h.dist - tol)
+                    rg2f_violation("%s: nearest point %.17g away (bound %.17g, tolerance %.3g), but patch %d's "
+                                   "corner %d is %.17g away", what, h.dist, h.bound, tol, k, q, g);
+            }
+    }
+    st = rg2_locator_ray(L, x, d, INFINITY, &h, &err);
+    rg2f_check_error("rg2_locator_ray", st, &err);
+    if (!st && h.i >= 0) {
+        double off = 0, dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        for (int k = 0; k < 3; k++) { /* distance of p from the ray's line */
+            double q = h.p[k] - x[k] - (((h.p[0] - x[0]) * d[0] + (h.p[1] - x[1]) * d[1] + (h.p[2] - x[2]) * d[2]) / dd) * d[k];
+            off += q * q;
+        }
+        if (!(sqrt(off) <= 2 * tol) || !(h.bound <= h.dist) || !(h.dist >= 0))
+            rg2f_violation("%s: ray hit %.3g off the ray (tolerance %.3g), t %g, bound %g", what, sqrt(off), tol,
+                           h.dist, h.bound);
+    }
+    rg2_locator_free(L);
+}
+
 static void rg2f_check_surface(const rg2_surface *s, const char *what)
 {
     if (s->nu < 1 || s->nv < 1 || !s->patch)
@@ -89,6 +149,7 @@ static void rg2f_check_surface(const rg2_surface *s, const char *what)
             acc += t.pos[0];
         }
         rg2_tess_free(&t);
+        rg2f_check_picking(s, what);
     }
     rg2f_sink = acc;
 }

@@ -403,17 +403,28 @@ static double foot(const rg2_surface *s, int pi, int pj, const double x[3], doub
     double slack = 16 * DBL_EPSILON * (fabs(x[0]) + fabs(x[1]) + fabs(x[2]) + d);
     for (int it = 0; it < 60 && isfinite(d) && d > 0; it++) {
         double g0 = dot3(e.su, r), g1 = dot3(e.sv, r);
-        double gg = (*u == 0 || *u == 1 ? 0 : g0 * g0) + (*v == 0 || *v == 1 ? 0 : g1 * g1);
+        /* a side of the square where the distance falls outward holds the parameter there (the
+         * active set): the step runs along the side, and at such a corner the foot is found */
+        int hu = (*u == 0 && g0 > 0) || (*u == 1 && g0 < 0), hv = (*v == 0 && g1 > 0) || (*v == 1 && g1 < 0);
+        if (hu && hv)
+            break;
+        if (hu)
+            g0 = 0;
+        if (hv)
+            g1 = 0;
+        double gg = g0 * g0 + g1 * g1;
         double a = dot3(e.su, e.su), b = dot3(e.su, e.sv), c = dot3(e.sv, e.sv);
         double A = a + dot3(e.suu, r), B = b + dot3(e.suv, r), C = c + dot3(e.svv, r);
+        if (hu || hv) /* (one parameter moves: its own second derivative, Newton or Gauss-Newton) */
+            B = 0, A = hu ? 1 : (A > 0 ? A : a), C = hv ? 1 : (C > 0 ? C : c);
         double det = A * C - B * B;
         if (!(A > 0 && det > 1e-14 * (fabs(A * C) + B * B))) { /* not positive definite: Gauss-Newton */
-            A = a, B = b, C = c;
+            A = hu ? 1 : a, B = hu || hv ? 0 : b, C = hv ? 1 : c;
             det = A * C - B * B;
-            if (!(det > 1e-30 * (a * c)) || !isfinite(det)) {
-                if (a > 0) /* along u only (a pole side: Sv = 0) */
+            if (!(det > 1e-30 * (A * C)) || !isfinite(det)) {
+                if (a > 0 && !hu) /* along u only (a pole side: Sv = 0) */
                     A = a, B = 0, C = 1, det = a, g1 = 0;
-                else if (c > 0)
+                else if (c > 0 && !hv)
                     A = 1, B = 0, C = c, det = c, g0 = 0;
                 else
                     break;
@@ -431,9 +442,9 @@ static double foot(const rg2_surface *s, int pi, int pj, const double x[3], doub
             /* nearer; or, where the distance is flat to rounding near the foot, as near with a
              * smaller gradient (the point then still moves to its last bits) */
             double h0 = dot3(f.su, q), h1 = dot3(f.sv, q);
-            if (nu == 0 || nu == 1)
+            if ((nu == 0 && h0 > 0) || (nu == 1 && h0 < 0))
                 h0 = 0;
-            if (nv == 0 || nv == 1)
+            if ((nv == 0 && h1 > 0) || (nv == 1 && h1 < 0))
                 h1 = 0;
             if (dq < d || (dq <= d + slack && h0 * h0 + h1 * h1 < 0.25 * gg)) {
                 better = 1;
