@@ -11,17 +11,24 @@
  *     one along the piece's own frame (its corner differences; its thickness along the normal
  *     shrinks like the square of its size, so the bound closes in on the true distance fast);
  *   - ray o + t d: the piece can meet the ray only where its box in the ray's frame (two axes
- *     across the ray) holds the ray, and not before the smallest t of its control points.
+ *     across the ray) holds the ray, not before the smallest t of its control points, and only
+ *     inside the slab of its own frame along its normal (thin: where the ray crosses it
+ *     obliquely it bounds t closely).
+ *   Above the patches, a tree of boxes over the patch grid (each node halves its longer index
+ *   range) leads the search down to the patches near the query: the heap holds tree nodes
+ *   (keyed by their box's bound) as well as pieces.
  *   Pieces wait in a heap ordered by that bound. The smallest is taken, its centre is evaluated
  *   and, if that improves on the best so far, Newton runs from there on the whole patch
- *   (closest: the projected Newton step of |S - x|^2 with a step halving; ray: the two
- *   residuals across the ray, as the renderer does per pixel); then the piece is split in four
- *   and the halves whose bounds can still beat the best by more than the tolerance go back in
+ *   (closest: the Newton step of |S - x|^2 kept in the square, a side where the distance falls
+ *   outward holding its parameter, halved until the distance drops, and carried into the
+ *   neighbouring patch when it ends on a shared side; ray: the two residuals across the ray, as
+ *   the renderer does per pixel); then the piece is split in four and the quarters whose bounds can still beat the best by more than the tolerance go back in
  *   the heap. The search ends when the heap's smallest bound is within the tolerance of the best.
  *   What stays certain is reported: bound, a distance (a ray parameter) below which no point
  *   of the surface lies (meets the ray); normally within the tolerance of the answer.
  *   Tolerance: 1e-10 of (the surface's box diagonal + the query point's distance from the box
- *   centre). Pieces smaller than it are not split again (their centre counts as found), and a
+ *   centre). Pieces smaller than it are not split again (a ray's keeps its centre as a hit in
+ *   case Newton finds none; their bound counts in the proven one), and a
  *   query stops after RG2_LOCATE_MAX_PIECES pieces (a point equidistant from a whole region,
  *   such as a sphere's centre, or a ray along a surface line): the bound then says how far the
  *   answer is proven.
