@@ -1,9 +1,12 @@
 /* bench.c -- rg2_bench: rg2 grid and per-point evaluation against SISL (s1421, s1506) and
  * OpenCASCADE (Geom_BSplineSurface, GeomAdaptor_Surface, GeomLProp_SLProps) on the same
  * surfaces in the same run, with interleaved repetitions and medians; the memory write ceiling;
- * 1 vs 2 threads; construction time; peak memory. Every method's output is checked (the exact
- * torus, or the independent evaluator rg2_patch_eval) so that a wrong fast path cannot win.
- * Usage: rg2_bench [out.json] [--quick]
+ * 1 vs 2 threads; construction time; peak memory; files; picking (rg2_locator's closest point and
+ * first ray hit against GeomAPI_ProjectPointOnSurf, GeomAPI_IntCS, IntCurveSurface_HInter, SISL
+ * s1954 and s1856). Every method's output is checked (the exact torus, or the independent
+ * evaluator rg2_patch_eval) so that a wrong fast path cannot win.
+ * Usage: rg2_bench [out.json] [--quick] [--only torus|merged|tessellation|freeform|scaling|
+ *                  construction|files|picking]
  */
 #define _POSIX_C_SOURCE 200809L
 #define _DEFAULT_SOURCE /* madvise */
@@ -34,7 +37,7 @@
 
 static int quick = 0;            /* --quick: fewer repetitions (smoke test) */
 static const char *only = NULL;  /* --only PART: one of torus, merged, tessellation, freeform, scaling,
-                                    construction, files */
+                                    construction, files, picking */
 
 static int want(const char *part) { return !only || !strcmp(only, part); }
 
@@ -1736,6 +1739,423 @@ static cJSON *files(void)
     return j;
 }
 
+/* ---- picking ------------------------------------------------------------------------------- */
+
+/* The closest surface point and the first hit of a ray on the torus (R = 3, r = 1, 48 patches),
+ * rg2_locator against OpenCASCADE (GeomAPI_ProjectPointOnSurf; GeomAPI_IntCS and
+ * IntCurveSurface_HInter) and SISL (s1954; s1856) on the one B-spline surface holding the
+ * patches, every method answering the same queries (fixed seed), checked against the torus's
+ * closed form (closest) and the first root of its implicit equation along the ray. Thread CPU
+ * time, medians of interleaved repetitions; GeomAPI_IntCS, the slowest, answers the first 200 rays
+ * only. */
+#define PK_R 3.0
+#define PK_r 1.0
+enum { PC_RG2, PC_OCCT_GRAD, PC_OCCT_TREE, PC_SISL, NPC };
+enum { PR_RG2, PR_OCCT_INTCS, PR_OCCT_HINTER, PR_SISL, NPR };
+static const char *const pc_name[NPC] = {"rg2_locator_closest", "OCCT GeomAPI_ProjectPointOnSurf (Grad)",
+                                         "OCCT GeomAPI_ProjectPointOnSurf (Tree)", "SISL s1954"};
+static const char *const pr_name[NPR] = {"rg2_locator_ray", "OCCT GeomAPI_IntCS", "OCCT IntCurveSurface_HInter",
+                                         "SISL s1856"};
+static const char *const pc_peer[NPC] = {"rg2", "OpenCASCADE", "OpenCASCADE", "SISL"};
+static const char *const pr_peer[NPR] = {"rg2", "OpenCASCADE", "OpenCASCADE", "SISL"};
+
+typedef struct {
+    rg2_locator *L;
+    occt_proj *proj[2];
+    occt_rayer *rayer;
+    occt_surf *occt;
+    SISLSurf *sisl;
+} pick_ctx;
+
+static double dist3(const double *a, const double *b)
+{
+    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+/* One closest-point query by method m: 1 and the point and distance, or 0 (none found). */
+static int pick_closest(const pick_ctx *P, int m, const double *x, double *p, double *dist)
+{
+    rg2_error err;
+    switch (m) {
+    case PC_RG2: {
+        rg2_hit h;
+        if (rg2_locator_closest(P->L, x, &h, &err))
+            die_rg2("rg2_locator_closest", &err);
+        memcpy(p, h.p, sizeof h.p);
+        *dist = h.dist;
+        return h.i >= 0;
+    }
+    case PC_OCCT_GRAD:
+    case PC_OCCT_TREE:
+        return occt_closest(P->proj[m == PC_OCCT_TREE], x, p, dist);
+    default: {
+        int jpt = 0, jcrv = 0, stat = 0, lk1 = 0, lk2 = 0;
+        double *gpar = NULL, der[3], nn[3], best = INFINITY;
+        SISLIntcurve **wcurve = NULL;
+        s1954(P->sisl, (double *)x, 3, 1e-15, 1e-10, &jpt, &gpar, &jcrv, &wcurve, &stat);
+        for (int k = 0; stat >= 0 && k < jpt; k++) {
+            s1421(P->sisl, 0, gpar + 2 * k, &lk1, &lk2, der, nn, &stat);
+            double d = dist3(der, x);
+            if (stat >= 0 && d < best)
+                best = d, memcpy(p, der, sizeof der);
+        }
+        free(gpar);
+        if (wcurve)
+            freeIntcrvlist(wcurve, jcrv);
+        *dist = best;
+        return best < INFINITY;
+    }
+    }
+}
+
+/* One ray by method m: 1 and the point and t (in units of d), or 0 (a miss). */
+static int pick_ray(const pick_ctx *P, int m, const double *o, const double *d, double *p, double *t)
+{
+    rg2_error err;
+    switch (m) {
+    case PR_RG2: {
+        rg2_hit h;
+        if (rg2_locator_ray(P->L, o, d, INFINITY, &h, &err))
+            die_rg2("rg2_locator_ray", &err);
+        memcpy(p, h.p, sizeof h.p);
+        *t = h.dist;
+        return h.i >= 0;
+    }
+    case PR_OCCT_INTCS:
+        return occt_ray_intcs(P->occt, o, d, p, t);
+    case PR_OCCT_HINTER:
+        return occt_ray_hinter(P->rayer, o, d, p, t);
+    default: {
+        int npt = 0, ncrv = 0, stat = 0, lk1 = 0, lk2 = 0;
+        double *par = NULL, der[3], nn[3], best = INFINITY, dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        SISLIntcurve **curves = NULL;
+        s1856(P->sisl, (double *)o, (double *)d, 3, 1e-15, 1e-10, &npt, &par, &ncrv, &curves, &stat);
+        for (int k = 0; stat >= 0 && k < npt; k++) {
+            s1421(P->sisl, 0, par + 2 * k, &lk1, &lk2, der, nn, &stat);
+            double tk = ((der[0] - o[0]) * d[0] + (der[1] - o[1]) * d[1] + (der[2] - o[2]) * d[2]) / dd;
+            if (stat >= 0 && tk >= 0 && tk < best)
+                best = tk, memcpy(p, der, sizeof der);
+        }
+        free(par);
+        if (curves)
+            freeIntcrvlist(curves, ncrv);
+        *t = best;
+        return best < INFINITY;
+    }
+    }
+}
+
+/* The torus's implicit function at q: > 0 outside, < 0 inside. */
+static double torus_f(const double *q)
+{
+    double s = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + PK_R * PK_R - PK_r * PK_r;
+    return s * s - 4 * PK_R * PK_R * (q[0] * q[0] + q[1] * q[1]);
+}
+
+/* The first t >= 0 where o + t d enters the torus (INFINITY: it misses): 20000 samples over the
+ * part of the ray inside the ball of radius R + r for the first sign change, then bisection to
+ * the last bit. */
+static double ray_exact(const double *o, const double *d)
+{
+    double a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], b = o[0] * d[0] + o[1] * d[1] + o[2] * d[2];
+    double c = o[0] * o[0] + o[1] * o[1] + o[2] * o[2] - (PK_R + PK_r) * (PK_R + PK_r);
+    double disc = b * b - a * c;
+    if (disc <= 0)
+        return INFINITY;
+    double t0 = fmax(0.0, (-b - sqrt(disc)) / a), t1 = (-b + sqrt(disc)) / a;
+    if (t1 <= t0)
+        return INFINITY;
+    int steps = 20000;
+    double prev = t0;
+    for (int k = 1; k <= steps; k++) {
+        double t = t0 + (t1 - t0) * k / steps, q[3] = {o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]};
+        if (torus_f(q) <= 0) {
+            double lo = prev, hi = t; /* f(lo) > 0 >= f(hi) */
+            for (;;) {
+                double mid = 0.5 * (lo + hi);
+                if (!(mid > lo && mid < hi))
+                    break;
+                double qm[3] = {o[0] + mid * d[0], o[1] + mid * d[1], o[2] + mid * d[2]};
+                if (torus_f(qm) <= 0)
+                    hi = mid;
+                else
+                    lo = mid;
+            }
+            return hi;
+        }
+        prev = t;
+    }
+    return INFINITY;
+}
+
+/* Errors of one method's answers (first n queries) against the exact ones. */
+typedef struct {
+    double dist, point; /* worst |distance - exact| (ray: |t - t_exact| |d|), worst |p - exact point| */
+    int failed, mismatch, answered;
+} pick_err;
+
+static cJSON *pick_json(const char *name, const char *peer, int n, double med, double setup, const pick_err *e,
+                        int ray)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "method", name);
+    cJSON_AddStringToObject(o, "peer", peer);
+    cJSON_AddNumberToObject(o, "queries", n);
+    cJSON_AddNumberToObject(o, "median_us_per_query", med * 1e6);
+    if (setup >= 0)
+        cJSON_AddNumberToObject(o, "setup_median_us", setup * 1e6);
+    cJSON_AddNumberToObject(o, ray ? "max_t_err_length" : "max_distance_err", e->dist);
+    cJSON_AddNumberToObject(o, "max_point_err", e->point);
+    cJSON_AddNumberToObject(o, "failures", e->failed);
+    if (ray)
+        cJSON_AddNumberToObject(o, "hit_miss_disagreements", e->mismatch);
+    return o;
+}
+
+static cJSON *picking(void)
+{
+    const int nq = 1000, reps = quick ? 3 : 7;
+    /* queries per method: GeomAPI_IntCS (about 6.5 ms a ray on this torus, its polyhedron made
+     * for every ray) answers the first 200 rays only, keeping the section near 30 s */
+    const int ncq[NPC] = {nq, nq, nq, nq}, nrq[NPR] = {nq, 200, nq, nq};
+    rg2_surface s;
+    rg2_error err;
+    if (rg2t_torus(PK_R, PK_r, 8, 6, NULL, &s, &err))
+        die_rg2("torus", &err);
+    bspline b;
+    bspline_from(&s, &b);
+    pick_ctx P = {0};
+    P.sisl = newSurf(b.in1, b.in2, 4, 4, b.knots1, b.knots2, b.hcoef, 2, 3, 1);
+    P.occt = occt_make(&b);
+    if (rg2_locator_build(&s, &P.L, &err))
+        die_rg2("rg2_locator_build", &err);
+
+    /* the queries (fixed seed) and their exact answers */
+    rg2t_rng rng;
+    rg2t_seed(&rng, 20261206);
+    double *x = xmalloc(sizeof(double) * 3 * nq), *xe = xmalloc(sizeof(double) * 3 * nq), *de = xmalloc(sizeof(double) * nq);
+    for (int q = 0; q < nq;) {
+        double *v = x + 3 * q;
+        v[0] = rg2t_uniform(&rng, -5, 5), v[1] = rg2t_uniform(&rng, -5, 5), v[2] = rg2t_uniform(&rng, -2.5, 2.5);
+        double rho = hypot(v[0], v[1]), tube = hypot(rho - PK_R, v[2]);
+        if (rho < 0.05 || tube < 0.05) /* equidistant from whole circles there */
+            continue;
+        de[q] = fabs(tube - PK_r);
+        double c[3] = {PK_R * v[0] / rho, PK_R * v[1] / rho, 0};
+        for (int k = 0; k < 3; k++)
+            xe[3 * q + k] = c[k] + PK_r * (v[k] - c[k]) / tube;
+        q++;
+    }
+    double *o = xmalloc(sizeof(double) * 3 * nq), *d = xmalloc(sizeof(double) * 3 * nq), *te = xmalloc(sizeof(double) * nq);
+    int hits = 0;
+    for (int q = 0; q < nq; q++) {
+        double az = rg2t_uniform(&rng, 0, 2 * M_PI), el = rg2t_uniform(&rng, -1.2, 1.2);
+        double *oq = o + 3 * q, *dq = d + 3 * q;
+        oq[0] = 10 * cos(el) * cos(az), oq[1] = 10 * cos(el) * sin(az), oq[2] = 10 * sin(el);
+        double target[3] = {rg2t_uniform(&rng, -4.3, 4.3), rg2t_uniform(&rng, -4.3, 4.3), rg2t_uniform(&rng, -1.2, 1.2)};
+        for (int k = 0; k < 3; k++)
+            dq[k] = target[k] - oq[k];
+        te[q] = ray_exact(oq, dq);
+        hits += te[q] < INFINITY;
+    }
+
+    printf("\n== picking: torus R = 3, r = 1, 48 patches; %d closest-point queries in [-5, 5]^2 x [-2.5, 2.5]\n"
+           "   (none within 0.05 of the axis or the core circle), %d rays from the sphere of radius 10 toward\n"
+           "   [-4.3, 4.3]^2 x [-1.2, 1.2] (%d hit the torus); %d interleaved repetitions, medians, CPU time of the\n"
+           "   calling thread\n",
+           nq, nq, hits, reps);
+    fflush(stdout);
+    bench_clock = CLOCK_THREAD_CPUTIME_ID;
+    double steal0, total0;
+    host_ticks(&steal0, &total0);
+    double *tc = xmalloc(sizeof(double) * NPC * reps), *tr = xmalloc(sizeof(double) * NPR * reps);
+    double *tb = xmalloc(sizeof(double) * 3 * reps); /* setup: locator build, projectors Grad / Tree */
+    double *pc = xmalloc(sizeof(double) * 3 * nq * NPC), *dc = xmalloc(sizeof(double) * nq * NPC);
+    double *pr = xmalloc(sizeof(double) * 3 * nq * NPR), *trr = xmalloc(sizeof(double) * nq * NPR);
+    int *fc = xmalloc(sizeof(int) * nq * NPC), *fr = xmalloc(sizeof(int) * nq * NPR);
+    for (int rep = 0; rep < reps; rep++) {
+        /* setup of the searches: made anew each repetition (the queries use them) */
+        rg2_locator_free(P.L);
+        double t0 = now();
+        if (rg2_locator_build(&s, &P.L, &err))
+            die_rg2("rg2_locator_build", &err);
+        tb[rep] = now() - t0;
+        for (int k = 0; k < 2; k++) {
+            occt_proj_free(P.proj[k]);
+            t0 = now();
+            P.proj[k] = occt_proj_make(P.occt, k);
+            tb[(1 + k) * reps + rep] = now() - t0;
+        }
+        occt_rayer_free(P.rayer);
+        P.rayer = occt_rayer_make(P.occt);
+        for (int m = 0; m < NPC; m++) {
+            t0 = now();
+            for (int q = 0; q < ncq[m]; q++) {
+                size_t i = (size_t)m * nq + q;
+                fc[i] = pick_closest(&P, m, x + 3 * q, pc + 3 * i, dc + i);
+            }
+            tc[m * reps + rep] = (now() - t0) / ncq[m];
+        }
+        for (int m = 0; m < NPR; m++) {
+            t0 = now();
+            for (int q = 0; q < nrq[m]; q++) {
+                size_t i = (size_t)m * nq + q;
+                fr[i] = pick_ray(&P, m, o + 3 * q, d + 3 * q, pr + 3 * i, trr + i);
+            }
+            tr[m * reps + rep] = (now() - t0) / nrq[m];
+        }
+    }
+    bench_clock = CLOCK_MONOTONIC;
+    double steal = steal_percent(steal0, total0);
+
+    /* errors of the last repetition's answers (the same in every repetition) */
+    pick_err ec[NPC], er[NPR];
+    for (int m = 0; m < NPC; m++) {
+        pick_err *e = &ec[m];
+        *e = (pick_err){0, 0, 0, 0, 0};
+        for (int q = 0; q < ncq[m]; q++) {
+            size_t i = (size_t)m * nq + q;
+            if (!fc[i]) {
+                e->failed++;
+                continue;
+            }
+            e->answered++;
+            double ed = fabs(dc[i] - de[q]), ep = dist3(pc + 3 * i, xe + 3 * q);
+            e->dist = fmax(e->dist, ed), e->point = fmax(e->point, ep);
+            if (!(ed <= 1e-6 && ep <= 1e-6)) {
+                e->failed++;
+                if (getenv("RG2_BENCH_PICK_VERBOSE"))
+                    fprintf(stderr, "closest %s q %d x (%.17g, %.17g, %.17g): dist %.17g exact %.17g, point off %.3g\n",
+                            pc_name[m], q, x[3 * q], x[3 * q + 1], x[3 * q + 2], dc[i], de[q], ep);
+            }
+        }
+    }
+    for (int m = 0; m < NPR; m++) {
+        pick_err *e = &er[m];
+        *e = (pick_err){0, 0, 0, 0, 0};
+        for (int q = 0; q < nrq[m]; q++) {
+            size_t i = (size_t)m * nq + q;
+            const double *dq = d + 3 * q, *oq = o + 3 * q;
+            double len = sqrt(dq[0] * dq[0] + dq[1] * dq[1] + dq[2] * dq[2]);
+            int exact_hit = te[q] < INFINITY;
+            if (fr[i] != exact_hit) {
+                e->mismatch++, e->failed++;
+                if (getenv("RG2_BENCH_PICK_VERBOSE"))
+                    fprintf(stderr, "ray %s q %d o (%.17g, %.17g, %.17g) d (%.17g, %.17g, %.17g): %s, exact t %.17g\n",
+                            pr_name[m], q, oq[0], oq[1], oq[2], dq[0], dq[1], dq[2], fr[i] ? "hit" : "miss", te[q]);
+                continue;
+            }
+            if (!exact_hit)
+                continue;
+            e->answered++;
+            double et = fabs(trr[i] - te[q]) * len, xq[3];
+            for (int k = 0; k < 3; k++)
+                xq[k] = oq[k] + te[q] * dq[k];
+            double ep = dist3(pr + 3 * i, xq);
+            e->dist = fmax(e->dist, et), e->point = fmax(e->point, ep);
+            if (!(et <= 1e-6 && ep <= 1e-6)) {
+                e->failed++;
+                if (getenv("RG2_BENCH_PICK_VERBOSE"))
+                    fprintf(stderr, "ray %s q %d: t %.17g exact %.17g (length error %.3g), point off %.3g\n", pr_name[m],
+                            q, trr[i], te[q], et, ep);
+            }
+        }
+    }
+
+    /* rg2's proven bound (rg2_hit.bound), untimed: how far below the answer it stays, and whether
+     * it ever exceeds the exact answer (it must not, beyond rounding) */
+    double gap_c = 0, gap_r = 0;
+    int over_c = 0, over_r = 0;
+    for (int q = 0; q < nq; q++) {
+        rg2_hit h;
+        if (rg2_locator_closest(P.L, x + 3 * q, &h, &err))
+            die_rg2("rg2_locator_closest", &err);
+        gap_c = fmax(gap_c, h.dist - h.bound);
+        over_c += h.bound > de[q] + 1e-12;
+        const double *dq = d + 3 * q;
+        double len = sqrt(dq[0] * dq[0] + dq[1] * dq[1] + dq[2] * dq[2]);
+        if (rg2_locator_ray(P.L, o + 3 * q, dq, INFINITY, &h, &err))
+            die_rg2("rg2_locator_ray", &err);
+        if (h.i >= 0)
+            gap_r = fmax(gap_r, (h.dist - h.bound) * len);
+        over_r += te[q] < INFINITY && h.bound * len > te[q] * len + 1e-12;
+    }
+
+    cJSON *j = cJSON_CreateObject();
+    cJSON_AddStringToObject(j, "surface", "torus R = 3, r = 1, 8 x 6 arcs, 48 rational bi-cubic patches");
+    cJSON_AddNumberToObject(j, "repetitions", reps);
+    cJSON_AddStringToObject(j, "clock", "CPU time of the calling thread (CLOCK_THREAD_CPUTIME_ID)");
+    if (steal >= 0) {
+        printf("   host: %.1f %% of this machine's CPU time went to other guests during this section (steal)\n", steal);
+        cJSON_AddNumberToObject(j, "host_steal_percent", steal);
+    }
+    double mb[3];
+    for (int k = 0; k < 3; k++)
+        mb[k] = bench_median(tb + k * reps, reps);
+    printf("   setup: rg2_locator_build %.1f us; GeomAPI_ProjectPointOnSurf Init on the surface: Grad %.1f us, Tree %.1f "
+           "us\n",
+           mb[0] * 1e6, mb[1] * 1e6, mb[2] * 1e6);
+    cJSON_AddNumberToObject(j, "locator_build_median_us", mb[0] * 1e6);
+    double mc[NPC], mr[NPR];
+    printf("   %-42s %7s %11s  %-13s %-13s %s\n", "closest point", "queries", "us / query", "distance err",
+           "point err", "failed (none, or off > 1e-6)");
+    cJSON *jc = cJSON_AddArrayToObject(j, "closest");
+    cJSON_AddNumberToObject(j, "closest_queries", nq);
+    for (int m = 0; m < NPC; m++) {
+        mc[m] = bench_median(tc + m * reps, reps);
+        printf("   %-42s %7d %11.2f  %-13.2e %-13.2e %d\n", pc_name[m], ncq[m], mc[m] * 1e6, ec[m].dist, ec[m].point,
+               ec[m].failed);
+        cJSON_AddItemToArray(jc, pick_json(pc_name[m], pc_peer[m], ncq[m], mc[m],
+                                           m == PC_RG2 ? mb[0] : m == PC_SISL ? -1 : mb[m], &ec[m], 0));
+    }
+    printf("   %-42s %7s %11s  %-13s %-13s %s\n", "first ray hit", "rays", "us / ray", "t err x |d|", "point err",
+           "failed (hit/miss wrong, or off > 1e-6)");
+    cJSON *jr = cJSON_AddArrayToObject(j, "ray");
+    cJSON_AddNumberToObject(j, "rays", nq);
+    cJSON_AddNumberToObject(j, "rays_hitting", hits);
+    for (int m = 0; m < NPR; m++) {
+        mr[m] = bench_median(tr + m * reps, reps);
+        printf("   %-42s %7d %11.2f  %-13.2e %-13.2e %d (%d hit/miss)\n", pr_name[m], nrq[m], mr[m] * 1e6, er[m].dist,
+               er[m].point, er[m].failed, er[m].mismatch);
+        cJSON_AddItemToArray(jr, pick_json(pr_name[m], pr_peer[m], nrq[m], mr[m], -1, &er[m], 1));
+    }
+    printf("   rg2's proven bound (rg2_hit.bound): closest, dist - bound <= %.2e (above the exact distance: %d);\n"
+           "   ray, (t - bound) |d| <= %.2e (above the exact t: %d)\n",
+           gap_c, over_c, gap_r, over_r);
+    cJSON_AddNumberToObject(j, "rg2_closest_max_dist_minus_bound", gap_c);
+    cJSON_AddNumberToObject(j, "rg2_closest_bound_above_exact", over_c);
+    cJSON_AddNumberToObject(j, "rg2_ray_max_t_minus_bound_length", gap_r);
+    cJSON_AddNumberToObject(j, "rg2_ray_bound_above_exact", over_r);
+    printf("   ratios (same run, medians, single thread; peer time / rg2 time):\n");
+    cJSON *jq = cJSON_AddArrayToObject(j, "ratios");
+    for (int m = 1; m < NPC + NPR - 1; m++) {
+        int ray = m >= NPC;
+        int k = ray ? m - NPC + 1 : m;
+        double ratio = ray ? mr[k] / mr[PR_RG2] : mc[k] / mc[PC_RG2];
+        char label[128];
+        snprintf(label, sizeof label, "%s is %.1fx as fast as %s", ray ? "rg2 ray" : "rg2 closest", ratio,
+                 ray ? pr_name[k] : pc_name[k]);
+        printf("     %s\n", label);
+        cJSON *r = cJSON_CreateObject();
+        cJSON_AddStringToObject(r, "pair", label);
+        cJSON_AddStringToObject(r, "rg2", ray ? pr_name[0] : pc_name[0]);
+        cJSON_AddStringToObject(r, "peer", ray ? pr_name[k] : pc_name[k]);
+        cJSON_AddNumberToObject(r, "peer_over_rg2", ratio);
+        cJSON_AddItemToArray(jq, r);
+    }
+    free(tc), free(tr), free(tb), free(pc), free(dc), free(pr), free(trr), free(fc), free(fr);
+    free(x), free(xe), free(de), free(o), free(d), free(te);
+    for (int k = 0; k < 2; k++)
+        occt_proj_free(P.proj[k]);
+    occt_rayer_free(P.rayer);
+    rg2_locator_free(P.L);
+    occt_free(P.occt);
+    freeSurf(P.sisl);
+    bspline_free(&b);
+    rg2_surface_free(&s);
+    return j;
+}
+
 static int write_json(cJSON *root, const char *path)
 {
     char *txt = cJSON_Print(root);
@@ -1761,7 +2181,7 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--only") && i + 1 < argc)
             only = argv[++i];
         else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            printf("usage: rg2_bench [out.json] [--quick] [--only torus|merged|tessellation|freeform|scaling|construction|files]\n");
+            printf("usage: rg2_bench [out.json] [--quick] [--only torus|merged|tessellation|freeform|scaling|construction|files|picking]\n");
             return 0;
         } else
             out = argv[i];
@@ -1843,6 +2263,8 @@ int main(int argc, char **argv)
         cJSON_AddItemToObject(root, "construction", construction());
     if (want("files"))
         cJSON_AddItemToObject(root, "files", files());
+    if (want("picking"))
+        cJSON_AddItemToObject(root, "picking", picking());
     long rss = peak_rss_kb();
     cJSON_AddNumberToObject(root, "peak_rss_kb", (double)rss);
     printf("\npeak memory (getrusage ru_maxrss): %.1f MB\n", rss / 1024.0);

@@ -45,6 +45,23 @@ void occt_eval(occt_surf *s, occt_method meth, const grid_params *g, double *pos
 int occt_write(occt_surf *s, const char *path, int iges);
 int occt_read_poles(const char *path, int iges, int *nu, int *nv);
 
+/* Picking. occt_proj: a GeomAPI_ProjectPointOnSurf initialised once on the whole surface
+ * (Extrema_ExtAlgo_Grad, or _Tree when tree is 1; default tolerances); occt_closest: the nearest
+ * point of x (LowerDistance and the point at its parameters), 1, or 0 when none was found.
+ * The first hit of the ray o + t d, t >= 0 (t in units of d): occt_ray_intcs by GeomAPI_IntCS
+ * per ray (a Geom_Line through o along d / |d|); occt_ray_hinter by IntCurveSurface_HInter with
+ * the surface's adaptor and polyhedron made once (occt_rayer) and the line clipped to the box of
+ * the poles. 1 hit (point and t), 0 none. */
+typedef struct occt_proj occt_proj;
+occt_proj *occt_proj_make(occt_surf *s, int tree);
+void occt_proj_free(occt_proj *p);
+int occt_closest(occt_proj *p, const double x[3], double pt[3], double *dist);
+int occt_ray_intcs(occt_surf *s, const double o[3], const double d[3], double pt[3], double *t);
+typedef struct occt_rayer occt_rayer;
+occt_rayer *occt_rayer_make(occt_surf *s);
+void occt_rayer_free(occt_rayer *r);
+int occt_ray_hinter(occt_rayer *r, const double o[3], const double d[3], double pt[3], double *t);
+
 /* affinity.c: the CPUs the calling thread may run on (at most max; 0 where unknown); pin the
  * calling thread to one of them (0 on success); give it back the affinity it had before the
  * first bench_pin. */

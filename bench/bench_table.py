@@ -111,6 +111,31 @@ def main(path):
         print(f"\nOpenCASCADE's writers against rg2's for the same surface as one face: STEP "
               f"{fs['ratio_occt_step_to_rg2']:.1f}x, IGES {fs['ratio_occt_iges_to_rg2']:.1f}x the time; OpenCASCADE "
               f"read rg2's files back as written: {'yes' if fs['read_back_ok'] else 'NO'}.")
+    if 'picking' in d:
+        pk = d['picking']
+        print(f"\nPicking on the {pk['surface']}: {int(pk['closest_queries'])} closest-point queries, "
+              f"{int(pk['rays'])} rays ({int(pk['rays_hitting'])} hit), {int(pk['repetitions'])} interleaved "
+              f"repetitions, medians, thread CPU time; rg2_locator_build {pk['locator_build_median_us']:.1f} us.\n")
+        print("| closest point | queries | us per query | worst distance error | worst point error | failed |")
+        print("|---|---:|---:|---:|---:|---:|")
+        for r in pk['closest']:
+            print(f"| {r['method']} | {int(r['queries'])} | {r['median_us_per_query']:.2f} | "
+                  f"{r['max_distance_err']:.1e} | {r['max_point_err']:.1e} | {int(r['failures'])} |")
+        print("\n| first ray hit | rays | us per ray | worst t error x \\|d\\| | worst point error | failed (hit/miss) |")
+        print("|---|---:|---:|---:|---:|---:|")
+        for r in pk['ray']:
+            print(f"| {r['method']} | {int(r['queries'])} | {r['median_us_per_query']:.2f} | "
+                  f"{r['max_t_err_length']:.1e} | {r['max_point_err']:.1e} | {int(r['failures'])} "
+                  f"({int(r['hit_miss_disagreements'])}) |")
+        if 'rg2_closest_max_dist_minus_bound' in pk:
+            print(f"\nrg2's proven bound (rg2_hit.bound): closest, distance - bound at most "
+                  f"{pk['rg2_closest_max_dist_minus_bound']:.1e} (above the exact distance: "
+                  f"{int(pk['rg2_closest_bound_above_exact'])}); ray, (t - bound) x |d| at most "
+                  f"{pk['rg2_ray_max_t_minus_bound_length']:.1e} (above the exact t: {int(pk['rg2_ray_bound_above_exact'])}).")
+        print("\n| ratio (same run, medians, 1 thread) | peer time / rg2 time |")
+        print("|---|---:|")
+        for r in pk['ratios']:
+            print(f"| {r['rg2']} against {r['peer']} | {r['peer_over_rg2']:.2f}x |")
     print(f"\nPeak memory (getrusage ru_maxrss): {d['peak_rss_kb'] / 1024:.0f} MB.")
     if 'ceiling_fastest_way_counts' in d:
         w = ', '.join(f"{k} {v}" for k, v in d['ceiling_fastest_way_counts'].items())
