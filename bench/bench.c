@@ -1751,6 +1751,9 @@ static cJSON *files(void)
 #define PK_R 3.0
 #define PK_r 1.0
 enum { PC_RG2, PC_OCCT_GRAD, PC_OCCT_TREE, PC_SISL, NPC };
+/* the closest-point queries' bands of distance from the surface */
+enum { PK_NB = 5 };
+static const double pk_band[PK_NB + 1] = {0, 0.1, 0.5, 1, 2, INFINITY};
 enum { PR_RG2, PR_OCCT_INTCS, PR_OCCT_HINTER, PR_SISL, NPR };
 static const char *const pc_name[NPC] = {"rg2_locator_closest", "OCCT GeomAPI_ProjectPointOnSurf (Grad)",
                                          "OCCT GeomAPI_ProjectPointOnSurf (Tree)", "SISL s1954"};
@@ -1915,9 +1918,10 @@ static cJSON *pick_json(const char *name, const char *peer, int n, double med, d
 static cJSON *picking(void)
 {
     const int nq = 1000, reps = quick ? 3 : 7;
-    /* queries per method: GeomAPI_IntCS (about 6.5 ms a ray on this torus, its polyhedron made
-     * for every ray) answers the first 200 rays only, keeping the section near 30 s */
-    const int ncq[NPC] = {nq, nq, nq, nq}, nrq[NPR] = {nq, 200, nq, nq};
+    /* rays per method: GeomAPI_IntCS (about 6.5 ms a ray on this torus, its polyhedron made for
+     * every ray) answers the first 200 only, keeping the section near 30 s; every closest-point
+     * method answers all the queries */
+    const int nrq[NPR] = {nq, 200, nq, nq};
     rg2_surface s;
     rg2_error err;
     if (rg2t_torus(PK_R, PK_r, 8, 6, NULL, &s, &err))
@@ -1934,18 +1938,29 @@ static cJSON *picking(void)
     rg2t_rng rng;
     rg2t_seed(&rng, 20261206);
     double *x = xmalloc(sizeof(double) * 3 * nq), *xe = xmalloc(sizeof(double) * 3 * nq), *de = xmalloc(sizeof(double) * nq);
-    for (int q = 0; q < nq;) {
-        double *v = x + 3 * q;
-        v[0] = rg2t_uniform(&rng, -5, 5), v[1] = rg2t_uniform(&rng, -5, 5), v[2] = rg2t_uniform(&rng, -2.5, 2.5);
-        double rho = hypot(v[0], v[1]), tube = hypot(rho - PK_R, v[2]);
-        if (rho < 0.05 || tube < 0.05) /* equidistant from whole circles there */
-            continue;
-        de[q] = fabs(tube - PK_r);
-        double c[3] = {PK_R * v[0] / rho, PK_R * v[1] / rho, 0};
-        for (int k = 0; k < 3; k++)
-            xe[3 * q + k] = c[k] + PK_r * (v[k] - c[k]) / tube;
-        q++;
+    /* ordered by their distance band (bands timed apart as well as together) */
+    int bstart[PK_NB + 1] = {0};
+    for (int bd = 0, q = 0; bd < PK_NB; bd++) {
+        rg2t_seed(&rng, 20261206);
+        bstart[bd] = q;
+        for (int g = 0; g < nq;) {
+            double v[3] = {rg2t_uniform(&rng, -5, 5), rg2t_uniform(&rng, -5, 5), rg2t_uniform(&rng, -2.5, 2.5)};
+            double rho = hypot(v[0], v[1]), tube = hypot(rho - PK_R, v[2]);
+            if (rho < 0.05 || tube < 0.05) /* equidistant from whole circles there */
+                continue;
+            g++;
+            double dist = fabs(tube - PK_r);
+            if (!(dist >= pk_band[bd] && dist < pk_band[bd + 1]))
+                continue;
+            memcpy(x + 3 * q, v, sizeof v);
+            de[q] = dist;
+            double c[3] = {PK_R * v[0] / rho, PK_R * v[1] / rho, 0};
+            for (int k = 0; k < 3; k++)
+                xe[3 * q + k] = c[k] + PK_r * (v[k] - c[k]) / tube;
+            q++;
+        }
     }
+    bstart[PK_NB] = nq;
     double *o = xmalloc(sizeof(double) * 3 * nq), *d = xmalloc(sizeof(double) * 3 * nq), *te = xmalloc(sizeof(double) * nq);
     int hits = 0;
     for (int q = 0; q < nq; q++) {
@@ -1969,6 +1984,7 @@ static cJSON *picking(void)
     double steal0, total0;
     host_ticks(&steal0, &total0);
     double *tc = xmalloc(sizeof(double) * NPC * reps), *tr = xmalloc(sizeof(double) * NPR * reps);
+    double *tcb = xmalloc(sizeof(double) * NPC * PK_NB * reps); /* per band, per query */
     double *tb = xmalloc(sizeof(double) * 3 * reps); /* setup: locator build, projectors Grad / Tree */
     double *pc = xmalloc(sizeof(double) * 3 * nq * NPC), *dc = xmalloc(sizeof(double) * nq * NPC);
     double *pr = xmalloc(sizeof(double) * 3 * nq * NPR), *trr = xmalloc(sizeof(double) * nq * NPR);
@@ -1984,17 +2000,25 @@ static cJSON *picking(void)
             occt_proj_free(P.proj[k]);
             t0 = now();
             P.proj[k] = occt_proj_make(P.occt, k);
+            double wp[3], wd, warm[3] = {5, 5, 2.5}; /* one query: the Tree's samples are made in the first */
+            occt_closest(P.proj[k], warm, wp, &wd);
             tb[(1 + k) * reps + rep] = now() - t0;
         }
         occt_rayer_free(P.rayer);
         P.rayer = occt_rayer_make(P.occt);
         for (int m = 0; m < NPC; m++) {
-            t0 = now();
-            for (int q = 0; q < ncq[m]; q++) {
-                size_t i = (size_t)m * nq + q;
-                fc[i] = pick_closest(&P, m, x + 3 * q, pc + 3 * i, dc + i);
+            double all = 0;
+            for (int bd = 0; bd < PK_NB; bd++) {
+                t0 = now();
+                for (int q = bstart[bd]; q < bstart[bd + 1]; q++) {
+                    size_t i = (size_t)m * nq + q;
+                    fc[i] = pick_closest(&P, m, x + 3 * q, pc + 3 * i, dc + i);
+                }
+                double t = now() - t0;
+                all += t;
+                tcb[(m * PK_NB + bd) * reps + rep] = t / (bstart[bd + 1] > bstart[bd] ? bstart[bd + 1] - bstart[bd] : 1);
             }
-            tc[m * reps + rep] = (now() - t0) / ncq[m];
+            tc[m * reps + rep] = all / nq;
         }
         for (int m = 0; m < NPR; m++) {
             t0 = now();
@@ -2013,7 +2037,7 @@ static cJSON *picking(void)
     for (int m = 0; m < NPC; m++) {
         pick_err *e = &ec[m];
         *e = (pick_err){0, 0, 0, 0, 0};
-        for (int q = 0; q < ncq[m]; q++) {
+        for (int q = 0; q < nq; q++) {
             size_t i = (size_t)m * nq + q;
             if (!fc[i]) {
                 e->failed++;
@@ -2092,8 +2116,8 @@ static cJSON *picking(void)
     double mb[3];
     for (int k = 0; k < 3; k++)
         mb[k] = bench_median(tb + k * reps, reps);
-    printf("   setup: rg2_locator_build %.1f us; GeomAPI_ProjectPointOnSurf Init on the surface: Grad %.1f us, Tree %.1f "
-           "us\n",
+    printf("   setup: rg2_locator_build %.1f us; GeomAPI_ProjectPointOnSurf Init on the surface and a first query: Grad "
+           "%.1f us, Tree %.1f us\n",
            mb[0] * 1e6, mb[1] * 1e6, mb[2] * 1e6);
     cJSON_AddNumberToObject(j, "locator_build_median_us", mb[0] * 1e6);
     double mc[NPC], mr[NPR];
@@ -2103,10 +2127,38 @@ static cJSON *picking(void)
     cJSON_AddNumberToObject(j, "closest_queries", nq);
     for (int m = 0; m < NPC; m++) {
         mc[m] = bench_median(tc + m * reps, reps);
-        printf("   %-42s %7d %11.2f  %-13.2e %-13.2e %d\n", pc_name[m], ncq[m], mc[m] * 1e6, ec[m].dist, ec[m].point,
+        printf("   %-42s %7d %11.2f  %-13.2e %-13.2e %d\n", pc_name[m], nq, mc[m] * 1e6, ec[m].dist, ec[m].point,
                ec[m].failed);
-        cJSON_AddItemToArray(jc, pick_json(pc_name[m], pc_peer[m], ncq[m], mc[m],
+        cJSON_AddItemToArray(jc, pick_json(pc_name[m], pc_peer[m], nq, mc[m],
                                            m == PC_RG2 ? mb[0] : m == PC_SISL ? -1 : mb[m], &ec[m], 0));
+    }
+    printf("   closest point, us per query by distance from the surface:\n     %-40s", "distance");
+    for (int bd = 0; bd < PK_NB; bd++) {
+        char band[32];
+        snprintf(band, sizeof band, bd + 1 < PK_NB ? "[%g, %g)" : ">= %g", pk_band[bd], pk_band[bd + 1]);
+        printf(" %10s", band);
+    }
+    printf("\n     %-40s", "queries");
+    for (int bd = 0; bd < PK_NB; bd++)
+        printf(" %10d", bstart[bd + 1] - bstart[bd]);
+    printf("\n");
+    cJSON *jb = cJSON_AddArrayToObject(j, "closest_by_distance");
+    for (int bd = 0; bd < PK_NB; bd++) {
+        cJSON *o1 = cJSON_CreateObject();
+        cJSON_AddNumberToObject(o1, "distance_from", pk_band[bd]);
+        if (bd + 1 < PK_NB)
+            cJSON_AddNumberToObject(o1, "distance_below", pk_band[bd + 1]);
+        cJSON_AddNumberToObject(o1, "queries", bstart[bd + 1] - bstart[bd]);
+        cJSON *ju = cJSON_AddObjectToObject(o1, "median_us_per_query");
+        for (int m = 0; m < NPC; m++)
+            cJSON_AddNumberToObject(ju, pc_name[m], bench_median(tcb + (m * PK_NB + bd) * reps, reps) * 1e6);
+        cJSON_AddItemToArray(jb, o1);
+    }
+    for (int m = 0; m < NPC; m++) {
+        printf("     %-40s", pc_name[m]);
+        for (int bd = 0; bd < PK_NB; bd++)
+            printf(" %10.2f", bench_median(tcb + (m * PK_NB + bd) * reps, reps) * 1e6);
+        printf("\n");
     }
     printf("   %-42s %7s %11s  %-13s %-13s %s\n", "first ray hit", "rays", "us / ray", "t err x |d|", "point err",
            "failed (hit/miss wrong, or off > 1e-6)");
@@ -2143,7 +2195,7 @@ static cJSON *picking(void)
         cJSON_AddNumberToObject(r, "peer_over_rg2", ratio);
         cJSON_AddItemToArray(jq, r);
     }
-    free(tc), free(tr), free(tb), free(pc), free(dc), free(pr), free(trr), free(fc), free(fr);
+    free(tc), free(tr), free(tcb), free(tb), free(pc), free(dc), free(pr), free(trr), free(fc), free(fr);
     free(x), free(xe), free(de), free(o), free(d), free(te);
     for (int k = 0; k < 2; k++)
         occt_proj_free(P.proj[k]);

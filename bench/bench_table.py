@@ -115,12 +115,24 @@ def main(path):
         pk = d['picking']
         print(f"\nPicking on the {pk['surface']}: {int(pk['closest_queries'])} closest-point queries, "
               f"{int(pk['rays'])} rays ({int(pk['rays_hitting'])} hit), {int(pk['repetitions'])} interleaved "
-              f"repetitions, medians, thread CPU time; rg2_locator_build {pk['locator_build_median_us']:.1f} us.\n")
+              f"repetitions, medians, thread CPU time; rg2_locator_build {pk['locator_build_median_us']:.1f} us"
+              + "".join(f"; {r['method']} Init and a first query {r['setup_median_us']:.0f} us" for r in pk['closest']
+                        if 'setup_median_us' in r and r['peer'] != 'rg2') + ".\n")
         print("| closest point | queries | us per query | worst distance error | worst point error | failed |")
         print("|---|---:|---:|---:|---:|---:|")
         for r in pk['closest']:
             print(f"| {r['method']} | {int(r['queries'])} | {r['median_us_per_query']:.2f} | "
                   f"{r['max_distance_err']:.1e} | {r['max_point_err']:.1e} | {int(r['failures'])} |")
+        if 'closest_by_distance' in pk:
+            bands = pk['closest_by_distance']
+            names = list(bands[0]['median_us_per_query'].keys())
+            lab = [f"[{b['distance_from']:g}, {b['distance_below']:g})" if 'distance_below' in b
+                   else f">= {b['distance_from']:g}" for b in bands]
+            print("\n| us per query, by distance from the surface | " + " | ".join(lab) + " |")
+            print("|---|" + "---:|" * len(bands))
+            print("| queries | " + " | ".join(str(int(b['queries'])) for b in bands) + " |")
+            for n in names:
+                print(f"| {n} | " + " | ".join(f"{b['median_us_per_query'][n]:.2f}" for b in bands) + " |")
         print("\n| first ray hit | rays | us per ray | worst t error x \\|d\\| | worst point error | failed (hit/miss) |")
         print("|---|---:|---:|---:|---:|---:|")
         for r in pk['ray']:
