@@ -269,19 +269,18 @@ static int piece_frame(const points *P, double e[3][3])
     return 1;
 }
 
-/* Lower bound of the distance from x to the piece of points P (larger of the axis box and the
- * piece's own frame box); *diag gets the axis box's diagonal. */
-static double closest_bound(const points *P, const double x[3], double *diag)
+/* Lower bound of the distance from x to the piece of points P: from its box along its own frame
+ * (along the axes where it has none, at a pole). */
+static double closest_bound(const points *P, const double x[3])
 {
     static const double zero[3] = {0, 0, 0};
     double lo[3], hi[3], e[3][3];
+    if (piece_frame(P, e)) {
+        pts_box(P, x, (const double(*)[3])e, lo, hi);
+        return box_dist(lo, hi, zero);
+    }
     pts_box(P, zero, NULL, lo, hi);
-    *diag = box_diag(lo, hi);
-    double lb = box_dist(lo, hi, x);
-    if (!piece_frame(P, e))
-        return lb;
-    pts_box(P, x, (const double(*)[3])e, lo, hi);
-    return greater(lb, box_dist(lo, hi, zero));
+    return box_dist(lo, hi, x);
 }
 
 /* ---------------------------------------------------------------- the locator */
@@ -574,9 +573,9 @@ rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit 
         }
         quarters(&X, q);
         for (int c = 0; c < 4; c++) {
-            double um = 0.5 * (p.u0 + p.u1), vm = 0.5 * (p.v0 + p.v1), dq;
+            double um = 0.5 * (p.u0 + p.u1), vm = 0.5 * (p.v0 + p.v1);
             net_points(&q[c], &P);
-            piece ch = {closest_bound(&P, x, &dq), -1, p.patch, c & 1 ? um : p.u0, c & 1 ? p.u1 : um,
+            piece ch = {closest_bound(&P, x), -1, p.patch, c & 1 ? um : p.u0, c & 1 ? p.u1 : um,
                         c & 2 ? vm : p.v0, c & 2 ? p.v1 : vm};
             ch.key = fmax(ch.key, p.key);
             if (ch.key < best - tol)
