@@ -62,6 +62,9 @@ typedef struct {
     int node;   /* a tree node, or -1: a piece of patch `patch` */
     int patch;
     double u0, u1, v0, v1;
+    int known;        /* t1 (ray) and size were found when the piece was made */
+    double t1, size;  /* ray: the largest t where the piece can meet the ray, and its size across
+                         it; closest: the diagonal of its box */
 } piece;
 
 typedef struct {
@@ -272,16 +275,18 @@ static int piece_frame(const points *P, double e[3][3])
 }
 
 /* Lower bound of the distance from x to the piece of points P: from its box along its own frame
- * (along the axes where it has none, at a pole). */
-static double closest_bound(const points *P, const double x[3])
+ * (along the axes where it has none, at a pole); *size gets the box's diagonal. */
+static double closest_bound(const points *P, const double x[3], double *size)
 {
     static const double zero[3] = {0, 0, 0};
     double lo[3], hi[3], e[3][3];
     if (piece_frame(P, e)) {
         pts_box(P, x, (const double(*)[3])e, lo, hi);
+        *size = box_diag(lo, hi);
         return box_dist(lo, hi, zero);
     }
     pts_box(P, zero, NULL, lo, hi);
+    *size = box_diag(lo, hi);
     return box_dist(lo, hi, x);
 }
 
@@ -567,7 +572,7 @@ rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit 
     int bp = -1;
     heap h = {0};
     double floor = INFINITY; /* smallest bound of what was set aside unsplit */
-    piece root = {box_dist(L->tree[0].lo, L->tree[0].hi, x), 0, 0, 0, 1, 0, 1};
+    piece root = {box_dist(L->tree[0].lo, L->tree[0].hi, x), 0, 0, 0, 1, 0, 1, 0, 0, 0};
     heap_push(&h, &root);
     long taken = 0;
     while (h.n && !h.nomem) {
@@ -579,12 +584,12 @@ rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit 
         if (p.node >= 0) { /* a node of the tree: its children, or its patch */
             const node *nd = L->tree + p.node;
             if (nd->kid < 0) {
-                piece q = {p.key, -1, nd->i0 * s->nv + nd->j0, 0, 1, 0, 1};
+                piece q = {p.key, -1, nd->i0 * s->nv + nd->j0, 0, 1, 0, 1, 0, 0, 0};
                 heap_push(&h, &q);
             } else
                 for (int c = 0; c < 2; c++) {
                     const node *kd = L->tree + nd->kid + c;
-                    piece q = {fmax(p.key, box_dist(kd->lo, kd->hi, x)), nd->kid + c, 0, 0, 1, 0, 1};
+                    piece q = {fmax(p.key, box_dist(kd->lo, kd->hi, x)), nd->kid + c, 0, 0, 1, 0, 1, 0, 0, 0};
                     if (q.key < best - tol)
                         heap_push(&h, &q);
                     else
@@ -605,11 +610,15 @@ rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit 
         rg2_xpatch X, q[4];
         piece_net(L, &p, &X);
         points P;
-        net_points(&X, &P);
-        double lo[3], hi[3];
-        static const double zero[3] = {0, 0, 0};
-        pts_box(&P, zero, NULL, lo, hi);
-        if (!(box_diag(lo, hi) > tol)) { /* smaller than the tolerance: its centre stands for it */
+        double size = p.size;
+        if (!p.known) {
+            double lo[3], hi[3];
+            static const double zero[3] = {0, 0, 0};
+            net_points(&X, &P);
+            pts_box(&P, zero, NULL, lo, hi);
+            size = box_diag(lo, hi);
+        }
+        if (!(size > tol)) { /* smaller than the tolerance: its centre stands for it */
             floor = fmin(floor, p.key);
             continue;
         }
@@ -617,8 +626,10 @@ rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit 
         for (int c = 0; c < 4; c++) {
             double um = 0.5 * (p.u0 + p.u1), vm = 0.5 * (p.v0 + p.v1);
             net_points(&q[c], &P);
-            piece ch = {closest_bound(&P, x), -1, p.patch, c & 1 ? um : p.u0, c & 1 ? p.u1 : um,
-                        c & 2 ? vm : p.v0, c & 2 ? p.v1 : vm};
+            double size_c;
+            piece ch = {closest_bound(&P, x, &size_c), -1, p.patch, c & 1 ? um : p.u0, c & 1 ? p.u1 : um,
+                        c & 2 ? vm : p.v0, c & 2 ? p.v1 : vm, 1, 0, 0};
+            ch.size = size_c;
             ch.key = fmax(ch.key, p.key);
             if (ch.key < best - tol)
                 ch.key = fmax(ch.key, bern_bound(&q[c], x));
@@ -652,7 +663,7 @@ static double ray_newton(const rg2_surface *s, int pi, int pj, const double o[3]
         rg2_eval f;
         rg2_surface_eval(s, pi, pj, *u, *v, 1, &f);
         double q[3] = {f.p[0] - o[0], f.p[1] - o[1], f.p[2] - o[2]};
-        double F0 = dot3(q, e[0]), F1 = dot3(q, e[1]), res = hypot(F0, F1);
+        double F0 = dot3(q, e[0]), F1 = dot3(q, e[1]), res = sqrt(F0 * F0 + F1 * F1);
         if (!isfinite(res))
             break;
         if (!(res < best)) /* no more progress (rounding) */
@@ -760,7 +771,7 @@ rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double
     double tlen = len > 1 && tmax > DBL_MAX / len ? INFINITY : tmax * len; /* (tmax along dn) */
     double t0;
     if (slab(L->tree, o, dn, tlen, tol, &t0)) {
-        piece root = {t0 / len, 0, 0, 0, 1, 0, 1};
+        piece root = {t0 / len, 0, 0, 0, 1, 0, 1, 0, 0, 0};
         heap_push(&h, &root);
     }
     long taken = 0;
@@ -773,13 +784,13 @@ rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double
         if (p.node >= 0) { /* a node of the tree: its children, or its patch */
             const node *nd = L->tree + p.node;
             if (nd->kid < 0) {
-                piece q = {p.key, -1, nd->i0 * s->nv + nd->j0, 0, 1, 0, 1};
+                piece q = {p.key, -1, nd->i0 * s->nv + nd->j0, 0, 1, 0, 1, 0, 0, 0};
                 heap_push(&h, &q);
             } else
                 for (int c = 0; c < 2; c++) {
                     double tc;
                     if (slab(L->tree + nd->kid + c, o, dn, tlen, tol, &tc)) {
-                        piece q = {fmax(p.key, tc / len), nd->kid + c, 0, 0, 1, 0, 1};
+                        piece q = {fmax(p.key, tc / len), nd->kid + c, 0, 0, 1, 0, 1, 0, 0, 0};
                         heap_push(&h, &q);
                     }
                 }
@@ -787,17 +798,22 @@ rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double
         }
         rg2_xpatch X, q[4];
         piece_net(L, &p, &X);
-        double t1, diag;
-        if (!ray_box(&X, o, d, (const double(*)[3])e, &t0, &t1, &diag) || t0 > best || t1 < 0)
+        double t1 = p.t1, diag = p.size;
+        t0 = p.key;
+        if (!p.known && (!ray_box(&X, o, d, (const double(*)[3])e, &t0, &t1, &diag) || t0 > best || t1 < 0))
             continue; /* the piece misses the ray, or meets it only after the best or behind o */
         int pi = p.patch / s->nv, pj = p.patch % s->nv;
         double u = 0.5 * (p.u0 + p.u1), v = 0.5 * (p.v0 + p.v1);
-        double res = ray_newton(s, pi, pj, o, (const double(*)[3])e, &u, &v);
         rg2_eval f;
-        rg2_surface_eval(s, pi, pj, u, v, 0, &f);
-        double q0[3] = {f.p[0] - o[0], f.p[1] - o[1], f.p[2] - o[2]}, t = dot3(e[2], q0);
-        if (res <= 1e-2 * tol && t >= 0 && t < best) /* on the ray */
-            best = t, bp = p.patch, bu = u, bv = v;
+        /* Newton from the centre, except in a piece that holds the best hit itself (from there
+         * it returns to that hit; an earlier hit in the piece is still found by the splitting) */
+        if (!(bp == p.patch && bu >= p.u0 && bu <= p.u1 && bv >= p.v0 && bv <= p.v1)) {
+            double res = ray_newton(s, pi, pj, o, (const double(*)[3])e, &u, &v);
+            rg2_surface_eval(s, pi, pj, u, v, 0, &f);
+            double q0[3] = {f.p[0] - o[0], f.p[1] - o[1], f.p[2] - o[2]}, t = dot3(e[2], q0);
+            if (res <= 1e-2 * tol && t >= 0 && t < best) /* on the ray */
+                best = t, bp = p.patch, bu = u, bv = v;
+        }
         if (!(diag > tol)) { /* within the tolerance of the ray: not split again. Its centre is a
                                 hit within the tolerance, kept in case Newton finds none */
             u = 0.5 * (p.u0 + p.u1), v = 0.5 * (p.v0 + p.v1);
@@ -814,7 +830,7 @@ rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double
             if (!ray_box(&q[c], o, d, (const double(*)[3])e, &c0, &c1, &cd) || c0 > best || c1 < 0)
                 continue;
             piece ch = {fmax(p.key, fmax(0.0, c0)), -1, p.patch, c & 1 ? um : p.u0, c & 1 ? p.u1 : um,
-                        c & 2 ? vm : p.v0, c & 2 ? p.v1 : vm};
+                        c & 2 ? vm : p.v0, c & 2 ? p.v1 : vm, 1, c1, cd};
             if (ch.key < best - (bp >= 0 ? ttol : 0))
                 heap_push(&h, &ch);
             else
