@@ -174,24 +174,38 @@ static void piece_net(const rg2_locator *L, const piece *p, rg2_xpatch *X)
             cut_range(&X->h[r][0][0], X->dv, 4, p->v0, p->v1);
 }
 
+/* Both halves of a curve of degree d (points a[0], a[st], ...; de Casteljau at 1/2): the first
+ * half stays in a, the second goes to b (the same layout). */
+static void halve(double *a, double *b, int d, size_t st)
+{
+    double t[RG2_MAX_DEGREE + 1][4];
+    for (int r = 0; r <= d; r++)
+        memcpy(t[r], a + r * st, sizeof t[r]);
+    memcpy(b + d * st, t[d], sizeof t[d]);
+    for (int l = 1; l <= d; l++) {
+        for (int r = 0; r <= d - l; r++)
+            for (int k = 0; k < 4; k++)
+                t[r][k] = 0.5 * (t[r][k] + t[r + 1][k]);
+        memcpy(a + l * st, t[0], sizeof t[0]);
+        memcpy(b + (d - l) * st, t[d - l], sizeof t[0]);
+    }
+}
+
 /* The four quarters of a net (split at the middle of both parameters); q[0] = [lo u, lo v],
- * q[1] = [hi u, lo v], q[2] = [lo u, hi v], q[3] = [hi u, hi v]. */
+ * q[1] = [hi u, lo v], q[2] = [lo u, hi v], q[3] = [hi u, hi v]. Only the entries of the net's
+ * degrees are written. */
 static void quarters(const rg2_xpatch *X, rg2_xpatch q[4])
 {
     size_t row = (RG2_MAX_DEGREE + 1) * 4;
-    q[0] = *X;
-    q[1] = *X;
-    for (int t = 0; t <= X->dv; t++) {
-        cut(&q[0].h[0][t][0], X->du, row, 0.5, 0);
-        cut(&q[1].h[0][t][0], X->du, row, 0.5, 1);
-    }
-    q[2] = q[0];
-    q[3] = q[1];
+    for (int c = 0; c < 4; c++)
+        q[c].du = X->du, q[c].dv = X->dv;
+    for (int r = 0; r <= X->du; r++)
+        memcpy(q[0].h[r], X->h[r], (size_t)(X->dv + 1) * sizeof X->h[r][0]);
+    for (int t = 0; t <= X->dv; t++)
+        halve(&q[0].h[0][t][0], &q[1].h[0][t][0], X->du, row);
     for (int h = 0; h < 2; h++)
-        for (int r = 0; r <= X->du; r++) {
-            cut(&q[h].h[r][0][0], X->dv, 4, 0.5, 0);
-            cut(&q[h + 2].h[r][0][0], X->dv, 4, 0.5, 1);
-        }
+        for (int r = 0; r <= X->du; r++)
+            halve(&q[h].h[r][0][0], &q[h + 2].h[r][0][0], X->dv, 4);
 }
 
 /* The affine control points of a net, and its corners. */
