@@ -573,6 +573,33 @@ static rg2_status query_check(const rg2_locator *L, const char *who, const char 
     return RG2_OK;
 }
 
+/* A tree node taken from the heap: its patch, as one piece with the node's bound, or its two
+ * children, each with the larger of the node's bound and key(child) (INFINITY: the query cannot
+ * reach it); those whose bound is not below limit are set aside, their bound kept in *floor. */
+static void descend(const rg2_locator *L, heap *h, const piece *p, double (*key)(const node *, const void *),
+                    const void *ctx, double limit, double *floor)
+{
+    const node *nd = L->tree + p->node;
+    if (nd->kid < 0) {
+        piece q = {p->key, -1, nd->i0 * L->s->nv + nd->j0, 0, 1, 0, 1, 0, 0, 0};
+        heap_push(h, &q);
+        return;
+    }
+    for (int c = 0; c < 2; c++) {
+        double k = key(L->tree + nd->kid + c, ctx);
+        if (k == INFINITY)
+            continue;
+        piece q = {greater(p->key, k), nd->kid + c, 0, 0, 1, 0, 1, 0, 0, 0};
+        if (q.key < limit)
+            heap_push(h, &q);
+        else
+            *floor = lesser(*floor, q.key);
+    }
+}
+
+/* The distance from x to a node's box. */
+static double closest_key(const node *nd, const void *x) { return box_dist(nd->lo, nd->hi, x); }
+
 rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit *out, rg2_error *err)
 {
     if (out)
@@ -596,19 +623,7 @@ rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit 
             break;
         }
         if (p.node >= 0) { /* a node of the tree: its children, or its patch */
-            const node *nd = L->tree + p.node;
-            if (nd->kid < 0) {
-                piece q = {p.key, -1, nd->i0 * s->nv + nd->j0, 0, 1, 0, 1, 0, 0, 0};
-                heap_push(&h, &q);
-            } else
-                for (int c = 0; c < 2; c++) {
-                    const node *kd = L->tree + nd->kid + c;
-                    piece q = {fmax(p.key, box_dist(kd->lo, kd->hi, x)), nd->kid + c, 0, 0, 1, 0, 1, 0, 0, 0};
-                    if (q.key < best - tol)
-                        heap_push(&h, &q);
-                    else
-                        floor = fmin(floor, q.key);
-                }
+            descend(L, &h, &p, closest_key, x, best - tol, &floor);
             continue;
         }
         int pi = p.patch / s->nv, pj = p.patch % s->nv;
@@ -750,6 +765,19 @@ static int slab(const node *nd, const double o[3], const double dn[3], double sm
     return t0 <= t1;
 }
 
+/* The ray's t where it enters a node's box (slab), INFINITY where it misses it. */
+typedef struct {
+    const double *o, *dn;
+    double smax, tol, len;
+} ray_ctx;
+
+static double ray_key(const node *nd, const void *ctx)
+{
+    const ray_ctx *r = ctx;
+    double s0;
+    return slab(nd, r->o, r->dn, r->smax, r->tol, &s0) ? s0 / r->len : INFINITY;
+}
+
 rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double d[3], double tmax, rg2_hit *out,
                            rg2_error *err)
 {
@@ -796,18 +824,8 @@ rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double
             break;
         }
         if (p.node >= 0) { /* a node of the tree: its children, or its patch */
-            const node *nd = L->tree + p.node;
-            if (nd->kid < 0) {
-                piece q = {p.key, -1, nd->i0 * s->nv + nd->j0, 0, 1, 0, 1, 0, 0, 0};
-                heap_push(&h, &q);
-            } else
-                for (int c = 0; c < 2; c++) {
-                    double tc;
-                    if (slab(L->tree + nd->kid + c, o, dn, tlen, tol, &tc)) {
-                        piece q = {fmax(p.key, tc / len), nd->kid + c, 0, 0, 1, 0, 1, 0, 0, 0};
-                        heap_push(&h, &q);
-                    }
-                }
+            ray_ctx rc = {o, dn, tlen, tol, len};
+            descend(L, &h, &p, ray_key, &rc, best - (bp >= 0 ? ttol : 0), &floor);
             continue;
         }
         rg2_xpatch X, q[4];
