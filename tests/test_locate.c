@@ -8,8 +8,12 @@
  *     not be farther than any of them, and none may be nearer than the proven bound), and ray
  *     hits on the tessellation's triangles (the exact first hit is on the ray and on the
  *     surface, and not after a clear triangle hit);
+ *   - feet 0 to 1e-5 from every seam of the torus (the wrapping ones too) against the closed
+ *     form, and rays aimed exactly at patch corners and sides against the implicit equation;
  *   - the degenerate queries (a sphere's centre, a torus's core circle and axis) stop with a
- *     true answer and an honest bound; and every refusal names its item. */
+ *     true answer and an honest bound (within the proof docs/picking.md gives at the budget);
+ *     rays within 1e-300 of an axis, |d| != 1 with a finite tmax; and every refusal names its
+ *     item (NaN and infinities, weights 0 and below, no patches in one direction). */
 #include "harness.h"
 
 #include <math.h>
@@ -168,6 +172,33 @@ static void torus_case(const rg2_surface *s, const char *what, int queries, int 
     CHECK_OK(rg2_locator_ray(L, o, d, 0.3, &h, &err), &err);
     CHECK(h.i < 0 && h.bound == 0.3 && h.dist == INFINITY, "%s: tmax 0.3 before the hit 0.375: i %d bound %g", what,
           h.i, h.bound);
+    /* from outside, |d| = 2, tmax just past the hit: the outer equator at t = (8 - R - r) / 2 */
+    double o3[3] = {8, 0, 0}, d3[3] = {-2, 0, 0};
+    CHECK_OK(rg2_locator_ray(L, o3, d3, 2.4, &h, &err), &err);
+    CHECK(h.i >= 0 && fabs(h.dist - (8 - TR - Tr) / 2) <= 1e-14, "%s: |d| = 2, tmax 2.4: i %d t %.17g (want %.17g)",
+          what, h.i, h.dist, (8 - TR - Tr) / 2);
+    /* tmax one ulp past the hit (within the tolerance of it, where the search must still take
+     * the first hit): from inside the tube the hit t = 3 / 8 is exact in binary, and so from
+     * outside with |d| = 2: t = 19 / 8 */
+    CHECK_OK(rg2_locator_ray(L, o, d, nextafter(Tr / 2, 1), &h, &err), &err);
+    CHECK(h.i >= 0 && fabs(h.dist - Tr / 2) <= 1e-14, "%s: tmax an ulp past the hit t %g: i %d t %.17g", what, Tr / 2,
+          h.i, h.dist);
+    CHECK_OK(rg2_locator_ray(L, o3, d3, nextafter((8 - TR - Tr) / 2, 3), &h, &err), &err);
+    CHECK(h.i >= 0 && fabs(h.dist - (8 - TR - Tr) / 2) <= 1e-14,
+          "%s: tmax an ulp past the hit t %g from outside: i %d t %.17g", what, (8 - TR - Tr) / 2, h.i, h.dist);
+    /* from a point of the surface (the outer equator's patch corner) into the tube: o itself is
+     * the first hit, t = 0 */
+    double o4[3] = {TR + Tr, 0, 0}, d4[3] = {-1, 0, 0};
+    CHECK_OK(rg2_locator_ray(L, o4, d4, INFINITY, &h, &err), &err);
+    CHECK(h.i >= 0 && fabs(h.dist) <= 1e-15, "%s: from a surface point: i %d t %.17g (want 0)", what, h.i, h.dist);
+    /* tangent to the top circle (z = r) at (-R, 0, r): the ray touches the torus there, t = 5 - R
+     * to the conditioning of a touch (rounding puts the surface on the ray over about
+     * sqrt(DBL_EPSILON) r); the point on the ray and on the torus */
+    double o5[3] = {-5, 0, Tr}, d5[3] = {1, 0, 0};
+    CHECK_OK(rg2_locator_ray(L, o5, d5, INFINITY, &h, &err), &err);
+    CHECK(h.i >= 0 && fabs(h.dist - (5 - TR)) <= 1e-6 && fabs(h.p[2] - Tr) <= 1e-14 && fabs(h.p[1]) <= 1e-14,
+          "%s: a tangent ray: i %d t %.17g (want %g), p (%g, %g, %.17g)", what, h.i, h.dist, 5 - TR, h.p[0], h.p[1],
+          h.p[2]);
     /* away from everything: a miss with bound tmax = INFINITY */
     double o2[3] = {0, 0, 5}, d2[3] = {0, 0, 1};
     CHECK_OK(rg2_locator_ray(L, o2, d2, INFINITY, &h, &err), &err);
@@ -184,6 +215,123 @@ static void torus_case(const rg2_surface *s, const char *what, int queries, int 
                k ? "on the axis" : "on the core circle", fabs(h.dist - want[k]), h.dist - h.bound);
     }
     rg2_locator_free(L);
+}
+
+/* ---------------------------------------------------------------- feet next to the patch seams */
+
+/* Query points whose foot lies 0 to 1e-5 (in angle) to either side of every patch seam of the
+ * torus, the seams where the closed directions wrap included, inside and outside the tube. The
+ * foot is the torus point at those angles (closed form). Newton started in the patch next to the
+ * foot's ends on the shared side, a point whose distance is within the tolerance of the answer's
+ * (second order) but up to 1e-5 away from it: only the hop into the right neighbour (across the
+ * wrap too) finds the foot itself. */
+static void seam_feet(void)
+{
+    rg2_error err;
+    rg2_surface s;
+    CHECK_OK(rg2t_torus(TR, Tr, 8, 6, NULL, &s, &err), &err);
+    rg2_locator *L;
+    CHECK_OK(rg2_locator_build(&s, &L, &err), &err);
+    const double scale = 2 * (TR + Tr), off[2] = {-0.3, 0.5};
+    const double eps[11] = {0, 1e-8, -1e-8, 1e-7, -1e-7, 1e-6, -1e-6, 3e-6, -3e-6, 1e-5, -1e-5};
+    double wp = 0, wd = 0;
+    int queries = 0;
+    for (int dir = 0; dir < 2; dir++) {
+        int nseam = dir ? s.nv : s.nu;
+        for (int k = 0; k < nseam; k++)
+            for (int w = 1; w <= (k ? 3 : 15); w++) { /* (more along the seams that wrap) */
+                /* a point of the seam (side u = 0 of patch column k, or v = 0 of patch row k),
+                 * and the angle constant along it */
+                double t = (k ? 0.25 : 0.0625) * w, pt[2][3];
+                for (int e = 0; e < 2; e++) {
+                    rg2_eval ev;
+                    double t2 = e ? t : 0.5 * t;
+                    if (dir)
+                        rg2_surface_eval(&s, (k * 5 + w) % s.nu, k, t2, 0, 0, &ev);
+                    else
+                        rg2_surface_eval(&s, k, (k * 5 + w) % s.nv, 0, t2, 0, &ev);
+                    memcpy(pt[e], ev.p, sizeof ev.p);
+                }
+                double ang[2][2];
+                for (int e = 0; e < 2; e++) {
+                    ang[e][0] = atan2(pt[e][1], pt[e][0]);
+                    ang[e][1] = atan2(pt[e][2], hypot(pt[e][0], pt[e][1]) - TR);
+                }
+                int along = fabs(ang[0][0] - ang[1][0]) < 1e-12 ? 0 : 1; /* the seam's constant angle */
+                CHECK(fabs(ang[0][along] - ang[1][along]) < 1e-12, "seam %d/%d: no constant angle", dir, k);
+                for (int q = 0; q < 11; q++)
+                    for (int h = 0; h < 2; h++, queries++) {
+                        double phi = ang[1][0] + (along ? 0 : eps[q]), th = ang[1][1] + (along ? eps[q] : 0);
+                        double f[3] = {(TR + Tr * cos(th)) * cos(phi), (TR + Tr * cos(th)) * sin(phi), Tr * sin(th)};
+                        double n[3] = {cos(th) * cos(phi), cos(th) * sin(phi), sin(th)}, x[3];
+                        for (int c = 0; c < 3; c++)
+                            x[c] = f[c] + off[h] * n[c];
+                        rg2_hit hit;
+                        CHECK_OK(rg2_locator_closest(L, x, &hit, &err), &err);
+                        wp = fmax(wp, dist3(hit.p, f) / scale);
+                        wd = fmax(wd, fabs(hit.dist - fabs(off[h])) / scale);
+                        CHECK(dist3(hit.p, f) <= 1e-12 * scale && hit.bound <= hit.dist,
+                              "seam foot (%s seam %d, angle %+g): point %.3g from the foot, distance %.17g (want "
+                              "%.17g)",
+                              dir ? "v" : "u", k, eps[q], dist3(hit.p, f), hit.dist, fabs(off[h]));
+                    }
+            }
+    }
+    printf("seam feet: %d nearest points 0 to 1e-5 from a seam: point %.2e, distance %.2e (relative)\n", queries, wp,
+           wd);
+    rg2_locator_free(L);
+    rg2_surface_free(&s);
+}
+
+/* ---------------------------------------------------------------- rays through patch corners and sides */
+
+/* Rays aimed exactly at a patch corner or at a point of a patch side of the torus (where four or
+ * two pieces meet, each with the aimed point on its border): straight down the normal and
+ * oblique, from 0.5 outside. The first hit is that point, at t = 1 (the implicit equation's first
+ * root agrees): no ray may slip between the pieces through rounding. */
+static void seam_rays(int elevate)
+{
+    rg2_error err;
+    rg2_surface s;
+    CHECK_OK(rg2t_torus(TR, Tr, 8, 6, NULL, &s, &err), &err);
+    if (elevate) /* (neighbours of different degrees) */
+        CHECK_OK(rg2t_elevate_some(&s, 5, 4, 3, 1, &err), &err);
+    rg2_locator *L;
+    CHECK_OK(rg2_locator_build(&s, &L, &err), &err);
+    const double uv[3][2] = {{0, 0}, {0, 0.375}, {0.625, 0}}, tilt[3] = {0, 0.3, -0.45};
+    double wt = 0;
+    int rays = 0;
+    for (int i = 0; i < s.nu; i++)
+        for (int j = 0; j < s.nv; j++)
+            for (int a = 0; a < 3; a++)
+                for (int b = 0; b < 3; b++, rays++) {
+                    rg2_eval e;
+                    rg2_surface_eval(&s, i, j, uv[a][0], uv[a][1], 1, &e);
+                    /* the outward normal from the closed form, a tangent across it */
+                    double rho = hypot(e.p[0], e.p[1]), c[3] = {TR * e.p[0] / rho, TR * e.p[1] / rho, 0}, n[3], tg[3];
+                    for (int k = 0; k < 3; k++)
+                        n[k] = (e.p[k] - c[k]) / Tr;
+                    tg[0] = -e.p[1] / rho, tg[1] = e.p[0] / rho, tg[2] = 0;
+                    double o[3], d[3];
+                    for (int k = 0; k < 3; k++) {
+                        o[k] = e.p[k] + 0.5 * n[k] + tilt[b] * (b == 2 ? n[(k + 1) % 3] : tg[k]);
+                        d[k] = e.p[k] - o[k];
+                    }
+                    rg2_hit h;
+                    CHECK_OK(rg2_locator_ray(L, o, d, INFINITY, &h, &err), &err);
+                    double tref = torus_first_root(o, d, 1.5, 3000);
+                    CHECK(fabs(tref - 1) <= 1e-9, "corner ray (%d,%d) %d %d: the implicit equation's root %.17g", i, j,
+                          a, b, tref);
+                    CHECK(h.i >= 0 && fabs(h.dist - 1) <= 1e-13 && dist3(h.p, e.p) <= 1e-13,
+                          "ray at patch (%d,%d) (u, v) = (%g, %g), tilt %d: i %d t %.17g (want 1), %.3g from it", i, j,
+                          uv[a][0], uv[a][1], b, h.i, h.dist, dist3(h.p, e.p));
+                    if (h.i >= 0)
+                        wt = fmax(wt, fabs(h.dist - 1));
+                }
+    printf("seam rays%s: %d rays at patch corners and sides: t %.2e\n",
+           elevate ? " (some patches of degree (5, 4))" : "", rays, wt);
+    rg2_locator_free(L);
+    rg2_surface_free(&s);
 }
 
 /* ---------------------------------------------------------------- sphere band */
@@ -396,6 +544,9 @@ static void special(void)
     CHECK_OK(rg2_locator_closest(L, c, &h, &err), &err);
     CHECK(fabs(h.dist - 1) <= 1e-15 && h.bound <= h.dist && h.bound > 0.9, "sphere centre: distance %.17g bound %.17g",
           h.dist, h.bound);
+    /* the budget's proof: docs/picking.md gives 2.5e-5 at a sphere's centre */
+    CHECK(h.dist - h.bound <= 1e-4, "sphere centre: proven only to %.3g after %d pieces", h.dist - h.bound,
+          RG2_LOCATE_MAX_PIECES);
     printf("sphere centre (every point nearest; stopped after %d pieces): distance - 1 = %.2e, proven to %.2e\n",
            RG2_LOCATE_MAX_PIECES, h.dist - 1, h.dist - h.bound);
 
@@ -417,9 +568,32 @@ static void special(void)
           err.msg);
     CHECK(rg2_locator_ray(NULL, c, d1, 1, &h, &err) == RG2_EINVAL && strstr(err.msg, "locator is NULL"),
           "NULL locator: %s", err.msg);
+    /* infinities are refused like NaN (the check is "not finite", rg2.h), in x, o and d */
+    double inf3[3] = {0, 0, INFINITY}, minf3[3] = {-INFINITY, 0, 0};
+    CHECK(rg2_locator_closest(L, inf3, &h, &err) == RG2_ENONFINITE && strstr(err.msg, "x[2] is not a finite"),
+          "infinite x: %s", err.msg);
+    CHECK(rg2_locator_ray(L, minf3, d1, INFINITY, &h, &err) == RG2_ENONFINITE &&
+              strstr(err.msg, "o[0] is not a finite"),
+          "infinite o: %s", err.msg);
+    CHECK(rg2_locator_ray(L, c, inf3, INFINITY, &h, &err) == RG2_ENONFINITE && strstr(err.msg, "d[2] is not a finite"),
+          "infinite d: %s", err.msg);
+    /* tmax = 0 is allowed (only o itself is searched): from the centre, a miss proven to 0 */
+    CHECK(rg2_locator_ray(L, c, d1, 0, &h, &err) == RG2_OK && h.i == -1 && h.bound == 0 && h.dist == INFINITY,
+          "tmax 0 from the centre: %s, i %d, bound %g", err.msg, h.i, h.bound);
     /* from the centre, every ray meets the sphere at t = 1 / |d| */
     CHECK_OK(rg2_locator_ray(L, c, d1, INFINITY, &h, &err), &err);
     CHECK(fabs(h.dist - 1) <= 1e-15 && fabs(h.p[0] - 1) <= 1e-15, "sphere centre ray: t %.17g", h.dist);
+    /* directions within 1e-300 of the x or y axis (the frame across the ray must be built on an
+     * axis whose cross product with d does not underflow): t = 1, at the unit vector (this sphere
+     * is a band about the equator: it does not reach the z axis) */
+    for (int k = 0; k < 4; k++) {
+        double dk[3] = {0, 0, 0};
+        dk[k / 2] = 1;
+        dk[k % 2 ? 2 : 1 - k / 2] = 1e-300;
+        CHECK_OK(rg2_locator_ray(L, c, dk, INFINITY, &h, &err), &err);
+        CHECK(h.i >= 0 && fabs(h.dist - 1) <= 1e-15 && fabs(h.p[k / 2] - 1) <= 1e-15,
+              "sphere centre ray (%g, %g, %g): i %d t %.17g", dk[0], dk[1], dk[2], h.i, h.dist);
+    }
     rg2_locator_free(L);
 
     rg2_locator *L2 = (rg2_locator *)&err; /* (overwritten with NULL on failure) */
@@ -427,9 +601,20 @@ static void special(void)
     CHECK(rg2_locator_build(&s, &L2, &err) == RG2_EWEIGHT && L2 == NULL &&
               strstr(err.msg, "patch (2,1) control point [1][2] has weight -0.5"),
           "negative weight: %s", err.msg);
+    s.patch[5].h[1][2][3] = 0.0; /* (not > 0: refused too; the hull property needs positive weights) */
+    CHECK(rg2_locator_build(&s, &L2, &err) == RG2_EWEIGHT && L2 == NULL &&
+              strstr(err.msg, "patch (2,1) control point [1][2] has weight 0;"),
+          "zero weight: %s", err.msg);
     s.patch[5].h[1][2][3] = NAN;
     CHECK(rg2_locator_build(&s, &L2, &err) == RG2_ENONFINITE && strstr(err.msg, "patch (2,1)"), "NaN: %s", err.msg);
     CHECK(rg2_locator_build(NULL, &L2, &err) == RG2_EINVAL && strstr(err.msg, "surface is NULL"), "NULL: %s", err.msg);
+    rg2_surface z = s; /* (a surface without patches in one direction) */
+    z.nu = 0;
+    CHECK(rg2_locator_build(&z, &L2, &err) == RG2_EINVAL && L2 == NULL && strstr(err.msg, "has no patches (0 x 2)"),
+          "0 x 2 patches: %s", err.msg);
+    z.nu = s.nu, z.nv = 0;
+    CHECK(rg2_locator_build(&z, &L2, &err) == RG2_EINVAL && L2 == NULL && strstr(err.msg, "has no patches (4 x 0)"),
+          "4 x 0 patches: %s", err.msg);
     rg2_surface_free(&s);
 }
 
@@ -440,6 +625,9 @@ int main(void)
     CHECK_OK(rg2t_torus(TR, Tr, 8, 6, NULL, &s, &err), &err);
     torus_case(&s, "torus", 2000, 2000);
     rg2_surface_free(&s);
+    seam_feet();
+    seam_rays(0);
+    seam_rays(1);
     sphere_band();
     special();
     examples();
