@@ -572,9 +572,9 @@ typedef struct {
     unsigned flags;  /**< rg2_surface_eval_limit's flags at (u, v) (RG2_EVAL_*) */
     double dist;     /**< closest: |p - x|; ray: t with p = o + t d (INFINITY when none) */
     double bound;    /**< proven: closest, no surface point is nearer x than bound; ray, the ray
-                          meets the surface nowhere with t < bound (tmax when it misses). bound <=
-                          dist, and normally dist - bound <= the tolerance (scaled by 1 / |d| for
-                          a ray); more when RG2_LOCATE_MAX_PIECES stopped the search. */
+                          meets the surface nowhere with t < bound (normally tmax when it misses).
+                          bound <= dist, and normally dist - bound <= the tolerance (scaled by
+                          1 / |d| for a ray); more when RG2_LOCATE_MAX_PIECES stopped the search. */
 } rg2_hit;
 
 /** Prepare a surface for picking: a tree of the patches' control boxes (about 144 bytes a patch).

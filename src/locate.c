@@ -819,13 +819,14 @@ rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double
     long taken = 0;
     while (h.n && !h.nomem) {
         piece p = heap_pop(&h);
-        if (!(p.key < best - (bp >= 0 ? ttol : 0)) || ++taken > RG2_LOCATE_MAX_PIECES) {
+        /* (before the first hit, a piece may still hold one at t = tmax exactly) */
+        if (!(bp >= 0 ? p.key < best - ttol : p.key <= best) || ++taken > RG2_LOCATE_MAX_PIECES) {
             floor = fmin(floor, p.key);
             break;
         }
         if (p.node >= 0) { /* a node of the tree: its children, or its patch */
             ray_ctx rc = {o, dn, tlen, tol, len};
-            descend(L, &h, &p, ray_key, &rc, best - (bp >= 0 ? ttol : 0), &floor);
+            descend(L, &h, &p, ray_key, &rc, bp >= 0 ? best - ttol : nextafter(best, INFINITY), &floor);
             continue;
         }
         rg2_xpatch X, q[4];
@@ -843,7 +844,9 @@ rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double
             double res = ray_newton(s, pi, pj, o, (const double(*)[3])e, &u, &v);
             rg2_surface_eval(s, pi, pj, u, v, 0, &f);
             double q0[3] = {f.p[0] - o[0], f.p[1] - o[1], f.p[2] - o[2]}, t = dot3(e[2], q0);
-            if (res <= 1e-2 * tol && t >= 0 && t < best) /* on the ray */
+            /* on the ray, not behind o (but for rounding: a ray from a surface point meets it
+             * at t = 0), not after the best (before the first: not after tmax) */
+            if (res <= 1e-2 * tol && t >= -1e-2 * ttol && (bp >= 0 ? t < best : t <= best))
                 best = t, bp = p.patch, bu = u, bv = v;
         }
         if (!(diag > tol)) { /* within the tolerance of the ray: not split again. Its centre is a
@@ -863,7 +866,7 @@ rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double
                 continue;
             piece ch = {fmax(p.key, fmax(0.0, c0)), -1, p.patch, c & 1 ? um : p.u0, c & 1 ? p.u1 : um,
                         c & 2 ? vm : p.v0, c & 2 ? p.v1 : vm, 1, c1, cd};
-            if (ch.key < best - (bp >= 0 ? ttol : 0))
+            if (bp >= 0 ? ch.key < best - ttol : ch.key <= best)
                 heap_push(&h, &ch);
             else
                 floor = fmin(floor, ch.key);
@@ -880,6 +883,8 @@ rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double
         hit_fill(L, bp, bu, bv, out);
         double q0[3] = {out->p[0] - o[0], out->p[1] - o[1], out->p[2] - o[2]};
         out->dist = dot3(e[2], q0);
+        if (out->dist < 0) /* (a hit at o, behind it by rounding) */
+            out->dist = 0;
         out->bound = fmin(floor, out->dist);
     } else
         out->bound = floor;

@@ -172,6 +172,15 @@ static void torus_case(const rg2_surface *s, const char *what, int queries, int 
     CHECK_OK(rg2_locator_ray(L, o, d, 0.3, &h, &err), &err);
     CHECK(h.i < 0 && h.bound == 0.3 && h.dist == INFINITY, "%s: tmax 0.3 before the hit 0.375: i %d bound %g", what,
           h.i, h.bound);
+    /* tmax exactly at the hit: the hit (0 <= t <= tmax); a ray from a surface point with
+     * tmax = 0: that point, at t = 0 (the mutation pass's defect: both were misses) */
+    CHECK_OK(rg2_locator_ray(L, o, d, Tr / 2, &h, &err), &err);
+    CHECK(h.i >= 0 && fabs(h.dist - Tr / 2) <= 1e-14, "%s: tmax = the hit's t 0.375: i %d, t %.17g, bound %.17g", what,
+          h.i, h.dist, h.bound);
+    double on_s[3] = {TR + Tr, 0, 0}, back[3] = {-1, 0, 0};
+    CHECK_OK(rg2_locator_ray(L, on_s, back, 0.0, &h, &err), &err);
+    CHECK(h.i >= 0 && h.dist == 0 && fabs(h.p[0] - (TR + Tr)) <= 1e-14, "%s: from a surface point, tmax 0: i %d, t %.17g",
+          what, h.i, h.dist);
     /* from outside, |d| = 2, tmax just past the hit: the outer equator at t = (8 - R - r) / 2 */
     double o3[3] = {8, 0, 0}, d3[3] = {-2, 0, 0};
     CHECK_OK(rg2_locator_ray(L, o3, d3, 2.4, &h, &err), &err);
@@ -544,10 +553,11 @@ static void special(void)
     CHECK_OK(rg2_locator_closest(L, c, &h, &err), &err);
     CHECK(fabs(h.dist - 1) <= 1e-15 && h.bound <= h.dist && h.bound > 0.9, "sphere centre: distance %.17g bound %.17g",
           h.dist, h.bound);
-    /* the budget's proof: docs/picking.md gives 2.5e-5 at a sphere's centre */
-    CHECK(h.dist - h.bound <= 1e-4, "sphere centre: proven only to %.3g after %d pieces", h.dist - h.bound,
+    /* docs/picking.md: at a sphere's centre the Bernstein bound (|S - x|^2 = N / W, here N = W r^2
+     * coefficient by coefficient) proves the distance exactly */
+    CHECK(h.dist - h.bound <= 1e-15, "sphere centre: proven only to %.3g (at most %d pieces)", h.dist - h.bound,
           RG2_LOCATE_MAX_PIECES);
-    printf("sphere centre (every point nearest; stopped after %d pieces): distance - 1 = %.2e, proven to %.2e\n",
+    printf("sphere centre (every point nearest; at most %d pieces): distance - 1 = %.2e, proven to %.2e\n",
            RG2_LOCATE_MAX_PIECES, h.dist - 1, h.dist - h.bound);
 
     /* refusals */
