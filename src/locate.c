@@ -118,10 +118,13 @@ static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1]
 static int unit3(double *a)
 {
     double l = sqrt(dot3(a, a));
-    if (!(l > 0) || !isfinite(l))
+    int ok = l > 0 && isfinite(l);
+    double inv = 1.0 / (ok ? l : 1.0); /* (a divisor that cannot trap, even where a compiler
+                                          computes the division ahead of the test) */
+    if (!ok)
         return 0;
     for (int k = 0; k < 3; k++)
-        a[k] /= l;
+        a[k] *= inv;
     return 1;
 }
 
@@ -497,6 +500,7 @@ static double foot(const rg2_surface *s, int pi, int pj, const double x[3], doub
                     break;
             }
         }
+        det = det > 0 ? det : 1.0; /* (positive here; the guard keeps a hoisted division harmless) */
         double du = -(C * g0 - B * g1) / det, dv = -(A * g1 - B * g0) / det;
         int better = 0;
         for (int half = 0; half < 40 && !better; half++, du *= 0.5, dv *= 0.5) {
@@ -700,7 +704,9 @@ static double ray_newton(const rg2_surface *s, int pi, int pj, const double o[3]
         best = res, bu = *u, bv = *v;
         double a = dot3(f.su, e[0]), b = dot3(f.sv, e[0]), c = dot3(f.su, e[1]), d = dot3(f.sv, e[1]);
         double det = a * d - b * c;
-        if (!(fabs(det) > 0) || !isfinite(det))
+        int ok = fabs(det) > 0 && isfinite(det);
+        det = ok ? det : 1.0; /* (a divisor that cannot trap: see unit3) */
+        if (!ok)
             break;
         double nu = fmin(1.0, fmax(0.0, *u - (d * F0 - b * F1) / det));
         double nv = fmin(1.0, fmax(0.0, *v - (a * F1 - c * F0) / det));
@@ -738,7 +744,9 @@ static int ray_box(const rg2_xpatch *X, const double o[3], const double d[3], co
     pts_box(&P, o, (const double(*)[3])f, lo, hi);
     double slo = lo[2] - m, shi = hi[2] + m;
     double sd = dot3(f[2], d); /* (P relative to o: the ray's t where it crosses the slab) */
-    if (!(fabs(sd) * 1e250 > greater(fabs(slo), fabs(shi)))) /* along the slab */
+    int across = fabs(sd) * 1e250 > greater(fabs(slo), fabs(shi));
+    sd = across ? sd : 1.0; /* (a divisor that cannot trap: see unit3) */
+    if (!across) /* along the slab */
         return slo <= 0 && shi >= 0;
     double ta = slo / sd, tb = shi / sd;
     *t0 = greater(*t0, lesser(ta, tb));
@@ -752,12 +760,14 @@ static int slab(const node *nd, const double o[3], const double dn[3], double sm
 {
     double t0 = 0, t1 = smax;
     for (int c = 0; c < 3 && t0 <= t1; c++) {
-        if (fabs(dn[c]) < 1e-200) { /* parallel to this axis (within 1e-200) */
+        int along = fabs(dn[c]) < 1e-200; /* parallel to this axis (within 1e-200) */
+        double den = along ? 1.0 : dn[c]; /* (a divisor that cannot trap: see unit3) */
+        if (along) {
             if (o[c] < nd->lo[c] - tol || o[c] > nd->hi[c] + tol)
                 return 0;
             continue;
         }
-        double ta = (nd->lo[c] - tol - o[c]) / dn[c], tb = (nd->hi[c] + tol - o[c]) / dn[c];
+        double ta = (nd->lo[c] - tol - o[c]) / den, tb = (nd->hi[c] + tol - o[c]) / den;
         t0 = greater(t0, lesser(ta, tb));
         t1 = lesser(t1, greater(ta, tb));
     }
@@ -792,7 +802,9 @@ rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double
         return rg2__fail(err, RG2_EDOMAIN, "rg2_locator_ray: tmax is %g; it must be >= 0 (INFINITY for no limit)",
                          tmax);
     double dd = dot3(d, d), e[3][3];
-    if (!(dd > 0) || !isfinite(dd))
+    int dok = dd > 0 && isfinite(dd);
+    double idd = 1.0 / (dok ? dd : 1.0); /* (a divisor that cannot trap: see unit3) */
+    if (!dok)
         return rg2__fail(err, RG2_EDOMAIN, "rg2_locator_ray: the direction d = (%g, %g, %g) has no length", d[0],
                          d[1], d[2]);
     /* the frame: e[0], e[1] unit and across the ray, e[2] = d / |d|^2 */
@@ -804,13 +816,15 @@ rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double
     unit3(e[0]);
     cross3(dn, e[0], e[1]);
     for (int k = 0; k < 3; k++)
-        e[2][k] = d[k] / dd;
+        e[2][k] = d[k] * idd;
     const rg2_surface *s = L->s;
     double len = sqrt(dd), tol = 1e-10 * (L->diag + dist3(o, L->centre)), ttol = tol / len;
     double best = tmax, bu = 0, bv = 0, floor = tmax, near_t = INFINITY, nu = 0, nv = 0;
     int bp = -1, np = -1;
     heap h = {0};
-    double tlen = len > 1 && tmax > DBL_MAX / len ? INFINITY : tmax * len; /* (tmax along dn) */
+    /* tmax along dn; past half the largest double, no limit (the division cannot overflow, even
+     * computed ahead of a test: its divisor is at least 1) */
+    double tlen = tmax > 0.5 * (DBL_MAX / fmax(len, 1.0)) ? INFINITY : tmax * len;
     double t0;
     if (slab(L->tree, o, dn, tlen, tol, &t0)) {
         piece root = {t0 / len, 0, 0, 0, 1, 0, 1, 0, 0, 0};
