@@ -50,8 +50,11 @@ static volatile double rg2f_sink;
 /* Picking (src/locate.c): a nearest point and a first ray hit from outside the control box. A
  * refusal names a weight <= 0; a hit lies on the surface side of its bound, on its ray (within
  * the stated tolerance), and no farther than any patch corner (a point of the surface). */
+extern long rg2__locate_max_pieces; /* (src/internal.h) */
+
 static void rg2f_check_picking(const rg2_surface *s, const char *what)
 {
+    rg2__locate_max_pieces = 2000; /* (a degenerate surface stops early, with its bound) */
     rg2_locator *L = (rg2_locator *)&rg2f_sink; /* must be replaced by NULL on failure */
     rg2_error err;
     rg2_status st = rg2_locator_build(s, &L, &err);
@@ -87,7 +90,9 @@ static void rg2f_check_picking(const rg2_surface *s, const char *what)
                 rg2_surface_eval(s, k / s->nv, k % s->nv, q & 1, q >> 1, 0, &e);
                 double g = sqrt((e.p[0] - x[0]) * (e.p[0] - x[0]) + (e.p[1] - x[1]) * (e.p[1] - x[1]) +
                                 (e.p[2] - x[2]) * (e.p[2] - x[2]));
-                if (g < h.bound - 1e-12 * (g + size) || g < h.dist - tol)
+                /* no corner nearer than the bound; none nearer than the answer by more than the
+                 * tolerance where the search was not stopped early */
+                if (g < h.bound - 1e-12 * (g + size) || (h.dist - h.bound <= tol && g < h.dist - tol))
                     rg2f_violation("%s: nearest point %.17g away (bound %.17g, tolerance %.3g), but patch %d's "
                                    "corner %d is %.17g away", what, h.dist, h.bound, tol, k, q, g);
             }

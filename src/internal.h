@@ -53,6 +53,10 @@
  * than the 1e-10 the library states. Arcs up to pi (exclusive) are exact to the last double. */
 #define RG2_MIN_ARC 5e-3
 
+/* Pieces a picking query takes at most (src/locate.c): RG2_LOCATE_MAX_PIECES; the fuzz harness
+ * lowers it, so that a degenerate input does not slow the fuzzing of everything else. */
+extern long rg2__locate_max_pieces;
+
 /* Fill err (if not NULL) with code and a printf-style message; returns code. */
 rg2_status rg2__fail(rg2_error *err, rg2_status code, const char *fmt, ...)
 #if defined(__GNUC__)

@@ -50,6 +50,8 @@ typedef struct {
     int i0, i1, j0, j1, kid;
 } node;
 
+long rg2__locate_max_pieces = RG2_LOCATE_MAX_PIECES; /* (the fuzz harness lowers it) */
+
 struct rg2_locator {
     const rg2_surface *s;
     size_t n;    /* patches */
@@ -298,9 +300,18 @@ static double closest_bound(const points *P, const double x[3], double *size)
     static const double zero[3] = {0, 0, 0};
     double lo[3], hi[3], e[3][3];
     if (piece_frame(P, e)) {
-        pts_box(P, x, (const double(*)[3])e, lo, hi);
-        *size = box_diag(lo, hi);
-        return box_dist(lo, hi, zero);
+        /* a distance measured along e is a lower bound only as far as e is orthonormal: for a
+         * Gram matrix within g of the identity, |E y| <= sqrt(1 + 3 g) |y| (a piece with nearly
+         * parallel sides leaves its frame's rounding far above the last bit) */
+        double g = 0;
+        for (int a = 0; a < 3; a++)
+            for (int b = a; b < 3; b++)
+                g = greater(g, fabs(dot3(e[a], e[b]) - (a == b)));
+        if (g < 1e-3) {
+            pts_box(P, x, (const double(*)[3])e, lo, hi);
+            *size = box_diag(lo, hi);
+            return box_dist(lo, hi, zero) / sqrt(1 + 3 * g + 4 * DBL_EPSILON);
+        }
     }
     pts_box(P, zero, NULL, lo, hi);
     *size = box_diag(lo, hi);
@@ -622,7 +633,7 @@ rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit 
     long taken = 0;
     while (h.n && !h.nomem) {
         piece p = heap_pop(&h);
-        if (!(p.key < best - tol) || ++taken > RG2_LOCATE_MAX_PIECES) {
+        if (!(p.key < best - tol) || ++taken > rg2__locate_max_pieces) {
             floor = fmin(floor, p.key);
             break;
         }
@@ -834,7 +845,7 @@ rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double
     while (h.n && !h.nomem) {
         piece p = heap_pop(&h);
         /* (before the first hit, a piece may still hold one at t = tmax exactly) */
-        if (!(bp >= 0 ? p.key < best - ttol : p.key <= best) || ++taken > RG2_LOCATE_MAX_PIECES) {
+        if (!(bp >= 0 ? p.key < best - ttol : p.key <= best) || ++taken > rg2__locate_max_pieces) {
             floor = fmin(floor, p.key);
             break;
         }
