@@ -555,9 +555,9 @@ RG2_API double rg2_eval_normal_curvature(const rg2_eval *e, double a, double c);
 /* ===================================================================================== */
 
 /** Pieces one query takes at most (its time is bounded: about 0.1 s): past it the search stops
- *  with the best point so far and what it proved (rg2_hit.bound). Reached only where a whole
- *  region is equally good, such as a sphere's centre (every point is closest) or a ray along a
- *  surface line. */
+ *  with the best point so far and what it proved (rg2_hit.bound). Only a query that a whole
+ *  region answers nearly equally well comes near it (a point on a torus's axis: 16 463 pieces;
+ *  at a sphere's centre the bounds prove the distance exactly after 23). */
 #define RG2_LOCATE_MAX_PIECES 50000
 
 typedef struct rg2_locator rg2_locator;
@@ -587,7 +587,8 @@ RG2_API void rg2_locator_free(rg2_locator *L);
  *  A nearest point inside a patch has p - x along the normal; on a patch side or corner (the
  *  surface's border, or where two patches' nearest points meet) it need not. Cost: a descent of
  *  the locator's tree of patch boxes plus the subdivision near the answer (about 45 us on a
- *  torus of 48 patches, 130 us on one of 40 000; docs/picking.md). @return RG2_EINVAL (NULL), RG2_ENONFINITE (x), RG2_ENOMEM. */
+ *  torus of 48 patches, 130 us on one of 40 000; docs/picking.md).
+ *  @return RG2_EINVAL (NULL), RG2_ENONFINITE (x), RG2_ENOMEM. */
 RG2_API rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit *out, rg2_error *err);
 /** The first point where the ray o + t d, 0 <= t <= tmax, meets the surface (out->i = -1 when it
  *  does not); d need not be unit (t is in units of d). tmax = INFINITY for no limit. About 5 us

@@ -24,8 +24,10 @@
  *   (closest: the Newton step of |S - x|^2 kept in the square, a side where the distance falls
  *   outward holding its parameter, halved until the distance drops, and carried into the
  *   neighbouring patch when it ends on a shared side; ray: the two residuals across the ray, as
- *   the renderer does per pixel); then the piece is split in four and the quarters whose bounds can still beat the best by more than the tolerance go back in
- *   the heap. The search ends when the heap's smallest bound is within the tolerance of the best.
+ *   the renderer does per pixel); then the piece is split in four and the quarters whose
+ *   bounds can still beat the best by more than the tolerance go back in the heap. A frame
+ *   box's distance is divided by sqrt(1 + 3 g), g the frame's departure from orthonormal (a
+ *   piece with nearly parallel sides). The search ends when the heap's smallest bound is within the tolerance of the best.
  *   What stays certain is reported: bound, a distance (a ray parameter) below which no point
  *   of the surface lies (meets the ray); normally within the tolerance of the answer.
  *   Tolerance: 1e-10 of (the surface's box diagonal + the query point's distance from the box
