@@ -56,6 +56,12 @@
 /* Pieces a picking query takes at most (src/locate.c): RG2_LOCATE_MAX_PIECES; the fuzz harness
  * lowers it, so that a degenerate input does not slow the fuzzing of everything else. */
 extern long rg2__locate_max_pieces;
+/* The nearest-point search's convexity certificate (locate.c) on patch `patch` over
+ * [uf - r, uf + r] x [vf - r, vf + r] for the squared distance c from x: 1 if one is made, and
+ * then *bound, its lower bound of the distance over the rectangle rect = {u0, u1, v0, v1} (0
+ * where rect is not inside). For test_locate. */
+int rg2__locate_cert(const rg2_locator *L, int patch, double uf, double vf, double r, const double x[3], double c,
+                     const double rect[4], double *bound);
 
 /* Fill err (if not NULL) with code and a printf-style message; returns code. */
 rg2_status rg2__fail(rg2_error *err, rg2_status code, const char *fmt, ...)

@@ -19,6 +19,14 @@
  *   Above the patches, a tree of boxes over the patch grid (each node halves its longer index
  *   range) leads the search down to the patches near the query: the heap holds tree nodes
  *   (keyed by their box's bound) as well as pieces.
+ *   Around a nearest point found, a certificate rules a whole rectangle of its patch out at once
+ *   (half-size 1/2 in the patch's parameters, else 1/8, else 1/32; on the patch and on the
+ *   neighbours whose side or corner the point lies on): the numerator g = N - c W of
+ *   |S - x|^2 - c (c the best squared distance) shown convex there by the Bernstein coefficients
+ *   of its second derivatives lies above its tangent plane at the point, so no point of the
+ *   rectangle is nearer than the plane says (cert_make). Without it, the pieces around the
+ *   point are cut down to the tolerance, two a level (13 levels on the benchmark's torus, whose
+ *   queries took 26 patch pieces each; with it, 5).
  *   Pieces wait in a heap ordered by that bound. The smallest is taken, its centre is evaluated
  *   and, if that improves on the best so far, Newton runs from there on the whole patch
  *   (closest: the Newton step of |S - x|^2 kept in the square, a side where the distance falls
@@ -320,21 +328,19 @@ static double closest_bound(const points *P, const double x[3], double *size)
     return box_dist(lo, hi, x);
 }
 
-/* Lower bound of the distance from x to a piece from the Bernstein form of its squared distance:
- * |S - x|^2 = N / W with N = |H - x w|^2 and W = w^2 (H the homogeneous xyz, w the weight), both
- * of degree (2 du, 2 dv); where every coefficient of W is positive, N / W lies between the
- * smallest and largest of the coefficient ratios N_kl / W_kl (a weighted mean of them). Near a
- * nearest point the ratios close in on the distance with the distance's own second derivative,
- * which is small where the distance changes slowly along the surface (a point far from it). */
-static double bern_bound(const rg2_xpatch *X, const double x[3])
+enum { M2 = 2 * RG2_MAX_DEGREE + 1 }; /* (the squared distance's coefficients per direction) */
+
+static const double binom[M2][M2] = {
+    {1}, {1, 1}, {1, 2, 1}, {1, 3, 3, 1}, {1, 4, 6, 4, 1}, {1, 5, 10, 10, 5, 1}, {1, 6, 15, 20, 15, 6, 1},
+    {1, 7, 21, 35, 35, 21, 7, 1}, {1, 8, 28, 56, 70, 56, 28, 8, 1}, {1, 9, 36, 84, 126, 126, 84, 36, 9, 1},
+    {1, 10, 45, 120, 210, 252, 210, 120, 45, 10, 1}};
+
+/* N and W of a net (the weights > 0) in the Bernstein basis of degree (2 du, 2 dv), each
+ * coefficient times its binomials C(2 du, k) C(2 dv, l). */
+static void sq_dist_form(const rg2_xpatch *X, const double x[3], double N[M2][M2], double W[M2][M2])
 {
-    enum { M = 2 * RG2_MAX_DEGREE + 1 };
-    static const double binom[RG2_MAX_DEGREE * 2 + 1][RG2_MAX_DEGREE * 2 + 1] = {
-        {1}, {1, 1}, {1, 2, 1}, {1, 3, 3, 1}, {1, 4, 6, 4, 1}, {1, 5, 10, 10, 5, 1}, {1, 6, 15, 20, 15, 6, 1},
-        {1, 7, 21, 35, 35, 21, 7, 1}, {1, 8, 28, 56, 70, 56, 28, 8, 1}, {1, 9, 36, 84, 126, 126, 84, 36, 9, 1},
-        {1, 10, 45, 120, 210, 252, 210, 120, 45, 10, 1}};
     int du = X->du, dv = X->dv;
-    double q[RG2_MAX_DEGREE + 1][RG2_MAX_DEGREE + 1][4], N[M][M], W[M][M];
+    double q[RG2_MAX_DEGREE + 1][RG2_MAX_DEGREE + 1][4];
     for (int r = 0; r <= du; r++)
         for (int t = 0; t <= dv; t++) {
             double w = X->h[r][t][3], f = binom[du][r] * binom[dv][t];
@@ -353,11 +359,241 @@ static double bern_bound(const rg2_xpatch *X, const double x[3])
                     N[r + r2][t + t2] += a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
                     W[r + r2][t + t2] += a[3] * b[3];
                 }
+}
+
+/* Lower bound of the distance from x to a piece from the Bernstein form of its squared distance:
+ * |S - x|^2 = N / W with N = |H - x w|^2 and W = w^2 (H the homogeneous xyz, w the weight), both
+ * of degree (2 du, 2 dv); where every coefficient of W is positive, N / W lies between the
+ * smallest and largest of the coefficient ratios N_kl / W_kl (a weighted mean of them). Near a
+ * nearest point the ratios close in on the distance with the distance's own second derivative,
+ * which is small where the distance changes slowly along the surface (a point far from it). */
+static double bern_bound(const rg2_xpatch *X, const double x[3])
+{
+    double N[M2][M2], W[M2][M2];
+    sq_dist_form(X, x, N, W);
     double lb = INFINITY;
-    for (int k = 0; k <= 2 * du; k++)
-        for (int l = 0; l <= 2 * dv; l++) /* (the binomials of degree 2d cancel in the ratio) */
+    for (int k = 0; k <= 2 * X->du; k++)
+        for (int l = 0; l <= 2 * X->dv; l++) /* (the binomials of degree 2d cancel in the ratio) */
             lb = lesser(lb, N[k][l] / W[k][l]);
     return lb > 0 ? sqrt(lb) : 0.0;
+}
+
+/* ---------------------------------------------------------------- convexity certificates */
+
+/* Around a nearest point found, the subdivision alone would prove it only by cutting pieces
+ * down to the tolerance (two pieces a level, 13 levels at 1e-10). A certificate rules out a
+ * whole rectangle R of one patch at once. With c = best^2, g = N - c W (the numerator of
+ * |S - x|^2 - c, a polynomial of degree (2 du, 2 dv) in R's own parameters (s, t)) is convex on
+ * R where its Hessian is positive semidefinite everywhere there, which the Bernstein
+ * coefficients of its second derivatives show: g_ss >= A > 0, g_tt >= C > 0 and
+ * |g_st| <= B with A C >= B^2. Then on R, g(y) >= g(y0) + grad g(y0) . (y - y0) for the point
+ * y0 of R nearest the foot, so |S - x|^2 >= c + min(0, that) / min W over any piece inside R:
+ * near c, and the piece is ruled out. Every coefficient carries a bound of its rounding (the
+ * net's cut, x subtracted, the products and sums), which the tests of A, B, C and the linear
+ * bound take off. */
+typedef struct cert_s {
+    int patch;
+    double u0, u1, v0, v1; /* R */
+    double sf, tf;         /* the base point y0 in R's own parameters */
+    double g0, gs, gt;     /* g(y0) less its error; its gradient (in s, t) */
+    double es, et;         /* the gradient's error bounds */
+    double c, wmin;        /* c; the smallest Bernstein coefficient of W, less its error */
+} cert;
+static double cert_bound(const cert *C, const piece *p);
+
+/* p(s, t) of Bernstein coefficients b[k][l], 0 <= k <= n, 0 <= l <= m (de Casteljau). */
+static double bern2(double b[][M2], int n, int m, double s, double t)
+{
+    double row[M2];
+    for (int k = 0; k <= n; k++) {
+        double a[M2];
+        memcpy(a, b[k], (size_t)(m + 1) * sizeof a[0]);
+        for (int l = 1; l <= m; l++)
+            for (int q = 0; q <= m - l; q++)
+                a[q] = (1 - t) * a[q] + t * a[q + 1];
+        row[k] = a[0];
+    }
+    for (int l = 1; l <= n; l++)
+        for (int q = 0; q <= n - l; q++)
+            row[q] = (1 - s) * row[q] + s * row[q + 1];
+    return row[0];
+}
+
+/* A certificate over R = [uf - r, uf + r] x [vf - r, vf + r] (within the patch) based at the
+ * foot (uf, vf), for the squared distance c; 0 where g is not shown convex on R. */
+static int cert_make(const rg2_locator *L, int patch, double uf, double vf, double r, const double x[3], double c,
+                     cert *C)
+{
+    piece p = {0, -1, patch, fmax(0.0, uf - r), fmin(1.0, uf + r), fmax(0.0, vf - r), fmin(1.0, vf + r), 0, 0, 0};
+    if (!(p.u1 > p.u0 && p.v1 > p.v0))
+        return 0;
+    rg2_xpatch X;
+    piece_net(L, &p, &X);
+    int du = X.du, dv = X.dv, n = 2 * du, m = 2 * dv;
+    double G[M2][M2], W[M2][M2];
+    double amax = 0, pmax = 0, xm = fabs(x[0]) + fabs(x[1]) + fabs(x[2]);
+    for (int a = 0; a <= du; a++)
+        for (int b = 0; b <= dv; b++) {
+            double w = X.h[a][b][3], pa = 0, da = 0;
+            if (!(w > 0))
+                return 0;
+            for (int k = 0; k < 3; k++) {
+                pa += fabs(X.h[a][b][k]) / w;
+                da += fabs(X.h[a][b][k] / w - x[k]);
+            }
+            pmax = greater(pmax, pa), amax = greater(amax, da);
+        }
+    sq_dist_form(&X, x, G, W); /* (N, then G = N - c W below) */
+    /* the rounding, per unit of W's coefficient: a control point's offset from x is off by
+     * up to d (the cut of the net and the subtraction; relative to the coordinates' size), and
+     * N's products and sums by 32 eps of their size */
+    double d = 64 * DBL_EPSILON * (pmax + xm), rel = 2 * (2 * amax * d + d * d + 32 * DBL_EPSILON * (amax * amax + c));
+    double wmin = INFINITY, emax = 0, gmax = 0;
+    for (int k = 0; k <= n; k++)
+        for (int l = 0; l <= m; l++) {
+            double f = binom[n][k] * binom[m][l];
+            W[k][l] /= f;
+            G[k][l] = G[k][l] / f - c * W[k][l];
+            wmin = lesser(wmin, W[k][l]);
+            emax = greater(emax, rel * W[k][l]);
+            gmax = greater(gmax, fabs(G[k][l]));
+        }
+    wmin *= 1 - 64 * DBL_EPSILON;
+    emax += 1e-290; /* (rounding below the normal range is absolute: such a tiny g is not certified) */
+    if (!(wmin > 0) || !(gmax < 1e290) || !(emax < 1e290))
+        return 0;
+    double slack = 8 * emax + 16 * DBL_EPSILON * gmax; /* of a second difference */
+    double ass = INFINITY, att = INFINITY, bst = 0;
+    for (int k = 0; k <= n; k++)
+        for (int l = 0; l <= m; l++) {
+            if (k + 2 <= n)
+                ass = lesser(ass, G[k + 2][l] - 2 * G[k + 1][l] + G[k][l]);
+            if (l + 2 <= m)
+                att = lesser(att, G[k][l + 2] - 2 * G[k][l + 1] + G[k][l]);
+            if (k < n && l < m)
+                bst = greater(bst, fabs(G[k + 1][l + 1] - G[k + 1][l] - G[k][l + 1] + G[k][l]));
+        }
+    double A = n * (n - 1) * (ass - slack), Cc = m * (m - 1) * (att - slack), B = n * m * (bst + slack);
+    if (!(A > 0 && Cc > 0 && A * Cc > B * B * (1 + 1e-12)) || !isfinite(A * Cc))
+        return 0;
+    /* g and its gradient at the foot (its differences' Bernstein forms) */
+    double Ds[M2][M2], Dt[M2][M2];
+    for (int k = 0; k <= n; k++)
+        for (int l = 0; l <= m; l++) {
+            if (k < n)
+                Ds[k][l] = G[k + 1][l] - G[k][l];
+            if (l < m)
+                Dt[k][l] = G[k][l + 1] - G[k][l];
+        }
+    C->patch = patch;
+    C->u0 = p.u0, C->u1 = p.u1, C->v0 = p.v0, C->v1 = p.v1;
+    C->sf = (uf - p.u0) / (p.u1 - p.u0), C->tf = (vf - p.v0) / (p.v1 - p.v0);
+    C->sf = fmin(1.0, fmax(0.0, C->sf)), C->tf = fmin(1.0, fmax(0.0, C->tf));
+    double ev = (n + m + 2) * 4 * DBL_EPSILON * gmax; /* a de Casteljau evaluation's rounding */
+    C->g0 = bern2(G, n, m, C->sf, C->tf) - (emax + ev);
+    C->gs = n * bern2(Ds, n - 1, m, C->sf, C->tf);
+    C->gt = m * bern2(Dt, n, m - 1, C->sf, C->tf);
+    C->es = n * (2 * emax + 2 * ev) + 8 * DBL_EPSILON * fabs(C->gs);
+    C->et = m * (2 * emax + 2 * ev) + 8 * DBL_EPSILON * fabs(C->gt);
+    C->c = c;
+    C->wmin = wmin;
+    return 1;
+}
+
+/* The certificate's lower bound of the distance over the piece [u0, u1] x [v0, v1] of its
+ * patch (0 where the piece is not inside R). */
+static double cert_bound(const cert *C, const piece *p)
+{
+    if (!(p->u0 >= C->u0 && p->u1 <= C->u1 && p->v0 >= C->v0 && p->v1 <= C->v1))
+        return 0;
+    double hu = C->u1 - C->u0, hv = C->v1 - C->v0;
+    double sa = (p->u0 - C->u0) / hu - C->sf, sb = (p->u1 - C->u0) / hu - C->sf;
+    double ta = (p->v0 - C->v0) / hv - C->tf, tb = (p->v1 - C->v0) / hv - C->tf;
+    double lin = C->g0 + lesser(C->gs * sa, C->gs * sb) - C->es * greater(fabs(sa), fabs(sb)) +
+                 lesser(C->gt * ta, C->gt * tb) - C->et * greater(fabs(ta), fabs(tb));
+    double val = lin >= 0 ? C->c : C->c + lin / C->wmin;
+    return val > 0 ? sqrt(val) * (1 - 4 * DBL_EPSILON) : 0.0;
+}
+
+/* The foot (patch bp at (bu, bv)) as a point of patch P's closure: (*uf, *vf), or 0 where P
+ * does not hold it (P the foot's patch, or its neighbour across the side or corner it lies on). */
+static int foot_in(const rg2_surface *s, int bp, double bu, double bv, int P, double *uf, double *vf)
+{
+    int bi = bp / s->nv, bj = bp % s->nv, pi = P / s->nv, pj = P % s->nv;
+    for (int dir = 0; dir < 2; dir++) {
+        int b = dir ? bj : bi, q = dir ? pj : pi, nn = dir ? s->nv : s->nu, cl = dir ? s->closed_v : s->closed_u;
+        double t = dir ? bv : bu, *o = dir ? vf : uf;
+        if (q == b)
+            *o = t;
+        else if (t == 1 && (q == b + 1 || (cl && b == nn - 1 && q == 0)))
+            *o = 0;
+        else if (t == 0 && (q == b - 1 || (cl && b == 0 && q == nn - 1)))
+            *o = 1;
+        else
+            return 0;
+    }
+    return 1;
+}
+
+/* A query's certificates (the latest CERTS; older ones stay true, for an earlier c) and the
+ * patches tried for the latest foot. */
+enum { CERTS = 8 };
+typedef struct {
+    cert c[CERTS];
+    int n, next, tried[CERTS], ntried, version;
+} certset;
+
+/* The certificates' best lower bound of the distance over piece p (0: none covers it). */
+static double certs_bound(const certset *cs, const piece *p)
+{
+    double b = 0;
+    for (int k = 0; k < cs->n; k++)
+        if (cs->c[k].patch == p->patch)
+            b = greater(b, cert_bound(&cs->c[k], p));
+    return b;
+}
+
+/* A certificate on patch `patch` around the foot found (version counts the feet), once per foot
+ * and patch, where the foot lies on the patch: over R of half-size 1/2, else 1/8, else 1/32.
+ * Returns 1 if one was made. */
+static int certs_try(certset *cs, const rg2_locator *L, int patch, int bp, double bu, double bv, int version,
+                     const double x[3], double best)
+{
+    if (bp < 0)
+        return 0;
+    if (cs->version != version)
+        cs->version = version, cs->ntried = 0;
+    for (int k = 0; k < cs->ntried; k++)
+        if (cs->tried[k] == patch)
+            return 0;
+    if (cs->ntried == CERTS)
+        return 0;
+    cs->tried[cs->ntried++] = patch;
+    double uf, vf;
+    if (!foot_in(L->s, bp, bu, bv, patch, &uf, &vf))
+        return 0;
+    int slot = cs->n < CERTS ? cs->n : cs->next;
+    for (double r = 0.5; r > 0.01; r *= 0.25)
+        if (cert_make(L, patch, uf, vf, r, x, best * best, &cs->c[slot])) {
+            if (cs->n < CERTS)
+                cs->n++;
+            else
+                cs->next = (cs->next + 1) % CERTS;
+            return 1;
+        }
+    return 0;
+}
+
+/* (internal.h; test_locate's check of the certificates themselves) */
+int rg2__locate_cert(const rg2_locator *L, int patch, double uf, double vf, double r, const double x[3], double c,
+                     const double rect[4], double *bound)
+{
+    cert C;
+    if (!cert_make(L, patch, uf, vf, r, x, c, &C))
+        return 0;
+    piece p = {0, -1, patch, rect[0], rect[1], rect[2], rect[3], 0, 0, 0};
+    *bound = cert_bound(&C, &p);
+    return 1;
 }
 
 /* ---------------------------------------------------------------- the locator */
@@ -633,6 +869,9 @@ rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit 
     piece root = {box_dist(L->tree[0].lo, L->tree[0].hi, x), 0, 0, 0, 1, 0, 1, 0, 0, 0};
     heap_push(&h, &root);
     long taken = 0;
+    certset cs;
+    cs.n = cs.ntried = cs.next = 0, cs.version = -1;
+    int version = 0; /* counts the feet found */
     while (h.n && !h.nomem) {
         piece p = heap_pop(&h);
         if (!(p.key < best - tol) || ++taken > rg2__locate_max_pieces) {
@@ -643,6 +882,12 @@ rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit 
             descend(L, &h, &p, closest_key, x, best - tol, &floor);
             continue;
         }
+        /* ruled out by a certificate (before its centre is evaluated) */
+        double kc = fmax(p.key, certs_bound(&cs, &p));
+        if (!(kc < best - tol)) {
+            floor = fmin(floor, kc);
+            continue;
+        }
         int pi = p.patch / s->nv, pj = p.patch % s->nv;
         double u = 0.5 * (p.u0 + p.u1), v = 0.5 * (p.v0 + p.v1);
         rg2_eval e;
@@ -651,7 +896,14 @@ rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit 
             int fi = pi, fj = pj;
             double d = foot_across(s, &fi, &fj, x, &u, &v);
             if (d < best)
-                best = d, bp = fi * s->nv + fj, bu = u, bv = v;
+                best = d, bp = fi * s->nv + fj, bu = u, bv = v, version++;
+        }
+        if (certs_try(&cs, L, p.patch, bp, bu, bv, version, x, best)) {
+            kc = fmax(kc, certs_bound(&cs, &p));
+            if (!(kc < best - tol)) {
+                floor = fmin(floor, kc);
+                continue;
+            }
         }
         rg2_xpatch X, q[4];
         piece_net(L, &p, &X);
@@ -677,6 +929,8 @@ rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit 
                         c & 2 ? vm : p.v0, c & 2 ? p.v1 : vm, 1, 0, 0};
             ch.size = size_c;
             ch.key = fmax(ch.key, p.key);
+            if (ch.key < best - tol)
+                ch.key = fmax(ch.key, certs_bound(&cs, &ch));
             if (ch.key < best - tol)
                 ch.key = fmax(ch.key, bern_bound(&q[c], x));
             if (ch.key < best - tol)

@@ -13,8 +13,14 @@
  *   - the degenerate queries (a sphere's centre, a torus's core circle and axis) stop with a
  *     true answer and an honest bound (within the proof docs/picking.md gives at the budget);
  *     rays within 1e-300 of an axis, |d| != 1 with a finite tmax; and every refusal names its
- *     item (NaN and infinities, weights 0 and below, no patches in one direction). */
+ *     item (NaN and infinities, weights 0 and below, no patches in one direction);
+ *   - the convexity certificates the nearest-point search rules regions out with, by
+ *     themselves: on the torus, the degree-raised torus and every example surface, for random
+ *     points, bases, radii and levels c, a certificate's bound over a random rectangle may not
+ *     lie above the distance at any of 17 x 17 points of it; based at the true foot, it proves
+ *     the distance over its whole rectangle to half the search's tolerance. */
 #include "harness.h"
+#include "../src/internal.h" /* rg2__locate_cert: the nearest-point search's certificates */
 
 #include <math.h>
 #include <stdio.h>
@@ -628,6 +634,138 @@ static void special(void)
     rg2_surface_free(&s);
 }
 
+/* ---------------------------------------------------------------- certificates */
+
+/* One surface: certificates for random (patch, x, base, radius, c), each checked on random
+ * rectangles (inside its own, or crossing its edge: no claim then) against the distance at a
+ * 17 x 17 grid. Counts what was made and the largest excess of a bound over a sampled distance
+ * (in units of the surface's size). */
+static void cert_surface(const rg2_surface *s, const char *what, int tries, rg2t_rng *rng, int *made, int *declined,
+                         double *excess)
+{
+    rg2_error err;
+    rg2_locator *L;
+    CHECK_OK(rg2_locator_build(s, &L, &err), &err);
+    if (!L)
+        return;
+    double lo[3], hi[3];
+    rg2_surface_box(s, lo, hi);
+    double scale = dist3(lo, hi);
+    static const double radii[3] = {0.5, 0.125, 0.03125};
+    for (int q = 0; q < tries; q++) {
+        int i = rg2t_int(rng, 0, s->nu - 1), j = rg2t_int(rng, 0, s->nv - 1), kind = rg2t_int(rng, 0, 3);
+        double x[3], uf = rg2t_uniform(rng, 0, 1), vf = rg2t_uniform(rng, 0, 1), r = radii[rg2t_int(rng, 0, 2)];
+        if (kind == 3) /* a base on a side or a corner */
+            uf = rg2t_int(rng, 0, 1), vf = rg2t_int(rng, 0, 2) * 0.5;
+        for (int c = 0; c < 3; c++)
+            x[c] = rg2t_uniform(rng, lo[c] - 0.5 * (hi[c] - lo[c]), hi[c] + 0.5 * (hi[c] - lo[c]));
+        rg2_eval e;
+        rg2_surface_eval(s, i, j, uf, vf, 0, &e);
+        double c = dot(e.p, e.p) + dot(x, x) - 2 * dot(e.p, x); /* |S(base) - x|^2, or near it */
+        c = fmax(0.0, c * (kind == 1 ? rg2t_uniform(rng, 0.5, 1.5) : 1));
+        double u0 = fmax(0, uf - r), u1 = fmin(1, uf + r), v0 = fmax(0, vf - r), v1 = fmin(1, vf + r);
+        double rect[4] = {u0, u1, v0, v1}, b;
+        if (!rg2__locate_cert(L, i * s->nv + j, uf, vf, r, x, c, rect, &b)) {
+            (*declined)++;
+            continue;
+        }
+        (*made)++;
+        for (int t = 0; t < 3; t++) {
+            if (t) { /* a random rectangle inside R; or (t = 2, if R is not the whole patch) crossing its edge */
+                double a0 = rg2t_uniform(rng, u0, u1), a1 = rg2t_uniform(rng, u0, u1);
+                double b0 = rg2t_uniform(rng, v0, v1), b1 = rg2t_uniform(rng, v0, v1);
+                rect[0] = fmin(a0, a1), rect[1] = fmax(a0, a1), rect[2] = fmin(b0, b1), rect[3] = fmax(b0, b1);
+                if (t == 2 && u1 - u0 < 1) {
+                    rect[1] = u0 > 0 ? rect[1] : 1;
+                    rect[0] = u0 > 0 ? fmax(0, u0 - 0.01) : rect[0];
+                }
+                rg2__locate_cert(L, i * s->nv + j, uf, vf, r, x, c, rect, &b);
+                if (t == 2 && u1 - u0 < 1)
+                    CHECK(b == 0, "%s: a certificate over [%g, %g] claims %g for [%g, %g] in u", what, u0, u1, b,
+                          rect[0], rect[1]);
+            }
+            double dmin = INFINITY;
+            for (int a = 0; a <= 16; a++)
+                for (int bb = 0; bb <= 16; bb++) {
+                    rg2_eval f;
+                    rg2_surface_eval(s, i, j, rect[0] + (rect[1] - rect[0]) * a / 16,
+                                     rect[2] + (rect[3] - rect[2]) * bb / 16, 0, &f);
+                    dmin = fmin(dmin, dist3(f.p, x));
+                }
+            *excess = fmax(*excess, (b - dmin) / scale);
+            CHECK(b <= dmin + 1e-14 * scale, "%s patch (%d,%d): certificate bound %.17g above a distance %.17g "
+                  "(x %g %g %g, base %g %g, r %g, c %g)", what, i, j, b, dmin, x[0], x[1], x[2], uf, vf, r, c);
+        }
+    }
+    rg2_locator_free(L);
+}
+
+/* Based at the true foot on the torus, a certificate covers its rectangle to half the tolerance. */
+static void cert_torus_feet(const rg2_surface *s, rg2t_rng *rng)
+{
+    rg2_error err;
+    rg2_locator *L;
+    CHECK_OK(rg2_locator_build(s, &L, &err), &err);
+    int made = 0, n = 200;
+    double worst = 0;
+    for (int q = 0; q < n; q++) {
+        /* a foot inside patch (i, j) away from its sides, x along its normal (inside and out) */
+        double x[3] = {rg2t_uniform(rng, -4, 4), rg2t_uniform(rng, -4, 4), rg2t_uniform(rng, -1.5, 1.5)};
+        rg2_hit h;
+        CHECK_OK(rg2_locator_closest(L, x, &h, &err), &err);
+        if (h.i < 0 || h.u < 0.05 || h.u > 0.95 || h.v < 0.05 || h.v > 0.95)
+            continue;
+        double rho = hypot(x[0], x[1]), tube = hypot(rho - TR, x[2]), want = fabs(tube - Tr);
+        if (rho < 0.3 || tube < 0.3) /* (the foot well defined) */
+            continue;
+        double rect[4] = {fmax(0, h.u - 0.5), fmin(1, h.u + 0.5), fmax(0, h.v - 0.5), fmin(1, h.v + 0.5)}, b = 0;
+        if (rg2__locate_cert(L, h.i * s->nv + h.j, h.u, h.v, 0.5, x, want * want, rect, &b)) {
+            made++;
+            worst = fmax(worst, (want - b) / tolerance(s, x));
+            /* (the search rules a piece out whose bound is within the tolerance of the best) */
+            CHECK(b <= want * (1 + 1e-15) && want - b <= 0.5 * tolerance(s, x),
+                  "torus: certificate at the foot proves %.17g of %.17g", b, want);
+        }
+    }
+    CHECK(made >= 50, "torus: certificates at the foot made %d times", made);
+    printf("certificates at the torus's feet (half-size 1/2): %d made, bound within %.2f of the search's tolerance "
+           "below the distance\n",
+           made, worst);
+    rg2_locator_free(L);
+}
+
+static void certificates(void)
+{
+    rg2_error err;
+    rg2_surface s;
+    rg2t_rng rng;
+    rg2t_seed(&rng, 4242);
+    int made = 0, declined = 0;
+    double excess = -INFINITY;
+    CHECK_OK(rg2t_torus(TR, Tr, 8, 6, NULL, &s, &err), &err);
+    cert_torus_feet(&s, &rng);
+    cert_surface(&s, "torus", 400, &rng, &made, &declined, &excess);
+    rg2_surface_free(&s);
+    CHECK_OK(rg2t_torus(TR, Tr, 7, 5, NULL, &s, &err), &err);
+    CHECK_OK(rg2t_elevate_some(&s, 5, 4, 3, 1, &err), &err);
+    cert_surface(&s, "torus of degree (5, 4) in part", 400, &rng, &made, &declined, &excess);
+    rg2_surface_free(&s);
+    char *names[64];
+    int ne = rg2t_example_names(names, 64), surfaces = 0;
+    for (int k = 0; k < ne; k++) {
+        rg2_design *d = NULL;
+        CHECK_OK(rg2_design_load(names[k], &d, &err), &err);
+        for (int o = 0; d && o < rg2_design_num_surfaces(d); o++, surfaces++)
+            cert_surface(rg2_design_surface(d, o), names[k], 40, &rng, &made, &declined, &excess);
+        rg2_design_free(d);
+        free(names[k]);
+    }
+    printf("certificates: %d made, %d declined (torus, part degree (5, 4), %d example surfaces); no bound above a "
+           "sampled distance (at most %.2e of the size below none)\n",
+           made, declined, surfaces, excess);
+    CHECK(made > 150 && declined > 100, "certificates: %d made, %d declined: the check needs both", made, declined);
+}
+
 int main(void)
 {
     rg2_error err;
@@ -641,5 +779,6 @@ int main(void)
     sphere_band();
     special();
     examples();
+    certificates();
     return rg2t_done("test_locate");
 }
