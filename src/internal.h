@@ -62,6 +62,10 @@ extern long rg2__locate_max_pieces;
  * where rect is not inside). For test_locate. */
 int rg2__locate_cert(const rg2_locator *L, int patch, double uf, double vf, double r, const double x[3], double c,
                      const double rect[4], double *bound);
+/* The same for the ray o + t d (d != 0) based at (uf, vf): *bound is the smallest t where the ray
+ * can meet the rectangle (INFINITY: nowhere). */
+int rg2__locate_ray_cert(const rg2_locator *L, int patch, double uf, double vf, double r, const double o[3],
+                         const double d[3], const double rect[4], double *bound);
 
 /* Fill err (if not NULL) with code and a printf-style message; returns code. */
 rg2_status rg2__fail(rg2_error *err, rg2_status code, const char *fmt, ...)

@@ -24,9 +24,12 @@
  *   neighbours whose side or corner the point lies on): the numerator g = N - c W of
  *   |S - x|^2 - c (c the best squared distance) shown convex there by the Bernstein coefficients
  *   of its second derivatives lies above its tangent plane at the point, so no point of the
- *   rectangle is nearer than the plane says (cert_make). Without it, the pieces around the
- *   point are cut down to the tolerance, two a level (13 levels on the benchmark's torus, whose
- *   queries took 26 patch pieces each; with it, 5).
+ *   rectangle is nearer than the plane says (cert_make). A ray's hit has its own: the ray's two
+ *   residuals across it, shown one-to-one on the rectangle by the Bernstein ranges of their
+ *   derivatives (every determinant away from 0), vanish nowhere there but within a small
+ *   rectangle Q around the hit, whose box bounds t (ray_cert_make). Without them, the pieces
+ *   around the answer are cut down to the tolerance, one or two a level (13 levels on the
+ *   benchmark's torus: a nearest point took 26 patch pieces, now 5; a ray 14.5, now 2.6).
  *   Pieces wait in a heap ordered by that bound. The smallest is taken, its centre is evaluated
  *   and, if that improves on the best so far, Newton runs from there on the whole patch
  *   (closest: the Newton step of |S - x|^2 kept in the square, a side where the distance falls
@@ -391,15 +394,16 @@ static double bern_bound(const rg2_xpatch *X, const double x[3])
  * near c, and the piece is ruled out. Every coefficient carries a bound of its rounding (the
  * net's cut, x subtracted, the products and sums), which the tests of A, B, C and the linear
  * bound take off. */
-typedef struct cert_s {
-    int patch;
+typedef struct {
+    int patch, ray;        /* ray: a ray's certificate (ray_cert_make) */
     double u0, u1, v0, v1; /* R */
     double sf, tf;         /* the base point y0 in R's own parameters */
     double g0, gs, gt;     /* g(y0) less its error; its gradient (in s, t) */
     double es, et;         /* the gradient's error bounds */
     double c, wmin;        /* c; the smallest Bernstein coefficient of W, less its error */
+    double q0, q1, r0, r1; /* ray: the only part of R where the ray can meet the patch, Q */
+    double tq;             /* ray: the smallest t where the ray can meet Q (INFINITY: nowhere) */
 } cert;
-static double cert_bound(const cert *C, const piece *p);
 
 /* p(s, t) of Bernstein coefficients b[k][l], 0 <= k <= n, 0 <= l <= m (de Casteljau). */
 static double bern2(double b[][M2], int n, int m, double s, double t)
@@ -485,7 +489,7 @@ static int cert_make(const rg2_locator *L, int patch, double uf, double vf, doub
             if (l < m)
                 Dt[k][l] = G[k][l + 1] - G[k][l];
         }
-    C->patch = patch;
+    C->patch = patch, C->ray = 0;
     C->u0 = p.u0, C->u1 = p.u1, C->v0 = p.v0, C->v1 = p.v1;
     C->sf = (uf - p.u0) / (p.u1 - p.u0), C->tf = (vf - p.v0) / (p.v1 - p.v0);
     C->sf = fmin(1.0, fmax(0.0, C->sf)), C->tf = fmin(1.0, fmax(0.0, C->tf));
@@ -506,6 +510,8 @@ static double cert_bound(const cert *C, const piece *p)
 {
     if (!(p->u0 >= C->u0 && p->u1 <= C->u1 && p->v0 >= C->v0 && p->v1 <= C->v1))
         return 0;
+    if (C->ray) /* (a ray's: t from Q, where the piece reaches it; elsewhere in R no hit) */
+        return p->u0 <= C->q1 && p->u1 >= C->q0 && p->v0 <= C->r1 && p->v1 >= C->r0 ? C->tq : INFINITY;
     double hu = C->u1 - C->u0, hv = C->v1 - C->v0;
     double sa = (p->u0 - C->u0) / hu - C->sf, sb = (p->u1 - C->u0) / hu - C->sf;
     double ta = (p->v0 - C->v0) / hv - C->tf, tb = (p->v1 - C->v0) / hv - C->tf;
@@ -553,11 +559,21 @@ static double certs_bound(const certset *cs, const piece *p)
     return b;
 }
 
-/* A certificate on patch `patch` around the foot found (version counts the feet), once per foot
- * and patch, where the foot lies on the patch: over R of half-size 1/2, else 1/8, else 1/32.
- * Returns 1 if one was made. */
+/* What a certificate is made for: the point x and the squared distance c (closest), or the ray
+ * o + t d with its frame e (ray). */
+typedef struct {
+    int ray;
+    const double *x, *o, *d;
+    double c;
+    const double (*e)[3];
+} query;
+static int ray_cert_make(const rg2_locator *L, int patch, double uf, double vf, double r, const query *qy, cert *C);
+
+/* A certificate on patch `patch` around the nearest point or the hit found (version counts those
+ * found), once per point and patch, where the point lies on the patch: over R of half-size 1/2,
+ * else 1/8, else 1/32. Returns 1 if one was made. */
 static int certs_try(certset *cs, const rg2_locator *L, int patch, int bp, double bu, double bv, int version,
-                     const double x[3], double best)
+                     const query *qy)
 {
     if (bp < 0)
         return 0;
@@ -574,7 +590,8 @@ static int certs_try(certset *cs, const rg2_locator *L, int patch, int bp, doubl
         return 0;
     int slot = cs->n < CERTS ? cs->n : cs->next;
     for (double r = 0.5; r > 0.01; r *= 0.25)
-        if (cert_make(L, patch, uf, vf, r, x, best * best, &cs->c[slot])) {
+        if (qy->ray ? ray_cert_make(L, patch, uf, vf, r, qy, &cs->c[slot])
+                    : cert_make(L, patch, uf, vf, r, qy->x, qy->c, &cs->c[slot])) {
             if (cs->n < CERTS)
                 cs->n++;
             else
@@ -898,7 +915,8 @@ rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit 
             if (d < best)
                 best = d, bp = fi * s->nv + fj, bu = u, bv = v, version++;
         }
-        if (certs_try(&cs, L, p.patch, bp, bu, bv, version, x, best)) {
+        query qy = {0, x, NULL, NULL, best * best, NULL};
+        if (certs_try(&cs, L, p.patch, bp, bu, bv, version, &qy)) {
             kc = fmax(kc, certs_bound(&cs, &p));
             if (!(kc < best - tol)) {
                 floor = fmin(floor, kc);
@@ -950,6 +968,21 @@ rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit 
     out->dist = dist3(out->p, x);
     out->bound = fmin(floor, out->dist);
     return RG2_OK;
+}
+
+/* The ray's frame: e[0], e[1] unit and across the ray, e[2] = d / |d|^2 (idd = 1 / |d|^2); dn
+ * (d on entry) made unit. */
+static void ray_frame(const double d[3], double idd, double dn[3], double e[3][3])
+{
+    int m = fabs(d[0]) <= fabs(d[1]) && fabs(d[0]) <= fabs(d[2]) ? 0 : fabs(d[1]) <= fabs(d[2]) ? 1 : 2;
+    double a[3] = {0, 0, 0};
+    a[m] = 1;
+    unit3(dn);
+    cross3(dn, a, e[0]);
+    unit3(e[0]);
+    cross3(dn, e[0], e[1]);
+    for (int k = 0; k < 3; k++)
+        e[2][k] = d[k] * idd;
 }
 
 /* Newton on the two residuals across the ray (e1 . (S - o), e2 . (S - o)) over patch (pi, pj)'s
@@ -1021,6 +1054,100 @@ static int ray_box(const rg2_xpatch *X, const double o[3], const double d[3], co
     return *t0 <= *t1;
 }
 
+/* A ray's certificate over R = [uf - r, uf + r] x [vf - r, vf + r] (within the patch), based at a
+ * hit (uf, vf): F = (e0 . (H - o w), e1 . (H - o w)), zero where the patch meets the ray's line,
+ * is one-to-one on R where every matrix of the Bernstein ranges of its partial derivatives has
+ * a determinant away from 0 (F(y) - F(y0) = J (y - y0), J within those ranges); then the only
+ * zero in R lies within |J^-1| |F(y0)| of y0, in Q, and no point of R outside Q meets the ray.
+ * The coefficients carry the rounding of the net's cut and of o w. 0 where F is not shown
+ * one-to-one, or Q is not small. */
+static int ray_cert_make(const rg2_locator *L, int patch, double uf, double vf, double r, const query *qy, cert *C)
+{
+    piece p = {0, -1, patch, fmax(0.0, uf - r), fmin(1.0, uf + r), fmax(0.0, vf - r), fmin(1.0, vf + r), 0, 0, 0};
+    if (!(p.u1 > p.u0 && p.v1 > p.v0))
+        return 0;
+    rg2_xpatch X;
+    piece_net(L, &p, &X);
+    int du = X.du, dv = X.dv;
+    const double *o = qy->o, (*e)[3] = qy->e;
+    double F[2][M2][M2], om = fabs(o[0]) + fabs(o[1]) + fabs(o[2]), errf = 0, fmag = 0;
+    for (int a = 0; a <= du; a++)
+        for (int b = 0; b <= dv; b++) {
+            const double *h = X.h[a][b];
+            if (!(h[3] > 0))
+                return 0;
+            double q[3] = {h[0] - o[0] * h[3], h[1] - o[1] * h[3], h[2] - o[2] * h[3]};
+            errf = greater(errf, 64 * DBL_EPSILON * (fabs(h[0]) + fabs(h[1]) + fabs(h[2]) + om * h[3]));
+            for (int k = 0; k < 2; k++) {
+                F[k][a][b] = dot3(e[k], q);
+                fmag = greater(fmag, fabs(F[k][a][b]));
+            }
+        }
+    /* the ranges of F0_s, F0_t, F1_s, F1_t over R (Bernstein coefficients of the derivatives) */
+    double lo[4], hi[4];
+    for (int k = 0; k < 4; k++) {
+        int f = k / 2, alongs = k % 2 == 0, n = alongs ? du : dv;
+        lo[k] = INFINITY, hi[k] = -INFINITY;
+        for (int a = 0; a + alongs <= du; a++)
+            for (int b = 0; b + !alongs <= dv; b++) {
+                double c = n * (F[f][a + alongs][b + !alongs] - F[f][a][b]);
+                lo[k] = lesser(lo[k], c), hi[k] = greater(hi[k], c);
+            }
+        double m = n * (2 * errf + 4 * DBL_EPSILON * fmag);
+        lo[k] -= m, hi[k] += m;
+    }
+    /* det J = F0_s F1_t - F0_t F1_s over the ranges (the entries independent) */
+    double ad[4] = {lo[0] * lo[3], lo[0] * hi[3], hi[0] * lo[3], hi[0] * hi[3]};
+    double bc[4] = {lo[1] * lo[2], lo[1] * hi[2], hi[1] * lo[2], hi[1] * hi[2]};
+    double adlo = INFINITY, adhi = -INFINITY, bclo = INFINITY, bchi = -INFINITY;
+    for (int k = 0; k < 4; k++) {
+        adlo = lesser(adlo, ad[k]), adhi = greater(adhi, ad[k]);
+        bclo = lesser(bclo, bc[k]), bchi = greater(bchi, bc[k]);
+    }
+    double dlo = adlo - bchi, dhi = adhi - bclo, rnd = 8 * DBL_EPSILON * (fabs(adlo) + fabs(adhi) + fabs(bclo) + fabs(bchi));
+    double dmin = dlo > 0 ? dlo - rnd : dhi < 0 ? -dhi - rnd : 0;
+    if (!(dmin > 0) || !isfinite(dmin + fmag))
+        return 0;
+    /* |y0 - hit| <= |adj J|_inf |F(y0)|_inf / |det J| (in R's own parameters) */
+    double sf = fmin(1.0, fmax(0.0, (uf - p.u0) / (p.u1 - p.u0))), tf = fmin(1.0, fmax(0.0, (vf - p.v0) / (p.v1 - p.v0)));
+    double ev = errf + (du + dv + 2) * 4 * DBL_EPSILON * fmag;
+    double f0 = fabs(bern2(F[0], du, dv, sf, tf)) + ev, f1 = fabs(bern2(F[1], du, dv, sf, tf)) + ev;
+    double mag[4];
+    for (int k = 0; k < 4; k++)
+        mag[k] = greater(fabs(lo[k]), fabs(hi[k]));
+    double rho = greater(mag[3] + mag[1], mag[2] + mag[0]) * greater(f0, f1) / dmin * (1 + 1e-9) + 1e-15;
+    if (!(rho < 0.125))
+        return 0;
+    C->patch = patch, C->ray = 1;
+    C->u0 = p.u0, C->u1 = p.u1, C->v0 = p.v0, C->v1 = p.v1;
+    C->q0 = fmax(p.u0, uf - rho * (p.u1 - p.u0)), C->q1 = fmin(p.u1, uf + rho * (p.u1 - p.u0));
+    C->r0 = fmax(p.v0, vf - rho * (p.v1 - p.v0)), C->r1 = fmin(p.v1, vf + rho * (p.v1 - p.v0));
+    piece pq = {0, -1, patch, C->q0, C->q1, C->r0, C->r1, 0, 0, 0};
+    double t0, t1, diag;
+    piece_net(L, &pq, &X);
+    C->tq = ray_box(&X, o, qy->d, e, &t0, &t1, &diag) && t1 >= 0 ? fmax(0.0, t0) : INFINITY;
+    return 1;
+}
+
+/* (internal.h; test_locate's check of the rays' certificates) */
+int rg2__locate_ray_cert(const rg2_locator *L, int patch, double uf, double vf, double r, const double o[3],
+                         const double d[3], const double rect[4], double *bound)
+{
+    double e[3][3], dn[3] = {d[0], d[1], d[2]}, dd = dot3(d, d);
+    int ok = dd > 0 && isfinite(dd);
+    double idd = 1.0 / (ok ? dd : 1.0); /* (see unit3) */
+    if (!ok)
+        return 0;
+    ray_frame(d, idd, dn, e);
+    query qy = {1, NULL, o, d, 0, (const double(*)[3])e};
+    cert C;
+    if (!ray_cert_make(L, patch, uf, vf, r, &qy, &C))
+        return 0;
+    piece p = {0, -1, patch, rect[0], rect[1], rect[2], rect[3], 0, 0, 0};
+    *bound = cert_bound(&C, &p);
+    return 1;
+}
+
 /* Slab test of a node's box, widened by tol, against the ray o + s dn (dn unit), 0 <= s <= smax
  * (a filter: the ray frame test of the pieces decides). 1 and *s0, where the ray enters it. */
 static int slab(const node *nd, const double o[3], const double dn[3], double smax, double tol, double *s0)
@@ -1074,16 +1201,8 @@ rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double
     if (!dok)
         return rg2__fail(err, RG2_EDOMAIN, "rg2_locator_ray: the direction d = (%g, %g, %g) has no length", d[0],
                          d[1], d[2]);
-    /* the frame: e[0], e[1] unit and across the ray, e[2] = d / |d|^2 */
-    int m = fabs(d[0]) <= fabs(d[1]) && fabs(d[0]) <= fabs(d[2]) ? 0 : fabs(d[1]) <= fabs(d[2]) ? 1 : 2;
-    double a[3] = {0, 0, 0}, dn[3] = {d[0], d[1], d[2]};
-    a[m] = 1;
-    unit3(dn);
-    cross3(dn, a, e[0]);
-    unit3(e[0]);
-    cross3(dn, e[0], e[1]);
-    for (int k = 0; k < 3; k++)
-        e[2][k] = d[k] * idd;
+    double dn[3] = {d[0], d[1], d[2]};
+    ray_frame(d, idd, dn, e);
     const rg2_surface *s = L->s;
     double len = sqrt(dd), tol = 1e-10 * (L->diag + dist3(o, L->centre)), ttol = tol / len;
     double best = tmax, bu = 0, bv = 0, floor = tmax, near_t = INFINITY, nu = 0, nv = 0;
@@ -1098,6 +1217,10 @@ rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double
         heap_push(&h, &root);
     }
     long taken = 0;
+    certset cs;
+    cs.n = cs.ntried = cs.next = 0, cs.version = -1;
+    int version = 0; /* counts the hits found */
+    query qy = {1, NULL, o, d, 0, (const double(*)[3])e};
     while (h.n && !h.nomem) {
         piece p = heap_pop(&h);
         /* (before the first hit, a piece may still hold one at t = tmax exactly) */
@@ -1108,6 +1231,12 @@ rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double
         if (p.node >= 0) { /* a node of the tree: its children, or its patch */
             ray_ctx rc = {o, dn, tlen, tol, len};
             descend(L, &h, &p, ray_key, &rc, bp >= 0 ? best - ttol : nextafter(best, INFINITY), &floor);
+            continue;
+        }
+        /* ruled out by a certificate (no hit of its patch's rectangle before that) */
+        double kc = bp >= 0 ? fmax(p.key, certs_bound(&cs, &p)) : p.key;
+        if (!(bp >= 0 ? kc < best - ttol : kc <= best)) {
+            floor = fmin(floor, kc);
             continue;
         }
         rg2_xpatch X, q[4];
@@ -1128,7 +1257,14 @@ rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double
             /* on the ray, not behind o (but for rounding: a ray from a surface point meets it
              * at t = 0), not after the best (before the first: not after tmax) */
             if (res <= 1e-2 * tol && t >= -1e-2 * ttol && (bp >= 0 ? t < best : t <= best))
-                best = t, bp = p.patch, bu = u, bv = v;
+                best = t, bp = p.patch, bu = u, bv = v, version++;
+        }
+        if (certs_try(&cs, L, p.patch, bp, bu, bv, version, &qy)) {
+            kc = fmax(kc, certs_bound(&cs, &p));
+            if (!(kc < best - ttol)) {
+                floor = fmin(floor, kc);
+                continue;
+            }
         }
         if (!(diag > tol)) { /* within the tolerance of the ray: not split again. Its centre is a
                                 hit within the tolerance, kept in case Newton finds none */
@@ -1147,6 +1283,8 @@ rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double
                 continue;
             piece ch = {fmax(p.key, fmax(0.0, c0)), -1, p.patch, c & 1 ? um : p.u0, c & 1 ? p.u1 : um,
                         c & 2 ? vm : p.v0, c & 2 ? p.v1 : vm, 1, c1, cd};
+            if (bp >= 0 && ch.key < best - ttol)
+                ch.key = fmax(ch.key, certs_bound(&cs, &ch));
             if (bp >= 0 ? ch.key < best - ttol : ch.key <= best)
                 heap_push(&h, &ch);
             else

@@ -18,7 +18,10 @@
  *     themselves: on the torus, the degree-raised torus and every example surface, for random
  *     points, bases, radii and levels c, a certificate's bound over a random rectangle may not
  *     lie above the distance at any of 17 x 17 points of it; based at the true foot, it proves
- *     the distance over its whole rectangle to half the search's tolerance. */
+ *     the distance over its whole rectangle to half the search's tolerance. The rays' likewise:
+ *     for rays through one or two chosen points of a patch, no rectangle holding such a point
+ *     may be ruled out before its t; at a torus hit, the rectangle is proven to half the
+ *     tolerance and the rest of it holds no hit. */
 #include "harness.h"
 #include "../src/internal.h" /* rg2__locate_cert: the nearest-point search's certificates */
 
@@ -734,21 +737,134 @@ static void cert_torus_feet(const rg2_surface *s, rg2t_rng *rng)
     rg2_locator_free(L);
 }
 
-static void certificates(void)
+/* A ray's certificate may not rule out a hit that is there: rays through a surface point y0 at
+ * t0 (kind 0: a random direction, the base near y0; kind 1: through a second point y1 of the
+ * patch too, at t0 + 1, the base at y1), on random rectangles holding y0 (or y1). Counts
+ * the certificates made and declined, and the largest excess of a bound over the hit's t (in
+ * units of the tolerance). */
+static void ray_cert_surface(const rg2_surface *s, const char *what, int tries, rg2t_rng *rng, int *made,
+                             int *declined, double *excess)
+{
+    rg2_error err;
+    rg2_locator *L;
+    CHECK_OK(rg2_locator_build(s, &L, &err), &err);
+    if (!L)
+        return;
+    static const double radii[3] = {0.5, 0.125, 0.03125};
+    for (int q = 0; q < tries; q++) {
+        int i = rg2t_int(rng, 0, s->nu - 1), j = rg2t_int(rng, 0, s->nv - 1), kind = rg2t_int(rng, 0, 1);
+        double y[2][2] = {{rg2t_uniform(rng, 0, 1), rg2t_uniform(rng, 0, 1)}, {0, 0}}, r = radii[rg2t_int(rng, 0, 2)];
+        double P[2][3], d[3], o[3], t0 = rg2t_uniform(rng, 0.5, 3), base[2];
+        rg2_eval e;
+        rg2_surface_eval(s, i, j, y[0][0], y[0][1], 0, &e);
+        memcpy(P[0], e.p, sizeof P[0]);
+        if (kind == 0) {
+            for (int c = 0; c < 3; c++)
+                d[c] = rg2t_uniform(rng, -1, 1);
+            double jit = rg2t_int(rng, 0, 2) * 1e-3 * r; /* (0: the base at the hit) */
+            base[0] = fmin(1, fmax(0, y[0][0] + rg2t_uniform(rng, -jit, jit)));
+            base[1] = fmin(1, fmax(0, y[0][1] + rg2t_uniform(rng, -jit, jit)));
+        } else {
+            for (int k = 0; k < 2; k++)
+                y[1][k] = fmin(1, fmax(0, y[0][k] + rg2t_uniform(rng, -0.5 * r, 0.5 * r)));
+            rg2_surface_eval(s, i, j, y[1][0], y[1][1], 0, &e);
+            memcpy(P[1], e.p, sizeof P[1]);
+            for (int c = 0; c < 3; c++)
+                d[c] = P[1][c] - P[0][c];
+            base[0] = y[1][0], base[1] = y[1][1];
+        }
+        double dd = sqrt(dot(d, d));
+        if (!(dd > 1e-9))
+            continue;
+        for (int c = 0; c < 3; c++)
+            o[c] = P[0][c] - t0 * d[c];
+        double rect[4] = {fmax(0, base[0] - r), fmin(1, base[0] + r), fmax(0, base[1] - r), fmin(1, base[1] + r)}, b;
+        if (!rg2__locate_ray_cert(L, i * s->nv + j, base[0], base[1], r, o, d, rect, &b)) {
+            (*declined)++;
+            continue;
+        }
+        (*made)++;
+        double tol = tolerance(s, o) / dd; /* (in t) */
+        for (int h = 0; h <= kind; h++) {
+            double th = t0 + h; /* the hit at y[h] */
+            for (int t = 0; t < 3; t++) {
+                /* a rectangle holding y[h]: a point, a random one, R itself */
+                double w = t == 0 ? 0 : rg2t_uniform(rng, 0, r);
+                double rr[4] = {y[h][0] - w, y[h][0] + w, y[h][1] - w, y[h][1] + w};
+                if (t == 2)
+                    memcpy(rr, rect, sizeof rr);
+                rr[0] = fmax(rr[0], rect[0]), rr[1] = fmin(rr[1], rect[1]);
+                rr[2] = fmax(rr[2], rect[2]), rr[3] = fmin(rr[3], rect[3]);
+                if (!(y[h][0] >= rr[0] && y[h][0] <= rr[1] && y[h][1] >= rr[2] && y[h][1] <= rr[3]))
+                    continue;
+                rg2__locate_ray_cert(L, i * s->nv + j, base[0], base[1], r, o, d, rr, &b);
+                *excess = fmax(*excess, (b - th) / tol);
+                CHECK(b <= th + 1e-3 * tol, "%s patch (%d,%d) ray kind %d: a certificate rules out the hit at "
+                      "(%.17g, %.17g), t %.17g, with bound %.17g (base %g %g, r %g)",
+                      what, i, j, kind, y[h][0], y[h][1], th, b, base[0], base[1], r);
+            }
+        }
+    }
+    rg2_locator_free(L);
+}
+
+/* On the torus, a ray's certificate at the hit found proves its whole rectangle: the rectangle
+ * holding the hit not before t less the tolerance, the rest nowhere. */
+static void ray_cert_torus(const rg2_surface *s, rg2t_rng *rng)
+{
+    rg2_error err;
+    rg2_locator *L;
+    CHECK_OK(rg2_locator_build(s, &L, &err), &err);
+    int made = 0, rays = 0, nowhere = 0;
+    for (int q = 0; q < 300; q++) {
+        double o[3] = {rg2t_uniform(rng, -8, 8), rg2t_uniform(rng, -8, 8), rg2t_uniform(rng, -3, 3)}, d[3];
+        for (int c = 0; c < 3; c++)
+            d[c] = rg2t_uniform(rng, -1.5, 1.5) - o[c];
+        rg2_hit h;
+        CHECK_OK(rg2_locator_ray(L, o, d, INFINITY, &h, &err), &err);
+        if (h.i < 0)
+            continue;
+        rays++;
+        double rect[4] = {fmax(0, h.u - 0.5), fmin(1, h.u + 0.5), fmax(0, h.v - 0.5), fmin(1, h.v + 0.5)}, b;
+        if (!rg2__locate_ray_cert(L, h.i * s->nv + h.j, h.u, h.v, 0.5, o, d, rect, &b))
+            continue;
+        made++;
+        double tol = tolerance(s, o) / sqrt(dot(d, d));
+        CHECK(b <= h.dist && b >= h.dist - 0.5 * tol, "torus ray %d: the certificate at the hit t %.17g gives %.17g", q,
+              h.dist, b);
+        /* a corner of R away from the hit: no hit there */
+        double cu = h.u < 0.5 ? rect[1] : rect[0], cv = h.v < 0.5 ? rect[3] : rect[2];
+        double rc[4] = {fmin(cu, 0.5 * (cu + h.u)), fmax(cu, 0.5 * (cu + h.u)), fmin(cv, 0.5 * (cv + h.v)),
+                        fmax(cv, 0.5 * (cv + h.v))};
+        rg2__locate_ray_cert(L, h.i * s->nv + h.j, h.u, h.v, 0.5, o, d, rc, &b);
+        nowhere += b == INFINITY;
+    }
+    CHECK(made >= rays / 2 && nowhere >= made * 9 / 10, "torus rays: %d hits, %d certificates, %d corners ruled out",
+          rays, made, nowhere);
+    printf("rays' certificates at the torus's hits (half-size 1/2): %d of %d hits, a corner quarter of R ruled out in "
+           "%d\n",
+           made, rays, nowhere);
+    rg2_locator_free(L);
+}
+
+typedef void (*cert_check)(const rg2_surface *, const char *, int, rg2t_rng *, int *, int *, double *);
+
+/* One kind of certificate on the torus (first its check at the true answers), the torus of
+ * degree (5, 4) in part and every example surface; the number made and declined, the surfaces. */
+static int cert_all(cert_check each, void (*at_answers)(const rg2_surface *, rg2t_rng *), rg2t_rng *rng, int *made,
+                    int *declined, double *excess)
 {
     rg2_error err;
     rg2_surface s;
-    rg2t_rng rng;
-    rg2t_seed(&rng, 4242);
-    int made = 0, declined = 0;
-    double excess = -INFINITY;
+    *made = *declined = 0;
+    *excess = -INFINITY;
     CHECK_OK(rg2t_torus(TR, Tr, 8, 6, NULL, &s, &err), &err);
-    cert_torus_feet(&s, &rng);
-    cert_surface(&s, "torus", 400, &rng, &made, &declined, &excess);
+    at_answers(&s, rng);
+    each(&s, "torus", 400, rng, made, declined, excess);
     rg2_surface_free(&s);
     CHECK_OK(rg2t_torus(TR, Tr, 7, 5, NULL, &s, &err), &err);
     CHECK_OK(rg2t_elevate_some(&s, 5, 4, 3, 1, &err), &err);
-    cert_surface(&s, "torus of degree (5, 4) in part", 400, &rng, &made, &declined, &excess);
+    each(&s, "torus of degree (5, 4) in part", 400, rng, made, declined, excess);
     rg2_surface_free(&s);
     char *names[64];
     int ne = rg2t_example_names(names, 64), surfaces = 0;
@@ -756,14 +872,30 @@ static void certificates(void)
         rg2_design *d = NULL;
         CHECK_OK(rg2_design_load(names[k], &d, &err), &err);
         for (int o = 0; d && o < rg2_design_num_surfaces(d); o++, surfaces++)
-            cert_surface(rg2_design_surface(d, o), names[k], 40, &rng, &made, &declined, &excess);
+            each(rg2_design_surface(d, o), names[k], 40, rng, made, declined, excess);
         rg2_design_free(d);
         free(names[k]);
     }
+    return surfaces;
+}
+
+static void certificates(void)
+{
+    rg2t_rng rng;
+    rg2t_seed(&rng, 4242);
+    int made, declined;
+    double excess;
+    int surfaces = cert_all(cert_surface, cert_torus_feet, &rng, &made, &declined, &excess);
     printf("certificates: %d made, %d declined (torus, part degree (5, 4), %d example surfaces); no bound above a "
            "sampled distance (at most %.2e of the size below none)\n",
            made, declined, surfaces, excess);
     CHECK(made > 150 && declined > 100, "certificates: %d made, %d declined: the check needs both", made, declined);
+    surfaces = cert_all(ray_cert_surface, ray_cert_torus, &rng, &made, &declined, &excess);
+    printf("rays' certificates: %d made, %d declined (torus, part degree (5, 4), %d example surfaces); no hit ruled "
+           "out (a bound at most %.2e of the tolerance past a hit's t)\n",
+           made, declined, surfaces, excess);
+    CHECK(made > 300 && declined > 100, "rays' certificates: %d made, %d declined: the check needs both", made,
+          declined);
 }
 
 int main(void)
