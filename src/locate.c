@@ -541,12 +541,14 @@ static int foot_in(const rg2_surface *s, int bp, double bu, double bv, int P, do
     return 1;
 }
 
-/* A query's certificates (the latest CERTS; older ones stay true, for an earlier c) and the
- * patches tried for the latest foot. */
-enum { CERTS = 8 };
+/* A query's certificates (the latest CERTS; older ones stay true, for an earlier c), the
+ * patches tried for the latest answer, and the attempts left (an answer that a whole region
+ * gives nearly equally well, such as a torus's axis point, moves on and on, and no certificate
+ * holds there: the attempts stop after CERT_TRIES). */
+enum { CERTS = 8, CERT_TRIES = 24 };
 typedef struct {
     cert c[CERTS];
-    int n, next, tried[CERTS], ntried, version;
+    int n, next, tried[CERTS], ntried, version, left;
 } certset;
 
 /* The certificates' best lower bound of the distance over piece p (0: none covers it). */
@@ -589,7 +591,7 @@ static int certs_try(certset *cs, const rg2_locator *L, int patch, int bp, doubl
     if (!foot_in(L->s, bp, bu, bv, patch, &uf, &vf))
         return 0;
     int slot = cs->n < CERTS ? cs->n : cs->next;
-    for (double r = 0.5; r > 0.01; r *= 0.25)
+    for (double r = 0.5; r > 0.01 && cs->left > 0; r *= 0.25, cs->left--)
         if (qy->ray ? ray_cert_make(L, patch, uf, vf, r, qy, &cs->c[slot])
                     : cert_make(L, patch, uf, vf, r, qy->x, qy->c, &cs->c[slot])) {
             if (cs->n < CERTS)
@@ -887,7 +889,7 @@ rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit 
     heap_push(&h, &root);
     long taken = 0;
     certset cs;
-    cs.n = cs.ntried = cs.next = 0, cs.version = -1;
+    cs.n = cs.ntried = cs.next = 0, cs.version = -1, cs.left = CERT_TRIES;
     int version = 0; /* counts the feet found */
     while (h.n && !h.nomem) {
         piece p = heap_pop(&h);
@@ -1218,7 +1220,7 @@ rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double
     }
     long taken = 0;
     certset cs;
-    cs.n = cs.ntried = cs.next = 0, cs.version = -1;
+    cs.n = cs.ntried = cs.next = 0, cs.version = -1, cs.left = CERT_TRIES;
     int version = 0; /* counts the hits found */
     query qy = {1, NULL, o, d, 0, (const double(*)[3])e};
     while (h.n && !h.nomem) {
