@@ -907,6 +907,20 @@ rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit 
             floor = fmin(floor, kc);
             continue;
         }
+        rg2_xpatch X, q[4];
+        piece_net(L, &p, &X);
+        points P;
+        double size = p.size;
+        if (!p.known) { /* a whole patch from the tree (keyed by its box): its own bounds first */
+            net_points(&X, &P);
+            kc = fmax(kc, closest_bound(&P, x, &size));
+            if (kc < best - tol)
+                kc = fmax(kc, bern_bound(&X, x));
+            if (!(kc < best - tol)) {
+                floor = fmin(floor, kc);
+                continue;
+            }
+        }
         int pi = p.patch / s->nv, pj = p.patch % s->nv;
         double u = 0.5 * (p.u0 + p.u1), v = 0.5 * (p.v0 + p.v1);
         rg2_eval e;
@@ -924,17 +938,6 @@ rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit 
                 floor = fmin(floor, kc);
                 continue;
             }
-        }
-        rg2_xpatch X, q[4];
-        piece_net(L, &p, &X);
-        points P;
-        double size = p.size;
-        if (!p.known) {
-            double lo[3], hi[3];
-            static const double zero[3] = {0, 0, 0};
-            net_points(&X, &P);
-            pts_box(&P, zero, NULL, lo, hi);
-            size = box_diag(lo, hi);
         }
         if (!(size > tol)) { /* smaller than the tolerance: its centre stands for it */
             floor = fmin(floor, p.key);
