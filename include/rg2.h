@@ -549,15 +549,18 @@ RG2_API double rg2_eval_normal_curvature(const rg2_eval *e, double a, double c);
  * positive), then Newton on the exact patch, so the point found is exact to the last bits and
  * no other point of the surface beats it by more than the tolerance: 1e-10 of (the surface's
  * box diagonal + the query point's distance from the box's centre). What is proven is reported
- * in rg2_hit.bound. A locator reads its surface: keep the surface alive and unchanged while it is
- * used (after rg2_surface_rebuild or _transform, build a new locator). Queries on one locator
- * may run in several threads at once (each query allocates its own search). */
+ * in rg2_hit.bound. Near the answer, certificates rule whole rectangles of a patch out at once
+ * (the squared distance's numerator shown convex, or the ray's residuals shown one-to-one, by
+ * Bernstein bounds of their derivatives; docs/picking.md). A locator reads its surface: keep the
+ * surface alive and unchanged while it is used (after rg2_surface_rebuild or _transform, build a
+ * new locator). Queries on one locator may run in several threads at once (each query allocates
+ * its own search). */
 /* ===================================================================================== */
 
 /** Pieces one query takes at most (its time is bounded: about 0.1 s): past it the search stops
  *  with the best point so far and what it proved (rg2_hit.bound). Only a query that a whole
  *  region answers nearly equally well comes near it (a point on a torus's axis: 16 463 pieces;
- *  at a sphere's centre the bounds prove the distance exactly after 23). */
+ *  at a sphere's centre the bounds prove the distance to one ulp after 23). */
 #define RG2_LOCATE_MAX_PIECES 50000
 
 typedef struct rg2_locator rg2_locator;
@@ -586,13 +589,13 @@ RG2_API void rg2_locator_free(rg2_locator *L);
 /** The surface point nearest x (the first met on ties), with its patch, parameters and normal.
  *  A nearest point inside a patch has p - x along the normal; on a patch side or corner (the
  *  surface's border, or where two patches' nearest points meet) it need not. Cost: a descent of
- *  the locator's tree of patch boxes plus the subdivision near the answer (about 45 us on a
- *  torus of 48 patches, 130 us on one of 40 000; docs/picking.md).
+ *  the locator's tree of patch boxes plus the subdivision near the answer (about 15 us on a
+ *  torus of 48 patches, 57 us on one of 40 000; docs/picking.md).
  *  @return RG2_EINVAL (NULL), RG2_ENONFINITE (x), RG2_ENOMEM. */
 RG2_API rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit *out, rg2_error *err);
 /** The first point where the ray o + t d, 0 <= t <= tmax, meets the surface (out->i = -1 when it
  *  does not); d need not be unit (t is in units of d). tmax = INFINITY for no limit. About 5 us
- *  on a torus of 48 patches, 4 us on one of 40 000.
+ *  on a torus of 48 patches and on one of 40 000.
  *  @return RG2_EINVAL (NULL), RG2_ENONFINITE (o, d), RG2_EDOMAIN (d = 0; tmax NaN or < 0),
  *  RG2_ENOMEM. */
 RG2_API rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double d[3], double tmax,

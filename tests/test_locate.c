@@ -563,7 +563,7 @@ static void special(void)
     CHECK(fabs(h.dist - 1) <= 1e-15 && h.bound <= h.dist && h.bound > 0.9, "sphere centre: distance %.17g bound %.17g",
           h.dist, h.bound);
     /* docs/picking.md: at a sphere's centre the Bernstein bound (|S - x|^2 = N / W, here N = W r^2
-     * coefficient by coefficient) proves the distance exactly */
+     * coefficient by coefficient) proves the distance to its last bits */
     CHECK(h.dist - h.bound <= 1e-15, "sphere centre: proven only to %.3g (at most %d pieces)", h.dist - h.bound,
           RG2_LOCATE_MAX_PIECES);
     printf("sphere centre (every point nearest; at most %d pieces): distance - 1 = %.2e, proven to %.2e\n",
