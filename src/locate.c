@@ -1120,7 +1120,8 @@ static int ray_cert_make(const rg2_locator *L, int patch, double uf, double vf, 
     double mag[4];
     for (int k = 0; k < 4; k++)
         mag[k] = greater(fabs(lo[k]), fabs(hi[k]));
-    double rho = greater(mag[3] + mag[1], mag[2] + mag[0]) * greater(f0, f1) / dmin * (1 + 1e-9) + 1e-15;
+    double rho = greater(mag[3] + mag[1], mag[2] + mag[0]) * greater(f0, f1) / (dmin > 0 ? dmin : 1.0) * (1 + 1e-9) +
+                 1e-15; /* (a divisor that cannot trap: see unit3) */
     if (!(rho < 0.125))
         return 0;
     C->patch = patch, C->ray = 1;
