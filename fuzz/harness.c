@@ -51,6 +51,44 @@ static volatile double rg2f_sink;
  * refusal names a weight <= 0; a hit lies on the surface side of its bound, on its ray (within
  * the stated tolerance), and no farther than any patch corner (a point of the surface). */
 extern long rg2__locate_max_pieces; /* (src/internal.h) */
+int rg2__locate_cert(const rg2_locator *L, int patch, double uf, double vf, double r, const double x[3], double c,
+                     const double rect[4], double *bound);
+int rg2__locate_ray_cert(const rg2_locator *L, int patch, double uf, double vf, double r, const double o[3],
+                         const double d[3], const double rect[4], double *bound);
+
+/* The searches' certificates by themselves (src/locate.c), on patches 0 and the last, based at
+ * the centre and at a corner: a nearest-point certificate's bound over its rectangle may not lie
+ * above the distance from x at any of 9 x 9 points of it; the ray from x through the base point
+ * S(base) meets the surface there at t = 1, and a ray certificate may not rule that out. */
+static void rg2f_check_certs(const rg2_surface *s, const rg2_locator *L, const double x[3], double size,
+                             const char *what)
+{
+    int np = s->nu * s->nv;
+    for (int k = 0; k < 4; k++) {
+        int patch = k < 2 ? 0 : np - 1;
+        double uf = k & 1 ? 0.5 : 0, vf = k & 1 ? 0.5 : 1, r = k < 2 ? 0.5 : 0.125, b;
+        rg2_eval e;
+        rg2_surface_eval(s, patch / s->nv, patch % s->nv, uf, vf, 0, &e);
+        double d[3] = {e.p[0] - x[0], e.p[1] - x[1], e.p[2] - x[2]}, c = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        double R[4] = {fmax(0, uf - r), fmin(1, uf + r), fmax(0, vf - r), fmin(1, vf + r)};
+        if (rg2__locate_cert(L, patch, uf, vf, r, x, c, R, &b))
+            for (int a = 0; a <= 8; a++)
+                for (int t = 0; t <= 8; t++) {
+                    rg2_eval f;
+                    rg2_surface_eval(s, patch / s->nv, patch % s->nv, R[0] + (R[1] - R[0]) * a / 8,
+                                     R[2] + (R[3] - R[2]) * t / 8, 0, &f);
+                    double g = sqrt((f.p[0] - x[0]) * (f.p[0] - x[0]) + (f.p[1] - x[1]) * (f.p[1] - x[1]) +
+                                    (f.p[2] - x[2]) * (f.p[2] - x[2]));
+                    if (b > g + 1e-9 * (g + size))
+                        rg2f_violation("%s: patch %d's certificate at (%g, %g), r %g, proves %.17g, but a point of "
+                                       "it is %.17g away", what, patch, uf, vf, r, b, g);
+                }
+        double P[4] = {uf, uf, vf, vf};
+        if (rg2__locate_ray_cert(L, patch, uf, vf, r, x, d, P, &b) && b > 1 + 1e-9)
+            rg2f_violation("%s: patch %d's ray certificate at (%g, %g), r %g, rules out its own hit at t = 1 (bound "
+                           "%.17g)", what, patch, uf, vf, r, b);
+    }
+}
 
 static void rg2f_check_picking(const rg2_surface *s, const char *what)
 {
@@ -97,6 +135,7 @@ static void rg2f_check_picking(const rg2_surface *s, const char *what)
                                    "corner %d is %.17g away", what, h.dist, h.bound, tol, k, q, g);
             }
     }
+    rg2f_check_certs(s, L, x, size, what);
     st = rg2_locator_ray(L, x, d, INFINITY, &h, &err);
     rg2f_check_error("rg2_locator_ray", st, &err);
     if (!st && h.i >= 0) {

@@ -1064,7 +1064,8 @@ static int ray_box(const rg2_xpatch *X, const double o[3], const double d[3], co
  * is one-to-one on R where every matrix of the Bernstein ranges of its partial derivatives has
  * a determinant away from 0 (F(y) - F(y0) = J (y - y0), J within those ranges); then the only
  * zero in R lies within |J^-1| |F(y0)| of y0, in Q, and no point of R outside Q meets the ray.
- * The coefficients carry the rounding of the net's cut and of o w. 0 where F is not shown
+ * The coefficients carry the rounding of the net's cut and of o w (which also covers the true
+ * ray's departure from the frame's line, a few ulps of |S - o|). 0 where F is not shown
  * one-to-one, or Q is not small. */
 static int ray_cert_make(const rg2_locator *L, int patch, double uf, double vf, double r, const query *qy, cert *C)
 {
