@@ -218,22 +218,50 @@ static void print_place(const rg2_design *d, const rg2_surface *s, const rg2_hit
            tag >= 0 ? "'" : "");
 }
 
-/* Search every output surface with a locator (src/locate.c): the nearest point (ray = NULL) or
- * the first hit of the ray x + t ray; *o gets the surface (-1: none, or every surface refused).
- * A surface the locator refuses (a weight <= 0) is named and skipped. */
-static void locate_all(const rg2_design *d, const double x[3], const double *ray, int *o, rg2_hit *best)
+/* The output surfaces' locators, built on first use and kept for the other query (--near and
+ * --ray in one call); a surface the locator refuses keeps its error. */
+typedef struct {
+    int n, built;
+    rg2_locator **L;
+    rg2_status *st;
+    rg2_error *err;
+} locators;
+
+static void locators_free(locators *ls)
+{
+    for (int k = 0; ls->L && k < ls->n; k++)
+        rg2_locator_free(ls->L[k]);
+    free(ls->L);
+    free(ls->st);
+    free(ls->err);
+}
+
+/* Search every output surface with its locator (src/locate.c): the nearest point (ray = NULL)
+ * or the first hit of the ray x + t ray; *o gets the surface (-1: none, or every surface
+ * refused). A surface the locator refuses (a weight <= 0) is named and skipped. */
+static void locate_all(const rg2_design *d, locators *ls, const double x[3], const double *ray, int *o, rg2_hit *best)
 {
     *o = -1;
-    for (int k = 0; k < rg2_design_num_surfaces(d); k++) {
-        const rg2_surface *s = rg2_design_surface(d, k);
-        rg2_locator *L;
-        rg2_error err;
-        rg2_hit h;
-        rg2_status st = rg2_locator_build(s, &L, &err);
-        if (!st) {
-            st = ray ? rg2_locator_ray(L, x, ray, INFINITY, &h, &err) : rg2_locator_closest(L, x, &h, &err);
-            rg2_locator_free(L);
+    if (!ls->built) {
+        ls->built = 1;
+        ls->n = rg2_design_num_surfaces(d);
+        ls->L = calloc((size_t)ls->n + 1, sizeof *ls->L);
+        ls->st = calloc((size_t)ls->n + 1, sizeof *ls->st);
+        ls->err = calloc((size_t)ls->n + 1, sizeof *ls->err);
+        if (!ls->L || !ls->st || !ls->err) {
+            printf("  (no surface searched: out of memory)\n");
+            ls->n = 0;
+            return;
         }
+        for (int k = 0; k < ls->n; k++)
+            ls->st[k] = rg2_locator_build(rg2_design_surface(d, k), &ls->L[k], &ls->err[k]);
+    }
+    for (int k = 0; k < ls->n; k++) {
+        rg2_error err = ls->err[k];
+        rg2_hit h;
+        rg2_status st = ls->st[k];
+        if (!st)
+            st = ray ? rg2_locator_ray(ls->L[k], x, ray, INFINITY, &h, &err) : rg2_locator_closest(ls->L[k], x, &h, &err);
         if (st) {
             printf("  (surface %d not searched: %s)\n", k, err.msg);
             continue;
@@ -246,11 +274,11 @@ static void locate_all(const rg2_design *d, const double x[3], const double *ray
 /* --near on the surface: the output surface point nearest to x, over all of every surface
  * (rg2_locator_closest: exact, and no point nearer by more than its tolerance), with its patch,
  * u, v, normal, and whether the patch is exact on a shape or a transition. */
-static void print_nearest_surface(const rg2_design *d, const double x[3])
+static void print_nearest_surface(const rg2_design *d, locators *ls, const double x[3])
 {
     int o;
     rg2_hit h;
-    locate_all(d, x, NULL, &o, &h);
+    locate_all(d, ls, x, NULL, &o, &h);
     if (o < 0)
         return;
     printf("  nearest surface point: surface %d patch (%d,%d) u=%.6g v=%.6g, point (%.10g, %.10g, %.10g), %.10g "
@@ -261,12 +289,12 @@ static void print_nearest_surface(const rg2_design *d, const double x[3])
 }
 
 /* --ray: the first point where the ray x + t dir, t >= 0, meets an output surface. */
-static void print_ray(const rg2_design *d, const double r[6])
+static void print_ray(const rg2_design *d, locators *ls, const double r[6])
 {
     int o;
     rg2_hit h;
     printf("ray from (%.10g, %.10g, %.10g) along (%.10g, %.10g, %.10g):\n", r[0], r[1], r[2], r[3], r[4], r[5]);
-    locate_all(d, r, r + 3, &o, &h);
+    locate_all(d, ls, r, r + 3, &o, &h);
     if (o < 0) {
         printf("  meets no surface\n");
         return;
@@ -412,12 +440,14 @@ int rg2_cmd_info(int argc, char **argv)
                 putchar('\n');
             }
     }
+    locators ls = {0, 0, NULL, NULL, NULL};
     if (near) {
         print_nearest(d, x);
-        print_nearest_surface(d, x);
+        print_nearest_surface(d, &ls, x);
     }
     if (ray)
-        print_ray(d, r);
+        print_ray(d, &ls, r);
+    locators_free(&ls);
     for (int k = 0; k < rg2_design_num_notes(d); k++)
         printf("note: %s\n", rg2_design_note(d, k));
     free(count);

@@ -311,6 +311,12 @@ want = [r[k] + 0.5 * r[3 + k] for k in range(3)]
 assert on <= 1e-9 and math.dist(p, want) <= 1e-9 and abs(float(g[4]) - 0.5) <= 1e-9 and abs(float(g[5]) - 1) <= 1e-9, (on, p, want, g[4], g[5])
 assert abs(abs(sum(n[k] * r[3 + k] for k in range(3))) / 2 - 1) <= 1e-5, n  # the normal along the ray there
 PY
+# both in one call (the surfaces' locators built once, kept for the second query): the same lines
+"$rg2" info --near "$at" --ray "$ray" "$src/examples/torus_sphere.json" >"$tmp/both_info" 2>&1
+{ grep "nearest surface point:" "$tmp/near_info"; grep -A1 "^ray from" "$tmp/ray_info"; } >"$tmp/both_want"
+{ grep "nearest surface point:" "$tmp/both_info"; grep -A1 "^ray from" "$tmp/both_info"; } >"$tmp/both_got"
+[ -s "$tmp/both_want" ] && cmp -s "$tmp/both_want" "$tmp/both_got" && ok ||
+    bad "info --near --ray in one call: $(diff "$tmp/both_want" "$tmp/both_got" | head -4)"
 "$rg2" info --ray 0,0,10,0,0,1 "$src/examples/torus_sphere.json" >"$tmp/ray_info" 2>&1
 grep -q "^  meets no surface$" "$tmp/ray_info" && ok || bad "info --ray away from the design: $(tail -2 "$tmp/ray_info")"
 expect 2 "rg2 info: --ray needs six numbers X,Y,Z,DX,DY,DZ" "$rg2" info "$src/examples/torus_sphere.json" --ray
