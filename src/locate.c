@@ -423,6 +423,22 @@ static double bern2(double b[][M2], int n, int m, double s, double t)
     return row[0];
 }
 
+/* The largest |h|_1 and weight of patch `patch`'s own control points: the cut of a rectangle's
+ * net rounds relative to these, which can be far larger than the cut net's points where the
+ * patch's control points cancel. */
+static void net_size(const rg2_locator *L, int patch, double *hmax, double *wmax)
+{
+    rg2_xpatch X;
+    rg2_surface_patch_get(L->s, patch / L->s->nv, patch % L->s->nv, &X);
+    *hmax = *wmax = 0;
+    for (int a = 0; a <= X.du; a++)
+        for (int b = 0; b <= X.dv; b++) {
+            const double *h = X.h[a][b];
+            *hmax = greater(*hmax, fabs(h[0]) + fabs(h[1]) + fabs(h[2]));
+            *wmax = greater(*wmax, h[3]);
+        }
+}
+
 /* A certificate over R = [uf - r, uf + r] x [vf - r, vf + r] (within the patch) based at the
  * foot (uf, vf), for the squared distance c; 0 where g is not shown convex on R. */
 static int cert_make(const rg2_locator *L, int patch, double uf, double vf, double r, const double x[3], double c,
@@ -435,7 +451,8 @@ static int cert_make(const rg2_locator *L, int patch, double uf, double vf, doub
     piece_net(L, &p, &X);
     int du = X.du, dv = X.dv, n = 2 * du, m = 2 * dv;
     double G[M2][M2], W[M2][M2];
-    double amax = 0, pmax = 0, xm = fabs(x[0]) + fabs(x[1]) + fabs(x[2]);
+    double amax = 0, pmax = 0, xm = fabs(x[0]) + fabs(x[1]) + fabs(x[2]), hmax, wmax, wcut = INFINITY;
+    net_size(L, patch, &hmax, &wmax);
     for (int a = 0; a <= du; a++)
         for (int b = 0; b <= dv; b++) {
             double w = X.h[a][b][3], pa = 0, da = 0;
@@ -445,8 +462,9 @@ static int cert_make(const rg2_locator *L, int patch, double uf, double vf, doub
                 pa += fabs(X.h[a][b][k]) / w;
                 da += fabs(X.h[a][b][k] / w - x[k]);
             }
-            pmax = greater(pmax, pa), amax = greater(amax, da);
+            pmax = greater(pmax, pa), amax = greater(amax, da), wcut = lesser(wcut, w);
         }
+    pmax = greater(pmax, hmax / wcut); /* (the cut's rounding, in the cut net's units) */
     sq_dist_form(&X, x, G, W); /* (N, then G = N - c W below) */
     /* the rounding, per unit of W's coefficient: a control point's offset from x is off by
      * up to d (the cut of the net and the subtraction; relative to the coordinates' size), and
@@ -516,7 +534,8 @@ static double cert_bound(const cert *C, const piece *p)
     double sa = (p->u0 - C->u0) / hu - C->sf, sb = (p->u1 - C->u0) / hu - C->sf;
     double ta = (p->v0 - C->v0) / hv - C->tf, tb = (p->v1 - C->v0) / hv - C->tf;
     double lin = C->g0 + lesser(C->gs * sa, C->gs * sb) - C->es * greater(fabs(sa), fabs(sb)) +
-                 lesser(C->gt * ta, C->gt * tb) - C->et * greater(fabs(ta), fabs(tb));
+                 lesser(C->gt * ta, C->gt * tb) - C->et * greater(fabs(ta), fabs(tb)) -
+                 4 * DBL_EPSILON * (fabs(C->gs) + fabs(C->gt)); /* (sa, ta: absolute rounding) */
     double val = lin >= 0 ? C->c : C->c + lin / C->wmin;
     return val > 0 ? sqrt(val) * (1 - 4 * DBL_EPSILON) : 0.0;
 }
@@ -1033,9 +1052,9 @@ static int ray_box(const rg2_xpatch *X, const double o[3], const double d[3], co
     points P;
     net_points(X, &P);
     double lo[3], hi[3], mag = pts_box(&P, o, e, lo, hi);
-    /* a margin for the rounding of these projections (a ray through a patch side or a corner
-     * must not slip between the patches) */
-    double m = 16 * DBL_EPSILON * mag, mt = m * sqrt(dot3(e[2], e[2]));
+    /* a margin for the rounding of these projections and of the points themselves (|P| <= |P - o|
+     * + |o|; a ray through a patch side or a corner must not slip between the patches) */
+    double m = 16 * DBL_EPSILON * (mag + fabs(o[0]) + fabs(o[1]) + fabs(o[2])), mt = m * sqrt(dot3(e[2], e[2]));
     *t0 = lo[2] - mt;
     *t1 = hi[2] + mt;
     *diag = hypot(hi[0] - lo[0], hi[1] - lo[1]);
@@ -1076,7 +1095,9 @@ static int ray_cert_make(const rg2_locator *L, int patch, double uf, double vf, 
     piece_net(L, &p, &X);
     int du = X.du, dv = X.dv;
     const double *o = qy->o, (*e)[3] = qy->e;
-    double F[2][M2][M2], om = fabs(o[0]) + fabs(o[1]) + fabs(o[2]), errf = 0, fmag = 0;
+    double F[2][M2][M2], om = fabs(o[0]) + fabs(o[1]) + fabs(o[2]), errf = 0, fmag = 0, hmax, wmax;
+    net_size(L, patch, &hmax, &wmax);
+    errf = 64 * DBL_EPSILON * (hmax + om * wmax); /* (the cut's rounding: see net_size) */
     for (int a = 0; a <= du; a++)
         for (int b = 0; b <= dv; b++) {
             const double *h = X.h[a][b];

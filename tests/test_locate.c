@@ -18,7 +18,7 @@
  *     themselves: on the torus, the degree-raised torus and every example surface, for random
  *     points, bases, radii and levels c, a certificate's bound over a random rectangle may not
  *     lie above the distance at any of 17 x 17 points of it; based at the true foot, it proves
- *     the distance over its whole rectangle to half the search's tolerance. The rays' likewise:
+ *     the distance over its whole rectangle to within the search's tolerance. The rays' likewise:
  *     for rays through one or two chosen points of a patch, no rectangle holding such a point
  *     may be ruled out before its t; at a torus hit, the rectangle is proven to half the
  *     tolerance and the rest of it holds no hit. */
@@ -703,7 +703,8 @@ static void cert_surface(const rg2_surface *s, const char *what, int tries, rg2t
     rg2_locator_free(L);
 }
 
-/* Based at the true foot on the torus, a certificate covers its rectangle to half the tolerance. */
+/* Based at the true foot on the torus, a certificate covers its rectangle to within the tolerance
+ * (what the search needs to rule it out). */
 static void cert_torus_feet(const rg2_surface *s, rg2t_rng *rng)
 {
     rg2_error err;
@@ -726,7 +727,7 @@ static void cert_torus_feet(const rg2_surface *s, rg2t_rng *rng)
             made++;
             worst = fmax(worst, (want - b) / tolerance(s, x));
             /* (the search rules a piece out whose bound is within the tolerance of the best) */
-            CHECK(b <= want * (1 + 1e-15) && want - b <= 0.5 * tolerance(s, x),
+            CHECK(b <= want * (1 + 1e-15) && want - b <= tolerance(s, x),
                   "torus: certificate at the foot proves %.17g of %.17g", b, want);
         }
     }
