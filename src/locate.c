@@ -1052,9 +1052,9 @@ static int ray_box(const rg2_xpatch *X, const double o[3], const double d[3], co
     points P;
     net_points(X, &P);
     double lo[3], hi[3], mag = pts_box(&P, o, e, lo, hi);
-    /* a margin for the rounding of these projections and of the points themselves (|P| <= |P - o|
-     * + |o|; a ray through a patch side or a corner must not slip between the patches) */
-    double m = 16 * DBL_EPSILON * (mag + fabs(o[0]) + fabs(o[1]) + fabs(o[2])), mt = m * sqrt(dot3(e[2], e[2]));
+    /* a margin for the rounding of these projections (a ray through a patch side or a corner
+     * must not slip between the patches) */
+    double m = 16 * DBL_EPSILON * mag, mt = m * sqrt(dot3(e[2], e[2]));
     *t0 = lo[2] - mt;
     *t1 = hi[2] + mt;
     *diag = hypot(hi[0] - lo[0], hi[1] - lo[1]);
@@ -1150,10 +1150,15 @@ static int ray_cert_make(const rg2_locator *L, int patch, double uf, double vf, 
     C->u0 = p.u0, C->u1 = p.u1, C->v0 = p.v0, C->v1 = p.v1;
     C->q0 = fmax(p.u0, uf - rho * (p.u1 - p.u0)), C->q1 = fmin(p.u1, uf + rho * (p.u1 - p.u0));
     C->r0 = fmax(p.v0, vf - rho * (p.v1 - p.v0)), C->r1 = fmin(p.v1, vf + rho * (p.v1 - p.v0));
+    /* t over Q: its control points' range along the ray, with a margin for their own rounding
+     * as well as the projection's (|P| <= |P - o| + |o|); Q is not ruled out across the ray */
     piece pq = {0, -1, patch, C->q0, C->q1, C->r0, C->r1, 0, 0, 0};
-    double t0, t1, diag;
+    points P;
+    double plo[3], phi[3];
     piece_net(L, &pq, &X);
-    C->tq = ray_box(&X, o, qy->d, e, &t0, &t1, &diag) && t1 >= 0 ? fmax(0.0, t0) : INFINITY;
+    net_points(&X, &P);
+    double mt = 16 * DBL_EPSILON * (pts_box(&P, o, e, plo, phi) + om) * sqrt(dot3(e[2], e[2]));
+    C->tq = phi[2] + mt < 0 ? INFINITY : fmax(0.0, plo[2] - mt);
     return 1;
 }
 
