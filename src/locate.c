@@ -405,6 +405,15 @@ typedef struct {
     double tq;             /* ray: the smallest t where the ray can meet Q (INFINITY: nowhere) */
 } cert;
 
+/* What a certificate is made for: the point x and the squared distance c (closest), or the ray
+ * o + t d with its frame e (ray). */
+typedef struct {
+    int ray;
+    const double *x, *o, *d;
+    double c;
+    const double (*e)[3];
+} query;
+
 /* p(s, t) of Bernstein coefficients b[k][l], 0 <= k <= n, 0 <= l <= m (de Casteljau). */
 static double bern2(double b[][M2], int n, int m, double s, double t)
 {
@@ -439,16 +448,28 @@ static void net_size(const rg2_locator *L, int patch, double *hmax, double *wmax
         }
 }
 
-/* A certificate over R = [uf - r, uf + r] x [vf - r, vf + r] (within the patch) based at the
- * foot (uf, vf), for the squared distance c; 0 where g is not shown convex on R. */
-static int cert_make(const rg2_locator *L, int patch, double uf, double vf, double r, const double x[3], double c,
-                     cert *C)
+/* A certificate's rectangle R = [uf - r, uf + r] x [vf - r, vf + r] within patch `patch`: into
+ * C (patch, R), its net into X, and the base (uf, vf) in R's own parameters into *sf, *tf. */
+static void cert_rect(const rg2_locator *L, int patch, double uf, double vf, double r, cert *C, rg2_xpatch *X,
+                      double *sf, double *tf)
 {
     piece p = {0, -1, patch, fmax(0.0, uf - r), fmin(1.0, uf + r), fmax(0.0, vf - r), fmin(1.0, vf + r), 0, 0, 0};
-    if (!(p.u1 > p.u0 && p.v1 > p.v0))
-        return 0;
+    piece_net(L, &p, X); /* (r > 0 and uf, vf in [0, 1]: R is not empty) */
+    C->patch = patch;
+    C->u0 = p.u0, C->u1 = p.u1, C->v0 = p.v0, C->v1 = p.v1;
+    *sf = fmin(1.0, fmax(0.0, (uf - p.u0) / (p.u1 - p.u0)));
+    *tf = fmin(1.0, fmax(0.0, (vf - p.v0) / (p.v1 - p.v0)));
+}
+
+/* A certificate over R = [uf - r, uf + r] x [vf - r, vf + r] (within the patch) based at the
+ * foot (uf, vf), for the point qy->x and the squared distance qy->c; 0 where g is not shown
+ * convex on R. */
+static int cert_make(const rg2_locator *L, int patch, double uf, double vf, double r, const query *qy, cert *C)
+{
+    const double *x = qy->x;
+    double c = qy->c, sf, tf;
     rg2_xpatch X;
-    piece_net(L, &p, &X);
+    cert_rect(L, patch, uf, vf, r, C, &X, &sf, &tf);
     int du = X.du, dv = X.dv, n = 2 * du, m = 2 * dv;
     double G[M2][M2], W[M2][M2];
     double amax = 0, pmax = 0, xm = fabs(x[0]) + fabs(x[1]) + fabs(x[2]), hmax, wmax, wcut = INFINITY;
@@ -507,10 +528,8 @@ static int cert_make(const rg2_locator *L, int patch, double uf, double vf, doub
             if (l < m)
                 Dt[k][l] = G[k][l + 1] - G[k][l];
         }
-    C->patch = patch, C->ray = 0;
-    C->u0 = p.u0, C->u1 = p.u1, C->v0 = p.v0, C->v1 = p.v1;
-    C->sf = (uf - p.u0) / (p.u1 - p.u0), C->tf = (vf - p.v0) / (p.v1 - p.v0);
-    C->sf = fmin(1.0, fmax(0.0, C->sf)), C->tf = fmin(1.0, fmax(0.0, C->tf));
+    C->ray = 0;
+    C->sf = sf, C->tf = tf;
     double ev = (n + m + 2) * 4 * DBL_EPSILON * gmax; /* a de Casteljau evaluation's rounding */
     C->g0 = bern2(G, n, m, C->sf, C->tf) - (emax + ev);
     C->gs = n * bern2(Ds, n - 1, m, C->sf, C->tf);
@@ -580,14 +599,6 @@ static double certs_bound(const certset *cs, const piece *p)
     return b;
 }
 
-/* What a certificate is made for: the point x and the squared distance c (closest), or the ray
- * o + t d with its frame e (ray). */
-typedef struct {
-    int ray;
-    const double *x, *o, *d;
-    double c;
-    const double (*e)[3];
-} query;
 static int ray_cert_make(const rg2_locator *L, int patch, double uf, double vf, double r, const query *qy, cert *C);
 
 /* A certificate on patch `patch` around the nearest point or the hit found (version counts those
@@ -611,8 +622,7 @@ static int certs_try(certset *cs, const rg2_locator *L, int patch, int bp, doubl
         return 0;
     int slot = cs->n < CERTS ? cs->n : cs->next;
     for (double r = 0.5; r > 0.01 && cs->left > 0; r *= 0.25, cs->left--)
-        if (qy->ray ? ray_cert_make(L, patch, uf, vf, r, qy, &cs->c[slot])
-                    : cert_make(L, patch, uf, vf, r, qy->x, qy->c, &cs->c[slot])) {
+        if ((qy->ray ? ray_cert_make : cert_make)(L, patch, uf, vf, r, qy, &cs->c[slot])) {
             if (cs->n < CERTS)
                 cs->n++;
             else
@@ -627,7 +637,8 @@ int rg2__locate_cert(const rg2_locator *L, int patch, double uf, double vf, doub
                      const double rect[4], double *bound)
 {
     cert C;
-    if (!cert_make(L, patch, uf, vf, r, x, c, &C))
+    query qy = {0, x, NULL, NULL, c, NULL};
+    if (!cert_make(L, patch, uf, vf, r, &qy, &C))
         return 0;
     piece p = {0, -1, patch, rect[0], rect[1], rect[2], rect[3], 0, 0, 0};
     *bound = cert_bound(&C, &p);
@@ -1088,11 +1099,9 @@ static int ray_box(const rg2_xpatch *X, const double o[3], const double d[3], co
  * one-to-one, or Q is not small. */
 static int ray_cert_make(const rg2_locator *L, int patch, double uf, double vf, double r, const query *qy, cert *C)
 {
-    piece p = {0, -1, patch, fmax(0.0, uf - r), fmin(1.0, uf + r), fmax(0.0, vf - r), fmin(1.0, vf + r), 0, 0, 0};
-    if (!(p.u1 > p.u0 && p.v1 > p.v0))
-        return 0;
     rg2_xpatch X;
-    piece_net(L, &p, &X);
+    double sf, tf;
+    cert_rect(L, patch, uf, vf, r, C, &X, &sf, &tf);
     int du = X.du, dv = X.dv;
     const double *o = qy->o, (*e)[3] = qy->e;
     double F[2][M2][M2], om = fabs(o[0]) + fabs(o[1]) + fabs(o[2]), errf = 0, fmag = 0, hmax, wmax;
@@ -1136,7 +1145,6 @@ static int ray_cert_make(const rg2_locator *L, int patch, double uf, double vf, 
     if (!(dmin > 0) || !isfinite(dmin + fmag))
         return 0;
     /* |y0 - hit| <= |adj J|_inf |F(y0)|_inf / |det J| (in R's own parameters) */
-    double sf = fmin(1.0, fmax(0.0, (uf - p.u0) / (p.u1 - p.u0))), tf = fmin(1.0, fmax(0.0, (vf - p.v0) / (p.v1 - p.v0)));
     double ev = errf + (du + dv + 2) * 4 * DBL_EPSILON * fmag;
     double f0 = fabs(bern2(F[0], du, dv, sf, tf)) + ev, f1 = fabs(bern2(F[1], du, dv, sf, tf)) + ev;
     double mag[4];
@@ -1146,10 +1154,9 @@ static int ray_cert_make(const rg2_locator *L, int patch, double uf, double vf, 
                  1e-15; /* (a divisor that cannot trap: see unit3) */
     if (!(rho < 0.125))
         return 0;
-    C->patch = patch, C->ray = 1;
-    C->u0 = p.u0, C->u1 = p.u1, C->v0 = p.v0, C->v1 = p.v1;
-    C->q0 = fmax(p.u0, uf - rho * (p.u1 - p.u0)), C->q1 = fmin(p.u1, uf + rho * (p.u1 - p.u0));
-    C->r0 = fmax(p.v0, vf - rho * (p.v1 - p.v0)), C->r1 = fmin(p.v1, vf + rho * (p.v1 - p.v0));
+    C->ray = 1;
+    C->q0 = fmax(C->u0, uf - rho * (C->u1 - C->u0)), C->q1 = fmin(C->u1, uf + rho * (C->u1 - C->u0));
+    C->r0 = fmax(C->v0, vf - rho * (C->v1 - C->v0)), C->r1 = fmin(C->v1, vf + rho * (C->v1 - C->v0));
     /* t over Q: its control points' range along the ray, with a margin for their own rounding
      * as well as the projection's (|P| <= |P - o| + |o|); Q is not ruled out across the ray */
     piece pq = {0, -1, patch, C->q0, C->q1, C->r0, C->r1, 0, 0, 0};
