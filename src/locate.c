@@ -769,6 +769,7 @@ static double foot(const rg2_surface *s, int pi, int pj, const double x[3], doub
     double r[3] = {e.p[0] - x[0], e.p[1] - x[1], e.p[2] - x[2]}, d = sqrt(dot3(r, r));
     /* the rounding of d: of the differences p - x */
     double slack = 16 * DBL_EPSILON * (fabs(x[0]) + fabs(x[1]) + fabs(x[2]) + d);
+    double gmin = INFINITY; /* the smallest gradient (squared) of the points taken */
     for (int it = 0; it < 60 && isfinite(d) && d > 0; it++) {
         double g0 = dot3(e.su, r), g1 = dot3(e.sv, r);
         /* a side of the square where the distance falls outward holds the parameter there (the
@@ -781,6 +782,7 @@ static double foot(const rg2_surface *s, int pi, int pj, const double x[3], doub
         if (hv)
             g1 = 0;
         double gg = g0 * g0 + g1 * g1;
+        gmin = lesser(gmin, gg);
         double a = dot3(e.su, e.su), b = dot3(e.su, e.sv), c = dot3(e.sv, e.sv);
         double A = a + dot3(e.suu, r), B = b + dot3(e.suv, r), C = c + dot3(e.svv, r);
         if (hu || hv) /* (one parameter moves: its own second derivative, Newton or Gauss-Newton) */
@@ -808,14 +810,16 @@ static double foot(const rg2_surface *s, int pi, int pj, const double x[3], doub
             rg2_eval f;
             rg2_surface_eval(s, pi, pj, nu, nv, 2, &f);
             double q[3] = {f.p[0] - x[0], f.p[1] - x[1], f.p[2] - x[2]}, dq = sqrt(dot3(q, q));
-            /* nearer; or, where the distance is flat to rounding near the foot, as near with a
-             * smaller gradient (the point then still moves to its last bits) */
+            /* nearer by more than rounding; or, where the distance is flat to rounding near the
+             * foot, as near with a gradient under half the smallest met (the point then still
+             * moves to its last bits, and cannot cycle: two points a rounding apart, each
+             * nearer than the other by its last bits, took 60 steps) */
             double h0 = dot3(f.su, q), h1 = dot3(f.sv, q);
             if ((nu == 0 && h0 > 0) || (nu == 1 && h0 < 0))
                 h0 = 0;
             if ((nv == 0 && h1 > 0) || (nv == 1 && h1 < 0))
                 h1 = 0;
-            if (dq < d || (dq <= d + slack && h0 * h0 + h1 * h1 < 0.25 * gg)) {
+            if (dq < d - slack || (dq <= d + slack && h0 * h0 + h1 * h1 < 0.25 * gmin)) {
                 better = 1;
                 *u = nu, *v = nv, d = dq, e = f;
                 memcpy(r, q, sizeof r);
@@ -833,6 +837,10 @@ static double foot(const rg2_surface *s, int pi, int pj, const double x[3], doub
 static double foot_across(const rg2_surface *s, int *pi, int *pj, const double x[3], double *u, double *v)
 {
     double d = foot(s, *pi, *pj, x, u, v);
+    /* (as near: within the rounding of the distances, which foot's slack bounds; a foot 1e-8
+     * past a seam is 1e-17 nearer than the side point, and the two computed distances differ
+     * by their rounding, either way) */
+    double slack = 16 * DBL_EPSILON * (fabs(x[0]) + fabs(x[1]) + fabs(x[2]) + d);
     for (int hop = 0; hop < 4; hop++) {
         int i = *pi, j = *pj, side = *u == 0 ? 0 : *u == 1 ? 1 : *v == 0 ? 2 : *v == 1 ? 3 : -1;
         if (side < 0)
@@ -856,7 +864,7 @@ static double foot_across(const rg2_surface *s, int *pi, int *pj, const double x
             nv = side == 3 ? 0 : 1;
         }
         double a = nu, b = nv, dn = foot(s, i, j, x, &a, &b);
-        if ((side < 2 ? a == nu : b == nv) || !(dn <= d * (1 + 4 * DBL_EPSILON)))
+        if ((side < 2 ? a == nu : b == nv) || !(dn <= d + slack))
             break;
         *pi = i, *pj = j, *u = a, *v = b, d = dn;
     }
