@@ -50,12 +50,14 @@ static volatile double rg2f_sink;
  * sanitizers), and a coarse tessellation of small surfaces. */
 /* Picking (src/locate.c): a nearest point and a first ray hit from outside the control box. A
  * refusal names a weight <= 0; a hit lies on the surface side of its bound, on its ray (within
- * the stated tolerance), and no farther than any patch corner (a point of the surface). */
+ * the stated tolerance), and no farther than any patch corner (a point of the surface); every
+ * control point lies inside the slabs of its tree nodes. */
 extern long rg2__locate_max_pieces; /* (src/internal.h) */
 int rg2__locate_cert(const rg2_locator *L, int patch, double uf, double vf, double r, const double x[3], double c,
                      const double rect[4], double *bound);
 int rg2__locate_ray_cert(const rg2_locator *L, int patch, double uf, double vf, double r, const double o[3],
                          const double d[3], const double rect[4], double *bound);
+double rg2__locate_slab_margin(const rg2_locator *L, int *slabs);
 
 /* The searches' certificates by themselves (src/locate.c), on patches 0 and the last, based at
  * the centre and at a corner: a nearest-point certificate's bound over its rectangle may not lie
@@ -105,6 +107,11 @@ static void rg2f_check_picking(const rg2_surface *s, const char *what)
             rg2f_violation("%s: rg2_locator_build -> %s: %s", what, rg2_status_str(st), err.msg);
         return;
     }
+    /* every exact control point inside the tree's slabs, which rule nodes out */
+    int slabs;
+    double margin = rg2__locate_slab_margin(L, &slabs);
+    if (!(margin >= 0))
+        rg2f_violation("%s: a control point %.3g (of its size) outside its tree node's slab", what, -margin);
     double lo[3], hi[3], c[3], x[3], d[3], size = 0;
     rg2_surface_box(s, lo, hi);
     for (int k = 0; k < 3; k++) {

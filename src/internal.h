@@ -67,6 +67,12 @@ int rg2__locate_cert(const rg2_locator *L, int patch, double uf, double vf, doub
 int rg2__locate_ray_cert(const rg2_locator *L, int patch, double uf, double vf, double r, const double o[3],
                          const double d[3], const double rect[4], double *bound);
 
+/* The tree's slabs (locate.c: each node's range of n . P over its patches' control points): the
+ * smallest margin by which the exact control points (in long double) lie inside their nodes'
+ * slabs, relative to their coordinates' size (negative: a point outside), over the *slabs
+ * nodes that have one. For test_locate and the fuzz harness. */
+double rg2__locate_slab_margin(const rg2_locator *L, int *slabs);
+
 /* Fill err (if not NULL) with code and a printf-style message; returns code. */
 rg2_status rg2__fail(rg2_error *err, rg2_status code, const char *fmt, ...)
 #if defined(__GNUC__)

@@ -186,7 +186,11 @@ static void torus_case(const rg2_surface *s, const char *what, int queries, int 
     CHECK_OK(rg2_locator_ray(L, o, d, Tr / 2, &h, &err), &err);
     CHECK(h.i >= 0 && fabs(h.dist - Tr / 2) <= 1e-14, "%s: tmax = the hit's t 0.375: i %d, t %.17g, bound %.17g", what,
           h.i, h.dist, h.bound);
-    double on_s[3] = {TR + Tr, 0, 0}, back[3] = {-1, 0, 0};
+    /* (the surface's own point at its corner (0, 0), near (R + r, 0, 0): on the torus of 120 x 90
+     * patches, x is 3.2499999999999996 there, and from (3.25, 0, 0) the hit lies 4e-16 ahead) */
+    rg2_eval ev;
+    rg2_surface_eval(s, 0, 0, 0, 0, 0, &ev);
+    double on_s[3] = {ev.p[0], ev.p[1], ev.p[2]}, back[3] = {-1, 0, 0};
     CHECK_OK(rg2_locator_ray(L, on_s, back, 0.0, &h, &err), &err);
     CHECK(h.i >= 0 && h.dist == 0 && fabs(h.p[0] - (TR + Tr)) <= 1e-14, "%s: from a surface point, tmax 0: i %d, t %.17g",
           what, h.i, h.dist);
@@ -899,6 +903,66 @@ static void certificates(void)
           declined);
 }
 
+/* The tree's slabs (each node's range along a direction near its patches' normal, which rules
+ * out nodes the box does not): every exact control point inside its nodes' slabs, on the torus,
+ * the torus of degree (5, 4) in part, a torus of 120 x 90 patches (and mirrored) and every
+ * example surface. */
+static void slab_one(const rg2_surface *s, const char *what, double *worst, int *nodes, int *slabs)
+{
+    rg2_error err;
+    rg2_locator *L;
+    CHECK_OK(rg2_locator_build(s, &L, &err), &err);
+    if (!L)
+        return;
+    int k;
+    double m = rg2__locate_slab_margin(L, &k);
+    CHECK(m >= 0, "%s: a control point %.3g (of its size) outside its node's slab", what, -m);
+    *worst = fmin(*worst, m);
+    *nodes += 2 * s->nu * s->nv - 1;
+    *slabs += k;
+    rg2_locator_free(L);
+}
+
+static void slabs(void)
+{
+    rg2_error err;
+    rg2_surface s;
+    double worst = INFINITY;
+    int nodes = 0, slabs = 0, tnodes, tslabs;
+    CHECK_OK(rg2t_torus(TR, Tr, 8, 6, NULL, &s, &err), &err);
+    slab_one(&s, "torus", &worst, &nodes, &slabs);
+    rg2_surface_free(&s);
+    CHECK_OK(rg2t_torus(TR, Tr, 7, 5, NULL, &s, &err), &err);
+    CHECK_OK(rg2t_elevate_some(&s, 5, 4, 3, 1, &err), &err);
+    slab_one(&s, "torus of degree (5, 4) in part", &worst, &nodes, &slabs);
+    rg2_surface_free(&s);
+    CHECK_OK(rg2t_torus(TR, Tr, 120, 90, NULL, &s, &err), &err);
+    tnodes = nodes, tslabs = slabs;
+    slab_one(&s, "torus of 120 x 90 patches", &worst, &nodes, &slabs);
+    tnodes = nodes - tnodes, tslabs = slabs - tslabs;
+    torus_case(&s, "torus of 120 x 90 patches", 300, 300);
+    /* mirrored and moved off the origin (the slabs' normals turn over, and their rounding falls
+     * on the other side) */
+    static const double M[16] = {-1, 0, 0, 0.3, 0, 1, 0, -0.7, 0, 0, 1, 0.2, 0, 0, 0, 1};
+    rg2_surface_transform(&s, M);
+    slab_one(&s, "torus of 120 x 90 patches, mirrored", &worst, &nodes, &slabs);
+    rg2_surface_free(&s);
+    char *names[64];
+    int ne = rg2t_example_names(names, 64), surfaces = 0;
+    for (int k = 0; k < ne; k++) {
+        rg2_design *d = NULL;
+        CHECK_OK(rg2_design_load(names[k], &d, &err), &err);
+        for (int o = 0; d && o < rg2_design_num_surfaces(d); o++, surfaces++)
+            slab_one(rg2_design_surface(d, o), names[k], &worst, &nodes, &slabs);
+        rg2_design_free(d);
+        free(names[k]);
+    }
+    printf("tree slabs: %d of %d nodes have one (torus of 120 x 90 patches: %d of %d; %d example surfaces); every "
+           "control point inside, by at least %.2e of its size\n",
+           slabs, nodes, tslabs, tnodes, surfaces, worst);
+    CHECK(tslabs > tnodes / 2, "torus of 120 x 90 patches: only %d of %d nodes have a slab", tslabs, tnodes);
+}
+
 int main(void)
 {
     rg2_error err;
@@ -913,5 +977,6 @@ int main(void)
     special();
     examples();
     certificates();
+    slabs();
     return rg2t_done("test_locate");
 }
