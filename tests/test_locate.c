@@ -854,6 +854,36 @@ static void ray_cert_torus(const rg2_surface *s, rg2t_rng *rng)
 
 typedef void (*cert_check)(const rg2_surface *, const char *, int, rg2t_rng *, int *, int *, double *);
 
+/* f on every surface of every example design; the number of surfaces. */
+static int for_examples(void (*f)(const rg2_surface *, const char *, void *), void *ctx)
+{
+    rg2_error err;
+    char *names[64];
+    int ne = rg2t_example_names(names, 64), surfaces = 0;
+    for (int k = 0; k < ne; k++) {
+        rg2_design *d = NULL;
+        CHECK_OK(rg2_design_load(names[k], &d, &err), &err);
+        for (int o = 0; d && o < rg2_design_num_surfaces(d); o++, surfaces++)
+            f(rg2_design_surface(d, o), names[k], ctx);
+        rg2_design_free(d);
+        free(names[k]);
+    }
+    return surfaces;
+}
+
+typedef struct {
+    cert_check each;
+    rg2t_rng *rng;
+    int *made, *declined;
+    double *excess;
+} cert_ctx;
+
+static void cert_example(const rg2_surface *s, const char *name, void *ctx)
+{
+    cert_ctx *c = ctx;
+    c->each(s, name, 40, c->rng, c->made, c->declined, c->excess);
+}
+
 /* One kind of certificate on the torus (first its check at the true answers), the torus of
  * degree (5, 4) in part and every example surface; the number made and declined, the surfaces. */
 static int cert_all(cert_check each, void (*at_answers)(const rg2_surface *, rg2t_rng *), rg2t_rng *rng, int *made,
@@ -871,17 +901,8 @@ static int cert_all(cert_check each, void (*at_answers)(const rg2_surface *, rg2
     CHECK_OK(rg2t_elevate_some(&s, 5, 4, 3, 1, &err), &err);
     each(&s, "torus of degree (5, 4) in part", 400, rng, made, declined, excess);
     rg2_surface_free(&s);
-    char *names[64];
-    int ne = rg2t_example_names(names, 64), surfaces = 0;
-    for (int k = 0; k < ne; k++) {
-        rg2_design *d = NULL;
-        CHECK_OK(rg2_design_load(names[k], &d, &err), &err);
-        for (int o = 0; d && o < rg2_design_num_surfaces(d); o++, surfaces++)
-            each(rg2_design_surface(d, o), names[k], 40, rng, made, declined, excess);
-        rg2_design_free(d);
-        free(names[k]);
-    }
-    return surfaces;
+    cert_ctx cx = {each, rng, made, declined, excess};
+    return for_examples(cert_example, &cx);
 }
 
 static void certificates(void)
@@ -923,6 +944,17 @@ static void slab_one(const rg2_surface *s, const char *what, double *worst, int 
     rg2_locator_free(L);
 }
 
+typedef struct {
+    double *worst;
+    int *nodes, *slabs;
+} slab_ctx;
+
+static void slab_example(const rg2_surface *s, const char *name, void *ctx)
+{
+    slab_ctx *c = ctx;
+    slab_one(s, name, c->worst, c->nodes, c->slabs);
+}
+
 static void slabs(void)
 {
     rg2_error err;
@@ -947,16 +979,8 @@ static void slabs(void)
     rg2_surface_transform(&s, M);
     slab_one(&s, "torus of 120 x 90 patches, mirrored", &worst, &nodes, &slabs);
     rg2_surface_free(&s);
-    char *names[64];
-    int ne = rg2t_example_names(names, 64), surfaces = 0;
-    for (int k = 0; k < ne; k++) {
-        rg2_design *d = NULL;
-        CHECK_OK(rg2_design_load(names[k], &d, &err), &err);
-        for (int o = 0; d && o < rg2_design_num_surfaces(d); o++, surfaces++)
-            slab_one(rg2_design_surface(d, o), names[k], &worst, &nodes, &slabs);
-        rg2_design_free(d);
-        free(names[k]);
-    }
+    slab_ctx cx = {&worst, &nodes, &slabs};
+    int surfaces = for_examples(slab_example, &cx);
     printf("tree slabs: %d of %d nodes have one (torus of 120 x 90 patches: %d of %d; %d example surfaces); every "
            "control point inside, by at least %.2e of its size\n",
            slabs, nodes, tslabs, tnodes, surfaces, worst);
