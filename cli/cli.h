@@ -50,9 +50,10 @@ int rg2_cli_parse_n(const char *cmd, const char *opt, const char *s, double *out
  * printed, "rg2 <cmd>: <opt> needs <rule>, not '<s>'". A subnormal number is accepted. */
 int rg2_cli_number(const char *cmd, const char *opt, const char *s, const char *rule, double *v);
 
-/* --surface K of rg2 render and rg2 check: K as given, any integer >= 0 (*v; a usage message and
- * -1 otherwise). The design's count bounds it once loaded: rg2_cli_surface_in. */
-int rg2_cli_surface_opt(const char *cmd, const char *s, double *v);
+/* --surface K of rg2 build, render and check: K as given, any integer >= 0 (*v; a usage message
+ * and -1 otherwise, and when an earlier --surface gave prev). The design's count bounds it once
+ * loaded: rg2_cli_surface_in. */
+int rg2_cli_surface_opt(const char *cmd, const char *prev, const char *s, double *v);
 /* Whether --surface s (v as rg2_cli_surface_opt read it) names one of the design's n surfaces:
  * 0, or a usage message and -1. */
 int rg2_cli_surface_in(const char *cmd, const char *s, double v, int n);

@@ -105,8 +105,9 @@ int rg2_cmd_build(int argc, char **argv)
                 return RG2_EXIT_USAGE;
             density_set = 1;
         } else if (!strcmp(a, "--surface")) {
+            const char *prev = only_arg;
             only_arg = i + 1 < argc ? argv[++i] : NULL;
-            if (rg2_cli_surface_opt("build", only_arg, &only_v))
+            if (rg2_cli_surface_opt("build", prev, only_arg, &only_v))
                 return RG2_EXIT_USAGE;
         } else if (a[0] == '-' && a[1]) {
             return rg2_cli_unknown_option("build", a, usage, NULL);

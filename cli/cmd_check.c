@@ -315,8 +315,9 @@ int rg2_cmd_check(int argc, char **argv)
             }
             *dst = v;
         } else if (!strcmp(a, "--surface")) {
+            const char *prev = only_arg;
             only_arg = i + 1 < argc ? argv[++i] : NULL;
-            if (rg2_cli_surface_opt("check", only_arg, &only_v))
+            if (rg2_cli_surface_opt("check", prev, only_arg, &only_v))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--on")) {
             if (i + 1 >= argc || !argv[i + 1][0]) {

@@ -157,8 +157,9 @@ int rg2_cmd_render(int argc, char **argv)
             if (rg2_cli_int("render", a, i + 1 < argc ? argv[++i] : NULL, 1, 1024, &o.threads))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--surface")) {
+            const char *prev = only_arg;
             only_arg = i + 1 < argc ? argv[++i] : NULL;
-            if (rg2_cli_surface_opt("render", only_arg, &only_v))
+            if (rg2_cli_surface_opt("render", prev, only_arg, &only_v))
                 return RG2_EXIT_USAGE;
         } else if (!strcmp(a, "--range")) {
             if (rg2_cli_parse_n("render", "--range", i + 1 < argc ? argv[i + 1] : "", o.range, 2, "lo,hi"))

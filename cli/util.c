@@ -81,9 +81,14 @@ int rg2_cli_number(const char *cmd, const char *opt, const char *s, const char *
     return -1;
 }
 
-int rg2_cli_surface_opt(const char *cmd, const char *s, double *v)
+int rg2_cli_surface_opt(const char *cmd, const char *prev, const char *s, double *v)
 {
     const char *rule = "a surface index (an integer >= 0)";
+    if (prev) { /* (the second would silently replace the first) */
+        fprintf(stderr, "rg2 %s: --surface given twice ('%s', then '%s'); it takes one surface (without it: all)\n",
+                cmd, prev, s ? s : "");
+        return -1;
+    }
     if (rg2_cli_number(cmd, "--surface", s, rule, v))
         return -1;
     if (*v < 0 || *v != floor(*v)) {

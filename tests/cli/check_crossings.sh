@@ -110,4 +110,9 @@ on_surfaces() {
 expect 2 "--surface needs a surface index (an integer >= 0), not '-1'" -- "$RG2" check "$cyl" --surface -1
 expect 2 "--surface needs a surface index (an integer >= 0), not '1.5'" -- "$RG2" check "$cyl" --surface 1.5
 expect 2 "--surface needs a surface index (an integer >= 0), not 'b'" -- "$RG2" check "$cyl" --surface b
+# a second --surface would silently replace the first: refused in every command that takes it
+expect 2 "rg2 check: --surface given twice ('0', then '1'); it takes one surface (without it: all)" -- "$RG2" check "$cyl" --surface 0 --surface 1
+expect 2 "rg2 render: --surface given twice ('1', then '1')" -- "$RG2" render "$cyl" --surface 1 --surface 1 -o "$tmp/twice.png"
+expect 2 "rg2 build: --surface given twice ('0', then '2')" -- "$RG2" build "$cyl" --surface 0 --surface 2 -o "$tmp/twice.step"
+[ ! -e "$tmp/twice.png" ] && [ ! -e "$tmp/twice.step" ] && ok || bad "a refused --surface left a file"
 finish
