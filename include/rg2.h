@@ -1583,7 +1583,8 @@ RG2_API rg2_status rg2_surface_shape_residuals(const rg2_surface *s, const rg2_s
 /** The RG2_REQUIRE_* bits of `require` that the report fails (0: every promise holds). */
 RG2_API unsigned rg2_check_failures(const rg2_check_report *r, unsigned require);
 /** Format the report as a text table (json = 0) or JSON (json = 1) into a malloc'd string
- *  the caller frees with free(). @return RG2_ENOMEM. */
+ *  the caller frees with free(). A NaN figure (from a non-finite control value) reads "NaN" in
+ *  the table, whatever its sign bit, and null in the JSON. @return RG2_ENOMEM. */
 RG2_API rg2_status rg2_check_format(const rg2_check_report *r, int json, char **text,
                                     rg2_error *err);
 

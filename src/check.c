@@ -1047,6 +1047,25 @@ typedef struct {
     int oom;
 } sbuf;
 
+/* A NaN printed by %g or %e reads "nan" or "-nan" (its sign bit, which means nothing): both
+ * become "NaN" (the minus sign a space), the same length, where they stand as a word. */
+static int word_char(char c)
+{
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+}
+
+static void nan_words(char *t, size_t n)
+{
+    for (size_t k = 0; k + 3 <= n; k++) {
+        int before = k == 0 || !word_char(t[k - 1]), after = k + 3 == n || !word_char(t[k + 3]);
+        if (!before || !after || strncmp(t + k, "nan", 3) != 0)
+            continue;
+        memcpy(t + k, "NaN", 3);
+        if (k > 0 && t[k - 1] == '-')
+            t[k - 1] = ' ';
+    }
+}
+
 #if defined(__GNUC__)
 __attribute__((format(printf, 2, 3)))
 #endif
@@ -1064,6 +1083,7 @@ static void sb_printf(sbuf *b, const char *fmt, ...)
             return;
         }
         if (b->s && b->len + (size_t)n < b->cap) {
+            nan_words(b->s + b->len, (size_t)n);
             b->len += (size_t)n;
             return;
         }
