@@ -1247,6 +1247,20 @@ RG2_API void rg2_tess_free(rg2_tess *t);
  *  the format), RG2_ENOMEM. */
 RG2_API rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *path,
                                    const rg2_export_opts *opts, rg2_error *err);
+/** Write surfaces into memory instead of a file, in the format named by `format`: an extension
+ *  rg2_export_file knows, without its dot ("step", "stp", "igs", "iges", "bv", "bez", "obj",
+ *  "stl", "ply", "glb", "json"; case-insensitive). *data gets a buffer from malloc (the caller
+ *  frees it with free()) of *size bytes and a 0 byte after them (for the text formats); they are
+ *  the bytes rg2_export_file writes to a file named "<opts->name>.<format>" (STEP and IGES
+ *  headers carry that name, '/' written as '_', and the time as rg2_export_file does,
+ *  SOURCE_DATE_EPOCH included). For a program embedding the library: a CAD kernel that reads
+ *  from memory, a network reply. The data passes through an anonymous temporary file (tmpfile:
+ *  the IGES writer seeks back). On failure *data is NULL and *size 0.
+ *  @return the statuses of rg2_export_file; RG2_EINVAL also for data or size NULL and an
+ *  unknown format; RG2_EIO when the temporary file cannot be made or written. */
+RG2_API rg2_status rg2_export_memory(const rg2_surface *surfs, int n_surfs, const char *format,
+                                     const rg2_export_opts *opts, char **data, size_t *size,
+                                     rg2_error *err);
 /** Write the same surfaces to several files as one: each is written completely to a
  *  temporary file next to its path first (as rg2_export_file), and only when all are written are they renamed to their paths. If any fails
  *  (an unknown extension, a non-positive weight for STEP/IGES, an unwritable directory), none of

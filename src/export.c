@@ -784,7 +784,7 @@ static rg2_status check_float_range(const rg2_tess *t, int n, const char *path, 
  * caller frees it. */
 static rg2_status export_staged(const rg2_surface *surfs, int n_surfs, const char *path,
                                 const rg2_export_opts *opts, rg2__out *out, rg2_tess **keep, int keep_curvature,
-                                rg2_error *err)
+                                int memory, rg2_error *err)
 {
     memset(out, 0, sizeof *out);
     rg2_export_opts def;
@@ -853,7 +853,7 @@ static rg2_status export_staged(const rg2_surface *surfs, int n_surfs, const cha
         def = *opts;
     def.name = clean;
     opts = &def;
-    st = rg2__out_open(out, path, err);
+    st = memory ? rg2__out_open_memory(out, path, err) : rg2__out_open(out, path, err);
     if (st) {
         rg2__tess_all_free(own, n_surfs);
         free(clean);
@@ -881,11 +881,55 @@ rg2_status rg2_export_file(const rg2_surface *surfs, int n_surfs, const char *pa
                            const rg2_export_opts *opts, rg2_error *err)
 {
     rg2__out out;
-    rg2_status st = export_staged(surfs, n_surfs, path, opts, &out, NULL, 0, err);
+    rg2_status st = export_staged(surfs, n_surfs, path, opts, &out, NULL, 0, 0, err);
     if (st == RG2_OK)
         st = rg2__out_commit(&out, err);
     if (st == RG2_OK)
         rg2__ok(err);
+    return st;
+}
+
+rg2_status rg2_export_memory(const rg2_surface *surfs, int n_surfs, const char *format, const rg2_export_opts *opts,
+                             char **data, size_t *size, rg2_error *err)
+{
+    if (data)
+        *data = NULL;
+    if (size)
+        *size = 0;
+    if (!data || !size)
+        return rg2__fail(err, RG2_EINVAL, "rg2_export_memory: %s is NULL", !data ? "data" : "size");
+    int fmt;
+    char probe[16] = "x.";
+    int known = format && *format && strlen(format) <= 8 && !strchr(format, '.') && !strchr(format, '/');
+    if (known) {
+        strcat(probe, format);
+        known = export_format(probe, &fmt, NULL) == RG2_OK;
+    }
+    if (!known)
+        return rg2__fail(err, RG2_EINVAL,
+                         "rg2_export_memory: unknown format '%s' (use step stp igs iges bv bez obj stl ply glb json: "
+                         "an extension without its dot)",
+                         format ? format : "(null)");
+    /* the name the STEP and IGES headers give: "<opts->name>.<format>", '/' made '_' (the headers
+     * take a path's last part) */
+    const char *nm = opts && opts->name ? opts->name : "rg2";
+    size_t ln = strlen(nm);
+    char *label = malloc(ln + strlen(format) + 2);
+    if (!label)
+        return rg2__fail(err, RG2_ENOMEM, "rg2_export_memory: out of memory");
+    for (size_t k = 0; k < ln; k++)
+        label[k] = nm[k] == '/' ? '_' : nm[k];
+    label[ln] = '.';
+    strcpy(label + ln + 1, format);
+    rg2__out out;
+    rg2_status st = export_staged(surfs, n_surfs, label, opts, &out, NULL, 0, 1, err);
+    if (st == RG2_OK) {
+        *data = out.data, *size = out.size;
+        out.data = NULL;
+        rg2__out_discard(&out);
+        rg2__ok(err);
+    }
+    free(label);
     return st;
 }
 
@@ -925,7 +969,7 @@ rg2_status rg2_export_files(const rg2_surface *surfs, int n_surfs, const char *c
     rg2_tess *shared = NULL; /* one tessellation for every mesh output, freed after the last */
     int staged = 0;
     for (; staged < n_paths; staged++) {
-        st = export_staged(surfs, n_surfs, paths[staged], opts, &outs[staged], &shared, curvature, err);
+        st = export_staged(surfs, n_surfs, paths[staged], opts, &outs[staged], &shared, curvature, 0, err);
         if (st)
             break;
         if (staged == last_mesh) { /* the outputs after it (STEP, IGES, ...) are written without it */

@@ -779,7 +779,8 @@ static rg2_status seek_failed(const rg2__out *out, rg2_error *err)
     int e = errno;
     if (ferror(out->f))
         return rg2__fail(err, RG2_EIO, "%s: write failed: %s", out->path, strerror(e));
-    return rg2__fail(err, RG2_EIO, "%s: cannot seek in %s: %s", out->path, out->tmp, strerror(e));
+    return rg2__fail(err, RG2_EIO, "%s: cannot seek in %s: %s", out->path, out->tmp ? out->tmp : "its temporary file",
+                     strerror(e));
 }
 
 /*

@@ -126,21 +126,27 @@ void *rg2__alloc_big(size_t n, size_t size, size_t from, int zero);
 
 /* An output file written whole or not at all (src/outfile.c): data goes to a new temporary
  * file next to path, "<path>.<pid>.tmp" (f), renamed to path when complete, removed on
- * failure, so a failed write leaves no file. */
+ * failure, so a failed write leaves no file. Or an output into memory (mem): f an anonymous
+ * temporary file (tmpfile: the writers seek), read into data (size bytes and a 0) when
+ * finished; path is then only the name the headers and messages give. */
 typedef struct {
     FILE *f;
     const char *path;
     char *tmp;
+    int mem;
+    char *data;
+    size_t size;
 } rg2__out;
 
 rg2_status rg2__out_open(rg2__out *o, const char *path, rg2_error *err);
+rg2_status rg2__out_open_memory(rg2__out *o, const char *name, rg2_error *err);
 /* Finish writing: if st == RG2_OK, flush and check for write errors (the complete file stays
  * at o->tmp for rg2__out_commit); otherwise, or on a write error, remove it. Returns the final
  * status. */
 rg2_status rg2__out_finish(rg2__out *o, rg2_status st, rg2_error *err);
 /* Rename a finished file to its path. */
 rg2_status rg2__out_commit(rg2__out *o, rg2_error *err);
-/* Close (if open) and remove the temporary file. */
+/* Close (if open) and remove the temporary file (free the data of an output into memory). */
 void rg2__out_discard(rg2__out *o);
 /* rg2__out_finish, then rg2__out_commit on success. */
 rg2_status rg2__out_close(rg2__out *o, rg2_status st, rg2_error *err);

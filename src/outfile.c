@@ -10,13 +10,16 @@
  * process a name in use gets a counter ("<path>.<pid>.1.tmp", ...). A regular file replaced
  * keeps its permission bits (the temporary file gets them before the rename); a new file has
  * 0666 & ~umask. A file name near its directory's file-name limit (255 bytes on most file
- * systems, 143 on eCryptfs) has its temporary name cut to fit, with a hash of the whole name. */
+ * systems, 143 on eCryptfs) has its temporary name cut to fit, with a hash of the whole name.
+ * An output into memory (rg2_export_memory) is written to an anonymous temporary file (tmpfile:
+ * the IGES writer seeks back for its directory section) and read back when complete. */
 #define _POSIX_C_SOURCE 200809L /* O_NOFOLLOW, O_CLOEXEC */
 #include "internal.h"
 
 #include <errno.h>
 #include <limits.h>
 #include <fcntl.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -156,11 +159,56 @@ rg2_status rg2__out_open(rg2__out *o, const char *path, rg2_error *err)
     return RG2_OK;
 }
 
+rg2_status rg2__out_open_memory(rg2__out *o, const char *name, rg2_error *err)
+{
+    memset(o, 0, sizeof *o);
+    o->path = name;
+    o->mem = 1;
+    if (!(o->f = tmpfile()))
+        return rg2__fail(err, RG2_EIO, "%s: cannot open a temporary file to write into memory: %s", name,
+                         strerror(errno));
+    return RG2_OK;
+}
+
+/* An output into memory, written: its bytes into o->data (and a 0 after them). Returns 0, or -1
+ * with errno (ENOMEM for the buffer, EFBIG past the address space). */
+static int read_back(rg2__out *o)
+{
+    long n;
+    if (fflush(o->f) != 0 || ferror(o->f) || fseek(o->f, 0, SEEK_END) != 0 || (n = ftell(o->f)) < 0 ||
+        fseek(o->f, 0, SEEK_SET) != 0)
+        return -1;
+    if ((unsigned long)n >= SIZE_MAX) {
+        errno = EFBIG;
+        return -1;
+    }
+    o->data = malloc((size_t)n + 1);
+    if (!o->data) {
+        errno = ENOMEM;
+        return -1;
+    }
+    if (fread(o->data, 1, (size_t)n, o->f) != (size_t)n) {
+        if (!ferror(o->f))
+            errno = EIO;
+        free(o->data);
+        o->data = NULL;
+        return -1;
+    }
+    o->data[n] = '\0';
+    o->size = (size_t)n;
+    return 0;
+}
+
 rg2_status rg2__out_finish(rg2__out *o, rg2_status st, rg2_error *err)
 {
     if (!o->f)
         return st;
-    if (st == RG2_OK) {
+    if (st == RG2_OK && o->mem) {
+        if (read_back(o) != 0)
+            st = rg2__fail(err, errno == ENOMEM ? RG2_ENOMEM : RG2_EIO, "%s: writing into memory failed: %s",
+                           o->path, strerror(errno));
+        fclose(o->f); /* (a tmpfile: nothing to keep, so no error to report) */
+    } else if (st == RG2_OK) {
         int bad = fflush(o->f) != 0 || ferror(o->f);
         int saved = errno;
         if (fclose(o->f) != 0 && !bad) {
@@ -194,6 +242,9 @@ void rg2__out_discard(rg2__out *o)
     if (o->f)
         fclose(o->f);
     o->f = NULL;
+    free(o->data);
+    o->data = NULL;
+    o->size = 0;
     if (o->tmp)
         remove(o->tmp);
     free(o->tmp);

@@ -1635,6 +1635,78 @@ static void several_same_bytes(const rg2_surface *surfs, int n, int density)
         remove(paths[k]);
 }
 
+/* Into memory (rg2_export_memory): for every format, the bytes rg2_export_file writes to
+ * "<name>.<format>" (with SOURCE_DATE_EPOCH, the STEP and IGES stamps too), and a 0 after them;
+ * the name with a '/' (the headers give it as '_'); failures leave *data NULL: an unknown or
+ * dotted format, NULL arguments, a weight <= 0 for STEP. */
+static void into_memory(const rg2_surface *s, const rg2_surface *x)
+{
+    static const char *fmts[] = {"step", "stp", "igs", "IGES", "bv", "bez", "obj", "stl", "ply", "glb", "json"};
+    const char *old = getenv("SOURCE_DATE_EPOCH");
+    char *keep = old ? strdup(old) : NULL;
+    setenv("SOURCE_DATE_EPOCH", "1700000000", 1);
+    rg2_error err;
+    rg2_export_opts o;
+    rg2_export_opts_default(&o);
+    int same = 0;
+    size_t total = 0;
+    for (int v = 0; v < 3; v++) {
+        const rg2_surface *surf = v == 2 ? x : s;
+        o.name = v == 1 ? "parts/flange 7" : "rg2";
+        o.iges_brep = v == 1;
+        o.layout = v == 1 ? RG2_STEP_FACE_PER_MESH : RG2_STEP_FACE_PER_PATCH;
+        for (size_t k = 0; k < sizeof fmts / sizeof *fmts; k++) {
+            char name[64], buf[256];
+            snprintf(name, sizeof name, "%s.%s", v == 1 ? "parts_flange 7" : "rg2", fmts[k]);
+            CHECK_OK(rg2_export_file(surf, 1, path_at(buf, name), &o, &err), &err);
+            size_t lf = 0, lm = 12345;
+            unsigned char *f = slurp(buf, &lf);
+            char *m = (char *)&lm;
+            rg2_status st = rg2_export_memory(surf, 1, fmts[k], &o, &m, &lm, &err);
+            CHECK_OK(st, &err);
+            int ok = !st && f && m && lm == lf && !memcmp(f, m, lf) && m[lm] == 0;
+            CHECK(ok, "%s in memory: %zu bytes, the file %zu, %s", name, lm, lf,
+                  !st && f && m && lm == lf ? "different bytes" : "a different size");
+            same += ok;
+            total += lm;
+            free(f);
+            if (!st)
+                free(m);
+            remove(buf);
+        }
+    }
+    /* failures: *data NULL and *size 0, with the error named */
+    static const char *bad[] = {"xyz", ".step", "", "step/x", "toolongformat"};
+    for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
+        size_t n = 7;
+        char *m = (char *)&n;
+        rg2_status st = rg2_export_memory(s, 1, bad[k], NULL, &m, &n, &err);
+        CHECK(st == RG2_EINVAL && !m && n == 0 && strstr(err.msg, "unknown format"),
+              "format '%s': %s, data %p, size %zu: %s", bad[k], rg2_status_str(st), (void *)m, n, err.msg);
+    }
+    size_t n = 0;
+    char *m = NULL;
+    CHECK(rg2_export_memory(s, 1, NULL, NULL, &m, &n, &err) == RG2_EINVAL && !m, "format NULL: %s", err.msg);
+    CHECK(rg2_export_memory(s, 1, "step", NULL, NULL, &n, &err) == RG2_EINVAL, "data NULL accepted");
+    CHECK(rg2_export_memory(s, 1, "step", NULL, &m, NULL, &err) == RG2_EINVAL && !m, "size NULL accepted");
+    CHECK(rg2_export_memory(s, 0, "step", NULL, &m, &n, &err) == RG2_EINVAL && !m, "no surfaces accepted");
+    rg2_surface w;
+    CHECK_OK(rg2_surface_copy(s, &w, &err), &err);
+    w.patch[1].h[2][1][3] = -0.5;
+    rg2_status st = rg2_export_memory(&w, 1, "step", NULL, &m, &n, &err);
+    CHECK(st == RG2_EWEIGHT && !m && n == 0 && strstr(err.msg, "rg2.step"),
+          "a negative weight in STEP into memory: %s, %s", rg2_status_str(st), err.msg);
+    rg2_surface_free(&w);
+    if (keep) {
+        setenv("SOURCE_DATE_EPOCH", keep, 1);
+        free(keep);
+    } else
+        unsetenv("SOURCE_DATE_EPOCH");
+    printf("into memory: %d of %d outputs (11 formats; the torus, named with a '/', and of higher degree) the bytes "
+           "of their files (%zu bytes in all); 9 refusals with nothing allocated\n",
+           same, 3 * (int)(sizeof fmts / sizeof *fmts), total);
+}
+
 /* Several files as one (rg2_export_files): on success every path holds what rg2_export_file
  * writes (the torus; a surface with poles, whose collapsed sides the tessellation merges, next
  * to it; at two densities); when any output fails (a negative weight for STEP, an unwritable
@@ -2662,6 +2734,7 @@ int main(void)
     step_text(&x);
     export_degrees(&x);
     xfailures(&x);
+    into_memory(&s, &x);
     int Du, Dv;
     rg2_surface_degree(&x, &Du, &Dv);
     printf("higher-degree patches (torus 6 x 4, degrees up to (%d, %d)): .bez elevated patches %.2e from rg2's, "

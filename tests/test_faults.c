@@ -345,6 +345,25 @@ static rg2_status op_export(const void *ctx, const char *path, blob *out, rg2_er
     return st;
 }
 
+/* rg2_export_memory: the format is the job's extension without its dot; nothing is written to
+ * the directory (the sweep checks it stays empty), and a failure leaves data NULL. */
+static rg2_status op_export_memory(const void *ctx, const char *path, blob *out, rg2_error *err)
+{
+    (void)path;
+    const write_job *j = ctx;
+    char *data = (char *)&cur_N;
+    size_t size = 1;
+    rg2_status st = rg2_export_memory(j->surfs, j->n, j->ext + 1, &j->eo, &data, &size, err);
+    CHECK(st == RG2_OK ? data && data[size] == 0 : !data && size == 0,
+          "export_memory %s: N = %ld: status %s with data %p, size %zu", j->ext, cur_N, rg2_status_str(st),
+          (void *)data, size);
+    if (st == RG2_OK) {
+        put(out, data, size);
+        free(data);
+    }
+    return st;
+}
+
 static rg2_status op_render(const void *ctx, const char *path, blob *out, rg2_error *err)
 {
     const write_job *j = ctx;
@@ -692,6 +711,15 @@ int main(int argc, char **argv)
             one.n = m;
         }
         sweep(fmt[f].name, op_export, &one, fmt[f].ext);
+    }
+    static const char *mem_ext[] = {".step", ".igs", ".glb"};
+    for (size_t f = 0; f < sizeof mem_ext / sizeof *mem_ext; f++) {
+        char name[40];
+        snprintf(name, sizeof name, "export_memory %s", mem_ext[f] + 1);
+        j.ext = mem_ext[f];
+        j.eo.layout = RG2_STEP_FACE_PER_PATCH;
+        j.eo.iges_brep = 1;
+        sweep(name, op_export_memory, &j, NULL);
     }
 
     struct {
