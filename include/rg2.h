@@ -163,6 +163,10 @@ typedef struct {
 RG2_API const char *rg2_status_str(rg2_status code);
 /** The library version, e.g. "0.1.0". */
 RG2_API const char *rg2_version(void);
+/** The library's RG2_VERSION_NUMBER (MAJOR * 10000 + MINOR * 100 + PATCH, 100 for 0.1.0): a
+ *  program compares it with the header's macro to catch being built against one version and
+ *  linked with another. */
+RG2_API int rg2_version_number(void);
 
 /* ===================================================================================== */
 /** @name Direction scalars (MATH.md section 1)

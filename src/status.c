@@ -25,6 +25,7 @@ const char *rg2_status_str(rg2_status code)
 }
 
 const char *rg2_version(void) { return RG2_VERSION_STRING; }
+int rg2_version_number(void) { return RG2_VERSION_NUMBER; }
 
 /* Head of a message too long for rg2_error.msg that is kept (the rest is its tail). */
 #define MSG_HEAD 160

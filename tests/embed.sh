@@ -51,7 +51,8 @@ EOT
     cp "$tmp/app/build/torus_quarter" "$tmp/torus_quarter"
     # a C++ project (rg2.h's extern "C"): the package enables C for OpenMP's C component itself
     mkdir -p "$tmp/appxx"
-    printf '#include <rg2.h>\n#include <cstdio>\nint main() { std::printf("%%s\\n", rg2_version()); return 0; }\n' \
+    # (the linked library's version number against the header's: the same install)
+    printf '#include <rg2.h>\n#include <cstdio>\nint main() { std::printf("%%s %%d\\n", rg2_version(), rg2_version_number()); return rg2_version_number() != RG2_VERSION_NUMBER; }\n' \
         >"$tmp/appxx/v.cpp"
     cat >"$tmp/appxx/CMakeLists.txt" <<'EOT'
 cmake_minimum_required(VERSION 3.16)
@@ -68,7 +69,8 @@ EOT
         -DCMAKE_CXX_FLAGS="$extra" -DCMAKE_EXE_LINKER_FLAGS="$extra" \
         >"$tmp/cfgxx.log" 2>&1 || { cat "$tmp/cfgxx.log"; echo "FAIL: find_package(rg2 REQUIRED) in a C++ project"; exit 1; }
     cmake --build "$tmp/appxx/build" >"$tmp/buildxx.log" 2>&1 || { cat "$tmp/buildxx.log"; echo "FAIL: building the C++ consumer"; exit 1; }
-    v=$("$tmp/appxx/build/v") && [ -n "$v" ] || { echo "FAIL: the C++ consumer did not run: $v"; exit 1; }
+    v=$("$tmp/appxx/build/v") && [ "$v" = "$major.$minor.$patch $((major * 10000 + minor * 100 + patch))" ] ||
+        { echo "FAIL: the C++ consumer did not run, or its library's version is not the header's: '$v'"; exit 1; }
     how="built with find_package(rg2) and rg2::rg2, in C and in C++ (rg2 $v)" ;;
 *) echo "FAIL: unknown mode '$mode'"; exit 1 ;;
 esac

@@ -17,7 +17,7 @@ int host_use(const rg2_mesh *m, const rg2_surface *s)
     double *p = rg2_mesh_at(m, 1, 2);
     rg2_patch *a = rg2_surface_patch(s, 0, 1);
     const rg2_xpatch *x = rg2_surface_xpatch(s, 1, 0);
-    return !p + !a + !x + !rg2_version();
+    return !p + !a + !x + !rg2_version() + (rg2_version_number() != RG2_VERSION_NUMBER);
 }
 EOT
 cp "$tmp/host.c" "$tmp/host.cpp"
