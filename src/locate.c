@@ -383,8 +383,12 @@ static double bern_bound(const rg2_xpatch *X, const double x[3])
     sq_dist_form(X, x, N, W);
     double lb = INFINITY;
     for (int k = 0; k <= 2 * X->du; k++)
-        for (int l = 0; l <= 2 * X->dv; l++) /* (the binomials of degree 2d cancel in the ratio) */
-            lb = lesser(lb, N[k][l] / W[k][l]);
+        for (int l = 0; l <= 2 * X->dv; l++) { /* (the binomials of degree 2d cancel in the ratio) */
+            double q = N[k][l] / W[k][l];
+            if (!(q < INFINITY)) /* (N past the largest double, at coordinates near 1e150: no bound) */
+                return 0.0;
+            lb = lesser(lb, q);
+        }
     return lb > 0 ? sqrt(lb) : 0.0;
 }
 
