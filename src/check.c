@@ -1045,6 +1045,7 @@ typedef struct {
     char *s;
     size_t len, cap;
     int oom;
+    int text; /* what sb_printf writes now is the caller's text (a shape's label): kept as given */
 } sbuf;
 
 /* A NaN printed by %g or %e reads "nan" or "-nan" (its sign bit, which means nothing): both
@@ -1083,7 +1084,8 @@ static void sb_printf(sbuf *b, const char *fmt, ...)
             return;
         }
         if (b->s && b->len + (size_t)n < b->cap) {
-            nan_words(b->s + b->len, (size_t)n);
+            if (!b->text)
+                nan_words(b->s + b->len, (size_t)n);
             b->len += (size_t)n;
             return;
         }
@@ -1151,7 +1153,11 @@ static void format_text(const rg2_check_report *r, sbuf *b)
         sb_printf(b, "%-*s patches  worst residual  verdict  where\n", wl + 5, "exact pieces");
         for (int k = 0; k < r->n_shapes; k++) {
             const rg2_check_shape *s = &r->shapes[k];
-            sb_printf(b, "  %2d %-*s %7d  %14.2e  %-7s  %s\n", k, wl, s->label, s->patches, s->residual,
+            sb_printf(b, "  %2d ", k);
+            b->text = 1; /* (a label "nan" or "pipe-nan" is no number: nan_words leaves it) */
+            sb_printf(b, "%-*s", wl, s->label);
+            b->text = 0;
+            sb_printf(b, " %7d  %14.2e  %-7s  %s\n", s->patches, s->residual,
                       s->patches ? verdict(s->residual, o->tol_exact) : "-", s->where);
         }
     }
