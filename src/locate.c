@@ -718,8 +718,15 @@ static void slab_inner(node *nd, const node *c0, const node *c1)
         /* the rounding: r's own (2 eps (1 + |al|) a coordinate, times |P| <= 3 big), the box's
          * centre and half-width (a few eps of big each), the products and the sums */
         double m = 8 * DBL_EPSILON * (3 * big * (1 + fabs(al)) + err + fabs(sa) + fabs(sb));
-        a = lesser(a, sa + ctr - half - m);
-        b = greater(b, sb + ctr + half + m);
+        double lo = sa + ctr - half - m, hi = sb + ctr + half + m;
+        if (!(isfinite(lo) && isfinite(hi))) { /* (a NaN, 0 r[k] times a box's infinite half-width
+                                                  near 1e308, would drop out of lesser and leave the
+                                                  other child's range alone) */
+            slab_none(nd);
+            return;
+        }
+        a = lesser(a, lo);
+        b = greater(b, hi);
     }
     memcpy(nd->n, n, sizeof nd->n);
     nd->a = a, nd->b = b;
@@ -733,6 +740,8 @@ static double slab_dist(const node *nd, const double x[3])
     double s = dot3(nd->n, x);
     double m = 4 * DBL_EPSILON * (fabs(nd->n[0] * x[0]) + fabs(nd->n[1] * x[1]) + fabs(nd->n[2] * x[2]));
     double g = greater(0.0, greater(nd->a - s - m, s - m - nd->b));
+    if (!(g < INFINITY)) /* (n . x past the largest double: inf - inf; no bound) */
+        return 0.0;
     return g / (1 + 8 * DBL_EPSILON); /* (n unit to rounding) */
 }
 
