@@ -385,7 +385,10 @@ static double bern_bound(const rg2_xpatch *X, const double x[3])
     for (int k = 0; k <= 2 * X->du; k++)
         for (int l = 0; l <= 2 * X->dv; l++) { /* (the binomials of degree 2d cancel in the ratio) */
             double q = N[k][l] / W[k][l];
-            if (!(q < INFINITY)) /* (N past the largest double, at coordinates near 1e150: no bound) */
+            /* (no bound where N is past the largest double, at coordinates near 1e150 with large
+             * weights, or where its products fall below the normal doubles and lose their digits,
+             * at distances near 1e-155) */
+            if (!(q < INFINITY) || N[k][l] < 0x1p-900)
                 return 0.0;
             lb = lesser(lb, q);
         }
