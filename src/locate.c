@@ -673,7 +673,9 @@ static void slab_none(node *nd)
 static void slab_leaf(node *nd, const points *P)
 {
     double e[3][3];
-    if (!piece_frame(P, e)) {
+    /* (e[2] made unit again: where the sides' squares are subnormal, a piece near 1e-155 across,
+     * unit3 leaves e[0] and e[1] up to 37 % off unit, and slab_dist takes n for unit) */
+    if (!piece_frame(P, e) || !unit3(e[2])) {
         slab_none(nd);
         return;
     }
@@ -684,7 +686,9 @@ static void slab_leaf(node *nd, const points *P)
         m = greater(m, fabs(e[2][0] * P->p[q][0]) + fabs(e[2][1] * P->p[q][1]) + fabs(e[2][2] * P->p[q][2]));
     }
     memcpy(nd->n, e[2], sizeof nd->n);
-    nd->a = a - 4 * DBL_EPSILON * m, nd->b = b + 4 * DBL_EPSILON * m;
+    /* (and 2^-1060, far above the absolute rounding of products and sums among the subnormal
+     * numbers, at coordinates below 1e-308) */
+    nd->a = a - 4 * DBL_EPSILON * m - 0x1p-1060, nd->b = b + 4 * DBL_EPSILON * m + 0x1p-1060;
     if (!(isfinite(nd->a) && isfinite(nd->b))) /* (past the largest double) */
         slab_none(nd);
 }
@@ -720,7 +724,7 @@ static void slab_inner(node *nd, const node *c0, const node *c1)
             sa = al * (al >= 0 ? ch->a : ch->b), sb = al * (al >= 0 ? ch->b : ch->a);
         /* the rounding: r's own (2 eps (1 + |al|) a coordinate, times |P| <= 3 big), the box's
          * centre and half-width (a few eps of big each), the products and the sums */
-        double m = 8 * DBL_EPSILON * (3 * big * (1 + fabs(al)) + err + fabs(sa) + fabs(sb));
+        double m = 8 * DBL_EPSILON * (3 * big * (1 + fabs(al)) + err + fabs(sa) + fabs(sb)) + 0x1p-1060;
         double lo = sa + ctr - half - m, hi = sb + ctr + half + m;
         if (!(isfinite(lo) && isfinite(hi))) { /* (a NaN, 0 r[k] times a box's infinite half-width
                                                   near 1e308, would drop out of lesser and leave the
@@ -741,7 +745,7 @@ static void slab_inner(node *nd, const node *c0, const node *c1)
 static double slab_dist(const node *nd, const double x[3])
 {
     double s = dot3(nd->n, x);
-    double m = 4 * DBL_EPSILON * (fabs(nd->n[0] * x[0]) + fabs(nd->n[1] * x[1]) + fabs(nd->n[2] * x[2]));
+    double m = 4 * DBL_EPSILON * (fabs(nd->n[0] * x[0]) + fabs(nd->n[1] * x[1]) + fabs(nd->n[2] * x[2])) + 0x1p-1060;
     double g = greater(0.0, greater(nd->a - s - m, s - m - nd->b));
     if (!(g < INFINITY)) /* (n . x past the largest double: inf - inf; no bound) */
         return 0.0;
@@ -1356,7 +1360,8 @@ static int slab(const node *nd, const double o[3], const double dn[3], double sm
     if (t0 <= t1 && isfinite(nd->a)) { /* the node's own slab along n, widened the same way and by
                                           the rounding of n . o */
         double no = dot3(nd->n, o), nd_ = dot3(nd->n, dn);
-        double m = tol + 4 * DBL_EPSILON * (fabs(nd->n[0] * o[0]) + fabs(nd->n[1] * o[1]) + fabs(nd->n[2] * o[2]));
+        double m = tol + 4 * DBL_EPSILON * (fabs(nd->n[0] * o[0]) + fabs(nd->n[1] * o[1]) + fabs(nd->n[2] * o[2])) +
+                   0x1p-1060;
         double lo = nd->a - m - no, hi = nd->b + m - no;
         if (fabs(nd_) < 1e-200) {
             if (lo > 0 || hi < 0)
