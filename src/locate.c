@@ -950,16 +950,19 @@ static double foot(const rg2_surface *s, int pi, int pj, const double x[3], doub
             rg2_eval f;
             rg2_surface_eval(s, pi, pj, nu, nv, 2, &f);
             double q[3] = {f.p[0] - x[0], f.p[1] - x[1], f.p[2] - x[2]}, dq = sqrt(dot3(q, q));
-            /* nearer by more than rounding; or, where the distance is flat to rounding near the
-             * foot, as near with a gradient under half the smallest met (the point then still
-             * moves to its last bits, and cannot cycle: two points a rounding apart, each
-             * nearer than the other by its last bits, took 60 steps) */
+            /* nearer; or, where the distance is flat to rounding near the foot, as near with a
+             * gradient under half the smallest met so far (the point then still moves to its
+             * last bits). Against the smallest met, not the current one's: two points a rounding
+             * apart, one nearer by its last bits and the other with the smaller gradient, took
+             * each other in turn for all 60 steps; now the second can be taken only once. (Only
+             * steps nearer by more than rounding cut the crawl along a side near a focal point
+             * short: 9e-12 of the size off.) */
             double h0 = dot3(f.su, q), h1 = dot3(f.sv, q);
             if ((nu == 0 && h0 > 0) || (nu == 1 && h0 < 0))
                 h0 = 0;
             if ((nv == 0 && h1 > 0) || (nv == 1 && h1 < 0))
                 h1 = 0;
-            if (dq < d - slack || (dq <= d + slack && h0 * h0 + h1 * h1 < 0.25 * gmin)) {
+            if (dq < d || (dq <= d + slack && h0 * h0 + h1 * h1 < 0.25 * gmin)) {
                 better = 1;
                 *u = nu, *v = nv, d = dq, e = f;
                 memcpy(r, q, sizeof r);
