@@ -103,7 +103,7 @@ static void rg2f_check_picking(const rg2_surface *s, const char *what)
     if (st) {
         if (L)
             rg2f_violation("%s: rg2_locator_build failed but left *out set", what);
-        if (st != RG2_EWEIGHT)
+        if (st != RG2_EWEIGHT && st != RG2_EDOMAIN) /* (a weight <= 0; past the numeric range) */
             rg2f_violation("%s: rg2_locator_build -> %s: %s", what, rg2_status_str(st), err.msg);
         return;
     }

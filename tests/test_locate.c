@@ -987,6 +987,107 @@ static void slabs(void)
     CHECK(tslabs > tnodes / 2, "torus of 120 x 90 patches: only %d of %d nodes have a slab", tslabs, tnodes);
 }
 
+/* The smallest sampled distance from x to s: (n + 1)^2 points a patch (each a point of the
+ * surface: no answer may be farther by more than the tolerance, and no bound above it). */
+static double sampled_min(const rg2_surface *s, const double x[3], int n)
+{
+    double best = INFINITY;
+    for (int i = 0; i < s->nu; i++)
+        for (int j = 0; j < s->nv; j++)
+            for (int a = 0; a <= n; a++)
+                for (int b = 0; b <= n; b++) {
+                    rg2_eval e;
+                    rg2_surface_eval(s, i, j, (double)a / n, (double)b / n, 0, &e);
+                    best = fmin(best, dist3(e.p, x));
+                }
+    return best;
+}
+
+/* The searches at the ends of the library's numeric range (coordinates up to 1e60, a size of
+ * at least 1e-60: docs/robustness.md): a torus of 3 x 7 patches with its control points moved
+ * and weighted 1e-3 to 1e3, scaled by 1e59 and 1e-59: every slab holds its control points, no
+ * bound lies above a sampled distance, no answer beyond one by more than the tolerance. Past the
+ * range, refused (RG2_EDOMAIN, naming it): the same torus at 1e61, 1e-62, 1e150 (a second
+ * reader's stress case: N in the Bernstein bound overflowed and ruled the nearest patch out),
+ * 1e-161 (an answer 2e-3 of its distance beyond a sampled point) and 1e-300, and two patches
+ * spanning +-1e308 (the tolerance infinite: no patch taken). */
+static void extreme_scales(void)
+{
+    static const double scales[] = {1e59, 1e-59, 1e61, 1e-62, 1e150, 1e-161, 1e-300, 0};
+    enum { n_scales = sizeof scales / sizeof *scales };
+    double worst = -INFINITY, wslab = INFINITY;
+    int queries = 0, refused = 0;
+    for (int k = 0; k < n_scales; k++) {
+        rg2_error err;
+        rg2_surface s;
+        rg2t_rng g;
+        rg2t_seed(&g, 241 + k);
+        if (scales[k] > 0) {
+            CHECK_OK(rg2t_torus(3, 1.2, 3, 7, NULL, &s, &err), &err);
+            for (int p = 0; p < s.nu * s.nv; p++)
+                for (int r = 0; r < 4; r++)
+                    for (int t = 0; t < 4; t++) {
+                        double *h = s.patch[p].h[r][t], w = exp(rg2t_uniform(&g, log(1e-3), log(1e3)));
+                        for (int c = 0; c < 3; c++)
+                            h[c] = (h[c] / h[3] + rg2t_uniform(&g, -0.3, 0.3)) * w;
+                        h[3] = w;
+                    }
+            const double M[16] = {scales[k], 0, 0, 0, 0, scales[k], 0, 0, 0, 0, scales[k], 0, 0, 0, 0, 1};
+            rg2_surface_transform(&s, M);
+        } else { /* two flat patches, one from -1e308 to 1e308 along x */
+            memset(&s, 0, sizeof s);
+            s.nu = 2, s.nv = 1;
+            s.patch = calloc(2, sizeof *s.patch);
+            s.bu = calloc(2, sizeof *s.bu), s.gu = calloc(2, sizeof *s.gu);
+            s.bv = calloc(1, sizeof *s.bv), s.gv = calloc(1, sizeof *s.gv);
+            if (!s.patch || !s.bu || !s.gu || !s.bv || !s.gv)
+                return;
+            const double xs[4] = {-1e308, -1e308 / 3, 1e308 / 3, 1e308};
+            for (int r = 0; r < 4; r++)
+                for (int t = 0; t < 4; t++) {
+                    double *h = s.patch[0].h[r][t];
+                    h[0] = xs[r], h[1] = t, h[2] = t / 3.0, h[3] = 1;
+                    h = s.patch[1].h[r][t];
+                    h[0] = r / 3.0, h[1] = 10 + t / 3.0, h[2] = 0, h[3] = 1;
+                }
+        }
+        char what[64];
+        snprintf(what, sizeof what, scales[k] > 0 ? "torus at %g" : "patches spanning +-1e308", scales[k]);
+        rg2_locator *L = NULL;
+        rg2_status st = rg2_locator_build(&s, &L, &err);
+        if (k >= 2) {
+            refused += st == RG2_EDOMAIN;
+            CHECK(st == RG2_EDOMAIN && !L && strstr(err.msg, "rg2_locator_build") && strstr(err.msg, "scale it"),
+                  "%s: not refused (%s): %s", what, rg2_status_str(st), st ? err.msg : "");
+        } else
+            CHECK_OK(st, &err);
+        if (L) {
+            int ns;
+            double m = rg2__locate_slab_margin(L, &ns);
+            CHECK(m >= 0, "%s: a control point %.3g (of its size) outside its node's slab", what, -m);
+            wslab = fmin(wslab, m);
+            for (int q = 0; q < 12; q++, queries++) {
+                double x[3];
+                for (int c = 0; c < 3; c++)
+                    x[c] = scales[k] * rg2t_uniform(&g, -5, 5);
+                rg2_hit h;
+                CHECK_OK(rg2_locator_closest(L, x, &h, &err), &err);
+                double smin = sampled_min(&s, x, 16), tol = tolerance(&s, x);
+                worst = fmax(worst, (h.bound - smin) / smin);
+                CHECK(h.bound <= smin && h.dist <= smin + tol,
+                      "%s, query %d: distance %.17g, bound %.17g, a sampled point %.17g away (tolerance %.3g)", what, q,
+                      h.dist, h.bound, smin, tol);
+            }
+            rg2_locator_free(L);
+        }
+        rg2_surface_free(&s);
+    }
+    printf("numeric range (a moved torus with weights 1e-3 to 1e3): at 1e59 and 1e-59, %d nearest points, no bound above "
+           "a sampled distance (the nearest %.2e of it below), slabs holding their points by %.2e of their size; "
+           "%d of %d past the range refused\n",
+           queries, -worst, wslab, refused, n_scales - 2);
+}
+
 int main(void)
 {
     rg2_error err;
@@ -1002,5 +1103,6 @@ int main(void)
     examples();
     certificates();
     slabs();
+    extreme_scales();
     return rg2t_done("test_locate");
 }
