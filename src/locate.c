@@ -960,9 +960,9 @@ static double foot(const rg2_surface *s, int pi, int pj, const double x[3], doub
              * gradient under half the smallest met so far (the point then still moves to its
              * last bits). Against the smallest met, not the current one's: two points a rounding
              * apart, one nearer by its last bits and the other with the smaller gradient, took
-             * each other in turn for all 60 steps; now the second can be taken only once. (Only
-             * steps nearer by more than rounding cut the crawl along a side near a focal point
-             * short: 9e-12 of the size off.) */
+             * each other in turn for all 60 steps; now the second can be taken only once. (Taking
+             * only steps nearer by more than rounding, as a first version did, stopped the crawl
+             * along a side near a focal point short: 9e-12 of the size off.) */
             double h0 = dot3(f.su, q), h1 = dot3(f.sv, q);
             if ((nu == 0 && h0 > 0) || (nu == 1 && h0 < 0))
                 h0 = 0;
