@@ -67,6 +67,10 @@ int rg2__locate_cert(const rg2_locator *L, int patch, double uf, double vf, doub
 int rg2__locate_ray_cert(const rg2_locator *L, int patch, double uf, double vf, double r, const double o[3],
                          const double d[3], const double rect[4], double *bound);
 
+/* rg2_locator_closest, adding to *evals (not NULL) the patch evaluations of its Newton runs: a
+ * count of its work that test_locate bounds (a Newton run that cycled between two points a
+ * rounding apart took all 60 steps; the answers were the same). */
+rg2_status rg2__locate_closest(const rg2_locator *L, const double x[3], rg2_hit *out, long *evals, rg2_error *err);
 /* The tree's slabs (locate.c: each node's range of n . P over its patches' control points): the
  * smallest margin by which the exact control points (in long double) lie inside their nodes'
  * slabs, relative to their coordinates' size (negative: a point outside), over the *slabs

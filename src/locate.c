@@ -908,10 +908,11 @@ static double dist3(const double *a, const double *b)
 /* Newton on min |S(u, v) - x|^2 over patch (pi, pj)'s [0,1]^2 from (u, v): the Newton step
  * where the Hessian is positive definite, else the Gauss-Newton one, kept in the square and
  * halved until the distance drops. Returns the distance at the final (u, v). */
-static double foot(const rg2_surface *s, int pi, int pj, const double x[3], double *u, double *v)
+static double foot(const rg2_surface *s, int pi, int pj, const double x[3], double *u, double *v, long *evals)
 {
     rg2_eval e;
     rg2_surface_eval(s, pi, pj, *u, *v, 2, &e);
+    ++*evals;
     double r[3] = {e.p[0] - x[0], e.p[1] - x[1], e.p[2] - x[2]}, d = sqrt(dot3(r, r));
     /* the rounding of d: of the differences p - x */
     double slack = 16 * DBL_EPSILON * (fabs(x[0]) + fabs(x[1]) + fabs(x[2]) + d);
@@ -955,6 +956,7 @@ static double foot(const rg2_surface *s, int pi, int pj, const double x[3], doub
                 break;
             rg2_eval f;
             rg2_surface_eval(s, pi, pj, nu, nv, 2, &f);
+            ++*evals;
             double q[3] = {f.p[0] - x[0], f.p[1] - x[1], f.p[2] - x[2]}, dq = sqrt(dot3(q, q));
             /* nearer; or, where the distance is flat to rounding near the foot, as near with a
              * gradient under half the smallest met so far (the point then still moves to its
@@ -983,9 +985,10 @@ static double foot(const rg2_surface *s, int pi, int pj, const double x[3], doub
 /* foot, then across patch sides: where it ends on a side that another patch shares, from the
  * same point of that patch; its result is taken when it leaves the side as near (a foot on the
  * other side of a seam, which the first patch could only approach up to its side). */
-static double foot_across(const rg2_surface *s, int *pi, int *pj, const double x[3], double *u, double *v)
+static double foot_across(const rg2_surface *s, int *pi, int *pj, const double x[3], double *u, double *v,
+                          long *evals)
 {
-    double d = foot(s, *pi, *pj, x, u, v);
+    double d = foot(s, *pi, *pj, x, u, v, evals);
     /* (as near: within the rounding of the distances, which foot's slack bounds; a foot 1e-8
      * past a seam is 1e-17 nearer than the side point, and the two computed distances differ
      * by their rounding, either way) */
@@ -1012,7 +1015,7 @@ static double foot_across(const rg2_surface *s, int *pi, int *pj, const double x
             }
             nv = side == 3 ? 0 : 1;
         }
-        double a = nu, b = nv, dn = foot(s, i, j, x, &a, &b);
+        double a = nu, b = nv, dn = foot(s, i, j, x, &a, &b, evals);
         if ((side < 2 ? a == nu : b == nv) || !(dn <= d + slack))
             break;
         *pi = i, *pj = j, *u = a, *v = b, d = dn;
@@ -1062,7 +1065,8 @@ static double closest_key(const node *nd, const void *x)
     return greater(box_dist(nd->lo, nd->hi, x), slab_dist(nd, x));
 }
 
-rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit *out, rg2_error *err)
+/* rg2_locator_closest; *evals counts the patch evaluations of its Newton runs (internal.h). */
+rg2_status rg2__locate_closest(const rg2_locator *L, const double x[3], rg2_hit *out, long *evals, rg2_error *err)
 {
     if (out)
         hit_init(out);
@@ -1117,7 +1121,7 @@ rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit 
         rg2_surface_eval(s, pi, pj, u, v, 0, &e);
         if (dist3(e.p, x) < best) {
             int fi = pi, fj = pj;
-            double d = foot_across(s, &fi, &fj, x, &u, &v);
+            double d = foot_across(s, &fi, &fj, x, &u, &v, evals);
             if (d < best)
                 best = d, bp = fi * s->nv + fj, bu = u, bv = v, version++;
         }
@@ -1163,6 +1167,12 @@ rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit 
     out->dist = dist3(out->p, x);
     out->bound = fmin(floor, out->dist);
     return RG2_OK;
+}
+
+rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit *out, rg2_error *err)
+{
+    long evals = 0;
+    return rg2__locate_closest(L, x, out, &evals, err);
 }
 
 /* The ray's frame: e[0], e[1] unit and across the ray, e[2] = d / |d|^2 (idd = 1 / |d|^2); dn
