@@ -16,13 +16,15 @@
 #include <strings.h>
 #include <time.h>
 
+static const char default_name[] = "rg2"; /* (rg2_export_opts.name when NULL) */
+
 void rg2_export_opts_default(rg2_export_opts *o)
 {
     memset(o, 0, sizeof *o);
     o->layout = RG2_STEP_FACE_PER_PATCH;
     o->ap242 = 0;
     o->density = 16;
-    o->name = "rg2";
+    o->name = default_name;
 }
 
 /* ---------------------------------------------------------------- numbers and checks */
@@ -794,7 +796,7 @@ static rg2_status export_staged(const rg2_surface *surfs, int n_surfs, const cha
     } else if (!opts->name || opts->density < 1) {
         def = *opts;
         if (!def.name)
-            def.name = "rg2";
+            def.name = default_name;
         if (def.density < 1)
             def.density = 16;
         opts = &def;
@@ -912,7 +914,7 @@ rg2_status rg2_export_memory(const rg2_surface *surfs, int n_surfs, const char *
                          format ? format : "(null)");
     /* the name the STEP and IGES headers give: "<opts->name>.<format>", '/' made '_' (the headers
      * take a path's last part) */
-    const char *nm = opts && opts->name ? opts->name : "rg2";
+    const char *nm = opts && opts->name ? opts->name : default_name;
     size_t ln = strlen(nm);
     char *label = malloc(ln + strlen(format) + 2);
     if (!label)
