@@ -56,6 +56,7 @@
  *   again from the patch when it is taken (two de Casteljau steps per direction).
  */
 #include "internal.h"
+#include "xpatch_util.h"
 
 #include <float.h>
 #include <stdlib.h>
@@ -240,20 +241,26 @@ typedef struct {
     const double *c00, *c10, *c01, *c11;
 } points;
 
-static void net_points(const rg2_xpatch *X, points *P)
+static void net_points_at(const double *net, int du, int dv, int st, points *P)
 {
     P->n = 0;
-    for (int r = 0; r <= X->du; r++)
-        for (int t = 0; t <= X->dv; t++) {
-            double w = 1.0 / X->h[r][t][3];
+    for (int r = 0; r <= du; r++)
+        for (int t = 0; t <= dv; t++) {
+            const double *h = net + 4 * (r * st + t);
+            double w = 1.0 / h[3];
             for (int k = 0; k < 3; k++)
-                P->p[P->n][k] = X->h[r][t][k] * w;
+                P->p[P->n][k] = h[k] * w;
             P->n++;
         }
     P->c00 = P->p[0];
-    P->c01 = P->p[X->dv];
-    P->c10 = P->p[X->du * (X->dv + 1)];
+    P->c01 = P->p[dv];
+    P->c10 = P->p[du * (dv + 1)];
     P->c11 = P->p[P->n - 1];
+}
+
+static void net_points(const rg2_xpatch *X, points *P)
+{
+    net_points_at(&X->h[0][0][0], X->du, X->dv, RG2_MAX_DEGREE + 1, P);
 }
 
 static double lesser(double a, double b) { return a < b ? a : b; }
@@ -752,20 +759,26 @@ static double slab_dist(const node *nd, const double x[3])
     return g / (1 + 8 * DBL_EPSILON); /* (n unit to rounding) */
 }
 
+/* The leaf of patch k: the box of its affine control points and its slab. */
+static void leaf_make(const rg2_surface *s, size_t k, node *nd)
+{
+    static const double zero[3] = {0, 0, 0};
+    int du, dv, st;
+    const double *net = rg2__patch_net(s, k, &du, &dv, &st);
+    points P;
+    net_points_at(net, du, dv, st, &P);
+    pts_box(&P, zero, NULL, nd->lo, nd->hi);
+    slab_leaf(nd, &P);
+    nd->kid = -1;
+}
+
 /* Node k over [i0, i1) x [j0, j1); its children go to the next free slots (*used). */
 static void tree_build(rg2_locator *L, size_t k, int i0, int i1, int j0, int j1, size_t *used)
 {
     node *nd = L->tree + k;
     nd->i0 = i0, nd->i1 = i1, nd->j0 = j0, nd->j1 = j1;
     if (i1 - i0 == 1 && j1 - j0 == 1) {
-        static const double zero[3] = {0, 0, 0};
-        rg2_xpatch X;
-        points P;
-        rg2_surface_patch_get(L->s, i0, j0, &X);
-        net_points(&X, &P);
-        pts_box(&P, zero, NULL, nd->lo, nd->hi);
-        slab_leaf(nd, &P);
-        nd->kid = -1;
+        leaf_make(L->s, (size_t)i0 * (size_t)L->s->nv + (size_t)j0, nd);
         return;
     }
     size_t kid = *used;
@@ -799,15 +812,18 @@ rg2_status rg2_locator_build(const rg2_surface *s, rg2_locator **out, rg2_error 
         return st;
     size_t n = (size_t)s->nu * (size_t)s->nv;
     for (size_t k = 0; k < n; k++) {
-        rg2_xpatch X;
-        rg2_surface_patch_get(s, (int)(k / (size_t)s->nv), (int)(k % (size_t)s->nv), &X);
-        for (int r = 0; r <= X.du; r++)
-            for (int t = 0; t <= X.dv; t++)
-                if (!(X.h[r][t][3] > 0))
+        int du, dv, sr, ok = 1;
+        const double *net = rg2__patch_net(s, k, &du, &dv, &sr);
+        for (int r = 0; r <= du; r++)
+            for (int t = 0; t <= dv; t++)
+                ok &= net[4 * (r * sr + t) + 3] > 0;
+        for (int r = 0; !ok && r <= du; r++)
+            for (int t = 0; t <= dv; t++)
+                if (!(net[4 * (r * sr + t) + 3] > 0))
                     return rg2__fail(err, RG2_EWEIGHT,
                                      "rg2_locator_build: patch (%zu,%zu) control point [%d][%d] has weight %g; the "
                                      "search needs weights > 0 (the patch inside its control points' hull)",
-                                     k / (size_t)s->nv, k % (size_t)s->nv, r, t, X.h[r][t][3]);
+                                     k / (size_t)s->nv, k % (size_t)s->nv, r, t, net[4 * (r * sr + t) + 3]);
     }
     /* the library's numeric range (docs/robustness.md): past it the searches' squared distances
      * and Newton's determinants (fourth powers of the size) leave the double range; a torus at

@@ -446,11 +446,13 @@ rg2_status rg2__surface_check_finite(const rg2_surface *s, const char *what, int
 {
     size_t np = (size_t)s->nu * (size_t)s->nv;
     for (size_t k = 0; k < np; k++) {
-        int du, dv;
-        rg2__patch_degree(s, k, &du, &dv);
-        for (int q = 0; q < 4 * (du + 1) * (dv + 1); q++)
-            if (!rg2__finite(rg2__patch_ctrl(s, k, q / 4 / (dv + 1), q / 4 % (dv + 1))[q % 4]))
-                return rg2__fail(err, RG2_ENONFINITE, "%s: surface %d patch (%zu,%zu) has a non-finite control point",
+        int du, dv, st, ok = 1;
+        const double *net = rg2__patch_net(s, k, &du, &dv, &st);
+        for (int r = 0; r <= du; r++)
+            for (int q = 0; q < 4 * (dv + 1); q++)
+                ok &= rg2__finite(net[4 * r * st + q]);
+        if (!ok)
+            return rg2__fail(err, RG2_ENONFINITE, "%s: surface %d patch (%zu,%zu) has a non-finite control point",
                                  what, index, k / (size_t)s->nv, k % (size_t)s->nv);
     }
     return RG2_OK;

@@ -28,11 +28,11 @@ int rg2__surface_ctrl_box(const rg2_surface *s, int positive_only, double lo[3],
     }
     size_t np = (size_t)s->nu * (size_t)s->nv;
     for (size_t k = 0; k < np; k++) {
-        int du, dv;
-        rg2__patch_degree(s, k, &du, &dv);
+        int du, dv, st;
+        const double *net = rg2__patch_net(s, k, &du, &dv, &st);
         for (int r = 0; r <= du; r++)
             for (int t = 0; t <= dv; t++) {
-                const double *h = rg2__patch_ctrl(s, k, r, t);
+                const double *h = net + 4 * (r * st + t);
                 if (positive_only && !(h[3] > 0))
                     continue;
                 for (int d = 0; d < 3; d++) {

@@ -10,6 +10,17 @@
 void rg2__patch_degree(const rg2_surface *s, size_t k, int *du, int *dv);
 /* Homogeneous control point (r, t), r <= du, t <= dv, of patch k of s. */
 const double *rg2__patch_ctrl(const rg2_surface *s, size_t k, int r, int t);
+/* Patch k's homogeneous control net without a copy: point (r, t) at net + 4 (r stride + t), r <=
+ * *du, t <= *dv (a bi-3 patch's stride is 4, a higher-degree one's RG2_MAX_DEGREE + 1). */
+static inline const double *rg2__patch_net(const rg2_surface *s, size_t k, int *du, int *dv, int *stride)
+{
+    if (s->xp && s->xp[k].du > 0) {
+        *du = s->xp[k].du, *dv = s->xp[k].dv, *stride = RG2_MAX_DEGREE + 1;
+        return &s->xp[k].h[0][0][0];
+    }
+    *du = *dv = 3, *stride = 4;
+    return &s->patch[k].h[0][0][0];
+}
 
 /* Box of the affine control points of every patch of s (only those of positive weight when
  * positive_only; non-finite coordinates are skipped). Returns 0 when no point counted. */
