@@ -110,7 +110,8 @@ int rg2_cmd_build(int argc, char **argv)
             if (rg2_cli_surface_opt("build", prev, only_arg, &only_v))
                 return RG2_EXIT_USAGE;
         } else if (a[0] == '-' && a[1]) {
-            return rg2_cli_unknown_option("build", a, usage, NULL);
+            static const char *const aliases[] = {"--output", "-o", "--out", "-o", NULL};
+            return rg2_cli_unknown_option("build", a, usage, aliases);
         } else if (path) {
             fprintf(stderr, "rg2 build: more than one design file ('%s', '%s')\n", path, a);
             return RG2_EXIT_USAGE;

@@ -29,7 +29,8 @@ int rg2_cmd_mesh(int argc, char **argv)
             }
             out = argv[++i];
         } else if (argv[i][0] == '-' && argv[i][1]) {
-            return rg2_cli_unknown_option("mesh", argv[i], usage, NULL);
+            static const char *const aliases[] = {"--output", "-o", "--out", "-o", NULL};
+            return rg2_cli_unknown_option("mesh", argv[i], usage, aliases);
         } else if (path) {
             fprintf(stderr, "rg2 mesh: more than one design file ('%s', '%s')\n", path, argv[i]);
             return RG2_EXIT_USAGE;

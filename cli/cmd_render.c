@@ -182,7 +182,8 @@ int rg2_cmd_render(int argc, char **argv)
             o.colorbar = 0, colorbar_set = 1;
         else if (a[0] == '-' && a[1]) {
             static const char *const aliases[] = {"--width", "--size WxH", "--height", "--size WxH",
-                                                   "--resolution", "--size WxH", NULL};
+                                                   "--resolution", "--size WxH", "--output", "-o",
+                                                   "--out", "-o", NULL};
             return rg2_cli_unknown_option("render", a, usage, aliases);
         } else if (path) {
             fprintf(stderr, "rg2 render: more than one design file ('%s', '%s')\n", path, a);
