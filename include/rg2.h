@@ -717,7 +717,9 @@ RG2_API const rg2_shape_desc *rg2_shape_describe(rg2_shape_kind kind);
 RG2_API double rg2_shape_implicit2(const rg2_shape *s, const double x[3], double grad[3],
                                    double hess[9]);
 
-/** Number of segments (patches) a partition produces in its direction; 0 if invalid. */
+/** Number of segments (patches) a partition produces in its direction, from its kind and count
+ *  alone; 0 for a NULL partition or values, an unknown kind or too few values. The values are not
+ *  read: an arc of pi or knots out of order still count (rg2_partition_check refuses them). */
 RG2_API int rg2_partition_num_segments(const rg2_partition *p);
 /** Check a partition (counts, angles in [0.005, pi), closed sums = 2 pi, open sums <= 2 pi,
  *  increasing knots); `what` prefixes the message ("u", "v"). */
