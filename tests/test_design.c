@@ -2040,8 +2040,8 @@ static void cut_ranges(void)
 }
 
 /* A mobius without "sphere" maps about the unit sphere at the origin: on the polar mesh of a
- * placed sphere (radius 2 at (0, 0, 1)) that turns the sphere into another one (its patches
- * 1.7e-2 off it), so the design notes the "sphere" meant; none when "sphere" is given or the
+ * placed sphere (radius 2 at (0, 0, 1)) that turns the sphere into another one (none of its
+ * patches on it, the nearest 6.2e-2 of the size off it: rg2 check --on), so the design notes the "sphere" meant; none when "sphere" is given or the
  * mesh's sphere is the unit sphere at the origin. */
 static void mobius_reference_notes(void)
 {
@@ -2066,6 +2066,16 @@ static void mobius_reference_notes(void)
         CHECK(n == cases[c].notes && (n == 0 || (strstr(note, "meshes.M: no \"sphere\" given") &&
                                                      strstr(note, "give \"sphere\": \"s\""))),
               "mobius case %zu: %d notes (want %d): %s", c, n, cases[c].notes, note);
+        /* what the note warns of, as rg2 check --on measures it: with a note no patch is on the
+         * sphere (the nearest 6.2e-2 of the size off it), without one every patch is (1e-11) */
+        const rg2_surface *s = rg2_design_surface(d, 0);
+        double res[64], lo = INFINITY, hi = 0.0;
+        if (s && s->nu * s->nv <= 64 && rg2_surface_shape_residuals(s, rg2_design_shape(d, 0), 8, res, &err) == RG2_OK)
+            for (int k = 0; k < s->nu * s->nv; k++)
+                lo = fmin(lo, res[k]), hi = fmax(hi, res[k]);
+        CHECK(cases[c].notes ? lo > 1e-2 : hi <= 1e-11,
+              "mobius case %zu: residuals on the sphere %.3g..%.3g (want %s)", c, lo, hi,
+              cases[c].notes ? "all > 1e-2" : "all <= 1e-11");
         rg2_design_free(d);
     }
 }
