@@ -13,15 +13,25 @@
 #include <sys/stat.h>
 
 /* strtod with the rules of every numeric option: 0 for a finite number (a subnormal one too:
- * glibc sets ERANGE on underflow, but the value is finite), 1 for none or NaN / infinity, 2 for
- * a literal past the double range (1e999). */
+ * glibc sets ERANGE on underflow, but the value is finite, and the numeric range check names
+ * it), 1 for none or NaN / infinity, 2 for a literal past the double range (1e999), 3 for one
+ * so small that it reads as 0 (1e-400: it would pass as the number 0, which the range allows). */
 static int scan(const char *p, char **end, double *x)
 {
     errno = 0;
     *x = strtod(p, end);
     if (*end == p || !isfinite(*x))
         return errno == ERANGE && *end != p ? 2 : 1;
+    if (errno == ERANGE && *x == 0.0)
+        return 3;
     return errno == ERANGE && fabs(*x) > 1.0 ? 2 : 0;
+}
+
+static const char *scan_why(int bad)
+{
+    return bad == 2   ? "is past the double range (about 1.8e308)"
+           : bad == 3 ? "is below the smallest double (about 4.9e-324) and would read as 0 (write 0 for zero)"
+                      : "is not a finite number";
 }
 
 int rg2_cli_parse_list(const char *cmd, const char *opt, const char *s, double *out, int max)
@@ -33,8 +43,7 @@ int rg2_cli_parse_list(const char *cmd, const char *opt, const char *s, double *
         double x;
         int bad = scan(p, &end, &x);
         if (bad) {
-            fprintf(stderr, "rg2 %s: %s: item %d of '%s' %s\n", cmd, opt, n, s,
-                    bad == 2 ? "is past the double range (about 1.8e308)" : "is not a finite number");
+            fprintf(stderr, "rg2 %s: %s: item %d of '%s' %s\n", cmd, opt, n, s, scan_why(bad));
             return -1;
         }
         if (n == max) {
@@ -77,7 +86,9 @@ int rg2_cli_number(const char *cmd, const char *opt, const char *s, const char *
         fprintf(stderr, "rg2 %s: %s needs %s\n", cmd, opt, rule);
     else
         fprintf(stderr, "rg2 %s: %s needs %s, not '%s'%s\n", cmd, opt, rule, s,
-                bad == 2 ? " (past the double range, about 1.8e308)" : "");
+                bad == 2   ? " (past the double range, about 1.8e308)"
+                : bad == 3 ? " (below the smallest double, about 4.9e-324: it would read as 0; write 0 for zero)"
+                           : "");
     return -1;
 }
 

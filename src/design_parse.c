@@ -1307,6 +1307,74 @@ static int nesting(const char *text, size_t off)
     return depth;
 }
 
+/* A number literal of the text that has a non-zero digit but so small an order (below 1e-323)
+ * that cJSON reads it as 0 or a subnormal: 1e-400 would pass as the number 0, which the
+ * numeric range allows, while 1e-320 is refused by value. Returns the offset of the first such
+ * literal and its length, or 0 when none (the text has parsed as JSON: numbers stand outside
+ * strings). The order comes from the digits and the exponent, not from strtod (no locale). */
+static int tiny_literal(const char *t, size_t len, size_t *at, size_t *n)
+{
+    int in_string = 0;
+    for (size_t k = 0; k < len; k++) {
+        char ch = t[k];
+        if (in_string) {
+            if (ch == '\\')
+                k++;
+            else if (ch == '"')
+                in_string = 0;
+            continue;
+        }
+        if (ch == '"') {
+            in_string = 1;
+            continue;
+        }
+        if (ch != '-' && !(ch >= '0' && ch <= '9'))
+            continue;
+        size_t b = k;
+        if (t[k] == '-')
+            k++;
+        long digits_before = 0, first_int = -1, first_frac = 0, f = 0;
+        int frac = 0;
+        for (; k < len && ((t[k] >= '0' && t[k] <= '9') || t[k] == '.'); k++) {
+            if (t[k] == '.') {
+                frac = 1;
+                continue;
+            }
+            int nz = t[k] != '0';
+            if (!frac) {
+                if (nz && first_int < 0)
+                    first_int = digits_before;
+                digits_before++;
+            } else {
+                f++;
+                if (nz && first_int < 0 && !first_frac)
+                    first_frac = f;
+            }
+        }
+        int nonzero = first_int >= 0 || first_frac > 0;
+        /* the order of the first non-zero digit: 10^order */
+        long order = first_int >= 0 ? digits_before - 1 - first_int : -first_frac;
+        long ex = 0;
+        if (k < len && (t[k] == 'e' || t[k] == 'E')) {
+            k++;
+            int sign = 1;
+            if (k < len && (t[k] == '+' || t[k] == '-'))
+                sign = t[k++] == '-' ? -1 : 1;
+            for (; k < len && t[k] >= '0' && t[k] <= '9'; k++)
+                if (ex < 100000)
+                    ex = ex * 10 + (t[k] - '0');
+            ex *= sign;
+        }
+        if (nonzero && order + ex < -323) {
+            *at = b;
+            *n = k - b;
+            return 1;
+        }
+        k--; /* (the loop's k++ moves past the literal) */
+    }
+    return 0;
+}
+
 /* Parse a JSON text (a whole design file or a NURBS spec) into *root; the errors name name:line:col. */
 static rg2_status parse_text(const char *json, size_t len, const char *name, cJSON **root, rg2_error *err)
 {
@@ -1397,6 +1465,20 @@ static rg2_status parse_text(const char *json, size_t len, const char *name, cJS
         free(buf);
         return rg2__fail(err, RG2_EPARSE, "%s:%d:%d: malformed JSON %s%s%s", name, line, col,
                          k ? "near '" : "at the end of the text", near, k ? "'" : "");
+    }
+    size_t at, n;
+    if (tiny_literal(buf, len, &at, &n)) {
+        int line, col;
+        line_col(buf, at, &line, &col);
+        cJSON_Delete(*root);
+        *root = NULL;
+        rg2_status st = rg2__fail(err, RG2_EDOMAIN,
+                                  "%s:%d:%d: number %.*s%s is too small for a double (below 1e-323): it would read "
+                                  "as 0 or a subnormal; numbers must be 0 or have a magnitude from 1e-100 to 1e+100 "
+                                  "(write 0 for zero)",
+                                  name, line, col, (int)(n < 40 ? n : 40), buf + at, n < 40 ? "" : "...");
+        free(buf);
+        return st;
     }
     free(buf);
     return RG2_OK;
