@@ -878,7 +878,8 @@ RG2_API rg2_status rg2_design_load(const char *path, rg2_design **out, rg2_error
 /** The same from a JSON text in memory; `name` is used in messages. The text (as the file of
  *  rg2_design_load) is UTF-8 JSON with no NUL byte (RG2_EPARSE naming the line and column of the
  *  first byte that is not; a UTF-8 byte-order mark is skipped), nested at most 1000 deep
- *  (RG2_ELIMIT). */
+ *  (RG2_ELIMIT); a non-zero number literal too small for a double (below 1e-323, e.g. 1e-400,
+ *  which would read as 0) is RG2_EDOMAIN naming its line and column, as in rg2_nurbs_parse. */
 RG2_API rg2_status rg2_design_parse(const char *json, size_t len, const char *name,
                                     rg2_design **out, rg2_error *err);
 RG2_API void rg2_design_free(rg2_design *d);
