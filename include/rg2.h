@@ -1511,7 +1511,17 @@ typedef struct {
     int patches;           /**< patches tagged with it */
     double residual;       /**< worst relative implicit residual */
     char where[96];        /**< patch and (u, v) of the worst residual */
+    double limit;          /**< the residual's pass limit: tol_exact, or where larger the
+                                rounding of the patches' coordinates, RG2_CHECK_COORD_ROUNDING
+                                x DBL_EPSILON x (largest |coordinate| of the shape's patches) /
+                                (their size), when that coordinate exceeds the size: a small
+                                shape far from the origin cannot lie closer to itself than its
+                                coordinates round */
 } rg2_check_shape;
+
+/** The factor of rg2_check_shape.limit's coordinate rounding (measured: residuals up to 3.3 x
+ *  DBL_EPSILON x the largest coordinate / size on shapes of size 1e-3 placed up to 1e4 away). */
+#define RG2_CHECK_COORD_ROUNDING 16.0
 
 typedef struct {
     double value;          /**< the worst gap */

@@ -1748,6 +1748,7 @@ static void random_report(rg2t_rng *g, rg2_check_report *r, rg2_check_shape *sha
                  "abcdefghijklmnopqrstuvwxyzabcdefghijklmn");
         shapes[k].patches = rg2t_int(g, 0, 3);
         shapes[k].residual = around(g, r->opts.tol_exact);
+        shapes[k].limit = 0; /* (no limit of its own: held to tol_exact) */
         snprintf(shapes[k].where, sizeof shapes[k].where, "patch (%d,%d) u=%.3g v=%.3g", rg2t_int(g, 0, 9),
                  rg2t_int(g, 0, 9), rg2t_uniform(g, 0, 1), rg2t_uniform(g, 0, 1));
     }
@@ -2048,6 +2049,61 @@ static void format_made_reports(void)
     printf("check report: 600 reports made by hand read back from their JSON and text\n");
 }
 
+/* A small shape far from the origin: its exact patches cannot lie closer to it than their
+ * coordinates round, about DBL_EPSILON x |x| / size relative to its size. A cylinder of radius
+ * 1e-3 (patches 3e-5 tall) at (T, T, 0) measured 1.9e-11 at T = 100 and 1.6e-10 at T = 1000,
+ * which failed the exact limit of 1e-11 although the design is valid (README, numeric range:
+ * size down to 1e-12 of the largest coordinate). Each shape is held to the larger of tol_exact
+ * and its coordinates' rounding (rg2_check_shape.limit); a real defect there still fails. */
+static void far_from_origin(void)
+{
+    for (int t = 0; t < 3; t++) {
+        static const double T[3] = {0, 100, 1000};
+        char js[400];
+        snprintf(js, sizeof js,
+                 "{\"shapes\": {\"c\": {\"kind\": \"cylinder\", \"radius\": 0.001, \"translate\": [%g, %g, 0]}},"
+                 " \"meshes\": {\"m\": {\"shape\": \"c\", \"u\": {\"arcs\": 3},"
+                 " \"v\": {\"segments\": 5, \"from\": -0.0002, \"to\": -0.00017}}}}",
+                 T[t], T[t]);
+        rg2_design *d = NULL;
+        rg2_error err;
+        CHECK_OK(rg2_design_parse(js, strlen(js), "far", &d, &err), &err);
+        if (!d)
+            return;
+        rg2t_parts p;
+        CHECK(!rg2t_design_parts(d, &p), "far: parts");
+        rg2_check_opts o;
+        rg2_check_opts_default(&o);
+        rg2_check_report r;
+        CHECK_OK(rg2_check(p.s, p.n, p.shapes, p.labels, p.ns, &o, &r, &err), &err);
+        const rg2_check_shape *c = &r.shapes[0];
+        printf("cylinder of radius 1e-3 at (%g, %g, 0): %d exact patches, residual %.2e, limit %.2e\n", T[t], T[t],
+               c->patches, c->residual, c->limit);
+        CHECK(c->patches == 15 && !rg2_check_failures(&r, RG2_REQUIRE_EXACT) && c->residual <= c->limit,
+              "far %g: residual %.3g, limit %.3g, failures %#x", T[t], c->residual, c->limit,
+              rg2_check_failures(&r, RG2_REQUIRE_EXACT));
+        if (t == 0)
+            CHECK(c->limit == o.tol_exact, "at the origin the limit is tol_exact: %.3g", c->limit);
+        else /* the case is not vacuous: past tol_exact, within a limit not much above the residual */
+            CHECK(c->residual > o.tol_exact && c->limit < 20 * c->residual, "far %g: residual %.3g, limit %.3g", T[t],
+                  c->residual, c->limit);
+        rg2_check_report_free(&r);
+        /* one control point of patch (1, 2) moved by 1e-7 of the shape's size (2e-3), tag kept */
+        rg2_patch *P = rg2_surface_patch(&p.s[0], 1, 2);
+        P->h[1][1][0] += 2e-10 * P->h[1][1][3];
+        CHECK_OK(rg2_check(p.s, p.n, p.shapes, p.labels, p.ns, &o, &r, &err), &err);
+        printf("  a control point moved by 1e-7 of the size: residual %.2e, limit %.2e, exact %s\n",
+               r.shapes[0].residual, r.shapes[0].limit,
+               rg2_check_failures(&r, RG2_REQUIRE_EXACT) ? "fails" : "passes");
+        CHECK(rg2_check_failures(&r, RG2_REQUIRE_EXACT) == RG2_REQUIRE_EXACT,
+              "far %g: a moved point passes exact (residual %.3g, limit %.3g)", T[t], r.shapes[0].residual,
+              r.shapes[0].limit);
+        rg2_check_report_free(&r);
+        rg2t_design_parts_free(&p);
+        rg2_design_free(d);
+    }
+}
+
 int main(void)
 {
     harness_agreement();
@@ -2073,6 +2129,7 @@ int main(void)
     threads_identical();
     curvature_peak();
     shape_residuals();
+    far_from_origin();
     format_made_reports();
     return rg2t_done("test_check");
 }
