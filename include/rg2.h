@@ -1519,7 +1519,7 @@ typedef struct {
                                 coordinates round */
 } rg2_check_shape;
 
-/** The factor of rg2_check_shape.limit's coordinate rounding (measured: residuals up to 3.3 x
+/** The factor of rg2_check_shape.limit's coordinate rounding (measured: residuals up to 4.7 x
  *  DBL_EPSILON x the largest coordinate / size on shapes of size 1e-3 placed up to 1e4 away). */
 #define RG2_CHECK_COORD_ROUNDING 16.0
 
