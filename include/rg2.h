@@ -898,8 +898,11 @@ RG2_API const char *rg2_design_shape_label(const rg2_design *d, int k);
  *  merge whose closed rows meet at a seam turned about their axis (the circles start at other
  *  angles) or running opposite ways round, which twists or pinches the transitions; a merge whose
  *  parts overlap, their control lines running back at the seam, which makes the transitions bend
- *  sharply or fold; each names the merge entry, both meshes, the angle or the distance and the
- *  way out. rg2 info and rg2 build print them. */
+ *  sharply or fold; a merge with a control weight <= 0 on a line next to a seam (a hyperboloid's
+ *  data-only end rows mirrored past v = 0, say), where the transitions can pass through infinity
+ *  (given instead of the other two, which measure the points p / w); each names the merge entry,
+ *  both meshes, the angle, the distance or the weight and the way out. rg2 info and rg2 build
+ *  print them. */
 RG2_API int rg2_design_num_notes(const rg2_design *d);
 RG2_API const char *rg2_design_note(const rg2_design *d, int k);
 /** Name (in the design file) of the mesh surface k was built from. */

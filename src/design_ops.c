@@ -493,6 +493,40 @@ static int row_twist(const rg2_mesh *a, int la, const rg2_mesh *b, int lb, int d
     return 1;
 }
 
+/* The first control point of weight <= 0 on the two lines of m next to a seam (lines l0 and l1
+ * along dir; those of them that exist): 1 with its line, its index along the other direction and
+ * its weight. Its design point p / w lies on the far side (or at infinity), so the twist and
+ * overlap notes, which measure design points, mean nothing there. */
+static int seam_weight(const rg2_mesh *m, int dir, int l0, int l1, int *line, int *idx, double *w)
+{
+    int n = dir_scalars(m, 1 - dir)->n, nl = dir_scalars(m, dir)->n;
+    for (int q = 0; q < 2; q++) {
+        int ln = q ? l1 : l0;
+        for (int i = 0; ln >= 0 && ln < nl && i < n; i++) {
+            const double *p = dir ? rg2_mesh_at(m, i, ln) : rg2_mesh_at(m, ln, i);
+            if (!(p[3] > 0.0)) {
+                *line = ln, *idx = i, *w = p[3];
+                return 1;
+            }
+        }
+    }
+    return 0;
+}
+
+/* Whether the seam between l and r has a control weight <= 0 on a line next to it; which part
+ * (0 l, 1 r) and where. */
+static int seam_weights_bad(const rg2_mesh *l, const rg2_mesh *r, int dir, int *part, int *line, int *idx,
+                            double *w)
+{
+    int nl = dir_scalars(l, dir)->n;
+    if (seam_weight(l, dir, nl - 1, nl - 2, line, idx, w)) {
+        *part = 0;
+        return 1;
+    }
+    *part = 1;
+    return seam_weight(r, dir, 0, 1, line, idx, w);
+}
+
 rg2_status rg2__merge_twist_notes(rg2_design *d, const rg2__dmesh *const *in, int n_in, int dir, int closed,
                                   const char *what, rg2_error *err)
 {
@@ -501,8 +535,10 @@ rg2_status rg2__merge_twist_notes(rg2_design *d, const rg2__dmesh *const *in, in
         return RG2_OK;
     for (int t = closed ? 0 : 1; t < n_in; t++) {
         const rg2__dmesh *l = in[t ? t - 1 : n_in - 1], *r = in[t];
-        double deg = 0.0;
-        int opposite = 0;
+        double deg = 0.0, w;
+        int opposite = 0, part, line, idx;
+        if (seam_weights_bad(&l->m, &r->m, dir, &part, &line, &idx, &w)) /* (rg2__merge_overlap_notes) */
+            continue;
         if (!row_twist(&l->m, dir_scalars(&l->m, dir)->n - 1, &r->m, 0, dir, n, &deg, &opposite) ||
             (!opposite && fabs(deg) <= 1.0))
             continue;
@@ -582,11 +618,27 @@ rg2_status rg2__merge_overlap_notes(rg2_design *d, const rg2__dmesh *const *in, 
     int other = 1 - dir;
     for (int t = closed ? 0 : 1; t < n_in; t++) {
         const rg2__dmesh *l = in[t ? t - 1 : n_in - 1], *r = in[t];
-        int by_left;
+        int by_left, part, line, idx;
+        double w;
+        char msg[900];
+        if (seam_weights_bad(&l->m, &r->m, dir, &part, &line, &idx, &w)) {
+            /* (a hyperboloid's data-only end rows past v = 0 or |v| = 1, say) */
+            const rg2__dmesh *p = part ? r : l;
+            snprintf(msg, sizeof msg,
+                     "%s: %s.merge[%d]: '%s' has weight %.4g <= 0 at control point %d of its %s line %d, next to "
+                     "its seam with '%s': the transition patches there can change sign and pass through infinity "
+                     "(rg2 check reports their weights; STEP and IGES refuse weights <= 0); if it is a data-only "
+                     "end row (a hyperboloid's knots mirrored past v = 0 or |v| = 1), keep that part's end knots "
+                     "further from where its weight vanishes",
+                     d->name, what, t, p->name, w, idx, dir_name(other), line, part ? l->name : r->name);
+            rg2_status st = rg2__design_add_note(d, msg, err);
+            if (st)
+                return st;
+            continue;
+        }
         double back = rg2__merge_seam_back(&l->m, &r->m, dir, &by_left);
         if (!(back > RG2_MERGE_OVERLAP)) /* (examples that join well: up to 0.011) */
             continue;
-        char msg[700];
         snprintf(msg, sizeof msg,
                  "%s: %s.merge[%d]: the control lines of '%s' and '%s' run back at their seam: the first %s line "
                  "of '%s' lies %.2g line spacings of '%s' behind the last of '%s' (centres of the lines): the "

@@ -1723,6 +1723,52 @@ static double most_back(const rg2_mesh *m)
     return most;
 }
 
+/* A merge next to a control weight <= 0 (a hyperboloid's data-only end rows mirrored past v = 0)
+ * gets one note naming the part, the control point and its weight, which the merged mesh holds
+ * there and which leaves the built surface with weights <= 0; the twist and overlap notes, which
+ * measure the design points p / w (on the far side there), are not given for that seam. With the
+ * knots moved away from 0 the weights stay positive and no such note comes. */
+static void weight_notes(void)
+{
+    static const char base[] =
+        "{\"shapes\": {\"c\": {\"kind\": \"cylinder\", \"radius\": 1.0089, \"translate\": [0, 0, 3]},"
+        "\"h\": {\"kind\": \"hyperboloid1\"}}, \"meshes\": {"
+        "\"C\": {\"shape\": \"c\", \"u\": {\"arcs\": 6}, \"v\": {\"segments\": 2, \"from\": 0, \"to\": 1}},"
+        "\"H\": {\"shape\": \"h\", \"u\": {\"arcs\": 6}, \"v\": {\"knots\": [%s, %s, 0.9]}},"
+        "\"M\": {\"merge\": [\"C\", \"H\"], \"along\": \"v\"}}, \"output\": \"M\"}";
+    rg2_error err;
+    rg2_design *d = parse_edit2(base, "0.1", "0.5", &err); /* (data-only knots -0.3, -0.7) */
+    CHECK(d != NULL, "the design with knots 0.1, 0.5, 0.9 parses: %s", err.msg);
+    if (d) {
+        const char *note = rg2_design_note(d, 0), *at = note ? strstr(note, "'H' has weight ") : NULL;
+        double w = 1.0;
+        int idx = -1, line = -1;
+        int got = at && sscanf(at, "'H' has weight %lf <= 0 at control point %d of its u line %d", &w, &idx, &line) == 3;
+        const rg2_mesh *M = rg2_design_mesh(d, 0);
+        /* H's 2 knot intervals give 5 control points along v, the last 5 of the merge's */
+        int j = M ? M->nv - 5 + line : -1;
+        CHECK(rg2_design_num_notes(d) == 1 && got && strstr(note, "test: meshes.M.merge[1]: ") &&
+                  strstr(note, "next to its seam with 'C'"),
+              "one weight note, got %d: '%s'", rg2_design_num_notes(d), note ? note : "(none)");
+        CHECK(got && M && idx >= 0 && idx < M->nu && j >= 0 && j < M->nv && w <= 0 && rg2_mesh_at(M, idx, j)[3] == w,
+              "the note's weight %g at (%d, %d) is the merged mesh's (%g)", w, idx, j,
+              got && M && idx >= 0 && idx < M->nu && j >= 0 && j < M->nv ? rg2_mesh_at(M, idx, j)[3] : NAN);
+        CHECK(rg2_surface_min_weight(rg2_design_surface(d, 0)) <= 0, "the built surface has weights <= 0 (%g)",
+              rg2_surface_min_weight(rg2_design_surface(d, 0)));
+        rg2_design_free(d);
+    }
+    d = parse_edit2(base, "0.7", "0.8", &err); /* (data-only knots 0.6, 0.5) */
+    CHECK(d != NULL, "the design with knots 0.7, 0.8, 0.9 parses: %s", err.msg);
+    if (d) {
+        for (int k = 0; k < rg2_design_num_notes(d); k++)
+            CHECK(!strstr(rg2_design_note(d, k), "<= 0 at control point"), "no weight note, got '%s'",
+                  rg2_design_note(d, k));
+        CHECK(rg2_surface_min_weight(rg2_design_surface(d, 0)) > 0, "weights > 0 (%g)",
+              rg2_surface_min_weight(rg2_design_surface(d, 0)));
+        rg2_design_free(d);
+    }
+}
+
 /* A merge whose parts overlap (the next part starts before the last ends) gets a note naming how
  * far its control lines run back; parts with a gap between them, and every example, get none. */
 static void overlapping_merges(void)
@@ -2169,6 +2215,7 @@ int main(void)
     design_caps_again();
     twisted_merges();
     overlapping_merges();
+    weight_notes();
     merge_overlap_api();
     rotation_lists();
     rolled_meshes();
