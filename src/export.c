@@ -909,9 +909,9 @@ rg2_status rg2_export_memory(const rg2_surface *surfs, int n_surfs, const char *
     }
     if (!known)
         return rg2__fail(err, RG2_EINVAL,
-                         "rg2_export_memory: unknown format '%s' (use step stp igs iges bv bez obj stl ply glb json: "
-                         "an extension without its dot)",
-                         format ? format : "(null)");
+                         "rg2_export_memory: %s%s%s (use step stp igs iges bv bez obj stl ply glb json: an extension "
+                         "without its dot)",
+                         format ? "unknown format '" : "format is NULL", format ? format : "", format ? "'" : "");
     /* the name the STEP and IGES headers give: "<opts->name>.<format>", '/' made '_' (the headers
      * take a path's last part) */
     const char *nm = opts && opts->name ? opts->name : default_name;
