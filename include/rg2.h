@@ -1554,6 +1554,10 @@ typedef struct {
     int unmeasured;        /**< samples with an undefined normal away from a pole, or a rounding
                                 bound above 1e-4 rad / 1e-2 further than 1e-3 from one: G1 and
                                 G2 fail when > 0 */
+    int unmeasured_pole;   /**< of unmeasured: samples on a patch with a pole side, their rounding
+                                bound past 1e-4 rad / 1e-2 further than 1e-3 from the pole (a very
+                                thin pole patch; docs/render.md) */
+    double unmeasured_pole_dist; /**< the largest parametric distance from the pole among them */
     rg2_check_gap g0, g1, g2; /**< position (relative), normal angle (rad), curvature (relative),
                                    over the samples measured against tol_g0, tol_g1, tol_g2 */
     int near_pole;         /**< samples of patches with a pole side whose rounding bound (the

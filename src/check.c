@@ -353,10 +353,16 @@ static void seam_point(rg2_check_report *r, const rg2_surface *s, const seam_sid
         /* rounding hides any gap: within POLE_BLUR of the pole (a floating-point limit, reported),
          * elsewhere a failure */
         r->skipped++;
-        if (fmin(pole_distance(Ls), pole_distance(Rs)) < POLE_BLUR)
+        double dist = fmin(pole_distance(Ls), pole_distance(Rs));
+        if (dist < POLE_BLUR)
             r->pole_unresolved++;
-        else
+        else {
             r->unmeasured++;
+            if (pole_patch) {
+                r->unmeasured_pole++;
+                r->unmeasured_pole_dist = fmax(r->unmeasured_pole_dist, dist);
+            }
+        }
         return;
     }
     double lim1 = fmax(o->tol_g1, round1), lim2 = fmax(o->tol_g2, round2);
@@ -659,6 +665,8 @@ static void part_merge(rg2_check_report *r, const check_part *c)
         r->skipped += x->skipped;
         r->pole_samples += x->pole_samples;
         r->unmeasured += x->unmeasured;
+        r->unmeasured_pole += x->unmeasured_pole;
+        r->unmeasured_pole_dist = fmax(r->unmeasured_pole_dist, x->unmeasured_pole_dist);
         r->near_pole += x->near_pole;
         r->pole_unresolved += x->pole_unresolved;
         r->ill_conditioned += x->ill_conditioned;
@@ -1223,9 +1231,14 @@ static void format_text(const rg2_check_report *r, sbuf *b)
                      "%.0e: not compared (floating-point limit)\n", r->pole_unresolved, POLE_BLUR, NEAR_POLE_MAX_G1,
                   NEAR_POLE_MAX_G2);
     if (r->unmeasured)
-        sb_printf(b, "  NOT MEASURED           %d samples away from any pole could not be measured (an undefined "
-                     "normal: a degenerate or ill-conditioned patch; or a metric out of floating-point range): "
-                     "G1 and G2 FAIL\n", r->unmeasured);
+        sb_printf(b, "  NOT MEASURED           %d samples away from any pole could not be measured (further than %.0e "
+                     "from one; an undefined normal: a degenerate or ill-conditioned patch; or a metric out of "
+                     "floating-point range): G1 and G2 FAIL\n", r->unmeasured, POLE_BLUR);
+    if (r->unmeasured_pole)
+        sb_printf(b, "    %d of them on patches with a pole side, up to %.3g from the pole (parametric): their rounding "
+                     "bounds exceed %.0e rad / %.0e further than %.0e from it (a very thin pole patch); other "
+                     "--samples counts can miss them (docs/render.md)\n",
+                  r->unmeasured_pole, r->unmeasured_pole_dist, NEAR_POLE_MAX_G1, NEAR_POLE_MAX_G2, POLE_BLUR);
     else if (has && r->seam_samples == r->pole_samples)
         sb_printf(b, "  NOT MEASURED           every sample lies on a pole: G1 and G2 FAIL\n");
     if (r->folds || r->singular) {
@@ -1337,6 +1350,8 @@ static char *format_json(const rg2_check_report *r)
     add_num(j, "skipped", r->skipped);
     add_num(j, "pole_samples", r->pole_samples);
     add_num(j, "unmeasured", r->unmeasured);
+    add_num(j, "unmeasured_near_pole", r->unmeasured_pole);
+    add_num(j, "unmeasured_pole_distance", r->unmeasured_pole_dist);
     cJSON *rg = cJSON_AddObjectToObject(j, "regularity");
     add_num(rg, "folds", r->folds);
     add_num(rg, "singular", r->singular);
