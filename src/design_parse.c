@@ -1286,20 +1286,32 @@ static void line_col(const char *text, size_t off, int *line, int *col)
     }
 }
 
+/* Whether text[*k] belongs to a string (its quotes included), tracking *in_string; past an escape
+ * *k moves onto the escaped character. */
+static int string_char(const char *text, size_t *k, int *in_string)
+{
+    char ch = text[*k];
+    if (*in_string) {
+        if (ch == '\\')
+            ++*k;
+        else if (ch == '"')
+            *in_string = 0;
+        return 1;
+    }
+    if (ch == '"')
+        *in_string = 1;
+    return *in_string;
+}
+
 /* How deep in arrays and objects the text is at offset off (brackets in strings not counted). */
 static int nesting(const char *text, size_t off)
 {
     int depth = 0, in_string = 0;
     for (size_t k = 0; k < off && text[k]; k++) {
         char ch = text[k];
-        if (in_string) {
-            if (ch == '\\')
-                k++;
-            else if (ch == '"')
-                in_string = 0;
-        } else if (ch == '"')
-            in_string = 1;
-        else if (ch == '[' || ch == '{')
+        if (string_char(text, &k, &in_string))
+            continue;
+        if (ch == '[' || ch == '{')
             depth++;
         else if (ch == ']' || ch == '}')
             depth--;
@@ -1317,17 +1329,8 @@ static int tiny_literal(const char *t, size_t len, size_t *at, size_t *n)
     int in_string = 0;
     for (size_t k = 0; k < len; k++) {
         char ch = t[k];
-        if (in_string) {
-            if (ch == '\\')
-                k++;
-            else if (ch == '"')
-                in_string = 0;
+        if (string_char(t, &k, &in_string))
             continue;
-        }
-        if (ch == '"') {
-            in_string = 1;
-            continue;
-        }
         if (ch != '-' && !(ch >= '0' && ch <= '9'))
             continue;
         size_t b = k;

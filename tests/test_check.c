@@ -2050,6 +2050,21 @@ static void format_made_reports(void)
     printf("check report: 600 reports made by hand read back from their JSON and text\n");
 }
 
+/* Design text js parsed (named name), its surfaces and shapes (*p) checked with o into *r; the
+ * design, or NULL when it does not parse (then *p and *r are untouched). */
+static rg2_design *design_checked(const char *js, const char *name, rg2t_parts *p, const rg2_check_opts *o,
+                                  rg2_check_report *r)
+{
+    rg2_design *d = NULL;
+    rg2_error err;
+    CHECK_OK(rg2_design_parse(js, strlen(js), name, &d, &err), &err);
+    if (!d)
+        return NULL;
+    CHECK(!rg2t_design_parts(d, p), "%s: parts", name);
+    CHECK_OK(rg2_check(p->s, p->n, p->shapes, p->labels, p->ns, o, r, &err), &err);
+    return d;
+}
+
 /* A small shape far from the origin: its exact patches cannot lie closer to it than their
  * coordinates round, about DBL_EPSILON x |x| / size relative to its size. A cylinder of radius
  * 1e-3 (patches 3e-5 tall) at (T, T, 0) measured 1.9e-11 at T = 100 and 1.6e-10 at T = 1000,
@@ -2066,17 +2081,14 @@ static void far_from_origin(void)
                  " \"meshes\": {\"m\": {\"shape\": \"c\", \"u\": {\"arcs\": 3},"
                  " \"v\": {\"segments\": 5, \"from\": -0.0002, \"to\": -0.00017}}}}",
                  T[t], T[t]);
-        rg2_design *d = NULL;
-        rg2_error err;
-        CHECK_OK(rg2_design_parse(js, strlen(js), "far", &d, &err), &err);
-        if (!d)
-            return;
         rg2t_parts p;
-        CHECK(!rg2t_design_parts(d, &p), "far: parts");
         rg2_check_opts o;
         rg2_check_opts_default(&o);
         rg2_check_report r;
-        CHECK_OK(rg2_check(p.s, p.n, p.shapes, p.labels, p.ns, &o, &r, &err), &err);
+        rg2_error err;
+        rg2_design *d = design_checked(js, "far", &p, &o, &r);
+        if (!d)
+            return;
         const rg2_check_shape *c = &r.shapes[0];
         printf("cylinder of radius 1e-3 at (%g, %g, 0): %d exact patches, residual %.2e, limit %.2e\n", T[t], T[t],
                c->patches, c->residual, c->limit);
@@ -2115,17 +2127,14 @@ static void thin_pole_patches(void)
     static const char js[] = "{\"shapes\": {\"e\": {\"kind\": \"sphere\"}}, \"meshes\": {\"p\": {\"polar\": \"e\","
                              " \"u\": {\"arcs\": 600}, \"v\": {\"knots\": [0.01, 0.02, 0.5]}},"
                              " \"c\": {\"cap\": \"p\", \"ends\": \"south\"}}}";
-    rg2_design *d = NULL;
-    rg2_error err;
-    CHECK_OK(rg2_design_parse(js, strlen(js), "thin", &d, &err), &err);
-    if (!d)
-        return;
     rg2t_parts p;
-    CHECK(!rg2t_design_parts(d, &p), "thin: parts");
     rg2_check_opts o;
     rg2_check_opts_default(&o);
     rg2_check_report r;
-    CHECK_OK(rg2_check(p.s, p.n, p.shapes, p.labels, p.ns, &o, &r, &err), &err);
+    rg2_error err;
+    rg2_design *d = design_checked(js, "thin", &p, &o, &r);
+    if (!d)
+        return;
     char *txt = NULL, *json = NULL;
     CHECK_OK(rg2_check_format(&r, 0, &txt, &err), &err);
     CHECK_OK(rg2_check_format(&r, 1, &json, &err), &err);
