@@ -1552,19 +1552,23 @@ typedef struct {
                                 pole_unresolved + unmeasured */
     int pole_samples;      /**< samples on a collapsed patch side (a pole): no normal exists there */
     int unmeasured;        /**< samples with an undefined normal away from a pole, or a rounding
-                                bound above 1e-4 rad / 1e-2 further than 1e-3 from one: G1 and
-                                G2 fail when > 0 */
-    int unmeasured_pole;   /**< of unmeasured: samples on a patch with a pole side, their rounding
-                                bound past 1e-4 rad / 1e-2 further than 1e-3 from the pole (a very
-                                thin pole patch; docs/render.md) */
+                                bound above 1e-4 rad / 1e-2 that is not the pole's (see
+                                pole_unresolved): G1 and G2 fail when > 0 */
+    int unmeasured_pole;   /**< of unmeasured: samples on a patch with a pole side whose rounding
+                                bound past 1e-4 rad / 1e-2 would still be past them 0.25 from the
+                                pole if it grew only like 1/d (normal) and 1/d^2 (curvature)
+                                toward it (a very thin pole patch; docs/render.md) */
     double unmeasured_pole_dist; /**< the largest parametric distance from the pole among them */
     rg2_check_gap g0, g1, g2; /**< position (relative), normal angle (rad), curvature (relative),
                                    over the samples measured against tol_g0, tol_g1, tol_g2 */
     int near_pole;         /**< samples of patches with a pole side whose rounding bound (the
                                 expected floating-point error of the two evaluations) exceeds
                                 tol_g1 or tol_g2: measured against that bound instead */
-    int pole_unresolved;   /**< samples within 1e-3 (parametric) of a pole whose rounding bound
-                                exceeds 1e-4 rad / 1e-2: not compared, no failure */
+    int pole_unresolved;   /**< samples next to a pole whose rounding bound exceeds 1e-4 rad /
+                                1e-2 because of the pole: within 1e-3 of it (parametric), or the
+                                bound, carried out like 1/d (normal) and 1/d^2 (curvature), is
+                                within those limits 0.25 from it. Not compared, no failure */
+    double pole_unresolved_dist; /**< the largest parametric distance from the pole among them */
     double near_pole_tol1, near_pole_tol2; /**< the largest G1 (rad) / G2 limits they got */
     rg2_check_gap g1_pole, g2_pole; /**< their worst gap / own limit (pass: <= 1) */
     int ill_conditioned;   /**< samples of patches without a pole side whose gap exceeds tol_g1
