@@ -1319,12 +1319,19 @@ static int nesting(const char *text, size_t off)
     return depth;
 }
 
-/* A number literal of the text that has a non-zero digit but so small an order (below 1e-323)
- * that cJSON reads it as 0 or a subnormal: 1e-400 would pass as the number 0, which the
- * numeric range allows, while 1e-320 is refused by value. Returns the offset of the first such
- * literal and its length, or 0 when none (the text has parsed as JSON: numbers stand outside
- * strings). The order comes from the digits and the exponent, not from strtod (no locale). */
-static int tiny_literal(const char *t, size_t len, size_t *at, size_t *n)
+/* Number literals cJSON takes that a JSON reader must not (RFC 8259 grammar:
+ * -?(0|[1-9][0-9]*)(.[0-9]+)?([eE][+-]?[0-9]+)?): a leading zero (01, -00.5), a '.' with no
+ * digit after it (1., 1.e3) or no digit before it (-.5). cJSON reads them through strtod, so
+ * rg2 took such a design while other JSON tools refuse it. */
+enum { LIT_OK, LIT_TINY, LIT_LEADING_ZERO, LIT_BARE_POINT };
+
+/* The first number literal of the text that is not JSON (LIT_LEADING_ZERO, LIT_BARE_POINT) or
+ * that has a non-zero digit but so small an order (below 1e-323) that cJSON reads it as 0 or a
+ * subnormal (LIT_TINY): 1e-400 would pass as the number 0, which the numeric range allows, while
+ * 1e-320 is refused by value. Gives the offset of the literal and its length, or returns LIT_OK
+ * when none (the text has parsed as JSON: numbers stand outside strings). The order comes from
+ * the digits and the exponent, not from strtod (no locale). */
+static int bad_literal(const char *t, size_t len, size_t *at, size_t *n)
 {
     int in_string = 0;
     for (size_t k = 0; k < len; k++) {
@@ -1337,7 +1344,7 @@ static int tiny_literal(const char *t, size_t len, size_t *at, size_t *n)
         if (t[k] == '-')
             k++;
         long digits_before = 0, first_int = -1, first_frac = 0, f = 0;
-        int frac = 0;
+        int frac = 0, kind = LIT_OK;
         for (; k < len && ((t[k] >= '0' && t[k] <= '9') || t[k] == '.'); k++) {
             if (t[k] == '.') {
                 frac = 1;
@@ -1345,6 +1352,8 @@ static int tiny_literal(const char *t, size_t len, size_t *at, size_t *n)
             }
             int nz = t[k] != '0';
             if (!frac) {
+                if (digits_before == 1 && t[k - 1] == '0')
+                    kind = LIT_LEADING_ZERO;
                 if (nz && first_int < 0)
                     first_int = digits_before;
                 digits_before++;
@@ -1354,6 +1363,8 @@ static int tiny_literal(const char *t, size_t len, size_t *at, size_t *n)
                     first_frac = f;
             }
         }
+        if (digits_before == 0 || (frac && f == 0))
+            kind = LIT_BARE_POINT;
         int nonzero = first_int >= 0 || first_frac > 0;
         /* the order of the first non-zero digit: 10^order */
         long order = first_int >= 0 ? digits_before - 1 - first_int : -first_frac;
@@ -1368,14 +1379,16 @@ static int tiny_literal(const char *t, size_t len, size_t *at, size_t *n)
                     ex = ex * 10 + (t[k] - '0');
             ex *= sign;
         }
-        if (nonzero && order + ex < -323) {
+        if (kind == LIT_OK && nonzero && order + ex < -323)
+            kind = LIT_TINY;
+        if (kind != LIT_OK) {
             *at = b;
             *n = k - b;
-            return 1;
+            return kind;
         }
         k--; /* (the loop's k++ moves past the literal) */
     }
-    return 0;
+    return LIT_OK;
 }
 
 /* Parse a JSON text (a whole design file or a NURBS spec) into *root; the errors name name:line:col. */
@@ -1470,16 +1483,27 @@ static rg2_status parse_text(const char *json, size_t len, const char *name, cJS
                          k ? "near '" : "at the end of the text", near, k ? "'" : "");
     }
     size_t at, n;
-    if (tiny_literal(buf, len, &at, &n)) {
+    int lit = bad_literal(buf, len, &at, &n);
+    if (lit != LIT_OK) {
         int line, col;
         line_col(buf, at, &line, &col);
         cJSON_Delete(*root);
         *root = NULL;
-        rg2_status st = rg2__fail(err, RG2_EDOMAIN,
-                                  "%s:%d:%d: number %.*s%s is too small for a double (below 1e-323): it would read "
-                                  "as 0 or a subnormal; numbers must be 0 or have a magnitude from 1e-100 to 1e+100 "
-                                  "(write 0 for zero)",
-                                  name, line, col, (int)(n < 40 ? n : 40), buf + at, n < 40 ? "" : "...");
+        int shown = (int)(n < 40 ? n : 40);
+        const char *more = n < 40 ? "" : "...";
+        rg2_status st =
+            lit == LIT_TINY
+                ? rg2__fail(err, RG2_EDOMAIN,
+                            "%s:%d:%d: number %.*s%s is too small for a double (below 1e-323): it would read as 0 or "
+                            "a subnormal; numbers must be 0 or have a magnitude from 1e-100 to 1e+100 (write 0 for "
+                            "zero)",
+                            name, line, col, shown, buf + at, more)
+                : rg2__fail(err, RG2_EPARSE, "%s:%d:%d: malformed JSON: number %.*s%s %s", name, line, col, shown,
+                            buf + at, more,
+                            lit == LIT_LEADING_ZERO
+                                ? "has a leading zero (JSON numbers do not: write 1, not 01; 0.5, not 00.5)"
+                                : "has no digit on one side of its '.' (JSON numbers need both: write 1 or 1.0, not "
+                                  "1.; 0.5, not .5)");
         free(buf);
         return st;
     }

@@ -817,6 +817,31 @@ static void json_numbers(void)
     cJSON_Delete(a);
 }
 
+/* Every form of a JSON number is taken (0, -0, 0.0e0, 1E+0, 10.25, 0e-5), and text like 01, 1.
+ * and -.5 inside a string is not a number: the design parses, and its torus has the radii given.
+ * (The malformed forms outside strings: bad_inputs.) */
+static void json_number_forms(void)
+{
+    rg2_error err;
+    rg2_design *d = parse("{\"description\": \"r = 01, R = 3., -.5 and \\\"0.\\\" in a string\", \"shapes\": "
+                          "{\"t\": {\"kind\": \"torus\", \"R\": 30.0e-1, \"r\": 1E+0, \"translate\": [-0, 0.0e0, 0e-5]}},"
+                          " \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": [90, 90, 90, 90]},"
+                          " \"v\": {\"arcs\": [10.25, 169.75, 90, 90]}}}}",
+                          &err);
+    if (!d)
+        return;
+    const rg2_surface *s = rg2_design_num_surfaces(d) == 1 ? rg2_design_surface(d, 0) : NULL;
+    CHECK(s && s->nu == 4 && s->nv == 4, "JSON number forms: %d x %d patches, want 4 x 4", s ? s->nu : -1,
+          s ? s->nv : -1);
+    if (s) { /* the patch corner at u = 0, v = 0: (R + r, 0, 0) */
+        rg2_eval e;
+        rg2_patch_eval(rg2_surface_patch(s, 0, 0), 0, 0, 0, &e);
+        CHECK(fabs(e.p[0] - 4) < 1e-15 && fabs(e.p[1]) < 1e-15 && fabs(e.p[2]) < 1e-15,
+              "JSON number forms: corner (%.17g, %.17g, %.17g), want (4, 0, 0)", e.p[0], e.p[1], e.p[2]);
+    }
+    rg2_design_free(d);
+}
+
 static void check_written_mesh(const char *path)
 {
     rg2_error err;
@@ -929,6 +954,7 @@ static void text_files(void)
         snprintf(path, sizeof path, "%s/m.json", dir);
         check_written_mesh(path);
         json_numbers();
+        json_number_forms();
         CHECK(rg2t_file_limit(100) == 0, "file size limit");
         rg2_status st = rg2_design_write_mesh(ref, path, &err);
         rg2t_file_limit(-1);
@@ -1173,6 +1199,17 @@ static void bad_inputs(void)
         const char *substr;
     } cases[] = {
         {"{\"shapes\": {}, \n  \"meshes\": {,}}", RG2_EPARSE, "test:2:15: malformed JSON near '}}'"},
+        /* number literals that cJSON reads through strtod but JSON has not */
+        {"{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": 3, \"r\": 01}}, \"meshes\": {}}", RG2_EPARSE,
+         "test:1:49: malformed JSON: number 01 has a leading zero"},
+        {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": [90, 90, 90, 90.]}}}}",
+         RG2_EPARSE, "malformed JSON: number 90. has no digit on one side of its '.'"},
+        {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": 4}, \"v\": {\"from\": -.5}}}}",
+         RG2_EPARSE, "malformed JSON: number -.5 has no digit on one side of its '.'"},
+        {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": 4}, \"v\": {\"from\": -00.5e1}}}}",
+         RG2_EPARSE, "malformed JSON: number -00.5e1 has a leading zero"},
+        {"{" TORUS_SHAPES ", \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": 2.e0}}}}", RG2_EPARSE,
+         "malformed JSON: number 2.e0 has no digit on one side of its '.'"},
         {"{\"shapes\": {\"t\": {\"kind\": \"torus\"}}", RG2_EPARSE, "malformed JSON"},
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH "}} x", RG2_EPARSE, "test:1:"},
         {"{" TORUS_SHAPES ", \"meshs\": {}}", RG2_EPARSE, "did you mean 'meshes'"},
