@@ -565,8 +565,11 @@ static void pixel_exact(const rg2_surface *surfs, const camera *c, const zcell *
     double d[3], u = zc->u, v = zc->v, res;
     pixel_ray(c, px, py, d);
     *converged = refine(S, i, j, c, d, &u, &v, &res);
+    /* the limit at a pole: Newton can end on a collapsed side (the pole of a sphere seen from
+     * above), where rg2_surface_eval has no normal and K = H = 0: such a pixel was shaded as if
+     * facing away from the lights, a dark speck, and coloured as if flat */
     rg2_eval e;
-    rg2_surface_eval(S, i, j, u, v, 2, &e);
+    rg2_surface_eval_limit(S, i, j, u, v, 2, &e);
     if (!isfinite(e.p[0]) || !isfinite(e.p[1]) || !isfinite(e.p[2]))
         return;
     o->surf = zc->surf;

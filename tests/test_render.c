@@ -1167,6 +1167,61 @@ static void silhouette_pixels(void)
     rg2_mesh_free(&m);
 }
 
+/* A pixel whose ray meets a pole: Newton ends on the collapsed side, where rg2_surface_eval has
+ * no normal (n = 0, K = H = 0). The renderer takes the limit there (rg2_surface_eval_limit): the
+ * whole sphere seen from straight above its pole (97 x 97, the pole on the centre pixel's ray)
+ * has a unit normal and K = 1 at every pixel, and the shaded pole pixel is lit like its
+ * neighbours (it was shaded as facing away from the lights: a dark speck). */
+static void pole_pixels(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_revolve(0.0, 1.0, 4, 4, 1, 0, 0, &m, &s, &err), &err);
+    for (int q = 0; q < 2; q++) {
+        rg2_render_opts o = kept_opts(97, 97);
+        o.elevation = q ? -90 : 90;
+        o.azimuth = 20;
+        rg2_image img;
+        CHECK_OK(rg2_render(&s, 1, NULL, &o, &img, &err), &err);
+        int W = img.width, H = img.height, fg = 0, nonunit = 0, offK = 0, specks = 0, first = -1;
+        double worstK = 0;
+        for (int k = 0; img.pixels && k < W * H; k++) {
+            const rg2_pixel *p = &img.pixels[k];
+            if (p->surf < 0)
+                continue;
+            fg++;
+            double nn = sqrt(p->n[0] * p->n[0] + p->n[1] * p->n[1] + p->n[2] * p->n[2]);
+            nonunit += !(fabs(nn - 1) <= 1e-12);
+            offK += !(fabs(p->K - 1) <= 1e-6);
+            worstK = fmax(worstK, fabs(p->K - 1));
+            int x = k % W, y = k / W;
+            if (x == 0 || y == 0 || x == W - 1 || y == H - 1 || at_silhouette(&img, k))
+                continue;
+            /* shaded: a pixel darker than 0.8 x the darkest of its 4-neighbours is a speck */
+            int g = img.rgb[3 * (size_t)k + 1], lo = 255;
+            const int nb[4] = {1, -1, W, -W};
+            for (int e = 0; e < 4; e++)
+                lo = img.rgb[3 * (size_t)(k + nb[e]) + 1] < lo ? img.rgb[3 * (size_t)(k + nb[e]) + 1] : lo;
+            if (g < 0.8 * lo) {
+                specks++;
+                if (first < 0)
+                    first = k;
+            }
+        }
+        printf("sphere from straight %s its pole: %d pixels, %d without a unit normal, %d with |K - 1| > 1e-6 "
+               "(worst %.2e), %d dark specks\n",
+               q ? "below" : "above", fg, nonunit, offK, worstK, specks);
+        CHECK(fg > 3000 && nonunit == 0 && offK == 0 && specks == 0,
+              "elevation %g: %d pixels, %d without a unit normal, %d with |K - 1| > 1e-6 (worst %.3g), %d dark "
+              "specks (the first at pixel (%d, %d))",
+              o.elevation, fg, nonunit, offK, worstK, specks, first % W, first / W);
+        rg2_image_free(&img);
+    }
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 int main(void)
 {
     for (int mixed = 0; mixed < 2; mixed++) {
@@ -1186,5 +1241,6 @@ int main(void)
     zebra_antialias();
     shaded_contrast();
     silhouette_pixels();
+    pole_pixels();
     return rg2t_done("test_render");
 }
