@@ -185,9 +185,12 @@ static void view_frame(const rg2_render_opts *o, double dir[3], double f[3], dou
         f[k] = -dir[k];
     double z[3] = {0, 0, 1};
     cross3(f, z, r);
-    if (dot3(r, r) < 1e-20) { /* looking straight up or down: y is up */
-        double y[3] = {0, 1, 0};
-        cross3(f, y, r);
+    if (dot3(r, r) < 1e-20) {
+        /* looking straight up or down: the right vector's limit as the elevation nears +-90 at
+         * this azimuth, (-sin A, cos A, 0). (It was f x y, +x or -x whatever the azimuth: the
+         * view turned by 90 - A degrees between elevations 89.9999 and 90, and the azimuth did
+         * not turn a top view.) */
+        r[0] = -sin(az), r[1] = cos(az), r[2] = 0;
     }
     unit3(r);
     cross3(r, f, up);

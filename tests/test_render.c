@@ -1222,6 +1222,56 @@ static void pole_pixels(void)
     rg2_mesh_free(&m);
 }
 
+/* Views straight down or up (elevation +-90) continue those next to them: at elevation 90 the
+ * picture of Fig. 8's torus and sphere is that at 89.9999 (the same azimuth), and the azimuth
+ * still turns it. (The right vector was +x or -x at +-90 whatever the azimuth: the view turned
+ * by 90 - A degrees between 89.9999 and 90.) */
+static int pictures_differ(const rg2_image *a, const rg2_image *b)
+{
+    int n = 0;
+    for (size_t k = 0; a->rgb && b->rgb && k < (size_t)a->width * a->height; k++)
+        for (int c = 0; c < 3; c++)
+            if (abs(a->rgb[3 * k + c] - b->rgb[3 * k + c]) > 24) {
+                n++;
+                break;
+            }
+    return n;
+}
+
+static void polar_views(void)
+{
+    rg2_design *d = NULL;
+    rg2_error err;
+    CHECK_OK(rg2_design_load("examples/torus_sphere.json", &d, &err), &err);
+    if (!d)
+        return;
+    const rg2_surface *s = rg2_design_surface(d, 0);
+    for (int q = 0; q < 2; q++) {
+        double el = q ? -90 : 90;
+        rg2_render_opts o = kept_opts(160, 120);
+        o.keep_pixels = 0;
+        o.azimuth = 35;
+        rg2_image at, near, turned;
+        o.elevation = el;
+        CHECK_OK(rg2_render(s, 1, NULL, &o, &at, &err), &err);
+        o.elevation = el * (1 - 1e-6);
+        CHECK_OK(rg2_render(s, 1, NULL, &o, &near, &err), &err);
+        o.elevation = el;
+        o.azimuth = 125;
+        CHECK_OK(rg2_render(s, 1, NULL, &o, &turned, &err), &err);
+        int n_near = pictures_differ(&at, &near), n_turned = pictures_differ(&at, &turned);
+        printf("elevation %g: %d of %d pixels differ from elevation %g, %d from azimuth 125\n", el, n_near,
+               at.width * at.height, o.elevation * (1 - 1e-6), n_turned);
+        CHECK(n_near <= at.width * at.height / 200 && n_turned >= at.width * at.height / 20,
+              "elevation %g, azimuth 35: %d pixels differ from elevation %g, %d from azimuth 125", el, n_near,
+              el * (1 - 1e-6), n_turned);
+        rg2_image_free(&at);
+        rg2_image_free(&near);
+        rg2_image_free(&turned);
+    }
+    rg2_design_free(d);
+}
+
 int main(void)
 {
     for (int mixed = 0; mixed < 2; mixed++) {
@@ -1242,5 +1292,6 @@ int main(void)
     shaded_contrast();
     silhouette_pixels();
     pole_pixels();
+    polar_views();
     return rg2t_done("test_render");
 }
