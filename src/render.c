@@ -900,13 +900,28 @@ static void colour_bar(rg2_image *img, int x0, int gauss, const double range[2])
         for (int x = x0; x < x0 + bw; x++)
             blend(img->rgb + 3 * ((size_t)y * img->width + x), rgb, 1.0);
     }
-    char buf[32];
+    /* the labels with 3 significant digits, more (up to 11 characters, the width beside the
+     * bar) while two neighbours read the same: a narrow range about a large middle (a sphere's
+     * constant H, 1e-3 of it wide) was labelled -1 at four of its five ticks */
+    char lab[5][32], b[5][32];
+    for (int prec = 3; prec <= 9; prec++) {
+        int same = 0, wide = 0;
+        for (int q = 0; q <= 4; q++) {
+            double val = range[0] + (range[1] - range[0]) * q / 4.0;
+            if (fabs(val) < 1e-12 * fmax(fabs(range[0]), fabs(range[1])))
+                val = 0;
+            snprintf(b[q], sizeof b[q], "%.*g", prec, val);
+            wide |= strlen(b[q]) > 11;
+            same |= q > 0 && !strcmp(b[q], b[q - 1]);
+        }
+        if (prec == 3 || !wide)
+            memcpy(lab, b, sizeof lab);
+        if (!same || wide)
+            break;
+    }
     draw_text(img, x0, top - 28, gauss ? "K" : "H", 2);
     for (int q = 0; q <= 4; q++) {
-        double val = range[0] + (range[1] - range[0]) * q / 4.0;
-        if (fabs(val) < 1e-12 * fmax(fabs(range[0]), fabs(range[1])))
-            val = 0;
-        snprintf(buf, sizeof buf, "%.3g", val);
+        const char *buf = lab[q];
         int y = bot - (bot - top) * q / 4;
         static const double ink[3] = {0.08, 0.08, 0.10};
         for (int x = x0 + bw; x < x0 + bw + 4; x++)

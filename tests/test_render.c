@@ -1272,6 +1272,51 @@ static void polar_views(void)
     rg2_design_free(d);
 }
 
+/* The colour bar's five labels read differently: a sphere band's constant H gets the narrowest
+ * range, -1 +- 5e-4, which three significant digits labelled -1 five times. Each label's pixels
+ * (its ink right of the bar, rows y - 3 .. y + 3 of its tick) are compared. */
+static void colour_bar_labels(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_revolve(0.0, 1.0, 6, 4, 0, -M_PI / 3, M_PI / 6, &m, &s, &err), &err);
+    for (int q = 0; q < 2; q++) {
+        rg2_render_opts o = kept_opts(400, 300);
+        o.mode = RG2_RENDER_MEAN;
+        if (q) { /* a wide range: the labels as before, 3 digits */
+            o.range_set = 1;
+            o.range[0] = -2;
+            o.range[1] = 1;
+        }
+        rg2_image img;
+        CHECK_OK(rg2_render(&s, 1, NULL, &o, &img, &err), &err);
+        int W = img.width, x0 = W - 110 + 12 + 22 + 7, top = 40, bot = img.height - 40, same = 0, inked = 0;
+        for (int a = 0; a < 5 && img.rgb; a++) {
+            int ya = bot - (bot - top) * a / 4, ink = 0;
+            for (int y = ya - 3; y <= ya + 3; y++)
+                for (int x = x0; x < W; x++)
+                    ink += img.rgb[3 * ((size_t)y * W + x)] < 128;
+            inked += ink > 0;
+            for (int b = 0; b < a; b++) {
+                int yb = bot - (bot - top) * b / 4, differ = 0; /* the ink (the background is a gradient) */
+                for (int dy = -3; dy <= 3; dy++)
+                    for (int x = x0; x < W; x++)
+                        differ |= (img.rgb[3 * ((size_t)(ya + dy) * W + x)] < 128) !=
+                                  (img.rgb[3 * ((size_t)(yb + dy) * W + x)] < 128);
+                same += !differ;
+            }
+        }
+        printf("colour bar, H range [%.6g, %.6g]: %d labels drawn, %d pairs of them alike\n", img.range[0],
+               img.range[1], inked, same);
+        CHECK(inked == 5 && same == 0, "range [%.9g, %.9g]: %d labels drawn, %d pairs read the same", img.range[0],
+              img.range[1], inked, same);
+        rg2_image_free(&img);
+    }
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 int main(void)
 {
     for (int mixed = 0; mixed < 2; mixed++) {
@@ -1292,6 +1337,7 @@ int main(void)
     shaded_contrast();
     silhouette_pixels();
     pole_pixels();
+    colour_bar_labels();
     polar_views();
     return rg2t_done("test_render");
 }
