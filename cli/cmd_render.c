@@ -211,6 +211,9 @@ int rg2_cmd_render(int argc, char **argv)
         rg2_cli_no_effect("render", "--no-colorbar", "only the mean and gauss modes draw a colour bar");
     if (tint_set && o.mode != RG2_RENDER_SHADED)
         rg2_cli_no_effect("render", "--no-tint", "only the shaded mode tints");
+    if (curv && o.colorbar && !(o.width > 220 && o.height >= 120)) /* render.c: BAR_MARGIN, BAR_MIN_HEIGHT */
+        fprintf(stderr, "rg2 render: note: no colour bar at %dx%d (it needs at least 221x120 pixels)\n", o.width,
+                o.height);
     rg2_design *d = NULL;
     rg2_surface *surfs = NULL;
     rg2_mesh *meshes = NULL;

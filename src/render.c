@@ -32,7 +32,8 @@
 #define RG2_PARALLEL_FOR
 #endif
 
-#define BAR_MARGIN 110 /* pixels on the right for the colour bar */
+#define BAR_MARGIN 110     /* pixels on the right for the colour bar */
+#define BAR_MIN_HEIGHT 120 /* rows the bar needs: 40 above and below, at least 40 of bar */
 
 /* ---------------------------------------------------------------- small vector helpers */
 
@@ -888,9 +889,7 @@ static void draw_text(rg2_image *img, int x, int y, const char *s, int scale)
 
 static void colour_bar(rg2_image *img, int x0, int gauss, const double range[2])
 {
-    int H = img->height, top = 40, bot = H - 40, bw = 22;
-    if (bot - top < 40)
-        return;
+    int H = img->height, top = 40, bot = H - 40, bw = 22; /* bot - top >= 40: BAR_MIN_HEIGHT */
     for (int y = top; y <= bot; y++) {
         double t = (double)(bot - y) / (bot - top), rgb[3];
         if (gauss)
@@ -1174,7 +1173,9 @@ rg2_status rg2_render(const rg2_surface *surfs, int n, const rg2_mesh *meshes, c
         return render_apart(surfs, n, meshes, o, out, err);
     int nt = render_threads(o);
     int W = o->width, H = o->height, curv = o->mode == RG2_RENDER_MEAN || o->mode == RG2_RENDER_GAUSS;
-    int vw = (curv && o->colorbar && W > 2 * BAR_MARGIN) ? W - BAR_MARGIN : W;
+    /* the bar's margin only where colour_bar draws it (a picture under 120 rows kept 110 empty
+     * columns on the right) */
+    int vw = (curv && o->colorbar && W > 2 * BAR_MARGIN && H >= BAR_MIN_HEIGHT) ? W - BAR_MARGIN : W;
     camera cam;
     if ((st = camera_setup(&cam, o, vw, surfs, n, meshes, nt, err)))
         return st;

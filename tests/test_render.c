@@ -1273,8 +1273,8 @@ static void polar_views(void)
 }
 
 /* The colour bar's five labels read differently: a sphere band's constant H gets the narrowest
- * range, -1 +- 5e-4, which three significant digits labelled -1 five times. Each label's pixels
- * (its ink right of the bar, rows y - 3 .. y + 3 of its tick) are compared. */
+ * range, -1 +- 5e-4, which three significant digits labelled -1 at four of its five ticks. Each
+ * label's ink (right of the bar, rows y - 3 .. y + 3 of its tick) is compared. */
 static void colour_bar_labels(void)
 {
     rg2_mesh m;
@@ -1317,6 +1317,32 @@ static void colour_bar_labels(void)
     rg2_mesh_free(&m);
 }
 
+/* A curvature picture too low for the colour bar (under 120 rows) uses the whole width: it kept
+ * the bar's 110 columns on the right empty. The sphere band at 400 x 100 is centred. */
+static void low_picture_bar(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_revolve(0.0, 1.0, 6, 4, 0, -M_PI / 3, M_PI / 6, &m, &s, &err), &err);
+    rg2_render_opts o = kept_opts(400, 100);
+    o.mode = RG2_RENDER_GAUSS;
+    rg2_image img;
+    CHECK_OK(rg2_render(&s, 1, NULL, &o, &img, &err), &err);
+    int lo = img.width, hi = -1;
+    for (int k = 0; img.pixels && k < img.width * img.height; k++)
+        if (img.pixels[k].surf >= 0) {
+            int x = k % img.width;
+            lo = x < lo ? x : lo, hi = x > hi ? x : hi;
+        }
+    printf("Gauss map at 400 x 100 (no room for the colour bar): surface pixels in columns %d..%d\n", lo, hi);
+    CHECK(hi >= 0 && abs((lo + hi + 1) - img.width) <= 4, "400 x 100: the surface spans columns %d..%d, not centred",
+          lo, hi);
+    rg2_image_free(&img);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 int main(void)
 {
     for (int mixed = 0; mixed < 2; mixed++) {
@@ -1339,5 +1365,6 @@ int main(void)
     pole_pixels();
     colour_bar_labels();
     polar_views();
+    low_picture_bar();
     return rg2t_done("test_render");
 }

@@ -51,6 +51,9 @@ expect 0 "note: --range has no effect" -- "$RG2" render "$ex" -o "$tmp/n3.png" -
 expect 0 "note: --no-colorbar has no effect" -- "$RG2" render "$ex" -o "$tmp/n4.png" --size 64x48 --no-colorbar
 out=$("$RG2" render "$ex" -o "$tmp/n5.png" --size 64x48 --mode zebra --stripes 4 --no-colorbar --range 0,1 2>&1)
 case "$out" in *"--stripes has no effect"*) bad "zebra uses --stripes: $out" ;; *) ok ;; esac
+# a curvature picture too small for the colour bar: a note, and none where the bar fits
+expect 0 "note: no colour bar at 400x100 (it needs at least 221x120 pixels)" -- "$RG2" render "$ex" -o "$tmp/b1.png" --size 400x100 --mode mean
+out=$("$RG2" render "$ex" -o "$tmp/b2.png" --size 221x120 --mode gauss 2>&1) && [ -z "$out" ] && ok || bad "221x120 gauss: $out"
 expect 0 "note: --iges-brep has no effect (no IGES output)" -- "$RG2" build "$ex" -o "$tmp/n.obj" --iges-brep
 expect 0 "note: --ap242 has no effect (no STEP output)" -- "$RG2" build "$ex" -o "$tmp/n.igs" --ap242
 expect 0 "note: --density has no effect" -- "$RG2" build "$ex" -o "$tmp/n.step" --density 4
