@@ -152,6 +152,10 @@ int rg2_cmd_render(int argc, char **argv)
         } else if (!strcmp(a, "--stripes")) {
             if (ranged(a, argc, argv, &i, &o.stripes, 1, 0, 1000, 0, "needs 1..1000 stripe pairs"))
                 return RG2_EXIT_USAGE;
+            if (o.stripes != floor(o.stripes)) { /* the renderer rounds: 2.5 drew 3 pairs, silently */
+                fprintf(stderr, "rg2 render: --stripes %s: needs a whole number of stripe pairs, 1..1000\n", argv[i]);
+                return RG2_EXIT_USAGE;
+            }
             stripes_set = 1;
         } else if (!strcmp(a, "--threads")) {
             if (rg2_cli_int("render", a, i + 1 < argc ? argv[++i] : NULL, 1, 1024, &o.threads))

@@ -18,6 +18,7 @@ expect 2 "--mode" -- "$RG2" render "$ex" -o "$tmp/x.png" --mode fancy
 expect 2 "--size" -- "$RG2" render "$ex" -o "$tmp/x.png" --size 10x10
 expect 2 "--range" -- "$RG2" render "$ex" -o "$tmp/x.png" --range 1
 expect 2 "--range 2,1: needs lo < hi" -- "$RG2" render "$ex" -o "$tmp/x.png" --mode mean --range 2,1
+expect 2 "rg2 render: --stripes 2.5: needs a whole number of stripe pairs, 1..1000" -- "$RG2" render "$ex" -o "$tmp/x.png" --mode zebra --stripes 2.5
 ! compgen -G "$tmp/x.png*" >/dev/null && ok || bad "a failed render left a file"
 expect 1 "cannot write" -- "$RG2" render "$ex" -o "$tmp/no/such/dir/x.png"
 expect 2 "give it a .png name" -- "$RG2" render "$ex" -o "$tmp/x.jpg"
