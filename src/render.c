@@ -764,17 +764,18 @@ static int clip_segment(double *x0, double *y0, double *x1, double *y1, int W, i
     return 1;
 }
 
-/* Coverage of an anti-aliased segment of half-width hw into mask (max, order independent). */
-static void mask_segment(float *mask, int W, int H, double x0, double y0, double x1, double y1, double hw)
+/* Coverage of an anti-aliased segment of half-width hw into mask (max, order independent), rows
+ * of W, in columns 0..VW-1 (the view, left of a colour bar). */
+static void mask_segment(float *mask, int W, int VW, int H, double x0, double y0, double x1, double y1, double hw)
 {
-    if (!clip_segment(&x0, &y0, &x1, &y1, W, H))
+    if (!clip_segment(&x0, &y0, &x1, &y1, VW, H))
         return;
     double dx = x1 - x0, dy = y1 - y0, len2 = dx * dx + dy * dy;
     int ix0 = (int)floor(fmin(x0, x1) - hw - 1), ix1 = (int)ceil(fmax(x0, x1) + hw + 1);
     int iy0 = (int)floor(fmin(y0, y1) - hw - 1), iy1 = (int)ceil(fmax(y0, y1) + hw + 1);
     if (ix0 < 0) ix0 = 0;
     if (iy0 < 0) iy0 = 0;
-    if (ix1 > W - 1) ix1 = W - 1;
+    if (ix1 > VW - 1) ix1 = VW - 1;
     if (iy1 > H - 1) iy1 = H - 1;
     double len = sqrt(len2);
     /* |dy| where the band is used, > 0 everywhere: clang computes wx and dx / dy before their
@@ -804,9 +805,11 @@ static void mask_segment(float *mask, int W, int H, double x0, double y0, double
     }
 }
 
+/* The mesh in the view's columns only: a line running off the view was drawn across the colour
+ * bar and its labels. */
 static void mesh_overlay(const rg2_mesh *meshes, int n, const camera *c, rg2_image *img, float *mask)
 {
-    int W = img->width, H = img->height;
+    int W = img->width, H = img->height, VW = c->vw;
     for (int s = 0; s < n; s++) {
         const rg2_mesh *m = &meshes[s];
         int cu = m->su.closed, cv = m->sv.closed;
@@ -818,7 +821,7 @@ static void mesh_overlay(const rg2_mesh *meshes, int n, const camera *c, rg2_ima
                 double p[3] = {h[0] / h[3], h[1] / h[3], h[2] / h[3]}, x0, y0;
                 if (!(project(c, p, &x0, &y0) > 0))
                     continue;
-                mask_segment(mask, W, H, x0, y0, x0, y0, 2.2);
+                mask_segment(mask, W, VW, H, x0, y0, x0, y0, 2.2);
                 for (int dir = 0; dir < 2; dir++) {
                     int i2 = i + (dir == 0), j2 = j + (dir == 1);
                     if (i2 == m->nu) {
@@ -833,7 +836,7 @@ static void mesh_overlay(const rg2_mesh *meshes, int n, const camera *c, rg2_ima
                     double x1, y1, q[3] = {g[0] / g[3], g[1] / g[3], g[2] / g[3]};
                     if (!(g[3] > 0) || !(project(c, q, &x1, &y1) > 0))
                         continue;
-                    mask_segment(mask, W, H, x0, y0, x1, y1, 0.6);
+                    mask_segment(mask, W, VW, H, x0, y0, x1, y1, 0.6);
                 }
             }
     }

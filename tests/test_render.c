@@ -1343,6 +1343,40 @@ static void low_picture_bar(void)
     rg2_mesh_free(&m);
 }
 
+/* The control mesh stays in the view, left of the colour bar: zoomed in on the torus (its mesh
+ * runs off the view), the bar's 110 columns of the mean map are the same with --mesh as
+ * without (mesh lines were drawn across the bar and its labels). */
+static void mesh_off_bar(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_revolve(3.0, 1.0, 8, 6, 1, 0, 0, &m, &s, &err), &err);
+    rg2_render_opts o = kept_opts(400, 300);
+    o.keep_pixels = 0;
+    o.mode = RG2_RENDER_MEAN;
+    o.distance = 6;
+    rg2_image plain, meshed;
+    CHECK_OK(rg2_render(&s, 1, &m, &o, &plain, &err), &err);
+    o.mesh = 1;
+    CHECK_OK(rg2_render(&s, 1, &m, &o, &meshed, &err), &err);
+    int W = plain.width, bar = 0, view = 0;
+    for (int k = 0; plain.rgb && meshed.rgb && k < W * plain.height; k++) {
+        int differ = memcmp(plain.rgb + 3 * (size_t)k, meshed.rgb + 3 * (size_t)k, 3) != 0;
+        if (k % W >= W - 110)
+            bar += differ;
+        else
+            view += differ;
+    }
+    printf("mesh over a zoomed mean map: %d pixels of the view and %d of the colour bar's columns changed\n", view,
+           bar);
+    CHECK(view > 1000 && bar == 0, "--mesh changed %d pixels of the view and %d in the colour bar's columns", view, bar);
+    rg2_image_free(&plain);
+    rg2_image_free(&meshed);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 int main(void)
 {
     for (int mixed = 0; mixed < 2; mixed++) {
@@ -1366,5 +1400,6 @@ int main(void)
     colour_bar_labels();
     polar_views();
     low_picture_bar();
+    mesh_off_bar();
     return rg2t_done("test_render");
 }
