@@ -34,6 +34,9 @@
 
 #define BAR_MARGIN 110     /* pixels on the right for the colour bar */
 #define BAR_MIN_HEIGHT 120 /* rows the bar needs: 40 above and below, at least 40 of bar */
+#ifndef BOUNDARY_FOOTPRINTS
+#define BOUNDARY_FOOTPRINTS 3.0 /* patch boundaries: neighbours this many pixel widths apart */
+#endif
 
 /* ---------------------------------------------------------------- small vector helpers */
 
@@ -1055,7 +1058,16 @@ static void edges(const camera *c, const rg2_pixel *pix, int boundaries, rg2_ima
                 }
                 if (boundaries && (o->surf != p->surf || o->patch != p->patch)) {
                     double dp[3] = {o->p[0] - p->p[0], o->p[1] - p->p[1], o->p[2] - p->p[2]};
-                    if (sqrt(dot3(dp, dp)) < 0.02 * c->scale)
+                    double gap = sqrt(dot3(dp, dp)), lim = 0.02 * c->scale;
+                    if (!(gap < lim)) {
+                        /* or 3 pixel footprints at its depth: 2% of the scene alone was less
+                         * than a pixel's footprint in small pictures, so neighbours across a
+                         * seam never qualified (a 64x48 torus_sphere showed 11% of its seam
+                         * pixels as boundary, pipe_elbow none) */
+                        double rel[3] = {p->p[0] - c->eye[0], p->p[1] - c->eye[1], p->p[2] - c->eye[2]};
+                        lim = fmax(lim, BOUNDARY_FOOTPRINTS * dot3(rel, c->f) * 2.0 * c->ty / c->h);
+                    }
+                    if (gap < lim)
                         a = fmax(a, 0.75);
                 }
             }

@@ -1377,6 +1377,65 @@ static void mesh_off_bar(void)
     rg2_mesh_free(&m);
 }
 
+/* Whether patches a and b of s touch (share an edge or a corner, across closures too). */
+static int patches_touch(const rg2_surface *s, int a, int b)
+{
+    int di = abs(a / s->nv - b / s->nv), dj = abs(a % s->nv - b % s->nv);
+    if (di == s->nu - 1)
+        di = 1;
+    if (dj == s->nv - 1)
+        dj = 1;
+    return di <= 1 && dj <= 1;
+}
+
+/* Patch boundaries at any picture size: a surface pixel (off the silhouette) with a 4-neighbour
+ * on a touching patch lies at a seam, and --boundaries darkens at least 90% of them in small
+ * pictures too. The limit on the neighbours' distance was 2% of the scene alone, less than a
+ * pixel's footprint there: at 64x48, 11% of torus_sphere's seam pixels and none of pipe_elbow's
+ * were drawn, at 120x90 77% and 72%. */
+static void small_boundaries(void)
+{
+    static const char *const files[2] = {"examples/torus_sphere.json", "examples/pipe_elbow.json"};
+    static const int sizes[2][2] = {{64, 48}, {120, 90}};
+    for (int f = 0; f < 2; f++) {
+        rg2_design *d = NULL;
+        rg2_error err;
+        CHECK_OK(rg2_design_load(files[f], &d, &err), &err);
+        if (!d)
+            continue;
+        const rg2_surface *s = rg2_design_surface(d, 0);
+        for (int q = 0; q < 2; q++) {
+            rg2_render_opts o = kept_opts(sizes[q][0], sizes[q][1]);
+            rg2_image plain, lines;
+            CHECK_OK(rg2_render(s, 1, NULL, &o, &plain, &err), &err);
+            o.boundaries = 1;
+            o.keep_pixels = 0;
+            CHECK_OK(rg2_render(s, 1, NULL, &o, &lines, &err), &err);
+            int W = plain.width, H = plain.height, seam = 0, drawn = 0, elsewhere = 0;
+            for (int y = 1; plain.pixels && lines.rgb && y < H - 1; y++)
+                for (int x = 1; x < W - 1; x++) {
+                    int k = y * W + x, at = 0;
+                    const rg2_pixel *p = &plain.pixels[k];
+                    const int nb[4] = {k - 1, k + 1, k - W, k + W};
+                    if (p->surf < 0 || at_silhouette(&plain, k))
+                        continue;
+                    for (int e = 0; e < 4; e++)
+                        at |= plain.pixels[nb[e]].patch != p->patch && patches_touch(s, p->patch, plain.pixels[nb[e]].patch);
+                    int dark = memcmp(plain.rgb + 3 * (size_t)k, lines.rgb + 3 * (size_t)k, 3) != 0;
+                    seam += at, drawn += at && dark, elsewhere += !at && dark;
+                }
+            printf("%s %dx%d: %d of %d seam pixels drawn as patch boundary, %d other pixels\n", files[f] + 9, W, H,
+                   drawn, seam, elsewhere);
+            CHECK(seam > 100 && drawn >= seam * 9 / 10 && elsewhere == 0,
+                  "%s at %dx%d: %d of %d seam pixels drawn as boundary, %d other pixels", files[f], W, H, drawn, seam,
+                  elsewhere);
+            rg2_image_free(&plain);
+            rg2_image_free(&lines);
+        }
+        rg2_design_free(d);
+    }
+}
+
 int main(void)
 {
     for (int mixed = 0; mixed < 2; mixed++) {
@@ -1401,5 +1460,6 @@ int main(void)
     polar_views();
     low_picture_bar();
     mesh_off_bar();
+    small_boundaries();
     return rg2t_done("test_render");
 }
