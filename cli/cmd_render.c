@@ -232,10 +232,18 @@ int rg2_cmd_render(int argc, char **argv)
         rg2_cli_no_effect("render", "--apart", "one surface to draw");
     if (!rc) {
         rg2_error err = {0};
-        if (only >= 0 && rg2_render_png(surfs + only, 1, meshes + only, &o, out, &err))
+        rg2_image img;
+        if (only >= 0 ? rg2_render(surfs + only, 1, meshes + only, &o, &img, &err)
+                      : rg2_render(surfs, n, meshes, &o, &img, &err))
             rc = rg2_cli_report("render", &err);
-        else if (only < 0 && rg2_render_png(surfs, n, meshes, &o, out, &err))
-            rc = rg2_cli_report("render", &err);
+        else {
+            if (rg2_image_write_png(&img, out, &err))
+                rc = rg2_cli_report("render", &err);
+            else if (img.foreground == 0) /* a blank picture, silently (--distance 1e6) */
+                fprintf(stderr, "rg2 render: note: no pixel shows the surface (it is smaller than a pixel or out of the "
+                                "view: see --distance)\n");
+            rg2_image_free(&img);
+        }
     }
     free(surfs);
     free(meshes);

@@ -52,6 +52,10 @@ expect 0 "note: --range has no effect" -- "$RG2" render "$ex" -o "$tmp/n3.png" -
 expect 0 "note: --no-colorbar has no effect" -- "$RG2" render "$ex" -o "$tmp/n4.png" --size 64x48 --no-colorbar
 out=$("$RG2" render "$ex" -o "$tmp/n5.png" --size 64x48 --mode zebra --stripes 4 --no-colorbar --range 0,1 2>&1)
 case "$out" in *"--stripes has no effect"*) bad "zebra uses --stripes: $out" ;; *) ok ;; esac
+# a picture in which no pixel shows the surface (far away): a note, exit 0; none when it shows
+expect 0 "note: no pixel shows the surface" -- "$RG2" render "$ex" -o "$tmp/far.png" --size 64x48 --distance 1e6
+png_is "$tmp/far.png" 64 48
+out=$("$RG2" render "$ex" -o "$tmp/near.png" --size 64x48 --distance 100 2>&1) && [ -z "$out" ] && ok || bad "--distance 100: $out"
 # a curvature picture too small for the colour bar: a note, and none where the bar fits
 expect 0 "note: no colour bar at 400x100 (it needs at least 221x120 pixels)" -- "$RG2" render "$ex" -o "$tmp/b1.png" --size 400x100 --mode mean
 out=$("$RG2" render "$ex" -o "$tmp/b2.png" --size 221x120 --mode gauss 2>&1) && [ -z "$out" ] && ok || bad "221x120 gauss: $out"
