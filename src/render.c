@@ -34,9 +34,7 @@
 
 #define BAR_MARGIN 110     /* pixels on the right for the colour bar */
 #define BAR_MIN_HEIGHT 120 /* rows the bar needs: 40 above and below, at least 40 of bar */
-#ifndef BOUNDARY_FOOTPRINTS
-#define BOUNDARY_FOOTPRINTS 3.0 /* patch boundaries: neighbours this many pixel widths apart */
-#endif
+#define BOUNDARY_FOOTPRINTS 3.0 /* patch boundaries: neighbours up to this many pixel widths apart */
 
 /* ---------------------------------------------------------------- small vector helpers */
 
