@@ -19,7 +19,7 @@ static void usage(FILE *f)
                "  --fov F             vertical field of view in degrees, in (1, 170) (default 30)\n"
                "  --range lo,hi       curvature colour range (default: 2%%..98%% robust range;\n"
                "                      Gauss symmetric about 0)\n"
-               "  --stripes N         zebra: stripe pairs per half turn, 1..1000 (default 12)\n"
+               "  --stripes N         zebra: stripe pairs per turn of the reflected ray, 1..1000 (default 12)\n"
                "  --boundaries        draw the patch boundaries\n"
                "  --mesh              overlay the control meshes\n"
                "  --no-tint           shaded: do not tint exact pieces by their shape\n"

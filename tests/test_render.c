@@ -1436,6 +1436,56 @@ static void small_boundaries(void)
     }
 }
 
+/* --stripes N counts stripe pairs per full turn of the reflected ray about the light-line axis:
+ * over the pixels of a sphere band, whose reflected rays turn all the way round, the stripe
+ * colour (from the picture) taken in the order of the pixels' phases changes 2N times. */
+static void stripes_per_turn(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_revolve(0.0, 1.0, 6, 4, 0, -M_PI / 3, M_PI / 6, &m, &s, &err), &err);
+    for (int N = 3; N <= 7; N += 4) {
+        rg2_render_opts o = kept_opts(240, 180);
+        o.mode = RG2_RENDER_ZEBRA;
+        o.stripes = N;
+        rg2_image img;
+        CHECK_OK(rg2_render(&s, 1, NULL, &o, &img, &err), &err);
+        enum { BINS = 720 };
+        int white[BINS] = {0}, black[BINS] = {0};
+        for (int k = 0; img.pixels && k < img.width * img.height; k++) {
+            if (img.pixels[k].surf < 0)
+                continue;
+            int b = (int)floor((img.pixels[k].phase + M_PI) / (2 * M_PI) * BINS);
+            b = b < 0 ? 0 : (b >= BINS ? BINS - 1 : b);
+            if (img.rgb[3 * (size_t)k] > 160)
+                white[b]++;
+            else if (img.rgb[3 * (size_t)k] < 60)
+                black[b]++;
+        }
+        int changes = 0, first = -1, last = -1, filled = 0;
+        for (int b = 0; b < BINS; b++) {
+            if (white[b] + black[b] == 0)
+                continue;
+            int c = white[b] > black[b];
+            filled++;
+            if (first < 0)
+                first = c;
+            else
+                changes += c != last;
+            last = c;
+        }
+        changes += first >= 0 && last != first; /* round the turn */
+        printf("zebra, %d stripe pairs: %d of %d phase bins seen, the colour changes %d times in a turn\n", N, filled,
+               BINS, changes);
+        CHECK(filled > BINS * 9 / 10 && changes == 2 * N, "--stripes %d: %d colour changes in a turn of the phase (%d "
+              "of %d bins seen), want %d", N, changes, filled, BINS, 2 * N);
+        rg2_image_free(&img);
+    }
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 int main(void)
 {
     for (int mixed = 0; mixed < 2; mixed++) {
@@ -1461,5 +1511,6 @@ int main(void)
     low_picture_bar();
     mesh_off_bar();
     small_boundaries();
+    stripes_per_turn();
     return rg2t_done("test_render");
 }
