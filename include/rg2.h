@@ -1345,7 +1345,8 @@ typedef struct {
     int boundaries;        /**< draw patch boundaries (seams) as thin dark lines */
     int mesh;              /**< overlay the control meshes (needs meshes != NULL) */
     int tint;              /**< shaded: tint patches by shape tag (default 1) */
-    int colorbar;          /**< curvature modes: draw the colour bar and its range (default 1) */
+    int colorbar;          /**< curvature modes: draw the colour bar and its range (default 1;
+                                only in pictures of at least 221 x 120 pixels) */
     int range_set;         /**< 1: use range[] as the colour range; 0: robust range (the
                                 percentiles below, at least 1e-3 of its middle and 1e-9 / rho
                                 wide for H, 1e-9 / rho^2 for K; rho the scene's radius) */
@@ -1354,8 +1355,9 @@ typedef struct {
                                 double) */
     double percentile;     /**< robust range: clip this fraction at each end, in [0, 0.5)
                                 (default 0.02; checked in every mode) */
-    double stripes;        /**< zebra: stripe pairs per half turn, 1..1000 (rounded to the
-                                nearest whole number; checked in zebra mode only; default 12) */
+    double stripes;        /**< zebra: stripe pairs per full turn of the reflected ray about
+                                the light-line axis, 1..1000 (rounded to the nearest whole
+                                number; checked in zebra mode only; default 12) */
     int keep_pixels;       /**< fill rg2_image.pixels with the per-pixel exact data */
     int threads;           /**< OpenMP threads, 0..1024 (at most 64 run); 0 = the OpenMP default */
 } rg2_render_opts;
