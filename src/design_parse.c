@@ -610,7 +610,9 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
     pb->p.closed = angles ? closed : 0;
     pb->p.n = n;
     pb->p.values = pb->values;
-    pb->p.start = angles ? lo * M_PI / 180.0 : 0.0;
+    /* (the start within one turn, exactly: "from": 1e20 degrees rounded every junction angle onto
+     * the start in radians, and the shape's corners left its arcs) */
+    pb->p.start = angles ? (fabs(lo) < 360.0 ? lo : fmod(lo, 360.0)) * M_PI / 180.0 : 0.0;
     rg2_error e;
     if ((st = rg2_partition_check(&pb->p, dir ? "v" : "u", &e))) /* "u partition: ...": the path says it */
         return fail(c, st, path, "%s", rg2__after(e.msg, dir ? "v partition: " : "u partition: "));

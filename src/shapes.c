@@ -108,6 +108,17 @@ void rg2_shape_init(rg2_shape *s, rg2_shape_kind kind)
 
 static int is_angles(rg2_partition_kind k) { return k == RG2_PART_ANGLES || k == RG2_PART_ANGLES_FULL; }
 
+/* The start angle of an angle partition, within one turn: a start of many turns ("from": 1e20
+ * degrees) has junction angles start + alpha_0 + ... that round to the start itself (1e9 degrees
+ * already rounds them by 3e-8 rad), so the control polygon's corners left the arcs (residual
+ * 1e-10 at 1e9 degrees, 0.11 at 1e20: every corner on one point). cos and sin reduce the start
+ * exactly; a start within one turn keeps its bits. */
+static double start_angle(const rg2_partition *p)
+{
+    double a = p->start;
+    return fabs(a) <= TWO_PI ? a : atan2(sin(a), cos(a));
+}
+
 int rg2_partition_num_segments(const rg2_partition *p)
 {
     if (!p || !p->values || p->n <= 0) /* (p->n - 5 of a count near INT_MIN would overflow) */
@@ -173,12 +184,17 @@ rg2_status rg2_partition_check(const rg2_partition *p, const char *what, rg2_err
                                  "%s partition: arc %d has opening angle %s rad (%.10g deg); it "
                                  "must lie in (0, pi)",
                                  what, k - off, rg2__num(a).s, a * 180.0 / M_PI);
-            if (a < RG2_MIN_ARC)
+            if (a < RG2_MIN_ARC) {
+                /* (an arc just below the limit read "0.005 rad (0.286479 deg), below ... 0.005 rad
+                 * (0.286479 deg)": then its own digits) */
+                int p6 = fabs(a - RG2_MIN_ARC) >= 5e-6 * RG2_MIN_ARC;
                 return rg2__fail(err, RG2_EDOMAIN,
-                                 "%s partition: arc %d has opening angle %.6g rad (%.6g deg), below the "
+                                 "%s partition: arc %d has opening angle %.*g rad (%.*g deg), below the "
                                  "smallest supported arc of %g rad (%g deg): the seams of smaller "
                                  "patches lose G2 accuracy in double precision",
-                                 what, k - off, a, a * 180.0 / M_PI, RG2_MIN_ARC, RG2_MIN_ARC * 180.0 / M_PI);
+                                 what, k - off, p6 ? 6 : 17, a, p6 ? 6 : 17, a * 180.0 / M_PI, RG2_MIN_ARC,
+                                 RG2_MIN_ARC * 180.0 / M_PI);
+            }
         }
         int lo, hi;
         visible_range(p, &lo, &hi);
@@ -192,12 +208,44 @@ rg2_status rg2_partition_check(const rg2_partition *p, const char *what, rg2_err
                              what, p->n, rg2__num(sum).s, sum * 180.0 / M_PI);
         if (!p->closed && sum > TWO_PI * (1.0 + RG2_CLOSED_SUM_TOL))
             return rg2__fail(err, RG2_EDOMAIN,
-                             "%s partition: the open arcs sum to %s rad (%.10g deg), past 2 pi "
+                             "%s partition: the open arcs sum to %s rad (%.*g deg), past 2 pi "
                              "(the surface would overlap itself)",
-                             what, rg2__num(sum).s, sum * 180.0 / M_PI);
+                             what, rg2__num(sum).s, sum < TWO_PI * (1.0 + 1e-9) ? 15 : 10, sum * 180.0 / M_PI);
         if (p->closed && p->n < 3)
             return rg2__fail(err, RG2_EINVAL, "%s partition: a closed circle needs at least 3 arcs",
                              what);
+        /* Two neighbouring arcs (the data-only copies of an open partition's end arcs counted:
+         * an open end arc alpha meets its copy, 2 alpha) that sum to nearly 2 pi: their common
+         * control point is the meeting point of two nearly parallel tangent lines, about
+         * 4 / (2 pi - sum) away, and the patches carry its rounding (residual about
+         * 3e-16 / (2 pi - sum): 7e-5 for two open arcs of 179.9999999999 degrees, 0.08 for one
+         * open arc of 180 - 3e-14 degrees, the surface off the shape). The complement must be at
+         * least the smallest arc, as it is in a closed circle. */
+        for (int k = 0; k <= p->n && !p->closed; k++) { /* (closed: the other arcs are the complement) */
+            int a0 = k - 1, a1 = k; /* values[a0] + values[a1]; an open end meets its copy */
+            if (p->kind == RG2_PART_ANGLES_FULL && (k == 0 || k == p->n))
+                continue; /* (the data arcs are given) */
+            if (k == 0)
+                a0 = 0;
+            if (k == p->n)
+                a1 = p->n - 1;
+            double s2 = p->values[a0] + p->values[a1];
+            if (TWO_PI - s2 < RG2_MIN_ARC * (1.0 - 1e-9)) {
+                char pair[96];
+                if (a0 == a1)
+                    snprintf(pair, sizeof pair, "arc %d at the open %s and its data-only copy beyond it", a0 - off,
+                             k == 0 ? "start" : "end");
+                else
+                    snprintf(pair, sizeof pair, "arcs %d and %d", a0 - off, a1 - off);
+                return rg2__fail(err, RG2_EDOMAIN,
+                                 "%s partition: %s leave only %.3g deg of the circle: their common control "
+                                 "point lies about %.3g times the radius away and the patches lose their accuracy; "
+                                 "two neighbouring arcs must leave at least the smallest arc, %g deg, of the "
+                                 "circle (an arc at an open end at most %.4f deg: split it)",
+                                 what, pair, (TWO_PI - s2) * 180.0 / M_PI, 4.0 / (TWO_PI - s2),
+                                 RG2_MIN_ARC * 180.0 / M_PI, floor((M_PI - 0.5 * RG2_MIN_ARC) * 180.0 / M_PI * 1e4) / 1e4);
+            }
+        }
     } else {
         if (p->closed)
             return rg2__fail(err, RG2_EINVAL,
@@ -227,7 +275,7 @@ double rg2_partition_map(const rg2_partition *p, int seg, double t)
     int lo, hi;
     visible_range(p, &lo, &hi);
     if (is_angles(p->kind)) {
-        double th = p->start;
+        double th = start_angle(p);
         for (int k = 0; k < seg; k++)
             th += p->values[lo + k];
         double beta = 0.5 * p->values[lo + seg];
@@ -321,19 +369,19 @@ static rg2_status dir_make(const rg2_partition *p, const char *what, dir_data *d
         if (closed) {
             memcpy(full, p->values, sizeof(double) * (size_t)m);
             nf = m;
-            theta0 = p->start;
+            theta0 = start_angle(p);
         } else {
             full[0] = full[1] = p->values[0];
             memcpy(full + 2, p->values, sizeof(double) * (size_t)m);
             full[m + 2] = full[m + 3] = p->values[m - 1];
             nf = m + 4;
-            theta0 = p->start - p->values[0];
+            theta0 = start_angle(p) - p->values[0];
         }
         break;
     case RG2_PART_ANGLES_FULL:
         memcpy(full, p->values, sizeof(double) * (size_t)m);
         nf = m;
-        theta0 = p->start - p->values[1];
+        theta0 = start_angle(p) - p->values[1];
         break;
     case RG2_PART_KNOTS: {
         const double *v = p->values;

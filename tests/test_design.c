@@ -2213,6 +2213,93 @@ static void mobius_axis_poles(void)
           "(south %g, north %g)", parsed, off, spread, along[2][0], along[2][1]);
 }
 
+/* A circle direction started many turns round ("from": 1e20 degrees) is the one started at the
+ * same angle within a turn, bit for bit: its junction angles rounded onto the start in radians,
+ * and the torus's patches left it (residual 0.11 at 1e20 degrees, every u corner on one point;
+ * 2.4e-10 at 1e9). Closed and open rings, positive and negative starts. */
+static void start_many_turns(void)
+{
+    static const double from[] = {1e9, 1e12, 1e20, -1e15, 1e100};
+    for (size_t q = 0; q < sizeof from / sizeof from[0]; q++)
+        for (int open = 0; open < 2; open++) {
+            char a[160], b[160];
+            double red = fmod(from[q], 360.0);
+            if (open) /* (a span of 90 degrees from a start of 1e12 is exact; past 2^53 the span rounds) */
+                snprintf(a, sizeof a, "\"arcs\": 3, \"from\": %.17g, \"to\": %.17g", from[q] < 1e15 ? from[q] : red,
+                         (from[q] < 1e15 ? from[q] : red) + 90);
+            else
+                snprintf(a, sizeof a, "\"arcs\": 8, \"from\": %.17g", from[q]);
+            if (open)
+                snprintf(b, sizeof b, "\"arcs\": 3, \"from\": %.17g, \"to\": %.17g", red, red + 90);
+            else
+                snprintf(b, sizeof b, "\"arcs\": 8, \"from\": %.17g", red);
+            const char *base = "{\"shapes\": {\"t\": {\"kind\": \"torus\"}}, \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": "
+                               "{%s}, \"v\": {\"arcs\": 6}}}}";
+            rg2_error err;
+            rg2_design *da = parse_edit(base, a, &err), *db = parse_edit(base, b, &err);
+            if (!da || !db) {
+                rg2_design_free(da);
+                rg2_design_free(db);
+                continue;
+            }
+            const rg2_mesh *ma = rg2_design_mesh(da, 0), *mb = rg2_design_mesh(db, 0);
+            int same = ma->nu == mb->nu && ma->nv == mb->nv &&
+                       !memcmp(ma->p, mb->p, sizeof(double) * 4 * (size_t)ma->nu * (size_t)ma->nv);
+            CHECK(same, "\"from\": %g (%s) is not the mesh of \"from\": %.17g", from[q], open ? "open" : "closed", red);
+            rg2_check_report r;
+            rg2_check_opts o;
+            rg2_check_opts_default(&o);
+            o.threads = 1;
+            CHECK_OK(rg2_check(rg2_design_surface(da, 0), 1, rg2_design_shape(da, 0), NULL, 1, &o, &r, &err), &err);
+            CHECK(r.worst_residual <= 1e-15 && r.g1.value <= 1e-13 && r.unmeasured == 0,
+                  "\"from\": %g (%s): residual %.3g, G1 %.3g, %d samples unmeasured", from[q], open ? "open" : "closed",
+                  r.worst_residual, r.g1.value, r.unmeasured);
+            if (q == 2 && !open)
+                printf("  torus u from 1e20 degrees: residual %.2g, G1 %.2g rad, the mesh of %.17g degrees: %s\n",
+                       r.worst_residual, r.g1.value, red, same ? "bit for bit" : "NO");
+            rg2_check_report_free(&r);
+            rg2_design_free(da);
+            rg2_design_free(db);
+        }
+}
+
+/* One open arc near 180 degrees meets its data-only copy at the open end: the two leave less than
+ * the smallest arc of the circle, their common control point lay 1150 radii away (179.9 degrees)
+ * or 4.5e15 (180 - 3e-14: residual 0.08, the patches off the torus). Refused naming the arc, up to
+ * 179.856 degrees accepted and exact. */
+static void open_end_arc_near_180(void)
+{
+    const char *base = "{\"shapes\": {\"t\": {\"kind\": \"torus\"}}, \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": "
+                       "{%s, \"closed\": false}, \"v\": {\"arcs\": 6}}}}";
+    static const char *const bad[] = {"\"arcs\": [179.9]", "\"arcs\": [179.99999999999997]",
+                                       "\"arcs\": [179.9999999999, 179.9999999999]"};
+    static const char *const names[] = {"meshes.T.u: arc 0 at the open start and its data-only copy beyond it leave only 0.2 deg",
+                                        "meshes.T.u: arc 0 at the open start and its data-only copy beyond it leave only",
+                                        "meshes.T.u: arc 0 at the open start"};
+    for (int k = 0; k < 3; k++) {
+        char json[512];
+        snprintf(json, sizeof json, base, bad[k]);
+        rg2_design *d = NULL;
+        rg2_error err;
+        rg2_status st = rg2_design_parse(json, strlen(json), "arc", &d, &err);
+        CHECK(st == RG2_EDOMAIN && !d && strstr(err.msg, names[k]), "u %s: %s %s", bad[k], rg2_status_str(st),
+              st ? err.msg : "accepted");
+        rg2_design_free(d);
+    }
+    rg2_error err;
+    rg2_design *d = parse_edit(base, "\"arcs\": [179.856]", &err);
+    if (d) {
+        rg2_check_report r;
+        rg2_check_opts o;
+        rg2_check_opts_default(&o);
+        o.threads = 1;
+        CHECK_OK(rg2_check(rg2_design_surface(d, 0), 1, rg2_design_shape(d, 0), NULL, 1, &o, &r, &err), &err);
+        CHECK(r.worst_residual <= 1e-13, "open arc of 179.856 degrees: residual %.3g", r.worst_residual);
+        rg2_check_report_free(&r);
+        rg2_design_free(d);
+    }
+}
+
 int main(void)
 {
     parse_sizes();
@@ -2259,5 +2346,7 @@ int main(void)
     cut_ranges();
     mobius_reference_notes();
     mobius_axis_poles();
+    start_many_turns();
+    open_end_arc_near_180();
     return rg2t_done("test_design");
 }

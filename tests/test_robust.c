@@ -249,6 +249,21 @@ static void degenerate_partitions(void)
         st = torus_partition(closed3, 3, 1, &f, &err);
         report("closed, 1 arc of pi minus", dd, 0, st, &err, &f);
     }
+    /* an arc near pi at an open end meets its data-only copy, and two open arcs near pi meet each
+     * other: their common control point lies about 4 / (2 pi - sum) away (residual 0.08 for one
+     * arc of pi - 4.4e-16, 7e-5 for two of pi - 1.7e-12); refused where the sum leaves less than
+     * the smallest arc of the circle */
+    static const double end_d[] = {1e-1, 1e-2, 2.6e-3, 2.4e-3, 1e-4, 1e-9, 1.7e-12, 4.4e-16};
+    for (size_t q = 0; q < sizeof end_d / sizeof end_d[0]; q++) {
+        double dd = end_d[q];
+        double one[1] = {M_PI - dd}, two[2] = {M_PI - dd, M_PI - dd}, mid[3] = {0.5, M_PI - dd, 0.5};
+        rg2_status st = torus_partition(one, 1, 0, &f, &err);
+        report("open, its only arc pi minus", dd, 2 * dd < min_arc, st, &err, &f);
+        st = torus_partition(two, 2, 0, &f, &err);
+        report("open, 2 arcs of pi minus", dd, 2 * dd < min_arc, st, &err, &f);
+        st = torus_partition(mid, 3, 0, &f, &err); /* next to arcs of 0.5: accepted */
+        report("open, between 0.5s, pi minus", dd, 0, st, &err, &f);
+    }
 }
 
 /* ------------------------------------------------------------------------------------- */

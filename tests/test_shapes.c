@@ -1344,6 +1344,59 @@ static void cyclide_circles(void)
           ok_dirs ? "ok" : "wrong");
 }
 
+/* A circle partition that starts many turns round: its junction angles start + alpha_0 + ...
+ * rounded onto the start (1e9 degrees by 3e-8 rad, 1e18 rad entirely), so the corners left the
+ * arcs (torus residual 2.4e-10 at 1e9 degrees, 0.11 at 1e18 rad). The start is taken within one
+ * turn: every start below builds the torus to rounding (closed and open u, and as v), its patches
+ * starting where the start says. */
+static void start_turns(void)
+{
+    static const double starts[] = {1e9 * M_PI / 180.0, -1e15 * M_PI / 180.0, 1e18, 1e100, -3e300};
+    int worst_at = -1;
+    double worst = 0, worst_rep = 0;
+    for (size_t q = 0; q < sizeof starts / sizeof starts[0]; q++)
+        for (int cfg = 0; cfg < 3; cfg++) {
+            double vu[8] = {M_PI / 4, M_PI / 4, M_PI / 4, M_PI / 4, M_PI / 4, M_PI / 4, M_PI / 4, M_PI / 4};
+            double vv[6];
+            rg2_error err;
+            rg2_partition pu = {RG2_PART_ANGLES, cfg != 1, cfg == 1 ? 3 : 8, vu, starts[q]}, pv;
+            CHECK_OK(rg2_partition_equal(&pv, RG2_PART_ANGLES, 1, 0.0, 0.0, 5, vv, 6, &err), &err);
+            if (cfg == 2) { /* the start on v */
+                pv.start = starts[q];
+                pu.start = 0.0;
+            }
+            rg2_shape sh;
+            rg2_shape_init(&sh, RG2_SHAPE_TORUS);
+            rg2_surface s;
+            rg2_status st = rg2_shape_surface(&sh, &pu, &pv, &s, NULL, &err);
+            CHECK(st == RG2_OK, "start %g: %s", starts[q], err.msg);
+            if (st)
+                continue;
+            stats f;
+            stats_init(&f);
+            measure_surface(&sh, &s, &pu, &pv, 8.0, 5, &f);
+            if (!(f.resid <= worst))
+                worst = f.resid, worst_at = (int)q;
+            CHECK(f.resid <= 1e-15, "start %g rad (%s): residual %.3g", starts[q],
+                  cfg == 0 ? "closed u" : cfg == 1 ? "open u" : "closed v", f.resid);
+            /* closed u: patch i begins at the angle start + i pi / 4 (the rotation by the start,
+             * exact in cos and sin) */
+            for (int i = 0; cfg == 0 && i < 8; i++) {
+                rg2_eval e;
+                rg2_patch_eval(rg2_surface_patch(&s, i, 0), 0.0, 0.0, 0, &e);
+                double c = cos(starts[q]), sn = sin(starts[q]), ph = i * M_PI / 4, l = hypot(e.p[0], e.p[1]);
+                double dx = e.p[0] / l - (c * cos(ph) - sn * sin(ph)), dy = e.p[1] / l - (sn * cos(ph) + c * sin(ph));
+                if (!(hypot(dx, dy) <= worst_rep))
+                    worst_rep = hypot(dx, dy);
+                CHECK(hypot(dx, dy) <= 1e-14, "start %g rad: patch %d starts %.3g rad off start + %d pi / 4",
+                      starts[q], i, hypot(dx, dy), i);
+            }
+            rg2_surface_free(&s);
+        }
+    printf("circle partitions started 1e9 degrees to 3e300 rad round: residual %.2g (start %d), "
+           "patch starts %.2g rad off\n", worst, worst_at, worst_rep);
+}
+
 int main(void)
 {
     named_shapes();
@@ -1362,6 +1415,7 @@ int main(void)
     unknown_name_list();
     ring_heights();
     cyclide_circles();
+    start_turns();
     errors();
     return rg2t_done("test_shapes");
 }
