@@ -725,6 +725,29 @@ rg2_status rg2__shape_check_range(const rg2_shape *s, const rg2_partition *pv, r
     }
     if (s->kind != RG2_SHAPE_HYPERBOLOID1 && s->kind != RG2_SHAPE_HYPERBOLOID2)
         return RG2_OK;
+    /* the knot closest to the weight's zero against the others (hyperboloid1: v relative to the
+     * largest produced knot; hyperboloid2: 1 - |v|): within 1e-12 the ring there lies 1e12 times
+     * further out than the rest, whose coordinates it rounds away (not measurable: 1e-13 and 1e-15
+     * gave undefined normals), and from about 1e-17 the control weight rounds to 0 (a point at
+     * infinity: NaN in the check report, STEP refused) */
+    double vmax = 0;
+    for (int k = lo; k < hi; k++)
+        vmax = fmax(vmax, fabs(pv->values[k]));
+    for (int k = lo; k < hi; k++) {
+        double v = pv->values[k];
+        if (s->kind == RG2_SHAPE_HYPERBOLOID1 && v > 0.0 && v < 1e-12 * vmax)
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "hyperboloid1: v knot %d = %s is less than 1e-12 of the largest knot, %s: next to "
+                             "v = 0, where the weight 2v vanishes, its ring lies %.3g times further out than that "
+                             "knot's and rounds the rest of the surface away (keep the knots' ratio below 1e12)",
+                             k - off, rg2__num(v).s, rg2__num(vmax).s, vmax / v);
+        if (s->kind == RG2_SHAPE_HYPERBOLOID2 && fabs(v) < 1.0 && 1.0 - fabs(v) < 1e-12)
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "hyperboloid2: v knot %d = %s is within 1e-12 of |v| = 1, where the weight 1 - v^2 "
+                             "vanishes: its ring lies about %.3g times further out than the apex and rounds "
+                             "the rest of the surface away (keep 1 - |v| at least 1e-12)",
+                             k - off, rg2__num(v).s, 0.5 / (1.0 - fabs(v)));
+    }
     for (int k = lo; k < hi; k++) {
         double v = pv->values[k];
         if (s->kind == RG2_SHAPE_HYPERBOLOID1 && !(v > 0.0))
