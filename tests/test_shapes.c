@@ -1441,6 +1441,80 @@ static void hyperboloid_weight_zero(void)
     }
 }
 
+/* A torus of a thin tube: rg2_check's residual |f| / |grad f| of the polynomial
+ * (x^2 + y^2 + z^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2) divided a rounding of eps R^4 by a gradient
+ * of 8 R^2 r, and read an exact tube of r = 1e-6 R as 3.9e-11 of its size off itself (FAIL at the
+ * 1e-11 limit), r = 1e-9 R as 3.9e-8, r = 1e-12 R as 3.9e-5. The implicit function is the product
+ * of its factors: the residual is the patches' own, down to r = 1e-12 R, placed and scaled; the
+ * value, gradient and Hessian agree with the polynomial's away from thin tubes. */
+static void thin_tubes(void)
+{
+    static const double rs[] = {1e-3, 1e-6, 1e-9, 1e-12};
+    static const double scale[] = {1.0, 1e-30, 1e40};
+    double worst = 0;
+    for (size_t q = 0; q < sizeof rs / sizeof rs[0]; q++)
+        for (size_t c = 0; c < sizeof scale / sizeof scale[0]; c++) {
+            rg2_shape sh;
+            rg2_shape_init(&sh, RG2_SHAPE_TORUS);
+            sh.param[0] = 1.0;
+            sh.param[1] = rs[q];
+            double S[16], Rm[16], T[16];
+            rg2_xform_scale(S, scale[c], scale[c], scale[c]);
+            rg2_xform_rotate(Rm, 1, 2, 3, 0.7);
+            rg2_xform_translate(T, 0.25 * scale[c], -0.5 * scale[c], 0.125 * scale[c]);
+            rg2_xform_mul(Rm, S, sh.xform);
+            rg2_xform_mul(T, sh.xform, sh.xform);
+            double vu[8], vv[6];
+            rg2_error err;
+            rg2_partition pu, pv;
+            CHECK_OK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0.0, 0.0, 7, vu, 8, &err), &err);
+            CHECK_OK(rg2_partition_equal(&pv, RG2_PART_ANGLES, 1, 0.0, 0.0, 5, vv, 6, &err), &err);
+            rg2_surface s;
+            if (rg2_shape_surface(&sh, &pu, &pv, &s, NULL, &err)) {
+                CHECK(0, "thin torus r = %g: %s", rs[q], err.msg);
+                continue;
+            }
+            rg2_check_report r;
+            rg2_check_opts o;
+            rg2_check_opts_default(&o);
+            o.threads = 1;
+            o.seam_samples = 2;
+            CHECK_OK(rg2_check(&s, 1, &sh, NULL, 1, &o, &r, &err), &err);
+            worst = fmax(worst, r.worst_residual);
+            CHECK(r.worst_residual <= 1e-15, "torus R = 1, r = %g, scale %g: residual %.3g of its size", rs[q], scale[c],
+                  r.worst_residual);
+            rg2_check_report_free(&r);
+            rg2_surface_free(&s);
+        }
+    /* the factored value, gradient and Hessian are the polynomial's (an ordinary torus, points
+     * on and off it, placed) */
+    rg2_shape sh;
+    rg2_shape_init(&sh, RG2_SHAPE_TORUS);
+    rg2_xform_rotate(sh.xform, 1, -1, 2, 0.3);
+    double bad = 0;
+    for (int k = 0; k < 200; k++) {
+        double x[3] = {4.0 * sin(1.3 * k), 4.0 * cos(0.7 * k + 1), 1.5 * sin(0.3 * k + 2)}, g[3], h[9], y[3];
+        double f = rg2_shape_implicit2(&sh, x, g, h);
+        for (int i = 0; i < 3; i++) /* the unplaced point: R^T x */
+            y[i] = sh.xform[i] * x[0] + sh.xform[4 + i] * x[1] + sh.xform[8 + i] * x[2];
+        double t = y[0] * y[0] + y[1] * y[1] + y[2] * y[2] + 9.0 - 1.0, rho2 = y[0] * y[0] + y[1] * y[1];
+        double f0 = t * t - 36.0 * rho2;
+        double gl[3] = {4 * t * y[0] - 72 * y[0], 4 * t * y[1] - 72 * y[1], 4 * t * y[2]}, g0[3];
+        for (int i = 0; i < 3; i++) /* the placed gradient: R gl */
+            g0[i] = sh.xform[4 * i] * gl[0] + sh.xform[4 * i + 1] * gl[1] + sh.xform[4 * i + 2] * gl[2];
+        double scl = t * t + 36.0 * rho2 + 1.0;
+        bad = fmax(bad, fabs(f - f0) / scl);
+        for (int i = 0; i < 3; i++)
+            bad = fmax(bad, fabs(g[i] - g0[i]) / scl);
+        double tr = h[0] + h[4] + h[8], tr0 = 12 * t + 8 * (y[0] * y[0] + y[1] * y[1] + y[2] * y[2]) - 144;
+        /* (the Laplacian: sum of d2/dyi2 of t^2 - 36 rho^2 = 4 t * 3 + 8 |y|^2 - 72 * 2) */
+        bad = fmax(bad, fabs(tr - tr0) / scl);
+    }
+    CHECK(bad <= 1e-13, "factored torus function off the polynomial by %.3g (relative)", bad);
+    printf("thin torus tubes r = 1e-3 .. 1e-12 R at scales 1, 1e-30, 1e40: residual %.2g; factored f, grad, "
+           "Laplacian = the polynomial's to %.2g\n", worst, bad);
+}
+
 int main(void)
 {
     named_shapes();
@@ -1461,6 +1535,7 @@ int main(void)
     cyclide_circles();
     start_turns();
     hyperboloid_weight_zero();
+    thin_tubes();
     errors();
     return rg2t_done("test_shapes");
 }
