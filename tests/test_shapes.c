@@ -1445,8 +1445,8 @@ static void hyperboloid_weight_zero(void)
  * (x^2 + y^2 + z^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2) divided a rounding of eps R^4 by a gradient
  * of 8 R^2 r, and read an exact tube of r = 1e-6 R as 3.9e-11 of its size off itself (FAIL at the
  * 1e-11 limit), r = 1e-9 R as 3.9e-8, r = 1e-12 R as 3.9e-5. The implicit function is the product
- * of its factors: the residual is the patches' own, down to r = 1e-12 R, placed and scaled; the
- * value, gradient and Hessian agree with the polynomial's away from thin tubes. */
+ * of its factors for tubes thinner than R / 100: the residual is the patches' own, down to
+ * r = 1e-12 R, placed and scaled; the value, gradient and Hessian are the polynomial's. */
 static void thin_tubes(void)
 {
     static const double rs[] = {1e-3, 1e-6, 1e-9, 1e-12};
@@ -1486,18 +1486,19 @@ static void thin_tubes(void)
             rg2_check_report_free(&r);
             rg2_surface_free(&s);
         }
-    /* the factored value, gradient and Hessian are the polynomial's (an ordinary torus, points
-     * on and off it, placed) */
+    /* the factored value, gradient and Hessian are the polynomial's (a torus of r = R / 103,
+     * points on and off it, placed) */
     rg2_shape sh;
     rg2_shape_init(&sh, RG2_SHAPE_TORUS);
+    sh.param[1] = 0.029; /* R = 3: r < R / 100, the factored form */
     rg2_xform_rotate(sh.xform, 1, -1, 2, 0.3);
     double bad = 0;
     for (int k = 0; k < 200; k++) {
-        double x[3] = {4.0 * sin(1.3 * k), 4.0 * cos(0.7 * k + 1), 1.5 * sin(0.3 * k + 2)}, g[3], h[9], y[3];
+        double x[3] = {3.0 * sin(1.3 * k), 3.0 * cos(0.7 * k + 1), 0.1 * sin(0.3 * k + 2)}, g[3], h[9], y[3];
         double f = rg2_shape_implicit2(&sh, x, g, h);
         for (int i = 0; i < 3; i++) /* the unplaced point: R^T x */
             y[i] = sh.xform[i] * x[0] + sh.xform[4 + i] * x[1] + sh.xform[8 + i] * x[2];
-        double t = y[0] * y[0] + y[1] * y[1] + y[2] * y[2] + 9.0 - 1.0, rho2 = y[0] * y[0] + y[1] * y[1];
+        double t = y[0] * y[0] + y[1] * y[1] + y[2] * y[2] + 9.0 - 0.029 * 0.029, rho2 = y[0] * y[0] + y[1] * y[1];
         double f0 = t * t - 36.0 * rho2;
         double gl[3] = {4 * t * y[0] - 72 * y[0], 4 * t * y[1] - 72 * y[1], 4 * t * y[2]}, g0[3];
         for (int i = 0; i < 3; i++) /* the placed gradient: R gl */
