@@ -260,11 +260,14 @@ static double fit_solve(const fitdata *fd, double L, double vc, int nb, double g
                 double J[3];
                 for (int o = 0; o < 3; o++)
                     J[o] = d < 3 ? (sm->J[o][d] - fc[d] * sm->J[o][3]) / rho : sm->J[o][3];
+                /* (the unknowns are L lambda1 and L^2 lambda2, per unit of the cap's t: with lambda1,
+                 * lambda2 themselves the columns held L and L^2, and a thin tube's cap (L = 8e-7 on a
+                 * cylinder of radius 1e-7 over intervals of 0.25) was "rank-deficient") */
                 if (k == 1)
-                    a[4 * nb] = -W * Lk * J[0];
+                    a[4 * nb] = -W * J[0];
                 if (k == 2) {
-                    a[4 * nb] = -W * Lk * 2.0 * J[1];
-                    a[4 * nb + 1] = -W * Lk * J[0];
+                    a[4 * nb] = -W * L * 2.0 * J[1];
+                    a[4 * nb + 1] = -W * J[0];
                 }
                 a[nc] = W * Lk * J[k];
                 bnorm += a[nc] * a[nc];
@@ -280,8 +283,8 @@ static double fit_solve(const fitdata *fd, double L, double vc, int nb, double g
             for (int d = 0; d < 3; d++)
                 g[c][d] = rho * x[4 * c + d] + fc[d] * x[4 * c + 3];
         }
-        lam[0] = x[4 * nb];
-        lam[1] = x[4 * nb + 1];
+        lam[0] = x[4 * nb] / L;
+        lam[1] = x[4 * nb + 1] / L / L;
         res = bnorm > 0.0 ? res / sqrt(bnorm) : 0.0;
     }
     free(A);

@@ -2300,6 +2300,41 @@ static void open_end_arc_near_180(void)
     }
 }
 
+/* Caps on thin tubes: the cap fit's unknowns lambda1, lambda2 had columns of size L and L^2 (the
+ * automatic cap length L = 2 rho / sigma: 8e-7 on a cylinder of radius 1e-7 over intervals of
+ * 0.25), and from radius 1e-7 the fit was "rank-deficient ... is the ring degenerate?". Now
+ * solved per unit of the cap's t: the tube of radius 1e-7 and 1e-6 capped at both ends passes
+ * every promise of rg2_check. */
+static void thin_tube_caps(void)
+{
+    static const double radius[] = {1e-6, 1e-7};
+    for (int k = 0; k < 2; k++) {
+        char json[512];
+        snprintf(json, sizeof json,
+                 "{\"shapes\": {\"c\": {\"kind\": \"cylinder\", \"radius\": %g}}, \"meshes\": {\"m\": {\"shape\": \"c\", "
+                 "\"u\": {\"arcs\": 8}, \"v\": {\"segments\": 4}}, \"capped\": {\"cap\": \"m\", \"ends\": \"both\"}}}",
+                 radius[k]);
+        rg2_design *d = NULL;
+        rg2_error err;
+        rg2_status st = rg2_design_parse(json, strlen(json), "tube", &d, &err);
+        CHECK(st == RG2_OK, "tube of radius %g capped: %s", radius[k], st ? err.msg : "");
+        if (st)
+            continue;
+        rg2_check_report r;
+        rg2_check_opts o;
+        rg2_check_opts_default(&o);
+        o.threads = 1;
+        CHECK_OK(rg2_check(rg2_design_surface(d, 0), 1, rg2_design_shape(d, 0), NULL, 1, &o, &r, &err), &err);
+        CHECK(r.g0.value <= o.tol_g0 && r.g1.value <= o.tol_g1 && r.g2.value <= o.tol_g2 && r.unmeasured == 0 &&
+                  r.worst_residual <= 1e-15 && r.wmin > 0,
+              "tube of radius %g capped: G0 %.3g, G1 %.3g, G2 %.3g, %d unmeasured, residual %.3g, weights from %g",
+              radius[k], r.g0.value, r.g1.value, r.g2.value, r.unmeasured, r.worst_residual, r.wmin);
+        printf("  cylinder of radius %g capped at both ends: G1 %.2g rad, G2 %.2g\n", radius[k], r.g1.value, r.g2.value);
+        rg2_check_report_free(&r);
+        rg2_design_free(d);
+    }
+}
+
 int main(void)
 {
     parse_sizes();
@@ -2348,5 +2383,6 @@ int main(void)
     mobius_axis_poles();
     start_many_turns();
     open_end_arc_near_180();
+    thin_tube_caps();
     return rg2t_done("test_design");
 }
