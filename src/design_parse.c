@@ -170,8 +170,11 @@ static rg2_status as_int(pctx *c, const cJSON *x, const char *path, int *out)
     rg2_status st = as_num(c, x, path, &v);
     if (st)
         return st;
-    if (v != floor(v) || fabs(v) > 1e9)
+    if (v != floor(v))
         return fail(c, RG2_EPARSE, path, "expected an integer, found %s", rg2__num(v).s);
+    if (fabs(v) > 1e9) /* ("expected an integer, found 2147483647" named an integer as none) */
+        return fail(c, RG2_EDOMAIN, path, "the integer %s is outside the supported range -1e9 .. 1e9",
+                    rg2__num(v).s);
     *out = (int)v;
     return RG2_OK;
 }

@@ -2335,6 +2335,29 @@ static void thin_tube_caps(void)
     }
 }
 
+/* An integer past the supported 1e9 was named as no integer at all ("meshes.R.by: expected an
+ * integer, found 2147483647"); it is named as out of range, a fraction still as no integer. */
+static void big_integers(void)
+{
+    static const char *const json[] = {
+        "{\"shapes\": {\"t\": {\"kind\": \"torus\"}}, \"meshes\": {\"T\": {\"shape\": \"t\"}, \"R\": {\"roll\": \"T\", "
+        "\"dir\": \"u\", \"by\": 2147483647}}}",
+        "{\"shapes\": {\"t\": {\"kind\": \"torus\"}}, \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": 2e9}}}}",
+        "{\"shapes\": {\"t\": {\"kind\": \"torus\"}}, \"meshes\": {\"T\": {\"shape\": \"t\"}, \"R\": {\"roll\": \"T\", "
+        "\"dir\": \"u\", \"by\": -1e12}}}"};
+    static const char *const want[] = {"test: meshes.R.by: the integer 2147483647 is outside the supported range",
+                                       "test: meshes.T.u.arcs: the integer 2000000000 is outside the supported range",
+                                       "test: meshes.R.by: the integer -1000000000000 is outside the supported range"};
+    for (int k = 0; k < 3; k++) {
+        rg2_design *d = NULL;
+        rg2_error err;
+        rg2_status st = rg2_design_parse(json[k], strlen(json[k]), "test", &d, &err);
+        CHECK(st == RG2_EDOMAIN && !d && strstr(err.msg, want[k]), "%s: %s %s", want[k], rg2_status_str(st),
+              st ? err.msg : "accepted");
+        rg2_design_free(d);
+    }
+}
+
 int main(void)
 {
     parse_sizes();
@@ -2384,5 +2407,6 @@ int main(void)
     start_many_turns();
     open_end_arc_near_180();
     thin_tube_caps();
+    big_integers();
     return rg2t_done("test_design");
 }
