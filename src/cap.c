@@ -820,10 +820,18 @@ rg2_status rg2_cap_build(const rg2_mesh *body, const rg2_cap_opts *opts, rg2_sur
             goto done;
         }
         if (res < 0.0) { /* (the jet weights are > 0, checked above) */
-            st = rg2__fail(err, RG2_EDOMAIN,
-                           "cap: the %s boundary ring does not determine the cap map (rank-deficient "
-                           "least-squares fit; is the ring degenerate?)",
-                           end_name(e));
+            /* (a given length of 1e100 read as a degenerate ring: name the length when it was given) */
+            if (o.length[e] > 0.0)
+                st = rg2__fail(err, RG2_EDOMAIN,
+                               "cap: the %s boundary ring does not determine the cap map at the given cap length "
+                               "%g (rank-deficient least-squares fit: a length far from the ring's own scale, "
+                               "about 2 rho / sigma, or a degenerate ring; omit the length for the automatic one)",
+                               end_name(e), L[e]);
+            else
+                st = rg2__fail(err, RG2_EDOMAIN,
+                               "cap: the %s boundary ring does not determine the cap map (rank-deficient "
+                               "least-squares fit; is the ring degenerate?)",
+                               end_name(e));
             goto done;
         }
         if (!(g[e][0][3] > 0.0)) {

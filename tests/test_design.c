@@ -2333,6 +2333,17 @@ static void thin_tube_caps(void)
         rg2_check_report_free(&r);
         rg2_design_free(d);
     }
+    /* a given cap length the fit cannot use (1e100 on a unit cylinder) is named, not taken for a
+     * degenerate ring ("is the ring degenerate?") */
+    const char *big = "{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {\"m\": {\"shape\": \"c\", \"u\": "
+                      "{\"arcs\": 8}, \"v\": {\"segments\": 4}}, \"capped\": {\"cap\": \"m\", \"ends\": \"both\", "
+                      "\"length\": [1e100, 1e100]}}}";
+    rg2_design *d = NULL;
+    rg2_error err;
+    rg2_status st = rg2_design_parse(big, strlen(big), "tube", &d, &err);
+    CHECK(st == RG2_EDOMAIN && !d && strstr(err.msg, "at the given cap length 1e+100") && !strstr(err.msg, "degenerate?"),
+          "cap length 1e100: %s %s", rg2_status_str(st), st ? err.msg : "accepted");
+    rg2_design_free(d);
 }
 
 /* An integer past the supported 1e9 was named as no integer at all ("meshes.R.by: expected an
