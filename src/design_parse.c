@@ -1495,7 +1495,7 @@ static rg2_status parse_text(const char *json, size_t len, const char *name, cJS
         cJSON_Delete(*root);
         *root = NULL;
         int shown = (int)(n < 40 ? n : 40);
-        const char *more = n < 40 ? "" : "...";
+        const char *more = n <= 40 ? "" : "..."; /* (40 characters are shown whole) */
         rg2_status st =
             lit == LIT_TINY
                 ? rg2__fail(err, RG2_EDOMAIN,

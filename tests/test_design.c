@@ -1760,6 +1760,109 @@ static double most_back(const rg2_mesh *m)
     return most;
 }
 
+/* The nesting message counts brackets only: a text with trailing junk '[' after 1200 blanks (at
+ * depth 0) is malformed JSON at that bracket, not nested past cJSON's depth; a string of 1200
+ * '[' is text. */
+static void nesting_counts_brackets(void)
+{
+    char js[3000];
+    int n = snprintf(js, sizeof js, "{\"description\": \"");
+    for (int k = 0; k < 1200; k++)
+        js[n++] = '[';
+    n += snprintf(js + n, sizeof js - (size_t)n, "\", " TORUS_SHAPES ", \"meshes\": {" TORUS_MESH "}}");
+    for (int k = 0; k < 1200; k++)
+        js[n++] = ' ';
+    js[n++] = '[';
+    js[n] = 0;
+    rg2_design *d = NULL;
+    rg2_error err;
+    rg2_status st = rg2_design_parse(js, strlen(js), "test", &d, &err);
+    char want[80];
+    snprintf(want, sizeof want, "test:1:%d: malformed JSON near '['", n);
+    CHECK(st == RG2_EPARSE && !d && strstr(err.msg, want), "junk '[' after 1200 blanks: %s '%s' (want '%s')",
+          rg2_status_str(st), err.msg, want);
+    rg2_design_free(d);
+}
+
+/* Design text with `lit` as the y of a torus's translate, written compactly ([0,lit,0]: the
+ * number before it ends at the comma) after a description `desc` (JSON string contents); the
+ * status, the message in err, and lit's column (line 1) in *col. */
+static rg2_status tiny_case(const char *desc, const char *lit, rg2_error *err, int *col)
+{
+    char js[600];
+    snprintf(js, sizeof js,
+             "{\"description\":\"%s\",\"shapes\":{\"t\":{\"kind\":\"torus\",\"R\":3,\"r\":1,\"translate\":[0,%s,0]}},"
+             "\"meshes\":{\"T\":{\"shape\":\"t\"}}}",
+             desc, lit);
+    *col = (int)(strstr(js, "[0,") - js) + 4;
+    rg2_design *d = NULL;
+    rg2_status st = rg2_design_parse(js, strlen(js), "test", &d, err);
+    rg2_design_free(d);
+    return st;
+}
+
+/* A number literal with a non-zero digit but an order below 1e-323 is refused by name, line and
+ * column (cJSON would read 0 or a subnormal); zero with any exponent is 0, and 1e-323 up to
+ * 1e-100 reach the numeric range check instead. The order counts leading zeros, a fraction and
+ * an exponent with a sign or leading zeros; a literal over 40 characters is shown cut to 40 and
+ * "...". Strings are skipped, escapes included. */
+static void tiny_literals(void)
+{
+    enum { OK, TINY, RANGE };
+    static const struct {
+        const char *lit;
+        int want;
+    } cases[] = {
+        {"1e-400", TINY},      {"-1e-400", TINY},     {"1E-400", TINY},         {"9e-324", TINY},
+        {"1e-324", TINY},      {"4.9e-324", TINY},    {"0.0001e-320", TINY},    {"0.01e-322", TINY},
+        {"100e-326", TINY},    {"1e-00400", TINY},    {"1e-99999999999", TINY}, {"0.5e-323", TINY},
+        {"0e-400", OK},        {"0.0e-400", OK},      {"-0.000e-999", OK},      {"0", OK},
+        {"1e-5", OK},          {"2.5E+1", OK},        {"1e-323", RANGE},        {"1e-320", RANGE},
+        {"11e-324", RANGE},    {"0.11e-322", RANGE},  {"1000e-326", RANGE},     {"0.001e-320", RANGE},
+        {"1e-200", RANGE},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        rg2_error err;
+        int col;
+        rg2_status st = tiny_case("a", cases[c].lit, &err, &col);
+        char want[160];
+        snprintf(want, sizeof want, "test:1:%d: number %s is too small for a double (below 1e-323)", col,
+                 cases[c].lit);
+        int ok = cases[c].want == OK     ? st == RG2_OK
+                 : cases[c].want == TINY ? st == RG2_EDOMAIN && strstr(err.msg, want) != NULL
+                                         : st == RG2_EDOMAIN && !strstr(err.msg, "too small for a double") &&
+                                               strstr(err.msg, "is outside the supported range");
+        CHECK(ok, "literal %s (want %s): %s '%s'", cases[c].lit,
+              cases[c].want == OK ? "accepted" : cases[c].want == TINY ? "too small" : "out of range",
+              rg2_status_str(st), st ? err.msg : "");
+    }
+    /* 40 characters shown whole, 41 cut to 40 and "..." */
+    for (int z = 32; z <= 33; z++) {
+        char lit[64], shown[64], want[200];
+        snprintf(lit, sizeof lit, "0.%0*d1e-300", z, 0);
+        snprintf(shown, sizeof shown, "%.40s%s", lit, strlen(lit) > 40 ? "..." : "");
+        rg2_error err;
+        int col;
+        rg2_status st = tiny_case("a", lit, &err, &col);
+        snprintf(want, sizeof want, "test:1:%d: number %s is too small", col, shown);
+        CHECK(st == RG2_EDOMAIN && strstr(err.msg, want), "literal of %zu characters: want '%s', got '%s'",
+              strlen(lit), want, err.msg);
+    }
+    /* an escaped quote keeps the string open (its digits are text); an escaped backslash ends
+     * with the string's quote, and the number after it is read */
+    rg2_error err;
+    int col;
+    rg2_status st = tiny_case("x\\\"0,1e-400", "1", &err, &col);
+    CHECK(st == RG2_OK, "1e-400 inside a string with an escaped quote: %s '%s'", rg2_status_str(st),
+          st ? err.msg : "");
+    st = tiny_case("x\\\\", "1e-400", &err, &col);
+    char want[120];
+    snprintf(want, sizeof want, "test:1:%d: number 1e-400 is too small", col);
+    CHECK(st == RG2_EDOMAIN && strstr(err.msg, want), "1e-400 after a string ending in an escaped backslash: %s",
+          err.msg);
+    printf("tiny literals: %zu literals, two lengths and two strings\n", sizeof cases / sizeof cases[0]);
+}
+
 /* A merge next to a control weight <= 0 (a hyperboloid's data-only end rows mirrored past v = 0)
  * gets one note naming the part, the control point and its weight, which the merged mesh holds
  * there and which leaves the built surface with weights <= 0; the twist and overlap notes, which
@@ -2409,6 +2512,8 @@ int main(void)
     twisted_merges();
     overlapping_merges();
     weight_notes();
+    tiny_literals();
+    nesting_counts_brackets();
     merge_overlap_api();
     rotation_lists();
     rolled_meshes();
