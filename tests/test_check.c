@@ -2204,6 +2204,107 @@ static void thin_pole_patches(void)
     }
 }
 
+/* Two cylinders of radius 1e-3, one at the origin and one at (1000, 1000, 0), in either order:
+ * each shape's limit comes from its own patches' coordinates, so the one at the origin keeps
+ * tol_exact exactly (the far one's coordinates would give it about 1.8e-9) while the far one's
+ * limit is past tol_exact, and both pass. */
+static void near_and_far_shapes(void)
+{
+    static const char cyl[] = "\"%s\": {\"kind\": \"cylinder\", \"radius\": 0.001, \"translate\": [%g, %g, 0]}";
+    static const char mesh[] = "\"%s\": {\"shape\": \"%s\", \"u\": {\"arcs\": 3},"
+                               " \"v\": {\"segments\": 5, \"from\": -0.0002, \"to\": -0.00017}}";
+    for (int order = 0; order < 2; order++) {
+        char c0[200], c1[200], m0[200], m1[200], js[900];
+        const char *nm[2] = {order ? "f" : "n", order ? "n" : "f"};
+        for (int k = 0; k < 2; k++) {
+            double t = nm[k][0] == 'f' ? 1000 : 0;
+            snprintf(k ? c1 : c0, sizeof c0, cyl, nm[k], t, t);
+            char mn[2] = {(char)(nm[k][0] - 32), 0};
+            snprintf(k ? m1 : m0, sizeof m0, mesh, mn, nm[k]);
+        }
+        snprintf(js, sizeof js, "{\"shapes\": {%s, %s}, \"meshes\": {%s, %s}, \"output\": [\"%c\", \"%c\"]}", c0,
+                 c1, m0, m1, nm[0][0] - 32, nm[1][0] - 32);
+        rg2t_parts p;
+        rg2_check_opts o;
+        rg2_check_opts_default(&o);
+        rg2_check_report r;
+        rg2_design *d = design_checked(js, "nearfar", &p, &o, &r);
+        if (!d)
+            return;
+        CHECK(r.n_shapes == 2, "near and far: %d shapes", r.n_shapes);
+        for (int k = 0; k < r.n_shapes && k < 2; k++) {
+            const rg2_check_shape *c = &r.shapes[k];
+            int far = !strcmp(c->label, "f");
+            printf("near and far (order %d): shape %d '%s': %d patches, residual %.2e, limit %.2e\n", order, k,
+                   c->label, c->patches, c->residual, c->limit);
+            CHECK(c->patches == 15 && (far || !strcmp(c->label, "n")) && c->residual <= c->limit &&
+                      (far ? c->limit > o.tol_exact && c->limit < 1e-7 : c->limit == o.tol_exact),
+                  "near and far (order %d): shape '%s' residual %.3g, limit %.3g (tol_exact %g)", order, c->label,
+                  c->residual, c->limit, o.tol_exact);
+        }
+        CHECK(!rg2_check_failures(&r, RG2_REQUIRE_EXACT), "near and far (order %d): exact fails", order);
+        rg2_check_report_free(&r);
+        rg2t_design_parts_free(&p);
+        rg2_design_free(d);
+    }
+}
+
+/* A shape's own limit (rg2_check_shape.limit above tol_exact) in a report made by hand: a
+ * residual at the limit passes, one ulp over it fails, in rg2_check_failures, the JSON's "ok"
+ * and "limit" and the text's verdict; the text gives the limit line only for a shape with
+ * patches whose limit exceeds tol_exact. */
+static void shape_limit_by_hand(void)
+{
+    for (int over = 0; over < 2; over++) {
+        rg2_check_report r;
+        rg2_check_shape sh[3];
+        memset(&r, 0, sizeof r);
+        memset(sh, 0, sizeof sh);
+        rg2_check_opts_default(&r.opts);
+        const double tol = r.opts.tol_exact, L = 4 * tol;
+        r.surfaces = 1, r.patches = r.exact_patches = 3;
+        r.n_shapes = 3, r.shapes = sh;
+        snprintf(sh[0].label, sizeof sh[0].label, "own");
+        sh[0].patches = 2, sh[0].limit = L, sh[0].residual = over ? nextafter(L, INFINITY) : L;
+        snprintf(sh[1].label, sizeof sh[1].label, "plain");
+        sh[1].patches = 1, sh[1].limit = tol, sh[1].residual = tol / 2;
+        snprintf(sh[2].label, sizeof sh[2].label, "empty"); /* (no patches, a limit of its own) */
+        sh[2].patches = 0, sh[2].limit = L, sh[2].residual = 0;
+        for (int k = 0; k < 3; k++)
+            sh[k].shape = k, snprintf(sh[k].where, sizeof sh[k].where, "patch (0,%d) u=0.5 v=0.5", k);
+        r.worst_residual = sh[0].residual;
+        unsigned f = rg2_check_failures(&r, RG2_REQUIRE_EXACT);
+        char *txt = NULL, *json = NULL;
+        rg2_error err;
+        CHECK_OK(rg2_check_format(&r, 0, &txt, &err), &err);
+        CHECK_OK(rg2_check_format(&r, 1, &json, &err), &err);
+        cJSON *j = json ? cJSON_Parse(json) : NULL, *js = cJSON_GetObjectItem(j, "shapes");
+        const cJSON *j0 = cJSON_GetArrayItem(js, 0), *j1 = cJSON_GetArrayItem(js, 1);
+        const cJSON *ok0 = cJSON_GetObjectItem(j0, "ok"), *lim0 = cJSON_GetObjectItem(j0, "limit"),
+                    *lim1 = cJSON_GetObjectItem(j1, "limit");
+        char row[200], lim[120];
+        snprintf(row, sizeof row, "%-24s %7d  %14.2e  %-7s  patch (0,0)", "own", 2, sh[0].residual,
+                 over ? "FAIL" : "ok");
+        snprintf(lim, sizeof lim, "\n       (limit %.2e, not %g: ", L, tol);
+        const char *l1 = txt ? strstr(txt, lim) : NULL;
+        CHECK(f == (over ? RG2_REQUIRE_EXACT : 0u) && txt && strstr(txt, row) && l1 && !strstr(l1 + strlen(lim), "\n       (limit ") &&
+                  cJSON_IsBool(ok0) && cJSON_IsTrue(ok0) == !over && cJSON_IsNumber(lim0) && lim0->valuedouble == L &&
+                  cJSON_IsNumber(lim1) && lim1->valuedouble == tol,
+              "a shape's own limit by hand (residual %s the limit): failures %#x, json %s, text:\n%s",
+              over ? "an ulp over" : "at", f, json ? json : "", txt ? txt : "");
+        /* the worst residual past tol_exact but no shape past it (a report made some other way):
+         * nothing vouches for it, exact fails; the plain shape exactly at tol_exact is not past */
+        sh[0].residual = tol / 4, sh[1].residual = tol;
+        r.worst_residual = 2 * tol;
+        CHECK(rg2_check_failures(&r, RG2_REQUIRE_EXACT) == RG2_REQUIRE_EXACT,
+              "worst residual past tol_exact with no shape past it passes exact");
+        cJSON_Delete(j);
+        free(txt);
+        free(json);
+    }
+    printf("a shape's own limit, made by hand: at it passes, an ulp over fails\n");
+}
+
 int main(void)
 {
     harness_agreement();
@@ -2231,6 +2332,8 @@ int main(void)
     shape_residuals();
     far_from_origin();
     thin_pole_patches();
+    near_and_far_shapes();
+    shape_limit_by_hand();
     format_made_reports();
     return rg2t_done("test_check");
 }
