@@ -1909,6 +1909,61 @@ static void weight_notes(void)
     }
 }
 
+/* The weight note's part, line and threshold: a hyperboloid2 merged before a cylinder (knots 0,
+ * 0.3, 0.7: its data-only end knots 1.1 and 1.4 lie past |v| = 1) has weights <= 0 on its last
+ * v line only, next to the seam, and the note names that part ('H', merge[1]), that line (4 of
+ * its 5) and the merged mesh's weight there; a hyperboloid1 whose first control line lies at v =
+ * 0.002 (knots 0.3, 0.594, 0.9: weights 0.0035 to 0.004 there, positive) gets no weight note. */
+static void weight_notes_ends(void)
+{
+    static const char first[] =
+        "{\"shapes\": {\"c\": {\"kind\": \"cylinder\", \"radius\": 1.0089, \"translate\": [0, 0, -3]},"
+        "\"h\": {\"kind\": \"hyperboloid2\"}}, \"meshes\": {"
+        "\"H\": {\"shape\": \"h\", \"u\": {\"arcs\": 6}, \"v\": {\"knots\": [0, 0.3, 0.7]}},"
+        "\"C\": {\"shape\": \"c\", \"u\": {\"arcs\": 6}, \"v\": {\"segments\": 2, \"from\": 0, \"to\": 1}},"
+        "\"M\": {\"merge\": [\"H\", \"C\"], \"along\": \"v\"}}, \"output\": \"M\"}";
+    rg2_error err;
+    rg2_design *d = parse(first, &err);
+    if (d) {
+        const rg2_mesh *M = rg2_design_mesh(d, 0);
+        const char *note = NULL;
+        for (int k = 0; k < rg2_design_num_notes(d); k++)
+            if (strstr(rg2_design_note(d, k), "<= 0 at control point"))
+                note = rg2_design_note(d, k);
+        const char *at = note ? strstr(note, "'H' has weight ") : NULL;
+        double w = 1.0;
+        int idx = -1, line = -1;
+        int got = at && sscanf(at, "'H' has weight %lf <= 0 at control point %d of its u line %d", &w, &idx, &line) == 3;
+        /* H's lines are the merge's first 5; line 3 (v about 0.7) is positive, line 4 is not */
+        int lines_ok = M && M->nv > 5 && rg2_mesh_at(M, 0, 3)[3] > 0 && !(rg2_mesh_at(M, 0, 4)[3] > 0);
+        CHECK(lines_ok && got && strstr(note, "test: meshes.M.merge[1]: ") && strstr(note, "next to its seam with 'C'") &&
+                  idx == 0 && line == 4 && w <= 0 && fabs(rg2_mesh_at(M, idx, line)[3] - w) <= 1e-4 * fabs(w),
+              "hyperboloid2 before a cylinder: lines 3, 4 weights %g, %g; note '%s'", M ? rg2_mesh_at(M, 0, 3)[3] : NAN,
+              M ? rg2_mesh_at(M, 0, 4)[3] : NAN, note ? note : "(none)");
+        rg2_design_free(d);
+    }
+    static const char small[] =
+        "{\"shapes\": {\"c\": {\"kind\": \"cylinder\", \"radius\": 1.0089, \"translate\": [0, 0, 3]},"
+        "\"h\": {\"kind\": \"hyperboloid1\"}}, \"meshes\": {"
+        "\"C\": {\"shape\": \"c\", \"u\": {\"arcs\": 6}, \"v\": {\"segments\": 2, \"from\": 0, \"to\": 1}},"
+        "\"H\": {\"shape\": \"h\", \"u\": {\"arcs\": 6}, \"v\": {\"knots\": [0.3, 0.594, 0.9]}},"
+        "\"M\": {\"merge\": [\"C\", \"H\"], \"along\": \"v\"}}, \"output\": \"M\"}";
+    d = parse(small, &err);
+    if (d) {
+        const rg2_mesh *M = rg2_design_mesh(d, 0);
+        double lo = INFINITY, hi = -INFINITY;
+        for (int i = 0; M && i < M->nu; i++) {
+            double w = rg2_mesh_at(M, i, M->nv - 5)[3];
+            lo = fmin(lo, w), hi = fmax(hi, w);
+        }
+        CHECK(lo > 0 && hi < 0.01, "hyperboloid1's first line at v = 0.002: weights %g to %g", lo, hi);
+        for (int k = 0; k < rg2_design_num_notes(d); k++)
+            CHECK(!strstr(rg2_design_note(d, k), "<= 0 at control point"), "weights %g to %g: a weight note '%s'", lo,
+                  hi, rg2_design_note(d, k));
+        rg2_design_free(d);
+    }
+}
+
 /* A merge whose parts overlap (the next part starts before the last ends) gets a note naming how
  * far its control lines run back; parts with a gap between them, and every example, get none. */
 static void overlapping_merges(void)
@@ -2512,6 +2567,7 @@ int main(void)
     twisted_merges();
     overlapping_merges();
     weight_notes();
+    weight_notes_ends();
     tiny_literals();
     nesting_counts_brackets();
     merge_overlap_api();
