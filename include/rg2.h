@@ -247,7 +247,9 @@ RG2_API rg2_status rg2_scalars_from_angles(rg2_scalars *s, const double *alpha, 
 
 /** Control coefficients (C_i, S_i) of (cos t, sin t) for a circle partition: the corners
  *  p^i of the conic arcs. theta0 is the angle of junction 0 (start of arc 0); arc i spans
- *  [theta_i, theta_i + alpha_i]. Layout of alpha as in rg2_scalars_from_angles.
+ *  [theta_i, theta_i + alpha_i]. A theta0 beyond one turn (|theta0| > 2 pi) is taken as
+ *  atan2(sin theta0, cos theta0), so 1e20 gives the corners of its reduction, bit for bit.
+ *  Layout of alpha as in rg2_scalars_from_angles.
  *  cs receives n pairs: cs[2i] = C_i, cs[2i+1] = S_i (n = n_alpha closed, n_alpha - 1 open).
  *  Closed partitions must sum to 2 pi (to 1e-12 relative).
  *  @return RG2_ENONFINITE for a NaN or infinite angle or theta0, RG2_EDOMAIN for an angle

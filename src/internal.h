@@ -196,6 +196,14 @@ static inline int rg2__wrap(int a, int n, int closed)
 
 static inline int rg2__finite(double x) { return isfinite(x); }
 
+/* An angle within one turn: a start angle of many turns (1e20 rad) has junction angles a +
+ * alpha_0 + ... that round to a itself; sin and cos reduce it exactly, and an angle within one
+ * turn keeps its bits. */
+static inline double rg2__within_turn(double a)
+{
+    return fabs(a) <= 2.0 * M_PI ? a : atan2(sin(a), cos(a));
+}
+
 /* Position, derivatives, normal and curvatures of an evaluation from the homogeneous values
  * H[d][k] (d = value, d/du, d/dv, d2/du2, d2/dudv, d2/dv2) up to `order` (eval.c). */
 void rg2__eval_from_h(double H[6][4], int order, rg2_eval *e);

@@ -336,7 +336,8 @@ rg2_status rg2_circle_coeffs(const double *alpha, int n_alpha, int closed, doubl
      * the lines through (b1, b2) of arcs i-1 and i; in a frame rotated by theta_i the line of
      * arc i is {x : x . m_i = c_i}, m_i = (cos beta_i, sin beta_i),
      * c_i = (cos beta_i + 2) / (1 + 2 cos beta_i), and arc i-1 has m = (cos bm, -sin bm). */
-    double theta = theta0, comp = 0.0; /* Kahan-compensated running angle */
+    double theta = rg2__within_turn(theta0); /* (1e20 rad put every corner on one ray) */
+    double comp = 0.0; /* Kahan compensation of the running angle */
     for (int i = 0; i < n; i++) {
         double ai = closed ? alpha[i] : alpha[i + 1];
         double am = closed ? alpha[(i + n - 1) % n] : alpha[i];

@@ -108,16 +108,11 @@ void rg2_shape_init(rg2_shape *s, rg2_shape_kind kind)
 
 static int is_angles(rg2_partition_kind k) { return k == RG2_PART_ANGLES || k == RG2_PART_ANGLES_FULL; }
 
-/* The start angle of an angle partition, within one turn: a start of many turns ("from": 1e20
- * degrees) has junction angles start + alpha_0 + ... that round to the start itself (1e9 degrees
- * already rounds them by 3e-8 rad), so the control polygon's corners left the arcs (residual
- * 1e-10 at 1e9 degrees, 0.11 at 1e20: every corner on one point). cos and sin reduce the start
- * exactly; a start within one turn keeps its bits. */
-static double start_angle(const rg2_partition *p)
-{
-    double a = p->start;
-    return fabs(a) <= TWO_PI ? a : atan2(sin(a), cos(a));
-}
+/* The start angle of an angle partition, within one turn: with a start of many turns ("from":
+ * 1e20 degrees) the junction angles round to the start itself (1e9 degrees already rounds them by
+ * 3e-8 rad), and the control polygon's corners left the arcs (residual 1e-10 at 1e9 degrees, 0.11
+ * at 1e20: every corner on one point). */
+static double start_angle(const rg2_partition *p) { return rg2__within_turn(p->start); }
 
 int rg2_partition_num_segments(const rg2_partition *p)
 {

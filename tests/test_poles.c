@@ -105,6 +105,48 @@ static void polar_sphere_band(void)
            wd, wp, worst.pos, worst.angle, worst.curv);
 }
 
+/* A start angle of many turns: rg2_circle_coeffs (and so rg2_polar_sphere_mesh) takes it within
+ * one turn, so theta0 = 1e20 gives the mesh of its reduction atan2(sin, cos), bit for bit, on the
+ * sphere. Unreduced, every junction angle theta0 + alpha_0 + ... rounded to theta0 (1e20 is
+ * 1.6e4 ulps of 2 pi apart): the control points of each ring lay on one ray. */
+static void polar_start_turns(void)
+{
+    double alpha[5] = {1.1, 1.3, 1.2, 1.4, 0}, v[3] = {0.2, 0.5, 0.8};
+    alpha[4] = 2 * M_PI - alpha[0] - alpha[1] - alpha[2] - alpha[3];
+    const double starts[3] = {1e20, -7.5e9, 4 * M_PI + 0.25};
+    for (int k = 0; k < 3; k++) {
+        double red = atan2(sin(starts[k]), cos(starts[k]));
+        rg2_mesh a, b;
+        rg2_error err;
+        CHECK_OK(rg2_polar_sphere_mesh(alpha, 5, starts[k], v, 3, NULL, &a, &err), &err);
+        CHECK_OK(rg2_polar_sphere_mesh(alpha, 5, red, v, 3, NULL, &b, &err), &err);
+        int same = a.nu == b.nu && a.nv == b.nv, distinct = 1;
+        for (int i = 0; same && i < a.nu; i++)
+            for (int j = 0; j < a.nv; j++)
+                same &= !memcmp(rg2_mesh_at(&a, i, j), rg2_mesh_at(&b, i, j), 4 * sizeof(double));
+        for (int i = 1; i < a.nu; i++) { /* the ring's junction points differ in angle */
+            const double *p = rg2_mesh_at(&a, i, 2), *q = rg2_mesh_at(&a, 0, 2);
+            distinct &= fabs(atan2(p[1], p[0]) - atan2(q[1], q[0])) > 0.5;
+        }
+        double wd = 0;
+        rg2_surface s;
+        CHECK_OK(rg2_surface_build(&a, &s, &err), &err);
+        for (int i = 0; i < s.nu; i++)
+            for (int j = 0; j < s.nv; j++)
+                for (int q = 0; q <= 4; q++) {
+                    rg2_eval e;
+                    rg2_patch_eval(rg2_surface_patch(&s, i, j), q / 4.0, 0.5, 0, &e);
+                    wd = fmax(wd, fabs(sqrt(e.p[0] * e.p[0] + e.p[1] * e.p[1] + e.p[2] * e.p[2]) - 1));
+                }
+        CHECK(same && distinct && wd <= 1e-14,
+              "start %.17g: the mesh of its reduction %.17g %s, junctions %s, %.3g off the sphere", starts[k], red,
+              same ? "bit for bit" : "DIFFERS", distinct ? "apart" : "ON ONE RAY", wd);
+        rg2_surface_free(&s);
+        rg2_mesh_free(&a);
+        rg2_mesh_free(&b);
+    }
+}
+
 /* Lorentz check: M^T J M = c J with J = diag(1, 1, 1, -1), c > 0 (maps the sphere to itself). */
 static double lorentz_defect(const double M[16])
 {
@@ -641,6 +683,7 @@ int main(void)
     polar_knots();
     collapse_projective();
     polar_sphere_band();
+    polar_start_turns();
     mobius_b();
     mobius_general();
     errors();
