@@ -1563,6 +1563,14 @@ typedef struct {
                                 pole if it grew only like 1/d (normal) and 1/d^2 (curvature)
                                 toward it (a very thin pole patch; docs/render.md) */
     double unmeasured_pole_dist; /**< the largest parametric distance from the pole among them */
+    rg2_check_gap unmeasured_at; /**< where the first unmeasured sample is, in the order seams are
+                                    measured (surface, its u seams then v seams, row by row, t
+                                    along each; the same on any thread count): surface, seam,
+                                    patches, t and point (the first side's). value: its rounding
+                                    bound over the measurable limits, the larger of the G1 bound /
+                                    1e-4 rad and the G2 bound / 1e-2 (> 1); +inf where the normal
+                                    or the metric is undefined (or out of floating-point range);
+                                    NaN for a bound that is not a number. Set when unmeasured > 0 */
     rg2_check_gap g0, g1, g2; /**< position (relative), normal angle (rad), curvature (relative),
                                    over the samples measured against tol_g0, tol_g1, tol_g2 */
     int near_pole;         /**< samples of patches with a pole side whose rounding bound (the

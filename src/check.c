@@ -89,19 +89,31 @@ typedef struct {
     double t;
 } seam_at;
 
+static void gap_set(rg2_check_gap *g, double value, const seam_at *at, const double p[3])
+{
+    g->value = value;
+    g->surf = at->surf;
+    g->seam_dir = at->dir;
+    g->pi = at->pi;
+    g->pj = at->pj;
+    g->qi = at->qi;
+    g->qj = at->qj;
+    g->t = at->t;
+    memcpy(g->p, p, sizeof g->p);
+}
+
 static void gap_update(rg2_check_gap *g, double value, const seam_at *at, const double p[3])
 {
-    if (!isnan(g->value) && !(value <= g->value)) { /* NaN sticks: a broken seam cannot hide */
-        g->value = value;
-        g->surf = at->surf;
-        g->seam_dir = at->dir;
-        g->pi = at->pi;
-        g->pj = at->pj;
-        g->qi = at->qi;
-        g->qj = at->qj;
-        g->t = at->t;
-        memcpy(g->p, p, sizeof g->p);
-    }
+    if (!isnan(g->value) && !(value <= g->value)) /* NaN sticks: a broken seam cannot hide */
+        gap_set(g, value, at, p);
+}
+
+/* A sample that is no measurement: counted; the first one's place kept (over: its rounding
+ * bound over the measurable limits, +inf for an undefined normal or metric). */
+static void unmeasured_note(rg2_check_report *r, const seam_at *at, const double p[3], double over)
+{
+    if (r->unmeasured++ == 0)
+        gap_set(&r->unmeasured_at, over, at, p);
 }
 
 /* Whether (u, v) lies on a side of a patch whose collapsed-side bits (0 v=0, 1 u=1, 2 v=1,
@@ -315,7 +327,7 @@ static void seam_point(rg2_check_report *r, const rg2_surface *s, const seam_sid
     double la = norm3(along);
     if (((L->flags | R->flags) & RG2_EVAL_NORMAL_UNDEFINED) || !(la > 0) || !metric_ok(L) || !metric_ok(R)) {
         r->skipped++;
-        r->unmeasured++;
+        unmeasured_note(r, at, L->p, INFINITY);
         return;
     }
     double c[3];
@@ -366,7 +378,10 @@ static void seam_point(rg2_check_report *r, const rg2_surface *s, const seam_sid
             r->pole_unresolved++;
             r->pole_unresolved_dist = fmax(r->pole_unresolved_dist, dist);
         } else {
-            r->unmeasured++;
+            unmeasured_note(r, at, L->p,
+                            isnan(round1) || isnan(round2)
+                                ? NAN
+                                : fmax(round1 / NEAR_POLE_MAX_G1, round2 / NEAR_POLE_MAX_G2));
             if (pole_patch) {
                 r->unmeasured_pole++;
                 r->unmeasured_pole_dist = fmax(r->unmeasured_pole_dist, dist);
@@ -673,6 +688,8 @@ static void part_merge(rg2_check_report *r, const check_part *c)
         r->seam_samples += x->seam_samples;
         r->skipped += x->skipped;
         r->pole_samples += x->pole_samples;
+        if (r->unmeasured == 0 && x->unmeasured > 0) /* the first in seam order */
+            r->unmeasured_at = x->unmeasured_at;
         r->unmeasured += x->unmeasured;
         r->unmeasured_pole += x->unmeasured_pole;
         r->unmeasured_pole_dist = fmax(r->unmeasured_pole_dist, x->unmeasured_pole_dist);
@@ -924,8 +941,9 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
     out->kpeak.surf = -1;
     out->kpeak_k = 0;
     /* a gap no sample exceeds (0 everywhere) keeps this place: the first surface's number */
-    rg2_check_gap *gaps[7] = {&out->g0, &out->g1, &out->g2, &out->g1_pole, &out->g2_pole, &out->g1_ill, &out->g2_ill};
-    for (int k = 0; k < 7; k++)
+    rg2_check_gap *gaps[8] = {&out->g0,      &out->g1,      &out->g2,     &out->g1_pole,
+                              &out->g2_pole, &out->g1_ill, &out->g2_ill, &out->unmeasured_at};
+    for (int k = 0; k < 8; k++)
         gaps[k]->surf = o->surface_base;
     out->fold_at.surf = o->surface_base;
     /* the flat lists of seams and patches, each surface's size */
@@ -1247,6 +1265,17 @@ static void format_text(const rg2_check_report *r, sbuf *b)
                      "from one, and a rounding bound the pole does not explain; an undefined normal: a degenerate or "
                      "ill-conditioned patch; or a metric out of floating-point range): G1 and G2 FAIL\n",
                   r->unmeasured, POLE_BLUR);
+    if (r->unmeasured) {
+        const rg2_check_gap *u = &r->unmeasured_at;
+        sb_printf(b, "    the first at surface %d %s seam (%d,%d)|(%d,%d) t=%.3g, point (%.6g, %.6g, %.6g)", u->surf,
+                  u->seam_dir == 0 ? "u" : "v", u->pi, u->pj, u->qi, u->qj, u->t, u->p[0], u->p[1], u->p[2]);
+        if (isinf(u->value))
+            sb_printf(b, ": an undefined normal or metric\n");
+        else if (isnan(u->value))
+            sb_printf(b, ": a rounding bound that is not a number\n");
+        else
+            sb_printf(b, ": rounding bound %.3g times the measurable limit\n", u->value);
+    }
     if (r->unmeasured_pole)
         sb_printf(b, "    %d of them on patches with a pole side, up to %.3g from the pole (parametric): their rounding "
                      "bounds exceed %.0e rad / %.0e, and would still exceed them %.3g from it if they grew only like "
@@ -1306,12 +1335,9 @@ static cJSON *sheet_json(const rg2_crossing_sheet *s)
     return j;
 }
 
-static cJSON *gap_json(const rg2_check_gap *g, double tol)
+/* A seam sample's place (surface, seam, the two patches, t, point) as members of j. */
+static void seam_place_json(cJSON *j, const rg2_check_gap *g)
 {
-    cJSON *j = cJSON_CreateObject();
-    add_num(j, "value", g->value);
-    add_num(j, "limit", tol);
-    cJSON_AddBoolToObject(j, "ok", g->value <= tol);
     add_num(j, "surface", g->surf);
     cJSON_AddStringToObject(j, "seam", g->seam_dir == 0 ? "u" : "v");
     int a[2] = {g->pi, g->pj}, c[2] = {g->qi, g->qj};
@@ -1319,6 +1345,15 @@ static cJSON *gap_json(const rg2_check_gap *g, double tol)
     cJSON_AddItemToObject(j, "patch_b", cJSON_CreateIntArray(c, 2));
     add_num(j, "t", g->t);
     cJSON_AddItemToObject(j, "point", rg2__json_doubles(g->p, 3));
+}
+
+static cJSON *gap_json(const rg2_check_gap *g, double tol)
+{
+    cJSON *j = cJSON_CreateObject();
+    add_num(j, "value", g->value);
+    add_num(j, "limit", tol);
+    cJSON_AddBoolToObject(j, "ok", g->value <= tol);
+    seam_place_json(j, g);
     return j;
 }
 
@@ -1365,6 +1400,15 @@ static char *format_json(const rg2_check_report *r)
     add_num(j, "unmeasured", r->unmeasured);
     add_num(j, "unmeasured_near_pole", r->unmeasured_pole);
     add_num(j, "unmeasured_pole_distance", r->unmeasured_pole_dist);
+    if (r->unmeasured) { /* the first unmeasured sample */
+        const rg2_check_gap *u = &r->unmeasured_at;
+        cJSON *ua = cJSON_AddObjectToObject(j, "unmeasured_at");
+        seam_place_json(ua, u);
+        cJSON_AddStringToObject(ua, "reason", isinf(u->value)   ? "undefined normal or metric"
+                                              : isnan(u->value) ? "rounding bound not a number"
+                                                                : "rounding bound");
+        add_num(ua, "bound_over_limit", u->value); /* (null unless a finite bound) */
+    }
     cJSON *rg = cJSON_AddObjectToObject(j, "regularity");
     add_num(rg, "folds", r->folds);
     add_num(rg, "singular", r->singular);

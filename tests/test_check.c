@@ -1015,6 +1015,129 @@ static void unmeasured_fails(void)
     }
 }
 
+/* rg2_check_report.unmeasured_at: where the first unmeasured sample is, in the order seams are
+ * measured (surface, u seams then v seams, row by row, t along each), with its rounding bound
+ * over the measurable limits (+inf for an undefined normal). Each case's expected place follows
+ * from that order: a thin band (every sample unmeasured, u closed: the first u seam is
+ * (7,0)|(0,0), t = 0), the band as the second surface after a torus (nothing unmeasured on the
+ * torus: surface 1's), and a cylinder with a knot interval 1e-6 long (v knots 0, 1, 1 + 1e-6, 2:
+ * 60 of 340 samples unmeasured, on v seams of the short patches, j = 1, at rounding bounds 13.6
+ * times the measurable limit). The text names the place and the JSON carries it; the same on 1,
+ * 2, 3 and 8 threads (the merge of the threads' parts keeps the first part's first). */
+static rg2_design *design_checked(const char *js, const char *name, rg2t_parts *p, const rg2_check_opts *o,
+                                  rg2_check_report *r);
+
+static void unmeasured_where(void)
+{
+    static const char *band = "\"band\": {\"shape\": \"c\", \"u\": {\"arcs\": 8}, \"v\": {\"segments\": 20, \"from\": 0, "
+                              "\"to\": 1e-95}}";
+    static const struct {
+        const char *name, *js;
+        int surf, pi, pj, qi, qj, finite;
+    } cases[] = {
+        {"thin band", NULL, 0, 7, 0, 0, 0, 0},
+        {"torus, then the thin band", NULL, 1, 7, 0, 0, 0, 0},
+        {"cylinder with a knot interval of 1e-6",
+         "{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {\"m\": {\"shape\": \"c\", \"u\": {\"arcs\": 4}, "
+         "\"v\": {\"knots\": [0, 1, 1.000001, 2]}}}}",
+         0, 3, 1, 0, 1, 1},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof *cases; c++) {
+        char js[600];
+        if (cases[c].js)
+            snprintf(js, sizeof js, "%s", cases[c].js);
+        else
+            snprintf(js, sizeof js,
+                     "{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}, \"t\": {\"kind\": \"torus\"}}, \"meshes\": {%s%s}, "
+                     "\"output\": %s}",
+                     c == 0 ? "" : "\"ring\": {\"shape\": \"t\", \"u\": {\"arcs\": 4}, \"v\": {\"arcs\": 4}}, ", band,
+                     c == 0 ? "\"band\"" : "[\"ring\", \"band\"]");
+        rg2t_parts p;
+        rg2_check_opts o;
+        rg2_check_opts_default(&o);
+        rg2_check_report r;
+        rg2_error err;
+        rg2_design *d = design_checked(js, cases[c].name, &p, &o, &r);
+        if (!d)
+            continue;
+        const rg2_check_gap *u = &r.unmeasured_at;
+        printf("%s: %d of %d samples unmeasured, the first at surface %d %s seam (%d,%d)|(%d,%d) t=%g, bound / limit "
+               "%.3g\n",
+               cases[c].name, r.unmeasured, r.seam_samples, u->surf, u->seam_dir ? "v" : "u", u->pi, u->pj, u->qi,
+               u->qj, u->t, u->value);
+        if (cases[c].finite) /* the short patches' seams: a v seam (the u seams along them are measured) */
+            CHECK(r.unmeasured > 0 && u->surf == 0 && (u->pj == 1 || u->qj == 1) && u->pj <= u->qj,
+                  "%s: the first unmeasured sample at surface %d seam %d (%d,%d)|(%d,%d), want one of the short "
+                  "patches (j = 1)",
+                  cases[c].name, u->surf, u->seam_dir, u->pi, u->pj, u->qi, u->qj);
+        else
+            CHECK(r.unmeasured > 0 && u->surf == cases[c].surf && u->seam_dir == 0 && u->pi == cases[c].pi &&
+                      u->pj == cases[c].pj && u->qi == cases[c].qi && u->qj == cases[c].qj && u->t == 0,
+                  "%s: the first unmeasured sample at surface %d seam %d (%d,%d)|(%d,%d) t=%g, want surface %d u seam "
+                  "(%d,%d)|(%d,%d) t=0",
+                  cases[c].name, u->surf, u->seam_dir, u->pi, u->pj, u->qi, u->qj, u->t, cases[c].surf, cases[c].pi,
+                  cases[c].pj, cases[c].qi, cases[c].qj);
+        CHECK(cases[c].finite ? isfinite(u->value) && u->value > 1 : isinf(u->value) && u->value > 0,
+              "%s: bound over limit %.3g (want %s)", cases[c].name, u->value,
+              cases[c].finite ? "finite, > 1" : "+inf: an undefined normal");
+        /* the point is the first side's, at the seam's end of its transversal parameter */
+        rg2_eval e;
+        if (u->surf >= 0 && u->surf < p.n && u->pi >= 0 && u->pi < p.s[u->surf].nu && u->pj >= 0 &&
+            u->pj < p.s[u->surf].nv) {
+            rg2_surface_eval(&p.s[u->surf], u->pi, u->pj, u->seam_dir == 0 ? 1.0 : u->t, u->seam_dir == 0 ? u->t : 1.0,
+                             0, &e);
+            CHECK(e.p[0] == u->p[0] && e.p[1] == u->p[1] && e.p[2] == u->p[2],
+                  "%s: point (%.17g, %.17g, %.17g), the patch there (%.17g, %.17g, %.17g)", cases[c].name, u->p[0],
+                  u->p[1], u->p[2], e.p[0], e.p[1], e.p[2]);
+        }
+        char *text = NULL, *json = NULL, where[160];
+        CHECK_OK(rg2_check_format(&r, 0, &text, &err), &err);
+        CHECK_OK(rg2_check_format(&r, 1, &json, &err), &err);
+        snprintf(where, sizeof where, "    the first at surface %d %s seam (%d,%d)|(%d,%d) t=%.3g, point (", u->surf,
+                 u->seam_dir ? "v" : "u", u->pi, u->pj, u->qi, u->qj, u->t);
+        const char *line = text ? strstr(text, where) : NULL;
+        CHECK(line && strstr(line, cases[c].finite ? "): rounding bound " : "): an undefined normal or metric\n"),
+              "%s: the text names the first unmeasured sample ('%s'): %s", cases[c].name, where, text ? text : "");
+        cJSON *root = json ? cJSON_Parse(json) : NULL, *ua = cJSON_GetObjectItem(root, "unmeasured_at");
+        cJSON *pa = cJSON_GetObjectItem(ua, "patch_a"), *why = cJSON_GetObjectItem(ua, "reason");
+        CHECK(ua && cJSON_GetObjectItem(ua, "surface") && cJSON_GetObjectItem(ua, "surface")->valuedouble == u->surf &&
+                  cJSON_GetArraySize(pa) == 2 && cJSON_GetArrayItem(pa, 0)->valueint == u->pi &&
+                  cJSON_GetArrayItem(pa, 1)->valueint == u->pj && cJSON_IsString(why) &&
+                  !strcmp(why->valuestring, cases[c].finite ? "rounding bound" : "undefined normal or metric") &&
+                  (cases[c].finite
+                       ? cJSON_GetObjectItem(ua, "bound_over_limit")->valuedouble == u->value
+                       : cJSON_IsNull(cJSON_GetObjectItem(ua, "bound_over_limit"))),
+              "%s: the JSON's unmeasured_at: %s", cases[c].name, json ? json : "");
+        cJSON_Delete(root);
+        same_on_threads(p.s, p.n, p.shapes, p.labels, p.ns, &o, cases[c].name);
+        free(text);
+        free(json);
+        rg2_check_report_free(&r);
+        rg2t_design_parts_free(&p);
+        rg2_design_free(d);
+    }
+    /* a report with every sample measured has no unmeasured_at in its JSON, and no 'the first' line */
+    rg2t_parts p;
+    rg2_check_report r;
+    rg2_error err;
+    rg2_design *d = design_checked("{\"shapes\": {\"t\": {\"kind\": \"torus\"}}, \"meshes\": {\"m\": {\"shape\": \"t\", "
+                                   "\"u\": {\"arcs\": 4}, \"v\": {\"arcs\": 4}}}}",
+                                   "torus", &p, NULL, &r);
+    if (!d)
+        return;
+    char *text = NULL, *json = NULL;
+    CHECK_OK(rg2_check_format(&r, 0, &text, &err), &err);
+    CHECK_OK(rg2_check_format(&r, 1, &json, &err), &err);
+    CHECK(r.unmeasured == 0 && text && !strstr(text, "the first") && json && !strstr(json, "unmeasured_at"),
+          "torus: %d unmeasured, the text or JSON names a first one: %s%s", r.unmeasured, text ? text : "",
+          json ? json : "");
+    free(text);
+    free(json);
+    rg2_check_report_free(&r);
+    rg2t_design_parts_free(&p);
+    rg2_design_free(d);
+}
+
 /* rg2.h, rg2_check: a non-finite control value is measured, not refused; the gaps and the
  * residual come out NaN and every G0, G1, G2 and EXACT promise fails. */
 static void nonfinite_fails(void)
@@ -2322,6 +2445,7 @@ int main(void)
     poles_on_u_sides();
     seam_direction_reported();
     unmeasured_fails();
+    unmeasured_where();
     nonfinite_fails();
     metric_overflow_one_side();
     loose_limits();

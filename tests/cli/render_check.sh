@@ -165,6 +165,9 @@ expect 3 "failed: g1" -- "$RG2" check "$thin" --require g1
 expect 3 "failed: g2" -- "$RG2" check "$thin" --require g2
 expect 3 "5304 not measured" -- "$RG2" check "$thin" --require g2
 expect 3 "NOT MEASURED" -- "$RG2" check "$thin" --require g2
+# ... and where the first of them is, and why
+expect 3 "the first at surface 0 u seam (7,0)|(0,0) t=0, point (1, " -- "$RG2" check "$thin" --require g2
+expect 3 "0): an undefined normal or metric" -- "$RG2" check "$thin" --require g2
 expect 0 "" -- "$RG2" check "$thin" --require g0
 # a mesh merged with itself folds back inside its transitions: the seams are G2, the surface is
 # not regular, and the table says where
