@@ -1255,7 +1255,7 @@ RG2_API void rg2_tess_free(rg2_tess *t);
  *  bytes (docs/export.md). The other formats carry no time or file name.
  *  @return RG2_EIO (unwritable), RG2_EWEIGHT (non-positive weight for STEP/IGES, naming the
  *  patch), RG2_ENONFINITE (a control value not finite, in every format), RG2_EINVAL (unknown
- *  extension, empty input, a layout other than the two), RG2_EDOMAIN (STL, PLY and glTF store
+ *  extension, a file name that is only the extension, empty input, a layout other than the two), RG2_EDOMAIN (STL, PLY and glTF store
  *  floats: surfaces reaching beyond FLT_MAX, 3.4e38, or spanning less than FLT_MIN / FLT_EPSILON,
  *  about 1e-31; and the range of rg2_tessellate), RG2_ELIMIT (too many vertices or records for
  *  the format), RG2_ENOMEM. */
@@ -1292,7 +1292,8 @@ RG2_API rg2_status rg2_export_files(const rg2_surface *surfs, int n_surfs, const
                                     rg2_error *err);
 /** Whether rg2_export_file knows the format of path's extension, without writing anything (to
  *  refuse a mistyped output name before a long build).
- *  @return RG2_OK, or RG2_EINVAL (no path, no extension, unknown extension; the message lists
+ *  @return RG2_OK, or RG2_EINVAL (no path, no extension, unknown extension, a name that is only
+ *  the extension such as ".step", which would be a hidden file with no name; the message lists
  *  the known ones). */
 RG2_API rg2_status rg2_export_format_check(const char *path, rg2_error *err);
 /** The temporary file this process's next write of path would use (every writer writes a new

@@ -729,9 +729,14 @@ static rg2_status export_format(const char *path, int *fmt, rg2_error *err)
                  {"json", F_JSON}};
     if (!path || !*path)
         return rg2__fail(err, RG2_EINVAL, "export: no output path");
-    const char *ext = extension(path);
+    const char *ext = extension(path), *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path;
     for (size_t k = 0; k < sizeof table / sizeof table[0]; k++)
         if (!strcasecmp(ext, table[k].ext)) {
+            if (ext == base + 1) /* ".step": the extension alone, a hidden file without a name */
+                return rg2__fail(err, RG2_EINVAL,
+                                 "%s: the file name is only the extension '.%s' (a hidden file with no name); give "
+                                 "it a name, e.g. 'design.%s'",
+                                 path, ext, ext);
             *fmt = table[k].fmt;
             return RG2_OK;
         }

@@ -1516,10 +1516,10 @@ static void failures(const rg2_surface *s)
           "layout 7: %s: %s", rg2_status_str(st), err.msg);
     /* the same verdicts without writing: every known extension, any case; the unknown ones */
     static const char *known[] = {"a.step", "a.STP", "d/a.igs", "a.IGES", "a.bv", "a.bez", "a.obj",
-                                  "a.Stl", "a.ply", "a.glb", "a.json"};
+                                  "a.Stl", "a.ply", "a.glb", "a.json", ".a.step", "d/..step", ".d/a.stl"};
     for (size_t k = 0; k < sizeof known / sizeof *known; k++)
         CHECK(rg2_export_format_check(known[k], &err) == RG2_OK, "%s refused: %s", known[k], err.msg);
-    static const char *unknown[] = {"a.xyz", "a", "d.step/a", "a.", "", "a.step.tmp"};
+    static const char *unknown[] = {"a.xyz", "a", "d.step/a", "a.", "", "a.step.tmp", ".step", "d/.IGS", "./.glb"};
     for (size_t k = 0; k < sizeof unknown / sizeof *unknown; k++) {
         st = rg2_export_format_check(unknown[k], &err);
         CHECK(st == RG2_EINVAL && err.msg[0], "'%s' accepted (%s)", unknown[k], rg2_status_str(st));
