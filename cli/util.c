@@ -275,6 +275,14 @@ int rg2_cli_same_path(const char *a, const char *b)
 int rg2_cli_check_outputs(const char *cmd, const char *design, const char *const *out, int n)
 {
     for (int k = 0; k < n; k++) {
+        const char *slash = strrchr(out[k], '/'), *base = slash ? slash + 1 : out[k];
+        if (base[0] == '.' && base[1] && !strchr(base + 1, '.')) { /* ".png": a hidden file with no name */
+            fprintf(stderr,
+                    "rg2 %s: output '%s': the file name is only the extension '%s' (a hidden file with no name); "
+                    "give it a name, e.g. 'design%s'\n",
+                    cmd, out[k], base, base);
+            return RG2_EXIT_USAGE;
+        }
         if (rg2_cli_same_path(design, out[k])) {
             fprintf(stderr, "rg2 %s: output '%s' is the design file itself; choose another name\n", cmd, out[k]);
             return RG2_EXIT_USAGE;
