@@ -271,6 +271,16 @@ static rg2_status parse_rotation(pctx *c, const cJSON *x, const char *p, double 
     subpath(q, sizeof q, p, "degrees");
     if ((st = as_num(c, dg, q, &deg)))
         return st;
+    const char *turn = rg2_angle_total_in_radians(fabs(deg));
+    if (turn) { /* 1.5708: radians typed for degrees, most likely; a rotation has no "closed" to say so */
+        char msg[500];
+        snprintf(msg, sizeof msg,
+                 "%s: %s: %.6g is %s; angles in a design file are in degrees, so this turns by %.6g "
+                 "degrees (for the turn of %.6g radians write %.0f)",
+                 c->file, q, deg, turn, deg, deg, deg * 180.0 / M_PI);
+        if ((st = rg2__design_add_note(c->d, msg, c->err)))
+            return st;
+    }
     rg2_xform_rotate(T, a[0], a[1], a[2], deg * M_PI / 180.0);
     return RG2_OK;
 }

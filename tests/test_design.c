@@ -842,6 +842,55 @@ static void json_number_forms(void)
     rg2_design_free(d);
 }
 
+/* A rotation of 1.5708, 3.1416 or 6.2832 "degrees" (radians typed for degrees, most likely) is
+ * built as given, with a note naming the key, the value and the degrees meant; 90, 1.6 and 0
+ * give none. The rotation is the one written: the torus's axis turns by 1.5708 degrees. */
+static void rotate_radians_note(void)
+{
+    static const struct {
+        double deg;
+        const char *note; /* NULL: no note */
+    } cases[] = {{1.5708, "shapes.t.rotate.degrees: 1.5708 is pi / 2 (a quarter circle in radians); angles in a "
+                          "design file are in degrees, so this turns by 1.5708 degrees (for the turn of 1.5708 "
+                          "radians write 90)"},
+                 {-3.1416, "shapes.t.rotate.degrees: -3.1416 is pi (a half circle in radians)"},
+                 {6.2832, "shapes.t.rotate.degrees: 6.2832 is 2 pi (a full circle in radians)"},
+                 {90, NULL},
+                 {1.6, NULL},
+                 {0, NULL}};
+    for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+        char js[400];
+        snprintf(js, sizeof js,
+                 "{\"shapes\": {\"t\": {\"kind\": \"torus\", \"rotate\": {\"axis\": [1, 0, 0], \"degrees\": %.17g}}},"
+                 " \"meshes\": {\"T\": {\"shape\": \"t\", \"u\": {\"arcs\": 4}, \"v\": {\"arcs\": 4}}}}",
+                 cases[k].deg);
+        rg2_error err;
+        rg2_design *d = parse(js, &err);
+        if (!d)
+            continue;
+        const char *note = rg2_design_note(d, 0), *at = note ? strstr(note, "shapes.t.") : NULL;
+        if (cases[k].note)
+            CHECK(rg2_design_num_notes(d) == 1 && at && !strncmp(at, cases[k].note, strlen(cases[k].note)),
+                  "rotate %.17g degrees: %d notes, first '%s', want '%s'", cases[k].deg, rg2_design_num_notes(d),
+                  note ? note : "(none)", cases[k].note);
+        else
+            CHECK(rg2_design_num_notes(d) == 0, "rotate %.17g degrees: a note '%s'", cases[k].deg, note);
+        /* the torus's axis (0, 0, 1) turned about x by the degrees given: the point of the tube's top
+         * circle over (R, 0) (u = 0, v = 90 degrees: (R, 0, r)) goes to (R, -r sin a, r cos a) */
+        const rg2_surface *s = rg2_design_num_surfaces(d) == 1 ? rg2_design_surface(d, 0) : NULL;
+        if (s) {
+            rg2_eval e;
+            rg2_patch_eval(rg2_surface_patch(s, 0, 1), 0, 0, 0, &e);
+            double a = cases[k].deg * M_PI / 180, want[3] = {3, -sin(a), cos(a)};
+            double dev = fabs(e.p[0] - want[0]) + fabs(e.p[1] - want[1]) + fabs(e.p[2] - want[2]);
+            CHECK(dev < 1e-14, "rotate %.17g degrees: (%.17g, %.17g, %.17g), want (%.17g, %.17g, %.17g)",
+                  cases[k].deg, e.p[0], e.p[1], e.p[2], want[0], want[1], want[2]);
+        }
+        rg2_design_free(d);
+    }
+    printf("rotate by radians typed for degrees: a note for 1.5708, -3.1416 and 6.2832, none for 90, 1.6 and 0\n");
+}
+
 static void check_written_mesh(const char *path)
 {
     rg2_error err;
@@ -955,6 +1004,7 @@ static void text_files(void)
         check_written_mesh(path);
         json_numbers();
         json_number_forms();
+        rotate_radians_note();
         CHECK(rg2t_file_limit(100) == 0, "file size limit");
         rg2_status st = rg2_design_write_mesh(ref, path, &err);
         rg2t_file_limit(-1);
