@@ -1380,6 +1380,10 @@ typedef struct {
     unsigned char *rgb;    /**< width * height * 3 bytes, row-major, top row first */
     rg2_pixel *pixels;     /**< width * height, or NULL unless keep_pixels */
     double range[2];       /**< colour range used (curvature modes), else 0 */
+    int below, above;      /**< curvature modes: surface pixels whose H (mean) or K (gauss) lies
+                                below range[0] / above range[1], drawn in the end colour; the
+                                colour bar marks each end that has such pixels with a triangle
+                                pointing away from the bar. 0 in the other modes */
     int foreground;        /**< number of surface pixels */
     int refined;           /**< pixels whose Newton refinement converged */
 } rg2_image;

@@ -891,17 +891,53 @@ static void draw_text(rg2_image *img, int x, int y, const char *s, int scale)
     }
 }
 
-static void colour_bar(rg2_image *img, int x0, int gauss, const double range[2])
+/* The colour of the bar at t in [0, 1] (0 the low end). */
+static void bar_colour(int gauss, double t, double rgb[3])
+{
+    if (gauss)
+        colormap(DIVERGING, 5, t, rgb);
+    else
+        colormap(RAINBOW, 7, t, rgb);
+}
+
+/* A triangle in the end colour past one end of the bar (columns x0 .. x0 + bw - 1): its base
+ * 2 rows off the end, its apex 12 rows off (dir -1 above the top, +1 below the bottom), with a
+ * dark rim: pixels beyond the range were drawn in the end colour (the robust range clips the
+ * top and bottom 2 %). */
+static void bar_arrow(rg2_image *img, int x0, int bw, int end, int dir, const double rgb[3])
+{
+    static const double ink[3] = {0.08, 0.08, 0.10};
+    double cx = x0 + 0.5 * (bw - 1);
+    for (int r = 0; r <= 10; r++) { /* r = 0: the base row, 10: the apex */
+        int y = end + dir * (2 + r);
+        double half = 0.5 * (bw - 1) * (10 - r) / 10.0;
+        for (int x = x0; x < x0 + bw; x++) {
+            double d = fabs(x - cx);
+            if (d > half + 0.5)
+                continue;
+            int rim = r == 0 || d > half - 1.0 || r == 10;
+            blend(img->rgb + 3 * ((size_t)y * img->width + x), rim ? ink : rgb, 1.0);
+        }
+    }
+}
+
+static void colour_bar(rg2_image *img, int x0, int gauss, const double range[2], int below, int above)
 {
     int H = img->height, top = 40, bot = H - 40, bw = 22; /* bot - top >= 40: BAR_MIN_HEIGHT */
     for (int y = top; y <= bot; y++) {
         double t = (double)(bot - y) / (bot - top), rgb[3];
-        if (gauss)
-            colormap(DIVERGING, 5, t, rgb);
-        else
-            colormap(RAINBOW, 7, t, rgb);
+        bar_colour(gauss, t, rgb);
         for (int x = x0; x < x0 + bw; x++)
             blend(img->rgb + 3 * ((size_t)y * img->width + x), rgb, 1.0);
+    }
+    double end[3];
+    if (above) { /* (the H or K letter sits above, from top - 28 to top - 15) */
+        bar_colour(gauss, 1.0, end);
+        bar_arrow(img, x0, bw, top, -1, end);
+    }
+    if (below) {
+        bar_colour(gauss, 0.0, end);
+        bar_arrow(img, x0, bw, bot, +1, end);
     }
     /* the labels with 3 significant digits, more (up to 11 characters, the width beside the
      * bar) while two neighbours read the same: a narrow range about a large middle (a sphere's
@@ -1236,6 +1272,12 @@ rg2_status rg2_render(const rg2_surface *surfs, int n, const rg2_mesh *meshes, c
             out->range[1] = o->range[1];
         } else if ((st = robust_range(pix, np, o->mode == RG2_RENDER_GAUSS, o->percentile, cam.scale, out->range, err)))
             goto fail;
+        for (size_t k = 0; k < np; k++)
+            if (pix[k].surf >= 0) {
+                double val = o->mode == RG2_RENDER_GAUSS ? pix[k].K : pix[k].H;
+                out->below += val < out->range[0];
+                out->above += val > out->range[1];
+            }
     }
     shade_pixels(surfs, &cam, o, pix, out->range, out, nt);
     edges(&cam, pix, o->boundaries, out);
@@ -1250,7 +1292,7 @@ rg2_status rg2_render(const rg2_surface *surfs, int n, const rg2_mesh *meshes, c
         mask = NULL;
     }
     if (curv && vw < W)
-        colour_bar(out, vw + 12, o->mode == RG2_RENDER_GAUSS, out->range);
+        colour_bar(out, vw + 12, o->mode == RG2_RENDER_GAUSS, out->range, out->below, out->above);
     if (o->keep_pixels)
         out->pixels = pix;
     else

@@ -1317,6 +1317,74 @@ static void colour_bar_labels(void)
     rg2_mesh_free(&m);
 }
 
+/* Pixels whose H or K lies beyond the colour range are drawn in the end colour; the bar marks
+ * each end that has any with a triangle past it (rg2_image.below / above). A torus's mean map at
+ * the robust range (2 % clipped at each end) has both, its Gauss map (K from -1/2 to 1/4, the
+ * range symmetric about 0) only the bottom one; with the range [-100, -99] (every H above
+ * it) only the top one; with [-2, 1] (every H inside) none, and the rows past the bar are the
+ * background there (each pixel equal to the one 6 columns left of the bar, the background's
+ * gradient being vertical). The counts agree with the kept pixels' H. */
+static void bar_arrows(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_revolve(3.0, 1.0, 8, 6, 1, 0, 0, &m, &s, &err), &err);
+    static const struct {
+        int set, mode;
+        double lo, hi;
+        int below, above; /* want: 1 some, 0 none, -1 all of the foreground */
+    } cases[] = {{0, RG2_RENDER_MEAN, 0, 0, 1, 1},
+                 {0, RG2_RENDER_GAUSS, 0, 0, 1, 0}, /* K in [-1/2, 1/4]: the range +-0.497, symmetric */
+                 {1, RG2_RENDER_MEAN, -100, -99, 0, -1},
+                 {1, RG2_RENDER_MEAN, 10, 11, -1, 0},
+                 {1, RG2_RENDER_MEAN, -2, 1, 0, 0}};
+    for (size_t c = 0; c < sizeof cases / sizeof *cases; c++) {
+        rg2_render_opts o = kept_opts(400, 300);
+        o.mode = cases[c].mode;
+        o.range_set = cases[c].set;
+        o.range[0] = cases[c].lo;
+        o.range[1] = cases[c].hi;
+        rg2_image img;
+        CHECK_OK(rg2_render(&s, 1, NULL, &o, &img, &err), &err);
+        if (!img.rgb || !img.pixels)
+            continue;
+        int W = img.width, x0 = W - 110 + 12, bw = 22, top = 40, bot = img.height - 40, below = 0, above = 0;
+        for (int k = 0; k < W * img.height; k++)
+            if (img.pixels[k].surf >= 0) {
+                double v = o.mode == RG2_RENDER_GAUSS ? img.pixels[k].K : img.pixels[k].H;
+                below += v < img.range[0];
+                above += v > img.range[1];
+            }
+        /* pixels past each end of the bar, over its columns, unlike the background beside them */
+        int marked[2] = {0, 0};
+        for (int e = 0; e < 2; e++)
+            for (int r = 2; r <= 12; r++) {
+                int y = e ? bot + r : top - r;
+                for (int x = x0; x < x0 + bw; x++)
+                    marked[e] += memcmp(img.rgb + 3 * ((size_t)y * W + x), img.rgb + 3 * ((size_t)y * W + x0 - 6), 3) != 0;
+            }
+        printf("%s map, range [%.4g, %.4g]: %d pixels below, %d above (of %d); %d and %d pixels marked past the bar's "
+               "bottom and top\n",
+               o.mode == RG2_RENDER_GAUSS ? "Gauss" : "mean", img.range[0], img.range[1], img.below, img.above,
+               img.foreground, marked[1], marked[0]);
+        CHECK(img.below == below && img.above == above, "case %zu: below %d, above %d; the pixels say %d and %d", c,
+              img.below, img.above, below, above);
+        int want[2] = {cases[c].below, cases[c].above}, got[2] = {img.below, img.above};
+        for (int e = 0; e < 2; e++) {
+            int ok = want[e] < 0 ? got[e] == img.foreground : want[e] ? got[e] > 0 && got[e] < img.foreground : !got[e];
+            CHECK(ok, "case %zu: %d pixels %s the range (of %d)", c, got[e], e ? "above" : "below", img.foreground);
+            /* a triangle of 11 rows over the 22 columns: about 120 pixels */
+            int mk = marked[e ? 0 : 1];
+            CHECK(want[e] ? mk >= 100 && mk <= 140 : mk == 0, "case %zu: %d pixels marked past the bar's %s", c, mk,
+                  e ? "top" : "bottom");
+        }
+        rg2_image_free(&img);
+    }
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 /* A curvature picture too low for the colour bar (under 120 rows) uses the whole width: it kept
  * the bar's 110 columns on the right empty. The sphere band at 400 x 100 is centred. */
 static void low_picture_bar(void)
@@ -1507,6 +1575,7 @@ int main(void)
     silhouette_pixels();
     pole_pixels();
     colour_bar_labels();
+    bar_arrows();
     polar_views();
     low_picture_bar();
     mesh_off_bar();
