@@ -214,8 +214,37 @@ static int pw_reals(pwriter *w, const double *x, size_t n)
 }
 
 /*
+ * The factor an entity's weights (h[0..n-1][3]) are written times. OpenCASCADE's IGES reader
+ * takes a weight below 1e-9 (Precision::PConfusion) for one that is not positive: OCCT 7.6
+ * silently made every weight of such a surface 1 (later versions drop the entity), though the
+ * weights are positive and the geometry exact (a torus whose 4-tuples were all multiplied by
+ * 1e-10, rg2_surface_transform: its faces 1.5e-3 of its size off in all four IGES forms, while
+ * the STEP file read back to 1.9e-16). A rational B-spline is the same curve or surface when
+ * all its weights are multiplied by one factor, and a power of two multiplies exactly (the
+ * points, p / w, are written from the unscaled 4-tuples): an entity whose smallest weight is
+ * below IGES_SMALL_WEIGHT gets the power of two that brings its largest weight into [0.5, 1);
+ * any other keeps its weights (factor 1, the same bytes as before).
+ */
+#define IGES_SMALL_WEIGHT 1e-6
+
+static double weight_factor(const double (*h)[4], size_t n)
+{
+    double lo = h[0][3], hi = h[0][3];
+    for (size_t a = 1; a < n; a++) {
+        lo = h[a][3] < lo ? h[a][3] : lo;
+        hi = h[a][3] > hi ? h[a][3] : hi;
+    }
+    if (!(lo < IGES_SMALL_WEIGHT) || !(hi > 0.0))
+        return 1.0;
+    int e;
+    frexp(hi, &e); /* hi = m 2^e, m in [0.5, 1) */
+    return ldexp(1.0, -e);
+}
+
+/*
  * Entity 128 of degree (du, dv), piecewise Bezier, of a net of NU x NV homogeneous poles
- * h[a * NV + b] (a along u). IGES lists weights and poles with the u index fastest.
+ * h[a * NV + b] (a along u). IGES lists weights and poles with the u index fastest; the weights
+ * times weight_factor.
  */
 static void put_128(pwriter *w, const double (*h)[4], int NU, int NV, int du, int dv, int closed_u,
                     int closed_v)
@@ -227,9 +256,10 @@ static void put_128(pwriter *w, const double (*h)[4], int NU, int NV, int du, in
         w->P->failed = 1;
         return;
     }
+    double f = weight_factor(h, np);
     int rational = 0;
     for (size_t a = 0; a < np; a++)
-        if (h[a][3] != 1.0)
+        if (h[a][3] * f != 1.0)
             rational = 1;
     pw_int(w, 128);
     pw_int(w, NU - 1);
@@ -248,7 +278,7 @@ static void put_128(pwriter *w, const double (*h)[4], int NU, int NV, int du, in
         for (int a = 0; a < NU; a++) {
             const double *p = h[(size_t)a * (size_t)NV + (size_t)b];
             size_t k = (size_t)b * (size_t)NU + (size_t)a;
-            wt[k] = p[3];
+            wt[k] = p[3] * f;
             for (int d = 0; d < 3; d++)
                 xyz[3 * k + (size_t)d] = p[d] / p[3];
         }
@@ -357,12 +387,14 @@ static void emit_items(pwriter *w, int n, int q_end, iges_item fn, void *ctx)
 /* ---------------------------------------------------------------- B-rep shell (iges_brep) */
 
 /* Entity 126 (rational B-spline curve), piecewise Bezier of degree deg through the n
- * homogeneous poles h (n = deg spans + 1), parameter 0 .. spans: an edge's model-space curve. */
+ * homogeneous poles h (n = deg spans + 1), parameter 0 .. spans: an edge's model-space curve;
+ * the weights times weight_factor, as the 128's. */
 static void put_126(pwriter *w, const double (*h)[4], int n, int deg)
 {
+    double f = weight_factor(h, (size_t)n);
     int rational = 0;
     for (int a = 0; a < n; a++)
-        if (h[a][3] != 1.0)
+        if (h[a][3] * f != 1.0)
             rational = 1;
     pw_int(w, 126);
     pw_int(w, n - 1);
@@ -373,7 +405,7 @@ static void put_126(pwriter *w, const double (*h)[4], int n, int deg)
     pw_int(w, 0);
     pw_knots(w, (n - 1) / deg, deg);
     for (int a = 0; a < n; a++)
-        pw_real(w, h[a][3], ',');
+        pw_real(w, h[a][3] * f, ',');
     for (int a = 0; a < n; a++)
         for (int d = 0; d < 3; d++)
             pw_real(w, h[a][d] / h[a][3], ',');

@@ -785,6 +785,8 @@ done:
 /* Mismatches between the numbers v[0..n-1] of an entity 128 and the NU x NV net h (a along u)
  * of degrees (du, dv): its type, upper indices, degrees and count, its knots (piecewise Bezier,
  * knots_differ), then its weights and points (u fastest), and its parameter range (the knots'). */
+static double g_min_w128 = INFINITY; /* the smallest weight cmp_128 has read */
+
 static int cmp_128(const double *v, int n, const double (*h)[4], int NU, int NV, int du, int dv)
 {
     int w0 = 10 + (NU + du + 1) + (NV + dv + 1), nn = NU * NV, bad = 0; /* after ints and knots */
@@ -792,11 +794,24 @@ static int cmp_128(const double *v, int n, const double (*h)[4], int NU, int NV,
         return 1;
     bad += knots_differ(v + 10, NU, du) + knots_differ(v + 10 + NU + du + 1, NV, dv);
     bad += v[n - 4] != 0 || v[n - 3] != (NU - 1) / du || v[n - 2] != 0 || v[n - 1] != (NV - 1) / dv;
+    /* the weights as they are; or, when the smallest is below 1e-6 (which OpenCASCADE's IGES
+     * reader takes for 0), times the power of two that puts the largest in [0.5, 1) */
+    double lo = INFINITY, hi = 0, f = 1;
+    for (int k = 0; k < nn; k++) {
+        lo = fmin(lo, h[k][3]);
+        hi = fmax(hi, h[k][3]);
+    }
+    if (lo < 1e-6) {
+        int e;
+        frexp(hi, &e);
+        f = ldexp(1.0, -e);
+    }
     for (int b = 0; b < NV; b++)
         for (int a = 0; a < NU; a++) {
             const double *p = h[a * NV + b];
             int k = b * NU + a;
-            bad += v[w0 + k] != p[3];
+            bad += v[w0 + k] != p[3] * f;
+            g_min_w128 = fmin(g_min_w128, v[w0 + k]);
             for (int c = 0; c < 3; c++)
                 bad += v[w0 + nn + 3 * k + c] != p[c] / p[3];
         }
@@ -917,6 +932,39 @@ static void iges_big(void)
                "disagreements, %d numbers not read back\n",
                name[k], s.nu, s.nv, n, badline, bad, mismatch);
     }
+    rg2_surface_free(&s);
+}
+
+/* A surface whose 4-tuples are all multiplied by 1e-10 (rg2_surface_transform: the same torus,
+ * weights about 1e-10): OpenCASCADE's IGES reader took its entities' weights, all below its 1e-9,
+ * for non-positive ones and made every one 1 (the faces 1.5e-3 of the size off, no message;
+ * tests/occt/test_import.cpp). The
+ * IGES writer multiplies such an entity's weights by a power of two (exactly the same surface):
+ * the plain layouts read back with every weight at least 0.25 (the torus's own weights span
+ * 0.5 .. 1 of each other), the points as written before. */
+static void iges_small_weights(void)
+{
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(fx_torus(13.0, 4.0, 6, 4, &s, &err), &err);
+    double M[16] = {1e-10, 0, 0, 0, 0, 1e-10, 0, 0, 0, 0, 1e-10, 0, 0, 0, 0, 1e-10};
+    rg2_surface_transform(&s, M);
+    double wmin = rg2_surface_min_weight(&s);
+    for (int per_mesh = 0; per_mesh < 2; per_mesh++) {
+        rg2_export_opts o;
+        rg2_export_opts_default(&o);
+        o.layout = per_mesh ? RG2_STEP_FACE_PER_MESH : RG2_STEP_FACE_PER_PATCH;
+        CHECK_OK(rg2_export_file(&s, 1, path_in("smallw.igs"), &o, &err), &err);
+        g_min_w128 = INFINITY;
+        int n, mismatch, bad = iges_sections_agree(path_in("smallw.igs"), &n, &s, per_mesh ? 2 : 1, &mismatch);
+        CHECK(bad == 0 && mismatch == 0 && g_min_w128 >= 0.25,
+              "IGES %s of a torus with weights from %.3g: %d disagreements, %d numbers not as rg2's (weights times "
+              "a power of two), smallest weight written %.3g",
+              per_mesh ? "per mesh" : "per patch", wmin, bad, mismatch, g_min_w128);
+        printf("IGES %s of a torus with weights from %.3g: smallest weight written %.3g, %d numbers not as rg2's\n",
+               per_mesh ? "per mesh" : "per patch", wmin, g_min_w128, mismatch);
+    }
+    remove(path_in("smallw.igs"));
     rg2_surface_free(&s);
 }
 
@@ -2716,6 +2764,7 @@ int main(void)
     breps_read_back(&s);
     step_big_in_order();
     iges_big();
+    iges_small_weights();
     utf8_table();
     names_and_defaults(&s);
     transposed_pole();
