@@ -13,8 +13,10 @@
 
 typedef struct {
     FILE *f;
-    int next;  /* next entity id */
-    int ctx2d; /* the parameter-space context of the pcurves (0: not written yet) */
+    int next;    /* next entity id */
+    int ctx2d;   /* the parameter-space context of the pcurves (0: not written yet) */
+    int unit[4]; /* the lines along the sides of [0, 1]^2 that every face of the face-per-patch
+                    layout uses, of all its surfaces (0: not written yet) */
 } stepw;
 
 static int new_id(stepw *w) { return w->next++; }
@@ -205,7 +207,7 @@ typedef struct {
 static int step_block(FILE *m, void *arg, int b, int k0, int k1)
 {
     step_items *it = arg;
-    stepw wb = {m, it->start[b], it->w->ctx2d};
+    stepw wb = {m, it->start[b], it->w->ctx2d, {0, 0, 0, 0}};
     for (int k = k0; k < k1; k++) {
         int next = wb.next;
         if ((it->id[k] = it->emit(&wb, it->ctx, k)) < 0)
@@ -426,7 +428,9 @@ static rg2_status shell_per_patch(stepw *w, const rg2_surface *s, int *shell, rg
                 uside[2 * e + nuse[e]++] = side;
             }
         }
-    put_side_lines(w, 1, 1, line); /* every patch's parameter square is [0, 1]^2 */
+    if (!w->unit[0]) /* every patch's parameter square is [0, 1]^2: one set for the file */
+        put_side_lines(w, 1, 1, w->unit);
+    memcpy(line, w->unit, sizeof line);
     int closed = 1;
     for (int e = 0; e < t.n_edges; e++) {
         int p = t.edef[2 * e], side = t.edef[2 * e + 1], du, dv;
@@ -555,7 +559,7 @@ rg2_status rg2__write_step(const rg2_surface *surfs, int n, const rg2_export_opt
     fprintf(f, "FILE_SCHEMA(('%s'));\nENDSEC;\nDATA;\n",
             o->ap242 ? "AP242_MANAGED_MODEL_BASED_3D_ENGINEERING_MIM_LF { 1 0 10303 442 1 1 4 }"
                      : "AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }");
-    stepw w = {f, 1, 0};
+    stepw w = {f, 1, 0, {0, 0, 0, 0}};
     int *shells = malloc(sizeof(int) * (size_t)n);
     if (!shells)
         return rg2__fail(err, RG2_ENOMEM, "STEP: out of memory");

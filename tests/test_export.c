@@ -2345,6 +2345,41 @@ static void step_counts(const char *path, int *faces, int *edges, int *verts, in
     free(b);
 }
 
+/* Entities of one type in a STEP file ("=LINE(" and the like). */
+static int step_count_of(const char *path, const char *type)
+{
+    size_t len, tl = strlen(type);
+    char *b = (char *)slurp(path, &len);
+    int n = 0;
+    for (char *p = b; p && (p = strstr(p, type)); p += tl)
+        n++;
+    free(b);
+    return n;
+}
+
+/* The pcurve lines of several surfaces in one STEP file (docs/export.md, "Pcurves"): face per
+ * patch, every face of every surface on [0, 1]^2 uses the same four lines, written once (they
+ * were written again for each surface: 12 for three); per mesh, one set of four per surface
+ * (each its own rectangle [0, nu] x [0, nv]). */
+static void step_lines_shared(const rg2_surface *s)
+{
+    rg2_surface three[3] = {*s, *s, *s};
+    rg2_export_opts o;
+    rg2_export_opts_default(&o);
+    rg2_error err;
+    for (int layout = 0; layout < 2; layout++) {
+        o.layout = layout ? RG2_STEP_FACE_PER_MESH : RG2_STEP_FACE_PER_PATCH;
+        CHECK_OK(rg2_export_file(three, 3, path_in("three.step"), &o, &err), &err);
+        int lines = step_count_of(path_in("three.step"), "=LINE(");
+        int reps = step_count_of(path_in("three.step"), "=DEFINITIONAL_REPRESENTATION(");
+        int want = layout ? 12 : 4;
+        CHECK(lines == want && reps == want,
+              "three surfaces in one STEP file, %s: %d lines, %d representations of them, want %d",
+              layout ? "per mesh" : "per patch", lines, reps, want);
+    }
+    remove(path_in("three.step"));
+}
+
 /* The pole surface and its transpose (built from the transposed mesh): the same patches with u
  * and v exchanged, and B-reps of the same topology in STEP and IGES (both layouts): the
  * collapsed side is a v = 0 side in one and a u = 0 side in the other. */
@@ -2769,6 +2804,7 @@ int main(void)
     names_and_defaults(&s);
     transposed_pole();
     pole_topology();
+    step_lines_shared(&s);
     full_disk(&s);
     temp_files(&s);
     failures(&s);
