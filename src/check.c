@@ -1298,10 +1298,17 @@ static void format_text(const rg2_check_report *r, sbuf *b)
               r->eval_wmin, r->wmin > 0 ? "(all > 0)" : "(NON-POSITIVE)");
     sb_printf(b, "curvature            k [%.6g, %.6g]  H [%.6g, %.6g]  K [%.6g, %.6g]\n", r->kmin, r->kmax, r->Hmin,
               r->Hmax, r->Kmin, r->Kmax);
-    if (r->kpeak.surf >= 0 && r->kpeak_k != 0)
-        sb_printf(b, "  largest |k|        %.6g (radius %.6g) at surface %d patch (%d,%d) u=%.3g v=%.3g, point (%.6g, "
-                     "%.6g, %.6g)\n", fabs(r->kpeak_k), 1 / fabs(r->kpeak_k), r->kpeak.surf, r->kpeak.pi,
-                  r->kpeak.pj, r->kpeak.u, r->kpeak.v, r->kpeak.p[0], r->kpeak.p[1], r->kpeak.p[2]);
+    if (r->kpeak.surf >= 0 && r->kpeak_k != 0) {
+        /* an infinite |k| is a bend too sharp for doubles (the metric rounds away: a ruled
+         * hyperboloid with c = 1e-9 bends by a / c^2 = 1e18 at its waist), not a radius of 0 */
+        if (isinf(r->kpeak_k))
+            sb_printf(b, "  largest |k|        inf: a bend too sharp for double precision to resolve (its radius rounds "
+                         "to 0)");
+        else
+            sb_printf(b, "  largest |k|        %.6g (radius %.6g)", fabs(r->kpeak_k), 1 / fabs(r->kpeak_k));
+        sb_printf(b, " at surface %d patch (%d,%d) u=%.3g v=%.3g, point (%.6g, %.6g, %.6g)\n", r->kpeak.surf,
+                  r->kpeak.pi, r->kpeak.pj, r->kpeak.u, r->kpeak.v, r->kpeak.p[0], r->kpeak.p[1], r->kpeak.p[2]);
+    }
     sb_printf(b, "size                 %.6g (box diagonal)\n", r->size);
     const rg2_crossing_report *c = &r->crossings;
     if (c->density > 0) {

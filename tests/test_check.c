@@ -1583,6 +1583,42 @@ static int json_point_is(const cJSON *a, const double x[3])
            json_is(cJSON_GetArrayItem(a, 1), x[1]) && json_is(cJSON_GetArrayItem(a, 2), x[2]);
 }
 
+/* A ruled hyperboloid with c = 1e-9 bends by a / c^2 = 1e18 at its waist, too sharply for
+ * doubles: its largest |k| comes out infinite. The text says so instead of "inf (radius 0)", and
+ * names the place (the waist, v = 0: patch (0,1) at v = 1); the JSON's k is null. */
+static void curvature_peak_unresolved(void)
+{
+    rg2t_parts p;
+    rg2_check_report r;
+    rg2_error err;
+    rg2_design *d = design_checked("{\"shapes\": {\"h\": {\"kind\": \"hyperboloid1_ruled\", \"c\": 1e-9}}, "
+                                   "\"meshes\": {\"m\": {\"shape\": \"h\"}}}",
+                                   "thin hyperboloid", &p, NULL, &r);
+    if (!d)
+        return;
+    char *text = NULL, *json = NULL;
+    CHECK_OK(rg2_check_format(&r, 0, &text, &err), &err);
+    CHECK_OK(rg2_check_format(&r, 1, &json, &err), &err);
+    const char *line = text ? strstr(text, "  largest |k|") : NULL;
+    printf("ruled hyperboloid, c = 1e-9: largest |k| %g at patch (%d,%d) u=%g v=%g\n", r.kpeak_k, r.kpeak.pi,
+           r.kpeak.pj, r.kpeak.u, r.kpeak.v);
+    static const char want[] = "  largest |k|        inf: a bend too sharp for double precision to resolve (its "
+                               "radius rounds to 0) at surface 0 patch (";
+    CHECK(isinf(r.kpeak_k) && r.kpeak.pj == 1 && r.kpeak.v == 1 && line && !strncmp(line, want, strlen(want)) &&
+              !strstr(text, "radius 0)"),
+          "thin hyperboloid: largest |k| %g at (%d,%d) v=%g; the line: %s", r.kpeak_k, r.kpeak.pi, r.kpeak.pj, r.kpeak.v,
+          line ? line : "(none)");
+    cJSON *j = json ? cJSON_Parse(json) : NULL;
+    CHECK(cJSON_IsNull(cJSON_GetObjectItem(cJSON_GetObjectItem(j, "largest_curvature"), "k")),
+          "thin hyperboloid: the JSON's largest_curvature.k is not null");
+    cJSON_Delete(j);
+    free(text);
+    free(json);
+    rg2_check_report_free(&r);
+    rg2t_design_parts_free(&p);
+    rg2_design_free(d);
+}
+
 /* Where the surface bends most (rg2_check_report.kpeak, the "largest |k|" line). A cylinder of
  * radius 1 scaled by 2 along x is an elliptic cylinder, a = 2, b = 1: it bends most at the ends
  * of the major axis, |k| = a / b^2 = 2, which its 4 arcs put on patch corners. A torus with one
@@ -2446,6 +2482,7 @@ int main(void)
     seam_direction_reported();
     unmeasured_fails();
     unmeasured_where();
+    curvature_peak_unresolved();
     nonfinite_fails();
     metric_overflow_one_side();
     loose_limits();
