@@ -133,6 +133,7 @@ void *rg2__alloc_big(size_t n, size_t size, size_t from, int zero)
 #undef strdup
 #undef posix_memalign
 long rg2__fi_countdown = -1, rg2__fi_injected, rg2__fi_calls;
+unsigned long long rg2__fi_bytes; /* bytes asked for by the allocations counted */
 
 static int fi_fail(void)
 {
@@ -145,21 +146,37 @@ static int fi_fail(void)
     return 1;
 }
 
-void *rg2__fi_malloc(size_t n) { return fi_fail() ? NULL : malloc(n); }
-void *rg2__fi_calloc(size_t n, size_t size) { return fi_fail() ? NULL : calloc(n, size); }
-void *rg2__fi_realloc(void *p, size_t n) { return fi_fail() ? NULL : realloc(p, n); }
+void *rg2__fi_malloc(size_t n)
+{
+    rg2__fi_bytes += n;
+    return fi_fail() ? NULL : malloc(n);
+}
+
+void *rg2__fi_calloc(size_t n, size_t size)
+{
+    rg2__fi_bytes += (unsigned long long)n * size;
+    return fi_fail() ? NULL : calloc(n, size);
+}
+
+void *rg2__fi_realloc(void *p, size_t n)
+{
+    rg2__fi_bytes += n;
+    return fi_fail() ? NULL : realloc(p, n);
+}
 
 char *rg2__fi_strdup(const char *s)
 {
+    size_t n = strlen(s) + 1;
+    rg2__fi_bytes += n;
     if (fi_fail())
         return NULL;
-    size_t n = strlen(s) + 1;
     char *r = malloc(n);
     return r ? memcpy(r, s, n) : NULL;
 }
 
 int rg2__fi_posix_memalign(void **p, size_t align, size_t n)
 {
+    rg2__fi_bytes += n;
     return fi_fail() ? ENOMEM : posix_memalign(p, align, n);
 }
 #endif

@@ -102,11 +102,13 @@ rg2__numtext rg2__num(double x);
  * and posix_memalign of src/ goes through a counting wrapper (alloc.c): while rg2__fi_countdown
  * is >= 0 each allocation counts it down, and the one that finds it at 0 fails (NULL, or ENOMEM
  * from posix_memalign) and sets it to -1, so exactly the (N + 1)-th allocation after setting it
- * to N fails. rg2__fi_injected counts the failures injected, rg2__fi_calls the allocations.
+ * to N fails. rg2__fi_injected counts the failures injected, rg2__fi_calls the allocations,
+ * rg2__fi_bytes the bytes they asked for (tests/test_scaling.c: work that must grow linearly).
  * Allocations inside cJSON, libpng, libc (fopen) and the thread runtimes are not counted. */
 #ifdef RG2_FAULT_INJECT
 #include <stdlib.h>
 extern long rg2__fi_countdown, rg2__fi_injected, rg2__fi_calls;
+extern unsigned long long rg2__fi_bytes;
 void *rg2__fi_malloc(size_t n);
 void *rg2__fi_calloc(size_t n, size_t size);
 void *rg2__fi_realloc(void *p, size_t n);

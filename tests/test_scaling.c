@@ -1,0 +1,90 @@
+/* test_scaling.c -- work that must grow linearly with the input, measured by what it allocates
+ * (never by time): the bytes the library asks for (rg2__fi_bytes, counted by the rg2_fi build of
+ * the library that test_faults uses too, with no failure injected).
+ * Each case compares an input with one twice as long (or a per-item figure with a bound that an
+ * allocation per item of the whole mesh would exceed many times). */
+#define _POSIX_C_SOURCE 200809L
+#include "harness.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+extern unsigned long long rg2__fi_bytes;
+
+/* A growing text. */
+typedef struct {
+    char *s;
+    size_t n, cap;
+} text;
+
+static void add(text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void add(text *t, const char *fmt, ...)
+{
+    for (;;) {
+        va_list ap;
+        va_start(ap, fmt);
+        int n = vsnprintf(t->s ? t->s + t->n : NULL, t->s ? t->cap - t->n : 0, fmt, ap);
+        va_end(ap);
+        if (t->s && t->n + (size_t)n < t->cap) {
+            t->n += (size_t)n;
+            return;
+        }
+        size_t cap = 2 * t->cap + (size_t)n + 4096;
+        char *s = realloc(t->s, cap);
+        if (!s) {
+            fprintf(stderr, "test_scaling: out of memory\n");
+            exit(1);
+        }
+        t->s = s;
+        t->cap = cap;
+    }
+}
+
+/* The bytes rg2_design_parse allocates for the text (-1 if it fails). */
+static long long parse_bytes(const text *t, const char *what)
+{
+    rg2_design *d = NULL;
+    rg2_error err;
+    unsigned long long before = rg2__fi_bytes;
+    rg2_status st = rg2_design_parse(t->s, t->n, what, &d, &err);
+    unsigned long long used = rg2__fi_bytes - before;
+    CHECK(st == RG2_OK, "%s: %s", what, err.msg);
+    rg2_design_free(d);
+    return st ? -1 : (long long)used;
+}
+
+/* A chain of n transforms of a cylinder's 8 x 6 mesh. Each link made tables for every source and
+ * shape of the design so far (n of each): the chain allocated about 22 n^2 bytes, 4 times as
+ * much for twice the links, against 2.1 times now. */
+static text transform_chain(int n)
+{
+    text t = {0};
+    add(&t, "{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {\"m0\": {\"shape\": \"c\", \"u\": {\"arcs\": 8}}");
+    for (int k = 1; k <= n; k++)
+        add(&t, ", \"m%d\": {\"transform\": \"m%d\", \"translate\": [0, 0, 0.001]}", k, k - 1);
+    add(&t, "}, \"output\": \"m%d\"}", n);
+    return t;
+}
+
+static void transform_chains(void)
+{
+    enum { N = 800 };
+    text a = transform_chain(N), b = transform_chain(2 * N);
+    long long ba = parse_bytes(&a, "chain"), bb = parse_bytes(&b, "chain2");
+    double ratio = (double)bb / (double)ba;
+    CHECK(ba > 0 && bb > 0 && ratio < 2.3,
+          "a chain of %d transforms allocated %lld bytes, one of %d %lld: %.2f times as much (linear: about 2)", N,
+          ba, 2 * N, bb, ratio);
+    printf("  transform chains of %d and %d links: %lld and %lld bytes allocated (%.2fx)\n", N, 2 * N, ba, bb, ratio);
+    free(a.s);
+    free(b.s);
+}
+
+int main(void)
+{
+    printf("allocations that grow linearly:\n");
+    transform_chains();
+    return rg2t_done("test_scaling");
+}
