@@ -82,9 +82,48 @@ static void transform_chains(void)
     free(b.s);
 }
 
+/* One edit of n entries, each one point of a 100 x 103 cylinder mesh (kind: "move", "normal" or
+ * "list": a one-point "at" list), the points apart. Each entry allocated a table of the whole mesh
+ * (a list: the points it named; 'normal': a copy of the net): 41 KB or 330 KB an entry. */
+static text edit_entries(int n, const char *kind)
+{
+    text t = {0};
+    add(&t, "{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {\"m0\": {\"shape\": \"c\", \"u\": {\"arcs\": 100}, "
+            "\"v\": {\"segments\": 100, \"from\": 0, \"to\": 4}}, \"e\": {\"edit\": \"m0\", \"points\": [");
+    for (int k = 0; k < n; k++) {
+        int i = (7 * k) % 100, j = (k / 100) * 3 + 1 + (k % 3);
+        if (!strcmp(kind, "normal"))
+            add(&t, "%s{\"at\": [%d, %d], \"normal\": 0.001}", k ? ", " : "", i, j);
+        else if (!strcmp(kind, "list"))
+            add(&t, "%s{\"at\": [[%d, %d]], \"move\": [0, 0, 0.001]}", k ? ", " : "", i, j);
+        else
+            add(&t, "%s{\"at\": [%d, %d], \"move\": [0, 0, 0.001]}", k ? ", " : "", i, j);
+    }
+    add(&t, "]}}, \"output\": \"e\"}");
+    return t;
+}
+
+static void edit_lists(void)
+{
+    static const char *const kinds[] = {"move", "normal", "list"};
+    for (int q = 0; q < 3; q++) {
+        text a = edit_entries(1, kinds[q]), b = edit_entries(400, kinds[q]);
+        long long ba = parse_bytes(&a, kinds[q]), bb = parse_bytes(&b, kinds[q]);
+        double per = (double)(bb - ba) / 399.0;
+        CHECK(ba > 0 && bb > 0 && per < 200.0,
+              "an edit of 400 '%s' entries allocated %lld bytes, of 1 entry %lld: %.0f bytes more an entry (the mesh "
+              "has 10 300 points)", kinds[q], bb, ba, per);
+        printf("  an edit of 1 and of 400 '%s' entries: %lld and %lld bytes allocated (%.0f an entry)\n", kinds[q], ba,
+               bb, per);
+        free(a.s);
+        free(b.s);
+    }
+}
+
 int main(void)
 {
     printf("allocations that grow linearly:\n");
     transform_chains();
+    edit_lists();
     return rg2t_done("test_scaling");
 }
