@@ -308,6 +308,9 @@ char *rg2__json_print(const struct cJSON *item, int formatted);
 /* A number item (an array of n) whose printed text reads back to the same double (cJSON's own
  * printing may drop an ulp; src/json.c). */
 struct cJSON *rg2__json_double(double x);
+/* Its text for a finite x: the shortest of 15, 16 and 17 digits (%.*g) that reads back to x, in
+ * the calling thread's locale (call it in the "C" locale, rg2__c_numeric_begin). */
+void rg2__json_number_text(double x, char buf[40]);
 struct cJSON *rg2__json_doubles(const double *x, int n);
 
 /* A bounding box grown point by point: its largest |coordinate| and its diagonal. */

@@ -66,17 +66,22 @@ char *rg2__json_print(const cJSON *item, int formatted)
  * the 576 numbers of a torus + cylinder control mesh were off by an ulp, and a point set with
  * "to" from its printed position was no longer the shape's. Here the shortest of 15, 16 and 17
  * digits that reads back to the same double, as a raw item (non-finite: cJSON's null). */
+void rg2__json_number_text(double x, char buf[40])
+{
+    for (int digits = 15; digits <= 17; digits++) {
+        snprintf(buf, 40, "%.*g", digits, x);
+        if (strtod(buf, NULL) == x)
+            break;
+    }
+}
+
 cJSON *rg2__json_double(double x)
 {
     if (!isfinite(x))
         return cJSON_CreateNumber(x);
     char buf[40];
     void *loc = rg2__c_numeric_begin();
-    for (int digits = 15; digits <= 17; digits++) {
-        snprintf(buf, sizeof buf, "%.*g", digits, x);
-        if (strtod(buf, NULL) == x)
-            break;
-    }
+    rg2__json_number_text(x, buf);
     rg2__c_numeric_end(loc);
     return cJSON_CreateRaw(buf);
 }

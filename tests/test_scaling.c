@@ -1,15 +1,17 @@
 /* test_scaling.c -- work that must grow linearly with the input, measured by what it allocates
  * (never by time): the bytes the library asks for (rg2__fi_bytes, counted by the rg2_fi build of
- * the library that test_faults uses too, with no failure injected).
+ * the library that test_faults uses too, with no failure injected) and the items cJSON allocates.
  * Each case compares an input with one twice as long (or a per-item figure with a bound that an
  * allocation per item of the whole mesh would exceed many times). */
 #define _POSIX_C_SOURCE 200809L
 #include "harness.h"
 
+#include <cjson/cJSON.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 extern unsigned long long rg2__fi_bytes;
 
@@ -120,10 +122,69 @@ static void edit_lists(void)
     }
 }
 
+/* cJSON allocations, counted through its hooks. */
+static long cjson_allocs;
+static void *count_malloc(size_t n)
+{
+    cjson_allocs++;
+    return malloc(n);
+}
+
+/* rg2 mesh's file (rg2_design_write_mesh) of a 300 x 303 cylinder mesh: it built a cJSON item for
+ * every number and array of the file (about 6 a control point) and the whole text in memory before
+ * writing it; now it writes as it goes, and cJSON allocates nothing. */
+static void mesh_file(void)
+{
+    const char *json = "{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {\"m0\": {\"shape\": \"c\", \"u\": "
+                       "{\"arcs\": 300}, \"v\": {\"segments\": 300, \"from\": 0, \"to\": 4}}}}";
+    rg2_design *d = NULL;
+    rg2_error err;
+    rg2_status st = rg2_design_parse(json, strlen(json), "big", &d, &err);
+    CHECK(st == RG2_OK, "big: %s", err.msg);
+    if (st)
+        return;
+    char path[64];
+    snprintf(path, sizeof path, "/tmp/rg2_test_scaling_%d.json", (int)getpid());
+    cJSON_Hooks hooks = {count_malloc, free};
+    cJSON_InitHooks(&hooks);
+    cjson_allocs = 0;
+    unsigned long long before = rg2__fi_bytes;
+    st = rg2_design_write_mesh(d, path, &err);
+    unsigned long long used = rg2__fi_bytes - before;
+    long allocs = cjson_allocs;
+    cJSON_InitHooks(NULL);
+    CHECK(st == RG2_OK, "write_mesh: %s", err.msg);
+    CHECK(allocs < 100 && used < 100000,
+          "writing the mesh file of 90 900 control points: %ld cJSON allocations, %llu bytes by rg2", allocs, used);
+    printf("  the mesh file of 90 900 control points: %ld cJSON allocations, %llu bytes allocated by rg2\n", allocs,
+           used);
+    /* the file is the JSON it was: it reads back, with every point */
+    FILE *f = fopen(path, "rb");
+    char *buf = NULL;
+    long len = 0;
+    if (f && fseek(f, 0, SEEK_END) == 0 && (len = ftell(f)) > 0 && fseek(f, 0, SEEK_SET) == 0 &&
+        (buf = malloc((size_t)len + 1)) && fread(buf, 1, (size_t)len, f) == (size_t)len) {
+        buf[len] = 0;
+        cJSON *root = cJSON_Parse(buf);
+        cJSON *m = root ? cJSON_GetArrayItem(cJSON_GetObjectItem(root, "meshes"), 0) : NULL;
+        cJSON *dd = m ? cJSON_GetObjectItem(m, "d") : NULL;
+        CHECK(dd && cJSON_GetArraySize(dd) == 300 && cJSON_GetArraySize(dd->child) == 303,
+              "the mesh file does not read back as 300 rows of 303 points");
+        cJSON_Delete(root);
+    } else
+        CHECK(0, "cannot read %s back", path);
+    free(buf);
+    if (f)
+        fclose(f);
+    unlink(path);
+    rg2_design_free(d);
+}
+
 int main(void)
 {
     printf("allocations that grow linearly:\n");
     transform_chains();
     edit_lists();
+    mesh_file();
     return rg2t_done("test_scaling");
 }
