@@ -26,6 +26,13 @@ typedef struct {
 /* Exit codes of the rg2 command. */
 enum { RG2_EXIT_OK = 0, RG2_EXIT_FAIL = 1, RG2_EXIT_USAGE = 2, RG2_EXIT_CHECK = 3 };
 
+/* Whether two boxes ({lo, hi} x {x, y, z}) overlap by half or more of the smaller extent along
+ * every axis (cli/overlap.c), and the first pair (a, b), b < a, in the order a = 1, 2, ..., b = 0
+ * .. a - 1, of boxes that do (boxes with a NaN first coordinate left out): 1 and the pair, or 0.
+ * compared (nullable) gets the number of pairs it compared. */
+int rg2_cli_box_overlap(const double (*A)[3], const double (*B)[3]);
+int rg2_cli_first_overlap(const double (*box)[2][3], int n, int *a, int *b, long *compared);
+
 int rg2_cmd_curve(int argc, char **argv);
 int rg2_cmd_demo(int argc, char **argv);
 int rg2_cmd_build(int argc, char **argv);

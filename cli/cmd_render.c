@@ -63,23 +63,12 @@ static void overlap_note(const rg2_surface *surfs, int n)
     for (int s = 0; s < n; s++)
         if (!rg2_surface_box(&surfs[s], box[s][0], box[s][1]))
             box[s][0][0] = NAN; /* no control point of positive weight: compared with none */
-    for (int a = 0; a < n; a++)
-        for (int b = 0; b < a; b++) {
-            int over = !isnan(box[a][0][0]) && !isnan(box[b][0][0]);
-            for (int k = 0; k < 3 && over; k++) {
-                double ea = box[a][1][k] - box[a][0][k], eb = box[b][1][k] - box[b][0][k];
-                double common = fmin(box[a][1][k], box[b][1][k]) - fmax(box[a][0][k], box[b][0][k]);
-                over = common >= 0.5 * fmin(ea, eb);
-            }
-            if (over) {
-                fprintf(stderr,
-                        "rg2 render: note: output surfaces %d and %d overlap, and are drawn on top of each "
-                        "other; --apart lays the surfaces out side by side, --surface K draws one\n",
-                        b, a);
-                free(box);
-                return;
-            }
-        }
+    int a, b;
+    if (rg2_cli_first_overlap((const double(*)[2][3])box, n, &a, &b, NULL))
+        fprintf(stderr,
+                "rg2 render: note: output surfaces %d and %d overlap, and are drawn on top of each "
+                "other; --apart lays the surfaces out side by side, --surface K draws one\n",
+                b, a);
     free(box);
 }
 
