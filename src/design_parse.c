@@ -7,6 +7,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 typedef struct {
     rg2_design *d;
@@ -1715,6 +1718,10 @@ rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, c
         goto done;
 done:
     cJSON_Delete(root);
+#ifdef __GLIBC__
+    if (len > ((size_t)1 << 20))
+        malloc_trim(0);
+#endif
     return st;
 }
 
