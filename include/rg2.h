@@ -196,6 +196,8 @@ typedef struct {
  *  @return RG2_EINVAL if n < 3 (closed) or n < 4 (open); RG2_ELIMIT past RG2_MAX_POINTS. */
 RG2_API rg2_status rg2_scalars_init(rg2_scalars *s, int n, int closed, rg2_error *err);
 RG2_API void rg2_scalars_free(rg2_scalars *s);
+/** A copy of src into dst (as every output, filled from scratch). dst must not be src: that is
+ *  refused (RG2_EINVAL) with dst left as it was; so for rg2_mesh_copy and rg2_surface_copy. */
 RG2_API rg2_status rg2_scalars_copy(const rg2_scalars *src, rg2_scalars *dst, rg2_error *err);
 /** Number of stored weights: n (closed) or n + 1 (open). */
 RG2_API int rg2_scalars_num_w(const rg2_scalars *s);
@@ -304,6 +306,7 @@ typedef struct {
 RG2_API rg2_status rg2_mesh_init(rg2_mesh *m, int nu, int nv, int closed_u, int closed_v,
                                  rg2_error *err);
 RG2_API void rg2_mesh_free(rg2_mesh *m);
+/** A copy of src (dst must not be src, as for rg2_scalars_copy). */
 RG2_API rg2_status rg2_mesh_copy(const rg2_mesh *src, rg2_mesh *dst, rg2_error *err);
 /** Check counts, scalars of both directions, and finiteness of every 4-tuple (naming [i][j]). */
 RG2_API rg2_status rg2_mesh_check(const rg2_mesh *m, rg2_error *err);
@@ -452,6 +455,8 @@ RG2_API rg2_status rg2_surface_build(const rg2_mesh *m, rg2_surface *out, rg2_er
  *  rg2_surface_build. */
 RG2_API rg2_status rg2_surface_rebuild(const rg2_mesh *m, rg2_surface *s, rg2_error *err);
 RG2_API void rg2_surface_free(rg2_surface *s);
+/** A copy of src, tags and higher-degree patches included; an empty src (zero patches) gives an
+ *  empty dst. dst must not be src (RG2_EINVAL, dst left as it was, as for rg2_scalars_copy). */
 RG2_API rg2_status rg2_surface_copy(const rg2_surface *src, rg2_surface *dst, rg2_error *err);
 /** Bi-3 patch (i, j). Where patch (i, j) is of higher degree (s->xp, general-quadratic caps)
  *  this is the unused all-NaN placeholder, and so is whatever rg2_patch_eval, rg2_patch_point

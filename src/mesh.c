@@ -40,6 +40,9 @@ void rg2_mesh_free(rg2_mesh *m)
 
 rg2_status rg2_mesh_copy(const rg2_mesh *src, rg2_mesh *dst, rg2_error *err)
 {
+    if (src == dst) /* (filling dst from scratch zeroed src first: the mesh was lost, its arrays leaked,
+                       and the message spoke of "mesh u: scalars: 0 control points") */
+        return rg2__fail(err, RG2_EINVAL, "mesh copy: the destination is the source; give a mesh of its own");
     rg2_status st = rg2_mesh_init(dst, src->nu, src->nv, src->su.closed, src->sv.closed, err);
     if (st)
         return st;

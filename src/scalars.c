@@ -85,6 +85,8 @@ void rg2_scalars_free(rg2_scalars *s)
 
 rg2_status rg2_scalars_copy(const rg2_scalars *src, rg2_scalars *dst, rg2_error *err)
 {
+    if (src == dst) /* (filling dst from scratch zeroed src first: uniform scalars, returning RG2_OK) */
+        return rg2__fail(err, RG2_EINVAL, "scalars copy: the destination is the source; give a struct of its own");
     rg2_status st = rg2_scalars_init(dst, src->n, src->closed, err);
     if (st)
         return st;

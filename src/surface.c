@@ -43,8 +43,15 @@ static rg2_status surface_alloc(rg2_surface *s, int nu, int nv, int with_tag, rg
 
 rg2_status rg2_surface_copy(const rg2_surface *src, rg2_surface *dst, rg2_error *err)
 {
-    if (!src || !dst)
+    if (!src || !dst) {
+        if (dst)
+            memset(dst, 0, sizeof *dst);
         return rg2__fail(err, RG2_EINVAL, "surface copy: NULL %s", src ? "destination" : "source");
+    }
+    if (src == dst) /* (filling dst from scratch zeroed src first: an all-zero surface, returning RG2_OK) */
+        return rg2__fail(err, RG2_EINVAL, "surface copy: the destination is the source; give a surface of its own");
+    if (src->nu < 0 || src->nv < 0 || ((size_t)src->nu * (size_t)src->nv > 0 && !src->patch))
+        memset(dst, 0, sizeof *dst); /* (a failed call leaves its output zeroed, rg2.h) */
     if (src->nu < 0 || src->nv < 0 || ((size_t)src->nu * (size_t)src->nv > 0 && !src->patch))
         return rg2__fail(err, RG2_EINVAL, "surface copy: the source is not a surface (%d x %d patches, patch array %s)",
                          src->nu, src->nv, src->patch ? "set" : "NULL");

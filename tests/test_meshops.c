@@ -313,6 +313,36 @@ static void errors(const rg2_mesh *M)
     expect_err(rg2_mesh_merge(self, 2, 0, 0, RG2_SEAM_PRESERVE, &c, &err), RG2_EINVAL, &err, "out is also an input",
                "merge into an input");
     same_mesh(&c, &M[TUBE], "an input refused as the output");
+    /* the copies likewise: each filled its output from scratch, which zeroed the source first:
+     * rg2_mesh_copy(&c, &c) left c empty (its arrays leaked) with the message "mesh u: scalars: 0
+     * control points, ...", rg2_scalars_copy and rg2_surface_copy returned RG2_OK with uniform
+     * scalars and all-zero patches */
+    expect_err(rg2_mesh_copy(&c, &c, &err), RG2_EINVAL, &err, "destination is the source", "mesh copied onto itself");
+    same_mesh(&c, &M[TUBE], "a mesh refused as its own copy");
+    if (!c.p) /* (zeroed: made again for the checks below) */
+        CHECK_OK(rg2_mesh_copy(&M[TUBE], &c, &err), &err);
+    rg2_scalars sc;
+    CHECK_OK(rg2_scalars_copy(&c.su, &sc, &err), &err);
+    expect_err(rg2_scalars_copy(&sc, &sc, &err), RG2_EINVAL, &err, "destination is the source",
+               "scalars copied onto themselves");
+    CHECK(sc.w && c.su.w && scalars_same(&sc, &c.su), "scalars refused as their own copy changed");
+    rg2_scalars_free(&sc);
+    rg2_surface sf, sf0;
+    CHECK_OK(rg2_surface_build(&c, &sf, &err), &err);
+    CHECK_OK(rg2_surface_copy(&sf, &sf0, &err), &err);
+    expect_err(rg2_surface_copy(&sf, &sf, &err), RG2_EINVAL, &err, "destination is the source",
+               "surface copied onto itself");
+    CHECK(sf.nu == sf0.nu && sf.nv == sf0.nv && sf.patch && sf0.patch &&
+              !memcmp(sf.patch, sf0.patch, (size_t)sf0.nu * (size_t)sf0.nv * sizeof(rg2_patch)),
+          "a surface refused as its own copy changed (%d x %d patches)", sf.nu, sf.nv);
+    /* a source that is no surface: the output zeroed, as every failed call leaves it */
+    rg2_surface bogus = {0};
+    bogus.nu = -1;
+    rg2_surface_free(&sf);
+    memset(&sf, 0xab, sizeof sf); /* (garbage: the failed call must not read it) */
+    expect_err(rg2_surface_copy(&bogus, &sf, &err), RG2_EINVAL, &err, "not a surface", "copy of a bogus surface");
+    CHECK(sf.patch == NULL && sf.nu == 0 && sf.bu == NULL, "a failed surface copy left its output %d x %d", sf.nu, sf.nv);
+    rg2_surface_free(&sf0);
 
     /* a bad input mesh: its check's message, prefixed with the function and the input */
     rg2_mesh_at(&c, 2, 3)[1] = NAN;
