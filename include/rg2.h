@@ -605,13 +605,14 @@ RG2_API void rg2_locator_free(rg2_locator *L);
  *  surface's border, or where two patches' nearest points meet) it need not. Cost: a descent of
  *  the locator's tree of patch boxes plus the subdivision near the answer (about 14 us on a
  *  torus of 48 patches, 48 us on one of 40 000; docs/picking.md).
- *  @return RG2_EINVAL (NULL), RG2_ENONFINITE (x), RG2_ENOMEM. */
+ *  @return RG2_EINVAL (NULL), RG2_ENONFINITE (x), RG2_EDOMAIN (a coordinate of x beyond 1e100,
+ *  the numeric range of docs/robustness.md), RG2_ENOMEM. */
 RG2_API rg2_status rg2_locator_closest(const rg2_locator *L, const double x[3], rg2_hit *out, rg2_error *err);
 /** The first point where the ray o + t d, 0 <= t <= tmax, meets the surface (out->i = -1 when it
  *  does not); d need not be unit (t is in units of d). tmax = INFINITY for no limit. About 5 us
  *  on a torus of 48 patches, 4.4 us on one of 40 000.
- *  @return RG2_EINVAL (NULL), RG2_ENONFINITE (o, d), RG2_EDOMAIN (d = 0; tmax NaN or < 0),
- *  RG2_ENOMEM. */
+ *  @return RG2_EINVAL (NULL), RG2_ENONFINITE (o, d), RG2_EDOMAIN (d = 0, or its largest component
+ *  outside [1e-100, 1e100]; a coordinate of o beyond 1e100; tmax NaN or < 0), RG2_ENOMEM. */
 RG2_API rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double d[3], double tmax,
                                    rg2_hit *out, rg2_error *err);
 

@@ -1048,6 +1048,14 @@ static rg2_status query_check(const rg2_locator *L, const char *who, const char 
         if (!isfinite(x[k]))
             return rg2__fail(err, RG2_ENONFINITE, "%s: %s[%d] is not a finite number", who, k < 3 ? what : "d",
                              k % 3);
+    /* a point past the numeric range: the squared distances overflow past about 1e154 (the
+     * nearest point at 1e155 was "the search ended before any patch", RG2_ELIMIT; a ray from
+     * (1e300, 0.1, 0.05) along -x "proved" a miss, bound = inf, through a torus at the origin) */
+    for (int k = 0; k < n && strcmp(what, "d"); k++)
+        if (fabs(x[k]) > RG2_DESIGN_MAX_ABS)
+            return rg2__fail(err, RG2_EDOMAIN,
+                             "%s: %s[%d] = %g is beyond %g, the numeric range of the searches (docs/robustness.md)",
+                             who, what, k, x[k], RG2_DESIGN_MAX_ABS);
     return RG2_OK;
 }
 
@@ -1440,9 +1448,19 @@ rg2_status rg2_locator_ray(const rg2_locator *L, const double o[3], const double
     double dd = dot3(d, d), e[3][3];
     int dok = dd > 0 && isfinite(dd);
     double idd = 1.0 / (dok ? dd : 1.0); /* (a divisor that cannot trap: see unit3) */
-    if (!dok)
+    double dmax = fmax(fabs(d[0]), fmax(fabs(d[1]), fabs(d[2])));
+    if (!(dmax > 0))
         return rg2__fail(err, RG2_EDOMAIN, "rg2_locator_ray: the direction d = (%g, %g, %g) has no length", d[0],
                          d[1], d[2]);
+    /* a length outside the numeric range: d . d left the double range (1e155 and 1e-200 were
+     * "has no length"), or its subnormal digits lost the ray (|d| = 1e-160 missed a torus it
+     * goes through, RG2_OK) */
+    if (!dok || dmax > RG2_DESIGN_MAX_ABS || dmax < RG2_DESIGN_MIN_ABS)
+        return rg2__fail(err, RG2_EDOMAIN,
+                         "rg2_locator_ray: the direction d = (%g, %g, %g) is %s: its largest component must lie "
+                         "in [%g, %g]; scale it (d need not be unit, t is in units of d)",
+                         d[0], d[1], d[2], dmax > 1.0 ? "too long" : "too short", RG2_DESIGN_MIN_ABS,
+                         RG2_DESIGN_MAX_ABS);
     double dn[3] = {d[0], d[1], d[2]};
     ray_frame(d, idd, dn, e);
     const rg2_surface *s = L->s;

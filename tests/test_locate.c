@@ -617,6 +617,36 @@ static void special(void)
         CHECK(h.i >= 0 && fabs(h.dist - 1) <= 1e-15 && fabs(h.p[k / 2] - 1) <= 1e-15,
               "sphere centre ray (%g, %g, %g): i %d t %.17g", dk[0], dk[1], dk[2], h.i, h.dist);
     }
+    /* queries past the numeric range (rg2.h: coordinates up to 1e100, a direction whose largest
+     * component lies in [1e-100, 1e100]) are refused, naming the number: a ray from (1e300, 0, 0)
+     * along -x through this sphere "proved" a miss (RG2_OK, i = -1, bound = inf), one along
+     * (-1e-160, 0, 0) from x = 10 missed it too (RG2_OK), directions of 1e155 and 1e-200 were
+     * "has no length", and the nearest point to (1e155, 0, 0) was RG2_ELIMIT, "the search ended
+     * before any patch"; within the range, the answers stand (t in units of d) */
+    double far[3] = {1e300, 0, 0}, far2[3] = {1e155, 0, 0}, mx[3] = {-1, 0, 0}, ten[3] = {10, 0, 0};
+    rg2_status st = rg2_locator_ray(L, far, mx, INFINITY, &h, &err);
+    CHECK(st == RG2_EDOMAIN && h.i == -1 && strstr(err.msg, "o[0] = 1e+300 is beyond 1e+100"),
+          "a ray from 1e300: %s, i %d, t %g, bound %g: %s", rg2_status_str(st), h.i, h.dist, h.bound, st ? err.msg : "");
+    st = rg2_locator_closest(L, far2, &h, &err);
+    CHECK(st == RG2_EDOMAIN && strstr(err.msg, "x[0] = 1e+155 is beyond 1e+100"), "the nearest point to 1e155: %s: %s",
+          rg2_status_str(st), st ? err.msg : "");
+    static const double dl[4] = {1e-160, 1e-200, 1e155, 1e101};
+    for (int k = 0; k < 4; k++) {
+        double dk[3] = {-dl[k], 0, 0};
+        st = rg2_locator_ray(L, ten, dk, INFINITY, &h, &err);
+        CHECK(st == RG2_EDOMAIN && strstr(err.msg, dl[k] < 1 ? "is too short" : "is too long") &&
+                  strstr(err.msg, "scale it"),
+              "a direction of length %g: %s, i %d, t %g: %s", dl[k], rg2_status_str(st), h.i, h.dist, st ? err.msg : "");
+    }
+    double far3[3] = {1e100, 0, 0}, dmin[3] = {-1e-100, 0, 0}, dmax[3] = {-1e100, 0, 0};
+    CHECK_OK(rg2_locator_ray(L, far3, mx, INFINITY, &h, &err), &err);
+    CHECK(h.i >= 0, "a ray from 1e100 through the sphere misses it (t %g)", h.dist);
+    CHECK_OK(rg2_locator_ray(L, ten, dmin, INFINITY, &h, &err), &err);
+    CHECK(h.i >= 0 && fabs(h.dist * 1e-100 - 9) <= 1e-14, "a ray along 1e-100: i %d, t |d| = %.17g (want 9)", h.i,
+          h.dist * 1e-100);
+    CHECK_OK(rg2_locator_ray(L, ten, dmax, INFINITY, &h, &err), &err);
+    CHECK(h.i >= 0 && fabs(h.dist * 1e100 - 9) <= 1e-14, "a ray along 1e100: i %d, t |d| = %.17g (want 9)", h.i,
+          h.dist * 1e100);
     rg2_locator_free(L);
 
     rg2_locator *L2 = (rg2_locator *)&err; /* (overwritten with NULL on failure) */
