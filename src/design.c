@@ -371,7 +371,8 @@ rg2_status rg2_mesh_check_range(const rg2_mesh *m, const char *what, rg2_error *
 static rg2_status mesh_range(const rg2_mesh *m, const char *file, const char *name, rg2_error *err)
 {
     char what[300];
-    snprintf(what, sizeof what, "%s: meshes.%s", file, name);
+    if (snprintf(what, sizeof what, "%s: meshes.%s", file, name) >= (int)sizeof what)
+        rg2__utf8_cut(what); /* (long names: cut between UTF-8 characters) */
     return rg2_mesh_check_range(m, what, err);
 }
 

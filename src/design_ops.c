@@ -1001,9 +1001,17 @@ rg2_status rg2__op_transform(rg2_design *d, const rg2__dmesh *in, const double M
         if (nsh < 0) {
             rg2_shape ns = d->shapes[sh];
             rg2_xform_mul(M, d->shapes[sh].xform, ns.xform);
-            char label[256];
-            snprintf(label, sizeof label, "%s@%s", d->labels[sh], what);
+            /* (whole: cut to 256 bytes, two long labels gave one label, ending in half a UTF-8
+             * character) */
+            size_t ll = strlen(d->labels[sh]) + strlen(what) + 2;
+            char *label = malloc(ll);
+            if (!label) {
+                rg2__fail(err, RG2_ENOMEM, "design: out of memory for shapes");
+                goto fail;
+            }
+            snprintf(label, ll, "%s@%s", d->labels[sh], what);
             nsh = rg2__design_add_shape(d, &ns, label, err);
+            free(label);
             if (nsh < 0)
                 goto fail;
             if (index_put(&smap, sh, nsh))
@@ -1123,7 +1131,8 @@ rg2_status rg2__op_morph(const rg2__dmesh *a, const rg2__dmesh *b, double t, rg2
                 out->jun[k][i] = -1;
         }
         char w[300], when[40];
-        snprintf(w, sizeof w, "%s.t", what);
+        if (snprintf(w, sizeof w, "%s.t", what) >= (int)sizeof w)
+            rg2__utf8_cut(w);
         snprintf(when, sizeof when, "at t = %g, ", t);
         st = rg2__dir_check(so, k, w, when, err);
         if (st) {
@@ -1255,6 +1264,7 @@ rg2_status rg2__dir_check(const rg2_scalars *s, int dir, const char *what, const
                          rg2__finite(K) ? "> 0" : "a finite number > 0 (the scalars leave the double range)");
     }
     char w[340];
-    snprintf(w, sizeof w, "%s: %s%s", what, when, dir_name(dir));
+    if (snprintf(w, sizeof w, "%s: %s%s", what, when, dir_name(dir)) >= (int)sizeof w)
+        rg2__utf8_cut(w);
     return rg2_scalars_check(s, w, err); /* (the operations keep w, b > 0: not reached) */
 }

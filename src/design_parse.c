@@ -22,12 +22,26 @@ __attribute__((format(printf, 4, 5)))
 #endif
 static rg2_status fail(pctx *c, rg2_status code, const char *path, const char *fmt, ...)
 {
-    char msg[400];
-    va_list ap;
+    /* formatted whole: a message longer than a fixed buffer (a long label quoted in it) lost its
+     * end, the reason, and could end in half a UTF-8 character, before rg2__fail shortens the
+     * whole message keeping its head and its end */
+    char small[400], *msg = small;
+    va_list ap, ap2;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_copy(ap2, ap);
+    int n = vsnprintf(small, sizeof small, fmt, ap);
     va_end(ap);
-    return rg2__fail(c->err, code, "%s: %s: %s", c->file, path, msg);
+    if (n >= (int)sizeof small && (msg = malloc((size_t)n + 1)) != NULL)
+        vsnprintf(msg, (size_t)n + 1, fmt, ap2);
+    else if (!msg) { /* (out of memory: cut, between characters) */
+        msg = small;
+        rg2__utf8_cut(small);
+    }
+    va_end(ap2);
+    rg2_status st = rg2__fail(c->err, code, "%s: %s: %s", c->file, path, msg);
+    if (msg != small)
+        free(msg);
+    return st;
 }
 
 /* ------------------------------------------------------------------------------------- */
@@ -101,8 +115,10 @@ static void fmtpath(char *buf, size_t cap, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(buf, cap, fmt, ap);
+    int n = vsnprintf(buf, cap, fmt, ap);
     va_end(ap);
+    if (n >= (int)cap) /* a path of long names cut short: between UTF-8 characters */
+        rg2__utf8_cut(buf);
 }
 
 static void subpath(char *buf, size_t cap, const char *path, const char *key)

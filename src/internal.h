@@ -88,6 +88,9 @@ rg2_status rg2__fail(rg2_error *err, rg2_status code, const char *fmt, ...)
 rg2_status rg2__prefix(rg2_error *err, rg2_status st, const char *what);
 /* Set err to RG2_OK with an empty message. */
 void rg2__ok(rg2_error *err);
+/* Drop an incomplete UTF-8 sequence from the end of s, as snprintf leaves one when it cuts a
+ * text short in the middle of a character (src/status.c). */
+void rg2__utf8_cut(char *s);
 
 /* A double for a message: the fewest significant digits (up to 17) that read back as exactly x,
  * so a knot of 0.45 reads "0.45", not "0.45000000000000001". Use as rg2__num(x).s inside the

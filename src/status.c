@@ -53,7 +53,8 @@ rg2_status rg2__fail(rg2_error *err, rg2_status code, const char *fmt, ...)
             memcpy(err->msg + h, mid, sizeof mid - 1);
             memcpy(err->msg + h + sizeof mid - 1, full + t, (size_t)n - t + 1);
             free(full);
-        }
+        } else if (n >= (int)sizeof err->msg) /* (out of memory: cut, between characters) */
+            rg2__utf8_cut(err->msg);
         va_end(ap2);
         err->code = code;
     }
@@ -96,4 +97,17 @@ void rg2__ok(rg2_error *err)
         err->code = RG2_OK;
         err->msg[0] = '\0';
     }
+}
+
+void rg2__utf8_cut(char *s)
+{
+    size_t n = strlen(s), i = n;
+    while (i > 0 && n - i < 3 && ((unsigned char)s[i - 1] & 0xC0) == 0x80) /* continuation bytes */
+        i--;
+    if (i == 0)
+        return;
+    unsigned char c = (unsigned char)s[i - 1];
+    size_t want = c >= 0xF0 ? 4 : c >= 0xE0 ? 3 : c >= 0xC0 ? 2 : 1;
+    if (c >= 0xC0 && n - (i - 1) < want) /* a lead byte whose character was cut */
+        s[i - 1] = '\0';
 }

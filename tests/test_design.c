@@ -1683,6 +1683,79 @@ static void long_messages(void)
           "a prefixed 507-byte message: %s", err.msg);
 }
 
+/* Valid UTF-8: every lead byte followed by as many continuation bytes as it announces. */
+static int utf8_valid(const char *s)
+{
+    const unsigned char *p = (const unsigned char *)s;
+    while (*p) {
+        int n = *p < 0x80 ? 0 : (*p & 0xE0) == 0xC0 ? 1 : (*p & 0xF0) == 0xE0 ? 2 : (*p & 0xF8) == 0xF0 ? 3 : -1;
+        if (n < 0)
+            return 0;
+        for (p++; n > 0; n--, p++)
+            if ((*p & 0xC0) != 0x80)
+                return 0;
+    }
+    return 1;
+}
+
+/* Long UTF-8 names in a design's messages and labels (rg2.h: rg2_error.msg is UTF-8, a longer
+ * message keeps its head and its end). The parser formatted its part of a message into 400 bytes
+ * and its JSON paths into 300: a 600-byte label quoted in "no shape labelled ..." lost the end of
+ * the message and, cut inside an 'ä', left half a character in it; a 600-byte mesh name cut the
+ * path "meshes.<name>" inside one (for an odd number of ASCII bytes before the 'ä's). A transform's
+ * copy of a shape is labelled "<label>@meshes.<name>", cut to 256 bytes: half a character again. */
+static void long_utf8_names(void)
+{
+    for (int odd = 0; odd < 2; odd++) {
+        char name[700];
+        size_t o = 0;
+        if (odd)
+            name[o++] = 'a';
+        for (int k = 0; k < 300; k++)
+            o += (size_t)snprintf(name + o, sizeof name - o, "\xc3\xa4"); /* 'ä' */
+        static char json[4096];
+        rg2_design *d = NULL;
+        rg2_error err;
+        /* a shape label quoted whole: the message's end, "in \"shapes\"", is kept */
+        snprintf(json, sizeof json,
+                 "{\"shapes\": {\"%s\": {\"kind\": \"torus\"}}, \"meshes\": {\"m\": {\"shape\": \"%sx\"}}}",
+                 name, name);
+        rg2_status st = rg2_design_parse(json, strlen(json), "t.json", &d, &err);
+        size_t len = strlen(err.msg), tail = strlen("in \"shapes\"");
+        CHECK(st == RG2_EPARSE && d == NULL && utf8_valid(err.msg) && len > tail &&
+                  !strcmp(err.msg + len - tail, "in \"shapes\""),
+              "unknown %zu-byte shape label (odd %d): %s, valid UTF-8 %d, message ends '%s'", strlen(name) + 1, odd,
+              rg2_status_str(st), utf8_valid(err.msg), len > 40 ? err.msg + len - 40 : err.msg);
+        /* a long mesh name in the path of a message */
+        snprintf(json, sizeof json,
+                 "{\"shapes\": {\"t\": {\"kind\": \"torus\"}}, \"meshes\": {\"%s\": {\"shape\": \"t\", "
+                 "\"u\": {\"arcs\": 4, \"bogus\": 1}}}}",
+                 name);
+        st = rg2_design_parse(json, strlen(json), "t.json", &d, &err);
+        CHECK(st == RG2_EPARSE && d == NULL && utf8_valid(err.msg) && strstr(err.msg, "bogus"),
+              "unknown key under a long mesh name (odd %d): %s, valid UTF-8 %d: %s", odd, rg2_status_str(st),
+              utf8_valid(err.msg), err.msg);
+        /* a transformed copy's shape label, whole */
+        snprintf(json, sizeof json,
+                 "{\"shapes\": {\"%s\": {\"kind\": \"torus\"}}, \"meshes\": {\"m\": {\"shape\": \"%s\"}, "
+                 "\"T%s\": {\"transform\": \"m\", \"translate\": [1, 0, 0]}}}",
+                 name, name, name);
+        st = rg2_design_parse(json, strlen(json), "t.json", &d, &err);
+        CHECK(st == RG2_OK && rg2_design_num_shapes(d) == 2, "transform of a long-labelled shape: %s: %s",
+              rg2_status_str(st), err.msg);
+        if (st == RG2_OK && rg2_design_num_shapes(d) == 2) {
+            /* (the label's path part is the operation's path, cut to 300 bytes as every path) */
+            const char *l = rg2_design_shape_label(d, 1);
+            char want[1500];
+            snprintf(want, sizeof want, "%s@meshes.T", name);
+            CHECK(!strncmp(l, want, strlen(want)) && strlen(l) > 800 && utf8_valid(l),
+                  "the transformed copy's label (%zu bytes, starting with the %zu of '<label>@meshes.T'; valid UTF-8 %d)",
+                  strlen(l), strlen(want), utf8_valid(l));
+        }
+        rg2_design_free(d);
+    }
+}
+
 /* A NULL design (or path) as the header's conventions take it: rg2_design_write_mesh(NULL, ...)
  * dereferenced it (a segfault) and a NULL path went to strlen, where rg2_design_load refuses a
  * NULL path with RG2_EINVAL and the accessors give 0 / NULL / -1 for a NULL design. */
@@ -2581,6 +2654,7 @@ int main(void)
 {
     parse_sizes();
     long_messages();
+    long_utf8_names();
     printf("design files:\n");
     text_files();
     printf("examples (exact-patch residual |F| / (|grad F| size), G2 seam gaps):\n");
