@@ -47,26 +47,39 @@ static rg2_status fail(pctx *c, rg2_status code, const char *path, const char *f
 /* ------------------------------------------------------------------------------------- */
 /* suggestions */
 
+/* The edit distance of a and b when it is at most EDIT_BAND (the most rg2_closest_name takes),
+ * else some number above EDIT_BAND: the table's cells within EDIT_BAND of its diagonal, so
+ * strings of any length cost O(length) (it gave 99 past 63 bytes: a 64-byte word never matched,
+ * not even the name it equals). */
+#define EDIT_BAND 3
+#define EDIT_FAR 99
 static int edit_distance(const char *a, const char *b)
 {
     size_t la = strlen(a), lb = strlen(b);
-    if (la > 63 || lb > 63)
-        return 99;
-    int row[64];
-    for (size_t j = 0; j <= lb; j++)
-        row[j] = (int)j;
+    if ((la > lb ? la - lb : lb - la) > EDIT_BAND)
+        return EDIT_FAR;
+    int prev[2 * EDIT_BAND + 1], cur[2 * EDIT_BAND + 1]; /* [d + EDIT_BAND]: column j = i + d */
+    for (int d = -EDIT_BAND; d <= EDIT_BAND; d++)
+        prev[d + EDIT_BAND] = d >= 0 && (size_t)d <= lb ? d : EDIT_FAR;
     for (size_t i = 1; i <= la; i++) {
-        int prev = row[0];
-        row[0] = (int)i;
-        for (size_t j = 1; j <= lb; j++) {
-            int cur = row[j];
-            int sub = prev + (a[i - 1] != b[j - 1]);
-            int del = row[j] + 1, ins = row[j - 1] + 1;
-            row[j] = sub < del ? (sub < ins ? sub : ins) : (del < ins ? del : ins);
-            prev = cur;
+        for (int d = -EDIT_BAND; d <= EDIT_BAND; d++) {
+            long long j = (long long)i + d;
+            int v = EDIT_FAR;
+            if (j == 0)
+                v = i < EDIT_FAR ? (int)i : EDIT_FAR;
+            else if (j > 0 && (size_t)j <= lb) {
+                int sub = prev[d + EDIT_BAND] + (a[i - 1] != b[j - 1]);
+                int del = d < EDIT_BAND ? prev[d + 1 + EDIT_BAND] + 1 : EDIT_FAR;
+                int ins = d > -EDIT_BAND ? cur[d - 1 + EDIT_BAND] + 1 : EDIT_FAR;
+                v = sub < del ? (sub < ins ? sub : ins) : (del < ins ? del : ins);
+                if (v > EDIT_FAR)
+                    v = EDIT_FAR;
+            }
+            cur[d + EDIT_BAND] = v;
         }
+        memcpy(prev, cur, sizeof prev);
     }
-    return row[lb];
+    return prev[(long long)lb - (long long)la + EDIT_BAND];
 }
 
 const char *rg2_closest_name(const char *word, const char *const *names, int n)
@@ -99,10 +112,13 @@ static void suggest(const char *word, const char *const *names, int n, char *out
                 break;
             best = names[k];
         }
-    if (best)
-        snprintf(out, cap, " (did you mean '%s'?)", best);
-    else
-        out[0] = 0;
+    out[0] = 0;
+    static const char more[] = "...'?)";
+    if (best && snprintf(out, cap, " (did you mean '%s'?)", best) >= (int)cap && cap > sizeof more + 20) {
+        out[cap - sizeof more] = 0; /* a long name: its head, cut between UTF-8 characters */
+        rg2__utf8_cut(out);
+        strcat(out, more);
+    }
 }
 
 /* ------------------------------------------------------------------------------------- */

@@ -1239,6 +1239,55 @@ static void closest_names(void)
               ops[best], lim, got ? got : "NULL", want ? want : "NULL");
     }
     CHECK(at_limit >= 3 && past_limit >= 2, "%d words at the limit, %d one past it", at_limit, past_limit);
+    /* random words and names of up to 15 letters over "abc": the same rule */
+    rg2t_rng g;
+    rg2t_seed(&g, 1162);
+    int wrong = 0, found = 0;
+    for (int t = 0; t < 3000; t++) {
+        char w[16], nm[4][16];
+        const char *names[4] = {nm[0], nm[1], nm[2], nm[3]};
+        char *all[5] = {w, nm[0], nm[1], nm[2], nm[3]};
+        for (int q = 0; q < 5; q++) {
+            int len = rg2t_int(&g, 0, 15);
+            for (int c = 0; c < len; c++)
+                all[q][c] = (char)('a' + rg2t_int(&g, 0, 2));
+            all[q][len] = 0;
+        }
+        int best = -1, bd = 1 << 30, len = (int)strlen(w);
+        for (int k = 0; k < 4; k++) {
+            int dd = edit_distance_table(w, names[k]);
+            if (dd < bd)
+                bd = dd, best = k;
+        }
+        int lim = len / 2 + 1 < 3 ? len / 2 + 1 : 3;
+        const char *want = bd <= lim ? names[best] : NULL, *got = rg2_closest_name(w, names, 4);
+        wrong += got != want;
+        found += want != NULL;
+    }
+    CHECK(wrong == 0 && found > 300, "random words: %d of 3000 answered against the rule (%d with a name)", wrong, found);
+    /* names of any length (a word or name past 63 bytes was never close to anything, not even to
+     * itself), at the cost of its length: 200 000 letters */
+    enum { LONG = 200000 };
+    char *a = malloc(LONG + 1), *b = malloc(LONG + 1);
+    if (!a || !b) {
+        free(a);
+        free(b);
+        return;
+    }
+    for (int c = 0; c < LONG; c++)
+        a[c] = b[c] = (char)('a' + c % 26);
+    a[LONG] = b[LONG] = 0;
+    const char *longs[2] = {"mesh", b};
+    CHECK(rg2_closest_name(a, longs, 2) == b, "a 200000-letter word and the same name: %s", rg2_closest_name(a, longs, 2) ? "another" : "NULL");
+    a[64] = 'X', a[100000] = 'Y';
+    CHECK(rg2_closest_name(a, longs, 2) == b, "a 200000-letter word 2 edits from a name: not found");
+    a[64] = 0;
+    b[66] = 0; /* a 64-byte word, a 66-byte name that continues it */
+    CHECK(rg2_closest_name(a, longs, 2) == b, "a 64-byte word 2 edits from a 66-byte name: not found");
+    b[70] = 0, b[66] = 'x';
+    CHECK(rg2_closest_name(a, longs, 2) == NULL, "a 64-byte word 6 edits from a 70-byte name: found");
+    free(a);
+    free(b);
 }
 
 static void bad_inputs(void)
@@ -1716,16 +1765,27 @@ static void long_utf8_names(void)
         static char json[4096];
         rg2_design *d = NULL;
         rg2_error err;
-        /* a shape label quoted whole: the message's end, "in \"shapes\"", is kept */
+        /* a shape label quoted whole: the message's end, "in \"shapes\"", is kept (4 edits from the
+         * label: no suggestion) */
         snprintf(json, sizeof json,
-                 "{\"shapes\": {\"%s\": {\"kind\": \"torus\"}}, \"meshes\": {\"m\": {\"shape\": \"%sx\"}}}",
+                 "{\"shapes\": {\"%s\": {\"kind\": \"torus\"}}, \"meshes\": {\"m\": {\"shape\": \"wxyz%s\"}}}",
                  name, name);
         rg2_status st = rg2_design_parse(json, strlen(json), "t.json", &d, &err);
         size_t len = strlen(err.msg), tail = strlen("in \"shapes\"");
         CHECK(st == RG2_EPARSE && d == NULL && utf8_valid(err.msg) && len > tail &&
                   !strcmp(err.msg + len - tail, "in \"shapes\""),
-              "unknown %zu-byte shape label (odd %d): %s, valid UTF-8 %d, message ends '%s'", strlen(name) + 1, odd,
+              "unknown %zu-byte shape label (odd %d): %s, valid UTF-8 %d, message ends '%s'", strlen(name) + 4, odd,
               rg2_status_str(st), utf8_valid(err.msg), len > 40 ? err.msg + len - 40 : err.msg);
+        /* one edit from the label: the suggestion names it, cut short between characters */
+        snprintf(json, sizeof json,
+                 "{\"shapes\": {\"%s\": {\"kind\": \"torus\"}}, \"meshes\": {\"m\": {\"shape\": \"%sx\"}}}",
+                 name, name);
+        st = rg2_design_parse(json, strlen(json), "t.json", &d, &err);
+        len = strlen(err.msg);
+        CHECK(st == RG2_EPARSE && d == NULL && utf8_valid(err.msg) && strstr(err.msg, "(did you mean '") && len > 6 &&
+                  !strcmp(err.msg + len - 6, "...'?)"),
+              "an unknown label one edit from a %zu-byte one (odd %d): %s, valid UTF-8 %d, message ends '%s'",
+              strlen(name), odd, rg2_status_str(st), utf8_valid(err.msg), len > 40 ? err.msg + len - 40 : err.msg);
         /* a long mesh name in the path of a message */
         snprintf(json, sizeof json,
                  "{\"shapes\": {\"t\": {\"kind\": \"torus\"}}, \"meshes\": {\"%s\": {\"shape\": \"t\", "
