@@ -1525,7 +1525,8 @@ typedef struct {
 
 typedef struct {
     int shape;             /**< index in the shape list */
-    char label[64];        /**< label or shape kind name */
+    char label[64];        /**< label or shape kind name (a longer label: its first 63 bytes or
+                                fewer, cut between UTF-8 characters) */
     int patches;           /**< patches tagged with it */
     double residual;       /**< worst relative implicit residual */
     char where[96];        /**< patch and (u, v) of the worst residual */

@@ -880,8 +880,9 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
         rg2__implicit_prep(&shapes[k], &imp[k]); /* the placement inverted once per shape */
         out->shapes[k].shape = k;
         const char *name = rg2_shape_name(shapes[k].kind);
-        snprintf(out->shapes[k].label, sizeof out->shapes[k].label, "%s",
-                 labels && labels[k] ? labels[k] : (name ? name : "shape"));
+        if (snprintf(out->shapes[k].label, sizeof out->shapes[k].label, "%s",
+                     labels && labels[k] ? labels[k] : (name ? name : "shape")) >= (int)sizeof out->shapes[k].label)
+            rg2__utf8_cut(out->shapes[k].label); /* (a long label, cut between UTF-8 characters) */
         snprintf(out->shapes[k].where, sizeof out->shapes[k].where, "-");
         for (int d = 0; d < 3; d++) {
             shape_box[6 * k + d] = INFINITY; /* (not DBL_MAX: -DBL_MAX - DBL_MAX overflows) */

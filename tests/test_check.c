@@ -2464,9 +2464,40 @@ static void shape_limit_by_hand(void)
     printf("a shape's own limit, made by hand: at it passes, an ulp over fails\n");
 }
 
+/* A label longer than rg2_check_shape.label keeps its first bytes, cut between UTF-8
+ * characters: 40 'ä's (80 bytes) kept 63, the last the lead byte of an 'ä', and the JSON report
+ * (and its table) carried that half character. */
+static void long_utf8_label(void)
+{
+    rg2_shape sh;
+    rg2_shape_init(&sh, RG2_SHAPE_TORUS);
+    rg2_surface s;
+    torus_8x6(&sh, &s);
+    char label[100] = "";
+    for (int k = 0; k < 40; k++)
+        strcat(label, "\xc3\xa4");
+    const char *labels[1] = {label};
+    rg2_check_opts o;
+    rg2_check_opts_default(&o);
+    o.seam_samples = 2;
+    o.patch_samples = 2;
+    rg2_check_report r;
+    rg2_error err;
+    CHECK_OK(rg2_check(&s, 1, &sh, labels, 1, &o, &r, &err), &err);
+    if (r.n_shapes == 1) {
+        const char *l = r.shapes[0].label;
+        size_t n = strlen(l);
+        CHECK(n == 62 && !strncmp(l, label, n), "an 80-byte label kept as %zu bytes (want the 62 of 31 whole "
+              "'\xc3\xa4's), last byte 0x%02x", n, n ? (unsigned)(unsigned char)l[n - 1] : 0u);
+    }
+    rg2_check_report_free(&r);
+    rg2_surface_free(&s);
+}
+
 int main(void)
 {
     harness_agreement();
+    long_utf8_label();
     shape_table_layout();
     no_exact_patch_reason();
     exact_and_broken(0);
