@@ -288,7 +288,7 @@ RG2_API void rg2_curve_free(rg2_curve *c);
  *  t in [0, 1] (exact quotient rule). */
 RG2_API void rg2_curve_eval(const rg2_curve *c, int seg, double t, double *pos, double *d1,
                             double *d2);
-/** Curvature |f' x f''| / |f'|^3 (dim 2 or 3; 1-d curves return 0). */
+/** Curvature |f' x f''| / |f'|^3 (dim 2 or 3; curves of other dimensions, 1 and 4..8, return 0). */
 RG2_API double rg2_curve_curvature(const rg2_curve *c, int seg, double t);
 
 /* ===================================================================================== */
