@@ -45,7 +45,9 @@
  *     serial run. What the library shares between calls is internal and synchronised: the
  *     worker pool of the grid evaluator and the tessellation (one job at a time; a call that
  *     finds it busy runs alone), the grid's table cache (entries written once, published
- *     atomically), the "C" locale it formats numbers in, and its use of cJSON: Debian's libcjson
+ *     atomically), the "C" locale it formats numbers in (files, reports, error messages, design
+ *     notes and the colour bars of pictures, whatever the host's LC_NUMERIC), and its use of
+ *     cJSON: Debian's libcjson
  *     writes a process-wide error struct on every parse, and cJSON reads the decimal point
  *     through localeconv(), whose one result struct every caller rewrites, so rg2 runs all its
  *     cJSON parses and prints under one lock and in the "C" locale. Two writers of one path each

@@ -454,10 +454,13 @@ rg2_status rg2_design_parse(const char *json, size_t len, const char *name, rg2_
     rg2_error local;
     if (!err)
         err = &local;
+    /* the notes' and messages' numbers in the "C" locale whatever the host's (rg2__fail's own) */
+    void *loc = rg2__c_numeric_begin();
     rg2_status st = d->name ? rg2__design_parse_json(d, json, len, name, err)
                             : rg2__fail(err, RG2_ENOMEM, "%s: out of memory", name);
     if (!st)
         st = rg2__design_build(d, err);
+    rg2__c_numeric_end(loc);
     if (st) {
         rg2_design_free(d);
         return st;

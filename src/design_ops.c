@@ -395,9 +395,12 @@ static int scalars_differ(const rg2_scalars *a, const rg2_scalars *b, char *msg,
              * the designer wrote (it gave only the weights) */
             char arcs[96] = "";
             double ca = (3.0 * a->w[i] - 1.0) / 2.0, cb = (3.0 * b->w[i] - 1.0) / 2.0;
-            if (!ones_a && !ones_b && ca > -1.0 && ca < 1.0 && cb > -1.0 && cb < 1.0)
+            if (!ones_a && !ones_b && ca > -1.0 && ca < 1.0 && cb > -1.0 && cb < 1.0) {
+                void *loc = rg2__c_numeric_begin(); /* (rg2_mesh_merge too) */
                 snprintf(arcs, sizeof arcs, " (as circle arcs: %.6g vs %.6g degrees)", 2.0 * acos(ca) * 180.0 / M_PI,
                          2.0 * acos(cb) * 180.0 / M_PI);
+                rg2__c_numeric_end(loc);
+            }
             snprintf(msg, cap, "leg weight w[%d] = %s vs %s%s%s", i - off, rg2__num(a->w[i]).s, rg2__num(b->w[i]).s,
                      arcs,
                      ones_a != ones_b ? " (one has all its leg weights 1, like a polynomial direction (knots or "
@@ -1133,7 +1136,9 @@ rg2_status rg2__op_morph(const rg2__dmesh *a, const rg2__dmesh *b, double t, rg2
         char w[300], when[40];
         if (snprintf(w, sizeof w, "%s.t", what) >= (int)sizeof w)
             rg2__utf8_cut(w);
+        void *loc = rg2__c_numeric_begin(); /* (rg2_mesh_morph too: "at t = 0.5") */
         snprintf(when, sizeof when, "at t = %g, ", t);
+        rg2__c_numeric_end(loc);
         st = rg2__dir_check(so, k, w, when, err);
         if (st) {
             rg2__dmesh_free(out);

@@ -26,6 +26,7 @@ static rg2_status fail(pctx *c, rg2_status code, const char *path, const char *f
      * end, the reason, and could end in half a UTF-8 character, before rg2__fail shortens the
      * whole message keeping its head and its end */
     char small[400], *msg = small;
+    void *loc = rg2__c_numeric_begin(); /* (its numbers in the "C" locale, as rg2__fail's) */
     va_list ap, ap2;
     va_start(ap, fmt);
     va_copy(ap2, ap);
@@ -37,6 +38,7 @@ static rg2_status fail(pctx *c, rg2_status code, const char *path, const char *f
         msg = small;
         rg2__utf8_cut(small);
     }
+    rg2__c_numeric_end(loc);
     va_end(ap2);
     rg2_status st = rg2__fail(c->err, code, "%s: %s: %s", c->file, path, msg);
     if (msg != small)

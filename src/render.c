@@ -943,6 +943,8 @@ static void colour_bar(rg2_image *img, int x0, int gauss, const double range[2],
      * bar) while two neighbours read the same: a narrow range about a large middle (a sphere's
      * constant H, 1e-3 of it wide) was labelled -1 at four of its five ticks */
     char lab[5][32], b[5][32];
+    void *loc = rg2__c_numeric_begin(); /* "1.25": under a host's de_DE the bar read "1 25" (no
+                                           glyph for the comma), and the picture's bytes differed */
     for (int prec = 3; prec <= 9; prec++) {
         int same = 0, wide = 0;
         for (int q = 0; q <= 4; q++) {
@@ -958,6 +960,7 @@ static void colour_bar(rg2_image *img, int x0, int gauss, const double range[2],
         if (!same || wide)
             break;
     }
+    rg2__c_numeric_end(loc);
     draw_text(img, x0, top - 28, gauss ? "K" : "H", 2);
     for (int q = 0; q <= 4; q++) {
         const char *buf = lab[q];

@@ -33,6 +33,9 @@ int rg2_version_number(void) { return RG2_VERSION_NUMBER; }
 rg2_status rg2__fail(rg2_error *err, rg2_status code, const char *fmt, ...)
 {
     if (err) {
+        /* numbers in the "C" locale, as in the files: under a host's de_DE the messages read
+         * "colour range 1,5,0,5" and "interval 2 [1,25, 1,25]" */
+        void *loc = rg2__c_numeric_begin();
         va_list ap, ap2;
         va_start(ap, fmt);
         va_copy(ap2, ap);
@@ -56,6 +59,7 @@ rg2_status rg2__fail(rg2_error *err, rg2_status code, const char *fmt, ...)
         } else if (n >= (int)sizeof err->msg) /* (out of memory: cut, between characters) */
             rg2__utf8_cut(err->msg);
         va_end(ap2);
+        rg2__c_numeric_end(loc);
         err->code = code;
     }
     return code;
@@ -74,8 +78,10 @@ rg2_status rg2__prefix(rg2_error *err, rg2_status st, const char *what)
 rg2__numtext rg2__num(double x)
 {
     rg2__numtext t;
+    void *loc = rg2__c_numeric_begin(); /* (formatted and read back in the "C" locale, as rg2__fail) */
     if (!isfinite(x)) {
         snprintf(t.s, sizeof t.s, "%g", x);
+        rg2__c_numeric_end(loc);
         return t;
     }
     /* Start at the integer digits (below 1e17, where %.17g would not switch to an exponent
@@ -88,6 +94,7 @@ rg2__numtext rg2__num(double x)
         if (strtod(t.s, NULL) == x)
             break;
     }
+    rg2__c_numeric_end(loc);
     return t;
 }
 

@@ -4,7 +4,8 @@
  * dump. Every format is written under de_DE.UTF-8 (compiled into a temporary directory with
  * localedef; scripts/deps.sh test installs the locales package that holds its source) and under
  * "C", large enough that the numbers are formatted on the threads too, and the files must be
- * the same bytes (SOURCE_DATE_EPOCH fixes the STEP and IGES time stamps). */
+ * the same bytes (SOURCE_DATE_EPOCH fixes the STEP and IGES time stamps). So must the check
+ * reports, the error messages and a picture's colour bar. */
 #define _GNU_SOURCE
 #include "harness.h"
 
@@ -122,6 +123,55 @@ int main(void)
         free(ss);
         free(sh);
         rg2_design_free(d);
+    }
+    /* messages and pictures: their numbers in the "C" locale too. Under de_DE the messages read
+     * "interval 2 [1,25, 1,25]", "r = 3,5 must be < R = 2,5" (3.5 in the design text),
+     * "colour range 1,5,0,5", "t = 1,5", and the colour bar of a picture "1 25" for 1.25 (the
+     * font has no comma: 60 bytes of a 400 x 300 picture differed) */
+    {
+        static const double kn[6] = {0, 0.5, 1.25, 1.25, 3, 4};
+        static const char *const design_text =
+            "{\"shapes\": {\"t\": {\"kind\": \"torus\", \"R\": 2.5, \"r\": 3.5}}, \"meshes\": {\"m\": {\"shape\": \"t\"}}}";
+        rg2_mesh tm;
+        rg2_surface ts;
+        CHECK_OK(rg2t_torus(3.0, 1.0, 6, 4, &tm, &ts, &err), &err);
+        char msg[2][4][512];
+        rg2_image img[2];
+        memset(img, 0, sizeof img);
+        for (int l = 0; l < 2; l++) {
+            setlocale(LC_ALL, l ? "de_DE.UTF-8" : "C");
+            rg2_scalars sc;
+            rg2_design *dd = NULL;
+            rg2_mesh mo;
+            CHECK(rg2_scalars_from_knots(&sc, kn, 6, 0, &err) == RG2_EDOMAIN, "repeated knot not refused");
+            snprintf(msg[l][0], sizeof msg[l][0], "%s", err.msg);
+            CHECK(rg2_design_parse(design_text, strlen(design_text), "x", &dd, &err) == RG2_EDOMAIN, "r > R not refused");
+            snprintf(msg[l][1], sizeof msg[l][1], "%s", err.msg);
+            CHECK(rg2_mesh_morph(&tm, &tm, 1.5, &mo, &err) == RG2_EDOMAIN, "t = 1.5 not refused");
+            snprintf(msg[l][2], sizeof msg[l][2], "%s", err.msg);
+            rg2_render_opts ro;
+            rg2_render_opts_default(&ro);
+            ro.width = 400, ro.height = 300, ro.threads = 1, ro.mode = RG2_RENDER_MEAN, ro.range_set = 1;
+            ro.range[0] = 1.5, ro.range[1] = 0.5;
+            CHECK(rg2_render(&ts, 1, NULL, &ro, &img[l], &err) == RG2_EINVAL, "colour range 1.5, 0.5 not refused");
+            snprintf(msg[l][3], sizeof msg[l][3], "%s", err.msg);
+            ro.range[0] = -0.75, ro.range[1] = 1.25;
+            CHECK_OK(rg2_render(&ts, 1, NULL, &ro, &img[l], &err), &err);
+        }
+        setlocale(LC_ALL, "C");
+        static const char *const want[4] = {"[1.25, 1.25]", "r = 3.5 must be < R = 2.5", "t = 1.5,", "colour range 1.5,0.5"};
+        for (int k = 0; k < 4; k++)
+            CHECK(!strcmp(msg[0][k], msg[1][k]) && strstr(msg[1][k], want[k]),
+                  "message under de_DE '%s', under C '%s' (want '%s')", msg[1][k], msg[0][k], want[k]);
+        size_t nb = (size_t)img[0].width * (size_t)img[0].height * 3, diff = 0;
+        for (size_t q = 0; img[0].rgb && img[1].rgb && q < nb; q++)
+            diff += img[0].rgb[q] != img[1].rgb[q];
+        CHECK(img[0].rgb && img[1].rgb && diff == 0, "a picture with a colour bar of 1.25: %zu of %zu bytes differ under de_DE",
+              diff, nb);
+        rg2_image_free(&img[0]);
+        rg2_image_free(&img[1]);
+        rg2_mesh_free(&tm);
+        rg2_surface_free(&ts);
     }
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
     CHECK(system(cmd) == 0, "%s", cmd);
