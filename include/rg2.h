@@ -878,7 +878,8 @@ RG2_API rg2_status rg2_number_check(double x, const char *what, rg2_error *err);
  *  the largest supported magnitude, bounding-box diagonal at least the smallest and at least
  *  1e-12 of the largest coordinate (what every output mesh of a design must satisfy; below
  *  that the coordinates' rounding takes the shape apart; points of weight p_4 = 0, at infinity, have no
- *  coordinates and are skipped). RG2_EDOMAIN, the message starting with `what` (nullable). */
+ *  coordinates and are skipped). RG2_EDOMAIN, the message starting with `what` (nullable); also
+ *  for a mesh with no point of weight != 0 (rg2_mesh_init's), which has no design points. */
 RG2_API rg2_status rg2_mesh_check_range(const rg2_mesh *m, const char *what, rg2_error *err);
 
 /** Read and build a design file. On failure *out is NULL and err names the offending item

@@ -345,10 +345,18 @@ rg2_status rg2_mesh_check_range(const rg2_mesh *m, const char *what, rg2_error *
         what = "mesh";
     rg2__box box;
     rg2__box_init(&box);
+    size_t with = 0;
     for (size_t k = 0; k < (size_t)m->nu * (size_t)m->nv; k++)
-        if (m->p[4 * k + 3] != 0.0) /* W = 0: a point at infinity (a hyperboloid's mirrored data
-                                       knot at v = 0), no coordinates */
+        if (m->p[4 * k + 3] != 0.0) { /* W = 0: a point at infinity (a hyperboloid's mirrored data
+                                         knot at v = 0), no coordinates */
             rg2__box_add(&box, &m->p[4 * k], m->p[4 * k + 3]);
+            with++;
+        }
+    if (!with) /* (the box of no point read "coordinates up to inf, size inf": rg2_mesh_init's mesh) */
+        return rg2__fail(err, RG2_EDOMAIN,
+                         "%s: none of the %d x %d control points has a weight p_4 != 0: no design points to measure "
+                         "(every point at infinity; rg2_mesh_init leaves all four values 0)",
+                         what, m->nu, m->nv);
     double big, diag;
     rg2__box_extent(&box, &big, &diag);
     if (!(big <= RG2_DESIGN_MAX_COORD) || !(diag >= RG2_DESIGN_MIN_SIZE))

@@ -1847,6 +1847,16 @@ static void mesh_check_range_weights(void)
             CHECK(st == RG2_OK, "x / w = %g refused: %s", affine, err.msg);
         rg2_mesh_free(&m);
     }
+    /* a mesh whose every weight is 0 (rg2_mesh_init's) has no design points: said so (it was
+     * "coordinates up to inf, size inf") */
+    rg2_mesh z;
+    rg2_error err;
+    CHECK_OK(rg2_mesh_init(&z, 4, 5, 0, 0, &err), &err);
+    rg2_status st = rg2_mesh_check_range(&z, "zero", &err);
+    CHECK(st == RG2_EDOMAIN && strstr(err.msg, "zero: none of the 4 x 5 control points has a weight") &&
+              !strstr(err.msg, "up to inf"),
+          "an all-zero mesh: %s: %s", rg2_status_str(st), err.msg);
+    rg2_mesh_free(&z);
 }
 
 static void null_designs(void)
