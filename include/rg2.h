@@ -1398,7 +1398,8 @@ typedef struct {
 } rg2_image;
 
 RG2_API void rg2_render_opts_default(rg2_render_opts *o);
-/** Render n surfaces (meshes: nullable, n control meshes for the overlay) into out (o NULL:
+/** Render n surfaces (meshes: nullable, n control meshes for the overlay, an empty (zeroed) one
+ *  drawing nothing) into out (o NULL:
  *  rg2_render_opts_default). Release with rg2_image_free.
  *  @return RG2_EINVAL (no surfaces, a NULL out, a surface without patches, an rg2_render_opts
  *  field outside the range its comment gives: size, mode, fov, elevation, colour range,

@@ -1180,8 +1180,15 @@ static rg2_status render_apart(const rg2_surface *surfs, int n, const rg2_mesh *
     for (int s = 0; s < n; s++) {
         if ((st = rg2_surface_copy(&surfs[s], &cs[s], err)))
             goto done;
-        if (o->mesh && (st = rg2_mesh_copy(&meshes[s], &cm[s], err)))
+        /* (an empty mesh, all zeros, has nothing to draw: skipped, as without apart, where the
+         * copy refused it with "mesh u: scalars: 0 control points, ...") */
+        if (o->mesh && meshes[s].nu > 0 && meshes[s].nv > 0 && meshes[s].p &&
+            (st = rg2_mesh_copy(&meshes[s], &cm[s], err))) {
+            char what[48];
+            snprintf(what, sizeof what, "render: meshes[%d]", s);
+            rg2__prefix(err, st, what);
             goto done;
+        }
         const double *b = box + 6 * s;
         double dx = (s % cols) * cw - 0.5 * (b[0] + b[1]), dy = -(s / cols) * ch - 0.5 * (b[2] + b[3]);
         double dz = depth - 0.5 * (b[4] + b[5]), t[3], M[16];

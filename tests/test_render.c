@@ -896,6 +896,17 @@ static void apart(void)
     CHECK(!memcmp(a.rgb, b.rgb, (size_t)o.width * o.height * 3), "one surface apart: the picture as placed");
     rg2_image_free(&a);
     rg2_image_free(&b);
+    /* an empty (zeroed) mesh among the meshes has nothing to draw, apart or not: apart, the
+     * renderer's copy of it failed, "mesh u: scalars: 0 control points, an open direction needs
+     * at least 4", naming neither the render nor the mesh; as placed it was drawn as nothing */
+    rg2_mesh Mz[2] = {m, {0}};
+    for (int ap = 0; ap < 2; ap++) {
+        o.apart = ap;
+        rg2_status st = rg2_render(S, 2, Mz, &o, &a, &err);
+        CHECK(st == RG2_OK && a.foreground > 500, "two surfaces, the second mesh empty, apart %d: %s %s (%d pixels)",
+              ap, rg2_status_str(st), st ? err.msg : "", a.foreground);
+        rg2_image_free(&a);
+    }
     rg2_surface_free(&s);
     rg2_surface_free(&far);
     rg2_mesh_free(&m);
