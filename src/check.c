@@ -1058,6 +1058,15 @@ void rg2_check_report_free(rg2_check_report *r)
     memset(r, 0, sizeof *r);
 }
 
+/* The characters of a UTF-8 text (its bytes but the continuation bytes): a column's width. */
+static int utf8_chars(const char *s)
+{
+    int n = 0;
+    for (; *s; s++)
+        n += ((unsigned char)*s & 0xC0) != 0x80;
+    return n;
+}
+
 /* Shape k's pass limit: its own (rg2_check fills it), never below tol_exact (a report made
  * some other way, with limit 0, is held to tol_exact). */
 static double shape_limit(const rg2_check_report *r, int k)
@@ -1209,10 +1218,11 @@ static void format_text(const rg2_check_report *r, sbuf *b)
     if (r->untagged_bad)
         sb_printf(b, ", %d tagged with an unknown shape\n", r->untagged_bad);
     if (r->n_shapes > 0) {
-        int wl = 24; /* the label column: as wide as the longest label (never cut) */
+        int wl = 24; /* the label column: as wide as the longest label (never cut), in characters
+                        (UTF-8: a label "kugel_ä" padded by bytes put its row's columns one left) */
         for (int k = 0; k < r->n_shapes; k++)
-            if ((int)strlen(r->shapes[k].label) > wl)
-                wl = (int)strlen(r->shapes[k].label);
+            if (utf8_chars(r->shapes[k].label) > wl)
+                wl = utf8_chars(r->shapes[k].label);
         /* the header's columns over the rows' "  %2d %-*s %7d  %14.2e  %-7s  %s": the index and
          * label take wl + 5 characters, the right-aligned counts and residuals end under their names */
         sb_printf(b, "%-*s patches  worst residual  verdict  where\n", wl + 5, "exact pieces");
@@ -1220,7 +1230,7 @@ static void format_text(const rg2_check_report *r, sbuf *b)
             const rg2_check_shape *s = &r->shapes[k];
             sb_printf(b, "  %2d ", k);
             b->text = 1; /* (a label "nan" or "pipe-nan" is no number: nan_words leaves it) */
-            sb_printf(b, "%-*s", wl, s->label);
+            sb_printf(b, "%s%*s", s->label, wl - utf8_chars(s->label), "");
             b->text = 0;
             sb_printf(b, " %7d  %14.2e  %-7s  %s\n", s->patches, s->residual,
                       s->patches ? verdict(s->residual, shape_limit(r, k)) : "-", s->where);

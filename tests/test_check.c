@@ -217,12 +217,13 @@ static void torus_8x6(const rg2_shape *sh, rg2_surface *s)
  * (one past it); -1 if the line has fewer runs. */
 static int run_col(const char *line, int n, int end)
 {
-    int k = 0, run = -1;
+    int k = 0, run = -1, col = 0; /* col: the characters before byte k (UTF-8 labels) */
     while (line[k] && line[k] != '\n') {
         if (line[k] != ' ' && (k == 0 || line[k - 1] == ' ') && ++run == n && !end)
-            return k;
+            return col;
         if (line[k] != ' ' && (line[k + 1] == ' ' || line[k + 1] == '\n' || !line[k + 1]) && run == n && end)
-            return k + 1;
+            return col + (((unsigned char)line[k] & 0xC0) != 0x80);
+        col += ((unsigned char)line[k] & 0xC0) != 0x80;
         k++;
     }
     return -1;
@@ -268,13 +269,16 @@ static void shape_table_layout(void)
     rg2_shape_init(&sh[1], RG2_SHAPE_SPHERE);
     rg2_surface s;
     torus_8x6(&sh[0], &s);
-    static const char *const sets[2][2] = {{"ring", "ball"},
-                                           {"ring", "a_label_of_forty_characters_1234567890ab"}};
+    static const char *const sets[4][2] = {{"ring", "ball"},
+                                           {"ring", "a_label_of_forty_characters_1234567890ab"},
+                                           {"ring", "kugel_\xc3\xa4"}, /* UTF-8: columns count characters */
+                                           {"ring", "kugel_\xc3\xa4\xc3\xb6\xc3\xbc\xc3\xa4\xc3\xb6\xc3\xbc\xc3\xa4\xc3\xb6\xc3\xbc"
+                                                    "\xc3\xa4\xc3\xb6\xc3\xbc\xc3\xa4\xc3\xb6\xc3\xbc\xc3\xa4\xc3\xb6\xc3\xbc"}};
     rg2_check_opts o;
     rg2_check_opts_default(&o);
     o.seam_samples = 2;
     o.patch_samples = 2;
-    for (int set = 0; set < 2 && s.tag; set++) {
+    for (int set = 0; set < 4 && s.tag; set++) {
         char *json = NULL, *txt = report_text(&s, 1, sh, sets[set], 2, &o, 1, &json);
         const char *head = txt ? strstr(txt, "exact pieces") : NULL;
         CHECK(head != NULL, "text report without the table of exact pieces");
@@ -300,7 +304,8 @@ static void shape_table_layout(void)
         free(txt);
         free(json);
     }
-    printf("check report: the table of exact pieces lines up under its header for labels of 4 and 40 characters\n");
+    printf("check report: the table of exact pieces lines up under its header for labels of 4 and 40 characters, "
+           "and of 7 and 24 characters in UTF-8\n");
     rg2_surface_free(&s);
 }
 
