@@ -30,6 +30,12 @@
  *   - Objects that own memory are plain structs released by their *_free function, which
  *     accepts a zeroed struct (or NULL) and leaves the struct zeroed.
  *   - Homogeneous 4-tuples are (w x, w y, w z, w).
+ *   - Arrays of pointers are taken const at both levels (rg2_mesh_merge and _merge_overlap's in,
+ *     rg2_export_files' paths, rg2_check's labels, rg2_closest_name's names): in C, declare them
+ *     so (const rg2_mesh *in[2] = {&a, &b}; const char *paths[] = {...}); C does not add const
+ *     below the first level, so a rg2_mesh *[] or a char ** such as argv needs a cast,
+ *     (const char *const *)argv, or it is -Wincompatible-pointer-types (an error by default from
+ *     GCC 14). C++ converts them itself.
  *   - Pointer arguments must not be NULL unless the function's comment says they may be (err
  *     always may); indices (patch i, j, segment, junction) must lie in the ranges of the object
  *     they index: functions without a status (evaluators returning void or a number) do not
