@@ -1004,15 +1004,19 @@ rg2_status rg2__op_transform(rg2_design *d, const rg2__dmesh *in, const double M
         if (nsh < 0) {
             rg2_shape ns = d->shapes[sh];
             rg2_xform_mul(M, d->shapes[sh].xform, ns.xform);
-            /* (whole: cut to 256 bytes, two long labels gave one label, ending in half a UTF-8
-             * character) */
-            size_t ll = strlen(d->labels[sh]) + strlen(what) + 2;
+            /* "<label>@<what>", whole (cut to 256 bytes, two long labels gave one label, ending in
+             * half a UTF-8 character); past 256 bytes a label made by earlier transforms keeps its
+             * first part and this one, "<first>@...@<what>", so that a chain of T transforms does
+             * not make labels of T parts (O(T^2) bytes) */
+            const char *prev = d->labels[sh], *at = strchr(prev, '@');
+            size_t lp = strlen(prev), lw = strlen(what), cut = at && lp + lw + 1 > 255 ? (size_t)(at - prev) : lp;
+            size_t ll = cut + lw + 6;
             char *label = malloc(ll);
             if (!label) {
                 rg2__fail(err, RG2_ENOMEM, "design: out of memory for shapes");
                 goto fail;
             }
-            snprintf(label, ll, "%s@%s", d->labels[sh], what);
+            snprintf(label, ll, "%.*s%s%s", (int)cut, prev, cut < lp ? "@...@" : "@", what);
             nsh = rg2__design_add_shape(d, &ns, label, err);
             free(label);
             if (nsh < 0)

@@ -891,6 +891,47 @@ static void rotate_radians_note(void)
     printf("rotate by radians typed for degrees: a note for 1.5708, -3.1416 and 6.2832, none for 90, 1.6 and 0\n");
 }
 
+/* A transformed shape's label is "<label>@<path>"; a chain of transforms appends each path while
+ * the label stays within 255 bytes, and past that keeps its first part and the last path,
+ * "c@...@meshes.m<k>": labels stay short and a chain's labels grow linearly in total (whole
+ * labels of every part made a chain of T links O(T^2) bytes; test_scaling measures it). */
+static void transform_chain_labels(void)
+{
+    enum { N = 60 };
+    char *js = malloc(200 + 64 * N);
+    if (!js)
+        return;
+    size_t n = (size_t)sprintf(js, "{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {\"m0\": {\"shape\": "
+                                   "\"c\", \"u\": {\"arcs\": 8}}");
+    for (int k = 1; k <= N; k++)
+        n += (size_t)sprintf(js + n, ", \"m%d\": {\"transform\": \"m%d\", \"translate\": [0, 0, 0.001]}", k, k - 1);
+    sprintf(js + n, "}, \"output\": \"m%d\"}", N);
+    rg2_error err;
+    rg2_design *d = parse(js, &err);
+    free(js);
+    if (!d)
+        return;
+    size_t longest = 0;
+    int elided = 0, chained = 0;
+    for (int k = 0; k < rg2_design_num_shapes(d); k++) {
+        const char *l = rg2_design_shape_label(d, k);
+        longest = strlen(l) > longest ? strlen(l) : longest;
+        elided += !strncmp(l, "c@...@meshes.m", 14);
+        chained += !strncmp(l, "c@meshes.m1@meshes.m2@", 22);
+    }
+    const char *last = rg2_design_shape_label(d, rg2_design_num_shapes(d) - 1);
+    char tail[32];
+    snprintf(tail, sizeof tail, "@meshes.m%d", N);
+    size_t lt = strlen(tail), ll = last ? strlen(last) : 0;
+    printf("a chain of %d transforms: %d shape labels, the longest %zu bytes, %d of them elided, the last '%s'\n", N,
+           rg2_design_num_shapes(d), longest, elided, last ? last : "");
+    CHECK(rg2_design_num_shapes(d) == N + 1 && longest <= 255 + 16 && elided > 0 && chained > 0 && ll > lt &&
+              !strcmp(last + ll - lt, tail) && !strncmp(last, "c@", 2),
+          "a chain of %d transforms: %d shapes, longest label %zu bytes, %d elided, %d chained, last '%s'", N,
+          rg2_design_num_shapes(d), longest, elided, chained, last ? last : "");
+    rg2_design_free(d);
+}
+
 static void check_written_mesh(const char *path)
 {
     rg2_error err;
@@ -1005,6 +1046,7 @@ static void text_files(void)
         json_numbers();
         json_number_forms();
         rotate_radians_note();
+        transform_chain_labels();
         CHECK(rg2t_file_limit(100) == 0, "file size limit");
         rg2_status st = rg2_design_write_mesh(ref, path, &err);
         rg2t_file_limit(-1);
