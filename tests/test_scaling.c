@@ -304,7 +304,7 @@ static void parse_memory(void)
         printf("  a NURBS design of %d x %d points, %zu bytes of text: %ld KB of heap resident while it lives\n", N,
                N, t.n, kb);
     } else
-        printf("  (no /proc/self/smaps: heap not measured)\n");
+        printf("  (no [heap] in /proc/self/smaps, as under a sanitizer's allocator: not measured)\n");
     rg2_design_free(d);
     free(t.s);
 #endif
