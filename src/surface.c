@@ -50,11 +50,11 @@ rg2_status rg2_surface_copy(const rg2_surface *src, rg2_surface *dst, rg2_error 
     }
     if (src == dst) /* (filling dst from scratch zeroed src first: an all-zero surface, returning RG2_OK) */
         return rg2__fail(err, RG2_EINVAL, "surface copy: the destination is the source; give a surface of its own");
-    if (src->nu < 0 || src->nv < 0 || ((size_t)src->nu * (size_t)src->nv > 0 && !src->patch))
+    if (src->nu < 0 || src->nv < 0 || ((size_t)src->nu * (size_t)src->nv > 0 && !src->patch)) {
         memset(dst, 0, sizeof *dst); /* (a failed call leaves its output zeroed, rg2.h) */
-    if (src->nu < 0 || src->nv < 0 || ((size_t)src->nu * (size_t)src->nv > 0 && !src->patch))
         return rg2__fail(err, RG2_EINVAL, "surface copy: the source is not a surface (%d x %d patches, patch array %s)",
                          src->nu, src->nv, src->patch ? "set" : "NULL");
+    }
     if (src->nu == 0 || src->nv == 0 || !src->patch) { /* an empty surface (e.g. after a failed build) */
         memset(dst, 0, sizeof *dst);
         rg2__ok(err);
