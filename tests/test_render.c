@@ -899,13 +899,23 @@ static void apart(void)
     /* an empty (zeroed) mesh among the meshes has nothing to draw, apart or not: apart, the
      * renderer's copy of it failed, "mesh u: scalars: 0 control points, an open direction needs
      * at least 4", naming neither the render nor the mesh; as placed it was drawn as nothing */
-    rg2_mesh Mz[2] = {m, {0}};
-    for (int ap = 0; ap < 2; ap++) {
-        o.apart = ap;
-        rg2_status st = rg2_render(S, 2, Mz, &o, &a, &err);
-        CHECK(st == RG2_OK && a.foreground > 500, "two surfaces, the second mesh empty, apart %d: %s %s (%d pixels)",
-              ap, rg2_status_str(st), st ? err.msg : "", a.foreground);
-        rg2_image_free(&a);
+    /* (and one of no rows or no columns, its other count and points kept: as empty) */
+    for (int e = 0; e < 3; e++) {
+        rg2_mesh Mz[2] = {m, {0}};
+        if (e) {
+            Mz[1].nu = e == 1 ? 0 : m.nu;
+            Mz[1].nv = e == 1 ? m.nv : 0;
+            Mz[1].p = m.p;
+        }
+        for (int ap = 0; ap < 2; ap++) {
+            o.apart = ap;
+            rg2_status st = rg2_render(S, 2, Mz, &o, &a, &err);
+            CHECK(st == RG2_OK && a.foreground > 500,
+                  "two surfaces, the second mesh %s, apart %d: %s %s (%d pixels)",
+                  e == 0 ? "empty" : e == 1 ? "of no rows" : "of no columns", ap, rg2_status_str(st),
+                  st ? err.msg : "", a.foreground);
+            rg2_image_free(&a);
+        }
     }
     rg2_surface_free(&s);
     rg2_surface_free(&far);
@@ -1368,12 +1378,20 @@ static void bar_arrows(void)
                 above += v > img.range[1];
             }
         /* pixels past each end of the bar, over its columns, unlike the background beside them */
-        int marked[2] = {0, 0};
+        int marked[2] = {0, 0}, asym = 0, rows_off = 0;
         for (int e = 0; e < 2; e++)
             for (int r = 2; r <= 12; r++) {
-                int y = e ? bot + r : top - r;
-                for (int x = x0; x < x0 + bw; x++)
-                    marked[e] += memcmp(img.rgb + 3 * ((size_t)y * W + x), img.rgb + 3 * ((size_t)y * W + x0 - 6), 3) != 0;
+                int y = e ? bot + r : top - r, in_row = 0;
+                const unsigned char *bg = img.rgb + 3 * ((size_t)y * W + x0 - 6);
+                for (int x = x0; x < x0 + bw; x++) {
+                    int mk = memcmp(img.rgb + 3 * ((size_t)y * W + x), bg, 3) != 0;
+                    int mirror = memcmp(img.rgb + 3 * ((size_t)y * W + (2 * x0 + bw - 1 - x)), bg, 3) != 0;
+                    marked[e] += mk, in_row += mk, asym += mk != mirror;
+                }
+                /* the triangle's row r - 2 from its base: |x - centre| <= 21/2 (12 - r) / 10 + 1/2,
+                 * 2 (floor(1.05 (12 - r)) + 1) pixels (22, 20, 18, ..., 4, 2) where it is drawn */
+                int want_row = 2 * ((int)floor(1.05 * (12 - r)) + 1);
+                rows_off += (e ? img.below : img.above) > 0 && in_row != want_row;
             }
         printf("%s map, range [%.4g, %.4g]: %d pixels below, %d above (of %d); %d and %d pixels marked past the bar's "
                "bottom and top\n",
@@ -1387,9 +1405,13 @@ static void bar_arrows(void)
             CHECK(ok, "case %zu: %d pixels %s the range (of %d)", c, got[e], e ? "above" : "below", img.foreground);
             /* a triangle of 11 rows over the 22 columns: about 120 pixels */
             int mk = marked[e ? 0 : 1];
-            CHECK(want[e] ? mk >= 100 && mk <= 140 : mk == 0, "case %zu: %d pixels marked past the bar's %s", c, mk,
-                  e ? "top" : "bottom");
+            CHECK(want[e] ? mk == 132 : mk == 0, "case %zu: %d pixels marked past the bar's %s (want %d)", c, mk,
+                  e ? "top" : "bottom", want[e] ? 132 : 0);
         }
+        /* each triangle is symmetric about the bar's middle, 10.5 columns from its first, and
+         * each of its rows is as wide as drawn by hand */
+        CHECK(!asym && !rows_off, "case %zu: %d pixels past the bar's ends whose mirror image about the bar's middle "
+              "differs, %d rows of a triangle of another width", c, asym, rows_off);
         rg2_image_free(&img);
     }
     rg2_surface_free(&s);
