@@ -1481,6 +1481,12 @@ static void ill_conditioned_flat(void)
               f == (RG2_REQUIRE_G1 | RG2_REQUIRE_G2) && txt &&
               strstr(txt, "samples away from any pole could not be measured") && strstr(txt, "G1 and G2 FAIL"),
           "torus flattened by 1e-10: %d unmeasured, failures %#x, text:\n%s", r.unmeasured, f, txt ? txt : "");
+    /* the first one's rounding bound over the measurable limits: the normal's (19.3 times 1e-4 rad;
+     * the curvature's is 0.78 times 1e-2), above 1 as every unmeasured sample's is */
+    printf("  the first unmeasured: bound over limit %.4g\n", r.unmeasured_at.value);
+    CHECK(isfinite(r.unmeasured_at.value) && r.unmeasured_at.value > 1 && txt && strstr(txt, "): rounding bound 19.3 times"),
+          "torus flattened by 1e-10: the first unmeasured sample's bound over the limit %.4g, want 19.3 (the normal's)",
+          r.unmeasured_at.value);
     free(txt);
     rg2_check_report_free(&r);
     rg2_surface_free(&s);
@@ -1652,6 +1658,13 @@ static void curvature_peak(void)
           p[2]);
     CHECK(k == (fabs(r.kmin) > fabs(r.kmax) ? r.kmin : r.kmax), "elliptic cylinder: k %g is not kmin %g or kmax %g",
           k, r.kmin, r.kmax);
+    /* the text's line gives |k| and its radius 1 / |k| = 0.5 */
+    char *text = NULL;
+    CHECK_OK(rg2_check_format(&r, 0, &text, &err), &err);
+    const char *line = text ? strstr(text, "  largest |k|        ") : NULL;
+    CHECK(line && !strncmp(line, "  largest |k|        2 (radius 0.5) at surface 0 patch (", 56),
+          "elliptic cylinder: the largest |k| line: %.100s", line ? line : "(none)");
+    free(text);
     rg2_check_report_free(&r);
     rg2_surface_free(&s);
 
