@@ -73,6 +73,12 @@ expect 0 "" "$rg2" build -q "$src/examples/fig1_torus.json" -o "$tmp/flink.step"
   [ "$(cat "$tmp/target.step")" = target ] && grep -q ISO-10303-21 "$tmp/flink.step" && ok ||
   bad "the link or pipe output was not replaced by a file, or the link's target changed"
 rm -f "$tmp/target.step" "$tmp/flink.step" "$tmp/pipe.igs"
+# a hidden file with a name is no name that is only the extension ('.step' is refused, in
+# bad/table.tsv): '.ts.step' (named '.ts') and '..step' (named '.') are written
+expect 0 "" "$rg2" build -q "$src/examples/fig1_torus.json" -o "$tmp/.ts.step" -o "$tmp/..step"
+grep -q ISO-10303-21 "$tmp/.ts.step" && grep -q ISO-10303-21 "$tmp/..step" && ok ||
+  bad "the hidden outputs .ts.step and ..step were not written"
+rm -f "$tmp/.ts.step" "$tmp/..step"
 # a file written over keeps its permission bits, as with sed -i (0600 and 0444 became 0644); a
 # new file has 0666 & ~umask; build, mesh and render write through the same helper
 for m in 600 444 640; do
