@@ -932,6 +932,73 @@ static void transform_chain_labels(void)
     rg2_design_free(d);
 }
 
+/* A transform of a mesh that uses many sources and shapes: 40 cylinder pieces, each its own
+ * shape (c0 .. c39, the same cylinder) and source, merged along v and moved. Between them the
+ * design has 15 shapes and 15 meshes it does not output, so the pieces' sources and shapes are
+ * 16 apart: the transform's index maps (source -> its copy, shape -> its copy; 16 slots at first,
+ * doubled at half full, a key's first slot its hash's low bits) hold 40 keys that collide at
+ * every size. Every point of the moved mesh must come from the copy of its own shape
+ * ("c<k>@meshes.T"), as in the merged mesh. */
+static void transform_many_sources(void)
+{
+    enum { N = 40, GAP = 15 };
+    char *js = malloc(400 + 200 * N * (GAP + 1));
+    if (!js)
+        return;
+    size_t n = (size_t)sprintf(js, "{\"shapes\": {");
+    for (int k = 0; k < N; k++) {
+        n += (size_t)sprintf(js + n, "%s\"c%d\": {\"kind\": \"cylinder\"}", k ? ", " : "", k);
+        for (int g = 0; g < GAP; g++)
+            n += (size_t)sprintf(js + n, ", \"z%d_%d\": {\"kind\": \"sphere\"}", k, g);
+    }
+    n += (size_t)sprintf(js + n, "}, \"meshes\": {");
+    for (int k = 0; k < N; k++) {
+        n += (size_t)sprintf(js + n, "\"p%d\": {\"shape\": \"c%d\", \"u\": {\"arcs\": 4}, \"v\": {\"segments\": 3, "
+                                     "\"from\": %d, \"to\": %d}}, ", k, k, k, k + 1);
+        for (int g = 0; g < GAP; g++)
+            n += (size_t)sprintf(js + n, "\"q%d_%d\": {\"shape\": \"c%d\", \"u\": {\"arcs\": 4}, \"v\": {\"segments\": 1, "
+                                         "\"from\": 0, \"to\": 1}}, ", k, g, k);
+    }
+    n += (size_t)sprintf(js + n, "\"all\": {\"merge\": [");
+    for (int k = 0; k < N; k++)
+        n += (size_t)sprintf(js + n, "%s\"p%d\"", k ? ", " : "", k);
+    sprintf(js + n, "], \"along\": \"v\"}, \"T\": {\"transform\": \"all\", \"translate\": [1, 2, 3]}}, "
+                    "\"output\": [\"all\", \"T\"]}");
+    rg2_error err;
+    rg2_design *d = parse(js, &err);
+    free(js);
+    if (!d)
+        return;
+    const rg2_mesh *ma = rg2_design_mesh(d, 0), *mt = rg2_design_mesh(d, 1);
+    int points = 0, same = 0, wrong = 0, seen[N] = {0};
+    for (int i = 0; ma && mt && i < ma->nu && i < mt->nu; i++)
+        for (int j = 0; j < ma->nv && j < mt->nv; j++) {
+            int a = rg2_design_point_shape(d, 0, i, j), t = rg2_design_point_shape(d, 1, i, j);
+            points++;
+            if (a < 0 && t < 0)
+                continue;
+            const char *la = a >= 0 ? rg2_design_shape_label(d, a) : "", *lt = t >= 0 ? rg2_design_shape_label(d, t) : "";
+            char want[64];
+            snprintf(want, sizeof want, "%s@meshes.T", la);
+            int k = a >= 0 && la[0] == 'c' ? atoi(la + 1) : -1;
+            if (a >= 0 && t >= 0 && !strcmp(lt, want) && k >= 0 && k < N) {
+                same++;
+                seen[k] = 1;
+            } else if (wrong++ < 3)
+                printf("  point (%d, %d): merged from '%s', moved from '%s'\n", i, j, la, lt);
+        }
+    int shapes_seen = 0;
+    for (int k = 0; k < N; k++)
+        shapes_seen += seen[k];
+    printf("a transform of %d merged pieces of %d shapes: %d of %d points from the copy of their own shape, %d not; "
+           "%d shapes\n", N, N, same, points, wrong, rg2_design_num_shapes(d));
+    CHECK(ma && mt && ma->nu == mt->nu && ma->nv == mt->nv && !wrong && shapes_seen == N &&
+              rg2_design_num_shapes(d) == (GAP + 2) * N,
+          "a transform of %d pieces: %d points from another shape's copy, %d of %d shapes seen, %d shapes", N, wrong,
+          shapes_seen, N, rg2_design_num_shapes(d));
+    rg2_design_free(d);
+}
+
 static void check_written_mesh(const char *path)
 {
     rg2_error err;
@@ -1047,6 +1114,7 @@ static void text_files(void)
         json_number_forms();
         rotate_radians_note();
         transform_chain_labels();
+        transform_many_sources();
         CHECK(rg2t_file_limit(100) == 0, "file size limit");
         rg2_status st = rg2_design_write_mesh(ref, path, &err);
         rg2t_file_limit(-1);
