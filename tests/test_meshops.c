@@ -342,6 +342,11 @@ static void errors(const rg2_mesh *M)
     memset(&sf, 0xab, sizeof sf); /* (garbage: the failed call must not read it) */
     expect_err(rg2_surface_copy(&bogus, &sf, &err), RG2_EINVAL, &err, "not a surface", "copy of a bogus surface");
     CHECK(sf.patch == NULL && sf.nu == 0 && sf.bu == NULL, "a failed surface copy left its output %d x %d", sf.nu, sf.nv);
+    /* a NULL source: refused, the output zeroed; a NULL destination: refused */
+    memset(&sf, 0xab, sizeof sf);
+    expect_err(rg2_surface_copy(NULL, &sf, &err), RG2_EINVAL, &err, "NULL source", "copy of a NULL surface");
+    CHECK(sf.patch == NULL && sf.nu == 0, "a copy of a NULL surface left its output %d x %d", sf.nu, sf.nv);
+    expect_err(rg2_surface_copy(&sf0, NULL, &err), RG2_EINVAL, &err, "NULL destination", "surface copied to NULL");
     rg2_surface_free(&sf0);
 
     /* a bad input mesh: its check's message, prefixed with the function and the input */
