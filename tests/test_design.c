@@ -1023,6 +1023,18 @@ static void check_written_mesh(const char *path)
     const cJSON *meshes = cJSON_GetObjectItemCaseSensitive(root, "meshes");
     CHECK(cJSON_GetArraySize(meshes) == rg2_design_num_surfaces(d), "%s: %d meshes written", path,
           cJSON_GetArraySize(meshes));
+    /* each shape's placement: its 16 entries, as the design has them */
+    const cJSON *shapes = cJSON_GetObjectItemCaseSensitive(root, "shapes");
+    int xf_off = cJSON_GetArraySize(shapes) != rg2_design_num_shapes(d);
+    for (int k = 0; k < cJSON_GetArraySize(shapes) && k < rg2_design_num_shapes(d); k++) {
+        const cJSON *mx = cJSON_GetObjectItemCaseSensitive(cJSON_GetArrayItem(shapes, k), "matrix");
+        const rg2_shape *sh = rg2_design_shape(d, k);
+        xf_off += cJSON_GetArraySize(mx) != 16 || !sh;
+        for (int e = 0; sh && e < 16 && e < cJSON_GetArraySize(mx); e++)
+            xf_off += cJSON_GetArrayItem(mx, e)->valuedouble != sh->xform[e];
+    }
+    CHECK(!xf_off, "%s: %d shapes written, %d placement matrices or entries not the design's", path,
+          cJSON_GetArraySize(shapes), xf_off);
     double dev = 0.0;
     int points = 0, w_not_1 = 0, off = 0, scalars_off = 0;
     for (int o = 0; o < rg2_design_num_surfaces(d) && o < cJSON_GetArraySize(meshes); o++) {
