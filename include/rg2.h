@@ -1639,7 +1639,8 @@ RG2_API void rg2_check_opts_default(rg2_check_opts *o);
  *  exports, which name the patch): the report measures them, its gaps and residuals come out
  *  NaN and every G0, G1, G2 and EXACT promise fails (rg2_check_failures; the table says FAIL).
  *  @return RG2_EINVAL (no surfaces, samples out of range, threads < 0, a tolerance that is
- *  not a finite number >= 0), RG2_ELIMIT (more than RG2_MAX_CHECK_SAMPLES seam samples, or
+ *  not a finite number >= 0, a shape of an unknown kind, naming it), RG2_ELIMIT (more than
+ *  RG2_MAX_CHECK_SAMPLES seam samples, or
  *  patch samples, over all surfaces: seams x (seam_samples + 1), patches x
  *  (patch_samples + 1)^2), RG2_ENOMEM. */
 RG2_API rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes,

@@ -825,6 +825,11 @@ rg2_status rg2_check(const rg2_surface *surfs, int n, const rg2_shape *shapes, c
         return rg2__fail(err, RG2_EINVAL, "check: no surfaces (n = %d)", n);
     if (n_shapes < 0 || (n_shapes > 0 && !shapes))
         return rg2__fail(err, RG2_EINVAL, "check: %d shapes without a shape list", n_shapes);
+    for (int k = 0; k < n_shapes; k++) /* (an unknown kind measured NaN residuals: loud, but no refusal) */
+        if (!rg2_shape_name(shapes[k].kind))
+            return rg2__fail(err, RG2_EINVAL, "check: shapes[%d]%s%s%s has an unknown kind %d", k,
+                             labels && labels[k] ? " ('" : "", labels && labels[k] ? labels[k] : "",
+                             labels && labels[k] ? "')" : "", (int)shapes[k].kind);
     if (o->seam_samples < 1 || o->seam_samples > 10000 || o->patch_samples < 1 || o->patch_samples > 1000)
         return rg2__fail(err, RG2_EINVAL, "check: samples %d per seam / %d per patch outside 1..10000 / 1..1000",
                          o->seam_samples, o->patch_samples);

@@ -1145,6 +1145,35 @@ static void unmeasured_where(void)
 
 /* rg2.h, rg2_check: a non-finite control value is measured, not refused; the gaps and the
  * residual come out NaN and every G0, G1, G2 and EXACT promise fails. */
+/* rg2.h, rg2_check: a shape of an unknown kind is refused, naming it (it was measured: NaN
+ * residuals and a failing exact promise, with RG2_OK). */
+static void unknown_shape_kind(void)
+{
+    rg2_design *d = NULL;
+    rg2_error err;
+    CHECK_OK(rg2_design_load("examples/fig1_torus.json", &d, &err), &err);
+    if (!d)
+        return;
+    static const int kinds[2] = {99, -1};
+    for (int k = 0; k < 2; k++)
+        for (int named = 0; named < 2; named++) {
+            rg2_shape sh = *rg2_design_shape(d, 0);
+            sh.kind = (rg2_shape_kind)kinds[k];
+            const char *label[1] = {"ring"};
+            rg2_check_report r;
+            rg2_status st = rg2_check(rg2_design_surface(d, 0), 1, &sh, named ? label : NULL, 1, NULL, &r, &err);
+            char want[80];
+            snprintf(want, sizeof want, "check: shapes[0]%s has an unknown kind %d", named ? " ('ring')" : "",
+                     kinds[k]);
+            CHECK(st == RG2_EINVAL && !strcmp(err.msg, want) && r.shapes == NULL && r.patches == 0,
+                  "a shape of kind %d: %s '%s', want '%s'", kinds[k], rg2_status_str(st), err.msg, want);
+            if (!st)
+                rg2_check_report_free(&r);
+        }
+    rg2_design_free(d);
+    printf("a shape of an unknown kind (99, -1) is refused, naming it\n");
+}
+
 static void nonfinite_fails(void)
 {
     rg2_design *d = NULL;
@@ -2531,6 +2560,7 @@ int main(void)
     seam_direction_reported();
     unmeasured_fails();
     unmeasured_where();
+    unknown_shape_kind();
     curvature_peak_unresolved();
     nonfinite_fails();
     metric_overflow_one_side();
