@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """exact_audit.py -- an audit of rg2's geometry that shares no code with the library.
 
-It reads what `rg2 build` writes for every design in examples/ (the patch dump `x.json`:
+It reads what `rg2 build` writes for every design in examples/ and two of its own (every named
+shape, placed; capped polar meshes of four quadrics: OWN_DESIGNS below) (the patch dump `x.json`:
 homogeneous control points, degrees and shape tags; the same build's `.bv` and `.bez`) and what
 `rg2 mesh` writes (the control mesh: d, W, the scalars w, b, g, and the shapes with their
 parameters and placement matrices), takes every double in them as the exact number it is, and
@@ -1018,6 +1019,64 @@ def check_poles(design, surfs, mesh_js, Wpole, counts):
             counts["poles"] += 1
 
 
+# ------------------------------------------------------------------ designs of the audit's own
+# The shapes and caps the examples do not reach: every named shape (cone, ellipsoid,
+# hyperboloid1_ruled, hypar among them) under rotations about oblique axes, non-uniform scales
+# and a shearing matrix; and polar meshes of an ellipsoid, a sphere (Moebius-placed poles), a
+# paraboloid and a two-sheeted hyperboloid, capped (general-quadratic caps: degree (4, 3)).
+OWN_DESIGNS = {
+    "audit_all_shapes.json": r"""{
+  "shapes": {
+    "tor": {"kind": "torus", "R": 2.5, "r": 0.7, "rotate": {"axis": [1, 2, 3], "degrees": 33}, "translate": [1, -2, 0.5]},
+    "cyc": {"kind": "cyclide", "a": 2, "c": 0.7, "mu": 1.2, "scale": 1.5},
+    "sph": {"kind": "sphere", "radius": 1.7, "translate": [0.3, 0.2, 0.1]},
+    "ell": {"kind": "ellipsoid", "a": 2, "b": 1.5, "c": 0.8, "rotate": {"axis": [0, 1, 1], "degrees": 40}},
+    "cyl": {"kind": "cylinder", "radius": 0.8, "scale": [1, 2, 1]},
+    "con": {"kind": "cone", "k": 1.3},
+    "h1r": {"kind": "hyperboloid1_ruled", "a": 1.1, "c": 0.7},
+    "h1": {"kind": "hyperboloid1", "a": 0.9, "c": 1.2},
+    "h2": {"kind": "hyperboloid2", "a": 0.6, "c": 0.9},
+    "par": {"kind": "paraboloid", "A": 1.2, "B": 0.7},
+    "hyp": {"kind": "hypar", "A": 1.5, "B": 0.8, "matrix": [1, 0.1, 0, 0.2, 0, 1, 0.3, 0, 0, 0, 1, 0.1, 0, 0, 0, 1]}
+  },
+  "meshes": {
+    "m_tor": {"shape": "tor", "u": {"arcs": [50, 40, 70, 60, 45, 55, 40]}, "v": {"arcs": 5}},
+    "m_cyc": {"shape": "cyc"},
+    "m_sph": {"shape": "sph", "u": {"arcs": 7}, "v": {"knots": [0.1, 0.3, 0.45, 0.7, 0.92]}},
+    "m_ell": {"shape": "ell"},
+    "m_cyl": {"shape": "cyl", "u": {"arcs": 5, "from": 10, "to": 300}},
+    "m_con": {"shape": "con"},
+    "m_h1r": {"shape": "h1r"},
+    "m_h1": {"shape": "h1"},
+    "m_h2": {"shape": "h2", "v": {"knots": [0.1, 0.3, 0.5, 0.7]}},
+    "m_par": {"shape": "par"},
+    "m_hyp": {"shape": "hyp", "u": {"knots": [-1, -0.2, 0.5, 1.3]}}
+  },
+  "output": ["m_tor", "m_cyc", "m_sph", "m_ell", "m_cyl", "m_con", "m_h1r", "m_h1", "m_h2", "m_par", "m_hyp"]
+}""",
+    "audit_caps.json": r"""{
+  "shapes": {
+    "ell": {"kind": "ellipsoid", "a": 2, "b": 1.5, "c": 0.8, "rotate": {"axis": [1, 1, 0], "degrees": 25}},
+    "sph": {"kind": "sphere", "radius": 1.2, "translate": [5, 0, 0]},
+    "par": {"kind": "paraboloid", "A": 1.2, "B": 0.7, "translate": [0, 5, 0]},
+    "h2": {"kind": "hyperboloid2", "a": 0.6, "c": 0.9, "translate": [5, 5, 0]}
+  },
+  "meshes": {
+    "pe": {"polar": "ell", "u": {"arcs": 7}, "v": {"knots": [0.2, 0.4, 0.55, 0.8]}},
+    "ce": {"cap": "pe", "quadratic": "general"},
+    "ps": {"polar": "sph", "u": {"arcs": 10}, "v": {"knots": [0.12, 0.25, 0.38, 0.5, 0.62, 0.75, 0.88]}},
+    "ms": {"mobius": "ps", "sphere": "sph", "poles": {"south": [5.0, 0.72, -0.96], "north": [5.0, 0.0, 1.2]}},
+    "cs": {"cap": "ms", "quadratic": "general"},
+    "pp": {"polar": "par", "u": {"arcs": 8}, "v": {"knots": [0.3, 0.6, 1.0]}},
+    "cp": {"cap": "pp"},
+    "ph": {"polar": "h2", "u": {"arcs": 6}, "v": {"knots": [0.2, 0.4, 0.6]}},
+    "ch": {"cap": "ph", "quadratic": "general"}
+  },
+  "output": ["ce", "cs", "cp", "ch"]
+}""",
+}
+
+
 # --------------------------------------------------------------------------------- driver
 def run_rg2(rg2, args):
     r = subprocess.run([rg2] + args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -1150,8 +1209,13 @@ def main(argv):
     if mf:
         failed.append("MATH.md")
     with tempfile.TemporaryDirectory(prefix="rg2-audit-") as tmp:
-        for name in names:
-            path = os.path.join(exdir, name)
+        todo = [(name, os.path.join(exdir, name)) for name in names]
+        if not only:
+            for name, text in OWN_DESIGNS.items():
+                with open(os.path.join(tmp, name), "w") as f:
+                    f.write(text)
+                todo.append((name, os.path.join(tmp, name)))
+        for name, path in todo:
             dump = os.path.join(tmp, name[:-5] + ".patches.json")
             meshf = os.path.join(tmp, name[:-5] + ".mesh.json")
             bvf = os.path.join(tmp, name[:-5] + ".bv")
@@ -1162,7 +1226,7 @@ def main(argv):
                 failed.append(name)
         if do_self_test and not self_test(rg2, exdir, tmp):
             failed.append("self-test")
-    print("%s: %d designs in %.1f s" % ("FAIL (%s)" % ", ".join(failed) if failed else "ok", len(names),
+    print("%s: %d designs in %.1f s" % ("FAIL (%s)" % ", ".join(failed) if failed else "ok", len(todo),
                                         time.time() - t0))
     return 1 if failed else 0
 
