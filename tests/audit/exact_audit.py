@@ -37,7 +37,9 @@ exact rationals (fractions.Fraction):
                 or a mobius of one is that quadric moved by the translate, or the same quadric;
   pole          the poles a mobius "poles" entry asks for are where the patches collapse;
   export        the .bv holds the dump's doubles bit for bit, the .bez (one degree for the file)
-                the exact degree elevation of each patch to a few roundings;
+                the exact degree elevation of each patch to a few roundings; the STEP and IGES
+                files (face per patch: affine points and weights) every weight bit for bit and
+                every coordinate as the correctly rounded quotient h_k / h_w;
   MATH.md       sections 1 and 2 on exact rational data: G2 (Definition 1) at every junction of
                 random polygons, and an open arc partition reproduced exactly (no rounding).
 
@@ -164,14 +166,26 @@ def eval_point(P, u, v):
     """the 3D point of patch P at (u, v) (Fractions), in Decimal"""
     H = P.dec()
     bu, bv = bern(P.du, u)[0], bern(P.dv, v)[0]
-    acc = [D0, D0, D0, D0]
+    x0 = x1 = x2 = x3 = D0
     for r in range(P.du + 1):
+        cu = bu[r]
+        if not cu:
+            continue
         row = H[r]
-        c = [sum(row[s][k] * bv[s] for s in range(P.dv + 1)) for k in range(4)]
-        for k in range(4):
-            acc[k] += bu[r] * c[k]
-    w = acc[3]
-    return [acc[0] / w, acc[1] / w, acc[2] / w]
+        y0 = y1 = y2 = y3 = D0
+        for q in range(P.dv + 1):
+            c = bv[q]
+            if c:
+                h = row[q]
+                y0 += h[0] * c
+                y1 += h[1] * c
+                y2 += h[2] * c
+                y3 += h[3] * c
+        x0 += y0 * cu
+        x1 += y1 * cu
+        x2 += y2 * cu
+        x3 += y3 * cu
+    return [x0 / x3, x1 / x3, x2 / x3]
 
 
 def eval_jet(P, u, v):
@@ -179,13 +193,36 @@ def eval_jet(P, u, v):
     Bernstein sums (no finite differences), in Decimal"""
     H = P.dec()
     bu, bv = bern(P.du, u), bern(P.dv, v)
-    nv = P.dv + 1
+    # only the nonzero basis values (on a patch side most of them are 0)
+    ru = [r for r in range(P.du + 1) if any(bu[a][r] for a in range(3))]
+    sv = [[q for q in range(P.dv + 1) if bv[b][q]] for b in range(3)]
     # C[b][r][k] = sum_s H[r][s][k] B^(b)_s(v)
-    C = [[[sum(H[r][s][k] * bv[b][s] for s in range(nv)) for k in range(4)] for r in range(P.du + 1)]
-         for b in range(3)]
+    C = [{} for b in range(3)]
+    for b in range(3):
+        bb, qs = bv[b], sv[b]
+        for r in ru:
+            row = H[r]
+            x0 = x1 = x2 = x3 = D0
+            for q in qs:
+                c, h = bb[q], row[q]
+                x0 += h[0] * c
+                x1 += h[1] * c
+                x2 += h[2] * c
+                x3 += h[3] * c
+            C[b][r] = (x0, x1, x2, x3)
     X = {}
     for a, b in ((0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2)):
-        X[a, b] = [sum(bu[a][r] * C[b][r][k] for r in range(P.du + 1)) for k in range(4)]
+        ba, Cb = bu[a], C[b]
+        x0 = x1 = x2 = x3 = D0
+        for r in ru:
+            c = ba[r]
+            if c:
+                h = Cb[r]
+                x0 += h[0] * c
+                x1 += h[1] * c
+                x2 += h[2] * c
+                x3 += h[3] * c
+        X[a, b] = (x0, x1, x2, x3)
     w = X[0, 0][3]
     wu, wv, wuu, wuv, wvv = X[1, 0][3], X[0, 1][3], X[2, 0][3], X[1, 1][3], X[0, 2][3]
     x = [X[0, 0][k] / w for k in range(3)]
@@ -891,6 +928,76 @@ def check_math(counts):
     return fails
 
 
+def affine_ok(h, p3, w):
+    """whether a CAD file's control point (p3, weight w), written as an affine point and a
+    weight, is the dump's homogeneous h: w the same double, each coordinate h_k / h_w correctly
+    rounded (the nearest double to the exact quotient). Returns the error in units of the last
+    place (0 when so)."""
+    if w != h[3]:
+        return math.inf
+    worst = 0.0
+    for k in range(3):
+        want = float(Fraction(h[k]) / Fraction(h[3]))     # correctly rounded
+        if p3[k] != want:
+            worst = max(worst, abs(p3[k] - want) / math.ulp(want if want else 1e-300))
+    return worst
+
+
+def check_cad(surfs, stepf, igsf, Wc, counts):
+    """the STEP (face per patch) and IGES (entity 128 per patch) files of the same build: each
+    patch's control points as affine points and weights (the form both standards store), every
+    weight the dump's double and every coordinate the correctly rounded quotient h_k / h_w"""
+    import re
+    patches = [(si, pi, P) for si, s in enumerate(surfs) for pi, P in enumerate(s.patches)]
+    with open(stepf) as f:
+        text = f.read()
+    pts = {int(m.group(1)): [float(x) for x in m.group(2).split(",")]
+           for m in re.finditer(r"#(\d+)=CARTESIAN_POINT\('',\(([^)]*)\)\);", text)}
+    surf_re = re.compile(r"B_SPLINE_SURFACE\((\d+),(\d+),\((.*?)\),\.[A-Z_]+\.,.*?"
+                         r"RATIONAL_B_SPLINE_SURFACE\(\((.*?)\)\)\s*REPRESENTATION_ITEM", re.S)
+    found = list(surf_re.finditer(text))
+    if len(found) != len(patches):
+        raise ValueError("%s: %d rational surfaces for %d patches" % (stepf, len(found), len(patches)))
+    for m, (si, pi, P) in zip(found, patches):
+        du, dv = int(m.group(1)), int(m.group(2))
+        refs = [[int(x) for x in re.findall(r"#(\d+)", row)] for row in re.findall(r"\(([^()]*)\)", m.group(3))]
+        ws = [[float(x) for x in row.split(",")] for row in re.findall(r"\(([^()]*)\)", m.group(4))]
+        if (du, dv) != (P.du, P.dv) or len(refs) != du + 1 or any(len(r) != dv + 1 for r in refs):
+            raise ValueError("%s: surface %d patch %d: degrees or net differ" % (stepf, si, pi))
+        n = P.dv + 1
+        for r in range(du + 1):
+            for q in range(dv + 1):
+                e = affine_ok(P.raw[4 * (r * n + q):4 * (r * n + q) + 4], pts[refs[r][q]], ws[r][q])
+                Wc.add(e, "STEP surface %d patch (%d,%d) point [%d][%d]" % (si, pi // surfs[si].nv, pi % surfs[si].nv, r, q))
+        counts["cad"] += 1
+    # IGES: the parameter section, columns 1-64, each entity's records by its directory pointer
+    params = {}
+    with open(igsf) as f:
+        for line in f:
+            if len(line) >= 73 and line[72] == "P":
+                params.setdefault(int(line[64:72]), []).append(line[:64])
+    ents = [("".join(v)).replace("D", "E") for k, v in sorted(params.items())]
+    ents = [e for e in ents if e.startswith("128,")]
+    if len(ents) != len(patches):
+        raise ValueError("%s: %d entities 128 for %d patches" % (igsf, len(ents), len(patches)))
+    for e, (si, pi, P) in zip(ents, patches):
+        v = e.split(";")[0].split(",")
+        K1, K2, M1, M2 = (int(x) for x in v[1:5])
+        k = 10 + (K1 + M1 + 2) + (K2 + M2 + 2)
+        nw = (K1 + 1) * (K2 + 1)
+        ws = [float(x) for x in v[k:k + nw]]
+        xyz = [float(x) for x in v[k + nw:k + 4 * nw]]
+        if (K1, K2) != (P.du, P.dv):
+            raise ValueError("%s: surface %d patch %d: degrees differ" % (igsf, si, pi))
+        n = P.dv + 1
+        for q in range(K2 + 1):
+            for r in range(K1 + 1):          # the first index (u) runs fastest
+                i = q * (K1 + 1) + r
+                err = affine_ok(P.raw[4 * (r * n + q):4 * (r * n + q) + 4], xyz[3 * i:3 * i + 3], ws[i])
+                Wc.add(err, "IGES surface %d patch (%d,%d) point [%d][%d]" % (si, pi // surfs[si].nv, pi % surfs[si].nv, r, q))
+        counts["cad"] += 1
+
+
 # --------------------------------------------------------------------------- (4) placement
 def rot(axis, deg):
     x, y, z = axis
@@ -1084,7 +1191,7 @@ def run_rg2(rg2, args):
         raise RuntimeError("%s %s: exit %d: %s" % (rg2, " ".join(args), r.returncode, r.stderr.strip()))
 
 
-def audit(design_path, dump, meshf, bvf=None, bezf=None):
+def audit(design_path, dump, meshf, bvf=None, bezf=None, stepf=None, igsf=None):
     with open(design_path) as f:
         design = json.load(f)
     with open(dump) as f:
@@ -1095,7 +1202,7 @@ def audit(design_path, dump, meshf, bvf=None, bezf=None):
     shapes = [PlacedShape(x) for x in mj["shapes"]]
     counts = {"pole": 0, "unmeasured": 0, "measured": 0, "built": 0, "build_skipped": 0, "placed": 0,
               "poles": 0, "collapsed": 0, "exported": 0,
-              "nurbs_intervals": 0, "nurbs_matched": 0}
+              "nurbs_intervals": 0, "nurbs_matched": 0, "cad": 0}
     notes = []
     W = Worst("exact", LIMIT_EXACT)
     W0, W1, W2 = Worst("G0 gap", LIMIT_G0), Worst("G1 angle", LIMIT_G1), Worst("G2 jump", LIMIT_G2)
@@ -1114,7 +1221,10 @@ def audit(design_path, dump, meshf, bvf=None, bezf=None):
     Wx = Worst("export", LIMIT_EXPORT)
     if bvf:
         check_exports(surfs, bvf, bezf, Wx, counts)
-    allw = [W, W0, W1, W2, W1p, W2p, Wlim, Wb, Wn, Wp, Wpole, Wc, Wx]
+    Wcad = Worst("STEP/IGES ulp", 0.0)
+    if stepf:
+        check_cad(surfs, stepf, igsf, Wcad, counts)
+    allw = [W, W0, W1, W2, W1p, W2p, Wlim, Wb, Wn, Wp, Wpole, Wc, Wx, Wcad]
     return allw, per_shape, counts, notes, surfs
 
 
@@ -1123,9 +1233,9 @@ def report(name, res, verbose):
     allw, per_shape, counts, notes, surfs = res
     bad = [w for w in allw if not w.ok()] + [w for w in per_shape.values() if not w.ok()]
     print("%s: %d surfaces, %d patches; %d seam samples (%d at a pole: its limit normals, and beside it); "
-          "%d patches rebuilt exactly; %d placements; %d collapsed sides; %d patches in .bv/.bez%s" % (
+          "%d patches rebuilt exactly; %d placements; %d collapsed sides; %d patches in .bv/.bez, %d in STEP/IGES%s" % (
               name, len(surfs), sum(len(s.patches) for s in surfs), counts["measured"], counts["pole"],
-              counts["built"], counts["placed"], counts["collapsed"], counts["exported"], "  FAIL" if bad else ""))
+              counts["built"], counts["placed"], counts["collapsed"], counts["exported"], counts["cad"], "  FAIL" if bad else ""))
     for w in list(per_shape.values()) + allw[1:]:
         if verbose or not w.ok():
             print("    " + w.line())
@@ -1220,9 +1330,11 @@ def main(argv):
             meshf = os.path.join(tmp, name[:-5] + ".mesh.json")
             bvf = os.path.join(tmp, name[:-5] + ".bv")
             bezf = os.path.join(tmp, name[:-5] + ".bez")
-            run_rg2(rg2, ["build", path, "-o", dump, "-o", bvf, "-o", bezf, "-q"])
+            stepf = os.path.join(tmp, name[:-5] + ".step")
+            igsf = os.path.join(tmp, name[:-5] + ".igs")
+            run_rg2(rg2, ["build", path, "-o", dump, "-o", bvf, "-o", bezf, "-o", stepf, "-o", igsf, "-q"])
             run_rg2(rg2, ["mesh", path, "-o", meshf])
-            if not report(name, audit(path, dump, meshf, bvf, bezf), verbose):
+            if not report(name, audit(path, dump, meshf, bvf, bezf, stepf, igsf), verbose):
                 failed.append(name)
         if do_self_test and not self_test(rg2, exdir, tmp):
             failed.append("self-test")
