@@ -40,8 +40,10 @@ exact rationals (fractions.Fraction):
                 the exact degree elevation of each patch to a few roundings; the STEP and IGES
                 files (face per patch: affine points and weights) every weight bit for bit and
                 every coordinate as the correctly rounded quotient h_k / h_w;
-  MATH.md       sections 1 and 2 on exact rational data: G2 (Definition 1) at every junction of
-                random polygons, and an open arc partition reproduced exactly (no rounding).
+  MATH.md       sections 1, 2 and 7 on exact rational data: G2 (Definition 1) at every junction
+                of random polygons, an open arc partition reproduced exactly, and eq. (13)'s
+                polar points and scalars from the blossoms (no rounding); a design's polar mesh
+                of a sphere has eq. (13)'s points ("eq. (13) poles").
 
 Limits: exact 1e-14 (rg2 check's is 1e-13 on its own double evaluation), G0 1e-12, G1 1e-10 rad,
 G2 1e-8 (rg2 check's), construction and NURBS 1e-14, placement 1e-15, collapsed 1e-14, export
@@ -925,7 +927,53 @@ def check_math(counts):
         counts["math_arcs"] += 1
         if not (same and on):
             fails.append("arc %d of an open partition is not reproduced (same points %s, on the circle %s)" % (i, same, on))
+    # (c) eq. (13): the polar knots collapse the sphere's end rows to (0, 0, Zs, 1), (0, 0, Zn, 1)
+    def blossom(coefs, a, b, c):     # coefs of 1, v, v^2 (a quadratic as a cubic)
+        return coefs[0] + coefs[1] * (a + b + c) / 3 + coefs[2] * (a * b + a * c + b * c) / 3
+    sphere = [(0, 2, -2), (0, 2, -2), (-1, 2, 0), (1, -2, 2)]    # 2v(1-v) cu, 2v(1-v) su, 2v-1, 2v^2-2v+1
+    for trial in range(4):
+        v1 = F(rnd.randint(5, 45), 100)
+        vm = F(rnd.randint(55, 95), 100)
+        vmm1 = v1 / (v1 - 1)
+        south = [blossom([F(c) for c in co], vmm1, F(0), v1) for co in sphere]
+        north = [blossom([F(c) for c in co], vm, F(1), 1 / vm) for co in sphere]
+        Zs = (3 - 3 * v1 + 2 * v1 * v1) / (3 * (v1 - 1))
+        Zn = (2 - vm + 2 * vm * vm) / (3 * vm)
+        ok = (south == [0, 0, Zs, 1] and north == [0, 0, Zn, 1]
+              and (v1 - 0) / (0 - vmm1) == 1 - v1 and (1 / vm - 1) / (1 - vm) == 1 / vm)
+        counts["math_poles"] += 1
+        if not ok:
+            fails.append("eq. (13) fails for v_1 = %s, v_m = %s" % (v1, vm))
     return fails
+
+
+def check_polar_points(design, mesh_js, shapes, Wz, counts):
+    """a design's polar mesh of a sphere, output as it is: its first and last rows are the points
+    of eq. (13) from its knots, placed by the shape's matrix (to rounding)"""
+    meshes = design["meshes"]
+    outs = design.get("output")
+    outs = [outs] if isinstance(outs, str) else (outs or [list(meshes)[-1]])
+    by_label = {sh.label: sh for sh in shapes}
+    for k, name in enumerate(outs):
+        op = meshes.get(name, {})
+        sh = by_label.get(op.get("polar"))
+        if sh is None or sh.kind != "sphere" or k >= len(mesh_js) or "knots" not in op.get("v", {}):
+            continue
+        kn = [Fraction(float(x)) for x in op["v"]["knots"]]
+        v1, vm = kn[0], kn[-1]
+        rho = Fraction(sh.params["radius"])
+        Zs = (3 - 3 * v1 + 2 * v1 * v1) / (3 * (v1 - 1))
+        Zn = (2 - vm + 2 * vm * vm) / (3 * vm)
+        m = mesh_js[k]
+        size = math.dist(*[[float(x) for x in m["d"][0][j]] for j in (0, -1)])
+        for j, Z in ((0, Zs), (m["nv"] - 1, Zn)):
+            q = [sum(sh.M[r][c] * x for c, x in enumerate((0, 0, rho * Z, 1))) for r in range(4)]
+            want = [q[r] / q[3] for r in range(3)]
+            for i in range(m["nu"]):
+                got = [Fraction(x) for x in m["d"][i][j]]
+                Wz.add(math.sqrt(float(sum((got[r] - want[r]) ** 2 for r in range(3)))) / size,
+                       "meshes.%s point [%d, %d]" % (name, i, j))
+            counts["polar_points"] += 1
 
 
 def affine_ok(h, p3, w):
@@ -1202,7 +1250,7 @@ def audit(design_path, dump, meshf, bvf=None, bezf=None, stepf=None, igsf=None):
     shapes = [PlacedShape(x) for x in mj["shapes"]]
     counts = {"pole": 0, "unmeasured": 0, "measured": 0, "built": 0, "build_skipped": 0, "placed": 0,
               "poles": 0, "collapsed": 0, "exported": 0,
-              "nurbs_intervals": 0, "nurbs_matched": 0, "cad": 0}
+              "nurbs_intervals": 0, "nurbs_matched": 0, "cad": 0, "polar_points": 0}
     notes = []
     W = Worst("exact", LIMIT_EXACT)
     W0, W1, W2 = Worst("G0 gap", LIMIT_G0), Worst("G1 angle", LIMIT_G1), Worst("G2 jump", LIMIT_G2)
@@ -1221,10 +1269,12 @@ def audit(design_path, dump, meshf, bvf=None, bezf=None, stepf=None, igsf=None):
     Wx = Worst("export", LIMIT_EXPORT)
     if bvf:
         check_exports(surfs, bvf, bezf, Wx, counts)
+    Wz = Worst("eq. (13) poles", LIMIT_COLLAPSE)
+    check_polar_points(design, mj["meshes"], shapes, Wz, counts)
     Wcad = Worst("STEP/IGES ulp", 0.0)
     if stepf:
         check_cad(surfs, stepf, igsf, Wcad, counts)
-    allw = [W, W0, W1, W2, W1p, W2p, Wlim, Wb, Wn, Wp, Wpole, Wc, Wx, Wcad]
+    allw = [W, W0, W1, W2, W1p, W2p, Wlim, Wb, Wn, Wp, Wpole, Wz, Wc, Wx, Wcad]
     return allw, per_shape, counts, notes, surfs
 
 
@@ -1311,11 +1361,11 @@ def main(argv):
         names = [n for n in names if n in only or n[:-5] in only]
     t0 = time.time()
     failed = []
-    mc = {"math_junctions": 0, "math_arcs": 0}
+    mc = {"math_junctions": 0, "math_arcs": 0, "math_poles": 0}
     mf = check_math(mc)
     print("MATH.md in exact rationals: G2 (Definition 1) at %d junctions of random closed and open polygons, "
-          "%d arcs of an open partition reproduced control point for control point: %s" % (
-              mc["math_junctions"], mc["math_arcs"], "; ".join(mf) if mf else "ok"))
+          "%d arcs of an open partition reproduced control point for control point, eq. (13) for %d pairs of "
+          "polar knots: %s" % (mc["math_junctions"], mc["math_arcs"], mc["math_poles"], "; ".join(mf) if mf else "ok"))
     if mf:
         failed.append("MATH.md")
     with tempfile.TemporaryDirectory(prefix="rg2-audit-") as tmp:
