@@ -1401,6 +1401,9 @@ def main(argv):
 
 
 if __name__ == "__main__":
+    if sys.version_info < (3, 9):       # math.ulp, math.comb, math.dist
+        print("exact_audit: error: needs Python 3.9 or later (this is %d.%d)" % sys.version_info[:2], file=sys.stderr)
+        sys.exit(1)
     try:
         sys.exit(main(sys.argv[1:]))
     except (RuntimeError, OSError, ValueError, KeyError) as e:
