@@ -2014,6 +2014,23 @@ static rg2_status op_cap(pctx *c, const cJSON *obj, const char *path, rg2__dmesh
                 return fail(c, RG2_EDOMAIN, q, "%s cap length %g, must be > 0 (or 0: automatic)",
                             e ? "north" : "south", o.length[e]);
         }
+        for (int e = 0; e < 2; e++) { /* a length for an end this cap leaves open: nothing uses it */
+            if (!(o.length[e] > 0.0) || (o.ends & (e ? RG2_CAP_NORTH : RG2_CAP_SOUTH)))
+                continue;
+            char msg[700], hint[200] = "";
+            indexpath(q, sizeof q, p, e);
+            if (!(o.length[1 - e] > 0.0))
+                snprintf(hint, sizeof hint, "; the %s cap's length 0 is automatic (for a %s cap of length %g "
+                         "write [%g, %g])", e ? "south" : "north", e ? "south" : "north", o.length[e],
+                         e ? o.length[e] : 0.0, e ? 0.0 : o.length[e]);
+            snprintf(msg, sizeof msg,
+                     "%s: %s: %g is the length of a %s cap, but this cap closes only the %s end (\"ends\": "
+                     "\"%s\"), so it has no effect: the list is [south, north]%s",
+                     c->file, q, o.length[e], e ? "north" : "south", e ? "south" : "north", e ? "south" : "north",
+                     hint);
+            if ((st = rg2__design_add_note(c->d, msg, c->err)))
+                return st;
+        }
         o.vc[0] = o.vc[1] = 0.5;
     }
     if ((x = get(obj, "vc"))) {

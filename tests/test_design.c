@@ -2842,6 +2842,60 @@ static void big_integers(void)
     }
 }
 
+/* A cap length given for an end the cap leaves open ("ends": "north" with "length": [2, 0]) has
+ * no effect: the north cap is automatic. The design says so in a note naming the entry; a length
+ * for a capped end, or 0 for the open one, gives none. Either way the surface is the one of the
+ * same cap with that length dropped (bit for bit). */
+static void cap_length_notes(void)
+{
+    static const char base[] =
+        "{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {\"A\": {\"shape\": \"c\"}, "
+        "\"C\": {\"cap\": \"A\", \"ends\": \"%s\"%s}}}";
+    static const struct {
+        const char *ends, *length, *same_as, *note; /* note NULL: none */
+    } cases[] = {
+        {"north", ", \"length\": [2, 0]", "",
+         "meshes.C.length[0]: 2 is the length of a south cap, but this cap closes only the north end (\"ends\": "
+         "\"north\"), so it has no effect: the list is [south, north]; the north cap's length 0 is automatic (for "
+         "a north cap of length 2 write [0, 2])"},
+        {"south", ", \"length\": [1.5, 3]", ", \"length\": [1.5, 0]",
+         "meshes.C.length[1]: 3 is the length of a north cap, but this cap closes only the south end (\"ends\": "
+         "\"south\"), so it has no effect: the list is [south, north]"},
+        {"south", ", \"length\": [0, 3]", "",
+         "meshes.C.length[1]: 3 is the length of a north cap, but this cap closes only the south end (\"ends\": "
+         "\"south\"), so it has no effect: the list is [south, north]; the south cap's length 0 is automatic (for "
+         "a south cap of length 3 write [3, 0])"},
+        {"north", ", \"length\": [0, 2]", ", \"length\": [0, 2]", NULL},
+        {"both", ", \"length\": [2, 1]", ", \"length\": [2, 1]", NULL}};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        char json[600], json2[600];
+        snprintf(json, sizeof json, base, cases[k].ends, cases[k].length);
+        snprintf(json2, sizeof json2, base, cases[k].ends, cases[k].same_as);
+        rg2_error err;
+        rg2_design *d = parse(json, &err), *d2 = parse(json2, &err);
+        if (d) {
+            int n = rg2_design_num_notes(d);
+            const char *note = n ? rg2_design_note(d, 0) : "";
+            const char *at = strstr(note, "meshes.C.");
+            if (cases[k].note)
+                CHECK(n == 1 && at && !strcmp(at, cases[k].note), "cap ends %s%s: %d notes, first '%s', want '%s'",
+                      cases[k].ends, cases[k].length, n, note, cases[k].note);
+            else
+                CHECK(n == 0, "cap ends %s%s: a note '%s'", cases[k].ends, cases[k].length, note);
+        }
+        if (d && d2) {
+            const rg2_surface *a = rg2_design_surface(d, 0), *b = rg2_design_surface(d2, 0);
+            int same = a && b && a->nu == b->nu && a->nv == b->nv;
+            for (int i = 0; same && i < a->nu; i++)
+                for (int j = 0; same && j < a->nv; j++)
+                    same = !memcmp(rg2_surface_patch(a, i, j), rg2_surface_patch(b, i, j), sizeof(rg2_patch));
+            CHECK(same, "cap ends %s%s: not the surface of %s", cases[k].ends, cases[k].length, json2);
+        }
+        rg2_design_free(d);
+        rg2_design_free(d2);
+    }
+}
+
 int main(void)
 {
     parse_sizes();
@@ -2895,6 +2949,7 @@ int main(void)
     start_many_turns();
     open_end_arc_near_180();
     thin_tube_caps();
+    cap_length_notes();
     big_integers();
     return rg2t_done("test_design");
 }
