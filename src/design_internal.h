@@ -51,6 +51,8 @@ typedef struct {
     int capped;        /* built with polar caps (design_poles.c; an output property, not copied) */
     rg2_cap_opts cap;
     int cap_src;       /* the capped mesh (index into rg2_design.mesh), for messages */
+    int uncapped_of;   /* 1 + the capped mesh an uncapped mesh was made from (an operation uses a
+                          capped input uncapped), 0 none: an uncapped output made so gets a note */
 } rg2__dmesh;
 
 /* A hash index of names (mesh names, shape labels) to their registry index; the keys are the

@@ -1300,6 +1300,24 @@ static rg2_status transform_weights(pctx *c, const cJSON *obj, const char *path,
     return RG2_OK;
 }
 
+/* 1 + the capped mesh that operation `op` of obj takes as an input (or that one of its inputs was
+ * made from uncapped), 0 none: the operation uses it uncapped, as a cap belongs to an output. */
+static int capped_input(pctx *c, const cJSON *obj, int op)
+{
+    if (op == 0 || op == 8 || op == 11) /* shape, polar, nurbs: no mesh inputs */
+        return 0;
+    const cJSON *x = get(obj, ops[op]);
+    const cJSON *it = cJSON_IsArray(x) ? x->child : x;
+    for (; it; it = cJSON_IsArray(x) ? it->next : NULL) {
+        int k = cJSON_IsString(it) ? rg2__design_find_mesh(c->d, it->valuestring) : -1;
+        if (k >= 0 && c->d->mesh[k].capped)
+            return k + 1;
+        if (k >= 0 && c->d->mesh[k].uncapped_of)
+            return c->d->mesh[k].uncapped_of;
+    }
+    return 0;
+}
+
 static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const char *path)
 {
     rg2_status st = as_obj(c, obj, path);
@@ -1360,6 +1378,7 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
         }
         return st;
     }
+    tmp.uncapped_of = op == 10 ? 0 : capped_input(c, obj, op);
     if (op == 6 && (st = transform_weights(c, obj, path, &tmp))) {
         rg2__dmesh_free(&tmp);
         return st;
@@ -1750,6 +1769,22 @@ rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, c
             goto done;
     } else if ((st = mesh_ref(&c, x, "output", &d->out[0])))
         goto done;
+    for (int k = 0; k < d->n_out; k++) { /* an output made from a capped mesh, itself uncapped */
+        const rg2__dmesh *o = &d->mesh[d->out[k]];
+        if (o->capped || !o->uncapped_of)
+            continue;
+        const rg2__dmesh *cm = &d->mesh[o->uncapped_of - 1];
+        int e = cm->cap.ends;
+        char msg[900];
+        snprintf(msg, sizeof msg,
+                 "%s: meshes.%s: the output '%s' is made from '%s', which is capped, and has no caps: a cap "
+                 "belongs to an output surface, so an operation uses a capped mesh uncapped; to close the "
+                 "ends of '%s', cap it as '%s' is capped ({\"cap\": \"%s\", \"ends\": \"%s\"}, the same options)",
+                 c.file, o->name, o->name, cm->name, o->name, cm->name, o->name,
+                 e == (RG2_CAP_SOUTH | RG2_CAP_NORTH) ? "both" : e == RG2_CAP_SOUTH ? "south" : "north");
+        if ((st = rg2__design_add_note(d, msg, c.err)))
+            goto done;
+    }
 done:
     cJSON_Delete(root);
 #ifdef __GLIBC__

@@ -2896,6 +2896,47 @@ static void cap_length_notes(void)
     }
 }
 
+/* An operation uses a capped mesh uncapped (a cap belongs to an output surface): an output made
+ * from a capped mesh, through any chain of operations, and not capped itself has open ends. The
+ * design says so in a note naming the output, the capped mesh and the cap to add; an output that
+ * is capped again, or the capped mesh itself, gets none. */
+static void uncapped_output_notes(void)
+{
+    static const char base[] =
+        "{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}}, \"meshes\": {\"A\": {\"shape\": \"c\"}, "
+        "\"K\": {\"cap\": \"A\", \"ends\": \"south\"}, \"T\": {\"transform\": \"K\", \"translate\": [3, 0, 0]}, "
+        "\"R\": {\"reverse\": \"T\", \"dir\": \"u\"}, \"RK\": {\"cap\": \"R\"}, "
+        "\"M\": {\"morph\": [\"A\", \"T\"], \"t\": 0.5}}, \"output\": %s}";
+    static const struct {
+        const char *output, *note; /* note NULL: none */
+    } cases[] = {
+        {"\"T\"", "meshes.T: the output 'T' is made from 'K', which is capped, and has no caps: a cap belongs to an "
+                  "output surface, so an operation uses a capped mesh uncapped; to close the ends of 'T', cap it "
+                  "as 'K' is capped ({\"cap\": \"T\", \"ends\": \"south\"}, the same options)"},
+        {"[\"K\", \"R\"]", "meshes.R: the output 'R' is made from 'K', which is capped"},
+        {"\"M\"", "meshes.M: the output 'M' is made from 'K', which is capped"},
+        {"\"RK\"", NULL},
+        {"\"K\"", NULL},
+        {"\"A\"", NULL}};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        char json[900];
+        snprintf(json, sizeof json, base, cases[k].output);
+        rg2_error err;
+        rg2_design *d = parse(json, &err);
+        if (!d)
+            continue;
+        int n = rg2_design_num_notes(d);
+        const char *note = n ? rg2_design_note(d, 0) : "";
+        const char *at = strstr(note, "meshes.");
+        if (cases[k].note)
+            CHECK(n == 1 && at && !strncmp(at, cases[k].note, strlen(cases[k].note)),
+                  "output %s: %d notes, first '%s', want '%s'", cases[k].output, n, note, cases[k].note);
+        else
+            CHECK(n == 0, "output %s: a note '%s'", cases[k].output, note);
+        rg2_design_free(d);
+    }
+}
+
 int main(void)
 {
     parse_sizes();
@@ -2950,6 +2991,7 @@ int main(void)
     open_end_arc_near_180();
     thin_tube_caps();
     cap_length_notes();
+    uncapped_output_notes();
     big_integers();
     return rg2t_done("test_design");
 }
