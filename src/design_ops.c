@@ -615,14 +615,53 @@ double rg2__merge_seam_back(const rg2_mesh *l, const rg2_mesh *r, int dir, int *
     return back_l > back_r ? back_l : back_r;
 }
 
+/* Whether the open ends of a merge, the last line of l (along dir) and the first of r, run on into
+ * each other as a seam does: the step between their centres points forward along both parts'
+ * steps there (within 60 degrees of each) and is at most 3 of their line spacings long; *ratio is
+ * its length in spacings (the larger of the two parts'). A ring merged without "closed": true. */
+static int open_ends_meet(const rg2_mesh *l, const rg2_mesh *r, int dir, double *ratio)
+{
+    int n = dir_scalars(l, 1 - dir)->n, nl = dir_scalars(l, dir)->n, nr = dir_scalars(r, dir)->n;
+    if (nl < 2 || nr < 2 || n != dir_scalars(r, 1 - dir)->n)
+        return 0;
+    double c[4][3], a[3], st3[3], b[3];
+    line_centre(l, dir, nl - 2, n, c[0]);
+    line_centre(l, dir, nl - 1, n, c[1]);
+    line_centre(r, dir, 0, n, c[2]);
+    line_centre(r, dir, 1, n, c[3]);
+    for (int k = 0; k < 3; k++)
+        a[k] = c[1][k] - c[0][k], st3[k] = c[2][k] - c[1][k], b[k] = c[3][k] - c[2][k];
+    double la = sqrt(dot3(a, a)), lb = sqrt(dot3(b, b)), ls = sqrt(dot3(st3, st3));
+    double sp = la > lb ? la : lb;
+    if (!(la > 0.0 && lb > 0.0 && ls > 0.0) || !isfinite(la + lb + ls))
+        return 0;
+    *ratio = ls / sp;
+    return *ratio <= 3.0 && dot3(st3, a) >= 0.5 * ls * la && dot3(st3, b) >= 0.5 * ls * lb;
+}
+
 rg2_status rg2__merge_overlap_notes(rg2_design *d, const rg2__dmesh *const *in, int n_in, int dir, int closed,
                                     const char *what, rg2_error *err)
 {
     int other = 1 - dir;
+    double ratio;
+    int part, line, idx;
+    double w;
+    if (!closed && n_in >= 2 && !seam_weights_bad(&in[n_in - 1]->m, &in[0]->m, dir, &part, &line, &idx, &w) &&
+        open_ends_meet(&in[n_in - 1]->m, &in[0]->m, dir, &ratio)) {
+        char msg[900];
+        snprintf(msg, sizeof msg,
+                 "%s: %s: the merge is open along %s, but its ends run on into each other as a seam does: the "
+                 "first %s line of '%s' lies %.2g line spacings on from the last of '%s', so the surface is a "
+                 "ring with a gap there; if a closed ring is meant, add \"closed\": true (the gap then becomes "
+                 "3 transition patches, as at the other seams)",
+                 d->name, what, dir_name(dir), dir_name(other), in[0]->name, ratio, in[n_in - 1]->name);
+        rg2_status st = rg2__design_add_note(d, msg, err);
+        if (st)
+            return st;
+    }
     for (int t = closed ? 0 : 1; t < n_in; t++) {
         const rg2__dmesh *l = in[t ? t - 1 : n_in - 1], *r = in[t];
-        int by_left, part, line, idx;
-        double w;
+        int by_left;
         char msg[900];
         if (seam_weights_bad(&l->m, &r->m, dir, &part, &line, &idx, &w)) {
             /* (a hyperboloid's data-only end rows past v = 0 or |v| = 1, say) */
