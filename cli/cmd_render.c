@@ -176,7 +176,12 @@ int rg2_cmd_render(int argc, char **argv)
         else if (a[0] == '-' && a[1]) {
             static const char *const aliases[] = {"--width", "--size WxH", "--height", "--size WxH",
                                                    "--resolution", "--size WxH", "--output", "-o",
-                                                   "--out", "-o", NULL};
+                                                   "--out", "-o", "--view", "--azimuth A --elevation E",
+                                                   "--angle", "--azimuth A --elevation E",
+                                                   "--zebra", "--mode zebra", "--mean", "--mode mean",
+                                                   "--gauss", "--mode gauss", "--gaussian", "--mode gauss",
+                                                   "--curvature", "--mode mean or --mode gauss",
+                                                   "--shaded", "--mode shaded", NULL};
             return rg2_cli_unknown_option("render", a, usage, aliases);
         } else if (path) {
             fprintf(stderr, "rg2 render: more than one design file ('%s', '%s')\n", path, a);

@@ -233,6 +233,11 @@ expect 0 "torus R = 3, r = 2" -- "$RG2" shape torus --r=2 --u-arcs=5
 expect 0 "3 rational cubic Bezier segments" -- "$RG2" curve --angles=120,120,120
 expect 2 "rg2 render: --apart takes no value ('--apart=1')" -- "$RG2" render "$ex" -o "$tmp/eq2.png" --apart=1
 expect 2 "rg2 render: unknown option '--frob'" -- "$RG2" render "$ex" -o "$tmp/eq2.png" --frob=1
+# options a designer guesses get the option that does it, not a look-alike ('--view' was '--size')
+expect 2 "unknown option '--view' (did you mean '--azimuth A --elevation E'?)" -- "$RG2" render "$ex" -o "$tmp/v.png" --view top
+expect 2 "unknown option '--zebra' (did you mean '--mode zebra'?)" -- "$RG2" render "$ex" -o "$tmp/v.png" --zebra
+expect 2 "unknown option '--gaussian' (did you mean '--mode gauss'?)" -- "$RG2" render "$ex" -o "$tmp/v.png" --gaussian
+expect 2 "unknown option '--curvature' (did you mean '--mode mean or --mode gauss'?)" -- "$RG2" render "$ex" -o "$tmp/v.png" --curvature
 [ ! -e "$tmp/eq2.png" ] && ok || bad "a refused --name=value wrote a picture"
 # --on: every patch against a named shape. The patches tagged with it lie on it (the residual
 # relative to the surface's size, at least the shape's); in torus_sphere exactly those do.
