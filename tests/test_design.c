@@ -855,6 +855,15 @@ static void rotate_radians_note(void)
                           "radians write 90)"},
                  {-3.1416, "shapes.t.rotate.degrees: -3.1416 is pi (a half circle in radians)"},
                  {6.2832, "shapes.t.rotate.degrees: 6.2832 is 2 pi (a full circle in radians)"},
+                 {0.7854, "shapes.t.rotate.degrees: 0.7854 is pi / 4 (45 degrees in radians); angles in a design "
+                          "file are in degrees, so this turns by 0.7854 degrees (for the turn of 0.7854 radians "
+                          "write 45)"},
+                 {-1.0472, "shapes.t.rotate.degrees: -1.0472 is pi / 3 (60 degrees in radians)"},
+                 {0.5236, "shapes.t.rotate.degrees: 0.5236 is pi / 6 (30 degrees in radians)"},
+                 {4.71239, "shapes.t.rotate.degrees: 4.71239 is 3 pi / 2 (270 degrees in radians)"},
+                 {2.0944, "shapes.t.rotate.degrees: 2.0944 is 2 pi / 3 (120 degrees in radians)"},
+                 {45, NULL},
+                 {0.8, NULL},
                  {90, NULL},
                  {1.6, NULL},
                  {0, NULL}};
