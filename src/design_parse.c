@@ -435,6 +435,34 @@ static rg2_status parse_shape(pctx *c, const cJSON *obj, const char *label, cons
         allowed[na++] = placement_keys[q];
     for (int q = 0; q < desc->n_params; q++)
         allowed[na++] = desc->param_names[q];
+    if (desc->dir_kind[1] == RG2_PART_KNOTS && strcmp(kind, "hypar")) /* a size along the axis */
+        for (const cJSON *it = obj->child; it; it = it->next) {
+            static const char *const along[] = {"height", "length", "h", "radius"};
+            int hit = 0;
+            for (size_t q = 0; q < sizeof along / sizeof along[0]; q++)
+                hit |= !strcmp(it->string, along[q]);
+            for (int q = 0; q < na && hit; q++)
+                hit = strcmp(it->string, allowed[q]) != 0;
+            if (!hit)
+                continue;
+            char list[400] = "";
+            for (int q = 0; q < na; q++) {
+                strncat(list, allowed[q], sizeof list - strlen(list) - 1);
+                if (q + 1 < na)
+                    strncat(list, ", ", sizeof list - strlen(list) - 1);
+            }
+            return fail(c, RG2_EPARSE, path,
+                        "unknown key '%s'; known keys: %s: a %s's extent is not a parameter but comes from "
+                        "its mesh's v partition, whose knots place the rings (%s; in the mesh: "
+                        "\"v\": {\"from\": A, \"to\": B}; docs/shapes.md, \"Where a knot puts the ring\")",
+                        it->string, list, kind,
+                        !strcmp(kind, "cylinder")             ? "the cylinder's knots are heights z"
+                        : !strcmp(kind, "cone")               ? "the cone's knot v is the ring's radius, at height k v"
+                        : !strcmp(kind, "sphere") || !strcmp(kind, "ellipsoid")
+                            ? "knots in (0, 1), 0 the south pole, 1 the north pole"
+                        : !strcmp(kind, "paraboloid")         ? "the ring at knot v has height v^2"
+                                                              : "see the table there for the ring of a knot");
+        }
     if ((st = check_keys(c, obj, path, allowed, na)))
         return st;
     rg2_shape s;
