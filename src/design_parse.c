@@ -1806,6 +1806,40 @@ rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, c
             goto done;
     } else if ((st = mesh_ref(&c, x, "output", &d->out[0])))
         goto done;
+    if (!x) { /* no "output": the last mesh alone; a mesh no operation uses is built into nothing */
+        char *used = rg2__calloc((size_t)d->n_mesh, 1);
+        if (!used) {
+            st = fail(&c, RG2_ENOMEM, "output", "out of memory");
+            goto done;
+        }
+        for (const cJSON *it = meshes->child; it; it = it->next)
+            for (int op = 0; op < N_OPS; op++) {
+                const cJSON *v = op == 0 || op == 8 || op == 11 ? NULL : get(it, ops[op]);
+                for (const cJSON *e = cJSON_IsArray(v) ? v->child : v; e; e = cJSON_IsArray(v) ? e->next : NULL) {
+                    int m = cJSON_IsString(e) ? rg2__design_find_mesh(d, e->valuestring) : -1;
+                    if (m >= 0)
+                        used[m] = 1;
+                }
+            }
+        int n_unused = 0;
+        char list[300] = "";
+        for (int k = 0; k + 1 < d->n_mesh; k++)
+            if (!used[k] && n_unused++ < 4)
+                snprintf(list + strlen(list), sizeof list - strlen(list), "%s'%s'", n_unused > 1 ? ", " : "",
+                         d->mesh[k].name);
+        free(used);
+        if (n_unused) {
+            char msg[900];
+            snprintf(msg, sizeof msg,
+                     "%s: meshes: %s%s %s and no operation uses %s, so %s built into nothing: without "
+                     "\"output\" only the last mesh, '%s', is built; to build more, list them: \"output\": "
+                     "[...]",
+                     c.file, list, n_unused > 4 ? ", ..." : "", n_unused > 1 ? "are not outputs" : "is not an output",
+                     n_unused > 1 ? "them" : "it", n_unused > 1 ? "they are" : "it is", d->mesh[d->n_mesh - 1].name);
+            if ((st = rg2__design_add_note(d, msg, c.err)))
+                goto done;
+        }
+    }
     for (int k = 0; k < d->n_out; k++) { /* an output made from a capped mesh, itself uncapped */
         const rg2__dmesh *o = &d->mesh[d->out[k]];
         if (o->capped || !o->uncapped_of)

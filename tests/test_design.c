@@ -2996,6 +2996,43 @@ static void open_ring_notes(void)
     free(ts);
 }
 
+/* Without "output" only the last mesh is built: a design of two parts that forgets to list both
+ * builds the last alone. A mesh that is no output and that no operation uses gets a note naming
+ * it; the inputs of the last mesh, a design with "output", and one part alone get none. */
+static void unused_mesh_notes(void)
+{
+    static const struct {
+        const char *meshes, *output, *note; /* note NULL: none */
+    } cases[] = {
+        {"\"ring\": {\"shape\": \"t\"}, \"ball\": {\"shape\": \"s\"}", "",
+         "meshes: 'ring' is not an output and no operation uses it, so it is built into nothing: without \"output\" "
+         "only the last mesh, 'ball', is built; to build more, list them: \"output\": [...]"},
+        {"\"ring\": {\"shape\": \"t\"}, \"r2\": {\"shape\": \"t\"}, \"ball\": {\"shape\": \"s\"}", "",
+         "meshes: 'ring', 'r2' are not outputs and no operation uses them, so they are built into nothing"},
+        {"\"ring\": {\"shape\": \"t\"}, \"ball\": {\"shape\": \"s\"}", ", \"output\": [\"ring\", \"ball\"]", NULL},
+        {"\"ring\": {\"shape\": \"t\"}, \"ball\": {\"shape\": \"s\"}", ", \"output\": \"ball\"", NULL},
+        {"\"ring\": {\"shape\": \"t\"}, \"moved\": {\"transform\": \"ring\", \"translate\": [0, 0, 1]}", "", NULL}};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        char json[900];
+        snprintf(json, sizeof json,
+                 "{\"shapes\": {\"t\": {\"kind\": \"torus\"}, \"s\": {\"kind\": \"sphere\", \"translate\": [6, 0, 0]}},"
+                 " \"meshes\": {%s}%s}", cases[k].meshes, cases[k].output);
+        rg2_error err;
+        rg2_design *d = parse(json, &err);
+        if (!d)
+            continue;
+        int n = rg2_design_num_notes(d);
+        const char *note = n ? rg2_design_note(d, 0) : "";
+        const char *at = strstr(note, "meshes");
+        if (cases[k].note)
+            CHECK(n == 1 && at && !strncmp(at, cases[k].note, strlen(cases[k].note)),
+                  "unused case %zu: %d notes, first '%s', want '%s'", k, n, note, cases[k].note);
+        else
+            CHECK(n == 0, "unused case %zu: a note '%s'", k, note);
+        rg2_design_free(d);
+    }
+}
+
 int main(void)
 {
     parse_sizes();
@@ -3052,6 +3089,7 @@ int main(void)
     cap_length_notes();
     uncapped_output_notes();
     open_ring_notes();
+    unused_mesh_notes();
     big_integers();
     return rg2t_done("test_design");
 }
