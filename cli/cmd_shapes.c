@@ -134,6 +134,17 @@ static int shape_unknown_option(const rg2_shape_desc *d, const char *a)
         for (int q = 0; o && q < o->n_params; q++)
             other_param |= !strcmp(a + 2, o->param_names[q]);
     }
+    int extent = d && d->dir_kind[1] == RG2_PART_KNOTS && d->dir_kind[0] == RG2_PART_ANGLES &&
+                 (!strcmp(a, "--height") || !strcmp(a, "--length") || !strcmp(a, "--h") ||
+                  (!strcmp(a, "--radius") && other_param));
+    if (extent) { /* a size along the axis: the v knots place the rings (docs/shapes.md) */
+        fprintf(stderr, "rg2 shape: unknown option '%s'; %s takes", a, d->name);
+        for (int k = 0; k < d->n_params; k++)
+            fprintf(stderr, " --%s", d->param_names[k]);
+        fprintf(stderr, ": its extent is not a parameter but its v knots, which place the rings (--v-range A,B "
+                        "or --v-knots; docs/shapes.md, \"Where a knot puts the ring\")\n");
+        return RG2_EXIT_USAGE;
+    }
     if (d && (other_param || !rg2_closest_name(a, names, n))) { /* (or nothing close) */
         fprintf(stderr, "rg2 shape: unknown option '%s'; %s takes", a, d->name);
         for (int k = 0; k < d->n_params; k++)
