@@ -744,9 +744,9 @@ RG2_API rg2_status rg2_partition_check(const rg2_partition *p, const char *what,
  *  theta(t) = theta_a + beta + 2 atan(tan(beta/2) (2t - 1)) (beta = alpha/2) of MATH.md
  *  section 2 for circle directions, v_seg + t (v_{seg+1} - v_seg) for knot directions. */
 RG2_API double rg2_partition_map(const rg2_partition *p, int seg, double t);
-/** Whether an angle total given in degrees is 2 pi, pi or pi / 2 to 1e-3 (relative): a full,
- *  half or quarter circle typed in radians. Returns its name ("2 pi (a full circle in
- *  radians)"), or NULL. A design file refuses such a total of arcs or 'from'..'to' span unless
+/** Whether an angle total given in degrees is 2 pi, pi or pi / 2, or pi / 4, pi / 3, pi / 6,
+ *  3 pi / 2 or 2 pi / 3, to 1e-3 (relative): a full, half or quarter circle (or 45, 60, 30, 270,
+ *  120 degrees) typed in radians. Returns its name ("2 pi (a full circle in radians)"), or NULL. A design file refuses such a total of arcs or 'from'..'to' span unless
  *  "closed" is stated, and `rg2 shape` such --D-angles or --D-sweep unless --D-open is given. */
 RG2_API const char *rg2_angle_total_in_radians(double degrees);
 /** A partition of [lo, hi] into n equal arcs (angles, radians) or knot intervals, written to

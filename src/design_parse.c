@@ -309,15 +309,6 @@ static rg2_status parse_rotation(pctx *c, const cJSON *x, const char *p, double 
     if ((st = as_num(c, dg, q, &deg)))
         return st;
     const char *turn = rg2_angle_total_in_radians(fabs(deg));
-    /* a rotation's other common turns, 45, 60, 30, 270 and 120 degrees, typed in radians (0.7854 turned
-     * by 0.7854 degrees without a word); a partition's arcs of those sums are refused as too small */
-    static const struct { double v; const char *name; } more[] = {
-        {M_PI / 4, "pi / 4 (45 degrees in radians)"}, {M_PI / 3, "pi / 3 (60 degrees in radians)"},
-        {M_PI / 6, "pi / 6 (30 degrees in radians)"}, {1.5 * M_PI, "3 pi / 2 (270 degrees in radians)"},
-        {2 * M_PI / 3, "2 pi / 3 (120 degrees in radians)"}};
-    for (size_t k = 0; !turn && k < sizeof more / sizeof more[0]; k++)
-        if (fabs(fabs(deg) - more[k].v) <= 1e-3 * more[k].v)
-            turn = more[k].name;
     if (turn) { /* 1.5708: radians typed for degrees, most likely; a rotation has no "closed" to say so */
         char msg[1200];
         snprintf(msg, sizeof msg,

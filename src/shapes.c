@@ -287,7 +287,12 @@ const char *rg2_angle_total_in_radians(double deg)
     static const struct { double v; const char *name; } turns[] = {
         {TWO_PI, "2 pi (a full circle in radians)"},
         {0.5 * TWO_PI, "pi (a half circle in radians)"},
-        {0.25 * TWO_PI, "pi / 2 (a quarter circle in radians)"}};
+        {0.25 * TWO_PI, "pi / 2 (a quarter circle in radians)"},
+        /* the other common turns, 45, 60, 30, 270 and 120 degrees: one open arc of 0.7854 "degrees"
+         * built a sliver of the ring */
+        {0.125 * TWO_PI, "pi / 4 (45 degrees in radians)"}, {TWO_PI / 6, "pi / 3 (60 degrees in radians)"},
+        {TWO_PI / 12, "pi / 6 (30 degrees in radians)"}, {0.75 * TWO_PI, "3 pi / 2 (270 degrees in radians)"},
+        {TWO_PI / 3, "2 pi / 3 (120 degrees in radians)"}};
     for (size_t k = 0; k < sizeof turns / sizeof turns[0]; k++)
         if (fabs(deg - turns[k].v) <= 1e-3 * turns[k].v)
             return turns[k].name;

@@ -1074,14 +1074,18 @@ static void small_arc_message(void)
                "data-arc layout: small arc named by its produced index");
 }
 
-/* rg2_angle_total_in_radians: 2 pi, pi and pi / 2 degrees each to 1e-3 relative (just inside
+/* rg2_angle_total_in_radians: 2 pi, pi, pi / 2, pi / 4, pi / 3, pi / 6, 3 pi / 2 and 2 pi / 3 degrees each to 1e-3 relative (just inside
  * is named, just outside not), nothing else (360, 90, 0, NaN, infinity, a negative turn). */
 static void radian_totals(void)
 {
-    static const char *const names[3] = {"2 pi (a full circle in radians)", "pi (a half circle in radians)",
-                                         "pi / 2 (a quarter circle in radians)"};
-    for (int k = 0; k < 3; k++) {
-        double t = 2.0 * M_PI / (1 << k);
+    static const char *const names[8] = {"2 pi (a full circle in radians)", "pi (a half circle in radians)",
+                                         "pi / 2 (a quarter circle in radians)", "pi / 4 (45 degrees in radians)",
+                                         "pi / 3 (60 degrees in radians)", "pi / 6 (30 degrees in radians)",
+                                         "3 pi / 2 (270 degrees in radians)", "2 pi / 3 (120 degrees in radians)"};
+    static const double turns[8] = {2.0 * M_PI, M_PI, M_PI / 2, M_PI / 4, M_PI / 3, M_PI / 6, 1.5 * M_PI,
+                                    2.0 * M_PI / 3};
+    for (int k = 0; k < 8; k++) {
+        double t = turns[k];
         for (int side = -1; side <= 1; side += 2) {
             const char *in = rg2_angle_total_in_radians(t * (1 + side * 0.999e-3));
             const char *out = rg2_angle_total_in_radians(t * (1 + side * 1.001e-3));
