@@ -1688,6 +1688,14 @@ static void unknown_key_lists(void)
         {"{" TORUS_SHAPES ", \"meshes\": {" TORUS_MESH ", \"E\": {\"edit\": \"T\", \"scalars\": [{\"dir\": \"u\","
          " \"leg\": 2, \"w\": 2, \"zzzzzz\": 1}]}}}",
          "test: meshes.E.scalars[0]: unknown key 'zzzzzz'; known keys: dir, leg, junction, w, b, g"},
+        /* a torus's v is an angle: 'radius' is only an unknown key; a sphere's v knots place its rings */
+        {"{\"shapes\": {\"t\": {\"kind\": \"torus\", \"radius\": 2}}, \"meshes\": {\"T\": {\"shape\": \"t\"}}}",
+         "test: shapes.t: unknown key 'radius'; known keys: kind, matrix, translate, rotate, scale, R, r"},
+        {"{\"shapes\": {\"s\": {\"kind\": \"sphere\", \"height\": 2}}, \"meshes\": {\"T\": {\"shape\": \"s\"}}}",
+         "test: shapes.s: unknown key 'height'; known keys: kind, matrix, translate, rotate, scale, radius: a sphere's "
+         "extent is not a parameter but comes from its mesh's v partition, whose knots place the rings (knots in (0, 1), "
+         "0 the south pole, 1 the north pole; in the mesh: \"v\": {\"from\": A, \"to\": B}; docs/shapes.md, \"Where a "
+         "knot puts the ring\")"},
     };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         rg2_design *d = (rg2_design *)1;
@@ -2875,7 +2883,11 @@ static void cap_length_notes(void)
          "\"south\"), so it has no effect: the list is [south, north]; the south cap's length 0 is automatic (for "
          "a south cap of length 3 write [3, 0])"},
         {"north", ", \"length\": [0, 2]", ", \"length\": [0, 2]", NULL},
-        {"both", ", \"length\": [2, 1]", ", \"length\": [2, 1]", NULL}};
+        {"both", ", \"length\": [2, 1]", ", \"length\": [2, 1]", NULL},
+        /* small lengths are lengths: the note for 0.001, and no hint, the north length 0.002 being given */
+        {"north", ", \"length\": [0.001, 0.002]", ", \"length\": [0, 0.002]",
+         "meshes.C.length[0]: 0.001 is the length of a south cap, but this cap closes only the north end (\"ends\": "
+         "\"north\"), so it has no effect: the list is [south, north]"}};
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         char json[600], json2[600];
         snprintf(json, sizeof json, base, cases[k].ends, cases[k].length);
@@ -2944,12 +2956,39 @@ static void uncapped_output_notes(void)
             CHECK(n == 0, "output %s: a note '%s'", cases[k].output, note);
         rg2_design_free(d);
     }
+    /* a shape or polar mesh has no mesh input, though its shape's label be a capped mesh's name */
+    static const char same_names[] =
+        "{\"shapes\": {\"c\": {\"kind\": \"cylinder\"}, \"s\": {\"kind\": \"sphere\"}}, \"meshes\": {"
+        "\"A\": {\"shape\": \"c\"}, \"c\": {\"cap\": \"A\"}, \"s\": {\"cap\": \"A\", \"ends\": \"south\"}, "
+        "\"B\": {\"shape\": \"c\"}, \"P\": {\"polar\": \"s\", \"u\": {\"arcs\": 8}, \"v\": {\"knots\": [0.15, 0.3,"
+        " 0.42, 0.58, 0.7, 0.85]}}}, \"output\": [\"c\", \"s\", \"B\", \"P\"]}";
+    rg2_error err;
+    rg2_design *d = parse(same_names, &err);
+    if (d) {
+        CHECK(rg2_design_num_notes(d) == 0, "shapes named like capped meshes: a note '%s'", rg2_design_note(d, 0));
+        rg2_design_free(d);
+    }
 }
 
 /* A merge left open whose ends run on into each other, as the torus + sphere of Fig. 8 without
  * "closed": true (a ring with a gap of 3 patches' width), gets a note that names the parts and
  * says to close it; merges whose ends do not meet (two cylinders stacked, a torus arc of 270
  * degrees in 15 degree arcs, 6 spacings from closing) and closed ones get none. */
+static char *replace_once(const char *s, const char *old, const char *new_text)
+{
+    const char *at = strstr(s, old);
+    if (!at)
+        return NULL;
+    size_t a = (size_t)(at - s), n = strlen(new_text), rest = strlen(at + strlen(old));
+    char *r = malloc(a + n + rest + 1);
+    if (!r)
+        return NULL;
+    memcpy(r, s, a);
+    memcpy(r + a, new_text, n);
+    memcpy(r + a + n, at + strlen(old), rest + 1);
+    return r;
+}
+
 static void open_ring_notes(void)
 {
     char *ts = read_text("examples/torus_sphere.json");
@@ -2971,9 +3010,25 @@ static void open_ring_notes(void)
         "{\"shapes\": {\"t\": {\"kind\": \"torus\"}}, \"meshes\": {\"A\": {\"shape\": \"t\", \"u\": {\"arcs\": 8,"
         " \"from\": 0, \"to\": 120}}, \"B\": {\"shape\": \"t\", \"u\": {\"arcs\": 6, \"from\": 180, \"to\": 270}},"
         " \"M\": {\"merge\": [\"A\", \"B\"], \"along\": \"u\"}}}";
+    /* the same along v (the parts transposed), and at 1/1000 of the size (line spacings of 0.0016) */
+    static const char joined[] = "\"joined\": {\"merge\": [\"tube\", \"ball_band\"], \"along\": \"u\"}";
+    char *tv = replace_once(ts, joined,
+                            "\"tube_t\": {\"transpose\": \"tube\"}, \"joined\": {\"merge\": [\"tube_t\", "
+                            "\"ball_mesh\"], \"along\": \"v\"}");
+    char *tsm = replace_once(ts, joined,
+                             "\"tube_s\": {\"transform\": \"tube\", \"scale\": 0.001}, \"band_s\": {\"transform\":"
+                             " \"ball_band\", \"scale\": 0.001}, \"joined\": {\"merge\": [\"tube_s\", \"band_s\"], "
+                             "\"along\": \"u\"}");
+    CHECK(tv && tsm, "torus_sphere.json merges [\"tube\", \"ball_band\"] along u");
     const struct {
         const char *json, *note; /* note NULL: none */
-    } cases[] = {{ts, "meshes.joined: the merge is open along u, but its ends run on into each other as a seam "
+    } cases[] = {{tv ? tv : ts, "meshes.joined: the merge is open along v, but its ends run on into each other as a "
+                                "seam does: the first u line of 'tube_t' lies 1.7 line spacings on from the last of "
+                                "'ball_mesh'"},
+                 {tsm ? tsm : ts, "meshes.joined: the merge is open along u, but its ends run on into each other as "
+                                  "a seam does: the first v line of 'tube_s' lies 1.7 line spacings on from the last "
+                                  "of 'band_s'"},
+                 {ts, "meshes.joined: the merge is open along u, but its ends run on into each other as a seam "
                       "does: the first v line of 'tube' lies 1.7 line spacings on from the last of 'ball_band', so "
                       "the surface is a ring with a gap there; if a closed ring is meant, add \"closed\": true"},
                  {stack, NULL},
@@ -2993,6 +3048,8 @@ static void open_ring_notes(void)
             CHECK(n == 0, "open merge %zu: a note '%s'", k, note);
         rg2_design_free(d);
     }
+    free(tv);
+    free(tsm);
     free(ts);
 }
 
@@ -3011,7 +3068,10 @@ static void unused_mesh_notes(void)
          "meshes: 'ring', 'r2' are not outputs and no operation uses them, so they are built into nothing"},
         {"\"ring\": {\"shape\": \"t\"}, \"ball\": {\"shape\": \"s\"}", ", \"output\": [\"ring\", \"ball\"]", NULL},
         {"\"ring\": {\"shape\": \"t\"}, \"ball\": {\"shape\": \"s\"}", ", \"output\": \"ball\"", NULL},
-        {"\"ring\": {\"shape\": \"t\"}, \"moved\": {\"transform\": \"ring\", \"translate\": [0, 0, 1]}", "", NULL}};
+        {"\"ring\": {\"shape\": \"t\"}, \"moved\": {\"transform\": \"ring\", \"translate\": [0, 0, 1]}", "", NULL},
+        /* a shape's label is no use of the mesh of that name */
+        {"\"t\": {\"shape\": \"t\"}, \"ball\": {\"shape\": \"s\"}", "",
+         "meshes: 't' is not an output and no operation uses it, so it is built into nothing"}};
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         char json[900];
         snprintf(json, sizeof json,
