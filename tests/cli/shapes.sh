@@ -101,6 +101,10 @@ expect 2 "did you mean 'torus'?" -- "$RG2" shape tours
 # a size along the axis is the v knots, not an option: said so ('--height' got the parameter list alone)
 expect 2 "cylinder takes --radius: its extent is not a parameter but its v knots, which place the rings (--v-range A,B" -- "$RG2" shape cylinder --height 3
 expect 2 "cone takes --k: its extent is not a parameter but its v knots" -- "$RG2" shape cone --radius 2
+expect 2 "unknown option '--length'; cylinder takes --radius: its extent is not a parameter but its v knots" -- "$RG2" shape cylinder --length 3
+expect 2 "unknown option '--h'; cylinder takes --radius: its extent is not a parameter but its v knots" -- "$RG2" shape cylinder --h 3
+# another shape's parameter is no extent: the parameter list alone
+expect 2 "unknown option '--R'; cylinder takes --radius (see rg2 shape --help)" -- "$RG2" shape cylinder --R 2
 expect 2 "unknown option '--radius'; torus takes --R --r (see rg2 shape --help)" -- "$RG2" shape torus --radius 2
 expect 2 "rg2 shapes: unexpected argument 'torus' (rg2 shapes lists every shape; to build one: rg2 shape torus)" -- "$RG2" shapes torus
 expect 1 "r = 2 must be < R = 1" -- "$RG2" shape torus --R 1 --r 2
