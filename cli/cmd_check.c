@@ -90,7 +90,16 @@ static int parse_require(const char *s, unsigned *req)
     memcpy(buf, s, strlen(s) + 1);
     int rc = 0;
     for (char *tok = strtok(buf, ","); tok && !rc; tok = strtok(NULL, ",")) {
-        if (!strcmp(tok, "g0"))
+        /* "g2, exact" (a space after the comma, the list quoted) reads as "g2,exact" */
+        while (*tok == ' ' || *tok == '\t')
+            tok++;
+        for (size_t e = strlen(tok); e > 0 && (tok[e - 1] == ' ' || tok[e - 1] == '\t');)
+            tok[--e] = '\0';
+        if (!*tok) {
+            fprintf(stderr, "rg2 check: --require '%s': needs a comma-separated list of g0, g1, g2, exact, weights, "
+                            "no-crossings (an empty item)\n", s);
+            rc = -1;
+        } else if (!strcmp(tok, "g0"))
             *req |= RG2_REQUIRE_G0;
         else if (!strcmp(tok, "g1"))
             *req |= RG2_REQUIRE_G1;

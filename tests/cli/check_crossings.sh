@@ -51,6 +51,10 @@ expect 2 "--intersections needs an integer 1..1000, not '0'" -- "$RG2" check "$c
 expect 2 "--intersections needs an integer 1..1000, not '-2'" -- "$RG2" check "$cyl" --intersections -2
 expect 2 "--intersections needs an integer 1..1000, not '1001'" -- "$RG2" check "$cyl" --intersections 1001
 expect 2 "unknown promise 'no-crossing'" -- "$RG2" check "$cyl" --require no-crossing
+# spaces around the items of a quoted list ("g2, exact") are not part of the names
+expect 3 "required promise failed: no-crossings" -- "$RG2" check "$cyl" --require "g2, exact ,	no-crossings"
+expect 0 "G2 curvature jump" -- "$RG2" check "$SRC/examples/torus_sphere.json" --require " g2 , exact"
+expect 2 "(an empty item)" -- "$RG2" check "$cyl" --require "g2, ,exact"
 expect 1 "exceed the limit of 4000000: a lower density" -- "$RG2" check "$cyl" --intersections 300
 
 # --surface K: output K alone, named K. Fig. 1's overlaid variants cross each other, but each
