@@ -648,13 +648,17 @@ rg2_status rg2__merge_overlap_notes(rg2_design *d, const rg2__dmesh *const *in, 
     double w;
     if (!closed && n_in >= 2 && !seam_weights_bad(&in[n_in - 1]->m, &in[0]->m, dir, &part, &line, &idx, &w) &&
         open_ends_meet(&in[n_in - 1]->m, &in[0]->m, dir, &ratio)) {
-        char msg[900];
+        char msg[900], where[64];
+        if (ratio < 1e-6) /* the same line to rounding: the open ends still stop short of it */
+            snprintf(where, sizeof where, "lies on");
+        else
+            snprintf(where, sizeof where, "lies %.2g line spacings on from", ratio);
         snprintf(msg, sizeof msg,
                  "%s: %s: the merge is open along %s, but its ends run on into each other as a seam does: the "
-                 "first %s line of '%s' lies %.2g line spacings on from the last of '%s', so the surface is a "
-                 "ring with a gap there; if a closed ring is meant, add \"closed\": true (the gap then becomes "
-                 "3 transition patches, as at the other seams)",
-                 d->name, what, dir_name(dir), dir_name(other), in[0]->name, ratio, in[n_in - 1]->name);
+                 "first %s line of '%s' %s the last of '%s', so the surface is a ring with a gap there; if a "
+                 "closed ring is meant, add \"closed\": true (the gap then becomes 3 transition patches, as at "
+                 "the other seams)",
+                 d->name, what, dir_name(dir), dir_name(other), in[0]->name, where, in[n_in - 1]->name);
         rg2_status st = rg2__design_add_note(d, msg, err);
         if (st)
             return st;

@@ -3010,6 +3010,16 @@ static void open_ring_notes(void)
         "{\"shapes\": {\"t\": {\"kind\": \"torus\"}}, \"meshes\": {\"A\": {\"shape\": \"t\", \"u\": {\"arcs\": 8,"
         " \"from\": 0, \"to\": 120}}, \"B\": {\"shape\": \"t\", \"u\": {\"arcs\": 6, \"from\": 180, \"to\": 270}},"
         " \"M\": {\"merge\": [\"A\", \"B\"], \"along\": \"u\"}}}";
+    /* a torus's v arcs 0..120 and 180..300: the parts' end control lines are one line to rounding
+     * (their centres 1e-15 line spacings apart, with 8 or 4 u arcs) */
+    static const char vring8[] =
+        "{\"shapes\": {\"t\": {\"kind\": \"torus\"}}, \"meshes\": {\"A\": {\"shape\": \"t\", \"u\": {\"arcs\": 8},"
+        " \"v\": {\"arcs\": 4, \"from\": 0, \"to\": 120}}, \"B\": {\"shape\": \"t\", \"u\": {\"arcs\": 8}, \"v\":"
+        " {\"arcs\": 4, \"from\": 180, \"to\": 300}}, \"M\": {\"merge\": [\"A\", \"B\"], \"along\": \"v\"}}}";
+    static const char vring4[] =
+        "{\"shapes\": {\"t\": {\"kind\": \"torus\"}}, \"meshes\": {\"A\": {\"shape\": \"t\", \"u\": {\"arcs\": 4},"
+        " \"v\": {\"arcs\": 4, \"from\": 0, \"to\": 120}}, \"B\": {\"shape\": \"t\", \"u\": {\"arcs\": 4}, \"v\":"
+        " {\"arcs\": 4, \"from\": 180, \"to\": 300}}, \"M\": {\"merge\": [\"A\", \"B\"], \"along\": \"v\"}}}";
     /* the same along v (the parts transposed), and at 1/1000 of the size (line spacings of 0.0016) */
     static const char joined[] = "\"joined\": {\"merge\": [\"tube\", \"ball_band\"], \"along\": \"u\"}";
     char *tv = replace_once(ts, joined,
@@ -3031,6 +3041,10 @@ static void open_ring_notes(void)
                  {ts, "meshes.joined: the merge is open along u, but its ends run on into each other as a seam "
                       "does: the first v line of 'tube' lies 1.7 line spacings on from the last of 'ball_band', so "
                       "the surface is a ring with a gap there; if a closed ring is meant, add \"closed\": true"},
+                 {vring8, "meshes.M: the merge is open along v, but its ends run on into each other as a seam does: "
+                          "the first u line of 'A' lies on the last of 'B', so the surface is a ring with a gap there"},
+                 {vring4, "meshes.M: the merge is open along v, but its ends run on into each other as a seam does: "
+                          "the first u line of 'A' lies on the last of 'B', so"},
                  {stack, NULL},
                  {arc, NULL}};
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
