@@ -36,7 +36,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static void die(const char *what, const char *msg)
+static _Noreturn void die(const char *what, const char *msg)
 {
     fprintf(stderr, "msh_check: %s: %s\n", what, msg);
     exit(1);
@@ -83,7 +83,7 @@ static void read_msh(const char *path, msh *m)
                 id2k[ids[k]] = k;
             free(ids);
         } else if (!strncmp(line, "$Elements", 9)) {
-            int n;
+            int n = 0;
             if (!id2k || !fgets(line, sizeof line, f) || sscanf(line, "%d", &n) != 1)
                 die(path, "bad $Elements (or no $Nodes before it)");
             for (int k = 0; k < n; k++) {
