@@ -700,9 +700,32 @@ static rg2_status parse_partition(pctx *c, const cJSON *obj, const char *path, c
 /* ------------------------------------------------------------------------------------- */
 /* meshes */
 
+/* a mesh's operations: the enum indexes the table of their keys */
+enum {
+    OP_SHAPE,
+    OP_CUT,
+    OP_MERGE,
+    OP_TRANSPOSE,
+    OP_REVERSE,
+    OP_EDIT,
+    OP_TRANSFORM,
+    OP_MORPH,
+    OP_POLAR,
+    OP_MOBIUS,
+    OP_CAP,
+    OP_NURBS,
+    OP_ROLL,
+    N_OPS
+};
 static const char *const ops[] = {"shape", "cut", "merge", "transpose", "reverse", "edit", "transform", "morph",
                                   "polar", "mobius", "cap", "nurbs", "roll"};
-#define N_OPS 13
+_Static_assert(sizeof ops / sizeof ops[0] == N_OPS, "one key per operation");
+
+/* Whether operation `op` makes its mesh from no other mesh (shape, polar, nurbs: no mesh inputs). */
+static int op_makes_mesh_from_nothing(int op)
+{
+    return op == OP_SHAPE || op == OP_POLAR || op == OP_NURBS;
+}
 
 static rg2_status mesh_ref(pctx *c, const cJSON *x, const char *path, int *idx)
 {
@@ -1332,7 +1355,7 @@ static rg2_status transform_weights(pctx *c, const cJSON *obj, const char *path,
  * made from uncapped), 0 none: the operation uses it uncapped, as a cap belongs to an output. */
 static int capped_input(pctx *c, const cJSON *obj, int op)
 {
-    if (op == 0 || op == 8 || op == 11) /* shape, polar, nurbs: no mesh inputs */
+    if (op_makes_mesh_from_nothing(op))
         return 0;
     const cJSON *x = get(obj, ops[op]);
     const cJSON *it = cJSON_IsArray(x) ? x->child : x;
@@ -1379,19 +1402,19 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
     rg2__dmesh tmp;
     memset(&tmp, 0, sizeof tmp);
     switch (op) {
-    case 0: st = op_shape(c, obj, path, &tmp); break;
-    case 1: st = op_cut(c, obj, path, &tmp); break;
-    case 2: st = op_merge(c, obj, path, &tmp); break;
-    case 3: st = op_transpose(c, obj, path, &tmp); break;
-    case 4: st = op_reverse(c, obj, path, &tmp); break;
-    case 5: st = op_edit(c, obj, path, &tmp); break;
-    case 6: st = op_transform(c, obj, path, &tmp); break;
-    case 7: st = op_morph(c, obj, path, &tmp); break;
-    case 8: st = op_polar(c, obj, path, &tmp); break;
-    case 9: st = op_mobius(c, obj, path, &tmp); break;
-    case 10: st = op_cap(c, obj, path, &tmp); break;
-    case 11: st = op_nurbs(c, obj, path, &tmp); break;
-    default: st = op_roll(c, obj, path, &tmp); break;
+    case OP_SHAPE: st = op_shape(c, obj, path, &tmp); break;
+    case OP_CUT: st = op_cut(c, obj, path, &tmp); break;
+    case OP_MERGE: st = op_merge(c, obj, path, &tmp); break;
+    case OP_TRANSPOSE: st = op_transpose(c, obj, path, &tmp); break;
+    case OP_REVERSE: st = op_reverse(c, obj, path, &tmp); break;
+    case OP_EDIT: st = op_edit(c, obj, path, &tmp); break;
+    case OP_TRANSFORM: st = op_transform(c, obj, path, &tmp); break;
+    case OP_MORPH: st = op_morph(c, obj, path, &tmp); break;
+    case OP_POLAR: st = op_polar(c, obj, path, &tmp); break;
+    case OP_MOBIUS: st = op_mobius(c, obj, path, &tmp); break;
+    case OP_CAP: st = op_cap(c, obj, path, &tmp); break;
+    case OP_NURBS: st = op_nurbs(c, obj, path, &tmp); break;
+    default: st = op_roll(c, obj, path, &tmp); break; /* OP_ROLL */
     }
     if (st) {
         rg2__dmesh_free(&tmp); /* whatever the operation had allocated */
@@ -1406,8 +1429,8 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
         }
         return st;
     }
-    tmp.uncapped_of = op == 10 ? 0 : capped_input(c, obj, op);
-    if (op == 6 && (st = transform_weights(c, obj, path, &tmp))) {
+    tmp.uncapped_of = op == OP_CAP ? 0 : capped_input(c, obj, op);
+    if (op == OP_TRANSFORM && (st = transform_weights(c, obj, path, &tmp))) {
         rg2__dmesh_free(&tmp);
         return st;
     }
@@ -1805,7 +1828,7 @@ rg2_status rg2__design_parse_json(rg2_design *d, const char *json, size_t len, c
         }
         for (const cJSON *it = meshes->child; it; it = it->next)
             for (int op = 0; op < N_OPS; op++) {
-                const cJSON *v = op == 0 || op == 8 || op == 11 ? NULL : get(it, ops[op]);
+                const cJSON *v = op_makes_mesh_from_nothing(op) ? NULL : get(it, ops[op]);
                 for (const cJSON *e = cJSON_IsArray(v) ? v->child : v; e; e = cJSON_IsArray(v) ? e->next : NULL) {
                     int m = cJSON_IsString(e) ? rg2__design_find_mesh(d, e->valuestring) : -1;
                     if (m >= 0)
