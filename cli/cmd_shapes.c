@@ -162,8 +162,9 @@ static void help_shape(FILE *f)
         "usage: rg2 shape NAME [--PARAM value ...] [direction options] [placement] [--json]\n"
         "       rg2 shape nurbs (--file F.json | --spec JSON) [--json]\n\n"
         "Builds the control mesh of an exact shape (rg2 shapes lists them) and its rational\n"
-        "bi-cubic patches; prints a summary (patch counts, weights, implicit residual) or, with\n"
-        "--json, the partitions, control mesh and every patch's homogeneous control points.\n\n"
+        "bi-cubic patches; prints a summary (partitions, placement given, patch counts, weights,\n"
+        "implicit residual) or, with --json, the partitions, control mesh and every patch's\n"
+        "homogeneous control points.\n\n"
         "Direction options (D = u or v). Circle directions, angles in degrees; every arc lies in\n"
         "[0.286479, 180) (0.005 rad up to pi, excluded), so a full circle has 3 to 1256 arcs:\n"
         "  --D-arcs N          N equal arcs: the full circle (closed), or --D-sweep DEG (open)\n"
@@ -450,9 +451,17 @@ static double max_residual(const rg2_shape *sh, const rg2_surface *s, int sample
     return worst;
 }
 
+/* Append "LABEL (X, Y, Z)" to the placement text t, after ", " when t has some already. */
+static void placement_add(char *t, size_t size, const char *label, const double x[3])
+{
+    size_t n = strlen(t);
+    snprintf(t + n, size - n, "%s%s (%g, %g, %g)", n ? ", " : "", label, x[0], x[1], x[2]);
+}
+
+/* placed: the placement options given, in the order they apply ("" when none was given) */
 static void print_summary(const rg2_shape *sh, const rg2_partition *pu, const rg2_partition *pv,
-                          const rg2_mesh *m, const rg2_surface *s, const rg2_weight_report *rep,
-                          double resid, double size, int samples)
+                          const char *placed, const rg2_mesh *m, const rg2_surface *s,
+                          const rg2_weight_report *rep, double resid, double size, int samples)
 {
     if (sh) {
         const rg2_shape_desc *d = rg2_shape_describe(sh->kind);
@@ -462,6 +471,8 @@ static void print_summary(const rg2_shape *sh, const rg2_partition *pu, const rg
         printf("\n  h(u, v) = %s\n", d->param_text);
         print_partition_text("u", pu);
         print_partition_text("v", pv);
+        if (placed[0])
+            printf("  placement: %s\n", placed);
     } else {
         printf("bi-cubic NURBS\n");
     }
@@ -534,7 +545,7 @@ int rg2_cmd_shape(int argc, char **argv)
         d = rg2_shape_describe(kind);
     }
     double scale[3] = {1, 1, 1}, axis[3] = {0, 0, 1}, centre[3] = {0, 0, 0}, xf[16];
-    int has_xform = 0, rc = 0;
+    int has_xform = 0, n_scale = 0, has_axis = 0, has_centre = 0, rc = 0; /* (which the summary names) */
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
@@ -648,6 +659,7 @@ int rg2_cmd_shape(int argc, char **argv)
                 fprintf(stderr, "rg2 shape: --scale %s: scale factors must be non-zero\n", val);
                 return RG2_EXIT_FAIL;
             }
+            n_scale = n;
         } else if (!strcmp(a, "--axis") || !strcmp(a, "--center") || !strcmp(a, "--centre")) {
             double *x = a[2] == 'a' ? axis : centre;
             if (rg2_cli_parse_n("shape", a, val, x, 3, "three numbers X,Y,Z"))
@@ -658,6 +670,7 @@ int rg2_cmd_shape(int argc, char **argv)
                 fprintf(stderr, "rg2 shape: --axis %s: the axis is the zero vector\n", val);
                 return RG2_EXIT_FAIL;
             }
+            *(x == axis ? &has_axis : &has_centre) = 1;
         } else if (!strcmp(a, "--xform")) {
             if (rg2_cli_parse_n("shape", a, val, xf, 16, "16 numbers (row-major 4x4)"))
                 return RG2_EXIT_USAGE;
@@ -744,10 +757,23 @@ int rg2_cmd_shape(int argc, char **argv)
     rg2_surface_weight_report(&s, &rep);
     if (!is_nurbs)
         resid = max_residual(&sh, &s, samples, &size);
+    char placed[256] = "";
+    if (n_scale == 1)
+        snprintf(placed, sizeof placed, "scale %g", scale[0]);
+    else if (n_scale)
+        placement_add(placed, sizeof placed, "scale", scale);
+    if (has_axis)
+        placement_add(placed, sizeof placed, "axis", axis);
+    if (has_centre)
+        placement_add(placed, sizeof placed, "centre", centre);
+    if (has_xform) {
+        size_t n = strlen(placed);
+        snprintf(placed + n, sizeof placed - n, "%s--xform matrix", n ? ", then the " : "the ");
+    }
     if (json)
         print_json(is_nurbs ? NULL : &sh, &pu, &pv, &m, &s, &rep, resid);
     else
-        print_summary(is_nurbs ? NULL : &sh, &pu, &pv, &m, &s, &rep, resid, size, samples);
+        print_summary(is_nurbs ? NULL : &sh, &pu, &pv, placed, &m, &s, &rep, resid, size, samples);
     if (rep.flags & RG2_SHAPE_WARN_WEIGHT)
         fprintf(stderr,
                 "rg2 shape: warning: %d %s homogeneous weights <= 0 (min %.6g at patch "

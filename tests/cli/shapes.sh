@@ -67,6 +67,15 @@ expect 0 "open circle, 1 arc from 0 deg, total 40 deg: 40" -- "$RG2" shape torus
 expect 0 "6 x 3 rational bi-cubic patches" -- "$RG2" shape sphere --radius 2 --v-knots 0.25,0.4,0.6,0.75
 expect 0 "knots: 0.5 0.875 1.25 1.625 2" -- "$RG2" shape cone --k 2 --v-range 0.5,2 --v-segments 4 --center 1,0,0 --axis 1,0,0
 expect 0 "all positive" -- "$RG2" shape ellipsoid --a 3 --b 2 --c 1 --scale 10 --center 1000,0,0
+# the summary names the placement given, in the order it applies, after the partitions (it showed
+# none, so a designer could not see that --center or --axis took effect); no line without one
+expect 0 "placement: axis (1, 0, 0), centre (1, 0, 0)" -- "$RG2" shape cone --k 2 --v-range 0.5,2 --v-segments 4 --center 1,0,0 --axis 1,0,0
+expect 0 "placement: scale 10, centre (1000, 0, 0)" -- "$RG2" shape ellipsoid --a 3 --b 2 --c 1 --scale 10 --center 1000,0,0
+expect 0 $'60 60 60 60 60 60\n  placement: centre (0, 0, -2.5)\n  control mesh 8 x 6' -- "$RG2" shape torus --u-arcs 8 --v-arcs 6 --centre 0,0,-2.5
+expect 0 "placement: scale (1, 1, -1), axis (0, 1, 1), then the --xform matrix" -- "$RG2" shape paraboloid --scale 1,1,-1 --axis 0,1,1 --xform 1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1
+expect 0 "placement: the --xform matrix" -- "$RG2" shape sphere --xform 2,0,0,0,0,2,0,0,0,0,2,0,0,0,0,1
+out=$("$RG2" shape torus --R 3 --r 1 --u-arcs 8 --v-arcs 6 2>&1)
+case "$out" in *placement*) bad "a placement line without placement options: $out" ;; *) ok ;; esac
 # the residual reported is tiny (exact shape)
 out=$("$RG2" shape cyclide --a 2 --c 1 --mu 0.5 --u-arcs 7 --v-arcs 5 --scale 100 --center 1e3,-2e3,5e2)
 case "$out" in *"max |f|/|grad f| = "*) r=$(printf '%s\n' "$out" | sed -n 's/.*(\([0-9.e+-]*\) of the size.*/\1/p')
