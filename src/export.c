@@ -154,7 +154,10 @@ rg2_status rg2__check_weights(const rg2_surface *surfs, int n_surfs, const char 
                                 return rg2__fail(err, RG2_EWEIGHT,
                                                  "%s: surface %d patch (%d, %d) control point [%d][%d] has "
                                                  "weight %g; %s needs every weight > 0 (importers drop "
-                                                 "the face or ignore the weights)",
+                                                 "the face or ignore the weights): use more arcs or knots "
+                                                 "there (coarse ones can give an exact shape patch weights "
+                                                 "<= 0, docs/shapes.md \"Homogeneous weights\"; a merge's "
+                                                 "note on a weight <= 0 says which knots to move)",
                                                  format, k, i, j, r, t, h[3], format);
                         }
                 }

@@ -1603,10 +1603,19 @@ static void failures(const rg2_surface *s)
     o.iges_brep = 1;
     st = rg2_export_file(&bad, 1, path_in("neg_brep.igs"), &o, &err);
     CHECK(st == RG2_EWEIGHT && strstr(err.msg, "patch (2, 1)"), "IGES B-rep negative weight: %s", err.msg);
+    /* the refusal says what to do, not only what importers would make of it (it named the point
+     * and stopped at "importers drop the face or ignore the weights") */
+    const char *remedy = "(importers drop the face or ignore the weights): use more arcs or knots there (coarse ones "
+                         "can give an exact shape patch weights <= 0, docs/shapes.md \"Homogeneous weights\"; a "
+                         "merge's note on a weight <= 0 says which knots to move)";
+    CHECK(st == RG2_EWEIGHT && strstr(err.msg, remedy), "IGES B-rep negative weight names the remedy: %s", err.msg);
     const char *names[] = {"neg.step", "neg.igs"};
     for (int k = 0; k < 2; k++) {
         st = export_one(&bad, names[k], &err);
         CHECK(st == RG2_EWEIGHT && strstr(err.msg, "patch (2, 1)"), "%s: %s: %s", names[k], rg2_status_str(st), err.msg);
+        CHECK(st == RG2_EWEIGHT && strstr(err.msg, k ? "IGES needs every weight > 0 " : "STEP needs every weight > 0 ") &&
+                  strstr(err.msg, remedy),
+              "%s names the remedy: %s", names[k], err.msg);
     }
     /* err is nullable (rg2.h): the same verdicts without a report (the message was prefixed
      * with the file name through *err, a NULL dereference) */
