@@ -193,15 +193,17 @@ int rg2_cmd_build(int argc, char **argv)
         const char *at = strstr(err.msg, ": surface ");
         int sk;
         if (at && sscanf(at, ": surface %d", &sk) == 1 && sk >= 0 && sk < ns) {
-            size_t len = strlen(err.msg); /* say which mesh surface k is (surfs[k] is the design's first + k) */
+            /* say which mesh surface k is (surfs[k] is the design's first + k); printed after the
+             * message, not into its buffer, which a long path may have filled */
+            fprintf(stderr, "rg2 build: %s: %s", rg2_status_str(err.code), err.msg);
             if (only_v >= 0)
-                snprintf(err.msg + len, sizeof err.msg - len, " (--surface %d: mesh '%s')", first,
-                         rg2_design_mesh_name(d, first + sk));
+                fprintf(stderr, " (--surface %d: mesh '%s')\n", first, rg2_design_mesh_name(d, first + sk));
             else
-                snprintf(err.msg + len, sizeof err.msg - len, " (surface %d is mesh '%s')", sk,
-                         rg2_design_mesh_name(d, sk));
+                fprintf(stderr, " (surface %d is mesh '%s')\n", sk, rg2_design_mesh_name(d, sk));
+            rc = RG2_EXIT_FAIL;
+        } else {
+            rc = rg2_cli_report("build", &err);
         }
-        rc = rg2_cli_report("build", &err);
     }
     progress(tty, NULL, NULL);
     free(surfs);
