@@ -236,6 +236,8 @@ void rg2__topo_free(rg2__topo *t)
     free(t->vcorner);
     free(t->edef);
     free(t->uses);
+    free(t->snap);
+    free(t->pole);
     memset(t, 0, sizeof *t);
 }
 
@@ -261,6 +263,81 @@ static int side_degree(const rg2_surface *s, int i, int j, int side)
 {
     const rg2_xpatch *x = rg2_surface_xpatch(s, i, j);
     return x ? ((side & 1) ? x->dv : x->du) : 3;
+}
+
+/* The vertex whose pole control point (r, q) of patch (i, j) of degrees (du, dv) would be: a
+ * corner's vertex, or for a point on a collapsed side the vertex of its ends; -1 for any other
+ * point (inside the patch, on a side that is an edge). */
+static int pole_vertex(const rg2__topo *t, int i, int j, int r, int q, int du, int dv)
+{
+    int nv = t->nv, a = r == 0 ? 0 : r == du ? 1 : -1, b = q == 0 ? 0 : q == dv ? 1 : -1, e, f;
+    if (a >= 0 && b >= 0)
+        return t->vert[(i + a) * (nv + 1) + j + b];
+    if (a < 0 && b < 0)
+        return -1;
+    rg2__topo_side(t, i, j, a >= 0 ? (a ? 1 : 3) : (b ? 2 : 0), &e, &f);
+    return e >= 0 ? -1 : t->vert[(i + (a > 0)) * (nv + 1) + j + (b > 0)];
+}
+
+/*
+ * The poles of a topology (t->snap, t->pole; both NULL without a collapsed edge): the
+ * candidates are the vertices of collapsed edges, each with the point h / w of its corner
+ * vcorner[v] (the point written for its VERTEX_POINT); a candidate is a pole when every
+ * control point it would replace (pole_vertex), h / w, lies within RG2__POLE_ULPS roundings (of
+ * the surface's largest coordinate) of that point, coordinate by coordinate. Returns -1 out of
+ * memory.
+ */
+static int topo_poles(const rg2_surface *s, rg2__topo *t)
+{
+    int nu = t->nu, nv = t->nv, any = 0;
+    for (size_t k = 0; k < (size_t)(nu + 1) * (size_t)nv && !any; k++)
+        any = t->ue[k] == -1;
+    for (size_t k = 0; k < (size_t)(nv + 1) * (size_t)nu && !any; k++)
+        any = t->ve[k] == -1;
+    if (!any)
+        return 0;
+    t->snap = rg2__calloc((size_t)t->n_vertices, 1);
+    t->pole = rg2__calloc((size_t)t->n_vertices, sizeof(double[3]));
+    if (!t->snap || !t->pole)
+        return -1;
+    /* candidates: the ends of the collapsed edges */
+    for (int i = 0; i < nu; i++)
+        for (int j = 0; j < nv; j++)
+            for (int side = 0; side < 4; side++) {
+                int e, f;
+                rg2__topo_side(t, i, j, side, &e, &f);
+                if (e < 0)
+                    t->snap[t->vert[(i + (side == 1)) * (nv + 1) + j + (side == 2)]] = 1;
+            }
+    double lo[3], hi[3], big = 0.0;
+    for (int d = 0; d < 3 && rg2__surface_ctrl_box(s, 0, lo, hi); d++)
+        big = fmax(big, fmax(fabs(lo[d]), fabs(hi[d])));
+    double tol = RG2__POLE_ULPS * DBL_EPSILON * big;
+    for (int v = 0; v < t->n_vertices; v++)
+        if (t->snap[v]) {
+            int c = t->vcorner[v], I = c / (nv + 1), J = c % (nv + 1);
+            int i = I < nu ? I : nu - 1, j = J < nv ? J : nv - 1;
+            rg2_xpatch X;
+            rg2_surface_patch_get(s, i, j, &X);
+            const double *h = X.h[I == i ? 0 : X.du][J == j ? 0 : X.dv];
+            for (int d = 0; d < 3; d++)
+                t->pole[v][d] = h[d] / h[3];
+        }
+    /* every point a candidate would replace: near its point, or the candidate is no pole */
+    for (int i = 0; i < nu; i++)
+        for (int j = 0; j < nv; j++) {
+            rg2_xpatch X;
+            rg2_surface_patch_get(s, i, j, &X);
+            for (int r = 0; r <= X.du; r++)
+                for (int q = 0; q <= X.dv; q++) {
+                    int v = pole_vertex(t, i, j, r, q, X.du, X.dv);
+                    const double *h = X.h[r][q];
+                    for (int d = 0; d < 3 && v >= 0 && t->snap[v]; d++)
+                        if (!(fabs(h[d] / h[3] - t->pole[v][d]) <= tol))
+                            t->snap[v] = 0;
+                }
+        }
+    return 0;
 }
 
 /*
@@ -371,15 +448,52 @@ rg2_status rg2__topo_build(const rg2_surface *s, rg2__topo *t, rg2_error *err)
     }
     free(root_id);
     free(parent);
+    if (topo_poles(s, t)) {
+        rg2__topo_free(t);
+        return rg2__fail(err, RG2_ENOMEM, "export: out of memory for the poles of %d x %d patches", nu, nv);
+    }
     return RG2_OK;
 }
 
-void rg2__corner_point(const rg2_surface *s, int I, int J, double out[4])
+/* Control point (r, q) of patch (i, j) of degrees (du, dv), h, in place as written (x, y, z, w). */
+static void to_affine(const rg2__topo *t, int i, int j, int r, int q, int du, int dv, double h[4])
+{
+    int v = t->snap ? pole_vertex(t, i, j, r, q, du, dv) : -1;
+    for (int d = 0; d < 3; d++)
+        h[d] = v >= 0 && t->snap[v] ? t->pole[v][d] : h[d] / h[3];
+}
+
+void rg2__patch_affine(const rg2__topo *t, const rg2_surface *s, int i, int j, rg2_xpatch *X)
+{
+    rg2_surface_patch_get(s, i, j, X);
+    for (int r = 0; r <= X->du; r++)
+        for (int q = 0; q <= X->dv; q++)
+            to_affine(t, i, j, r, q, X->du, X->dv, X->h[r][q]);
+}
+
+void rg2__corner_affine(const rg2__topo *t, const rg2_surface *s, int I, int J, double out[4])
 {
     int i = I < s->nu ? I : s->nu - 1, j = J < s->nv ? J : s->nv - 1;
     rg2_xpatch X;
-    rg2_surface_patch_get(s, i, j, &X);
+    rg2__patch_affine(t, s, i, j, &X);
     memcpy(out, X.h[I == i ? 0 : X.du][J == j ? 0 : X.dv], sizeof(double[4]));
+}
+
+rg2_status rg2__net_affine(const rg2_surface *s, double (*h)[4], int NU, int NV, int du, int dv, rg2_error *err)
+{
+    rg2__topo t;
+    rg2_status st = rg2__topo_build(s, &t, err);
+    if (st)
+        return st;
+    for (int a = 0; a < NU; a++)
+        for (int b = 0; b < NV; b++) {
+            /* net point (a, b) as point (r, q) of patch (i, j) (on a line between two patches:
+             * of the patch after it; on the last line: of the last patch) */
+            int i = a / du < s->nu ? a / du : s->nu - 1, j = b / dv < s->nv ? b / dv : s->nv - 1;
+            to_affine(&t, i, j, a - du * i, b - dv * j, du, dv, h[(size_t)a * (size_t)NV + (size_t)b]);
+        }
+    rg2__topo_free(&t);
+    return RG2_OK;
 }
 
 const int rg2__side_ends[4][2] = {{0, 1}, {1, 2}, {3, 2}, {0, 3}};
@@ -447,6 +561,11 @@ rg2_status rg2__mesh_topo_build(const rg2_surface *s, rg2__mesh_topo *t, rg2_err
         collapsed[sd] = curve_collapsed((const double(*)[4])t->side, n, tol);
         if (collapsed[sd])
             join4(parent, rg2__side_ends[sd][0], rg2__side_ends[sd][1]);
+    }
+    rg2_status st = rg2__net_affine(s, t->h, t->NU, t->NV, t->du, t->dv, err);
+    if (st) {
+        rg2__mesh_topo_free(t);
+        return st;
     }
     if (s->closed_u) {
         join4(parent, 0, 1);

@@ -54,11 +54,15 @@ int rg2__xpatch_net(const rg2_xpatch *X, double (*out)[4]);
  * (of patches of any degree). */
 double rg2__collapse_tol(const rg2_surface *s);
 
-/* Topology of one surface as a grid of corners and edges (shared by the STEP writer).
+/* Topology of one surface as a grid of corners and edges (shared by the STEP and IGES writers).
  * Corner (I, J), I = 0..nu, J = 0..nv; closed directions wrap (I = nu is I = 0).
  * Edges along u-line I (constant u, running in +v) over span j: ue[I * nv + j];
  * edges along v-line J (constant v, running in +u) over span i: ve[J * nu + i].
- * Collapsed edges have id -1 and merge their end corners into one vertex. */
+ * Collapsed edges have id -1 and merge their end corners into one vertex.
+ * Poles: a vertex holding a collapsed edge whose control points (those on its collapsed edges
+ * and at its corners, in every patch) all lie within RG2__POLE_ULPS roundings of the surface's
+ * largest coordinate of its point pole[v] (h / w of the corner vcorner[v]) is a pole (snap[v]);
+ * the writers write every one of those control points as pole[v] (rg2__patch_affine). */
 typedef struct {
     int nu, nv;
     int n_vertices, n_edges;
@@ -69,16 +73,33 @@ typedef struct {
     int *edef;   /* n_edges * 2: defining patch index and side of each edge (the patch of
                     lowest degree along the edge among those using it) */
     int *uses;   /* n_edges: how many patch sides use each edge (1 boundary, 2 shared) */
+    unsigned char *snap; /* n_vertices: 1 for a pole (NULL: the surface has none) */
+    double (*pole)[3];   /* n_vertices: a pole's one point (NULL likewise) */
 } rg2__topo;
+
+/* How far (in roundings of the surface's largest affine coordinate, DBL_EPSILON times it) the
+ * control points of a collapsed side may lie from its vertex's point to be written as that
+ * point: the construction leaves a pole's points one point to a few roundings (their weights
+ * differ); a side that is merely short is farther and keeps its points. */
+#define RG2__POLE_ULPS 16
 
 rg2_status rg2__topo_build(const rg2_surface *s, rg2__topo *t, rg2_error *err);
 void rg2__topo_free(rg2__topo *t);
 /* The edge id on side `side` of patch (i, j) (-1 collapsed) and whether the patch's
  * counter-clockwise loop runs along the edge (1: sides 0, 1) or against it (0: sides 2, 3). */
 void rg2__topo_side(const rg2__topo *t, int i, int j, int side, int *edge, int *forward);
-/* Corner (I, J) of the patch grid (I = 0..nu, J = 0..nv) as a homogeneous point of a patch
- * holding it. */
-void rg2__corner_point(const rg2_surface *s, int I, int J, double out[4]);
+/* The control points as the STEP and IGES writers write them: (x, y, z, w), the affine point
+ * h / w (correctly rounded) and the weight, except that every control point of a pole (t->snap)
+ * is its pole's one point, the same double triple in every patch and layout, so that a collapsed
+ * row is one point in the file exactly (a row of points h / w is one only to rounding, which
+ * made the normal's and the curvature's rounding next to the pole grow as 1 / eps and
+ * 1 / eps^2; docs/robustness.md). rg2__patch_affine: patch (i, j) of s into X in that form.
+ * rg2__corner_affine: corner (I, J) of the patch grid (I = 0..nu, J = 0..nv) as the corner
+ * control point of a patch holding it. rg2__net_affine: a merged net of s (rg2__merged_net, of
+ * degrees (du, dv)) in place, its topology built here (RG2_ENOMEM). */
+void rg2__patch_affine(const rg2__topo *t, const rg2_surface *s, int i, int j, rg2_xpatch *X);
+void rg2__corner_affine(const rg2__topo *t, const rg2_surface *s, int I, int J, double out[4]);
+rg2_status rg2__net_affine(const rg2_surface *s, double (*h)[4], int NU, int NV, int du, int dv, rg2_error *err);
 
 /* Topology of one surface as one face on its merged net (the face-per-mesh layouts of the STEP
  * and IGES B-rep writers). Corners 0 (u0 v0), 1 (u1 v0), 2 (u1 v1), 3 (u0 v1), merged into
@@ -88,7 +109,7 @@ void rg2__corner_point(const rg2_surface *s, int I, int J, double out[4]);
  * (1 or 2) uses the edge of its partner (3 or 0): a seam, on the face twice. */
 typedef struct {
     int NU, NV, du, dv;
-    double (*h)[4];  /* the merged net (rg2__merged_net) */
+    double (*h)[4];  /* the merged net (rg2__merged_net) as written (rg2__net_affine) */
     double (*side)[4]; /* room for one side of it (rg2__net_side) */
     int n_vertices, n_edges;
     int vert[4];     /* vertex of each corner */

@@ -221,7 +221,7 @@ static int pw_reals(pwriter *w, const double *x, size_t n)
  * 1e-10, rg2_surface_transform: its faces 1.5e-3 of its size off in all four IGES forms, while
  * the STEP file read back to 1.9e-16). A rational B-spline is the same curve or surface when
  * all its weights are multiplied by one factor, and a power of two multiplies exactly (the
- * points, p / w, are written from the unscaled 4-tuples): an entity whose smallest weight is
+ * points are written as they are, affine, apart from the weights): an entity whose smallest weight is
  * below IGES_SMALL_WEIGHT gets the power of two that brings its largest weight into [0.5, 1);
  * any other keeps its weights (factor 1, the same bytes as before).
  */
@@ -242,8 +242,8 @@ static double weight_factor(const double (*h)[4], size_t n)
 }
 
 /*
- * Entity 128 of degree (du, dv), piecewise Bezier, of a net of NU x NV homogeneous poles
- * h[a * NV + b] (a along u). IGES lists weights and poles with the u index fastest; the weights
+ * Entity 128 of degree (du, dv), piecewise Bezier, of a net of NU x NV poles h[a * NV + b] (a
+ * along u), each (x, y, z, w) as written (rg2__patch_affine). IGES lists weights and poles with the u index fastest; the weights
  * times weight_factor.
  */
 static void put_128(pwriter *w, const double (*h)[4], int NU, int NV, int du, int dv, int closed_u,
@@ -280,7 +280,7 @@ static void put_128(pwriter *w, const double (*h)[4], int NU, int NV, int du, in
             size_t k = (size_t)b * (size_t)NU + (size_t)a;
             wt[k] = p[3] * f;
             for (int d = 0; d < 3; d++)
-                xyz[3 * k + (size_t)d] = p[d] / p[3];
+                xyz[3 * k + (size_t)d] = p[d];
         }
     pw_reals(w, x, 4 * np);
     if (x != small)
@@ -387,7 +387,7 @@ static void emit_items(pwriter *w, int n, int q_end, iges_item fn, void *ctx)
 /* ---------------------------------------------------------------- B-rep shell (iges_brep) */
 
 /* Entity 126 (rational B-spline curve), piecewise Bezier of degree deg through the n
- * homogeneous poles h (n = deg spans + 1), parameter 0 .. spans: an edge's model-space curve;
+ * poles h (n = deg spans + 1, each (x, y, z, w) as written: rg2__patch_affine), parameter 0 .. spans: an edge's model-space curve;
  * the weights times weight_factor, as the 128's. */
 static void put_126(pwriter *w, const double (*h)[4], int n, int deg)
 {
@@ -408,7 +408,7 @@ static void put_126(pwriter *w, const double (*h)[4], int n, int deg)
         pw_real(w, h[a][3] * f, ',');
     for (int a = 0; a < n; a++)
         for (int d = 0; d < 3; d++)
-            pw_real(w, h[a][d] / h[a][3], ',');
+            pw_real(w, h[a][d], ',');
     pw_real(w, 0.0, ',');
     pw_real(w, (double)((n - 1) / deg), ';');
 }
@@ -427,7 +427,7 @@ static void put_514(pwriter *w, int q, const int *face_q, int n, int closed)
     end_entity(w, start, 514, closed ? 1 : 2, "00000000", "RG2SHELL", q);
 }
 
-/* 502: the vertices, homogeneous points h[0..n-1]. */
+/* 502: the vertices, points h[0..n-1] as written (x, y, z, w: rg2__corner_affine). */
 static void put_502(pwriter *w, int q, const double (*h)[4], int n)
 {
     int start = begin_entity(w, q);
@@ -440,7 +440,7 @@ static void put_502(pwriter *w, int q, const double (*h)[4], int n)
     }
     for (int v = 0; v < n; v++)
         for (int d = 0; d < 3; d++)
-            x[3 * v + d] = h[v][d] / h[v][3];
+            x[3 * v + d] = h[v][d];
     pw_reals(w, x, 3 * (size_t)n);
     free(x);
     pw_end(w);
@@ -521,7 +521,7 @@ static void shell_edge(pwriter *w, void *ctx, int e)
     int p = c->t->edef[2 * e], nv = c->s->nv;
     rg2_xpatch X;
     double h[RG2_MAX_DEGREE + 1][4];
-    rg2_surface_patch_get(c->s, p / nv, p % nv, &X);
+    rg2__patch_affine(c->t, c->s, p / nv, p % nv, &X);
     int n = rg2__xpatch_side(&X, c->t->edef[2 * e + 1], h);
     put_126_entity(w, c->q_curve + e, (const double(*)[4])h, n, n - 1);
 }
@@ -533,7 +533,7 @@ static void shell_face(pwriter *w, void *ctx, int p)
     int nv = c->s->nv;
     rg2_xpatch X;
     double h[(RG2_MAX_DEGREE + 1) * (RG2_MAX_DEGREE + 1)][4];
-    rg2_surface_patch_get(c->s, p / nv, p % nv, &X);
+    rg2__patch_affine(c->t, c->s, p / nv, p % nv, &X);
     rg2__xpatch_net(&X, h);
     int edge[4], fwd[4], lq[4], n = 0;
     for (int side = 0; side < 4; side++) {
@@ -579,7 +579,7 @@ static rg2_status brep_shell(pwriter *w, const rg2_surface *s, const int line[4]
         face_q[p] = q_patch + 3 * p + 2;
     put_514(w, q_shell, face_q, np, closed);
     for (int v = 0; v < t.n_vertices; v++)
-        rg2__corner_point(s, t.vcorner[v] / (nv + 1), t.vcorner[v] % (nv + 1), vh[v]);
+        rg2__corner_affine(&t, s, t.vcorner[v] / (nv + 1), t.vcorner[v] % (nv + 1), vh[v]);
     put_502(w, q_vl, (const double(*)[4])vh, t.n_vertices);
     for (int e = 0; e < t.n_edges; e++) { /* the same corners as the STEP writer's */
         int p = t.edef[2 * e], side = t.edef[2 * e + 1], i = p / nv, j = p % nv;
@@ -745,9 +745,10 @@ static void put_section_line(FILE *f, const char *text, char letter, int seq)
 
 int rg2__iges_max_records = 9999999;
 
-/* Plain layout, face per patch: patch k of surface s as entity q0 + k. */
+/* Plain layout, face per patch: patch k of surface s (topology t: its poles) as entity q0 + k. */
 typedef struct {
     const rg2_surface *s;
+    const rg2__topo *t;
     int q0;
 } patch_items;
 
@@ -757,7 +758,7 @@ static void plain_patch(pwriter *w, void *ctx, int p)
     int nv = c->s->nv, q = c->q0 + p;
     rg2_xpatch X;
     double h[(RG2_MAX_DEGREE + 1) * (RG2_MAX_DEGREE + 1)][4];
-    rg2_surface_patch_get(c->s, p / nv, p % nv, &X);
+    rg2__patch_affine(c->t, c->s, p / nv, p % nv, &X);
     rg2__xpatch_net(&X, h);
     int start = begin_entity(w, q);
     put_128(w, (const double(*)[4])h, X.du + 1, X.dv + 1, X.du, X.dv, 0, 0);
@@ -905,14 +906,22 @@ rg2_status rg2__write_iges(const rg2_surface *surfs, int n, const rg2_export_opt
                 P.failed = 1;
                 break;
             }
+            if ((st = rg2__net_affine(s, h, NU, NV, du, dv, err))) {
+                free(h);
+                goto done;
+            }
             int start = begin_entity(&w, entity);
             put_128(&w, (const double(*)[4])h, NU, NV, du, dv, s->closed_u, s->closed_v);
             end_entity(&w, start, 128, 0, "00000000", "RG2SURF", entity);
             entity++;
             free(h);
         } else {
-            patch_items c = {s, entity};
+            rg2__topo t;
+            if ((st = rg2__topo_build(s, &t, err)))
+                goto done;
+            patch_items c = {s, &t, entity};
             emit_items(&w, s->nu * s->nv, entity + s->nu * s->nv, plain_patch, &c);
+            rg2__topo_free(&t);
             entity += s->nu * s->nv;
         }
     }

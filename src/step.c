@@ -28,14 +28,15 @@ static void put_real(FILE *f, double x)
     fputs(b, f);
 }
 
-static int put_point(stepw *w, const double h[4])
+/* A control point as written (x, y, z, w): its affine point (rg2__patch_affine). */
+static int put_point(stepw *w, const double p[4])
 {
     int id = new_id(w);
     fprintf(w->f, "#%d=CARTESIAN_POINT('',(", id);
     for (int d = 0; d < 3; d++) {
         if (d)
             fputc(',', w->f);
-        put_real(w->f, h[d] / h[3]);
+        put_real(w->f, p[d]);
     }
     fputs("));\n", w->f);
     return id;
@@ -59,8 +60,8 @@ static void put_knot_values(FILE *f, int n_spans)
     fputc(')', f);
 }
 
-/* A rational B-spline curve of degree deg, piecewise Bezier, through homogeneous poles
- * h[0..n-1] (n = deg spans + 1). */
+/* A rational B-spline curve of degree deg, piecewise Bezier, through the poles h[0..n-1]
+ * (n = deg spans + 1), each (x, y, z, w) as written (rg2__patch_affine). */
 static int put_curve(stepw *w, const double (*h)[4], int n, int deg)
 {
     int *pt = malloc(sizeof(int) * (size_t)n);
@@ -281,7 +282,7 @@ static int put_all_rows(stepw *w, const double (*h)[4], const int *pt, int NU, i
 }
 
 /* A rational B-spline surface of degree (du, dv), piecewise Bezier, from a net of NU x NV
- * homogeneous poles h[a * NV + b], u outer; a big net's points, pole list and weights formatted
+ * poles h[a * NV + b], u outer, each (x, y, z, w) as written (rg2__patch_affine); a big net's points, pole list and weights formatted
  * on the threads (the surface of the face-per-mesh layout). Returns its id, or -1 out of memory,
  * -2 entity numbers out of step (emit_all). */
 static int put_surface(stepw *w, const double (*h)[4], int NU, int NV, int du, int dv, int closed_u,
@@ -338,7 +339,7 @@ static int emit_vertex(stepw *w, void *ctx, int v)
     const patch_shell *c = ctx;
     int corner = c->t->vcorner[v], nv = c->s->nv;
     double h[4];
-    rg2__corner_point(c->s, corner / (nv + 1), corner % (nv + 1), h);
+    rg2__corner_affine(c->t, c->s, corner / (nv + 1), corner % (nv + 1), h);
     return put_vertex(w, h);
 }
 
@@ -347,7 +348,7 @@ static int emit_surface(stepw *w, void *ctx, int p)
     const patch_shell *c = ctx;
     rg2_xpatch X;
     double h[(RG2_MAX_DEGREE + 1) * (RG2_MAX_DEGREE + 1)][4];
-    rg2_surface_patch_get(c->s, p / c->s->nv, p % c->s->nv, &X);
+    rg2__patch_affine(c->t, c->s, p / c->s->nv, p % c->s->nv, &X);
     rg2__xpatch_net(&X, h);
     return put_surface(w, (const double(*)[4])h, X.du + 1, X.dv + 1, X.du, X.dv, 0, 0);
 }
@@ -361,7 +362,7 @@ static int emit_edge(stepw *w, void *ctx, int e)
     int nv = c->s->nv, p = t->edef[2 * e], side = t->edef[2 * e + 1], i = p / nv, j = p % nv;
     rg2_xpatch X;
     double h[RG2_MAX_DEGREE + 1][4];
-    rg2_surface_patch_get(c->s, i, j, &X);
+    rg2__patch_affine(c->t, c->s, i, j, &X);
     int n = rg2__xpatch_side(&X, side, h);
     int I0 = side == 1 ? i + 1 : i, J0 = side == 2 ? j + 1 : j;
     int I1 = (side == 0 || side == 2) ? i + 1 : I0, J1 = (side == 1 || side == 3) ? j + 1 : J0;

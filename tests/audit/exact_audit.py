@@ -20,11 +20,15 @@ exact rationals (fractions.Fraction):
                 second derivatives of the rational patches (quotient rule, no differences);
   near a pole   a sample on a collapsed side has no normal: there the fan's limit normals
                 (Suv x Sv) are compared ("G1 at pole"), and G1 / G2 are measured 1/100 and 1/10
-                into the seam instead ("near pole"). The written doubles of a collapsed row are
+                into the seam instead ("near pole"). The dump's doubles of a collapsed row are
                 one point only to rounding (about 1e-16 of the size, "collapsed"), and the fan's
-                limit normals agree to about 1e-13: measured on the doubles, G1 near a pole grows
-                as 1/eps and G2 as 1/eps^2 (Fig. 14's third sphere: G2 6e-9 at eps = 1/100, 4e-5
-                at 1e-4), which is why the samples stay 1/100 away;
+                limit normals agree to about 1e-13: measured on those doubles, G1 near a pole
+                grows as 1/eps and G2 as 1/eps^2 (Fig. 14's third sphere: G2 6e-9 at eps = 1/100,
+                4e-5 at 1e-4), which is why the samples stay 1/100 away. The STEP and IGES files
+                write a collapsed row as one point: on their doubles G1 / G2 are measured 1/100,
+                1e-4 and 1e-6 from the poles ("G1 pole file": within G1's limit at each; "G2 pole
+                file": G2 times eps / (1/100), within G2's limit: it grows only as 1/eps), and
+                printed with the figures of the points h / w each rounded on its own;
   construction  the Bi-cubic Construction (MATH.md sections 1 and 4) redone in exact rationals
                 from the mesh file's control points and scalars, rows then columns, against the
                 dump's patches (relative to the patch's largest homogeneous coordinate; a capped
@@ -39,7 +43,11 @@ exact rationals (fractions.Fraction):
   export        the .bv holds the dump's doubles bit for bit, the .bez (one degree for the file)
                 the exact degree elevation of each patch to a few roundings; the STEP and IGES
                 files (face per patch: affine points and weights) every weight bit for bit and
-                every coordinate as the correctly rounded quotient h_k / h_w;
+                every coordinate as the correctly rounded quotient h_k / h_w ("STEP/IGES ulp"),
+                but a pole's: every side collapsed in the dump is one point bit for bit, the same
+                in every patch around the pole ("STEP/IGES one"), within 16 roundings of the
+                largest coordinate of each of its points h / w ("STEP/IGES pole"), and the IGES
+                points are the STEP ones;
   MATH.md       sections 1, 2 and 7 on exact rational data: G2 (Definition 1) at every junction
                 of random polygons, an open arc partition reproduced exactly, and eq. (13)'s
                 polar points and scalars from the blossoms (no rounding); a design's polar mesh
@@ -47,7 +55,7 @@ exact rationals (fractions.Fraction):
 
 Limits: exact 1e-14 (rg2 check's is 1e-13 on its own double evaluation), G0 1e-12, G1 1e-10 rad,
 G2 1e-8 (rg2 check's), construction and NURBS 1e-14, placement 1e-15, collapsed 1e-14, export
-1e-15.
+1e-15, a pole's point in STEP/IGES 16 roundings (DBL_EPSILON times the largest coordinate).
 
 Usage: exact_audit.py RG2 SRC_DIR [--examples a.json,b.json] [--no-self-test] [-v]
        exact_audit.py --files DESIGN PATCHES.json MESH.json   (one design's files as they are)
@@ -81,6 +89,8 @@ LIMIT_EXPORT = 1e-15     # a few roundings of the largest coordinate (.bez eleva
 RES_N = 6          # residual samples per patch: (RES_N + 1)^2
 SEAM_N = 6         # seam samples: SEAM_N + 1 per seam
 POLE_STEPS = (Fraction(1, 100), Fraction(1, 10))
+POLE_EPS = (Fraction(1, 100), Fraction(1, 10 ** 4), Fraction(1, 10 ** 6))   # on the STEP/IGES doubles
+SNAP_ROUNDINGS = 16   # a pole's point from each h / w, in DBL_EPSILON times the largest coordinate
 
 D0 = Decimal(0)
 D1 = Decimal(1)
@@ -133,6 +143,7 @@ class Surface:
                     for k in range(3):
                         lo[k], hi[k] = min(lo[k], x[k]), max(hi[k], x[k])
         self.size = math.sqrt(sum((hi[k] - lo[k]) ** 2 for k in range(3)))
+        self.big = max(max(abs(x) for x in lo), max(abs(x) for x in hi))   # the largest coordinate
 
     def patch(self, i, j):
         return self.patches[i * self.nv + j]
@@ -529,22 +540,30 @@ def check_seams(surfs, W0, W1, W2, W1p, W2p, Wlim, counts):
                         samples.append((tt, a, b, W1p, W2p))
                 for (tt, a, b, w1, w2) in samples:
                     where = "%s t=%s" % (where0, tt)
-                    pa, pb = curv_parts(a), curv_parts(b)
-                    na, nb = pa[0], pb[0]
-                    ang = math.atan2(float(norm(cross(na, nb))), float(dot(na, nb)))
+                    ang, jump = seam_gaps(a, b, dirn, dsize)
                     w1.add(ang, where)
-                    # six tangent directions: e1 along the seam, e2 = n x e1, and combinations
-                    T = a[2] if dirn == "u" else a[1]
-                    tn = norm(T)
-                    e1 = [c / tn for c in T]
-                    e2 = cross(na, e1)
-                    dirs = [e1, e2]
-                    for (c1, c2) in ((1, 1), (1, -1), (1, 2), (2, -1)):
-                        dirs.append([c1 * e1[k] + c2 * e2[k] for k in range(3)])
-                    kscale = max(principal_max(pa), principal_max(pb), 1 / dsize)
-                    jump = max(abs(normal_curvature(a, pa, d) - normal_curvature(b, pb, d)) for d in dirs)
-                    w2.add(float(jump / kscale), where)
+                    w2.add(jump, where)
                     counts["measured"] += 1
+
+
+def seam_gaps(a, b, dirn, dsize):
+    """G1 and G2 between the jets a and b of the two sides of a seam along dirn: the angle
+    between the normals and the largest jump of the normal curvature in six tangent directions
+    relative to max(|k1|, |k2|, 1 / size)"""
+    pa, pb = curv_parts(a), curv_parts(b)
+    na, nb = pa[0], pb[0]
+    ang = math.atan2(float(norm(cross(na, nb))), float(dot(na, nb)))
+    # six tangent directions: e1 along the seam, e2 = n x e1, and combinations
+    T = a[2] if dirn == "u" else a[1]
+    tn = norm(T)
+    e1 = [c / tn for c in T]
+    e2 = cross(na, e1)
+    dirs = [e1, e2]
+    for (c1, c2) in ((1, 1), (1, -1), (1, 2), (2, -1)):
+        dirs.append([c1 * e1[k] + c2 * e2[k] for k in range(3)])
+    kscale = max(principal_max(pa), principal_max(pb), 1 / dsize)
+    jump = max(abs(normal_curvature(a, pa, d) - normal_curvature(b, pb, d)) for d in dirs)
+    return ang, float(jump / kscale)
 
 
 # ------------------------------------------------------------------- (3) the construction
@@ -991,12 +1010,69 @@ def affine_ok(h, p3, w):
     return worst
 
 
-def check_cad(surfs, stepf, igsf, Wc, counts):
+def patch_sides(P):
+    """the four sides of patch P: (name, [(r, q) of its control points])"""
+    return (("u=0", [(0, q) for q in range(P.dv + 1)]), ("u=1", [(P.du, q) for q in range(P.dv + 1)]),
+            ("v=0", [(r, 0) for r in range(P.du + 1)]), ("v=1", [(r, P.dv) for r in range(P.du + 1)]))
+
+
+def collapsed_sides(s, P):
+    """the names of P's sides whose points h / w lie within 1e-9 of the size of each other (as
+    check_collapsed: a pole, an apex)"""
+    out = set()
+    for name, idx in patch_sides(P):
+        pts = [P.point3(r, q) for r, q in idx]
+        if max(math.dist(pts[0], x) for x in pts) <= 1e-9 * s.size:
+            out.add(name)
+    return out
+
+
+def judge_cad(fmt, si, s, pi, P, pts, W):
+    """one patch of a CAD file, pts[(r, q)] = (affine point, weight): every weight the dump's;
+    every coordinate the correctly rounded h_k / h_w (0 ulp), or, on a side the file writes as
+    one point bit for bit (a pole), within SNAP_ROUNDINGS roundings of the surface's largest
+    coordinate of it; every side collapsed in the dump written as one point. Returns the
+    one-point sides' points (for the poles' check across patches)."""
+    Wc, Wsnap, Wone = W
+    where = "%s surface %d patch (%d,%d)" % (fmt, si, pi // s.nv, pi % s.nv)
+    coll = collapsed_sides(s, P)
+    one, at = set(), []
+    for name, idx in patch_sides(P):
+        written = {tuple(pts[x][0]) for x in idx}
+        if len(written) == 1:
+            one.update(idx)
+            at.append(written.pop())
+        if name in coll:
+            Wone.add(len({tuple(pts[x][0]) for x in idx}) - 1, "%s side %s" % (where, name))
+    n = P.dv + 1
+    rounding = sys.float_info.epsilon * s.big
+    for (r, q), (p3, w) in sorted(pts.items()):
+        h = P.raw[4 * (r * n + q):4 * (r * n + q) + 4]
+        e = affine_ok(h, p3, w)
+        if e and w == h[3] and (r, q) in one:
+            ex = [Fraction(h[k]) / Fraction(h[3]) for k in range(3)]
+            Wsnap.add(max(abs(float(Fraction(p3[k]) - ex[k])) for k in range(3)) / rounding,
+                      "%s point [%d][%d]" % (where, r, q))
+            e = 0.0
+        Wc.add(e, "%s point [%d][%d]" % (where, r, q))
+    return at
+
+
+def check_cad(surfs, stepf, igsf, W, counts):
     """the STEP (face per patch) and IGES (entity 128 per patch) files of the same build: each
-    patch's control points as affine points and weights (the form both standards store), every
-    weight the dump's double and every coordinate the correctly rounded quotient h_k / h_w"""
+    patch's control points as affine points and weights (the form both standards store), judged
+    by judge_cad; the poles one point across the patches around them (Wone: the points a pole is
+    written as, less 1) and the IGES points the STEP ones bit for bit (Wsame: how many differ).
+    Returns the STEP file's points, {(surface, patch): {(r, q): (point, weight)}}."""
     import re
+    Wc, Wsnap, Wone, Wsame = W
     patches = [(si, pi, P) for si, s in enumerate(surfs) for pi, P in enumerate(s.patches)]
+    poles = {}                           # (format, surface) -> the one-point sides' points
+
+    def judge(fmt, si, pi, P, pts):
+        poles.setdefault((fmt, si), []).extend(judge_cad(fmt, si, surfs[si], pi, P, pts, (Wc, Wsnap, Wone)))
+        counts["cad"] += 1
+
     with open(stepf) as f:
         text = f.read()
     pts = {int(m.group(1)): [float(x) for x in m.group(2).split(",")]
@@ -1006,18 +1082,15 @@ def check_cad(surfs, stepf, igsf, Wc, counts):
     found = list(surf_re.finditer(text))
     if len(found) != len(patches):
         raise ValueError("%s: %d rational surfaces for %d patches" % (stepf, len(found), len(patches)))
+    step = {}
     for m, (si, pi, P) in zip(found, patches):
         du, dv = int(m.group(1)), int(m.group(2))
         refs = [[int(x) for x in re.findall(r"#(\d+)", row)] for row in re.findall(r"\(([^()]*)\)", m.group(3))]
         ws = [[float(x) for x in row.split(",")] for row in re.findall(r"\(([^()]*)\)", m.group(4))]
         if (du, dv) != (P.du, P.dv) or len(refs) != du + 1 or any(len(r) != dv + 1 for r in refs):
             raise ValueError("%s: surface %d patch %d: degrees or net differ" % (stepf, si, pi))
-        n = P.dv + 1
-        for r in range(du + 1):
-            for q in range(dv + 1):
-                e = affine_ok(P.raw[4 * (r * n + q):4 * (r * n + q) + 4], pts[refs[r][q]], ws[r][q])
-                Wc.add(e, "STEP surface %d patch (%d,%d) point [%d][%d]" % (si, pi // surfs[si].nv, pi % surfs[si].nv, r, q))
-        counts["cad"] += 1
+        step[si, pi] = {(r, q): (pts[refs[r][q]], ws[r][q]) for r in range(du + 1) for q in range(dv + 1)}
+        judge("STEP", si, pi, P, step[si, pi])
     # IGES: the parameter section, columns 1-64, each entity's records by its directory pointer
     params = {}
     with open(igsf) as f:
@@ -1037,13 +1110,88 @@ def check_cad(surfs, stepf, igsf, Wc, counts):
         xyz = [float(x) for x in v[k + nw:k + 4 * nw]]
         if (K1, K2) != (P.du, P.dv):
             raise ValueError("%s: surface %d patch %d: degrees differ" % (igsf, si, pi))
-        n = P.dv + 1
-        for q in range(K2 + 1):
-            for r in range(K1 + 1):          # the first index (u) runs fastest
-                i = q * (K1 + 1) + r
-                err = affine_ok(P.raw[4 * (r * n + q):4 * (r * n + q) + 4], xyz[3 * i:3 * i + 3], ws[i])
-                Wc.add(err, "IGES surface %d patch (%d,%d) point [%d][%d]" % (si, pi // surfs[si].nv, pi % surfs[si].nv, r, q))
-        counts["cad"] += 1
+        # the first index (u) runs fastest
+        got = {(r, q): (xyz[3 * (q * (K1 + 1) + r):3 * (q * (K1 + 1) + r) + 3], ws[q * (K1 + 1) + r])
+               for q in range(K2 + 1) for r in range(K1 + 1)}
+        judge("IGES", si, pi, P, got)
+        Wsame.add(sum(got[x][0] != step[si, pi][x][0] for x in got),
+                  "IGES surface %d patch (%d,%d)" % (si, pi // surfs[si].nv, pi % surfs[si].nv))
+    # a pole: the same point in every patch around it
+    for (fmt, si), at in sorted(poles.items()):
+        size = surfs[si].size
+        groups = []
+        for x in at:
+            for g in groups:
+                if math.dist(g[0], x) <= 1e-12 * size:
+                    g.append(x)
+                    break
+            else:
+                groups.append([x])
+        for g in groups:
+            Wone.add(len(set(g)) - 1, "%s surface %d pole at (%.6g, %.6g, %.6g)" % ((fmt, si) + tuple(g[0])))
+    return step
+
+
+def file_patch(P, pts):
+    """patch P as a file holds it, pts[(r, q)] = (affine point, weight): control point (r, q) the
+    exact homogeneous point (w x, w y, w z, w) (50 digits hold the products of two doubles)"""
+    Q = Patch(P.du, P.dv, P.raw)
+    Q.H = [[[dec(Fraction(pts[r, q][0][k]) * Fraction(pts[r, q][1])) for k in range(3)] + [dec(pts[r, q][1])]
+            for q in range(P.dv + 1)] for r in range(P.du + 1)]
+    return Q
+
+
+def quotient_points(P):
+    """P's control points as the writers wrote them before a collapsed row was one point: each
+    h / w correctly rounded on its own, and the weight"""
+    n = P.dv + 1
+    out = {}
+    for r in range(P.du + 1):
+        for q in range(n):
+            h = P.raw[4 * (r * n + q):4 * (r * n + q) + 4]
+            out[r, q] = ([float(Fraction(h[k]) / Fraction(h[3])) for k in range(3)], h[3])
+    return out
+
+
+def near_pole_gaps(s, patch):
+    """the worst G1 and G2 at each distance eps of POLE_EPS from the poles of surface s (the seam
+    ends on a side collapsed in the dump), the patches patch(i, j): {eps: [G1, G2]}, or None when
+    s has no pole"""
+    worst = {}
+    coll = [collapsed_sides(s, P) for P in s.patches]
+    for (Li, Ri, dirn) in seam_list(s):
+        for t, side in ((Fraction(0), "v=0" if dirn == "u" else "u=0"), (Fraction(1), "v=1" if dirn == "u" else "u=1")):
+            if side not in coll[Li[0] * s.nv + Li[1]] and side not in coll[Ri[0] * s.nv + Ri[1]]:
+                continue
+            L, R = patch(*Li), patch(*Ri)
+            for eps in POLE_EPS:
+                a, b = seam_point(s, L, R, dirn, t + eps if t == 0 else t - eps)
+                g = seam_gaps(a, b, dirn, Decimal(s.size))
+                w = worst.setdefault(eps, [0.0, 0.0])
+                w[0], w[1] = max(w[0], g[0]), max(w[1], g[1])
+    return worst or None
+
+
+def check_cad_poles(surfs, step, W1, W2, notes):
+    """G1 and G2 next to the poles measured on the doubles of the STEP file (the IGES file's are
+    the same, check_cad) 1/100, 1e-4 and 1e-6 from the pole: G1 within its limit at each (the
+    limit normals agree to about 1e-13 and a collapsed row is one point), G2 times eps / (1/100)
+    within G2's limit (it grows as 1 / eps from the limit normals' difference, no faster); and,
+    for the notes, the same with each point h / w rounded on its own (as written before)"""
+    for si, s in enumerate(surfs):
+        nv = s.nv
+        got = near_pole_gaps(s, lambda i, j: file_patch(s.patch(i, j), step[si, i * nv + j]))
+        if not got:
+            continue
+        before = near_pole_gaps(s, lambda i, j: file_patch(s.patch(i, j), quotient_points(s.patch(i, j))))
+        for eps, (g1, g2) in got.items():
+            W1.add(g1, "surface %d eps %s" % (si, eps))
+            W2.add(g2 * float(eps * 100), "surface %d eps %s" % (si, eps))
+        notes.append("surface %d next to its poles, on the STEP/IGES doubles: %s; with each point h / w rounded on "
+                     "its own: %s" % (si, "; ".join("eps %s G1 %.2g rad, G2 %.2g" % ((eps,) + tuple(got[eps]))
+                                                     for eps in POLE_EPS),
+                                      "; ".join("eps %s G1 %.2g rad, G2 %.2g" % ((eps,) + tuple(before[eps]))
+                                                for eps in POLE_EPS)))
 
 
 # --------------------------------------------------------------------------- (4) placement
@@ -1271,10 +1419,13 @@ def audit(design_path, dump, meshf, bvf=None, bezf=None, stepf=None, igsf=None):
         check_exports(surfs, bvf, bezf, Wx, counts)
     Wz = Worst("eq. (13) poles", LIMIT_COLLAPSE)
     check_polar_points(design, mj["meshes"], shapes, Wz, counts)
-    Wcad = Worst("STEP/IGES ulp", 0.0)
+    Wcad = [Worst("STEP/IGES ulp", 0.0), Worst("STEP/IGES pole", SNAP_ROUNDINGS),
+            Worst("STEP/IGES one", 0), Worst("IGES = STEP", 0)]
+    W1f, W2f = Worst("G1 pole file", LIMIT_G1), Worst("G2 pole file", LIMIT_G2)
     if stepf:
-        check_cad(surfs, stepf, igsf, Wcad, counts)
-    allw = [W, W0, W1, W2, W1p, W2p, Wlim, Wb, Wn, Wp, Wpole, Wz, Wc, Wx, Wcad]
+        step = check_cad(surfs, stepf, igsf, Wcad, counts)
+        check_cad_poles(surfs, step, W1f, W2f, notes)
+    allw = [W, W0, W1, W2, W1p, W2p, Wlim, Wb, Wn, Wp, Wpole, Wz, Wc, Wx] + Wcad + [W1f, W2f]
     return allw, per_shape, counts, notes, surfs
 
 
