@@ -384,6 +384,32 @@ static rg2_status mesh_range(const rg2_mesh *m, const char *file, const char *na
     return rg2_mesh_check_range(m, what, err);
 }
 
+/* A note for an output surface with a patch weight <= 0 (an exact shape over coarse arcs, or a
+ * mesh made from one): it builds, and pictures and the mesh formats take it, but STEP and IGES
+ * export refuse it; the note says so before a write does. A merge into this very mesh whose
+ * seam note already named a weight <= 0 (rg2__merge_overlap_notes) gets no second note. */
+static rg2_status weight_note(rg2_design *d, const rg2__dmesh *dm, const rg2_surface *s, rg2_error *err)
+{
+    rg2_weight_report rep;
+    rg2_surface_weight_report(s, &rep);
+    if (!(rep.flags & RG2_SHAPE_WARN_WEIGHT))
+        return RG2_OK;
+    char msg[700];
+    /* a merge of this mesh already named the weight <= 0 at its seam, and its remedy */
+    int n = snprintf(msg, sizeof msg, "%s: meshes.%s.merge", d->name, dm->name);
+    for (int k = 0; k < d->n_notes; k++)
+        if (n > 0 && (size_t)n < sizeof msg && !strncmp(d->notes[k], msg, (size_t)n) &&
+            strstr(d->notes[k], " <= 0 at control point "))
+            return RG2_OK;
+    snprintf(msg, sizeof msg,
+             "%s: meshes.%s: %d of its %d patches %s a homogeneous weight <= 0 (the smallest %g, at patch "
+             "(%d, %d)): STEP and IGES export refuse it (pictures and the mesh formats do not); use more arcs or "
+             "knots there (docs/shapes.md \"Homogeneous weights\")",
+             d->name, dm->name, rep.n_nonpositive, s->nu * s->nv, rep.n_nonpositive == 1 ? "has" : "have",
+             rep.min_weight, rep.patch_i, rep.patch_j);
+    return rg2__design_add_note(d, msg, err);
+}
+
 rg2_status rg2__design_build(rg2_design *d, rg2_error *err)
 {
     size_t patches = 0;
@@ -411,7 +437,9 @@ rg2_status rg2__design_build(rg2_design *d, rg2_error *err)
             if ((st = rg2__design_build_capped(d, dm, s, err)))
                 return st;
             rg2__surface_normalize_weights(s); /* (rg2_surface_build does it for the uncapped) */
-            continue;                          /* tagged by the caps module */
+            if ((st = weight_note(d, dm, s, err)))
+                return st;
+            continue; /* tagged by the caps module */
         }
         if ((st = rg2_surface_build(&dm->m, s, err))) {
             rg2_error e = *err;
@@ -435,6 +463,8 @@ rg2_status rg2__design_build(rg2_design *d, rg2_error *err)
                 s->tag[k * s->nv + l] = rg2__patch_tag(d, dm, sten, k, l);
         rg2__stencil_free(&sten[0]);
         rg2__stencil_free(&sten[1]);
+        if ((st = weight_note(d, dm, s, err)))
+            return st;
     }
     return RG2_OK;
 }

@@ -2246,6 +2246,53 @@ static void weight_notes(void)
  * v line only, next to the seam, and the note names that part ('H', merge[1]), that line (4 of
  * its 5) and the merged mesh's weight there; a hyperboloid1 whose first control line lies at v =
  * 0.002 (knots 0.3, 0.594, 0.9: weights 0.0035 to 0.004 there, positive) gets no weight note. */
+/* An output surface with a patch weight <= 0 (a cyclide close to a horn over 3 x 3 arcs,
+ * docs/shapes.md "Homogeneous weights") builds, but STEP and IGES refuse it: the design carries
+ * a note naming the mesh, the count, the smallest weight and its patch, which are the built
+ * surface's (rg2_surface_weight_report; the weight to the note's 6 digits); the same over 4 x 4
+ * arcs gets none (over 4 x 3, -9.5e-17 at patch (2, 1): a weight that vanishes), and a mesh made
+ * from the coarse one (a transform) carries it under its own name. */
+static void surface_weight_notes(void)
+{
+    static const char base[] = "{\"shapes\": {\"c\": {\"kind\": \"cyclide\", \"a\": 1, \"c\": 0.8, \"mu\": 0.97}},"
+                               " \"meshes\": {\"C\": {\"shape\": \"c\", \"u\": {\"arcs\": %s}, \"v\": {\"arcs\": %s}},"
+                               " \"T\": {\"transform\": \"C\", \"translate\": [1, 2, 3]}}, \"output\": [\"C\", \"T\"]}";
+    rg2_error err;
+    rg2_design *d = parse_edit2(base, "3", "3", &err);
+    CHECK(d != NULL, "the 3 x 3 arc cyclide parses: %s", err.msg);
+    for (int o = 0; d && o < 2; o++) {
+        const rg2_surface *s = rg2_design_surface(d, o);
+        rg2_weight_report rep;
+        rg2_surface_weight_report(s, &rep);
+        char head[64];
+        snprintf(head, sizeof head, "test: meshes.%s: ", o ? "T" : "C");
+        const char *note = NULL;
+        for (int k = 0; k < rg2_design_num_notes(d); k++)
+            if (!strncmp(rg2_design_note(d, k), head, strlen(head)) && strstr(rg2_design_note(d, k), "weight <= 0"))
+                note = rg2_design_note(d, k);
+        int n = -1, tot = -1, i = -1, j = -1;
+        double w = 1.0;
+        int got = note && sscanf(note + strlen(head),
+                                 "%d of its %d patches %*s a homogeneous weight <= 0 (the smallest %lf, at patch (%d, %d))",
+                                 &n, &tot, &w, &i, &j) == 5;
+        CHECK(got && strstr(note, "STEP and IGES export refuse it") && strstr(note, "use more arcs or knots"),
+              "%s: a weight note naming the refusal and the remedy, got '%s'", head, note ? note : "(none)");
+        CHECK(got && n == rep.n_nonpositive && n >= 1 && tot == s->nu * s->nv && i == rep.patch_i && j == rep.patch_j &&
+                  fabs(w - rep.min_weight) <= 1e-5 * fabs(rep.min_weight) && w <= 0,
+              "%s: the note's %d of %d, %g at (%d, %d) are the surface's %d of %d, %g at (%d, %d)", head, n, tot, w, i, j,
+              rep.n_nonpositive, s->nu * s->nv, rep.min_weight, rep.patch_i, rep.patch_j);
+    }
+    rg2_design_free(d);
+    d = parse_edit2(base, "4", "4", &err);
+    CHECK(d != NULL, "the 4 x 4 arc cyclide parses: %s", err.msg);
+    for (int k = 0; d && k < rg2_design_num_notes(d); k++)
+        CHECK(!strstr(rg2_design_note(d, k), "homogeneous weight <= 0"), "4 x 4 arcs: no weight note, got '%s'",
+              rg2_design_note(d, k));
+    CHECK(d && rg2_surface_min_weight(rg2_design_surface(d, 0)) > 0, "4 x 4 arcs: weights > 0 (%g)",
+          d ? rg2_surface_min_weight(rg2_design_surface(d, 0)) : NAN);
+    rg2_design_free(d);
+}
+
 static void weight_notes_ends(void)
 {
     static const char first[] =
@@ -3148,6 +3195,7 @@ int main(void)
     twisted_merges();
     overlapping_merges();
     weight_notes();
+    surface_weight_notes();
     weight_notes_ends();
     tiny_literals();
     nesting_counts_brackets();
