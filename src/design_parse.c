@@ -1383,19 +1383,19 @@ static rg2_status parse_mesh(pctx *c, const cJSON *obj, const char *name, const 
             op = k;
         }
     if (op < 0) {
+        char list[160] = ""; /* the operations, from their table: "shape, cut, ..., roll" */
+        for (int k = 0; k < N_OPS; k++)
+            snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k ? ", " : "", ops[k]);
         /* a misspelt operation ("merg"): name it and the operation it is closest to */
         for (const cJSON *it = obj->child; it; it = it->next) {
             char sug[128] = "";
             if (strcmp(it->string, "comment"))
                 suggest(it->string, ops, N_OPS, sug, sizeof sug);
             if (sug[0])
-                return fail(c, RG2_EPARSE, path, "unknown key '%s'%s; a mesh needs one operation: shape, cut, "
-                            "merge, transpose, reverse, edit, transform, morph, polar, mobius, cap, nurbs, roll",
-                            it->string, sug);
+                return fail(c, RG2_EPARSE, path, "unknown key '%s'%s; a mesh needs one operation: %s", it->string,
+                            sug, list);
         }
-        return fail(c, RG2_EPARSE, path,
-                    "no operation: give one of shape, cut, merge, transpose, reverse, edit, transform, morph, "
-                    "polar, mobius, cap, nurbs, roll");
+        return fail(c, RG2_EPARSE, path, "no operation: give one of %s", list);
     }
     if (rg2__design_find_mesh(c->d, name) >= 0)
         return fail(c, RG2_EPARSE, path, "a mesh named '%s' already exists", name);
