@@ -2656,10 +2656,41 @@ static int poles_one_point(const rg2_surface *s, const char *what)
     return np;
 }
 
+/* fx_pole(8, 5) scaled by scale (a power of 2: exact) with one point of its pole side moved off
+ * by 0.3e-11 of its size: still a pole of the topology, but its points are written as they are,
+ * h / w, once each in STEP and IGES. At scale 2^-30 the move is below 16 roundings of 0.01: a
+ * floor under the largest coordinate the pole tolerance is relative to would snap the point. */
+static void moved_pole_kept(double scale)
+{
+    rg2_error err;
+    rg2_surface s;
+    double M[16];
+    CHECK_OK(fx_pole(8, 5, &s, &err), &err);
+    rg2_xform_scale(M, scale, scale, scale);
+    rg2_surface_transform(&s, M);
+    double *h = rg2_surface_patch(&s, 0, 0)->h[1][0];
+    h[0] += 0.3e-11 * rg2t_surface_scale(&s) * h[3];
+    double want[3] = {h[0] / h[3], h[1] / h[3], h[2] / h[3]};
+    for (int f = 0; f < 2; f++) {
+        char *text = NULL;
+        size_t len = 0;
+        double(*pts)[3] = NULL;
+        CHECK_OK(rg2_export_memory(&s, 1, f ? "igs" : "step", NULL, &text, &len, &err), &err);
+        int n = text ? file_points(text, len, f, &pts) : -1, found = 0;
+        for (int q = 0; q < n; q++)
+            found += !memcmp(pts[q], want, sizeof want);
+        CHECK(found == 1, "pole moved by 0.3e-11 of its size, scale %g, %s: its moved point h / w written %d times, want 1",
+              scale, f ? "IGES" : "STEP", found);
+        free(pts);
+        free(text);
+    }
+    rg2_surface_free(&s);
+}
+
 /* The capped spheres of Fig. 9 and Fig. 14 (their collapsed rows one point only to rounding,
  * the weights along them differing) and the pole surface along v and along u; and a pole side
- * with one point moved off by 0.3e-11 of the size (still a pole of the topology, docs/export.md)
- * whose points are written as they are, h / w: a short side is not a pole's one point. */
+ * with one point moved off (moved_pole_kept, at scale 1 and 2^-30): a short side is not a pole's
+ * one point. */
 static void poles_written(void)
 {
     static const char *const files[] = {"examples/fig9_polar_sphere.json", "examples/fig14_mobius.json"};
@@ -2683,24 +2714,8 @@ static void poles_written(void)
     CHECK_OK(fx_pole_t(7, 6, &s, &err), &err);
     CHECK(poles_one_point(&s, "transposed pole surface (u = 0 side)") == 1, "transposed pole surface: its pole not found");
     rg2_surface_free(&s);
-    CHECK_OK(fx_pole(8, 5, &s, &err), &err);
-    double *h = rg2_surface_patch(&s, 0, 0)->h[1][0];
-    h[0] += 0.3e-11 * rg2t_surface_scale(&s) * h[3];
-    double want[3] = {h[0] / h[3], h[1] / h[3], h[2] / h[3]};
-    for (int f = 0; f < 2; f++) {
-        char *text = NULL;
-        size_t len = 0;
-        double(*pts)[3] = NULL;
-        CHECK_OK(rg2_export_memory(&s, 1, f ? "igs" : "step", NULL, &text, &len, &err), &err);
-        int n = text ? file_points(text, len, f, &pts) : -1, found = 0;
-        for (int q = 0; q < n; q++)
-            found += !memcmp(pts[q], want, sizeof want);
-        CHECK(found == 1, "pole moved by 0.3e-11 of its size, %s: its moved point h / w written %d times, want 1",
-              f ? "IGES" : "STEP", found);
-        free(pts);
-        free(text);
-    }
-    rg2_surface_free(&s);
+    moved_pole_kept(1.0);
+    moved_pole_kept(0x1p-30);
 }
 
 /* ---------------------------------------------------------------- UTF-8 */
