@@ -2689,8 +2689,9 @@ static void moved_pole_kept(double scale)
 
 /* The capped spheres of Fig. 9 and Fig. 14 (their collapsed rows one point only to rounding,
  * the weights along them differing) and the pole surface along v and along u, its pole at the
- * profile's start and at its end; and a pole side with one point moved off (moved_pole_kept, at
- * scale 1 and 2^-30): a short side is not a pole's one point. */
+ * profile's start and at its end (there also with each patch's 4-tuples scaled by a factor of its
+ * own); and a pole side with one point moved off (moved_pole_kept, at scale 1 and 2^-30): a short
+ * side is not a pole's one point. */
 static void poles_written(void)
 {
     static const char *const files[] = {"examples/fig9_polar_sphere.json", "examples/fig14_mobius.json"};
@@ -2714,14 +2715,22 @@ static void poles_written(void)
     CHECK_OK(fx_pole_t(7, 6, &s, &err), &err);
     CHECK(poles_one_point(&s, "transposed pole surface (u = 0 side)") == 1, "transposed pole surface: its pole not found");
     rg2_surface_free(&s);
-    for (int t = 0; t < 2; t++) { /* the pole at the profile's end (the topology's last edges),
-                                    * moved off the axis (its rows' h / w then differ by roundings) */
+    for (int t = 0; t < 3; t++) { /* the pole at the profile's end (the topology's last edges),
+                                    * moved off the axis (its rows' h / w then differ by roundings);
+                                    * t = 2: along v, every patch's 4-tuples times a factor of its
+                                    * own (the same surface; the pole's corners then differ too) */
+        static const char *const name[3] = {"pole surface (v = 1 side)", "transposed pole surface (u = 1 side)",
+                                            "pole surface (v = 1 side), patches scaled"};
         double M[16];
-        CHECK_OK(fx_revolved(7, 7, t, 1, &s, &err), &err);
+        CHECK_OK(fx_revolved(7, 7, t == 1, 1, &s, &err), &err);
         rg2_xform_translate(M, 0.1, 0.2, 0.3);
         rg2_surface_transform(&s, M);
-        CHECK(poles_one_point(&s, t ? "transposed pole surface (u = 1 side)" : "pole surface (v = 1 side)") == 1,
-              "pole surface with the pole at the profile's end, %s: its pole not found", t ? "along u" : "along v");
+        for (int i = 0; i < s.nu && t == 2; i++)
+            for (int j = 0; j < s.nv; j++)
+                for (int r = 0; r < 16; r++)
+                    for (int d = 0; d < 4; d++)
+                        rg2_surface_patch(&s, i, j)->h[r / 4][r % 4][d] *= 7.0 / (3 + i + 2 * j);
+        CHECK(poles_one_point(&s, name[t]) == 1, "%s: its pole not found", name[t]);
         rg2_surface_free(&s);
     }
     moved_pole_kept(1.0);
