@@ -394,13 +394,9 @@ static rg2_status weight_note(rg2_design *d, const rg2__dmesh *dm, const rg2_sur
     rg2_surface_weight_report(s, &rep);
     if (!(rep.flags & RG2_SHAPE_WARN_WEIGHT))
         return RG2_OK;
+    if (dm->weight_noted) /* its merge named the weight <= 0 at its seam, and the remedy */
+        return RG2_OK;
     char msg[700];
-    /* a merge of this mesh already named the weight <= 0 at its seam, and its remedy */
-    int n = snprintf(msg, sizeof msg, "%s: meshes.%s.merge", d->name, dm->name);
-    for (int k = 0; k < d->n_notes; k++)
-        if (n > 0 && (size_t)n < sizeof msg && !strncmp(d->notes[k], msg, (size_t)n) &&
-            strstr(d->notes[k], " <= 0 at control point "))
-            return RG2_OK;
     snprintf(msg, sizeof msg,
              "%s: meshes.%s: %d of its %d patches %s a homogeneous weight <= 0 (the smallest %g, at patch "
              "(%d, %d)): STEP and IGES export refuse it (pictures and the mesh formats do not); use more arcs or "

@@ -53,6 +53,8 @@ typedef struct {
     int cap_src;       /* the capped mesh (index into rg2_design.mesh), for messages */
     int uncapped_of;   /* 1 + the capped mesh an uncapped mesh was made from (an operation uses a
                           capped input uncapped), 0 none: an uncapped output made so gets a note */
+    int weight_noted;  /* the merge that made this mesh noted a weight <= 0 at a seam
+                          (rg2__merge_overlap_notes): its output surface gets no second note */
 } rg2__dmesh;
 
 /* A hash index of names (mesh names, shape labels) to their registry index; the keys are the
@@ -149,9 +151,10 @@ rg2_status rg2__merge_twist_notes(rg2_design *d, const rg2__dmesh *const *in, in
 double rg2__merge_seam_back(const rg2_mesh *l, const rg2_mesh *r, int dir, int *by_left);
 /* Notes on the seams of a merge where the control lines run back by more than
  * RG2_MERGE_OVERLAP (rg2__merge_seam_back; the parts overlap: the transition patches bend
- * sharply or fold). RG2_ENOMEM only. */
+ * sharply or fold), or where a part has a weight <= 0 next to the seam (then *weight_noted = 1,
+ * else 0). RG2_ENOMEM only. */
 rg2_status rg2__merge_overlap_notes(rg2_design *d, const rg2__dmesh *const *in, int n_in, int dir, int closed,
-                                    const char *what, rg2_error *err);
+                                    const char *what, int *weight_noted, rg2_error *err);
 rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int closed,
                          rg2__seam_rule rule, rg2__dmesh *out, const char *what, rg2_error *err);
 rg2_status rg2__op_transform(rg2_design *d, const rg2__dmesh *in, const double M[16],

@@ -640,8 +640,9 @@ static int open_ends_meet(const rg2_mesh *l, const rg2_mesh *r, int dir, double 
 }
 
 rg2_status rg2__merge_overlap_notes(rg2_design *d, const rg2__dmesh *const *in, int n_in, int dir, int closed,
-                                    const char *what, rg2_error *err)
+                                    const char *what, int *weight_noted, rg2_error *err)
 {
+    *weight_noted = 0;
     int other = 1 - dir;
     double ratio;
     int part, line, idx;
@@ -680,6 +681,7 @@ rg2_status rg2__merge_overlap_notes(rg2_design *d, const rg2__dmesh *const *in, 
             rg2_status st = rg2__design_add_note(d, msg, err);
             if (st)
                 return st;
+            *weight_noted = 1;
             continue;
         }
         double back = rg2__merge_seam_back(&l->m, &r->m, dir, &by_left);

@@ -927,7 +927,7 @@ static rg2_status op_merge(pctx *c, const cJSON *obj, const char *path, rg2__dme
     }
     st = rg2__op_merge(in, n, dir, closed, rule, out, path, c->err);
     if (!st && ((st = rg2__merge_twist_notes(c->d, in, n, dir, closed, path, c->err)) ||
-                (st = rg2__merge_overlap_notes(c->d, in, n, dir, closed, path, c->err))))
+                (st = rg2__merge_overlap_notes(c->d, in, n, dir, closed, path, &out->weight_noted, c->err))))
         rg2__dmesh_free(out);
 done:
     free(in);
