@@ -61,7 +61,8 @@ double rg2__collapse_tol(const rg2_surface *s);
  * Collapsed edges have id -1 and merge their end corners into one vertex.
  * Poles: a vertex holding a collapsed edge whose control points (those on its collapsed edges
  * and at its corners, in every patch) all lie within RG2__POLE_ULPS roundings of the surface's
- * largest coordinate of its point pole[v] (h / w of the corner vcorner[v]) is a pole (snap[v]);
+ * largest coordinate, times their weights' ratio (largest / smallest, at least 1), of its point
+ * pole[v] (h / w of the corner vcorner[v]) is a pole (snap[v]);
  * the writers write every one of those control points as pole[v] (rg2__patch_affine). */
 typedef struct {
     int nu, nv;
@@ -77,10 +78,12 @@ typedef struct {
     double (*pole)[3];   /* n_vertices: a pole's one point (NULL likewise) */
 } rg2__topo;
 
-/* How far (in roundings of the surface's largest affine coordinate, DBL_EPSILON times it) the
- * control points of a collapsed side may lie from its vertex's point to be written as that
- * point: the construction leaves a pole's points one point to a few roundings (their weights
- * differ); a side that is merely short is farther and keeps its points. */
+/* How far (in roundings of the surface's largest affine coordinate, DBL_EPSILON times it, times
+ * the ratio of the largest to the smallest weight among the points) the control points of a
+ * collapsed side may lie from its vertex's point to be written as that point: the construction
+ * leaves a pole's points one point to a few roundings (their weights differ), to more where
+ * weights of different sizes meet in its sums (a clamped NURBS pole with weights 1 and 32: 21
+ * roundings); a side that is merely short is farther and keeps its points. */
 #define RG2__POLE_ULPS 16
 
 rg2_status rg2__topo_build(const rg2_surface *s, rg2__topo *t, rg2_error *err);

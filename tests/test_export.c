@@ -2605,11 +2605,11 @@ static int file_points(const char *text, size_t len, int iges, double (**pts)[3]
  * per patch and per mesh, plain IGES per patch and per mesh), and in each, for each pole of s
  * (pole_places), the file's points within 1e-12 of the size of it (the collapsed rows of every
  * patch around it, the edge curves' ends and the vertex there) one double triple bit for bit, the
- * same in the six files and within 16 roundings of the surface's largest coordinate of the pole's
- * h / w.
+ * same in the six files and within 16 roundings of the surface's largest coordinate (times ratio,
+ * the pole's weights' largest over their smallest) of the pole's h / w.
  * (The points h / w of a collapsed row are one only to rounding: the file's fan of patches
  * met at up to four points 1e-16 apart.) */
-static int poles_one_point(const rg2_surface *s, const char *what)
+static int poles_one_point(const rg2_surface *s, const char *what, double ratio)
 {
     static const char *const form[6] = {"STEP per patch", "STEP per mesh", "IGES per patch",
                                          "IGES per mesh", "IGES B-rep per patch", "IGES B-rep per mesh"};
@@ -2645,7 +2645,7 @@ static int poles_one_point(const rg2_surface *s, const char *what)
                 differ += memcmp(pts[q], ref[k], sizeof ref[k]) != 0;
                 worst = fmax(worst, dd);
             }
-            CHECK(near >= 3 && differ == 0 && worst <= 16 * DBL_EPSILON * big,
+            CHECK(near >= 3 && differ == 0 && worst <= 16 * ratio * DBL_EPSILON * big,
                   "%s %s: pole %d at (%.17g, %.17g, %.17g): %d points written there, %d of them not the one point "
                   "(%.17g, %.17g, %.17g) of the first file, up to %.3g from the pole's h / w",
                   what, form[f], k, at[k][0], at[k][1], at[k][2], near, differ, ref[k][0], ref[k][1], ref[k][2], worst);
@@ -2687,11 +2687,56 @@ static void moved_pole_kept(double scale)
     rg2_surface_free(&s);
 }
 
+/* A clamped 4 x 4 NURBS (one patch) whose row v = 0 is one point, (0.1, 0.2, 0.3), with weights
+ * alternating 1 and r: a pole, but the construction's sums (weights 1 and r, the clamped end's
+ * de Boor points extrapolated) leave its row's points h / w apart by about 0.7 r roundings (21 at
+ * r = 32, 150 at r = 200), more than 16: the writers' tolerance grows with the weights' ratio, so
+ * it is still written as one point (poles_one_point with the row's weights' ratio). */
+static void nurbs_pole_written(double r)
+{
+    char json[2048];
+    int n = snprintf(json, sizeof json, "{\"shapes\": {}, \"meshes\": {\"N\": {\"nurbs\": {\"nu\": 4, \"nv\": 4, "
+                     "\"knots_u\": [0, 0, 0, 0, 1, 1, 1, 1], \"knots_v\": [0, 0, 0, 0, 1, 1, 1, 1], \"points\": [");
+    for (int k = 0; k < 16; k++) {
+        double rho = (k % 4) / 3.0, th = 1.2 * M_PI * (k / 4) / 3.0;
+        n += snprintf(json + n, sizeof json - (size_t)n, "%s[%.17g, %.17g, %.17g]", k ? ", " : "", rho * cos(th) + 0.1,
+                      rho * sin(th) + 0.2, 0.4 * rho * rho + 0.3);
+    }
+    n += snprintf(json + n, sizeof json - (size_t)n, "], \"weights\": [");
+    for (int k = 0; k < 16; k++)
+        n += snprintf(json + n, sizeof json - (size_t)n, "%s%.17g", k ? ", " : "", (k / 4 + k % 4) % 2 ? r : 1.0);
+    snprintf(json + n, sizeof json - (size_t)n, "]}}}}");
+    rg2_error err;
+    rg2_design *d = NULL;
+    CHECK_OK(rg2_design_parse(json, strlen(json), "nurbs_pole", &d, &err), &err);
+    const rg2_surface *s = d ? rg2_design_surface(d, 0) : NULL;
+    if (s) {
+        double wlo = INFINITY, whi = 0, spread = 0, p0[3];
+        rg2_xpatch X;
+        rg2_surface_patch_get(s, 0, 0, &X);
+        for (int a = 0; a <= X.du; a++) {
+            const double *h = X.h[a][0];
+            wlo = fmin(wlo, fabs(h[3])), whi = fmax(whi, fabs(h[3]));
+            for (int c = 0; c < 3; c++) {
+                if (!a)
+                    p0[c] = h[c] / h[3];
+                spread = fmax(spread, fabs(h[c] / h[3] - p0[c]));
+            }
+        }
+        char what[64];
+        snprintf(what, sizeof what, "NURBS pole, weights 1 and %g", r);
+        CHECK(spread > 16 * DBL_EPSILON * 1.3, "%s: its row's points h / w %.3g apart, want more than 16 roundings", what,
+              spread);
+        CHECK(poles_one_point(s, what, whi / wlo) == 1, "%s: its pole not found", what);
+    }
+    rg2_design_free(d);
+}
+
 /* The capped spheres of Fig. 9 and Fig. 14 (their collapsed rows one point only to rounding,
  * the weights along them differing) and the pole surface along v and along u, its pole at the
  * profile's start and at its end (there also with each patch's 4-tuples scaled by a factor of its
- * own); and a pole side with one point moved off (moved_pole_kept, at scale 1 and 2^-30): a short
- * side is not a pole's one point. */
+ * own); a pole side with one point moved off (moved_pole_kept, at scale 1 and 2^-30): a short
+ * side is not a pole's one point; and a NURBS pole whose weights differ 32 and 200 times. */
 static void poles_written(void)
 {
     static const char *const files[] = {"examples/fig9_polar_sphere.json", "examples/fig14_mobius.json"};
@@ -2703,17 +2748,17 @@ static void poles_written(void)
         for (int q = 0; d && q < rg2_design_num_surfaces(d); q++) {
             char what[96];
             snprintf(what, sizeof what, "%s surface %d", files[k], q);
-            poles += poles_one_point(rg2_design_surface(d, q), what);
+            poles += poles_one_point(rg2_design_surface(d, q), what, 1.0);
         }
         rg2_design_free(d);
     }
     CHECK(poles == 8, "the capped spheres of Fig. 9 and Fig. 14: %d poles found, want 8", poles);
     rg2_surface s;
     CHECK_OK(fx_pole(6, 7, &s, &err), &err);
-    CHECK(poles_one_point(&s, "pole surface (v = 0 side)") == 1, "pole surface: its pole not found");
+    CHECK(poles_one_point(&s, "pole surface (v = 0 side)", 1.0) == 1, "pole surface: its pole not found");
     rg2_surface_free(&s);
     CHECK_OK(fx_pole_t(7, 6, &s, &err), &err);
-    CHECK(poles_one_point(&s, "transposed pole surface (u = 0 side)") == 1, "transposed pole surface: its pole not found");
+    CHECK(poles_one_point(&s, "transposed pole surface (u = 0 side)", 1.0) == 1, "transposed pole surface: its pole not found");
     rg2_surface_free(&s);
     for (int t = 0; t < 3; t++) { /* the pole at the profile's end (the topology's last edges),
                                     * moved off the axis (its rows' h / w then differ by roundings);
@@ -2730,11 +2775,13 @@ static void poles_written(void)
                 for (int r = 0; r < 16; r++)
                     for (int d = 0; d < 4; d++)
                         rg2_surface_patch(&s, i, j)->h[r / 4][r % 4][d] *= 7.0 / (3 + i + 2 * j);
-        CHECK(poles_one_point(&s, name[t]) == 1, "%s: its pole not found", name[t]);
+        CHECK(poles_one_point(&s, name[t], 1.0) == 1, "%s: its pole not found", name[t]);
         rg2_surface_free(&s);
     }
     moved_pole_kept(1.0);
     moved_pole_kept(0x1p-30);
+    nurbs_pole_written(32);
+    nurbs_pole_written(200);
 }
 
 /* ---------------------------------------------------------------- UTF-8 */

@@ -16,8 +16,9 @@ one to three parts a design, each an output surface (a polar part sometimes its 
 and IGES face per mesh and IGES B-rep per mesh. From the dump
 alone the audit finds the sides collapsed by the 1e-11 rule, their vertices (closing seams and
 collapsed sides merge corners) and each vertex's points; a vertex is a pole when all of them
-lie within 16 roundings (DBL_EPSILON times the surface's largest coordinate) of the point h / w
-of its corner of lowest index. Then, in every file: every control point of a pole is that point
+lie within 16 roundings (DBL_EPSILON times the surface's largest coordinate) times their
+weights' ratio (the largest |w| over the smallest, at least 1) of the point h / w of its corner
+of lowest index. Then, in every file: every control point of a pole is that point
 bit for bit, every other one the correctly rounded h / w of the dump's 4-tuple (per mesh: of the
 first patch holding it); every weight the dump's (IGES: times one power of two per entity) and
 > 0; neighbouring patches' shared rows the same doubles; every vertex point and edge-curve pole
@@ -26,7 +27,7 @@ refuses is skipped (at most a fifth of them may be).
 
 Usage: pole_audit.py RG2 [N [FIRST_SEED]]   (default 120 designs from seed 1)
 Prints the figures: poles, their largest spread in roundings, the short sides kept and their
-smallest spread. Exit 0 when every file follows the rule, 1 otherwise, 2 on a usage error.
+smallest spread (in roundings times their weights' ratio). Exit 0 when every file follows the rule, 1 otherwise, 2 on a usage error.
 """
 import json
 import math
@@ -567,9 +568,12 @@ def topology(s):
             g = s.patch(a, b)[r][q]
             for d in range(3):
                 devx = max(devx, abs(Fraction(g[d]) / Fraction(g[3]) - Fraction(pole[d])))
-        snap = all(abs(s.patch(a, b)[r][q][d] / s.patch(a, b)[r][q][3] - pole[d]) <= s.ptol
+        ws = [abs(s.patch(a, b)[r][q][3]) for (a, b, r, q) in mem]
+        ratio = max(ws) / min(ws) if min(ws) > 0 else 1.0
+        ratio = ratio if ratio > 1.0 and math.isfinite(ratio) else 1.0
+        snap = all(abs(s.patch(a, b)[r][q][d] / s.patch(a, b)[r][q][3] - pole[d]) <= s.ptol * ratio
                    for (a, b, r, q) in mem for d in range(3))
-        poles[v] = dict(pole=pole, snap=snap, mem=mem,
+        poles[v] = dict(pole=pole, snap=snap, mem=mem, ratio=ratio,
                         devx=float(devx) / (EPS * s.big) if s.big else 0.0, n=len(mem))
     expect = {}
     for i in range(nu):
@@ -669,7 +673,7 @@ def check_files(dump, pps, ppi, bpi, pms, pmi, bmi):
                 fig["max_pole_dev"] = max(fig["max_pole_dev"], P["devx"])
             else:
                 fig["short"] += 1
-                m = P["devx"] - ULPS
+                m = P["devx"] / P["ratio"] - ULPS  # (in roundings times the weights' ratio)
                 fig["min_short_margin"] = m if fig["min_short_margin"] is None else min(fig["min_short_margin"], m)
 
     def fail(msg):
@@ -872,7 +876,7 @@ def run(rg2, n, first):
                 failed.append("design %d (%s):\n      %s" % (seed, ", ".join(tags), "\n      ".join(fig["fails"][:6])))
     print("%d random pole designs (%d refused by rg2), %d surfaces, %d patches, %d control points in 6 layouts: "
           "%d poles written as one point (largest spread of a pole's points h / w %.3g roundings), %d short "
-          "sides kept (smallest spread %s roundings)" % (
+          "sides kept (smallest spread, over its weights' ratio, %s roundings)" % (
               tot["designs"], tot["refused"], tot["surfaces"], tot["patches"], tot["points"], tot["poles"],
               tot["max_pole_dev"], tot["short"], "%.3g" % tot["min_short_dev"] if tot["min_short_dev"] is not None else "-"))
     if tot["refused"] * 5 > tot["designs"]:
