@@ -46,7 +46,8 @@ exact rationals (fractions.Fraction):
                 every coordinate as the correctly rounded quotient h_k / h_w ("STEP/IGES ulp"),
                 but a pole's: every side collapsed in the dump is one point bit for bit, the same
                 in every patch around the pole ("STEP/IGES one"), within 16 roundings of the
-                largest coordinate of each of its points h / w ("STEP/IGES pole"), and the IGES
+                largest coordinate of each of its points h / w, times the ratio of their
+                weights (largest over smallest, at least 1; "STEP/IGES pole"), and the IGES
                 points are the STEP ones;
   MATH.md       sections 1, 2 and 7 on exact rational data: G2 (Definition 1) at every junction
                 of random polygons, an open arc partition reproduced exactly, and eq. (13)'s
@@ -55,7 +56,8 @@ exact rationals (fractions.Fraction):
 
 Limits: exact 1e-14 (rg2 check's is 1e-13 on its own double evaluation), G0 1e-12, G1 1e-10 rad,
 G2 1e-8 (rg2 check's), construction and NURBS 1e-14, placement 1e-15, collapsed 1e-14, export
-1e-15, a pole's point in STEP/IGES 16 roundings (DBL_EPSILON times the largest coordinate).
+1e-15, a pole's point in STEP/IGES 16 roundings (DBL_EPSILON times the largest coordinate, times
+its weights' ratio).
 
 Usage: exact_audit.py RG2 SRC_DIR [--examples a.json,b.json] [--no-self-test] [-v]
        exact_audit.py --files DESIGN PATCHES.json MESH.json   (one design's files as they are)
@@ -1031,8 +1033,9 @@ def judge_cad(fmt, si, s, pi, P, pts, W):
     """one patch of a CAD file, pts[(r, q)] = (affine point, weight): every weight the dump's;
     every coordinate the correctly rounded h_k / h_w (0 ulp), or, on a side the file writes as
     one point bit for bit (a pole), within SNAP_ROUNDINGS roundings of the surface's largest
-    coordinate of it; every side collapsed in the dump written as one point. Returns the
-    one-point sides' points (for the poles' check across patches)."""
+    coordinate of it, times the ratio of the largest weight to the smallest among the patch's
+    one-point sides' points (at least 1); every side collapsed in the dump written as one point.
+    Returns the one-point sides' points (for the poles' check across patches)."""
     Wc, Wsnap, Wone = W
     where = "%s surface %d patch (%d,%d)" % (fmt, si, pi // s.nv, pi % s.nv)
     coll = collapsed_sides(s, P)
@@ -1046,6 +1049,11 @@ def judge_cad(fmt, si, s, pi, P, pts, W):
             Wone.add(len({tuple(pts[x][0]) for x in idx}) - 1, "%s side %s" % (where, name))
     n = P.dv + 1
     rounding = sys.float_info.epsilon * s.big
+    # the writers' tolerance grows with the weights' ratio of a pole's points (here: of this
+    # patch's one-point sides' points)
+    ws = [abs(P.raw[4 * (r * n + q) + 3]) for (r, q) in one]
+    ratio = max(ws) / min(ws) if ws and min(ws) > 0 else 1.0
+    rounding *= ratio if ratio > 1.0 and math.isfinite(ratio) else 1.0
     for (r, q), (p3, w) in sorted(pts.items()):
         h = P.raw[4 * (r * n + q):4 * (r * n + q) + 4]
         e = affine_ok(h, p3, w)
