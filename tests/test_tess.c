@@ -543,6 +543,101 @@ static void sphere_poles_kh(void)
     rg2_mesh_free(&m);
 }
 
+/* The control points of patch i of the surfaces made patch by patch below (weights 1):
+ * `which` 0: patch 0 the unit square, patch 1 a triangle whose v = 1 side is patch 0's corner
+ * (1, 1); 1: a bow tie, two triangles whose shared side (patch 0's u = 1, patch 1's u = 0) is
+ * the point (1, 0.5); 2: one patch closed in u (its u = 0 and u = 1 columns equal), a tube
+ * along z around a teardrop. */
+static void hand_point(int which, int i, int r, int c, double p[3])
+{
+    double x = r / 3.0, y = c / 3.0;
+    if (which == 0) {
+        p[0] = i ? 1.0 + x * (1.0 - y) : x;
+        p[1] = y;
+        p[2] = 0.0;
+    } else if (which == 1) {
+        p[0] = i + x;
+        p[1] = 0.5 + (y - 0.5) * (i ? x : 1.0 - x);
+        p[2] = 0.0;
+    } else {
+        static const double loop[4][2] = {{0, 0}, {2, 2}, {-2, 2}, {0, 0}};
+        p[0] = loop[r][0];
+        p[1] = loop[r][1];
+        p[2] = y;
+    }
+}
+
+static void hand_surface(int which, rg2_surface *s)
+{
+    memset(s, 0, sizeof *s);
+    s->nu = which == 2 ? 1 : 2;
+    s->nv = 1;
+    s->closed_u = which == 2;
+    s->patch = calloc((size_t)s->nu, sizeof *s->patch);
+    for (int i = 0; s->patch && i < s->nu; i++)
+        for (int r = 0; r < 4; r++)
+            for (int c = 0; c < 4; c++) {
+                hand_point(which, i, r, c, s->patch[i].h[r][c]);
+                s->patch[i].h[r][c][3] = 1.0;
+            }
+}
+
+/* Collapsed sides that are not a whole pole row (a surface made patch by patch): a triangle
+ * patch's v = 1 side in patch column 1 alone, and a u = 0 side past column 0 (a bow tie's
+ * waist). Only the d + 1 grid points of the collapsed side are merged into one vertex: the
+ * vertex count is the grid's less d, and every grid point of every patch has a vertex at its
+ * surface point (a merge of other grid points loses one). And a tube of one patch closed in u
+ * at density 1: one grid line in u, so every quad's corners repeat and no triangle is left (a
+ * degenerate triangle is never written, rg2.h). */
+static void lone_collapsed_sides(void)
+{
+    rg2_error err;
+    for (int which = 0; which < 2; which++) {
+        const char *what = which ? "bow tie (a collapsed u = 0 side in column 1)" : "a triangle patch's v = 1 side";
+        rg2_surface s;
+        rg2_tess t;
+        hand_surface(which, &s);
+        CHECK(s.patch != NULL, "%s: out of memory", what);
+        int d = 4;
+        if (!s.patch || rg2_tessellate(&s, d, 0, &t, &err) != RG2_OK) {
+            CHECK(0, "%s: %s", what, err.msg);
+            rg2_surface_free(&s);
+            continue;
+        }
+        int grid = (2 * d + 1) * (d + 1);
+        CHECK(t.n_vertices == grid - d, "%s: %d vertices, want %d (the side's %d grid points in one)", what,
+              t.n_vertices, grid - d, d + 1);
+        int missing = 0;
+        for (int i = 0; i < 2; i++)
+            for (int a = 0; a <= d; a++)
+                for (int b = 0; b <= d; b++) {
+                    rg2_eval e;
+                    rg2_surface_eval(&s, i, 0, (double)a / d, (double)b / d, 0, &e);
+                    double near = INFINITY;
+                    for (int v = 0; v < t.n_vertices; v++)
+                        near = fmin(near, dist2(t.pos + 3 * v, e.p));
+                    missing += !(near <= 1e-24);
+                }
+        CHECK(missing == 0, "%s: %d grid points without a vertex at their surface point", what, missing);
+        check_orientation(&t, what);
+        rg2_tess_free(&t);
+        rg2_surface_free(&s);
+    }
+    rg2_surface tube;
+    rg2_tess t;
+    hand_surface(2, &tube);
+    CHECK(tube.patch != NULL, "tube: out of memory");
+    if (tube.patch && rg2_tessellate(&tube, 1, 0, &t, &err) == RG2_OK) {
+        CHECK(t.n_vertices == 2 && t.n_triangles == 0,
+              "one patch closed in u at density 1: %d vertices, %d triangles (want 2, 0: every quad's corners repeat)",
+              t.n_vertices, t.n_triangles);
+        check_orientation(&t, "one patch closed in u at density 1");
+        rg2_tess_free(&t);
+    } else
+        CHECK(0, "one patch closed in u at density 1: %s", err.msg);
+    rg2_surface_free(&tube);
+}
+
 /* The pole surface under an affine map (sheared, stretched and moved off the axis, applied to the
  * homogeneous control points: still rational bi-cubic, the pole still collapsed): its quads are
  * no longer symmetric trapezoids, so next to merged vertices (the general triangle path) the
@@ -742,6 +837,7 @@ int main(void)
     random_mesh(4, 5, 0); /* 1 x 2 patches */
     random_mesh(5, 4, 0); /* 2 x 1 */
     sheared_pole();
+    lone_collapsed_sides();
     cap_mesh();
     sphere_poles_kh();
     retessellate();
