@@ -219,10 +219,11 @@ EOF
 [ "$(grep -c '  closed: the normal points out (enclosed volume about' "$tmp/out")" = 1 ] && ok || bad "info inward.json: $(cat "$tmp/out")"
 grep -q '  closed: the normal points IN (enclosed volume about -.*reverse the mesh along u or v' "$tmp/out" && ok ||
   bad "info inward.json: no inward normal: $(cat "$tmp/out")"
-# info --near: the nearest control point, found again here from rg2 mesh's d and W; the edit it
-# prints, applied (a move), changes exactly the patches it names (the build dumps compared patch by
-# patch): an uncapped torus + sphere, and the capped elbow near its south end (the cap refits) and
-# in its middle; a polar point is named as the pole to edit
+# info --near: the nearest control point, found again here from rg2 mesh's d and W, and printed
+# with the mesh's d and W; the edit it prints, applied (a move), changes exactly the patches it
+# names (the build dumps compared patch by patch): an uncapped torus + sphere, and the capped elbow
+# near its south and north ends (the cap refits) and in its middle; a polar point is named as the
+# pole to edit
 near_case() { # design X,Y,Z
   local design=$1 at=$2
   "$rg2" mesh "$design" -o "$tmp/near_mesh.json" >/dev/null 2>&1 &&
@@ -242,10 +243,14 @@ for o, m in enumerate(mesh['meshes']):
             if w > 0 and (best is None or e < best[0]):
                 best = (e, o, m['name'], i, j)
 info = open(tmp + '/near_info').read()
-g = re.search(r"nearest control point to \(.*\): surface (\d+), mesh '([^']*)' \[(\d+), (\d+)\], .*, ([0-9.e+-]+) away", info)
+g = re.search(r"nearest control point to \(.*\): surface (\d+), mesh '([^']*)' \[(\d+), (\d+)\], d = \(([^)]*)\), W = ([0-9.e+-]+), ([0-9.e+-]+) away", info)
 assert g, info
-o, name, i, j, dist = int(g[1]), g[2], int(g[3]), int(g[4]), float(g[5])
+o, name, i, j, dist = int(g[1]), g[2], int(g[3]), int(g[4]), float(g[7])
 assert (o, name, i, j) == best[1:], (o, name, i, j, best)
+# its d and W as rg2 mesh gives them (printed to 10 digits)
+d, w = mesh['meshes'][o]['d'][i][j], mesh['meshes'][o]['W'][i][j]
+pd = [float(t) for t in g[5].split(',')]
+assert all(abs(pd[k] - d[k]) <= 1e-9 * max(1.0, abs(d[k])) for k in range(3)) and abs(float(g[6]) - w) <= 1e-9 * abs(w), (pd, g[6], d, w)
 assert abs(dist - math.sqrt(best[0])) <= 1e-3 * max(dist, 1e-300), (dist, best)
 pole = re.search(r'it is the (south|north) polar point', info)
 if pole:
@@ -284,6 +289,8 @@ near_case "$src/examples/pipe_elbow.json" 0.5,0,-3
 near_case "$src/examples/pipe_elbow.json" 3.5,-2.6,0
 grep -qF "that edit changes 32 patches: (i, j) with i in 5, 6, 7, 0, j in 3..4, and the south cap's (j in 0..2, every i)" "$tmp/near_info" && ok || bad "info --near by the south cap: $(tail -1 "$tmp/near_info")"
 near_case "$src/examples/pipe_elbow.json" 3.3,-0.4,-0.2
+# by the north cap: the cap's rows after the body's (j from 3 + 29 - 3, the south cap's 3 first)
+near_case "$src/examples/pipe_elbow.json" -2.5,3.5,0
 near_case "$src/examples/pipe_elbow.json" 3,3,0
 near_case "$src/examples/fig9_polar_sphere.json" 0,0,5
 grep -q "it is the north polar point (the whole collapsed row v 7)" "$tmp/near_info" && ok || bad "info --near at a pole: $(cat "$tmp/near_info")"
