@@ -40,6 +40,10 @@ expect 0 "over 33 x 33 samples per patch" -- "$RG2" demo
 # up to 100000 arcs, the design file's limit
 expect 0 "5000 rational cubic Bezier segments" -- "$RG2" curve --arcs 5000
 expect 2 "need 3..100000 arcs" -- "$RG2" curve --arcs 100001
+[ "$("$RG2" curve --arcs 100000 | head -1)" = "100000 rational cubic Bezier segments (dim 2, closed)" ] && ok ||
+  bad "curve --arcs 100000 (the limit itself) refused"
+# an empty --points is a list of 0 points: refused with a message, as an empty --w is
+expect 1 "rg2 curve: invalid argument: scalars: 0 control points, an open direction needs at least 4" -- "$RG2" curve --points ''
 # too few arcs: the message counts arcs, not the library's control points
 expect 1 "rg2 curve: 2 arcs given; a closed circle (the default without --open) needs at least 3 arcs" -- "$RG2" curve --angles 100,120
 expect 1 "rg2 curve: --open: 4 arcs given; an open curve needs at least 5 arcs" -- "$RG2" curve --arcs 4 --open
@@ -120,6 +124,20 @@ for k, s in enumerate(segs):
             assert abs(leg[0] * (b[1] - l0[1]) - leg[1] * (b[0] - l0[0])) < 10 * tol * math.hypot(*leg), (k, b, l0, l1)' "$@"
 }
 if command -v python3 >/dev/null; then
+  # the text form prints the segments --json prints: the same weights and points (both %.17g)
+  for args in "--arcs 5 --radius 2 --start 10" "--points 0,0,0;1,0,1;2,1,0;3,0,2;4,2,1;5,1,1 --dim 3" "--points 0;1;3;4;7 --dim 1"; do
+    # shellcheck disable=SC2086
+    t=$("$RG2" curve $args) && j=$("$RG2" curve $args --json) &&
+      python3 -c 'import json, re, sys
+t, j = sys.argv[1] + "\n", json.loads(sys.argv[2])
+segs = re.findall(r"segment (\d+)  weights 1 (\S+) (\S+) 1\n((?:  b\d.*\n){4})", t)
+assert len(segs) == len(j["segments"]) > 0 and t.startswith("%d rational" % len(segs)), t
+for (k, w1, w2, pts), s in zip(segs, j["segments"]):
+    assert [1, float(w1), float(w2), 1] == s["w"], (k, w1, w2, s["w"])
+    rows = [[float(x) for x in line.split()[1:]] for line in pts.strip("\n").split("\n")]
+    assert rows == s["points"], (k, rows, s["points"])' "$t" "$j" &&
+      ok || bad "curve $args: the text form differs from --json"
+  done
   "$RG2" curve --angles 50,70,100,140 --start 10 --radius 2 --json | circle_segments 50,70,100,140 10 2 1e-14 &&
     ok || bad "curve --json: control points off the circle and its tangents"
   # demo: the unit circle in 4 arcs of 90 degrees (points printed to 6 decimals), then the torus
