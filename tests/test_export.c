@@ -2007,6 +2007,14 @@ static void *same_path_writer(void *arg)
     return NULL;
 }
 
+/* ".<pid>.tmp", the suffix of a first temporary name. */
+static const char *suffix_of_pid(void)
+{
+    static char suffix[48];
+    snprintf(suffix, sizeof suffix, ".%ld.tmp", (long)getpid());
+    return suffix;
+}
+
 /* The file-name limit the next temp_name_max call reports, and the directory it was asked for. */
 static long g_name_max;
 static char g_name_dir[600];
@@ -2019,7 +2027,8 @@ static long temp_name_max(const char *dir)
 
 /* Temporary names cut to the limit of the output's directory (pathconf's _PC_NAME_MAX: eCryptfs
  * takes 143 bytes), through the test hook, since no file system here has a limit below 255: a
- * 140-byte name is cut to 143 bytes with the hash of the whole name and written; the limit is
+ * 140-byte name is cut to 143 bytes with the hash of the whole name and written (a name whose
+ * temporary name is 143 bytes exactly is not cut, one a byte longer is); the limit is
  * asked of the path's own directory ("." and "/" for names without one); no answer (-1) means
  * 255, and a limit too small for the suffix and hash leaves the name whole; a larger one (vfat
  * and exfat answer 1530) counts as 255; a name of continuation bytes only is cut whole. */
@@ -2047,6 +2056,21 @@ static void temp_names_limit(const rg2_surface *s)
         else
             CHECK(!strcmp(tname, whole), "limit %ld: temporary name '%s', want the whole name", limits[q], tname);
         CHECK(!strcmp(g_name_dir, g_dir), "limit %ld: asked of '%s', not of the directory '%s'", limits[q], g_name_dir, g_dir);
+    }
+    /* a name whose temporary name fits the limit exactly (143 bytes with the suffix) is not cut,
+     * nor one of a byte more, cut to the limit (a cut at "fits or more" hashed the first) */
+    g_name_max = 143;
+    for (int over = 0; over < 2; over++) {
+        char fit[256], fitp[600];
+        size_t nb = 143 - strlen(suffix_of_pid()) + (size_t)over;
+        memset(fit, 'f', nb - 4);
+        strcpy(fit + nb - 4, ".obj");
+        snprintf(fitp, sizeof fitp, "%s/%s", g_dir, fit);
+        snprintf(whole, sizeof whole, "%s%s", fitp, suffix_of_pid());
+        CHECK(rg2_temp_name(fitp, tname, sizeof tname) == 0 && strlen(strrchr(tname, '/') + 1) <= 143 &&
+                  (over ? strcmp(tname, whole) != 0 : !strcmp(tname, whole)),
+              "limit 143, a %zu-byte name: temporary name '%s' (%zu bytes), %s", nb, tname,
+              strlen(strrchr(tname, '/') + 1), over ? "want it cut to 143" : "want the whole name, 143 bytes");
     }
     /* a last component of UTF-8 continuation bytes only (not UTF-8, but Linux takes any bytes)
      * has no character boundary before the cut: all of it goes, and the temporary name is the
