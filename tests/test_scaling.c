@@ -199,6 +199,22 @@ static int brute_overlap(const double (*box)[2][3], int n, int *pa, int *pb)
     return 0;
 }
 
+/* n random boxes (some NaN, touching, flat) into box. */
+static void random_boxes(rg2t_rng *r, double (*box)[2][3], int n)
+{
+    double spread = rg2t_uniform(r, 0.5, 20);
+    for (int s = 0; s < n; s++)
+        for (int k = 0; k < 3; k++) {
+            double c = rg2t_uniform(r, 0, spread), e = rg2t_int(r, 0, 9) == 0 ? 0 : rg2t_uniform(r, 0, 2);
+            if (rg2t_int(r, 0, 3) == 0) /* (snapped: equal and touching ends) */
+                c = floor(c), e = floor(e + 0.5);
+            box[s][0][k] = c - e / 2, box[s][1][k] = c + e / 2;
+        }
+    for (int s = 0; s < n; s++)
+        if (rg2t_int(r, 0, 15) == 0)
+            box[s][0][0] = NAN;
+}
+
 static void render_overlaps(void)
 {
     rg2t_rng r;
@@ -208,17 +224,7 @@ static void render_overlaps(void)
     double box[MAXN][2][3];
     for (int trial = 0; trial < 20000; trial++) {
         int n = rg2t_int(&r, 0, MAXN);
-        double spread = rg2t_uniform(&r, 0.5, 20);
-        for (int s = 0; s < n; s++)
-            for (int k = 0; k < 3; k++) {
-                double c = rg2t_uniform(&r, 0, spread), e = rg2t_int(&r, 0, 9) == 0 ? 0 : rg2t_uniform(&r, 0, 2);
-                if (rg2t_int(&r, 0, 3) == 0) /* (snapped: equal and touching ends) */
-                    c = floor(c), e = floor(e + 0.5);
-                box[s][0][k] = c - e / 2, box[s][1][k] = c + e / 2;
-            }
-        for (int s = 0; s < n; s++)
-            if (rg2t_int(&r, 0, 15) == 0)
-                box[s][0][0] = NAN;
+        random_boxes(&r, box, n);
         int a = -1, b = -1, ra = -1, rb = -1;
         int got = rg2_cli_first_overlap((const double(*)[2][3])box, n, &a, &b, NULL);
         int want = brute_overlap((const double(*)[2][3])box, n, &ra, &rb);
@@ -226,6 +232,27 @@ static void render_overlaps(void)
         found += want;
     }
     CHECK(bad == 0, "%d of 20000 random box sets gave another first overlapping pair than every pair's loop", bad);
+    /* a box the sweep cannot order (an infinite end, or its ends the wrong way round) sends the
+     * set to every pair's loop: the same answer, 1 and the pair or 0 (cli.h) */
+    int bad_all = 0, found_all = 0;
+    for (int trial = 0; trial < 2000; trial++) {
+        int n = rg2t_int(&r, 1, MAXN), s = rg2t_int(&r, 0, n - 1), k = rg2t_int(&r, 0, 2);
+        random_boxes(&r, box, n);
+        if (trial % 2)
+            box[s][1][k] = INFINITY;
+        else {
+            double lo = box[s][0][k];
+            box[s][0][k] = box[s][1][k] + 1.0, box[s][1][k] = lo;
+        }
+        int a = -1, b = -1, ra = -1, rb = -1;
+        int got = rg2_cli_first_overlap((const double(*)[2][3])box, n, &a, &b, NULL);
+        int want = brute_overlap((const double(*)[2][3])box, n, &ra, &rb);
+        bad_all += got != want || (want && (a != ra || b != rb));
+        found_all += want;
+    }
+    CHECK(bad_all == 0 && found_all > 0,
+          "%d of 2000 box sets with a box the sweep cannot order gave another answer than every pair's loop "
+          "(%d with an overlap)", bad_all, found_all);
     /* 40 000 unit boxes 4 apart on a 200 x 200 grid (none overlaps), then one more on top of box 12345 */
     enum { G = 200, N = G * G + 1 };
     double(*grid)[2][3] = malloc(sizeof *grid * N);
