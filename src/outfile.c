@@ -77,7 +77,7 @@ static int temp_name(const char *path, int k, size_t lim, char *buf, size_t cap)
     if (ns < 0 || dir + base > INT_MAX)
         return -1;
     char tag[16] = "";
-    if (base <= lim && base + (size_t)ns > lim && lim > (size_t)ns + OUT_TAG_LEN) {
+    if (base <= lim && base + (size_t)ns > lim && lim >= (size_t)ns + OUT_TAG_LEN) {
         /* the cut name carries a hash of the whole one: names that differ only past the cut
          * (x...x.step and x...x.igs) get different temporary names, each of which
          * rg2_temp_name predicts (the rg2 command removes them on a signal) */

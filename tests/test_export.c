@@ -2072,6 +2072,27 @@ static void temp_names_limit(const rg2_surface *s)
               "limit 143, a %zu-byte name: temporary name '%s' (%zu bytes), %s", nb, tname,
               strlen(strrchr(tname, '/') + 1), over ? "want it cut to 143" : "want the whole name, 143 bytes");
     }
+    /* a limit with room for the hash and the suffix and nothing more: a 12-byte name (within the
+     * limit) is cut whole and the temporary name is the hash and the suffix, the limit's length
+     * (it was left whole, too long for the directory); a byte less leaves no room, and the name
+     * whole */
+    char twelve[600];
+    snprintf(twelve, sizeof twelve, "%s/twelve_b.obj", g_dir);
+    for (int less = 0; less < 2; less++) {
+        size_t room = strlen(suffix_of_pid()) + 9 - (size_t)less;
+        g_name_max = (long)room;
+        CHECK(rg2_temp_name(twelve, tname, sizeof tname) == 0, "limit %zu: rg2_temp_name failed", room);
+        const char *tb = strrchr(tname, '/') + 1;
+        snprintf(whole, sizeof whole, "%s%s", twelve, suffix_of_pid());
+        if (less)
+            CHECK(!strcmp(tname, whole), "limit %zu (no room for the hash): temporary name '%s', want the whole name",
+                  room, tname);
+        else
+            CHECK(strlen(tb) == room && tb[0] == '.' && strspn(tb + 1, "0123456789abcdef") == 8 &&
+                      !strcmp(tb + 9, suffix_of_pid()) && !strncmp(tname, twelve, strlen(g_dir) + 1),
+                  "limit %zu (room for the hash and the suffix only): temporary name '%s', want "
+                  "'<dir>/.<8 hex digits>%s'", room, tname, suffix_of_pid());
+    }
     /* a last component of UTF-8 continuation bytes only (not UTF-8, but Linux takes any bytes)
      * has no character boundary before the cut: all of it goes, and the temporary name is the
      * hash and the suffix in the output's own directory */
