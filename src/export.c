@@ -323,36 +323,37 @@ static int topo_poles(const rg2_surface *s, rg2__topo *t)
             for (int d = 0; d < 3; d++)
                 t->pole[v][d] = h[d] / h[3];
         }
-    /* the weights of the points a candidate would replace: their smallest and largest */
-    double(*w)[2] = rg2__calloc((size_t)t->n_vertices, sizeof *w);
+    /* over the points a candidate would replace: their smallest and largest weight and their
+     * largest distance from its point; it is a pole when that distance is within tol times the
+     * weights' ratio (the construction's rounding of h / w grows with it) */
+    double(*w)[3] = rg2__calloc((size_t)t->n_vertices, sizeof *w);
     if (!w)
         return -1;
     for (int v = 0; v < t->n_vertices; v++)
-        w[v][0] = INFINITY, w[v][1] = 0.0;
-    for (int pass = 0; pass < 2; pass++)
-        for (int i = 0; i < nu; i++)
-            for (int j = 0; j < nv; j++) {
-                rg2_xpatch X;
-                rg2_surface_patch_get(s, i, j, &X);
-                for (int r = 0; r <= X.du; r++)
-                    for (int q = 0; q <= X.dv; q++) {
-                        int v = pole_vertex(t, i, j, r, q, X.du, X.dv);
-                        const double *h = X.h[r][q];
-                        if (v < 0 || !t->snap[v])
-                            continue;
-                        if (!pass) {
-                            w[v][0] = fmin(w[v][0], fabs(h[3]));
-                            w[v][1] = fmax(w[v][1], fabs(h[3]));
-                            continue;
-                        }
-                        /* every point near its point, or the candidate is no pole; the
-                         * construction's rounding of h / w grows with the weights' ratio */
-                        double ratio = w[v][1] / w[v][0], tv = tol * (ratio > 1.0 && isfinite(ratio) ? ratio : 1.0);
-                        for (int d = 0; d < 3; d++)
-                            if (!(fabs(h[d] / h[3] - t->pole[v][d]) <= tv))
-                                t->snap[v] = 0;
+        w[v][0] = INFINITY;
+    for (int i = 0; i < nu; i++)
+        for (int j = 0; j < nv; j++) {
+            rg2_xpatch X;
+            rg2_surface_patch_get(s, i, j, &X);
+            for (int r = 0; r <= X.du; r++)
+                for (int q = 0; q <= X.dv; q++) {
+                    int v = pole_vertex(t, i, j, r, q, X.du, X.dv);
+                    const double *h = X.h[r][q];
+                    if (v < 0 || !t->snap[v])
+                        continue;
+                    w[v][0] = fmin(w[v][0], fabs(h[3]));
+                    w[v][1] = fmax(w[v][1], fabs(h[3]));
+                    for (int d = 0; d < 3; d++) {
+                        double e = fabs(h[d] / h[3] - t->pole[v][d]);
+                        w[v][2] = e > w[v][2] || isnan(e) ? e : w[v][2]; /* (a NaN stays: no pole) */
                     }
-            }
+                }
+        }
+    for (int v = 0; v < t->n_vertices; v++)
+        if (t->snap[v]) {
+            double ratio = w[v][1] / w[v][0];
+            t->snap[v] = w[v][2] <= tol * (ratio > 1.0 && isfinite(ratio) ? ratio : 1.0);
+        }
     free(w);
     return 0;
 }
