@@ -441,6 +441,7 @@ rg2_status rg2__design_build(rg2_design *d, rg2_error *err)
             rg2_error e = *err;
             return rg2__fail(err, st, "%s: meshes.%s: %s", d->name, dm->name, e.msg);
         }
+        rg2__surface_set_poles(s, dm->poles, dm->pole); /* a NURBS's pole: its point, exactly */
         rg2__stencil sten[2];
         if ((st = rg2__stencil_make(&dm->m.su, &sten[0], err)))
             return st;

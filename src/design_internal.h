@@ -55,6 +55,11 @@ typedef struct {
                           capped input uncapped), 0 none: an uncapped output made so gets a note */
     int weight_noted;  /* the merge that made this mesh noted a weight <= 0 at a seam
                           (rg2__merge_overlap_notes): its output surface gets no second note */
+    unsigned poles;    /* the sides (bits as rg2__nurbs_pole_ends: 0 v = 0, 1 u = 1, 2 v = 1, 3 u = 0)
+                          that are a NURBS's clamped end whose control line is one point, pole[k]:
+                          the output build makes those patch sides that point. Kept by cut,
+                          transpose, reverse and transform; other operations drop it */
+    double pole[4][3];
 } rg2__dmesh;
 
 /* A hash index of names (mesh names, shape labels) to their registry index; the keys are the

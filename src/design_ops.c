@@ -235,6 +235,14 @@ rg2_status rg2__op_cut(const rg2__dmesh *in, const int first[2], const int last[
             out->leg[k][l + off_b] = in->leg[k][sl + off_a];
         }
     }
+    /* a NURBS pole side stays where its end is kept (the pole sides of an open direction) */
+    for (int side = 0; side < 4; side++) {
+        int k = side == 0 || side == 2, hi = side == 1 || side == 2;
+        if (in->poles >> side & 1u && (first[k] < 0 || (hi ? last[k] == dir_scalars(&in->m, k)->n - 1 : f[k] == 0))) {
+            out->poles |= 1u << side;
+            memcpy(out->pole[side], in->pole[side], sizeof in->pole[side]);
+        }
+    }
     return RG2_OK;
 }
 
@@ -264,6 +272,11 @@ rg2_status rg2__op_transpose(const rg2__dmesh *in, rg2__dmesh *out, const char *
         memcpy(out->leg[k], in->leg[1 - k], (size_t)nw * sizeof(int));
         memcpy(out->jun[k], in->jun[1 - k], (size_t)a->n * sizeof(int));
     }
+    for (int side = 0; side < 4; side++) /* NURBS pole sides: v = 0 <-> u = 0, u = 1 <-> v = 1 */
+        if (in->poles >> side & 1u) {
+            out->poles |= 1u << (3 - side);
+            memcpy(out->pole[3 - side], in->pole[side], sizeof in->pole[side]);
+        }
     return RG2_OK;
 }
 
@@ -323,9 +336,17 @@ rg2_status rg2__op_reverse(const rg2__dmesh *in, int dir, rg2__dmesh *out, const
                              what, dir_name(dir), n - 1 - j, rg2__num(bb).s, rg2__num(g).s);
         }
     st = rg2__dir_check(b, dir, what, "", err);
-    if (st)
+    if (st) {
         rg2__dmesh_free(out);
-    return st;
+        return st;
+    }
+    for (int side = 0; side < 4; side++) /* NURBS pole sides: the reversed direction's ends swap */
+        if (in->poles >> side & 1u) {
+            int to = (side == 0 || side == 2) == (dir == 1) ? side ^ 2 : side;
+            out->poles |= 1u << to;
+            memcpy(out->pole[to], in->pole[side], sizeof in->pole[side]);
+        }
+    return RG2_OK;
 }
 
 rg2_status rg2__op_roll(const rg2__dmesh *in, int dir, int by, rg2__dmesh *out, const char *what,
@@ -1012,6 +1033,16 @@ rg2_status rg2__op_transform(rg2_design *d, const rg2__dmesh *in, const double M
     if (st)
         return st;
     rg2_mesh_transform(&out->m, M);
+    for (int side = 0; side < 4; side++) /* NURBS pole sides: their points mapped (not to infinity) */
+        if (in->poles >> side & 1u) {
+            double q[4] = {in->pole[side][0], in->pole[side][1], in->pole[side][2], 1.0};
+            rg2__xform_apply(M, q);
+            double a[3] = {q[0] / q[3], q[1] / q[3], q[2] / q[3]};
+            if (rg2__finite(a[0]) && rg2__finite(a[1]) && rg2__finite(a[2])) {
+                out->poles |= 1u << side;
+                memcpy(out->pole[side], a, sizeof a);
+            }
+        }
     /* every source (and shape) the mesh uses gets a transformed copy: of the points the mesh refers
      * to only (the window of their indices), so that a chain of transforms of a small cut of a big
      * shape mesh does not copy the big mesh each time; in the order the points first use them */

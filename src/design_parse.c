@@ -1318,7 +1318,8 @@ static rg2_status op_edit(pctx *c, const cJSON *obj, const char *path, rg2__dmes
 
 static rg2_status op_polar(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out);
 static rg2_status op_nurbs(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out);
-static rg2_status nurbs_spec(pctx *c, const cJSON *spec, const char *p, rg2_mesh *mout);
+static rg2_status nurbs_spec(pctx *c, const cJSON *spec, const char *p, rg2_mesh *mout, unsigned *poles,
+                             double pole[4][3]);
 static rg2_status op_mobius(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out);
 static rg2_status op_cap(pctx *c, const cJSON *obj, const char *path, rg2__dmesh *out);
 
@@ -1716,7 +1717,9 @@ rg2_status rg2_nurbs_parse(const char *json, size_t len, const char *name, rg2_m
     if (st)
         return st;
     pctx c = {NULL, name, err};
-    st = nurbs_spec(&c, root, "nurbs", out);
+    unsigned poles; /* (a mesh has no place for them: rg2_nurbs_mesh's mesh, as it is) */
+    double pole[4][3];
+    st = nurbs_spec(&c, root, "nurbs", out, &poles, pole);
     cJSON_Delete(root);
     if (!st)
         rg2__ok(err);
@@ -1897,7 +1900,8 @@ static const char *len_or_type(const cJSON *x, char *buf, size_t cap)
 }
 
 /* A bi-cubic NURBS spec {nu, nv, points, weights?, knots_u, knots_v} at JSON path p into m. */
-static rg2_status nurbs_spec(pctx *c, const cJSON *spec, const char *p, rg2_mesh *mout)
+static rg2_status nurbs_spec(pctx *c, const cJSON *spec, const char *p, rg2_mesh *mout, unsigned *poles,
+                             double pole[4][3])
 {
     static const char *const nk[] = {"nu", "nv", "points", "weights", "knots_u", "knots_v"};
     char q[340], got[32];
@@ -1964,7 +1968,8 @@ static rg2_status nurbs_spec(pctx *c, const cJSON *spec, const char *p, rg2_mesh
         if ((st = rg2_nurbs_mesh(&nb, &m, &e))) { /* its message names knots_u[k], weight (i, j), ... */
             const char *msg = strncmp(e.msg, "nurbs: ", 7) ? e.msg : e.msg + 7; /* p ends in nurbs */
             st = fail(c, st, p, "%s", msg);
-        }
+        } else
+            *poles = rg2__nurbs_pole_ends(&nb, pole);
     }
     free(buf);
     if (!st)
@@ -1981,7 +1986,9 @@ static rg2_status op_nurbs(pctx *c, const cJSON *obj, const char *path, rg2__dme
     char p[300];
     subpath(p, sizeof p, path, "nurbs");
     rg2_mesh m = {0};
-    if ((st = nurbs_spec(c, get(obj, "nurbs"), p, &m)))
+    unsigned poles = 0;
+    double pole[4][3] = {{0.0}};
+    if ((st = nurbs_spec(c, get(obj, "nurbs"), p, &m, &poles, pole)))
         return st;
     if ((st = rg2__dmesh_alloc(out, NULL, m.nu, m.nv, 0, 0, c->err))) {
         rg2_mesh_free(&m);
@@ -1989,6 +1996,8 @@ static rg2_status op_nurbs(pctx *c, const cJSON *obj, const char *path, rg2__dme
     }
     rg2_mesh_free(&out->m);
     out->m = m;
+    out->poles = poles;
+    memcpy(out->pole, pole, sizeof pole);
     for (int i = 0; i < m.nu; i++)
         for (int j = 0; j < m.nv; j++)
             *rg2__dmesh_pp(out, i, j) = (rg2__pprov){-1, i, j};

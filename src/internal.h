@@ -493,6 +493,14 @@ int rg2__mesh_line_collapsed(const rg2_mesh *m, int dir, int idx);
  * row). Messages start "polar knots: ". */
 rg2_status rg2__polar_full_knots(rg2_shape_kind kind, const double *v, int m, double *k, int *north,
                                  rg2_error *err);
+/* The clamped ends of a NURBS (rg2_nurbs_mesh accepted it) whose control line is one point: bit k
+ * (the sides of a patch: 0 v = 0, 1 u = 1, 2 v = 1, 3 u = 0) where the end is clamped (U_1 = U_2 =
+ * U_3, or U_n = U_{n+1} = U_{n+2}) and every point of its first / last line has exactly the same
+ * x, y and z (weights may differ); p[k] that point (nurbs.c). */
+unsigned rg2__nurbs_pole_ends(const rg2_nurbs *nb, double p[4][3]);
+/* Make the open sides `sides` (bits as above) of a bi-3 surface the points p[k]: each control
+ * point h on side k becomes (h_w p[k], h_w), keeping its weight (nurbs.c). */
+void rg2__surface_set_poles(rg2_surface *s, unsigned sides, const double p[4][3]);
 /* Row j of m made its first point, bit for bit (a polar row). */
 void rg2__collapse_row(rg2_mesh *m, int j);
 

@@ -387,3 +387,59 @@ fail:
     free(Uv);
     return st;
 }
+
+/*
+ * A clamped end whose control line is one point p (a pole: the NURBS's boundary curve there is
+ * the curve of that line's 4-tuples (w_i p, w_i), p at every parameter) gives the construction's
+ * patches a side that is p in exact arithmetic, but the construction forms it from the
+ * extrapolated end points (unclamp_line), whose rounding is of the size of their magnitudes: the
+ * side's points h / w spread by a number of roundings of the size that grows with the weights'
+ * ratio r (a 4 x 4 NURBS with weights alternating 1 and r along the line: 4 to 13 at r = 32, 88 to
+ * 298 at r = 1000). A design's output makes such a side the point itself (rg2__surface_set_poles,
+ * design.c). Only lines whose points have the same x, y and z exactly qualify; a line one point only to
+ * rounding is left as the construction makes it.
+ */
+unsigned rg2__nurbs_pole_ends(const rg2_nurbs *nb, double p[4][3])
+{
+    unsigned sides = 0;
+    for (int side = 0; side < 4; side++) {
+        int along_v = side == 0 || side == 2, hi = side == 1 || side == 2; /* a line of u (j fixed) or of v */
+        int n = along_v ? nb->nv : nb->nu, cnt = along_v ? nb->nu : nb->nv;
+        const double *U = along_v ? nb->knots_v : nb->knots_u;
+        if (hi ? !(U[n] == U[n + 1] && U[n + 1] == U[n + 2]) : !(U[1] == U[2] && U[2] == U[3]))
+            continue; /* not clamped: the line is no patch side */
+        int line = hi ? n - 1 : 0, one = 1;
+        const double *q0 = NULL;
+        for (int k = 0; k < cnt && one; k++) {
+            int i = along_v ? k : line, j = along_v ? line : k;
+            const double *q = nb->points + 3 * ((size_t)i * (size_t)nb->nv + (size_t)j);
+            if (!q0)
+                q0 = q;
+            one = q[0] == q0[0] && q[1] == q0[1] && q[2] == q0[2];
+        }
+        if (one) {
+            sides |= 1u << side;
+            memcpy(p[side], q0, 3 * sizeof(double));
+        }
+    }
+    return sides;
+}
+
+void rg2__surface_set_poles(rg2_surface *s, unsigned sides, const double p[4][3])
+{
+    for (int side = 0; side < 4; side++) {
+        int along_v = side == 0 || side == 2;
+        if (!(sides >> side & 1u) || (along_v ? s->closed_v : s->closed_u) || s->xp)
+            continue;
+        int cnt = along_v ? s->nu : s->nv;
+        for (int k = 0; k < cnt; k++) {
+            int i = along_v ? k : side == 1 ? s->nu - 1 : 0, j = along_v ? (side == 2 ? s->nv - 1 : 0) : k;
+            rg2_patch *P = &s->patch[(size_t)i * (size_t)s->nv + (size_t)j];
+            for (int t = 0; t < 4; t++) {
+                double *h = along_v ? P->h[t][side == 2 ? 3 : 0] : P->h[side == 1 ? 3 : 0][t];
+                for (int d = 0; d < 3; d++)
+                    h[d] = h[3] * p[side][d];
+            }
+        }
+    }
+}

@@ -2736,26 +2736,35 @@ static void moved_pole_kept(double scale)
  * alternating 1 and r: a pole, but the construction's sums (weights 1 and r, the clamped end's
  * de Boor points extrapolated) leave its row's points h / w apart by about 0.7 r roundings (21 at
  * r = 32, 150 at r = 200), more than 16: the writers' tolerance grows with the weights' ratio, so
- * it is still written as one point (poles_one_point with the row's weights' ratio). */
+ * it is still written as one point (poles_one_point with the row's weights' ratio). That is the
+ * surface rg2_surface_build makes of rg2_nurbs_mesh's mesh; a design's output makes the row the
+ * point itself (rg2__surface_set_poles), written as one point all the same. */
 static void nurbs_pole_written(double r)
 {
-    char json[2048];
-    int n = snprintf(json, sizeof json, "{\"shapes\": {}, \"meshes\": {\"N\": {\"nurbs\": {\"nu\": 4, \"nv\": 4, "
-                     "\"knots_u\": [0, 0, 0, 0, 1, 1, 1, 1], \"knots_v\": [0, 0, 0, 0, 1, 1, 1, 1], \"points\": [");
+    char spec[2048], json[2200];
+    int n = snprintf(spec, sizeof spec, "{\"nu\": 4, \"nv\": 4, \"knots_u\": [0, 0, 0, 0, 1, 1, 1, 1], "
+                     "\"knots_v\": [0, 0, 0, 0, 1, 1, 1, 1], \"points\": [");
     for (int k = 0; k < 16; k++) {
         double rho = (k % 4) / 3.0, th = 1.2 * M_PI * (k / 4) / 3.0;
-        n += snprintf(json + n, sizeof json - (size_t)n, "%s[%.17g, %.17g, %.17g]", k ? ", " : "", rho * cos(th) + 0.1,
+        n += snprintf(spec + n, sizeof spec - (size_t)n, "%s[%.17g, %.17g, %.17g]", k ? ", " : "", rho * cos(th) + 0.1,
                       rho * sin(th) + 0.2, 0.4 * rho * rho + 0.3);
     }
-    n += snprintf(json + n, sizeof json - (size_t)n, "], \"weights\": [");
+    n += snprintf(spec + n, sizeof spec - (size_t)n, "], \"weights\": [");
     for (int k = 0; k < 16; k++)
-        n += snprintf(json + n, sizeof json - (size_t)n, "%s%.17g", k ? ", " : "", (k / 4 + k % 4) % 2 ? r : 1.0);
-    snprintf(json + n, sizeof json - (size_t)n, "]}}}}");
+        n += snprintf(spec + n, sizeof spec - (size_t)n, "%s%.17g", k ? ", " : "", (k / 4 + k % 4) % 2 ? r : 1.0);
+    snprintf(spec + n, sizeof spec - (size_t)n, "]}");
+    snprintf(json, sizeof json, "{\"shapes\": {}, \"meshes\": {\"N\": {\"nurbs\": %s}}}", spec);
     rg2_error err;
+    rg2_mesh m;
+    rg2_surface built = {0};
     rg2_design *d = NULL;
+    CHECK_OK(rg2_nurbs_parse(spec, strlen(spec), "nurbs_pole", &m, &err), &err);
+    CHECK_OK(rg2_surface_build(&m, &built, &err), &err);
     CHECK_OK(rg2_design_parse(json, strlen(json), "nurbs_pole", &d, &err), &err);
-    const rg2_surface *s = d ? rg2_design_surface(d, 0) : NULL;
-    if (s) {
+    for (int k = 0; k < 2; k++) {
+        const rg2_surface *s = k ? (d ? rg2_design_surface(d, 0) : NULL) : built.patch ? &built : NULL;
+        if (!s)
+            continue;
         double wlo = INFINITY, whi = 0, spread = 0, p0[3];
         rg2_xpatch X;
         rg2_surface_patch_get(s, 0, 0, &X);
@@ -2768,13 +2777,19 @@ static void nurbs_pole_written(double r)
                 spread = fmax(spread, fabs(h[c] / h[3] - p0[c]));
             }
         }
-        char what[64];
-        snprintf(what, sizeof what, "NURBS pole, weights 1 and %g", r);
-        CHECK(spread > 16 * DBL_EPSILON * 1.3, "%s: its row's points h / w %.3g apart, want more than 16 roundings", what,
-              spread);
+        char what[96];
+        snprintf(what, sizeof what, "NURBS pole, weights 1 and %g (%s)", r, k ? "the design's" : "rg2_surface_build's");
+        if (!k)
+            CHECK(spread > 16 * DBL_EPSILON * 1.3, "%s: its row's points h / w %.3g apart, want more than 16 roundings",
+                  what, spread);
+        else
+            CHECK(spread <= 2 * DBL_EPSILON * 1.3, "%s: its row's points h / w %.3g apart, want one point", what,
+                  spread);
         CHECK(poles_one_point(s, what, whi / wlo) == 1, "%s: its pole not found", what);
     }
     rg2_design_free(d);
+    rg2_surface_free(&built);
+    rg2_mesh_free(&m);
 }
 
 /* The capped spheres of Fig. 9 and Fig. 14 (their collapsed rows one point only to rounding,

@@ -205,7 +205,21 @@ static void random_nurbs(void)
  * per patch, relative to the scale max(largest coordinate, bounding-box diagonal) of the
  * control points; *corner: the same at the four domain corners only. Infinity if the surface
  * does not build. */
+static double surface_error(const rg2_nurbs *nb, const rg2_surface *s, int n, double *corner);
 static double import_error(const rg2_nurbs *nb, const rg2_mesh *m, int n, double *corner)
+{
+    rg2_surface s;
+    rg2_error err;
+    *corner = INFINITY;
+    if (rg2_surface_build(m, &s, &err))
+        return INFINITY;
+    double worst = surface_error(nb, &s, n, corner);
+    rg2_surface_free(&s);
+    return worst;
+}
+
+/* The same for a surface built already (patch (i, j) over span (i + 3, j + 3)). */
+static double surface_error(const rg2_nurbs *nb, const rg2_surface *s, int n, double *corner)
 {
     int np = nb->nu * nb->nv;
     double X = 0.0, lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -216,29 +230,23 @@ static double import_error(const rg2_nurbs *nb, const rg2_mesh *m, int n, double
     }
     double L = fmax(X, sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                             (hi[2] - lo[2]) * (hi[2] - lo[2])));
-    rg2_surface s;
-    rg2_error err;
-    *corner = INFINITY;
-    if (rg2_surface_build(m, &s, &err))
-        return INFINITY;
     double worst = 0.0;
     *corner = 0.0;
-    for (int i = 0; i < s.nu; i++)
-        for (int j = 0; j < s.nv; j++)
+    for (int i = 0; i < s->nu; i++)
+        for (int j = 0; j < s->nv; j++)
             for (int a = 0; a <= n; a++)
                 for (int b = 0; b <= n; b++) {
                     double tu = (double)a / n, tv = (double)b / n, q[3], p[3];
                     nurbs_point(nb, i + 3, j + 3, tu, tv, q);
-                    rg2_patch_point(rg2_surface_patch(&s, i, j), tu, tv, p);
+                    rg2_patch_point(rg2_surface_patch(s, i, j), tu, tv, p);
                     double d = fmax(fabs(p[0] - q[0]), fmax(fabs(p[1] - q[1]), fabs(p[2] - q[2]))) / L;
                     if (!(d <= worst))
                         worst = d;
-                    int at_corner = ((a == 0 && i == 0) || (a == n && i == s.nu - 1)) &&
-                                    ((b == 0 && j == 0) || (b == n && j == s.nv - 1));
+                    int at_corner = ((a == 0 && i == 0) || (a == n && i == s->nu - 1)) &&
+                                    ((b == 0 && j == 0) || (b == n && j == s->nv - 1));
                     if (at_corner && !(d <= *corner))
                         *corner = d;
                 }
-    rg2_surface_free(&s);
     return worst;
 }
 
@@ -709,12 +717,220 @@ static void errors(void)
     expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EINVAL, &err, "missing", "no knots");
 }
 
+/* A clamped NURBS whose end line is one point p (a pole), its weights alternating 1 and r along
+ * that line: in exact arithmetic the patches' side there is p at every control point, but the
+ * construction forms it from the extrapolated end points, whose rounding spread its points h / w
+ * (the 6 x 5 NURBS below: 1.7 to 6.5 roundings of the size at r = 32, 11 to 37 at 200, 116 to 135
+ * at 1000). A design's output makes that side p (each point h_w p, keeping its weight), at any of
+ * the four ends, through transpose, reverse, cut and transform; every other control point is the
+ * construction's, bit for bit, and a line one point only to rounding (a point one ulp off) is left
+ * as the construction makes it.
+ * The surface stays the NURBS (Cox-de Boor at 17 x 17 samples a patch) and G2 (rg2_check). With
+ * the side as the construction makes it 31 checks fail: 11 at the four ends (r = 32 .. 1000), 16
+ * through the operations, 4 on the translated pole. */
+#define PNU 6
+#define PNV 5
+static const double pole_p[3] = {0.3, -0.7, 1.1};
+
+/* The pole NURBS at side `side` (0 v = 0, 1 u = 1, 2 v = 1, 3 u = 0): a fan about p, weights 1, r,
+ * 1, r ... along the pole line and 1 .. 1.5 elsewhere; off: the line's point 1 moved one ulp in x. */
+static void pole_nurbs(int side, double r, int off, double *P, double *W)
+{
+    int along_v = side == 0 || side == 2;
+    for (int i = 0; i < PNU; i++)
+        for (int j = 0; j < PNV; j++) {
+            int a = along_v ? j : i, k = along_v ? i : j, n = along_v ? PNV : PNU;
+            int rho = side == 0 || side == 3 ? a : n - 1 - a; /* lines away from the pole */
+            double th = 0.4 + 1.1 * k, *q = P + 3 * (i * PNV + j);
+            q[0] = pole_p[0] + 0.8 * rho * cos(th);
+            q[1] = pole_p[1] + 0.8 * rho * sin(th);
+            q[2] = pole_p[2] + 0.3 * rho * rho + 0.1 * k * rho;
+            W[i * PNV + j] = rho ? 1.0 + 0.25 * ((i + 2 * j) % 3) : k % 2 ? r : 1.0;
+            if (!rho && off && k == 1)
+                q[0] = nextafter(q[0], 2.0);
+        }
+}
+
+/* The design of nb ("n") with the output `out` (after the meshes in `more`). */
+static rg2_design *pole_design(const rg2_nurbs *nb, const char *more, const char *out, rg2_error *err)
+{
+    size_t cap = 16384, n = 0;
+    char *t = malloc(cap);
+    n += (size_t)snprintf(t + n, cap - n,
+                          "{\"shapes\": {}, \"meshes\": {\"n\": {\"nurbs\": {\"nu\": %d, \"nv\": %d, \"points\": [",
+                          nb->nu, nb->nv);
+    for (int k = 0; k < nb->nu * nb->nv; k++)
+        n += (size_t)snprintf(t + n, cap - n, "%s[%.17g, %.17g, %.17g]", k ? ", " : "", nb->points[3 * k],
+                              nb->points[3 * k + 1], nb->points[3 * k + 2]);
+    n += (size_t)snprintf(t + n, cap - n, "], \"weights\": [");
+    for (int k = 0; k < nb->nu * nb->nv; k++)
+        n += (size_t)snprintf(t + n, cap - n, "%s%.17g", k ? ", " : "", nb->weights[k]);
+    for (int d = 0; d < 2; d++) {
+        n += (size_t)snprintf(t + n, cap - n, "], \"knots_%c\": [", d ? 'v' : 'u');
+        for (int k = 0; k < (d ? nb->nv : nb->nu) + 4; k++)
+            n += (size_t)snprintf(t + n, cap - n, "%s%.17g", k ? ", " : "", (d ? nb->knots_v : nb->knots_u)[k]);
+    }
+    snprintf(t + n, cap - n, "]}}%s}, \"output\": [\"%s\"]}", more, out);
+    rg2_design *d = NULL;
+    if (rg2_design_parse(t, strlen(t), "pole", &d, err))
+        d = NULL;
+    free(t);
+    return d;
+}
+
+/* The largest distance of the points h / w on side `side` of s from ref (NULL: the first of them),
+ * relative to size. */
+static double side_spread(const rg2_surface *s, int side, double size, const double *ref)
+{
+    int along_v = side == 0 || side == 2, cnt = along_v ? s->nu : s->nv;
+    double x0[3] = {0, 0, 0}, worst = 0.0;
+    for (int k = 0; k < cnt; k++) {
+        int i = along_v ? k : side == 1 ? s->nu - 1 : 0, j = along_v ? (side == 2 ? s->nv - 1 : 0) : k;
+        const rg2_patch *P = rg2_surface_patch(s, i, j);
+        for (int t = 0; t < 4; t++) {
+            const double *h = along_v ? P->h[t][side == 2 ? 3 : 0] : P->h[side == 1 ? 3 : 0][t];
+            double x[3] = {h[0] / h[3], h[1] / h[3], h[2] / h[3]};
+            if (!k && !t)
+                memcpy(x0, ref ? ref : x, sizeof x);
+            worst = fmax(worst, sqrt((x[0] - x0[0]) * (x[0] - x0[0]) + (x[1] - x0[1]) * (x[1] - x0[1]) +
+                                     (x[2] - x0[2]) * (x[2] - x0[2])));
+        }
+    }
+    return worst / size;
+}
+
+/* Control points of a and b (equal counts) that differ, off side `side` (-1: none excepted) or in
+ * their weights; *moved: the largest move of the side's points h / w (relative to size). */
+static int pole_diffs(const rg2_surface *a, const rg2_surface *b, int side, double size, double *moved)
+{
+    int diff = 0;
+    *moved = 0.0;
+    for (int i = 0; i < a->nu; i++)
+        for (int j = 0; j < a->nv; j++)
+            for (int r = 0; r < 4; r++)
+                for (int t = 0; t < 4; t++) {
+                    const double *p = rg2_surface_patch(a, i, j)->h[r][t], *q = rg2_surface_patch(b, i, j)->h[r][t];
+                    int on = (side == 0 && j == 0 && t == 0) || (side == 2 && j == a->nv - 1 && t == 3) ||
+                             (side == 3 && i == 0 && r == 0) || (side == 1 && i == a->nu - 1 && r == 3);
+                    diff += on ? p[3] != q[3] : !!memcmp(p, q, 4 * sizeof(double));
+                    for (int d = 0; on && d < 3; d++)
+                        *moved = fmax(*moved, fabs(p[d] / p[3] - q[d] / q[3]) / size);
+                }
+    return diff;
+}
+
+static void pole_rows(void)
+{
+    static const double ratios[4] = {1, 32, 200, 1000};
+    double U[PNU + 4] = {0, 0, 0, 0, 0.7, 1.9, 3, 3, 3, 3}, V[PNV + 4] = {0, 0, 0, 0, 1.2, 2, 2, 2, 2};
+    double P[3 * PNU * PNV], W[PNU * PNV];
+    rg2_nurbs nb = {PNU, PNV, P, W, U, V};
+    rg2_check_opts o;
+    rg2_check_opts_default(&o);
+    o.threads = 1;
+    double worst_spread = 0.0, worst_moved = 0.0, worst_err = 0.0, g[3] = {0, 0, 0};
+    for (int side = 0; side < 4; side++)
+        for (int q = 0; q < 4; q++) {
+            double r = ratios[q];
+            rg2_error err;
+            rg2_mesh m;
+            rg2_surface plain;
+            pole_nurbs(side, r, 0, P, W);
+            double size = 0.0, lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+            for (int k = 0; k < 3 * PNU * PNV; k++)
+                lo[k % 3] = fmin(lo[k % 3], P[k]), hi[k % 3] = fmax(hi[k % 3], P[k]);
+            size = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                        (hi[2] - lo[2]) * (hi[2] - lo[2]));
+            rg2_design *d = pole_design(&nb, "", "n", &err);
+            CHECK(d != NULL, "side %d, r = %g: %s", side, r, err.msg);
+            if (!d)
+                continue;
+            CHECK_OK(rg2_nurbs_mesh(&nb, &m, &err), &err);
+            CHECK_OK(rg2_surface_build(&m, &plain, &err), &err);
+            const rg2_surface *s = rg2_design_surface(d, 0);
+            double spread = side_spread(s, side, size, pole_p), before = side_spread(&plain, side, size, NULL);
+            double moved, corner;
+            int diff = pole_diffs(s, &plain, side, size, &moved);
+            double e = surface_error(&nb, s, 16, &corner);
+            printf("  pole at side %d, weights 1 and %-4g: the side %.3g roundings of the size from the pole (the "
+                   "construction's spread %.3g), moved %.3g; Cox-de Boor %.2g\n",
+                   side, r, spread / DBL_EPSILON, before / DBL_EPSILON, moved / DBL_EPSILON, e);
+            CHECK(spread <= 2 * DBL_EPSILON, "side %d, r = %g: the pole side lies up to %.3g roundings of the size "
+                  "from the pole", side, r, spread / DBL_EPSILON);
+            CHECK(diff == 0, "side %d, r = %g: %d control values off the pole side or weights changed", side, r, diff);
+            CHECK(e <= 1e-12, "side %d, r = %g: %.3g from Cox-de Boor", side, r, e);
+            rg2_check_report rep;
+            CHECK_OK(rg2_check(s, 1, NULL, NULL, 0, &o, &rep, &err), &err);
+            CHECK(rep.pole_samples > 0 && rep.unmeasured == 0 && rep.folds == 0 && rep.singular == 0 &&
+                      rep.g0.value <= 1e-15 && rep.g1.value <= 1e-11 && rep.g2.value <= 1e-10 &&
+                      !(rep.g1_pole.value > 1) && !(rep.g2_pole.value > 1),
+                  "side %d, r = %g: %d pole samples, %d unmeasured, %d folds, %d singular, G0 %.3g, G1 %.3g, G2 %.3g, "
+                  "near the pole %.3g %.3g of their limits",
+                  side, r, rep.pole_samples, rep.unmeasured, rep.folds, rep.singular, rep.g0.value, rep.g1.value,
+                  rep.g2.value, rep.g1_pole.value, rep.g2_pole.value);
+            worst_spread = fmax(worst_spread, spread), worst_moved = fmax(worst_moved, moved);
+            worst_err = fmax(worst_err, e);
+            g[0] = fmax(g[0], rep.g0.value), g[1] = fmax(g[1], rep.g1.value), g[2] = fmax(g[2], rep.g2.value);
+            rg2_check_report_free(&rep);
+            rg2_design_free(d);
+            if (r == 1000) { /* through transpose, reverse, cut and transform; not a line one ulp off */
+                const char *more[5] = {
+                    ", \"o\": {\"transpose\": \"n\"}", ", \"o\": {\"reverse\": \"n\", \"dir\": \"u\"}",
+                    /* (the cut across the pole line keeps it) */
+                    side % 2 ? ", \"a\": {\"reverse\": \"n\", \"dir\": \"v\"}, \"o\": {\"cut\": \"a\", \"v\": [1, 4]}"
+                             : ", \"a\": {\"reverse\": \"n\", \"dir\": \"v\"}, \"o\": {\"cut\": \"a\", \"u\": [1, 5]}",
+                    ", \"o\": {\"transform\": \"n\", \"translate\": [1, 2, 3]}", ""};
+                for (int v = 0; v < 5; v++) {
+                    if (v == 4)
+                        pole_nurbs(side, r, 1, P, W);
+                    d = pole_design(&nb, more[v], v == 4 ? "n" : "o", &err);
+                    CHECK(d != NULL, "side %d, variant %d: %s", side, v, err.msg);
+                    if (!d)
+                        continue;
+                    s = rg2_design_surface(d, 0);
+                    int to = v == 0 ? 3 - side
+                             : (v == 1 && side % 2) || (v == 2 && !(side % 2)) ? side ^ 2
+                                                                               : side;
+                    double sp = side_spread(s, to, size, NULL);
+                    if (v < 4)
+                        CHECK(sp <= 2 * DBL_EPSILON, "side %d, variant %d: side %d spreads %.3g roundings", side, v,
+                              to, sp / DBL_EPSILON);
+                    if (v == 3) { /* the translated pole */
+                        const rg2_patch *Pp =
+                            rg2_surface_patch(s, side == 1 ? s->nu - 1 : 0, side == 2 ? s->nv - 1 : 0);
+                        const double *h = Pp->h[side == 1 ? 3 : 0][side == 2 ? 3 : 0];
+                        double dx = fabs(h[0] / h[3] - (pole_p[0] + 1)) + fabs(h[1] / h[3] - (pole_p[1] + 2)) +
+                                    fabs(h[2] / h[3] - (pole_p[2] + 3));
+                        CHECK(dx <= 16 * DBL_EPSILON, "side %d: the translated pole is %.3g off", side, dx);
+                    }
+                    if (v == 4) { /* one ulp off: the construction's patches as they are */
+                        rg2_surface b;
+                        rg2_mesh_free(&m);
+                        CHECK_OK(rg2_nurbs_mesh(&nb, &m, &err), &err);
+                        CHECK_OK(rg2_surface_build(&m, &b, &err), &err);
+                        double mv;
+                        CHECK(pole_diffs(s, &b, -1, size, &mv) == 0 && sp > 2 * DBL_EPSILON,
+                              "side %d: a line one ulp off is not the construction's (spread %.3g roundings)", side,
+                              sp / DBL_EPSILON);
+                        rg2_surface_free(&b);
+                    }
+                    rg2_design_free(d);
+                }
+            }
+            rg2_surface_free(&plain);
+            rg2_mesh_free(&m);
+        }
+    printf("  pole sides: at most %.3g roundings from the pole, moved %.3g; Cox-de Boor %.2g; G0 %.2g, G1 %.2g rad, "
+           "G2 %.2g\n", worst_spread / DBL_EPSILON, worst_moved / DBL_EPSILON, worst_err, g[0], g[1], g[2]);
+}
+
 int main(void)
 {
     random_nurbs();
     clamped_weights();
     extreme_knot_ratios();
     knots_near_double_range();
+    pole_rows();
     errors();
     return rg2t_done("test_nurbs");
 }
