@@ -828,7 +828,10 @@ RG2_API rg2_status rg2_xform_invert(const double M[16], double inv[16], rg2_erro
  * range are refused with RG2_EDOMAIN naming them: an interval of knots_u[1..nu+2] longer than
  * the largest double, an end interval continued twice past a clamped end beyond it, or
  * neighbouring intervals whose junction scalars are not finite (1e-300 next to 1: K = inf).
- * knots_u[0] and knots_u[nu+3] (likewise in v) are never read. */
+ * knots_u[0] and knots_u[nu+3] (likewise in v) are never read. A clamped end whose control line
+ * is one point p (a pole; weights free) gives rg2_surface_build's patches a side that is p only to
+ * the rounding of the extrapolated points (growing with the weights' ratio along it); a design's
+ * nurbs output makes that side p exactly (docs/shapes.md, "Poles"). */
 typedef struct {
     int nu, nv;             /**< control points (>= 4 each) */
     const double *points;   /**< nu * nv * 3: points[(i * nv + j) * 3 + d] */
