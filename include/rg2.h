@@ -830,8 +830,9 @@ RG2_API rg2_status rg2_xform_invert(const double M[16], double inv[16], rg2_erro
  * neighbouring intervals whose junction scalars are not finite (1e-300 next to 1: K = inf).
  * knots_u[0] and knots_u[nu+3] (likewise in v) are never read. A clamped end whose control line
  * is one point p (a pole; weights free) gives rg2_surface_build's patches a side that is p only to
- * the rounding of the extrapolated points (growing with the weights' ratio along it); a design's
- * nurbs output makes that side p exactly (docs/shapes.md, "Poles"). */
+ * the rounding of the extrapolated points (growing with the weights' ratio along it);
+ * rg2_nurbs_surface and a design's nurbs output make that side p exactly (docs/shapes.md,
+ * "Poles"). */
 typedef struct {
     int nu, nv;             /**< control points (>= 4 each) */
     const double *points;   /**< nu * nv * 3: points[(i * nv + j) * 3 + d] */
@@ -840,6 +841,12 @@ typedef struct {
     const double *knots_v;  /**< nv + 4 */
 } rg2_nurbs;
 RG2_API rg2_status rg2_nurbs_mesh(const rg2_nurbs *nb, rg2_mesh *out, rg2_error *err);
+/** The surface of a NURBS: rg2_surface_build of rg2_nurbs_mesh's mesh, with every control point
+ *  of a pole side (a clamped end whose control line has exactly the same x, y and z) made that
+ *  point, h = h_w p with its own weight; every other control value and every weight bit for bit
+ *  rg2_surface_build's. The same surface as a design's nurbs output. *out is zeroed first.
+ *  @return as rg2_nurbs_mesh (RG2_EINVAL for a NULL nb or out), then as rg2_surface_build. */
+RG2_API rg2_status rg2_nurbs_surface(const rg2_nurbs *nb, rg2_surface *out, rg2_error *err);
 /** rg2_nurbs_mesh from a JSON text {"nu", "nv", "points": [[x, y, z], ...] (u-major),
  *  "weights" (optional), "knots_u", "knots_v"}: the spec of `rg2 shape nurbs` and of a design
  *  file's nurbs operation, read by the same code. `name` (a file name, say; NULL: "nurbs", as

@@ -395,8 +395,8 @@ fail:
  * extrapolated end points (unclamp_line), whose rounding is of the size of their magnitudes: the
  * side's points h / w spread by a number of roundings of the size that grows with the weights'
  * ratio r (a 4 x 4 NURBS with weights alternating 1 and r along the line: 4 to 13 at r = 32, 88 to
- * 298 at r = 1000). A design's output makes such a side the point itself (rg2__surface_set_poles,
- * design.c). Only lines whose points have the same x, y and z exactly qualify; a line one point only to
+ * 298 at r = 1000). rg2_nurbs_surface and a design's output make such a side the point itself
+ * (rg2__surface_set_poles). Only lines whose points have the same x, y and z exactly qualify; a line one point only to
  * rounding is left as the construction makes it.
  */
 unsigned rg2__nurbs_pole_ends(const rg2_nurbs *nb, double p[4][3])
@@ -442,4 +442,24 @@ void rg2__surface_set_poles(rg2_surface *s, unsigned sides, const double p[4][3]
             }
         }
     }
+}
+
+rg2_status rg2_nurbs_surface(const rg2_nurbs *nb, rg2_surface *out, rg2_error *err)
+{
+    if (out)
+        memset(out, 0, sizeof *out);
+    if (!nb || !out)
+        return rg2__fail(err, RG2_EINVAL, "nurbs: NULL %s", nb ? "output surface" : "NURBS");
+    rg2_mesh m;
+    rg2_status st = rg2_nurbs_mesh(nb, &m, err);
+    if (st)
+        return st;
+    st = rg2_surface_build(&m, out, err);
+    rg2_mesh_free(&m);
+    if (!st) {
+        double p[4][3];
+        unsigned sides = rg2__nurbs_pole_ends(nb, p);
+        rg2__surface_set_poles(out, sides, (const double(*)[3])p);
+    }
+    return st;
 }

@@ -849,6 +849,12 @@ static void pole_rows(void)
             CHECK_OK(rg2_surface_build(&m, &plain, &err), &err);
             const rg2_surface *s = rg2_design_surface(d, 0);
             double spread = side_spread(s, side, size, pole_p), before = side_spread(&plain, side, size, NULL);
+            rg2_surface ns; /* the C caller's way to the same surface, pole included */
+            CHECK_OK(rg2_nurbs_surface(&nb, &ns, &err), &err);
+            CHECK(ns.nu == s->nu && ns.nv == s->nv && !memcmp(ns.patch, s->patch, (size_t)s->nu * (size_t)s->nv * sizeof *s->patch),
+                  "side %d, r = %g: rg2_nurbs_surface's patches differ from the design's (the pole side %.3g roundings "
+                  "from the pole)", side, r, side_spread(&ns, side, size, NULL) / DBL_EPSILON);
+            rg2_surface_free(&ns);
             double moved, corner;
             int diff = pole_diffs(s, &plain, side, size, &moved);
             double e = surface_error(&nb, s, 16, &corner);
@@ -922,6 +928,18 @@ static void pole_rows(void)
         }
     printf("  pole sides: at most %.3g roundings from the pole, moved %.3g; Cox-de Boor %.2g; G0 %.2g, G1 %.2g rad, "
            "G2 %.2g\n", worst_spread / DBL_EPSILON, worst_moved / DBL_EPSILON, worst_err, g[0], g[1], g[2]);
+    rg2_error err;
+    rg2_surface ns = {.nu = 7};
+    expect_err(rg2_nurbs_surface(NULL, &ns, &err), RG2_EINVAL, &err, "nurbs: NULL NURBS", "rg2_nurbs_surface(NULL)");
+    CHECK(ns.nu == 0 && !ns.patch, "rg2_nurbs_surface(NULL): the output not zeroed");
+    expect_err(rg2_nurbs_surface(&nb, NULL, &err), RG2_EINVAL, &err, "nurbs: NULL output surface",
+               "rg2_nurbs_surface(.., NULL)");
+    rg2_nurbs few = nb;
+    few.nu = 3; /* rg2_nurbs_mesh's refusal, passed on; nothing left allocated (sanitizer builds) */
+    expect_err(rg2_nurbs_surface(&few, &ns, &err), RG2_EINVAL, &err, "3 x 5 control points", "3 x 5 NURBS");
+    W[0] = -1.0;
+    expect_err(rg2_nurbs_surface(&nb, &ns, &err), RG2_EWEIGHT, &err, "weight [0][0] = -1", "a negative weight");
+    CHECK(ns.nu == 0 && !ns.patch, "a negative weight: the output not left empty");
 }
 
 int main(void)
