@@ -56,6 +56,13 @@ void rg2__dmesh_free(rg2__dmesh *d)
 static const rg2_scalars *dir_scalars(const rg2_mesh *m, int dir) { return dir ? &m->sv : &m->su; }
 static rg2_scalars *dir_scalars_mut(rg2_mesh *m, int dir) { return dir ? &m->sv : &m->su; }
 
+/* A NURBS pole side of an operation's output: side `to` is the point p (rg2__dmesh.poles) */
+static void pole_keep(rg2__dmesh *out, int to, const double p[3])
+{
+    out->poles |= 1u << to;
+    memcpy(out->pole[to], p, sizeof out->pole[to]);
+}
+
 rg2_status rg2__dmesh_copy(const rg2__dmesh *in, rg2__dmesh *out, rg2_error *err)
 {
     rg2_status st = rg2__dmesh_alloc(out, NULL, in->m.nu, in->m.nv, in->m.su.closed,
@@ -238,10 +245,8 @@ rg2_status rg2__op_cut(const rg2__dmesh *in, const int first[2], const int last[
     /* a NURBS pole side stays where its end is kept (the pole sides of an open direction) */
     for (int side = 0; side < 4; side++) {
         int k = side == 0 || side == 2, hi = side == 1 || side == 2;
-        if (in->poles >> side & 1u && (first[k] < 0 || (hi ? last[k] == dir_scalars(&in->m, k)->n - 1 : f[k] == 0))) {
-            out->poles |= 1u << side;
-            memcpy(out->pole[side], in->pole[side], sizeof in->pole[side]);
-        }
+        if (in->poles >> side & 1u && (first[k] < 0 || (hi ? last[k] == dir_scalars(&in->m, k)->n - 1 : f[k] == 0)))
+            pole_keep(out, side, in->pole[side]);
     }
     return RG2_OK;
 }
@@ -273,10 +278,8 @@ rg2_status rg2__op_transpose(const rg2__dmesh *in, rg2__dmesh *out, const char *
         memcpy(out->jun[k], in->jun[1 - k], (size_t)a->n * sizeof(int));
     }
     for (int side = 0; side < 4; side++) /* NURBS pole sides: v = 0 <-> u = 0, u = 1 <-> v = 1 */
-        if (in->poles >> side & 1u) {
-            out->poles |= 1u << (3 - side);
-            memcpy(out->pole[3 - side], in->pole[side], sizeof in->pole[side]);
-        }
+        if (in->poles >> side & 1u)
+            pole_keep(out, 3 - side, in->pole[side]);
     return RG2_OK;
 }
 
@@ -343,8 +346,7 @@ rg2_status rg2__op_reverse(const rg2__dmesh *in, int dir, rg2__dmesh *out, const
     for (int side = 0; side < 4; side++) /* NURBS pole sides: the reversed direction's ends swap */
         if (in->poles >> side & 1u) {
             int to = (side == 0 || side == 2) == (dir == 1) ? side ^ 2 : side;
-            out->poles |= 1u << to;
-            memcpy(out->pole[to], in->pole[side], sizeof in->pole[side]);
+            pole_keep(out, to, in->pole[side]);
         }
     return RG2_OK;
 }
@@ -1038,10 +1040,8 @@ rg2_status rg2__op_transform(rg2_design *d, const rg2__dmesh *in, const double M
             double q[4] = {in->pole[side][0], in->pole[side][1], in->pole[side][2], 1.0};
             rg2__xform_apply(M, q);
             double a[3] = {q[0] / q[3], q[1] / q[3], q[2] / q[3]};
-            if (rg2__finite(a[0]) && rg2__finite(a[1]) && rg2__finite(a[2])) {
-                out->poles |= 1u << side;
-                memcpy(out->pole[side], a, sizeof a);
-            }
+            if (rg2__finite(a[0]) && rg2__finite(a[1]) && rg2__finite(a[2]))
+                pole_keep(out, side, a);
         }
     /* every source (and shape) the mesh uses gets a transformed copy: of the points the mesh refers
      * to only (the window of their indices), so that a chain of transforms of a small cut of a big
