@@ -1717,9 +1717,7 @@ rg2_status rg2_nurbs_parse(const char *json, size_t len, const char *name, rg2_m
     if (st)
         return st;
     pctx c = {NULL, name, err};
-    unsigned poles; /* (a mesh has no place for them: rg2_nurbs_mesh's mesh, as it is) */
-    double pole[4][3];
-    st = nurbs_spec(&c, root, "nurbs", out, &poles, pole);
+    st = nurbs_spec(&c, root, "nurbs", out, NULL, NULL); /* a mesh has no place for the poles */
     cJSON_Delete(root);
     if (!st)
         rg2__ok(err);
@@ -1899,7 +1897,8 @@ static const char *len_or_type(const cJSON *x, char *buf, size_t cap)
     return buf;
 }
 
-/* A bi-cubic NURBS spec {nu, nv, points, weights?, knots_u, knots_v} at JSON path p into m. */
+/* A bi-cubic NURBS spec {nu, nv, points, weights?, knots_u, knots_v} at JSON path p into m; with
+ * poles, its pole ends too (rg2__nurbs_pole_ends). */
 static rg2_status nurbs_spec(pctx *c, const cJSON *spec, const char *p, rg2_mesh *mout, unsigned *poles,
                              double pole[4][3])
 {
@@ -1968,7 +1967,7 @@ static rg2_status nurbs_spec(pctx *c, const cJSON *spec, const char *p, rg2_mesh
         if ((st = rg2_nurbs_mesh(&nb, &m, &e))) { /* its message names knots_u[k], weight (i, j), ... */
             const char *msg = strncmp(e.msg, "nurbs: ", 7) ? e.msg : e.msg + 7; /* p ends in nurbs */
             st = fail(c, st, p, "%s", msg);
-        } else
+        } else if (poles)
             *poles = rg2__nurbs_pole_ends(&nb, pole);
     }
     free(buf);
