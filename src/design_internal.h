@@ -58,7 +58,8 @@ typedef struct {
     unsigned poles;    /* the sides (bits as rg2__nurbs_pole_ends: 0 v = 0, 1 u = 1, 2 v = 1, 3 u = 0)
                           that are a NURBS's clamped end whose control line is one point, pole[k]:
                           the output build makes those patch sides that point. Kept by cut,
-                          transpose, reverse and transform; other operations drop it */
+                          transpose, reverse and transform, and by an edit, merge, morph or cap
+                          whose output builds that side from the same values (rg2__poles_keep_same) */
     double pole[4][3];
 } rg2__dmesh;
 
@@ -167,6 +168,10 @@ rg2_status rg2__op_transform(rg2_design *d, const rg2__dmesh *in, const double M
 rg2_status rg2__op_morph(const rg2__dmesh *a, const rg2__dmesh *b, double t, rg2__dmesh *out,
                          const char *what, rg2_error *err);
 rg2_status rg2__dmesh_copy(const rg2__dmesh *in, rg2__dmesh *out, rg2_error *err);
+/* Set the NURBS pole sides of `from` on out (its output) whose patches out builds from the same
+ * values, bit for bit: the 4 lines, 5 legs and 4 junctions nearest that end and all the scalars of
+ * the other direction (the patches along a side read nothing else), so the side is the same. */
+void rg2__poles_keep_same(rg2__dmesh *out, const rg2__dmesh *from);
 /* Edits in place on a copy. */
 typedef enum { RG2__EDIT_MOVE, RG2__EDIT_TO, RG2__EDIT_WEIGHT } rg2__edit_kind;
 rg2_status rg2__edit_point(rg2__dmesh *m, int i, int j, rg2__edit_kind kind, const double *v,

@@ -63,6 +63,50 @@ static void pole_keep(rg2__dmesh *out, int to, const double p[3])
     memcpy(out->pole[to], p, sizeof out->pole[to]);
 }
 
+/* Whether the n doubles at x and y are the same bits. */
+static int same_bits(const double *x, const double *y, size_t n) { return !memcmp(x, y, n * sizeof *x); }
+
+/*
+ * Whether the patches next to end `hi` (0: index 0, 1: the last) of direction dir are built from
+ * the same values, bit for bit, in meshes a and b (whose lengths along dir may differ). The
+ * construction (surface.c: rows_at, columns_at, normalize_weights per patch; curve.c's stencil)
+ * makes the first segment of an open direction from points 0..3, legs -1..3 and junctions 0..3
+ * (b, g; K_j reads w_{j-1}, w_j) and the last from the same counted from the far end, and the
+ * patches along that end from all the points of those 4 lines and all the scalars of the other
+ * direction (their side itself from lines 0..2, legs -1..2 and junctions 0..2; line, leg and
+ * junction 3 reach it through the patch's power-of-two weight normalization). Equal inputs give
+ * equal patches bit for bit, so a pole side that is one point in a (its construction) is the same
+ * side in b.
+ */
+static int end_same(const rg2_mesh *a, const rg2_mesh *b, int dir, int hi)
+{
+    const rg2_scalars *sa = dir_scalars(a, dir), *sb = dir_scalars(b, dir);
+    const rg2_scalars *oa = dir_scalars(a, 1 - dir), *ob = dir_scalars(b, 1 - dir);
+    if (sa->closed || sb->closed || sa->n < 4 || sb->n < 4 || oa->n != ob->n || oa->closed != ob->closed)
+        return 0;
+    size_t no = (size_t)oa->n;
+    if (!same_bits(oa->w, ob->w, (size_t)rg2_scalars_num_w(oa)) || !same_bits(oa->b, ob->b, no) ||
+        !same_bits(oa->g, ob->g, no))
+        return 0;
+    int fa = hi ? sa->n - 4 : 0, fb = hi ? sb->n - 4 : 0; /* the end's first line (stored leg fa: leg fa - 1) */
+    if (!same_bits(sa->w + fa, sb->w + fb, 5) || !same_bits(sa->b + fa, sb->b + fb, 4) ||
+        !same_bits(sa->g + fa, sb->g + fb, 4))
+        return 0;
+    for (int k = 0; k < 4; k++)
+        for (int j = 0; j < oa->n; j++)
+            if (!same_bits(dir ? rg2_mesh_at(a, j, fa + k) : rg2_mesh_at(a, fa + k, j),
+                           dir ? rg2_mesh_at(b, j, fb + k) : rg2_mesh_at(b, fb + k, j), 4))
+                return 0;
+    return 1;
+}
+
+void rg2__poles_keep_same(rg2__dmesh *out, const rg2__dmesh *from)
+{
+    for (int side = 0; side < 4; side++)
+        if (from->poles >> side & 1u && end_same(&out->m, &from->m, side == 0 || side == 2, side == 1 || side == 2))
+            pole_keep(out, side, from->pole[side]);
+}
+
 rg2_status rg2__dmesh_copy(const rg2__dmesh *in, rg2__dmesh *out, rg2_error *err)
 {
     rg2_status st = rg2__dmesh_alloc(out, NULL, in->m.nu, in->m.nv, in->m.su.closed,
@@ -905,9 +949,16 @@ rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int clo
         out->jun[dir][jr] = -1;
     }
     st = rg2__dir_check(S, dir, what, "at a seam, ", err);
-    if (st)
+    if (st) {
         rg2__dmesh_free(out);
-    return st;
+        return st;
+    }
+    /* NURBS pole sides whose patches come through unchanged: in practice the first part's start and
+     * the last part's end along dir (open), when the seam's scalars leave their end segments alone;
+     * a side along dir runs through the seams' transition patches, which are new */
+    for (int t = 0; t < n_in; t++)
+        rg2__poles_keep_same(out, in[t]);
+    return RG2_OK;
 }
 
 /* ------------------------------------------------------------------------------------- */
@@ -1186,8 +1237,10 @@ rg2_status rg2__op_morph(const rg2__dmesh *a, const rg2__dmesh *b, double t, rg2
     rg2_status st = rg2__dmesh_copy(t == 1.0 ? b : a, out, err);
     if (st)
         return st;
-    if (t == 0.0 || t == 1.0)
+    if (t == 0.0 || t == 1.0) {
+        rg2__poles_keep_same(out, t == 1.0 ? b : a);
         return RG2_OK;
+    }
     size_t np = (size_t)a->m.nu * (size_t)a->m.nv;
     for (size_t q = 0; q < np; q++) {
         int same = 1;
@@ -1225,6 +1278,9 @@ rg2_status rg2__op_morph(const rg2__dmesh *a, const rg2__dmesh *b, double t, rg2
             return st;
         }
     }
+    /* NURBS pole sides where the meshes agree (blend copies equal values): the end unchanged */
+    rg2__poles_keep_same(out, a);
+    rg2__poles_keep_same(out, b);
     return RG2_OK;
 }
 

@@ -1313,6 +1313,8 @@ static rg2_status op_edit(pctx *c, const cJSON *obj, const char *path, rg2__dmes
     out->name = NULL;
     if (st)
         rg2__dmesh_free(out);
+    else /* a NURBS pole side the edits leave alone (none of the values its patches read) */
+        rg2__poles_keep_same(out, &c->d->mesh[src]);
     return st;
 }
 
@@ -2211,5 +2213,6 @@ static rg2_status op_cap(pctx *c, const cJSON *obj, const char *path, rg2__dmesh
     out->capped = 1;
     out->cap = o;
     out->cap_src = src;
+    rg2__poles_keep_same(out, &c->d->mesh[src]); /* (for the operations that use it uncapped) */
     return RG2_OK;
 }

@@ -799,9 +799,10 @@ static double side_spread(const rg2_surface *s, int side, double size, const dou
     return worst / size;
 }
 
-/* Control points of a and b (equal counts) that differ, off side `side` (-1: none excepted) or in
- * their weights; *moved: the largest move of the side's points h / w (relative to size). */
-static int pole_diffs(const rg2_surface *a, const rg2_surface *b, int side, double size, double *moved)
+/* Control points of a and b (equal counts) that differ, off the sides in the bit mask `sides` (bits
+ * as the sides: 0 none excepted) or in their weights; *moved: the largest move of those sides'
+ * points h / w (relative to size). */
+static int pole_diffs(const rg2_surface *a, const rg2_surface *b, unsigned sides, double size, double *moved)
 {
     int diff = 0;
     *moved = 0.0;
@@ -810,8 +811,8 @@ static int pole_diffs(const rg2_surface *a, const rg2_surface *b, int side, doub
             for (int r = 0; r < 4; r++)
                 for (int t = 0; t < 4; t++) {
                     const double *p = rg2_surface_patch(a, i, j)->h[r][t], *q = rg2_surface_patch(b, i, j)->h[r][t];
-                    int on = (side == 0 && j == 0 && t == 0) || (side == 2 && j == a->nv - 1 && t == 3) ||
-                             (side == 3 && i == 0 && r == 0) || (side == 1 && i == a->nu - 1 && r == 3);
+                    int on = (sides & 1u && j == 0 && t == 0) || (sides & 4u && j == a->nv - 1 && t == 3) ||
+                             (sides & 8u && i == 0 && r == 0) || (sides & 2u && i == a->nu - 1 && r == 3);
                     diff += on ? p[3] != q[3] : !!memcmp(p, q, 4 * sizeof(double));
                     for (int d = 0; on && d < 3; d++)
                         *moved = fmax(*moved, fabs(p[d] / p[3] - q[d] / q[3]) / size);
@@ -856,7 +857,7 @@ static void pole_rows(void)
                   "from the pole)", side, r, side_spread(&ns, side, size, NULL) / DBL_EPSILON);
             rg2_surface_free(&ns);
             double moved, corner;
-            int diff = pole_diffs(s, &plain, side, size, &moved);
+            int diff = pole_diffs(s, &plain, 1u << side, size, &moved);
             double e = surface_error(&nb, s, 16, &corner);
             printf("  pole at side %d, weights 1 and %-4g: the side %.3g roundings of the size from the pole (the "
                    "construction's spread %.3g), moved %.3g; Cox-de Boor %.2g\n",
@@ -915,7 +916,7 @@ static void pole_rows(void)
                         CHECK_OK(rg2_nurbs_mesh(&nb, &m, &err), &err);
                         CHECK_OK(rg2_surface_build(&m, &b, &err), &err);
                         double mv;
-                        CHECK(pole_diffs(s, &b, -1, size, &mv) == 0 && sp > 2 * DBL_EPSILON,
+                        CHECK(pole_diffs(s, &b, 0, size, &mv) == 0 && sp > 2 * DBL_EPSILON,
                               "side %d: a line one ulp off is not the construction's (spread %.3g roundings)", side,
                               sp / DBL_EPSILON);
                         rg2_surface_free(&b);
@@ -942,6 +943,174 @@ static void pole_rows(void)
     CHECK(ns.nu == 0 && !ns.patch, "a negative weight: the output not left empty");
 }
 
+/* The control points on side `side` of a and b that differ in any bit; -1 if the side has another
+ * count of patches in b. */
+static int side_diffs(const rg2_surface *a, const rg2_surface *b, int side)
+{
+    int along_v = side == 0 || side == 2, cnt = along_v ? a->nu : a->nv, diff = 0;
+    if (cnt != (along_v ? b->nu : b->nv))
+        return -1;
+    for (int k = 0; k < cnt; k++)
+        for (int t = 0; t < 4; t++) {
+            const double *h[2];
+            for (int q = 0; q < 2; q++) {
+                const rg2_surface *s = q ? b : a;
+                int i = along_v ? k : side == 1 ? s->nu - 1 : 0, j = along_v ? (side == 2 ? s->nv - 1 : 0) : k;
+                const rg2_patch *P = rg2_surface_patch(s, i, j);
+                h[q] = along_v ? P->h[t][side == 2 ? 3 : 0] : P->h[side == 1 ? 3 : 0][t];
+            }
+            diff += !!memcmp(h[0], h[1], 4 * sizeof(double));
+        }
+    return diff;
+}
+
+/* The first point of weight > 0 on line `line` of m (along u for dv = 1, else along v), or the last. */
+static int positive_on(const rg2_mesh *m, int dv, int line)
+{
+    int q = 0, nq = dv ? m->nu : m->nv;
+    while (q < nq - 1 && !(rg2_mesh_at(m, dv ? q : line, dv ? line : q)[3] > 0.0))
+        q++;
+    return q;
+}
+
+/* A pole side through the operations that may leave it alone: an edit, a morph, a merge and a cap
+ * keep it exactly when the patches along that side read the same values, bit for bit, as the
+ * NURBS's own (the 4 lines, legs -1..3 and junctions 0..3 nearest that end and all the other
+ * direction's scalars), and leave the construction's side otherwise. At each of the four ends, with
+ * weights 1 and 1000 along the pole line, for each kept side (an edit of a point, a junction and a
+ * leg at the far end and a second edit of it; a morph with that edit at t = 0.5; a merge with the
+ * reversed, translated NURBS, both ends; a cap used uncapped; a morph at t = 1): the side is the
+ * pole (2 roundings of the size), every other control value the construction's bit for bit, and the
+ * construction's side before the fix-up the NURBS's own bit for bit, spread by more than a rounding.
+ * For each dropped one (an edit of line 1, of junction 2, of a junction of the other direction; a
+ * morph with the line 1 edit; a merge along the pole line; an edit of line, leg or junction 3 or of
+ * the data-only leg at the pole end) the output is the construction's, its side spread and, but
+ * after the edits of line, leg or junction 3, not the NURBS's. With every pole dropped by these
+ * operations, as before, 24 checks fail. */
+static void pole_ops(void)
+{
+    double U[PNU + 4] = {0, 0, 0, 0, 0.7, 1.9, 3, 3, 3, 3}, V[PNV + 4] = {0, 0, 0, 0, 1.2, 2, 2, 2, 2};
+    double P[3 * PNU * PNV], W[PNU * PNV];
+    rg2_nurbs nb = {PNU, PNV, P, W, U, V};
+    double worst_spread[2] = {0.0, 0.0}, least_before = INFINITY;
+    int kept = 0, dropped = 0, unchanged = 0;
+    for (int side = 0; side < 4; side++) {
+        pole_nurbs(side, 1000.0, 0, P, W);
+        double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (int k = 0; k < 3 * PNU * PNV; k++)
+            lo[k % 3] = fmin(lo[k % 3], P[k]), hi[k % 3] = fmax(hi[k % 3], P[k]);
+        double size = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                           (hi[2] - lo[2]) * (hi[2] - lo[2]));
+        int dv = side == 0 || side == 2, hie = side == 1 || side == 2, nd = dv ? PNV : PNU;
+        char D = dv ? 'v' : 'u', O = dv ? 'u' : 'v';
+        /* point q of the line k lines from the pole (as "[i, j]"), and that line's index */
+#define LINE(k) (hie ? nd - 1 - (k) : (k))
+        /* the first point of weight > 0 on the far line and on line 3 (an edit needs one: the
+         * extrapolated end lines have weights of both signs) */
+        rg2_error err0;
+        rg2_design *d0 = pole_design(&nb, "", "n", &err0);
+        CHECK(d0 != NULL, "side %d: %s", side, err0.msg);
+        if (!d0)
+            continue;
+        char far_pt[32], l3_pt[32], near_pt[32], range[32];
+        for (int q = 0; q < 2; q++) {
+            int line = LINE(q ? 3 : nd - 1), at = positive_on(rg2_design_mesh(d0, 0), dv, line);
+            snprintf(q ? l3_pt : far_pt, sizeof far_pt, "[%d, %d]", dv ? at : line, dv ? line : at);
+        }
+        rg2_design_free(d0);
+        snprintf(near_pt, sizeof near_pt, dv ? "[2, %d]" : "[%d, 2]", LINE(1));
+        snprintf(range, sizeof range, "[0, %d]", nd - 1);
+        char far_edit[400], near_edit[200], more[14][900];
+        snprintf(far_edit, sizeof far_edit,
+                 "\"e\": {\"edit\": \"n\", \"points\": [{\"at\": %s, \"move\": [0.01, 0.02, -0.03], \"W\": 1.3}], "
+                 "\"scalars\": [{\"dir\": \"%c\", \"junction\": %d, \"g\": 0.1}, {\"dir\": \"%c\", \"leg\": %d, \"w\": 1.2}]}",
+                 far_pt, D, LINE(nd - 1), D, hie ? -1 : nd - 1);
+        snprintf(near_edit, sizeof near_edit, "\"e\": {\"edit\": \"n\", \"points\": [{\"at\": %s, \"W\": 1.3}]}", near_pt);
+        /* kept (the first 5; the merge keeps both its ends: the NURBS's, and its reversed, translated
+         * copy's at the other end), then dropped */
+        snprintf(more[0], sizeof more[0], ", %s, \"o\": {\"edit\": \"e\", \"points\": [{\"at\": %s, \"to\": [0, 0, 1]}]}",
+                 far_edit, far_pt);
+        snprintf(more[1], sizeof more[1], ", %s, \"o\": {\"morph\": [\"n\", \"e\"], \"t\": 0.5}", far_edit);
+        snprintf(more[2], sizeof more[2],
+                 ", \"rv\": {\"reverse\": \"n\", \"dir\": \"%c\"}, \"T\": {\"transform\": \"rv\", \"translate\": [10, 0, 0]}, "
+                 "\"o\": {\"merge\": [%s], \"along\": \"%c\"}",
+                 D, hie ? "\"T\", \"n\"" : "\"n\", \"T\"", D);
+        snprintf(more[3], sizeof more[3], ", \"c\": {\"cap\": \"n\"}, \"o\": {\"cut\": \"c\", \"%c\": %s}", D, range);
+        snprintf(more[4], sizeof more[4], ", %s, \"o\": {\"morph\": [\"e\", \"n\"], \"t\": 1}", near_edit);
+        snprintf(more[5], sizeof more[5], ", %s, \"o\": {\"cut\": \"e\", \"%c\": %s}", near_edit, D, range);
+        snprintf(more[6], sizeof more[6],
+                 ", \"o\": {\"edit\": \"n\", \"scalars\": [{\"dir\": \"%c\", \"junction\": %d, \"g\": 0.1}]}", D, LINE(2));
+        snprintf(more[7], sizeof more[7], ", \"o\": {\"edit\": \"n\", \"scalars\": [{\"dir\": \"%c\", \"junction\": 2, \"g\": 0.1}]}",
+                 O);
+        snprintf(more[8], sizeof more[8], ", %s, \"o\": {\"morph\": [\"n\", \"e\"], \"t\": 0.5}", near_edit);
+        snprintf(more[9], sizeof more[9],
+                 ", \"T\": {\"transform\": \"n\", \"translate\": [0, 0, 10]}, \"o\": {\"merge\": [\"n\", \"T\"], \"along\": \"%c\"}",
+                 O);
+        /* line 3, leg 3, junction 3 from the pole: read by the end patches' far row and, through the
+         * patch's power-of-two weight normalization, by the side */
+        snprintf(more[10], sizeof more[10], ", \"o\": {\"edit\": \"n\", \"points\": [{\"at\": %s, \"W\": 1.3}]}", l3_pt);
+        snprintf(more[11], sizeof more[11], ", \"o\": {\"edit\": \"n\", \"scalars\": [{\"dir\": \"%c\", \"leg\": %d, \"w\": 1.2}]}",
+                 D, hie ? nd - 5 : 3);
+        snprintf(more[12], sizeof more[12],
+                 ", \"o\": {\"edit\": \"n\", \"scalars\": [{\"dir\": \"%c\", \"junction\": %d, \"g\": 0.1}]}", D, LINE(3));
+        /* the data-only leg at the pole end (leg -1 counted from it) */
+        snprintf(more[13], sizeof more[13], ", \"o\": {\"edit\": \"n\", \"scalars\": [{\"dir\": \"%c\", \"leg\": %d, \"w\": 1.2}]}",
+                 D, hie ? nd - 1 : -1);
+#undef LINE
+        for (int v = 0; v < 14; v++) {
+            int keep = v < 5;
+            rg2_error err;
+            rg2_design *d = pole_design(&nb, more[v], v == 2 ? "o\", \"n\", \"T" : "o\", \"n", &err);
+            CHECK(d != NULL, "side %d, variant %d: %s", side, v, err.msg);
+            if (!d)
+                continue;
+            /* the output o and the NURBS n (and the merge's copy T): as built, and their construction */
+            int ns = rg2_design_num_surfaces(d);
+            rg2_surface plain[3];
+            for (int k = 0; k < ns; k++)
+                CHECK_OK(rg2_surface_build(rg2_design_mesh(d, k), &plain[k], &err), &err);
+            const rg2_surface *s = rg2_design_surface(d, 0);
+            double moved;
+            unsigned sides = keep ? 1u << side | (v == 2 ? 1u << (side ^ 2) : 0u) : 0u;
+            int others = pole_diffs(s, &plain[0], sides, size, &moved);
+            CHECK(others == 0, "side %d, variant %d: %d control values off the kept sides not the construction's", side,
+                  v, others);
+            for (int q = 0; q < (v == 2 ? 2 : 1); q++) { /* the side of n in o; the merge's: T's too */
+                int to = q ? side ^ 2 : side, from = q ? 2 : 1;
+                double ref[3] = {pole_p[0] + (q ? 10.0 : 0.0), pole_p[1], pole_p[2]};
+                double sp = side_spread(s, to, size, ref), before = side_spread(&plain[0], to, size, NULL);
+                int same = side_diffs(&plain[0], &plain[from], to);
+                if (keep) {
+                    CHECK(sp <= 2 * DBL_EPSILON && same == 0 && before > DBL_EPSILON,
+                          "side %d, variant %d: side %d lies %.3g roundings from the pole (the construction's %.3g), "
+                          "%d of the construction's points there not the NURBS's",
+                          side, v, to, sp / DBL_EPSILON, before / DBL_EPSILON, same);
+                    worst_spread[q] = fmax(worst_spread[q], sp), least_before = fmin(least_before, before);
+                    kept++;
+                } else if (v >= 10 && v <= 12) {
+                    CHECK(before > DBL_EPSILON, "side %d, variant %d: the construction's side spreads %.3g roundings",
+                          side, v, before / DBL_EPSILON);
+                    unchanged += same == 0;
+                    dropped++;
+                } else {
+                    CHECK(before > DBL_EPSILON && same != 0,
+                          "side %d, variant %d: the construction's side spreads %.3g roundings, %d of its points not "
+                          "the NURBS's", side, v, before / DBL_EPSILON, same);
+                    dropped++;
+                }
+            }
+            for (int k = 0; k < ns; k++)
+                rg2_surface_free(&plain[k]);
+            rg2_design_free(d);
+        }
+    }
+    printf("  pole sides kept through edit, morph, merge and cap: %d, at most %.3g roundings of the size from the "
+           "pole (the merge's translated copy's, at x = 10.3: %.3g), the construction's at least %.3g; %d dropped, "
+           "%d of them after an edit of line, leg or junction 3 that left the construction's side as it was\n",
+           kept, worst_spread[0] / DBL_EPSILON, worst_spread[1] / DBL_EPSILON, least_before / DBL_EPSILON, dropped,
+           unchanged);
+}
+
 int main(void)
 {
     random_nurbs();
@@ -949,6 +1118,7 @@ int main(void)
     extreme_knot_ratios();
     knots_near_double_range();
     pole_rows();
+    pole_ops();
     errors();
     return rg2t_done("test_nurbs");
 }
