@@ -489,6 +489,26 @@ static void transforms(void)
     CHECK(st.resid <= 1e-13 && st.repro <= 1e-13, "projective torus residual %.3g repro %.3g",
           st.resid, st.repro);
     CHECK(st.K <= 1e-9 && st.H <= 1e-9, "projective torus curvatures %.3g %.3g", st.K, st.H);
+    /* its Hessian itself (the curvatures see only its part on the tangent plane, where the part
+     * antisymmetric in x, y, z cancels): symmetric, and the gradient's central differences, at
+     * points on and off the projectively placed torus */
+    double hw = 0.0;
+    for (int k = 0; k < 60; k++) {
+        double x[3] = {4.0 * sin(1.3 * k), 4.0 * cos(0.7 * k + 1.0), 1.5 * sin(0.3 * k + 2.0)}, g[3], h[9], hs = 1.0;
+        rg2_shape_implicit2(&sh, x, g, h);
+        for (int q = 0; q < 9; q++)
+            hs = fmax(hs, fabs(h[q]));
+        for (int j = 0; j < 3; j++) {
+            double xp[3] = {x[0], x[1], x[2]}, xm[3] = {x[0], x[1], x[2]}, gp[3], gm[3];
+            xp[j] += 1e-5, xm[j] -= 1e-5;
+            rg2_shape_implicit(&sh, xp, gp);
+            rg2_shape_implicit(&sh, xm, gm);
+            for (int i = 0; i < 3; i++)
+                hw = fmax(hw, fmax(fabs(h[3 * i + j] - (gp[i] - gm[i]) / 2e-5), fabs(h[3 * i + j] - h[3 * j + i])) / hs);
+        }
+    }
+    printf("its Hessian against the gradient's central differences and its transpose: %.2e (relative)\n", hw);
+    CHECK(hw <= 1e-6, "projective torus Hessian: %.3g off the differences of the gradient or not symmetric", hw);
     /* non-uniform scale: the unit sphere scaled by (2, 1.5, 0.5) is the ellipsoid (2, 1.5, 0.5) */
     rg2_shape sp, el;
     rg2_shape_init(&sp, RG2_SHAPE_SPHERE);
@@ -535,6 +555,14 @@ static void transforms(void)
     memcpy(Si, I, sizeof Si);
     expect_err(rg2_xform_invert(S, Si, &err), RG2_EDOMAIN, &err, "inverse entry [0][0] overflows", "subnormal scale");
     CHECK(!memcmp(Si, I, sizeof Si), "xform_invert: the output written on failure");
+    for (int k = 1; k < 3; k++) { /* the entry named is the one that overflows: [1][1] for y, [2][2] for z */
+        double sc[3] = {1.0, 1.0, 1.0};
+        char want[48];
+        sc[k] = 1e-310;
+        rg2_xform_scale(S, sc[0], sc[1], sc[2]);
+        snprintf(want, sizeof want, "inverse entry [%d][%d] overflows", k, k);
+        expect_err(rg2_xform_invert(S, Si, &err), RG2_EDOMAIN, &err, want, "subnormal scale of y or z");
+    }
     rg2_surface_free(&s0);
     rg2_surface_free(&s1);
     rg2_mesh_free(&m0);
@@ -852,6 +880,10 @@ static void errors(void)
     bad = pv, bad.values = kneg, bad.n = 3;
     expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_EDOMAIN, &err, "v knot 0 = -0.5 must be > 0",
                "hyperboloid1 v <= 0");
+    double kzero[3] = {0.0, 0.5, 1.0}; /* v = 0 itself: the weight's zero, not a knot next to it */
+    bad.values = kzero;
+    expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_EDOMAIN, &err, "v knot 0 = 0 must be > 0",
+               "hyperboloid1 v = 0");
     rg2_shape_init(&sh, RG2_SHAPE_HYPERBOLOID2);
     double kbig[3] = {0.0, 0.5, 1.0};
     bad = pv, bad.values = kbig, bad.n = 3;
@@ -1520,6 +1552,157 @@ static void thin_tubes(void)
            "Laplacian = the polynomial's to %.2g\n", worst, bad);
 }
 
+/* The control meshes of two partitions are one mesh: the same points and scalars, bit for bit. */
+static int meshes_same(const rg2_mesh *a, const rg2_mesh *b)
+{
+    const rg2_scalars *sa[2] = {&a->su, &a->sv}, *sb[2] = {&b->su, &b->sv};
+    int same = a->nu == b->nu && a->nv == b->nv && !memcmp(a->p, b->p, sizeof(double) * 4 * (size_t)a->nu * (size_t)a->nv);
+    for (int d = 0; d < 2 && same; d++)
+        same = sa[d]->n == sb[d]->n && sa[d]->closed == sb[d]->closed &&
+               !memcmp(sa[d]->w, sb[d]->w, sizeof(double) * (size_t)rg2_scalars_num_w(sa[d])) &&
+               !memcmp(sa[d]->b, sb[d]->b, sizeof(double) * (size_t)sa[d]->n) &&
+               !memcmp(sa[d]->g, sb[d]->g, sizeof(double) * (size_t)sa[d]->n);
+    return same;
+}
+
+/* Open knot partitions get the data knots docs/shapes.md gives: the end intervals mirrored about
+ * the end knots, copies of the interval when there is only one. A paraboloid over such knots has
+ * the control mesh of the same knots given with those data knots (RG2_PART_KNOTS_FULL); dyadic
+ * knots, so that both layouts are exact. */
+static void knot_data_ends(void)
+{
+    static const double one[2] = {0.5, 1.25}, one_full[6] = {-1.0, -0.25, 0.5, 1.25, 2.0, 2.75};
+    static const double four[4] = {0.25, 0.5, 1.0, 1.75}, four_full[8] = {-0.5, 0.0, 0.25, 0.5, 1.0, 1.75, 2.5, 3.0};
+    const double *kn[2] = {one, four}, *full[2] = {one_full, four_full};
+    const int n[2] = {2, 4};
+    rg2_error err;
+    rg2_shape sh;
+    rg2_shape_init(&sh, RG2_SHAPE_PARABOLOID);
+    double eq[7];
+    rg2_partition pu;
+    CHECK_OK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0.0, 0.0, 6, eq, 7, &err), &err);
+    for (int q = 0; q < 2; q++) {
+        rg2_partition pk = {RG2_PART_KNOTS, 0, n[q], (double *)kn[q], 0}, pf = {RG2_PART_KNOTS_FULL, 0, n[q] + 4,
+                                                                                (double *)full[q], 0};
+        rg2_mesh a, b;
+        CHECK_OK(rg2_shape_mesh(&sh, &pu, &pk, &a, &err), &err);
+        CHECK_OK(rg2_shape_mesh(&sh, &pu, &pf, &b, &err), &err);
+        CHECK(meshes_same(&a, &b), "paraboloid over %d knots from %g to %g: not the mesh of the data knots %s", n[q],
+              kn[q][0], kn[q][n[q] - 1], q ? "mirrored about the ends" : "copying the one interval");
+        rg2_mesh_free(&a);
+        rg2_mesh_free(&b);
+    }
+    printf("open knot partitions: data knots copied (one interval) and mirrored (three), as the full layout\n");
+}
+
+/* Two neighbouring arcs must leave at least the smallest arc of the circle (docs/shapes.md). An
+ * open end arc of 3.14 and its data-only copy leave 2 pi - 6.28 = 0.0032 rad: refused, naming
+ * that in degrees and the distance of their common control point, about 4 / (2 pi - sum) radii.
+ * With the data arcs given (RG2_PART_ANGLES_FULL) every given pair counts, produced and data
+ * arcs alike, and an end's data arc is not paired with a copy of itself: a last data arc of 3.14
+ * builds a torus whose patches lie on it. */
+static void neighbour_arcs(void)
+{
+    rg2_error err;
+    double open[3] = {3.14, 1.0, 1.0}, deg = 0.0, away = 0.0, left = 2.0 * M_PI - 2.0 * 3.14;
+    rg2_partition p = {RG2_PART_ANGLES, 0, 3, open, 0.0};
+    rg2_status st = rg2_partition_check(&p, "u", &err);
+    const char *at = strstr(err.msg, "leave only ");
+    int got = st == RG2_EDOMAIN && at &&
+              sscanf(at, "leave only %lf deg of the circle: their common control point lies about %lf times", &deg,
+                     &away) == 2;
+    CHECK(got && strstr(err.msg, "arc 0 at the open start") && fabs(deg - left * 180.0 / M_PI) <= 5e-3 * deg &&
+              fabs(away - 4.0 / left) <= 5e-3 * away, /* (3 digits) */
+          "open end arc 3.14: want %.3g deg left and %.3g radii away: %s", left * 180.0 / M_PI, 4.0 / left, err.msg);
+    double full[5] = {0.5, 0.5, 3.14, 3.14, 0.5};
+    rg2_partition pf = {RG2_PART_ANGLES_FULL, 0, 5, full, 0.0};
+    expect_err(rg2_partition_check(&pf, "v", &err), RG2_EDOMAIN, &err, "v partition: arcs 1 and 2 leave only",
+               "a produced arc and a data arc of 3.14");
+    double last[5] = {0.5, 0.5, 1.0, 0.5, 3.14}, eq[7];
+    rg2_partition pl = {RG2_PART_ANGLES_FULL, 0, 5, last, 0.0}, pu;
+    rg2_shape sh;
+    rg2_shape_init(&sh, RG2_SHAPE_TORUS);
+    CHECK_OK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0.0, 0.0, 6, eq, 7, &err), &err);
+    rg2_surface s;
+    st = rg2_shape_surface(&sh, &pu, &pl, &s, NULL, &err);
+    CHECK(st == RG2_OK, "torus with a last data arc of 3.14: %s", err.msg);
+    if (st == RG2_OK) {
+        stats one;
+        stats_init(&one);
+        measure_surface(&sh, &s, &pu, &pl, rg2t_surface_scale(&s), 6, &one);
+        CHECK(one.resid <= 1e-13, "torus with a last data arc of 3.14: residual %.3g", one.resid);
+        rg2_surface_free(&s);
+    }
+}
+
+/* One placed shape measured on its implicit surface, against its parameterization and its
+ * curvatures (the bounds of named_shapes); returns the residual. */
+static double placed_off(const rg2_shape *sh, const rg2_partition *pu, const rg2_partition *pv, const char *what)
+{
+    rg2_error err;
+    rg2_surface s;
+    rg2_weight_report rep;
+    rg2_status st = rg2_shape_surface(sh, pu, pv, &s, &rep, &err);
+    CHECK(st == RG2_OK && rep.n_nonpositive == 0, "%s: %s %s", what, rg2_status_str(st), st ? err.msg : "");
+    if (st)
+        return INFINITY;
+    stats one;
+    stats_init(&one);
+    measure_surface(sh, &s, pu, pv, rg2t_surface_scale(&s), 6, &one);
+    rg2_surface_free(&s);
+    CHECK(one.resid <= 1e-13 && one.repro <= 1e-13 && one.K <= 1e-9 && one.H <= 1e-9,
+          "%s: residual %.3g, reproduction %.3g, K %.3g, H %.3g", what, one.resid, one.repro, one.K, one.H);
+    return one.resid;
+}
+
+/* Placements at the edges of the weight and the affine tests, and slopes other than 1.
+ * A hyperboloid1 over the knots 0.5, 1 has the data knots -0.5, 0 (mirrored), so its first v row
+ * has the weight 2 (-0.5 + 0 + 0.5) / 3 = 0 exactly: points at infinity, carrying data only. A last
+ * placement row (0, 0, -0.01, 1) gives that row the weight -0.01 z < 0 and keeps every positive
+ * weight positive: accepted (only those must stay positive), on the placed hyperboloid.
+ * A torus placed with the last row (0, 0.05, 0, 1): the inverse's last row begins with an exact 0,
+ * and the placed implicit function must divide by that row all the same.
+ * Cones of slopes -2.5, 0.4 and 3 (named_shapes keeps k = 1, where k^2 = k / k). */
+static void placed_edges(void)
+{
+    rg2_error err;
+    double eq[7], kv[2] = {0.5, 1.0}, worst = 0.0;
+    rg2_partition pu, pv = {RG2_PART_KNOTS, 0, 2, kv, 0.0};
+    CHECK_OK(rg2_partition_equal(&pu, RG2_PART_ANGLES, 1, 0.0, 0.0, 6, eq, 7, &err), &err);
+    rg2_shape sh;
+    rg2_shape_init(&sh, RG2_SHAPE_HYPERBOLOID1);
+    rg2_mesh m;
+    int zero = 0;
+    CHECK_OK(rg2_shape_mesh(&sh, &pu, &pv, &m, &err), &err);
+    for (int i = 0; i < m.nu; i++)
+        zero += rg2_mesh_at(&m, i, 0)[3] == 0.0 && rg2_mesh_at(&m, i, 0)[2] > 0.0;
+    CHECK(zero == m.nu && m.nu > 0, "hyperboloid1 over [0.5, 1]: %d of the %d points of v row 0 of weight 0, z > 0", zero,
+          m.nu);
+    rg2_mesh_free(&m);
+    sh.xform[14] = -0.01;
+    worst = fmax(worst, placed_off(&sh, &pu, &pv, "hyperboloid1, a weight-0 row placed to a negative weight"));
+    rg2_shape_init(&sh, RG2_SHAPE_TORUS);
+    sh.xform[13] = 0.05;
+    double inv[16], vv[6];
+    CHECK_OK(rg2_xform_invert(sh.xform, inv, &err), &err);
+    CHECK(inv[12] == 0.0 && inv[13] != 0.0, "the inverse's last row: %g %g", inv[12], inv[13]);
+    rg2_partition pt;
+    CHECK_OK(rg2_partition_equal(&pt, RG2_PART_ANGLES, 1, 0.0, 0.0, 5, vv, 6, &err), &err);
+    worst = fmax(worst, placed_off(&sh, &pu, &pt, "torus placed with the last row (0, 0.05, 0, 1)"));
+    static const double slopes[3] = {-2.5, 0.4, 3.0};
+    double kc[4] = {0.5, 0.8, 1.2, 1.5};
+    rg2_partition pc = {RG2_PART_KNOTS, 0, 4, kc, 0.0};
+    for (int k = 0; k < 3; k++) {
+        rg2_shape_init(&sh, RG2_SHAPE_CONE);
+        sh.param[0] = slopes[k];
+        rg2_xform_rotate(sh.xform, 1, 2, 3, 0.7);
+        char what[32];
+        snprintf(what, sizeof what, "cone of slope %g", slopes[k]);
+        worst = fmax(worst, placed_off(&sh, &pu, &pc, what));
+    }
+    printf("placed at the weight and affine edges, cones of slopes -2.5 .. 3: residual %.2e\n", worst);
+}
+
 int main(void)
 {
     named_shapes();
@@ -1541,6 +1724,9 @@ int main(void)
     start_turns();
     hyperboloid_weight_zero();
     thin_tubes();
+    knot_data_ends();
+    neighbour_arcs();
+    placed_edges();
     errors();
     return rg2t_done("test_shapes");
 }
