@@ -172,6 +172,85 @@ static void stl_roundtrip(const rg2_surface *s, const rg2_tess *t)
     free(b);
 }
 
+/* The STL of s at `density` against t, its tessellation at that density: each facet's normal is
+ * the unit normal of its triangle's vertices a, b, d, (b - a) x (d - a) over its length, and a
+ * facet of zero area (that cross product exactly 0) gets the unit mean of its three vertices'
+ * exact normals. Counts the zero-area facets into *zero; returns the largest deviation of a
+ * written normal from its expected one (a component, or its length from 1). */
+static double stl_normals_off(const rg2_surface *s, const rg2_tess *t, int density, const char *file, int *zero)
+{
+    rg2_error err;
+    rg2_export_opts o;
+    rg2_export_opts_default(&o);
+    o.density = density;
+    CHECK_OK(rg2_export_file(s, 1, path_in(file), &o, &err), &err);
+    size_t len = 0;
+    unsigned char *b = slurp(path_in(file), &len);
+    if (!b || len != 84 + 50 * (size_t)t->n_triangles || rd_u32(b + 80) != (uint32_t)t->n_triangles) {
+        CHECK(0, "%s: %zu bytes for %d triangles", file, len, t->n_triangles);
+        free(b);
+        return INFINITY;
+    }
+    double worst = 0.0;
+    *zero = 0;
+    for (int q = 0; q < t->n_triangles; q++) {
+        const int *c = t->tri + 3 * q;
+        const double *p0 = t->pos + 3 * c[0], *p1 = t->pos + 3 * c[1], *p2 = t->pos + 3 * c[2];
+        double e1[3], e2[3], n[3], l2 = 0.0, got2 = 0.0;
+        for (int k = 0; k < 3; k++)
+            e1[k] = p1[k] - p0[k], e2[k] = p2[k] - p0[k];
+        for (int k = 0; k < 3; k++)
+            n[k] = e1[(k + 1) % 3] * e2[(k + 2) % 3] - e1[(k + 2) % 3] * e2[(k + 1) % 3];
+        if (n[0] == 0.0 && n[1] == 0.0 && n[2] == 0.0) {
+            ++*zero;
+            for (int k = 0; k < 3; k++)
+                n[k] = t->normal[3 * c[0] + k] + t->normal[3 * c[1] + k] + t->normal[3 * c[2] + k];
+        }
+        for (int k = 0; k < 3; k++)
+            l2 += n[k] * n[k];
+        for (int k = 0; k < 3; k++) {
+            double got = rd_f32(b + 84 + 50 * (size_t)q + 4 * k);
+            worst = fmax(worst, fabs(got - n[k] / sqrt(l2)));
+            got2 += got * got;
+        }
+        worst = fmax(worst, fabs(sqrt(got2) - 1.0));
+    }
+    free(b);
+    remove(path_in(file));
+    return worst;
+}
+
+/* STL facet normals, read back: the torus's triangles, and a folded sheet all of whose facets
+ * have zero area at density 1. Its patches run x = u and z = 2 x^2 along u, and leave y = 0 and
+ * come back to it along v (y control values 0, 0.5, 0.5, 0), so every grid row lies on one curve
+ * in y = 0, while the vertex normals there, +-Su x Sv, point in the x, z plane, opposite at v = 0
+ * and v = 1 of a patch. */
+static void stl_facet_normals(const rg2_surface *torus, const rg2_tess *t)
+{
+    int zero_t = 0, zero_f = 0;
+    double off_t = stl_normals_off(torus, t, 6, "normals.stl", &zero_t);
+    rg2_surface fold;
+    rg2_tess tf;
+    rg2_error err;
+    CHECK_OK(fx_random(7, 7, 5, &fold, &err), &err);
+    for (int i = 0; i < fold.nu; i++)
+        for (int j = 0; j < fold.nv; j++)
+            for (int r = 0; r < 4; r++)
+                for (int q = 0; q < 4; q++) {
+                    double *h = rg2_surface_patch(&fold, i, j)->h[r][q], x = (3.0 * i + r) / (3.0 * fold.nu);
+                    h[0] = x, h[1] = q == 1 || q == 2 ? 0.5 : 0.0, h[2] = 2.0 * x * x, h[3] = 1.0;
+                }
+    CHECK_OK(rg2_tessellate(&fold, 1, 0, &tf, &err), &err);
+    double off_f = stl_normals_off(&fold, &tf, 1, "fold.stl", &zero_f);
+    CHECK(zero_t == 0 && off_t <= 1e-6, "torus STL: facet normals %.3g off their triangles' (%d of zero area)", off_t,
+          zero_t);
+    CHECK(fold.nu * fold.nv == 8 && zero_f == tf.n_triangles && zero_f == 16 && off_f <= 1e-6,
+          "folded sheet STL (%d patches): %d of %d facets of zero area, normals %.3g off the mean vertex normals",
+          fold.nu * fold.nv, zero_f, tf.n_triangles, off_f);
+    rg2_tess_free(&tf);
+    rg2_surface_free(&fold);
+}
+
 /* ---------------------------------------------------------------- PLY */
 static void ply_roundtrip(const rg2_surface *s, const rg2_tess *t)
 {
@@ -3130,6 +3209,7 @@ int main(void)
         rg2_tess_free(&big);
     }
     stl_roundtrip(&s, &t);
+    stl_facet_normals(&s, &t);
     ply_roundtrip(&s, &t);
     glb_validate(&s, &t);
     patches_roundtrip(&s, 13.0, 4.0);
