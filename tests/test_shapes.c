@@ -921,6 +921,18 @@ static void errors(void)
     sh.xform[15] = -1.0;
     expect_err(rg2_shape_mesh(&sh, &pu, &pc, &m, &err), RG2_EWEIGHT, &err,
                "control point [0, 0] the weight W = -1", "weights flipped");
+    /* a last row (0, 0, c, 1) alone, c = 0.01, 0.1, 1: on a cylinder from z = -250 to 0 the weight
+     * 1 + c z passes through 0 (the test of x rows above does not see a z row) */
+    double kz[2] = {-250.0, 0.0};
+    rg2_partition pz = {RG2_PART_KNOTS, 0, 2, kz, 0.0};
+    static const double crow[3] = {0.01, 0.1, 1.0};
+    for (int k = 0; k < 3; k++) {
+        rg2_shape_init(&sh, RG2_SHAPE_CYLINDER);
+        sh.xform[14] = crow[k];
+        expect_err(rg2_shape_mesh(&sh, &pu, &pz, &m, &err), RG2_EWEIGHT, &err, "the placement gives control point",
+                   "a z row through 0");
+    }
+    rg2_shape_init(&sh, RG2_SHAPE_TORUS);
     sh.xform[15] = 1.0, sh.xform[12] = 0.1; /* |0.1 x| < 1: still positive */
     CHECK_OK(rg2_shape_mesh(&sh, &pu, &pc, &m, &err), &err);
     int wi = -1, wj = -1;
