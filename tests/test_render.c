@@ -1393,6 +1393,29 @@ static void bar_arrows(void)
                 int want_row = 2 * ((int)floor(1.05 * (12 - r)) + 1);
                 rows_off += (e ? img.below : img.above) > 0 && in_row != want_row;
             }
+        /* inside its dark rim (rows 1..9 from its base, |x - centre| <= half - 1, half = 10.5 (10 - r) / 10), each
+         * triangle is the end colour: the colour of the bar's end row; its rim is the ink of the labels (the H's
+         * top left pixel, 28 rows above the bar) and of the ticks (the top one right of the bar) */
+        const unsigned char *letter = img.rgb + 3 * ((size_t)(top - 28) * W + x0);
+        int fill_off = 0, ink_off = memcmp(img.rgb + 3 * ((size_t)top * W + x0 + bw), letter, 3) != 0;
+        for (int e = 0; e < 2; e++) {
+            if (!(e ? img.below : img.above))
+                continue;
+            const unsigned char *end = img.rgb + 3 * ((size_t)(e ? bot : top) * W + x0);
+            for (int r = 0; r <= 10; r++) {
+                int y = e ? bot + 2 + r : top - 2 - r, inside = 0, coloured = 0;
+                const unsigned char *bg = img.rgb + 3 * ((size_t)y * W + x0 - 6);
+                for (int x = x0; x < x0 + bw; x++) {
+                    const unsigned char *px = img.rgb + 3 * ((size_t)y * W + x);
+                    inside += r > 0 && r < 10 && fabs(x - (x0 + 10.5)) <= 10.5 * (10 - r) / 10.0 - 1.0;
+                    coloured += !memcmp(px, end, 3);
+                    ink_off += memcmp(px, end, 3) && memcmp(px, bg, 3) && memcmp(px, letter, 3);
+                }
+                fill_off += inside != coloured;
+            }
+        }
+        CHECK(!fill_off && !ink_off, "case %zu: %d rows of a triangle whose pixels in the end colour are not its "
+              "inside; %d pixels of its rim or the ticks not in the labels' ink", c, fill_off, ink_off);
         printf("%s map, range [%.4g, %.4g]: %d pixels below, %d above (of %d); %d and %d pixels marked past the bar's "
                "bottom and top\n",
                o.mode == RG2_RENDER_GAUSS ? "Gauss" : "mean", img.range[0], img.range[1], img.below, img.above,
