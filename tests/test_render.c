@@ -1610,6 +1610,89 @@ static void stripes_per_turn(void)
     rg2_mesh_free(&m);
 }
 
+/* A flat surface: the open G2 surface of an 8 x 7 control mesh in the plane z = 0, its points
+ * (i, j) moved off the grid by up to 0.3. Every derivative lies in the plane: H = K = 0. */
+static rg2_status flat_mesh(rg2_mesh *m, rg2_surface *s, rg2_error *err)
+{
+    memset(s, 0, sizeof *s);
+    rg2_status st = rg2_mesh_init(m, 8, 7, 0, 0, err);
+    if (st)
+        return st;
+    for (int i = 0; i < 8; i++)
+        for (int j = 0; j < 7; j++) {
+            double *p = rg2_mesh_at(m, i, j);
+            p[0] = i + 0.3 * sin(3.0 * i + 5.0 * j), p[1] = j + 0.3 * cos(2.0 * i - 7.0 * j), p[2] = 0, p[3] = 1;
+        }
+    return rg2_surface_build(m, s, err);
+}
+
+/* Distance from q to the segment a-b in the plane z = 0. */
+static double seg_dist2d(const double *q, const double *a, const double *b)
+{
+    double dx = b[0] - a[0], dy = b[1] - a[1], l2 = dx * dx + dy * dy;
+    double t = l2 > 0 ? ((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / l2 : 0;
+    t = t < 0 ? 0 : (t > 1 ? 1 : t);
+    return hypot(q[0] - a[0] - t * dx, q[1] - a[1] - t * dy);
+}
+
+/* The control-mesh overlay where the mesh is: seen straight down, the flat surface and its
+ * mesh (both in z = 0) are drawn to scale (a plane across the view projects by a similarity),
+ * so a surface pixel's exact point p, over the pixel width f measured on the picture, gives its
+ * distance in pixels to each leg (i, j)-(i + 1, j), (i, j)-(i, j + 1) and each point. The
+ * overlay is anti-aliased lines of half-width 0.6 and dots of half-width 2.2 (coverage
+ * hw + 0.5 - distance): a pixel it reddens lies within 1.1 of a leg or 2.7 of a point, and
+ * every pixel within 0.3 of a leg or 1.5 of a point is red. (The untinted surface is grey with
+ * R <= G: red R > G + 2 is the overlay's, at a coverage of 2% or more.) */
+static void mesh_legs(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(flat_mesh(&m, &s, &err), &err);
+    rg2_render_opts o = kept_opts(240, 200);
+    o.elevation = 90;
+    o.mesh = 1;
+    rg2_image img;
+    CHECK_OK(rg2_render(&s, 1, &m, &o, &img, &err), &err);
+    int W = 240, H = 200, y = H / 2, a = -1, b = -1, stray = 0, faint = 0, near = 0, reddened = 0;
+    for (int x = 0; img.pixels && x < W; x++)
+        if (img.pixels[y * W + x].surf >= 0)
+            b = x, a = a < 0 ? x : a;
+    double f = 0;
+    if (a >= 0 && b > a) {
+        const double *pa = img.pixels[y * W + a].p, *pb = img.pixels[y * W + b].p;
+        f = hypot(pb[0] - pa[0], pb[1] - pa[1]) / (b - a);
+    }
+    for (int k = 0; f > 0 && img.rgb && k < W * H; k++) {
+        const rg2_pixel *p = &img.pixels[k];
+        if (p->surf < 0)
+            continue;
+        double dl = HUGE_VAL, dp = HUGE_VAL;
+        for (int i = 0; i < m.nu; i++)
+            for (int j = 0; j < m.nv; j++) {
+                const double *c = rg2_mesh_at(&m, i, j);
+                dp = fmin(dp, hypot(p->p[0] - c[0], p->p[1] - c[1]) / f);
+                if (i + 1 < m.nu)
+                    dl = fmin(dl, seg_dist2d(p->p, c, rg2_mesh_at(&m, i + 1, j)) / f);
+                if (j + 1 < m.nv)
+                    dl = fmin(dl, seg_dist2d(p->p, c, rg2_mesh_at(&m, i, j + 1)) / f);
+            }
+        const unsigned char *q = img.rgb + 3 * (size_t)k;
+        int tinged = q[0] > q[1] + 2, red = q[0] >= q[1] + 80 && q[0] >= q[2] + 80;
+        reddened += tinged;
+        stray += tinged && !(dl < 1.1 || dp < 2.7);
+        if (dl <= 0.3 || dp <= 1.5)
+            near++, faint += !red;
+    }
+    printf("mesh over a flat surface seen straight down (%.4g per pixel): %d pixels reddened, %d off the legs and "
+           "points; %d of %d pixels on them not red\n", f, reddened, stray, faint, near);
+    CHECK(f > 0 && near > 300 && !stray && !faint, "mesh overlay: %d reddened pixels off the legs and points, %d of %d "
+          "pixels on them not red (pixel width %g)", stray, faint, near, f);
+    rg2_image_free(&img);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 int main(void)
 {
     for (int mixed = 0; mixed < 2; mixed++) {
@@ -1637,5 +1720,6 @@ int main(void)
     mesh_off_bar();
     small_boundaries();
     stripes_per_turn();
+    mesh_legs();
     return rg2t_done("test_render");
 }
