@@ -1693,6 +1693,50 @@ static void mesh_legs(void)
     rg2_mesh_free(&m);
 }
 
+/* The floor of the robust colour range is 1e-9 / rho for H and 1e-9 / rho^2 for K, rho the
+ * radius of the scene's bounding sphere (docs/render.md, --range): a flat surface (H = K = 0)
+ * sits mid-bar in a range exactly that wide. Seen straight down at azimuth 0, the view's right
+ * and up vectors are +y and -x, and the samples (7 x 7 a patch, u and v at k / 6) have no depth
+ * extent: rho is half the diagonal of their box in x and y. At sizes 1 and 1e-3. */
+static void flat_range(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(flat_mesh(&m, &s, &err), &err);
+    for (int q = 0; q < 4; q++) {
+        if (q == 2) {
+            double M[16] = {1e-3, 0, 0, 0, 0, 1e-3, 0, 0, 0, 0, 1e-3, 0, 0, 0, 0, 1};
+            rg2_surface_transform(&s, M);
+        }
+        double lo[2] = {HUGE_VAL, HUGE_VAL}, hi[2] = {-HUGE_VAL, -HUGE_VAL};
+        for (int i = 0; i < s.nu; i++)
+            for (int j = 0; j < s.nv; j++)
+                for (int a = 0; a <= 6; a++)
+                    for (int b = 0; b <= 6; b++) {
+                        rg2_eval e;
+                        rg2_surface_eval(&s, i, j, a / 6.0, b / 6.0, 0, &e);
+                        for (int k = 0; k < 2; k++)
+                            lo[k] = fmin(lo[k], e.p[k]), hi[k] = fmax(hi[k], e.p[k]);
+                    }
+        double rho = 0.5 * hypot(hi[0] - lo[0], hi[1] - lo[1]);
+        rg2_render_opts o = kept_opts(240, 160);
+        o.elevation = 90;
+        o.azimuth = 0;
+        o.mode = q % 2 ? RG2_RENDER_GAUSS : RG2_RENDER_MEAN;
+        rg2_image img;
+        CHECK_OK(rg2_render(&s, 1, NULL, &o, &img, &err), &err);
+        double want = q % 2 ? 1e-9 / (rho * rho) : 1e-9 / rho, got = img.range[1] - img.range[0];
+        printf("flat %s map at size %g: range [%.6g, %.6g], %.9g of 1e-9 / rho%s (rho %.6g)\n", q % 2 ? "K" : "H",
+               q < 2 ? 1.0 : 1e-3, img.range[0], img.range[1], got / want, q % 2 ? "^2" : "", rho);
+        CHECK(img.foreground > 5000 && fabs(got / want - 1) < 1e-9 && img.range[0] == -img.range[1],
+              "flat %s map: range [%g, %g], want +-%g", q % 2 ? "K" : "H", img.range[0], img.range[1], 0.5 * want);
+        rg2_image_free(&img);
+    }
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 int main(void)
 {
     for (int mixed = 0; mixed < 2; mixed++) {
@@ -1721,5 +1765,6 @@ int main(void)
     small_boundaries();
     stripes_per_turn();
     mesh_legs();
+    flat_range();
     return rg2t_done("test_render");
 }
