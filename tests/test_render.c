@@ -1737,6 +1737,39 @@ static void flat_range(void)
     rg2_mesh_free(&m);
 }
 
+/* A patch whose points overflow in x alone (homogeneous x 1e308 at weight 0.5: x = 2e308, y and
+ * z finite) has no finite sample: like a patch whose 4-tuples are all 0 (every coordinate 0 / 0),
+ * it is left out of the view, and the rest of the torus is drawn as with that patch. */
+static void overflowing_patch(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_revolve(3.0, 1.0, 8, 6, 1, 0, 0, &m, &s, &err), &err);
+    rg2_image img[2];
+    for (int q = 0; q < 2; q++) {
+        for (int r = 0; r < 4; r++)
+            for (int t = 0; t < 4; t++) {
+                double *h = s.patch[9].h[r][t];
+                if (!q)
+                    h[0] = 1e308, h[1] = 0.5 * h[1] / h[3], h[2] = 0.5 * h[2] / h[3], h[3] = 0.5;
+                else
+                    h[0] = h[1] = h[2] = h[3] = 0;
+            }
+        rg2_render_opts o = kept_opts(96, 72);
+        CHECK_OK(rg2_render(&s, 1, NULL, &o, &img[q], &err), &err);
+    }
+    int same = img[0].rgb && img[1].rgb && !memcmp(img[0].rgb, img[1].rgb, 96 * 72 * 3);
+    printf("a patch overflowing in x: %d foreground pixels, %s the picture without it (%d)\n", img[0].foreground,
+           same ? "the same as" : "unlike", img[1].foreground);
+    CHECK(same && img[0].foreground > 1000, "a patch overflowing in x: %d foreground pixels, %s the picture with that "
+          "patch's 4-tuples 0 (%d)", img[0].foreground, same ? "the same as" : "unlike", img[1].foreground);
+    rg2_image_free(&img[0]);
+    rg2_image_free(&img[1]);
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 int main(void)
 {
     for (int mixed = 0; mixed < 2; mixed++) {
@@ -1766,5 +1799,6 @@ int main(void)
     stripes_per_turn();
     mesh_legs();
     flat_range();
+    overflowing_patch();
     return rg2t_done("test_render");
 }
