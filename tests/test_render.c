@@ -1770,6 +1770,60 @@ static void overflowing_patch(void)
     rg2_mesh_free(&m);
 }
 
+/* The curvature maps' colours follow each pixel's own value (docs/render.md): the mean map runs
+ * violet, blue, green, yellow, red from the low end of the range, the Gauss map is blue below 0
+ * and red above, "red where K > 0.2 of the range, blue where K < -0.2 of it". On the torus,
+ * where both take all their colours, every pixel in the mean map's lowest fifth (t < 0.2) is
+ * bluer than red and every one in its highest fifth redder than blue; in the Gauss map, every
+ * pixel with K > 0.2 range[1] is redder than blue, every one with K < 0.2 range[0] bluer. The
+ * lighting scales the three channels alike and adds the same white to each, so it keeps the
+ * order of R and B; silhouette pixels, darkened by the outline, are left out. */
+static void curvature_colours(void)
+{
+    rg2_mesh m;
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(scene_revolve(3.0, 1.0, 8, 6, 1, 0, 0, &m, &s, &err), &err);
+    for (int g = 0; g < 2; g++) {
+        rg2_render_opts o = kept_opts(240, 160);
+        o.mode = g ? RG2_RENDER_GAUSS : RG2_RENDER_MEAN;
+        rg2_image img;
+        CHECK_OK(rg2_render(&s, 1, NULL, &o, &img, &err), &err);
+        int low = 0, high = 0, wrong = 0;
+        for (int k = 0; img.pixels && k < img.width * img.height; k++) {
+            const rg2_pixel *p = &img.pixels[k];
+            if (p->surf < 0 || at_silhouette(&img, k))
+                continue;
+            const unsigned char *c = img.rgb + 3 * (size_t)k;
+            double t = ((g ? p->K : p->H) - img.range[0]) / (img.range[1] - img.range[0]);
+            if (t < (g ? 0.4 : 0.2))
+                low++, wrong += !(c[2] > c[0]);
+            else if (t > (g ? 0.6 : 0.8))
+                high++, wrong += !(c[0] > c[2]);
+        }
+        /* and the bar beside the view (rows 40 (t = 1) .. height - 40 (t = 0), columns width - 98 .. - 77):
+         * the mean bar violet at the bottom (B > R > G), green in the middle, red at the top (R above G
+         * and B by 100 or more), the Gauss bar blue, grey and red */
+        int W = img.width, top = 40, bot = img.height - 40, bar_off = 0;
+        for (int x = W - 98; img.rgb && x < W - 76; x++) {
+            const unsigned char *b = img.rgb + 3 * ((size_t)bot * W + x), *t = img.rgb + 3 * ((size_t)top * W + x);
+            const unsigned char *mid = img.rgb + 3 * ((size_t)(top + bot) / 2 * W + x);
+            int red_top = t[0] > t[1] + 100 && t[0] > t[2] + 100;
+            bar_off += g ? !(b[2] > b[0] + 100 && abs(mid[0] - mid[2]) < 3 && t[0] > t[2] + 100)
+                         : !(b[2] > b[0] && b[0] > b[1] && mid[1] > mid[0] && mid[1] > mid[2] && red_top);
+        }
+        printf("%s map of the torus: %d pixels at the low end (blue or violet), %d at the high end (red), %d of "
+               "another colour\n", g ? "Gauss" : "mean", low, high, wrong);
+        CHECK(!bar_off, "%s map: %d columns of the colour bar not %s at the bottom, middle and top", g ? "Gauss" : "mean",
+              bar_off, g ? "blue, grey and red" : "violet, green and red");
+        CHECK(low > 500 && high > 500 && !wrong, "%s map: %d of %d pixels at the ends of the range not in the end's "
+              "colour", g ? "Gauss" : "mean", wrong, low + high);
+        rg2_image_free(&img);
+    }
+    rg2_surface_free(&s);
+    rg2_mesh_free(&m);
+}
+
 int main(void)
 {
     for (int mixed = 0; mixed < 2; mixed++) {
@@ -1800,5 +1854,6 @@ int main(void)
     mesh_legs();
     flat_range();
     overflowing_patch();
+    curvature_colours();
     return rg2t_done("test_render");
 }
