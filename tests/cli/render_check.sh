@@ -19,6 +19,14 @@ expect 2 "--size" -- "$RG2" render "$ex" -o "$tmp/x.png" --size 10x10
 expect 2 "--range" -- "$RG2" render "$ex" -o "$tmp/x.png" --range 1
 expect 2 "--range 2,1: needs lo < hi" -- "$RG2" render "$ex" -o "$tmp/x.png" --mode mean --range 2,1
 expect 2 "rg2 render: --stripes 2.5: needs a whole number of stripe pairs, 1..1000" -- "$RG2" render "$ex" -o "$tmp/x.png" --mode zebra --stripes 2.5
+# the ranges' edges (docs/render.md: elevation in [-90, 90], fov in (1, 170)): a value just past a
+# closed edge, or on an open one, is a usage error, not the renderer's refusal (exit 1)
+for v in "--elevation 90.5" "--elevation -90.5"; do
+  expect 2 "rg2 render: $v: the elevation must lie in [-90, 90] degrees" -- "$RG2" render "$ex" -o "$tmp/x.png" $v
+done
+for v in "--fov 170" "--fov 1"; do
+  expect 2 "rg2 render: $v: the field of view must lie in (1, 170) degrees" -- "$RG2" render "$ex" -o "$tmp/x.png" $v
+done
 ! compgen -G "$tmp/x.png*" >/dev/null && ok || bad "a failed render left a file"
 expect 1 "cannot write" -- "$RG2" render "$ex" -o "$tmp/no/such/dir/x.png"
 expect 2 "give it a .png name" -- "$RG2" render "$ex" -o "$tmp/x.jpg"
