@@ -110,10 +110,12 @@ f1=$SRC/examples/fig1_torus.json
 "$RG2" render "$f1" -o "$tmp/f1.png" --size 96x64 2>"$tmp/f1.err" &&
   "$RG2" render "$f1" -o "$tmp/f1_apart.png" --size 96x64 --apart 2>"$tmp/f1_apart.err" &&
   "$RG2" render "$f1" -o "$tmp/f1_s2.png" --size 96x64 --surface 2 2>"$tmp/f1_s2.err" &&
+  "$RG2" render "$f1" -o "$tmp/f1_s0.png" --size 96x64 --surface 0 2>"$tmp/f1_s0.err" &&
   "$RG2" render "$f1" -o "$tmp/f1_s2_apart.png" --size 96x64 --surface 2 --apart 2>"$tmp/f1_s2_apart.err" ||
   bad "render fig1 --apart"
 grep -q "note: output surfaces 0 and 1 overlap.*--apart" "$tmp/f1.err" && ok || bad "fig1 as placed: no overlap note"
-[ ! -s "$tmp/f1_apart.err" ] && [ ! -s "$tmp/f1_s2.err" ] && ok || bad "overlap note with --apart or --surface"
+[ ! -s "$tmp/f1_apart.err" ] && [ ! -s "$tmp/f1_s2.err" ] && [ ! -s "$tmp/f1_s0.err" ] && ok ||
+  bad "overlap note with --apart or --surface (2 or 0)"
 "$RG2" render "$f9" -o "$tmp/f9n.png" --size 96x64 2>"$tmp/f9.err" && [ ! -s "$tmp/f9.err" ] && ok ||
   bad "fig9 (surfaces side by side): $(cat "$tmp/f9.err")"
 differ f1 f1_apart "--apart lays the four tori out"
