@@ -603,8 +603,8 @@ typedef struct {
  *  its patches' normal (about 224 bytes a patch).
  *  @return RG2_EINVAL (NULL, no patches), RG2_ENONFINITE (a control value, naming its patch),
  *  RG2_EWEIGHT (a control weight <= 0, naming the patch and point: the search needs the hull
- *  property), RG2_EDOMAIN (control points beyond 1e60 or spanning less than 1e-60, the numeric
- *  range of rg2_tessellate: past about 1e+-77 the searches' fourth powers leave the double
+ *  property), RG2_EDOMAIN (control points beyond 1e60 or spanning less than 1e-60, or one whose
+ *  h / w overflows, the numeric range of rg2_tessellate: past about 1e+-77 the searches' fourth powers leave the double
  *  range), RG2_ENOMEM. */
 RG2_API rg2_status rg2_locator_build(const rg2_surface *s, rg2_locator **out, rg2_error *err);
 RG2_API void rg2_locator_free(rg2_locator *L);
@@ -1246,8 +1246,9 @@ typedef struct {
  *  Release with rg2_tess_free: the arrays are one allocation (never free them one by one).
  *  @return RG2_EINVAL (no patches, density < 1), RG2_ELIMIT (over RG2_MAX_POINTS vertices
  *  in all or per direction), RG2_ENONFINITE (a control value not finite, naming the patch),
- *  RG2_EDOMAIN (control points beyond 1e60 or spanning less than 1e-60, the supported numeric
- *  range of docs/robustness.md: past about 1e+-75 the normals and curvatures overflow),
+ *  RG2_EDOMAIN (control points beyond 1e60, one whose h / w overflows, or spanning less than
+ *  1e-60: the supported numeric range of docs/robustness.md: past about 1e+-75 the normals and
+ *  curvatures overflow),
  *  RG2_EWEIGHT (a vertex not finite: weights that reach 0 put the surface through infinity;
  *  names the vertex's patch and (u, v). Negative weights alone are allowed: a patch whose
  *  4-tuples are all negated is the same surface), RG2_ENOMEM. */
@@ -1420,7 +1421,9 @@ RG2_API void rg2_render_opts_default(rg2_render_opts *o);
  *  @return RG2_EINVAL (no surfaces, a NULL out, a surface without patches, an rg2_render_opts
  *  field outside the range its comment gives: size, mode, fov, elevation, colour range,
  *  percentile, zebra stripes, threads, mesh overlay without meshes), RG2_ENONFINITE (a NaN or
- *  infinite azimuth, elevation or distance; a non-finite control point, naming it), RG2_ENOMEM. */
+ *  infinite azimuth, elevation or distance; a non-finite control point, naming it), RG2_EDOMAIN
+ *  (a surface's control points beyond 1e60, one whose h / w overflows, or spanning less than
+ *  1e-60: the numeric range of rg2_tessellate, naming the surface), RG2_ENOMEM. */
 RG2_API rg2_status rg2_render(const rg2_surface *surfs, int n, const rg2_mesh *meshes,
                               const rg2_render_opts *o, rg2_image *out, rg2_error *err);
 RG2_API void rg2_image_free(rg2_image *img);

@@ -1013,6 +1013,8 @@ static rg2_status check_input(const rg2_surface *surfs, int n, const rg2_mesh *m
         if (surfs[s].nu <= 0 || surfs[s].nv <= 0 || !surfs[s].patch)
             return rg2__fail(err, RG2_EINVAL, "render: surface %d has no patches", s);
         rg2_status st = rg2__surface_check_finite(&surfs[s], "render", s, err);
+        if (!st) /* as the tessellation: h / w can overflow where h and w are finite */
+            st = rg2__surface_check_range(&surfs[s], "render", s, err);
         if (st)
             return st;
     }

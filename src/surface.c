@@ -468,7 +468,14 @@ rg2_status rg2__surface_check_finite(const rg2_surface *s, const char *what, int
 rg2_status rg2__surface_check_range(const rg2_surface *s, const char *what, int index, rg2_error *err)
 {
     rg2__box box; /* (points of weight 0, at infinity, have no coordinates and are skipped) */
-    rg2__surface_ctrl_box(s, 0, box.lo, box.hi);
+    size_t of;
+    rg2__surface_ctrl_box_ex(s, 0, box.lo, box.hi, &of);
+    if (of) /* finite h and w != 0 whose h / w overflows: no coordinates either */
+        return rg2__fail(err, RG2_EDOMAIN,
+                         "%s: surface %d patch (%zu,%zu) has a control point whose coordinates h / w overflow: "
+                         "outside the range its normals and curvatures are evaluated in (coordinates up to %g); "
+                         "scale it",
+                         what, index, (of - 1) / (size_t)s->nv, (of - 1) % (size_t)s->nv, RG2_DESIGN_MAX_COORD);
     double big, diag;
     rg2__box_extent(&box, &big, &diag);
     if (!(big <= RG2_DESIGN_MAX_COORD) || !(diag >= RG2_DESIGN_MIN_SIZE))

@@ -21,7 +21,14 @@ const double *rg2__patch_ctrl(const rg2_surface *s, size_t k, int r, int t)
 
 int rg2__surface_ctrl_box(const rg2_surface *s, int positive_only, double lo[3], double hi[3])
 {
+    return rg2__surface_ctrl_box_ex(s, positive_only, lo, hi, NULL);
+}
+
+int rg2__surface_ctrl_box_ex(const rg2_surface *s, int positive_only, double lo[3], double hi[3], size_t *overflow)
+{
     int any = 0;
+    if (overflow)
+        *overflow = 0;
     for (int d = 0; d < 3; d++) {
         lo[d] = INFINITY;
         hi[d] = -INFINITY;
@@ -37,8 +44,11 @@ int rg2__surface_ctrl_box(const rg2_surface *s, int positive_only, double lo[3],
                     continue;
                 for (int d = 0; d < 3; d++) {
                     double x = h[d] / h[3];
-                    if (!isfinite(x))
+                    if (!isfinite(x)) {
+                        if (overflow && !*overflow && h[3] != 0.0) /* h and w finite, h / w not */
+                            *overflow = k + 1;
                         continue;
+                    }
                     lo[d] = x < lo[d] ? x : lo[d];
                     hi[d] = x > hi[d] ? x : hi[d];
                     any = 1;

@@ -25,6 +25,9 @@ static inline const double *rg2__patch_net(const rg2_surface *s, size_t k, int *
 /* Box of the affine control points of every patch of s (only those of positive weight when
  * positive_only; non-finite coordinates are skipped). Returns 0 when no point counted. */
 int rg2__surface_ctrl_box(const rg2_surface *s, int positive_only, double lo[3], double hi[3]);
+/* The same, and *overflow: 1 + the index of the first patch with a control point whose h and w
+ * are finite, w != 0, but h / w is not (skipped in the box like points at infinity), else 0. */
+int rg2__surface_ctrl_box_ex(const rg2_surface *s, int positive_only, double lo[3], double hi[3], size_t *overflow);
 /* Whether side `side` (0 v=0, 1 u=1, 2 v=1, 3 u=0) of a patch of any degree collapses to one
  * point (every affine control point of the side within tol of the first, per coordinate; tol
  * from rg2__collapse_tol, export.c, which reads patches of any degree). */

@@ -824,6 +824,16 @@ static void bad_input(void)
         rg2_surface_free(&s);
     }
     rg2_tess_free(&unit);
+    /* a control point whose h and w are finite but whose h / w overflows (x 1e308 at weight 0.5)
+     * has no coordinates; the box of the others is in range, and it was tessellated with status ok */
+    CHECK_OK(fx_torus(3.0, 1.0, 4, 4, &s, &err), &err);
+    s.patch[5].h[1][2][0] = 1e308, s.patch[5].h[1][2][3] = 0.5;
+    rg2_status st = rg2_tessellate(&s, 8, 1, &t, &err);
+    CHECK(st == RG2_EDOMAIN && strstr(err.msg, "tessellate: surface 0 patch (1,1)") && strstr(err.msg, "overflow"),
+          "a control point at x = 2e308: %s '%s'", rg2_status_str(st), err.msg);
+    if (st == RG2_OK)
+        rg2_tess_free(&t);
+    rg2_surface_free(&s);
 }
 
 int main(void)
