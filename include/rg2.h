@@ -603,9 +603,9 @@ typedef struct {
  *  its patches' normal (about 224 bytes a patch).
  *  @return RG2_EINVAL (NULL, no patches), RG2_ENONFINITE (a control value, naming its patch),
  *  RG2_EWEIGHT (a control weight <= 0, naming the patch and point: the search needs the hull
- *  property), RG2_EDOMAIN (control points beyond 1e60 or spanning less than 1e-60, or one whose
- *  h / w overflows, the numeric range of rg2_tessellate: past about 1e+-77 the searches' fourth powers leave the double
- *  range), RG2_ENOMEM. */
+ *  property), RG2_EDOMAIN (control points beyond 1e60, one whose h / w overflows, or spanning
+ *  less than 1e-60: the numeric range of rg2_tessellate; past about 1e+-77 the searches' fourth
+ *  powers leave the double range), RG2_ENOMEM. */
 RG2_API rg2_status rg2_locator_build(const rg2_surface *s, rg2_locator **out, rg2_error *err);
 RG2_API void rg2_locator_free(rg2_locator *L);
 /** The surface point nearest x (the first met on ties), with its patch, parameters and normal.
