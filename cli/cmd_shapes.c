@@ -451,11 +451,28 @@ static double max_residual(const rg2_shape *sh, const rg2_surface *s, int sample
     return worst;
 }
 
+/* x in 15 significant digits, or 16 or 17 where 15 do not read back as x ("0.1", not
+ * "0.10000000000000001"; "-90", not "-9e+01"). */
+typedef struct {
+    char s[32];
+} num_text_t;
+static num_text_t num_text(double x)
+{
+    num_text_t t;
+    for (int p = 15; p <= 17; p++) {
+        snprintf(t.s, sizeof t.s, "%.*g", p, x);
+        if (strtod(t.s, NULL) == x)
+            break;
+    }
+    return t;
+}
+
 /* Append "LABEL (X, Y, Z)" to the placement text t, after ", " when t has some already. */
 static void placement_add(char *t, size_t size, const char *label, const double x[3])
 {
     size_t n = strlen(t);
-    snprintf(t + n, size - n, "%s%s (%g, %g, %g)", n ? ", " : "", label, x[0], x[1], x[2]);
+    snprintf(t + n, size - n, "%s%s (%s, %s, %s)", n ? ", " : "", label, num_text(x[0]).s, num_text(x[1]).s,
+             num_text(x[2]).s);
 }
 
 /* placed: the placement options given, in the order they apply ("" when none was given) */
@@ -467,7 +484,7 @@ static void print_summary(const rg2_shape *sh, const rg2_partition *pu, const rg
         const rg2_shape_desc *d = rg2_shape_describe(sh->kind);
         printf("%s", d->name);
         for (int k = 0; k < d->n_params; k++)
-            printf("%s %s = %g", k ? "," : "", d->param_names[k], sh->param[k]);
+            printf("%s %s = %s", k ? "," : "", d->param_names[k], num_text(sh->param[k]).s);
         printf("\n  h(u, v) = %s\n", d->param_text);
         print_partition_text("u", pu);
         print_partition_text("v", pv);
@@ -493,22 +510,6 @@ static void print_summary(const rg2_shape *sh, const rg2_partition *pu, const rg
 }
 
 /* --- rg2 shape ------------------------------------------------------------------------- */
-
-/* x in 15 significant digits, or 16 or 17 where 15 do not read back as x ("0.1", not
- * "0.10000000000000001"; "-90", not "-9e+01"). */
-typedef struct {
-    char s[32];
-} num_text_t;
-static num_text_t num_text(double x)
-{
-    num_text_t t;
-    for (int p = 15; p <= 17; p++) {
-        snprintf(t.s, sizeof t.s, "%.*g", p, x);
-        if (strtod(t.s, NULL) == x)
-            break;
-    }
-    return t;
-}
 
 static int parse_one(const char *opt, const char *val, double *out)
 {
@@ -757,9 +758,9 @@ int rg2_cmd_shape(int argc, char **argv)
     rg2_surface_weight_report(&s, &rep);
     if (!is_nurbs)
         resid = max_residual(&sh, &s, samples, &size);
-    char placed[256] = "";
+    char placed[512] = ""; /* three placements of 3 numbers up to 24 characters each */
     if (n_scale == 1)
-        snprintf(placed, sizeof placed, "scale %g", scale[0]);
+        snprintf(placed, sizeof placed, "scale %s", num_text(scale[0]).s);
     else if (n_scale)
         placement_add(placed, sizeof placed, "scale", scale);
     if (has_axis)

@@ -74,6 +74,10 @@ expect 0 "placement: scale 10, centre (1000, 0, 0)" -- "$RG2" shape ellipsoid --
 expect 0 $'60 60 60 60 60 60\n  placement: centre (0, 0, -2.5)\n  control mesh 8 x 6' -- "$RG2" shape torus --u-arcs 8 --v-arcs 6 --centre 0,0,-2.5
 expect 0 "placement: scale (1, 1, -1), axis (0, 1, 1), then the --xform matrix" -- "$RG2" shape paraboloid --scale 1,1,-1 --axis 0,1,1 --xform 1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1
 expect 0 "placement: the --xform matrix" -- "$RG2" shape sphere --xform 2,0,0,0,0,2,0,0,0,0,2,0,0,0,0,1
+# the parameters and placement given are echoed so that they read back as typed (6 digits showed
+# --center 1000.0001 as 1000 and --R 3.0000001 as 3)
+expect 0 $'torus R = 3.0000001, r = 0.1\n' -- "$RG2" shape torus --R 3.0000001 --r 0.1
+expect 0 "placement: scale 1234567.25, axis (0.1, 0.2, 0.3), centre (1000.0001, -2.5e-07, 0)" -- "$RG2" shape sphere --scale 1234567.25 --axis 0.1,0.2,0.3 --center 1000.0001,-2.5e-7,0
 out=$("$RG2" shape torus --R 3 --r 1 --u-arcs 8 --v-arcs 6 2>&1)
 case "$out" in *placement*) bad "a placement line without placement options: $out" ;; *) ok ;; esac
 # the residual reported is tiny (exact shape)
