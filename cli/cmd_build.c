@@ -24,7 +24,8 @@ static void usage(FILE *f)
                "  --density N       triangle meshes: samples per patch edge (default 16)\n"
                "  --surface K       only output surface K (0-based) of the design, e.g. one of several\n"
                "                    variants listed in \"output\"\n"
-               "  -q, --quiet       no progress line, and no notes on options that no output uses\n"
+               "  -q, --quiet       no progress line and no notes: neither the design's (rg2 info lists\n"
+               "                    them) nor those on options that no output uses\n"
                "A progress line goes to stderr when it is a terminal.\n"
                "Exit codes: 0 ok, 1 invalid design or write error (message on stderr), 2 usage error.\n");
 }
