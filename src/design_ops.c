@@ -66,6 +66,15 @@ static void pole_keep(rg2__dmesh *out, int to, const double p[3])
 /* Whether the n doubles at x and y are the same bits. */
 static int same_bits(const double *x, const double *y, size_t n) { return !memcmp(x, y, n * sizeof *x); }
 
+/* Whether the scalars a and b of a direction are the same: count, closedness, and every w, b and g
+ * the same bits. */
+static int scalars_same(const rg2_scalars *a, const rg2_scalars *b)
+{
+    size_t n = (size_t)a->n;
+    return a->n == b->n && a->closed == b->closed && same_bits(a->w, b->w, (size_t)rg2_scalars_num_w(a)) &&
+           same_bits(a->b, b->b, n) && same_bits(a->g, b->g, n);
+}
+
 /*
  * Whether the patches next to end `hi` (0: index 0, 1: the last) of direction dir are built from
  * the same values, bit for bit, in meshes a and b (whose lengths along dir may differ). The
@@ -81,12 +90,8 @@ static int same_bits(const double *x, const double *y, size_t n) { return !memcm
 static int end_same(const rg2_mesh *a, const rg2_mesh *b, int dir, int hi)
 {
     const rg2_scalars *sa = dir_scalars(a, dir), *sb = dir_scalars(b, dir);
-    const rg2_scalars *oa = dir_scalars(a, 1 - dir), *ob = dir_scalars(b, 1 - dir);
-    if (sa->closed || sb->closed || sa->n < 4 || sb->n < 4 || oa->n != ob->n || oa->closed != ob->closed)
-        return 0;
-    size_t no = (size_t)oa->n;
-    if (!same_bits(oa->w, ob->w, (size_t)rg2_scalars_num_w(oa)) || !same_bits(oa->b, ob->b, no) ||
-        !same_bits(oa->g, ob->g, no))
+    const rg2_scalars *oa = dir_scalars(a, 1 - dir);
+    if (sa->closed || sb->closed || sa->n < 4 || sb->n < 4 || !scalars_same(oa, dir_scalars(b, 1 - dir)))
         return 0;
     int fa = hi ? sa->n - 4 : 0, fb = hi ? sb->n - 4 : 0; /* the end's first line (stored leg fa: leg fa - 1) */
     if (!same_bits(sa->w + fa, sb->w + fb, 5) || !same_bits(sa->b + fa, sb->b + fb, 4) ||
@@ -954,10 +959,28 @@ rg2_status rg2__op_merge(const rg2__dmesh *const *in, int n_in, int dir, int clo
         return st;
     }
     /* NURBS pole sides whose patches come through unchanged: in practice the first part's start and
-     * the last part's end along dir (open), when the seam's scalars leave their end segments alone;
-     * a side along dir runs through the seams' transition patches, which are new */
+     * the last part's end along dir (open), when the seam's scalars leave their end segments alone */
     for (int t = 0; t < n_in; t++)
         rg2__poles_keep_same(out, in[t]);
+    /* A side along dir (an end of `other`) runs through the seams' new transition patches, but it is
+     * the point p wherever every part has the pole p there: the construction is linear, so the side
+     * of the patch of dir segment k is sum_a c_a E_a over the patch's 4 lines a across dir (c_a the
+     * dir stencil's row, the seams' new legs and junctions in it), E_a the other direction's end
+     * stencil row over line a's 3 points nearest that end (curve.c: b0 of the end segment). With
+     * `other`'s scalars those of the part that line comes from, E_a is the end point of the line's
+     * curve in its part, (w_a p, w_a) but for the rounding of the part's mesh (its extrapolated end
+     * lines, nurbs.c), and every combination of those is (W p, W): the point p, whatever the
+     * merge direction's scalars. The construction spreads the side by the parts' rounding, as in the
+     * parts (tests/test_nurbs.c, pole_merge), which the output's fix-up removes. A part whose pole
+     * lies elsewhere, that has none or whose scalars across differ leaves the construction's side. */
+    for (int side = dir; side < 4; side += 2) { /* the sides along u (v = 0, v = 1) or along v */
+        int all = 1;
+        for (int t = 0; t < n_in && all; t++)
+            all = in[t]->poles >> side & 1u && same_bits(in[t]->pole[side], in[0]->pole[side], 3) &&
+                  scalars_same(dir_scalars(&in[t]->m, other), so);
+        if (all)
+            pole_keep(out, side, in[0]->pole[side]);
+    }
     return RG2_OK;
 }
 

@@ -733,31 +733,30 @@ static void errors(void)
 static const double pole_p[3] = {0.3, -0.7, 1.1};
 
 /* The pole NURBS at side `side` (0 v = 0, 1 u = 1, 2 v = 1, 3 u = 0): a fan about p, weights 1, r,
- * 1, r ... along the pole line and 1 .. 1.5 elsewhere; off: the line's point 1 moved one ulp in x. */
-static void pole_nurbs(int side, double r, int off, double *P, double *W)
+ * 1, r ... along the pole line and 1 .. 1.5 elsewhere. var 1: the line's point 1 moved one ulp in
+ * x; var 2: the same pole line with the weights r, 1, r, ..., the other lines turned by 0.7 rad about
+ * p and 1.1 times as far, their weights shifted. */
+static void pole_nurbs(int side, double r, int var, double *P, double *W)
 {
-    int along_v = side == 0 || side == 2;
+    int along_v = side == 0 || side == 2, other = var == 2;
     for (int i = 0; i < PNU; i++)
         for (int j = 0; j < PNV; j++) {
             int a = along_v ? j : i, k = along_v ? i : j, n = along_v ? PNV : PNU;
             int rho = side == 0 || side == 3 ? a : n - 1 - a; /* lines away from the pole */
-            double th = 0.4 + 1.1 * k, *q = P + 3 * (i * PNV + j);
-            q[0] = pole_p[0] + 0.8 * rho * cos(th);
-            q[1] = pole_p[1] + 0.8 * rho * sin(th);
+            double th = 0.4 + 1.1 * k + 0.7 * other, sc = other ? 0.88 : 0.8, *q = P + 3 * (i * PNV + j);
+            q[0] = pole_p[0] + sc * rho * cos(th);
+            q[1] = pole_p[1] + sc * rho * sin(th);
             q[2] = pole_p[2] + 0.3 * rho * rho + 0.1 * k * rho;
-            W[i * PNV + j] = rho ? 1.0 + 0.25 * ((i + 2 * j) % 3) : k % 2 ? r : 1.0;
-            if (!rho && off && k == 1)
+            W[i * PNV + j] = rho ? 1.0 + 0.25 * ((i + 2 * j + other) % 3) : (k + other) % 2 ? r : 1.0;
+            if (!rho && var == 1 && k == 1)
                 q[0] = nextafter(q[0], 2.0);
         }
 }
 
-/* The design of nb ("n") with the output `out` (after the meshes in `more`). */
-static rg2_design *pole_design(const rg2_nurbs *nb, const char *more, const char *out, rg2_error *err)
+/* The design entry "name": {"nurbs": ...} of nb written at t + n (room for cap bytes): the new n. */
+static size_t nurbs_entry(char *t, size_t n, size_t cap, const char *name, const rg2_nurbs *nb)
 {
-    size_t cap = 16384, n = 0;
-    char *t = malloc(cap);
-    n += (size_t)snprintf(t + n, cap - n,
-                          "{\"shapes\": {}, \"meshes\": {\"n\": {\"nurbs\": {\"nu\": %d, \"nv\": %d, \"points\": [",
+    n += (size_t)snprintf(t + n, cap - n, "\"%s\": {\"nurbs\": {\"nu\": %d, \"nv\": %d, \"points\": [", name,
                           nb->nu, nb->nv);
     for (int k = 0; k < nb->nu * nb->nv; k++)
         n += (size_t)snprintf(t + n, cap - n, "%s[%.17g, %.17g, %.17g]", k ? ", " : "", nb->points[3 * k],
@@ -770,7 +769,17 @@ static rg2_design *pole_design(const rg2_nurbs *nb, const char *more, const char
         for (int k = 0; k < (d ? nb->nv : nb->nu) + 4; k++)
             n += (size_t)snprintf(t + n, cap - n, "%s%.17g", k ? ", " : "", (d ? nb->knots_v : nb->knots_u)[k]);
     }
-    snprintf(t + n, cap - n, "]}}%s}, \"output\": [\"%s\"]}", more, out);
+    return n + (size_t)snprintf(t + n, cap - n, "]}}");
+}
+
+/* The design of nb ("n") with the output `out` (after the meshes in `more`). */
+static rg2_design *pole_design(const rg2_nurbs *nb, const char *more, const char *out, rg2_error *err)
+{
+    size_t cap = 32768, n = 0;
+    char *t = malloc(cap);
+    n += (size_t)snprintf(t + n, cap - n, "{\"shapes\": {}, \"meshes\": {");
+    n = nurbs_entry(t, n, cap, "n", nb);
+    snprintf(t + n, cap - n, "%s}, \"output\": [\"%s\"]}", more, out);
     rg2_design *d = NULL;
     if (rg2_design_parse(t, strlen(t), "pole", &d, err))
         d = NULL;
@@ -778,25 +787,37 @@ static rg2_design *pole_design(const rg2_nurbs *nb, const char *more, const char
     return d;
 }
 
-/* The largest distance of the points h / w on side `side` of s from ref (NULL: the first of them),
- * relative to size. */
-static double side_spread(const rg2_surface *s, int side, double size, const double *ref)
+/* Control point t (0..3) of the side `side` of s on the k-th patch along it. */
+static const double *side_h(const rg2_surface *s, int side, int k, int t)
 {
-    int along_v = side == 0 || side == 2, cnt = along_v ? s->nu : s->nv;
+    int along_v = side == 0 || side == 2;
+    int i = along_v ? k : side == 1 ? s->nu - 1 : 0, j = along_v ? (side == 2 ? s->nv - 1 : 0) : k;
+    const rg2_patch *P = rg2_surface_patch(s, i, j);
+    return along_v ? P->h[t][side == 2 ? 3 : 0] : P->h[side == 1 ? 3 : 0][t];
+}
+
+/* The largest distance of the points h / w on side `side` of s, on the patches k0 <= k < k1 along
+ * it, from ref (NULL: the first of them), relative to size. */
+static double side_spread_at(const rg2_surface *s, int side, int k0, int k1, double size, const double *ref)
+{
     double x0[3] = {0, 0, 0}, worst = 0.0;
-    for (int k = 0; k < cnt; k++) {
-        int i = along_v ? k : side == 1 ? s->nu - 1 : 0, j = along_v ? (side == 2 ? s->nv - 1 : 0) : k;
-        const rg2_patch *P = rg2_surface_patch(s, i, j);
+    for (int k = k0; k < k1; k++) {
         for (int t = 0; t < 4; t++) {
-            const double *h = along_v ? P->h[t][side == 2 ? 3 : 0] : P->h[side == 1 ? 3 : 0][t];
+            const double *h = side_h(s, side, k, t);
             double x[3] = {h[0] / h[3], h[1] / h[3], h[2] / h[3]};
-            if (!k && !t)
+            if (k == k0 && !t)
                 memcpy(x0, ref ? ref : x, sizeof x);
             worst = fmax(worst, sqrt((x[0] - x0[0]) * (x[0] - x0[0]) + (x[1] - x0[1]) * (x[1] - x0[1]) +
                                      (x[2] - x0[2]) * (x[2] - x0[2])));
         }
     }
     return worst / size;
+}
+
+/* side_spread_at over the whole side. */
+static double side_spread(const rg2_surface *s, int side, double size, const double *ref)
+{
+    return side_spread_at(s, side, 0, side == 0 || side == 2 ? s->nu : s->nv, size, ref);
 }
 
 /* Control points of a and b (equal counts) that differ, off the sides in the bit mask `sides` (bits
@@ -951,16 +972,8 @@ static int side_diffs(const rg2_surface *a, const rg2_surface *b, int side)
     if (cnt != (along_v ? b->nu : b->nv))
         return -1;
     for (int k = 0; k < cnt; k++)
-        for (int t = 0; t < 4; t++) {
-            const double *h[2];
-            for (int q = 0; q < 2; q++) {
-                const rg2_surface *s = q ? b : a;
-                int i = along_v ? k : side == 1 ? s->nu - 1 : 0, j = along_v ? (side == 2 ? s->nv - 1 : 0) : k;
-                const rg2_patch *P = rg2_surface_patch(s, i, j);
-                h[q] = along_v ? P->h[t][side == 2 ? 3 : 0] : P->h[side == 1 ? 3 : 0][t];
-            }
-            diff += !!memcmp(h[0], h[1], 4 * sizeof(double));
-        }
+        for (int t = 0; t < 4; t++)
+            diff += !!memcmp(side_h(a, side, k, t), side_h(b, side, k, t), 4 * sizeof(double));
     return diff;
 }
 
@@ -983,7 +996,8 @@ static int positive_on(const rg2_mesh *m, int dv, int line)
  * pole (2 roundings of the size), every other control value the construction's bit for bit, and the
  * construction's side before the fix-up the NURBS's own bit for bit, spread by more than a rounding.
  * For each dropped one (an edit of line 1, of junction 2, of a junction of the other direction; a
- * morph with the line 1 edit; a merge along the pole line; an edit of line, leg or junction 3 or of
+ * morph with the line 1 edit; a merge along the pole line with a translated copy, whose pole lies
+ * elsewhere (pole_merge: one with the same pole keeps it); an edit of line, leg or junction 3 or of
  * the data-only leg at the pole end) the output is the construction's, its side spread and, but
  * after the edits of line, leg or junction 3, not the NURBS's. With every pole dropped by these
  * operations, as before, 24 checks fail. */
@@ -1111,6 +1125,108 @@ static void pole_ops(void)
            unchanged);
 }
 
+/* A pole side along a merge: the merge direction runs along the pole line, so the side crosses the
+ * seams' new transition patches. Their side is p too in exact arithmetic (design_ops.c, merge), and
+ * the construction spreads it by the parts' rounding. At each of the four ends, weights 1 and 1000
+ * along the pole line, merged along it: the NURBS with itself, with a part whose other lines and
+ * weights along the pole line differ (var 2), three parts, three closed into a ring. The side is the
+ * pole to a tenth of a rounding of the size on every patch along it (its points h_w p / h_w are p to
+ * an ulp of its coordinates), every other control value the construction's bit for bit, and the
+ * construction's side spread by more than a rounding and less than 1000 (a rounding effect), the
+ * transitions' own by more than a rounding in some merge at each end. With a part whose pole lies
+ * elsewhere (translated by 0.001 in z), that has none (a point one ulp off), or whose scalars across
+ * differ (a knot 1e-13 off, which the merge takes as equal) the output is the construction's. With
+ * the sides along a merge dropped, as before, 16 checks fail; without the pole or the scalars
+ * comparison 8 and 4. */
+static void pole_merge(void)
+{
+    double U[PNU + 4] = {0, 0, 0, 0, 0.7, 1.9, 3, 3, 3, 3}, V[PNV + 4] = {0, 0, 0, 0, 1.2, 2, 2, 2, 2};
+    double P[3][3 * PNU * PNV], W[3][PNU * PNV], Uk[PNU + 4], Vk[PNV + 4];
+    memcpy(Uk, U, sizeof U), memcpy(Vk, V, sizeof V);
+    Uk[4] *= 1.0 + 1e-13, Vk[4] *= 1.0 + 1e-13; /* knots the merge takes as equal (to 1e-12) */
+    double worst = 0.0, before_lo = INFINITY, before_hi = 0.0, trans_lo = INFINITY, trans_hi = 0.0;
+    int kept = 0, dropped = 0;
+    for (int side = 0; side < 4; side++) {
+        int dv = side == 0 || side == 2; /* the pole line runs along u: merged along u */
+        char D = dv ? 'u' : 'v', *more = malloc(32768);
+        double side_trans = 0.0; /* the transitions' largest spread, in the kept merges */
+        size_t n = 0, cap = 32768;
+        double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        static const char *const names[3] = {"n", "b", "x"}; /* n again, var 2, var 1 */
+        for (int q = 0; q < 3; q++) {
+            rg2_nurbs nb = {PNU, PNV, P[q], W[q], U, V};
+            pole_nurbs(side, 1000.0, q == 0 ? 0 : q == 1 ? 2 : 1, P[q], W[q]);
+            if (q < 2)
+                for (int k = 0; k < 3 * PNU * PNV; k++)
+                    lo[k % 3] = fmin(lo[k % 3], P[q][k]), hi[k % 3] = fmax(hi[k % 3], P[q][k]);
+            if (q) {
+                n += (size_t)snprintf(more + n, cap - n, ", ");
+                n = nurbs_entry(more, n, cap, names[q], &nb);
+            }
+        }
+        rg2_nurbs nk = {PNU, PNV, P[0], W[0], dv ? U : Uk, dv ? Vk : V}; /* n, its knots across a hair off */
+        n += (size_t)snprintf(more + n, cap - n, ", ");
+        n = nurbs_entry(more, n, cap, "k", &nk);
+        double size = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                           (hi[2] - lo[2]) * (hi[2] - lo[2]));
+        static const char *const merges[7] = {"\"n\", \"n\"], ", "\"n\", \"b\"], ", "\"b\", \"n\", \"b\"], ",
+                                              "\"n\", \"b\", \"n\"], \"closed\": true, ",
+                                              "\"n\", \"T\"], ", "\"n\", \"x\"], ", "\"n\", \"k\"], "};
+        for (int v = 0; v < 7; v++) {
+            int keep = v < 4, parts = v == 2 || v == 3 ? 3 : 2;
+            char *text = malloc(cap + 200);
+            snprintf(text, cap + 200,
+                     "%s, \"T\": {\"transform\": \"n\", \"translate\": [0, 0, 0.001]}, "
+                     "\"o\": {\"merge\": [%s\"along\": \"%c\"}",
+                     more, merges[v], D);
+            rg2_error err;
+            rg2_design *d = pole_design(&(rg2_nurbs){PNU, PNV, P[0], W[0], U, V}, text, "o", &err);
+            free(text);
+            CHECK(d != NULL, "side %d, merge %d: %s", side, v, err.msg);
+            if (!d)
+                continue;
+            rg2_surface plain;
+            CHECK_OK(rg2_surface_build(rg2_design_mesh(d, 0), &plain, &err), &err);
+            const rg2_surface *s = rg2_design_surface(d, 0);
+            double moved, sp = side_spread(s, side, size, pole_p), before = side_spread(&plain, side, size, pole_p);
+            int others = pole_diffs(s, &plain, keep ? 1u << side : 0u, size, &moved);
+            /* the transitions' own sides: the 3 patches after each part's own (patch 0 of a closed
+             * ring is the last seam's: its segments start one line earlier) */
+            int per = (dv ? PNU : PNV) - 3, cnt = dv ? plain.nu : plain.nv, closed = v == 3;
+            double trans = 0.0;
+            for (int k = 0; k < cnt; k++)
+                if ((k + per + 3 - closed) % (per + 3) >= per)
+                    trans = fmax(trans, side_spread_at(&plain, side, k, k + 1, size, pole_p));
+            CHECK(others == 0, "side %d, merge %d: %d control values off the pole side not the construction's", side, v,
+                  others);
+            if (keep) {
+                CHECK(sp <= 0.1 * DBL_EPSILON && before > DBL_EPSILON && before < 1000 * DBL_EPSILON,
+                      "side %d, merge %d (%d parts): the side lies %.3g roundings of the size from the pole (the "
+                      "construction's %.3g)",
+                      side, v, parts, sp / DBL_EPSILON, before / DBL_EPSILON);
+                worst = fmax(worst, sp), before_lo = fmin(before_lo, before), before_hi = fmax(before_hi, before);
+                trans_lo = fmin(trans_lo, trans), trans_hi = fmax(trans_hi, trans);
+                side_trans = fmax(side_trans, trans);
+                kept++;
+            } else {
+                CHECK(before > DBL_EPSILON, "side %d, merge %d: the construction's side spreads %.3g roundings", side,
+                      v, before / DBL_EPSILON);
+                dropped++;
+            }
+            rg2_surface_free(&plain);
+            rg2_design_free(d);
+        }
+        free(more);
+        CHECK(side_trans > DBL_EPSILON, "side %d: the transitions' sides spread %.3g roundings at most", side,
+              side_trans / DBL_EPSILON);
+    }
+    printf("  pole sides along merges kept: %d, at most %.3g roundings of the size from the pole (the "
+           "construction's %.3g to %.3g, on the transition patches %.3g to %.3g); %d dropped (a part's pole "
+           "elsewhere, none, or its scalars across a knot 1e-13 off)\n",
+           kept, worst / DBL_EPSILON, before_lo / DBL_EPSILON, before_hi / DBL_EPSILON, trans_lo / DBL_EPSILON,
+           trans_hi / DBL_EPSILON, dropped);
+}
+
 int main(void)
 {
     random_nurbs();
@@ -1119,6 +1235,7 @@ int main(void)
     knots_near_double_range();
     pole_rows();
     pole_ops();
+    pole_merge();
     errors();
     return rg2t_done("test_nurbs");
 }
