@@ -58,7 +58,7 @@ typedef struct {
     unsigned poles;    /* the sides (bits as rg2__nurbs_pole_ends: 0 v = 0, 1 u = 1, 2 v = 1, 3 u = 0)
                           that are a NURBS's clamped end whose control line is one point, pole[k]:
                           the output build makes those patch sides that point. Kept by cut,
-                          transpose, reverse and transform, by an edit, merge, morph or cap
+                          transpose, reverse, roll and transform, by an edit, merge, morph or cap
                           whose output builds that side from the same values (rg2__poles_keep_same),
                           and by a merge along the side whose parts all have that pole (the same
                           point and scalars across) */

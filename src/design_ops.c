@@ -426,6 +426,11 @@ rg2_status rg2__op_roll(const rg2__dmesh *in, int dir, int by, rg2__dmesh *out, 
         b->w[j] = a->w[(j + k) % n];
         out->leg[dir][j] = in->leg[dir][(j + k) % n];
     }
+    /* NURBS pole sides (along dir, the ends of the other direction: a ring merged from parts with
+     * the pole): the same patches, relabelled, so the same side */
+    for (int side = 0; side < 4; side++)
+        if (in->poles >> side & 1u)
+            pole_keep(out, side, in->pole[side]);
     return RG2_OK;
 }
 

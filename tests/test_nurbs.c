@@ -1129,15 +1129,16 @@ static void pole_ops(void)
  * seams' new transition patches. Their side is p too in exact arithmetic (design_ops.c, merge), and
  * the construction spreads it by the parts' rounding. At each of the four ends, weights 1 and 1000
  * along the pole line, merged along it: the NURBS with itself, with a part whose other lines and
- * weights along the pole line differ (var 2), three parts, three closed into a ring. The side is the
+ * weights along the pole line differ (var 2), three parts, three closed into a ring, that ring rolled
+ * on by 2 lines (the same patches, relabelled: roll keeps the pole). The side is the
  * pole to a tenth of a rounding of the size on every patch along it (its points h_w p / h_w are p to
  * an ulp of its coordinates), every other control value the construction's bit for bit, and the
  * construction's side spread by more than a rounding and less than 1000 (a rounding effect), the
  * transitions' own by more than a rounding in some merge at each end. With a part whose pole lies
  * elsewhere (translated by 0.001 in z), that has none (a point one ulp off), or whose scalars across
  * differ (a knot 1e-13 off, which the merge takes as equal) the output is the construction's. With
- * the sides along a merge dropped, as before, 16 checks fail; without the pole or the scalars
- * comparison 8 and 4. */
+ * the sides along a merge dropped, as before, 20 checks fail; without the pole or the scalars
+ * comparison 8 and 4; with roll dropping the pole, as before, 4. */
 static void pole_merge(void)
 {
     double U[PNU + 4] = {0, 0, 0, 0, 0.7, 1.9, 3, 3, 3, 3}, V[PNV + 4] = {0, 0, 0, 0, 1.2, 2, 2, 2, 2};
@@ -1169,18 +1170,21 @@ static void pole_merge(void)
         n = nurbs_entry(more, n, cap, "k", &nk);
         double size = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                            (hi[2] - lo[2]) * (hi[2] - lo[2]));
-        static const char *const merges[7] = {"\"n\", \"n\"], ", "\"n\", \"b\"], ", "\"b\", \"n\", \"b\"], ",
+        static const char *const merges[8] = {"\"n\", \"n\"], ", "\"n\", \"b\"], ", "\"b\", \"n\", \"b\"], ",
                                               "\"n\", \"b\", \"n\"], \"closed\": true, ",
-                                              "\"n\", \"T\"], ", "\"n\", \"x\"], ", "\"n\", \"k\"], "};
-        for (int v = 0; v < 7; v++) {
-            int keep = v < 4, parts = v == 2 || v == 3 ? 3 : 2;
-            char *text = malloc(cap + 200);
-            snprintf(text, cap + 200,
+                                              "\"n\", \"T\"], ", "\"n\", \"x\"], ", "\"n\", \"k\"], ",
+                                              "\"n\", \"b\", \"n\"], \"closed\": true, "};
+        for (int v = 0; v < 8; v++) { /* (7: the ring rolled on by 2 lines) */
+            int keep = v < 4 || v == 7, parts = v == 2 || v == 3 || v == 7 ? 3 : 2;
+            char *text = malloc(cap + 300), roll[64] = "";
+            if (v == 7)
+                snprintf(roll, sizeof roll, ", \"r\": {\"roll\": \"o\", \"dir\": \"%c\", \"by\": 2}", D);
+            snprintf(text, cap + 300,
                      "%s, \"T\": {\"transform\": \"n\", \"translate\": [0, 0, 0.001]}, "
-                     "\"o\": {\"merge\": [%s\"along\": \"%c\"}",
-                     more, merges[v], D);
+                     "\"o\": {\"merge\": [%s\"along\": \"%c\"}%s",
+                     more, merges[v], D, roll);
             rg2_error err;
-            rg2_design *d = pole_design(&(rg2_nurbs){PNU, PNV, P[0], W[0], U, V}, text, "o", &err);
+            rg2_design *d = pole_design(&(rg2_nurbs){PNU, PNV, P[0], W[0], U, V}, text, v == 7 ? "r" : "o", &err);
             free(text);
             CHECK(d != NULL, "side %d, merge %d: %s", side, v, err.msg);
             if (!d)
@@ -1191,11 +1195,11 @@ static void pole_merge(void)
             double moved, sp = side_spread(s, side, size, pole_p), before = side_spread(&plain, side, size, pole_p);
             int others = pole_diffs(s, &plain, keep ? 1u << side : 0u, size, &moved);
             /* the transitions' own sides: the 3 patches after each part's own (patch 0 of a closed
-             * ring is the last seam's: its segments start one line earlier) */
-            int per = (dv ? PNU : PNV) - 3, cnt = dv ? plain.nu : plain.nv, closed = v == 3;
+             * ring is the last seam's: its segments start one line earlier; rolled, 2 lines later) */
+            int per = (dv ? PNU : PNV) - 3, cnt = dv ? plain.nu : plain.nv, shift = v == 3 ? -1 : v == 7 ? 1 : 0;
             double trans = 0.0;
             for (int k = 0; k < cnt; k++)
-                if ((k + per + 3 - closed) % (per + 3) >= per)
+                if ((k + per + 3 + shift) % (per + 3) >= per)
                     trans = fmax(trans, side_spread_at(&plain, side, k, k + 1, size, pole_p));
             CHECK(others == 0, "side %d, merge %d: %d control values off the pole side not the construction's", side, v,
                   others);
