@@ -638,6 +638,19 @@ static void lone_collapsed_sides(void)
     rg2_surface_free(&tube);
 }
 
+/* x -> A (x, 1) applied to the homogeneous control points (h, w): still rational bi-cubic, and
+ * sides collapsed before stay collapsed. */
+static void affine_map(rg2_surface *s, const double A[3][4])
+{
+    for (int p = 0; p < s->nu * s->nv; p++)
+        for (int a = 0; a < 4; a++)
+            for (int b = 0; b < 4; b++) {
+                double *h = s->patch[p].h[a][b], x[4] = {h[0], h[1], h[2], h[3]};
+                for (int k = 0; k < 3; k++)
+                    h[k] = A[k][0] * x[0] + A[k][1] * x[1] + A[k][2] * x[2] + A[k][3] * x[3];
+            }
+}
+
 /* The pole surface under an affine map (sheared, stretched and moved off the axis, applied to the
  * homogeneous control points: still rational bi-cubic, the pole still collapsed): its quads are
  * no longer symmetric trapezoids, so next to merged vertices (the general triangle path) the
@@ -649,13 +662,7 @@ static void sheared_pole(void)
     rg2_error err;
     rg2_tess t;
     CHECK_OK(fx_pole(6, 7, &s, &err), &err);
-    for (int p = 0; p < s.nu * s.nv; p++)
-        for (int a = 0; a < 4; a++)
-            for (int b = 0; b < 4; b++) {
-                double *h = s.patch[p].h[a][b], x[4] = {h[0], h[1], h[2], h[3]};
-                for (int k = 0; k < 3; k++)
-                    h[k] = A[k][0] * x[0] + A[k][1] * x[1] + A[k][2] * x[2] + A[k][3] * x[3];
-            }
+    affine_map(&s, A);
     int d = 6;
     CHECK_OK(rg2_tessellate(&s, d, 0, &t, &err), &err);
     int ring = s.nu * d, rows = s.nv * d + 1;
@@ -665,6 +672,35 @@ static void sheared_pole(void)
     CHECK(check_diagonals(&s, &t, d, rg2t_surface_scale(&s), "sheared pole") == 3,
           "sheared pole: no quad with a diagonal shorter than the other");
     rg2_tess_free(&t);
+    rg2_surface_free(&s);
+}
+
+/* The torus under the same kind of affine map: closed in u and v with quads that are no longer
+ * symmetric trapezoids (on the torus itself both diagonals of every quad are equally long), so
+ * the branch-free path's choice is measured for real where a row wraps to its grid column 0, and
+ * at density 48, where a row of 288 quads is compared in chunks of 256 (the second chunk's points
+ * start at quad 256). */
+static void sheared_torus(void)
+{
+    static const double A[3][4] = {{1.0, 0.6, 0.2, 3.0}, {0.1, 1.8, 0.5, -20.0}, {0.4, -0.3, 2.2, 6.0}};
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(fx_torus(13.0, 4.0, 8, 6, &s, &err), &err);
+    affine_map(&s, A);
+    static const int dens[2] = {5, 48};
+    for (int q = 0; q < 2; q++) {
+        int d = dens[q];
+        char what[64];
+        snprintf(what, sizeof what, "sheared torus, density %d", d);
+        rg2_tess t;
+        CHECK_OK(rg2_tessellate(&s, d, 0, &t, &err), &err);
+        CHECK(t.n_vertices == s.nu * d * s.nv * d && t.n_triangles == 2 * t.n_vertices, "%s: %d vertices, %d triangles",
+              what, t.n_vertices, t.n_triangles);
+        check_orientation(&t, what);
+        CHECK(check_diagonals(&s, &t, d, rg2t_surface_scale(&s), what) == 3,
+              "%s: no quad with a diagonal shorter than the other", what);
+        rg2_tess_free(&t);
+    }
     rg2_surface_free(&s);
 }
 
@@ -847,6 +883,7 @@ int main(void)
     random_mesh(4, 5, 0); /* 1 x 2 patches */
     random_mesh(5, 4, 0); /* 2 x 1 */
     sheared_pole();
+    sheared_torus();
     lone_collapsed_sides();
     cap_mesh();
     sphere_poles_kh();
