@@ -183,6 +183,38 @@ static void mesh_file(void)
     rg2_design_free(d);
 }
 
+/* rg2_retessellate keeps the mesh's allocation when it holds the new mesh (rg2.h): into the block of
+ * the same tessellation, which fits exactly, it asks for its temporaries only (a few KB), not a
+ * block of the mesh's size; a finer mesh needs a new block. A new block is the mesh's arrays
+ * (positions, normals, K, H, (u, v), patches, triangles), each on its own 64-byte cache line. */
+static void retessellate_block(void)
+{
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(rg2t_torus(13.0, 4.0, 8, 6, NULL, &s, &err), &err);
+    rg2_tess t = {0};
+    unsigned long long used[3];
+    size_t cap[3];
+    static const int dens[3] = {8, 8, 9};
+    for (int k = 0; k < 3; k++) {
+        unsigned long long before = rg2__fi_bytes;
+        CHECK_OK(rg2_retessellate(&s, dens[k], 1, &t, &err), &err);
+        used[k] = rg2__fi_bytes - before;
+        cap[k] = t.capacity;
+        size_t nv = (size_t)t.n_vertices, arrays = (2 * 3 + 2 + 2) * nv * sizeof(double) + nv * sizeof(int) +
+                                                   3 * (size_t)t.n_triangles * sizeof(int);
+        if (k != 1)
+            CHECK(cap[k] >= arrays && cap[k] < arrays + 7 * 64, "retessellate at density %d: a block of %zu bytes for "
+                  "arrays of %zu", dens[k], cap[k], arrays);
+    }
+    CHECK(used[0] >= cap[0] && cap[1] == cap[0] && used[1] < cap[0] / 16 && used[2] >= cap[2] && cap[2] > cap[0],
+          "retessellate: %llu bytes for a mesh of %zu, %llu again into it (%zu), %llu for a finer one of %zu", used[0],
+          cap[0], used[1], cap[1], used[2], cap[2]);
+    printf("  rg2_retessellate into the block of the same mesh (%zu bytes): %llu bytes allocated\n", cap[0], used[1]);
+    rg2_tess_free(&t);
+    rg2_surface_free(&s);
+}
+
 /* rg2 render's note on output surfaces drawn on top of each other (cli/overlap.c): the first
  * pair of boxes, in the order a = 1, 2, ..., b < a, that overlap by half the smaller extent along
  * every axis. It compared every pair: 64 000 outputs, 2 billion pairs, 19.5 s of a 22.5 s render.
@@ -343,6 +375,7 @@ int main(void)
     transform_chains();
     edit_lists();
     mesh_file();
+    retessellate_block();
     render_overlaps();
     parse_memory();
     return rg2t_done("test_scaling");
