@@ -739,6 +739,21 @@ static void errors(void)
     nb.nv = 5;
     nb.knots_v = NULL;
     expect_err(rg2_nurbs_mesh(&nb, &m, &err), RG2_EINVAL, &err, "missing", "no knots");
+    /* RG2_MAX_POINTS (4,000,000) control points per direction and in total: 2001 x 2001 (4,004,001,
+     * each direction far within it) is refused before a point is read */
+    enum { BIG = 2001 };
+    double *Pb = calloc((size_t)BIG * BIG * 3, sizeof(double)), *Kb = malloc((BIG + 4) * sizeof(double));
+    CHECK(Pb && Kb, "out of memory");
+    if (Pb && Kb) {
+        for (int k = 0; k < BIG + 4; k++)
+            Kb[k] = k;
+        rg2_nurbs big = {BIG, BIG, Pb, NULL, Kb, Kb};
+        expect_err(rg2_nurbs_mesh(&big, &m, &err), RG2_ELIMIT, &err,
+                   "nurbs: 2001 x 2001 control points exceeds the limit 4000000", "4004001 control points");
+        CHECK(!m.p, "a mesh left after the error");
+    }
+    free(Pb);
+    free(Kb);
 }
 
 /* A clamped NURBS whose end line is one point p (a pole), its weights alternating 1 and r along
