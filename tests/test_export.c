@@ -529,7 +529,8 @@ static int is_sorted_complex(const char *ent)
 }
 
 /* Records of an IGES file: the number of malformed ones (length, section letter, order,
- * sequence numbers, terminate section; -1 if unreadable) and the entity count per type
+ * sequence numbers (1, 2, ... in each section, right-justified in columns 74-80 with blanks before
+ * them), terminate section; -1 if unreadable) and the entity count per type
  * (types[0..999]) from the directory entries. */
 static int iges_scan(const char *path, int types[1000])
 {
@@ -556,7 +557,9 @@ static int iges_scan(const char *path, int types[1000])
             badline++;
         order = sec;
         count[sec]++;
-        if (atoi(line + 73) != count[sec])
+        char seq[16]; /* the sequence number right-justified in blanks, as in every section */
+        snprintf(seq, sizeof seq, "%7d", count[sec]);
+        if (memcmp(line + 73, seq, 7))
             badline++;
         if (sec == 2 && count[2] % 2 == 1) {
             int type = atoi(line);
@@ -719,6 +722,13 @@ static int iges_nums_read(const char *text, size_t len, iges_nums *P)
     return 0;
 }
 
+/* The DE pointer of the entity whose first directory record is l, if it is of the type (else 0). */
+static int iges_dir_of(const char *l, const iges_nums *P, int type)
+{
+    int de = iges_int(l + 73, 7);
+    return l[72] == 'D' && de % 2 == 1 && de < P->nde && iges_int(l, 8) == type ? de : 0;
+}
+
 /* p and q (3 coordinates each) the same point but for rounding */
 static int near3(const double *p, const double *q)
 {
@@ -745,7 +755,8 @@ static const double *corner_128(const double *s, int n, double u, double v)
 
 /* Every loop (508) of an IGES B-rep file closes: with its orientation flags, each edge use
  * ends at the vertex where the next one starts (edges and vertices from the 504 list). And
- * (*astray counts the faults) the shell (514) lists every face (510) once, is of form 1 (closed)
+ * (*astray counts the faults) every face (510) holds one loop, flagged as its outer one; the
+ * shell (514) lists every face once, is of form 1 (closed)
  * exactly when every edge is used twice by the loops (else form 2, open), and every edge runs
  * between its vertices where it is drawn: its model curve (126) from its start vertex's point
  * (502) to its end vertex's (first and last pole), and in each loop its pcurve (110), mapped by
@@ -785,6 +796,9 @@ static int iges_loops_close(const char *path, int *broken, int *astray)
             n502++, vl = v;
         if (type == 510 && P.n[de] == 5 && v[4] > 0 && v[4] < P.nde)
             surf_of[(int)v[4]] = (int)v[1];
+        /* 510: surface, N loops, outer-loop flag, the N loops: one loop, the outer one */
+        if (type == 510)
+            *astray += P.n[de] < 4 || P.n[de] != 4 + (int)v[2] || v[2] != 1 || v[3] != 1;
     }
     int ne = el ? (int)el[1] : 0, nv = vl ? (int)vl[1] : 0;
     if (n504 != 1 || n502 != 1 || ne < 1 || nv < 1 || !(euse = calloc((size_t)ne + 1, sizeof(int)))) {
@@ -808,9 +822,8 @@ static int iges_loops_close(const char *path, int *broken, int *astray)
             (*astray)++;
     }
     for (size_t o = 0; o + 81 <= len; o += 81) {
-        const char *l = text + o;
-        int de = iges_int(l + 73, 7);
-        if (l[72] != 'D' || de % 2 == 0 || de >= P.nde || iges_int(l, 8) != 508)
+        int de = iges_dir_of(text + o, &P, 508);
+        if (!de)
             continue;
         const double *lp = P.v + P.at[de];
         int n = P.n[de], k = n > 1 ? (int)lp[1] : 0, sf = surf_of[de];
@@ -861,6 +874,15 @@ done:
     return loops;
 }
 
+/* The factor of an IGES entity's weights whose smallest is lo and largest hi (docs/export.md,
+ * "IGES"): 1, or, when lo is below 1e-6, the power of two that puts hi in [0.5, 1). */
+static double weights_factor(double lo, double hi)
+{
+    int e;
+    frexp(hi, &e);
+    return lo < 1e-6 ? ldexp(1.0, -e) : 1.0;
+}
+
 /* Mismatches between the numbers v[0..n-1] of an entity 128 and the NU x NV net h (a along u)
  * of degrees (du, dv): its type, upper indices, degrees and count, its knots (piecewise Bezier,
  * knots_differ), then its weights and points (u fastest), and its parameter range (the knots'). */
@@ -875,16 +897,12 @@ static int cmp_128(const double *v, int n, const double (*h)[4], int NU, int NV,
     bad += v[n - 4] != 0 || v[n - 3] != (NU - 1) / du || v[n - 2] != 0 || v[n - 1] != (NV - 1) / dv;
     /* the weights as they are; or, when the smallest is below 1e-6 (which OpenCASCADE's IGES
      * reader takes for 0), times the power of two that puts the largest in [0.5, 1) */
-    double lo = INFINITY, hi = 0, f = 1;
+    double lo = INFINITY, hi = 0;
     for (int k = 0; k < nn; k++) {
         lo = fmin(lo, h[k][3]);
         hi = fmax(hi, h[k][3]);
     }
-    if (lo < 1e-6) {
-        int e;
-        frexp(hi, &e);
-        f = ldexp(1.0, -e);
-    }
+    double f = weights_factor(lo, hi);
     for (int b = 0; b < NV; b++)
         for (int a = 0; a < NU; a++) {
             const double *p = h[a * NV + b];
@@ -1044,6 +1062,105 @@ static void iges_small_weights(void)
                per_mesh ? "per mesh" : "per patch", wmin, g_min_w128, mismatch);
     }
     remove(path_in("smallw.igs"));
+    rg2_surface_free(&s);
+}
+
+/* The model curves (126) of an IGES B-rep file against s, read back: each must be the row of
+ * control points along a side of one of s's patches, in either direction, with its knots
+ * piecewise Bezier (knots_differ), its poles the row's points h / w and its weights the row's,
+ * or, when the row's smallest weight is below 1e-6, the row's times the power of two that puts
+ * its largest in [0.5, 1) (docs/export.md, "IGES"). Returns the curves that are none (-1 if the
+ * file does not read) and counts them (*curves). */
+static int iges_126_rows(const char *path, const rg2_surface *s, int *curves)
+{
+    size_t len;
+    char *text = (char *)slurp(path, &len);
+    iges_nums P = {0};
+    int bad = 0;
+    *curves = 0;
+    if (!text || iges_nums_read(text, len, &P)) {
+        bad = -1;
+        goto done;
+    }
+    for (size_t o = 0; o + 81 <= len; o += 81) {
+        int de = iges_dir_of(text + o, &P, 126);
+        if (!de)
+            continue;
+        /* 126, K, M, 4 flags, K + M + 2 knots, K + 1 weights, the K + 1 poles, V0, V1 */
+        const double *cv = P.v + P.at[de];
+        int np = P.n[de] > 3 ? (int)cv[1] + 1 : 0, deg = np ? (int)cv[2] : 0, w0 = 7 + np + deg + 1;
+        (*curves)++;
+        if (np < 2 || np > RG2_MAX_DEGREE + 1 || P.n[de] != w0 + 4 * np + 2 || cv[0] != 126 ||
+            knots_differ(cv + 7, np, deg)) {
+            bad++;
+            continue;
+        }
+        int found = 0;
+        for (int p = 0; p < s->nu * s->nv && !found; p++) {
+            rg2_xpatch X;
+            rg2_surface_patch_get(s, p / s->nv, p % s->nv, &X);
+            for (int side = 0; side < 4 && !found; side++) { /* v = 0, u = 1, v = 1, u = 0 */
+                int n = (side & 1 ? X.dv : X.du) + 1;
+                const double *row[RG2_MAX_DEGREE + 1];
+                double lo = INFINITY, hi = 0;
+                for (int a = 0; a < n; a++) {
+                    row[a] = side == 0 ? X.h[a][0] : side == 1 ? X.h[X.du][a] : side == 2 ? X.h[a][X.dv] : X.h[0][a];
+                    lo = fmin(lo, row[a][3]);
+                    hi = fmax(hi, row[a][3]);
+                }
+                double f = weights_factor(lo, hi);
+                for (int dir = 0; dir < 2 && n == np && !found; dir++) {
+                    int same = 1;
+                    for (int a = 0; a < n; a++) {
+                        const double *h = row[dir ? n - 1 - a : a];
+                        same &= cv[w0 + a] == h[3] * f;
+                        for (int c = 0; c < 3; c++)
+                            same &= cv[w0 + np + 3 * a + c] == h[c] / h[3];
+                    }
+                    found = same;
+                }
+            }
+        }
+        bad += !found;
+    }
+done:
+    free(text);
+    iges_nums_free(&P);
+    return bad;
+}
+
+/* The same rule where one control point alone has a small weight: the torus with the 4-tuple of
+ * patch (0, 0)'s control point [0][1] on its u = 0 side, and of the same point [3][1] of patch
+ * (nu - 1, 0) across that seam, times 2^-24 (the same point, a weight of about 5e-8 among
+ * weights of about 1). The surfaces (128) that hold it, the patch's (plain, face per patch) and
+ * the merged net's (face per mesh), and the model curve (126) of the seam (B-rep), written with
+ * every weight times the factor, and every other entity with its own weights. */
+static void iges_one_small_weight(void)
+{
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(fx_torus(13.0, 4.0, 6, 4, &s, &err), &err);
+    int q = (s.nu - 1) * s.nv;
+    for (int c = 0; c < 4; c++) {
+        s.patch[0].h[0][1][c] = ldexp(s.patch[0].h[0][1][c], -24);
+        s.patch[q].h[3][1][c] = ldexp(s.patch[q].h[3][1][c], -24);
+    }
+    static const char *const form[3] = {"plain, face per patch", "plain, face per mesh", "B-rep, face per patch"};
+    for (int k = 0; k < 3; k++) {
+        rg2_export_opts o;
+        rg2_export_opts_default(&o);
+        o.layout = k == 1 ? RG2_STEP_FACE_PER_MESH : RG2_STEP_FACE_PER_PATCH;
+        o.iges_brep = k == 2;
+        CHECK_OK(rg2_export_file(&s, 1, path_in("onew.igs"), &o, &err), &err);
+        int n = 0, mismatch = 0, curves = 0, want = k == 2 ? 2 * s.nu * s.nv : 0;
+        int bad = k < 2 ? iges_sections_agree(path_in("onew.igs"), &n, &s, k + 1, &mismatch)
+                        : iges_126_rows(path_in("onew.igs"), &s, &curves);
+        CHECK(bad == 0 && mismatch == 0 && curves == want,
+              "IGES %s of a torus with one weight of %.3g: %d disagreements, %d numbers of its surfaces and %d of "
+              "%d model curves not as rg2's (weights times a power of two where one is below 1e-6)",
+              form[k], s.patch[0].h[0][1][3], k < 2 ? bad : 0, mismatch, k < 2 ? 0 : bad, curves);
+    }
+    remove(path_in("onew.igs"));
     rg2_surface_free(&s);
 }
 
@@ -1218,6 +1335,10 @@ typedef struct {
     int bad_pcurves;  /* edges with other pcurves than one on each face using them */
     int open_loops;   /* loops whose oriented edges do not follow each other */
     int twice;        /* edges used by exactly two oriented edges */
+    int seams;        /* SEAM_CURVEs (both pcurves on one surface) */
+    int bad_seams;    /* a SEAM_CURVE whose pcurves lie on two surfaces or one, or a SURFACE_CURVE whose
+                         two lie on one (ISO 10303-42: a seam curve is one whose two associated
+                         geometries are on the same surface) */
 } step_brep_read;
 
 /* |p - q| (Euclidean), p a STEP point, q homogeneous. */
@@ -1315,6 +1436,9 @@ static int step_brep(const char *path, const rg2_surface *s, step_brep_read *r)
         else if (!badp && nuse == 1)
             badp = surf[0] != esurf[2 * id];
         r->bad_pcurves += badp;
+        int seam = step_ent(&f, v[2], "SEAM_CURVE(") != NULL;
+        r->seams += seam;
+        r->bad_seams += seam != (npc == 2 && surf[0] > 0 && surf[0] == surf[1]);
     }
     free(uses);
     free(esurf);
@@ -1345,6 +1469,14 @@ static void brep_case(const rg2_surface *s, int per_mesh, int want_closed, const
     CHECK(r.closed_shells == want_closed && r.open_shells == !want_closed && (r.twice == r.edges) == want_closed,
           "STEP %s %s: %d closed and %d open shells, %d of %d edges bound two faces (closed: %d)", what,
           per_mesh ? "per mesh" : "per patch", r.closed_shells, r.open_shells, r.twice, r.edges, want_closed);
+    /* a SEAM_CURVE where both pcurves lie on one surface (per mesh: a closed direction's seam;
+     * per patch no edge, every surface here having two patches or more a direction), else a
+     * SURFACE_CURVE */
+    int want_seams = per_mesh ? s->closed_u + s->closed_v : 0;
+    CHECK(r.seams == want_seams && r.bad_seams == 0,
+          "STEP %s %s: %d SEAM_CURVEs (want %d), %d edges whose curve is not a SEAM_CURVE exactly when both its "
+          "pcurves lie on one surface",
+          what, per_mesh ? "per mesh" : "per patch", r.seams, want_seams, r.bad_seams);
     o.iges_brep = 1;
     CHECK_OK(rg2_export_file(s, 1, path_in("brep.igs"), &o, &err), &err);
     int broken, astray, loops = iges_loops_close(path_in("brep.igs"), &broken, &astray);
@@ -1352,6 +1484,46 @@ static void brep_case(const rg2_surface *s, int per_mesh, int want_closed, const
           "IGES B-rep %s %s: %d loops (want %d), %d not closing, %d faults of the shell's faces, edge curves or "
           "pcurves",
           what, per_mesh ? "per mesh" : "per patch", loops, want_faces, broken, astray);
+}
+
+/* Patches of degree below 3, which rg2_xpatch allows (1 <= du, dv): a surface of 3 x 2 patches
+ * of degree (2, 1), cut from one C0 net of random points and weights (neighbours share their
+ * boundary rows), read back as B-reps in STEP and IGES, face per patch (brep_case): the knots of
+ * every surface and edge curve fit its poles and degrees (one Bezier span: multiplicities du + 1
+ * and dv + 1, summing to the poles plus the degree plus 1). */
+static void low_degrees(void)
+{
+    rg2_surface s;
+    rg2_error err;
+    CHECK_OK(fx_random(11, 6, 5, &s, &err), &err); /* 3 x 2 patches, open */
+    enum { DU = 2, DV = 1 };
+    double net[DU * 3 + 1][DV * 2 + 1][4];
+    rg2t_rng r;
+    rg2t_seed(&r, 11);
+    for (int a = 0; a <= DU * 3; a++)
+        for (int b = 0; b <= DV * 2; b++) {
+            double W = rg2t_uniform(&r, 0.6, 1.5);
+            net[a][b][0] = W * (5.0 * a + rg2t_uniform(&r, -1, 1));
+            net[a][b][1] = W * (10.0 * b + rg2t_uniform(&r, -1, 1));
+            net[a][b][2] = W * rg2t_uniform(&r, -3, 3);
+            net[a][b][3] = W;
+        }
+    CHECK(s.nu == 3 && s.nv == 2 && !s.xp && (s.xp = calloc(6, sizeof(rg2_xpatch))), "low degrees: 3 x 2 patches");
+    for (int k = 0; s.xp && k < 6; k++) {
+        int i = k / s.nv, j = k % s.nv;
+        s.xp[k].du = DU;
+        s.xp[k].dv = DV;
+        for (int a = 0; a <= DU; a++)
+            for (int b = 0; b <= DV; b++)
+                memcpy(s.xp[k].h[a][b], net[DU * i + a][DV * j + b], sizeof(double[4]));
+        for (int a = 0; a < 4; a++)
+            for (int b = 0; b < 4; b++)
+                for (int c = 0; c < 4; c++)
+                    s.patch[k].h[a][b][c] = NAN;
+    }
+    if (s.xp)
+        brep_case(&s, 0, 0, "degrees (2, 1)");
+    rg2_surface_free(&s);
 }
 
 /* The STEP and IGES B-reps read back for a closed torus, an open random surface with patches of degrees (5, 3)
@@ -1368,6 +1540,7 @@ static void breps_read_back(const rg2_surface *torus)
         brep_case(&open, per_mesh, 0, "open (5, 3)");
         brep_case(&pole, per_mesh, 0, "pole");
     }
+    low_degrees();
     rg2_surface_free(&open);
     rg2_surface_free(&pole);
 }
@@ -3018,6 +3191,19 @@ static void names_and_defaults(const rg2_surface *s)
     b = (char *)slurp(path_in("ctl.step"), &len);
     CHECK(b && strstr(b, "=PRODUCT('two_lines_and_','two_lines_and_',"), "STEP: control characters as '_'");
     free(b);
+    /* IGES's Hollerith strings likewise: the global section's product ids (fields 3 and 12), and
+     * its file name (field 4), which comes from the path as it is: a DEL in it written as '_' */
+    CHECK_OK(rg2_export_file(s, 1, path_in("ctl\x7f.igs"), &o, &err), &err);
+    b = (char *)slurp(path_in("ctl\x7f.igs"), &len);
+    int ids = 0, fname = 0; /* each a whole token: after a delimiter, or first on its record */
+    for (char *p = b; p && (p = strstr(p, "14Htwo_lines_and_,")); p++)
+        ids += p > b && (p[-1] == ',' || p[-1] == '\n');
+    for (char *p = b; p && (p = strstr(p, "8Hctl_.igs,")); p++)
+        fname += p > b && (p[-1] == ',' || p[-1] == '\n');
+    CHECK(ids == 2 && fname == 1,
+          "IGES: %d product ids 14Htwo_lines_and_ (want 2: newline, tab and DEL as '_'), %d file names 8Hctl_.igs (want 1)",
+          ids, fname);
+    free(b);
 
     /* a name that is not UTF-8 (Latin-1 e-acute, then the same letter in UTF-8): glTF and JSON
      * are UTF-8 text, so the stray byte is written as '?' */
@@ -3218,6 +3404,7 @@ int main(void)
     step_big_in_order();
     iges_big();
     iges_small_weights();
+    iges_one_small_weight();
     utf8_table();
     names_and_defaults(&s);
     transposed_pole();
