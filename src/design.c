@@ -435,9 +435,10 @@ rg2_status rg2__design_build(rg2_design *d, rg2_error *err)
             rg2__surface_normalize_weights(s); /* (rg2_surface_build does it for the uncapped) */
             if ((st = weight_note(d, dm, s, err)))
                 return st;
-            /* (no NURBS pole side to set: a cap's body is closed in u with the legs of a circle, 1/3 < w
-             * < 1 (cap.c, ucircle_make), so a pole side could only be a v end, along u, where every
-             * mesh that keeps a pole has the NURBS's polynomial-mode legs w = 1: rg2_cap_build refuses it) */
+            /* (no NURBS pole side set: a cap's body is closed in u with the legs and junctions of a
+             * circle, 1/3 < w < 1 (cap.c, ucircle_make), so a pole side could only be a v end, along u,
+             * whose legs are the NURBS's polynomial-mode w = 1, which rg2_cap_build refuses, unless an
+             * edit along the pole line made them a circle's: that side stays as the construction makes it) */
             continue; /* tagged by the caps module */
         }
         if ((st = rg2_surface_build(&dm->m, s, err))) {

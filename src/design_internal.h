@@ -59,9 +59,9 @@ typedef struct {
                           that are a NURBS's clamped end whose control line is one point, pole[k]:
                           the output build makes those patch sides that point. Kept by cut,
                           transpose, reverse, roll and transform, by an edit, merge, morph or cap
-                          whose output builds that side from the same values (rg2__poles_keep_same),
-                          and by a merge along the side whose parts all have that pole (the same
-                          point and scalars across) */
+                          whose output builds that side from the same values across it, the scalars
+                          along it free (rg2__poles_keep_same), and by a merge along the side whose
+                          parts all have that pole (the same point and scalars across) */
     double pole[4][3];
 } rg2__dmesh;
 

@@ -76,22 +76,30 @@ static int scalars_same(const rg2_scalars *a, const rg2_scalars *b)
 }
 
 /*
- * Whether the patches next to end `hi` (0: index 0, 1: the last) of direction dir are built from
- * the same values, bit for bit, in meshes a and b (whose lengths along dir may differ). The
- * construction (surface.c: rows_at, columns_at, normalize_weights per patch; curve.c's stencil)
- * makes the first segment of an open direction from points 0..3, legs -1..3 and junctions 0..3
- * (b, g; K_j reads w_{j-1}, w_j) and the last from the same counted from the far end, and the
+ * Whether a pole side at end `hi` (0: index 0, 1: the last) of direction dir of mesh b (whose
+ * patches' side there is one point) is that point in mesh a too (whose length along dir may
+ * differ). The construction (surface.c: rows_at, columns_at, normalize_weights per patch; curve.c's
+ * stencil) makes the first segment of an open direction from points 0..3, legs -1..3 and junctions
+ * 0..3 (b, g; K_j reads w_{j-1}, w_j) and the last from the same counted from the far end, and the
  * patches along that end from all the points of those 4 lines and all the scalars of the other
- * direction (their side itself from lines 0..2, legs -1..2 and junctions 0..2; line, leg and
- * junction 3 reach it through the patch's power-of-two weight normalization). Equal inputs give
- * equal patches bit for bit, so a pole side that is one point in a (its construction) is the same
- * side in b.
+ * direction, the one along the pole line (their side itself from lines 0..2, legs -1..2 and
+ * junctions 0..2; line, leg and junction 3 reach it through the patch's power-of-two weight
+ * normalization, a factor the same on all of the patch's 4-tuples). Equal values there, bit for
+ * bit, give the same end points E_a of the curves along dir, one per index a along the pole line
+ * (curve.c: b0 of the end segment): (w_a p, w_a) but for the rounding of b's mesh (a NURBS's
+ * extrapolated end lines, nurbs.c), w_a of either sign where the other direction's end lines are
+ * extrapolated. The side of a patch is sum_a c_a E_a, c_a a stencil row of the scalars along the
+ * pole line (in [0, 1] for every w, b > 0 and K > 0 that rg2_scalars_check accepts), times the
+ * power of two: (W p, W), the point p in exact arithmetic wherever W != 0, whatever those scalars
+ * are (other scalars than b's can make W <= 0 next to extrapolated end lines: a patch weight <= 0,
+ * which the output notes). So those scalars need only the same count and closedness (the same
+ * lines to compare); where they are b's too, the patches are b's bit for bit.
  */
 static int end_same(const rg2_mesh *a, const rg2_mesh *b, int dir, int hi)
 {
     const rg2_scalars *sa = dir_scalars(a, dir), *sb = dir_scalars(b, dir);
-    const rg2_scalars *oa = dir_scalars(a, 1 - dir);
-    if (sa->closed || sb->closed || sa->n < 4 || sb->n < 4 || !scalars_same(oa, dir_scalars(b, 1 - dir)))
+    const rg2_scalars *oa = dir_scalars(a, 1 - dir), *ob = dir_scalars(b, 1 - dir);
+    if (sa->closed || sb->closed || sa->n < 4 || sb->n < 4 || oa->n != ob->n || oa->closed != ob->closed)
         return 0;
     int fa = hi ? sa->n - 4 : 0, fb = hi ? sb->n - 4 : 0; /* the end's first line (stored leg fa: leg fa - 1) */
     if (!same_bits(sa->w + fa, sb->w + fb, 5) || !same_bits(sa->b + fa, sb->b + fb, 4) ||

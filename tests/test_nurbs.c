@@ -1026,20 +1026,20 @@ static int positive_on(const rg2_mesh *m, int dv, int line)
 }
 
 /* A pole side through the operations that may leave it alone: an edit, a morph, a merge and a cap
- * keep it exactly when the patches along that side read the same values, bit for bit, as the
- * NURBS's own (the 4 lines, legs -1..3 and junctions 0..3 nearest that end and all the other
- * direction's scalars), and leave the construction's side otherwise. At each of the four ends, with
- * weights 1 and 1000 along the pole line, for each kept side (an edit of a point, a junction and a
- * leg at the far end and a second edit of it; a morph with that edit at t = 0.5; a merge with the
- * reversed, translated NURBS, both ends; a cap used uncapped; a morph at t = 1): the side is the
+ * keep it exactly when the patches along that side read the NURBS's own values across it, bit for
+ * bit (the 4 lines, legs -1..3 and junctions 0..3 nearest that end; the scalars along the pole line
+ * may differ: pole_along), and leave the construction's side otherwise. At each of the four ends,
+ * with weights 1 and 1000 along the pole line, for each kept side (an edit of a point, a junction
+ * and a leg at the far end and a second edit of it; a morph with that edit at t = 0.5; a merge with
+ * the reversed, translated NURBS, both ends; a cap used uncapped; a morph at t = 1): the side is the
  * pole (2 roundings of the size), every other control value the construction's bit for bit, and the
  * construction's side before the fix-up the NURBS's own bit for bit, spread by more than a rounding.
- * For each dropped one (an edit of line 1, of junction 2, of a junction of the other direction; a
- * morph with the line 1 edit; a merge along the pole line with a translated copy, whose pole lies
- * elsewhere (pole_merge: one with the same pole keeps it); an edit of line, leg or junction 3 or of
- * the data-only leg at the pole end) the output is the construction's, its side spread and, but
- * after the edits of line, leg or junction 3, not the NURBS's. With every pole dropped by these
- * operations, as before, 24 checks fail. */
+ * For each dropped one (an edit of line 1, of junction 2, of leg 1; a morph with the line 1 edit; a
+ * merge along the pole line with a translated copy, whose pole lies elsewhere (pole_merge: one with
+ * the same pole keeps it); an edit of line, leg or junction 3 or of the data-only leg at the pole
+ * end) the output is the construction's, its side spread and, but after the edits of line, leg or
+ * junction 3, not the NURBS's. With every pole dropped by these operations, as before, 24 checks
+ * fail. */
 static void pole_ops(void)
 {
     double U[PNU + 4] = {0, 0, 0, 0, 0.7, 1.9, 3, 3, 3, 3}, V[PNV + 4] = {0, 0, 0, 0, 1.2, 2, 2, 2, 2};
@@ -1093,8 +1093,8 @@ static void pole_ops(void)
         snprintf(more[5], sizeof more[5], ", %s, \"o\": {\"cut\": \"e\", \"%c\": %s}", near_edit, D, range);
         snprintf(more[6], sizeof more[6],
                  ", \"o\": {\"edit\": \"n\", \"scalars\": [{\"dir\": \"%c\", \"junction\": %d, \"g\": 0.1}]}", D, LINE(2));
-        snprintf(more[7], sizeof more[7], ", \"o\": {\"edit\": \"n\", \"scalars\": [{\"dir\": \"%c\", \"junction\": 2, \"g\": 0.1}]}",
-                 O);
+        snprintf(more[7], sizeof more[7], ", \"o\": {\"edit\": \"n\", \"scalars\": [{\"dir\": \"%c\", \"leg\": %d, \"w\": 1.2}]}",
+                 D, hie ? nd - 3 : 1); /* (the scalars along the pole line: pole_along) */
         snprintf(more[8], sizeof more[8], ", %s, \"o\": {\"morph\": [\"n\", \"e\"], \"t\": 0.5}", near_edit);
         snprintf(more[9], sizeof more[9],
                  ", \"T\": {\"transform\": \"n\", \"translate\": [0, 0, 10]}, \"o\": {\"merge\": [\"n\", \"T\"], \"along\": \"%c\"}",
@@ -1162,6 +1162,21 @@ static void pole_ops(void)
            "%d of them after an edit of line, leg or junction 3 that left the construction's side as it was\n",
            kept, worst_spread[0] / DBL_EPSILON, worst_spread[1] / DBL_EPSILON, least_before / DBL_EPSILON, dropped,
            unchanged);
+}
+
+/* Tally a kept pole side: the largest distance sp from the pole, the construction's range. */
+static void pole_kept(double sp, double before, double *worst, double *before_lo, double *before_hi, int *kept)
+{
+    *worst = fmax(*worst, sp), *before_lo = fmin(*before_lo, before), *before_hi = fmax(*before_hi, before);
+    ++*kept;
+}
+
+/* A dropped pole side (variant v of `what`): the construction's, spread by more than a rounding. */
+static void pole_dropped(int side, const char *what, int v, double before, int *dropped)
+{
+    CHECK(before > DBL_EPSILON, "side %d, %s %d: the construction's side spreads %.3g roundings", side, what, v,
+          before / DBL_EPSILON);
+    ++*dropped;
 }
 
 /* A pole side along a merge: the merge direction runs along the pole line, so the side crosses the
@@ -1247,15 +1262,11 @@ static void pole_merge(void)
                       "side %d, merge %d (%d parts): the side lies %.3g roundings of the size from the pole (the "
                       "construction's %.3g)",
                       side, v, parts, sp / DBL_EPSILON, before / DBL_EPSILON);
-                worst = fmax(worst, sp), before_lo = fmin(before_lo, before), before_hi = fmax(before_hi, before);
+                pole_kept(sp, before, &worst, &before_lo, &before_hi, &kept);
                 trans_lo = fmin(trans_lo, trans), trans_hi = fmax(trans_hi, trans);
                 side_trans = fmax(side_trans, trans);
-                kept++;
-            } else {
-                CHECK(before > DBL_EPSILON, "side %d, merge %d: the construction's side spreads %.3g roundings", side,
-                      v, before / DBL_EPSILON);
-                dropped++;
-            }
+            } else
+                pole_dropped(side, "merge", v, before, &dropped);
             rg2_surface_free(&plain);
             rg2_design_free(d);
         }
@@ -1270,6 +1281,133 @@ static void pole_merge(void)
            trans_hi / DBL_EPSILON, dropped);
 }
 
+/* The diagonal of the box of the points of n NURBS of PNU x PNV points, one after the other at P. */
+static double pole_box_size(const double *P, int n)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int k = 0; k < 3 * PNU * PNV * n; k++)
+        lo[k % 3] = fmin(lo[k % 3], P[k]), hi[k % 3] = fmax(hi[k % 3], P[k]);
+    return sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+/* A pole side after an edit or a morph of the scalars along the pole line (of the direction the
+ * side runs along): the patches along the side are new, but each of their side points is a
+ * combination, with coefficients from those scalars, of the end points (w p, w) of the curves
+ * across, which read only the 4 lines and the scalars across nearest the end (design_ops.c,
+ * end_same): p in exact arithmetic. At each of the four ends, weights 1 and 1000 along the pole
+ * line: edits of the legs and junctions along it near its start (the data-only leg -1 too), in its
+ * middle, near its end and those two at once, a morph with the edit near the end, every leg and
+ * junction along it edited in a merge of the NURBS with a variant along the pole line and in three
+ * such parts closed into a ring (the line closed), and the middle edit of that ring. The side is
+ * the pole to a tenth of a rounding of the size on every patch along it, every other control value
+ * the construction's bit for bit, and the construction's side spread by more than a rounding and
+ * less than 1000 (a rounding effect: 3.8 to 174), and not the unedited mesh's (the edit reaches
+ * the side). (Edits near both ends of the pole line can spread it less: all its legs and junctions
+ * at once 0.08 to 4.3 roundings, the three edits above at once 0.13 to 0.58.) The side's weights
+ * reach -6e3 (other scalars weigh the extrapolated end lines' weights, of both signs, otherwise;
+ * the ring's merge alone gives -5.9e3): those points are p all the same. With a point of line 1
+ * or 2 edited too, or a junction or leg across at the end, the output is the construction's, its
+ * side 1e10 roundings and more from the pole. With end_same comparing the scalars along the pole
+ * line, as before, 32 checks fail. */
+static void pole_along(void)
+{
+    double U[PNU + 4] = {0, 0, 0, 0, 0.7, 1.9, 3, 3, 3, 3}, V[PNV + 4] = {0, 0, 0, 0, 1.2, 2, 2, 2, 2};
+    double P[2][3 * PNU * PNV], W[2][PNU * PNV];
+    double worst = 0.0, before_lo = INFINITY, before_hi = 0.0, patch_lo = INFINITY, wmin = INFINITY;
+    int kept = 0, dropped = 0;
+    for (int side = 0; side < 4; side++) {
+        int dv = side == 0 || side == 2, hie = side == 1 || side == 2, nd = dv ? PNV : PNU, na = dv ? PNU : PNV;
+        char D = dv ? 'v' : 'u', O = dv ? 'u' : 'v';
+        size_t cap = 16384, n = 0;
+        char *more = malloc(cap), *text = malloc(cap + 2048);
+        for (int q = 0; q < 2; q++)
+            pole_nurbs(side, 1000.0, 2 * q, P[q], W[q]);
+        n += (size_t)snprintf(more + n, cap - n, ", ");
+        n = nurbs_entry(more, n, cap, "b", &(rg2_nurbs){PNU, PNV, P[1], W[1], U, V});
+        double size[2] = {pole_box_size(P[0], 1), pole_box_size(P[0], 2)}; /* n; n and b */
+        /* the scalar edits along the pole line: near its start (leg -1 is data-only), in its middle,
+         * near its end, all of its legs and junctions at once */
+        char along[5][600];
+        snprintf(along[0], sizeof along[0],
+                 "{\"dir\": \"%c\", \"leg\": -1, \"w\": 1.5}, {\"dir\": \"%c\", \"leg\": 0, \"w\": 1.5}, "
+                 "{\"dir\": \"%c\", \"junction\": 1, \"b\": 0.6, \"g\": 0.3}", O, O, O);
+        snprintf(along[1], sizeof along[1], "{\"dir\": \"%c\", \"junction\": 2, \"g\": 1}, {\"dir\": \"%c\", \"leg\": 2, "
+                 "\"w\": 0.9}", O, O);
+        snprintf(along[2], sizeof along[2], "{\"dir\": \"%c\", \"leg\": %d, \"w\": 3}, {\"dir\": \"%c\", \"junction\": %d, "
+                 "\"b\": 1.8, \"g\": 0.2}", O, na - 2, O, na - 2);
+        snprintf(along[3], sizeof along[3], "%.290s, %.290s", along[1], along[2]); /* both at once */
+        for (int k = 0, m = 0; k < na - 1; k++) /* every leg and junction that segments read */
+            m += snprintf(along[4] + m, sizeof along[4] - (size_t)m, "%s{\"dir\": \"%c\", \"leg\": %d, \"w\": %g}, "
+                          "{\"dir\": \"%c\", \"junction\": %d, \"b\": %g, \"g\": %g}", k ? ", " : "", O, k,
+                          0.7 + 0.4 * k, O, k + 1, 0.5 + 0.3 * k, 0.05 * k);
+        char near_pt[32], l2_pt[32], across[2][200];
+        snprintf(near_pt, sizeof near_pt, dv ? "[2, %d]" : "[%d, 2]", hie ? nd - 2 : 1);
+        snprintf(l2_pt, sizeof l2_pt, dv ? "[2, %d]" : "[%d, 2]", hie ? nd - 3 : 2);
+        snprintf(across[0], sizeof across[0], "{\"dir\": \"%c\", \"junction\": %d, \"g\": 0.1}", D, hie ? nd - 2 : 1);
+        snprintf(across[1], sizeof across[1], "{\"dir\": \"%c\", \"leg\": %d, \"w\": 1.2}", D, hie ? nd - 3 : 1);
+        for (int v = 0; v < 12; v++) {
+            int keep = v < 8, merged = v >= 5 && v < 8;
+            char mesh[200] = "";
+            if (merged)
+                snprintf(mesh, sizeof mesh, ", \"m\": {\"merge\": [%s], \"along\": \"%c\"%s}",
+                         v == 5 ? "\"n\", \"b\"" : "\"n\", \"b\", \"n\"", O, v == 5 ? "" : ", \"closed\": true");
+            const char *ed = v < 4 ? along[v] : v == 4 ? along[2] : v == 5 || v == 6 ? along[4] : along[1];
+            if (v == 4)
+                snprintf(text, cap + 2048, "%s, \"e\": {\"edit\": \"n\", \"scalars\": [%s]}, "
+                         "\"o\": {\"morph\": [\"n\", \"e\"], \"t\": 0.5}", more, ed);
+            else if (v < 10)
+                snprintf(text, cap + 2048, "%s%s, \"o\": {\"edit\": \"%s\", \"scalars\": [%s]%s%s%s}", more, mesh,
+                         merged ? "m" : "n", ed, v >= 8 ? ", \"points\": [{\"at\": " : "",
+                         v == 8 ? near_pt : v == 9 ? l2_pt : "", v >= 8 ? ", \"W\": 1.3}]" : "");
+            else
+                snprintf(text, cap + 2048, "%s, \"o\": {\"edit\": \"n\", \"scalars\": [%s, %s]}", more, along[1],
+                         across[v - 10]);
+            rg2_error err;
+            rg2_design *d = pole_design(&(rg2_nurbs){PNU, PNV, P[0], W[0], U, V}, text,
+                                        merged ? "o\", \"m" : "o\", \"n", &err);
+            CHECK(d != NULL, "side %d, variant %d: %s", side, v, err.msg);
+            if (!d)
+                continue;
+            rg2_surface plain, ref;
+            CHECK_OK(rg2_surface_build(rg2_design_mesh(d, 0), &plain, &err), &err);
+            CHECK_OK(rg2_surface_build(rg2_design_mesh(d, 1), &ref, &err), &err);
+            const rg2_surface *s = rg2_design_surface(d, 0);
+            double sz = size[merged], moved, sp = side_spread(s, side, sz, pole_p);
+            double before = side_spread(&plain, side, sz, pole_p);
+            int others = pole_diffs(s, &plain, keep ? 1u << side : 0u, sz, &moved), reach = side_diffs(&plain, &ref, side);
+            int cnt = dv ? plain.nu : plain.nv;
+            double plo = INFINITY; /* the construction's smallest spread on a patch; the side's smallest weight */
+            for (int k = 0; k < cnt; k++) {
+                plo = fmin(plo, side_spread_at(&plain, side, k, k + 1, sz, pole_p));
+                for (int t = 0; t < 4; t++)
+                    wmin = fmin(wmin, side_h(&plain, side, k, t)[3]);
+            }
+            CHECK(others == 0, "side %d, variant %d: %d control values off the kept side not the construction's", side, v,
+                  others);
+            if (keep) {
+                CHECK(sp <= 0.1 * DBL_EPSILON && before > DBL_EPSILON && before < 1000 * DBL_EPSILON && reach > 0,
+                      "side %d, variant %d: the side lies %.3g roundings of the size from the pole (the construction's "
+                      "%.3g, %d of its points not the unedited mesh's)",
+                      side, v, sp / DBL_EPSILON, before / DBL_EPSILON, reach);
+                pole_kept(sp, before, &worst, &before_lo, &before_hi, &kept);
+                patch_lo = fmin(patch_lo, plo);
+            } else
+                pole_dropped(side, "variant", v, before, &dropped);
+            rg2_surface_free(&plain);
+            rg2_surface_free(&ref);
+            rg2_design_free(d);
+        }
+        free(more);
+        free(text);
+    }
+    printf("  pole sides after edits and a morph along the pole line kept: %d, at most %.3g roundings of the size "
+           "from the pole (the construction's %.3g to %.3g, per patch from %.3g; side weights from %.3g); %d dropped "
+           "(a point of line 1 or 2, a junction or leg across at the end)\n",
+           kept, worst / DBL_EPSILON, before_lo / DBL_EPSILON, before_hi / DBL_EPSILON, patch_lo / DBL_EPSILON, wmin,
+           dropped);
+}
+
 int main(void)
 {
     random_nurbs();
@@ -1279,6 +1417,7 @@ int main(void)
     pole_rows();
     pole_ops();
     pole_merge();
+    pole_along();
     errors();
     return rg2t_done("test_nurbs");
 }
