@@ -176,6 +176,22 @@ static void copy_edge_cases(void)
         if (st == RG2_OK)
             rg2_surface_free(&c);
     }
+    /* zero patches in one direction, whatever the other count or the arrays, is an empty surface
+     * (rg2.h): its copy is empty, zero by zero patches and no arrays */
+    const int zero[][3] = {{5, 0, 1}, {0, 5, 1}, {5, 0, 0}, {0, 5, 0}, {0, 0, 1}};
+    double scalars[5] = {1, 1, 1, 1, 1};
+    for (size_t q = 0; q < sizeof zero / sizeof zero[0]; q++) {
+        memset(&bad, 0, sizeof bad);
+        bad.nu = zero[q][0], bad.nv = zero[q][1], bad.patch = zero[q][2] ? &one : NULL;
+        bad.bu = bad.gu = bad.bv = bad.gv = scalars;
+        memset(&c, 0xA5, sizeof c);
+        rg2_status st = rg2_surface_copy(&bad, &c, &err);
+        CHECK(st == RG2_OK && c.nu == 0 && c.nv == 0 && !c.patch && !c.bu && !c.gu && !c.bv && !c.gv && !c.tag && !c.xp,
+              "copy of a %d x %d surface (patches %s): %s, %d x %d patches, patch array %s", zero[q][0], zero[q][1],
+              zero[q][2] ? "set" : "NULL", rg2_status_str(st), c.nu, c.nv, c.patch ? "set" : "NULL");
+        if (st == RG2_OK)
+            rg2_surface_free(&c);
+    }
 }
 
 static void mesh_errors(void)
@@ -792,9 +808,11 @@ static void construction_edges(void)
 }
 
 /* rg2__surface_normalize_weights (a capped design's surfaces, design.c) on a surface of mixed
- * degrees whose homogeneous values were all scaled by c: a patch whose largest weight lies outside
- * [2^-32, 2^32] is scaled as a whole, every control value of it (bi-3 or of higher degree) by the
- * same power of two, into a largest weight in [1, 2); one inside is left as it is. */
+ * degrees, and on the bi-3 surface it was made from (where bi-3 patches follow each other: in the
+ * mixed one each is followed by one of higher degree), whose homogeneous values were all scaled
+ * by c: a patch whose largest weight lies outside [2^-32, 2^32] is scaled as a whole, every
+ * control value of it (bi-3 or of higher degree) by the same power of two, into a largest weight
+ * in [1, 2); one inside is left as it is. */
 static void normalize_mixed(void)
 {
     rg2t_rng r;
@@ -804,11 +822,12 @@ static void normalize_mixed(void)
     random_mesh(&r, 8, 9, 0, 1, &m);
     rg2_surface s;
     CHECK_OK(rg2_surface_build(&m, &s, &err), &err);
-    CHECK_OK(xmix_elevate(&s, &err), &err);
     const double cs[] = {0x1p40, 0x1p-40, 0x1p10, 0x1p200};
     int whole = 0, ranged = 0, patches = 0;
-    for (int q = 0; q < 4; q++) {
-        double c = cs[q], M[16] = {c, 0, 0, 0, 0, c, 0, 0, 0, 0, c, 0, 0, 0, 0, c};
+    for (int q = 0; q < 8; q++) {
+        if (q == 4)
+            CHECK_OK(xmix_elevate(&s, &err), &err);
+        double c = cs[q % 4], M[16] = {c, 0, 0, 0, 0, c, 0, 0, 0, 0, c, 0, 0, 0, 0, c};
         rg2_surface t;
         CHECK_OK(rg2_surface_copy(&s, &t, &err), &err);
         rg2_surface_transform(&t, M);
