@@ -868,6 +868,14 @@ static void errors(void)
                "the knot intervals the first mirrored after values[3] = [1e-300, 2e-300] and the second mirrored "
                "after values[3] = [2e-300, 1] give",
                "knot intervals 1 and 1e-300 at the end");
+    /* the last interval the caller gave is named as given, next to the mirrored ones: 5e-324 after
+     * 2 is a ratio b below the double range, at the junction of values[2..3] and values[3..4] */
+    double kw4[5] = {-6.0, -4.0, -2.0, 0.0, 0x1p-1074};
+    bad = pv, bad.values = kw4, bad.n = 5;
+    expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_EDOMAIN, &err,
+               "the knot intervals values[2..3] = [-2, 0] and values[3..4] = [0, 5e-324] give b = 0, g = 0, K = 0: "
+               "b is out of the double range",
+               "knot intervals 2 and 5e-324 at the end");
     double kw3[3] = {0.0, 1e-300, 1.0};
     bad = pv, bad.values = kw3, bad.n = 3;
     expect_err(rg2_shape_mesh(&sh, &pu, &bad, &m, &err), RG2_EDOMAIN, &err,
