@@ -21,6 +21,7 @@
 #include <grp.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <pthread.h>
 #include <unistd.h>
 
@@ -2018,6 +2019,65 @@ static void into_memory(const rg2_surface *s, const rg2_surface *x)
            same, 3 * (int)(sizeof fmts / sizeof *fmts), total);
 }
 
+/* The STEP and IGES time stamps: with SOURCE_DATE_EPOCH (reproducible-builds.org) the time it
+ * gives, in UTC, as gmtime and strftime spell it here: FILE_NAME's second string, the IGES global
+ * section's date of the file's creation and of its last change (parameters 18 and 25, read from
+ * columns 1-72 of its lines joined). */
+static void time_stamps(const rg2_surface *s)
+{
+    static const long long when[] = {0, 1700000000, 951868799}; /* 1970, 2023, 2000-02-29 23:59:59 */
+    const char *old = getenv("SOURCE_DATE_EPOCH");
+    char *keep = old ? strdup(old) : NULL;
+    int right = 0, asked = 0;
+    for (size_t k = 0; k < sizeof when / sizeof *when; k++) {
+        char sde[32], step_want[40], iges_want[40], got[2][40] = {"", ""};
+        snprintf(sde, sizeof sde, "%lld", when[k]);
+        setenv("SOURCE_DATE_EPOCH", sde, 1);
+        time_t t = (time_t)when[k];
+        struct tm tmv;
+        CHECK(gmtime_r(&t, &tmv) && strftime(step_want, sizeof step_want, "'%Y-%m-%dT%H:%M:%S'", &tmv) &&
+                  strftime(iges_want, sizeof iges_want, "15H%Y%m%d.%H%M%S", &tmv),
+              "gmtime of %lld", when[k]);
+        rg2_error err;
+        char *m = NULL;
+        size_t n = 0;
+        CHECK_OK(rg2_export_memory(s, 1, "step", NULL, &m, &n, &err), &err);
+        const char *fn = m ? strstr(m, "FILE_NAME(") : NULL, *q = fn ? strstr(fn, "','") : NULL;
+        if (q)
+            snprintf(got[0], sizeof got[0], "%.21s", q + 2);
+        free(m);
+        CHECK_OK(rg2_export_memory(s, 1, "igs", NULL, &m, &n, &err), &err);
+        char g[2048] = "";
+        size_t gl = 0;
+        for (const char *l = m; l && *l && gl + 72 < sizeof g;) { /* the G lines' columns 1-72 */
+            const char *e = strchr(l, '\n');
+            if (!e)
+                break;
+            if (e - l >= 73 && l[72] == 'G') {
+                memcpy(g + gl, l, 72);
+                gl += 72;
+                g[gl] = 0;
+            }
+            l = e + 1;
+        }
+        free(m);
+        int stamps = 0; /* parameters 18 and 25 */
+        for (const char *h = g; (h = strstr(h, iges_want)); h++)
+            stamps++;
+        right += !strcmp(got[0], step_want) && stamps == 2;
+        asked++;
+        CHECK(!strcmp(got[0], step_want) && stamps == 2,
+              "SOURCE_DATE_EPOCH=%s: STEP stamp %s (want %s), IGES global section holds %s %d times (want 2)", sde,
+              got[0], step_want, iges_want, stamps);
+    }
+    if (keep) {
+        setenv("SOURCE_DATE_EPOCH", keep, 1);
+        free(keep);
+    } else
+        unsetenv("SOURCE_DATE_EPOCH");
+    printf("time stamps: %d of %d SOURCE_DATE_EPOCH values written as given in STEP and IGES\n", right, asked);
+}
+
 /* Several files as one (rg2_export_files): on success every path holds what rg2_export_file
  * writes (the torus; a surface with poles, whose collapsed sides the tessellation merges, next
  * to it; at two densities); when any output fails (a negative weight for STEP, an unwritable
@@ -2770,7 +2830,8 @@ static void pole_brep_counts(const rg2_surface *s, int pole, int closed, int ext
 
 /* The pole's topology on every side: the profile's start or end, along v or (transposed) along
  * u, with more arcs than profile patches and fewer, closed around and opened (the closed flag
- * cleared: the same patches, the seam two free sides); only the torus is a closed shell. A pole side within 1e-11 of the size (docs/export.md) is still a pole, one 10 times
+ * cleared: the same patches, the seam two free sides), counted and read back (brep_case, both
+ * layouts); only the torus is a closed shell. A pole side within 1e-11 of the size (docs/export.md) is still a pole, one 10 times
  * that is an edge. */
 static void pole_topology(void)
 {
@@ -2789,6 +2850,11 @@ static void pole_topology(void)
                              t ? "u the profile" : "v the profile", end ? "at its end" : "at its start",
                              open ? ", opened" : "");
                     pole_brep_counts(&s, t ? (end ? 1 : 3) : (end ? 2 : 0), 0, 0, what);
+                    /* the counts do not see which corners were merged: merging the corners on
+                     * the wrong grid line (the pole side's neighbour) gives as many vertices;
+                     * read back, every edge must run between corners at its curve's ends */
+                    for (int per_mesh = 0; per_mesh < 2; per_mesh++)
+                        brep_case(&s, per_mesh, 0, what);
                     rg2_surface_free(&s);
                 }
     rg2_surface s;
@@ -3428,6 +3494,7 @@ int main(void)
     export_degrees(&x);
     xfailures(&x);
     into_memory(&s, &x);
+    time_stamps(&s);
     int Du, Dv;
     rg2_surface_degree(&x, &Du, &Dv);
     printf("higher-degree patches (torus 6 x 4, degrees up to (%d, %d)): .bez elevated patches %.2e from rg2's, "
