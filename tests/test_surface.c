@@ -641,6 +641,106 @@ static void degenerate_and_derivatives(void)
     CHECK(worst <= 1e-6, "derivatives vs central differences: %.3g", worst);
 }
 
+/* rg2_eval_normal_curvature(e, a, c): the normal curvature along the tangent a su + c sv, against
+ * the curve t -> S(u + a t, v + c t) through the point, differentiated here by central
+ * differences of positions: S'' . n / |S'|^2. Random patches (weights 0.5 .. 2) and directions
+ * with both a and c nonzero, where the mixed term 2 a c suv counts, and tangents far from unit
+ * length. */
+static void normal_curvature_directions(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 23);
+    double worst = 0, big = 0;
+    for (int trial = 0; trial < 8; trial++) {
+        rg2_patch P;
+        for (int a = 0; a < 4; a++)
+            for (int b = 0; b < 4; b++) {
+                double W = rg2t_uniform(&r, 0.5, 2.0);
+                P.h[a][b][0] = W * (a + rg2t_uniform(&r, -0.3, 0.3));
+                P.h[a][b][1] = W * (b + rg2t_uniform(&r, -0.3, 0.3));
+                P.h[a][b][2] = W * rg2t_uniform(&r, -1.5, 1.5);
+                P.h[a][b][3] = W;
+            }
+        for (int q = 0; q < 10; q++) {
+            double u = rg2t_uniform(&r, 0.2, 0.8), v = rg2t_uniform(&r, 0.2, 0.8);
+            double a = rg2t_uniform(&r, 0.3, 2.0) * (q & 1 ? -1 : 1), c = rg2t_uniform(&r, 0.3, 2.0);
+            const double h = 1e-4;
+            rg2_eval e, ep, em;
+            rg2_patch_eval(&P, u, v, 2, &e);
+            rg2_patch_eval(&P, u + a * h, v + c * h, 0, &ep);
+            rg2_patch_eval(&P, u - a * h, v - c * h, 0, &em);
+            double d1[3], d2[3];
+            for (int k = 0; k < 3; k++) {
+                d1[k] = (ep.p[k] - em.p[k]) / (2 * h);
+                d2[k] = (ep.p[k] - 2 * e.p[k] + em.p[k]) / (h * h);
+            }
+            double own = (d2[0] * e.n[0] + d2[1] * e.n[1] + d2[2] * e.n[2]) / (d1[0] * d1[0] + d1[1] * d1[1] + d1[2] * d1[2]);
+            double got = rg2_eval_normal_curvature(&e, a, c);
+            worst = fmax(worst, fabs(got - own) / fmax(1.0, fabs(own)));
+            big = fmax(big, fabs(own));
+            CHECK(e.flags == 0, "normal curvature: patch %d flags %u", trial, e.flags);
+        }
+    }
+    CHECK(worst <= 1e-5 && big > 0.1, "normal curvature along a su + c sv vs central differences: %.3g (largest %.3g)",
+          worst, big);
+    printf("rg2_eval_normal_curvature: %.2e from central differences along 80 directions (curvatures up to %.2f)\n",
+           worst, big);
+}
+
+/* A patch far from the origin for its size: su = (Hu - Wu p) / W cancels, and its rounding
+ * grows with |p|. The normal is flagged undefined when a derivative is at the level of its
+ * rounding (rg2__normal_test's ru, rv: the sums |Hu_k| + |Wu p_k|); where it is not flagged, it
+ * must be the normal of the same patch at the origin. The patch (size 1, weights 0.5 .. 2 varying
+ * along u only) moved by 10^k along (1, 1, 1), k = 0 .. 17: how many normals were left defined
+ * and how far the worst of them turned. */
+static void far_from_origin(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 31);
+    rg2_patch P0, P;
+    double wrow[4];
+    for (int a = 0; a < 4; a++)
+        wrow[a] = rg2t_uniform(&r, 0.5, 2.0);
+    for (int a = 0; a < 4; a++)
+        for (int b = 0; b < 4; b++) {
+            double W = wrow[a]; /* along u only: sv has no such cancellation, su alone is noise far out */
+            P0.h[a][b][0] = W * (a / 3.0 + rg2t_uniform(&r, -0.1, 0.1));
+            P0.h[a][b][1] = W * (b / 3.0 + rg2t_uniform(&r, -0.1, 0.1));
+            P0.h[a][b][2] = W * rg2t_uniform(&r, -0.5, 0.5);
+            P0.h[a][b][3] = W;
+        }
+    double worst = 0;
+    int wrong = 0, defined_near = 0, undefined_far = 0;
+    for (int k = 0; k <= 17; k++) {
+        double T = pow(10.0, k);
+        P = P0;
+        for (int a = 0; a < 4; a++)
+            for (int b = 0; b < 4; b++)
+                for (int d = 0; d < 3; d++)
+                    P.h[a][b][d] += P0.h[a][b][3] * T;
+        for (int q = 0; q < 25; q++) {
+            double u = (q % 5 + 0.5) / 5, v = (q / 5 + 0.5) / 5;
+            rg2_eval e0, e;
+            rg2_patch_eval(&P0, u, v, 1, &e0);
+            rg2_patch_eval(&P, u, v, 1, &e);
+            if (e.flags & RG2_EVAL_NORMAL_UNDEFINED) {
+                undefined_far += k == 17;
+                continue;
+            }
+            double c = e.n[0] * e0.n[0] + e.n[1] * e0.n[1] + e.n[2] * e0.n[2];
+            double ang = acos(fmin(1.0, c));
+            defined_near += k == 0;
+            worst = fmax(worst, ang);
+            wrong += !(ang <= 0.05);
+        }
+    }
+    CHECK(wrong == 0 && defined_near == 25 && undefined_far == 25,
+          "a patch moved far from the origin: %d defined normals more than 0.05 off (worst %.3g rad), %d of 25 "
+          "defined at the origin, %d of 25 undefined at 1e17",
+          wrong, worst, defined_near, undefined_far);
+    printf("a patch moved up to 1e17 from the origin: defined normals within %.2e rad of the origin's\n", worst);
+}
+
 /* The mesh built on both construction paths: s[0], st[0], e[0] by the default path (AVX-512
  * where the CPU has it), s[1], st[1], e[1] by the portable one. */
 static void build_both(const rg2_mesh *m, rg2_surface s[2], rg2_status st[2], rg2_error e[2])
@@ -1096,6 +1196,8 @@ int main(void)
     torus_curvatures(0x1p300); /* and ~ 1e180 */
     sphere_umbilics();
     degenerate_and_derivatives();
+    normal_curvature_directions();
+    far_from_origin();
     random_surfaces();
     broken_is_detected();
     transpose_symmetry();
