@@ -741,6 +741,44 @@ static void far_from_origin(void)
     printf("a patch moved up to 1e17 from the origin: defined normals within %.2e rad of the origin's\n", worst);
 }
 
+/* A rational patch is its homogeneous control points up to a common factor: all of them times
+ * 2^k (exact) is the same surface, and evaluates to the same bits (position, derivatives,
+ * normal, curvatures and flags), k = -40 .. 40 by 10, on random patches (weights 0.5 .. 2) and on
+ * one with a collapsed u = 0 side, at its pole too. */
+static void projective_scaling(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 37);
+    int same = 0, asked = 0, undefined = 0;
+    for (int trial = 0; trial < 4; trial++) {
+        rg2_patch P, Q;
+        for (int a = 0; a < 4; a++)
+            for (int b = 0; b < 4; b++) {
+                double W = rg2t_uniform(&r, 0.5, 2.0);
+                P.h[a][b][0] = W * (trial == 3 && a == 0 ? 0.5 : a + rg2t_uniform(&r, -0.3, 0.3));
+                P.h[a][b][1] = W * (trial == 3 && a == 0 ? 0.5 : b + rg2t_uniform(&r, -0.3, 0.3));
+                P.h[a][b][2] = W * rg2t_uniform(&r, -1, 1) * (trial == 3 && a == 0 ? 0 : 1);
+                P.h[a][b][3] = W;
+            }
+        for (int k = -40; k <= 40; k += 10)
+            for (int q = 0; q < 16; q++) {
+                double u = q < 4 ? 0.0 : (q % 4 + 0.5) / 4, v = (q / 4 + 0.5) / 4;
+                for (int a = 0; a < 4; a++)
+                    for (int b = 0; b < 4; b++)
+                        for (int d = 0; d < 4; d++)
+                            Q.h[a][b][d] = ldexp(P.h[a][b][d], k);
+                rg2_eval e, f;
+                rg2_patch_eval(&P, u, v, 2, &e);
+                rg2_patch_eval(&Q, u, v, 2, &f);
+                same += !memcmp(&e, &f, sizeof e);
+                undefined += k == 0 && (e.flags & RG2_EVAL_NORMAL_UNDEFINED) != 0;
+                asked++;
+            }
+    }
+    CHECK(same == asked && undefined == 4, "homogeneous points times 2^k: %d of %d evaluations the same bits, %d of 4 "
+          "on the pole undefined", same, asked, undefined);
+}
+
 /* The mesh built on both construction paths: s[0], st[0], e[0] by the default path (AVX-512
  * where the CPU has it), s[1], st[1], e[1] by the portable one. */
 static void build_both(const rg2_mesh *m, rg2_surface s[2], rg2_status st[2], rg2_error e[2])
@@ -1198,6 +1236,7 @@ int main(void)
     degenerate_and_derivatives();
     normal_curvature_directions();
     far_from_origin();
+    projective_scaling();
     random_surfaces();
     broken_is_detected();
     transpose_symmetry();
