@@ -473,6 +473,54 @@ static void closed_flags(void)
     CHECK(right == made, "closed flags 0 or 1: %d of %d", right, made);
 }
 
+/* Every dimension 1 .. RG2_MAX_DIM is built, RG2_MAX_DIM + 1 refused. The construction is the
+ * same linear stencil for every coordinate: coordinate d of a curve of RG2_MAX_DIM dimensions,
+ * closed and open, is the 1-D curve of that coordinate alone, position and both derivatives,
+ * to the last bit. */
+static void dimensions(void)
+{
+    rg2t_rng r;
+    rg2t_seed(&r, 41);
+    int built = 0, off = 0;
+    for (int closed = 0; closed < 2; closed++) {
+        enum { N = 7 };
+        rg2_scalars s;
+        rg2_error err;
+        CHECK_OK(rg2_scalars_init(&s, N, closed, &err), &err);
+        for (int k = 0; k < rg2_scalars_num_w(&s); k++)
+            s.w[k] = rg2t_uniform(&r, 0.7, 1.4);
+        double p[N * (RG2_MAX_DIM + 1)], one[N];
+        for (int k = 0; k < N * (RG2_MAX_DIM + 1); k++)
+            p[k] = rg2t_uniform(&r, -1, 1);
+        rg2_curve c, c1;
+        for (int dim = 1; dim <= RG2_MAX_DIM; dim++)
+            if (rg2_curve_build(dim, p, &s, &c, &err) == RG2_OK) {
+                built++;
+                rg2_curve_free(&c);
+            }
+        CHECK(rg2_curve_build(RG2_MAX_DIM + 1, p, &s, &c, &err) == RG2_EINVAL && strstr(err.msg, "dimension"),
+              "dimension %d accepted: %s", RG2_MAX_DIM + 1, err.msg);
+        CHECK_OK(rg2_curve_build(RG2_MAX_DIM, p, &s, &c, &err), &err);
+        for (int d = 0; d < RG2_MAX_DIM; d++) {
+            for (int i = 0; i < N; i++)
+                one[i] = p[i * RG2_MAX_DIM + d];
+            CHECK_OK(rg2_curve_build(1, one, &s, &c1, &err), &err);
+            for (int k = 0; k < c.n_segments; k++)
+                for (int q = 0; q <= 4; q++) {
+                    double x[3][RG2_MAX_DIM], y[3];
+                    rg2_curve_eval(&c, k, q / 4.0, x[0], x[1], x[2]);
+                    rg2_curve_eval(&c1, k, q / 4.0, &y[0], &y[1], &y[2]);
+                    off += x[0][d] != y[0] || x[1][d] != y[1] || x[2][d] != y[2];
+                }
+            rg2_curve_free(&c1);
+        }
+        rg2_curve_free(&c);
+        rg2_scalars_free(&s);
+    }
+    CHECK(built == 2 * RG2_MAX_DIM && off == 0, "dimensions 1 .. %d: %d of %d built, %d coordinates off their 1-D curves",
+          RG2_MAX_DIM, built, 2 * RG2_MAX_DIM, off);
+}
+
 static void errors(void)
 {
     rg2_scalars s;
@@ -648,6 +696,7 @@ int main(void)
     circles();
     closed_knots();
     curve_curvature();
+    dimensions();
     errors();
     return rg2t_done("test_curve");
 }
