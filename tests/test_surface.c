@@ -641,6 +641,22 @@ static void degenerate_and_derivatives(void)
     CHECK(worst <= 1e-6, "derivatives vs central differences: %.3g", worst);
 }
 
+/* A random rational bi-cubic patch over the unit grid: control point (a, b) moved by up to 0.3 in
+ * x and y, height in [-zmax, zmax], weight in [0.5, 2]; with collapse, its u = 0 side is the point
+ * (0.5, 0.5, 0) (the same draws, in the same order, either way but for the collapsed x and y). */
+static void random_bumpy_patch(rg2t_rng *r, rg2_patch *P, double zmax, int collapse)
+{
+    for (int a = 0; a < 4; a++)
+        for (int b = 0; b < 4; b++) {
+            int c = collapse && a == 0;
+            double W = rg2t_uniform(r, 0.5, 2.0);
+            P->h[a][b][0] = W * (c ? 0.5 : a + rg2t_uniform(r, -0.3, 0.3));
+            P->h[a][b][1] = W * (c ? 0.5 : b + rg2t_uniform(r, -0.3, 0.3));
+            P->h[a][b][2] = W * rg2t_uniform(r, -zmax, zmax) * (c ? 0 : 1);
+            P->h[a][b][3] = W;
+        }
+}
+
 /* rg2_eval_normal_curvature(e, a, c): the normal curvature along the tangent a su + c sv, against
  * the curve t -> S(u + a t, v + c t) through the point, differentiated here by central
  * differences of positions: S'' . n / |S'|^2. Random patches (weights 0.5 .. 2) and directions
@@ -653,14 +669,7 @@ static void normal_curvature_directions(void)
     double worst = 0, big = 0;
     for (int trial = 0; trial < 8; trial++) {
         rg2_patch P;
-        for (int a = 0; a < 4; a++)
-            for (int b = 0; b < 4; b++) {
-                double W = rg2t_uniform(&r, 0.5, 2.0);
-                P.h[a][b][0] = W * (a + rg2t_uniform(&r, -0.3, 0.3));
-                P.h[a][b][1] = W * (b + rg2t_uniform(&r, -0.3, 0.3));
-                P.h[a][b][2] = W * rg2t_uniform(&r, -1.5, 1.5);
-                P.h[a][b][3] = W;
-            }
+        random_bumpy_patch(&r, &P, 1.5, 0);
         for (int q = 0; q < 10; q++) {
             double u = rg2t_uniform(&r, 0.2, 0.8), v = rg2t_uniform(&r, 0.2, 0.8);
             double a = rg2t_uniform(&r, 0.3, 2.0) * (q & 1 ? -1 : 1), c = rg2t_uniform(&r, 0.3, 2.0);
@@ -752,14 +761,7 @@ static void projective_scaling(void)
     int same = 0, asked = 0, undefined = 0;
     for (int trial = 0; trial < 4; trial++) {
         rg2_patch P, Q;
-        for (int a = 0; a < 4; a++)
-            for (int b = 0; b < 4; b++) {
-                double W = rg2t_uniform(&r, 0.5, 2.0);
-                P.h[a][b][0] = W * (trial == 3 && a == 0 ? 0.5 : a + rg2t_uniform(&r, -0.3, 0.3));
-                P.h[a][b][1] = W * (trial == 3 && a == 0 ? 0.5 : b + rg2t_uniform(&r, -0.3, 0.3));
-                P.h[a][b][2] = W * rg2t_uniform(&r, -1, 1) * (trial == 3 && a == 0 ? 0 : 1);
-                P.h[a][b][3] = W;
-            }
+        random_bumpy_patch(&r, &P, 1.0, trial == 3);
         for (int k = -40; k <= 40; k += 10)
             for (int q = 0; q < 16; q++) {
                 double u = q < 4 ? 0.0 : (q % 4 + 0.5) / 4, v = (q / 4 + 0.5) / 4;
